@@ -1,0 +1,289 @@
+#pragma once
+// Exact kinematics of the instrument on the centrifuge (docs/model.md §4): the full chain
+//   0 →(levelling) 1t →(runout, wobble, Rz θ1) 1 →(R0+ΔR, Δy2t, Δθy2t) 2t →(Rx β) 2 →(Δy3t, Δθx3t, Δθy3t) 3t
+//     →(runout, wobble, Rz γ) 3 →(L, Δθx4, Δθy4) 4 →(l, Δx5, Δy5, Δθx5, Δθy5, Δθz5) 5
+// composed with exact rotations (an error triple is Rz(θz)·Ry(θy)·Rx(θx)), every dynamic error differentiated
+// analytically through its joint angle, and
+//   specific force  f = a + 2 ω_ie × v + g z0          (a, v relative to the Earth-fixed frame 0)
+//   angular rate    ω = ω_ie + ω_05                     (inertial)
+// both resolved on IA = x5, PA = y5, OA = z5. Everything is templated on the scalar type, so
+// Eigen::AutoDiffScalar gives exact derivatives with respect to any error parameter or joint variable.
+
+#include <Eigen/Core>
+#include <cmath>
+
+#include "ccal/centrifuge.hpp"
+#include "ccal/error_sources.hpp"
+#include "ccal/frames.hpp"
+#include "ccal/site.hpp"
+
+namespace ccal {
+
+template <class S>
+using VecX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+
+// Joint angles and rates at one instant. Joint accelerations are zero (constant rates).
+template <class S>
+struct JointState {
+  S theta1{0};       // main-axis angle from x0 (East) [rad]
+  S theta1_rate{0};  // θ̇1 = Ω + Δω [rad/s]
+  S beta{0};         // horizontal-axis angle [rad]
+  S beta_rate{0};
+  S gamma{0};       // platform angle: IA from the outward radial x1, about z3 [rad]
+  S gamma_rate{0};  // γ̇ [rad/s]
+};
+
+template <class S>
+struct InstrumentState {
+  Vec3<S> position;        // o5 in frame 0 [m]
+  Vec3<S> velocity;        // relative to frame 0 [m/s]
+  Vec3<S> acceleration;    // relative to frame 0 [m/s²]
+  Mat3<S> orientation;     // columns IA, PA, OA resolved in frame 0
+  Vec3<S> specific_force;  // along IA, PA, OA [g] (divided by the site's g)
+  Vec3<S> angular_rate;    // inertial, about IA, PA, OA [rad/s]
+};
+
+struct ChainOptions {
+  // The paper's "frozen-γ" differentiation (model.md §2.1): the platform rate is left out of the position
+  // derivatives (as if the platform were fixed at the current γ); it still enters the angular rate.
+  bool frozen_platform = false;
+};
+
+// Value of a dynamic channel and its first two time derivatives at joint angle q turning at q̇ (q̈ = 0):
+//   v = Σ ck cos kq + sk sin kq,  v̇ = q̇ dv/dq,  v̈ = q̇² d²v/dq².
+template <class S>
+struct ChannelValue {
+  S value{0}, rate{0}, acc{0};
+};
+
+template <class S, class Errors>
+ChannelValue<S> dynamic_channel(const ErrorLayout& layout, const Errors& e, int channel, const S& q,
+                                const S& q_rate) {
+  using std::cos;
+  using std::sin;
+  ChannelValue<S> out;
+  out.value = S(e[layout.harmonic_index(channel, 0, false)]);
+  const int order = layout.harmonic_order();
+  if (order == 0) return out;
+  const S c1 = cos(q), s1 = sin(q);
+  S ck = c1, sk = s1, d1{0}, d2{0};
+  for (int k = 1; k <= order; ++k) {
+    const S a = S(e[layout.harmonic_index(channel, k, false)]);
+    const S b = S(e[layout.harmonic_index(channel, k, true)]);
+    const S term = a * ck + b * sk;
+    out.value += term;
+    d1 += double(k) * (b * ck - a * sk);
+    d2 -= double(k * k) * term;
+    const S next_c = ck * c1 - sk * s1;  // cos (k+1)q, sin (k+1)q by the angle-addition recurrence
+    sk = sk * c1 + ck * s1;
+    ck = next_c;
+  }
+  out.rate = q_rate * d1;
+  out.acc = q_rate * q_rate * d2;
+  return out;
+}
+
+namespace detail {
+template <class S, class Errors>
+void translate_dynamic(FrameMotion<S>& m, const ErrorLayout& layout, const Errors& e, int first_channel,
+                       const S& q, const S& q_rate) {
+  Vec3<S> d, dd, ddd;
+  for (int i = 0; i < 3; ++i) {
+    const auto c = dynamic_channel<S>(layout, e, first_channel + i, q, q_rate);
+    d[i] = c.value;
+    dd[i] = c.rate;
+    ddd[i] = c.acc;
+  }
+  m.translate(d, dd, ddd);
+}
+
+template <class S, class Errors>
+void rotate_dynamic(FrameMotion<S>& m, const ErrorLayout& layout, const Errors& e, int channel, int axis,
+                    const S& q, const S& q_rate) {
+  const auto c = dynamic_channel<S>(layout, e, channel, q, q_rate);
+  m.rotate(axis, c.value, c.rate, c.acc);
+}
+}  // namespace detail
+
+// Exact state of the instrument for error vector `e` (indexed by `layout`, SI values).
+template <class S, class Errors>
+InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, const Errors& e,
+                               const Site& site, const JointState<S>& j, const ChainOptions& options = {}) {
+  constexpr int X = 0, Y = 1, Z = 2;
+  auto E = [&](int i) { return S(e[i]); };
+  FrameMotion<S> m;
+  // 0 → 1t: levelling of the main-axis sleeve.
+  m.rotate(Y, E(dthy1t));
+  m.rotate(X, E(dthx1t));
+  // 1t → 1: runouts, wobbles, then the main axis itself.
+  detail::translate_dynamic<S>(m, layout, e, dx1, j.theta1, j.theta1_rate);
+  detail::rotate_dynamic<S>(m, layout, e, dthy1, Y, j.theta1, j.theta1_rate);
+  detail::rotate_dynamic<S>(m, layout, e, dthx1, X, j.theta1, j.theta1_rate);
+  m.rotate(Z, j.theta1, j.theta1_rate, S(0));
+  // 1 → 2t: arm of radius R0 + ΔR_s + c·θ̇1², intersection, perpendicularity.
+  m.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * j.theta1_rate * j.theta1_rate, E(dy2t), S(0)));
+  m.rotate(Y, E(dthy2t));
+  // 2t → 2: horizontal-axis float, runouts, wobbles, then Rx(β).
+  detail::translate_dynamic<S>(m, layout, e, dx2, j.beta, j.beta_rate);
+  detail::rotate_dynamic<S>(m, layout, e, dthz2, Z, j.beta, j.beta_rate);
+  detail::rotate_dynamic<S>(m, layout, e, dthy2, Y, j.beta, j.beta_rate);
+  m.rotate(X, j.beta, j.beta_rate, S(0));
+  // 2 → 3t: azimuth sleeve.
+  m.translate(Vec3<S>(S(0), E(dy3t), S(0)));
+  m.rotate(Y, E(dthy3t));
+  m.rotate(X, E(dthx3t));
+  // 3t → 3: platform runouts, float, wobbles, then Rz(γ). Frozen-γ drops γ̇ from the position derivatives.
+  const S gamma_rate_in_position = options.frozen_platform ? S(0) : j.gamma_rate;
+  detail::translate_dynamic<S>(m, layout, e, dx3, j.gamma, gamma_rate_in_position);
+  detail::rotate_dynamic<S>(m, layout, e, dthy3, Y, j.gamma, gamma_rate_in_position);
+  detail::rotate_dynamic<S>(m, layout, e, dthx3, X, j.gamma, gamma_rate_in_position);
+  const Vec3<S> azimuth_axis = m.R.col(Z);
+  m.rotate(Z, j.gamma, gamma_rate_in_position, S(0));
+  // 3 → 4: working base plane.
+  m.translate(Vec3<S>(S(0), S(0), S(geo.L)));
+  m.rotate(Y, E(dthy4));
+  m.rotate(X, E(dthx4));
+  // 4 → 5: the instrument.
+  m.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
+  m.rotate(Z, E(dthz5));
+  m.rotate(Y, E(dthy5));
+  m.rotate(X, E(dthx5));
+
+  if (options.frozen_platform) m.w += azimuth_axis * j.gamma_rate;
+
+  const Vec3<S> earth = site.earth_rate_enu().template cast<S>();
+  Vec3<S> f = m.a + S(2) * earth.cross(m.v);
+  f[2] += S(site.g);
+  InstrumentState<S> out;
+  out.position = m.p;
+  out.velocity = m.v;
+  out.acceleration = m.a;
+  out.orientation = m.R;
+  out.specific_force = m.R.transpose() * f / S(site.g);
+  out.angular_rate = m.R.transpose() * (m.w + earth);
+  return out;
+}
+
+// Specific force [g] and inertial angular rate [rad/s] on IA, PA, OA: the two quantities an instrument senses.
+template <class S>
+struct SensedInput {
+  Vec3<S> specific_force;
+  Vec3<S> angular_rate;
+};
+
+// The chain with only static errors (and a fixed horizontal axis), factored as in model.md §4.1:
+//   p = A · Rz(θ1) · (B_R · Rz(γ) · c + B_p),  frame 5 = A · Rz(θ1) · B_R · Rz(γ) · C_R,
+// so that one evaluation costs two sine/cosine pairs and a few 3×3 products. Everything that does not change
+// in time is precomputed. In frame-1 coordinates, with K = [z×] (so Rz(−θ)Rz′(θ) = K, Rz(−θ)Rz″(θ) = K²),
+//   u = B_R Rz(γ) c + B_p,  u′ = B_R Rz′(γ) c,  u″ = B_R Rz″(γ) c
+//   a₁ = θ̇1² K² u + 2 θ̇1 γ̇ K u′ + γ̇² u″,   v₁ = θ̇1 K u + γ̇ u′.
+// Dynamic errors of the main and azimuth axes are ignored here: use exact_state for them.
+template <class S>
+class StaticChain {
+ public:
+  template <class Errors>
+  StaticChain(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
+              const S& theta1_rate, const S& beta, const ChainOptions& options = {})
+      : g_(site.g), frozen_(options.frozen_platform) {
+    constexpr int X = 0, Y = 1, Z = 2;
+    auto E = [&](int i) { return S(e[i]); };
+    FrameMotion<S> a;  // 0 → 1t
+    a.rotate(Y, E(dthy1t));
+    a.rotate(X, E(dthx1t));
+    gravity_1t_ = a.R.transpose().col(Z);
+    earth_1t_ = a.R.transpose() * site.earth_rate_enu().template cast<S>();
+
+    FrameMotion<S> b;  // 1 → 3t, static (β fixed)
+    const S zero{0};
+    b.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * theta1_rate * theta1_rate, E(dy2t), zero));
+    b.rotate(Y, E(dthy2t));
+    b.translate(Vec3<S>(dynamic_channel<S>(layout, e, dx2, beta, zero).value,
+                        dynamic_channel<S>(layout, e, dy2, beta, zero).value,
+                        dynamic_channel<S>(layout, e, dz2, beta, zero).value));
+    b.rotate(Z, dynamic_channel<S>(layout, e, dthz2, beta, zero).value);
+    b.rotate(Y, dynamic_channel<S>(layout, e, dthy2, beta, zero).value);
+    b.rotate(X, beta);
+    b.translate(Vec3<S>(zero, E(dy3t), zero));
+    b.rotate(Y, E(dthy3t));
+    b.rotate(X, E(dthx3t));
+    RB_ = b.R;
+    pB_ = b.p;
+
+    FrameMotion<S> c;  // 3 → 5
+    c.translate(Vec3<S>(zero, zero, S(geo.L)));
+    c.rotate(Y, E(dthy4));
+    c.rotate(X, E(dthx4));
+    c.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
+    c.rotate(Z, E(dthz5));
+    c.rotate(Y, E(dthy5));
+    c.rotate(X, E(dthx5));
+    RC_ = c.R;
+    c_ = c.p;
+  }
+
+  SensedInput<S> operator()(const S& theta1, const S& gamma, const S& theta1_rate, const S& gamma_rate) const {
+    using std::cos;
+    using std::sin;
+    const S ct = cos(theta1), st = sin(theta1), cg = cos(gamma), sg = sin(gamma);
+    const Vec3<S> rz_c(cg * c_[0] - sg * c_[1], sg * c_[0] + cg * c_[1], c_[2]);
+    const Vec3<S> rz1_c(-rz_c[1], rz_c[0], S(0));  // Rz′(γ) c = K Rz(γ) c
+    const Vec3<S> u = RB_ * rz_c + pB_;
+    const Vec3<S> u1 = RB_ * rz1_c;
+    const Vec3<S> u2 = -(RB_.template leftCols<2>() * rz_c.template head<2>());  // Rz″(γ)c = −(x, y, 0)
+    const S gr = frozen_ ? S(0) : gamma_rate;
+    const S w2 = theta1_rate * theta1_rate;
+    const Vec3<S> acc(-w2 * u[0] - S(2) * theta1_rate * gr * u1[1] + gr * gr * u2[0],
+                      -w2 * u[1] + S(2) * theta1_rate * gr * u1[0] + gr * gr * u2[1], gr * gr * u2[2]);
+    const Vec3<S> vel(-theta1_rate * u[1] + gr * u1[0], theta1_rate * u[0] + gr * u1[1], gr * u1[2]);
+    // Gravity direction and Earth rate in frame-1 coordinates: Rz(−θ1) applied to their 1t coordinates.
+    const Vec3<S> up(ct * gravity_1t_[0] + st * gravity_1t_[1], ct * gravity_1t_[1] - st * gravity_1t_[0],
+                     gravity_1t_[2]);
+    const Vec3<S> earth(ct * earth_1t_[0] + st * earth_1t_[1], ct * earth_1t_[1] - st * earth_1t_[0],
+                        earth_1t_[2]);
+    const Vec3<S> f1 = acc + S(2) * earth.cross(vel) + S(g_) * up;
+    const Vec3<S> w1 = Vec3<S>(S(0), S(0), theta1_rate) + gamma_rate * RB_.col(2) + earth;
+    // Frame 5 in frame 1 is M = R_B Rz(γ) R_C, so x₅ = M^T x₁ = R_C^T Rz(−γ) R_B^T x₁.
+    auto to_frame5 = [&](const Vec3<S>& x1) {
+      const Vec3<S> x3t = RB_.transpose() * x1;
+      const Vec3<S> x3(cg * x3t[0] + sg * x3t[1], cg * x3t[1] - sg * x3t[0], x3t[2]);
+      return Vec3<S>(RC_.transpose() * x3);
+    };
+    return {to_frame5(f1) / S(g_), to_frame5(w1)};
+  }
+
+ private:
+  double g_;
+  bool frozen_;
+  Vec3<S> gravity_1t_, earth_1t_;
+  Mat3<S> RB_, RC_;
+  Vec3<S> pB_, c_;
+};
+
+// Joint motion of one run: θ1(t) = θ1(0) + (Ω + Δω) t, γ(t) = φ0 + γ̇ t with γ̇ = −(Ω + Δω + ΔΩ) on a
+// counter-rotating platform and 0 on a fixed one, β constant.
+template <class S>
+struct RunMotion {
+  S theta1_0{0};
+  S theta1_rate{0};
+  S beta{0};
+  S gamma_0{0};
+  S gamma_rate{0};
+
+  JointState<S> at(const S& t) const {
+    return {theta1_0 + theta1_rate * t, theta1_rate, beta, S(0), gamma_0 + gamma_rate * t, gamma_rate};
+  }
+};
+
+template <class S, class Errors>
+RunMotion<S> run_motion(double nominal_rate, double theta1_0, double phi0, PlatformMode mode, double beta,
+                        const Errors& e) {
+  RunMotion<S> r;
+  r.theta1_0 = S(theta1_0);
+  r.theta1_rate = S(nominal_rate) + S(e[domega]);
+  r.beta = S(beta);
+  r.gamma_0 = S(phi0);
+  r.gamma_rate = mode == PlatformMode::counter_rotating ? S(-(r.theta1_rate + S(e[dOmega]))) : S(0);
+  return r;
+}
+
+}  // namespace ccal

@@ -1,0 +1,22 @@
+#pragma once
+// The test site: latitude, local gravity and Earth rotation (docs/model.md §1).
+
+#include <Eigen/Core>
+
+namespace ccal {
+
+struct Site {
+  double latitude = 0.798488132;     // rad; 45.75° N (Harbin), the paper's site as reconstructed
+  double g = 9.8;                    // local gravity magnitude [m/s²]; the paper's value (model.md A2)
+  bool earth_rotation = true;        // Coriolis force and Earth rate on the instrument
+  double earth_rate = 7.2921150e-5;  // WGS-84 [rad/s]
+
+  // Earth's angular velocity in the geographic frame 0 (x East, y North, z Up), zero if switched off.
+  Eigen::Vector3d earth_rate_enu() const;
+};
+
+// Normal gravity on the WGS-84 ellipsoid (Somigliana's closed form) with the free-air gradient
+// −3.086e-6 s⁻² per metre of height; the default for a site whose g is not measured.
+double normal_gravity(double latitude, double height = 0.0);
+
+}  // namespace ccal

@@ -1,0 +1,61 @@
+#pragma once
+// Shared set-ups for the kinematics tests: the paper's geometry and the V5 operating point of model.md §6.1.
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "ccal/centrifuge.hpp"
+#include "ccal/kinematics.hpp"
+#include "ccal/site.hpp"
+
+namespace ccal::test {
+
+using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+inline Site paper_site(bool earth = false) {
+  Site s;
+  s.latitude = 45.75 * kDeg;
+  s.g = 9.8;
+  s.earth_rotation = earth;
+  return s;
+}
+
+// Main-axis rate giving A g at radius R0: A = Ω² R0 / g.
+inline double rate_for(double A, double R0, double g) { return std::sqrt(A * g / R0); }
+
+// The six sensed outputs (f_IA, f_PA, f_OA [g], ω_IA, ω_PA, ω_OA [rad/s]) of the exact chain for errors e,
+// with the joint motion of the run perturbed by the drive errors in e.
+template <class S>
+Eigen::Matrix<S, 6, 1> outputs(const Geometry& geo, const ErrorLayout& layout, const VecX<S>& e, const Site& site,
+                               double rate, double theta1_0, double phi0, PlatformMode mode, double t,
+                               const ChainOptions& options = {}) {
+  const RunMotion<S> run = run_motion<S>(rate, theta1_0, phi0, mode, geo.beta, e);
+  const auto s = exact_state<S>(geo, layout, e, site, run.at(S(t)), options);
+  Eigen::Matrix<S, 6, 1> y;
+  y << s.specific_force, s.angular_rate;
+  return y;
+}
+
+// Jacobian of the six outputs with respect to every error parameter, by forward-mode AD at errors e0.
+inline Eigen::Matrix<double, 6, Eigen::Dynamic> ad_jacobian(const Geometry& geo, const ErrorLayout& layout,
+                                                            const Eigen::VectorXd& e0, const Site& site,
+                                                            double rate, double theta1_0, double phi0,
+                                                            PlatformMode mode, double t,
+                                                            const ChainOptions& options = {}) {
+  const int n = layout.size();
+  VecX<AD> e(n);
+  for (int i = 0; i < n; ++i) e[i] = AD(e0[i], n, i);
+  const auto y = outputs<AD>(geo, layout, e, site, rate, theta1_0, phi0, mode, t, options);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, n);
+  for (int r = 0; r < 6; ++r) {
+    if (y[r].derivatives().size() == n)
+      J.row(r) = y[r].derivatives().transpose();
+    else
+      J.row(r).setZero();  // a constant output: AutoDiff leaves its derivative vector empty
+  }
+  return J;
+}
+
+}  // namespace ccal::test
