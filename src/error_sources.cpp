@@ -49,10 +49,14 @@ constexpr std::array<Channel, kChannelCount> kChannels{{
 
 std::string_view unit_symbol(SourceUnit unit) noexcept {
   switch (unit) {
-    case SourceUnit::rad: return "rad";
-    case SourceUnit::m: return "m";
-    case SourceUnit::rad_per_s: return "rad/s";
-    case SourceUnit::m_per_rad_per_s_squared: return "m/(rad/s)^2";
+    case SourceUnit::rad:
+      return "rad";
+    case SourceUnit::m:
+      return "m";
+    case SourceUnit::rad_per_s:
+      return "rad/s";
+    case SourceUnit::m_per_rad_per_s_squared:
+      return "m/(rad/s)^2";
   }
   return "";
 }
@@ -63,13 +67,17 @@ SourceUnit channel_unit(const Channel& channel) noexcept {
   switch (channel.kind) {
     case rotation_x:
     case rotation_y:
-    case rotation_z: return SourceUnit::rad;
+    case rotation_z:
+      return SourceUnit::rad;
     case translation_x:
     case translation_y:
-    case translation_z: return SourceUnit::m;
-    case ErrorKind::arm_stretch: return SourceUnit::m_per_rad_per_s_squared;
+    case translation_z:
+      return SourceUnit::m;
+    case ErrorKind::arm_stretch:
+      return SourceUnit::m_per_rad_per_s_squared;
     case main_rate:
-    case platform_rate: return SourceUnit::rad_per_s;
+    case platform_rate:
+      return SourceUnit::rad_per_s;
   }
   return SourceUnit::rad;
 }
@@ -82,7 +90,8 @@ std::optional<int> find_channel(std::string_view id) noexcept {
 
 ErrorLayout::ErrorLayout(int harmonic_order) : order_(harmonic_order) {
   if (harmonic_order < 0 || harmonic_order > 64)
-    throw std::invalid_argument("harmonic order must be between 0 and 64, got " + std::to_string(harmonic_order));
+    throw std::invalid_argument("harmonic order must be between 0 and 64, got " +
+                                std::to_string(harmonic_order));
 }
 
 int ErrorLayout::parameter_channel(int index) const noexcept {
@@ -109,7 +118,8 @@ SourceUnit ErrorLayout::parameter_unit(int index) const noexcept {
 std::string ErrorLayout::parameter_id(int index) const {
   const Channel& c = kChannels[parameter_channel(index)];
   if (c.joint == Joint::none) return std::string(c.id);
-  return std::string(c.id) + (parameter_is_sine(index) ? "_s" : "_c") + std::to_string(parameter_harmonic(index));
+  return std::string(c.id) + (parameter_is_sine(index) ? "_s" : "_c") +
+         std::to_string(parameter_harmonic(index));
 }
 
 std::optional<int> ErrorLayout::find_parameter(std::string_view id) const {

@@ -54,7 +54,7 @@ ChannelValue<double> basis(const ErrorLayout& layout, int index, const JointStat
   const Channel& ch = channels()[layout.parameter_channel(index)];
   if (ch.joint == Joint::none) return {1.0, 0.0, 0.0};
   const double q = ch.joint == Joint::main ? j.theta1 : ch.joint == Joint::horizontal ? j.beta : j.gamma;
-  const double qd = ch.joint == Joint::main       ? j.theta1_rate
+  const double qd = ch.joint == Joint::main         ? j.theta1_rate
                     : ch.joint == Joint::horizontal ? j.beta_rate
                                                     : j.gamma_rate;
   const int k = layout.parameter_harmonic(index);
@@ -69,10 +69,13 @@ int axis_of(ErrorKind kind) {
   switch (kind) {
     case ErrorKind::rotation_x:
     case ErrorKind::translation_x:
-    case ErrorKind::arm_stretch: return 0;
+    case ErrorKind::arm_stretch:
+      return 0;
     case ErrorKind::rotation_y:
-    case ErrorKind::translation_y: return 1;
-    default: return 2;
+    case ErrorKind::translation_y:
+      return 1;
+    default:
+      return 2;
   }
 }
 
@@ -223,18 +226,35 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
       case dy2t:
       case dy2:
       case dy3t:
-      case dy3: dai = -A / R0 * sg * v; break;
+      case dy3:
+        dai = -A / R0 * sg * v;
+        break;
       case dthz5:
-      case dthz2: dai = A * sg * v; break;
+      case dthz2:
+        dai = A * sg * v;
+        break;
       case dR_s:
       case dx2:
-      case dx3: dai = -A / R0 * cg * v; break;
-      case arm_stretch: dai = -A / R0 * cg * Omega * Omega; break;
-      case dx5: dai = -A / R0; break;
-      case dthy4: dai = -1.0 - A * l / R0; break;
-      case dthy5: dai = -1.0; break;
-      case domega: dai = -2.0 * A / Omega * cg; break;  // amplitude only: A ∝ (Ω+Δω)² (Eq.19)
-      default: break;                                    // not in the paper's Eq.(14)
+      case dx3:
+        dai = -A / R0 * cg * v;
+        break;
+      case arm_stretch:
+        dai = -A / R0 * cg * Omega * Omega;
+        break;
+      case dx5:
+        dai = -A / R0;
+        break;
+      case dthy4:
+        dai = -1.0 - A * l / R0;
+        break;
+      case dthy5:
+        dai = -1.0;
+        break;
+      case domega:
+        dai = -2.0 * A / Omega * cg;
+        break;  // amplitude only: A ∝ (Ω+Δω)² (Eq.19)
+      default:
+        break;  // not in the paper's Eq.(14)
     }
     out.sensitivity(0, index) = dai;
     out.sensitivity(3, index) = dwi;

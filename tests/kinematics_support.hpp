@@ -28,9 +28,9 @@ inline double rate_for(double A, double R0, double g) { return std::sqrt(A * g /
 // The six sensed outputs (f_IA, f_PA, f_OA [g], ω_IA, ω_PA, ω_OA [rad/s]) of the exact chain for errors e,
 // with the joint motion of the run perturbed by the drive errors in e.
 template <class S>
-Eigen::Matrix<S, 6, 1> outputs(const Geometry& geo, const ErrorLayout& layout, const VecX<S>& e, const Site& site,
-                               double rate, double theta1_0, double phi0, PlatformMode mode, double t,
-                               const ChainOptions& options = {}) {
+Eigen::Matrix<S, 6, 1> outputs(const Geometry& geo, const ErrorLayout& layout, const VecX<S>& e,
+                               const Site& site, double rate, double theta1_0, double phi0, PlatformMode mode,
+                               double t, const ChainOptions& options = {}) {
   const RunMotion<S> run = run_motion<S>(rate, theta1_0, phi0, mode, geo.beta, e);
   const auto s = exact_state<S>(geo, layout, e, site, run.at(S(t)), options);
   Eigen::Matrix<S, 6, 1> y;

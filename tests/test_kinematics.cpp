@@ -104,10 +104,9 @@ TEST(ExactChain, AutomaticDerivativesMatchCentralDifferences) {
       Eigen::VectorXd ep = e0, em = e0;
       ep[i] += h;
       em[i] -= h;
-      const Eigen::Matrix<double, 6, 1> fd =
-          (outputs<double>(geo, layout, ep, site, w, 0.2, 0.7, mode, t) -
-           outputs<double>(geo, layout, em, site, w, 0.2, 0.7, mode, t)) /
-          (2 * h);
+      const Eigen::Matrix<double, 6, 1> fd = (outputs<double>(geo, layout, ep, site, w, 0.2, 0.7, mode, t) -
+                                              outputs<double>(geo, layout, em, site, w, 0.2, 0.7, mode, t)) /
+                                             (2 * h);
       const double scale = 1.0 + J.col(i).norm();
       EXPECT_LT((J.col(i) - fd).norm(), 5e-7 * scale) << layout.parameter_id(i);
     }

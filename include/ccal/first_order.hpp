@@ -3,8 +3,8 @@
 //
 // exact_first_order: the linearisation of the exact chain at zero errors, derived by small-twist perturbation
 //   (docs/model.md §5.2). An error rotation δθ about local axis n of link k turns everything downstream about
-//   the link's pivot o_k by Θ = R_P n δθ (R_P: the link's parent frame); a translation moves it by D = R_P n δ.
-//   With ℓ = r − o_k (r: instrument origin) and the parent frame turning at ω_P:
+//   the link's pivot o_k by Θ = R_P n δθ (R_P: the link's parent frame); a translation moves it by D = R_P n
+//   δ. With ℓ = r − o_k (r: instrument origin) and the parent frame turning at ω_P:
 //     Θ̇ = ω_P × Θ + R_P n δθ̇,   Θ̈ = ω̇_P × Θ + ω_P × Θ̇ + ω_P × (R_P n δθ̇) + R_P n δθ̈
 //     δr̈ = Θ̈ × ℓ + 2 Θ̇ × ℓ̇ + Θ × ℓ̈,   δṙ = Θ̇ × ℓ + Θ × ℓ̇
 //     δf₅ = R₅ᵀ (δr̈ + 2 ω_ie × δṙ − Θ × f) / g,   δω₅ = R₅ᵀ (R_P n δθ̇ + Θ × (ω₅ − ω_P) − Θ × ω₅ⁱ)
@@ -37,7 +37,7 @@ FirstOrderResult exact_first_order(const Geometry& geometry, const ErrorLayout& 
                                    const RunMotion<double>& nominal_run, PlatformMode mode, double t);
 
 struct PaperFormOptions {
-  bool lever_arms = true;         // include (L+l)θx, (L+l)θy and lΔθy4 (model.md A9); the paper omits them
+  bool lever_arms = true;  // include (L+l)θx, (L+l)θy and lΔθy4 (model.md A9); the paper omits them
   bool constant_coriolis = true;  // −2ω_e R Ω sin φ / g as a constant (the paper) instead of × cos γ
 };
 

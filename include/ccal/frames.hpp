@@ -13,6 +13,7 @@
 //     R' = R Rk(q),  ω' = ω + q̇ n,  ω̇' = ω̇ + q̈ n + ω × (q̇ n).
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
 #include <cmath>
 
 namespace ccal {

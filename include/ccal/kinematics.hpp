@@ -164,7 +164,8 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   return out;
 }
 
-// Specific force [g] and inertial angular rate [rad/s] on IA, PA, OA: the two quantities an instrument senses.
+// Specific force [g] and inertial angular rate [rad/s] on IA, PA, OA: the two quantities an instrument
+// senses.
 template <class S>
 struct SensedInput {
   Vec3<S> specific_force;
@@ -221,7 +222,8 @@ class StaticChain {
     c_ = c.p;
   }
 
-  SensedInput<S> operator()(const S& theta1, const S& gamma, const S& theta1_rate, const S& gamma_rate) const {
+  SensedInput<S> operator()(const S& theta1, const S& gamma, const S& theta1_rate,
+                            const S& gamma_rate) const {
     using std::cos;
     using std::sin;
     const S ct = cos(theta1), st = sin(theta1), cg = cos(gamma), sg = sin(gamma);
