@@ -34,7 +34,11 @@ std::optional<TermSpec> parse_term(std::string_view id) {
 }
 
 std::string term_id(const TermSpec& term) {
-  if (term.kind == TermKind::power) return "K" + std::to_string(term.power);
+  if (term.kind == TermKind::power) {
+    std::string id(1, 'K');  // built in two steps: GCC 12 warns falsely (-Wrestrict) on "K" + std::string
+    id += std::to_string(term.power);
+    return id;
+  }
   for (const auto& t : kNamedTerms)
     if (t.kind == term.kind) return std::string(t.id);
   return "?";
