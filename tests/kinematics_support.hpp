@@ -7,11 +7,12 @@
 
 #include "ccal/centrifuge.hpp"
 #include "ccal/kinematics.hpp"
+#include "ccal/scalar.hpp"
 #include "ccal/site.hpp"
 
 namespace ccal::test {
 
-using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
+using AD = Dual;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 inline Site paper_site(bool earth = false) {
@@ -38,22 +39,22 @@ Eigen::Matrix<S, 6, 1> outputs(const Geometry& geo, const ErrorLayout& layout, c
   return y;
 }
 
-// Jacobian of the six outputs with respect to every error parameter, by forward-mode AD at errors e0.
+// Jacobian of the six outputs with respect to every error parameter, by forward-mode AD at errors e0, in
+// passes of kDualWidth directions.
 inline Eigen::Matrix<double, 6, Eigen::Dynamic> ad_jacobian(const Geometry& geo, const ErrorLayout& layout,
                                                             const Eigen::VectorXd& e0, const Site& site,
                                                             double rate, double theta1_0, double phi0,
                                                             PlatformMode mode, double t,
                                                             const ChainOptions& options = {}) {
   const int n = layout.size();
-  VecX<AD> e(n);
-  for (int i = 0; i < n; ++i) e[i] = AD(e0[i], n, i);
-  const auto y = outputs<AD>(geo, layout, e, site, rate, theta1_0, phi0, mode, t, options);
   Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, n);
-  for (int r = 0; r < 6; ++r) {
-    if (y[r].derivatives().size() == n)
-      J.row(r) = y[r].derivatives().transpose();
-    else
-      J.row(r).setZero();  // a constant output: AutoDiff leaves its derivative vector empty
+  for (int first = 0; first < n; first += kDualWidth) {
+    VecX<AD> e(n);
+    for (int i = 0; i < n; ++i)
+      e[i] = make_dual(e0[i], i >= first && i < first + kDualWidth ? i - first : -1);
+    const auto y = outputs<AD>(geo, layout, e, site, rate, theta1_0, phi0, mode, t, options);
+    for (int r = 0; r < 6; ++r)
+      for (int k = 0; k < kDualWidth && first + k < n; ++k) J(r, first + k) = y[r].derivatives()[k];
   }
   return J;
 }

@@ -121,7 +121,7 @@ TEST(ExactChain, ZeroErrorsGiveNominalValuesToRoundOff) {
   const Site site = paper_site(true);
   const double w = rate_for(25.0, geo.R0, site.g);
   VecX<AD> e(layout.size());
-  for (int i = 0; i < layout.size(); ++i) e[i] = AD(0.0, layout.size(), i);
+  for (int i = 0; i < layout.size(); ++i) e[i] = make_dual(0.0, i % kDualWidth);
   const auto y_ad = outputs<AD>(geo, layout, e, site, w, 0.0, 0.3, PlatformMode::counter_rotating, 12.0);
   const auto y = outputs<double>(geo, layout, Eigen::VectorXd::Zero(layout.size()), site, w, 0.0, 0.3,
                                  PlatformMode::counter_rotating, 12.0);
