@@ -373,8 +373,16 @@ TEST(Fit, ExcessiveConditionNumberNamesTheMostCorrelatedPair) {
     EXPECT_TRUE(contains(what, "K_a and K_b")) << what;
     EXPECT_TRUE(contains(what, "condition number")) << what;
   }
-  // Allowed to proceed, the fit solves it and warns about the pair instead.
+  // With the condition-number limit raised, the correlation limit (default 0.99999) still refuses it …
   o.max_condition = 1e12;
+  try {
+    ccal::fit(p, o);
+    FAIL() << "expected IllPosedFit for correlation beyond refuse_correlation";
+  } catch (const IllPosedFit& e) {
+    EXPECT_TRUE(contains(e.what(), "cannot separate K_a and K_b")) << e.what();
+  }
+  // … and allowed to proceed, the fit solves it and warns about the pair instead.
+  o.refuse_correlation = 1.0;
   const FitResult r = ccal::fit(p, o);
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_TRUE(contains(r.warnings.front(), "K_a and K_b")) << r.warnings.front();

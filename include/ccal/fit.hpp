@@ -48,6 +48,9 @@ struct FitOptions {
   double rank_tolerance = 0;
   // |correlation| between two estimates above which they are reported as near-aliased (a warning).
   double alias_correlation = 0.999;
+  // |correlation| beyond which the fit is refused (IllPosedFit naming the pair): the data then fix only a
+  // combination of the two terms, whatever the condition number says.
+  double refuse_correlation = 0.99999;
   // Condition number of the column-scaled design above which the fit is refused (IllPosedFit).
   double max_condition = 1e12;
   // Steps of iterative refinement of the augmented system [I A; A^T 0][r; x] = [b; 0], with its residuals

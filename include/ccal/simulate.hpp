@@ -1,0 +1,126 @@
+#pragma once
+// Simulation of a test plan and its reduction to observation equations (docs/model.md §8–9):
+//   truth:  ᾱ_j = ⟨instrument output⟩ over run j, through the exact chain with the *true* centrifuge errors;
+//   model:  the regressors Z_kj = ⟨term_k⟩ and the known rate term ⟨s_ω ω_IA⟩_j, through the exact chain with the
+//           errors the analyst *knows* (zero: uncompensated; measured values: compensated, the paper's
+//           conclusion 3).
+// Identification then solves ᾱ_j − ⟨s_ω ω_IA⟩_j − Σ_fixed K Z = Σ_free K Z in the least-squares sense.
+
+#include <Eigen/Core>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ccal/centrifuge.hpp"
+#include "ccal/fit.hpp"
+#include "ccal/instrument.hpp"
+#include "ccal/reduce.hpp"
+#include "ccal/site.hpp"
+#include "ccal/test_plan.hpp"
+
+namespace ccal {
+
+enum class ModelMode {
+  exact,  // the full chain (default)
+  paper,  // the paper's first-order rules (docs/model.md §5.1, §7.1)
+};
+
+struct Experiment {
+  Geometry geometry;
+  ErrorLayout layout{1};
+  Site site;
+  TestPlan plan;
+  InstrumentModel instrument;
+};
+
+// What is identified: the free terms, the terms held at known values, and the columns the observation file
+// carries (free and fixed terms' regressors).
+struct IdentificationSpec {
+  std::vector<std::string> free_terms{"K0", "K2", "K3"};
+  std::map<std::string, double> fixed_terms;  // id → known value (SI); the paper holds K1 fixed
+  bool compensate = false;                    // regressors from the known ([errors]) values instead of zero
+  // Paper mode only: keep the pose errors in the K2 and K3 terms too (the reconstruction's "incl. cross
+  // terms" column), not in K1 only as the paper does.
+  bool paper_cross_terms = false;
+};
+
+template <class S>
+struct Observations {
+  std::vector<std::string> runs;
+  std::vector<std::string> columns;  // term ids of the regressor columns (free, then fixed)
+  Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic> regressors;  // runs × columns, model means
+  VecX<S> output;                                               // truth means [output SI]
+  VecX<S> known_rate;                                           // model ⟨s_ω ω_IA⟩ [output SI]
+  VecX<S> input;                                                // model ⟨a_i⟩ [g]
+};
+
+// The observation columns of a spec: free terms then fixed terms.
+std::vector<std::string> observation_columns(const IdentificationSpec& spec);
+
+namespace detail {
+template <class S>
+RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
+                            const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
+                            bool cross_terms);
+}  // namespace detail
+
+// Observations of every run. `truth` and `known` are error vectors indexed by ex.layout (SI).
+template <class S>
+Observations<S> observe(const Experiment& ex, const VecX<S>& truth, const VecX<S>& known,
+                        const IdentificationSpec& spec, ModelMode mode = ModelMode::exact,
+                        const ReductionOptions& options = {}) {
+  Observations<S> obs;
+  obs.columns = observation_columns(spec);
+  std::vector<TermSpec> terms;
+  for (const auto& id : obs.columns) terms.push_back(parse_term(id).value());
+  const auto n = Eigen::Index(ex.plan.runs.size());
+  obs.regressors.resize(n, Eigen::Index(terms.size()));
+  obs.output.resize(n);
+  obs.known_rate.resize(n);
+  obs.input.resize(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const ccal::Run& run = ex.plan.runs[std::size_t(j)];
+    obs.runs.push_back(run.name);
+    RunAverage<S> truth_avg, model_avg;
+    if (mode == ModelMode::exact) {
+      truth_avg = average_run<S>(ex.geometry, ex.layout, truth, ex.site, run, &ex.instrument, {}, options);
+      model_avg = average_run<S>(ex.geometry, ex.layout, known, ex.site, run, nullptr, terms, options);
+    } else {
+      truth_avg = detail::paper_average<S>(ex, truth, run, &ex.instrument, {}, spec.paper_cross_terms);
+      model_avg = detail::paper_average<S>(ex, known, run, nullptr, terms, spec.paper_cross_terms);
+    }
+    obs.output[j] = truth_avg.output;
+    obs.regressors.row(j) = model_avg.regressors.transpose();
+    obs.known_rate[j] = S(ex.instrument.rate_gain) * model_avg.rate_ia;
+    obs.input[j] = model_avg.input[0];
+  }
+  return obs;
+}
+
+// Adds measurement noise to simulated run means: white noise of density N gives a mean with σ = N/√T; a
+// quantised integrated output (step q, e.g. a PIGA pulse weight) counts whole steps, so the mean is off by a
+// uniform error of width q/T. Seeded: the same seed gives the same noise.
+void add_output_noise(Observations<double>& obs, const Experiment& ex, std::uint64_t seed);
+
+// The least-squares problem of a set of observations (output SI, regressors) under a spec.
+FitProblem fit_problem(const Observations<double>& obs, const IdentificationSpec& spec);
+
+// Identified free coefficients as a differentiable function of the observations: the design from the model
+// means is treated as data (QR of the column-scaled design), the outputs may carry derivatives.
+template <class S>
+VecX<S> identify_coefficients(const Observations<S>& obs, const IdentificationSpec& spec) {
+  const Eigen::Index n = obs.output.size();
+  const auto nfree = Eigen::Index(spec.free_terms.size());
+  Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic> H = obs.regressors.leftCols(nfree);
+  VecX<S> y = obs.output - obs.known_rate;
+  Eigen::Index k = nfree;
+  for (const auto& [id, value] : spec.fixed_terms) {
+    (void)id;
+    y -= obs.regressors.col(k++) * S(value);
+  }
+  (void)n;
+  return solve_least_squares<S>(H, y);
+}
+
+}  // namespace ccal

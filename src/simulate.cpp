@@ -1,0 +1,110 @@
+#include "ccal/simulate.hpp"
+
+#include <cmath>
+
+#include "ccal/first_order.hpp"
+#include "ccal/scalar.hpp"
+
+namespace ccal {
+
+std::vector<std::string> observation_columns(const IdentificationSpec& spec) {
+  std::vector<std::string> columns = spec.free_terms;
+  for (const auto& [id, value] : spec.fixed_terms) {
+    (void)value;
+    columns.push_back(id);
+  }
+  return columns;
+}
+
+namespace detail {
+
+// The paper's reduction of one run (docs/model.md §5.1, §7.1): a_i from the first-order form with the
+// frozen-γ rules and a constant Coriolis term, phases on the nominal rate, Δω in the amplitude
+// A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors in the K1 term only unless cross_terms, the
+// Earth-rate term on the IA heading, and the paper's additive −ΔΩ in the output.
+template <class S>
+RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
+                            const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
+                            bool cross_terms) {
+  const Geometry& geo = ex.geometry;
+  const double rate = nominal_rate(run, geo, ex.site);
+  const double phi0 = initial_phase(run, geo, ex.site);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  const RunMotion<double> nominal = run_motion<double>(rate, run.arm_azimuth, phi0, run.mode, geo.beta, zero);
+  QuadratureOptions qo;
+  qo.fast_nodes = fast_nodes_for(std::max(polynomial_degree(terms), 3), ex.layout.harmonic_order() + 1);
+  const RunQuadrature<double> quad = run_quadrature<double>(nominal, run.duration, run.mode, 0.0, qo);
+
+  const S omega = S(rate) + e[domega];
+  const S A = S(geo.R0) * omega * omega / S(ex.site.g);
+  const PaperFormOptions form{.lever_arms = true, .constant_coriolis = true};
+  std::vector<TermSpec> truth_terms;
+  double k1 = 0.0;
+  if (instrument) {
+    truth_terms = instrument->terms();
+    k1 = instrument->coefficient("K1").value_or(0.0);
+  }
+  RunAverage<S> avg;
+  avg.regressors = VecX<S>::Zero(Eigen::Index(terms.size()));
+  for (std::size_t n = 0; n < quad.nodes.size(); ++n) {
+    const JointState<double>& j = quad.nodes[n];
+    const FirstOrderResult fo = paper_first_order(geo, ex.layout, ex.site, j, form);
+    const double coriolis = -fo.nominal[0] - (rate * rate * geo.R0 / ex.site.g) * std::cos(j.gamma);
+    const S a_power = -A * std::cos(j.gamma);  // the K2, K3 … input: amplitude only
+    S a_k1 = a_power - S(coriolis);
+    S w_ia = S(fo.nominal[3]);
+    for (int i = 0; i < ex.layout.size(); ++i) {
+      if (i == domega) continue;  // in A
+      if (fo.sensitivity(0, i) != 0.0) a_k1 += fo.sensitivity(0, i) * e[i];
+      if (fo.sensitivity(3, i) != 0.0) w_ia += fo.sensitivity(3, i) * e[i];
+    }
+    const Vec3<S> a_cross(a_k1, A * std::sin(j.gamma), S(1));
+    const Vec3<S> a_plain(a_power, A * std::sin(j.gamma), S(1));
+    const S weight = S(quad.weights[n]);
+    avg.input += weight * a_cross;
+    avg.rate_ia += weight * w_ia;
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      // The paper's regressors: Z1 carries the errors, Z2, Z3 … are the nominal means (Eq.16/17).
+      const bool plain = !cross_terms && terms[k].kind == TermKind::power && terms[k].power != 1;
+      avg.regressors[Eigen::Index(k)] += weight * term_regressor(terms[k], plain ? a_plain : a_cross, w_ia);
+    }
+    if (instrument) {
+      S out = cross_terms ? instrument_output(*instrument, truth_terms, a_cross, w_ia)
+                          : instrument_output(*instrument, truth_terms, a_plain, w_ia) + S(k1) * (a_k1 - a_power);
+      avg.output += weight * (out - e[dOmega]);  // the paper's additive −ΔΩ (output in rad/s)
+    }
+  }
+  return avg;
+}
+
+template RunAverage<double> paper_average<double>(const Experiment&, const VecX<double>&, const ccal::Run&,
+                                                  const InstrumentModel*, const std::vector<TermSpec>&, bool);
+template RunAverage<Dual> paper_average<Dual>(const Experiment&, const VecX<Dual>&, const ccal::Run&,
+                                              const InstrumentModel*, const std::vector<TermSpec>&, bool);
+
+}  // namespace detail
+
+void add_output_noise(Observations<double>& obs, const Experiment& ex, std::uint64_t seed) {
+  const InstrumentModel& ins = ex.instrument;
+  if (ins.noise_density == 0.0 && ins.quantum == 0.0) return;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+  for (Eigen::Index j = 0; j < obs.output.size(); ++j) {
+    const double T = ex.plan.runs[std::size_t(j)].duration;
+    if (ins.noise_density > 0.0) obs.output[j] += ins.noise_density / std::sqrt(T) * normal(rng);
+    if (ins.quantum > 0.0) obs.output[j] += ins.quantum / T * uniform(rng);
+  }
+}
+
+FitProblem fit_problem(const Observations<double>& obs, const IdentificationSpec& spec) {
+  FitProblem p;
+  p.term_names = obs.columns;
+  p.H = obs.regressors;
+  p.y = obs.output - obs.known_rate;
+  p.fixed = spec.fixed_terms;
+  p.row_labels = obs.runs;
+  return p;
+}
+
+}  // namespace ccal
