@@ -1,0 +1,18 @@
+#pragma once
+// The ccal subcommands. Each add_* function registers one subcommand with its options and returns the
+// action to run when that subcommand is chosen; main() parses the command line, runs the chosen action and
+// maps exceptions to exit codes. A new subcommand is one more cmd_<name>.cpp and one line in main.cpp.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace ccal::cli {
+
+struct Command {
+  CLI::App* app = nullptr;    // the subcommand
+  std::function<void()> run;  // runs it with the parsed options; throws on failure
+};
+
+Command add_force(CLI::App& app);
+
+}  // namespace ccal::cli

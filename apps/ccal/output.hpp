@@ -1,0 +1,48 @@
+#pragma once
+// Shared pieces of the ccal commands: the --format / -o options, writing the result atomically, aligned text
+// tables and number formatting. Every command builds its whole output in memory first and writes it once at
+// the end, so a failing command writes nothing.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/config.hpp"
+
+namespace ccal::cli {
+
+// --format and -o of a command.
+struct OutputOptions {
+  std::string format = "text";
+  std::string path;  // empty: standard output
+};
+
+// Adds --format (one of `formats`, the first is the default) and -o/--output to a command.
+void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats);
+
+// Writes text to standard output, or to options.path through a temporary file in the same folder that is
+// renamed over the target once complete. Throws InputError if the file cannot be written.
+void write_output(const OutputOptions& options, std::string_view text);
+
+// The configuration named on the command line, or the bundled paper example if none is.
+Config load_config_or_example(const std::string& path);
+
+// Number with `digits` significant digits (%g style); "0" for zero.
+std::string number(double v, int digits = 9);
+
+// A text table: a header row, then rows of cells; columns after the first are right-aligned.
+class Table {
+ public:
+  explicit Table(std::vector<std::string> header) : header_(std::move(header)) {}
+  void add_row(std::vector<std::string> cells) { rows_.push_back(std::move(cells)); }
+  void add_rule() { rows_.emplace_back(); }  // a line of dashes
+  // Each line starts with `indent`.
+  std::string render(std::string_view indent = "  ") const;
+
+ private:
+  std::vector<std::string> header_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+}  // namespace ccal::cli

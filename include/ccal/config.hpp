@@ -1,0 +1,100 @@
+#pragma once
+// TOML configuration → model objects (docs/config.md has the full schema).
+//
+// Every physical value in a configuration file is a string with a unit ("2.5 m", "2 arcsec", "30 g",
+// "0.003 deg/s/g^3"); it is converted to SI on reading, with its dimension checked, so that nothing inside
+// ccal ever sees an engineering unit. Anything ccal cannot accept stops the load with a ConfigError whose
+// message is one line:
+//     <file>:<line>:<col>: <key path>: <what is wrong>; <what is accepted>
+// e.g.  examples/x.toml:12:1: centrifuge.radious: unknown key; did you mean 'radius'?
+//
+// Usage:
+//     const ccal::Config cfg = ccal::load_config("examples/wang_ren_2014.toml");
+//     for (const ccal::Run& run : cfg.plan.runs) { ... ccal::initial_phase(run, cfg.centrifuge.geometry,
+//                                                  cfg.site) ... }
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/centrifuge.hpp"
+#include "ccal/errors.hpp"
+#include "ccal/instrument.hpp"
+#include "ccal/site.hpp"
+#include "ccal/test_plan.hpp"
+
+namespace ccal {
+
+// A configuration that cannot be accepted. what() is the one-line message above; the parts are kept for
+// programs that want them. line and column are 1-based, 0 when the problem has no place in the file (e.g.
+// a file that cannot be read).
+class ConfigError : public InputError {
+ public:
+  ConfigError(std::string source, int line, int column, std::string key, std::string problem);
+
+  const std::string& source() const noexcept { return source_; }
+  int line() const noexcept { return line_; }
+  int column() const noexcept { return column_; }
+  const std::string& key() const noexcept { return key_; }
+  const std::string& problem() const noexcept { return problem_; }
+
+ private:
+  std::string source_;
+  int line_;
+  int column_;
+  std::string key_;
+  std::string problem_;
+};
+
+// How the tolerance of an error source is distributed (GUM terms).
+enum class Distribution {
+  normal,      // bound = standard deviation σ
+  uniform,     // bound = half-width a: uniform on [−a, a], σ = a/√3
+  triangular,  // bound = half-width a: triangular on [−a, a], σ = a/√6
+  arcsine,     // bound = amplitude a: a·sin(uniform phase), σ = a/√2 (harmonic amplitudes)
+};
+
+std::string_view distribution_name(Distribution d) noexcept;
+// Standard deviation of a tolerance with the given bound and distribution.
+double standard_uncertainty(double bound, Distribution d) noexcept;
+
+// Tolerance of one error parameter, for the error budget.
+struct Tolerance {
+  int parameter = 0;  // index in the centrifuge's ErrorLayout
+  std::string id;     // parameter id, e.g. "dthz5", "dx3_c1"
+  double bound = 0;   // SI unit of the parameter (rad, m, rad/s, m/(rad/s)²); meaning set by distribution
+  Distribution distribution = Distribution::normal;
+  std::string group;  // sources with the same non-empty group are fully correlated (same draw, same sign)
+  double cost = 1.0;  // relative cost weight (> 0) for tolerance allocation
+};
+
+struct Config {
+  std::string source;  // file name (or the name given to parse_config), as used in messages
+  Site site;
+  CentrifugeModel centrifuge;  // geometry and the known/actual values of the [errors] section
+  InstrumentModel instrument;
+  TestPlan plan;
+  std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order
+};
+
+// Reads and checks a configuration file. Throws ConfigError (also when the file cannot be read).
+Config load_config(const std::filesystem::path& path);
+
+// Parses configuration text; source_name stands for the file name in messages and Config::source.
+Config parse_config(std::string_view text, std::string_view source_name);
+
+// The paper's set-up (examples/wang_ren_2014.toml), embedded in the library at build time.
+std::string_view bundled_example_text() noexcept;
+Config bundled_example();
+inline constexpr std::string_view kBundledExampleName = "bundled:wang_ren_2014.toml";
+
+// Index of a run chosen by the user: a run name, or else a 1-based index ("3"). Throws InputError listing the
+// runs if there is no such run; option_name (e.g. "--run") starts the message.
+std::size_t select_run(const TestPlan& plan, std::string_view name_or_index, std::string_view option_name);
+
+// Edit distance (insertions, deletions, substitutions) between two strings, used to suggest keys.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+}  // namespace ccal

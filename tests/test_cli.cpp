@@ -1,0 +1,272 @@
+// End-to-end tests of the ccal program: exit codes, one-line error messages with file:line, text and JSON
+// output of `ccal force`, and -o writing the file only on success.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kProgram = CCAL_BINARY_DIR "/ccal";
+const std::string kExample = CCAL_SOURCE_DIR "/examples/wang_ren_2014.toml";
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("ccal_cli_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs ccal with the given arguments (already shell-quoted where needed) in the test's folder.
+  Result run(const std::string& args) const {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string command = "cd " + quote(dir_.string()) + " && " + quote(kProgram) + " " + args + " >" +
+                                quote(out.string()) + " 2>" + quote(err.string());
+    const int status = std::system(command.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read(out);
+    r.err = read(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  // Writes a configuration file into the test's folder and returns its name (relative to the folder).
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return name;
+  }
+
+  // The example with one line replaced (1-based) or extra lines appended after a given line.
+  std::string example_with_line(int line, const std::string& text) const {
+    std::istringstream in(read(kExample));
+    std::string out, l;
+    for (int k = 1; std::getline(in, l); ++k) out += (k == line ? text : l) + "\n";
+    return out;
+  }
+
+  static int line_of(const std::string& text, const std::string& needle) {
+    std::istringstream in(text);
+    std::string l;
+    for (int k = 1; std::getline(in, l); ++k)
+      if (l.starts_with(needle)) return k;
+    return -1;
+  }
+
+  // A bad input: exit code 2, one line on stderr starting "ccal: error: ", containing every hint.
+  static void expect_bad_input(const Result& r, std::initializer_list<std::string> hints) {
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_TRUE(r.err.starts_with("ccal: error: ")) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    for (const auto& h : hints) EXPECT_NE(r.err.find(h), std::string::npos) << "'" << h << "' in " << r.err;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, VersionAndHelp) {
+  const Result v = run("--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.out.find("ccal 0."), std::string::npos) << v.out;
+  const Result h = run("--help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_NE(h.out.find("force"), std::string::npos);
+  const Result fh = run("force --help");
+  EXPECT_EQ(fh.code, 0);
+  EXPECT_NE(fh.out.find("Examples:"), std::string::npos) << fh.out;
+  EXPECT_NE(fh.out.find("--time"), std::string::npos);
+  expect_bad_input(run(""), {"subcommand"});
+  expect_bad_input(run("frobnicate"), {"frobnicate"});
+}
+
+TEST_F(Cli, ForceDefaultIsRunOneOfTheBundledExample) {
+  const Result r = run("force");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_NE(r.out.find("'5g'"), std::string::npos) << r.out;
+  // At t = 0: a_IA ≈ −A cos φ0 with A = 5 g and φ0 = 3.6068 rad (model.md §4.2); the Coriolis term and the
+  // rest are below 1e-3 g.
+  const double expected = -5.0 * std::cos(3.60677618);
+  const auto at = r.out.find("specific force [g]");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double f_ia = std::stod(r.out.substr(at + std::string("specific force [g]").size()));
+  EXPECT_NEAR(f_ia, expected, 1e-3) << r.out;
+  EXPECT_NE(r.out.find("first-order total"), std::string::npos);
+  EXPECT_NE(r.out.find("remainder"), std::string::npos);
+}
+
+TEST_F(Cli, ForceJsonHasTheDocumentedKeys) {
+  const Result r = run("force --run 20g --time '10 s' --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("command"), "force");
+  EXPECT_EQ(j.at("mode"), "exact");
+  const auto& run = j.at("run");
+  EXPECT_EQ(run.at("name"), "20g");
+  EXPECT_EQ(run.at("index"), 4);
+  EXPECT_DOUBLE_EQ(run.at("g_level_g").get<double>(), 20.0);
+  EXPECT_NEAR(run.at("rate_rad_per_s").get<double>(), 8.854377, 1e-6);
+  EXPECT_NEAR(run.at("initial_phase_rad").get<double>(), 4.0720, 1e-4);
+  EXPECT_DOUBLE_EQ(run.at("duration_s").get<double>(), 450.0);
+  EXPECT_DOUBLE_EQ(run.at("time_s").get<double>(), 10.0);
+  for (const char* key :
+       {"theta1_rad", "theta1_rate_rad_per_s", "beta_rad", "gamma_rad", "gamma_rate_rad_per_s"})
+    EXPECT_TRUE(j.at("joint_state").contains(key)) << key;
+  for (const char* axis : {"IA", "PA", "OA"}) {
+    EXPECT_TRUE(j.at("specific_force_g").at(axis).is_number()) << axis;
+    EXPECT_TRUE(j.at("angular_rate_deg_per_s").at(axis).is_number()) << axis;
+  }
+  // Counter-rotating platform, OA up: gravity is +1 g on the OA; |f_IA| ≤ A.
+  EXPECT_NEAR(j["specific_force_g"]["OA"].get<double>(), 1.0, 1e-3);
+  EXPECT_LE(std::abs(j["specific_force_g"]["IA"].get<double>()), 20.001);
+  EXPECT_TRUE(j.at("contributions").is_array());
+  EXPECT_TRUE(j.at("contributions").empty());  // the example's [errors] are all zero
+  for (const char* part : {"nominal", "total", "exact", "remainder"}) {
+    EXPECT_TRUE(j.at("first_order").at(part).at("f_IA_g").is_number()) << part;
+    EXPECT_TRUE(j.at("first_order").at(part).at("w_IA_deg_per_s").is_number()) << part;
+  }
+  EXPECT_DOUBLE_EQ(j["first_order"]["exact"]["f_IA_g"].get<double>(),
+                   j["specific_force_g"]["IA"].get<double>());
+}
+
+TEST_F(Cli, ForceContributionsOfConfiguredErrors) {
+  const int line = line_of(read(kExample), "[errors]");
+  ASSERT_GT(line, 0);
+  const std::string cfg = write(
+      "e.toml",
+      example_with_line(line, "[errors]\ndthz5 = \"2 arcsec\"\ndx3_c1 = \"5 um\"\ndomega = \"1e-6 rad/s\""));
+  for (const char* mode : {"exact", "paper"}) {
+    const Result r = run("force e.toml --run 3 --time 12.5 --format json --mode " + std::string(mode));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.at("mode"), mode);
+    const auto& c = j.at("contributions");
+    ASSERT_EQ(c.size(), 3u) << mode;
+    EXPECT_EQ(c[0].at("id"), "dthz5");
+    EXPECT_EQ(c[0].at("unit"), "rad");
+    EXPECT_NEAR(c[0].at("value_si").get<double>(), 2 * std::numbers::pi / 648000, 1e-15);
+    EXPECT_EQ(c[1].at("id"), "domega");
+    EXPECT_EQ(c[1].at("unit"), "rad/s");
+    EXPECT_EQ(c[2].at("id"), "dx3_c1");
+    EXPECT_EQ(c[2].at("unit"), "m");
+    double sum = j["first_order"]["nominal"]["f_IA_g"].get<double>();
+    for (const auto& item : c) {
+      EXPECT_TRUE(item.at("f_IA_g").is_number());
+      EXPECT_TRUE(item.at("w_IA_deg_per_s").is_number());
+      sum += item["f_IA_g"].get<double>();
+    }
+    EXPECT_NEAR(sum, j["first_order"]["total"]["f_IA_g"].get<double>(), 1e-12);
+    const double remainder = j["first_order"]["remainder"]["f_IA_g"].get<double>();
+    EXPECT_NEAR(
+        remainder,
+        j["first_order"]["exact"]["f_IA_g"].get<double>() - j["first_order"]["total"]["f_IA_g"].get<double>(),
+        1e-12);
+    // Exact model: what is left is second order in ~1e-5 errors. (Paper mode leaves its model error too.)
+    if (std::string(mode) == "exact") {
+      EXPECT_LT(std::abs(remainder), 1e-8) << remainder;
+    }
+    // The IA-azimuth error moves f_IA by about A·δ·sin γ: at most 15 g × 9.7e-6 rad.
+    EXPECT_LT(std::abs(c[0]["f_IA_g"].get<double>()), 15 * 1e-5);
+    EXPECT_GT(std::abs(c[0]["f_IA_g"].get<double>()), 0.0);
+  }
+  // Text output lists them too.
+  const Result t = run("force e.toml --run 3 --time 12.5");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("dthz5"), std::string::npos);
+  EXPECT_NE(t.out.find("dx3_c1"), std::string::npos);
+}
+
+TEST_F(Cli, BadConfigIsExitCodeTwoWithFileAndLine) {
+  const std::string text = read(kExample);
+  const int radius = line_of(text, "radius = ");
+  ASSERT_GT(radius, 0);
+  expect_bad_input(
+      run("force " + write("a.toml", example_with_line(radius, "radious = \"2.5 m\""))),
+      {"a.toml:" + std::to_string(radius) + ":", "centrifuge.radious", "did you mean 'radius'?"});
+  expect_bad_input(run("force " + write("b.toml", example_with_line(radius, "radius = \"2.5 s\""))),
+                   {"b.toml:" + std::to_string(radius) + ":", "centrifuge.radius", "expected a length"});
+  expect_bad_input(run("force " + write("c.toml", example_with_line(radius, "radius = \"-2.5 m\""))),
+                   {"c.toml:" + std::to_string(radius) + ":", "centrifuge.radius", "must be positive"});
+  expect_bad_input(run("force " + write("d.toml", example_with_line(radius, "radius = \"nan m\""))),
+                   {"d.toml:" + std::to_string(radius) + ":", "not a finite number"});
+  expect_bad_input(
+      run("force " + write("e.toml", example_with_line(radius, "radius = 2.5"))),
+      {"e.toml:" + std::to_string(radius) + ":", "expected a quantity string such as \"2.5 m\""});
+  expect_bad_input(run("force " + write("f.toml", "[site\n")), {"f.toml:1:", "TOML syntax error"});
+  expect_bad_input(run("force missing.toml"), {"missing.toml: cannot read"});
+}
+
+TEST_F(Cli, BadRunAndTime) {
+  expect_bad_input(run("force --run 7"), {"--run", "no run '7'", "1..6"});
+  expect_bad_input(run("force --run 0"), {"--run"});
+  expect_bad_input(run("force --run 35g"), {"--run", "5g, 10g"});
+  expect_bad_input(run("force --time 451"), {"--time", "outside run '5g'", "0 to 450 s"});
+  expect_bad_input(run("force --time '-1 s'"), {"--time", "outside"});
+  expect_bad_input(run("force --time '10 m'"), {"--time", "expected a time"});
+  expect_bad_input(run("force --time abc"), {"--time"});
+  expect_bad_input(run("force --mode fast"), {"--mode"});
+  expect_bad_input(run("force --format csv"), {"--format"});
+  // Boundaries are accepted; a bare number is seconds, a unit converts.
+  EXPECT_EQ(run("force --time 450").code, 0);
+  EXPECT_EQ(run("force --time '7.5 min'").code, 0);
+  EXPECT_EQ(run("force --run 30g --time 0").code, 0);
+}
+
+TEST_F(Cli, OutputFileOnlyOnSuccess) {
+  const Result ok = run("force --format json -o out.json");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_TRUE(ok.out.empty());
+  ASSERT_TRUE(fs::exists(dir_ / "out.json"));
+  const nlohmann::json j = nlohmann::json::parse(read(dir_ / "out.json"));
+  EXPECT_EQ(j.at("run").at("name"), "5g");
+
+  const std::string bad =
+      write("bad.toml", "[site]\nlatitude = \"45 deg\"\n[centrifuge]\nradius = \"-1 m\"\n");
+  const Result failed = run("force " + bad + " -o failed.json");
+  expect_bad_input(failed, {"bad.toml:4:"});
+  EXPECT_FALSE(fs::exists(dir_ / "failed.json"));
+  const Result bad_time = run("force --time 1000 -o failed.json");
+  EXPECT_EQ(bad_time.code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "failed.json"));
+  // No temporary file is left behind.
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  // An unwritable destination is a bad input too.
+  expect_bad_input(run("force -o /nonexistent-dir/x.json"), {"-o", "/nonexistent-dir/x.json"});
+}
+
+}  // namespace

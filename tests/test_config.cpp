@@ -1,0 +1,753 @@
+// Configuration loading: the bundled example gives the paper's numbers, units convert, defaults apply, and
+// every kind of bad input is rejected with a one-line message naming the file, line, key and a remedy.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "ccal/config.hpp"
+#include "ccal/constants.hpp"
+
+namespace ccal {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// A minimal valid configuration. Tables are ordered so that the last one is [centrifuge]: a line appended
+// to this text lands in [centrifuge], and a test that appends a new table puts the bad line last.
+const std::string kBase = R"([plan]
+duration = "450 s"
+terminal_phase = "180 deg"
+[[plan.runs]]
+name = "a"
+g_level = "5 g"
+[site]
+latitude = "45.75 deg"
+g = "9.8 m/s^2"
+[centrifuge]
+radius = "2.5 m")";
+
+// Line number of the last line of a text (the line a test puts the offending entry on).
+int last_line(const std::string& text) {
+  std::string t = text;
+  while (!t.empty() && t.back() == '\n') t.pop_back();
+  return 1 + static_cast<int>(std::count(t.begin(), t.end(), '\n'));
+}
+
+ConfigError error_of(const std::string& text) {
+  try {
+    parse_config(text, "case.toml");
+  } catch (const ConfigError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted:\n" << text;
+  return ConfigError("", 0, 0, "", "");
+}
+
+// The message has the form case.toml:<line>:<col>: <key>: ..., contains each hint, and is one line.
+void expect_error(const std::string& text, int line, const std::string& key,
+                  std::initializer_list<std::string> hints) {
+  SCOPED_TRACE(text);
+  const ConfigError e = error_of(text);
+  const std::string what = e.what();
+  EXPECT_EQ(e.source(), "case.toml");
+  EXPECT_EQ(e.line(), line) << what;
+  EXPECT_EQ(e.key(), key) << what;
+  EXPECT_TRUE(what.starts_with("case.toml:" + std::to_string(line) + ":")) << what;
+  if (!key.empty()) {
+    EXPECT_NE(what.find(": " + key + ": "), std::string::npos) << what;
+  }
+  for (const auto& hint : hints)
+    EXPECT_NE(what.find(hint), std::string::npos) << "'" << hint << "' in " << what;
+  EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+}
+
+// kBase + extra, with the error expected on the last line.
+void expect_appended_error(const std::string& extra, const std::string& key,
+                           std::initializer_list<std::string> hints) {
+  const std::string text = kBase + "\n" + extra;
+  expect_error(text, last_line(text), key, hints);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The bundled example and the file in examples/
+
+TEST(Example, HasThePapersSetUp) {
+  const Config c = bundled_example();
+  EXPECT_EQ(c.source, kBundledExampleName);
+  EXPECT_DOUBLE_EQ(c.centrifuge.geometry.R0, 2.5);
+  EXPECT_DOUBLE_EQ(c.centrifuge.geometry.L, 0.0);
+  EXPECT_DOUBLE_EQ(c.centrifuge.geometry.l, 0.0);
+  EXPECT_DOUBLE_EQ(c.centrifuge.geometry.beta, 0.0);
+  EXPECT_EQ(c.centrifuge.layout.harmonic_order(), 1);
+  EXPECT_TRUE((c.centrifuge.errors.array() == 0.0).all());
+  EXPECT_DOUBLE_EQ(c.site.g, 9.8);
+  EXPECT_NEAR(c.site.latitude, 45.75 * kDeg, 1e-15);
+  EXPECT_TRUE(c.site.earth_rotation);
+
+  ASSERT_EQ(c.plan.runs.size(), 6u);
+  const double levels[] = {5, 10, 15, 20, 25, 30};
+  for (std::size_t k = 0; k < 6; ++k) {
+    const ccal::Run& r = c.plan.runs[k];
+    EXPECT_EQ(r.name, std::to_string(int(levels[k])) + "g");
+    EXPECT_DOUBLE_EQ(r.g_level, levels[k]);
+    EXPECT_DOUBLE_EQ(r.duration, 450.0);
+    EXPECT_EQ(r.mode, PlatformMode::counter_rotating);
+    ASSERT_TRUE(r.terminal_phase.has_value());
+    EXPECT_DOUBLE_EQ(*r.terminal_phase, std::numbers::pi);
+    EXPECT_FALSE(r.initial_phase.has_value());
+    EXPECT_DOUBLE_EQ(r.arm_azimuth, 0.0);
+    EXPECT_EQ(r.mounting, Mounting::ia_horizontal);
+  }
+  // model.md §4.2 (g = 9.8): φ0 of the six runs.
+  const double phi0[] = {3.6068, 5.7202, 4.3250, 4.0720, 3.1359, 1.0656};
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_NEAR(initial_phase(c.plan.runs[k], c.centrifuge.geometry, c.site), phi0[k], 1e-4) << k;
+
+  // The paper's PIGA, in SI (rad/s per g^n).
+  EXPECT_EQ(c.instrument.term_ids, (std::vector<std::string>{"K0", "K1", "K2", "K3"}));
+  EXPECT_NEAR(*c.instrument.coefficient("K0"), 0.061973 * kDeg, 1e-15);
+  EXPECT_NEAR(*c.instrument.coefficient("K1"), 505.2097 * kDeg, 1e-12);
+  EXPECT_NEAR(*c.instrument.coefficient("K2"), 0.02 * kDeg, 1e-16);
+  EXPECT_NEAR(*c.instrument.coefficient("K3"), 0.003 * kDeg, 1e-17);
+  EXPECT_DOUBLE_EQ(c.instrument.rate_gain, 1.0);
+}
+
+TEST(Example, TolerancesCoverEveryStaticChannelAndFirstHarmonic) {
+  const Config c = bundled_example();
+  EXPECT_GE(c.tolerances.size(), 40u);
+  const ErrorLayout& layout = c.centrifuge.layout;
+  auto find = [&](std::string_view id) -> const Tolerance* {
+    for (const auto& t : c.tolerances)
+      if (t.id == id) return &t;
+    return nullptr;
+  };
+  for (int ch = 0; ch < kChannelCount; ++ch) {
+    const Channel& channel = channels()[ch];
+    if (channel.joint == Joint::none) {
+      EXPECT_NE(find(channel.id), nullptr) << channel.id;
+      continue;
+    }
+    for (const char* suffix : {"_c1", "_s1"}) {
+      const std::string id = std::string(channel.id) + suffix;
+      const Tolerance* t = find(id);
+      ASSERT_NE(t, nullptr) << id;
+      EXPECT_EQ(t->distribution, Distribution::arcsine) << id;
+    }
+  }
+  // Ordered as the catalogue, each pointing at its own parameter.
+  for (std::size_t k = 0; k < c.tolerances.size(); ++k) {
+    EXPECT_EQ(layout.parameter_id(c.tolerances[k].parameter), c.tolerances[k].id);
+    if (k > 0) {
+      EXPECT_LT(c.tolerances[k - 1].parameter, c.tolerances[k].parameter);
+    }
+  }
+  EXPECT_DOUBLE_EQ(find("dthz5")->bound, 1e-5);
+  EXPECT_EQ(find("dthz5")->distribution, Distribution::normal);
+  EXPECT_NEAR(find("dR_s")->bound, 25e-6, 1e-18);  // 1e-5 · R0
+  EXPECT_NEAR(find("dx3_c1")->bound, 10e-6, 1e-18);
+  EXPECT_NEAR(find("domega")->bound, 0.5e-6, 1e-20);
+  EXPECT_NEAR(find("dOmega")->bound, 0.5e-6, 1e-20);
+  // Arm stretch: 10 µm at 30 g (Ω² = 30 · 9.8 / 2.5).
+  EXPECT_NEAR(find("arm_stretch")->bound * 30 * 9.8 / 2.5, 10e-6, 0.1e-6);
+  EXPECT_DOUBLE_EQ(find("dthz5")->cost, 1.0);
+  EXPECT_EQ(find("dthz5")->group, "");
+}
+
+TEST(Example, FileInExamplesIsTheBundledText) {
+  const std::filesystem::path file = std::filesystem::path(CCAL_SOURCE_DIR) / "examples/wang_ren_2014.toml";
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), bundled_example_text());
+  const Config c = load_config(file);
+  EXPECT_EQ(c.source, file.string());
+  EXPECT_EQ(c.plan.runs.size(), 6u);
+  EXPECT_EQ(c.tolerances.size(), bundled_example().tolerances.size());
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Units, defaults, and the values of every section
+
+TEST(Config, ConvertsUnitsToSiInEverySection) {
+  const Config c = parse_config(R"toml([site]
+latitude = "0.5 rad"
+g = "9810 mm/s^2"
+height = "0.1 km"
+earth_rotation = false
+[centrifuge]
+radius = "1250 mm"
+base_plane_height = "200 mm"
+instrument_height = "5e4 um"
+horizontal_axis_angle = "30 arcmin"
+harmonic_order = 2
+[errors]
+dthz5 = "2 arcsec"
+dx3_c1 = "5 um"
+dthy3_s2 = "-3 urad"
+domega = "1 deg/h"
+arm_stretch = "1e-7 m/(rad/s)^2"
+[instrument]
+output_unit = "rad/s"
+[instrument.terms]
+K1 = "8.8 rad/s/g"
+K3 = "0.003 deg/s/g^3"
+[plan]
+duration = "7.5 min"
+initial_phase = "90 deg"
+arm_azimuth = "1 rad"
+[[plan.runs]]
+g_level = "3000 mg"
+)toml",
+                                "x.toml");
+  EXPECT_DOUBLE_EQ(c.site.latitude, 0.5);
+  EXPECT_NEAR(c.site.g, 9.81, 1e-14);
+  EXPECT_FALSE(c.site.earth_rotation);
+  EXPECT_NEAR(c.centrifuge.geometry.R0, 1.25, 1e-15);
+  EXPECT_NEAR(c.centrifuge.geometry.L, 0.2, 1e-15);
+  EXPECT_NEAR(c.centrifuge.geometry.l, 0.05, 1e-15);
+  EXPECT_NEAR(c.centrifuge.geometry.beta, 0.5 * kDeg, 1e-15);
+  EXPECT_EQ(c.centrifuge.layout.harmonic_order(), 2);
+  EXPECT_NEAR(c.centrifuge.error("dthz5"), 2 * constants::arcsec, 1e-20);
+  EXPECT_NEAR(c.centrifuge.error("dx3_c1"), 5e-6, 1e-20);
+  EXPECT_NEAR(c.centrifuge.error("dthy3_s2"), -3e-6, 1e-20);
+  EXPECT_NEAR(c.centrifuge.error("domega"), kDeg / 3600, 1e-20);
+  EXPECT_NEAR(c.centrifuge.error("arm_stretch"), 1e-7, 1e-22);
+  EXPECT_EQ(c.instrument.output_unit, "rad/s");
+  EXPECT_EQ(c.instrument.term_ids, (std::vector<std::string>{"K1", "K3"}));
+  EXPECT_NEAR(*c.instrument.coefficient("K1"), 8.8, 1e-15);
+  EXPECT_NEAR(*c.instrument.coefficient("K3"), 0.003 * kDeg, 1e-18);
+  ASSERT_EQ(c.plan.runs.size(), 1u);
+  const ccal::Run& r = c.plan.runs[0];
+  EXPECT_NEAR(r.g_level, 3.0, 1e-15);
+  EXPECT_DOUBLE_EQ(r.duration, 450.0);
+  EXPECT_NEAR(*r.initial_phase, std::numbers::pi / 2, 1e-15);
+  EXPECT_FALSE(r.terminal_phase);
+  EXPECT_DOUBLE_EQ(r.arm_azimuth, 1.0);
+}
+
+TEST(Config, Defaults) {
+  const Config c = parse_config(R"([site]
+latitude = "30 deg"
+[centrifuge]
+radius = "2 m"
+[[plan.runs]]
+g_level = "5 g"
+duration = "100 s"
+terminal_phase = "0 deg"
+[[plan.runs]]
+g_level = "6 g"
+duration = "100 s"
+initial_phase = "0 deg"
+)",
+                                "d.toml");
+  EXPECT_DOUBLE_EQ(c.site.g, normal_gravity(30 * kDeg, 0.0));
+  EXPECT_TRUE(c.site.earth_rotation);
+  EXPECT_DOUBLE_EQ(c.centrifuge.geometry.L, 0.0);
+  EXPECT_DOUBLE_EQ(c.centrifuge.geometry.l, 0.0);
+  EXPECT_DOUBLE_EQ(c.centrifuge.geometry.beta, 0.0);
+  EXPECT_EQ(c.centrifuge.layout.harmonic_order(), 1);
+  EXPECT_TRUE((c.centrifuge.errors.array() == 0.0).all());
+  EXPECT_TRUE(c.tolerances.empty());
+  // No [instrument]: the paper's PIGA.
+  const InstrumentModel piga = paper_piga();
+  EXPECT_EQ(c.instrument.term_ids, piga.term_ids);
+  EXPECT_TRUE(c.instrument.coefficients.isApprox(piga.coefficients));
+  EXPECT_EQ(c.instrument.rate_gain, 1.0);
+  EXPECT_EQ(c.instrument.noise_density, 0.0);
+  EXPECT_EQ(c.instrument.quantum, 0.0);
+  // Run names, platform, mounting and azimuth.
+  ASSERT_EQ(c.plan.runs.size(), 2u);
+  EXPECT_EQ(c.plan.runs[0].name, "run1");
+  EXPECT_EQ(c.plan.runs[1].name, "run2");
+  for (const ccal::Run& r : c.plan.runs) {
+    EXPECT_EQ(r.mode, PlatformMode::counter_rotating);
+    EXPECT_EQ(r.mounting, Mounting::ia_horizontal);
+    EXPECT_EQ(r.arm_azimuth, 0.0);
+  }
+  // A given g overrides normal gravity; height lowers normal gravity.
+  const Config h = parse_config(R"([site]
+latitude = "30 deg"
+height = "1000 m"
+[centrifuge]
+radius = "2 m"
+[[plan.runs]]
+g_level = "5 g"
+duration = "100 s"
+terminal_phase = "0 deg"
+)",
+                                "h.toml");
+  EXPECT_DOUBLE_EQ(h.site.g, normal_gravity(30 * kDeg, 1000.0));
+  EXPECT_LT(h.site.g, c.site.g);
+}
+
+TEST(Config, RunValuesOverridePlanDefaults) {
+  const Config c = parse_config(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "450 s"
+terminal_phase = "180 deg"
+platform = "fixed"
+mounting = "ia_reversed"
+arm_azimuth = "10 deg"
+[[plan.runs]]
+name = "plain"
+g_level = "5 g"
+[[plan.runs]]
+name = "own"
+g_level = "10 g"
+duration = "60 s"
+initial_phase = "30 deg"
+platform = "counter_rotating"
+mounting = "pa_vertical"
+arm_azimuth = "20 deg"
+[[plan.runs]]
+name = "vertical"
+g_level = "1 g"
+mounting = "ia_vertical"
+)",
+                                "o.toml");
+  const ccal::Run& a = c.plan.runs[0];
+  EXPECT_DOUBLE_EQ(a.duration, 450.0);
+  EXPECT_DOUBLE_EQ(*a.terminal_phase, std::numbers::pi);
+  EXPECT_FALSE(a.initial_phase);
+  EXPECT_EQ(a.mode, PlatformMode::fixed);
+  EXPECT_EQ(a.mounting, Mounting::ia_reversed);
+  EXPECT_NEAR(a.arm_azimuth, 10 * kDeg, 1e-15);
+  const ccal::Run& b = c.plan.runs[1];
+  EXPECT_DOUBLE_EQ(b.duration, 60.0);
+  EXPECT_NEAR(*b.initial_phase, 30 * kDeg, 1e-15);
+  EXPECT_FALSE(b.terminal_phase);  // the run's initial phase replaces the plan's terminal phase
+  EXPECT_EQ(b.mode, PlatformMode::counter_rotating);
+  EXPECT_EQ(b.mounting, Mounting::pa_vertical);
+  EXPECT_NEAR(b.arm_azimuth, 20 * kDeg, 1e-15);
+  EXPECT_EQ(c.plan.runs[2].mounting, Mounting::ia_vertical);
+}
+
+TEST(Config, EachDistributionWord) {
+  const std::pair<const char*, Distribution> words[] = {{"normal", Distribution::normal},
+                                                        {"uniform", Distribution::uniform},
+                                                        {"triangular", Distribution::triangular},
+                                                        {"arcsine", Distribution::arcsine}};
+  for (const auto& [word, d] : words) {
+    const Config c = parse_config(kBase + "\n[tolerances]\ndR_s = { bound = \"25 um\", distribution = \"" +
+                                      word + "\", group = \"radius\", cost = 2.5 }\n",
+                                  "t.toml");
+    ASSERT_EQ(c.tolerances.size(), 1u) << word;
+    const Tolerance& t = c.tolerances[0];
+    EXPECT_EQ(t.distribution, d) << word;
+    EXPECT_EQ(distribution_name(d), word);
+    EXPECT_EQ(t.id, "dR_s");
+    EXPECT_EQ(t.parameter, ChannelIndex::dR_s);
+    EXPECT_NEAR(t.bound, 25e-6, 1e-18);
+    EXPECT_EQ(t.group, "radius");
+    EXPECT_DOUBLE_EQ(t.cost, 2.5);
+  }
+  EXPECT_DOUBLE_EQ(standard_uncertainty(1.0, Distribution::normal), 1.0);
+  EXPECT_DOUBLE_EQ(standard_uncertainty(1.0, Distribution::uniform), 1.0 / std::sqrt(3.0));
+  EXPECT_DOUBLE_EQ(standard_uncertainty(1.0, Distribution::triangular), 1.0 / std::sqrt(6.0));
+  EXPECT_DOUBLE_EQ(standard_uncertainty(1.0, Distribution::arcsine), 1.0 / std::sqrt(2.0));
+}
+
+TEST(Config, ToleranceShorthandIsNormalSigma) {
+  const Config c =
+      parse_config(kBase + "\n[tolerances]\ndthz5 = \"2 arcsec\"\ndomega = \"1e-6 rad/s\"\n", "t.toml");
+  ASSERT_EQ(c.tolerances.size(), 2u);
+  EXPECT_EQ(c.tolerances[0].id, "dthz5");
+  EXPECT_NEAR(c.tolerances[0].bound, 2 * constants::arcsec, 1e-20);
+  EXPECT_EQ(c.tolerances[0].distribution, Distribution::normal);
+  EXPECT_EQ(c.tolerances[0].cost, 1.0);
+  EXPECT_EQ(c.tolerances[1].id, "domega");
+}
+
+TEST(Config, IeeeAndPulseInstruments) {
+  const Config c = parse_config(kBase + R"toml(
+[instrument]
+model = "ieee"
+noise_density = "10 ug/rtHz"
+quantum = "1e-6 g*s"
+[instrument.terms]
+K_p = "1e-4 g/g"
+K0 = "50 ug"
+K1 = "1 g/g"
+K2 = "20 ug/g^2"
+K_w = "0 g/(rad/s)"
+)toml",
+                                "i.toml");
+  EXPECT_EQ(c.instrument.output_unit, "g");
+  EXPECT_EQ(c.instrument.rate_gain, 0.0);
+  EXPECT_EQ(c.instrument.term_ids, (std::vector<std::string>{"K0", "K1", "K2", "K_p", "K_w"}));
+  EXPECT_NEAR(*c.instrument.coefficient("K0"), 50e-6, 1e-18);
+  EXPECT_NEAR(*c.instrument.coefficient("K2"), 20e-6, 1e-18);
+  EXPECT_NEAR(c.instrument.noise_density, 10e-6, 1e-18);
+  EXPECT_NEAR(c.instrument.quantum, 1e-6, 1e-18);
+
+  const Config p = parse_config(kBase + R"(
+[instrument]
+output_unit = "pulse/s"
+rate_gain = 0.5
+quantum = "1 pulse"
+[instrument.terms]
+K1 = "1000 pulse/s/g"
+)",
+                                "p.toml");
+  EXPECT_EQ(p.instrument.output_unit, "pulse/s");
+  EXPECT_DOUBLE_EQ(*p.instrument.coefficient("K1"), 1000.0);
+  EXPECT_DOUBLE_EQ(p.instrument.rate_gain, 0.5);
+  EXPECT_DOUBLE_EQ(p.instrument.quantum, 1.0);
+  // A pulse-output instrument's coefficients must be in pulses.
+  expect_appended_error("[instrument]\noutput_unit = \"pulse/s\"\n[instrument.terms]\nK1 = \"1000 deg/s/g\"",
+                        "instrument.terms.K1", {"pulses", "1 pulse/s/g"});
+}
+
+TEST(Config, SelectRunByNameOrIndex) {
+  const Config c = bundled_example();
+  EXPECT_EQ(select_run(c.plan, "20g", "--run"), 3u);
+  EXPECT_EQ(select_run(c.plan, "1", "--run"), 0u);
+  EXPECT_EQ(select_run(c.plan, "6", "--run"), 5u);
+  for (const char* bad : {"0", "7", "x", "", "2x", "-1"}) {
+    try {
+      select_run(c.plan, bad, "--run");
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_TRUE(what.starts_with("--run: ")) << what;
+      EXPECT_NE(what.find("5g, 10g"), std::string::npos) << what;
+      EXPECT_NE(what.find("1..6"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(Config, EditDistance) {
+  EXPECT_EQ(edit_distance("radius", "radious"), 1u);
+  EXPECT_EQ(edit_distance("", "abc"), 3u);
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+  EXPECT_EQ(edit_distance("same", "same"), 0u);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Errors
+
+TEST(ConfigErrors, TomlSyntaxError) {
+  expect_appended_error("base_plane_height = \"2 m", "", {"TOML syntax error"});
+  const ConfigError e = error_of(kBase + "\n[site]\n");  // table defined twice
+  EXPECT_EQ(e.line(), last_line(kBase + "\n[site]"));
+  EXPECT_NE(std::string(e.what()).find("case.toml:"), std::string::npos);
+}
+
+TEST(ConfigErrors, UnknownKeyAtEveryLevel) {
+  expect_appended_error("radious = \"2.5 m\"", "centrifuge.radious",
+                        {"unknown key", "did you mean 'radius'?"});
+  expect_appended_error("[sitee]", "sitee", {"unknown key", "did you mean 'site'?"});
+  expect_appended_error("[zzzzzzzzzz]", "zzzzzzzzzz", {"unknown key", "accepted keys: site, centrifuge"});
+  expect_appended_error("centrifuge_radius = \"2.5 m\"", "centrifuge.centrifuge_radius",
+                        {"unknown key", "accepted keys: radius, base_plane_height"});
+  expect_appended_error("[tolerances]\ndthz5 = { bond = \"1e-5 rad\" }", "tolerances.dthz5.bond",
+                        {"did you mean 'bound'?"});
+  expect_appended_error("[instrument]\nmodle = \"piga\"", "instrument.modle", {"did you mean 'model'?"});
+  expect_appended_error("[instrument.terms]\nK1 = \"1 deg/s/g\"\nK99 = \"1 deg/s/g\"", "instrument.terms.K99",
+                        {"not a term id", "K0, K1", "K_oq", "K_w"});
+  expect_error(R"([site]
+latitude = "45 deg"
+lattitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[[plan.runs]]
+g_level = "5 g"
+duration = "1 s"
+terminal_phase = "0 deg")",
+               3, "site.lattitude", {"did you mean 'latitude'?"});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+durration = "450 s"
+[[plan.runs]]
+g_level = "5 g")",
+               6, "plan.durration", {"did you mean 'duration'?"});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "1 s"
+initial_phase = "0 deg"
+[[plan.runs]]
+g_level = "5 g"
+[[plan.runs]]
+g_levl = "5 g")",
+               11, "plan.runs[2].g_levl", {"did you mean 'g_level'?"});
+}
+
+TEST(ConfigErrors, UnknownErrorParameterId) {
+  expect_appended_error("[errors]\ndthz6 = \"1 rad\"", "errors.dthz6",
+                        {"unknown error parameter", "did you mean 'dthz5'?", "dx3_c1"});
+  expect_appended_error("[tolerances]\ndr_s = \"25 um\"", "tolerances.dr_s", {"did you mean 'dR_s'?"});
+  expect_appended_error("[errors]\ndx3 = \"1 um\"", "errors.dx3", {"did you mean 'dx3_c0'?"});
+  expect_appended_error("[errors]\nwhatever = \"1 um\"", "errors.whatever", {"a static id (dthx1t", "_c<k>"});
+  expect_appended_error("[tolerances]\ndx3_c2 = \"1 um\"", "tolerances.dx3_c2",
+                        {"harmonic 2 is above centrifuge.harmonic_order = 1"});
+}
+
+TEST(ConfigErrors, MissingRequiredValues) {
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+base_plane_height = "0 m"
+[[plan.runs]]
+g_level = "5 g")",
+               3, "centrifuge.radius", {"missing value", "radius = \"2.5 m\""});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "450 s")",
+               5, "plan.runs", {"missing runs", "[[plan.runs]]"});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "450 s"
+terminal_phase = "0 deg"
+[[plan.runs]]
+name = "x")",
+               8, "plan.runs[1].g_level", {"missing value", "g_level = \"5 g\""});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+terminal_phase = "0 deg"
+[[plan.runs]]
+g_level = "5 g")",
+               7, "plan.runs[1].duration", {"missing value", "duration = \"450 s\""});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "450 s"
+[[plan.runs]]
+g_level = "5 g")",
+               7, "plan.runs[1].terminal_phase", {"missing phase", "initial_phase"});
+  expect_error(R"([site]
+g = "9.8 m/s^2"
+[centrifuge]
+radius = "2.5 m")",
+               1, "site.latitude", {"missing value", "latitude = \"45.75 deg\""});
+  const ConfigError no_centrifuge = error_of("[site]\nlatitude = \"45 deg\"\n");
+  EXPECT_NE(std::string(no_centrifuge.what()).find("centrifuge: missing table"), std::string::npos);
+  const ConfigError no_plan = error_of("[site]\nlatitude = \"45 deg\"\n[centrifuge]\nradius = \"1 m\"\n");
+  EXPECT_NE(std::string(no_plan.what()).find("plan: missing table"), std::string::npos);
+  expect_appended_error("[tolerances]\ndthz5 = { distribution = \"uniform\" }", "tolerances.dthz5.bound",
+                        {"missing value", "bound = \"1e-5 rad\""});
+  expect_appended_error("[plan.runs2]", "plan.runs2", {"did you mean 'runs'?"});
+}
+
+TEST(ConfigErrors, WrongType) {
+  expect_appended_error("base_plane_height = 2.5", "centrifuge.base_plane_height",
+                        {"expected a quantity string such as \"2.5 m\""});
+  expect_appended_error("instrument_height = true", "centrifuge.instrument_height",
+                        {"expected a quantity string", "got a boolean"});
+  expect_appended_error("harmonic_order = \"2\"", "centrifuge.harmonic_order", {"expected an integer 0..16"});
+  expect_appended_error("[errors]\ndthz5 = 1e-5", "errors.dthz5",
+                        {"expected a quantity string such as \"1e-05 rad\""});
+  expect_appended_error("[instrument]\nrate_gain = \"1\"", "instrument.rate_gain", {"expected a number"});
+  expect_appended_error("[instrument.terms]\nK1 = 505", "instrument.terms.K1",
+                        {"expected a quantity string such as \"505 deg/s/g\""});
+  expect_appended_error("[plan.runs.x]", "plan.runs[1].x", {"unknown key"});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+runs = 3)",
+               6, "plan.runs", {"expected an array of tables"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"1e-5 rad\", group = 3 }", "tolerances.dthz5.group",
+                        {"expected a string"});
+  expect_error(R"(site = "Harbin")", 1, "site", {"expected a table"});
+  expect_error(R"([site]
+latitude = "45 deg"
+earth_rotation = "yes")",
+               3, "site.earth_rotation", {"expected true or false"});
+}
+
+TEST(ConfigErrors, WrongUnitPassesTheUnitMessageThrough) {
+  expect_appended_error("base_plane_height = \"2.5 s\"", "centrifuge.base_plane_height",
+                        {"unit 's' is a time, expected a length", "accepted: m, mm"});
+  expect_appended_error("horizontal_axis_angle = \"2.5\"", "centrifuge.horizontal_axis_angle",
+                        {"a unit is required", "rad"});
+  expect_appended_error("[errors]\ndR_s = \"2 arcsec\"", "errors.dR_s", {"is an angle, expected a length"});
+  expect_appended_error("[errors]\ndomega = \"1e-6 rad\"", "errors.domega", {"expected an angular rate"});
+  expect_appended_error("[instrument.terms]\nK3 = \"0.003 deg/s/g^2\"", "instrument.terms.K3", {"rad/s/g^3"});
+  expect_appended_error("[instrument]\noutput_unit = \"m\"", "instrument.output_unit",
+                        {"is a length", "pulse/s"});
+  expect_appended_error("[instrument]\nnoise_density = \"1 deg/s\"", "instrument.noise_density", {"/rtHz"});
+  expect_appended_error("[errors]\ndthz5 = \"2 furlong\"", "errors.dthz5", {"unknown unit 'furlong'"});
+}
+
+TEST(ConfigErrors, OutOfRangeValues) {
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "-2.5 m")",
+               4, "centrifuge.radius", {"must be positive", "\"2.5 m\""});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "0 m")",
+               4, "centrifuge.radius", {"must be positive"});
+  expect_appended_error("base_plane_height = \"-1 mm\"", "centrifuge.base_plane_height",
+                        {"must not be negative"});
+  expect_appended_error("instrument_height = \"-1 mm\"", "centrifuge.instrument_height",
+                        {"must not be negative"});
+  expect_appended_error("harmonic_order = 17", "centrifuge.harmonic_order", {"out of range", "0..16"});
+  expect_appended_error("harmonic_order = -1", "centrifuge.harmonic_order", {"out of range"});
+  expect_appended_error("[tolerances]\ndthz5 = \"0 rad\"", "tolerances.dthz5", {"must be positive"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"-1 rad\" }", "tolerances.dthz5.bound",
+                        {"must be positive"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"1 rad\", cost = 0 }", "tolerances.dthz5.cost",
+                        {"must be positive"});
+  expect_appended_error("[site.x]", "site.x", {"unknown key"});
+  expect_error(R"([site]
+latitude = "95 deg")",
+               2, "site.latitude", {"outside [-90 deg, 90 deg]"});
+  expect_error(R"([site]
+latitude = "45 deg"
+g = "0 m/s^2")",
+               3, "site.g", {"must be positive"});
+  const std::string runs = R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+terminal_phase = "0 deg"
+duration = "1 s"
+[[plan.runs]]
+)";
+  expect_error(runs + "g_level = \"0 g\"", 9, "plan.runs[1].g_level", {"must be positive", "\"5 g\""});
+  expect_error(runs + "g_level = \"-5 g\"", 9, "plan.runs[1].g_level", {"must be positive"});
+  expect_error(runs + "g_level = \"5 g\"\nduration = \"-1 s\"", 10, "plan.runs[1].duration",
+               {"must be positive", "\"450 s\""});
+  expect_error(runs + "g_level = \"5 g\"\nduration = \"0 s\"", 10, "plan.runs[1].duration",
+               {"must be positive"});
+}
+
+TEST(ConfigErrors, NonFiniteNumbers) {
+  expect_appended_error("base_plane_height = \"nan m\"", "centrifuge.base_plane_height",
+                        {"not a finite number"});
+  expect_appended_error("base_plane_height = \"inf m\"", "centrifuge.base_plane_height",
+                        {"not a finite number"});
+  expect_appended_error("base_plane_height = nan", "centrifuge.base_plane_height",
+                        {"expected a quantity string"});
+  expect_appended_error("[instrument]\nrate_gain = nan", "instrument.rate_gain", {"not a finite number"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"1 rad\", cost = inf }", "tolerances.dthz5.cost",
+                        {"not a finite number"});
+}
+
+TEST(ConfigErrors, BothPhasesInOneScope) {
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "1 s"
+terminal_phase = "0 deg"
+initial_phase = "0 deg"
+[[plan.runs]]
+g_level = "5 g")",
+               8, "plan.initial_phase", {"both initial_phase and terminal_phase", "exactly one"});
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "1 s"
+[[plan.runs]]
+g_level = "5 g"
+initial_phase = "0 deg"
+terminal_phase = "0 deg")",
+               10, "plan.runs[1].terminal_phase", {"both initial_phase and terminal_phase"});
+}
+
+TEST(ConfigErrors, UnknownWords) {
+  const std::string runs = R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+terminal_phase = "0 deg"
+duration = "1 s"
+[[plan.runs]]
+g_level = "5 g"
+)";
+  expect_error(
+      runs + "platform = \"counter-rotating\"", 10, "plan.runs[1].platform",
+      {"unknown value 'counter-rotating'", "did you mean 'counter_rotating'?", "counter_rotating, fixed"});
+  expect_error(runs + "mounting = \"sideways\"", 10, "plan.runs[1].mounting",
+               {"unknown value", "ia_horizontal, ia_reversed, pa_vertical, ia_vertical"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"1 rad\", distribution = \"gaussian\" }",
+                        "tolerances.dthz5.distribution", {"normal, uniform, triangular, arcsine"});
+  expect_appended_error("[instrument]\nmodel = \"qa\"", "instrument.model", {"piga, ieee"});
+}
+
+TEST(ConfigErrors, DuplicateRunNames) {
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+terminal_phase = "0 deg"
+duration = "1 s"
+[[plan.runs]]
+name = "a"
+g_level = "5 g"
+[[plan.runs]]
+name = "a"
+g_level = "6 g")",
+               12, "plan.runs[2].name", {"duplicate run name 'a'", "line 9", "unique"});
+  // A given name may also collide with a default one.
+  expect_error(R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+terminal_phase = "0 deg"
+duration = "1 s"
+[[plan.runs]]
+g_level = "5 g"
+[[plan.runs]]
+name = "run1"
+g_level = "6 g")",
+               11, "plan.runs[2].name", {"duplicate run name 'run1'"});
+}
+
+TEST(ConfigErrors, InstrumentNeedsTerms) {
+  const std::string ieee = kBase + "\n[instrument]\nmodel = \"ieee\"";
+  expect_error(ieee, last_line(ieee) - 1, "instrument.terms", {"missing table", "K1"});
+  expect_appended_error("[instrument]\noutput_unit = \"g\"", "instrument.output_unit",
+                        {"cannot use the paper's PIGA coefficients"});
+}
+
+TEST(ConfigErrors, UnreadableFile) {
+  try {
+    load_config("/nonexistent/ccal.toml");
+    ADD_FAILURE();
+  } catch (const ConfigError& e) {
+    EXPECT_TRUE(std::string(e.what()).starts_with("/nonexistent/ccal.toml: cannot read")) << e.what();
+    EXPECT_EQ(e.line(), 0);
+  }
+}
+
+}  // namespace
+}  // namespace ccal
