@@ -838,7 +838,19 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   cfg.tolerances = read_tolerances(r, root, cfg.centrifuge.layout);
   cfg.instrument = read_instrument(r, root);
   cfg.plan = read_plan(r, root);
+  cfg.identification.fixed_terms.clear();
+  if (auto k1 = cfg.instrument.coefficient("K1")) cfg.identification.fixed_terms["K1"] = *k1;
   return cfg;
+}
+
+Experiment Config::experiment() const {
+  Experiment ex;
+  ex.geometry = centrifuge.geometry;
+  ex.layout = centrifuge.layout;
+  ex.site = site;
+  ex.plan = plan;
+  ex.instrument = instrument;
+  return ex;
 }
 
 Config load_config(const std::filesystem::path& path) {

@@ -22,6 +22,7 @@
 #include "ccal/centrifuge.hpp"
 #include "ccal/errors.hpp"
 #include "ccal/instrument.hpp"
+#include "ccal/simulate.hpp"
 #include "ccal/site.hpp"
 #include "ccal/test_plan.hpp"
 
@@ -77,6 +78,11 @@ struct Config {
   InstrumentModel instrument;
   TestPlan plan;
   std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order
+  // What is identified (default: K0, K2, K3 free and K1 held at the instrument's value, as in the paper).
+  IdentificationSpec identification;
+
+  // The experiment (geometry, layout, site, plan, instrument) of this configuration.
+  Experiment experiment() const;
 };
 
 // Reads and checks a configuration file. Throws ConfigError (also when the file cannot be read).
