@@ -16,12 +16,11 @@
 
 #include "ccal/centrifuge.hpp"
 #include "ccal/kinematics.hpp"
+#include "ccal/model_mode.hpp"
 #include "ccal/site.hpp"
 #include "ccal/test_plan.hpp"
 
 namespace ccal {
-
-enum class ModelMode { exact, paper };
 
 struct ForceContribution {
   int parameter = 0;      // index in the centrifuge's ErrorLayout

@@ -15,16 +15,12 @@
 #include "ccal/centrifuge.hpp"
 #include "ccal/fit.hpp"
 #include "ccal/instrument.hpp"
+#include "ccal/model_mode.hpp"
 #include "ccal/reduce.hpp"
 #include "ccal/site.hpp"
 #include "ccal/test_plan.hpp"
 
 namespace ccal {
-
-enum class ModelMode {
-  exact,  // the full chain (default)
-  paper,  // the paper's first-order rules (docs/model.md §5.1, §7.1)
-};
 
 struct Experiment {
   Geometry geometry;
