@@ -20,8 +20,8 @@ namespace detail {
 
 // The paper's reduction of one run (docs/model.md §5.1, §7.1): a_i from the first-order form with the
 // frozen-γ rules and a constant Coriolis term, phases on the nominal rate, Δω in the amplitude
-// A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors in the K1 term only unless cross_terms, the
-// Earth-rate term on the IA heading, and the paper's additive −ΔΩ in the output.
+// A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors in the K1 term only unless cross_terms,
+// the Earth-rate term on the IA heading, and the paper's additive −ΔΩ in the output.
 template <class S>
 RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
                             const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
@@ -69,9 +69,12 @@ RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::
       avg.regressors[Eigen::Index(k)] += weight * term_regressor(terms[k], plain ? a_plain : a_cross, w_ia);
     }
     if (instrument) {
-      S out = cross_terms ? instrument_output(*instrument, truth_terms, a_cross, w_ia)
-                          : instrument_output(*instrument, truth_terms, a_plain, w_ia) + S(k1) * (a_k1 - a_power);
-      avg.output += weight * (out - e[dOmega]);  // the paper's additive −ΔΩ (output in rad/s)
+      S out = cross_terms
+                  ? instrument_output(*instrument, truth_terms, a_cross, w_ia)
+                  : instrument_output(*instrument, truth_terms, a_plain, w_ia) + S(k1) * (a_k1 - a_power);
+      // The paper's additive −ΔΩ (output in rad/s), a rate-path term: it goes with the instrument's rate
+      // gain.
+      avg.output += weight * (out - (instrument->rate_gain != 0.0 ? e[dOmega] : S(0)));
     }
   }
   return avg;

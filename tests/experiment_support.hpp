@@ -34,8 +34,9 @@ inline IdentificationSpec paper_spec() {
 }
 
 // Identified (K0, K2, K3) in °/s/gⁿ for true errors e (model errors zero).
-inline Eigen::Vector3d identified_deg(const Experiment& ex, const Eigen::VectorXd& e, const IdentificationSpec& spec,
-                                      ModelMode mode, const Eigen::VectorXd* known = nullptr) {
+inline Eigen::Vector3d identified_deg(const Experiment& ex, const Eigen::VectorXd& e,
+                                      const IdentificationSpec& spec, ModelMode mode,
+                                      const Eigen::VectorXd* known = nullptr) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
   const auto obs = observe<double>(ex, e, known ? *known : zero, spec, mode);
   return identify_coefficients<double>(obs, spec) / kDeg;

@@ -17,8 +17,8 @@ TEST(Identification, V1ErrorFreeRecoversTheCoefficients) {
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
     for (ModelMode mode : {ModelMode::exact, ModelMode::paper}) {
       const Eigen::Vector3d k = identified_deg(ex, zero, paper_spec(), mode);
-      EXPECT_LT((k - kTruth).cwiseAbs().maxCoeff(), 1e-9) << "earth " << earth << " mode " << int(mode) << ": "
-                                                          << k.transpose();
+      EXPECT_LT((k - kTruth).cwiseAbs().maxCoeff(), 1e-9)
+          << "earth " << earth << " mode " << int(mode) << ": " << k.transpose();
     }
   }
 }
@@ -33,8 +33,8 @@ Eigen::Vector3d bias(const Experiment& ex, int parameter, double value, ModelMod
 TEST(Identification, V2BasePlaneTiltGoesToK0Only) {
   // Δθy4 = 1e-5 rad, paper model: ΔK0 = −K1·1e-5 = −5.052097e-3 °/s exactly; ΔK2 = ΔK3 = 0. Round-off: the
   // run means are differences of outputs swinging by K1·A ≈ 15 000 °/s, so each carries ≈ 1e-16·15 000 =
-  // 1.5e-12 °/s; divided by the spread of the regressors that gives 1e-12 on K0, 1e-14 on K2 (Z2 spans 440 g²)
-  // and 1e-12 on K3 (Z3 spans 5 g³).
+  // 1.5e-12 °/s; divided by the spread of the regressors that gives 1e-12 on K0, 1e-14 on K2 (Z2 spans 440
+  // g²) and 1e-12 on K3 (Z3 spans 5 g³).
   const Eigen::Vector3d d = bias(paper_experiment(), dthy4, 1e-5, ModelMode::paper);
   EXPECT_NEAR(d[0], -5.052097e-3, 1e-12);
   EXPECT_NEAR(d[1], 0.0, 1e-14);
@@ -42,10 +42,10 @@ TEST(Identification, V2BasePlaneTiltGoesToK0Only) {
 }
 
 TEST(Identification, V3AzimuthErrorMatchesTable4) {
-  // Δθz5 = 1e-5 rad, paper model (K1 only): ΔK0 = −1.9151e-5, ΔK2 = +2.1402e-8, ΔK3 = +9.1287e-6 (model.md §5.1,
-  // 5 digits quoted: relative tolerance 1e-4). With the pose error in the K2 and K3 terms too, model.md V3 gives
-  // ΔK0 = −1.9171e-5, ΔK2 = +2.1254e-8, ΔK3 = +9.1580e-6 for an exact phase shift, which differs from this
-  // linear-with-cross-terms model by O(A·δ) ≈ 3e-4 relative: tolerance 5e-4.
+  // Δθz5 = 1e-5 rad, paper model (K1 only): ΔK0 = −1.9151e-5, ΔK2 = +2.1402e-8, ΔK3 = +9.1287e-6 (model.md
+  // §5.1, 5 digits quoted: relative tolerance 1e-4). With the pose error in the K2 and K3 terms too, model.md
+  // V3 gives ΔK0 = −1.9171e-5, ΔK2 = +2.1254e-8, ΔK3 = +9.1580e-6 for an exact phase shift, which differs
+  // from this linear-with-cross-terms model by O(A·δ) ≈ 3e-4 relative: tolerance 5e-4.
   const Experiment ex = paper_experiment();
   const Eigen::Vector3d d = bias(ex, dthz5, 1e-5, ModelMode::paper);
   EXPECT_NEAR(d[0], -1.9151e-5, 1e-4 * 1.9151e-5);
@@ -110,8 +110,8 @@ TEST(Identification, KooAndK0AliasWhenTheOaIsVertical) {
 }
 
 TEST(Identification, K2AndKppAliasOnACounterRotatingPlatform) {
-  // ⟨a_p²⟩ = A² − ⟨a_i²⟩ and ⟨a_i²⟩ ≈ A²/2 (model.md §3.2 of the reconstruction): the two columns differ only by
-  // O(A²/ΩT): their estimates are correlated beyond 0.99999 and the fit is refused with both terms named.
+  // ⟨a_p²⟩ = A² − ⟨a_i²⟩ and ⟨a_i²⟩ ≈ A²/2 (model.md §3.2 of the reconstruction): the two columns differ only
+  // by O(A²/ΩT): their estimates are correlated beyond 0.99999 and the fit is refused with both terms named.
   const std::string what = ill_posed_message({"K0", "K2", "K3", "K_pp"});
 
   EXPECT_NE(what.find("K2"), std::string::npos) << what;

@@ -1,7 +1,8 @@
 #pragma once
 // Simulation of a test plan and its reduction to observation equations (docs/model.md §8–9):
 //   truth:  ᾱ_j = ⟨instrument output⟩ over run j, through the exact chain with the *true* centrifuge errors;
-//   model:  the regressors Z_kj = ⟨term_k⟩ and the known rate term ⟨s_ω ω_IA⟩_j, through the exact chain with the
+//   model:  the regressors Z_kj = ⟨term_k⟩ and the known rate term ⟨s_ω ω_IA⟩_j, through the exact chain with
+//   the
 //           errors the analyst *knows* (zero: uncompensated; measured values: compensated, the paper's
 //           conclusion 3).
 // Identification then solves ᾱ_j − ⟨s_ω ω_IA⟩_j − Σ_fixed K Z = Σ_free K Z in the least-squares sense.

@@ -1,0 +1,79 @@
+#pragma once
+// The error budget (docs/model.md §10): how much each centrifuge error source biases each identified
+// coefficient, and in total.
+//
+// The identified coefficients are a function of the true errors e through the whole pipeline:
+//     K̂(e) = H⁺ (ȳ(e) − s_ω⟨ω_IA⟩ − Σ_fixed K Z),   ȳ_j(e) = ⟨instrument output⟩ over run j (exact chain)
+// with the design H, the known rate term and the fixed terms from the analyst's model (zero errors, or the
+// measured ones when compensating), which do not depend on e. The sensitivity J = ∂K̂/∂e is computed by
+// forward-mode automatic differentiation through kinematics, reduction and least squares (ccal::Dual, in
+// passes of kDualWidth sources), at the configured error values.
+//
+// Totals follow the law of propagation of uncertainty (GUM §5): the standard uncertainty u_s of each source
+// (bound and distribution), contribution c_ks = J_ks u_s, fully correlated sources of a group added with
+// their signs, groups added in quadrature; the coefficient covariance is Σ_groups g gᵀ.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "ccal/config.hpp"
+#include "ccal/simulate.hpp"
+
+namespace ccal {
+
+struct BudgetOptions {
+  ModelMode mode = ModelMode::exact;
+  double coverage_factor = 2.0;      // k of the expanded uncertainty U = k u (≈ 95 % for a normal total)
+  bool compare_with_paper = true;    // in exact mode, also compute the paper's sensitivities per source
+  double disagreement_factor = 2.0;  // flag sources whose exact and paper effects differ by more than this
+  ReductionOptions reduction;
+};
+
+// Sensitivities of the free coefficients (rows) to the given parameters (columns), SI per SI unit, split
+// into the specific-force path (the instrument's rate gain set to zero) and the angular-rate path (the rest).
+struct SensitivityTable {
+  std::vector<std::string> coefficients;
+  std::vector<int> parameters;
+  Eigen::MatrixXd total, force_path, rate_path;
+};
+
+// J at the truth errors `at` (indexed by the layout), with the model's errors `known`.
+SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
+                               const std::vector<int>& parameters, const Eigen::VectorXd& at,
+                               const Eigen::VectorXd& known, ModelMode mode,
+                               const ReductionOptions& reduction = {});
+
+struct SourceBudget {
+  int parameter = 0;
+  std::string id;
+  std::string group;
+  Distribution distribution = Distribution::normal;
+  double bound = 0;                 // SI
+  double standard_uncertainty = 0;  // u_s, SI
+  Eigen::VectorXd sensitivity;      // ∂K/∂e per coefficient, SI per SI unit
+  Eigen::VectorXd effect;           // J u_s per coefficient (signed), coefficient SI units
+  Eigen::VectorXd effect_force;     // of which through the specific force
+  Eigen::VectorXd effect_rate;      // and through the angular rate
+  Eigen::VectorXd share;            // c_ks² / u_k² per coefficient (0…1)
+  Eigen::VectorXd paper_effect;     // the paper-mode effect at the same u_s (empty if not computed)
+  std::vector<bool> disagrees;      // exact vs paper beyond the disagreement factor, per coefficient
+  int rank = 0;                     // 1 = largest contributor (by the largest share over coefficients)
+};
+
+struct BudgetResult {
+  ModelMode mode = ModelMode::exact;
+  std::vector<std::string> coefficients;  // free terms
+  std::vector<std::string> units;         // their display units (output unit per g^n)
+  std::vector<double> display_scale;      // SI → display unit factor per coefficient
+  std::vector<SourceBudget> sources;      // in tolerance order
+  Eigen::VectorXd standard_uncertainty;   // u_k per coefficient (SI)
+  Eigen::VectorXd expanded_uncertainty;   // k u_k
+  double coverage_factor = 2.0;
+  Eigen::MatrixXd covariance;  // of the coefficients (SI)
+  Eigen::MatrixXd correlation;
+};
+
+BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});
+
+}  // namespace ccal
