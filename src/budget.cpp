@@ -65,6 +65,33 @@ SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& s
   return t;
 }
 
+std::vector<CompensationChoice> compensation_choices(const Experiment& ex, const IdentificationSpec& spec,
+                                                     const Eigen::VectorXd& at, const Eigen::VectorXd& known,
+                                                     ModelMode mode, bool with_paper,
+                                                     const ReductionOptions& reduction) {
+  std::vector<CompensationChoice> out;
+  if (!ex.site.earth_rotation) return out;
+  auto bias = [&](ModelMode m, bool coriolis) {
+    Experiment model = ex;
+    (coriolis ? model.site.apply_coriolis : model.site.sense_earth_rate) = false;
+    const auto with =
+        identify_coefficients<double>(observe<double>(ex, ex, at, known, spec, m, reduction), spec);
+    const auto without =
+        identify_coefficients<double>(observe<double>(ex, model, at, known, spec, m, reduction), spec);
+    return Eigen::VectorXd(without - with);
+  };
+  for (bool coriolis : {false, true}) {
+    CompensationChoice c;
+    c.id = coriolis ? "coriolis" : "earth_rate";
+    c.description = coriolis ? "Coriolis force 2 w_ie x v left out of the model"
+                             : "Earth rate on the instrument left out of the model";
+    c.bias = bias(mode, coriolis);
+    if (with_paper) c.paper_bias = bias(ModelMode::paper, coriolis);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options) {
   const Experiment ex = config.experiment();
   const IdentificationSpec& spec = config.identification;
@@ -160,6 +187,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return largest[a] > largest[b]; });
   for (std::size_t pos = 0; pos < order.size(); ++pos) r.sources[order[pos]].rank = int(pos) + 1;
+  r.compensation = compensation_choices(ex, spec, at, known, options.mode, compare, options.reduction);
   return r;
 }
 

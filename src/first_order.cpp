@@ -90,10 +90,11 @@ FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layou
   const JointState<double> j = run.at(t);
   const NominalChain chain = nominal_chain(geo, j);
   const FrameMotion<double>& five = chain.instrument;
-  const V3 earth = site.earth_rate_enu();
+  const V3 earth = site.coriolis_rate_enu();  // in the Coriolis force
+  const V3 sensed = site.sensed_rate_enu();   // in the instrument's rate
   const double g = site.g;
   const V3 f = five.a + 2.0 * earth.cross(five.v) + V3(0, 0, g);
-  const V3 w_inertial = five.w + earth;
+  const V3 w_inertial = five.w + sensed;
   const Eigen::Matrix3d RT = five.R.transpose();
 
   FirstOrderResult out;
@@ -143,7 +144,7 @@ FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layou
   const V3 force = a + 2.0 * earth.cross(v) + g * ez;
   const V3 force_theta1 = -wr * wr * R0 * e(j.theta1 + kHalfPi) + 2.0 * earth.cross(-wr * R0 * e(j.theta1));
   const V3 force_rate = -2.0 * wr * R0 * e(j.theta1) + 2.0 * earth.cross(R0 * e(j.theta1 + kHalfPi));
-  const V3 rate = five.w + earth;
+  const V3 rate = five.w + sensed;
   Eigen::Matrix<double, 6, 1> d_psi;
   d_psi << e(psi + kHalfPi).dot(force) / g, -e(psi).dot(force) / g, 0.0, e(psi + kHalfPi).dot(rate),
       -e(psi).dot(rate), 0.0;
@@ -191,14 +192,14 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
   const double h = options.lever_arms ? geo.L + geo.l : 0.0;
   const double l = options.lever_arms ? geo.l : 0.0;
   const double Omega = j.theta1_rate;
-  const double coriolis = 2.0 * site.earth_rate * (site.earth_rotation ? 1.0 : 0.0) * R0 * Omega *
-                          std::sin(site.latitude) / site.g;
+  const double coriolis = 2.0 * site.earth_rate * (site.earth_rotation && site.apply_coriolis ? 1.0 : 0.0) *
+                          R0 * Omega * std::sin(site.latitude) / site.g;
 
   FirstOrderResult out;
   out.sensitivity = SensitivityMatrix::Zero(6, layout.size());
   // Nominal: a_i = −A cos γ − Coriolis (constant or × cos γ); ω_IA = Earth rate on the IA azimuth.
   const double psi = j.theta1 + j.gamma;
-  const Eigen::Vector3d earth = site.earth_rate_enu();
+  const Eigen::Vector3d earth = site.sensed_rate_enu();
   out.nominal.setZero();
   out.nominal[0] = -A * cg - coriolis * (options.constant_coriolis ? 1.0 : cg);
   out.nominal[3] = std::cos(psi) * earth.x() + std::sin(psi) * earth.y();

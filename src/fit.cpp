@@ -386,11 +386,12 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
   for (Index i = 0; i < m; ++i) {
     for (Index j = i + 1; j < m; ++j) {
       if (std::abs(result.correlation(i, j)) > o.refuse_correlation) {
-        throw IllPosedFit(fmt::format(
-            "the plan cannot separate {} and {}: the correlation of their estimates is {:.8g} (beyond {:.8g}), so "
-            "the data determine only a combination of the two",
-            result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
-            result.correlation(i, j), o.refuse_correlation));
+        throw IllPosedFit(
+            fmt::format("the plan cannot separate {} and {}: the correlation of their estimates is {:.8g} "
+                        "(beyond {:.8g}), so "
+                        "the data determine only a combination of the two",
+                        result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
+                        result.correlation(i, j), o.refuse_correlation));
       }
       if (std::abs(result.correlation(i, j)) > o.alias_correlation) {
         result.warnings.push_back(

@@ -224,3 +224,36 @@ TEST(Budget, BundledExampleTotalsAndFlags) {
 
 }  // namespace
 }  // namespace ccal::test
+
+namespace ccal::test {
+namespace {
+
+TEST(Budget, CompensationChoicesOfSection54) {
+  // model.md §5.4 (+ erratum E2): leaving the Earth rate out of the model: ΔK = (−1.72e-3, +3.27e-6,
+  // −8.36e-4); the paper's constant Coriolis left out (paper mode): (−6.567e-2, −2.302e-4, −6.778e-3), 4
+  // digits: 1e-3. The physical Coriolis term −C cos γ (C = 2 ω_e R0 Ω sin φ / g) left out: model.md gives the
+  // K1-only
+  // (+1.766e-5, −3.36e-8, +8.575e-6); the exact pipeline evaluates the whole instrument polynomial, adding
+  // 2K2⟨a_i δa_i⟩ = 2K2 A C ⟨cos²γ⟩ and 3K3⟨a_i² δa_i⟩, which dominate on K2. An independent closed-form
+  // least-squares evaluation of those means gives (+2.83205e-5, +3.60868e-7, +1.29093e-5): tolerance 1e-4.
+  // The Earth-rate row is a per-run constant like the levelling leak; its cross terms move K0 by ≈ 4 %
+  // (see EffectsThePaperOmits): K0 to 6 %, K2 and K3 to 1 %.
+  const Experiment ex = paper_experiment(true);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  const auto rows = compensation_choices(ex, paper_spec(), zero, zero, ModelMode::exact, true);
+  ASSERT_EQ(rows.size(), 2u);
+  const Eigen::Vector3d earth = rows[0].bias / kDeg, coriolis = rows[1].bias / kDeg;
+  const Eigen::Vector3d paper_coriolis = rows[1].paper_bias / kDeg;
+  EXPECT_NEAR(earth[0], -1.72e-3, 6e-2 * 1.72e-3);
+  EXPECT_NEAR(earth[1], +3.27e-6, 1e-2 * 3.27e-6);
+  EXPECT_NEAR(earth[2], -8.36e-4, 1e-2 * 8.36e-4);
+  EXPECT_NEAR(coriolis[0], +2.83205e-5, 1e-4 * 2.83205e-5);
+  EXPECT_NEAR(coriolis[1], +3.60868e-7, 1e-4 * 3.60868e-7);
+  EXPECT_NEAR(coriolis[2], +1.29093e-5, 1e-4 * 1.29093e-5);
+  EXPECT_NEAR(paper_coriolis[0], -6.567e-2, 1e-3 * 6.567e-2);
+  EXPECT_NEAR(paper_coriolis[1], -2.302e-4, 1e-3 * 2.302e-4);
+  EXPECT_NEAR(paper_coriolis[2], -6.778e-3, 1e-3 * 6.778e-3);
+}
+
+}  // namespace
+}  // namespace ccal::test

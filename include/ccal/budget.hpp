@@ -61,6 +61,21 @@ struct SourceBudget {
   int rank = 0;                     // 1 = largest contributor (by the largest share over coefficients)
 };
 
+// A modelling choice rather than an uncertain quantity: the bias of the coefficients when the analyst's model
+// leaves an effect out that the truth has (Earth rate sensed by the instrument; the Coriolis force).
+struct CompensationChoice {
+  std::string id;  // "earth_rate", "coriolis"
+  std::string description;
+  Eigen::VectorXd bias;        // K̂(effect not modelled) − K̂(modelled), SI, in the budget's mode
+  Eigen::VectorXd paper_bias;  // the same in paper mode (empty unless compared)
+};
+
+// The compensation-choice rows (empty if the site's Earth rotation is off).
+std::vector<CompensationChoice> compensation_choices(const Experiment& ex, const IdentificationSpec& spec,
+                                                     const Eigen::VectorXd& at, const Eigen::VectorXd& known,
+                                                     ModelMode mode, bool with_paper,
+                                                     const ReductionOptions& reduction = {});
+
 struct BudgetResult {
   ModelMode mode = ModelMode::exact;
   std::vector<std::string> coefficients;  // free terms
@@ -72,6 +87,7 @@ struct BudgetResult {
   double coverage_factor = 2.0;
   Eigen::MatrixXd covariance;  // of the coefficients (SI)
   Eigen::MatrixXd correlation;
+  std::vector<CompensationChoice> compensation;  // systematic, not in the totals
 };
 
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});

@@ -151,8 +151,8 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
 
   if (options.frozen_platform) m.w += azimuth_axis * j.gamma_rate;
 
-  const Vec3<S> earth = site.earth_rate_enu().template cast<S>();
-  Vec3<S> f = m.a + S(2) * earth.cross(m.v);
+  const Vec3<S> earth = site.sensed_rate_enu().template cast<S>();
+  Vec3<S> f = m.a + S(2) * Vec3<S>(site.coriolis_rate_enu().template cast<S>()).cross(m.v);
   f[2] += S(site.g);
   InstrumentState<S> out;
   out.position = m.p;
@@ -192,7 +192,8 @@ class StaticChain {
     a.rotate(Y, E(dthy1t));
     a.rotate(X, E(dthx1t));
     gravity_1t_ = a.R.transpose().col(Z);
-    earth_1t_ = a.R.transpose() * site.earth_rate_enu().template cast<S>();
+    coriolis_1t_ = a.R.transpose() * site.coriolis_rate_enu().template cast<S>();
+    earth_1t_ = a.R.transpose() * site.sensed_rate_enu().template cast<S>();
 
     FrameMotion<S> b;  // 1 → 3t, static (β fixed)
     const S zero{0};
@@ -242,7 +243,9 @@ class StaticChain {
                      gravity_1t_[2]);
     const Vec3<S> earth(ct * earth_1t_[0] + st * earth_1t_[1], ct * earth_1t_[1] - st * earth_1t_[0],
                         earth_1t_[2]);
-    const Vec3<S> f1 = acc + S(2) * earth.cross(vel) + S(g_) * up;
+    const Vec3<S> coriolis(ct * coriolis_1t_[0] + st * coriolis_1t_[1],
+                           ct * coriolis_1t_[1] - st * coriolis_1t_[0], coriolis_1t_[2]);
+    const Vec3<S> f1 = acc + S(2) * coriolis.cross(vel) + S(g_) * up;
     const Vec3<S> w1 = Vec3<S>(S(0), S(0), theta1_rate) + gamma_rate * RB_.col(2) + earth;
     // Frame 5 in frame 1 is M = R_B Rz(γ) R_C, so x₅ = M^T x₁ = R_C^T Rz(−γ) R_B^T x₁.
     auto to_frame5 = [&](const Vec3<S>& x1) {
@@ -256,7 +259,7 @@ class StaticChain {
  private:
   double g_;
   bool frozen_;
-  Vec3<S> gravity_1t_, earth_1t_;
+  Vec3<S> gravity_1t_, earth_1t_, coriolis_1t_;
   Mat3<S> RB_, RC_;
   Vec3<S> pB_, c_;
 };

@@ -62,11 +62,13 @@ RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::
                             bool cross_terms);
 }  // namespace detail
 
-// Observations of every run. `truth` and `known` are error vectors indexed by ex.layout (SI).
+// Observations of every run, with the truth reduced through `ex` and the analyst's model through `model`
+// (the same experiment, except perhaps for what the model compensates, e.g. its Site's Earth-rotation
+// switches). `truth` and `known` are error vectors indexed by ex.layout (SI).
 template <class S>
-Observations<S> observe(const Experiment& ex, const VecX<S>& truth, const VecX<S>& known,
-                        const IdentificationSpec& spec, ModelMode mode = ModelMode::exact,
-                        const ReductionOptions& options = {}) {
+Observations<S> observe(const Experiment& ex, const Experiment& model, const VecX<S>& truth,
+                        const VecX<S>& known, const IdentificationSpec& spec,
+                        ModelMode mode = ModelMode::exact, const ReductionOptions& options = {}) {
   Observations<S> obs;
   obs.columns = observation_columns(spec);
   std::vector<TermSpec> terms;
@@ -82,10 +84,11 @@ Observations<S> observe(const Experiment& ex, const VecX<S>& truth, const VecX<S
     RunAverage<S> truth_avg, model_avg;
     if (mode == ModelMode::exact) {
       truth_avg = average_run<S>(ex.geometry, ex.layout, truth, ex.site, run, &ex.instrument, {}, options);
-      model_avg = average_run<S>(ex.geometry, ex.layout, known, ex.site, run, nullptr, terms, options);
+      model_avg =
+          average_run<S>(model.geometry, model.layout, known, model.site, run, nullptr, terms, options);
     } else {
       truth_avg = detail::paper_average<S>(ex, truth, run, &ex.instrument, {}, spec.paper_cross_terms);
-      model_avg = detail::paper_average<S>(ex, known, run, nullptr, terms, spec.paper_cross_terms);
+      model_avg = detail::paper_average<S>(model, known, run, nullptr, terms, spec.paper_cross_terms);
     }
     obs.output[j] = truth_avg.output;
     obs.regressors.row(j) = model_avg.regressors.transpose();
@@ -93,6 +96,13 @@ Observations<S> observe(const Experiment& ex, const VecX<S>& truth, const VecX<S
     obs.input[j] = model_avg.input[0];
   }
   return obs;
+}
+
+template <class S>
+Observations<S> observe(const Experiment& ex, const VecX<S>& truth, const VecX<S>& known,
+                        const IdentificationSpec& spec, ModelMode mode = ModelMode::exact,
+                        const ReductionOptions& options = {}) {
+  return observe<S>(ex, ex, truth, known, spec, mode, options);
 }
 
 // Adds measurement noise to simulated run means: white noise of density N gives a mean with σ = N/√T; a

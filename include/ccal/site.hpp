@@ -10,9 +10,20 @@ struct Site {
   double g = 9.8;                    // local gravity magnitude [m/s²]; the paper's value (model.md A2)
   bool earth_rotation = true;        // Coriolis force and Earth rate on the instrument
   double earth_rate = 7.2921150e-5;  // WGS-84 [rad/s]
+  // With earth_rotation on, its two effects can be switched off one at a time: this is how an analyst's
+  // model that leaves one of them uncompensated is represented (the budget's compensation-choice rows).
+  bool apply_coriolis = true;    // the Coriolis force 2 ω_ie × v in the specific force
+  bool sense_earth_rate = true;  // ω_ie in the instrument's inertial angular rate
 
   // Earth's angular velocity in the geographic frame 0 (x East, y North, z Up), zero if switched off.
   Eigen::Vector3d earth_rate_enu() const;
+  // ω_ie as it enters the Coriolis force, and as the instrument senses it (each zero if switched off).
+  Eigen::Vector3d coriolis_rate_enu() const {
+    return apply_coriolis ? earth_rate_enu() : Eigen::Vector3d::Zero();
+  }
+  Eigen::Vector3d sensed_rate_enu() const {
+    return sense_earth_rate ? earth_rate_enu() : Eigen::Vector3d::Zero();
+  }
 };
 
 // Normal gravity on the WGS-84 ellipsoid (Somigliana's closed form) with the free-air gradient
