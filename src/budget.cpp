@@ -141,17 +141,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
     b.effect = b.sensitivity * b.standard_uncertainty;
     b.effect_force = table.force_path.col(Eigen::Index(s)) * b.standard_uncertainty;
     b.effect_rate = table.rate_path.col(Eigen::Index(s)) * b.standard_uncertainty;
-    if (compare) {
-      b.paper_effect = paper.total.col(Eigen::Index(s)) * b.standard_uncertainty;
-      for (Eigen::Index k = 0; k < nk; ++k) {
-        const double x = std::abs(b.effect[k]), p = std::abs(b.paper_effect[k]);
-        const double big = std::max(x, p), small = std::min(x, p);
-        // Differences at the level of round-off of the coefficient are not disagreements.
-        const bool negligible = big <= 1e-12 * std::max(1.0, std::abs(b.sensitivity[k]));
-        const bool opposite = b.effect[k] * b.paper_effect[k] < 0;
-        b.disagrees.push_back(!negligible && (opposite || big > options.disagreement_factor * small));
-      }
-    }
+    if (compare) b.paper_effect = paper.total.col(Eigen::Index(s)) * b.standard_uncertainty;
     const std::string key = t.group.empty() ? "#" + t.id : t.group;
     auto it = std::find(groups.begin(), groups.end(), key);
     if (it == groups.end()) {
@@ -171,6 +161,21 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
     for (Eigen::Index j = 0; j < nk; ++j)
       if (i != j && r.standard_uncertainty[i] > 0 && r.standard_uncertainty[j] > 0)
         r.correlation(i, j) = r.covariance(i, j) / (r.standard_uncertainty[i] * r.standard_uncertainty[j]);
+
+  // Exact vs paper: flagged where they differ by more than the factor (or in sign) and the larger of the two
+  // matters, i.e. reaches 1e-3 of the coefficient's total standard uncertainty (a factor between two
+  // negligible numbers is no finding).
+  if (compare) {
+    for (SourceBudget& b : r.sources) {
+      for (Eigen::Index k = 0; k < nk; ++k) {
+        const double x = std::abs(b.effect[k]), p = std::abs(b.paper_effect[k]);
+        const double big = std::max(x, p), small = std::min(x, p);
+        const bool material = big >= 1e-3 * r.standard_uncertainty[k] && big > 0.0;
+        const bool opposite = b.effect[k] * b.paper_effect[k] < 0;
+        b.disagrees.push_back(material && (opposite || big > options.disagreement_factor * small));
+      }
+    }
+  }
 
   std::vector<double> largest(r.sources.size(), 0.0);
   for (std::size_t s = 0; s < r.sources.size(); ++s) {

@@ -14,5 +14,6 @@ struct Command {
 };
 
 Command add_force(CLI::App& app);
+Command add_budget(CLI::App& app);
 
 }  // namespace ccal::cli

@@ -32,11 +32,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Examples:\n"
+      "  ccal budget                     error budget of the bundled paper example\n"
       "  ccal force                      sensed input, run 1 of the bundled paper example\n"
       "  ccal force examples/wang_ren_2014.toml --run 20g --time \"10 s\" --format json\n"
       "Run 'ccal <command> --help' for the options of a command.\n");
 
   std::vector<ccal::cli::Command> commands;
+  commands.push_back(ccal::cli::add_budget(app));
   commands.push_back(ccal::cli::add_force(app));
 
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
