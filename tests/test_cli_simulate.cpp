@@ -146,7 +146,8 @@ TEST_F(Cli, SimulateThenIdentifyRecoversTheCoefficients) {
   EXPECT_NEAR(s["fixed"]["K1"]["value"].get<double>(), 8.817572678 * 180 / 3.14159265358979323846, 1e-12);
   EXPECT_NEAR(coefficient(s, "K0"), kK0, 1e-8 * kK0);
   EXPECT_NEAR(coefficient(s, "K3"), kK3, 1e-8 * kK3);
-  // Unbound K2, K3 are powers of ⟨a_i⟩, not the run means ⟨a_i²⟩, ⟨a_i³⟩ of the file's columns: a warning says so.
+  // Unbound K2, K3 are powers of ⟨a_i⟩, not the run means ⟨a_i²⟩, ⟨a_i³⟩ of the file's columns: a warning
+  // says so.
   const Result powers = run("identify obs.csv --terms K0,K2,K3 --format json");
   ASSERT_EQ(powers.code, 0) << powers.err;
   const nlohmann::json w = nlohmann::json::parse(powers.out).at("warnings");
@@ -394,9 +395,10 @@ TEST_F(Cli, SimulateNoiseIsSeeded) {
   const nlohmann::json ja = nlohmann::json::parse(a.out), jc = nlohmann::json::parse(c.out);
   EXPECT_TRUE(ja.at("noise").at("applied").get<bool>());
   EXPECT_NE(ja["runs"][0]["output"].get<double>(), jc["runs"][0]["output"].get<double>());
-  // The noise is at the configured scale: each run mean moves by well under 10σ = 4.7e-3 °/s between seeds,
-  // and K0 comes back within a few of its standard errors (7.7e-5 °/s per 1e-4 °/s of run noise, model.md
-  // §4.4, so σ(K0) ≈ 3.6e-4 °/s here; 10σ is a bound a correct simulation never reaches).
+  // The noise is at the configured scale. The difference of two draws of a run mean has σ√2 ≈ 6.7e-4 °/s, so
+  // 9.4e-3 °/s is 14 of those: never reached by correct noise, while a wrong unit (×57 for rad) or a missing
+  // 1/√T (×21) would exceed it. K0 comes back within 10 of its σ (7.7e-5 °/s per 1e-4 °/s of run noise,
+  // model.md §4.4, so σ(K0) ≈ 3.6e-4 °/s here).
   for (std::size_t k = 0; k < 6; ++k)
     EXPECT_LT(std::abs(ja["runs"][k]["output"].get<double>() - jc["runs"][k]["output"].get<double>()),
               2 * 4.7e-3);
@@ -422,8 +424,10 @@ TEST_F(Cli, PaperModeAndCompensation) {
   EXPECT_EQ(nlohmann::json::parse(q.out).at("mode"), "paper");
 
   // A main-axis levelling error of 1e-5 rad biases K3 by ≈ −1.45e-3 °/s/g³ (model.md §5.4,
-  // tests/test_simulate.cpp); compensating recomputes the regressors with it and the bias is round-off (1e-12
-  // °/s/g³ there; 1e-10 here).
+  // tests/test_simulate.cpp); compensating recomputes the regressors with it and the bias is round-off: 1e-12
+  // °/s/g³ in the library test, and the 17-digit CSV and the rad/s → °/s conversion add a few ulp of the run
+  // means (≈ 1e-12 °/s, see SimulateThenIdentifyRecoversTheCoefficients), so 1e-10 keeps a margin of 100
+  // while being 1e-7 of the uncompensated bias.
   write("lev.toml", example_with("[errors]", "dthx1t = \"1e-5 rad\""));
   const Result raw = run("simulate lev.toml --format json");
   ASSERT_EQ(raw.code, 0) << raw.err;
