@@ -365,7 +365,7 @@ class Reader {
 // ---------------------------------------------------------------------------------------------------------
 // Sections
 
-const Keys kRootKeys{"site", "centrifuge", "errors", "tolerances", "instrument", "plan"};
+const Keys kRootKeys{"site", "centrifuge", "errors", "tolerances", "instrument", "plan", "identification"};
 const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
 const Keys kCentrifugeKeys{"radius", "base_plane_height", "instrument_height", "horizontal_axis_angle",
                            "harmonic_order"};
@@ -373,6 +373,7 @@ const Keys kToleranceKeys{"bound", "distribution", "group", "cost"};
 const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density", "quantum", "terms"};
 const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
                      "mounting", "runs"};
+const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "paper_cross_terms"};
 const Keys kRunKeys{"name",           "g_level",       "duration",    "platform",
                     "terminal_phase", "initial_phase", "arm_azimuth", "mounting"};
 
@@ -560,21 +561,6 @@ Dimension term_dimension(const TermSpec& term, Dimension output) {
   }
 }
 
-// Canonical order of terms: powers K0..K10, then the named terms as listed in instrument.hpp.
-int term_rank(const TermSpec& t) {
-  if (t.kind == TermKind::power) return t.power;
-  return kMaxPower + 1 + static_cast<int>(t.kind);
-}
-
-std::vector<std::string> valid_term_ids() {
-  std::vector<std::string> ids;
-  for (int n = 0; n <= kMaxPower; ++n) ids.push_back(term_id({TermKind::power, n}));
-  for (TermKind k : {TermKind::abs_square, TermKind::p, TermKind::o, TermKind::ip, TermKind::io, TermKind::pp,
-                     TermKind::oo, TermKind::po, TermKind::rate})
-    ids.push_back(term_id({k, 0}));
-  return ids;
-}
-
 InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
   const toml::table* t = r.table(root, "", "instrument", false);
   if (!t) return paper_piga();
@@ -628,7 +614,7 @@ InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
       double value;
     };
     std::vector<Parsed> parsed;
-    const std::vector<std::string> valid = valid_term_ids();
+    const std::vector<std::string> valid = all_term_ids();
     for (const auto& [key, node] : *terms) {
       const std::string kp = Reader::path("instrument.terms", key.str());
       const auto spec = parse_term(key.str());
@@ -808,6 +794,85 @@ TestPlan read_plan(const Reader& r, const toml::table& root) {
   return plan;
 }
 
+// A list of term ids (identification.terms or .fixed), each with its place in the file.
+std::vector<std::pair<std::string, const toml::node*>> read_term_list(const Reader& r, const toml::table& t,
+                                                                      std::string_view key) {
+  const std::string p = Reader::path("identification", key);
+  const toml::node* n = t.get(key);
+  const auto* array = n->as_array();
+  if (!array)
+    r.fail(
+        *n, p,
+        fmt::format("expected an array of term ids such as [\"K0\", \"K2\", \"K3\"], got {}", type_name(*n)));
+  const std::vector<std::string> valid = all_term_ids();
+  std::vector<std::pair<std::string, const toml::node*>> out;
+  for (const toml::node& item : *array) {
+    const auto* s = item.as_string();
+    if (!s) r.fail(item, p, fmt::format("expected a term id string such as \"K2\", got {}", type_name(item)));
+    const std::string id = s->get();
+    if (!parse_term(id)) {
+      const auto best = closest(id, valid);
+      r.fail(item, p,
+             fmt::format("'{}' is not a term id; {}accepted: {}", id,
+                         best ? fmt::format("did you mean '{}'? ", *best) : "", join(valid)));
+    }
+    for (const auto& [seen, node] : out)
+      if (seen == id)
+        r.fail(item, p,
+               fmt::format("'{}' is listed twice (first at line {}); accepted: each term once", id,
+                           node->source().begin.line));
+    out.emplace_back(id, &item);
+  }
+  return out;
+}
+
+// [identification]: free and fixed terms, compensation and the model of the reduction. Fixed terms are held
+// at the instrument's configured coefficients.
+void read_identification(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
+                         IdentificationSpec& spec, ModelMode& mode) {
+  spec = IdentificationSpec{};
+  mode = ModelMode::exact;
+  const toml::table* t = r.table(root, "", "identification", false);
+  const std::string_view p = "identification";
+  if (t) r.check_keys(*t, p, kIdentificationKeys);
+  if (t && t->get("terms")) {
+    spec.free_terms.clear();
+    for (const auto& [id, node] : read_term_list(r, *t, "terms")) spec.free_terms.push_back(id);
+    if (spec.free_terms.empty())
+      r.fail(*t->get("terms"), "identification.terms",
+             "empty; give at least one free term, e.g. terms = [\"K0\", \"K2\", \"K3\"]");
+  }
+  auto is_free = [&](const std::string& id) {
+    return std::find(spec.free_terms.begin(), spec.free_terms.end(), id) != spec.free_terms.end();
+  };
+  spec.fixed_terms.clear();
+  if (t && t->get("fixed")) {
+    for (const auto& [id, node] : read_term_list(r, *t, "fixed")) {
+      if (is_free(id))
+        r.fail(*node, "identification.fixed",
+               fmt::format("'{}' is also in identification.terms; accepted: a term is either free (terms) or "
+                           "held at the instrument's value (fixed), not both",
+                           id));
+      const auto value = instrument.coefficient(id);
+      if (!value)
+        r.fail(*node, "identification.fixed",
+               fmt::format("the instrument has no term '{}' to hold fixed; accepted: {} (the terms of the "
+                           "instrument)",
+                           id, join(instrument.term_ids)));
+      spec.fixed_terms[id] = *value;
+    }
+  } else if (const auto k1 = instrument.coefficient("K1"); k1 && !is_free("K1")) {
+    spec.fixed_terms["K1"] = *k1;
+  }
+  if (!t) return;
+  spec.compensate = r.boolean(*t, p, "compensate").value_or(false);
+  spec.paper_cross_terms = r.boolean(*t, p, "paper_cross_terms").value_or(false);
+  mode = r.word(*t, p, "mode",
+                std::vector<std::pair<std::string_view, ModelMode>>{{"exact", ModelMode::exact},
+                                                                    {"paper", ModelMode::paper}})
+             .value_or(ModelMode::exact);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------
@@ -838,8 +903,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   cfg.tolerances = read_tolerances(r, root, cfg.centrifuge.layout);
   cfg.instrument = read_instrument(r, root);
   cfg.plan = read_plan(r, root);
-  cfg.identification.fixed_terms.clear();
-  if (auto k1 = cfg.instrument.coefficient("K1")) cfg.identification.fixed_terms["K1"] = *k1;
+  read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);
   return cfg;
 }
 

@@ -44,6 +44,20 @@ std::string term_id(const TermSpec& term) {
   return "?";
 }
 
+std::vector<std::string> all_term_ids() {
+  std::vector<std::string> ids;
+  for (int n = 0; n <= kMaxPower; ++n) ids.push_back(term_id({TermKind::power, n}));
+  for (const auto& t : kNamedTerms) ids.emplace_back(t.id);
+  return ids;
+}
+
+int term_rank(const TermSpec& term) {
+  if (term.kind == TermKind::power) return term.power;
+  for (std::size_t k = 0; k < kNamedTerms.size(); ++k)
+    if (kNamedTerms[k].kind == term.kind) return kMaxPower + 1 + static_cast<int>(k);
+  return kMaxPower + 1 + static_cast<int>(kNamedTerms.size());
+}
+
 std::vector<TermSpec> InstrumentModel::terms() const {
   std::vector<TermSpec> out;
   out.reserve(term_ids.size());

@@ -407,6 +407,50 @@ K1 = "1000 pulse/s/g"
                         "instrument.terms.K1", {"pulses", "1 pulse/s/g"});
 }
 
+TEST(Config, IdentificationSection) {
+  // The example states the paper's choice explicitly; a file without the section gets the same default.
+  for (const Config& c : {bundled_example(), parse_config(kBase, "d.toml")}) {
+    EXPECT_EQ(c.identification.free_terms, (std::vector<std::string>{"K0", "K2", "K3"})) << c.source;
+    ASSERT_EQ(c.identification.fixed_terms.size(), 1u) << c.source;
+    EXPECT_EQ(c.identification.fixed_terms.at("K1"), *c.instrument.coefficient("K1"));
+    EXPECT_FALSE(c.identification.compensate);
+    EXPECT_FALSE(c.identification.paper_cross_terms);
+    EXPECT_EQ(c.mode, ModelMode::exact);
+  }
+  const Config c = parse_config(kBase + R"toml(
+[identification]
+terms = ["K3", "K0", "K_pp"]
+fixed = ["K2", "K1"]
+compensate = true
+mode = "paper"
+paper_cross_terms = true
+)toml",
+                                "i.toml");
+  EXPECT_EQ(c.identification.free_terms, (std::vector<std::string>{"K3", "K0", "K_pp"}));  // order kept
+  ASSERT_EQ(c.identification.fixed_terms.size(), 2u);
+  EXPECT_NEAR(c.identification.fixed_terms.at("K1"), 505.2097 * kDeg, 1e-12);
+  EXPECT_NEAR(c.identification.fixed_terms.at("K2"), 0.02 * kDeg, 1e-16);
+  EXPECT_TRUE(c.identification.compensate);
+  EXPECT_TRUE(c.identification.paper_cross_terms);
+  EXPECT_EQ(c.mode, ModelMode::paper);
+  // K1 free: the default holds nothing fixed; fixed = [] holds nothing either.
+  const Config k1 =
+      parse_config(kBase + "\n[identification]\nterms = [\"K0\", \"K1\", \"K2\", \"K3\"]", "k.toml");
+  EXPECT_TRUE(k1.identification.fixed_terms.empty());
+  const Config none = parse_config(kBase + "\n[identification]\nfixed = []", "n.toml");
+  EXPECT_TRUE(none.identification.fixed_terms.empty());
+  EXPECT_EQ(none.identification.free_terms.size(), 3u);
+  // An instrument without K1 has no default fixed term.
+  const Config ieee =
+      parse_config(kBase + "\n[instrument]\nmodel = \"ieee\"\n[instrument.terms]\nK0 = \"1 mg\"", "e.toml");
+  EXPECT_TRUE(ieee.identification.fixed_terms.empty());
+  // The experiment carries the configuration's parts.
+  const Experiment ex = bundled_example().experiment();
+  EXPECT_EQ(ex.plan.runs.size(), 6u);
+  EXPECT_EQ(ex.instrument.term_ids, bundled_example().instrument.term_ids);
+  EXPECT_EQ(ex.layout.size(), bundled_example().centrifuge.layout.size());
+}
+
 TEST(Config, SelectRunByNameOrIndex) {
   const Config c = bundled_example();
   EXPECT_EQ(select_run(c.plan, "20g", "--run"), 3u);
@@ -737,6 +781,30 @@ TEST(ConfigErrors, InstrumentNeedsTerms) {
   expect_error(ieee, last_line(ieee) - 1, "instrument.terms", {"missing table", "K1"});
   expect_appended_error("[instrument]\noutput_unit = \"g\"", "instrument.output_unit",
                         {"cannot use the paper's PIGA coefficients"});
+}
+
+TEST(ConfigErrors, Identification) {
+  expect_appended_error("[identification]\nterm = [\"K0\"]", "identification.term",
+                        {"unknown key", "did you mean 'terms'?"});
+  expect_appended_error("[identification]\nterms = [\"K0\", \"K99\"]", "identification.terms",
+                        {"'K99' is not a term id", "accepted: K0, K1", "K_pp", "K_w"});
+  expect_appended_error("[identification]\nterms = [\"K0\", \"k2\"]", "identification.terms",
+                        {"did you mean 'K2'?"});
+  expect_appended_error("[identification]\nterms = []", "identification.terms", {"empty", "at least one"});
+  expect_appended_error("[identification]\nterms = \"K0\"", "identification.terms",
+                        {"expected an array of term ids", "got a string"});
+  expect_appended_error("[identification]\nterms = [\"K0\", 2]", "identification.terms",
+                        {"expected a term id string", "got an integer"});
+  expect_appended_error("[identification]\nterms = [\"K0\", \"K2\",\n  \"K2\"]", "identification.terms",
+                        {"'K2' is listed twice"});
+  expect_appended_error("[identification]\nterms = [\"K0\", \"K1\", \"K2\"]\nfixed = [\"K1\"]",
+                        "identification.fixed", {"'K1' is also in identification.terms", "not both"});
+  expect_appended_error("[identification]\nfixed = [\"K1\", \"K4\"]", "identification.fixed",
+                        {"the instrument has no term 'K4'", "accepted: K0, K1, K2, K3"});
+  expect_appended_error("[identification]\nmode = \"papr\"", "identification.mode",
+                        {"did you mean 'paper'?", "accepted: exact, paper"});
+  expect_appended_error("[identification]\ncompensate = \"yes\"", "identification.compensate",
+                        {"expected true or false"});
 }
 
 TEST(ConfigErrors, UnreadableFile) {

@@ -15,5 +15,7 @@ struct Command {
 
 Command add_force(CLI::App& app);
 Command add_budget(CLI::App& app);
+Command add_simulate(CLI::App& app);
+Command add_identify(CLI::App& app);
 
 }  // namespace ccal::cli

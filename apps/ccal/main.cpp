@@ -35,11 +35,16 @@ int main(int argc, char** argv) {
       "  ccal budget                     error budget of the bundled paper example\n"
       "  ccal force                      sensed input, run 1 of the bundled paper example\n"
       "  ccal force examples/wang_ren_2014.toml --run 20g --time \"10 s\" --format json\n"
+      "  ccal simulate --observations-out obs.csv   run means of the paper's plan and the identified K0, K2, "
+      "K3\n"
+      "  ccal identify obs.csv                      least-squares fit of the observations file\n"
       "Run 'ccal <command> --help' for the options of a command.\n");
 
   std::vector<ccal::cli::Command> commands;
   commands.push_back(ccal::cli::add_budget(app));
   commands.push_back(ccal::cli::add_force(app));
+  commands.push_back(ccal::cli::add_simulate(app));
+  commands.push_back(ccal::cli::add_identify(app));
 
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
   // required".

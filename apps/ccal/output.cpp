@@ -13,39 +13,50 @@
 
 namespace ccal::cli {
 
-void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats) {
+void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats,
+                        bool long_output) {
   options.format = formats.front();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember(formats))
       ->capture_default_str();
-  command.add_option("-o,--output", options.path, "Write the output to FILE instead of standard output")
+  command
+      .add_option(long_output ? "-o,--output" : "-o", options.path,
+                  "Write the output to FILE instead of standard output")
       ->type_name("FILE");
 }
 
-void write_output(const OutputOptions& options, std::string_view text) {
-  if (options.path.empty()) {
-    std::cout << text << std::flush;
-    return;
-  }
+void write_output(const OutputOptions& options, std::string_view text) { write_outputs(options, text, {}); }
+
+void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra) {
   namespace fs = std::filesystem;
-  const fs::path target(options.path);
-  fs::path temporary = target;
-  temporary += fmt::format(".tmp{}", static_cast<long>(::getpid()));
-  auto fail = [&](std::string_view why) {
+  std::vector<ExtraFile> files = extra;
+  if (!options.path.empty()) files.push_back({"-o", options.path, std::string(text)});
+  std::vector<fs::path> temporaries;
+  auto remove_temporaries = [&] {
     std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw InputError(fmt::format("-o: cannot write '{}': {}; give a writable file path", options.path, why));
+    for (const auto& t : temporaries) fs::remove(t, ignored);
   };
-  {
+  auto fail = [&](const ExtraFile& f, std::string_view why) {
+    remove_temporaries();
+    throw InputError(
+        fmt::format("{}: cannot write '{}': {}; give a writable file path", f.option, f.path, why));
+  };
+  for (const auto& f : files) {
+    fs::path temporary(f.path);
+    temporary += fmt::format(".tmp{}", static_cast<long>(::getpid()));
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) fail("cannot create a file there");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    if (!out) fail(f, "cannot create a file there");
+    temporaries.push_back(temporary);
+    out.write(f.text.data(), static_cast<std::streamsize>(f.text.size()));
     out.close();
-    if (!out) fail("write failed");
+    if (!out) fail(f, "write failed");
   }
-  std::error_code ec;
-  fs::rename(temporary, target, ec);
-  if (ec) fail(ec.message());
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    std::error_code ec;
+    fs::rename(temporaries[k], files[k].path, ec);
+    if (ec) fail(files[k], ec.message());
+  }
+  if (options.path.empty()) std::cout << text << std::flush;
 }
 
 Config load_config_or_example(const std::string& path) {

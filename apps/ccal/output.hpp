@@ -18,12 +18,25 @@ struct OutputOptions {
   std::string path;  // empty: standard output
 };
 
-// Adds --format (one of `formats`, the first is the default) and -o/--output to a command.
-void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats);
+// Adds --format (one of `formats`, the first is the default) and -o/--output to a command (-o alone when
+// long_output is false, for a command whose --output means something else).
+void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats,
+                        bool long_output = true);
 
 // Writes text to standard output, or to options.path through a temporary file in the same folder that is
 // renamed over the target once complete. Throws InputError if the file cannot be written.
 void write_output(const OutputOptions& options, std::string_view text);
+
+// A further file a command writes besides its output, e.g. --observations-out.
+struct ExtraFile {
+  std::string option;  // the option that named it, for messages
+  std::string path;
+  std::string text;
+};
+
+// As write_output, with further files: every file is first written to a temporary file and renamed only when
+// all of them were written, so a failure leaves none of them (and no temporary file) behind.
+void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra);
 
 // The configuration named on the command line, or the bundled paper example if none is.
 Config load_config_or_example(const std::string& path);

@@ -22,6 +22,7 @@
 #include "ccal/centrifuge.hpp"
 #include "ccal/errors.hpp"
 #include "ccal/instrument.hpp"
+#include "ccal/model_mode.hpp"
 #include "ccal/simulate.hpp"
 #include "ccal/site.hpp"
 #include "ccal/test_plan.hpp"
@@ -78,8 +79,11 @@ struct Config {
   InstrumentModel instrument;
   TestPlan plan;
   std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order
-  // What is identified (default: K0, K2, K3 free and K1 held at the instrument's value, as in the paper).
+  // What is identified ([identification]; default: K0, K2, K3 free and K1 held at the instrument's value, as
+  // in the paper). Fixed terms hold the instrument's configured coefficients (SI).
   IdentificationSpec identification;
+  // How runs are reduced ([identification] mode): the exact chain (default) or the paper's first-order rules.
+  ModelMode mode = ModelMode::exact;
 
   // The experiment (geometry, layout, site, plan, instrument) of this configuration.
   Experiment experiment() const;

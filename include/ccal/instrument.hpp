@@ -29,6 +29,10 @@ struct TermSpec {
 // Parses a term id; nullopt if it is not one (see the list above).
 std::optional<TermSpec> parse_term(std::string_view id);
 std::string term_id(const TermSpec& term);
+// Every term id in canonical order: K0 … K10, then K_oq, K_p, K_o, K_ip, K_io, K_pp, K_oo, K_po, K_w.
+std::vector<std::string> all_term_ids();
+// Position of a term in that order.
+int term_rank(const TermSpec& term);
 // The highest power of the input the term list allows (K0..K10).
 inline constexpr int kMaxPower = 10;
 

@@ -1,0 +1,185 @@
+#include "identification.hpp"
+
+#include <fmt/format.h>
+
+#include <set>
+
+#include "ccal/errors.hpp"
+#include "output.hpp"
+
+namespace ccal::cli {
+
+namespace {
+
+bool is_name_char(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+// Whether the message names the term as a word of its own ("K2" but not inside "K20" or "K2x").
+bool names_term(std::string_view message, std::string_view id) {
+  for (std::size_t pos = message.find(id); pos != std::string_view::npos; pos = message.find(id, pos + 1)) {
+    const bool before = pos == 0 || !is_name_char(message[pos - 1]);
+    const std::size_t after = pos + id.size();
+    if (before && (after == message.size() || !is_name_char(message[after]))) return true;
+  }
+  return false;
+}
+
+std::string power_suffix(int n) { return n == 1 ? "" : fmt::format("^{}", n); }
+
+}  // namespace
+
+std::string term_unit(const TableTerm& term, const ColumnUnits& units) {
+  const TermSpec spec = parse_term(term.id).value();
+  const bool known = !units.output_unit.empty();
+  if (!term.column.empty())
+    return known ? coefficient_unit(units.output_unit, spec)
+                 : fmt::format("{}/{}", units.output_column, term.column);
+  if (spec.power == 0) return known ? units.output_unit : units.output_column;
+  if (known && units.input_in_g) return coefficient_unit(units.output_unit, spec);
+  return fmt::format("{}/{}{}", known ? units.output_unit : units.output_column, units.input_column,
+                     power_suffix(spec.power));
+}
+
+std::string ill_posed_hint(std::string_view message, const std::vector<std::string>& terms) {
+  bool mounting = false, levels = false;
+  for (const auto& id : terms) {
+    if (!names_term(message, id)) continue;
+    switch (parse_term(id).value().kind) {
+      case TermKind::p:
+      case TermKind::o:
+      case TermKind::ip:
+      case TermKind::io:
+      case TermKind::pp:
+      case TermKind::oo:
+      case TermKind::po:
+        mounting = true;
+        break;
+      case TermKind::power:
+      case TermKind::abs_square:
+        levels = true;
+        break;
+      case TermKind::rate:
+        break;
+    }
+  }
+  if (mounting)
+    return "; runs with another mounting (ia_reversed, pa_vertical, ia_vertical) would separate them";
+  if (levels) return "; add g-levels or runs with the IA reversed";
+  return "";
+}
+
+Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
+                              std::string_view source) {
+  const FitProblem problem = table_fit_problem(table, spec);
+  Identification id;
+  try {
+    id.fit = fit(problem);
+  } catch (const IllPosedFit& e) {
+    std::string message = e.what();
+    if (message.starts_with("fit: ")) message.erase(0, 5);
+    std::vector<std::string> names;
+    for (const auto& t : spec.terms) names.push_back(t.id);
+    throw InputError(fmt::format("{}: {}{}", source, message, ill_posed_hint(message, names)));
+  }
+  for (const auto& t : spec.terms) id.units.push_back(term_unit(t, units));
+  for (const auto& f : spec.fixed) id.fixed.push_back({f.term.id, f.value, term_unit(f.term, units)});
+  id.known = spec.known;
+  id.output_unit = units.output_unit;
+  id.residual_unit = units.output_unit.empty() ? units.output_column : units.output_unit;
+  id.weighted = !spec.weight.empty();
+  // Residuals are keyed by run label; labels that repeat are replaced by the line numbers.
+  id.row_labels = problem.row_labels;
+  const std::set<std::string> distinct(id.row_labels.begin(), id.row_labels.end());
+  if (distinct.size() != id.row_labels.size())
+    for (std::size_t r = 0; r < id.row_labels.size(); ++r)
+      id.row_labels[r] = fmt::format("line {}", table.row_lines[r]);
+  return id;
+}
+
+nlohmann::ordered_json identification_json(const Identification& id) {
+  const FitResult& r = id.fit;
+  nlohmann::ordered_json j;
+  nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < r.names.size(); ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    coefficients[r.names[k]] = {{"value", r.value[i]}, {"std_error", r.std_error[i]}, {"unit", id.units[k]}};
+  }
+  j["coefficients"] = coefficients;
+  nlohmann::ordered_json fixed = nlohmann::ordered_json::object();
+  for (const auto& f : id.fixed) fixed[f.id] = {{"value", f.value}, {"unit", f.unit}};
+  j["fixed"] = fixed;
+  j["known"] = id.known;
+  j["terms"] = r.names;
+  j["residual_std"] = r.residual_std;
+  j["dof"] = r.dof;
+  j["chi2_per_dof"] = r.chi2_per_dof;
+  j["condition_number"] = r.condition_number;
+  nlohmann::ordered_json correlation = nlohmann::ordered_json::array();
+  for (Eigen::Index a = 0; a < r.correlation.rows(); ++a) {
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
+    for (Eigen::Index b = 0; b < r.correlation.cols(); ++b) row.push_back(r.correlation(a, b));
+    correlation.push_back(row);
+  }
+  j["correlation"] = correlation;
+  nlohmann::ordered_json residuals = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < id.row_labels.size(); ++k)
+    residuals[id.row_labels[k]] = r.residuals[static_cast<Eigen::Index>(k)];
+  j["residuals"] = residuals;
+  j["weighted"] = id.weighted;
+  j["warnings"] = r.warnings;
+  j["output_unit"] =
+      id.output_unit.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(id.output_unit);
+  return j;
+}
+
+std::string identification_text(const Identification& id) {
+  const FitResult& r = id.fit;
+  std::string out;
+  Table coefficients({"coefficient", "value", "std error", "unit"});
+  for (std::size_t k = 0; k < r.names.size(); ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    coefficients.add_row({r.names[k], number(r.value[i], 12), number(r.std_error[i], 3), id.units[k]});
+  }
+  for (const auto& f : id.fixed) coefficients.add_row({f.id + " (fixed)", number(f.value, 12), "", f.unit});
+  out += coefficients.render();
+  if (!id.known.empty()) {
+    std::string known;
+    for (const auto& k : id.known) known += (known.empty() ? "" : ", ") + k;
+    out += fmt::format("  known contributions subtracted from the output: {}\n", known);
+  }
+  out += "\n";
+
+  Table stats({"fit", "value"});
+  stats.add_row({id.weighted ? "residual std (normalised by sigma)"
+                             : fmt::format("residual std [{}]", id.residual_unit),
+                 number(r.residual_std, 6)});
+  stats.add_row({"degrees of freedom", std::to_string(r.dof)});
+  stats.add_row({"chi2/dof", number(r.chi2_per_dof, 6)});
+  stats.add_row({"condition number (scaled design)", number(r.condition_number, 6)});
+  out += stats.render() + "\n";
+
+  Table residuals({"run", fmt::format("residual [{}]", id.residual_unit)});
+  for (std::size_t k = 0; k < id.row_labels.size(); ++k)
+    residuals.add_row({id.row_labels[k], number(r.residuals[static_cast<Eigen::Index>(k)], 6)});
+  out += residuals.render() + "\n";
+
+  std::vector<std::string> header{"correlation"};
+  header.insert(header.end(), r.names.begin(), r.names.end());
+  Table correlation(header);
+  for (Eigen::Index a = 0; a < r.correlation.rows(); ++a) {
+    std::vector<std::string> row{r.names[static_cast<std::size_t>(a)]};
+    for (Eigen::Index b = 0; b < r.correlation.cols(); ++b)
+      row.push_back(fmt::format("{:.6f}", r.correlation(a, b)));
+    correlation.add_row(row);
+  }
+  out += correlation.render();
+
+  if (!r.warnings.empty()) {
+    out += "\n  warnings:\n";
+    for (const auto& w : r.warnings) out += "  - " + w + "\n";
+  }
+  return out;
+}
+
+}  // namespace ccal::cli

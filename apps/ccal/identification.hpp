@@ -1,0 +1,55 @@
+#pragma once
+// The identification shared by `ccal identify` and `ccal simulate`: the fit of an observations table, its
+// units for display, the hint added to an ill-posed fit, and its text and JSON reports (docs/cli.md).
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/fit.hpp"
+#include "ccal/observation_csv.hpp"
+
+namespace ccal::cli {
+
+// How the columns of a table are measured, for the units of the coefficients.
+struct ColumnUnits {
+  // The output's unit when the table is a ccal observations file with a recorded output unit and the output
+  // is its `output` column; else empty, and units are written with the column names ("y/x^2").
+  std::string output_unit;
+  std::string output_column = "output";
+  std::string input_column = "a_i";
+  bool input_in_g = false;  // the input column is a ccal file's a_i (in g)
+};
+
+struct Identification {
+  FitResult fit;
+  std::vector<std::string> units;  // per free term
+  struct Fixed {
+    std::string id;
+    double value = 0;
+    std::string unit;
+  };
+  std::vector<Fixed> fixed;
+  std::vector<std::string> known;       // columns subtracted from the output
+  std::vector<std::string> row_labels;  // one per row, unique
+  std::string output_unit;              // "" when not known
+  std::string residual_unit;            // unit of the residuals (the output's unit or column name)
+  bool weighted = false;
+};
+
+// Unit of a term's coefficient.
+std::string term_unit(const TableTerm& term, const ColumnUnits& units);
+
+// The hint appended to an ill-posed fit's message for the terms it names: another mounting for terms in a_p
+// or a_o, more g-levels for powers of a_i; "" if it names neither.
+std::string ill_posed_hint(std::string_view message, const std::vector<std::string>& terms);
+
+// Fits the table. An ill-posed fit is an InputError "<source>: <the fit's message><hint>".
+Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
+                              std::string_view source);
+
+nlohmann::ordered_json identification_json(const Identification& id);
+std::string identification_text(const Identification& id);
+
+}  // namespace ccal::cli

@@ -1,0 +1,124 @@
+// The observations file and the CSV reader: the header comment round-trips, simulated observations are
+// written in output units in canonical column order with every digit, and the fit problem of a table binds
+// terms to columns or to powers of the input.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "ccal/observation_csv.hpp"
+#include "experiment_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+TEST(ObservationCsv, HeaderRoundTrip) {
+  ObservationsHeader h;
+  h.terms = {{"K0", "K0"}, {"K2", "Z2"}, {"K_pp", "K_pp"}};
+  h.fixed = {{{"K1", "K1"}, 505.2097, "deg/s/g"}, {{"K3", "K3"}, -1.25e-3, "deg/s/g^3"}};
+  h.known = {"rate"};
+  h.output_unit = "deg/s";
+  const std::string line = format_observations_header(h);
+  EXPECT_EQ(
+      line,
+      "# ccal observations v1; terms=K0:K0,K2:Z2,K_pp:K_pp; fixed=K1:K1=505.2097 deg/s/g,K3:K3=-0.00125 "
+      "deg/s/g^3; known=rate; output_unit=deg/s");
+  const CsvTable t = parse_csv(line + "\nrun,output\na,1\n", "h.csv");
+  const auto back = observations_header(t);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->line, 1);
+  ASSERT_EQ(back->terms.size(), 3u);
+  EXPECT_EQ(back->terms[1].id, "K2");
+  EXPECT_EQ(back->terms[1].column, "Z2");
+  ASSERT_EQ(back->fixed.size(), 2u);
+  EXPECT_EQ(back->fixed[0].value, 505.2097);  // the shortest decimal that reads back as the same double
+  EXPECT_EQ(back->fixed[1].unit, "deg/s/g^3");
+  EXPECT_EQ(back->known, std::vector<std::string>{"rate"});
+  EXPECT_EQ(back->output_unit, "deg/s");
+  // A plain table has no header; a term both free and fixed is refused at the comment's line.
+  EXPECT_FALSE(observations_header(parse_csv("x,y\n1,2\n", "p.csv")).has_value());
+  try {
+    observations_header(parse_csv("\n# ccal observations v1; terms=K0; fixed=K0=1\nx\n1\n", "d.csv"));
+    ADD_FAILURE();
+  } catch (const CsvError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_NE(std::string(e.what()).find("'K0' is listed twice"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ObservationCsv, CellsAndPlaces) {
+  const CsvTable t =
+      parse_csv("# c\r\n run , x ,y\r\n\r\n\"a, b\", +1.5 ,-2e-3\r\n\"say \"\"hi\"\"\",0,1\r\n", "t.csv");
+  EXPECT_EQ(t.header, (std::vector<std::string>{"run", "x", "y"}));
+  EXPECT_EQ(t.header_line, 2);
+  EXPECT_EQ(t.row_lines, (std::vector<int>{4, 5}));
+  EXPECT_EQ(t.rows[0][0], "a, b");
+  EXPECT_EQ(t.rows[1][0], "say \"hi\"");
+  EXPECT_EQ(t.numbers("x", "test")[0], 1.5);
+  EXPECT_EQ(t.numbers("y", "test")[0], -2e-3);
+  try {
+    t.numbers("run", "test");
+    ADD_FAILURE();
+  } catch (const CsvError& e) {
+    EXPECT_EQ(e.line(), 4);
+    EXPECT_EQ(e.column(), 1);
+    EXPECT_EQ(e.column_name(), "run");
+    EXPECT_TRUE(std::string(e.what()).starts_with("t.csv:4:1: run: 'a, b' is not a number")) << e.what();
+  }
+  EXPECT_FALSE(parse_number("1.5x").has_value());
+  EXPECT_FALSE(parse_number("+-1").has_value());
+  EXPECT_FALSE(parse_number("inf").has_value());
+  EXPECT_EQ(parse_number(" 2 "), 2.0);
+}
+
+TEST(ObservationCsv, SimulatedObservationsInOutputUnits) {
+  // K_w and K_p columns follow the canonical order (K0 … K10, then the named terms) whatever the spec's
+  // order, and every value is written with 17 significant digits so that it reads back exactly.
+  const Experiment ex = paper_experiment(true);
+  IdentificationSpec spec;
+  spec.free_terms = {"K_w", "K3", "K0", "K_p"};
+  spec.fixed_terms = {{"K1", 505.2097 * kDeg}};
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  const auto obs = observe<double>(ex, zero, zero, spec);
+  const std::string text = observations_csv(obs, spec, ex.instrument);
+  const CsvTable t = parse_csv(text, "sim.csv");
+  EXPECT_EQ(t.header,
+            (std::vector<std::string>{"run", "a_i", "output", "rate", "K0", "K1", "K3", "K_p", "K_w"}));
+  const auto h = observations_header(t).value();
+  EXPECT_EQ(h.terms.size(), 4u);
+  EXPECT_EQ(h.terms[0].id, "K_w");
+  EXPECT_EQ(h.fixed[0].unit, "deg/s/g");
+  EXPECT_EQ(h.fixed[0].value, 505.2097 * kDeg / kDeg);  // exactly the converted double
+  const Eigen::VectorXd output = t.numbers("output", "test");
+  const Eigen::VectorXd kw = t.numbers("K_w", "test");
+  for (Eigen::Index j = 0; j < output.size(); ++j) {
+    EXPECT_EQ(output[j], obs.output[j] / kDeg);  // deg/s, bit for bit
+    EXPECT_EQ(kw[j], obs.regressors(j, 0));      // ⟨ω_IA⟩ stays in rad/s
+  }
+  EXPECT_EQ(t.rows[0][0], "5g");
+}
+
+TEST(ObservationCsv, FitProblemBindsTermsToColumnsOrPowers) {
+  const CsvTable t = parse_csv("run,x,y,Z2,s,c\na,1,10,5,1,1\nb,2,20,6,2,1\nc,3,30,7,4,1\n", "f.csv");
+  TableFitSpec spec;
+  spec.input = "x";
+  spec.output = "y";
+  spec.terms = {{"K0", ""}, {"K2", "Z2"}};
+  spec.fixed = {{{"K3", ""}, 0.5}};
+  spec.known = {"c"};
+  spec.weight = "s";
+  const FitProblem p = table_fit_problem(t, spec);
+  EXPECT_EQ(p.term_names, (std::vector<std::string>{"K0", "K2", "K3"}));
+  EXPECT_EQ(p.H.col(0), Eigen::Vector3d(1, 1, 1));
+  EXPECT_EQ(p.H.col(1), Eigen::Vector3d(5, 6, 7));   // the bound column, not x²
+  EXPECT_EQ(p.H.col(2), Eigen::Vector3d(1, 8, 27));  // x³
+  EXPECT_EQ(p.y, Eigen::Vector3d(9, 19, 29));        // y − c
+  EXPECT_EQ(p.weights, Eigen::Vector3d(1, 0.25, 0.0625));
+  EXPECT_EQ(p.fixed.at("K3"), 0.5);
+  EXPECT_EQ(p.row_labels, (std::vector<std::string>{"a", "b", "c"}));
+  // A named term must be bound: that is the caller's check.
+  spec.terms.push_back({"K_pp", ""});
+  EXPECT_THROW(table_fit_problem(t, spec), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ccal::test
