@@ -16,7 +16,7 @@ namespace {
 
 struct BudgetOptionsCli {
   std::string config;
-  std::string mode = "exact";
+  std::string mode;  // empty: the configuration's
   double coverage = 2.0;
   OutputOptions output;
 };
@@ -188,7 +188,6 @@ std::string to_json(const Config& cfg, const BudgetResult& r) {
   }
   j["correlation"] = nlohmann::ordered_json::array();
   for (Eigen::Index a = 0; a < r.correlation.rows(); ++a) {
-    std::vector<double> row(r.correlation.row(a).data(), r.correlation.row(a).data() + 0);
     nlohmann::ordered_json jr = nlohmann::ordered_json::array();
     for (Eigen::Index b = 0; b < r.correlation.cols(); ++b) jr.push_back(r.correlation(a, b));
     j["correlation"].push_back(jr);
@@ -234,10 +233,10 @@ Command add_budget(CLI::App& app) {
   cmd->add_option("config", options->config,
                   "Configuration file (TOML, docs/config.md); default: the bundled paper example")
       ->type_name("CONFIG");
-  cmd->add_option("--mode", options->mode,
-                  "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules)")
-      ->check(CLI::IsMember({"exact", "paper"}))
-      ->capture_default_str();
+  cmd->add_option(
+         "--mode", options->mode,
+         "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the config's")
+      ->check(CLI::IsMember({"exact", "paper"}));
   cmd->add_option("--coverage", options->coverage, "Coverage factor k of the expanded uncertainty U = k u")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -254,7 +253,8 @@ Command add_budget(CLI::App& app) {
         if (cfg.tolerances.empty())
           throw InputError(cfg.source + ": [tolerances] is empty; the budget needs at least one source");
         BudgetOptions bo;
-        bo.mode = options->mode == "paper" ? ModelMode::paper : ModelMode::exact;
+        bo.mode = options->mode.empty() ? cfg.mode
+                                        : (options->mode == "paper" ? ModelMode::paper : ModelMode::exact);
         bo.coverage_factor = options->coverage;
         BudgetResult r;
         try {

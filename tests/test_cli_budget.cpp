@@ -1,0 +1,90 @@
+// `ccal budget` end to end: the bundled example's budget in each format, its consistency with the library,
+// and bad input.
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+using Budget = Cli;
+
+TEST_F(Budget, DefaultRunsTheBundledExample) {
+  const Result r = run("budget");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("48 sources"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("total u (LPU, k = 1)"), std::string::npos);
+  EXPECT_NE(r.out.find("dK3 [deg/s/g^3]"), std::string::npos);
+  EXPECT_NE(r.out.find("coriolis left out"), std::string::npos);
+  // The two largest K3 contributors are the main-axis levelling errors (model.md §5.4, E-notes).
+  const auto first = r.out.find("  1 "), second = r.out.find("  2 ");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_NE(r.out.substr(first, 60).find("dthy1t"), std::string::npos) << r.out.substr(first, 60);
+  EXPECT_NE(r.out.substr(second, 60).find("dthx1t"), std::string::npos) << r.out.substr(second, 60);
+}
+
+TEST_F(Budget, JsonCarriesUnitsAndMatchesTheText) {
+  const Result r = run("budget --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["mode"], "exact");
+  ASSERT_EQ(j["coefficients"].size(), 3u);
+  EXPECT_EQ(j["coefficients"][2]["id"], "K3");
+  EXPECT_EQ(j["coefficients"][2]["unit"], "deg/s/g^3");
+  ASSERT_EQ(j["sources"].size(), 48u);
+  // Root-sum-square of the per-source effects equals the total (no correlation groups in the example):
+  // relative 1e-12 (sums of 48 squares).
+  double sum = 0;
+  for (const auto& s : j["sources"]) sum += std::pow(s["effect"]["K3"].get<double>(), 2);
+  const double total = j["coefficients"][2]["standard_uncertainty"];
+  EXPECT_NEAR(std::sqrt(sum), total, 1e-12 * total);
+  EXPECT_NEAR(j["coefficients"][2]["expanded_uncertainty"].get<double>(), 2 * total, 1e-12 * total);
+  EXPECT_EQ(j["sources"][0]["unit_si"], "rad");
+  EXPECT_TRUE(j["sources"][0].contains("exact_paper_disagree"));
+  EXPECT_EQ(j["compensation_choices"].size(), 2u);
+}
+
+TEST_F(Budget, PaperModeReproducesTable4ForTheAzimuthError) {
+  // model.md §5.1: Δθz5 = 1e-5 rad → ΔK3 = +9.1287e-6 °/s/g³ in paper mode (normal tolerance 1e-5 → the 1σ
+  // effect is that number): 5 digits, relative 2e-4.
+  const Result r = run("budget --mode paper --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  bool found = false;
+  for (const auto& s : j["sources"])
+    if (s["id"] == "dthz5") {
+      found = true;
+      EXPECT_NEAR(s["effect"]["K3"].get<double>(), 9.1287e-6, 2e-4 * 9.1287e-6);
+    }
+  EXPECT_TRUE(found);
+}
+
+TEST_F(Budget, CsvHasOneRowPerSource) {
+  const Result r = run("budget --format csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 49);
+  EXPECT_TRUE(r.out.starts_with("rank,source,group,distribution,bound_si,unit_si,standard_uncertainty_si"));
+}
+
+TEST_F(Budget, WritesTheFileAtomically) {
+  ASSERT_EQ(run("budget -o budget.txt").code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "budget.txt"));
+  const Result bad = run("budget --coverage -1 -o bad.txt");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "bad.txt"));
+}
+
+TEST_F(Budget, BadInputIsDiagnosed) {
+  const std::string text = read(kExample);
+  const int line = line_of(text, "dthz5 = \"1e-5 rad\"");
+  ASSERT_GT(line, 0);
+  const std::string cfg = write("bad.toml", example_with_line(line, "dthz5 = \"1e-5 mm\""));
+  expect_bad_input(run("budget " + cfg), {"bad.toml:" + std::to_string(line), "dthz5", "angle"});
+  expect_bad_input(run("budget --mode sideways"), {"--mode"});
+  const std::string empty =
+      write("empty.toml", example_with_line(line_of(text, "[tolerances]"), "[tolerances_x]"));
+  EXPECT_EQ(run("budget " + empty).code, 2);
+}
+
+}  // namespace
+}  // namespace ccal::test
