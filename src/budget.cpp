@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "ccal/first_order.hpp"
 #include "ccal/scalar.hpp"
 #include "ccal/units.hpp"
 
@@ -11,41 +12,118 @@ namespace ccal {
 
 namespace {
 
-// ∂K̂/∂e for the given parameters: one Dual pass per kDualWidth parameters through the truth reduction; the
-// model side (design, known rate, fixed terms) is computed once in double.
-Eigen::MatrixXd jacobian(const Experiment& ex, const IdentificationSpec& spec,
-                         const std::vector<int>& parameters, const Eigen::VectorXd& at,
-                         const Eigen::VectorXd& known, ModelMode mode, const ReductionOptions& reduction) {
-  const Observations<double> model = observe<double>(ex, at, known, spec, mode, reduction);
+// H⁺ of the model's design (the design is data here), by the column-scaled QR of solve_least_squares.
+Eigen::MatrixXd design_pseudo_inverse(const Observations<double>& model, const IdentificationSpec& spec) {
   const auto nfree = Eigen::Index(spec.free_terms.size());
   const Eigen::MatrixXd H = model.regressors.leftCols(nfree);
-  // H⁺ by the column-scaled QR of solve_least_squares applied to the identity (the design is data here).
   const Eigen::Index runs = H.rows();
   Eigen::MatrixXd pinv(nfree, runs);
   for (Eigen::Index j = 0; j < runs; ++j)
     pinv.col(j) = solve_least_squares<double>(H, Eigen::VectorXd::Unit(runs, j));
+  return pinv;
+}
 
-  Eigen::MatrixXd J(nfree, Eigen::Index(parameters.size()));
+// The instrument with everything that depends on the angular rate removed: the specific-force path.
+InstrumentModel force_only(InstrumentModel ins) {
+  ins.rate_gain = 0.0;
+  for (std::size_t k = 0; k < ins.term_ids.size(); ++k)
+    if (ins.term_ids[k] == "K_w") ins.coefficients[Eigen::Index(k)] = 0.0;
+  return ins;
+}
+
+// ∂ȳ/∂e (runs × parameters) by forward-mode AD: one Dual pass per kDualWidth parameters through the truth
+// reduction.
+Eigen::MatrixXd output_jacobian_ad(const Experiment& ex, const IdentificationSpec& spec,
+                                   const std::vector<int>& parameters, const Eigen::VectorXd& at,
+                                   ModelMode mode, const ReductionOptions& reduction) {
+  const auto runs = Eigen::Index(ex.plan.runs.size());
+  Eigen::MatrixXd dy(runs, Eigen::Index(parameters.size()));
   const int n = ex.layout.size();
   for (std::size_t first = 0; first < parameters.size(); first += kDualWidth) {
     VecX<Dual> e(n);
     for (int i = 0; i < n; ++i) e[i] = make_dual(at[i], -1);
-    for (int k = 0; k < kDualWidth && first + std::size_t(k) < parameters.size(); ++k)
-      e[parameters[first + std::size_t(k)]].derivatives()[k] = 1.0;
-    Eigen::MatrixXd dy(runs, kDualWidth);
+    const int width = int(std::min<std::size_t>(kDualWidth, parameters.size() - first));
+    for (int k = 0; k < width; ++k) e[parameters[first + std::size_t(k)]].derivatives()[k] = 1.0;
     for (Eigen::Index j = 0; j < runs; ++j) {
       const ccal::Run& run = ex.plan.runs[std::size_t(j)];
       const RunAverage<Dual> avg =
           mode == ModelMode::exact
               ? average_run<Dual>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, reduction)
               : detail::paper_average<Dual>(ex, e, run, &ex.instrument, {}, spec.paper_cross_terms);
-      dy.row(j) = avg.output.derivatives().transpose();
+      for (int k = 0; k < width; ++k) dy(j, Eigen::Index(first) + k) = avg.output.derivatives()[k];
     }
-    const Eigen::MatrixXd dk = pinv * dy;
-    for (int k = 0; k < kDualWidth && first + std::size_t(k) < parameters.size(); ++k)
-      J.col(Eigen::Index(first) + k) = dk.col(k);
   }
-  return J;
+  return dy;
+}
+
+// ∂ȳ/∂e at zero errors from the closed-form linearisation of the exact chain (exact_first_order, which equals
+// the AD Jacobian of the chain, tests/test_first_order.cpp), split by path: at each quadrature node the
+// output's gradient in (a, ω_IA) times the node's kinematic sensitivities, averaged with the rule's weights.
+// The drive errors move the nodes and weights themselves and go through AD. With zero errors and ΔΩ = 0 the
+// integrand is periodic in the fast phase, so one slow node suffices; its band limit in the fast phase is
+// (polynomial degree − 1) + (N + 1) for a harmonic of order ≤ N.
+void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& spec,
+                                const std::vector<int>& parameters, const ReductionOptions& reduction,
+                                Eigen::MatrixXd& force, Eigen::MatrixXd& rate) {
+  const auto runs = Eigen::Index(ex.plan.runs.size());
+  const auto np = Eigen::Index(parameters.size());
+  force = Eigen::MatrixXd::Zero(runs, np);
+  rate = Eigen::MatrixXd::Zero(runs, np);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  const std::vector<TermSpec> terms = ex.instrument.terms();
+  const int degree = std::max(polynomial_degree(terms), 1);
+  std::vector<int> drive;
+  std::vector<Eigen::Index> drive_columns;
+  for (Eigen::Index c = 0; c < np; ++c)
+    if (channels()[ex.layout.parameter_channel(parameters[std::size_t(c)])].link == Link::drive) {
+      drive.push_back(parameters[std::size_t(c)]);
+      drive_columns.push_back(c);
+    }
+  for (Eigen::Index j = 0; j < runs; ++j) {
+    const ccal::Run& run = ex.plan.runs[std::size_t(j)];
+    const double rate_nominal = nominal_rate(run, ex.geometry, ex.site);
+    const double phi0 = initial_phase(run, ex.geometry, ex.site);
+    const RunMotion<double> motion =
+        run_motion<double>(rate_nominal, run.arm_azimuth, phi0, run.mode, ex.geometry.beta, zero);
+    QuadratureOptions qo = reduction.quadrature;
+    if (qo.fast_nodes == 0)
+      qo.fast_nodes = has_non_smooth_term(terms) && run.mode == PlatformMode::counter_rotating
+                          ? 512
+                          : fast_nodes_for(degree - 1 + ex.layout.harmonic_order() + 1, 1);
+    qo.slow_nodes = 1;
+    const RunQuadrature<double> quad = run_quadrature<double>(motion, run.duration, run.mode, 0.0, qo);
+    const Eigen::Matrix3d mount = mounting_matrix(run.mounting).transpose();
+    for (std::size_t n = 0; n < quad.nodes.size(); ++n) {
+      const JointState<double>& node = quad.nodes[n];
+      // The node's joint state is the run's state at t = (θ1 − θ1(0))/Ω; exact_first_order's drive columns
+      // (which depend on t) are not used.
+      const double t = (node.theta1 - motion.theta1_0) / motion.theta1_rate;
+      const FirstOrderResult fo = exact_first_order(ex.geometry, ex.layout, ex.site, motion, run.mode, t);
+      const Eigen::Vector3d a = mount * fo.nominal.head<3>(), w = mount * fo.nominal.tail<3>();
+      // Gradient of the output in (a_i, a_p, a_o, ω_IA) by a 4-direction dual evaluation.
+      const Vec3<Dual> ad(make_dual(a[0], 0), make_dual(a[1], 1), make_dual(a[2], 2));
+      const Dual out = instrument_output(ex.instrument, terms, ad, make_dual(w[0], 3));
+      const Eigen::RowVector3d grad_a = out.derivatives().head<3>().transpose() * mount;
+      const Eigen::RowVector3d grad_w = out.derivatives()[3] * mount.row(0);
+      const double weight = quad.weights[n];
+      for (Eigen::Index c = 0; c < np; ++c) {
+        const auto col = fo.sensitivity.col(parameters[std::size_t(c)]);
+        force(j, c) += weight * grad_a.dot(col.head<3>());
+        rate(j, c) += weight * grad_w.dot(col.tail<3>());
+      }
+    }
+  }
+  if (!drive.empty()) {
+    const Eigen::MatrixXd total = output_jacobian_ad(ex, spec, drive, zero, ModelMode::exact, reduction);
+    Experiment f = ex;
+    f.instrument = force_only(ex.instrument);
+    const Eigen::MatrixXd through_force =
+        output_jacobian_ad(f, spec, drive, zero, ModelMode::exact, reduction);
+    for (std::size_t d = 0; d < drive.size(); ++d) {
+      force.col(drive_columns[d]) = through_force.col(Eigen::Index(d));
+      rate.col(drive_columns[d]) = total.col(Eigen::Index(d)) - through_force.col(Eigen::Index(d));
+    }
+  }
 }
 
 }  // namespace
@@ -53,14 +131,27 @@ Eigen::MatrixXd jacobian(const Experiment& ex, const IdentificationSpec& spec,
 SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
                                const std::vector<int>& parameters, const Eigen::VectorXd& at,
                                const Eigen::VectorXd& known, ModelMode mode,
-                               const ReductionOptions& reduction) {
+                               const ReductionOptions& reduction, DerivativeMethod method) {
   SensitivityTable t;
   t.coefficients = spec.free_terms;
   t.parameters = parameters;
-  t.total = jacobian(ex, spec, parameters, at, known, mode, reduction);
-  Experiment force_only = ex;
-  force_only.instrument.rate_gain = 0.0;
-  t.force_path = jacobian(force_only, spec, parameters, at, known, mode, reduction);
+  const Eigen::MatrixXd pinv =
+      design_pseudo_inverse(observe<double>(ex, at, known, spec, mode, reduction), spec);
+  const bool linearised =
+      method == DerivativeMethod::linearised && mode == ModelMode::exact && at.isZero(0.0);
+  t.method = linearised ? DerivativeMethod::linearised : DerivativeMethod::automatic;
+  if (linearised) {
+    Eigen::MatrixXd force, rate;
+    output_jacobian_linearised(ex, spec, parameters, reduction, force, rate);
+    t.force_path = pinv * force;
+    t.rate_path = pinv * rate;
+    t.total = t.force_path + t.rate_path;
+    return t;
+  }
+  t.total = pinv * output_jacobian_ad(ex, spec, parameters, at, mode, reduction);
+  Experiment f = ex;
+  f.instrument = force_only(ex.instrument);
+  t.force_path = pinv * output_jacobian_ad(f, spec, parameters, at, mode, reduction);
   t.rate_path = t.total - t.force_path;
   return t;
 }
@@ -98,15 +189,18 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   const Eigen::VectorXd& at = config.centrifuge.errors;
   const Eigen::VectorXd known = spec.compensate ? at : Eigen::VectorXd::Zero(at.size());
 
+  BudgetResult r;
   std::vector<int> parameters;
   for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
   const SensitivityTable table =
-      sensitivities(ex, spec, parameters, at, known, options.mode, options.reduction);
+      sensitivities(ex, spec, parameters, at, known, options.mode, options.reduction, options.derivatives);
   SensitivityTable paper;
   const bool compare = options.mode == ModelMode::exact && options.compare_with_paper;
-  if (compare) paper = sensitivities(ex, spec, parameters, at, known, ModelMode::paper, options.reduction);
+  if (compare)
+    paper = sensitivities(ex, spec, parameters, at, known, ModelMode::paper, options.reduction,
+                          options.derivatives);
+  r.derivatives = table.method;
 
-  BudgetResult r;
   r.mode = options.mode;
   r.coefficients = spec.free_terms;
   r.coverage_factor = options.coverage_factor;

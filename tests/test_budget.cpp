@@ -257,3 +257,38 @@ TEST(Budget, CompensationChoicesOfSection54) {
 
 }  // namespace
 }  // namespace ccal::test
+
+namespace ccal::test {
+namespace {
+
+TEST(Budget, LinearisedAndAutomaticDerivativesAgree) {
+  // The two derivative methods are independent routes to the same exact Jacobian (closed-form linearisation
+  // of the chain contracted with the output gradient, vs Dual numbers through chain and reduction). For every
+  // source of the bundled example, by path: agreement to 1e-9 of the coefficient's largest effect (the
+  // linearised rule integrates the derivative with fewer fast nodes, exact for its band limit; the rest is
+  // round-off on outputs swinging by K1·A).
+  const Config cfg = bundled_example();
+  const Experiment ex = cfg.experiment();
+  std::vector<int> params;
+  for (const auto& t : cfg.tolerances) params.push_back(t.parameter);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  const auto lin = sensitivities(ex, cfg.identification, params, zero, zero, ModelMode::exact, {},
+                                 DerivativeMethod::linearised);
+  const auto ad = sensitivities(ex, cfg.identification, params, zero, zero, ModelMode::exact, {},
+                                DerivativeMethod::automatic);
+  ASSERT_EQ(lin.method, DerivativeMethod::linearised);
+  ASSERT_EQ(ad.method, DerivativeMethod::automatic);
+  for (std::size_t c = 0; c < params.size(); ++c) {
+    const double u = cfg.tolerances[c].bound;
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      const double scale = ad.total.row(k).cwiseAbs().maxCoeff() * u + 1e-300;
+      EXPECT_NEAR(lin.force_path(k, Eigen::Index(c)) * u, ad.force_path(k, Eigen::Index(c)) * u, 1e-9 * scale)
+          << cfg.tolerances[c].id << " K" << k;
+      EXPECT_NEAR(lin.rate_path(k, Eigen::Index(c)) * u, ad.rate_path(k, Eigen::Index(c)) * u, 1e-9 * scale)
+          << cfg.tolerances[c].id << " K" << k;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ccal::test

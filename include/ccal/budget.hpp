@@ -22,12 +22,22 @@
 
 namespace ccal {
 
+// How ∂ȳ/∂e is obtained. Both are exact (they agree to round-off, tests/test_budget.cpp):
+//   automatic:  forward-mode AD (ccal::Dual) through kinematics and reduction, in passes of kDualWidth
+//   sources; linearised: at zero errors, the closed-form linearisation of the chain (exact_first_order,
+//   itself checked
+//               against AD) contracted with the output's gradient at each quadrature node, AD for the drive
+//               errors only — an order of magnitude faster; used only where valid (exact mode, truth errors
+//               all zero), otherwise automatic.
+enum class DerivativeMethod { automatic, linearised };
+
 struct BudgetOptions {
   ModelMode mode = ModelMode::exact;
   double coverage_factor = 2.0;      // k of the expanded uncertainty U = k u (≈ 95 % for a normal total)
   bool compare_with_paper = true;    // in exact mode, also compute the paper's sensitivities per source
   double disagreement_factor = 2.0;  // flag sources whose exact and paper effects differ by more than this
   ReductionOptions reduction;
+  DerivativeMethod derivatives = DerivativeMethod::linearised;
 };
 
 // Sensitivities of the free coefficients (rows) to the given parameters (columns), SI per SI unit, split
@@ -36,13 +46,15 @@ struct SensitivityTable {
   std::vector<std::string> coefficients;
   std::vector<int> parameters;
   Eigen::MatrixXd total, force_path, rate_path;
+  DerivativeMethod method = DerivativeMethod::automatic;  // the one used
 };
 
 // J at the truth errors `at` (indexed by the layout), with the model's errors `known`.
 SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
                                const std::vector<int>& parameters, const Eigen::VectorXd& at,
                                const Eigen::VectorXd& known, ModelMode mode,
-                               const ReductionOptions& reduction = {});
+                               const ReductionOptions& reduction = {},
+                               DerivativeMethod method = DerivativeMethod::automatic);
 
 struct SourceBudget {
   int parameter = 0;
@@ -78,12 +90,13 @@ std::vector<CompensationChoice> compensation_choices(const Experiment& ex, const
 
 struct BudgetResult {
   ModelMode mode = ModelMode::exact;
-  std::vector<std::string> coefficients;  // free terms
-  std::vector<std::string> units;         // their display units (output unit per g^n)
-  std::vector<double> display_scale;      // SI → display unit factor per coefficient
-  std::vector<SourceBudget> sources;      // in tolerance order
-  Eigen::VectorXd standard_uncertainty;   // u_k per coefficient (SI)
-  Eigen::VectorXd expanded_uncertainty;   // k u_k
+  DerivativeMethod derivatives = DerivativeMethod::automatic;  // used for the sensitivity table
+  std::vector<std::string> coefficients;                       // free terms
+  std::vector<std::string> units;                              // their display units (output unit per g^n)
+  std::vector<double> display_scale;                           // SI → display unit factor per coefficient
+  std::vector<SourceBudget> sources;                           // in tolerance order
+  Eigen::VectorXd standard_uncertainty;                        // u_k per coefficient (SI)
+  Eigen::VectorXd expanded_uncertainty;                        // k u_k
   double coverage_factor = 2.0;
   Eigen::MatrixXd covariance;  // of the coefficients (SI)
   Eigen::MatrixXd correlation;
