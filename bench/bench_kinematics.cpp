@@ -79,4 +79,22 @@ void DynamicErrors(benchmark::State& state) {
 }
 BENCHMARK(DynamicErrors)->Arg(1)->Arg(3);
 
+// The precomposed chain with every dynamic error (what run means and Monte Carlo trials use).
+void DynamicErrorsPrecomposed(benchmark::State& state) {
+  Setup s;
+  const ErrorLayout layout(static_cast<int>(state.range(0)));
+  const Eigen::VectorXd e = errors(layout, true);
+  const DynamicChain<double> chain(s.geo, layout, e, s.site, s.rate, 0.0);
+  double t = 0.0, sum = 0.0;
+  for (auto _ : state) {
+    const JointState<double> j{0.1 + s.rate * t, s.rate, 0.0, 0.0, 2.0 - s.rate * t, -s.rate};
+    const auto in = chain(j);
+    sum += in.specific_force[0] + in.angular_rate[0];
+    t += 1e-3;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(DynamicErrorsPrecomposed)->Arg(1)->Arg(3);
+
 }  // namespace

@@ -689,6 +689,29 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
   }
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(size);
   m.reference = identify_coefficients<double>(observe<double>(experiment, zero, zero, spec, mode), spec);
+  {
+    std::vector<TermSpec> terms = experiment.instrument.terms();
+    int degree = 1;
+    for (const auto& t : terms) degree = std::max(degree, t.kind == TermKind::power ? t.power : 2);
+    const int band = 2 * (degree + experiment.layout.harmonic_order()) + 2;
+    bool kink = false;
+    for (const auto& t : terms) kink = kink || t.kind == TermKind::abs_square;
+    if (!kink) m.reduction.quadrature.fast_nodes = std::max(12, (band + 3) / 4 * 4);
+    m.reduction.quadrature.slow_tolerance = 1e-9;  // drift ≤ 1e-3: Q = 3
+  }
+  const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
+  const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
+  const auto nfree = Eigen::Index(spec.free_terms.size());
+  const Eigen::MatrixXd H = model.regressors.leftCols(nfree);
+  m.design_pinv.resize(nfree, H.rows());
+  for (Eigen::Index j = 0; j < H.rows(); ++j)
+    m.design_pinv.col(j) = solve_least_squares<double>(H, Eigen::VectorXd::Unit(H.rows(), j));
+  m.known_part = model.known_rate;
+  Eigen::Index column = nfree;
+  for (const auto& [id, value] : spec.fixed_terms) {
+    (void)id;
+    m.known_part += model.regressors.col(column++) * value;
+  }
   return m;
 }
 
@@ -704,8 +727,18 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
     const CalibrationModel& m = data->model;
     Eigen::VectorXd truth = m.actual_errors;
     for (std::size_t j = 0; j < draws.size(); ++j) truth[m.parameters[j]] += draws[j];
-    const auto obs = observe<double>(m.experiment, truth, data->known, m.spec, m.mode);
-    const Eigen::VectorXd k = identify_coefficients<double>(obs, m.spec);
+    // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
+    const Experiment& ex = m.experiment;
+    Eigen::VectorXd y(Eigen::Index(ex.plan.runs.size()));
+    for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
+      y[Eigen::Index(j)] = m.mode == ModelMode::exact
+                               ? average_run<double>(ex.geometry, ex.layout, truth, ex.site, ex.plan.runs[j],
+                                                     &ex.instrument, {}, m.reduction)
+                                     .output
+                               : detail::paper_average<double>(ex, truth, ex.plan.runs[j], &ex.instrument, {},
+                                                               m.spec.paper_cross_terms)
+                                     .output;
+    const Eigen::VectorXd k = m.design_pinv * (y - m.known_part);
     for (std::size_t o = 0; o < outputs.size(); ++o)
       outputs[o] = k[Eigen::Index(o)] - m.reference[Eigen::Index(o)];
   };

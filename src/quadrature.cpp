@@ -12,13 +12,13 @@ int fast_nodes_for(int polynomial_degree, int input_harmonics) {
   return std::max(12, (M + 3) / 4 * 4);
 }
 
-int slow_nodes_for(double drift) {
-  // Smallest Q with drift^Q / Q! below 1e-16 (the interpolation error relative to the drift-dependent part
+int slow_nodes_for(double drift, double tolerance) {
+  // Smallest Q with drift^Q / Q! below the tolerance (the interpolation error relative to the swing
   // of the integrand), at most 10: beyond that the monomial Lagrange coefficients lose more to round-off; at
   // least 2, so that the first derivative with respect to ΔΩ stays exact at ΔΩ = 0.
   int Q = 2;
   double bound = drift * drift / 2;
-  while (bound > 1e-16 && Q < 10) {
+  while (bound > tolerance && Q < 10) {
     ++Q;
     bound *= drift / Q;
   }

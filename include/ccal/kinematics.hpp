@@ -264,6 +264,138 @@ class StaticChain {
   Vec3<S> pB_, c_;
 };
 
+// The chain with every error, for repeated evaluation (run means, Monte Carlo): the time-invariant blocks
+// A (levelling), B (arm, horizontal axis at fixed β, azimuth sleeve) and C (base plane, instrument) are
+// composed once, so that an evaluation propagates the motion through ten elementary joints (the dynamic
+// errors of the main and azimuth axes and the two joint rotations) instead of thirty, and evaluates the
+// Fourier series of each joint once. Same result as exact_state to round-off (tests/test_kinematics.cpp).
+template <class S>
+class DynamicChain {
+ public:
+  template <class Errors>
+  DynamicChain(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
+               const S& theta1_rate, const S& beta, const ChainOptions& options = {})
+      : layout_(layout), g_(site.g), frozen_(options.frozen_platform) {
+    constexpr int X = 0, Y = 1, Z = 2;
+    auto E = [&](int i) { return S(e[i]); };
+    FrameMotion<S> a;
+    a.rotate(Y, E(dthy1t));
+    a.rotate(X, E(dthx1t));
+    gravity_1t_ = a.R.transpose().col(Z);
+    coriolis_1t_ = a.R.transpose() * site.coriolis_rate_enu().template cast<S>();
+    earth_1t_ = a.R.transpose() * site.sensed_rate_enu().template cast<S>();
+
+    const S zero{0};
+    FrameMotion<S> b;
+    b.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * theta1_rate * theta1_rate, E(dy2t), zero));
+    b.rotate(Y, E(dthy2t));
+    b.translate(Vec3<S>(dynamic_channel<S>(layout, e, dx2, beta, zero).value,
+                        dynamic_channel<S>(layout, e, dy2, beta, zero).value,
+                        dynamic_channel<S>(layout, e, dz2, beta, zero).value));
+    b.rotate(Z, dynamic_channel<S>(layout, e, dthz2, beta, zero).value);
+    b.rotate(Y, dynamic_channel<S>(layout, e, dthy2, beta, zero).value);
+    b.rotate(X, beta);
+    b.translate(Vec3<S>(zero, E(dy3t), zero));
+    b.rotate(Y, E(dthy3t));
+    b.rotate(X, E(dthx3t));
+    RB_ = b.R;
+    pB_ = b.p;
+
+    FrameMotion<S> c;
+    c.translate(Vec3<S>(zero, zero, S(geo.L)));
+    c.rotate(Y, E(dthy4));
+    c.rotate(X, E(dthx4));
+    c.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
+    c.rotate(Z, E(dthz5));
+    c.rotate(Y, E(dthy5));
+    c.rotate(X, E(dthx5));
+    RC_ = c.R;
+    pC_ = c.p;
+
+    // Fourier coefficients of the ten dynamic channels, [channel][c0, c1, s1, …].
+    const int order = layout.harmonic_order();
+    for (int k = 0; k < 10; ++k) {
+      const int ch = kChannelsOrder[k];
+      coefficients_[k].resize(2 * order + 1);
+      for (int i = 0; i < 2 * order + 1; ++i)
+        coefficients_[k][i] = S(e[layout.harmonic_index(ch, 0, false) + i]);
+    }
+  }
+
+  SensedInput<S> operator()(const JointState<S>& j) const {
+    constexpr int X = 0, Y = 1, Z = 2;
+    using std::cos;
+    using std::sin;
+    const S gamma_rate = frozen_ ? S(0) : j.gamma_rate;
+    ChannelValue<S> main[5], platform[5];
+    S c1, s1, cg, sg;
+    cos_sin(j.theta1, c1, s1);
+    cos_sin(j.gamma, cg, sg);
+    series(c1, s1, j.theta1_rate, 0, main);
+    series(cg, sg, gamma_rate, 5, platform);
+    FrameMotion<S> m;  // in frame-1t coordinates, which do not move: the main-axis runout is the motion
+    m.p = Vec3<S>(main[0].value, main[1].value, main[2].value);
+    m.v = Vec3<S>(main[0].rate, main[1].rate, main[2].rate);
+    m.a = Vec3<S>(main[0].acc, main[1].acc, main[2].acc);
+    m.rotate(Y, main[4].value, main[4].rate, main[4].acc);
+    m.rotate(X, main[3].value, main[3].rate, main[3].acc);
+    m.rotate_cs(Z, c1, s1, j.theta1_rate, S(0));
+    m.transform(RB_, pB_);
+    m.translate(Vec3<S>(platform[0].value, platform[1].value, platform[2].value),
+                Vec3<S>(platform[0].rate, platform[1].rate, platform[2].rate),
+                Vec3<S>(platform[0].acc, platform[1].acc, platform[2].acc));
+    m.rotate(Y, platform[4].value, platform[4].rate, platform[4].acc);
+    m.rotate(X, platform[3].value, platform[3].rate, platform[3].acc);
+    const Vec3<S> azimuth_axis = m.R.col(Z);
+    m.rotate_cs(Z, cg, sg, gamma_rate, S(0));
+    m.transform(RC_, pC_);
+    if (frozen_) m.w += azimuth_axis * j.gamma_rate;
+    const Vec3<S> f = m.a + S(2) * coriolis_1t_.cross(m.v) + S(g_) * gravity_1t_;
+    return {m.R.transpose() * f / S(g_), m.R.transpose() * (m.w + earth_1t_)};
+  }
+
+ private:
+  // Main-axis channels dx1, dy1, dz1, dthx1, dthy1, then the azimuth-axis ones.
+  static constexpr int kChannelsOrder[10] = {ccal::dx1, ccal::dy1, ccal::dz1, ccal::dthx1, ccal::dthy1,
+                                             ccal::dx3, ccal::dy3, ccal::dz3, ccal::dthx3, ccal::dthy3};
+
+  // Values and time derivatives of five channels of one joint (cos q = c, sin q = s) from one evaluation of
+  // its harmonics.
+  void series(const S& c, const S& s, const S& q_rate, int first, ChannelValue<S>* out) const {
+    const int order = layout_.harmonic_order();
+    S ck[65], sk[65];
+    ck[0] = S(1);
+    sk[0] = S(0);
+    if (order > 0) {
+      ck[1] = c;
+      sk[1] = s;
+      for (int k = 2; k <= order; ++k) {
+        ck[k] = ck[k - 1] * ck[1] - sk[k - 1] * sk[1];
+        sk[k] = sk[k - 1] * ck[1] + ck[k - 1] * sk[1];
+      }
+    }
+    for (int c = 0; c < 5; ++c) {
+      const std::vector<S>& a = coefficients_[first + c];
+      S v = a[0], d1{0}, d2{0};
+      for (int k = 1; k <= order; ++k) {
+        const S term = a[2 * k - 1] * ck[k] + a[2 * k] * sk[k];
+        v += term;
+        d1 += double(k) * (a[2 * k] * ck[k] - a[2 * k - 1] * sk[k]);
+        d2 -= double(k * k) * term;
+      }
+      out[c] = {v, q_rate * d1, q_rate * q_rate * d2};
+    }
+  }
+
+  ErrorLayout layout_;
+  double g_;
+  bool frozen_;
+  Vec3<S> gravity_1t_, coriolis_1t_, earth_1t_;
+  Mat3<S> RB_, RC_;
+  Vec3<S> pB_, pC_;
+  std::vector<S> coefficients_[10];
+};
+
 // Joint motion of one run: θ1(t) = θ1(0) + (Ω + Δω) t, γ(t) = φ0 + γ̇ t with γ̇ = −(Ω + Δω + ΔΩ) on a
 // counter-rotating platform and 0 on a fixed one, β constant.
 template <class S>

@@ -182,6 +182,16 @@ struct CalibrationModel {
   std::vector<int> parameters;    // the layout index of each source
   ModelMode mode = ModelMode::exact;
   Eigen::VectorXd reference;  // the free terms identified with zero errors (SI)
+  // The analyst's side of the observation equations does not change from trial to trial: H⁺ of the model's
+  // design and the known part of each run mean (rate term and fixed terms), so a trial only reduces the
+  // truth.
+  Eigen::MatrixXd design_pinv;
+  Eigen::VectorXd known_part;
+  // Quadrature for the trials. A trial needs the run means to ~1e-12 of the output's swing (the coefficient
+  // spread is ~1e-3 of it), not to round-off: M covers the harmonics that carry first-order error terms,
+  // 2(degree + N) + 2 (the ε² harmonics beyond it alias at ~1e-10 of ε-sized terms), and three slow nodes
+  // hold the platform mismatch to (ΔΩT)³/6 ≈ 2e-12 for |ΔΩ|T ≤ 1e-3 (more are used beyond that).
+  ReductionOptions reduction;
 
   std::vector<std::string> output_names() const { return spec.free_terms; }
   int n_outputs() const { return int(spec.free_terms.size()); }

@@ -31,6 +31,9 @@ namespace ccal {
 struct QuadratureOptions {
   int fast_nodes = 0;  // M per revolution; 0 = automatic from the band limit (see fast_nodes_for)
   int slow_nodes = 0;  // Q in time; 0 = automatic from |ΔΩ| T
+  // Relative accuracy asked of the automatic Q (the interpolation error in slow time relative to the
+  // integrand's swing). 1e-16 is round-off; a Monte Carlo whose spread is 1e-3 of the swing needs far less.
+  double slow_tolerance = 1e-16;
 };
 
 // Nodes of a run's mean: joint states and weights (Σ weights = 1).
@@ -46,7 +49,7 @@ struct RunQuadrature {
 // and M = 2D + 2 rounded up to a multiple of 4, at least 12.
 int fast_nodes_for(int polynomial_degree, int input_harmonics);
 // Q for a phase drift of `drift` radians over the run: the smallest Q ≤ 10 with drift^Q / Q! < 1e-16.
-int slow_nodes_for(double drift);
+int slow_nodes_for(double drift, double tolerance = 1e-16);
 
 namespace detail {
 // J_p(κ) = ½ ∫₋₁¹ x^p e^{iκx} dx for p = 0..P−1 (real and imaginary parts): the Taylor series
@@ -107,7 +110,9 @@ RunQuadrature<S> run_quadrature(const RunMotion<S>& motion, double duration, Pla
   // The drift ΔΩT shifts the phase of the n-th harmonic of γ by nΔΩT; the integrand's significant harmonics
   // reach about M/4 (M is twice the band limit).
   const double drift = counter ? std::abs(value_of(platform_mismatch)) * duration * (M / 4) : 0.0;
-  const int Q = counter ? (options.slow_nodes > 0 ? options.slow_nodes : slow_nodes_for(drift)) : 1;
+  const int Q =
+      counter ? (options.slow_nodes > 0 ? options.slow_nodes : slow_nodes_for(drift, options.slow_tolerance))
+              : 1;
   const std::vector<double> x_nodes = detail::slow_time_nodes(Q);
   const Eigen::MatrixXd a = detail::lagrange_monomials(x_nodes);
 
@@ -135,6 +140,12 @@ RunQuadrature<S> run_quadrature(const RunMotion<S>& motion, double duration, Pla
   out.nodes.reserve(M * Q);
   out.weights.reserve(M * Q);
   const double two_pi = 2 * std::numbers::pi;
+  // cos and sin of mθ_j = 2π (m j mod M)/M from one table of M values.
+  std::vector<double> cos_table(M), sin_table(M);
+  for (int k = 0; k < M; ++k) {
+    cos_table[k] = std::cos(two_pi * k / M);
+    sin_table[k] = std::sin(two_pi * k / M);
+  }
   for (int q = 0; q < Q; ++q) {
     const S slow_offset = counter ? S(-platform_mismatch * (0.5 * (1.0 + x_nodes[q]) * duration)) : S(0);
     for (int j = 0; j < M; ++j) {
@@ -143,8 +154,8 @@ RunQuadrature<S> run_quadrature(const RunMotion<S>& motion, double duration, Pla
       // is taken once (symmetric convention).
       S w = nu_re[0][q];
       for (int m = 1; m <= half; ++m) {
-        const double cm = std::cos(m * theta), sm = std::sin(m * theta);
-        const S term = cm * nu_re[m][q] + sm * nu_im[m][q];
+        const int k = (m * j) % M;
+        const S term = cos_table[k] * nu_re[m][q] + sin_table[k] * nu_im[m][q];
         w += (m == half ? 1.0 : 2.0) * term;
       }
       out.weights.push_back(w / double(M));

@@ -94,9 +94,10 @@ RunAverage<S> average_run(const Geometry& geo, const ErrorLayout& layout, const 
       accumulate(quad.weights[n], in.specific_force, in.angular_rate);
     }
   } else {
+    const DynamicChain<S> chain(geo, layout, e, site, motion.theta1_rate, motion.beta, options.chain);
     for (std::size_t n = 0; n < quad.nodes.size(); ++n) {
-      const InstrumentState<S> st = exact_state<S>(geo, layout, e, site, quad.nodes[n], options.chain);
-      accumulate(quad.weights[n], st.specific_force, st.angular_rate);
+      const SensedInput<S> in = chain(quad.nodes[n]);
+      accumulate(quad.weights[n], in.specific_force, in.angular_rate);
     }
   }
   return avg;
