@@ -27,6 +27,8 @@ int slow_nodes_for(double drift, double tolerance) {
 
 namespace detail {
 
+Eigen::MatrixXd solve_lagrange(const std::vector<double>& nodes, int Q);
+
 std::vector<double> slow_time_nodes(int Q) {
   if (Q == 1) return {0.0};
   std::vector<double> x(Q);
@@ -35,7 +37,17 @@ std::vector<double> slow_time_nodes(int Q) {
 }
 
 Eigen::MatrixXd lagrange_monomials(const std::vector<double>& nodes) {
+  // The rule only ever asks for Chebyshev–Lobatto nodes of a given count: remember each solution.
   const int Q = static_cast<int>(nodes.size());
+  thread_local std::vector<std::pair<std::vector<double>, Eigen::MatrixXd>> cache;
+  for (const auto& [x, a] : cache)
+    if (x == nodes) return a;
+  Eigen::MatrixXd a = solve_lagrange(nodes, Q);
+  cache.emplace_back(nodes, a);
+  return a;
+}
+
+Eigen::MatrixXd solve_lagrange(const std::vector<double>& nodes, int Q) {
   Eigen::MatrixXd V(Q, Q);  // V(q, p) = x_q^p
   for (int q = 0; q < Q; ++q)
     for (int p = 0; p < Q; ++p) V(q, p) = std::pow(nodes[q], p);

@@ -63,10 +63,14 @@ void oscillatory_moments(const S& kappa, int P, std::vector<S>& re, std::vector<
   re.assign(P, S(0));
   im.assign(P, S(0));
   if (abs(kappa) < 4.0 + P) {
-    // 80 terms: (4+P)^n/n! has fallen below 1e-20 by then for P ≤ 24.
+    // Terms until |κ|^n/n! < 1e-20 (at most 80: (4+P)^n/n! has fallen below that by then for P ≤ 24); only
+    // the n = 0 term when κ = 0, where J_p = (1 + (−1)^p) / (2(p+1)).
+    const double k_abs = std::abs(value_of(kappa));
+    int terms = 1;
+    for (double t = 1.0; terms < 80 && t >= 1e-20; ++terms) t *= k_abs / terms;
     for (int p = 0; p < P; ++p) {
       S term_re{1}, term_im{0};  // (iκ)^n / n!
-      for (int n = 0; n < 80; ++n) {
+      for (int n = 0; n < terms; ++n) {
         if ((n + p) % 2 == 0) {
           re[p] += term_re / double(n + p + 1);
           im[p] += term_im / double(n + p + 1);
