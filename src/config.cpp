@@ -374,7 +374,7 @@ const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density",
 const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
                      "mounting", "runs"};
 const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "paper_cross_terms"};
-const Keys kRunKeys{"name",           "g_level",       "duration",    "platform",
+const Keys kRunKeys{"name", "g_level", "speed", "duration", "platform",
                     "terminal_phase", "initial_phase", "arm_azimuth", "mounting"};
 
 constexpr int kMaxHarmonicOrder = 16;
@@ -729,7 +729,7 @@ RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_vie
   return f;
 }
 
-TestPlan read_plan(const Reader& r, const toml::table& root) {
+TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site) {
   const toml::table* t =
       r.table(root, "", "plan", true, "add [plan] and at least one [[plan.runs]] with g_level");
   r.check_keys(*t, "plan", kPlanKeys);
@@ -764,10 +764,22 @@ TestPlan read_plan(const Reader& r, const toml::table& root) {
                       run.name, it->second.line));
     names.emplace(run.name, at);
 
+    // A run is set by its g-level A or by the main-axis speed Ω (then A = Ω² R0 / g of the site).
     const auto g_level = r.quantity(*rt, p, "g_level", kind::acceleration_g, nullptr, "5 g");
-    if (!g_level) r.fail(where(rt->source()), p + ".g_level", "missing value; give e.g. g_level = \"5 g\"");
-    r.require_positive(*rt, p, "g_level", *g_level, "the centripetal level such as \"5 g\"");
-    run.g_level = *g_level;
+    const auto speed = r.quantity(*rt, p, "speed", kind::angular_rate, nullptr, "120 rpm");
+    if (g_level && speed)
+      r.fail(*rt->get("speed"), p + ".speed",
+             "both g_level and speed are given; accepted: exactly one of them per run");
+    if (!g_level && !speed)
+      r.fail(where(rt->source()), p + ".g_level",
+             "missing value; give e.g. g_level = \"5 g\" (or the speed, e.g. speed = \"120 rpm\")");
+    if (g_level) {
+      r.require_positive(*rt, p, "g_level", *g_level, "the centripetal level such as \"5 g\"");
+      run.g_level = *g_level;
+    } else {
+      r.require_positive(*rt, p, "speed", *speed, "the main-axis speed such as \"120 rpm\"");
+      run.g_level = *speed * *speed * geometry.R0 / site.g;
+    }
 
     const RunFields own = read_run_fields(r, *rt, p);
     const auto duration = own.duration ? own.duration : defaults.duration;
@@ -902,7 +914,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   read_errors(r, root, cfg.centrifuge);
   cfg.tolerances = read_tolerances(r, root, cfg.centrifuge.layout);
   cfg.instrument = read_instrument(r, root);
-  cfg.plan = read_plan(r, root);
+  cfg.plan = read_plan(r, root, cfg.centrifuge.geometry, cfg.site);
   read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);
   return cfg;
 }

@@ -819,3 +819,44 @@ TEST(ConfigErrors, UnreadableFile) {
 
 }  // namespace
 }  // namespace ccal
+
+namespace ccal::test {
+namespace {
+
+TEST(Config, RunBySpeedInsteadOfGLevel) {
+  // speed = "120 rpm" on R0 = 2.5 m with g = 9.8: A = Ω²R0/g = (4π)² · 2.5 / 9.8 = 40.28 g; the nominal rate
+  // then returns Ω exactly (round-off, 1e-14 relative).
+  const Config c = parse_config(R"([site]
+latitude = "45 deg"
+g = "9.8 m/s^2"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "450 s"
+terminal_phase = "180 deg"
+[[plan.runs]]
+speed = "120 rpm"
+)",
+                                "speed.toml");
+  const double omega = 4 * std::numbers::pi;
+  EXPECT_NEAR(c.plan.runs[0].g_level, omega * omega * 2.5 / 9.8, 1e-14 * 40.0);
+  EXPECT_NEAR(nominal_rate(c.plan.runs[0], c.centrifuge.geometry, c.site), omega, 1e-14 * omega);
+}
+
+TEST(ConfigErrors, SpeedAndGLevelTogetherOrNeither) {
+  const std::string head = R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+duration = "450 s"
+terminal_phase = "180 deg"
+[[plan.runs]]
+)";
+  expect_error(head + "g_level = \"5 g\"\nspeed = \"100 rpm\"\n", 10, "plan.runs[1].speed", {"exactly one"});
+  expect_error(head + "speed = \"100 m\"\n", 9, "plan.runs[1].speed", {"rpm"});
+  expect_error(head + "speed = \"-100 rpm\"\n", 9, "plan.runs[1].speed", {"positive"});
+}
+
+}  // namespace
+}  // namespace ccal::test
