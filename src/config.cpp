@@ -374,7 +374,7 @@ const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density",
 const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
                      "mounting", "runs"};
 const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "paper_cross_terms"};
-const Keys kRunKeys{"name", "g_level", "speed", "duration", "platform",
+const Keys kRunKeys{"name",           "g_level",       "speed",       "duration", "platform",
                     "terminal_phase", "initial_phase", "arm_azimuth", "mounting"};
 
 constexpr int kMaxHarmonicOrder = 16;

@@ -292,3 +292,32 @@ TEST(Budget, LinearisedAndAutomaticDerivativesAgree) {
 
 }  // namespace
 }  // namespace ccal::test
+
+namespace ccal::test {
+namespace {
+
+TEST(PaperBudget, LeverArmsAddTheRadiusAndIntersectionRows) {
+  // model.md §5.1 note: with lever arms (L = 0.20 m, l = 0.05 m, (L+l)/R0 = 0.1, l/R0 = 0.02) the θy group
+  // gains 0.1 × the ΔR row, the θx group −0.1 × the Δy row, and Δθy4 gains 0.02 × the Δx5 row. Sums of
+  // 5-digit numbers: relative tolerance 3e-4.
+  Experiment ex = paper_experiment(true);
+  ex.geometry.L = 0.20;
+  ex.geometry.l = 0.05;
+  const std::vector<Row> rows = {
+      {{dthy3t},
+       1e-5,
+       1.2357e-6 + 0.1 * 9.1840e-6,
+       -3.0824e-9 + 0.1 * -1.1065e-8,
+       2.3307e-7 + 0.1 * 9.1870e-6},
+      {{dthx3t},
+       1e-5,
+       -1.8261e-6 - 0.1 * 1.9151e-5,
+       4.4847e-9 - 0.1 * -2.1402e-8,
+       4.4955e-7 - 0.1 * -9.1287e-6},
+      {{dthy4}, 1e-5, -5.0521e-3 + 0.02 * -2.8513e-2, 0.02 * -3.2486e-4, 0.02 * -6.6988e-3},
+  };
+  expect_rows(ex, rows, ModelMode::paper, 1, 3e-4);
+}
+
+}  // namespace
+}  // namespace ccal::test

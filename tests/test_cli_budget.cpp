@@ -88,3 +88,31 @@ TEST_F(Budget, BadInputIsDiagnosed) {
 
 }  // namespace
 }  // namespace ccal::test
+
+namespace ccal::test {
+namespace {
+
+TEST_F(Budget, BothDerivativeMethodsGiveTheSameTable) {
+  // Linearised (default) and automatic differentiation: the same effects to 1e-9 of each coefficient's total
+  // (the JSON prints 17 digits; the methods differ by round-off and quadrature exactness only).
+  const Result a = run("budget --format json");
+  const Result b = run("budget --derivatives automatic --format json");
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(ja["derivatives"], "linearised");
+  EXPECT_EQ(jb["derivatives"], "automatic");
+  for (const char* k : {"K0", "K2", "K3"}) {
+    double total = 0;
+    for (const auto& c : ja["coefficients"])
+      if (c["id"] == k) total = c["standard_uncertainty"];
+    for (const auto& sa : ja["sources"])
+      for (const auto& sb : jb["sources"])
+        if (sa["id"] == sb["id"])
+          EXPECT_NEAR(sa["effect"][k].get<double>(), sb["effect"][k].get<double>(), 1e-9 * total)
+              << sa["id"] << " " << k;
+  }
+}
+
+}  // namespace
+}  // namespace ccal::test

@@ -18,6 +18,7 @@ struct BudgetOptionsCli {
   std::string config;
   std::string mode;  // empty: the configuration's
   double coverage = 2.0;
+  std::string derivatives = "linearised";
   OutputOptions output;
 };
 
@@ -151,6 +152,7 @@ std::string to_json(const Config& cfg, const BudgetResult& r) {
   j["ccal_version"] = version();
   j["config"] = cfg.source;
   j["mode"] = mode_name(r.mode);
+  j["derivatives"] = r.derivatives == DerivativeMethod::automatic ? "automatic" : "linearised";
   j["coverage_factor"] = r.coverage_factor;
   j["coefficients"] = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < r.coefficients.size(); ++k)
@@ -240,6 +242,12 @@ Command add_budget(CLI::App& app) {
   cmd->add_option("--coverage", options->coverage, "Coverage factor k of the expanded uncertainty U = k u")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option(
+         "--derivatives", options->derivatives,
+         "How the sensitivities are differentiated: linearised (closed-form chain Jacobian at zero "
+         "errors, AD elsewhere; fast) or automatic (forward-mode AD through everything); same numbers")
+      ->check(CLI::IsMember({"linearised", "automatic"}))
+      ->capture_default_str();
   add_output_options(*cmd, options->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -256,6 +264,8 @@ Command add_budget(CLI::App& app) {
         bo.mode = options->mode.empty() ? cfg.mode
                                         : (options->mode == "paper" ? ModelMode::paper : ModelMode::exact);
         bo.coverage_factor = options->coverage;
+        bo.derivatives =
+            options->derivatives == "automatic" ? DerivativeMethod::automatic : DerivativeMethod::linearised;
         BudgetResult r;
         try {
           r = compute_budget(cfg, bo);
