@@ -106,11 +106,14 @@ TEST_F(Budget, BothDerivativeMethodsGiveTheSameTable) {
     double total = 0;
     for (const auto& c : ja["coefficients"])
       if (c["id"] == k) total = c["standard_uncertainty"];
-    for (const auto& sa : ja["sources"])
-      for (const auto& sb : jb["sources"])
-        if (sa["id"] == sb["id"])
+    for (const auto& sa : ja["sources"]) {
+      for (const auto& sb : jb["sources"]) {
+        if (sa["id"] == sb["id"]) {
           EXPECT_NEAR(sa["effect"][k].get<double>(), sb["effect"][k].get<double>(), 1e-9 * total)
               << sa["id"] << " " << k;
+        }
+      }
+    }
   }
 }
 
