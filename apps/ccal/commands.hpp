@@ -16,5 +16,6 @@ struct Command {
 Command add_force(CLI::App& app);
 Command add_budget(CLI::App& app);
 Command add_montecarlo(CLI::App& app);
+Command add_allocate(CLI::App& app);
 
 }  // namespace ccal::cli
