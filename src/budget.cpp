@@ -128,6 +128,19 @@ void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& 
 
 }  // namespace
 
+std::string coefficient_unit(std::string_view output_unit, std::string_view term_id) {
+  const TermSpec term = parse_term(term_id).value();
+  const int order = term.kind == TermKind::power ? term.power : (term.kind == TermKind::rate ? 0 : 1);
+  std::string unit(output_unit);
+  if (term.kind == TermKind::power || term.kind == TermKind::p || term.kind == TermKind::o) {
+    if (order == 1) unit += "/g";
+    if (order > 1) unit += "/g^" + std::to_string(order);
+  } else if (term.kind != TermKind::rate) {
+    unit += "/g^2";
+  }
+  return unit;
+}
+
 SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
                                const std::vector<int>& parameters, const Eigen::VectorXd& at,
                                const Eigen::VectorXd& known, ModelMode mode,
@@ -206,16 +219,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   r.coverage_factor = options.coverage_factor;
   const auto nk = Eigen::Index(r.coefficients.size());
   for (const auto& id : r.coefficients) {
-    const TermSpec term = parse_term(id).value();
-    const int order = term.kind == TermKind::power ? term.power : (term.kind == TermKind::rate ? 0 : 1);
-    std::string unit = config.instrument.output_unit;
-    if (term.kind == TermKind::power || term.kind == TermKind::p || term.kind == TermKind::o) {
-      if (order == 1) unit += "/g";
-      if (order > 1) unit += "/g^" + std::to_string(order);
-    } else if (term.kind != TermKind::rate) {
-      unit += "/g^2";
-    }
-    r.units.push_back(unit);
+    r.units.push_back(coefficient_unit(config.instrument.output_unit, id));
     r.display_scale.push_back(to_unit(1.0, config.instrument.output_unit));
   }
 

@@ -17,5 +17,7 @@ Command add_force(CLI::App& app);
 Command add_budget(CLI::App& app);
 Command add_simulate(CLI::App& app);
 Command add_identify(CLI::App& app);
+Command add_montecarlo(CLI::App& app);
+Command add_allocate(CLI::App& app);
 
 }  // namespace ccal::cli

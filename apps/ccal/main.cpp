@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   app.footer(
       "Examples:\n"
       "  ccal budget                     error budget of the bundled paper example\n"
+      "  ccal montecarlo --trials 2000   Monte Carlo (JCGM 101) of the same budget\n"
+      "  ccal allocate --target K2=1e-7 --target K3=1e-6   largest tolerances meeting both targets\n"
       "  ccal force                      sensed input, run 1 of the bundled paper example\n"
       "  ccal force examples/wang_ren_2014.toml --run 20g --time \"10 s\" --format json\n"
       "  ccal simulate --observations-out obs.csv   run means of the paper's plan and the identified K0, K2, "
@@ -45,6 +47,8 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_force(app));
   commands.push_back(ccal::cli::add_simulate(app));
   commands.push_back(ccal::cli::add_identify(app));
+  commands.push_back(ccal::cli::add_montecarlo(app));
+  commands.push_back(ccal::cli::add_allocate(app));
 
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
   // required".

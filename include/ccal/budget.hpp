@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ccal/config.hpp"
@@ -104,5 +105,9 @@ struct BudgetResult {
 };
 
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});
+
+// The display unit of a coefficient: the instrument's output unit per gⁿ for a term of order n in the inputs,
+// e.g. "deg/s/g^3" for K3 of a PIGA read in deg/s (BudgetResult::units). term_id must be a valid term id.
+std::string coefficient_unit(std::string_view output_unit, std::string_view term_id);
 
 }  // namespace ccal
