@@ -688,7 +688,6 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     m.parameters.push_back(t.parameter);
   }
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(size);
-  m.reference = identify_coefficients<double>(observe<double>(experiment, zero, zero, spec, mode), spec);
   {
     std::vector<TermSpec> terms = experiment.instrument.terms();
     int degree = 1;
@@ -712,6 +711,15 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     (void)id;
     m.known_part += model.regressors.col(column++) * value;
   }
+  // The reference goes through the very arithmetic of a trial, so that zero draws on zero errors give
+  // exactly zero deviations.
+  m.reference = Eigen::VectorXd::Zero(nfree);
+  std::vector<double> no_draws(m.parameters.size(), 0.0), out(std::size_t(nfree), 0.0);
+  Eigen::VectorXd saved = m.actual_errors;
+  m.actual_errors = zero;
+  calibration_trial(m)(no_draws, out);
+  m.actual_errors = saved;
+  for (Eigen::Index k = 0; k < nfree; ++k) m.reference[k] = out[std::size_t(k)];
   return m;
 }
 
