@@ -273,9 +273,7 @@ Command add_allocate(CLI::App& app) {
       "allocate",
       "Tolerance allocation: the largest centrifuge tolerances for which every target on the expanded "
       "uncertainty of an identified coefficient holds, checked by Monte Carlo");
-  cmd->add_option("config", o->config,
-                  "Configuration file (TOML, docs/config.md); default: the bundled paper example")
-      ->type_name("CONFIG");
+  add_config_argument(*cmd, o->config);
   cmd->add_option("--target", o->targets,
                   "COEFF=U: the allowed expanded uncertainty (half-width of the coverage interval) of a free "
                   "coefficient, in its unit (output unit per g^n) or with a unit, e.g. K3=1e-6 or "

@@ -232,9 +232,7 @@ Command add_budget(CLI::App& app) {
   auto options = std::make_shared<BudgetOptionsCli>();
   CLI::App* cmd = app.add_subcommand(
       "budget", "Error budget: what each centrifuge tolerance costs every identified coefficient");
-  cmd->add_option("config", options->config,
-                  "Configuration file (TOML, docs/config.md); default: the bundled paper example")
-      ->type_name("CONFIG");
+  add_config_argument(*cmd, options->config);
   cmd->add_option(
          "--mode", options->mode,
          "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the config's")

@@ -147,9 +147,7 @@ Command add_force(CLI::App& app) {
       "force",
       "Specific force and angular rate at the instrument at one instant of a run, exact and as "
       "first-order contributions of the configured [errors].");
-  cmd->add_option("config", options->config,
-                  "Configuration file (TOML, docs/config.md); default: the bundled paper example")
-      ->type_name("CONFIG");
+  add_config_argument(*cmd, options->config);
   cmd->add_option("--run", options->run, "Run name or 1-based index")->capture_default_str()->type_name("J");
   cmd->add_option("--time", options->time, "Time into the run, e.g. \"10 s\" or 10 (seconds), within [0, T]")
       ->capture_default_str()

@@ -213,9 +213,7 @@ Command add_montecarlo(CLI::App& app) {
       "montecarlo",
       "Monte Carlo propagation (JCGM 101) of the configured tolerances to the identified coefficients, with "
       "the validation of the LPU");
-  cmd->add_option("config", o->config,
-                  "Configuration file (TOML, docs/config.md); default: the bundled paper example")
-      ->type_name("CONFIG");
+  add_config_argument(*cmd, o->config);
   cmd->add_option("--trials", o->trials,
                   "Number of trials M (≥ 2); with --digits, the stage size (at least 10000)")
       ->capture_default_str()

@@ -200,9 +200,7 @@ Command add_simulate(CLI::App& app) {
                          "Simulated run means of the test plan (exact chain with the configured [errors], "
                          "instrument noise), their "
                          "regressors, and the identification of the [identification] terms from them.");
-  cmd->add_option("config", o->config,
-                  "Configuration file (TOML, docs/config.md); default: the bundled paper example")
-      ->type_name("CONFIG");
+  add_config_argument(*cmd, o->config);
   cmd->add_option("--mode", o->mode,
                   "Reduction of a run: exact (full chain) or paper (Wang & Ren's first order); default: "
                   "[identification] mode of the configuration")

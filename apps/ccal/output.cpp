@@ -63,6 +63,13 @@ Config load_config_or_example(const std::string& path) {
   return path.empty() ? bundled_example() : load_config(path);
 }
 
+void add_config_argument(CLI::App& command, std::string& path) {
+  command
+      .add_option("config", path,
+                  "Configuration file (TOML, docs/config.md); default: the bundled paper example")
+      ->type_name("CONFIG");
+}
+
 std::string number(double v, int digits) {
   if (v == 0.0) return "0";
   return fmt::format("{:.{}g}", v, digits);

@@ -38,6 +38,9 @@ struct ExtraFile {
 // all of them were written, so a failure leaves none of them (and no temporary file) behind.
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra);
 
+// The optional CONFIG argument every configuration-driven command takes.
+void add_config_argument(CLI::App& command, std::string& path);
+
 // The configuration named on the command line, or the bundled paper example if none is.
 Config load_config_or_example(const std::string& path);
 

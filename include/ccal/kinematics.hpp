@@ -172,6 +172,58 @@ struct SensedInput {
   Vec3<S> angular_rate;
 };
 
+// The time-invariant blocks of the chain (docs/model.md §4.1): A, the levelling (only gravity and Earth rate
+// in its frame-1t coordinates are needed), B = frame 1 → 3t (arm, horizontal axis at fixed β, azimuth sleeve)
+// and C = frame 3 → 5 (base plane, instrument).
+template <class S>
+struct ChainBlocks {
+  Vec3<S> gravity_1t, coriolis_1t, earth_1t;  // z0, Coriolis ω_ie and sensed ω_ie in frame-1t coordinates
+  Mat3<S> RB, RC;
+  Vec3<S> pB, pC;
+};
+
+template <class S, class Errors>
+ChainBlocks<S> chain_blocks(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
+                            const S& theta1_rate, const S& beta) {
+  constexpr int X = 0, Y = 1, Z = 2;
+  auto E = [&](int i) { return S(e[i]); };
+  ChainBlocks<S> out;
+  FrameMotion<S> a;
+  a.rotate(Y, E(dthy1t));
+  a.rotate(X, E(dthx1t));
+  out.gravity_1t = a.R.transpose().col(Z);
+  out.coriolis_1t = a.R.transpose() * site.coriolis_rate_enu().template cast<S>();
+  out.earth_1t = a.R.transpose() * site.sensed_rate_enu().template cast<S>();
+
+  const S zero{0};
+  FrameMotion<S> b;
+  b.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * theta1_rate * theta1_rate, E(dy2t), zero));
+  b.rotate(Y, E(dthy2t));
+  b.translate(Vec3<S>(dynamic_channel<S>(layout, e, dx2, beta, zero).value,
+                      dynamic_channel<S>(layout, e, dy2, beta, zero).value,
+                      dynamic_channel<S>(layout, e, dz2, beta, zero).value));
+  b.rotate(Z, dynamic_channel<S>(layout, e, dthz2, beta, zero).value);
+  b.rotate(Y, dynamic_channel<S>(layout, e, dthy2, beta, zero).value);
+  b.rotate(X, beta);
+  b.translate(Vec3<S>(zero, E(dy3t), zero));
+  b.rotate(Y, E(dthy3t));
+  b.rotate(X, E(dthx3t));
+  out.RB = b.R;
+  out.pB = b.p;
+
+  FrameMotion<S> c;
+  c.translate(Vec3<S>(zero, zero, S(geo.L)));
+  c.rotate(Y, E(dthy4));
+  c.rotate(X, E(dthx4));
+  c.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
+  c.rotate(Z, E(dthz5));
+  c.rotate(Y, E(dthy5));
+  c.rotate(X, E(dthx5));
+  out.RC = c.R;
+  out.pC = c.p;
+  return out;
+}
+
 // The chain with only static errors (and a fixed horizontal axis), factored as in model.md §4.1:
 //   p = A · Rz(θ1) · (B_R · Rz(γ) · c + B_p),  frame 5 = A · Rz(θ1) · B_R · Rz(γ) · C_R,
 // so that one evaluation costs two sine/cosine pairs and a few 3×3 products. Everything that does not change
@@ -186,41 +238,14 @@ class StaticChain {
   StaticChain(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
               const S& theta1_rate, const S& beta, const ChainOptions& options = {})
       : g_(site.g), frozen_(options.frozen_platform) {
-    constexpr int X = 0, Y = 1, Z = 2;
-    auto E = [&](int i) { return S(e[i]); };
-    FrameMotion<S> a;  // 0 → 1t
-    a.rotate(Y, E(dthy1t));
-    a.rotate(X, E(dthx1t));
-    gravity_1t_ = a.R.transpose().col(Z);
-    coriolis_1t_ = a.R.transpose() * site.coriolis_rate_enu().template cast<S>();
-    earth_1t_ = a.R.transpose() * site.sensed_rate_enu().template cast<S>();
-
-    FrameMotion<S> b;  // 1 → 3t, static (β fixed)
-    const S zero{0};
-    b.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * theta1_rate * theta1_rate, E(dy2t), zero));
-    b.rotate(Y, E(dthy2t));
-    b.translate(Vec3<S>(dynamic_channel<S>(layout, e, dx2, beta, zero).value,
-                        dynamic_channel<S>(layout, e, dy2, beta, zero).value,
-                        dynamic_channel<S>(layout, e, dz2, beta, zero).value));
-    b.rotate(Z, dynamic_channel<S>(layout, e, dthz2, beta, zero).value);
-    b.rotate(Y, dynamic_channel<S>(layout, e, dthy2, beta, zero).value);
-    b.rotate(X, beta);
-    b.translate(Vec3<S>(zero, E(dy3t), zero));
-    b.rotate(Y, E(dthy3t));
-    b.rotate(X, E(dthx3t));
-    RB_ = b.R;
-    pB_ = b.p;
-
-    FrameMotion<S> c;  // 3 → 5
-    c.translate(Vec3<S>(zero, zero, S(geo.L)));
-    c.rotate(Y, E(dthy4));
-    c.rotate(X, E(dthx4));
-    c.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
-    c.rotate(Z, E(dthz5));
-    c.rotate(Y, E(dthy5));
-    c.rotate(X, E(dthx5));
-    RC_ = c.R;
-    c_ = c.p;
+    const ChainBlocks<S> b = chain_blocks<S>(geo, layout, e, site, theta1_rate, beta);
+    gravity_1t_ = b.gravity_1t;
+    coriolis_1t_ = b.coriolis_1t;
+    earth_1t_ = b.earth_1t;
+    RB_ = b.RB;
+    pB_ = b.pB;
+    RC_ = b.RC;
+    c_ = b.pC;
   }
 
   SensedInput<S> operator()(const S& theta1, const S& gamma, const S& theta1_rate,
@@ -276,41 +301,14 @@ class DynamicChain {
   DynamicChain(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
                const S& theta1_rate, const S& beta, const ChainOptions& options = {})
       : layout_(layout), g_(site.g), frozen_(options.frozen_platform) {
-    constexpr int X = 0, Y = 1, Z = 2;
-    auto E = [&](int i) { return S(e[i]); };
-    FrameMotion<S> a;
-    a.rotate(Y, E(dthy1t));
-    a.rotate(X, E(dthx1t));
-    gravity_1t_ = a.R.transpose().col(Z);
-    coriolis_1t_ = a.R.transpose() * site.coriolis_rate_enu().template cast<S>();
-    earth_1t_ = a.R.transpose() * site.sensed_rate_enu().template cast<S>();
-
-    const S zero{0};
-    FrameMotion<S> b;
-    b.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * theta1_rate * theta1_rate, E(dy2t), zero));
-    b.rotate(Y, E(dthy2t));
-    b.translate(Vec3<S>(dynamic_channel<S>(layout, e, dx2, beta, zero).value,
-                        dynamic_channel<S>(layout, e, dy2, beta, zero).value,
-                        dynamic_channel<S>(layout, e, dz2, beta, zero).value));
-    b.rotate(Z, dynamic_channel<S>(layout, e, dthz2, beta, zero).value);
-    b.rotate(Y, dynamic_channel<S>(layout, e, dthy2, beta, zero).value);
-    b.rotate(X, beta);
-    b.translate(Vec3<S>(zero, E(dy3t), zero));
-    b.rotate(Y, E(dthy3t));
-    b.rotate(X, E(dthx3t));
-    RB_ = b.R;
-    pB_ = b.p;
-
-    FrameMotion<S> c;
-    c.translate(Vec3<S>(zero, zero, S(geo.L)));
-    c.rotate(Y, E(dthy4));
-    c.rotate(X, E(dthx4));
-    c.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
-    c.rotate(Z, E(dthz5));
-    c.rotate(Y, E(dthy5));
-    c.rotate(X, E(dthx5));
-    RC_ = c.R;
-    pC_ = c.p;
+    const ChainBlocks<S> b = chain_blocks<S>(geo, layout, e, site, theta1_rate, beta);
+    gravity_1t_ = b.gravity_1t;
+    coriolis_1t_ = b.coriolis_1t;
+    earth_1t_ = b.earth_1t;
+    RB_ = b.RB;
+    pB_ = b.pB;
+    RC_ = b.RC;
+    pC_ = b.pC;
 
     // Fourier coefficients of the ten dynamic channels, [channel][c0, c1, s1, …].
     const int order = layout.harmonic_order();
