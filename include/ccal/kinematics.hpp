@@ -320,17 +320,17 @@ class DynamicChain {
     }
   }
 
-  SensedInput<S> operator()(const JointState<S>& j) const {
+  SensedInput<S> operator()(const JointState<S>& j) const { return platform(main_axis(j), j); }
+
+  // The two halves of an evaluation: the motion of frame 3t (everything up to the azimuth joint, a function
+  // of θ1 alone), then the rest for a platform state. Run means reuse one main-axis half for all the
+  // slow-time nodes that share a fast phase.
+  FrameMotion<S> main_axis(const JointState<S>& j) const {
     constexpr int X = 0, Y = 1, Z = 2;
-    using std::cos;
-    using std::sin;
-    const S gamma_rate = frozen_ ? S(0) : j.gamma_rate;
-    ChannelValue<S> main[5], platform[5];
-    S c1, s1, cg, sg;
+    ChannelValue<S> main[5];
+    S c1, s1;
     cos_sin(j.theta1, c1, s1);
-    cos_sin(j.gamma, cg, sg);
     series(c1, s1, j.theta1_rate, 0, main);
-    series(cg, sg, gamma_rate, 5, platform);
     FrameMotion<S> m;  // in frame-1t coordinates, which do not move: the main-axis runout is the motion
     m.p = Vec3<S>(main[0].value, main[1].value, main[2].value);
     m.v = Vec3<S>(main[0].rate, main[1].rate, main[2].rate);
@@ -339,6 +339,16 @@ class DynamicChain {
     m.rotate(X, main[3].value, main[3].rate, main[3].acc);
     m.rotate_cs(Z, c1, s1, j.theta1_rate, S(0));
     m.transform(RB_, pB_);
+    return m;
+  }
+
+  SensedInput<S> platform(FrameMotion<S> m, const JointState<S>& j) const {
+    constexpr int X = 0, Y = 1, Z = 2;
+    const S gamma_rate = frozen_ ? S(0) : j.gamma_rate;
+    ChannelValue<S> platform[5];
+    S cg, sg;
+    cos_sin(j.gamma, cg, sg);
+    series(cg, sg, gamma_rate, 5, platform);
     m.translate(Vec3<S>(platform[0].value, platform[1].value, platform[2].value),
                 Vec3<S>(platform[0].rate, platform[1].rate, platform[2].rate),
                 Vec3<S>(platform[0].acc, platform[1].acc, platform[2].acc));

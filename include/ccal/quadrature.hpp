@@ -41,6 +41,9 @@ template <class S>
 struct RunQuadrature {
   std::vector<JointState<S>> nodes;
   std::vector<S> weights;
+  // The spectral rule's nodes are stored slow-major: node q·fast_nodes + j has fast phase θ_j, so the
+  // main-axis state of nodes j, M + j, 2M + j … is the same (0 for other rules).
+  int fast_nodes = 0;
 };
 
 // M for an integrand that is a polynomial of degree `polynomial_degree` in inputs whose harmonic content in
@@ -141,6 +144,7 @@ RunQuadrature<S> run_quadrature(const RunMotion<S>& motion, double duration, Pla
   }
 
   RunQuadrature<S> out;
+  out.fast_nodes = M;
   out.nodes.reserve(M * Q);
   out.weights.reserve(M * Q);
   const double two_pi = 2 * std::numbers::pi;

@@ -95,9 +95,14 @@ RunAverage<S> average_run(const Geometry& geo, const ErrorLayout& layout, const 
     }
   } else {
     const DynamicChain<S> chain(geo, layout, e, site, motion.theta1_rate, motion.beta, options.chain);
-    for (std::size_t n = 0; n < quad.nodes.size(); ++n) {
-      const SensedInput<S> in = chain(quad.nodes[n]);
-      accumulate(quad.weights[n], in.specific_force, in.angular_rate);
+    // Nodes that share a fast phase share the main-axis half of the chain.
+    const std::size_t M = std::size_t(quad.fast_nodes), N = quad.nodes.size();
+    for (std::size_t j = 0; j < M; ++j) {
+      const FrameMotion<S> upper = chain.main_axis(quad.nodes[j]);
+      for (std::size_t n = j; n < N; n += M) {
+        const SensedInput<S> in = chain.platform(upper, quad.nodes[n]);
+        accumulate(quad.weights[n], in.specific_force, in.angular_rate);
+      }
     }
   }
   return avg;
