@@ -5,6 +5,8 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <random>
 
+#include "ccal/config.hpp"
+#include "ccal/montecarlo.hpp"
 #include "ccal/reduce.hpp"
 #include "kinematics_support.hpp"
 
@@ -213,6 +215,40 @@ TEST(SpectralRule, StaticFastPathEqualsGeneralChain) {
   const double fast = average_run<double>(geo, layout, e, site, paper_run(30.0), &piga, {}).output;
   const double slow = average_run<double>(geo, layout, e, site, paper_run(30.0), &piga, {}, general).output;
   EXPECT_NEAR(fast, slow, 1e-15 * paper_piga().coefficients[1] * 30.0);  // round-off of the K1·A swing
+}
+
+}  // namespace
+}  // namespace ccal::test
+
+namespace ccal::test {
+namespace {
+
+TEST(SpectralRule, TrialQuadratureOfTheMonteCarloIsConverged) {
+  // The Monte Carlo trials reduce the runs with the rule sized for them (M = 12 fast, 2 slow nodes for
+  // |ΔΩ|T ≤ 1e-3). For draws of every bundled tolerance at 3σ (ΔΩ = 1.5e-6 rad/s), its run means must agree
+  // with a converged rule (M = 48, Q = 8) to 1e-12 of the output's swing K1·A: far below the coefficient
+  // spread (~1e-6 of the swing) that a Monte Carlo estimates.
+  const Config cfg = bundled_example();
+  const Experiment ex = cfg.experiment();
+  const CalibrationModel model = calibration_model(cfg);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> sign(0, 1);
+  ReductionOptions converged;
+  converged.quadrature.fast_nodes = 48;
+  converged.quadrature.slow_nodes = 8;
+  for (int draw = 0; draw < 3; ++draw) {
+    Eigen::VectorXd e = cfg.centrifuge.errors;
+    for (const Tolerance& t : cfg.tolerances) e[t.parameter] = (sign(rng) ? 3.0 : -3.0) * t.bound;
+    for (const ccal::Run& run : ex.plan.runs) {
+      const double trial =
+          average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, model.reduction)
+              .output;
+      const double reference =
+          average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, converged).output;
+      const double swing = ex.instrument.coefficient("K1").value() * run.g_level;
+      EXPECT_NEAR(trial, reference, 1e-12 * swing) << run.name << " draw " << draw;
+    }
+  }
 }
 
 }  // namespace

@@ -189,8 +189,10 @@ struct CalibrationModel {
   Eigen::VectorXd known_part;
   // Quadrature for the trials. A trial needs the run means to ~1e-12 of the output's swing (the coefficient
   // spread is ~1e-3 of it), not to round-off: M covers the harmonics that carry first-order error terms,
-  // 2(degree + N) + 2 (the ε² harmonics beyond it alias at ~1e-10 of ε-sized terms), and three slow nodes
-  // hold the platform mismatch to (ΔΩT)³/6 ≈ 2e-12 for |ΔΩ|T ≤ 1e-3 (more are used beyond that).
+  // 2(degree + N) + 2 (the ε² harmonics beyond it alias at ~1e-10 of ε-sized terms), and two slow nodes
+  // for |ΔΩ|T ≤ 1e-3 (more beyond): the drift-dependent part of a run is either the heading-dependent,
+  // error-sized part or an oscillatory harmonic reduced by 1/(mΩT) after integration, so linear interpolation
+  // in time errs by ~1e-14 of the swing for the bundled tolerances (tests/test_reduce.cpp).
   ReductionOptions reduction;
 
   std::vector<std::string> output_names() const { return spec.free_terms; }
