@@ -81,6 +81,8 @@ TEST_F(Budget, BadInputIsDiagnosed) {
   const std::string cfg = write("bad.toml", example_with_line(line, "dthz5 = \"1e-5 mm\""));
   expect_bad_input(run("budget " + cfg), {"bad.toml:" + std::to_string(line), "dthz5", "angle"});
   expect_bad_input(run("budget --mode sideways"), {"--mode"});
+  expect_bad_input(run("budget --derivatives numerical"), {"--derivatives"});
+  expect_bad_input(run("budget --coverage 0"), {"--coverage"});
   const std::string empty =
       write("empty.toml", example_with_line(line_of(text, "[tolerances]"), "[tolerances_x]"));
   EXPECT_EQ(run("budget " + empty).code, 2);

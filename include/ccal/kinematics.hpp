@@ -237,46 +237,39 @@ class StaticChain {
   template <class Errors>
   StaticChain(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
               const S& theta1_rate, const S& beta, const ChainOptions& options = {})
-      : g_(site.g), frozen_(options.frozen_platform) {
-    const ChainBlocks<S> b = chain_blocks<S>(geo, layout, e, site, theta1_rate, beta);
-    gravity_1t_ = b.gravity_1t;
-    coriolis_1t_ = b.coriolis_1t;
-    earth_1t_ = b.earth_1t;
-    RB_ = b.RB;
-    pB_ = b.pB;
-    RC_ = b.RC;
-    c_ = b.pC;
-  }
+      : g_(site.g),
+        frozen_(options.frozen_platform),
+        b_(chain_blocks<S>(geo, layout, e, site, theta1_rate, beta)) {}
 
   SensedInput<S> operator()(const S& theta1, const S& gamma, const S& theta1_rate,
                             const S& gamma_rate) const {
     using std::cos;
     using std::sin;
     const S ct = cos(theta1), st = sin(theta1), cg = cos(gamma), sg = sin(gamma);
-    const Vec3<S> rz_c(cg * c_[0] - sg * c_[1], sg * c_[0] + cg * c_[1], c_[2]);
+    const Vec3<S> rz_c(cg * b_.pC[0] - sg * b_.pC[1], sg * b_.pC[0] + cg * b_.pC[1], b_.pC[2]);
     const Vec3<S> rz1_c(-rz_c[1], rz_c[0], S(0));  // Rz′(γ) c = K Rz(γ) c
-    const Vec3<S> u = RB_ * rz_c + pB_;
-    const Vec3<S> u1 = RB_ * rz1_c;
-    const Vec3<S> u2 = -(RB_.template leftCols<2>() * rz_c.template head<2>());  // Rz″(γ)c = −(x, y, 0)
+    const Vec3<S> u = b_.RB * rz_c + b_.pB;
+    const Vec3<S> u1 = b_.RB * rz1_c;
+    const Vec3<S> u2 = -(b_.RB.template leftCols<2>() * rz_c.template head<2>());  // Rz″(γ)c = −(x, y, 0)
     const S gr = frozen_ ? S(0) : gamma_rate;
     const S w2 = theta1_rate * theta1_rate;
     const Vec3<S> acc(-w2 * u[0] - S(2) * theta1_rate * gr * u1[1] + gr * gr * u2[0],
                       -w2 * u[1] + S(2) * theta1_rate * gr * u1[0] + gr * gr * u2[1], gr * gr * u2[2]);
     const Vec3<S> vel(-theta1_rate * u[1] + gr * u1[0], theta1_rate * u[0] + gr * u1[1], gr * u1[2]);
     // Gravity direction and Earth rate in frame-1 coordinates: Rz(−θ1) applied to their 1t coordinates.
-    const Vec3<S> up(ct * gravity_1t_[0] + st * gravity_1t_[1], ct * gravity_1t_[1] - st * gravity_1t_[0],
-                     gravity_1t_[2]);
-    const Vec3<S> earth(ct * earth_1t_[0] + st * earth_1t_[1], ct * earth_1t_[1] - st * earth_1t_[0],
-                        earth_1t_[2]);
-    const Vec3<S> coriolis(ct * coriolis_1t_[0] + st * coriolis_1t_[1],
-                           ct * coriolis_1t_[1] - st * coriolis_1t_[0], coriolis_1t_[2]);
+    const Vec3<S> up(ct * b_.gravity_1t[0] + st * b_.gravity_1t[1],
+                     ct * b_.gravity_1t[1] - st * b_.gravity_1t[0], b_.gravity_1t[2]);
+    const Vec3<S> earth(ct * b_.earth_1t[0] + st * b_.earth_1t[1], ct * b_.earth_1t[1] - st * b_.earth_1t[0],
+                        b_.earth_1t[2]);
+    const Vec3<S> coriolis(ct * b_.coriolis_1t[0] + st * b_.coriolis_1t[1],
+                           ct * b_.coriolis_1t[1] - st * b_.coriolis_1t[0], b_.coriolis_1t[2]);
     const Vec3<S> f1 = acc + S(2) * coriolis.cross(vel) + S(g_) * up;
-    const Vec3<S> w1 = Vec3<S>(S(0), S(0), theta1_rate) + gamma_rate * RB_.col(2) + earth;
+    const Vec3<S> w1 = Vec3<S>(S(0), S(0), theta1_rate) + gamma_rate * b_.RB.col(2) + earth;
     // Frame 5 in frame 1 is M = R_B Rz(γ) R_C, so x₅ = M^T x₁ = R_C^T Rz(−γ) R_B^T x₁.
     auto to_frame5 = [&](const Vec3<S>& x1) {
-      const Vec3<S> x3t = RB_.transpose() * x1;
+      const Vec3<S> x3t = b_.RB.transpose() * x1;
       const Vec3<S> x3(cg * x3t[0] + sg * x3t[1], cg * x3t[1] - sg * x3t[0], x3t[2]);
-      return Vec3<S>(RC_.transpose() * x3);
+      return Vec3<S>(b_.RC.transpose() * x3);
     };
     return {to_frame5(f1) / S(g_), to_frame5(w1)};
   }
@@ -284,9 +277,7 @@ class StaticChain {
  private:
   double g_;
   bool frozen_;
-  Vec3<S> gravity_1t_, earth_1t_, coriolis_1t_;
-  Mat3<S> RB_, RC_;
-  Vec3<S> pB_, c_;
+  ChainBlocks<S> b_;
 };
 
 // The chain with every error, for repeated evaluation (run means, Monte Carlo): the time-invariant blocks
@@ -300,16 +291,10 @@ class DynamicChain {
   template <class Errors>
   DynamicChain(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
                const S& theta1_rate, const S& beta, const ChainOptions& options = {})
-      : layout_(layout), g_(site.g), frozen_(options.frozen_platform) {
-    const ChainBlocks<S> b = chain_blocks<S>(geo, layout, e, site, theta1_rate, beta);
-    gravity_1t_ = b.gravity_1t;
-    coriolis_1t_ = b.coriolis_1t;
-    earth_1t_ = b.earth_1t;
-    RB_ = b.RB;
-    pB_ = b.pB;
-    RC_ = b.RC;
-    pC_ = b.pC;
-
+      : layout_(layout),
+        g_(site.g),
+        frozen_(options.frozen_platform),
+        b_(chain_blocks<S>(geo, layout, e, site, theta1_rate, beta)) {
     // Fourier coefficients of the ten dynamic channels, [channel][c0, c1, s1, …].
     const int order = layout.harmonic_order();
     for (int k = 0; k < 10; ++k) {
@@ -338,7 +323,7 @@ class DynamicChain {
     m.rotate(Y, main[4].value, main[4].rate, main[4].acc);
     m.rotate(X, main[3].value, main[3].rate, main[3].acc);
     m.rotate_cs(Z, c1, s1, j.theta1_rate, S(0));
-    m.transform(RB_, pB_);
+    m.transform(b_.RB, b_.pB);
     return m;
   }
 
@@ -356,10 +341,10 @@ class DynamicChain {
     m.rotate(X, platform[3].value, platform[3].rate, platform[3].acc);
     const Vec3<S> azimuth_axis = m.R.col(Z);
     m.rotate_cs(Z, cg, sg, gamma_rate, S(0));
-    m.transform(RC_, pC_);
+    m.transform(b_.RC, b_.pC);
     if (frozen_) m.w += azimuth_axis * j.gamma_rate;
-    const Vec3<S> f = m.a + S(2) * coriolis_1t_.cross(m.v) + S(g_) * gravity_1t_;
-    return {m.R.transpose() * f / S(g_), m.R.transpose() * (m.w + earth_1t_)};
+    const Vec3<S> f = m.a + S(2) * b_.coriolis_1t.cross(m.v) + S(g_) * b_.gravity_1t;
+    return {m.R.transpose() * f / S(g_), m.R.transpose() * (m.w + b_.earth_1t)};
   }
 
  private:
@@ -398,9 +383,7 @@ class DynamicChain {
   ErrorLayout layout_;
   double g_;
   bool frozen_;
-  Vec3<S> gravity_1t_, coriolis_1t_, earth_1t_;
-  Mat3<S> RB_, RC_;
-  Vec3<S> pB_, pC_;
+  ChainBlocks<S> b_;
   std::vector<S> coefficients_[10];
 };
 
