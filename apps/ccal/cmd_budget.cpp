@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -238,7 +239,14 @@ Command add_budget(CLI::App& app) {
          "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the config's")
       ->check(CLI::IsMember({"exact", "paper"}));
   cmd->add_option("--coverage", options->coverage, "Coverage factor k of the expanded uncertainty U = k u")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double k = 0;
+            return CLI::detail::lexical_cast(text, k) && std::isfinite(k) && k > 0
+                       ? std::string()
+                       : "'" + text + "' is not a positive number; accepted: a coverage factor such as 2";
+          },
+          "K > 0"))
       ->capture_default_str();
   cmd->add_option(
          "--derivatives", options->derivatives,
