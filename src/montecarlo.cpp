@@ -695,9 +695,10 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     const int band = 2 * (degree + experiment.layout.harmonic_order()) + 2;
     bool kink = false;
     for (const auto& t : terms) kink = kink || t.kind == TermKind::abs_square;
-    if (!kink) m.reduction.quadrature.fast_nodes = std::max(12, (band + 3) / 4 * 4);
-    // drift^Q/Q! ≤ 5e-6 keeps Q = 2 up to |ΔΩ|T ≈ 1e-3 (drift = 3|ΔΩ|T for M = 12); the bound overstates the
-    // error relative to the swing by ≳ 1e3 (tests/test_reduce.cpp: 1e-14 of the swing for the bundled draws).
+    if (!kink)
+      m.reduction.quadrature.fast_nodes = std::max(8, band);  // even; 10 for a cubic with first harmonics
+    // drift^Q/Q! ≤ 5e-6 keeps Q = 2 up to |ΔΩ|T ≈ 1.5e-3 (drift = 2|ΔΩ|T for M = 10); the bound overstates
+    // the error relative to the swing (tests/test_reduce.cpp: below 1e-12 of the swing for 3σ draws).
     m.reduction.quadrature.slow_tolerance = 5e-6;
   }
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;

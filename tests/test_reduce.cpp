@@ -224,10 +224,10 @@ namespace ccal::test {
 namespace {
 
 TEST(SpectralRule, TrialQuadratureOfTheMonteCarloIsConverged) {
-  // The Monte Carlo trials reduce the runs with the rule sized for them (M = 12 fast, 2 slow nodes for
-  // |ΔΩ|T ≤ 1e-3). For draws of every bundled tolerance at 3σ (ΔΩ = 1.5e-6 rad/s), its run means must agree
-  // with a converged rule (M = 48, Q = 8) to 1e-12 of the output's swing K1·A: far below the coefficient
-  // spread (~1e-6 of the swing) that a Monte Carlo estimates.
+  // The Monte Carlo trials reduce the runs with the rule sized for them (M = 2(degree + N) + 2 = 10 fast, 2
+  // slow nodes for |ΔΩ|T ≤ 1e-3). For draws of every bundled tolerance at 3σ (ΔΩ = 1.5e-6 rad/s), its run
+  // means must agree with a converged rule (M = 48, Q = 8) to 1e-12 of the output's swing K1·A: far below the
+  // coefficient spread (~1e-6 of the swing) that a Monte Carlo estimates.
   const Config cfg = bundled_example();
   const Experiment ex = cfg.experiment();
   const CalibrationModel model = calibration_model(cfg);

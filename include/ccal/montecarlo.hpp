@@ -192,7 +192,7 @@ struct CalibrationModel {
   // 2(degree + N) + 2 (the ε² harmonics beyond it alias at ~1e-10 of ε-sized terms), and two slow nodes
   // for |ΔΩ|T ≤ 1e-3 (more beyond): the drift-dependent part of a run is either the heading-dependent,
   // error-sized part or an oscillatory harmonic reduced by 1/(mΩT) after integration, so linear interpolation
-  // in time errs by ~1e-14 of the swing for the bundled tolerances (tests/test_reduce.cpp).
+  // in time errs by < 1e-12 of the swing for 3σ draws of the bundled tolerances (tests/test_reduce.cpp).
   ReductionOptions reduction;
 
   std::vector<std::string> output_names() const { return spec.free_terms; }
