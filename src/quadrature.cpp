@@ -27,6 +27,13 @@ int slow_nodes_for(double drift, double tolerance) {
 
 namespace detail {
 
+FastPhaseTable::FastPhaseTable(int fast_nodes) : M(fast_nodes), cos_k(std::size_t(M)), sin_k(std::size_t(M)) {
+  for (int k = 0; k < M; ++k) {
+    cos_k[std::size_t(k)] = std::cos(2 * std::numbers::pi * k / M);
+    sin_k[std::size_t(k)] = std::sin(2 * std::numbers::pi * k / M);
+  }
+}
+
 Eigen::MatrixXd solve_lagrange(const std::vector<double>& nodes, int Q);
 
 std::vector<double> slow_time_nodes(int Q) {

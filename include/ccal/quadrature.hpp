@@ -20,6 +20,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "ccal/centrifuge.hpp"
@@ -55,16 +56,15 @@ int fast_nodes_for(int polynomial_degree, int input_harmonics);
 int slow_nodes_for(double drift, double tolerance = 1e-16);
 
 namespace detail {
-// J_p(κ) = ½ ∫₋₁¹ x^p e^{iκx} dx for p = 0..P−1 (real and imaginary parts): the Taylor series
+inline constexpr int kMaxSlowNodes = 16;
+// J_p(κ) = ½ ∫₋₁¹ x^p e^{iκx} dx for p = 0..P−1 (real and imaginary parts, into re[0..P) and im[0..P)),
+// given cos κ and sin κ: the Taylor series
 // Σ_n (iκ)^n/n! · (1 + (−1)^{n+p}) / (2(n+p+1)) for |κ| < 4, otherwise the forward recursion
 // J_p = (e^{iκ} − (−1)^p e^{−iκ}) / (2iκ) − p J_{p−1} / (iκ), stable while p < |κ|.
 template <class S>
-void oscillatory_moments(const S& kappa, int P, std::vector<S>& re, std::vector<S>& im) {
+void oscillatory_moments(const S& kappa, const S& cos_kappa, const S& sin_kappa, int P, S* re, S* im) {
   using std::abs;
-  using std::cos;
-  using std::sin;
-  re.assign(P, S(0));
-  im.assign(P, S(0));
+  for (int p = 0; p < P; ++p) re[p] = im[p] = S(0);
   if (abs(kappa) < 4.0 + P) {
     // Terms until |κ|^n/n! < 1e-20 (at most 80: (4+P)^n/n! has fallen below that by then for P ≤ 24); only
     // the n = 0 term when κ = 0, where J_p = (1 + (−1)^p) / (2(p+1)).
@@ -85,11 +85,10 @@ void oscillatory_moments(const S& kappa, int P, std::vector<S>& re, std::vector<
     }
     return;
   }
-  const S c = cos(kappa), s = sin(kappa);
   for (int p = 0; p < P; ++p) {
     // (e^{iκ} − (−1)^p e^{−iκ}) / 2 is i·sin κ for even p and cos κ for odd p.
-    S xr = p % 2 == 0 ? S(0) : c;
-    S xi = p % 2 == 0 ? s : S(0);
+    S xr = p % 2 == 0 ? S(0) : cos_kappa;
+    S xi = p % 2 == 0 ? sin_kappa : S(0);
     if (p > 0) {
       xr -= double(p) * re[p - 1];
       xi -= double(p) * im[p - 1];
@@ -99,11 +98,52 @@ void oscillatory_moments(const S& kappa, int P, std::vector<S>& re, std::vector<
     im[p] = -xr / kappa;
   }
 }
-
 // Monomial coefficients a_qp of the Lagrange basis on the Q nodes x_q ∈ [−1, 1]: L_q(x) = Σ_p a_qp x^p.
 Eigen::MatrixXd lagrange_monomials(const std::vector<double>& nodes);
 // Chebyshev–Lobatto points on [−1, 1] (well-conditioned interpolation), or {0} for Q = 1.
 std::vector<double> slow_time_nodes(int Q);
+// The M equispaced fast phases θ_j = 2πj/M, with cos and sin of mθ_j = 2π (m j mod M)/M from one table.
+struct FastPhaseTable {
+  explicit FastPhaseTable(int fast_nodes);
+  double phase(int j) const { return 2 * std::numbers::pi * j / M; }
+  int M;
+  std::vector<double> cos_k, sin_k;  // cos(2πk/M), sin(2πk/M), k = 0..M−1
+};
+// ν_mq = e^{iκ/2} Σ_p a_qp J_p(κ/2) (q = 0..Q−1, into nu_re[q], nu_im[q]) for one harmonic m, given κ/2 = mΩT/2
+// and its cosine and sine, and the Lagrange monomials a (Q × Q).
+template <class S>
+void harmonic_slow_moments(const S& half_kappa, const S& c, const S& s, const Eigen::MatrixXd& a, S* nu_re,
+                           S* nu_im) {
+  const int Q = int(a.rows());
+  S mu_re[kMaxSlowNodes], mu_im[kMaxSlowNodes];
+  oscillatory_moments<S>(half_kappa, c, s, Q, mu_re, mu_im);
+  for (int q = 0; q < Q; ++q) {
+    S sr{0}, si{0};
+    for (int p = 0; p < Q; ++p) {
+      sr += a(q, p) * mu_re[p];
+      si += a(q, p) * mu_im[p];
+    }
+    nu_re[q] = c * sr - s * si;
+    nu_im[q] = s * sr + c * si;
+  }
+}
+// The weights w[q·M + j] of the rule from ν (stored [m·Q + q], m = 0..M/2):
+//     w_jq = (1/M) Σ_{m=−M/2+1}^{M/2} e^{−imθ_j} ν_mq,
+// real because ν_{−m} = conj(ν_m); the Nyquist term is taken once (symmetric convention, M even).
+template <class S>
+void dft_weights(const FastPhaseTable& table, int Q, const S* nu_re, const S* nu_im, S* weights) {
+  const int M = table.M, half = M / 2;
+  for (int q = 0; q < Q; ++q)
+    for (int j = 0; j < M; ++j) {
+      S w = nu_re[q];
+      for (int m = 1; m <= half; ++m) {
+        const int k = (m * j) % M;
+        const S term = table.cos_k[k] * nu_re[m * Q + q] + table.sin_k[k] * nu_im[m * Q + q];
+        w += (m == half ? 1.0 : 2.0) * term;
+      }
+      weights[q * M + j] = w / double(M);
+    }
+}
 }  // namespace detail
 
 // The spectral rule for one run of duration T.
@@ -120,53 +160,30 @@ RunQuadrature<S> run_quadrature(const RunMotion<S>& motion, double duration, Pla
   const int Q =
       counter ? (options.slow_nodes > 0 ? options.slow_nodes : slow_nodes_for(drift, options.slow_tolerance))
               : 1;
+  if (Q > detail::kMaxSlowNodes)
+    throw std::invalid_argument("run_quadrature: at most 16 slow-time nodes (monomial Lagrange basis)");
   const std::vector<double> x_nodes = detail::slow_time_nodes(Q);
   const Eigen::MatrixXd a = detail::lagrange_monomials(x_nodes);
 
   // With t = T(1 + x)/2:  (1/T)∫₀ᵀ L_q e^{imΩt} dt = e^{iκ/2} Σ_p a_qp J_p(κ/2),  κ = mΩT.
   const int half = M / 2;
-  std::vector<std::vector<S>> nu_re(half + 1, std::vector<S>(Q)), nu_im = nu_re;
-  std::vector<S> mu_re, mu_im;
+  std::vector<S> nu_re(std::size_t((half + 1) * Q)), nu_im(nu_re.size());
   const S omega_T = motion.theta1_rate * duration;
   for (int m = 0; m <= half; ++m) {
-    const S kappa = omega_T * double(m);
-    detail::oscillatory_moments<S>(kappa / 2.0, Q, mu_re, mu_im);
-    const S c = cos(kappa / 2.0), s = sin(kappa / 2.0);
-    for (int q = 0; q < Q; ++q) {
-      S sr{0}, si{0};
-      for (int p = 0; p < Q; ++p) {
-        sr += a(q, p) * mu_re[p];
-        si += a(q, p) * mu_im[p];
-      }
-      nu_re[m][q] = c * sr - s * si;
-      nu_im[m][q] = s * sr + c * si;
-    }
+    const S half_kappa = omega_T * double(m) / 2.0;
+    detail::harmonic_slow_moments<S>(half_kappa, cos(half_kappa), sin(half_kappa), a, &nu_re[m * Q],
+                                     &nu_im[m * Q]);
   }
-
+  const detail::FastPhaseTable table(M);
   RunQuadrature<S> out;
   out.fast_nodes = M;
+  out.weights.resize(std::size_t(M * Q));
+  detail::dft_weights<S>(table, Q, nu_re.data(), nu_im.data(), out.weights.data());
   out.nodes.reserve(M * Q);
-  out.weights.reserve(M * Q);
-  const double two_pi = 2 * std::numbers::pi;
-  // cos and sin of mθ_j = 2π (m j mod M)/M from one table of M values.
-  std::vector<double> cos_table(M), sin_table(M);
-  for (int k = 0; k < M; ++k) {
-    cos_table[k] = std::cos(two_pi * k / M);
-    sin_table[k] = std::sin(two_pi * k / M);
-  }
   for (int q = 0; q < Q; ++q) {
     const S slow_offset = counter ? S(-platform_mismatch * (0.5 * (1.0 + x_nodes[q]) * duration)) : S(0);
     for (int j = 0; j < M; ++j) {
-      const double theta = two_pi * j / M;
-      // w_jq = (1/M) Σ_{m=−M/2+1}^{M/2} e^{−imθ_j} ν_mq, real because ν_{−m} = conj(ν_m); the Nyquist term
-      // is taken once (symmetric convention).
-      S w = nu_re[0][q];
-      for (int m = 1; m <= half; ++m) {
-        const int k = (m * j) % M;
-        const S term = cos_table[k] * nu_re[m][q] + sin_table[k] * nu_im[m][q];
-        w += (m == half ? 1.0 : 2.0) * term;
-      }
-      out.weights.push_back(w / double(M));
+      const double theta = table.phase(j);
       JointState<S> js;
       js.theta1 = motion.theta1_0 + theta;
       js.theta1_rate = motion.theta1_rate;
