@@ -701,6 +701,10 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     // the error relative to the swing (tests/test_reduce.cpp: below 1e-12 of the swing for 3σ draws).
     m.reduction.quadrature.slow_tolerance = 5e-6;
   }
+  if (mode == ModelMode::exact && !m.reduction.chain.frozen_platform)
+    m.run_means = std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
+                                                        experiment.plan.runs, experiment.instrument,
+                                                        m.reduction);
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
   const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
   const auto nfree = Eigen::Index(spec.free_terms.size());
@@ -727,31 +731,32 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
 }
 
 TrialFunction calibration_trial(const CalibrationModel& model) {
-  struct Data {
-    CalibrationModel model;
-    Eigen::VectorXd known;
-  };
-  auto data = std::make_shared<const Data>(
-      Data{model, model.spec.compensate ? model.actual_errors
-                                        : Eigen::VectorXd::Zero(model.actual_errors.size()).eval()});
+  auto data = std::make_shared<const CalibrationModel>(model);
   return [data](std::span<const double> draws, std::span<double> outputs) {
-    const CalibrationModel& m = data->model;
-    Eigen::VectorXd truth = m.actual_errors;
-    for (std::size_t j = 0; j < draws.size(); ++j) truth[m.parameters[j]] += draws[j];
-    // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
+    const CalibrationModel& m = *data;
     const Experiment& ex = m.experiment;
-    Eigen::VectorXd y(Eigen::Index(ex.plan.runs.size()));
-    for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
-      y[Eigen::Index(j)] = m.mode == ModelMode::exact
-                               ? average_run<double>(ex.geometry, ex.layout, truth, ex.site, ex.plan.runs[j],
-                                                     &ex.instrument, {}, m.reduction)
-                                     .output
-                               : detail::paper_average<double>(ex, truth, ex.plan.runs[j], &ex.instrument, {},
-                                                               m.spec.paper_cross_terms)
-                                     .output;
-    const Eigen::VectorXd k = m.design_pinv * (y - m.known_part);
+    // Per-thread buffers: a trial allocates nothing once they have grown.
+    thread_local Eigen::VectorXd truth, y;
+    truth = m.actual_errors;
+    for (std::size_t j = 0; j < draws.size(); ++j) truth[m.parameters[j]] += draws[j];
+    y.resize(Eigen::Index(ex.plan.runs.size()));
+    if (m.run_means) {
+      m.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
+                         std::span<double>(y.data(), std::size_t(y.size())));
+    } else {
+      for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
+        y[Eigen::Index(j)] = m.mode == ModelMode::exact
+                                 ? average_run<double>(ex.geometry, ex.layout, truth, ex.site, ex.plan.runs[j],
+                                                       &ex.instrument, {}, m.reduction)
+                                       .output
+                                 : detail::paper_average<double>(ex, truth, ex.plan.runs[j], &ex.instrument, {},
+                                                                 m.spec.paper_cross_terms)
+                                       .output;
+    }
+    // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
+    y -= m.known_part;
     for (std::size_t o = 0; o < outputs.size(); ++o)
-      outputs[o] = k[Eigen::Index(o)] - m.reference[Eigen::Index(o)];
+      outputs[o] = m.design_pinv.row(Eigen::Index(o)).dot(y) - m.reference[Eigen::Index(o)];
   };
 }
 

@@ -70,6 +70,7 @@
 #include <vector>
 
 #include "ccal/config.hpp"
+#include "ccal/run_means.hpp"
 #include "ccal/model_mode.hpp"
 #include "ccal/simulate.hpp"
 
@@ -194,6 +195,9 @@ struct CalibrationModel {
   // error-sized part or an oscillatory harmonic reduced by 1/(mΩT) after integration, so linear interpolation
   // in time errs by < 1e-12 of the swing for 3σ draws of the bundled tolerances (tests/test_reduce.cpp).
   ReductionOptions reduction;
+  // The truth's run means in exact mode (run_means.hpp): the same rule and chain as average_run, without its
+  // per-call set-up.
+  std::shared_ptr<const RunMeanKernel> run_means;
 
   std::vector<std::string> output_names() const { return spec.free_terms; }
   int n_outputs() const { return int(spec.free_terms.size()); }

@@ -1,0 +1,163 @@
+// The Monte Carlo's run-mean kernel against the general reduction (average_run over the DynamicChain, itself
+// tested against the link-by-link chain) and against the closed form of the error-free means.
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <random>
+
+#include "ccal/config.hpp"
+#include "ccal/montecarlo.hpp"
+#include "ccal/reduce.hpp"
+#include "ccal/run_means.hpp"
+#include "kinematics_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Random errors: angles ~ scale rad, lengths ~ 10·scale m, drive errors ~ scale rad/s (ΔΩ set apart).
+Eigen::VectorXd random_errors(const ErrorLayout& layout, double scale, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::VectorXd e(layout.size());
+  for (int i = 0; i < layout.size(); ++i) {
+    const SourceUnit u = layout.parameter_unit(i);
+    e[i] = n(rng) * (u == SourceUnit::m                         ? 10 * scale
+                     : u == SourceUnit::m_per_rad_per_s_squared ? 1e-2 * scale
+                                                                : scale);
+  }
+  return e;
+}
+
+// The kernel's means and average_run's, run by run, to `relative` of the swing |K1|·A + |K0| of each run.
+void expect_same_means(const Experiment& ex, const Eigen::VectorXd& e, const ReductionOptions& options,
+                       double relative, const std::string& label) {
+  const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument, options);
+  std::vector<double> means(ex.plan.runs.size());
+  kernel.means(std::span<const double>(e.data(), std::size_t(e.size())), means);
+  for (std::size_t r = 0; r < ex.plan.runs.size(); ++r) {
+    const ccal::Run& run = ex.plan.runs[r];
+    const double general =
+        average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, options).output;
+    const double swing = std::abs(ex.instrument.coefficient("K1").value_or(1.0)) * run.g_level;
+    EXPECT_NEAR(means[r], general, relative * swing) << label << ", run " << run.name;
+  }
+}
+
+TEST(RunMeanKernel, EqualsTheGeneralReductionOnTheBundledTrials) {
+  // Draws of every bundled tolerance at ±3σ (ΔΩ included, so two slow nodes), with the trial rule of the
+  // Monte Carlo. Both sides evaluate the same exact chain with the same rule; they differ in the order of
+  // the floating-point operations (frame-3t coordinates, joint angles by angle addition), so they agree to
+  // a few ulps of the swing K1·A per node, summed over 20 nodes: 1e-14 of the swing.
+  const Config cfg = bundled_example();
+  const Experiment ex = cfg.experiment();
+  const CalibrationModel model = calibration_model(cfg);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> sign(0, 1);
+  for (int draw = 0; draw < 4; ++draw) {
+    Eigen::VectorXd e = cfg.centrifuge.errors;
+    for (const Tolerance& t : cfg.tolerances) e[t.parameter] += (sign(rng) ? 3.0 : -3.0) * t.bound;
+    expect_same_means(ex, e, model.reduction, 1e-14, "draw " + std::to_string(draw));
+  }
+}
+
+TEST(RunMeanKernel, EqualsTheGeneralReductionForAGeneralCentrifuge) {
+  // Every part of the kernel away from the paper's case: lever arms L and l, a tilted horizontal axis,
+  // second harmonics, Earth rotation, all four mountings, a fixed-platform run, an instrument with cross
+  // terms, a rate term and an IA-rate gain, automatic M, and error angles above 1e-3 rad (the library
+  // cos/sin branch of cos_sin). Same 1e-14-of-swing tolerance as above, for the same reason.
+  Experiment ex;
+  ex.geometry = Geometry{2.5, 0.3, 0.07, 0.02};
+  ex.layout = ErrorLayout(2);
+  ex.site = paper_site(true);
+  const Mounting mountings[] = {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical,
+                                Mounting::ia_vertical};
+  for (int k = 0; k < 5; ++k) {
+    ccal::Run r;
+    r.name = "run" + std::to_string(k);
+    r.g_level = 4.0 + 6.0 * k;
+    r.duration = 200.0 + 37.0 * k;
+    r.initial_phase = 0.3 + k;
+    r.arm_azimuth = 0.2 * k;
+    r.mounting = mountings[k % 4];
+    r.mode = k == 4 ? PlatformMode::fixed : PlatformMode::counter_rotating;
+    ex.plan.runs.push_back(r);
+  }
+  ex.instrument = paper_piga();
+  ex.instrument.term_ids = {"K0", "K1", "K2", "K3", "K_p", "K_io", "K_pp", "K_w"};
+  ex.instrument.coefficients.resize(8);
+  ex.instrument.coefficients << 1e-3, 8.8, 3e-4, 5e-5, 2e-4, 1e-5, 3e-5, 2e-3;
+  ex.instrument.rate_gain = 0.9;
+  Eigen::VectorXd e = random_errors(ex.layout, 1e-5, 7);
+  e[dOmega] = 2e-7;
+  e[dthy3] = 2e-3;  // a platform wobble (c0) above the series threshold
+  e[dthx1t] = 1.5e-3;
+  expect_same_means(ex, e, ReductionOptions{}, 1e-14, "general");
+}
+
+TEST(RunMeanKernel, FollowsTheSlowNodesALargeMismatchNeeds) {
+  // ΔΩ = 2e-5 rad/s over 450 s: a drift that needs Q = 6 slow nodes at the trial tolerance and 10 at the
+  // default one; the kernel chooses Q per call like run_quadrature.
+  const Config cfg = bundled_example();
+  const Experiment ex = cfg.experiment();
+  Eigen::VectorXd e = cfg.centrifuge.errors;
+  e[dOmega] = 2e-5;
+  ReductionOptions trial = calibration_model(cfg).reduction;
+  expect_same_means(ex, e, trial, 1e-14, "trial tolerance");
+  expect_same_means(ex, e, ReductionOptions{}, 1e-14, "default tolerance");
+}
+
+TEST(RunMeanKernel, ErrorFreeMeansAreTheClosedForm) {
+  // No errors, no Earth rate: a_i = −A cos γ exactly, so ⟨output⟩ = Σ K_n Z_n with Z_n the closed form of
+  // model.md §4.4 (nominal_power_mean); round-off of the swing only.
+  Experiment ex;
+  ex.geometry = Geometry{2.5, 0.0, 0.0, 0.0};
+  ex.layout = ErrorLayout(1);
+  ex.site = paper_site(false);
+  for (int k = 1; k <= 3; ++k) {
+    ccal::Run r;
+    r.name = std::to_string(10 * k) + "g";
+    r.g_level = 10.0 * k;
+    r.duration = 450.0;
+    r.terminal_phase = kPi;
+    ex.plan.runs.push_back(r);
+  }
+  ex.instrument = paper_piga();
+  const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument);
+  const Eigen::VectorXd e = Eigen::VectorXd::Zero(ex.layout.size());
+  std::vector<double> means(3);
+  kernel.means(std::span<const double>(e.data(), std::size_t(e.size())), means);
+  for (std::size_t r = 0; r < 3; ++r) {
+    const ccal::Run& run = ex.plan.runs[r];
+    const double rate = nominal_rate(run, ex.geometry, ex.site);
+    const double phi0 = initial_phase(run, ex.geometry, ex.site);
+    double want = 0;
+    for (int n = 0; n <= 3; ++n)
+      want += ex.instrument.coefficients[n] * nominal_power_mean(n, run.g_level, phi0, rate * run.duration);
+    EXPECT_NEAR(means[r], want, 1e-13 * ex.instrument.coefficients[1] * run.g_level) << run.name;
+  }
+}
+
+TEST(RunMeanKernel, RejectsWhatItCannotEvaluate) {
+  const Config cfg = bundled_example();
+  const Experiment ex = cfg.experiment();
+  ReductionOptions frozen;
+  frozen.chain.frozen_platform = true;
+  EXPECT_THROW(RunMeanKernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument, frozen),
+               std::invalid_argument);
+  ReductionOptions odd;
+  odd.quadrature.fast_nodes = 9;
+  EXPECT_THROW(RunMeanKernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument, odd),
+               std::invalid_argument);
+  const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument);
+  std::vector<double> errors(std::size_t(ex.layout.size()) - 1, 0.0), means(ex.plan.runs.size());
+  EXPECT_THROW(kernel.means(errors, means), std::invalid_argument);
+  errors.push_back(0.0);
+  std::vector<double> too_few(1);
+  EXPECT_THROW(kernel.means(errors, too_few), std::invalid_argument);
+  EXPECT_NO_THROW(kernel.means(errors, means));
+}
+
+}  // namespace
+}  // namespace ccal::test
