@@ -702,9 +702,9 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     m.reduction.quadrature.slow_tolerance = 5e-6;
   }
   if (mode == ModelMode::exact && !m.reduction.chain.frozen_platform)
-    m.run_means = std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
-                                                        experiment.plan.runs, experiment.instrument,
-                                                        m.reduction);
+    m.run_means =
+        std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
+                                              experiment.plan.runs, experiment.instrument, m.reduction);
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
   const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
   const auto nfree = Eigen::Index(spec.free_terms.size());
@@ -746,11 +746,11 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
     } else {
       for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
         y[Eigen::Index(j)] = m.mode == ModelMode::exact
-                                 ? average_run<double>(ex.geometry, ex.layout, truth, ex.site, ex.plan.runs[j],
-                                                       &ex.instrument, {}, m.reduction)
+                                 ? average_run<double>(ex.geometry, ex.layout, truth, ex.site,
+                                                       ex.plan.runs[j], &ex.instrument, {}, m.reduction)
                                        .output
-                                 : detail::paper_average<double>(ex, truth, ex.plan.runs[j], &ex.instrument, {},
-                                                                 m.spec.paper_cross_terms)
+                                 : detail::paper_average<double>(ex, truth, ex.plan.runs[j], &ex.instrument,
+                                                                 {}, m.spec.paper_cross_terms)
                                        .output;
     }
     // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.

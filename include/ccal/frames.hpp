@@ -23,18 +23,24 @@ using Vec3 = Eigen::Matrix<S, 3, 1>;
 template <class S>
 using Mat3 = Eigen::Matrix<S, 3, 3>;
 
-// cos q and sin q. Error angles are tiny, and for |q| < 1e-3 their Taylor polynomials to q⁹ (resp. q⁸) are
-// exact in double precision (the first omitted term is below 1e-30 relative), several times faster than the
-// library calls; larger angles use std::cos/std::sin.
+// cos q and sin q. Error angles are tiny, and for |q| < kSmallAngle = 1e-3 their Taylor polynomials to q⁹
+// (resp. q⁸) are exact in double precision (the first omitted term is below 1e-30 relative), several times
+// faster than the library calls; larger angles use std::cos/std::sin.
+inline constexpr double kSmallAngle = 1e-3;
+template <class S>
+inline void small_angle_cos_sin(const S& q, S& c, S& s) {
+  // Written with double literals so that S may also be a SIMD vector of doubles.
+  const S q2 = q * q;
+  s = q * (1.0 - q2 / 6.0 * (1.0 - q2 / 20.0 * (1.0 - q2 / 42.0 * (1.0 - q2 / 72.0))));
+  c = 1.0 - q2 / 2.0 * (1.0 - q2 / 12.0 * (1.0 - q2 / 30.0 * (1.0 - q2 / 56.0)));
+}
 template <class S>
 void cos_sin(const S& q, S& c, S& s) {
   using std::abs;
   using std::cos;
   using std::sin;
-  if (abs(q) < 1e-3) {
-    const S q2 = q * q;
-    s = q * (S(1) - q2 / 6.0 * (S(1) - q2 / 20.0 * (S(1) - q2 / 42.0 * (S(1) - q2 / 72.0))));
-    c = S(1) - q2 / 2.0 * (S(1) - q2 / 12.0 * (S(1) - q2 / 30.0 * (S(1) - q2 / 56.0)));
+  if (abs(q) < kSmallAngle) {
+    small_angle_cos_sin(q, c, s);
   } else {
     c = cos(q);
     s = sin(q);

@@ -70,8 +70,8 @@
 #include <vector>
 
 #include "ccal/config.hpp"
-#include "ccal/run_means.hpp"
 #include "ccal/model_mode.hpp"
+#include "ccal/run_means.hpp"
 #include "ccal/simulate.hpp"
 
 namespace ccal {

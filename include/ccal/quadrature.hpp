@@ -109,8 +109,8 @@ struct FastPhaseTable {
   int M;
   std::vector<double> cos_k, sin_k;  // cos(2πk/M), sin(2πk/M), k = 0..M−1
 };
-// ν_mq = e^{iκ/2} Σ_p a_qp J_p(κ/2) (q = 0..Q−1, into nu_re[q], nu_im[q]) for one harmonic m, given κ/2 = mΩT/2
-// and its cosine and sine, and the Lagrange monomials a (Q × Q).
+// ν_mq = e^{iκ/2} Σ_p a_qp J_p(κ/2) (q = 0..Q−1, into nu_re[q], nu_im[q]) for one harmonic m, given κ/2 =
+// mΩT/2 and its cosine and sine, and the Lagrange monomials a (Q × Q).
 template <class S>
 void harmonic_slow_moments(const S& half_kappa, const S& c, const S& s, const Eigen::MatrixXd& a, S* nu_re,
                            S* nu_im) {
