@@ -1,6 +1,7 @@
-// Monte Carlo trials per second for the bundled example (all its tolerances: 47 sources, the six-run plan,
-// K0, K2, K3 identified), with 1 and 2 threads, and the engine's own cost per trial (sampling, storage and
-// statistics around a model that only sums the draws).
+// Monte Carlo trials per second for the bundled example (all its tolerances: 48 sources, the six-run plan,
+// K0, K2, K3 identified), with 1 and 2 threads; the engine's own cost per trial (sampling, storage and
+// statistics around a model that only sums the draws); and the truth's six run means of one trial through
+// the Monte Carlo's kernel and through the general average_run.
 //   build/bench/bench_montecarlo --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
@@ -8,6 +9,8 @@
 
 #include "ccal/config.hpp"
 #include "ccal/montecarlo.hpp"
+#include "ccal/reduce.hpp"
+#include "ccal/run_means.hpp"
 
 namespace {
 
@@ -56,5 +59,37 @@ void EngineOnly(benchmark::State& state) {
   state.SetItemsProcessed(std::int64_t(trials));
 }
 BENCHMARK(EngineOnly)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Errors at +1 tolerance of every bundled source: dynamic errors and ΔΩ ≠ 0, so two slow nodes.
+Eigen::VectorXd one_sigma_errors(const Config& cfg) {
+  Eigen::VectorXd e = cfg.centrifuge.errors;
+  for (const Tolerance& t : cfg.tolerances) e[t.parameter] += t.bound;
+  return e;
+}
+
+void RunMeansKernel(benchmark::State& state) {
+  const Config cfg = bundled_example();
+  const CalibrationModel model = calibration_model(cfg);
+  const Eigen::VectorXd e = one_sigma_errors(cfg);
+  std::vector<double> means(cfg.plan.runs.size());
+  for (auto _ : state) {
+    model.run_means->means(std::span<const double>(e.data(), std::size_t(e.size())), means);
+    benchmark::DoNotOptimize(means.data());
+  }
+}
+BENCHMARK(RunMeansKernel)->Unit(benchmark::kMicrosecond);
+
+void RunMeansGeneral(benchmark::State& state) {
+  const Config cfg = bundled_example();
+  const CalibrationModel model = calibration_model(cfg);
+  const Experiment ex = cfg.experiment();
+  const Eigen::VectorXd e = one_sigma_errors(cfg);
+  for (auto _ : state)
+    for (const ccal::Run& run : ex.plan.runs)
+      benchmark::DoNotOptimize(
+          average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, model.reduction)
+              .output);
+}
+BENCHMARK(RunMeansGeneral)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
