@@ -34,12 +34,8 @@ std::string format_config_error(const std::string& source, int line, int column,
 }  // namespace
 
 ConfigError::ConfigError(std::string source, int line, int column, std::string key, std::string problem)
-    : InputError(format_config_error(source, line, column, key, problem)),
-      source_(std::move(source)),
-      line_(line),
-      column_(column),
-      key_(std::move(key)),
-      problem_(std::move(problem)) {}
+    : LocatedInputError(format_config_error(source, line, column, key, problem), source, line, column, key,
+                        problem) {}
 
 std::string_view distribution_name(Distribution d) noexcept {
   switch (d) {

@@ -130,12 +130,8 @@ constexpr std::string_view kHeaderKey = "ccal observations header";
 }  // namespace
 
 CsvError::CsvError(std::string source, int line, int column, std::string column_name, std::string problem)
-    : InputError(format_csv_error(source, line, column, column_name, problem)),
-      source_(std::move(source)),
-      line_(line),
-      column_(column),
-      column_name_(std::move(column_name)),
-      problem_(std::move(problem)) {}
+    : LocatedInputError(format_csv_error(source, line, column, column_name, problem), source, line, column,
+                        column_name, problem) {}
 
 std::optional<double> parse_number(std::string_view text) {
   double v = 0;

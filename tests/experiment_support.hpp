@@ -4,6 +4,7 @@
 #include <numbers>
 #include <string>
 
+#include "ccal/config.hpp"
 #include "ccal/simulate.hpp"
 #include "kinematics_support.hpp"
 
@@ -40,6 +41,15 @@ inline Eigen::Vector3d identified_deg(const Experiment& ex, const Eigen::VectorX
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
   const auto obs = observe<double>(ex, e, known ? *known : zero, spec, mode);
   return identify_coefficients<double>(obs, spec) / kDeg;
+}
+
+// The configured errors plus every tolerance at ±k times its bound, signs at random: a corner of the
+// tolerance box (k = 3 is a 3σ draw of every normal source).
+inline Eigen::VectorXd corner_draw(const Config& cfg, double k, std::mt19937& rng) {
+  std::uniform_int_distribution<int> sign(0, 1);
+  Eigen::VectorXd e = cfg.centrifuge.errors;
+  for (const Tolerance& t : cfg.tolerances) e[t.parameter] += (sign(rng) ? k : -k) * t.bound;
+  return e;
 }
 
 }  // namespace ccal::test

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "ccal/centrifuge.hpp"
@@ -24,6 +25,22 @@ inline Site paper_site(bool earth = false) {
 }
 
 // Main-axis rate giving A g at radius R0: A = Ω² R0 / g.
+// Normal random errors of every parameter of the layout: angles ~ scale rad, lengths ~ 10·scale m, arm
+// stretch ~ 1e-2·scale m/(rad/s)², Δω ~ scale rad/s; ΔΩ is left at zero (set it where a test wants it).
+inline Eigen::VectorXd random_errors(const ErrorLayout& layout, double scale, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::VectorXd e(layout.size());
+  for (int i = 0; i < layout.size(); ++i) {
+    const SourceUnit u = layout.parameter_unit(i);
+    e[i] = n(rng) * (u == SourceUnit::m                         ? 10 * scale
+                     : u == SourceUnit::m_per_rad_per_s_squared ? 1e-2 * scale
+                                                                : scale);
+  }
+  e[dOmega] = 0.0;
+  return e;
+}
+
 inline double rate_for(double A, double R0, double g) { return std::sqrt(A * g / R0); }
 
 // The six sensed outputs (f_IA, f_PA, f_OA [g], ω_IA, ω_PA, ω_OA [rad/s]) of the exact chain for errors e,

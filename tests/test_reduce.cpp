@@ -8,7 +8,7 @@
 #include "ccal/config.hpp"
 #include "ccal/montecarlo.hpp"
 #include "ccal/reduce.hpp"
-#include "kinematics_support.hpp"
+#include "experiment_support.hpp"
 
 namespace ccal::test {
 namespace {
@@ -84,20 +84,6 @@ TEST(ClosedForms, ErrorFreeExactReductionMatches) {
   }
 }
 
-Eigen::VectorXd some_errors(const ErrorLayout& layout, double scale, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> n(0.0, 1.0);
-  Eigen::VectorXd e(layout.size());
-  for (int i = 0; i < layout.size(); ++i) {
-    const SourceUnit u = layout.parameter_unit(i);
-    e[i] = n(rng) * (u == SourceUnit::m                         ? 10 * scale
-                     : u == SourceUnit::m_per_rad_per_s_squared ? 1e-2 * scale
-                                                                : scale);
-  }
-  e[dOmega] = 0.0;
-  return e;
-}
-
 // Mean of the PIGA output and of a_i³ by a given rule over the exact chain.
 std::pair<double, double> mean_by(const RunQuadrature<double>& quad, const Geometry& geo,
                                   const ErrorLayout& layout, const Eigen::VectorXd& e, const Site& site) {
@@ -120,7 +106,7 @@ TEST(SpectralRule, AgreesWithTrapezoidPlusGaussLegendreWhenLocked) {
   const Geometry geo{2.5, 0.2, 0.05, 0};
   const ErrorLayout layout(2);
   const Site site = paper_site(true);
-  const Eigen::VectorXd e = some_errors(layout, 1e-4, 3);
+  const Eigen::VectorXd e = random_errors(layout, 1e-4, 3);
   for (PlatformMode mode : {PlatformMode::counter_rotating, PlatformMode::fixed}) {
     ccal::Run run = paper_run(20.0);
     run.mode = mode;
@@ -146,7 +132,7 @@ TEST(SpectralRule, HandlesPlatformMismatchLikeABruteForceIntegral) {
   const Geometry geo{2.5, 0.2, 0.05, 0};
   const ErrorLayout layout(1);
   const Site site = paper_site(true);
-  Eigen::VectorXd e = some_errors(layout, 1e-5, 5);
+  Eigen::VectorXd e = random_errors(layout, 1e-5, 5);
   e[dOmega] = 2e-4;
   const ccal::Run run = paper_run(20.0);
   const double rate = nominal_rate(run, geo, site), phi0 = initial_phase(run, geo, site);
@@ -181,7 +167,7 @@ TEST(SpectralRule, DerivativesWithRespectToDriveErrorsMatchFiniteDifferences) {
   const Geometry geo{2.5, 0.2, 0.05, 0};
   const ErrorLayout layout(1);
   const Site site = paper_site(true);
-  const Eigen::VectorXd e0 = some_errors(layout, 1e-5, 9);
+  const Eigen::VectorXd e0 = random_errors(layout, 1e-5, 9);
   const ccal::Run run = paper_run(25.0);
   const InstrumentModel piga = paper_piga();
   VecX<AD> e(layout.size());
@@ -207,7 +193,7 @@ TEST(SpectralRule, StaticFastPathEqualsGeneralChain) {
   const Geometry geo{2.5, 0.2, 0.05, 0};
   const ErrorLayout layout(1);
   const Site site = paper_site(true);
-  Eigen::VectorXd e = some_errors(layout, 1e-5, 21);
+  Eigen::VectorXd e = random_errors(layout, 1e-5, 21);
   e.tail(e.size() - kStaticChannelCount).setZero();
   const InstrumentModel piga = paper_piga();
   ReductionOptions general;
@@ -232,13 +218,11 @@ TEST(SpectralRule, TrialQuadratureOfTheMonteCarloIsConverged) {
   const Experiment ex = cfg.experiment();
   const CalibrationModel model = calibration_model(cfg);
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> sign(0, 1);
   ReductionOptions converged;
   converged.quadrature.fast_nodes = 48;
   converged.quadrature.slow_nodes = 8;
   for (int draw = 0; draw < 3; ++draw) {
-    Eigen::VectorXd e = cfg.centrifuge.errors;
-    for (const Tolerance& t : cfg.tolerances) e[t.parameter] = (sign(rng) ? 3.0 : -3.0) * t.bound;
+    const Eigen::VectorXd e = corner_draw(cfg, 3.0, rng);
     for (const ccal::Run& run : ex.plan.runs) {
       const double trial =
           average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, model.reduction)

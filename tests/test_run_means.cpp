@@ -2,33 +2,16 @@
 // tested against the link-by-link chain) and against the closed form of the error-free means.
 #include <gtest/gtest.h>
 
-#include <numbers>
 #include <random>
 
 #include "ccal/config.hpp"
 #include "ccal/montecarlo.hpp"
 #include "ccal/reduce.hpp"
 #include "ccal/run_means.hpp"
-#include "kinematics_support.hpp"
+#include "experiment_support.hpp"
 
 namespace ccal::test {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-// Random errors: angles ~ scale rad, lengths ~ 10·scale m, drive errors ~ scale rad/s (ΔΩ set apart).
-Eigen::VectorXd random_errors(const ErrorLayout& layout, double scale, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> n(0.0, 1.0);
-  Eigen::VectorXd e(layout.size());
-  for (int i = 0; i < layout.size(); ++i) {
-    const SourceUnit u = layout.parameter_unit(i);
-    e[i] = n(rng) * (u == SourceUnit::m                         ? 10 * scale
-                     : u == SourceUnit::m_per_rad_per_s_squared ? 1e-2 * scale
-                                                                : scale);
-  }
-  return e;
-}
 
 // The kernel's means and average_run's, run by run, to `relative` of the swing |K1|·A + |K0| of each run.
 void expect_same_means(const Experiment& ex, const Eigen::VectorXd& e, const ReductionOptions& options,
@@ -54,10 +37,8 @@ TEST(RunMeanKernel, EqualsTheGeneralReductionOnTheBundledTrials) {
   const Experiment ex = cfg.experiment();
   const CalibrationModel model = calibration_model(cfg);
   std::mt19937 rng(5);
-  std::uniform_int_distribution<int> sign(0, 1);
   for (int draw = 0; draw < 4; ++draw) {
-    Eigen::VectorXd e = cfg.centrifuge.errors;
-    for (const Tolerance& t : cfg.tolerances) e[t.parameter] += (sign(rng) ? 3.0 : -3.0) * t.bound;
+    const Eigen::VectorXd e = corner_draw(cfg, 3.0, rng);
     expect_same_means(ex, e, model.reduction, 1e-14, "draw " + std::to_string(draw));
   }
 }
@@ -120,24 +101,12 @@ TEST(RunMeanKernel, FollowsTheSlowNodesALargeMismatchNeeds) {
 TEST(RunMeanKernel, ErrorFreeMeansAreTheClosedForm) {
   // No errors, no Earth rate: a_i = −A cos γ exactly, so ⟨output⟩ = Σ K_n Z_n with Z_n the closed form of
   // model.md §4.4 (nominal_power_mean); round-off of the swing only.
-  Experiment ex;
-  ex.geometry = Geometry{2.5, 0.0, 0.0, 0.0};
-  ex.layout = ErrorLayout(1);
-  ex.site = paper_site(false);
-  for (int k = 1; k <= 3; ++k) {
-    ccal::Run r;
-    r.name = std::to_string(10 * k) + "g";
-    r.g_level = 10.0 * k;
-    r.duration = 450.0;
-    r.terminal_phase = kPi;
-    ex.plan.runs.push_back(r);
-  }
-  ex.instrument = paper_piga();
+  const Experiment ex = paper_experiment(false);
   const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument);
   const Eigen::VectorXd e = Eigen::VectorXd::Zero(ex.layout.size());
-  std::vector<double> means(3);
+  std::vector<double> means(ex.plan.runs.size());
   kernel.means(std::span<const double>(e.data(), std::size_t(e.size())), means);
-  for (std::size_t r = 0; r < 3; ++r) {
+  for (std::size_t r = 0; r < means.size(); ++r) {
     const ccal::Run& run = ex.plan.runs[r];
     const double rate = nominal_rate(run, ex.geometry, ex.site);
     const double phi0 = initial_phase(run, ex.geometry, ex.site);

@@ -32,22 +32,11 @@ namespace ccal {
 // A configuration that cannot be accepted. what() is the one-line message above; the parts are kept for
 // programs that want them. line and column are 1-based, 0 when the problem has no place in the file (e.g.
 // a file that cannot be read).
-class ConfigError : public InputError {
+class ConfigError : public LocatedInputError {
  public:
   ConfigError(std::string source, int line, int column, std::string key, std::string problem);
 
-  const std::string& source() const noexcept { return source_; }
-  int line() const noexcept { return line_; }
-  int column() const noexcept { return column_; }
-  const std::string& key() const noexcept { return key_; }
-  const std::string& problem() const noexcept { return problem_; }
-
- private:
-  std::string source_;
-  int line_;
-  int column_;
-  std::string key_;
-  std::string problem_;
+  const std::string& key() const noexcept { return item(); }
 };
 
 // How the tolerance of an error source is distributed (GUM terms).

@@ -2,6 +2,8 @@
 // Exceptions for problems in what the user gave ccal (configuration, data files, command line), as opposed
 // to programming errors. The CLI catches InputError to print the message without a stack of internals.
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace ccal {
 
@@ -10,6 +12,33 @@ namespace ccal {
 class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// An InputError at a place in a file: the source's name, the 1-based line and column (0 when not known),
+// the item there (a TOML key, a CSV column) and the problem itself; what() is the whole located message.
+class LocatedInputError : public InputError {
+ public:
+  LocatedInputError(const std::string& message, std::string source, int line, int column, std::string item,
+                    std::string problem)
+      : InputError(message),
+        source_(std::move(source)),
+        line_(line),
+        column_(column),
+        item_(std::move(item)),
+        problem_(std::move(problem)) {}
+
+  const std::string& source() const noexcept { return source_; }
+  int line() const noexcept { return line_; }
+  int column() const noexcept { return column_; }
+  const std::string& item() const noexcept { return item_; }
+  const std::string& problem() const noexcept { return problem_; }
+
+ private:
+  std::string source_;
+  int line_;
+  int column_;
+  std::string item_;
+  std::string problem_;
 };
 
 // A quantity or unit that cannot be parsed, has the wrong dimension, or is not a finite number.

@@ -32,22 +32,11 @@ namespace ccal {
 //     <file>:<line>:<column>: <column name>: <problem>; <what is accepted>
 // line is 1-based; column is the 1-based position of the field in its row (0 when the problem concerns a
 // whole line, and then left out of the message, as is a line of 0).
-class CsvError : public InputError {
+class CsvError : public LocatedInputError {
  public:
   CsvError(std::string source, int line, int column, std::string column_name, std::string problem);
 
-  const std::string& source() const noexcept { return source_; }
-  int line() const noexcept { return line_; }
-  int column() const noexcept { return column_; }
-  const std::string& column_name() const noexcept { return column_name_; }
-  const std::string& problem() const noexcept { return problem_; }
-
- private:
-  std::string source_;
-  int line_;
-  int column_;
-  std::string column_name_;
-  std::string problem_;
+  const std::string& column_name() const noexcept { return item(); }
 };
 
 // A CSV table: '#' comment lines and blank lines anywhere are skipped; the first other line is the header
