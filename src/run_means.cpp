@@ -86,7 +86,9 @@ struct OutputPolynomial {
 // types and every instruction set give the same bits.
 // Pack values pass between functions of this file only, all inlined into the cloned loops, so the ABI note
 // GCC gives for 32-byte vectors in baseline code is moot here.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 using Pack = double __attribute__((vector_size(4 * sizeof(double))));
 inline constexpr int kPackLanes = 4;
 template <class T>
@@ -372,7 +374,7 @@ template <int kOrder, class T>
 // The loops for the harmonic order at hand, four nodes at a time when the wobbles are small (always, for
 // real centrifuges), compiled for each instruction set the machine may have (AVX-512, AVX2, baseline) and
 // chosen when the library is loaded.
-#if defined(__x86_64__) && defined(__ELF__) && defined(__GNUC__)
+#if defined(__x86_64__) && defined(__ELF__) && defined(__GNUC__) && !defined(__clang__)
 #define CCAL_CLONED [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
 #else
 #define CCAL_CLONED
