@@ -5,12 +5,14 @@
 // Every tolerance below is derived from the sampling error of the estimator at the number of trials used
 // (5 standard deviations unless said otherwise). The runs are seeded, so the outcome is the same every time;
 // the tolerances say that the seed was not chosen to make them pass.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 
 #include "ccal/config.hpp"
@@ -68,7 +70,7 @@ TEST(MonteCarlo, EveryDistributionHasItsMomentsAndQuantiles) {
   for (int k = 0; k < 4; ++k) {
     const OutputSummary& o = r.outputs[std::size_t(k)];
     SCOPED_TRACE(s[std::size_t(k)].id);
-    EXPECT_EQ(o.name, "y" + std::to_string(k + 1));
+    EXPECT_EQ(o.name, fmt::format("y{}", k + 1));
     EXPECT_NEAR(o.mean, 0.0, 5 * sigma[k] / std::sqrt(M));
     EXPECT_NEAR(o.std_dev, sigma[k], 5 * sigma[k] * std::sqrt((kurtosis[k] - 1) / (4 * M)));
     EXPECT_NEAR(o.std_dev, standard_uncertainty(s[std::size_t(k)].bound, s[std::size_t(k)].distribution),
@@ -455,6 +457,44 @@ TEST(MonteCarlo, CalibrationPipelineMatchesTheLpuOfItsSensitivities) {
   const Config cfg = bundled_example();
   const CalibrationModel bundled = calibration_model(cfg);
   EXPECT_EQ(bundled.parameters.size(), cfg.tolerances.size());
+}
+
+TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
+  // A trial (run-mean kernel with the trial rule, cached H⁺ and known part) at ±3σ corner draws of the
+  // bundled tolerances against the full pipeline: observe the truth (configured errors + draw) with the
+  // converged default rule, identify, subtract the same identification at zero truth. The two rules differ
+  // by < 1e-12 of each run's swing K1·A (tests/test_reduce.cpp), which H⁺ maps to at most
+  // Σ_j |H⁺_kj| · 1e-12 · K1·A_j per coefficient: that bound is the tolerance.
+  const Config cfg = bundled_example();
+  const Experiment ex = cfg.experiment();
+  const CalibrationModel model = calibration_model(cfg);
+  ASSERT_TRUE(model.run_means);  // exact mode goes through the kernel
+  const TrialFunction trial = calibration_trial(model);
+  const IdentificationSpec& spec = cfg.identification;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  const Eigen::VectorXd known = spec.compensate ? cfg.centrifuge.errors : zero;
+  const Eigen::VectorXd reference =
+      identify_coefficients<double>(observe<double>(ex, zero, known, spec), spec);
+  const double K1 = ex.instrument.coefficient("K1").value();
+  std::mt19937 rng(3);
+  for (int draw = 0; draw < 3; ++draw) {
+    const Eigen::VectorXd truth = corner_draw(cfg, 3.0, rng);
+    std::vector<double> draws;
+    for (const Tolerance& t : cfg.tolerances)
+      draws.push_back(truth[t.parameter] - cfg.centrifuge.errors[t.parameter]);
+    std::vector<double> out(std::size_t(model.n_outputs()));
+    trial(draws, out);
+    const Eigen::VectorXd want =
+        identify_coefficients<double>(observe<double>(ex, truth, known, spec), spec) - reference;
+    for (Eigen::Index k = 0; k < want.size(); ++k) {
+      double bound = 0;
+      for (Eigen::Index j = 0; j < model.design_pinv.cols(); ++j)
+        bound += std::abs(model.design_pinv(k, j)) * 1e-12 * K1 * ex.plan.runs[std::size_t(j)].g_level;
+      EXPECT_NEAR(out[std::size_t(k)], want[k], bound)
+          << spec.free_terms[std::size_t(k)] << ", draw " << draw;
+      EXPECT_GT(std::abs(want[k]), 1e3 * bound);  // a real deviation, far above the tolerance
+    }
+  }
 }
 
 }  // namespace
