@@ -1,0 +1,79 @@
+#pragma once
+// The node loops of the run-mean kernel (run_means.hpp), internal to the library: the main-axis half of the
+// chain at the fast nodes and the platform half at the nodes of one slow node, over structure-of-arrays node
+// data, four nodes per SIMD vector where the wobble angles allow (run_means_nodes.cpp).
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+namespace ccal::run_nodes {
+
+// Nodes are stored padded to whole packs of this many lanes.
+inline constexpr int kPackLanes = 4;
+inline int padded(int n) { return (n + kPackLanes - 1) / kPackLanes * kPackLanes; }
+
+template <class T>
+struct V3 {
+  T x, y, z;
+};
+inline V3<double> to_v3(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
+
+// Structure-of-arrays storage of 3-vectors, one per node.
+struct V3Array {
+  std::vector<double> x, y, z;
+  void resize(std::size_t n) {
+    x.resize(n);
+    y.resize(n);
+    z.resize(n);
+  }
+};
+
+// Node data: the main-axis half per fast node, the instrument's inputs per node (slow-major, each slow node
+// padded to whole packs).
+struct MainAxisNodes {
+  // F₀ = a + 2ω_c × v + g ẑ₀ of o3t; Ω, Ω̇ of frame 3t; ω_c; Ω + ω_ie (frame-3t coordinates)
+  V3Array F0, W, dW, coriolis, W_total;
+  void resize(std::size_t n) {
+    for (V3Array* a : {&F0, &W, &dW, &coriolis, &W_total}) a->resize(n);
+  }
+};
+struct InstrumentInputs {
+  std::vector<double> a_i, a_p, a_o, w_ia;  // [g], [g], [g], [rad/s]
+  void resize(std::size_t n) {
+    for (auto* v : {&a_i, &a_p, &a_o, &w_ia}) v->resize(n);
+  }
+};
+
+// Inputs of the main-axis half (frame 3t, a function of θ1 alone), evaluated in frame-3t coordinates.
+struct MainAxisInputs {
+  const double* coefficients;  // dx1 … dthy1
+  int order;
+  const double *cos_theta, *sin_theta;  // padded
+  int M;
+  double rate, g;
+  V3<double> pB, coriolis_1t, gravity_1t, earth_1t;
+  Eigen::Matrix3d RB;
+};
+// Inputs of the platform half at the nodes of one slow node: frame 5 relative to frame 3t, composed with the
+// main-axis half of the same fast node, then the instrument's axes through P = R_C·mounting (a_i, a_p, a_o
+// [g] and ω_IA).
+struct PlatformInputs {
+  const double* coefficients;  // dx3 … dthy3
+  int order;
+  const double *cos_gamma, *sin_gamma;  // nominal platform angle at the fast nodes, padded
+  double cos_offset, sin_offset;        // the slow node's drift
+  int M;
+  double rate, inverse_g;
+  V3<double> pC;
+  Eigen::Matrix3d P;
+};
+// Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
+// the four-lane loops (small-angle series for the wobbles) apply.
+bool always_small(const double* coefficients, int order);
+// The main-axis half at the fast nodes 0 … M − 1 (and the padding).
+void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out);
+// The platform half at nodes first … first + M − 1 (and the padding) of `out`.
+void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main, InstrumentInputs& out,
+                    std::size_t first);
+
+}  // namespace ccal::run_nodes
