@@ -348,12 +348,6 @@ DualRun run_dual(const DualProblem& dual, const Eigen::VectorXd& m, const std::v
   return run;
 }
 
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-  return s;
-}
-
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
@@ -512,9 +506,9 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
   if (it == coefficients.end()) {
     if (parse_term(name))
       throw InputError(fmt::format("{}: {} is not a free term of the identification; accepted: {}", option,
-                                   name, join(coefficients)));
+                                   name, fmt::join(coefficients, ", ")));
     throw InputError(fmt::format("{}: unknown coefficient '{}'; accepted: the free terms {}", option, name,
-                                 join(coefficients)));
+                                 fmt::join(coefficients, ", ")));
   }
   const auto k = std::size_t(it - coefficients.begin());
   const std::string unit = pulse_as_rad(units[k]);
@@ -597,7 +591,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
     const auto it = std::find(b.coefficients.begin(), b.coefficients.end(), t.coefficient);
     if (it == b.coefficients.end())
       throw InputError(fmt::format("target on '{}': not a free term of the identification; accepted: {}",
-                                   t.coefficient, join(b.coefficients)));
+                                   t.coefficient, fmt::join(b.coefficients, ", ")));
     const auto k = std::size_t(it - b.coefficients.begin());
     if (r.coefficients[k].has_target)
       throw InputError(fmt::format("two targets on {}; give one per coefficient", t.coefficient));

@@ -127,15 +127,6 @@ std::optional<std::string> closest(std::string_view word, const std::vector<std:
   return std::nullopt;
 }
 
-std::string join(const std::vector<std::string>& items, std::string_view sep = ", ") {
-  std::string out;
-  for (const auto& s : items) {
-    if (!out.empty()) out += sep;
-    out += s;
-  }
-  return out;
-}
-
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
     case toml::node_type::table:
@@ -228,7 +219,7 @@ class Reader {
       const std::string p = path(table_path, key.str());
       if (auto best = closest(key.str(), names))
         fail(where(key.source()), p, fmt::format("unknown key; did you mean '{}'?", *best));
-      fail(where(key.source()), p, fmt::format("unknown key; accepted keys: {}", join(names)));
+      fail(where(key.source()), p, fmt::format("unknown key; accepted keys: {}", fmt::join(names, ", ")));
     }
   }
 
@@ -336,7 +327,8 @@ class Reader {
     const auto best = closest(*s, names);
     fail(n, path(table_path, key),
          fmt::format("unknown value '{}'; {}accepted: {}", *s,
-                     best ? fmt::format("did you mean '{}'? ", *best) : std::string(), join(names)));
+                     best ? fmt::format("did you mean '{}'? ", *best) : std::string(),
+                     fmt::join(names, ", ")));
   }
 
   void require_positive(const toml::table& t, std::string_view table_path, std::string_view key, double v,
@@ -618,7 +610,7 @@ InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
         const auto best = closest(key.str(), valid);
         r.fail(where(key.source()), kp,
                fmt::format("not a term id; {}accepted: {}",
-                           best ? fmt::format("did you mean '{}'? ", *best) : "", join(valid)));
+                           best ? fmt::format("did you mean '{}'? ", *best) : "", fmt::join(valid, ", ")));
       }
       const Dimension dim = term_dimension(*spec, out.dim);
       std::string example = out.text;
@@ -822,7 +814,7 @@ std::vector<std::pair<std::string, const toml::node*>> read_term_list(const Read
       const auto best = closest(id, valid);
       r.fail(item, p,
              fmt::format("'{}' is not a term id; {}accepted: {}", id,
-                         best ? fmt::format("did you mean '{}'? ", *best) : "", join(valid)));
+                         best ? fmt::format("did you mean '{}'? ", *best) : "", fmt::join(valid, ", ")));
     }
     for (const auto& [seen, node] : out)
       if (seen == id)
@@ -866,7 +858,7 @@ void read_identification(const Reader& r, const toml::table& root, const Instrum
         r.fail(*node, "identification.fixed",
                fmt::format("the instrument has no term '{}' to hold fixed; accepted: {} (the terms of the "
                            "instrument)",
-                           id, join(instrument.term_ids)));
+                           id, fmt::join(instrument.term_ids, ", ")));
       spec.fixed_terms[id] = *value;
     }
   } else if (const auto k1 = instrument.coefficient("K1"); k1 && !is_free("K1")) {

@@ -34,15 +34,6 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::string join(const std::vector<std::string>& items, std::string_view sep = ", ") {
-  std::string out;
-  for (const auto& s : items) {
-    if (!out.empty()) out += sep;
-    out += s;
-  }
-  return out;
-}
-
 std::vector<std::string> split(std::string_view text, char separator) {
   std::vector<std::string> out;
   std::size_t start = 0;
@@ -157,7 +148,7 @@ Eigen::VectorXd CsvTable::numbers(std::string_view column, std::string_view need
   if (!k)
     throw CsvError(source, header_line, 0, std::string(column),
                    fmt::format("no such column (needed by {}); accepted: one of the columns {}", needed_by,
-                               join(header)));
+                               fmt::join(header, ", ")));
   Eigen::VectorXd out(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::string& cell = rows[r][*k];
@@ -229,11 +220,11 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
     }
     if (fields.size() != t.header.size()) {
       const std::size_t k = std::min(fields.size(), t.header.size());
-      throw CsvError(
-          t.source, line_no, static_cast<int>(k + 1), k < t.header.size() ? t.header[k] : "",
-          fmt::format("ragged row: {} field{}, the header has {}; accepted: one field per column "
-                      "({})",
-                      fields.size(), fields.size() == 1 ? "" : "s", t.header.size(), join(t.header)));
+      throw CsvError(t.source, line_no, static_cast<int>(k + 1), k < t.header.size() ? t.header[k] : "",
+                     fmt::format("ragged row: {} field{}, the header has {}; accepted: one field per column "
+                                 "({})",
+                                 fields.size(), fields.size() == 1 ? "" : "s", t.header.size(),
+                                 fmt::join(t.header, ", ")));
     }
     (void)row;
     t.rows.push_back(std::move(fields));
@@ -270,8 +261,8 @@ std::string format_observations_header(const ObservationsHeader& h) {
     if (!f.unit.empty()) entry += " " + f.unit;
     fixed.push_back(std::move(entry));
   }
-  return fmt::format("# ccal observations v1; terms={}; fixed={}; known={}; output_unit={}", join(terms, ","),
-                     join(fixed, ","), join(h.known, ","), h.output_unit);
+  return fmt::format("# ccal observations v1; terms={}; fixed={}; known={}; output_unit={}",
+                     fmt::join(terms, ","), fmt::join(fixed, ","), fmt::join(h.known, ","), h.output_unit);
 }
 
 std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
@@ -296,7 +287,7 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
       t.column =
           colon == std::string::npos ? t.id : std::string(trim(std::string_view(entry).substr(colon + 1)));
       if (!parse_term(t.id))
-        throw fail(fmt::format("'{}' is not a term id; accepted: {}", t.id, join(all_term_ids())));
+        throw fail(fmt::format("'{}' is not a term id; accepted: {}", t.id, fmt::join(all_term_ids(), ", ")));
       if (t.column.empty())
         throw fail(fmt::format("term '{}' has an empty column name; accepted: <term>:<column>", t.id));
       return t;
@@ -498,7 +489,7 @@ FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
     throw CsvError(
         table.source, rows > 0 ? table.row_lines.back() : table.header_line, 0, "",
         fmt::format("{} data row{} cannot determine {} free terms ({}); accepted: at least {} rows", rows,
-                    rows == 1 ? "" : "s", free_count, join(names), free_count));
+                    rows == 1 ? "" : "s", free_count, fmt::join(names, ", "), free_count));
   }
 
   const auto run = table.find("run");

@@ -29,12 +29,6 @@ struct IdentifyOptions {
   CLI::Option* known_option = nullptr;
 };
 
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
-
 // "K2" or "K2:Z2" of an option; named terms need a column.
 TableTerm parse_term_option(const std::string& text, std::string_view option) {
   const std::size_t colon = text.find(':');
@@ -48,8 +42,8 @@ TableTerm parse_term_option(const std::string& text, std::string_view option) {
   }
   const auto spec = parse_term(t.id);
   if (!spec)
-    throw InputError(
-        fmt::format("{}: '{}' is not a term id; accepted: {}", option, t.id, join(all_term_ids())));
+    throw InputError(fmt::format("{}: '{}' is not a term id; accepted: {}", option, t.id,
+                                 fmt::join(all_term_ids(), ", ")));
   if (spec->kind != TermKind::power && t.column.empty())
     throw InputError(
         fmt::format("{}: {} is not a power of the input, so it needs its column: bind it as {}:<column>, "
@@ -196,7 +190,7 @@ std::string to_text(const CsvTable& table, const TableFitSpec& spec, const Ident
   std::string subtracted;
   for (const auto& k : spec.known) subtracted += " - " + k;
   std::string out = fmt::format("ccal identify: {}, {} rows; {}{} fitted on {}{}\n\n", table.source,
-                                table.rows.size(), spec.output, subtracted, join(id.fit.names),
+                                table.rows.size(), spec.output, subtracted, fmt::join(id.fit.names, ", "),
                                 spec.weight.empty() ? "" : fmt::format(" (weights 1/{}^2)", spec.weight));
   return out + identification_text(id);
 }
