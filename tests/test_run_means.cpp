@@ -48,7 +48,8 @@ class GeneralCentrifuge : public ::testing::TestWithParam<std::tuple<int, bool>>
 TEST_P(GeneralCentrifuge, EqualsTheGeneralReduction) {
   // Every part of the kernel away from the paper's case: lever arms L and l, a tilted horizontal axis,
   // harmonic orders 0, 2 and 3 (compiled and run-time orders), Earth rotation, all four mountings, a
-  // fixed-platform run, an instrument with cross terms, a rate term and an IA-rate gain, automatic M, and
+  // fixed-platform run, an instrument with cross terms, a rate term, an IA-rate gain and the |a_i|a_i term
+  // (automatic M: 512 nodes on the counter-rotating runs, whose a_i changes sign), and
   // optionally wobble angles above 1e-3 rad (the one-node-at-a-time loops with the library cos/sin branch of
   // cos_sin). Same 1e-14-of-swing tolerance as above, for the same reason.
   const auto [order, large_wobbles] = GetParam();
@@ -70,9 +71,9 @@ TEST_P(GeneralCentrifuge, EqualsTheGeneralReduction) {
     ex.plan.runs.push_back(r);
   }
   ex.instrument = paper_piga();
-  ex.instrument.term_ids = {"K0", "K1", "K2", "K3", "K_p", "K_io", "K_pp", "K_w"};
-  ex.instrument.coefficients.resize(8);
-  ex.instrument.coefficients << 1e-3, 8.8, 3e-4, 5e-5, 2e-4, 1e-5, 3e-5, 2e-3;
+  ex.instrument.term_ids = {"K0", "K1", "K2", "K3", "K_oq", "K_p", "K_io", "K_pp", "K_w"};
+  ex.instrument.coefficients.resize(9);
+  ex.instrument.coefficients << 1e-3, 8.8, 3e-4, 5e-5, 2e-5, 2e-4, 1e-5, 3e-5, 2e-3;
   ex.instrument.rate_gain = 0.9;
   Eigen::VectorXd e = random_errors(ex.layout, 1e-5, 7);
   e[dOmega] = 2e-7;
