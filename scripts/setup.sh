@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
-          libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libboost-math-dev)
+          libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libboost-math-dev pybind11-dev python3-dev
+          python3-numpy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

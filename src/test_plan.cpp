@@ -47,4 +47,22 @@ double initial_ia_azimuth(const Run& run, const Geometry& geometry, const Site& 
   return run.arm_azimuth + initial_phase(run, geometry, site);
 }
 
+std::string_view mounting_name(Mounting mounting) noexcept {
+  switch (mounting) {
+    case Mounting::ia_horizontal:
+      return "ia_horizontal";
+    case Mounting::ia_reversed:
+      return "ia_reversed";
+    case Mounting::pa_vertical:
+      return "pa_vertical";
+    case Mounting::ia_vertical:
+      return "ia_vertical";
+  }
+  return "";
+}
+
+std::string_view platform_mode_name(PlatformMode mode) noexcept {
+  return mode == PlatformMode::counter_rotating ? "counter_rotating" : "fixed";
+}
+
 }  // namespace ccal

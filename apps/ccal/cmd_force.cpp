@@ -28,24 +28,6 @@ struct ForceOptions {
 
 constexpr double kDeg = constants::deg;
 
-std::string_view platform_word(PlatformMode m) {
-  return m == PlatformMode::counter_rotating ? "counter_rotating" : "fixed";
-}
-
-std::string_view mounting_word(Mounting m) {
-  switch (m) {
-    case Mounting::ia_horizontal:
-      return "ia_horizontal";
-    case Mounting::ia_reversed:
-      return "ia_reversed";
-    case Mounting::pa_vertical:
-      return "pa_vertical";
-    case Mounting::ia_vertical:
-      return "ia_vertical";
-  }
-  return "";
-}
-
 // Angle in degrees wrapped to [0, 360).
 double wrapped_deg(double rad) {
   const double d = std::fmod(rad / kDeg, 360.0);
@@ -71,8 +53,8 @@ std::string to_json(const Config& cfg, std::size_t index, const ForceResult& r) 
               {"initial_phase_rad", r.initial_phase},
               {"duration_s", r.run.duration},
               {"time_s", r.time},
-              {"platform", platform_word(r.run.mode)},
-              {"mounting", mounting_word(r.run.mounting)},
+              {"platform", platform_mode_name(r.run.mode)},
+              {"mounting", mounting_name(r.run.mounting)},
               {"arm_azimuth_rad", r.run.arm_azimuth}};
   j["joint_state"] = {{"theta1_rad", r.joints.theta1},
                       {"theta1_rate_rad_per_s", r.joints.theta1_rate},
@@ -107,8 +89,8 @@ std::string to_text(const Config& cfg, std::size_t index, const ForceResult& r) 
                fmt::format("{} ({} deg)", number(r.initial_phase), number(r.initial_phase / kDeg, 6))});
   run.add_row({"duration T [s]", number(r.run.duration)});
   run.add_row({"time t [s]", number(r.time)});
-  run.add_row({"platform", std::string(platform_word(r.run.mode))});
-  run.add_row({"mounting", std::string(mounting_word(r.run.mounting))});
+  run.add_row({"platform", std::string(platform_mode_name(r.run.mode))});
+  run.add_row({"mounting", std::string(mounting_name(r.run.mounting))});
   out += run.render() + "\n";
 
   Table joints({"joints at t", "angle [deg, mod 360]", "rate [rad/s]"});

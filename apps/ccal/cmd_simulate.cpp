@@ -126,7 +126,7 @@ std::string to_text(const Config& cfg, const SimulateOptions& o, const Simulatio
   for (const Run& run : cfg.plan.runs)
     runs.add_row({run.name, number(run.g_level), number(nominal_rate(run, ex.geometry, ex.site)),
                   number(initial_phase(run, ex.geometry, ex.site)), number(run.duration),
-                  run.mode == PlatformMode::counter_rotating ? "counter_rotating" : "fixed"});
+                  std::string(platform_mode_name(run.mode))});
   out += runs.render() + "\n";
 
   std::vector<std::string> header{"run", "<a_i> [g]"};

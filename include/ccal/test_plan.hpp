@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ccal/centrifuge.hpp"
@@ -26,6 +27,9 @@ enum class Mounting {
 
 // Columns IA, PA, OA of the instrument in frame-5 coordinates.
 Eigen::Matrix3d mounting_matrix(Mounting mounting);
+// The configuration's words for a mounting ("ia_horizontal", …) and a platform mode ("counter_rotating",
+// "fixed").
+std::string_view mounting_name(Mounting mounting) noexcept;
 
 struct Run {
   std::string name;
@@ -42,6 +46,8 @@ struct Run {
 struct TestPlan {
   std::vector<Run> runs;
 };
+
+std::string_view platform_mode_name(PlatformMode mode) noexcept;
 
 // Nominal main-axis rate of a run: Ω = √(A g / R0) [rad/s].
 double nominal_rate(const Run& run, const Geometry& geometry, const Site& site);

@@ -1,0 +1,234 @@
+// The deterministic analyses: the error budget, the sensed input at an instant, simulated observations and
+// their identification, and a general least-squares fit.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "bindings.hpp"
+#include "ccal/budget.hpp"
+#include "ccal/config.hpp"
+#include "ccal/errors.hpp"
+#include "ccal/fit.hpp"
+#include "ccal/force.hpp"
+#include "ccal/simulate.hpp"
+
+namespace ccal::python {
+
+namespace {
+
+// Rows of one per-source vector field of the budget: sources × coefficients.
+Eigen::MatrixXd stacked(const BudgetResult& b, Eigen::VectorXd SourceBudget::*field) {
+  Eigen::MatrixXd out(Eigen::Index(b.sources.size()), Eigen::Index(b.coefficients.size()));
+  for (std::size_t s = 0; s < b.sources.size(); ++s) {
+    const Eigen::VectorXd& v = b.sources[s].*field;
+    if (v.size() != out.cols()) return {};
+    out.row(Eigen::Index(s)) = v.transpose();
+  }
+  return out;
+}
+
+std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run) {
+  if (const int* i = std::get_if<int>(&run)) {
+    const int n = int(cfg.plan.runs.size());
+    if (*i < -n || *i >= n)
+      throw InputError("run: index " + std::to_string(*i) + " is out of range for " + std::to_string(n) +
+                       " runs");
+    return std::size_t(*i < 0 ? *i + n : *i);
+  }
+  return select_run(cfg.plan, std::get<std::string>(run), "run");
+}
+
+}  // namespace
+
+void bind_analysis(py::module_& m) {
+  py::class_<SourceBudget>(m, "SourceBudget", "One error source's line of the budget (SI).")
+      .def_readonly("id", &SourceBudget::id)
+      .def_readonly("parameter", &SourceBudget::parameter)
+      .def_readonly("group", &SourceBudget::group)
+      .def_property_readonly(
+          "distribution",
+          [](const SourceBudget& s) { return std::string(distribution_name(s.distribution)); })
+      .def_readonly("bound", &SourceBudget::bound)
+      .def_readonly("standard_uncertainty", &SourceBudget::standard_uncertainty)
+      .def_readonly("sensitivity", &SourceBudget::sensitivity, "∂K/∂e per coefficient")
+      .def_readonly("effect", &SourceBudget::effect, "sensitivity × standard uncertainty, signed")
+      .def_readonly("effect_force", &SourceBudget::effect_force, "of which through the specific force")
+      .def_readonly("effect_rate", &SourceBudget::effect_rate, "and through the angular rate")
+      .def_readonly("share", &SourceBudget::share, "share of each coefficient's variance (0…1)")
+      .def_readonly("paper_effect", &SourceBudget::paper_effect, "paper-mode effect (empty if not computed)")
+      .def_readonly("disagrees", &SourceBudget::disagrees, "exact and paper effects differ beyond the factor")
+      .def_readonly("rank", &SourceBudget::rank, "1 = largest contributor")
+      .def("__repr__", [](const SourceBudget& s) { return "<ccal.SourceBudget " + s.id + ">"; });
+
+  py::class_<CompensationChoice>(m, "CompensationChoice")
+      .def_readonly("id", &CompensationChoice::id)
+      .def_readonly("description", &CompensationChoice::description)
+      .def_readonly("bias", &CompensationChoice::bias, "K̂(effect not modelled) − K̂(modelled), SI")
+      .def_readonly("paper_bias", &CompensationChoice::paper_bias);
+
+  py::class_<BudgetResult>(m, "Budget", "The error budget of a configuration (SI; display units alongside).")
+      .def_property_readonly("mode", [](const BudgetResult& b) { return std::string(mode_name(b.mode)); })
+      .def_property_readonly("derivatives",
+                             [](const BudgetResult& b) {
+                               return b.derivatives == DerivativeMethod::automatic ? "automatic"
+                                                                                   : "linearised";
+                             })
+      .def_readonly("coefficients", &BudgetResult::coefficients)
+      .def_readonly("units", &BudgetResult::units, "display units of the coefficients")
+      .def_readonly("display_scale", &BudgetResult::display_scale, "SI → display unit factor per coefficient")
+      .def_readonly("sources", &BudgetResult::sources)
+      .def_property_readonly("source_ids",
+                             [](const BudgetResult& b) {
+                               std::vector<std::string> ids;
+                               for (const auto& s : b.sources) ids.push_back(s.id);
+                               return ids;
+                             })
+      .def_property_readonly(
+          "sensitivity", [](const BudgetResult& b) { return stacked(b, &SourceBudget::sensitivity); },
+          "sources × coefficients")
+      .def_property_readonly(
+          "effect", [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect); },
+          "sources × coefficients")
+      .def_property_readonly("effect_force",
+                             [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect_force); })
+      .def_property_readonly("effect_rate",
+                             [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect_rate); })
+      .def_property_readonly("share", [](const BudgetResult& b) { return stacked(b, &SourceBudget::share); })
+      .def_readonly("standard_uncertainty", &BudgetResult::standard_uncertainty)
+      .def_readonly("expanded_uncertainty", &BudgetResult::expanded_uncertainty)
+      .def_readonly("coverage_factor", &BudgetResult::coverage_factor)
+      .def_readonly("covariance", &BudgetResult::covariance)
+      .def_readonly("correlation", &BudgetResult::correlation)
+      .def_readonly("compensation", &BudgetResult::compensation);
+
+  m.def(
+      "budget",
+      [](const Config& cfg, std::optional<std::string> mode, const std::string& derivatives,
+         double coverage_factor, bool compare_with_paper) {
+        BudgetOptions o;
+        o.mode = mode ? parse_mode(*mode) : cfg.mode;
+        if (derivatives == "linearised")
+          o.derivatives = DerivativeMethod::linearised;
+        else if (derivatives == "automatic")
+          o.derivatives = DerivativeMethod::automatic;
+        else
+          throw InputError("derivatives: '" + derivatives + "'; accepted: 'linearised', 'automatic'");
+        if (!(coverage_factor > 0)) throw InputError("coverage_factor: must be > 0");
+        o.coverage_factor = coverage_factor;
+        o.compare_with_paper = compare_with_paper;
+        py::gil_scoped_release release;
+        return compute_budget(cfg, o);
+      },
+      py::arg("config"), py::arg("mode") = py::none(), py::arg("derivatives") = "linearised",
+      py::arg("coverage_factor") = 2.0, py::arg("compare_with_paper") = true,
+      "Error budget (`ccal budget`): sensitivity of every identified coefficient to every tolerance, the "
+      "effects, totals and compensation choices. mode: 'exact' or 'paper' (default: the configuration's).");
+
+  py::class_<ForceContribution>(m, "ForceContribution")
+      .def_readonly("id", &ForceContribution::id)
+      .def_readonly("value", &ForceContribution::value_si, "the parameter's value, SI")
+      .def_readonly("unit", &ForceContribution::unit)
+      .def_readonly("f_ia", &ForceContribution::f_ia, "first-order change of the IA specific force [g]")
+      .def_readonly("w_ia", &ForceContribution::w_ia, "first-order change of the IA rate [rad/s]");
+
+  py::class_<ForceResult>(m, "SensedInput", "What the instrument senses at one instant of a run.")
+      .def_readonly("specific_force", &ForceResult::specific_force, "along IA, PA, OA [g]")
+      .def_readonly("angular_rate", &ForceResult::angular_rate, "inertial, about IA, PA, OA [rad/s]")
+      .def_readonly("rate", &ForceResult::rate, "nominal main-axis rate Ω [rad/s]")
+      .def_readonly("initial_phase", &ForceResult::initial_phase, "φ0 [rad]")
+      .def_readonly("time", &ForceResult::time, "[s]")
+      .def_readonly("nominal_f_ia", &ForceResult::nominal_f_ia, "error-free IA specific force [g]")
+      .def_readonly("nominal_w_ia", &ForceResult::nominal_w_ia, "error-free IA rate [rad/s]")
+      .def_readonly("contributions", &ForceResult::contributions, "first order, per non-zero error")
+      .def_readonly("first_order_f_ia", &ForceResult::first_order_f_ia)
+      .def_readonly("first_order_w_ia", &ForceResult::first_order_w_ia)
+      .def_property_readonly("remainder_f_ia", &ForceResult::remainder_f_ia, "exact − first order [g]")
+      .def_property_readonly("remainder_w_ia", &ForceResult::remainder_w_ia, "exact − first order [rad/s]");
+
+  m.def(
+      "sensed_input",
+      [](const Config& cfg, const std::variant<int, std::string>& run, double time, const std::string& mode) {
+        return evaluate_force(cfg.site, cfg.centrifuge, cfg.plan.runs[run_index(cfg, run)], time,
+                              parse_mode(mode));
+      },
+      py::arg("config"), py::arg("run") = 0, py::arg("time") = 0.0, py::arg("mode") = "exact",
+      "Specific force and angular rate at time t [s] of a run (a name, or a 0-based index) with the "
+      "configured "
+      "errors (`ccal force`).");
+
+  py::class_<Observations<double>>(m, "Observations", "Run means: one row per run (SI, inputs in g).")
+      .def_readonly("runs", &Observations<double>::runs)
+      .def_readonly("columns", &Observations<double>::columns, "term ids of the regressor columns")
+      .def_readonly("regressors", &Observations<double>::regressors, "runs × columns, the model's means")
+      .def_readonly("output", &Observations<double>::output, "the instrument's mean output [output SI]")
+      .def_readonly("known_rate", &Observations<double>::known_rate, "the model's ⟨s_ω ω_IA⟩ [output SI]")
+      .def_readonly("input", &Observations<double>::input, "the model's ⟨a_i⟩ [g]");
+
+  m.def(
+      "observe",
+      [](const Config& cfg, std::optional<std::string> mode, std::uint64_t seed) {
+        const ModelMode model_mode = mode ? parse_mode(*mode) : cfg.mode;
+        const Experiment ex = cfg.experiment();
+        const Eigen::VectorXd& truth = cfg.centrifuge.errors;
+        const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+        Observations<double> obs = observe<double>(ex, truth, cfg.identification.compensate ? truth : zero,
+                                                   cfg.identification, model_mode);
+        add_output_noise(obs, ex, seed);
+        return obs;
+      },
+      py::arg("config"), py::arg("mode") = py::none(), py::arg("seed") = 1,
+      "Simulated run means of the test plan with the configured errors and instrument noise (`ccal "
+      "simulate`).");
+
+  py::class_<FitResult>(m, "Fit", "A least-squares identification with its diagnostics.")
+      .def_readonly("names", &FitResult::names)
+      .def_readonly("value", &FitResult::value)
+      .def_readonly("std_error", &FitResult::std_error)
+      .def_readonly("covariance", &FitResult::covariance)
+      .def_readonly("correlation", &FitResult::correlation)
+      .def_readonly("residuals", &FitResult::residuals)
+      .def_readonly("residual_std", &FitResult::residual_std)
+      .def_readonly("dof", &FitResult::dof)
+      .def_readonly("chi2", &FitResult::chi2)
+      .def_readonly("chi2_per_dof", &FitResult::chi2_per_dof)
+      .def_readonly("condition_number", &FitResult::condition_number)
+      .def_readonly("rank", &FitResult::rank)
+      .def_readonly("warnings", &FitResult::warnings);
+
+  m.def(
+      "identify",
+      [](const Observations<double>& obs, const Config& cfg) {
+        return fit(fit_problem(obs, cfg.identification));
+      },
+      py::arg("observations"), py::arg("config"),
+      "Identifies the configuration's free terms from observations (its fixed terms held).");
+
+  m.def(
+      "fit",
+      [](const Eigen::MatrixXd& H, const Eigen::VectorXd& y, const std::vector<std::string>& names,
+         std::optional<Eigen::VectorXd> weights, const std::map<std::string, double>& fixed,
+         const std::string& method) {
+        FitProblem p;
+        p.term_names = names;
+        p.H = H;
+        p.y = y;
+        if (weights) p.weights = *weights;
+        p.fixed = fixed;
+        FitOptions o;
+        if (method == "svd")
+          o.method = FitMethod::svd;
+        else if (method != "qr")
+          throw InputError("method: '" + method + "'; accepted: 'qr', 'svd'");
+        return fit(p, o);
+      },
+      py::arg("H"), py::arg("y"), py::arg("names"), py::arg("weights") = py::none(),
+      py::arg("fixed") = std::map<std::string, double>{}, py::arg("method") = "qr",
+      "Least squares y ≈ H x with named columns: weights 1/σ² per row, fixed columns held at given values.");
+}
+
+}  // namespace ccal::python

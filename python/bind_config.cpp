@@ -1,0 +1,86 @@
+// Configurations: read from TOML (docs/config.md) or the bundled paper example, inspected from Python.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "bindings.hpp"
+#include "ccal/config.hpp"
+
+namespace ccal::python {
+
+void bind_config(py::module_& m) {
+  py::class_<Run>(m, "Run", "One run of the test plan.")
+      .def_readonly("name", &Run::name)
+      .def_readonly("g_level", &Run::g_level, "A = Ω² R0 / g [g]")
+      .def_readonly("duration", &Run::duration, "T [s]")
+      .def_property_readonly(
+          "mode", [](const Run& r) { return std::string(platform_mode_name(r.mode)); },
+          "'counter_rotating' or 'fixed'")
+      .def_readonly("initial_phase", &Run::initial_phase, "φ0 [rad] if given, else None")
+      .def_readonly("terminal_phase", &Run::terminal_phase, "ψ = γ(T) [rad] if given, else None")
+      .def_readonly("arm_azimuth", &Run::arm_azimuth, "θ1(0) [rad]")
+      .def_property_readonly("mounting", [](const Run& r) { return std::string(mounting_name(r.mounting)); })
+      .def("__repr__", [](const Run& r) { return "<ccal.Run " + r.name + ">"; });
+
+  py::class_<Tolerance>(m, "Tolerance", "The tolerance of one error source (SI).")
+      .def_readonly("id", &Tolerance::id)
+      .def_readonly("parameter", &Tolerance::parameter, "index in Config.error_ids")
+      .def_readonly("bound", &Tolerance::bound, "σ (normal) or half-width, in the parameter's SI unit")
+      .def_property_readonly(
+          "distribution", [](const Tolerance& t) { return std::string(distribution_name(t.distribution)); })
+      .def_property_readonly("standard_uncertainty",
+                             [](const Tolerance& t) { return standard_uncertainty(t.bound, t.distribution); })
+      .def_readonly("group", &Tolerance::group, "fully correlated sources share a non-empty group")
+      .def_readonly("cost", &Tolerance::cost, "relative cost weight for the allocation")
+      .def("__repr__", [](const Tolerance& t) { return "<ccal.Tolerance " + t.id + ">"; });
+
+  py::class_<Config>(m, "Config", "A centrifuge, site, instrument, test plan, tolerances and identification.")
+      .def_readonly("source", &Config::source, "file name, or the name given to parse_config")
+      .def_property_readonly("runs", [](const Config& c) { return c.plan.runs; })
+      .def_readonly("tolerances", &Config::tolerances)
+      .def_property_readonly(
+          "error_ids", [](const Config& c) { return c.centrifuge.layout.parameter_ids(); },
+          "ids of the error parameters, in the order of `errors`")
+      .def_property_readonly(
+          "errors", [](const Config& c) { return Eigen::VectorXd(c.centrifuge.errors); },
+          "the configured (actual) error values, SI")
+      .def_property_readonly("error_units",
+                             [](const Config& c) {
+                               std::vector<std::string> units;
+                               for (int i = 0; i < c.centrifuge.layout.size(); ++i)
+                                 units.emplace_back(unit_symbol(c.centrifuge.layout.parameter_unit(i)));
+                               return units;
+                             })
+      .def_property_readonly("free_terms", [](const Config& c) { return c.identification.free_terms; })
+      .def_property_readonly(
+          "fixed_terms", [](const Config& c) { return c.identification.fixed_terms; },
+          "term id → value held fixed (SI)")
+      .def_property_readonly("instrument_terms", [](const Config& c) { return c.instrument.term_ids; })
+      .def_property_readonly(
+          "instrument_coefficients",
+          [](const Config& c) { return Eigen::VectorXd(c.instrument.coefficients); },
+          "the true coefficients of the simulated instrument, SI (output unit per gⁿ)")
+      .def_property_readonly("output_unit", [](const Config& c) { return c.instrument.output_unit; })
+      .def_property_readonly("mode", [](const Config& c) { return std::string(mode_name(c.mode)); })
+      .def_property_readonly(
+          "g", [](const Config& c) { return c.site.g; }, "local gravity [m/s²]")
+      .def_property_readonly(
+          "latitude", [](const Config& c) { return c.site.latitude; }, "[rad]")
+      .def("__repr__", [](const Config& c) { return "<ccal.Config " + c.source + ">"; });
+
+  m.def(
+      "bundled_example_text", [] { return std::string(bundled_example_text()); },
+      "The TOML text of the bundled example, a documented starting point for a configuration.");
+  m.def("bundled_example", &bundled_example,
+        "The bundled configuration of the paper's experiment (examples/wang_ren_2014.toml).");
+  m.def(
+      "load_config", [](const std::string& path) { return load_config(path); }, py::arg("path"),
+      "Reads and checks a TOML configuration; InputError with file:line:column on bad input.");
+  m.def(
+      "parse_config",
+      [](const std::string& text, const std::string& source) { return parse_config(text, source); },
+      py::arg("text"), py::arg("source") = "<string>", "Parses configuration text.");
+}
+
+}  // namespace ccal::python

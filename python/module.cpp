@@ -1,0 +1,42 @@
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+#include "ccal/errors.hpp"
+#include "ccal/fit.hpp"
+#include "ccal/version.hpp"
+
+namespace ccal::python {
+
+ModelMode parse_mode(const std::string& mode) {
+  if (mode == "exact") return ModelMode::exact;
+  if (mode == "paper") return ModelMode::paper;
+  throw InputError("mode: '" + mode + "' is not a model mode; accepted: 'exact', 'paper'");
+}
+
+const char* mode_name(ModelMode mode) { return mode == ModelMode::paper ? "paper" : "exact"; }
+
+}  // namespace ccal::python
+
+PYBIND11_MODULE(ccal, m) {
+  namespace py = pybind11;
+  m.doc() =
+      "Precision-centrifuge calibration of accelerometers: exact kinematics, identification of the "
+      "coefficients, and the error budget of the centrifuge's tolerances. Values are SI unless a name says "
+      "otherwise (specific force in g); display units are given alongside.";
+  m.attr("__version__") = ccal::version();
+  // Bad input (configuration, options, data) and ill-posed identifications, as ValueError subclasses.
+  static py::exception<ccal::InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<ccal::IllPosedFit> ill_posed(m, "IllPosedFit", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const ccal::InputError& e) {
+      input_error(e.what());
+    } catch (const ccal::IllPosedFit& e) {
+      ill_posed(e.what());
+    }
+  });
+  ccal::python::bind_config(m);
+  ccal::python::bind_analysis(m);
+  ccal::python::bind_uncertainty(m);
+}

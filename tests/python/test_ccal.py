@@ -1,0 +1,213 @@
+"""The Python module against the command-line program (same library, independent output path: JSON in display
+units) and against closed forms. Run by ctest with Debian's python3, the module on PYTHONPATH and the program
+in CCAL_PROGRAM."""
+
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import ccal
+
+DEG = math.pi / 180.0
+
+
+def program_json(*args):
+    """Runs the command-line program with --format json and returns the parsed output."""
+    out = subprocess.run([os.environ["CCAL_PROGRAM"], *args, "--format", "json"], check=True,
+                         capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+class ConfigTest(unittest.TestCase):
+    def test_bundled_example(self):
+        cfg = ccal.bundled_example()
+        self.assertEqual([r.name for r in cfg.runs], ["5g", "10g", "15g", "20g", "25g", "30g"])
+        self.assertEqual(cfg.runs[3].mode, "counter_rotating")
+        self.assertEqual(cfg.runs[3].mounting, "ia_horizontal")
+        self.assertAlmostEqual(cfg.runs[3].terminal_phase, math.pi, places=15)
+        self.assertEqual(cfg.free_terms, ["K0", "K2", "K3"])
+        # K1 = 505.2097 deg/s/g held fixed, stored in SI (rad/s/g).
+        self.assertAlmostEqual(cfg.fixed_terms["K1"], 505.2097 * DEG, delta=1e-12)
+        self.assertEqual(len(cfg.tolerances), 48)
+        self.assertEqual(len(cfg.errors), len(cfg.error_ids))
+        self.assertEqual(len(cfg.error_units), len(cfg.error_ids))
+        tol = {t.id: t for t in cfg.tolerances}
+        self.assertEqual(cfg.error_ids[tol["dthz5"].parameter], "dthz5")
+        self.assertEqual(cfg.error_units[tol["dthz5"].parameter], "rad")
+
+    def test_bad_input_is_an_input_error_with_its_place(self):
+        with tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False) as f:
+            f.write("[site]\nlatitud = 0.5\n")
+            path = f.name
+        try:
+            with self.assertRaises(ccal.InputError) as e:
+                ccal.load_config(path)
+            # file:line:column, the key, and the closest valid key
+            self.assertIn(path + ":2", str(e.exception))
+            self.assertIn("latitude", str(e.exception))
+        finally:
+            os.unlink(path)
+        self.assertTrue(issubclass(ccal.InputError, ValueError))
+        with self.assertRaises(ccal.InputError):
+            ccal.load_config("/nonexistent/ccal.toml")
+        with self.assertRaises(ccal.InputError):
+            ccal.budget(ccal.bundled_example(), mode="approximate")
+
+
+class BudgetTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.cfg = ccal.bundled_example()
+        cls.budget = ccal.budget(cls.cfg)
+        cls.cli = program_json("budget")
+
+    def test_totals_equal_the_programs(self):
+        # Same computation, printed by the program in display units with 17 digits: agree to round-off.
+        b = self.budget
+        self.assertEqual(b.mode, "exact")
+        self.assertEqual(b.coefficients, [c["id"] for c in self.cli["coefficients"]])
+        self.assertEqual(b.units, [c["unit"] for c in self.cli["coefficients"]])
+        for k, c in enumerate(self.cli["coefficients"]):
+            self.assertAlmostEqual(b.standard_uncertainty[k] * b.display_scale[k] / c["standard_uncertainty"],
+                                   1.0, delta=1e-12)
+            self.assertAlmostEqual(b.expanded_uncertainty[k] / b.standard_uncertainty[k], b.coverage_factor,
+                                   delta=1e-12)
+
+    def test_per_source_lines_equal_the_programs(self):
+        b = self.budget
+        by_id = {s["id"]: s for s in self.cli["sources"]}
+        self.assertEqual(len(by_id), len(b.sources))
+        for i, source_id in enumerate(b.source_ids):
+            for k, coef in enumerate(b.coefficients):
+                want = by_id[source_id]["effect"][coef]
+                got = b.effect[i, k] * b.display_scale[k]
+                self.assertLessEqual(abs(got - want), 1e-12 * abs(want) + 1e-300, f"{source_id} {coef}")
+
+    def test_matrices_are_consistent(self):
+        b = self.budget
+        u = np.array([s.standard_uncertainty for s in b.sources])
+        # effect = sensitivity · u_s; effect = force path + rate path; u_k² = diag(covariance)
+        np.testing.assert_allclose(b.effect, b.sensitivity * u[:, None], rtol=1e-14, atol=0)
+        np.testing.assert_allclose(b.effect, b.effect_force + b.effect_rate, rtol=1e-9,
+                                   atol=1e-12 * np.abs(b.effect).max())
+        np.testing.assert_allclose(np.sqrt(np.diag(b.covariance)), b.standard_uncertainty, rtol=1e-12)
+        # shares of the independent sources sum to at most 1 per coefficient
+        self.assertTrue(np.all(b.share.sum(axis=0) <= 1 + 1e-12))
+        self.assertEqual(sorted(s.rank for s in b.sources), list(range(1, len(b.sources) + 1)))
+
+
+class KinematicsTest(unittest.TestCase):
+    def test_sensed_input_equals_the_programs(self):
+        cfg = ccal.bundled_example()
+        cli = program_json("force", "--run", "20g", "--time", "10 s")
+        for run in ("20g", 3, -3):  # by name, by 0-based index, from the end
+            s = ccal.sensed_input(cfg, run=run, time=10.0)
+            for k, axis in enumerate(("IA", "PA", "OA")):
+                self.assertAlmostEqual(s.specific_force[k], cli["specific_force_g"][axis], delta=1e-13)
+                self.assertAlmostEqual(s.angular_rate[k] / DEG, cli["angular_rate_deg_per_s"][axis], delta=1e-15)
+            self.assertAlmostEqual(s.rate, cli["run"]["rate_rad_per_s"], delta=1e-14)
+        with self.assertRaises(ccal.InputError):
+            ccal.sensed_input(cfg, run=6)
+        with self.assertRaises(ccal.InputError):
+            ccal.sensed_input(cfg, run="21g")
+
+    def test_error_free_specific_force_is_the_closed_form(self):
+        # No errors, no Earth rotation, no lever arms: a_IA = −A cos γ, a_PA = A sin γ, a_OA = 1 g, ω = 0.
+        text = ccal.bundled_example_text().replace("earth_rotation = true", "earth_rotation = false")
+        self.assertNotEqual(text, ccal.bundled_example_text())
+        cfg = ccal.parse_config(text, "inline")
+        for t in (0.0, 1.3, 7.7):
+            s = ccal.sensed_input(cfg, run="10g", time=t)
+            self.assertAlmostEqual(s.time, t)
+            gamma = s.initial_phase - s.rate * t
+            self.assertAlmostEqual(s.specific_force[0], -10 * math.cos(gamma), delta=1e-12)
+            self.assertAlmostEqual(s.specific_force[1], 10 * math.sin(gamma), delta=1e-12)
+            # the platform turns back at −Ω: the instrument does not rotate in inertial space
+            self.assertLess(np.abs(s.angular_rate).max(), 1e-15)
+            self.assertAlmostEqual(s.specific_force[2], 1.0, delta=1e-12)
+
+
+class IdentificationTest(unittest.TestCase):
+    def test_simulate_and_identify_recover_the_instrument(self):
+        cfg = ccal.bundled_example()
+        obs = ccal.observe(cfg)
+        self.assertEqual(obs.runs, [r.name for r in cfg.runs])
+        self.assertEqual(obs.regressors.shape, (6, len(obs.columns)))
+        fit = ccal.identify(obs, cfg)
+        self.assertEqual(fit.names, ["K0", "K2", "K3"])
+        true = dict(zip(cfg.instrument_terms, cfg.instrument_coefficients))
+        cli = program_json("simulate")["identification"]["coefficients"]
+        for k, name in enumerate(fit.names):
+            # no centrifuge errors in the example: the truth, to the round-off of the run means
+            self.assertAlmostEqual(fit.value[k] / true[name], 1.0, delta=1e-9)
+            self.assertAlmostEqual(fit.value[k] / DEG / cli[name]["value"], 1.0, delta=1e-12)
+        self.assertEqual(fit.dof, 3)
+
+    def test_general_fit(self):
+        # y = 1 + 2x + 3x² exactly: the fit returns the coefficients to round-off, with zero residuals.
+        x = np.linspace(-2, 3, 9)
+        H = np.column_stack([np.ones_like(x), x, x * x])
+        y = 1 + 2 * x + 3 * x * x
+        r = ccal.fit(H, y, ["a", "b", "c"])
+        np.testing.assert_allclose(r.value, [1, 2, 3], rtol=0, atol=1e-13)
+        self.assertLess(r.residual_std, 1e-13)
+        self.assertEqual((r.rank, r.dof), (3, 6))
+        # a fixed column is held and removed
+        r = ccal.fit(H, y, ["a", "b", "c"], fixed={"c": 3.0}, method="svd")
+        self.assertEqual(r.names, ["a", "b"])
+        np.testing.assert_allclose(r.value, [1, 2], atol=1e-13)
+        # weights 1/σ²: the covariance follows them, independent of the residuals
+        r = ccal.fit(H, y, ["a", "b", "c"], weights=np.full(9, 4.0))
+        cov = np.linalg.inv(H.T @ (4.0 * H))
+        np.testing.assert_allclose(r.covariance, cov, rtol=1e-10)
+        # two identical columns cannot be separated
+        with self.assertRaises(ValueError):
+            ccal.fit(np.column_stack([x, x]), x, ["p", "q"])
+        with self.assertRaises(ccal.InputError):
+            ccal.fit(H, y, ["a", "b", "c"], method="lu")
+
+
+class UncertaintyTest(unittest.TestCase):
+    def test_monte_carlo_is_deterministic_and_agrees_with_the_lpu(self):
+        cfg = ccal.bundled_example()
+        one = ccal.monte_carlo(cfg, trials=4000, seed=7, threads=1)
+        two = ccal.monte_carlo(cfg, trials=4000, seed=7, threads=2)
+        self.assertEqual(one.names, ["K0", "K2", "K3"])
+        self.assertEqual(one.trials, 4000)
+        # bit-identical for any thread count
+        self.assertTrue(np.array_equal(one.mean, two.mean))
+        self.assertTrue(np.array_equal(one.covariance, two.covariance))
+        b = ccal.budget(cfg, compare_with_paper=False)
+        for k, o in enumerate(one.outputs):
+            # relative sampling error of a standard deviation 1/√(2M) = 1.1 %: 5 of them
+            self.assertAlmostEqual(o.std_dev / b.standard_uncertainty[k], 1.0, delta=5 / math.sqrt(2 * 4000))
+            self.assertEqual(o.lpu_std, b.standard_uncertainty[k])
+            self.assertLess(o.low_symmetric, o.mean)
+            self.assertLess(o.mean, o.high_symmetric)
+        np.testing.assert_allclose(np.sqrt(np.diag(one.covariance)), one.std_dev, rtol=1e-12)
+
+    def test_allocation_meets_its_targets(self):
+        cfg = ccal.bundled_example()
+        b = ccal.budget(cfg, compare_with_paper=False)
+        k2 = b.coefficients.index("K2")
+        a = ccal.allocate(cfg, {"K2": 1e-7, "K3": "1e-6 deg/s/g^3"}, verify_trials=0)
+        self.assertTrue(a.converged)
+        by_id = {c.id: c for c in a.coefficients}
+        self.assertAlmostEqual(by_id["K2"].target, 1e-7 / b.display_scale[k2], delta=1e-22)
+        for c in a.coefficients:
+            if c.has_target:
+                self.assertLessEqual(c.allocated_expanded, c.target * (1 + 1e-9), c.id)
+                if c.active:
+                    self.assertAlmostEqual(c.allocated_expanded / c.target, 1.0, delta=1e-9)
+        self.assertTrue(any(c.active for c in a.coefficients))
+        with self.assertRaises(ccal.InputError):
+            ccal.allocate(cfg, {"K7": 1e-6})
+
+
+if __name__ == "__main__":
+    unittest.main()
