@@ -36,8 +36,6 @@ struct Simulation {
   int error_count = 0;             // non-zero [errors] parameters
   std::vector<std::size_t> order;  // regressor columns in canonical term order, as in the file
   std::string csv;
-  CsvTable table;
-  TableFitSpec spec;
   Identification id;
 };
 
@@ -84,17 +82,9 @@ Simulation simulate(const Config& cfg, const SimulateOptions& o) {
     return term_rank(parse_term(s.obs.columns[a]).value()) < term_rank(parse_term(s.obs.columns[b]).value());
   });
 
-  // Identify through the file itself, so that the result is what `ccal identify` gives for it.
-  s.csv = observations_csv(s.obs, spec, ex.instrument);
-  s.table = parse_csv(s.csv, cfg.source);
-  const ObservationsHeader header = observations_header(s.table).value();
-  for (const auto& t : header.terms) s.spec.terms.push_back({t.id, t.column});
-  for (const auto& f : header.fixed) s.spec.fixed.push_back({{f.term.id, f.term.column}, f.value});
-  s.spec.known = header.known;
-  ColumnUnits units;
-  units.output_unit = header.output_unit;
-  units.input_in_g = true;
-  s.id = identify_table(s.table, s.spec, units, cfg.source);
+  FileIdentification f = identify_observations(s.obs, spec, ex.instrument, cfg.source);
+  s.csv = std::move(f.csv);
+  s.id = std::move(f.id);
   return s;
 }
 

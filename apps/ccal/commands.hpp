@@ -19,5 +19,6 @@ Command add_simulate(CLI::App& app);
 Command add_identify(CLI::App& app);
 Command add_montecarlo(CLI::App& app);
 Command add_allocate(CLI::App& app);
+Command add_reduce(CLI::App& app);
 
 }  // namespace ccal::cli

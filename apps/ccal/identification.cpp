@@ -182,4 +182,20 @@ std::string identification_text(const Identification& id) {
   return out;
 }
 
+FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
+                                         const InstrumentModel& instrument, std::string_view source) {
+  FileIdentification f;
+  f.csv = observations_csv(obs, spec, instrument);
+  f.table = parse_csv(f.csv, source);
+  const ObservationsHeader header = observations_header(f.table).value();
+  for (const auto& t : header.terms) f.spec.terms.push_back({t.id, t.column});
+  for (const auto& x : header.fixed) f.spec.fixed.push_back({{x.term.id, x.term.column}, x.value});
+  f.spec.known = header.known;
+  ColumnUnits units;
+  units.output_unit = header.output_unit;
+  units.input_in_g = true;
+  f.id = identify_table(f.table, f.spec, units, source);
+  return f;
+}
+
 }  // namespace ccal::cli

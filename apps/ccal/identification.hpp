@@ -9,6 +9,7 @@
 
 #include "ccal/fit.hpp"
 #include "ccal/observation_csv.hpp"
+#include "ccal/simulate.hpp"
 
 namespace ccal::cli {
 
@@ -50,6 +51,16 @@ Identification identify_table(const CsvTable& table, const TableFitSpec& spec, c
                               std::string_view source);
 
 nlohmann::ordered_json identification_json(const Identification& id);
+// Observations of a test plan written as an observations file, and identified through the file itself, so
+// that the result is what `ccal identify` gives for it (`ccal simulate`, `ccal reduce`).
+struct FileIdentification {
+  std::string csv;
+  CsvTable table;
+  TableFitSpec spec;
+  Identification id;
+};
+FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
+                                         const InstrumentModel& instrument, std::string_view source);
 std::string identification_text(const Identification& id);
 
 }  // namespace ccal::cli

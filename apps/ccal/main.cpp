@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
       "  ccal simulate --observations-out obs.csv   run means of the paper's plan and the identified K0, K2, "
       "K3\n"
       "  ccal identify obs.csv                      least-squares fit of the observations file\n"
+      "  ccal reduce my.toml --log 20g=run20.csv …  recorded run logs to run means and coefficients\n"
       "Run 'ccal <command> --help' for the options of a command.\n");
 
   std::vector<ccal::cli::Command> commands;
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_force(app));
   commands.push_back(ccal::cli::add_simulate(app));
   commands.push_back(ccal::cli::add_identify(app));
+  commands.push_back(ccal::cli::add_reduce(app));
   commands.push_back(ccal::cli::add_montecarlo(app));
   commands.push_back(ccal::cli::add_allocate(app));
 

@@ -1,0 +1,135 @@
+#include "ccal/run_log.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace ccal {
+
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+double wrapped(double angle) {
+  const double a = std::fmod(angle, kTwoPi);
+  return a < 0 ? a + kTwoPi : a;
+}
+
+// The least-squares line through (t_k, a_k) of unwrapped angles: slope, value at t_0, value at t_last, and
+// the RMS residual. Times are centred on their mean for a well-conditioned solution.
+struct Line {
+  double slope = 0, start = 0, end = 0, rms = 0;
+};
+Line fit_line(const Eigen::VectorXd& t, const Eigen::VectorXd& a) {
+  const double tm = t.mean(), am = a.mean();
+  const Eigen::VectorXd dt = t.array() - tm, da = a.array() - am;
+  const double slope = dt.dot(da) / dt.squaredNorm();
+  Line l;
+  l.slope = slope;
+  l.start = am + slope * (t[0] - tm);
+  l.end = am + slope * (t[t.size() - 1] - tm);
+  l.rms = std::sqrt((da - slope * dt).squaredNorm() / double(t.size()));
+  return l;
+}
+
+// The encoder column unwrapped: each step mapped to (−π, π]. The samples must be less than half a revolution
+// apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping would alias.
+Eigen::VectorXd unwrapped(const CsvTable& table, std::string_view column, const Eigen::VectorXd& time,
+                          double scale, double planned_rate) {
+  const std::size_t k = *table.find(column);
+  Eigen::VectorXd a = table.numbers(column, "the encoder reduction") * scale;
+  for (Eigen::Index i = 1; i < a.size(); ++i) {
+    const double step_time = time[i] - time[i - 1];
+    if (std::abs(planned_rate) * step_time > 0.75 * std::numbers::pi)
+      throw table.error_at(
+          std::size_t(i), k,
+          fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the planned rate; "
+                      "accepted: less than 0.75π rad between encoder samples",
+                      step_time, std::abs(planned_rate) * step_time));
+    double step = std::remainder(a[i] - a[i - 1], kTwoPi);
+    if (step == -std::numbers::pi) step = std::numbers::pi;
+    a[i] = a[i - 1] + step;
+  }
+  return a;
+}
+
+}  // namespace
+
+ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, double planned_rate) {
+  ReducedLog r;
+  r.source = table.source;
+  r.samples = table.rows.size();
+  const auto time_column = table.find("time");
+  const Eigen::VectorXd t = table.numbers("time", "every run log");
+  if (r.samples < 2)
+    throw CsvError(
+        table.source, table.header_line, int(*time_column + 1), "time",
+        fmt::format("{} sample(s); accepted: at least two, the first and last of the run", r.samples));
+  for (std::size_t i = 1; i < r.samples; ++i)
+    if (!(t[Eigen::Index(i)] > t[Eigen::Index(i - 1)]))
+      throw table.error_at(i, *time_column,
+                           fmt::format("time {} s does not follow {} s; accepted: strictly increasing times",
+                                       t[Eigen::Index(i)], t[Eigen::Index(i - 1)]));
+  r.duration = t[t.size() - 1] - t[0];
+
+  const auto pulses = table.find("pulses"), output = table.find("output");
+  if (pulses.has_value() == output.has_value())
+    throw CsvError(table.source, table.header_line, 0, pulses ? "pulses" : "output",
+                   pulses ? "both 'pulses' and 'output' columns; accepted: exactly one of them"
+                          : fmt::format("no output column; accepted: 'pulses' (cumulative count) or 'output' "
+                                        "(the instrument's output); the columns are {}",
+                                        fmt::join(table.header, ", ")));
+  if (pulses) {
+    if (!(options.pulse_weight > 0))
+      throw CsvError(table.source, table.header_line, int(*pulses + 1), "pulses",
+                     "a pulse count needs the pulse weight (the instrument's quantum, or --pulse-weight); "
+                     "accepted: a positive integrated output per pulse");
+    const Eigen::VectorXd p = table.numbers("pulses", "the output mean");
+    r.pulses = true;
+    r.mean_output = (p[p.size() - 1] - p[0]) * options.pulse_weight / r.duration;
+  } else {
+    const Eigen::VectorXd y = table.numbers("output", "the output mean") * options.output_scale;
+    double integral = 0;
+    for (Eigen::Index i = 1; i < y.size(); ++i) integral += 0.5 * (y[i] + y[i - 1]) * (t[i] - t[i - 1]);
+    r.mean_output = integral / r.duration;
+  }
+
+  if (table.find("theta1")) {
+    const Line l = fit_line(t, unwrapped(table, "theta1", t, options.angle_scale, planned_rate));
+    r.has_theta1 = true;
+    r.theta1_rate = l.slope;
+    r.theta1_start = wrapped(l.start);
+    r.theta1_rms = l.rms;
+  }
+  if (table.find("gamma")) {
+    const Line l = fit_line(t, unwrapped(table, "gamma", t, options.angle_scale, planned_rate));
+    r.has_gamma = true;
+    r.gamma_rate = l.slope;
+    r.gamma_start = wrapped(l.start);
+    r.gamma_end = wrapped(l.end);
+    r.gamma_rms = l.rms;
+  }
+  return r;
+}
+
+Run measured_run(const Run& planned, const ReducedLog& log, const Geometry& geometry, const Site& site) {
+  Run run = planned;
+  run.duration = log.duration;
+  if (log.has_theta1) {
+    run.g_level = log.theta1_rate * log.theta1_rate * geometry.R0 / site.g;
+    run.arm_azimuth = log.theta1_start;
+  }
+  if (log.has_gamma) {
+    run.initial_phase = log.gamma_start;
+    run.terminal_phase.reset();
+  }
+  return run;
+}
+
+double measured_platform_mismatch(const Run& planned, const ReducedLog& log) {
+  if (!log.has_theta1 || !log.has_gamma || planned.mode != PlatformMode::counter_rotating) return 0.0;
+  return -log.gamma_rate - log.theta1_rate;
+}
+
+}  // namespace ccal
