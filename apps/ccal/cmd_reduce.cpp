@@ -87,6 +87,13 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
     by_run.emplace(lr.index, std::move(lr));
   }
 
+  const std::size_t free_terms = cfg.identification.free_terms.size();
+  if (by_run.size() < free_terms)
+    throw InputError(
+        fmt::format("--log: {} logged run(s) cannot determine {} free terms ({}); accepted: at least "
+                    "{} logs, of runs at different g-levels",
+                    by_run.size(), free_terms, fmt::join(cfg.identification.free_terms, ", "), free_terms));
+
   // The model of each run as measured: its own rate and phases, so the speed error is in the rate (Δω = 0 in
   // the model) and a measured platform mismatch replaces the configured one.
   const IdentificationSpec& spec = cfg.identification;
@@ -125,6 +132,8 @@ std::string or_dash(bool has, double v, int digits = 9) { return has ? number(v,
 
 std::string to_text(const Config& cfg, const Reduction& r) {
   const std::string& unit = cfg.instrument.output_unit;
+  const Geometry& geometry = cfg.centrifuge.geometry;
+  const Site& site = cfg.site;
   std::string out =
       fmt::format("ccal reduce: {} logged runs of {} ({} planned); {} model\n\n", r.runs.size(), cfg.source,
                   cfg.plan.runs.size(), r.mode == ModelMode::exact ? "exact" : "paper");
@@ -133,12 +142,14 @@ std::string to_text(const Config& cfg, const Reduction& r) {
   for (const LoggedRun& lr : r.runs)
     logs.add_row({lr.measured.name, lr.file, std::to_string(lr.log.samples), number(lr.log.duration),
                   number(lr.planned_rate), or_dash(lr.log.has_theta1, lr.log.theta1_rate, 12),
-                  number(lr.mismatch, 6), or_dash(lr.log.has_gamma, lr.log.gamma_start),
+                  number(lr.mismatch, 6), number(initial_phase(lr.measured, geometry, site)),
                   or_dash(lr.log.has_gamma, lr.log.gamma_end), number(lr.log.mean_output / r.unit, 12)});
   out += logs.render() + "\n";
   out +=
-      "  (Omega log, phi0, psi: line fits of the encoder angles; '-': not logged, the plan's value is used;\n"
-      "   dOmega: platform mismatch in the model, measured when both encoders are logged)\n\n";
+      "  (Omega log, psi: line fits of the encoder angles, '-' when not logged; phi0: the model's initial "
+      "phase,\n"
+      "   the platform encoder's or the plan's; dOmega: the model's platform mismatch, measured when both\n"
+      "   encoders are logged, else the configured one)\n\n";
   out += "  identification of these observations\n";
   return out + identification_text(r.identification.id);
 }
