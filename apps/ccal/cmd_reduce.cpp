@@ -217,9 +217,7 @@ Command add_reduce(CLI::App& app) {
          "Model of the regressors: exact (full chain) or paper; default: [identification] mode of the "
          "configuration")
       ->check(CLI::IsMember({"exact", "paper"}));
-  cmd->add_option("--observations-out", o->observations_out,
-                  "Also write the observations CSV (the input of 'ccal identify') to FILE")
-      ->type_name("FILE.csv");
+  add_observations_out_option(*cmd, o->observations_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -229,10 +227,7 @@ Command add_reduce(CLI::App& app) {
 
   return {cmd, [o] {
             const Config cfg = load_config_or_example(o->config);
-            if (!o->observations_out.empty() && o->observations_out == o->output.path)
-              throw InputError(
-                  fmt::format("--observations-out: '{}' is also the -o file; accepted: two different files",
-                              o->observations_out));
+            check_observations_out(o->observations_out, o->output);
             const Reduction r = reduce(cfg, *o);
             const std::string& f = o->output.format;
             const std::string text = f == "json"  ? to_json(cfg, r)

@@ -198,9 +198,7 @@ Command add_simulate(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Seed of the output noise (used only if the instrument has noise)")
       ->capture_default_str()
       ->type_name("S");
-  cmd->add_option("--observations-out", o->observations_out,
-                  "Also write the observations CSV (the input of 'ccal identify') to FILE")
-      ->type_name("FILE.csv");
+  add_observations_out_option(*cmd, o->observations_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -212,11 +210,7 @@ Command add_simulate(CLI::App& app) {
 
   return {cmd, [o] {
             const Config cfg = load_config_or_example(o->config);
-            if (!o->observations_out.empty() && o->observations_out == o->output.path)
-              throw InputError(
-                  fmt::format("--observations-out: '{}' is also the -o file; accepted: two different "
-                              "files",
-                              o->observations_out));
+            check_observations_out(o->observations_out, o->output);
             const Simulation s = simulate(cfg, *o);
             std::string text;
             if (o->output.format == "json")

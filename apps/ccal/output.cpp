@@ -27,6 +27,19 @@ void add_output_options(CLI::App& command, OutputOptions& options, const std::ve
 
 void write_output(const OutputOptions& options, std::string_view text) { write_outputs(options, text, {}); }
 
+void add_observations_out_option(CLI::App& command, std::string& path) {
+  command
+      .add_option("--observations-out", path,
+                  "Also write the observations CSV (the input of 'ccal identify') to FILE")
+      ->type_name("FILE.csv");
+}
+
+void check_observations_out(const std::string& path, const OutputOptions& output) {
+  if (!path.empty() && path == output.path)
+    throw InputError(
+        fmt::format("--observations-out: '{}' is also the -o file; accepted: two different files", path));
+}
+
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra) {
   namespace fs = std::filesystem;
   std::vector<ExtraFile> files = extra;

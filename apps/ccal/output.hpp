@@ -38,6 +38,11 @@ struct ExtraFile {
 // all of them were written, so a failure leaves none of them (and no temporary file) behind.
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra);
 
+// --observations-out FILE (the observations CSV, the input of `ccal identify`, besides the output), and the
+// check that it is not also the -o file (InputError).
+void add_observations_out_option(CLI::App& command, std::string& path);
+void check_observations_out(const std::string& path, const OutputOptions& output);
+
 // The optional CONFIG argument every configuration-driven command takes.
 void add_config_argument(CLI::App& command, std::string& path);
 
