@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <variant>
@@ -15,6 +16,8 @@
 #include "ccal/errors.hpp"
 #include "ccal/fit.hpp"
 #include "ccal/force.hpp"
+#include "ccal/observation_csv.hpp"
+#include "ccal/run_log.hpp"
 #include "ccal/simulate.hpp"
 
 namespace ccal::python {
@@ -229,6 +232,55 @@ void bind_analysis(py::module_& m) {
       py::arg("H"), py::arg("y"), py::arg("names"), py::arg("weights") = py::none(),
       py::arg("fixed") = std::map<std::string, double>{}, py::arg("method") = "qr",
       "Least squares y ≈ H x with named columns: weights 1/σ² per row, fixed columns held at given values.");
+
+  py::class_<ReducedLog>(m, "ReducedLog", "One recorded run log, reduced (SI).")
+      .def_readonly("source", &ReducedLog::source)
+      .def_readonly("samples", &ReducedLog::samples)
+      .def_readonly("pulses", &ReducedLog::pulses, "the output came as a pulse count")
+      .def_readonly("duration", &ReducedLog::duration, "T [s]")
+      .def_readonly("mean_output", &ReducedLog::mean_output, "[output SI]")
+      .def_readonly("has_theta1", &ReducedLog::has_theta1)
+      .def_readonly("theta1_rate", &ReducedLog::theta1_rate, "[rad/s]")
+      .def_readonly("theta1_start", &ReducedLog::theta1_start, "[rad]")
+      .def_readonly("theta1_rms", &ReducedLog::theta1_rms, "[rad]")
+      .def_readonly("has_gamma", &ReducedLog::has_gamma)
+      .def_readonly("gamma_rate", &ReducedLog::gamma_rate, "[rad/s]")
+      .def_readonly("gamma_start", &ReducedLog::gamma_start, "φ0 [rad]")
+      .def_readonly("gamma_end", &ReducedLog::gamma_end, "ψ [rad]")
+      .def_readonly("gamma_rms", &ReducedLog::gamma_rms, "[rad]");
+
+  py::class_<LoggedRun>(m, "LoggedRun")
+      .def_readonly("index", &LoggedRun::index, "0-based index in the plan")
+      .def_readonly("log", &LoggedRun::log)
+      .def_readonly("measured", &LoggedRun::measured, "the planned run as the log measured it")
+      .def_readonly("planned_rate", &LoggedRun::planned_rate, "[rad/s]")
+      .def_readonly("rate", &LoggedRun::rate, "[rad/s]")
+      .def_readonly("mismatch", &LoggedRun::mismatch, "ΔΩ of the model [rad/s]");
+
+  py::class_<LogReduction>(m, "LogReduction")
+      .def_readonly("runs", &LogReduction::runs)
+      .def_readonly("observations", &LogReduction::observations);
+
+  m.def(
+      "reduce_logs",
+      [](const Config& cfg, const std::map<std::variant<int, std::string>, std::string>& logs,
+         std::optional<double> pulse_weight, const std::string& angle_unit, std::optional<std::string> mode) {
+        RunLogOptions o;
+        o.output_scale = output_unit_si(cfg.instrument.output_unit);
+        o.pulse_weight = pulse_weight ? *pulse_weight : cfg.instrument.quantum;
+        if (angle_unit == "deg")
+          o.angle_scale = std::numbers::pi / 180;
+        else if (angle_unit != "rad")
+          throw InputError("angle_unit: '" + angle_unit + "'; accepted: 'rad', 'deg'");
+        std::vector<std::pair<std::size_t, CsvTable>> tables;
+        for (const auto& [run, path] : logs) tables.emplace_back(run_index(cfg, run), read_csv_file(path));
+        return reduce_logs(cfg, tables, o, mode ? parse_mode(*mode) : cfg.mode);
+      },
+      py::arg("config"), py::arg("logs"), py::arg("pulse_weight") = py::none(), py::arg("angle_unit") = "rad",
+      py::arg("mode") = py::none(),
+      "Recorded run logs (run name or 0-based index → CSV file) to observations of the runs as measured "
+      "(`ccal reduce`); pulse_weight: integrated output per pulse in SI (default: the instrument's quantum). "
+      "Identify them with identify(reduction.observations, config).");
 }
 
 }  // namespace ccal::python

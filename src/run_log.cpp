@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
+
+#include "ccal/errors.hpp"
 
 namespace ccal {
 
@@ -130,6 +133,66 @@ Run measured_run(const Run& planned, const ReducedLog& log, const Geometry& geom
 double measured_platform_mismatch(const Run& planned, const ReducedLog& log) {
   if (!log.has_theta1 || !log.has_gamma || planned.mode != PlatformMode::counter_rotating) return 0.0;
   return -log.gamma_rate - log.theta1_rate;
+}
+
+LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::size_t, CsvTable>>& logs,
+                         const RunLogOptions& options, ModelMode mode) {
+  const Experiment ex = config.experiment();
+  std::map<std::size_t, LoggedRun> by_run;  // plan order
+  for (const auto& [index, table] : logs) {
+    if (index >= config.plan.runs.size())
+      throw InputError(fmt::format("{}: run index {} is outside the plan's {} runs", table.source, index,
+                                   config.plan.runs.size()));
+    if (by_run.count(index))
+      throw InputError(fmt::format("{}: run '{}' is logged twice; accepted: one log per run", table.source,
+                                   config.plan.runs[index].name));
+    LoggedRun lr;
+    lr.index = index;
+    const Run& planned = config.plan.runs[index];
+    lr.planned_rate = nominal_rate(planned, ex.geometry, ex.site);
+    lr.log = reduce_run_log(table, options, lr.planned_rate);
+    lr.measured = measured_run(planned, lr.log, ex.geometry, ex.site);
+    lr.rate = nominal_rate(lr.measured, ex.geometry, ex.site);
+    lr.mismatch = measured_platform_mismatch(planned, lr.log);
+    by_run.emplace(index, std::move(lr));
+  }
+  const IdentificationSpec& spec = config.identification;
+  if (by_run.size() < spec.free_terms.size())
+    throw InputError(fmt::format(
+        "{} logged run(s) cannot determine {} free terms ({}); accepted: at least {} "
+        "logs, of runs at different g-levels",
+        by_run.size(), spec.free_terms.size(), fmt::join(spec.free_terms, ", "), spec.free_terms.size()));
+
+  // The model of each run as measured: its own rate and phases, so the speed error is in the rate (Δω = 0 in
+  // the model) and a measured platform mismatch replaces the configured one.
+  LogReduction r;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  Observations<double>& obs = r.observations;
+  for (auto& [index, lr] : by_run) {
+    Eigen::VectorXd known = spec.compensate ? config.centrifuge.errors : zero;
+    if (lr.log.has_theta1) known[domega] = 0.0;
+    if (lr.log.has_theta1 && lr.log.has_gamma) known[dOmega] = lr.mismatch;
+    if (!lr.log.has_gamma) lr.mismatch = known[dOmega];
+    Experiment one = ex;
+    one.plan.runs = {lr.measured};
+    const Observations<double> row = observe<double>(one, known, known, spec, mode);
+    const auto j = Eigen::Index(r.runs.size());
+    if (j == 0) {
+      const auto n = Eigen::Index(by_run.size());
+      obs.columns = row.columns;
+      obs.regressors.resize(n, row.regressors.cols());
+      obs.output.resize(n);
+      obs.known_rate.resize(n);
+      obs.input.resize(n);
+    }
+    obs.runs.push_back(row.runs[0]);
+    obs.regressors.row(j) = row.regressors.row(0);
+    obs.output[j] = lr.log.mean_output;
+    obs.known_rate[j] = row.known_rate[0];
+    obs.input[j] = row.input[0];
+    r.runs.push_back(std::move(lr));
+  }
+  return r;
 }
 
 }  // namespace ccal

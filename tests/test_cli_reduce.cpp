@@ -149,7 +149,8 @@ TEST_F(Reduce, BadLogsAndOptionsAreRefused) {
   write("good.csv", "time,pulses\n0,0\n450,1000\n");
   write("bad.csv", "time,pulses\n0,0\n450,x\n");
   const std::string base = "reduce config.toml --pulse-weight 1e-3 ";
-  expect_bad_input(run(base + "--log 20g=bad.csv"), {"bad.csv:3:2", "pulses", "not a number"});
+  expect_bad_input(run(base + "--log 20g=bad.csv --log 25g=good.csv --log 30g=good.csv"),
+                   {"bad.csv:3:2", "pulses", "not a number"});
   expect_bad_input(run(base + "--log 21g=good.csv"), {"--log", "21g", "20g"});
   expect_bad_input(run(base + "--log 20g=good.csv --log 4=good.csv"), {"logged twice"});
   expect_bad_input(run(base + "--log 20g"), {"RUN=FILE"});

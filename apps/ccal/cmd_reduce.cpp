@@ -29,20 +29,11 @@ struct ReduceOptions {
   OutputOptions output;
 };
 
-struct LoggedRun {
-  std::size_t index = 0;  // in the plan
-  std::string file;
-  ReducedLog log;
-  Run measured;
-  double planned_rate = 0, rate = 0;  // Ω of the plan and of the run as measured [rad/s]
-  double mismatch = 0;                // ΔΩ used for the model [rad/s]
-};
-
 struct Reduction {
   ModelMode mode = ModelMode::exact;
-  double unit = 1;  // SI size of one output unit
-  std::vector<LoggedRun> runs;
-  Observations<double> obs;
+  double unit = 1;                 // SI size of one output unit
+  std::vector<std::string> files;  // per logged run
+  LogReduction logs;
   FileIdentification identification;
 };
 
@@ -63,8 +54,8 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
                       o.pulse_weight, cfg.instrument.output_unit));
     lo.pulse_weight = *w * r.unit;
   }
-  const Experiment ex = cfg.experiment();
-  std::map<std::size_t, LoggedRun> by_run;  // plan order
+  std::vector<std::pair<std::size_t, CsvTable>> logs;
+  std::map<std::size_t, std::string> files;
   for (const std::string& item : o.logs) {
     const std::size_t eq = item.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
@@ -72,59 +63,23 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
           fmt::format("--log: '{}' is not RUN=FILE; accepted: a run name or 1-based index, '=', "
                       "the log file, e.g. 20g=run20.csv",
                       item));
-    LoggedRun lr;
-    lr.index = select_run(cfg.plan, item.substr(0, eq), "--log");
-    lr.file = item.substr(eq + 1);
-    if (by_run.count(lr.index))
+    const std::size_t index = select_run(cfg.plan, item.substr(0, eq), "--log");
+    if (files.count(index))
       throw InputError(fmt::format("--log: run '{}' is logged twice; accepted: one log per run",
-                                   cfg.plan.runs[lr.index].name));
-    const Run& planned = cfg.plan.runs[lr.index];
-    lr.planned_rate = nominal_rate(planned, ex.geometry, ex.site);
-    lr.log = reduce_run_log(read_csv_file(lr.file), lo, lr.planned_rate);
-    lr.measured = measured_run(planned, lr.log, ex.geometry, ex.site);
-    lr.rate = nominal_rate(lr.measured, ex.geometry, ex.site);
-    lr.mismatch = measured_platform_mismatch(planned, lr.log);
-    by_run.emplace(lr.index, std::move(lr));
+                                   cfg.plan.runs[index].name));
+    files[index] = item.substr(eq + 1);
+    logs.emplace_back(index, read_csv_file(files[index]));
   }
-
-  const std::size_t free_terms = cfg.identification.free_terms.size();
-  if (by_run.size() < free_terms)
+  if (logs.size() < cfg.identification.free_terms.size())
     throw InputError(
-        fmt::format("--log: {} logged run(s) cannot determine {} free terms ({}); accepted: at least "
-                    "{} logs, of runs at different g-levels",
-                    by_run.size(), free_terms, fmt::join(cfg.identification.free_terms, ", "), free_terms));
-
-  // The model of each run as measured: its own rate and phases, so the speed error is in the rate (Δω = 0 in
-  // the model) and a measured platform mismatch replaces the configured one.
-  const IdentificationSpec& spec = cfg.identification;
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-  std::vector<Observations<double>> rows;
-  for (auto& [index, lr] : by_run) {
-    Eigen::VectorXd known = spec.compensate ? cfg.centrifuge.errors : zero;
-    if (lr.log.has_theta1) known[domega] = 0.0;
-    if (lr.log.has_theta1 && lr.log.has_gamma) known[dOmega] = lr.mismatch;
-    if (!lr.log.has_gamma) lr.mismatch = known[dOmega];
-    Experiment one = ex;
-    one.plan.runs = {lr.measured};
-    rows.push_back(observe<double>(one, known, known, spec, r.mode));
-    rows.back().output[0] = lr.log.mean_output;
-    r.runs.push_back(lr);
-  }
-  r.obs.columns = rows.front().columns;
-  const auto n = Eigen::Index(rows.size());
-  r.obs.regressors.resize(n, Eigen::Index(r.obs.columns.size()));
-  r.obs.output.resize(n);
-  r.obs.known_rate.resize(n);
-  r.obs.input.resize(n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const Observations<double>& row = rows[std::size_t(j)];
-    r.obs.runs.push_back(row.runs[0]);
-    r.obs.regressors.row(j) = row.regressors.row(0);
-    r.obs.output[j] = row.output[0];
-    r.obs.known_rate[j] = row.known_rate[0];
-    r.obs.input[j] = row.input[0];
-  }
-  r.identification = identify_observations(r.obs, spec, ex.instrument, cfg.source);
+        fmt::format("--log: {} logged run(s) cannot determine {} free terms ({}); accepted: at "
+                    "least {} logs, of runs at different g-levels",
+                    logs.size(), cfg.identification.free_terms.size(),
+                    fmt::join(cfg.identification.free_terms, ", "), cfg.identification.free_terms.size()));
+  r.logs = reduce_logs(cfg, logs, lo, r.mode);
+  for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
+  r.identification =
+      identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source);
   return r;
 }
 
@@ -135,15 +90,17 @@ std::string to_text(const Config& cfg, const Reduction& r) {
   const Geometry& geometry = cfg.centrifuge.geometry;
   const Site& site = cfg.site;
   std::string out =
-      fmt::format("ccal reduce: {} logged runs of {} ({} planned); {} model\n\n", r.runs.size(), cfg.source,
-                  cfg.plan.runs.size(), r.mode == ModelMode::exact ? "exact" : "paper");
+      fmt::format("ccal reduce: {} logged runs of {} ({} planned); {} model\n\n", r.logs.runs.size(),
+                  cfg.source, cfg.plan.runs.size(), r.mode == ModelMode::exact ? "exact" : "paper");
   Table logs({"run", "log", "samples", "T [s]", "Omega plan [rad/s]", "Omega log [rad/s]", "dOmega [rad/s]",
               "phi0 [rad]", "psi [rad]", fmt::format("output [{}]", unit)});
-  for (const LoggedRun& lr : r.runs)
-    logs.add_row({lr.measured.name, lr.file, std::to_string(lr.log.samples), number(lr.log.duration),
+  for (std::size_t k = 0; k < r.logs.runs.size(); ++k) {
+    const LoggedRun& lr = r.logs.runs[k];
+    logs.add_row({lr.measured.name, r.files[k], std::to_string(lr.log.samples), number(lr.log.duration),
                   number(lr.planned_rate), or_dash(lr.log.has_theta1, lr.log.theta1_rate, 12),
                   number(lr.mismatch, 6), number(initial_phase(lr.measured, geometry, site)),
                   or_dash(lr.log.has_gamma, lr.log.gamma_end), number(lr.log.mean_output / r.unit, 12)});
+  }
   out += logs.render() + "\n";
   out +=
       "  (Omega log, psi: line fits of the encoder angles, '-' when not logged; phi0: the model's initial "
@@ -162,10 +119,11 @@ std::string to_json(const Config& cfg, const Reduction& r) {
   j["mode"] = r.mode == ModelMode::exact ? "exact" : "paper";
   j["output_unit"] = cfg.instrument.output_unit;
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
-  for (const LoggedRun& lr : r.runs) {
+  for (std::size_t k = 0; k < r.logs.runs.size(); ++k) {
+    const LoggedRun& lr = r.logs.runs[k];
     nlohmann::ordered_json x;
     x["name"] = lr.measured.name;
-    x["log"] = lr.file;
+    x["log"] = r.files[k];
     x["samples"] = lr.log.samples;
     x["duration_s"] = lr.log.duration;
     x["output"] = lr.log.mean_output / r.unit;

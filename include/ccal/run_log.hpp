@@ -16,9 +16,14 @@
 // most half a revolution between samples) and fitted by straight lines: the rate and the phases at the ends.
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ccal/centrifuge.hpp"
+#include "ccal/config.hpp"
+#include "ccal/model_mode.hpp"
 #include "ccal/observation_csv.hpp"
+#include "ccal/simulate.hpp"
 #include "ccal/site.hpp"
 #include "ccal/test_plan.hpp"
 
@@ -63,5 +68,26 @@ Run measured_run(const Run& planned, const ReducedLog& log, const Geometry& geom
 // The platform rate mismatch the log measured, ΔΩ = −γ̇ − θ̇1 on a counter-rotating platform (0 unless both
 // encoders were logged and the platform counter-rotates).
 double measured_platform_mismatch(const Run& planned, const ReducedLog& log);
+
+// One logged run of a plan, as reduced and modelled.
+struct LoggedRun {
+  std::size_t index = 0;  // in the plan
+  ReducedLog log;
+  Run measured;             // measured_run of the planned run
+  double planned_rate = 0;  // Ω of the plan [rad/s]
+  double rate = 0;          // Ω of the run as measured [rad/s]
+  double mismatch = 0;  // ΔΩ of the model: measured with both encoders, else the configured value [rad/s]
+};
+struct LogReduction {
+  std::vector<LoggedRun> runs;        // in plan order
+  Observations<double> observations;  // per logged run: the model's regressors, the log's mean output
+};
+// The observations of logged runs (plan index → log table; each run once): every run is modelled as measured
+// (measured_run; with the main-axis encoder Δω = 0 in the model, with both encoders the measured ΔΩ), the
+// other error values as in `simulate` ([identification] compensate), and its output is the log's mean. Throws
+// InputError for a run index outside the plan or logged twice, or fewer logs than free terms; CsvError for a
+// bad log.
+LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::size_t, CsvTable>>& logs,
+                         const RunLogOptions& options, ModelMode mode);
 
 }  // namespace ccal

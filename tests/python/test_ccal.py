@@ -172,6 +172,44 @@ class IdentificationTest(unittest.TestCase):
             ccal.fit(H, y, ["a", "b", "c"], method="lu")
 
 
+class ReduceLogsTest(unittest.TestCase):
+    def test_logs_of_the_model_give_its_identification(self):
+        # The bundled example with known drive errors, compensated; logs of its runs as the model produces them
+        # (pulses of 1e-5 rad, the encoders every 0.2 s): reduced and identified, they give what observe +
+        # identify give, to the line fits' round-off (1e-9 of the coefficients, as in test_cli_reduce).
+        text = ccal.bundled_example_text()
+        text = text.replace('# dthz5 = "2 arcsec"', 'domega = "2e-6 rad/s"\ndOmega = "-1e-6 rad/s"\n# dthz5')
+        text = text.replace("compensate = false", "compensate = true")
+        cfg = ccal.parse_config(text, "drive errors")
+        errors = dict(zip(cfg.error_ids, cfg.errors))
+        obs = ccal.observe(cfg)
+        want = ccal.identify(obs, cfg)
+        w = 1e-5
+        with tempfile.TemporaryDirectory() as d:
+            logs = {}
+            for k, run in enumerate(cfg.runs):
+                s = ccal.sensed_input(cfg, run=k)
+                rate = s.rate + errors["domega"]
+                t = np.linspace(0.0, run.duration, int(run.duration / 0.2) + 1)
+                theta1 = np.mod(run.arm_azimuth + rate * t, 2 * math.pi)
+                gamma = np.mod(s.initial_phase - (rate + errors["dOmega"]) * t, 2 * math.pi)
+                pulses = obs.output[k] * t / w
+                path = os.path.join(d, f"{run.name}.csv")
+                np.savetxt(path, np.column_stack([t, pulses, theta1, gamma]), delimiter=",", fmt="%.17g",
+                           header="time,pulses,theta1,gamma", comments="")
+                logs[run.name if k % 2 else k] = path  # by name and by index
+            red = ccal.reduce_logs(cfg, logs, pulse_weight=w)
+            with self.assertRaisesRegex(ccal.InputError, "cannot determine 3 free terms"):
+                ccal.reduce_logs(cfg, {"20g": path}, pulse_weight=w)  # one log for three free terms
+        self.assertEqual([r.index for r in red.runs], list(range(6)))
+        for r in red.runs:
+            self.assertAlmostEqual(r.rate - r.planned_rate, 2e-6, delta=1e-12)
+            self.assertAlmostEqual(r.mismatch, -1e-6, delta=1e-12)
+            self.assertTrue(r.log.has_theta1 and r.log.has_gamma and r.log.pulses)
+        got = ccal.identify(red.observations, cfg)
+        np.testing.assert_allclose(got.value, want.value, rtol=1e-9)
+
+
 class UncertaintyTest(unittest.TestCase):
     def test_monte_carlo_is_deterministic_and_agrees_with_the_lpu(self):
         cfg = ccal.bundled_example()
