@@ -159,6 +159,9 @@ TEST_F(Reduce, BadLogsAndOptionsAreRefused) {
   // fewer logged runs than free terms
   expect_bad_input(run(base + "--log 20g=good.csv --log 25g=good.csv"),
                    {"--log", "2 logged run", "K0, K2, K3"});
+  const Result unit = run(base + "--angle-unit grad --log 20g=good.csv");
+  EXPECT_EQ(unit.code, 2) << unit.err;
+  EXPECT_NE(unit.err.find("--angle-unit"), std::string::npos) << unit.err;
   const Result none = run("reduce config.toml");
   EXPECT_EQ(none.code, 2) << none.err;
   EXPECT_NE(none.err.find("--log"), std::string::npos) << none.err;

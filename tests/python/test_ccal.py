@@ -201,6 +201,10 @@ class ReduceLogsTest(unittest.TestCase):
             red = ccal.reduce_logs(cfg, logs, pulse_weight=w)
             with self.assertRaisesRegex(ccal.InputError, "cannot determine 3 free terms"):
                 ccal.reduce_logs(cfg, {"20g": path}, pulse_weight=w)  # one log for three free terms
+            with self.assertRaisesRegex(ccal.InputError, "angle_unit"):
+                ccal.reduce_logs(cfg, logs, pulse_weight=w, angle_unit="grad")
+            with self.assertRaisesRegex(ccal.InputError, "21g"):
+                ccal.reduce_logs(cfg, {"21g": path}, pulse_weight=w)
         self.assertEqual([r.index for r in red.runs], list(range(6)))
         for r in red.runs:
             self.assertAlmostEqual(r.rate - r.planned_rate, 2e-6, delta=1e-12)
