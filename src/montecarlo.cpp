@@ -705,6 +705,9 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     m.run_means =
         std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
                                               experiment.plan.runs, experiment.instrument, m.reduction);
+  if (mode == ModelMode::paper)
+    for (const Run& run : experiment.plan.runs)
+      m.paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
   const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
   const auto nfree = Eigen::Index(spec.free_terms.size());
@@ -749,7 +752,7 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
                                  ? average_run<double>(ex.geometry, ex.layout, truth, ex.site,
                                                        ex.plan.runs[j], &ex.instrument, {}, m.reduction)
                                        .output
-                                 : detail::paper_average<double>(ex, truth, ex.plan.runs[j], &ex.instrument,
+                                 : detail::paper_average<double>(ex, m.paper_nodes[j], truth, &ex.instrument,
                                                                  {}, m.spec.paper_cross_terms)
                                        .output;
     }

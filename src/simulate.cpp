@@ -18,26 +18,45 @@ std::vector<std::string> observation_columns(const IdentificationSpec& spec) {
 
 namespace detail {
 
-// The paper's reduction of one run (docs/model.md §5.1, §7.1): a_i from the first-order form with the
-// frozen-γ rules and a constant Coriolis term, phases on the nominal rate, Δω in the amplitude
-// A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors in the K1 term only unless cross_terms,
-// the Earth-rate term on the IA heading, and the paper's additive −ΔΩ in the output.
-template <class S>
-RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
-                            const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
-                            bool cross_terms) {
+PaperRunNodes paper_run_nodes(const Experiment& ex, const ccal::Run& run,
+                              const std::vector<TermSpec>& terms) {
   const Geometry& geo = ex.geometry;
-  const double rate = nominal_rate(run, geo, ex.site);
+  PaperRunNodes n;
+  n.rate = nominal_rate(run, geo, ex.site);
   const double phi0 = initial_phase(run, geo, ex.site);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-  const RunMotion<double> nominal = run_motion<double>(rate, run.arm_azimuth, phi0, run.mode, geo.beta, zero);
+  const RunMotion<double> nominal =
+      run_motion<double>(n.rate, run.arm_azimuth, phi0, run.mode, geo.beta, zero);
   QuadratureOptions qo;
   qo.fast_nodes = fast_nodes_for(std::max(polynomial_degree(terms), 3), ex.layout.harmonic_order() + 1);
   const RunQuadrature<double> quad = run_quadrature<double>(nominal, run.duration, run.mode, 0.0, qo);
-
-  const S omega = S(rate) + e[domega];
-  const S A = S(geo.R0) * omega * omega / S(ex.site.g);
   const PaperFormOptions form{.lever_arms = true, .constant_coriolis = true};
+  for (std::size_t k = 0; k < quad.nodes.size(); ++k) {
+    const JointState<double>& j = quad.nodes[k];
+    const FirstOrderResult fo = paper_first_order(geo, ex.layout, ex.site, j, form);
+    n.weight.push_back(quad.weights[k]);
+    n.cos_gamma.push_back(std::cos(j.gamma));
+    n.sin_gamma.push_back(std::sin(j.gamma));
+    n.coriolis.push_back(-fo.nominal[0] - (n.rate * n.rate * geo.R0 / ex.site.g) * std::cos(j.gamma));
+    n.nominal_rate_ia.push_back(fo.nominal[3]);
+    std::vector<std::pair<int, double>> force, rate;
+    for (int i = 0; i < ex.layout.size(); ++i) {
+      if (i == domega) continue;  // in the amplitude A
+      if (fo.sensitivity(0, i) != 0.0) force.emplace_back(i, fo.sensitivity(0, i));
+      if (fo.sensitivity(3, i) != 0.0) rate.emplace_back(i, fo.sensitivity(3, i));
+    }
+    n.force_row.push_back(std::move(force));
+    n.rate_row.push_back(std::move(rate));
+  }
+  return n;
+}
+
+template <class S>
+RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, const VecX<S>& e,
+                            const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
+                            bool cross_terms) {
+  const S omega = S(nodes.rate) + e[domega];
+  const S A = S(ex.geometry.R0) * omega * omega / S(ex.site.g);
   std::vector<TermSpec> truth_terms;
   double k1 = 0.0;
   if (instrument) {
@@ -46,21 +65,15 @@ RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::
   }
   RunAverage<S> avg;
   avg.regressors = VecX<S>::Zero(Eigen::Index(terms.size()));
-  for (std::size_t n = 0; n < quad.nodes.size(); ++n) {
-    const JointState<double>& j = quad.nodes[n];
-    const FirstOrderResult fo = paper_first_order(geo, ex.layout, ex.site, j, form);
-    const double coriolis = -fo.nominal[0] - (rate * rate * geo.R0 / ex.site.g) * std::cos(j.gamma);
-    const S a_power = -A * std::cos(j.gamma);  // the K2, K3 … input: amplitude only
-    S a_k1 = a_power - S(coriolis);
-    S w_ia = S(fo.nominal[3]);
-    for (int i = 0; i < ex.layout.size(); ++i) {
-      if (i == domega) continue;  // in A
-      if (fo.sensitivity(0, i) != 0.0) a_k1 += fo.sensitivity(0, i) * e[i];
-      if (fo.sensitivity(3, i) != 0.0) w_ia += fo.sensitivity(3, i) * e[i];
-    }
-    const Vec3<S> a_cross(a_k1, A * std::sin(j.gamma), S(1));
-    const Vec3<S> a_plain(a_power, A * std::sin(j.gamma), S(1));
-    const S weight = S(quad.weights[n]);
+  for (std::size_t n = 0; n < nodes.weight.size(); ++n) {
+    const S a_power = -A * nodes.cos_gamma[n];  // the K2, K3 … input: amplitude only
+    S a_k1 = a_power - S(nodes.coriolis[n]);
+    S w_ia = S(nodes.nominal_rate_ia[n]);
+    for (const auto& [i, d] : nodes.force_row[n]) a_k1 += d * e[i];
+    for (const auto& [i, d] : nodes.rate_row[n]) w_ia += d * e[i];
+    const Vec3<S> a_cross(a_k1, A * nodes.sin_gamma[n], S(1));
+    const Vec3<S> a_plain(a_power, A * nodes.sin_gamma[n], S(1));
+    const S weight = S(nodes.weight[n]);
     avg.input += weight * a_cross;
     avg.rate_ia += weight * w_ia;
     for (std::size_t k = 0; k < terms.size(); ++k) {
@@ -80,10 +93,24 @@ RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::
   return avg;
 }
 
+// The paper's reduction of one run (docs/model.md §5.1, §7.1): a_i from the first-order form with the
+// frozen-γ rules and a constant Coriolis term, phases on the nominal rate, Δω in the amplitude
+// A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors in the K1 term only unless cross_terms,
+// the Earth-rate term on the IA heading, and the paper's additive −ΔΩ in the output.
+template <class S>
+RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
+                            const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
+                            bool cross_terms) {
+  return paper_average<S>(ex, paper_run_nodes(ex, run, terms), e, instrument, terms, cross_terms);
+}
+
 template RunAverage<double> paper_average<double>(const Experiment&, const VecX<double>&, const ccal::Run&,
                                                   const InstrumentModel*, const std::vector<TermSpec>&, bool);
 template RunAverage<Dual> paper_average<Dual>(const Experiment&, const VecX<Dual>&, const ccal::Run&,
                                               const InstrumentModel*, const std::vector<TermSpec>&, bool);
+template RunAverage<double> paper_average<double>(const Experiment&, const PaperRunNodes&,
+                                                  const VecX<double>&, const InstrumentModel*,
+                                                  const std::vector<TermSpec>&, bool);
 
 }  // namespace detail
 

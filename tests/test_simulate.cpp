@@ -170,5 +170,22 @@ TEST(Identification, OddEvenSeparationWithIaInAndOutOnAFixedPlatform) {
   EXPECT_NEAR(odd[1], 0.003, 1e-9 * 0.003);
 }
 
+TEST(Identification, PaperReductionFromCachedNodesIsTheSame) {
+  // The Monte Carlo caches the error-independent part of the paper reduction per run (paper_run_nodes); the
+  // reduction from it must be the very same arithmetic: equal bits, for errors of every kind.
+  const Experiment ex = paper_experiment(true);
+  const Eigen::VectorXd e = random_errors(ex.layout, 1e-5, 17);
+  for (const ccal::Run& run : ex.plan.runs)
+    for (bool cross : {false, true}) {
+      const detail::PaperRunNodes nodes = detail::paper_run_nodes(ex, run, {});
+      const double direct = detail::paper_average<double>(ex, e, run, &ex.instrument, {}, cross).output;
+      const double cached = detail::paper_average<double>(ex, nodes, e, &ex.instrument, {}, cross).output;
+      EXPECT_EQ(direct, cached) << run.name;
+      EXPECT_NE(direct, detail::paper_average<double>(ex, nodes, Eigen::VectorXd::Zero(e.size()).eval(),
+                                                      &ex.instrument, {}, cross)
+                            .output);  // the errors do act
+    }
+}
+
 }  // namespace
 }  // namespace ccal::test

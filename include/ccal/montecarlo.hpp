@@ -198,6 +198,8 @@ struct CalibrationModel {
   // The truth's run means in exact mode (run_means.hpp): the same rule and chain as average_run, without its
   // per-call set-up.
   std::shared_ptr<const RunMeanKernel> run_means;
+  // In paper mode: the error-independent part of each run's paper reduction.
+  std::vector<detail::PaperRunNodes> paper_nodes;
 
   std::vector<std::string> output_names() const { return spec.free_terms; }
   int n_outputs() const { return int(spec.free_terms.size()); }
