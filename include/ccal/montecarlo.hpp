@@ -50,9 +50,10 @@
 // against the symmetric MC interval; validated iff both ≤ δ, the numerical tolerance (§7.9.2) of the LPU's
 // u_c with n_dig significant digits (options.significant_digits, or 2 when the run is not adaptive).
 //
-// Memory: the trial outputs are kept for the quantiles, 8·M·n_outputs bytes (M counted over all stages, as
-// the final intervals need every value; the buffers grow geometrically from stage to stage, so up to about
-// twice that), plus O(n_outputs²) for the covariance, O(n_sources + n_outputs) per thread, and in the
+// Memory: the trial outputs are kept for the quantiles, 8·M·n_outputs bytes (M counted over all stages; the
+// intervals read only the 2(M − q + 1) ≈ 2(1 − p)M extreme order statistics of each output, but keeping every
+// value lets adaptive stages merge exactly and every sum run in a fixed order; the buffers grow geometrically
+// from stage to stage, so up to about twice that), plus O(n_outputs²) for the covariance, O(n_sources + n_outputs) per thread, and in the
 // adaptive procedure a partly sorted copy of one stage's values per thread (8·stage size bytes each). Only
 // the tails of the values that the intervals read are sorted (the (1 − p)M lowest and highest), in place,
 // after the covariance.
