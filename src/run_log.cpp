@@ -135,6 +135,14 @@ double measured_platform_mismatch(const Run& planned, const ReducedLog& log) {
   return -log.gamma_rate - log.theta1_rate;
 }
 
+void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::string_view where) {
+  if (logs < spec.free_terms.size())
+    throw InputError(fmt::format(
+        "{}: {} logged run(s) cannot determine {} free terms ({}); accepted: at least {} "
+        "logs, of runs at different g-levels",
+        where, logs, spec.free_terms.size(), fmt::join(spec.free_terms, ", "), spec.free_terms.size()));
+}
+
 LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::size_t, CsvTable>>& logs,
                          const RunLogOptions& options, ModelMode mode) {
   const Experiment ex = config.experiment();
@@ -157,11 +165,7 @@ LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::
     by_run.emplace(index, std::move(lr));
   }
   const IdentificationSpec& spec = config.identification;
-  if (by_run.size() < spec.free_terms.size())
-    throw InputError(fmt::format(
-        "{} logged run(s) cannot determine {} free terms ({}); accepted: at least {} "
-        "logs, of runs at different g-levels",
-        by_run.size(), spec.free_terms.size(), fmt::join(spec.free_terms, ", "), spec.free_terms.size()));
+  check_log_count(spec, by_run.size(), "logs");
 
   // The model of each run as measured: its own rate and phases, so the speed error is in the rate (Δω = 0 in
   // the model) and a measured platform mismatch replaces the configured one.

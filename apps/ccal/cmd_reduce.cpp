@@ -70,12 +70,7 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
     files[index] = item.substr(eq + 1);
     logs.emplace_back(index, read_csv_file(files[index]));
   }
-  if (logs.size() < cfg.identification.free_terms.size())
-    throw InputError(
-        fmt::format("--log: {} logged run(s) cannot determine {} free terms ({}); accepted: at "
-                    "least {} logs, of runs at different g-levels",
-                    logs.size(), cfg.identification.free_terms.size(),
-                    fmt::join(cfg.identification.free_terms, ", "), cfg.identification.free_terms.size()));
+  check_log_count(cfg.identification, logs.size(), "--log");
   r.logs = reduce_logs(cfg, logs, lo, r.mode);
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
   r.identification =

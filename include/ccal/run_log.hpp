@@ -16,6 +16,7 @@
 // most half a revolution between samples) and fitted by straight lines: the rate and the phases at the ends.
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -82,6 +83,10 @@ struct LogReduction {
   std::vector<LoggedRun> runs;        // in plan order
   Observations<double> observations;  // per logged run: the model's regressors, the log's mean output
 };
+// Throws InputError "<where>: n logged run(s) cannot determine …" when fewer runs are logged than the spec
+// has free terms.
+void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::string_view where);
+
 // The observations of logged runs (plan index → log table; each run once): every run is modelled as measured
 // (measured_run; with the main-axis encoder Δω = 0 in the model, with both encoders the measured ΔΩ), the
 // other error values as in `simulate` ([identification] compensate), and its output is the log's mean. Throws
