@@ -162,6 +162,17 @@ TEST_F(Reduce, BadLogsAndOptionsAreRefused) {
   const Result unit = run(base + "--angle-unit grad --log 20g=good.csv");
   EXPECT_EQ(unit.code, 2) << unit.err;
   EXPECT_NE(unit.err.find("--angle-unit"), std::string::npos) << unit.err;
+  const Result mode = run(base + "--mode approximate --log 20g=good.csv");
+  EXPECT_EQ(mode.code, 2) << mode.err;
+  EXPECT_NE(mode.err.find("--mode"), std::string::npos) << mode.err;
+  expect_bad_input(run(base + "--log 20g=good.csv --log 25g=good.csv --log 30g=good.csv -o same.csv "
+                              "--observations-out same.csv"),
+                   {"--observations-out", "same.csv", "two different files"});
+  EXPECT_FALSE(fs::exists(dir_ / "same.csv"));
+  // platform encoder samples too far apart for the unwrapping
+  write("coarse.csv", "time,pulses,gamma\n0,0,0\n1,1,1\n");
+  expect_bad_input(run(base + "--log 20g=coarse.csv --log 25g=good.csv --log 30g=good.csv"),
+                   {"coarse.csv:3", "gamma", "0.75π"});
   const Result none = run("reduce config.toml");
   EXPECT_EQ(none.code, 2) << none.err;
   EXPECT_NE(none.err.find("--log"), std::string::npos) << none.err;

@@ -57,6 +57,12 @@ class ConfigTest(unittest.TestCase):
             ccal.load_config("/nonexistent/ccal.toml")
         with self.assertRaises(ccal.InputError):
             ccal.budget(ccal.bundled_example(), mode="approximate")
+        with self.assertRaisesRegex(ccal.InputError, "derivatives"):
+            ccal.budget(ccal.bundled_example(), derivatives="numerical")
+        with self.assertRaisesRegex(ccal.InputError, "coverage_factor"):
+            ccal.budget(ccal.bundled_example(), coverage_factor=0.0)
+        with self.assertRaises(ccal.InputError):
+            ccal.monte_carlo(ccal.bundled_example(), trials=1)
 
 
 class BudgetTest(unittest.TestCase):
