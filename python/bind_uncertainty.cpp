@@ -98,7 +98,7 @@ void bind_uncertainty(py::module_& m) {
         o.significant_digits = digits;
         o.coverage = coverage;
         py::gil_scoped_release release;
-        return run_monte_carlo(cfg.tolerances, model.n_outputs(), model.output_names(),
+        return run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(), model.output_names(),
                                calibration_trial(model), o, &budget.standard_uncertainty);
       },
       py::arg("config"), py::arg("trials") = 100000, py::arg("seed") = 1, py::arg("threads") = 0,

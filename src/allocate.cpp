@@ -603,13 +603,32 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
     r.targets.push_back(k);
   }
 
+  // The drives' rate noise (model.md §3.2) is no tolerance: it stays as it is, so each target leaves the
+  // tolerances √(T_k² − (k_p u_noise,k)²); a target the noise alone reaches cannot be met.
+  Eigen::VectorXd noise_variance = Eigen::VectorXd::Zero(Eigen::Index(nk));
+  for (const RateNoiseBudget& n : b.rate_noise) noise_variance += n.covariance.diagonal();
+  std::vector<double> tolerance_target(nt);
+  for (std::size_t i = 0; i < nt; ++i) {
+    const AllocatedCoefficient& c = r.coefficients[r.targets[i]];
+    const double floor = kp * std::sqrt(noise_variance[Eigen::Index(r.targets[i])]);
+    if (!(c.target > floor * (1 + 1e-9)))
+      throw InputError(fmt::format(
+          "target on {}: the drives' rate noise alone gives U = {:.4g} {} (model.md §3.2), at or above the "
+          "target {:.4g} {}; no tolerance can meet it; accepted: a target above {:.4g} {}, or less rate "
+          "noise "
+          "([centrifuge] main_rate_noise, platform_rate_noise)",
+          c.id, floor * c.display_scale, c.unit, c.target * c.display_scale, c.unit, floor * c.display_scale,
+          c.unit));
+    tolerance_target[i] = std::sqrt(c.target * c.target - floor * floor);
+  }
+
   AllocationProblem P;
   P.sensitivity.resize(Eigen::Index(nt), Eigen::Index(ns));
   P.target.resize(Eigen::Index(nt));
   P.standard_uncertainty.resize(Eigen::Index(ns));
   P.cost.resize(Eigen::Index(ns));
   for (std::size_t i = 0; i < nt; ++i) {
-    P.target[Eigen::Index(i)] = r.coefficients[r.targets[i]].target;
+    P.target[Eigen::Index(i)] = tolerance_target[i];
     for (std::size_t s = 0; s < ns; ++s)
       P.sensitivity(Eigen::Index(i), Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(r.targets[i])];
   }
@@ -635,12 +654,17 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   for (std::size_t s = 0; s < ns; ++s) J.col(Eigen::Index(s)) = b.sources[s].sensitivity;
   const Eigen::VectorXd u_alloc_s = P.standard_uncertainty.cwiseProduct(sol.scale);
   const Groups allocated = merge_groups(J, u_alloc_s, P.cost, P.group);
-  const Eigen::VectorXd u_alloc = (allocated.effect * allocated.effect.transpose()).diagonal().cwiseSqrt();
+  const Eigen::VectorXd u_alloc =
+      ((allocated.effect * allocated.effect.transpose()).diagonal() + noise_variance).cwiseSqrt();
   for (std::size_t k = 0; k < nk; ++k) {
     AllocatedCoefficient& c = r.coefficients[k];
     c.configured_expanded = kp * b.standard_uncertainty[Eigen::Index(k)];
     c.allocated_expanded = kp * u_alloc[Eigen::Index(k)];
-    c.common_expanded = sol.common_scale * c.configured_expanded;
+    const double u_configured = b.standard_uncertainty[Eigen::Index(k)];
+    const double noise = noise_variance[Eigen::Index(k)];
+    c.common_expanded = kp * std::sqrt(sol.common_scale * sol.common_scale *
+                                           std::max(u_configured * u_configured - noise, 0.0) +
+                                       noise);
     c.lpu_std = u_alloc[Eigen::Index(k)];
   }
   for (std::size_t i = 0; i < nt; ++i) {
@@ -681,6 +705,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   // Monte Carlo on the allocated tolerances through the exact nonlinear pipeline.
   std::vector<Tolerance> scaled = cfg.tolerances;
   for (std::size_t s = 0; s < ns; ++s) scaled[s].bound *= sol.scale[Eigen::Index(s)];
+  for (Tolerance& t : rate_noise_sources(cfg)) scaled.push_back(std::move(t));  // as it is
   CalibrationModel model;
   try {
     model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 #include "ccal/first_order.hpp"
 #include "ccal/scalar.hpp"
@@ -240,6 +241,8 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
     b.effect_force = table.force_path.col(Eigen::Index(s)) * b.standard_uncertainty;
     b.effect_rate = table.rate_path.col(Eigen::Index(s)) * b.standard_uncertainty;
     if (compare) b.paper_effect = paper.total.col(Eigen::Index(s)) * b.standard_uncertainty;
+    const ErrorKind kind = channels()[config.centrifuge.layout.parameter_channel(t.parameter)].kind;
+    b.paper_counterpart = kind != ErrorKind::main_ripple && kind != ErrorKind::platform_ripple;
     const std::string key = t.group.empty() ? "#" + t.id : t.group;
     auto it = std::find(groups.begin(), groups.end(), key);
     if (it == groups.end()) {
@@ -252,6 +255,25 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
     r.sources.push_back(std::move(b));
   }
   r.covariance = group_effect * group_effect.transpose();
+  // The drives' rate noise: independent per run, so H⁺ diag(σ_j²) H⁺ᵀ (model.md §3.2).
+  if (ex.rate_noise.any()) {
+    const Eigen::MatrixXd pinv =
+        design_pseudo_inverse(observe<double>(ex, at, known, spec, options.mode, options.reduction), spec);
+    for (auto [drive, density, id] :
+         {std::tuple{int(ripple1), ex.rate_noise.main, "main_rate_noise"},
+          std::tuple{int(ripple3), ex.rate_noise.platform, "platform_rate_noise"}}) {
+      if (!(density > 0)) continue;
+      RateNoiseBudget n;
+      n.id = id;
+      n.density = density;
+      n.run_sd = density * rate_noise_gain(ex, at, drive);
+      const Eigen::MatrixXd effects = pinv * n.run_sd.asDiagonal();
+      n.covariance = effects * effects.transpose();
+      n.effect = n.covariance.diagonal().cwiseSqrt();
+      r.covariance += n.covariance;
+      r.rate_noise.push_back(std::move(n));
+    }
+  }
   r.standard_uncertainty = r.covariance.diagonal().cwiseSqrt();
   r.expanded_uncertainty = r.coverage_factor * r.standard_uncertainty;
   r.correlation = Eigen::MatrixXd::Identity(nk, nk);
@@ -270,7 +292,8 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
         const double big = std::max(x, p), small = std::min(x, p);
         const bool material = big >= 1e-3 * r.standard_uncertainty[k] && big > 0.0;
         const bool opposite = b.effect[k] * b.paper_effect[k] < 0;
-        b.disagrees.push_back(material && (opposite || big > options.disagreement_factor * small));
+        b.disagrees.push_back(b.paper_counterpart && material &&
+                              (opposite || big > options.disagreement_factor * small));
       }
     }
   }
@@ -284,6 +307,11 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
       b.share[k] = var > 0 ? b.effect[k] * b.effect[k] / var : 0.0;
     }
     largest[s] = b.share.size() ? b.share.maxCoeff() : 0.0;
+  }
+  for (RateNoiseBudget& n : r.rate_noise) {
+    n.share = Eigen::VectorXd::Zero(nk);
+    for (Eigen::Index k = 0; k < nk; ++k)
+      if (r.covariance(k, k) > 0) n.share[k] = n.covariance(k, k) / r.covariance(k, k);
   }
   std::vector<std::size_t> order(r.sources.size());
   std::iota(order.begin(), order.end(), 0);

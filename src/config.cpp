@@ -355,8 +355,10 @@ class Reader {
 
 const Keys kRootKeys{"site", "centrifuge", "errors", "tolerances", "instrument", "plan", "identification"};
 const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
-const Keys kCentrifugeKeys{"radius", "base_plane_height", "instrument_height", "horizontal_axis_angle",
-                           "harmonic_order"};
+const Keys kCentrifugeKeys{
+    "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
+    "harmonic_order", "platform_control",  "main_rate_noise",   "platform_rate_noise"};
+const Keys kRateNoiseKeys{"allan_deviation", "tau"};
 const Keys kToleranceKeys{"bound", "distribution", "group", "cost"};
 const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density", "quantum", "terms"};
 const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
@@ -390,6 +392,42 @@ Site read_site(const Reader& r, const toml::table& root) {
   return site;
 }
 
+// A drive's white relative-rate noise (model.md §3.2): a density "0.2 ppm/rtHz", or an Allan deviation of the
+// relative rate at an averaging time, { allan_deviation = "0.1 ppm", tau = "4 s" }, N = σ_A √τ.
+double read_rate_noise(const Reader& r, const toml::table& t, std::string_view key) {
+  const toml::node* n = t.get(key);
+  if (!n) return 0.0;
+  const std::string kp = Reader::path("centrifuge", key);
+  const std::string accepted =
+      "accepted: a density such as \"0.2 ppm/rtHz\" or { allan_deviation = \"0.1 ppm\", tau = \"4 s\" }";
+  double density = 0.0;
+  if (const auto* entry = n->as_table()) {
+    r.check_keys(*entry, kp, kRateNoiseKeys);
+    const auto sigma = r.quantity(*entry, kp, "allan_deviation", kind::dimensionless, nullptr, "0.1 ppm");
+    const auto tau = r.quantity(*entry, kp, "tau", kind::time, nullptr, "4 s");
+    if (!sigma || !tau) r.fail(*n, kp, "needs both allan_deviation and tau; " + accepted);
+    r.require_positive(*entry, kp, "tau", *tau, "an averaging time > 0 such as \"4 s\"");
+    density = *sigma * std::sqrt(*tau);
+  } else if (const auto* text = n->as_string()) {
+    std::string_view view(text->get());
+    while (!view.empty() && view.back() == ' ') view.remove_suffix(1);
+    bool stripped = false;
+    for (std::string_view suffix : {"/rtHz", "/sqrt(Hz)", "/√Hz"})
+      if (view.ends_with(suffix)) {
+        view.remove_suffix(suffix.size());
+        stripped = true;
+        break;
+      }
+    if (!stripped) r.fail(*n, kp, fmt::format("'{}' must end in /rtHz; {}", text->get(), accepted));
+    density =
+        r.quantity_text(std::string(view), where(n->source()), kp, kind::dimensionless, nullptr, "0.2 ppm");
+  } else {
+    r.fail(*n, kp, fmt::format("expected a string or an inline table, got {}; {}", type_name(*n), accepted));
+  }
+  if (!(density >= 0) || !std::isfinite(density)) r.fail(*n, kp, "must not be negative; " + accepted);
+  return density;
+}
+
 CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root) {
   const toml::table* t =
       r.table(root, "", "centrifuge", true, "add [centrifuge] with at least radius = \"2.5 m\"");
@@ -405,6 +443,11 @@ CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root) {
   geo.l = r.quantity(*t, p, "instrument_height", kind::length).value_or(0.0);
   r.require_non_negative(*t, p, "instrument_height", geo.l, "a height >= 0 such as \"0.05 m\"");
   geo.beta = r.quantity(*t, p, "horizontal_axis_angle", kind::angle).value_or(0.0);
+  geo.platform_control =
+      r.word(*t, p, "platform_control",
+             std::vector<std::pair<std::string_view, PlatformControl>>{
+                 {"speed", PlatformControl::speed}, {"phase_locked", PlatformControl::phase_locked}})
+          .value_or(PlatformControl::speed);
   int order = 1;
   if (const toml::node* n = t->get("harmonic_order")) {
     const auto* i = n->as_integer();
@@ -416,7 +459,10 @@ CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root) {
              fmt::format("{} is out of range; accepted: an integer 0..{}", i->get(), kMaxHarmonicOrder));
     order = static_cast<int>(i->get());
   }
-  return CentrifugeModel(geo, order);
+  CentrifugeModel model(geo, order);
+  model.rate_noise = {read_rate_noise(r, *t, "main_rate_noise"),
+                      read_rate_noise(r, *t, "platform_rate_noise")};
+  return model;
 }
 
 Dimension parameter_dimension(SourceUnit u) {
@@ -429,6 +475,8 @@ Dimension parameter_dimension(SourceUnit u) {
       return kind::angular_rate;
     case SourceUnit::m_per_rad_per_s_squared:
       return kind::length / pow(kind::angular_rate, 2);
+    case SourceUnit::relative:
+      return kind::dimensionless;
   }
   return kind::dimensionless;
 }
@@ -443,6 +491,8 @@ std::string parameter_example(SourceUnit u) {
       return "0.5e-6 rad/s";
     case SourceUnit::m_per_rad_per_s_squared:
       return "8.5e-8 m/(rad/s)^2";
+    case SourceUnit::relative:
+      return "10 ppm";
   }
   return "1";
 }
@@ -450,8 +500,17 @@ std::string parameter_example(SourceUnit u) {
 // Index of an error parameter named by a key of [errors] or [tolerances]; fails with the closest id.
 int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key& key,
                     std::string_view table) {
-  if (auto i = layout.find_parameter(key.str())) return *i;
   const std::string p = Reader::path(table, key.str());
+  if (auto i = layout.find_parameter(key.str())) {
+    const Channel& c = channels()[layout.parameter_channel(*i)];
+    const bool ripple = c.kind == ErrorKind::main_ripple || c.kind == ErrorKind::platform_ripple;
+    if (ripple && layout.parameter_harmonic(*i) == 0)
+      r.fail(where(key.source()), p,
+             fmt::format("a rate ripple has no constant term (a constant rate error is {}); accepted: "
+                         "{}_c<k>, {}_s<k> with 1 <= k <= harmonic_order",
+                         c.kind == ErrorKind::main_ripple ? "domega" : "dOmega", c.id, c.id));
+    return *i;
+  }
   const ErrorLayout widest(kMaxHarmonicOrder);
   if (auto i = widest.find_parameter(key.str()))
     r.fail(where(key.source()), p,
@@ -914,6 +973,7 @@ Experiment Config::experiment() const {
   ex.site = site;
   ex.plan = plan;
   ex.instrument = instrument;
+  ex.rate_noise = centrifuge.rate_noise;
   return ex;
 }
 

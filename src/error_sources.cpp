@@ -44,6 +44,8 @@ constexpr std::array<Channel, kChannelCount> kChannels{{
     {"dz3", azimuth_axis, translation_z, J::azimuth, "azimuth-axis axial float"},
     {"dthx3", azimuth_axis, rotation_x, J::azimuth, "azimuth-axis wobble about x3t"},
     {"dthy3", azimuth_axis, rotation_y, J::azimuth, "azimuth-axis wobble about y3t"},
+    {"ripple1", drive, main_ripple, J::main, "main-axis rate ripple (relative to the rate)"},
+    {"ripple3", drive, platform_ripple, J::azimuth, "platform rate ripple (relative to its rate)"},
 }};
 }  // namespace
 
@@ -57,6 +59,8 @@ std::string_view unit_symbol(SourceUnit unit) noexcept {
       return "rad/s";
     case SourceUnit::m_per_rad_per_s_squared:
       return "m/(rad/s)^2";
+    case SourceUnit::relative:
+      return "1";
   }
   return "";
 }
@@ -78,6 +82,9 @@ SourceUnit channel_unit(const Channel& channel) noexcept {
     case main_rate:
     case platform_rate:
       return SourceUnit::rad_per_s;
+    case main_ripple:
+    case platform_ripple:
+      return SourceUnit::relative;
   }
   return SourceUnit::rad;
 }

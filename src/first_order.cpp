@@ -159,27 +159,62 @@ FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layou
     d_domega += -d_gamma_rate - t * d_psi;
     d_dOmega = -d_gamma_rate - t * d_psi;
   }
+  // The drives' rate ripple (model.md §3.1): a unit coefficient of harmonic k moves the main axis by
+  // δ(q) = sin kq / k (cosine term) or −cos kq / k (sine term), its rate by q̇ r(q) and its acceleration by
+  // q̇² r′(q). The platform keeps γ (speed control: ψ moves with θ1) or follows the main axis (phase-locked:
+  // γ moves by −δ, ψ stays). A platform ripple moves γ and γ̇ alone. With the instrument on the azimuth axis
+  // (β = 0) γ̈ moves nothing; θ̈1 adds the tangential R0 θ̈1 e(θ1 + π/2).
+  Eigen::Matrix<double, 6, 1> d_theta1_acc = outputs(R0 * e(j.theta1 + kHalfPi), V3::Zero(), psi);
+  const bool follows = counter && geo.platform_control == PlatformControl::phase_locked;
+  auto ripple_column = [&](int index) {
+    const int channel = layout.parameter_channel(index);
+    const int k = layout.parameter_harmonic(index);
+    Eigen::Matrix<double, 6, 1> column = Eigen::Matrix<double, 6, 1>::Zero();
+    if (k == 0 || (channel == ripple3 && !counter)) return column;
+    const bool sine = layout.parameter_is_sine(index);
+    const double q = channel == ripple1 ? j.theta1 : j.gamma;
+    const double q_rate = channel == ripple1 ? wr : j.gamma_rate;
+    const double c = std::cos(k * q), s = std::sin(k * q);
+    const double angle = sine ? -c / k : s / k, relative = sine ? s : c, slope = sine ? k * c : -k * s;
+    if (channel == ripple3)
+      return Eigen::Matrix<double, 6, 1>(angle * d_psi + q_rate * relative * d_gamma_rate);
+    column = angle * (follows ? d_theta1 : Eigen::Matrix<double, 6, 1>(d_theta1 + d_psi)) +
+             q_rate * relative * d_theta1_rate + q_rate * q_rate * slope * d_theta1_acc;
+    if (follows) column -= q_rate * relative * d_gamma_rate;
+    return column;
+  };
+  std::vector<int> drive_parameters{int(domega), int(dOmega)};
+  for (int channel : {int(ripple1), int(ripple3)})
+    for (int k = 1; k <= layout.harmonic_order(); ++k)
+      for (bool sine : {false, true}) drive_parameters.push_back(layout.harmonic_index(channel, k, sine));
   if (geo.beta == 0.0) {
     out.sensitivity.col(layout.static_index(domega)) = d_domega;
     out.sensitivity.col(layout.static_index(dOmega)) = d_dOmega;
+    for (std::size_t i = 2; i < drive_parameters.size(); ++i)
+      out.sensitivity.col(drive_parameters[i]) = ripple_column(drive_parameters[i]);
   } else {
     // No closed form is kept for a tilted horizontal axis: central differences of the exact chain, step
-    // 1e-7 rad/s (error O(h²·∂³) ≈ 1e-14 relative on outputs that are quadratic in the rates).
+    // 1e-7 (rad/s for the rates, relative for the ripple; error O(h²·∂³) ≈ 1e-14 relative on outputs that are
+    // quadratic in the rates).
     const double h = 1e-7;
-    for (int channel : {int(domega), int(dOmega)}) {
+    for (int index : drive_parameters) {
       Eigen::VectorXd ep = Eigen::VectorXd::Zero(layout.size()), em = ep;
-      ep[channel] = h;
-      em[channel] = -h;
+      ep[index] = h;
+      em[index] = -h;
       auto eval = [&](const Eigen::VectorXd& err) {
         RunMotion<double> r = run;
         r.theta1_rate += err[domega];
         if (counter) r.gamma_rate -= err[domega] + err[dOmega];
+        const RunMotion<double> rippled = run_motion<double>(0.0, 0.0, 0.0, mode, geo, layout, err);
+        r.main_ripple = rippled.main_ripple;
+        r.platform_ripple = rippled.platform_ripple;
+        r.platform_follows_main = rippled.platform_follows_main;
         const auto s = exact_state<double>(geo, layout, err, site, r.at(t));
         Eigen::Matrix<double, 6, 1> y;
         y << s.specific_force, s.angular_rate;
         return y;
       };
-      out.sensitivity.col(channel) = (eval(ep) - eval(em)) / (2 * h);
+      out.sensitivity.col(index) = (eval(ep) - eval(em)) / (2 * h);
     }
   }
   return out;

@@ -31,8 +31,8 @@ ForceResult evaluate_force(const Site& site, const CentrifugeModel& centrifuge, 
   out.time = t;
   out.mode = mode;
 
-  const RunMotion<double> actual =
-      run_motion<double>(out.rate, run.arm_azimuth, out.initial_phase, run.mode, geo.beta, centrifuge.errors);
+  const RunMotion<double> actual = run_motion<double>(out.rate, run.arm_azimuth, out.initial_phase, run.mode,
+                                                      geo, layout, centrifuge.errors);
   out.joints = actual.at(t);
   const InstrumentState<double> state = exact_state<double>(geo, layout, centrifuge.errors, site, out.joints);
   out.specific_force = M.transpose() * state.specific_force;

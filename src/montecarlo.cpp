@@ -679,8 +679,11 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
   m.spec = spec;
   m.actual_errors = actual_errors;
   m.mode = mode;
+  const int runs = int(experiment.plan.runs.size());
   for (const Tolerance& t : sources) {
-    if (t.parameter < 0 || t.parameter >= size)
+    // A negative parameter is a run's rate noise (rate_noise.hpp), added to that run's mean.
+    const bool noise = t.parameter < 0 && rate_noise_run(t.parameter) < runs;
+    if (!noise && (t.parameter < 0 || t.parameter >= size))
       throw InputError(
           fmt::format("calibration model: source '{}' has parameter index {}, outside the layout "
                       "(0…{})",
@@ -741,7 +744,13 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
     // Per-thread buffers: a trial allocates nothing once they have grown.
     thread_local Eigen::VectorXd truth, y;
     truth = m.actual_errors;
-    for (std::size_t j = 0; j < draws.size(); ++j) truth[m.parameters[j]] += draws[j];
+    bool noise = false;
+    for (std::size_t j = 0; j < draws.size(); ++j) {
+      if (m.parameters[j] < 0)
+        noise = true;
+      else
+        truth[m.parameters[j]] += draws[j];
+    }
     y.resize(Eigen::Index(ex.plan.runs.size()));
     if (m.run_means) {
       m.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
@@ -756,6 +765,10 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
                                                                  {}, m.spec.paper_cross_terms)
                                        .output;
     }
+    // The drives' rate noise scatters each run's mean (model.md §3.2).
+    if (noise)
+      for (std::size_t j = 0; j < draws.size(); ++j)
+        if (m.parameters[j] < 0) y[rate_noise_run(m.parameters[j])] += draws[j];
     // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
     y -= m.known_part;
     for (std::size_t o = 0; o < outputs.size(); ++o)

@@ -226,10 +226,25 @@ void RunMeanKernel::means(std::span<const double> errors, std::span<double> out)
   const double* platform_coefficients = errors.data() + d.layout.harmonic_index(dx3, 0, false);
   const int order = d.layout.harmonic_order();
   const double g = d.site.g;
+  // The drives' rate ripple (c1, s1, … after each channel's unused c0), nullptr when zero.
+  auto ripple = [&](int channel) -> const double* {
+    const double* c = errors.data() + d.layout.harmonic_index(channel, 0, false) + 1;
+    for (int i = 0; i < 2 * order; ++i)
+      if (c[i] != 0.0) return c;
+    return nullptr;
+  };
+  const double* main_ripple = ripple(ripple1);
+  const double* platform_ripple = ripple(ripple3);
+  const double main_ripple_bound = run_nodes::ripple_angle_bound(main_ripple, order);
+  const bool phase_locked = d.geometry.platform_control == PlatformControl::phase_locked;
   const bool main_small = always_small(main_coefficients + 3 * (2 * order + 1), order) &&
-                          always_small(main_coefficients + 4 * (2 * order + 1), order);
-  const bool platform_small = always_small(platform_coefficients + 3 * (2 * order + 1), order) &&
-                              always_small(platform_coefficients + 4 * (2 * order + 1), order);
+                          always_small(main_coefficients + 4 * (2 * order + 1), order) &&
+                          main_ripple_bound < kSmallAngle;
+  const bool platform_small =
+      always_small(platform_coefficients + 3 * (2 * order + 1), order) &&
+      always_small(platform_coefficients + 4 * (2 * order + 1), order) &&
+      run_nodes::ripple_angle_bound(platform_ripple, order) + (phase_locked ? main_ripple_bound : 0.0) <
+          kSmallAngle;
 
   for (std::size_t r = 0; r < d.runs.size(); ++r) {
     const Data::RunTables& t = d.runs[r];
@@ -262,6 +277,7 @@ void RunMeanKernel::means(std::span<const double> errors, std::span<double> out)
     // Main-axis half at each fast node, carried into frame-3t coordinates.
     MainAxisInputs main{main_coefficients,
                         order,
+                        main_ripple,
                         t.cos_theta.data(),
                         t.sin_theta.data(),
                         M,
@@ -276,8 +292,11 @@ void RunMeanKernel::means(std::span<const double> errors, std::span<double> out)
     main_axis_nodes(main, main_small, scratch.main);
 
     // Platform nodes, slow-major like the weights.
+    // A fixed platform does not turn: no ripple of its own, nothing to follow (kinematics.hpp, run_motion).
     PlatformInputs platform{platform_coefficients,
                             order,
+                            t.counter ? platform_ripple : nullptr,
+                            t.counter && phase_locked && main_ripple != nullptr,
                             t.cos_gamma.data(),
                             t.sin_gamma.data(),
                             1.0,

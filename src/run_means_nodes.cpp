@@ -109,8 +109,45 @@ template <int kOrder, class T>
   return out;
 }
 
+// The rate ripple of a drive at its nominal angle (cos q = c, sin q = s), from c1, s1, …, cN, sN
+// (kinematics.hpp, drive_ripple): the angle error δ = Σ (ck sin kq − sk cos kq)/k, the relative rate
+// r = Σ ck cos kq + sk sin kq and its slope r′ = Σ k (sk cos kq − ck sin kq).
+template <class T>
+struct RippleSeries {
+  T angle, relative, slope;
+};
+template <int kOrder, class T>
+[[gnu::always_inline]] inline RippleSeries<T> ripple_series(const double* p, int n, const T& c, const T& s) {
+  const int order = kOrder == kRuntimeOrder ? n : kOrder;
+  RippleSeries<T> out{T{}, T{}, T{}};
+  T ck = c, sk = s;
+  for (int k = 1; k <= order; ++k) {
+    const double a = p[2 * k - 2], b = p[2 * k - 1];
+    out.angle += (a * sk - b * ck) / double(k);
+    out.relative += a * ck + b * sk;
+    out.slope += double(k) * (b * ck - a * sk);
+    const T next_c = ck * c - sk * s;
+    sk = sk * c + ck * s;
+    ck = next_c;
+  }
+  return out;
+}
+// cos and sin of q + δ from those of q, in place.
+template <class T>
+[[gnu::always_inline]] inline void turn_by(T& c, T& s, const T& delta) {
+  T cd, sd;
+  if constexpr (std::is_same_v<T, Pack>)
+    small_angle_cos_sin(delta, cd, sd);
+  else
+    cos_sin(delta, cd, sd);
+  const T turned_c = c * cd - s * sd;
+  s = s * cd + c * sd;
+  c = turned_c;
+}
+
 // Motion of the frame after one joint of the chain (main axis or platform) relative to the frame before it:
-// the joint's runout d(q), its wobbles Ry(θy(q))·Rx(θx(q)), then Rz(q), with q turning at q̇ (kinematics.hpp,
+// the joint's runout d(q), its wobbles Ry(θy(q))·Rx(θx(q)), then Rz(q), with q turning at q̇ (a constant,
+// R = double, or per node with the drive's ripple, R = T, then also with the acceleration q̈; kinematics.hpp,
 // exact_state). Pack lanes use the small-angle series for the wobbles, so they are only used when both
 // wobble angles are known to stay below kSmallAngle (always_small).
 template <class T>
@@ -120,19 +157,20 @@ struct JointLink {
   V3<T> d, d_rate, d_acc;
   V3<T> w, dw;  // angular velocity and acceleration of the frame after the joint
 };
-template <int kOrder, class T>
+template <int kOrder, class T, class R = double>
 [[gnu::always_inline]] inline JointLink<T> joint_link(const JointCoefficients<kOrder>& a, const T& c,
-                                                      const T& s, double rate) {
+                                                      const T& s, const R& rate, const R* acc = nullptr) {
   const ChannelSeries<T> x = channel_series(a, 0, c, s), y = channel_series(a, 1, c, s),
                          z = channel_series(a, 2, c, s), tx = channel_series(a, 3, c, s),
                          ty = channel_series(a, 4, c, s);
   JointLink<T> j;
   j.c = c;
   j.s = s;
-  const double rate2 = rate * rate;
+  const R rate2 = rate * rate;
   j.d = {x.value, y.value, z.value};
   j.d_rate = {rate * x.first, rate * y.first, rate * z.first};
   j.d_acc = {rate2 * x.second, rate2 * y.second, rate2 * z.second};
+  if (acc) j.d_acc = j.d_acc + V3<T>{*acc * x.first, *acc * y.first, *acc * z.first};
   T cx, sx, cy, sy;
   if constexpr (std::is_same_v<T, Pack>) {
     small_angle_cos_sin(tx.value, cx, sx);
@@ -141,8 +179,12 @@ template <int kOrder, class T>
     cos_sin(tx.value, cx, sx);
     cos_sin(ty.value, cy, sy);
   }
-  const T wx_rate = rate * tx.first, wx_acc = rate2 * tx.second;
-  const T wy_rate = rate * ty.first, wy_acc = rate2 * ty.second;
+  const T wx_rate = rate * tx.first, wy_rate = rate * ty.first;
+  T wx_acc = rate2 * tx.second, wy_acc = rate2 * ty.second;
+  if (acc) {
+    wx_acc += *acc * tx.first;
+    wy_acc += *acc * ty.first;
+  }
   j.e1 = {cy, T{}, -sy};
   j.e2 = {sy * sx, cx, cy * sx};
   j.e3 = {sy * cx, -sx, cy * cx};
@@ -151,6 +193,7 @@ template <int kOrder, class T>
   const V3<T> w_wobble{wx_rate * cy, wy_rate, -wx_rate * sy};
   const V3<T> dw_wobble{wx_acc * cy - wy_rate * wx_rate * sy, wy_acc, -wx_acc * sy - wy_rate * wx_rate * cy};
   j.dw = dw_wobble + cross(w_wobble, rate * j.e3);
+  if (acc) j.dw = j.dw + *acc * j.e3;
   j.w = w_wobble + rate * j.e3;
   return j;
 }
@@ -187,15 +230,37 @@ struct Columns {
   }
 };
 
-template <int kOrder, class T>
+// The main axis's link at fast node j: at the tabulated nominal angle, or with the drive's ripple
+// (kinematics.hpp, RunMotion::add_ripple: θ1 = θ1ⁿ + δ1, θ̇1 = q̇ + q̇ r1, θ̈1 = q̇² r1′), whose δ1, δ̇1, δ̈1 are
+// kept for a phase-locked platform.
+template <int kOrder, bool kRipple, class T>
+[[gnu::always_inline]] inline JointLink<T> main_link(const MainAxisInputs& in,
+                                                     const JointCoefficients<kOrder>& coefficients, int j,
+                                                     MainAxisNodes& out) {
+  T c = load<T>(in.cos_theta + j), s = load<T>(in.sin_theta + j);
+  if constexpr (!kRipple) {
+    return joint_link(coefficients, c, s, in.rate);
+  } else {
+    const RippleSeries<T> r = ripple_series<kOrder>(in.ripple, in.order, c, s);
+    const T rate_ripple = in.rate * r.relative, acc = (in.rate * in.rate) * r.slope;
+    const auto J = std::size_t(j);
+    store(&out.ripple_angle[J], r.angle);
+    store(&out.ripple_rate[J], rate_ripple);
+    store(&out.ripple_acc[J], acc);
+    turn_by(c, s, r.angle);
+    const T rate = in.rate + rate_ripple;
+    return joint_link<kOrder, T, T>(coefficients, c, s, rate, &acc);
+  }
+}
+
+template <int kOrder, bool kRipple, class T>
 [[gnu::always_inline]] inline void main_axis_loop(const MainAxisInputs& in, MainAxisNodes& out) {
   const JointCoefficients<kOrder> coefficients{in.coefficients, in.order};
   const Columns B(in.RB);
   const V3<T> coriolis_1t = broadcast<T>(in.coriolis_1t), gravity_1t = broadcast<T>(in.gravity_1t),
               earth_1t = broadcast<T>(in.earth_1t);
   for (int j = 0; j < in.M; j += kLanes<T>) {
-    const JointLink<T> main =
-        joint_link(coefficients, load<T>(in.cos_theta + j), load<T>(in.sin_theta + j), in.rate);
+    const JointLink<T> main = main_link<kOrder, kRipple, T>(in, coefficients, j, out);
     const PointMotion<T> o3t = point_motion(main, in.pB);
     const V3<T> F0 = o3t.a + 2.0 * cross(coriolis_1t, o3t.v) + in.g * gravity_1t;
     // x in frame-3t coordinates: R_Bᵀ (R_jointᵀ x).
@@ -208,7 +273,35 @@ template <int kOrder, class T>
   }
 }
 
-template <int kOrder, class T>
+// The platform's link at node j: at its nominal angle (cos γⁿ = cg, sin γⁿ = sg), or with its own ripple
+// and, when phase-locked, the main axis's angle error (RunMotion::add_ripple: γ = γⁿ + δ3 − δ1, γ̇ = γ̇ⁿ +
+// γ̇ⁿ r3 − δ̇1, γ̈ = (γ̇ⁿ)² r3′ − δ̈1).
+template <int kOrder, bool kRipple, class T>
+[[gnu::always_inline]] inline JointLink<T> platform_link(const PlatformInputs& in,
+                                                         const JointCoefficients<kOrder>& coefficients,
+                                                         const MainAxisNodes& main, int j, T cg, T sg) {
+  if constexpr (!kRipple) {
+    return joint_link(coefficients, cg, sg, in.rate);
+  } else {
+    T delta{}, rate = T{} + in.rate, acc{};
+    if (in.ripple) {
+      const RippleSeries<T> r = ripple_series<kOrder>(in.ripple, in.order, cg, sg);
+      delta = r.angle;
+      rate += in.rate * r.relative;
+      acc = (in.rate * in.rate) * r.slope;
+    }
+    if (in.follows_main) {
+      const auto J = std::size_t(j);
+      delta -= load<T>(&main.ripple_angle[J]);
+      rate -= load<T>(&main.ripple_rate[J]);
+      acc -= load<T>(&main.ripple_acc[J]);
+    }
+    turn_by(cg, sg, delta);
+    return joint_link<kOrder, T, T>(coefficients, cg, sg, rate, &acc);
+  }
+}
+
+template <int kOrder, bool kRipple, class T>
 [[gnu::always_inline]] inline void platform_loop(const PlatformInputs& in, const MainAxisNodes& main,
                                                  InstrumentInputs& out, std::size_t first) {
   const JointCoefficients<kOrder> coefficients{in.coefficients, in.order};
@@ -218,7 +311,7 @@ template <int kOrder, class T>
     const T cos_gamma = load<T>(in.cos_gamma + j), sin_gamma = load<T>(in.sin_gamma + j);
     const T cg = cos_gamma * in.cos_offset - sin_gamma * in.sin_offset;
     const T sg = sin_gamma * in.cos_offset + cos_gamma * in.sin_offset;
-    const JointLink<T> platform = joint_link(coefficients, cg, sg, in.rate);
+    const JointLink<T> platform = platform_link<kOrder, kRipple, T>(in, coefficients, main, j, cg, sg);
     const PointMotion<T> o5 = point_motion(platform, in.pC);
     const V3<T> W = get<T>(main.W, J);
     const V3<T> Wr = cross(W, o5.r);
@@ -235,6 +328,14 @@ template <int kOrder, class T>
 
 }  // namespace
 
+double ripple_angle_bound(const double* coefficients, int order) {
+  if (!coefficients) return 0.0;
+  double bound = 0;
+  for (int k = 1; k <= order; ++k)
+    bound += (std::abs(coefficients[2 * k - 2]) + std::abs(coefficients[2 * k - 1])) / double(k);
+  return bound;
+}
+
 bool always_small(const double* coefficients, int order) {
   double bound = 0;
   for (int i = 0; i < 2 * order + 1; ++i) bound += std::abs(coefficients[i]);
@@ -249,35 +350,50 @@ bool always_small(const double* coefficients, int order) {
 #else
 #define CCAL_CLONED
 #endif
-CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out) {
+namespace {
+// The loops for a harmonic order known at compile time (0, 1, 2) or not, with or without a drive's ripple,
+// four nodes at a time or one; inlined into the cloned entry points below.
+template <bool kRipple, class T>
+[[gnu::always_inline]] inline void main_axis_dispatch(const MainAxisInputs& in, MainAxisNodes& out) {
   switch (in.order) {
     case 0:
-      return small ? main_axis_loop<0, Pack>(in, out) : main_axis_loop<0, double>(in, out);
+      return main_axis_loop<0, kRipple, T>(in, out);
     case 1:
-      return small ? main_axis_loop<1, Pack>(in, out) : main_axis_loop<1, double>(in, out);
+      return main_axis_loop<1, kRipple, T>(in, out);
     case 2:
-      return small ? main_axis_loop<2, Pack>(in, out) : main_axis_loop<2, double>(in, out);
+      return main_axis_loop<2, kRipple, T>(in, out);
     default:
-      return small ? main_axis_loop<kRuntimeOrder, Pack>(in, out)
-                   : main_axis_loop<kRuntimeOrder, double>(in, out);
+      return main_axis_loop<kRuntimeOrder, kRipple, T>(in, out);
   }
+}
+template <bool kRipple, class T>
+[[gnu::always_inline]] inline void platform_dispatch(const PlatformInputs& in, const MainAxisNodes& main,
+                                                     InstrumentInputs& out, std::size_t first) {
+  switch (in.order) {
+    case 0:
+      return platform_loop<0, kRipple, T>(in, main, out, first);
+    case 1:
+      return platform_loop<1, kRipple, T>(in, main, out, first);
+    case 2:
+      return platform_loop<2, kRipple, T>(in, main, out, first);
+    default:
+      return platform_loop<kRuntimeOrder, kRipple, T>(in, main, out, first);
+  }
+}
+}  // namespace
+
+CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out) {
+  if (in.ripple)
+    return small ? main_axis_dispatch<true, Pack>(in, out) : main_axis_dispatch<true, double>(in, out);
+  return small ? main_axis_dispatch<false, Pack>(in, out) : main_axis_dispatch<false, double>(in, out);
 }
 CCAL_CLONED void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main,
                                 InstrumentInputs& out, std::size_t first) {
-  switch (in.order) {
-    case 0:
-      return small ? platform_loop<0, Pack>(in, main, out, first)
-                   : platform_loop<0, double>(in, main, out, first);
-    case 1:
-      return small ? platform_loop<1, Pack>(in, main, out, first)
-                   : platform_loop<1, double>(in, main, out, first);
-    case 2:
-      return small ? platform_loop<2, Pack>(in, main, out, first)
-                   : platform_loop<2, double>(in, main, out, first);
-    default:
-      return small ? platform_loop<kRuntimeOrder, Pack>(in, main, out, first)
-                   : platform_loop<kRuntimeOrder, double>(in, main, out, first);
-  }
+  if (in.ripple || in.follows_main)
+    return small ? platform_dispatch<true, Pack>(in, main, out, first)
+                 : platform_dispatch<true, double>(in, main, out, first);
+  return small ? platform_dispatch<false, Pack>(in, main, out, first)
+               : platform_dispatch<false, double>(in, main, out, first);
 }
 
 }  // namespace ccal::run_nodes

@@ -33,8 +33,11 @@ struct V3Array {
 struct MainAxisNodes {
   // F₀ = a + 2ω_c × v + g ẑ₀ of o3t; Ω, Ω̇ of frame 3t; ω_c; Ω + ω_ie (frame-3t coordinates)
   V3Array F0, W, dW, coriolis, W_total;
+  // The main axis's rate ripple at each node: δ1, δ̇1, δ̈1 (for a platform phase-locked to the main axis).
+  std::vector<double> ripple_angle, ripple_rate, ripple_acc;
   void resize(std::size_t n) {
     for (V3Array* a : {&F0, &W, &dW, &coriolis, &W_total}) a->resize(n);
+    for (auto* v : {&ripple_angle, &ripple_rate, &ripple_acc}) v->resize(n);
   }
 };
 struct InstrumentInputs {
@@ -48,6 +51,7 @@ struct InstrumentInputs {
 struct MainAxisInputs {
   const double* coefficients;  // dx1 … dthy1
   int order;
+  const double* ripple;  // c1, s1, …, cN, sN of the main drive's rate ripple, or nullptr for none
   const double *cos_theta, *sin_theta;  // padded
   int M;
   double rate, g;
@@ -60,6 +64,8 @@ struct MainAxisInputs {
 struct PlatformInputs {
   const double* coefficients;  // dx3 … dthy3
   int order;
+  const double* ripple;  // c1, s1, …, cN, sN of the platform drive's rate ripple, or nullptr for none
+  bool follows_main;     // phase-locked: γ also moves by −δ1 of the same fast node (MainAxisNodes)
   const double *cos_gamma, *sin_gamma;  // nominal platform angle at the fast nodes, padded
   double cos_offset, sin_offset;        // the slow node's drift
   int M;
@@ -70,6 +76,8 @@ struct PlatformInputs {
 // Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
 // the four-lane loops (small-angle series for the wobbles) apply.
 bool always_small(const double* coefficients, int order);
+// Σ (|ck| + |sk|)/k: a bound of a rate ripple's angle error δ (c1, s1, … at `coefficients`; 0 for nullptr).
+double ripple_angle_bound(const double* coefficients, int order);
 // The main-axis half at the fast nodes 0 … M − 1 (and the padding).
 void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out);
 // The platform half at nodes first … first + M − 1 (and the padding) of `out`.

@@ -44,12 +44,12 @@ inline Eigen::VectorXd random_errors(const ErrorLayout& layout, double scale, un
 inline double rate_for(double A, double R0, double g) { return std::sqrt(A * g / R0); }
 
 // The six sensed outputs (f_IA, f_PA, f_OA [g], ω_IA, ω_PA, ω_OA [rad/s]) of the exact chain for errors e,
-// with the joint motion of the run perturbed by the drive errors in e.
+// with the joint motion of the run perturbed by the drive errors in e (rates and ripple).
 template <class S>
 Eigen::Matrix<S, 6, 1> outputs(const Geometry& geo, const ErrorLayout& layout, const VecX<S>& e,
                                const Site& site, double rate, double theta1_0, double phi0, PlatformMode mode,
                                double t, const ChainOptions& options = {}) {
-  const RunMotion<S> run = run_motion<S>(rate, theta1_0, phi0, mode, geo.beta, e);
+  const RunMotion<S> run = run_motion<S>(rate, theta1_0, phi0, mode, geo, layout, e);
   const auto s = exact_state<S>(geo, layout, e, site, run.at(S(t)), options);
   Eigen::Matrix<S, 6, 1> y;
   y << s.specific_force, s.angular_rate;

@@ -368,11 +368,12 @@ TEST(AllocationTarget, ParsesDisplayUnitsAndExplicitUnits) {
   EXPECT_NE(message("K3=nan").find("K3"), std::string::npos) << message("K3=nan");
 }
 
-// The bundled example with the targets U(K2) ≤ 1e-7 deg/s/g², U(K3) ≤ 1e-6 deg/s/g³.
+// The paper's set-up (the bundled example without the drives' rate ripple and noise, whose noise alone
+// exceeds these targets) with the targets U(K2) ≤ 1e-7 deg/s/g², U(K3) ≤ 1e-6 deg/s/g³.
 class BundledAllocation : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    config_ = new Config(bundled_example());
+    config_ = new Config(load_config(CCAL_SOURCE_DIR "/tests/data/wang_ren_2014_paper.toml"));
     AllocateOptions o;
     o.verify_trials = 2000;
     o.seed = 1;
@@ -472,7 +473,7 @@ TEST(AllocateTolerances, RejectsBadTargets) {
   EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-6}}, o), InputError);
   // Without verification the result has none.
   o.coverage = 0.95;
-  const AllocationResult r = allocate_tolerances(cfg, {{"K3", 1e-6 * kDeg}}, o);
+  const AllocationResult r = allocate_tolerances(cfg, {{"K3", 1e-3 * kDeg}}, o);  // above the noise's 5.6e-4
   EXPECT_EQ(r.verification.trials, 0u);
   EXPECT_EQ(r.coefficients[2].verdict, Verdict::not_checked);
 }

@@ -193,9 +193,10 @@ TEST(ExactBudget, LinearEffectAgreesWithNonlinearReidentification) {
 }
 
 TEST(Budget, BundledExampleTotalsAndFlags) {
-  // The bundled example: ≥ 40 sources, totals equal the root-sum-square of the effects (no groups there),
-  // shares sum to 1, every source ranked once, and the exact-vs-paper comparison flags the levelling (which
-  // the paper drops) but not Δθz5 (where they agree).
+  // The bundled example: ≥ 40 sources, totals equal the root-sum-square of the effects (no groups there)
+  // and the drives' rate noise (model.md §3.2, a variance of its own per coefficient), shares sum to 1, every
+  // source ranked once, and the exact-vs-paper comparison flags the levelling (which the paper drops) but not
+  // Δθz5 (where they agree).
   const Config cfg = bundled_example();
   ASSERT_GE(cfg.tolerances.size(), 40u);
   const BudgetResult r = compute_budget(cfg);
@@ -205,6 +206,11 @@ TEST(Budget, BundledExampleTotalsAndFlags) {
     for (const auto& s : r.sources) {
       sum += s.effect[k] * s.effect[k];
       share += s.share[k];
+    }
+    ASSERT_EQ(r.rate_noise.size(), 2u);
+    for (const auto& n : r.rate_noise) {
+      sum += n.effect[k] * n.effect[k];
+      share += n.share[k];
     }
     EXPECT_NEAR(r.standard_uncertainty[k], std::sqrt(sum), 1e-12 * std::sqrt(sum));
     EXPECT_NEAR(share, 1.0, 1e-12);

@@ -12,15 +12,21 @@ using Budget = Cli;
 TEST_F(Budget, DefaultRunsTheBundledExample) {
   const Result r = run("budget");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("48 sources"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("52 sources"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("total u (LPU, k = 1)"), std::string::npos);
   EXPECT_NE(r.out.find("dK3 [deg/s/g^3]"), std::string::npos);
   EXPECT_NE(r.out.find("coriolis left out"), std::string::npos);
-  // The two largest K3 contributors are the main-axis levelling errors (model.md §5.4, E-notes).
+  // The two largest contributors are the rate ripple of the main axis and of the platform (model.md §2.3:
+  // the heading wobble of a speed-controlled platform), shown in ppm, with no paper rule; the rate noise of
+  // both drives follows the ranked sources.
   const auto first = r.out.find("  1 "), second = r.out.find("  2 ");
   ASSERT_NE(first, std::string::npos);
-  EXPECT_NE(r.out.substr(first, 60).find("dthy1t"), std::string::npos) << r.out.substr(first, 60);
-  EXPECT_NE(r.out.substr(second, 60).find("dthx1t"), std::string::npos) << r.out.substr(second, 60);
+  EXPECT_NE(r.out.substr(first, 60).find("ripple1_c1"), std::string::npos) << r.out.substr(first, 60);
+  EXPECT_NE(r.out.substr(second, 60).find("ripple3_c1"), std::string::npos) << r.out.substr(second, 60);
+  EXPECT_NE(r.out.substr(first, 200).find("10 ppm"), std::string::npos) << r.out.substr(first, 200);
+  EXPECT_NE(r.out.substr(first, 200).find("no paper rule"), std::string::npos) << r.out.substr(first, 200);
+  EXPECT_NE(r.out.find("main_rate_noise (Type A)"), std::string::npos);
+  EXPECT_NE(r.out.find("platform_rate_noise (Type A)"), std::string::npos);
 }
 
 TEST_F(Budget, JsonCarriesUnitsAndMatchesTheText) {
@@ -31,15 +37,22 @@ TEST_F(Budget, JsonCarriesUnitsAndMatchesTheText) {
   ASSERT_EQ(j["coefficients"].size(), 3u);
   EXPECT_EQ(j["coefficients"][2]["id"], "K3");
   EXPECT_EQ(j["coefficients"][2]["unit"], "deg/s/g^3");
-  ASSERT_EQ(j["sources"].size(), 48u);
-  // Root-sum-square of the per-source effects equals the total (no correlation groups in the example):
-  // relative 1e-12 (sums of 48 squares).
+  ASSERT_EQ(j["sources"].size(), 52u);
+  // Root-sum-square of the per-source effects and the rate noise's u equals the total (no correlation groups
+  // in the example): relative 1e-12 (sums of 54 squares).
   double sum = 0;
   for (const auto& s : j["sources"]) sum += std::pow(s["effect"]["K3"].get<double>(), 2);
+  ASSERT_EQ(j["rate_noise"].size(), 2u);
+  for (const auto& n : j["rate_noise"]) sum += std::pow(n["u"]["K3"].get<double>(), 2);
   const double total = j["coefficients"][2]["standard_uncertainty"];
   EXPECT_NEAR(std::sqrt(sum), total, 1e-12 * total);
   EXPECT_NEAR(j["coefficients"][2]["expanded_uncertainty"].get<double>(), 2 * total, 1e-12 * total);
-  EXPECT_EQ(j["sources"][0]["unit_si"], "rad");
+  EXPECT_EQ(j["sources"][0]["id"], "ripple1_c1");  // ranked first: a rate ripple, dimensionless
+  EXPECT_EQ(j["sources"][0]["unit_si"], "1");
+  for (const auto& s : j["sources"])
+    if (s["id"] == "dthx1t") {
+      EXPECT_EQ(s["unit_si"], "rad");
+    }
   EXPECT_TRUE(j["sources"][0].contains("exact_paper_disagree"));
   EXPECT_EQ(j["compensation_choices"].size(), 2u);
 }
@@ -62,7 +75,7 @@ TEST_F(Budget, PaperModeReproducesTable4ForTheAzimuthError) {
 TEST_F(Budget, CsvHasOneRowPerSource) {
   const Result r = run("budget --format csv");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 49);
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 53);  // the header and 52 tolerances
   EXPECT_TRUE(r.out.starts_with("rank,source,group,distribution,bound_si,unit_si,standard_uncertainty_si"));
 }
 

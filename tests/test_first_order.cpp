@@ -155,8 +155,9 @@ TEST(ExactFirstOrder, ClosedFormPerturbationEqualsTheJacobianOfTheExactChain) {
         const auto nominal = outputs<double>(geo, layout, e, site, w, 0.4, 1.3, mode, t);
         EXPECT_LT((fo.nominal - nominal).norm(), 1e-12);
         for (int i = 0; i < layout.size(); ++i) {
-          // Drive columns for β ≠ 0 come from central differences (step 1e-7): tolerance 1e-6 there.
-          const bool fd = beta != 0.0 && (i == domega || i == dOmega);
+          // Drive columns (rates and ripple) for β ≠ 0 come from central differences (step 1e-7): tolerance
+          // 1e-6 there.
+          const bool fd = beta != 0.0 && channels()[layout.parameter_channel(i)].link == Link::drive;
           EXPECT_LT((J.col(i) - fo.sensitivity.col(i)).norm(), fd ? 1e-6 : 1e-11)
               << layout.parameter_id(i) << " beta=" << beta << " mode=" << int(mode) << " t=" << t;
         }
@@ -165,7 +166,7 @@ TEST(ExactFirstOrder, ClosedFormPerturbationEqualsTheJacobianOfTheExactChain) {
   }
 }
 
-// Natural scale of a parameter for the convergence test: 1 rad, R0, Ω, or R0/Ω² for arm stretch.
+// Natural scale of a parameter for the convergence test: 1 rad, R0, Ω, R0/Ω² for arm stretch, 1 for a ripple.
 double natural_scale(const ErrorLayout& layout, int i, double R0, double w) {
   switch (layout.parameter_unit(i)) {
     case SourceUnit::rad:
@@ -176,6 +177,8 @@ double natural_scale(const ErrorLayout& layout, int i, double R0, double w) {
       return w;
     case SourceUnit::m_per_rad_per_s_squared:
       return R0 / (w * w);
+    case SourceUnit::relative:  // a relative rate ripple
+      return 1.0;
   }
   return 1.0;
 }

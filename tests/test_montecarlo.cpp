@@ -453,10 +453,11 @@ TEST(MonteCarlo, CalibrationPipelineMatchesTheLpuOfItsSensitivities) {
   EXPECT_NEAR(k3.mean, 0.0, 5 * lp.std_uncertainty[2] / std::sqrt(2000.0));
   EXPECT_LT(std::abs(k3.estimate), 1e-12 * kDeg);  // the error-free run reproduces the reference
 
-  // The bundled example builds its model from the configuration.
+  // The bundled example builds its model from the configuration: its tolerances, then the rate noise of both
+  // drives as one source per run each (rate_noise.hpp).
   const Config cfg = bundled_example();
   const CalibrationModel bundled = calibration_model(cfg);
-  EXPECT_EQ(bundled.parameters.size(), cfg.tolerances.size());
+  EXPECT_EQ(bundled.parameters.size(), cfg.tolerances.size() + 2 * cfg.plan.runs.size());
 }
 
 TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {

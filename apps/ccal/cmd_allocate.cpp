@@ -39,6 +39,8 @@ std::string_view config_unit(SourceUnit u) {
       return "rad/s";
     case SourceUnit::m_per_rad_per_s_squared:
       return "m/(rad/s)^2";
+    case SourceUnit::relative:
+      return "ppm";
   }
   return "";
 }

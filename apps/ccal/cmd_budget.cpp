@@ -32,7 +32,9 @@ std::vector<std::size_t> by_rank(const BudgetResult& r) {
 }
 
 std::string bound_text(const SourceBudget& s, const ErrorLayout& layout) {
-  return number(s.bound, 4) + " " + std::string(unit_symbol(layout.parameter_unit(s.parameter)));
+  const SourceUnit unit = layout.parameter_unit(s.parameter);
+  if (unit == SourceUnit::relative) return number(s.bound * 1e6, 4) + " ppm";  // a rate ripple
+  return number(s.bound, 4) + " " + std::string(unit_symbol(unit));
 }
 
 std::string to_text(const Config& cfg, const BudgetResult& r) {
@@ -71,8 +73,18 @@ std::string to_text(const Config& cfg, const BudgetResult& r) {
       std::string flags;
       for (std::size_t k = 0; k < nk; ++k)
         if (b.disagrees[k]) flags += (flags.empty() ? "differ on " : ", ") + r.coefficients[k];
-      row.push_back(flags.empty() ? "agree" : flags);
+      row.push_back(!b.paper_counterpart ? "no paper rule" : flags.empty() ? "agree" : flags);
     }
+    table.add_row(row);
+  }
+  // The drives' rate noise (Type A, independent per run): u per coefficient, no sign.
+  for (const RateNoiseBudget& n : r.rate_noise) {
+    std::vector<std::string> row = {"", n.id + " (Type A)", number(n.density * 1e6, 4) + " ppm/rtHz",
+                                    "normal"};
+    for (std::size_t k = 0; k < nk; ++k)
+      row.push_back("±" + number(n.effect[Eigen::Index(k)] * r.display_scale[k], 4));
+    for (std::size_t k = 0; k < nk; ++k) row.push_back(fmt::format("{:.2f}", 100 * n.share[Eigen::Index(k)]));
+    if (paper) row.push_back("no paper rule");
     table.add_row(row);
   }
   table.add_rule();
@@ -186,6 +198,7 @@ std::string to_json(const Config& cfg, const BudgetResult& r) {
       nlohmann::ordered_json d = nlohmann::ordered_json::object();
       for (std::size_t k = 0; k < r.coefficients.size(); ++k) d[r.coefficients[k]] = bool(b.disagrees[k]);
       o["exact_paper_disagree"] = d;
+      if (!b.paper_counterpart) o["paper_counterpart"] = false;  // the drives' ripple: no paper rule
     }
     j["sources"].push_back(o);
   }
@@ -194,6 +207,20 @@ std::string to_json(const Config& cfg, const BudgetResult& r) {
     nlohmann::ordered_json jr = nlohmann::ordered_json::array();
     for (Eigen::Index b = 0; b < r.correlation.cols(); ++b) jr.push_back(r.correlation(a, b));
     j["correlation"].push_back(jr);
+  }
+  if (!r.rate_noise.empty()) {
+    j["rate_noise"] = nlohmann::ordered_json::array();
+    for (const RateNoiseBudget& n : r.rate_noise) {
+      nlohmann::ordered_json runs = nlohmann::ordered_json::object();
+      for (std::size_t i = 0; i < cfg.plan.runs.size(); ++i)
+        runs[cfg.plan.runs[i].name] = n.run_sd[Eigen::Index(i)] * r.display_scale.front();
+      j["rate_noise"].push_back({{"id", n.id},
+                                 {"type", "A"},
+                                 {"density_per_rtHz", n.density},
+                                 {"run_mean_sd", runs},
+                                 {"u", per_coefficient(r, n.effect)},
+                                 {"share", per_coefficient(r, n.share, false)}});
+    }
   }
   j["compensation_choices"] = nlohmann::ordered_json::array();
   for (const auto& c : r.compensation) {

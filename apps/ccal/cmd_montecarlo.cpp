@@ -287,8 +287,8 @@ Command add_montecarlo(CLI::App& app) {
         mo.coverage = o->coverage;
         mo.progress = true;  // drawn only when standard error is a terminal
         const MonteCarloResult r =
-            run_monte_carlo(cfg.tolerances, model.n_outputs(), model.output_names(), calibration_trial(model),
-                            mo, &budget.standard_uncertainty);
+            run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(), model.output_names(),
+                            calibration_trial(model), mo, &budget.standard_uncertainty);
         const std::string& f = o->output.format;
         write_output(o->output, f == "json"  ? to_json(cfg, budget, r)
                                 : f == "csv" ? to_csv(budget, r)

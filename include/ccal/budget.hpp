@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "ccal/config.hpp"
+#include "ccal/rate_noise.hpp"
 #include "ccal/simulate.hpp"
 
 namespace ccal {
@@ -71,6 +72,7 @@ struct SourceBudget {
   Eigen::VectorXd share;            // c_ks² / u_k² per coefficient (0…1)
   Eigen::VectorXd paper_effect;     // the paper-mode effect at the same u_s (empty if not computed)
   std::vector<bool> disagrees;      // exact vs paper beyond the disagreement factor, per coefficient
+  bool paper_counterpart = true;    // false where the paper's rules have no such error (the drives' ripple)
   int rank = 0;                     // 1 = largest contributor (by the largest share over coefficients)
 };
 
@@ -89,6 +91,17 @@ std::vector<CompensationChoice> compensation_choices(const Experiment& ex, const
                                                      ModelMode mode, bool with_paper,
                                                      const ReductionOptions& reduction = {});
 
+// The random rate noise of one drive (docs/model.md §3.2): a Type A component, independent from run to run,
+// so its covariance is H⁺ diag(σ_j²) H⁺ᵀ rather than a signed effect.
+struct RateNoiseBudget {
+  std::string id;          // "main_rate_noise" or "platform_rate_noise"
+  double density = 0;      // N [1/√Hz]
+  Eigen::VectorXd run_sd;  // σ_j of each run's output mean [output SI]
+  Eigen::VectorXd effect;  // u per coefficient (≥ 0, coefficient SI units)
+  Eigen::VectorXd share;   // of the coefficient's variance (0…1)
+  Eigen::MatrixXd covariance;
+};
+
 struct BudgetResult {
   ModelMode mode = ModelMode::exact;
   DerivativeMethod derivatives = DerivativeMethod::automatic;  // used for the sensitivity table
@@ -96,6 +109,7 @@ struct BudgetResult {
   std::vector<std::string> units;                              // their display units (output unit per g^n)
   std::vector<double> display_scale;                           // SI → display unit factor per coefficient
   std::vector<SourceBudget> sources;                           // in tolerance order
+  std::vector<RateNoiseBudget> rate_noise;                     // drives with rate noise (in the totals)
   Eigen::VectorXd standard_uncertainty;                        // u_k per coefficient (SI)
   Eigen::VectorXd expanded_uncertainty;                        // k u_k
   double coverage_factor = 2.0;

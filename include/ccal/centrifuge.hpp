@@ -13,15 +13,33 @@ enum class PlatformMode {
   fixed,             // γ constant: the instrument turns with the arm
 };
 
+// How the counter-rotating platform's drive is commanded (docs/model.md §2.3). It decides whether the
+// platform follows the main axis's rate ripple.
+enum class PlatformControl {
+  speed,         // its own rate loop: γ follows its own nominal angle φ0 − (Ω + Δω + ΔΩ)t
+  phase_locked,  // slaved to the main axis's measured angle: γ = φ0 − (θ1 − θ1(0)) − ΔΩ t
+};
+
 struct Geometry {
   double R0 = 2.5;    // nominal radius: main axis to azimuth axis [m]
   double L = 0.0;     // azimuth-axis origin o3 to working base plane [m]
   double l = 0.0;     // base plane to instrument origin o5 [m]
   double beta = 0.0;  // horizontal-axis angle [rad]; 0 in the paper
+  PlatformControl platform_control = PlatformControl::speed;  // the platform drive's command (not geometry,
+                                                              // but a property of the machine like β)
+};
+
+// Random rate noise of the drives (docs/model.md §3.2): the white relative-rate noise density N of each
+// drive, two-sided PSD N² [1/Hz], equal to the Allan deviation of the relative rate at τ = 1 s.
+struct DriveNoise {
+  double main = 0.0;      // N1 of the main axis [1/√Hz]
+  double platform = 0.0;  // N3 of the platform drive [1/√Hz] (a fixed platform does not turn: no noise)
+  bool any() const { return main > 0.0 || platform > 0.0; }
 };
 
 struct CentrifugeModel {
   Geometry geometry;
+  DriveNoise rate_noise;
   ErrorLayout layout{1};
   Eigen::VectorXd errors = Eigen::VectorXd::Zero(ErrorLayout{1}.size());  // SI, indexed by `layout`
 

@@ -40,13 +40,20 @@ enum class ErrorKind {
   arm_stretch,    // ΔR_d = c·θ̇1² along x of the arm (IEEE 836 radius growth), c in m/(rad/s)²
   main_rate,      // Δω: main-axis rate error, θ̇1 = Ω + Δω
   platform_rate,  // ΔΩ: platform rate mismatch, γ̇ = −(Ω + Δω + ΔΩ) on a counter-rotating platform
+  // Rate ripple of a drive (docs/model.md §3.1): the drive's rate relative to its nominal rate is
+  // 1 + r(q), r(q) = Σ_{k=1..N} (ck cos kq + sk sin kq), a Fourier series in the drive's own nominal angle q
+  // (dimensionless, e.g. "10 ppm"); its angle error is the zero-mean integral Σ (ck sin kq − sk cos kq)/k.
+  // The c0 slot of these channels is unused (a constant rate error is Δω or ΔΩ).
+  main_ripple,      // main axis, q = θ1's nominal angle
+  platform_ripple,  // platform (azimuth axis) drive, q = γ's nominal angle; its tracking error when
+                    // phase-locked
 };
 
 // Joint angle a dynamic channel is a function of.
 enum class Joint { none, main, horizontal, azimuth };
 
 // SI unit of a channel's value.
-enum class SourceUnit { rad, m, rad_per_s, m_per_rad_per_s_squared };
+enum class SourceUnit { rad, m, rad_per_s, m_per_rad_per_s_squared, relative };
 std::string_view unit_symbol(SourceUnit unit) noexcept;
 
 struct Channel {
@@ -58,7 +65,7 @@ struct Channel {
 };
 
 inline constexpr int kStaticChannelCount = 18;
-inline constexpr int kDynamicChannelCount = 15;
+inline constexpr int kDynamicChannelCount = 17;
 inline constexpr int kChannelCount = kStaticChannelCount + kDynamicChannelCount;
 
 // Index of each channel in `channels()`; static channels first.
@@ -96,6 +103,8 @@ enum ChannelIndex : int {
   dz3,
   dthx3,
   dthy3,
+  ripple1,  // main-axis rate ripple
+  ripple3,  // platform rate ripple
 };
 
 const std::array<Channel, kChannelCount>& channels() noexcept;

@@ -11,10 +11,12 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <vector>
 
 #include "ccal/centrifuge.hpp"
 #include "ccal/error_sources.hpp"
 #include "ccal/frames.hpp"
+#include "ccal/scalar.hpp"
 #include "ccal/site.hpp"
 
 namespace ccal {
@@ -22,15 +24,20 @@ namespace ccal {
 template <class S>
 using VecX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
 
-// Joint angles and rates at one instant. Joint accelerations are zero (constant rates).
+// Joint angles, rates and accelerations at one instant. The accelerations are those of the drives' rate
+// ripple (docs/model.md §3.1); β does not move during a run.
 template <class S>
 struct JointState {
   S theta1{0};       // main-axis angle from x0 (East) [rad]
-  S theta1_rate{0};  // θ̇1 = Ω + Δω [rad/s]
+  S theta1_rate{0};  // θ̇1 = (Ω + Δω)(1 + r1) [rad/s]
   S beta{0};         // horizontal-axis angle [rad]
   S beta_rate{0};
   S gamma{0};       // platform angle: IA from the outward radial x1, about z3 [rad]
   S gamma_rate{0};  // γ̇ [rad/s]
+  S theta1_acc{0};  // θ̈1 [rad/s²]
+  S gamma_acc{0};   // γ̈ [rad/s²]
+  // The ripple's part of θ̇1: the arm stretch follows the mean rate θ̇1 − this (model.md §3.1).
+  S theta1_ripple_rate{0};
 };
 
 template <class S>
@@ -49,8 +56,8 @@ struct ChainOptions {
   bool frozen_platform = false;
 };
 
-// Value of a dynamic channel and its first two time derivatives at joint angle q turning at q̇ (q̈ = 0):
-//   v = Σ ck cos kq + sk sin kq,  v̇ = q̇ dv/dq,  v̈ = q̇² d²v/dq².
+// Value of a dynamic channel and its first two time derivatives at joint angle q turning at q̇ with q̈:
+//   v = Σ ck cos kq + sk sin kq,  v̇ = q̇ dv/dq,  v̈ = q̇² d²v/dq² + q̈ dv/dq.
 template <class S>
 struct ChannelValue {
   S value{0}, rate{0}, acc{0};
@@ -58,7 +65,7 @@ struct ChannelValue {
 
 template <class S, class Errors>
 ChannelValue<S> dynamic_channel(const ErrorLayout& layout, const Errors& e, int channel, const S& q,
-                                const S& q_rate) {
+                                const S& q_rate, const S& q_acc = S(0)) {
   using std::cos;
   using std::sin;
   ChannelValue<S> out;
@@ -79,17 +86,17 @@ ChannelValue<S> dynamic_channel(const ErrorLayout& layout, const Errors& e, int 
     ck = next_c;
   }
   out.rate = q_rate * d1;
-  out.acc = q_rate * q_rate * d2;
+  out.acc = q_rate * q_rate * d2 + q_acc * d1;
   return out;
 }
 
 namespace detail {
 template <class S, class Errors>
 void translate_dynamic(FrameMotion<S>& m, const ErrorLayout& layout, const Errors& e, int first_channel,
-                       const S& q, const S& q_rate) {
+                       const S& q, const S& q_rate, const S& q_acc = S(0)) {
   Vec3<S> d, dd, ddd;
   for (int i = 0; i < 3; ++i) {
-    const auto c = dynamic_channel<S>(layout, e, first_channel + i, q, q_rate);
+    const auto c = dynamic_channel<S>(layout, e, first_channel + i, q, q_rate, q_acc);
     d[i] = c.value;
     dd[i] = c.rate;
     ddd[i] = c.acc;
@@ -99,8 +106,8 @@ void translate_dynamic(FrameMotion<S>& m, const ErrorLayout& layout, const Error
 
 template <class S, class Errors>
 void rotate_dynamic(FrameMotion<S>& m, const ErrorLayout& layout, const Errors& e, int channel, int axis,
-                    const S& q, const S& q_rate) {
-  const auto c = dynamic_channel<S>(layout, e, channel, q, q_rate);
+                    const S& q, const S& q_rate, const S& q_acc = S(0)) {
+  const auto c = dynamic_channel<S>(layout, e, channel, q, q_rate, q_acc);
   m.rotate(axis, c.value, c.rate, c.acc);
 }
 }  // namespace detail
@@ -116,12 +123,13 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   m.rotate(Y, E(dthy1t));
   m.rotate(X, E(dthx1t));
   // 1t → 1: runouts, wobbles, then the main axis itself.
-  detail::translate_dynamic<S>(m, layout, e, dx1, j.theta1, j.theta1_rate);
-  detail::rotate_dynamic<S>(m, layout, e, dthy1, Y, j.theta1, j.theta1_rate);
-  detail::rotate_dynamic<S>(m, layout, e, dthx1, X, j.theta1, j.theta1_rate);
-  m.rotate(Z, j.theta1, j.theta1_rate, S(0));
-  // 1 → 2t: arm of radius R0 + ΔR_s + c·θ̇1², intersection, perpendicularity.
-  m.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * j.theta1_rate * j.theta1_rate, E(dy2t), S(0)));
+  detail::translate_dynamic<S>(m, layout, e, dx1, j.theta1, j.theta1_rate, j.theta1_acc);
+  detail::rotate_dynamic<S>(m, layout, e, dthy1, Y, j.theta1, j.theta1_rate, j.theta1_acc);
+  detail::rotate_dynamic<S>(m, layout, e, dthx1, X, j.theta1, j.theta1_rate, j.theta1_acc);
+  m.rotate(Z, j.theta1, j.theta1_rate, j.theta1_acc);
+  // 1 → 2t: arm of radius R0 + ΔR_s + c·θ̇1² (at the mean rate), intersection, perpendicularity.
+  const S mean_rate = j.theta1_rate - j.theta1_ripple_rate;
+  m.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * mean_rate * mean_rate, E(dy2t), S(0)));
   m.rotate(Y, E(dthy2t));
   // 2t → 2: horizontal-axis float, runouts, wobbles, then Rx(β).
   detail::translate_dynamic<S>(m, layout, e, dx2, j.beta, j.beta_rate);
@@ -134,11 +142,12 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   m.rotate(X, E(dthx3t));
   // 3t → 3: platform runouts, float, wobbles, then Rz(γ). Frozen-γ drops γ̇ from the position derivatives.
   const S gamma_rate_in_position = options.frozen_platform ? S(0) : j.gamma_rate;
-  detail::translate_dynamic<S>(m, layout, e, dx3, j.gamma, gamma_rate_in_position);
-  detail::rotate_dynamic<S>(m, layout, e, dthy3, Y, j.gamma, gamma_rate_in_position);
-  detail::rotate_dynamic<S>(m, layout, e, dthx3, X, j.gamma, gamma_rate_in_position);
+  const S gamma_acc_in_position = options.frozen_platform ? S(0) : j.gamma_acc;
+  detail::translate_dynamic<S>(m, layout, e, dx3, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  detail::rotate_dynamic<S>(m, layout, e, dthy3, Y, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  detail::rotate_dynamic<S>(m, layout, e, dthx3, X, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
   const Vec3<S> azimuth_axis = m.R.col(Z);
-  m.rotate(Z, j.gamma, gamma_rate_in_position, S(0));
+  m.rotate(Z, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
   // 3 → 4: working base plane.
   m.translate(Vec3<S>(S(0), S(0), S(geo.L)));
   m.rotate(Y, E(dthy4));
@@ -229,8 +238,9 @@ ChainBlocks<S> chain_blocks(const Geometry& geo, const ErrorLayout& layout, cons
 // so that one evaluation costs two sine/cosine pairs and a few 3×3 products. Everything that does not change
 // in time is precomputed. In frame-1 coordinates, with K = [z×] (so Rz(−θ)Rz′(θ) = K, Rz(−θ)Rz″(θ) = K²),
 //   u = B_R Rz(γ) c + B_p,  u′ = B_R Rz′(γ) c,  u″ = B_R Rz″(γ) c
-//   a₁ = θ̇1² K² u + 2 θ̇1 γ̇ K u′ + γ̇² u″,   v₁ = θ̇1 K u + γ̇ u′.
-// Dynamic errors of the main and azimuth axes are ignored here: use exact_state for them.
+//   a₁ = θ̇1² K² u + θ̈1 K u + 2 θ̇1 γ̇ K u′ + γ̇² u″ + γ̈ u′,   v₁ = θ̇1 K u + γ̇ u′
+// (θ̈1, γ̈: the drives' rate ripple). Dynamic errors of the main and azimuth axes are ignored here: use
+// exact_state for them.
 template <class S>
 class StaticChain {
  public:
@@ -241,8 +251,8 @@ class StaticChain {
         frozen_(options.frozen_platform),
         b_(chain_blocks<S>(geo, layout, e, site, theta1_rate, beta)) {}
 
-  SensedInput<S> operator()(const S& theta1, const S& gamma, const S& theta1_rate,
-                            const S& gamma_rate) const {
+  SensedInput<S> operator()(const S& theta1, const S& gamma, const S& theta1_rate, const S& gamma_rate,
+                            const S& theta1_acc = S(0), const S& gamma_acc = S(0)) const {
     using std::cos;
     using std::sin;
     const S ct = cos(theta1), st = sin(theta1), cg = cos(gamma), sg = sin(gamma);
@@ -252,9 +262,12 @@ class StaticChain {
     const Vec3<S> u1 = b_.RB * rz1_c;
     const Vec3<S> u2 = -(b_.RB.template leftCols<2>() * rz_c.template head<2>());  // Rz″(γ)c = −(x, y, 0)
     const S gr = frozen_ ? S(0) : gamma_rate;
+    const S ga = frozen_ ? S(0) : gamma_acc;
     const S w2 = theta1_rate * theta1_rate;
-    const Vec3<S> acc(-w2 * u[0] - S(2) * theta1_rate * gr * u1[1] + gr * gr * u2[0],
-                      -w2 * u[1] + S(2) * theta1_rate * gr * u1[0] + gr * gr * u2[1], gr * gr * u2[2]);
+    const Vec3<S> acc(
+        -w2 * u[0] - theta1_acc * u[1] - S(2) * theta1_rate * gr * u1[1] + gr * gr * u2[0] + ga * u1[0],
+        -w2 * u[1] + theta1_acc * u[0] + S(2) * theta1_rate * gr * u1[0] + gr * gr * u2[1] + ga * u1[1],
+        gr * gr * u2[2] + ga * u1[2]);
     const Vec3<S> vel(-theta1_rate * u[1] + gr * u1[0], theta1_rate * u[0] + gr * u1[1], gr * u1[2]);
     // Gravity direction and Earth rate in frame-1 coordinates: Rz(−θ1) applied to their 1t coordinates.
     const Vec3<S> up(ct * b_.gravity_1t[0] + st * b_.gravity_1t[1],
@@ -315,14 +328,14 @@ class DynamicChain {
     ChannelValue<S> main[5];
     S c1, s1;
     cos_sin(j.theta1, c1, s1);
-    series(c1, s1, j.theta1_rate, 0, main);
+    series(c1, s1, j.theta1_rate, j.theta1_acc, 0, main);
     FrameMotion<S> m;  // in frame-1t coordinates, which do not move: the main-axis runout is the motion
     m.p = Vec3<S>(main[0].value, main[1].value, main[2].value);
     m.v = Vec3<S>(main[0].rate, main[1].rate, main[2].rate);
     m.a = Vec3<S>(main[0].acc, main[1].acc, main[2].acc);
     m.rotate(Y, main[4].value, main[4].rate, main[4].acc);
     m.rotate(X, main[3].value, main[3].rate, main[3].acc);
-    m.rotate_cs(Z, c1, s1, j.theta1_rate, S(0));
+    m.rotate_cs(Z, c1, s1, j.theta1_rate, j.theta1_acc);
     m.transform(b_.RB, b_.pB);
     return m;
   }
@@ -330,17 +343,18 @@ class DynamicChain {
   SensedInput<S> platform(FrameMotion<S> m, const JointState<S>& j) const {
     constexpr int X = 0, Y = 1, Z = 2;
     const S gamma_rate = frozen_ ? S(0) : j.gamma_rate;
+    const S gamma_acc = frozen_ ? S(0) : j.gamma_acc;
     ChannelValue<S> platform[5];
     S cg, sg;
     cos_sin(j.gamma, cg, sg);
-    series(cg, sg, gamma_rate, 5, platform);
+    series(cg, sg, gamma_rate, gamma_acc, 5, platform);
     m.translate(Vec3<S>(platform[0].value, platform[1].value, platform[2].value),
                 Vec3<S>(platform[0].rate, platform[1].rate, platform[2].rate),
                 Vec3<S>(platform[0].acc, platform[1].acc, platform[2].acc));
     m.rotate(Y, platform[4].value, platform[4].rate, platform[4].acc);
     m.rotate(X, platform[3].value, platform[3].rate, platform[3].acc);
     const Vec3<S> azimuth_axis = m.R.col(Z);
-    m.rotate_cs(Z, cg, sg, gamma_rate, S(0));
+    m.rotate_cs(Z, cg, sg, gamma_rate, gamma_acc);
     m.transform(b_.RC, b_.pC);
     if (frozen_) m.w += azimuth_axis * j.gamma_rate;
     const Vec3<S> f = m.a + S(2) * b_.coriolis_1t.cross(m.v) + S(g_) * b_.gravity_1t;
@@ -352,9 +366,10 @@ class DynamicChain {
   static constexpr int kChannelsOrder[10] = {ccal::dx1, ccal::dy1, ccal::dz1, ccal::dthx1, ccal::dthy1,
                                              ccal::dx3, ccal::dy3, ccal::dz3, ccal::dthx3, ccal::dthy3};
 
-  // Values and time derivatives of five channels of one joint (cos q = c, sin q = s) from one evaluation of
-  // its harmonics.
-  void series(const S& c, const S& s, const S& q_rate, int first, ChannelValue<S>* out) const {
+  // Values and time derivatives of five channels of one joint (cos q = c, sin q = s, turning at q̇ with q̈)
+  // from one evaluation of its harmonics.
+  void series(const S& c, const S& s, const S& q_rate, const S& q_acc, int first,
+              ChannelValue<S>* out) const {
     const int order = layout_.harmonic_order();
     S ck[65], sk[65];
     ck[0] = S(1);
@@ -376,7 +391,7 @@ class DynamicChain {
         d1 += double(k) * (a[2 * k] * ck[k] - a[2 * k - 1] * sk[k]);
         d2 -= double(k * k) * term;
       }
-      out[c] = {v, q_rate * d1, q_rate * q_rate * d2};
+      out[c] = {v, q_rate * d1, q_rate * q_rate * d2 + q_acc * d1};
     }
   }
 
@@ -387,8 +402,43 @@ class DynamicChain {
   std::vector<S> coefficients_[10];
 };
 
-// Joint motion of one run: θ1(t) = θ1(0) + (Ω + Δω) t, γ(t) = φ0 + γ̇ t with γ̇ = −(Ω + Δω + ΔΩ) on a
-// counter-rotating platform and 0 on a fixed one, β constant.
+// A drive's rate ripple at its nominal angle q turning at the nominal rate q̇ (docs/model.md §3.1): the
+// relative rate r(q) = Σ_{k=1..N} (ck cos kq + sk sin kq) integrates to the angle error
+// δ(q) = Σ (ck sin kq − sk cos kq)/k (zero mean over a revolution), so that δ̇ = q̇ r and δ̈ = q̇² r′.
+// `coefficients` holds c1, s1, …, cN, sN.
+template <class S>
+struct RippleValue {
+  S angle{0}, rate{0}, acc{0};  // δ, δ̇, δ̈
+};
+
+template <class S>
+RippleValue<S> drive_ripple(const std::vector<S>& coefficients, const S& q, const S& q_rate) {
+  using std::cos;
+  using std::sin;
+  RippleValue<S> out;
+  const int order = int(coefficients.size() / 2);
+  if (order == 0) return out;
+  const S c1 = cos(q), s1 = sin(q);
+  S ck = c1, sk = s1, relative{0}, slope{0};
+  for (int k = 1; k <= order; ++k) {
+    const S& a = coefficients[std::size_t(2 * k - 2)];
+    const S& b = coefficients[std::size_t(2 * k - 1)];
+    out.angle += (a * sk - b * ck) / double(k);
+    relative += a * ck + b * sk;
+    slope += double(k) * (b * ck - a * sk);
+    const S next_c = ck * c1 - sk * s1;
+    sk = sk * c1 + ck * s1;
+    ck = next_c;
+  }
+  out.rate = q_rate * relative;
+  out.acc = q_rate * q_rate * slope;
+  return out;
+}
+
+// Joint motion of one run. Nominally θ1(t) = θ1(0) + (Ω + Δω) t, γ(t) = φ0 + γ̇ t with γ̇ = −(Ω + Δω + ΔΩ)
+// on a counter-rotating platform and 0 on a fixed one, β constant. The drives' rate ripple (if any) is added
+// at the nominal angles (add_ripple): the main axis turns by δ1(θ1ⁿ); a turning platform by δ3(γⁿ), and when
+// phase-locked it follows the main axis's angle error too, γ = γⁿ − δ1(θ1ⁿ) + δ3(γⁿ) (model.md §2.3).
 template <class S>
 struct RunMotion {
   S theta1_0{0};
@@ -396,12 +446,39 @@ struct RunMotion {
   S beta{0};
   S gamma_0{0};
   S gamma_rate{0};
+  std::vector<S> main_ripple, platform_ripple;  // c1, s1, …, cN, sN of each drive (empty: none)
+  bool platform_follows_main = false;           // phase-locked counter-rotating platform
+
+  bool has_ripple() const { return !main_ripple.empty() || !platform_ripple.empty(); }
+
+  // A state on the nominal motion, moved by the ripple.
+  void add_ripple(JointState<S>& j) const {
+    if (!has_ripple()) return;
+    const RippleValue<S> main = drive_ripple(main_ripple, j.theta1, theta1_rate);
+    const RippleValue<S> platform = drive_ripple(platform_ripple, j.gamma, gamma_rate);
+    j.theta1 += main.angle;
+    j.theta1_rate += main.rate;
+    j.theta1_acc += main.acc;
+    j.theta1_ripple_rate += main.rate;
+    j.gamma += platform.angle;
+    j.gamma_rate += platform.rate;
+    j.gamma_acc += platform.acc;
+    if (platform_follows_main) {
+      j.gamma -= main.angle;
+      j.gamma_rate -= main.rate;
+      j.gamma_acc -= main.acc;
+    }
+  }
 
   JointState<S> at(const S& t) const {
-    return {theta1_0 + theta1_rate * t, theta1_rate, beta, S(0), gamma_0 + gamma_rate * t, gamma_rate};
+    JointState<S> j{theta1_0 + theta1_rate * t, theta1_rate, beta, S(0),
+                    gamma_0 + gamma_rate * t,   gamma_rate};
+    add_ripple(j);
+    return j;
   }
 };
 
+// The run's motion with the drive rate errors Δω, ΔΩ of `e` (no ripple).
 template <class S, class Errors>
 RunMotion<S> run_motion(double nominal_rate, double theta1_0, double phi0, PlatformMode mode, double beta,
                         const Errors& e) {
@@ -411,6 +488,33 @@ RunMotion<S> run_motion(double nominal_rate, double theta1_0, double phi0, Platf
   r.beta = S(beta);
   r.gamma_0 = S(phi0);
   r.gamma_rate = mode == PlatformMode::counter_rotating ? S(-(r.theta1_rate + S(e[dOmega]))) : S(0);
+  return r;
+}
+
+// The same with the drives' rate ripple of `e` (channels ripple1, ripple3 of `layout`) and the platform's
+// control (geo.platform_control). A fixed platform does not turn, so it has neither ripple nor following.
+template <class S, class Errors>
+RunMotion<S> run_motion(double nominal_rate, double theta1_0, double phi0, PlatformMode mode,
+                        const Geometry& geo, const ErrorLayout& layout, const Errors& e) {
+  RunMotion<S> r = run_motion<S>(nominal_rate, theta1_0, phi0, mode, geo.beta, e);
+  const int order = layout.harmonic_order();
+  auto coefficients = [&](int channel) {
+    std::vector<S> c(std::size_t(2 * order));
+    bool any = false;
+    for (int k = 1; k <= order; ++k)
+      for (bool sine : {false, true}) {
+        const S v = S(e[layout.harmonic_index(channel, k, sine)]);
+        c[std::size_t(2 * k - 2 + (sine ? 1 : 0))] = v;
+        any = any || !is_exactly_zero(v);
+      }
+    return any ? c : std::vector<S>{};
+  };
+  const bool counter = mode == PlatformMode::counter_rotating;
+  r.main_ripple = coefficients(ripple1);
+  if (counter) {
+    r.platform_ripple = coefficients(ripple3);
+    r.platform_follows_main = geo.platform_control == PlatformControl::phase_locked;
+  }
   return r;
 }
 

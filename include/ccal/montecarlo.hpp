@@ -53,10 +53,10 @@
 // Memory: the trial outputs are kept for the quantiles, 8·M·n_outputs bytes (M counted over all stages; the
 // intervals read only the 2(M − q + 1) ≈ 2(1 − p)M extreme order statistics of each output, but keeping every
 // value lets adaptive stages merge exactly and every sum run in a fixed order; the buffers grow geometrically
-// from stage to stage, so up to about twice that), plus O(n_outputs²) for the covariance, O(n_sources + n_outputs) per thread, and in the
-// adaptive procedure a partly sorted copy of one stage's values per thread (8·stage size bytes each). Only
-// the tails of the values that the intervals read are sorted (the (1 − p)M lowest and highest), in place,
-// after the covariance.
+// from stage to stage, so up to about twice that), plus O(n_outputs²) for the covariance, O(n_sources +
+// n_outputs) per thread, and in the adaptive procedure a partly sorted copy of one stage's values per thread
+// (8·stage size bytes each). Only the tails of the values that the intervals read are sorted (the (1 − p)M
+// lowest and highest), in place, after the covariance.
 //
 // Threads: an OpenMP parallel loop over the trials of a stage, each thread with its own draw and output
 // buffers (nothing is allocated by the engine inside the loop; the TrialFunction must be safe to call
@@ -72,6 +72,7 @@
 
 #include "ccal/config.hpp"
 #include "ccal/model_mode.hpp"
+#include "ccal/rate_noise.hpp"
 #include "ccal/run_means.hpp"
 #include "ccal/simulate.hpp"
 
@@ -210,8 +211,16 @@ struct CalibrationModel {
 CalibrationModel calibration_model(const Experiment& experiment, const IdentificationSpec& spec,
                                    const std::vector<Tolerance>& sources,
                                    const Eigen::VectorXd& actual_errors, ModelMode mode = ModelMode::exact);
+// The Monte Carlo's sources of a configuration: its tolerances, then the drives' rate noise as per-run
+// sources (rate_noise.hpp).
+inline std::vector<Tolerance> monte_carlo_sources(const Config& cfg) {
+  std::vector<Tolerance> sources = cfg.tolerances;
+  for (Tolerance& t : rate_noise_sources(cfg)) sources.push_back(std::move(t));
+  return sources;
+}
 inline CalibrationModel calibration_model(const Config& cfg, ModelMode mode = ModelMode::exact) {
-  return calibration_model(cfg.experiment(), cfg.identification, cfg.tolerances, cfg.centrifuge.errors, mode);
+  return calibration_model(cfg.experiment(), cfg.identification, monte_carlo_sources(cfg),
+                           cfg.centrifuge.errors, mode);
 }
 // The trial function of a model (it keeps its own copy of the model).
 TrialFunction calibration_trial(const CalibrationModel& model);

@@ -190,6 +190,7 @@ RunQuadrature<S> run_quadrature(const RunMotion<S>& motion, double duration, Pla
       js.beta = motion.beta;
       js.gamma = motion.gamma_0 - (counter ? theta : 0.0) + slow_offset;
       js.gamma_rate = motion.gamma_rate;
+      motion.add_ripple(js);  // the drives' rate ripple at the node's nominal angles
       out.nodes.push_back(js);
     }
   }

@@ -49,7 +49,7 @@ RunAverage<S> average_run(const Geometry& geo, const ErrorLayout& layout, const 
                           const ReductionOptions& options = {}) {
   const double rate = nominal_rate(run, geo, site);
   const double phi0 = initial_phase(run, geo, site);
-  const RunMotion<S> motion = run_motion<S>(rate, run.arm_azimuth, phi0, run.mode, geo.beta, e);
+  const RunMotion<S> motion = run_motion<S>(rate, run.arm_azimuth, phi0, run.mode, geo, layout, e);
 
   bool dynamic = false;
   for (int ch : {int(dx1), int(dy1), int(dz1), int(dthx1), int(dthy1), int(dx3), int(dy3), int(dz3),
@@ -69,7 +69,9 @@ RunAverage<S> average_run(const Geometry& geo, const ErrorLayout& layout, const 
     const bool kink = run.mode == PlatformMode::counter_rotating &&
                       (has_non_smooth_term(regressor_terms) || has_non_smooth_term(truth_terms));
     // |a_i| a_i has a kink where a_i changes sign: only algebraic convergence, so many nodes.
-    qo.fast_nodes = kink ? 512 : fast_nodes_for(degree, use_static ? 1 : layout.harmonic_order() + 1);
+    // Dynamic errors and the drives' ripple of order N put harmonics up to N + 1 into the inputs.
+    const bool harmonic = dynamic || motion.has_ripple();
+    qo.fast_nodes = kink ? 512 : fast_nodes_for(degree, harmonic ? layout.harmonic_order() + 1 : 1);
   }
   const RunQuadrature<S> quad = run_quadrature<S>(motion, run.duration, run.mode, S(e[dOmega]), qo);
 
@@ -90,7 +92,8 @@ RunAverage<S> average_run(const Geometry& geo, const ErrorLayout& layout, const 
     const StaticChain<S> chain(geo, layout, e, site, motion.theta1_rate, motion.beta, options.chain);
     for (std::size_t n = 0; n < quad.nodes.size(); ++n) {
       const JointState<S>& j = quad.nodes[n];
-      const SensedInput<S> in = chain(j.theta1, j.gamma, j.theta1_rate, j.gamma_rate);
+      const SensedInput<S> in =
+          chain(j.theta1, j.gamma, j.theta1_rate, j.gamma_rate, j.theta1_acc, j.gamma_acc);
       accumulate(quad.weights[n], in.specific_force, in.angular_rate);
     }
   } else {

@@ -29,6 +29,7 @@ struct Experiment {
   Site site;
   TestPlan plan;
   InstrumentModel instrument;
+  DriveNoise rate_noise;  // the drives' random rate noise (Type A scatter of the run means)
 };
 
 // What is identified: the free terms, the terms held at known values, and the columns the observation file
