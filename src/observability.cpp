@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace ccal {
@@ -58,6 +59,8 @@ std::string join_names(const std::vector<std::string>& names) {
 
 void validate(const ObservabilityProblem& p) {
   const Index rows = p.H.rows();
+  if (rows == 0 && p.H.cols() > 0)
+    throw std::invalid_argument("assess_observability: the design has no rows");
   if (static_cast<Index>(p.terms.size()) != p.H.cols())
     throw std::invalid_argument(
         fmt::format("assess_observability: {} terms for {} columns", p.terms.size(), p.H.cols()));
@@ -224,11 +227,15 @@ ObservabilityResult assess_observability(const ObservabilityProblem& p, const Ob
   });
   const Eigen::VectorXd x = input_scales(p);
 
-  // σ-weighted design for the standard errors; a run of zero resolution (nothing known) counts as the
-  // smallest positive resolution, so that it dominates rather than divides by zero.
+  // σ-weighted design for the standard errors. A run of zero resolution counts with the smallest positive
+  // one; if no run has a resolution, nothing limits the detection (u = 0).
+  const bool resolved = rows > 0 && result.resolution.maxCoeff() > 0;
   Eigen::MatrixXd weighted = p.H;
-  for (Index j = 0; j < rows; ++j)
-    weighted.row(j) /= std::max(result.resolution(j), std::numeric_limits<double>::min());
+  if (resolved) {
+    const double floor =
+        (result.resolution.array() > 0).select(result.resolution, result.resolution.maxCoeff()).minCoeff();
+    for (Index j = 0; j < rows; ++j) weighted.row(j) /= std::max(result.resolution(j), floor);
+  }
 
   for (Index k = 0; k < m; ++k) {
     TermObservability t;
@@ -250,8 +257,9 @@ ObservabilityResult assess_observability(const ObservabilityProblem& p, const Ob
     t.sensitivity = plain.residual.norm();
     t.fraction = t.natural_norm > 0 ? t.sensitivity / t.natural_norm : 0.0;
     const double weighted_sensitivity = project_out_others(weighted, k).residual.norm();
-    t.standard_error =
-        weighted_sensitivity > 0 ? 1.0 / weighted_sensitivity : std::numeric_limits<double>::infinity();
+    t.standard_error = !resolved                  ? 0.0
+                       : weighted_sensitivity > 0 ? 1.0 / weighted_sensitivity
+                                                  : std::numeric_limits<double>::infinity();
     t.min_detectable = o.detection_factor * t.standard_error;
 
     const double limit = o.roundoff_fraction * t.natural_norm;
@@ -271,7 +279,7 @@ ObservabilityResult assess_observability(const ObservabilityProblem& p, const Ob
                           regressor_text(spec), t.term);
       } else {
         // The column is there but the others explain it: name those that carry it.
-        const double largest = plain.weights.cwiseAbs().maxCoeff();
+        const double largest = plain.weights.size() ? plain.weights.cwiseAbs().maxCoeff() : 0.0;
         for (Index c = 0, other = 0; c < m; ++c) {
           if (c == k) continue;
           if (std::abs(plain.weights(other++)) > 0.1 * largest)
@@ -294,6 +302,41 @@ ObservabilityResult assess_observability(const ObservabilityProblem& p, const Ob
     result.terms.push_back(std::move(t));
   }
   return result;
+}
+
+ObservabilityProblem observability_problem(const Observations<double>& obs, const IdentificationSpec& spec,
+                                           const InstrumentModel& instrument, const std::vector<Run>& runs,
+                                           const std::vector<double>& rates) {
+  if (runs.size() != std::size_t(obs.output.size()) || rates.size() != runs.size())
+    throw std::invalid_argument("observability_problem: one run and one rate per observation");
+  ObservabilityProblem p;
+  const auto nfree = static_cast<Index>(spec.free_terms.size());
+  p.terms.assign(obs.columns.begin(), obs.columns.begin() + nfree);
+  p.H = obs.regressors.leftCols(nfree);
+  p.other_terms.assign(obs.columns.begin() + nfree, obs.columns.end());
+  p.others = obs.regressors.rightCols(obs.regressors.cols() - nfree);
+  p.noise_density = instrument.noise_density;
+  p.quantum = instrument.quantum;
+  const std::vector<TermSpec> terms = instrument.terms();
+  for (std::size_t j = 0; j < runs.size(); ++j) {
+    RunResolutionInfo r;
+    r.duration = runs[j].duration;
+    // The specific force of a run at g-level A: the centripetal A g and gravity, √(A² + 1) g.
+    r.input_scale = std::hypot(runs[j].g_level, 1.0);
+    r.rate_scale = std::abs(rates[j]);
+    r.counter_rotating = runs[j].mode == PlatformMode::counter_rotating;
+    r.platform_turns = r.counter_rotating ? r.rate_scale * r.duration / (2 * std::numbers::pi) : 0.0;
+    double bound =
+        std::abs(obs.output[static_cast<Index>(j)]) + std::abs(instrument.rate_gain) * r.rate_scale;
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      const double c = std::abs(instrument.coefficients[static_cast<Index>(k)]);
+      bound += terms[k].kind == TermKind::rate ? c * r.rate_scale
+                                               : c * std::pow(r.input_scale, term_degree(terms[k]));
+    }
+    r.output_magnitude = bound;
+    p.runs.push_back(r);
+  }
+  return p;
 }
 
 std::string unobservable_message(const TermObservability& term) {

@@ -80,7 +80,7 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
     rates.push_back(lr.rate);
   }
   const DataResolution resolution =
-      run_resolution(measured, rates, r.logs.observations, cfg.instrument);
+      run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
   r.identification = identify_observations(r.logs.observations, cfg.identification, cfg.instrument,
                                            cfg.source, &resolution);
   return r;

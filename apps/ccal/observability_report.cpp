@@ -16,18 +16,6 @@ namespace {
 
 using Index = Eigen::Index;
 
-// The magnitude of the instantaneous output in a run whose specific force has magnitude x [g] and whose rate
-// is w [rad/s]: |s_ω| w + Σ |K| x^degree (a bound on what the run mean was accumulated from).
-double output_bound(const InstrumentModel& ins, double x, double w) {
-  double m = std::abs(ins.rate_gain) * w;
-  const std::vector<TermSpec> terms = ins.terms();
-  for (std::size_t k = 0; k < terms.size(); ++k) {
-    const double c = std::abs(ins.coefficients[static_cast<Index>(k)]);
-    m += terms[k].kind == TermKind::rate ? c * w : c * std::pow(x, term_degree(terms[k]));
-  }
-  return m;
-}
-
 // Raises the refusal of the first unobservable term and collects the warnings of the weak ones.
 void judge(ObservabilityReport& report, std::string_view source) {
   if (const TermObservability* t = report.result.first(TermStatus::unobservable))
@@ -47,26 +35,15 @@ void judge(ObservabilityReport& report, std::string_view source) {
 }  // namespace
 
 DataResolution run_resolution(const std::vector<Run>& runs, const std::vector<double>& rates,
-                              const Observations<double>& obs, const InstrumentModel& instrument) {
+                              const Observations<double>& obs, const IdentificationSpec& spec,
+                              const InstrumentModel& instrument) {
   const double unit = output_unit_si(instrument.output_unit);
+  const ObservabilityProblem p = observability_problem(obs, spec, instrument, runs, rates);
   DataResolution d;
-  d.noise_density = instrument.noise_density / unit;
-  d.quantum = instrument.quantum / unit;
-  for (std::size_t j = 0; j < runs.size(); ++j) {
-    const Run& run = runs[j];
-    RunResolutionInfo info;
-    info.duration = run.duration;
-    // The specific force of a run at g-level A is the centripetal A g and gravity: √(A² + 1) g.
-    info.input_scale = std::hypot(run.g_level, 1.0);
-    info.rate_scale = std::abs(rates[j]);
-    info.counter_rotating = run.mode == PlatformMode::counter_rotating;
-    info.platform_turns =
-        info.counter_rotating ? std::abs(rates[j]) * run.duration / (2 * std::numbers::pi) : 0;
-    info.output_magnitude = (std::abs(obs.output[static_cast<Index>(j)]) +
-                             output_bound(instrument, info.input_scale, info.rate_scale)) /
-                            unit;
-    d.runs.push_back(info);
-  }
+  d.noise_density = p.noise_density / unit;
+  d.quantum = p.quantum / unit;
+  d.runs = p.runs;
+  for (auto& r : d.runs) r.output_magnitude /= unit;
   return d;
 }
 
@@ -133,26 +110,20 @@ ObservabilityReport assess_plan(const Config& config, ModelMode mode) {
   const Eigen::VectorXd known = spec.compensate ? at : Eigen::VectorXd::Zero(at.size());
   const Observations<double> obs = observe<double>(ex, at, known, spec, mode);
   const FitProblem problem = fit_problem(obs, spec);
-  FitResult fitted;
   try {
-    fitted = fit(problem);
+    static_cast<void>(fit(problem));  // dependent or nearly dependent terms: the fit's own message
   } catch (const IllPosedFit& e) {
     throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
   }
   const double unit = output_unit_si(config.instrument.output_unit);
   std::vector<double> rates;
   for (const Run& run : config.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));
-  const DataResolution d = run_resolution(config.plan.runs, rates, obs, ex.instrument);
-
-  ObservabilityProblem p;
-  p.terms = spec.free_terms;
+  // In the output unit, as the other commands' tables.
+  ObservabilityProblem p = observability_problem(obs, spec, ex.instrument, config.plan.runs, rates);
+  p.noise_density /= unit;
+  p.quantum /= unit;
+  for (auto& r : p.runs) r.output_magnitude /= unit;
   const auto nfree = static_cast<Index>(spec.free_terms.size());
-  p.H = obs.regressors.leftCols(nfree);
-  p.other_terms.assign(obs.columns.begin() + nfree, obs.columns.end());
-  p.others = obs.regressors.rightCols(obs.regressors.cols() - nfree);
-  p.runs = d.runs;
-  p.noise_density = d.noise_density;
-  p.quantum = d.quantum;
   p.reference = Eigen::VectorXd::Zero(nfree);
   for (Index k = 0; k < nfree; ++k)
     p.reference(k) =

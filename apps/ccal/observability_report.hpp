@@ -27,7 +27,8 @@ struct DataResolution {
 // output unit. `runs` are the runs as reduced (planned, or as measured by `ccal reduce`), `rates` their Ω
 // [rad/s].
 DataResolution run_resolution(const std::vector<Run>& runs, const std::vector<double>& rates,
-                              const Observations<double>& obs, const InstrumentModel& instrument);
+                              const Observations<double>& obs, const IdentificationSpec& spec,
+                              const InstrumentModel& instrument);
 
 struct ObservabilityReport {
   ObservabilityResult result;

@@ -29,6 +29,8 @@
 #include <vector>
 
 #include "ccal/instrument.hpp"
+#include "ccal/simulate.hpp"
+#include "ccal/test_plan.hpp"
 
 namespace ccal {
 
@@ -105,6 +107,14 @@ int term_degree(const TermSpec& term);
 // negative/non-finite inputs.
 ObservabilityResult assess_observability(const ObservabilityProblem& problem,
                                          const ObservabilityOptions& options = {});
+
+// The problem of a plan's observations, all SI: the free and fixed columns of `obs` under `spec`, and per run
+// (`runs` as reduced, `rates` their Ω [rad/s]) its duration, platform turns ΩT/2π, input magnitude √(A² + 1)
+// g, rate magnitude Ω and a bound on the instrument's output, |ȳ| + |s_ω|Ω + Σ|K|·xᵈ; the instrument's noise
+// density and quantum. No reference values.
+ObservabilityProblem observability_problem(const Observations<double>& obs, const IdentificationSpec& spec,
+                                           const InstrumentModel& instrument, const std::vector<Run>& runs,
+                                           const std::vector<double>& rates);
 
 // One line for a refusal: "the test plan cannot observe K3: <reason>; <fix>".
 std::string unobservable_message(const TermObservability& term);
