@@ -259,10 +259,11 @@ void bind_analysis(py::module_& m) {
       [plan_observability](const Observations<double>& obs, const Config& cfg) {
         const FitResult r = fit(fit_problem(obs, cfg.identification));
         // A term the plan cannot see is refused rather than fitted from round-off (as `ccal simulate`).
-        if (obs.output.size() == Eigen::Index(cfg.plan.runs.size()))
-          if (const TermObservability* t =
-                  plan_observability(obs, cfg, r.value).first(TermStatus::unobservable))
+        if (obs.output.size() == Eigen::Index(cfg.plan.runs.size())) {
+          const ObservabilityResult o = plan_observability(obs, cfg, r.value);
+          if (const TermObservability* t = o.first(TermStatus::unobservable))
             throw IllPosedFit(unobservable_message(*t));
+        }
         return r;
       },
       py::arg("observations"), py::arg("config"),
