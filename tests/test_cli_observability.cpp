@@ -3,6 +3,7 @@
 // minimum detectable K3; a noisy plan warns of a weak K3; aliased terms keep the fit's messages.
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
@@ -133,9 +134,9 @@ TEST_F(Cli, PaperPlanPassesAndReportsItsMinimumDetectableK3) {
 
 TEST_F(Cli, ANoisyPlanWarnsOfAWeakK3) {
   // N = 0.3 deg/s/√Hz over T = 450 s: σ = 0.3/√450 = 0.0141 deg/s in every run (the floating-point term,
-  // ~1e-11, is negligible), so δK3 = 3σ/‖P⊥h3‖ ≈ 0.016 deg/s/g³: above K3 = 0.003 (budget) and the fitted value
-  // (seed 1), while δK0 ≈ 0.033 deg/s stays below K0 = 0.062 and δK2 ≈ 1.6e-4 below K2 = 0.02. One warning on
-  // standard error, the same in the JSON, exit 0.
+  // ~1e-11, is negligible), so δK3 = 3σ/‖P⊥h3‖ ≈ 0.016 deg/s/g³: above K3 = 0.003 (budget) and the fitted
+  // value (seed 1), while δK0 ≈ 0.033 deg/s stays below K0 = 0.062 and δK2 ≈ 1.6e-4 below K2 = 0.02. One
+  // warning on standard error, the same in the JSON, exit 0.
   write("noisy.toml", example_replacing(read(kExample), "noise_density = \"0 deg/s/rtHz\"",
                                         "noise_density = \"0.3 deg/s/rtHz\""));
   const Result s = run("simulate noisy.toml --format json");
@@ -157,6 +158,49 @@ TEST_F(Cli, ANoisyPlanWarnsOfAWeakK3) {
   ASSERT_EQ(b.code, 0) << b.err;
   EXPECT_NE(b.err.find("ccal: warning: K3 is weak"), std::string::npos) << b.err;
   EXPECT_EQ(json::parse(b.out)["observability"]["terms"]["K3"]["status"], "weak");
+}
+
+// Pulse logs (time, cumulative pulses of 1e-3 deg) with the given mean outputs [deg/s] over the given spans
+// [s], two samples each (the mean of a pulse log needs only its ends), and the --log options naming them.
+std::string write_pulse_logs(
+    const Cli& cli, const std::vector<double>& outputs, const std::vector<double>& spans,
+    const std::function<std::string(const std::string&, const std::string&)>& write) {
+  (void)cli;
+  std::string args;
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    const std::string name = std::to_string(5 * (k + 1)) + "g";
+    char text[128];
+    std::snprintf(text, sizeof text, "time,pulses\n0,0\n%.17g,%.17g\n", spans[k],
+                  outputs[k] * spans[k] / 1e-3);
+    args += " --log " + name + "=" + write(name + ".csv", text);
+  }
+  return args + " --pulse-weight 1e-3";
+}
+
+TEST_F(Cli, ReduceReportsAndRefusesAsSimulateDoes) {
+  const auto writer = [this](const std::string& name, const std::string& text) { return write(name, text); };
+  // The paper's plan: the simulated mean outputs as logs of 450 s reduce to an observable K3.
+  const Result s = run("simulate --format json");
+  ASSERT_EQ(s.code, 0) << s.err;
+  std::vector<double> outputs, spans;
+  const json simulated = json::parse(s.out);
+  for (const auto& r : simulated["runs"]) {
+    outputs.push_back(r["output"].get<double>());
+    spans.push_back(r["duration_s"].get<double>());
+  }
+  const Result red = run("reduce --format json" + write_pulse_logs(*this, outputs, spans, writer));
+  ASSERT_EQ(red.code, 0) << red.err;
+  EXPECT_EQ(json::parse(red.out)["identification"]["observability"]["terms"]["K3"]["status"], "ok");
+  // Logs of whole revolutions (the spans of whole.toml's runs): the runs as measured are refused for K3.
+  write("whole.toml", whole_revolution_example());
+  spans.clear();
+  for (int a = 5; a <= 30; a += 5) {
+    const double omega = std::sqrt(a * 9.8 / 2.5);
+    spans.push_back(std::round(450 * omega / (2 * std::numbers::pi)) * 2 * std::numbers::pi / omega);
+  }
+  const Result whole = run("reduce whole.toml" + write_pulse_logs(*this, outputs, spans, writer));
+  expect_bad_input(whole,
+                   {"whole.toml: the test plan cannot observe K3", "whole number of platform revolutions"});
 }
 
 TEST_F(Cli, AliasedTermsKeepTheFitsMessages) {

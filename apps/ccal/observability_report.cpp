@@ -99,6 +99,10 @@ ObservabilityReport assess_fit(const FitProblem& problem, const FitResult& fit,
                             : "the fit's residual standard deviation, floating point";
   }
   report.result = assess_observability(p);
+  if (!resolution)  // a table: neither runs nor an instrument to improve
+    for (auto& t : report.result.terms)
+      if (t.status == TermStatus::weak)
+        t.fix = "more rows, a wider spread of the input or less scattered data";
   judge(report, source);
   return report;
 }
