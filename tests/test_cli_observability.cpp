@@ -78,6 +78,27 @@ TEST_F(Cli, WholeRevolutionPlanIsRefusedForK3) {
   expect_whole_revolution_refusal(run("budget whole.toml --mode paper --format json"), "whole.toml");
 }
 
+TEST_F(Cli, HalfRevolutionsEndingAtPiHideK3Too) {
+  // With the paper's terminal phase ψ = π, F(ψ) = 0 and ⟨cos³γ⟩ = F(φ0)/ΩT (F(x) = sin x − sin³x/3), which
+  // vanishes when φ0 = (π + ΩT) mod 2π is 0 or π: runs of n + 1/2 revolutions (docs/model.md §14). Refused,
+  // with the vanishing column but not the whole-revolution reason.
+  std::string text = read(kExample);
+  for (int a = 5; a <= 30; a += 5) {
+    const double omega = std::sqrt(a * 9.8 / 2.5);
+    const double n = std::round(450 * omega / (2 * std::numbers::pi));
+    char line[96];
+    std::snprintf(line, sizeof line, "g_level = \"%d g\"\nduration = \"%.17g s\"", a,
+                  (n + 0.5) * 2 * std::numbers::pi / omega);
+    text = example_replacing(text, "g_level = \"" + std::to_string(a) + " g\"", line);
+  }
+  write("half.toml", text);
+  const Result r = run("simulate half.toml");
+  expect_bad_input(r,
+                   {"half.toml: the test plan cannot observe K3: its regressor <a_i^3> averages to round-off",
+                    "so that <a_i^3> does not average out, or fix K3"});
+  EXPECT_EQ(r.err.find("whole number"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, IdentifyRefusesAVanishingColumnOfAnObservationsFile) {
   // The same plan with K3 held fixed can be simulated; fitting K3 from its file is refused. The file does not
   // record durations, so ccal names the vanishing column without the whole-revolution reason.
