@@ -16,6 +16,7 @@
 #include "ccal/errors.hpp"
 #include "ccal/fit.hpp"
 #include "ccal/force.hpp"
+#include "ccal/observability.hpp"
 #include "ccal/observation_csv.hpp"
 #include "ccal/run_log.hpp"
 #include "ccal/simulate.hpp"
@@ -203,13 +204,72 @@ void bind_analysis(py::module_& m) {
       .def_readonly("rank", &FitResult::rank)
       .def_readonly("warnings", &FitResult::warnings);
 
+  py::class_<TermObservability>(m, "TermObservability",
+                                "How well the plan sees one free term (docs/model.md §14; SI).")
+      .def_readonly("term", &TermObservability::term)
+      .def_property_readonly(
+          "status", [](const TermObservability& t) { return std::string(term_status_name(t.status)); },
+          "'ok', 'weak' or 'unobservable'")
+      .def_readonly("sensitivity", &TermObservability::sensitivity,
+                    "‖P⊥h‖: run-mean change per unit coefficient, root-sum-square over runs")
+      .def_readonly("natural_norm", &TermObservability::natural_norm, "the regressor's size before averaging")
+      .def_readonly("fraction", &TermObservability::fraction, "sensitivity / natural_norm")
+      .def_readonly("standard_error", &TermObservability::standard_error, "from the run resolution alone")
+      .def_readonly("min_detectable", &TermObservability::min_detectable, "detection_factor × standard_error")
+      .def_readonly("aliased_with", &TermObservability::aliased_with)
+      .def_readonly("reason", &TermObservability::reason)
+      .def_readonly("fix", &TermObservability::fix)
+      .def("__repr__", [](const TermObservability& t) {
+        return "<ccal.TermObservability " + t.term + " " + std::string(term_status_name(t.status)) + ">";
+      });
+
+  py::class_<ObservabilityResult>(m, "Observability", "The observability of every free term (SI).")
+      .def_readonly("terms", &ObservabilityResult::terms)
+      .def_readonly("resolution", &ObservabilityResult::resolution, "σ of each run mean [output SI]")
+      .def_readonly("detection_factor", &ObservabilityResult::detection_factor)
+      .def_readonly("whole_revolutions", &ObservabilityResult::whole_revolutions);
+
+  // The observability of the configuration's free terms in its planned runs, `reference` (SI per free term)
+  // compared with the detection limits if given.
+  const auto plan_observability = [](const Observations<double>& obs, const Config& cfg,
+                                     const std::optional<Eigen::VectorXd>& reference) {
+    const Experiment ex = cfg.experiment();
+    if (std::size_t(obs.output.size()) != ex.plan.runs.size())
+      throw InputError("observations: " + std::to_string(obs.output.size()) +
+                       " runs, the configuration plans " + std::to_string(ex.plan.runs.size()));
+    std::vector<double> rates;
+    for (const Run& run : ex.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));
+    ObservabilityProblem p =
+        observability_problem(obs, cfg.identification, ex.instrument, ex.plan.runs, rates);
+    if (reference) p.reference = *reference;
+    return assess_observability(p);
+  };
+  m.def(
+      "observability",
+      [plan_observability](const Observations<double>& obs, const Config& cfg,
+                           std::optional<Eigen::VectorXd> reference) {
+        return plan_observability(obs, cfg, reference);
+      },
+      py::arg("observations"), py::arg("config"), py::arg("reference") = py::none(),
+      "Per free term: sensitivity, resolution, minimum detectable change and status (docs/model.md §14) of "
+      "observations of the configuration's planned runs; reference: SI values to compare the limits with.");
+
   m.def(
       "identify",
-      [](const Observations<double>& obs, const Config& cfg) {
-        return fit(fit_problem(obs, cfg.identification));
+      [plan_observability](const Observations<double>& obs, const Config& cfg) {
+        const FitResult r = fit(fit_problem(obs, cfg.identification));
+        // A term the plan cannot see is refused rather than fitted from round-off (as `ccal simulate`).
+        if (obs.output.size() == Eigen::Index(cfg.plan.runs.size())) {
+          const ObservabilityResult o = plan_observability(obs, cfg, r.value);
+          if (const TermObservability* t = o.first(TermStatus::unobservable))
+            throw IllPosedFit(unobservable_message(*t));
+        }
+        return r;
       },
       py::arg("observations"), py::arg("config"),
-      "Identifies the configuration's free terms from observations (its fixed terms held).");
+      "Identifies the configuration's free terms from observations (its fixed terms held); raises "
+      "IllPosedFit "
+      "for a term the plan cannot observe.");
 
   m.def(
       "fit",

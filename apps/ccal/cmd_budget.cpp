@@ -10,6 +10,7 @@
 #include "ccal/units.hpp"
 #include "ccal/version.hpp"
 #include "commands.hpp"
+#include "observability_report.hpp"
 #include "output.hpp"
 
 namespace ccal::cli {
@@ -37,7 +38,7 @@ std::string bound_text(const SourceBudget& s, const ErrorLayout& layout) {
   return number(s.bound, 4) + " " + std::string(unit_symbol(unit));
 }
 
-std::string to_text(const Config& cfg, const BudgetResult& r) {
+std::string to_text(const Config& cfg, const BudgetResult& r, const ObservabilityReport& observability) {
   const auto nk = r.coefficients.size();
   std::string out = fmt::format(
       "ccal budget: {}, {} mode, {} runs, {} sources; identified {} with {} fixed\n"
@@ -150,7 +151,7 @@ std::string to_text(const Config& cfg, const BudgetResult& r) {
         "of 2 (or in sign) on at least one coefficient; see docs/model.md §10.\n",
         flagged);
   }
-  return out;
+  return out + "\n" + observability_text(observability);
 }
 
 nlohmann::ordered_json per_coefficient(const BudgetResult& r, const Eigen::VectorXd& v, bool scale = true) {
@@ -160,7 +161,7 @@ nlohmann::ordered_json per_coefficient(const BudgetResult& r, const Eigen::Vecto
   return j;
 }
 
-std::string to_json(const Config& cfg, const BudgetResult& r) {
+std::string to_json(const Config& cfg, const BudgetResult& r, const ObservabilityReport& observability) {
   nlohmann::ordered_json j;
   j["ccal_version"] = version();
   j["config"] = cfg.source;
@@ -229,6 +230,7 @@ std::string to_json(const Config& cfg, const BudgetResult& r) {
     if (c.paper_bias.size()) o["paper_bias"] = per_coefficient(r, c.paper_bias);
     j["compensation_choices"].push_back(o);
   }
+  j["observability"] = observability_json(observability);
   return j.dump(2) + "\n";
 }
 
@@ -299,6 +301,8 @@ Command add_budget(CLI::App& app) {
         bo.coverage_factor = options->coverage;
         bo.derivatives =
             options->derivatives == "automatic" ? DerivativeMethod::automatic : DerivativeMethod::linearised;
+        // A term the plan cannot see would get a budget of round-off: refuse it first.
+        const ObservabilityReport observability = assess_plan(cfg, bo.mode);
         BudgetResult r;
         try {
           r = compute_budget(cfg, bo);
@@ -306,9 +310,9 @@ Command add_budget(CLI::App& app) {
           throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
         }
         const std::string& f = options->output.format;
-        write_output(options->output, f == "json"  ? to_json(cfg, r)
+        write_output(options->output, f == "json"  ? to_json(cfg, r, observability)
                                       : f == "csv" ? to_csv(cfg, r)
-                                                   : to_text(cfg, r));
+                                                   : to_text(cfg, r, observability));
       }};
 }
 

@@ -73,8 +73,16 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
   check_log_count(cfg.identification, logs.size(), "--log");
   r.logs = reduce_logs(cfg, logs, lo, r.mode);
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
-  r.identification =
-      identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source);
+  std::vector<Run> measured;
+  std::vector<double> rates;
+  for (const LoggedRun& lr : r.logs.runs) {
+    measured.push_back(lr.measured);
+    rates.push_back(lr.rate);
+  }
+  const DataResolution resolution =
+      run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
+  r.identification = identify_observations(r.logs.observations, cfg.identification, cfg.instrument,
+                                           cfg.source, &resolution);
   return r;
 }
 

@@ -82,7 +82,10 @@ Simulation simulate(const Config& cfg, const SimulateOptions& o) {
     return term_rank(parse_term(s.obs.columns[a]).value()) < term_rank(parse_term(s.obs.columns[b]).value());
   });
 
-  FileIdentification f = identify_observations(s.obs, spec, ex.instrument, cfg.source);
+  std::vector<double> rates;
+  for (const Run& run : ex.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));
+  const DataResolution resolution = run_resolution(ex.plan.runs, rates, s.obs, spec, ex.instrument);
+  FileIdentification f = identify_observations(s.obs, spec, ex.instrument, cfg.source, &resolution);
   s.csv = std::move(f.csv);
   s.id = std::move(f.id);
   return s;

@@ -70,7 +70,7 @@ std::string ill_posed_hint(std::string_view message, const std::vector<std::stri
 }
 
 Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
-                              std::string_view source) {
+                              std::string_view source, const DataResolution* resolution) {
   const FitProblem problem = table_fit_problem(table, spec);
   Identification id;
   try {
@@ -83,6 +83,7 @@ Identification identify_table(const CsvTable& table, const TableFitSpec& spec, c
     throw InputError(fmt::format("{}: {}{}", source, message, ill_posed_hint(message, names)));
   }
   for (const auto& t : spec.terms) id.units.push_back(term_unit(t, units));
+  id.observability = assess_fit(problem, id.fit, id.units, resolution, source);
   for (const auto& f : spec.fixed) id.fixed.push_back({f.term.id, f.value, term_unit(f.term, units)});
   id.known = spec.known;
   id.output_unit = units.output_unit;
@@ -128,6 +129,7 @@ nlohmann::ordered_json identification_json(const Identification& id) {
   j["residuals"] = residuals;
   j["weighted"] = id.weighted;
   j["warnings"] = r.warnings;
+  j["observability"] = observability_json(id.observability);
   j["output_unit"] =
       id.output_unit.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(id.output_unit);
   return j;
@@ -158,6 +160,7 @@ std::string identification_text(const Identification& id) {
   stats.add_row({"chi2/dof", number(r.chi2_per_dof, 6)});
   stats.add_row({"condition number (scaled design)", number(r.condition_number, 6)});
   out += stats.render() + "\n";
+  out += observability_text(id.observability) + "\n";
 
   Table residuals({"run", fmt::format("residual [{}]", id.residual_unit)});
   for (std::size_t k = 0; k < id.row_labels.size(); ++k)
@@ -183,7 +186,8 @@ std::string identification_text(const Identification& id) {
 }
 
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
-                                         const InstrumentModel& instrument, std::string_view source) {
+                                         const InstrumentModel& instrument, std::string_view source,
+                                         const DataResolution* resolution) {
   FileIdentification f;
   f.csv = observations_csv(obs, spec, instrument);
   f.table = parse_csv(f.csv, source);
@@ -194,7 +198,7 @@ FileIdentification identify_observations(const Observations<double>& obs, const 
   ColumnUnits units;
   units.output_unit = header.output_unit;
   units.input_in_g = true;
-  f.id = identify_table(f.table, f.spec, units, source);
+  f.id = identify_table(f.table, f.spec, units, source, resolution);
   return f;
 }
 

@@ -10,6 +10,7 @@
 #include "ccal/fit.hpp"
 #include "ccal/observation_csv.hpp"
 #include "ccal/simulate.hpp"
+#include "observability_report.hpp"
 
 namespace ccal::cli {
 
@@ -37,6 +38,7 @@ struct Identification {
   std::string output_unit;              // "" when not known
   std::string residual_unit;            // unit of the residuals (the output's unit or column name)
   bool weighted = false;
+  ObservabilityReport observability;  // per free term (docs/model.md §14)
 };
 
 // Unit of a term's coefficient.
@@ -46,9 +48,11 @@ std::string term_unit(const TableTerm& term, const ColumnUnits& units);
 // or a_o, more g-levels for powers of a_i; "" if it names neither.
 std::string ill_posed_hint(std::string_view message, const std::vector<std::string>& terms);
 
-// Fits the table. An ill-posed fit is an InputError "<source>: <the fit's message><hint>".
+// Fits the table and assesses the observability of each free term (with what is known of the runs, if given;
+// else from the fit's scatter). An ill-posed fit is an InputError "<source>: <the fit's message><hint>", an
+// unobservable term an InputError "<source>: the test plan cannot observe <term>: <reason>; <fix>".
 Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
-                              std::string_view source);
+                              std::string_view source, const DataResolution* resolution = nullptr);
 
 nlohmann::ordered_json identification_json(const Identification& id);
 // Observations of a test plan written as an observations file, and identified through the file itself, so
@@ -60,7 +64,8 @@ struct FileIdentification {
   Identification id;
 };
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
-                                         const InstrumentModel& instrument, std::string_view source);
+                                         const InstrumentModel& instrument, std::string_view source,
+                                         const DataResolution* resolution = nullptr);
 std::string identification_text(const Identification& id);
 
 }  // namespace ccal::cli

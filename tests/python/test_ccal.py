@@ -154,6 +154,31 @@ class IdentificationTest(unittest.TestCase):
             self.assertAlmostEqual(fit.value[k] / DEG / cli[name]["value"], 1.0, delta=1e-12)
         self.assertEqual(fit.dof, 3)
 
+    def test_observability_refuses_k3_over_whole_revolutions(self):
+        # The paper's plan: every term observable, K3's minimum detectable change 3σ/‖P⊥h3‖ (docs/model.md §14).
+        cfg = ccal.bundled_example()
+        obs = ccal.observe(cfg)
+        o = ccal.observability(obs, cfg)
+        self.assertEqual([t.status for t in o.terms], ["ok", "ok", "ok"])
+        self.assertFalse(o.whole_revolutions)
+        self.assertGreater(o.terms[2].sensitivity, 1.0)
+        self.assertAlmostEqual(o.terms[2].min_detectable / o.terms[2].standard_error, 3.0, delta=1e-12)
+        # Whole revolutions T = n 2π/Ω from a fixed initial phase: ⟨a_i³⟩ vanishes, identify refuses K3.
+        text = ccal.bundled_example_text().replace('terminal_phase = "180 deg"', 'initial_phase = "180 deg"')
+        for a in range(5, 35, 5):
+            omega = math.sqrt(a * 9.8 / 2.5)
+            duration = round(450 * omega / (2 * math.pi)) * 2 * math.pi / omega
+            text = text.replace(f'g_level = "{a} g"', f'g_level = "{a} g"\nduration = "{duration!r} s"')
+        whole = ccal.parse_config(text, "whole")
+        obs = ccal.observe(whole)
+        o = ccal.observability(obs, whole)
+        self.assertTrue(o.whole_revolutions)
+        self.assertEqual(o.terms[2].status, "unobservable")
+        self.assertIn("whole number of platform revolutions", o.terms[2].reason)
+        with self.assertRaises(ccal.IllPosedFit) as e:
+            ccal.identify(obs, whole)
+        self.assertIn("cannot observe K3", str(e.exception))
+
     def test_general_fit(self):
         # y = 1 + 2x + 3x² exactly: the fit returns the coefficients to round-off, with zero residuals.
         x = np.linspace(-2, 3, 9)
