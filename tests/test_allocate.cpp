@@ -13,6 +13,7 @@
 #include "ccal/budget.hpp"
 #include "ccal/config.hpp"
 #include "ccal/errors.hpp"
+#include "independent_lpu.hpp"
 
 namespace ccal::test {
 namespace {
@@ -426,18 +427,25 @@ TEST_F(BundledAllocation, EveryTargetHoldsAndTheActiveOnesAreTight) {
 }
 
 TEST_F(BundledAllocation, AnIndependentBudgetOfTheAllocatedTolerancesAgrees) {
-  Config scaled = *config_;
-  for (Tolerance& t : scaled.tolerances)
-    for (const auto& s : result_->sources)
-      if (s.id == t.id) t.bound = s.allocated_bound;
-  BudgetOptions bo;
-  bo.compare_with_paper = false;
-  bo.coverage_factor = result_->coverage_factor;
-  const BudgetResult b = compute_budget(scaled, bo);
-  for (std::size_t k = 0; k < b.coefficients.size(); ++k)
-    EXPECT_NEAR(b.expanded_uncertainty[Eigen::Index(k)], result_->coefficients[k].allocated_expanded,
-                1e-9 * result_->coefficients[k].allocated_expanded)
-        << b.coefficients[k];
+  // U_k of the allocated tolerances recomputed without the budget: sensitivities by central differences of
+  // the re-identified pipeline (independent_lpu.hpp), σ_s from bound and distribution, every σ_s scaled by
+  // the source's allocated λ_s, and k_p = Φ⁻¹(0.975) = 1.959963984540054 written out. Tolerance 1e-6
+  // relative: the central differences' third-order terms (h = the configured bound, ≈ 1e-10 relative) and
+  // their round-off on coefficients whose effects are 1e-7 of the outputs (≈ 1e-8), with margin.
+  const double k_p = 1.959963984540054;
+  EXPECT_NEAR(result_->coverage_factor, k_p, 1e-12);
+  std::vector<double> scale;
+  for (const Tolerance& t : config_->tolerances) {
+    const auto s = std::find_if(result_->sources.begin(), result_->sources.end(),
+                                [&](const auto& a) { return a.id == t.id; });
+    ASSERT_NE(s, result_->sources.end()) << t.id;
+    scale.push_back(s->scale);
+  }
+  const Eigen::MatrixXd cov = independent_covariance(*config_, config_->tolerances, scale);
+  for (std::size_t k = 0; k < result_->coefficients.size(); ++k) {
+    const double U = k_p * std::sqrt(cov(Eigen::Index(k), Eigen::Index(k)));
+    EXPECT_NEAR(result_->coefficients[k].allocated_expanded, U, 1e-6 * U) << result_->coefficients[k].id;
+  }
 }
 
 TEST_F(BundledAllocation, MonteCarloVerificationPasses) {

@@ -34,13 +34,18 @@ TEST_F(Cli, ForceDefaultIsRunOneOfTheBundledExample) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   EXPECT_NE(r.out.find("'5g'"), std::string::npos) << r.out;
-  // At t = 0: a_IA ≈ −A cos φ0 with A = 5 g and φ0 = 3.6068 rad (model.md §4.2); the Coriolis term and the
-  // rest are below 1e-3 g.
-  const double expected = -5.0 * std::cos(3.60677618);
+  // At t = 0, error-free, Earth rotating (model.md §1, §5.2): a_IA = −(A + C) cos φ0 with A = 5 g, the
+  // Coriolis amplitude C = 2 ω_e R0 Ω sin φ / g (ω_e = 7.2921150e-5 rad/s, R0 = 2.5 m, φ = 45.75°,
+  // g = 9.8 m/s², Ω = √(A g/R0)) = 1.18e-4 g, and φ0 = (π + ΩT) mod 2π, T = 450 s (ψ = π). The text prints 8
+  // significant digits (4.4688017): tolerance 1e-7 g, a thousandth of the Coriolis term.
+  const double g = 9.8, R0 = 2.5, A = 5.0, rate = std::sqrt(A * g / R0);
+  const double phi0 = std::fmod(std::numbers::pi + rate * 450.0, 2 * std::numbers::pi);
+  const double C = 2 * 7.2921150e-5 * R0 * rate * std::sin(45.75 * std::numbers::pi / 180) / g;
+  const double expected = -(A + C) * std::cos(phi0);
   const auto at = r.out.find("specific force [g]");
   ASSERT_NE(at, std::string::npos) << r.out;
   const double f_ia = std::stod(r.out.substr(at + std::string("specific force [g]").size()));
-  EXPECT_NEAR(f_ia, expected, 1e-3) << r.out;
+  EXPECT_NEAR(f_ia, expected, 1e-7) << r.out;
   EXPECT_NE(r.out.find("first-order total"), std::string::npos);
   EXPECT_NE(r.out.find("remainder"), std::string::npos);
 }
@@ -66,9 +71,29 @@ TEST_F(Cli, ForceJsonHasTheDocumentedKeys) {
     EXPECT_TRUE(j.at("specific_force_g").at(axis).is_number()) << axis;
     EXPECT_TRUE(j.at("angular_rate_deg_per_s").at(axis).is_number()) << axis;
   }
-  // Counter-rotating platform, OA up: gravity is +1 g on the OA; |f_IA| ≤ A.
-  EXPECT_NEAR(j["specific_force_g"]["OA"].get<double>(), 1.0, 1e-3);
-  EXPECT_LE(std::abs(j["specific_force_g"]["IA"].get<double>()), 20.001);
+  // Error-free chain at 20 g, t = 10 s, counter-rotating, Earth on (model.md §1), written out: Ω = √(A g/R0),
+  // φ0 = (π + ΩT) mod 2π, γ = φ0 − Ωt, θ1 = Ωt; the Coriolis force of the tangential velocity R0 Ω adds
+  // C = 2 ω_e R0 Ω sin φ / g inward and 2 ω_e R0 Ω cos φ sin θ1 / g upward:
+  //   IA = −(A + C) cos γ, PA = (A + C) sin γ, OA = 1 + 2 ω_e R0 Ω cos φ sin θ1 / g;
+  // the platform keeps its heading ψ = φ0, so the sensed rate is the Earth's: ω_e (cos φ sin ψ, cos φ cos ψ,
+  // sin φ) on IA, PA, OA. JSON carries 17 digits; the phase Ωt ≈ 88 rad carries ~1e-14 rad of round-off:
+  // tolerances 1e-11 g and 1e-12 deg/s. (The Coriolis terms are 2.4e-4 g and 1.3e-4 g.)
+  {
+    const double g = 9.8, R0 = 2.5, A = 20.0, t = 10.0, we = 7.2921150e-5;
+    const double lat = 45.75 * std::numbers::pi / 180, rate = std::sqrt(A * g / R0);
+    const double phi0 = std::fmod(std::numbers::pi + rate * 450.0, 2 * std::numbers::pi);
+    const double gamma = phi0 - rate * t, theta1 = rate * t;
+    const double B = A + 2 * we * R0 * rate * std::sin(lat) / g;
+    const auto& f = j.at("specific_force_g");
+    EXPECT_NEAR(f["IA"].get<double>(), -B * std::cos(gamma), 1e-11);
+    EXPECT_NEAR(f["PA"].get<double>(), B * std::sin(gamma), 1e-11);
+    EXPECT_NEAR(f["OA"].get<double>(), 1 + 2 * we * R0 * rate * std::cos(lat) * std::sin(theta1) / g, 1e-11);
+    const auto& w = j.at("angular_rate_deg_per_s");
+    const double to_deg = 180 / std::numbers::pi;
+    EXPECT_NEAR(w["IA"].get<double>(), we * std::cos(lat) * std::sin(phi0) * to_deg, 1e-12);
+    EXPECT_NEAR(w["PA"].get<double>(), we * std::cos(lat) * std::cos(phi0) * to_deg, 1e-12);
+    EXPECT_NEAR(w["OA"].get<double>(), we * std::sin(lat) * to_deg, 1e-12);
+  }
   EXPECT_TRUE(j.at("contributions").is_array());
   EXPECT_TRUE(j.at("contributions").empty());  // the example's [errors] are all zero
   for (const char* part : {"nominal", "total", "exact", "remainder"}) {

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <nlohmann/json.hpp>
 
+#include "ccal/config.hpp"
 #include "cli_support.hpp"
+#include "independent_lpu.hpp"
 
 namespace ccal::test {
 namespace {
@@ -21,26 +24,34 @@ TEST_F(MonteCarloCli, SmallRunOfTheBundledExample) {
         "validated", "correlation", "M = 400 trials", "seed 1", "Notes:", "JCGM 101"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 
-  const Result j = run("montecarlo --trials 400 --format json");
+  const Result j = run("montecarlo --trials 20000 --format json");
   ASSERT_EQ(j.code, 0) << j.err;
   const nlohmann::json o = nlohmann::json::parse(j.out);
   EXPECT_EQ(o.at("command"), "montecarlo");
-  EXPECT_EQ(o.at("trials"), 400);
+  EXPECT_EQ(o.at("trials"), 20000);
+  // The reference u_c of the bundled example without the program's code paths: central differences of the
+  // re-identified pipeline, σ from bound and distribution, groups by hand (independent_lpu.hpp), in °/s/gⁿ.
+  const ccal::Config cfg = ccal::bundled_example();
+  const Eigen::MatrixXd cov = ccal::test::independent_covariance(cfg, cfg.tolerances);
   EXPECT_EQ(o.at("seed"), 1);
   EXPECT_EQ(o.at("adaptive"), false);
   EXPECT_NEAR(o.at("coverage_factor").get<double>(), 1.959964, 1e-6);
   EXPECT_GT(o.at("wall_time_s").get<double>(), 0.0);
   EXPECT_GT(o.at("trials_per_s").get<double>(), 0.0);
   ASSERT_EQ(o.at("terms").size(), 3u);
-  for (const char* id : {"K0", "K2", "K3"}) {
+  const char* ids[] = {"K0", "K2", "K3"};
+  for (int k = 0; k < 3; ++k) {
+    const char* id = ids[k];
     SCOPED_TRACE(id);
     const auto& c = o.at("coefficients").at(id);
     const double sd = c.at("std_dev").get<double>(), lpu = c.at("lpu").at("std_uncertainty").get<double>();
-    ASSERT_GT(lpu, 0.0);
-    // The LPU is nearly exact for ~1e-5 errors; the sample standard deviation of M = 400 values has a
-    // relative standard error of about 1/√(2M) = 3.5 % for a normal output (more for the arcsine-dominated
-    // ones): 5σ.
-    EXPECT_NEAR(sd / lpu, 1.0, 5 / std::sqrt(2 * 400.0));
+    const double u = std::sqrt(cov(k, k)) * 180 / std::numbers::pi;
+    // The program's LPU against the reference: the central differences' accuracy, 1e-6 relative.
+    EXPECT_NEAR(lpu, u, 1e-6 * u);
+    // The LPU is nearly exact for ~1e-5 errors; the sample standard deviation of M = 20 000 values has a
+    // relative standard error of about 1/√(2M) = 0.5 % for a normal output (less for the arcsine-dominated
+    // ones, whose kurtosis is below 3): 5σ, 2.5 %.
+    EXPECT_NEAR(sd / u, 1.0, 5 / std::sqrt(2 * 20000.0));
     const auto& sym = c.at("symmetric_interval");
     const auto& shortest = c.at("shortest_interval");
     EXPECT_LT(sym[0].get<double>(), c.at("mean").get<double>());

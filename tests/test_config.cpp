@@ -246,7 +246,9 @@ duration = "100 s"
 initial_phase = "0 deg"
 )",
                                 "d.toml");
-  EXPECT_DOUBLE_EQ(c.site.g, normal_gravity(30 * kDeg, 0.0));
+  // Normal gravity at 30° from WGS-84's published γe, γp and semi-axes by Somigliana's formula (written out
+  // in test_site.cpp): 9.7932472692 m/s². Tolerance 1e-9 m/s²: ten-digit constants.
+  EXPECT_NEAR(c.site.g, 9.7932472692, 1e-9);
   EXPECT_TRUE(c.site.earth_rotation);
   EXPECT_DOUBLE_EQ(c.centrifuge.geometry.L, 0.0);
   EXPECT_DOUBLE_EQ(c.centrifuge.geometry.l, 0.0);
@@ -282,7 +284,8 @@ duration = "100 s"
 terminal_phase = "0 deg"
 )",
                                 "h.toml");
-  EXPECT_DOUBLE_EQ(h.site.g, normal_gravity(30 * kDeg, 1000.0));
+  // 1000 m lowers it by the free-air gradient 3.086e-6 s⁻²/m (model.md §1): 3.086e-3 m/s².
+  EXPECT_NEAR(h.site.g, 9.7932472692 - 3.086e-3, 1e-9);
   EXPECT_LT(h.site.g, c.site.g);
 }
 

@@ -305,9 +305,13 @@ TEST(Fit, DependentColumnsAreNamed) {
       EXPECT_FALSE(contains(what, "K1")) << what;
     }
   }
-  // Holding one of the pair fixed makes the plan solvable again.
+  // Holding one of the pair fixed makes the plan solvable again, and exact: y = H·1, so with K_pp at its true
+  // value 1 the free terms are 1 (a well-conditioned 20×3 design: round-off, 1e-12 relative to |y|/|H_k|).
   p.fixed["K_pp"] = 1.0;
-  EXPECT_NO_THROW(ccal::fit(p));
+  const FitResult held = ccal::fit(p);
+  ASSERT_EQ(held.names, (std::vector<std::string>{"K0", "K1", "K2"}));
+  for (Eigen::Index k = 0; k < 3; ++k)
+    EXPECT_NEAR(held.value(k), 1.0, 1e-12 * p.y.norm() / h.col(k).norm()) << held.names[std::size_t(k)];
 }
 
 TEST(Fit, ThreeWayDependencyNamesAllThree) {
@@ -348,9 +352,14 @@ TEST(Fit, FewerRowsThanTermsIsIllPosed) {
     EXPECT_TRUE(contains(what, "3 observations")) << what;
     EXPECT_TRUE(contains(what, "4 free terms")) << what;
   }
-  // Fixing one term leaves a square, solvable problem.
+  // Fixing one term leaves a square, solvable problem: H_free x = y exactly, with x from an LU solve here.
+  // The random 3×3 block has a condition number of a few hundred: tolerance 1e-11 relative.
   p.fixed["K3"] = 0.0;
-  EXPECT_NO_THROW(ccal::fit(p));
+  const FitResult square = ccal::fit(p);
+  const VectorXd want = h.leftCols(3).fullPivLu().solve(p.y);
+  ASSERT_EQ(square.value.size(), 3);
+  for (Eigen::Index k = 0; k < 3; ++k) EXPECT_NEAR(square.value(k), want(k), 1e-11 * want.norm()) << k;
+  EXPECT_EQ(square.dof, 0);
 }
 
 TEST(Fit, ExcessiveConditionNumberNamesTheMostCorrelatedPair) {

@@ -147,18 +147,26 @@ TEST(AngularRate, TiltSensitivitiesHaveThePaperSigns) {
 }
 
 TEST(AngularRate, CounterRotatingPlatformDoesNotTurnInertially) {
-  // With ΔΩ = 0 the platform's inertial rate about its own axis (OA) is the Earth-rate component only; with a
-  // mismatch ΔΩ it is −ΔΩ more. Tolerance 1e-15 rad/s: cancellation of Ω − Ω ≈ 9 rad/s.
+  // With ΔΩ = 0 the platform holds its inertial heading: the instrument senses the Earth rate only,
+  // ω_ie = ω_e (0, cos φ, sin φ) in ENU with ω_e = 7.2921150e-5 rad/s (WGS-84) at φ = 45.75° N, resolved on
+  // IA = (cos ψ, sin ψ, 0), PA = (−sin ψ, cos ψ, 0), OA = up, where ψ = θ1(0) + φ0 = 0.3 rad is the IA's
+  // azimuth from East: (ω_e cos φ sin ψ, ω_e cos φ cos ψ, ω_e sin φ). With a mismatch ΔΩ the OA component is
+  // −ΔΩ more. Tolerance 1e-15 rad/s: cancellation of Ω − Ω ≈ 9 rad/s; swapping cos φ and sin φ moves each
+  // component by ≥ 4e-7 rad/s, a latitude error of 0.01° by 1e-8 rad/s.
   const Geometry geo{2.5, 0.2, 0.05, 0.0};
   const ErrorLayout layout(1);
   const Site site = paper_site(true);
+  const double we = 7.2921150e-5, cos_lat = std::cos(45.75 * kDeg), sin_lat = std::sin(45.75 * kDeg);
+  const double psi = 0.3;
   const double w = rate_for(30.0, geo.R0, site.g);
   Eigen::VectorXd e = Eigen::VectorXd::Zero(layout.size());
   auto y = outputs<double>(geo, layout, e, site, w, 0.0, 0.3, PlatformMode::counter_rotating, 5.0);
-  EXPECT_NEAR(y[5], site.earth_rate_enu().z(), 1e-15);
+  EXPECT_NEAR(y[3], we * cos_lat * std::sin(psi), 1e-15);
+  EXPECT_NEAR(y[4], we * cos_lat * std::cos(psi), 1e-15);
+  EXPECT_NEAR(y[5], we * sin_lat, 1e-15);
   e[dOmega] = 2e-6;
   y = outputs<double>(geo, layout, e, site, w, 0.0, 0.3, PlatformMode::counter_rotating, 5.0);
-  EXPECT_NEAR(y[5], site.earth_rate_enu().z() - 2e-6, 1e-15);
+  EXPECT_NEAR(y[5], we * sin_lat - 2e-6, 1e-15);
 }
 
 }  // namespace
