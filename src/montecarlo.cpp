@@ -232,7 +232,7 @@ double spread_of_average(const std::vector<double>& v) {
 
 int default_threads() {
 #ifdef _OPENMP
-  return omp_get_max_threads();
+  return std::min(omp_get_max_threads(), kMaxThreads);  // OMP_NUM_THREADS may ask for more
 #else
   return 1;
 #endif
@@ -398,6 +398,12 @@ std::string format_count(std::uint64_t n) {
 
 }  // namespace
 
+void check_thread_count(int threads, const char* what) {
+  if (threads < 0 || threads > kMaxThreads)
+    throw InputError(fmt::format("{}: {} is out of range; accepted: 0 (the OpenMP default) or 1 to {}", what,
+                                 threads, kMaxThreads));
+}
+
 MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
                                  std::vector<std::string> output_names, const TrialFunction& trial,
                                  const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
@@ -414,7 +420,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   if (options.significant_digits < 0 || options.significant_digits > 15)
     throw InputError(fmt::format("Monte Carlo: significant digits must be 0 (fixed M) or 1…15, not {}",
                                  options.significant_digits));
-  if (options.threads < 0) throw InputError("Monte Carlo: the number of threads must be ≥ 0 (0: default)");
+  check_thread_count(options.threads, "threads");
   if (lpu_std && lpu_std->size() != n_outputs)
     throw InputError(
         fmt::format("Monte Carlo: {} LPU uncertainties for {} outputs", lpu_std->size(), n_outputs));

@@ -314,9 +314,7 @@ Command add_allocate(CLI::App& app) {
           throw InputError(fmt::format(
               "--verify-trials: {} is out of range; accepted: 0 (no verification) or 2 to 1000000000",
               o->verify_trials));
-        if (o->threads < 0)
-          throw InputError(
-              fmt::format("--threads: {} is negative; accepted: 0 (default) or more", o->threads));
+        check_thread_count(o->threads, "--threads");
         const Config cfg = load_config_or_example(o->config);
         if (cfg.tolerances.empty())
           throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
