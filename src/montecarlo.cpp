@@ -398,6 +398,23 @@ std::string format_count(std::uint64_t n) {
 
 }  // namespace
 
+namespace {
+// Every output value of every trial is kept (8 bytes each): refused before it is allocated if that exceeds half
+// the machine's memory or 16 GiB, rather than ending in an allocation failure hours into the run.
+void check_sample_memory(std::uint64_t trials, std::size_t n_outputs, bool adaptive) {
+  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+  const double physical = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
+  const double limit = std::min(physical > 0 ? physical / 2 : 16 * kGiB, 16 * kGiB);
+  const double need = 8.0 * double(trials) * double(n_outputs);
+  if (need <= limit) return;
+  throw InputError(fmt::format(
+      "Monte Carlo: {} trials of {} outputs need {:.3g} GiB for the kept values, beyond the limit of {:.3g} "
+      "GiB (half the memory, at most 16 GiB); accepted: at most {} trials{}",
+      trials, n_outputs, need / kGiB, limit / kGiB, std::uint64_t(limit / (8.0 * double(n_outputs))),
+      adaptive ? " (the adaptive procedure: fewer digits or a lower max_trials)" : ""));
+}
+}  // namespace
+
 void check_thread_count(int threads, const char* what) {
   if (threads < 0 || threads > kMaxThreads)
     throw InputError(fmt::format("{}: {} is out of range; accepted: 0 (the OpenMP default) or 1 to {}", what,
@@ -478,6 +495,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   for (int h = 1;; ++h) {
     const std::uint64_t begin = M;
     M += block;
+    check_sample_memory(M, n_out, adaptive);
     for (auto& s : samples) s.resize(M);
     progress.set_stage(M, adaptive ? fmt::format("stage {} ", h) : std::string());
     engine.run(begin, M);
