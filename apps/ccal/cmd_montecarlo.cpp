@@ -220,6 +220,7 @@ Command add_montecarlo(CLI::App& app) {
       ->type_name("N");
   cmd->add_option("--seed", o->seed, "Seed of the random numbers (same seed, same results)")
       ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
       ->type_name("S");
   cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default); the results do not depend on it")
       ->capture_default_str()
