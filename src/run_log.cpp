@@ -175,6 +175,7 @@ void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::stri
 LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::size_t, CsvTable>>& logs,
                          const RunLogOptions& options, ModelMode mode) {
   const Experiment ex = config.experiment();
+  check_log_count(config.identification, logs.size(), "logs");  // before reading any log: the cheaper mistake
   std::map<std::size_t, LoggedRun> by_run;  // plan order
   for (const auto& [index, table] : logs) {
     if (index >= config.plan.runs.size())
