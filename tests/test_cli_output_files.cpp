@@ -59,6 +59,12 @@ TEST_F(OutputFiles, AFifoIsWrittenThroughNotReplaced) {
   EXPECT_NE(read(dir_ / "got.txt").find("K3"), std::string::npos);
 }
 
+// /dev/stdout is a link to the process's standard output, here a pipe: written through, not resolved.
+TEST_F(OutputFiles, ALinkToAPipeIsWrittenThrough) {
+  EXPECT_EQ(exit_code_of(in_dir(quote(kProgram) + " budget -o /dev/stdout | cat > got.txt")), 0);
+  EXPECT_NE(read(dir_ / "got.txt").find("K3"), std::string::npos);
+}
+
 TEST_F(OutputFiles, AnOutputThatIsAnInputIsRefused) {
   const std::string example = read(kExample);
   write("cfg.toml", example);

@@ -154,27 +154,30 @@ Plan plan_for(const FileToWrite& f) {
     return p;
   }
   p.target = f.path;
-  struct stat link {};
-  if (::lstat(f.path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
-    std::error_code ec;
-    const fs::path resolved = fs::canonical(f.path, ec);
-    if (ec) fail(f, "it is a symbolic link to nothing; accepted: a link to a file, or a file path");
-    p.target = resolved.string();
-  }
   struct stat st {};
-  if (::stat(p.target.c_str(), &st) != 0) {
+  if (::stat(f.path.c_str(), &st) != 0) {  // follows symbolic links
     if (errno != ENOENT) fail(f, errno_text());
+    struct stat link {};
+    if (::lstat(f.path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
+      fail(f, "it is a symbolic link to nothing; accepted: a link to a file, or a file path");
     return p;  // a new regular file
   }
   p.identity = std::make_pair(st.st_dev, st.st_ino);
   for (const auto& in : inputs())
     if (in == *p.identity) fail(f, "it is also an input of the command; accepted: a file the command does not read");
   if (S_ISDIR(st.st_mode)) fail(f, "it is a folder; accepted: a file path");
-  if (S_ISREG(st.st_mode)) {
-    p.mode = st.st_mode & 07777;
-    p.owner = std::make_pair(st.st_uid, st.st_gid);
-  } else {
-    p.kind = Plan::Kind::through;  // character or block device, FIFO, socket
+  if (!S_ISREG(st.st_mode)) {
+    p.kind = Plan::Kind::through;  // character or block device, FIFO, socket (also through a link: /dev/stdout)
+    return p;
+  }
+  p.mode = st.st_mode & 07777;
+  p.owner = std::make_pair(st.st_uid, st.st_gid);
+  struct stat link {};
+  if (::lstat(f.path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {  // replace the file, keep the link
+    std::error_code ec;
+    const fs::path resolved = fs::canonical(f.path, ec);
+    if (ec) fail(f, ec.message());
+    p.target = resolved.string();
   }
   return p;
 }
