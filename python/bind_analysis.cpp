@@ -44,7 +44,14 @@ std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& r
                        " runs");
     return std::size_t(*i < 0 ? *i + n : *i);
   }
-  return select_run(cfg.plan, std::get<std::string>(run), "run");
+  // A string of digits that names no run is the same 0-based index as the int (run="1" is run=1, the
+  // second run), not the command line's 1-based index.
+  const std::string& text = std::get<std::string>(run);
+  for (const auto& r : cfg.plan.runs)
+    if (r.name == text) return select_run(cfg.plan, text, "run");
+  if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos && text.size() < 9)
+    return run_index(cfg, std::stoi(text));
+  return select_run(cfg.plan, text, "run");
 }
 
 }  // namespace

@@ -550,6 +550,10 @@ std::string_view verdict_name(Verdict v) noexcept {
   return "";
 }
 
+// The smallest accepted target, as a fraction of the coefficient's expanded uncertainty at the configured
+// tolerances.
+constexpr double kMinTargetFraction = 1e-6;
+
 AllocationResult allocate_tolerances(const Config& cfg, const std::vector<AllocationTarget>& targets,
                                      const AllocateOptions& o) {
   if (cfg.tolerances.empty())
@@ -560,8 +564,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
     throw InputError(fmt::format("--max-scale: {} is not a number > 0; e.g. 10", o.max_scale));
   if (o.verify_trials == 1)
     throw InputError("--verify-trials: 1 is too few; accepted: 0 (no verification) or 2 and more");
-  if (o.threads < 0)
-    throw InputError(fmt::format("--threads: {} is negative; accepted: 0 or more", o.threads));
+  check_thread_count(o.threads, "--threads");
 
   BudgetOptions bo;
   bo.mode = ModelMode::exact;
@@ -598,6 +601,15 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
     if (!(std::isfinite(t.expanded) && t.expanded > 0))
       throw InputError(
           fmt::format("target on {}: {} is not a positive expanded uncertainty", t.coefficient, t.expanded));
+    // Tolerances shrink in proportion to the target: beyond a million-fold tightening of every source the
+    // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0).
+    const double configured = kp * b.standard_uncertainty[Eigen::Index(k)], least = kMinTargetFraction * configured;
+    if (t.expanded < least)
+      throw InputError(fmt::format(
+          "target on {}: {:g} {} is below {:g} × its configured U = {:.4g} {}; accepted: at least {:.4g} {} (a "
+          "tighter target cannot be met by any realistic tolerance)",
+          t.coefficient, t.expanded * b.display_scale[k], b.units[k], kMinTargetFraction,
+          configured * b.display_scale[k], b.units[k], least * b.display_scale[k], b.units[k]));
     r.coefficients[k].has_target = true;
     r.coefficients[k].target = t.expanded;
     r.targets.push_back(k);

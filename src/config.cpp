@@ -344,6 +344,14 @@ class Reader {
          fmt::format("must not be negative, got {}; {}", number_text(v), hint));
   }
 
+  // Plausibility: a value beyond what any centrifuge test uses is a typing or unit error.
+  void require_at_most(const toml::table& t, std::string_view table_path, std::string_view key, double v,
+                       double most, std::string_view accepted) const {
+    if (v <= most) return;
+    fail(*t.get(key), path(table_path, key),
+         fmt::format("{} is implausible; accepted: {}", number_text(v), accepted));
+  }
+
   const std::string& source() const { return source_; }
 
  private:
@@ -437,6 +445,7 @@ CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root) {
   const auto radius = r.quantity(*t, p, "radius", kind::length, nullptr, "2.5 m");
   if (!radius) r.fail(where(t->source()), "centrifuge.radius", "missing value; give e.g. radius = \"2.5 m\"");
   r.require_positive(*t, p, "radius", *radius, "the arm radius R0, e.g. \"2.5 m\"");
+  r.require_at_most(*t, p, "radius", *radius, 100.0, "an arm radius up to 100 m (SI), e.g. \"2.5 m\"");
   geo.R0 = *radius;
   geo.L = r.quantity(*t, p, "base_plane_height", kind::length).value_or(0.0);
   r.require_non_negative(*t, p, "base_plane_height", geo.L, "a height >= 0 such as \"0.2 m\"");
@@ -753,6 +762,7 @@ RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_vie
     r.fail(*t.get("duration"), Reader::path(p, "duration"),
            fmt::format("must be positive, got {} s; a run duration such as \"450 s\"",
                        number_text(*f.duration)));
+  if (f.duration) r.require_at_most(t, p, "duration", *f.duration, 1e6, "a run duration up to 1e6 s (11.6 days)");
   f.platform =
       r.word(t, p, "platform",
              std::vector<std::pair<std::string_view, PlatformMode>>{
@@ -822,10 +832,12 @@ TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geo
              "missing value; give e.g. g_level = \"5 g\" (or the speed, e.g. speed = \"120 rpm\")");
     if (g_level) {
       r.require_positive(*rt, p, "g_level", *g_level, "the centripetal level such as \"5 g\"");
+      r.require_at_most(*rt, p, "g_level", *g_level, 1000.0, "a centripetal level up to 1000 g");
       run.g_level = *g_level;
     } else {
       r.require_positive(*rt, p, "speed", *speed, "the main-axis speed such as \"120 rpm\"");
       run.g_level = *speed * *speed * geometry.R0 / site.g;
+      r.require_at_most(*rt, p, "speed", run.g_level, 1000.0, "a speed giving at most 1000 g at the radius");
     }
 
     const RunFields own = read_run_fields(r, *rt, p);

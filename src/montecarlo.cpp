@@ -232,7 +232,7 @@ double spread_of_average(const std::vector<double>& v) {
 
 int default_threads() {
 #ifdef _OPENMP
-  return omp_get_max_threads();
+  return std::min(omp_get_max_threads(), kMaxThreads);  // OMP_NUM_THREADS may ask for more
 #else
   return 1;
 #endif
@@ -398,6 +398,29 @@ std::string format_count(std::uint64_t n) {
 
 }  // namespace
 
+namespace {
+// Every output value of every trial is kept (8 bytes each): refused before it is allocated if that exceeds half
+// the machine's memory or 16 GiB, rather than ending in an allocation failure hours into the run.
+void check_sample_memory(std::uint64_t trials, std::size_t n_outputs, bool adaptive) {
+  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+  const double physical = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
+  const double limit = std::min(physical > 0 ? physical / 2 : 16 * kGiB, 16 * kGiB);
+  const double need = 8.0 * double(trials) * double(n_outputs);
+  if (need <= limit) return;
+  throw InputError(fmt::format(
+      "Monte Carlo: {} trials of {} outputs need {:.3g} GiB for the kept values, beyond the limit of {:.3g} "
+      "GiB (half the memory, at most 16 GiB); accepted: at most {} trials{}",
+      trials, n_outputs, need / kGiB, limit / kGiB, std::uint64_t(limit / (8.0 * double(n_outputs))),
+      adaptive ? " (the adaptive procedure: fewer digits or a lower max_trials)" : ""));
+}
+}  // namespace
+
+void check_thread_count(int threads, const char* what) {
+  if (threads < 0 || threads > kMaxThreads)
+    throw InputError(fmt::format("{}: {} is out of range; accepted: 0 (the OpenMP default) or 1 to {}", what,
+                                 threads, kMaxThreads));
+}
+
 MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
                                  std::vector<std::string> output_names, const TrialFunction& trial,
                                  const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
@@ -414,7 +437,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   if (options.significant_digits < 0 || options.significant_digits > 15)
     throw InputError(fmt::format("Monte Carlo: significant digits must be 0 (fixed M) or 1…15, not {}",
                                  options.significant_digits));
-  if (options.threads < 0) throw InputError("Monte Carlo: the number of threads must be ≥ 0 (0: default)");
+  check_thread_count(options.threads, "threads");
   if (lpu_std && lpu_std->size() != n_outputs)
     throw InputError(
         fmt::format("Monte Carlo: {} LPU uncertainties for {} outputs", lpu_std->size(), n_outputs));
@@ -472,6 +495,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   for (int h = 1;; ++h) {
     const std::uint64_t begin = M;
     M += block;
+    check_sample_memory(M, n_out, adaptive);
     for (auto& s : samples) s.resize(M);
     progress.set_stage(M, adaptive ? fmt::format("stage {} ", h) : std::string());
     engine.run(begin, M);

@@ -6,6 +6,8 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -174,7 +176,8 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
   CsvTable t;
   t.source = std::string(source);
   int line_no = 0;
-  std::size_t start = 0;
+  // A UTF-8 byte-order mark, as spreadsheet programs write it, is not part of the first column's name.
+  std::size_t start = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
   while (start < text.size()) {
     const std::size_t end = std::min(text.find('\n', start), text.size());
     std::string_view line = text.substr(start, end - start);
@@ -191,16 +194,19 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
     std::vector<std::string> fields = split_fields(line, bad);
     if (t.header.empty()) {
       if (bad) throw CsvError(t.source, line_no, static_cast<int>(bad->first + 1), "", bad->second);
+      // Duplicates found through a map of the names seen (O(n log n); a pairwise check took seconds for a
+      // header of tens of thousands of columns).
+      std::map<std::string_view, std::size_t> seen;
       for (std::size_t k = 0; k < fields.size(); ++k) {
         if (fields[k].empty())
           throw CsvError(
               t.source, line_no, static_cast<int>(k + 1), "",
               "empty column name in the header; accepted: a header row naming every column, e.g. x,y");
-        for (std::size_t j = 0; j < k; ++j)
-          if (fields[j] == fields[k])
-            throw CsvError(
-                t.source, line_no, static_cast<int>(k + 1), fields[k],
-                fmt::format("duplicate column name (also column {}); accepted: unique names", j + 1));
+        const auto [it, fresh] = seen.emplace(fields[k], k);
+        if (!fresh)
+          throw CsvError(
+              t.source, line_no, static_cast<int>(k + 1), fields[k],
+              fmt::format("duplicate column name (also column {}); accepted: unique names", it->second + 1));
       }
       if (std::all_of(fields.begin(), fields.end(),
                       [](const std::string& f) { return parse_number(f).has_value(); }))
@@ -422,6 +428,29 @@ std::string observations_csv(const Observations<double>& obs, const Identificati
 // ---------------------------------------------------------------------------------------------------------
 // The fit of a table
 
+namespace {
+// Finite numbers can still overflow in the fit's columns: x^n of a large input, or the output less a known
+// contribution. Each is refused at its row, naming the term and the column it comes from.
+void check_finite_problem(const CsvTable& table, const TableFitSpec& spec, const std::vector<TableTerm>& all,
+                          const FitProblem& p) {
+  for (Eigen::Index i = 0; i < p.y.size(); ++i)
+    if (!std::isfinite(p.y[i]))
+      throw table.error_at(std::size_t(i), *table.find(spec.output),
+                           "the output less the known contributions overflows; accepted: values whose "
+                           "difference is a finite number");
+  for (Eigen::Index c = 0; c < p.H.cols(); ++c)
+    for (Eigen::Index i = 0; i < p.H.rows(); ++i) {
+      if (std::isfinite(p.H(i, c))) continue;
+      const TableTerm& t = all[std::size_t(c)];
+      const std::string& column = t.column.empty() ? spec.input : t.column;
+      throw table.error_at(std::size_t(i), *table.find(column),
+                           fmt::format("term {} of {} overflows (|{}| too large for its power); accepted: "
+                                       "inputs in a unit that keeps x^n finite, e.g. g rather than mg",
+                                       t.id, table.rows[std::size_t(i)][*table.find(column)], column));
+    }
+}
+}  // namespace
+
 FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
   std::vector<TableTerm> all = spec.terms;
   for (const auto& f : spec.fixed) all.push_back(f.term);
@@ -464,6 +493,7 @@ FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
     p.term_names.push_back(t.id);
   }
   for (const auto& f : spec.fixed) p.fixed[f.term.id] = f.value;
+  check_finite_problem(table, spec, all, p);
 
   if (!spec.weight.empty()) {
     const Eigen::VectorXd sigma = table.numbers(spec.weight, "the weights");
@@ -480,6 +510,9 @@ FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
       if (!std::isfinite(p.weights[i]))
         throw table.error_at(static_cast<std::size_t>(i), column,
                              "standard deviation too small: its weight 1/σ² overflows; accepted: σ > 1e-154");
+      if (p.weights[i] < std::numeric_limits<double>::min())  // underflow: no weight at all
+        throw table.error_at(static_cast<std::size_t>(i), column,
+                             "standard deviation too large: its weight 1/σ² underflows; accepted: σ < 1e154");
     }
   }
 

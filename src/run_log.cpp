@@ -57,6 +57,22 @@ Eigen::VectorXd unwrapped(const CsvTable& table, std::string_view column, const 
   return a;
 }
 
+// An encoder's fitted rate against the plan: beyond this fraction of the planned main-axis rate the log does not
+// belong to the run as planned. Real speed errors and platform mismatches are ppm-sized; a log in degrees read
+// as radians, the log of another g-level (rates differ by ≥ 10 % between the paper's levels), a stopped or
+// reversed encoder are off by far more.
+constexpr double kEncoderRateTolerance = 0.05;
+
+void check_encoder_rate(std::string_view source, std::string_view run, std::string_view encoder,
+                        double logged, double expected, double planned_rate) {
+  if (std::abs(logged - expected) <= kEncoderRateTolerance * std::abs(planned_rate)) return;
+  throw InputError(fmt::format(
+      "{}: run '{}': the {} encoder turns at {:.6g} rad/s, the plan at {:.6g} rad/s (accepted: within {:g} % "
+      "of the main-axis rate {:.6g} rad/s); likely cause: encoder angles in degrees without --angle-unit "
+      "deg, the log of another run, or a stopped or reversed encoder",
+      source, run, encoder, logged, expected, 100 * kEncoderRateTolerance, std::abs(planned_rate)));
+}
+
 }  // namespace
 
 ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, double planned_rate) {
@@ -75,6 +91,10 @@ ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, d
                            fmt::format("time {} s does not follow {} s; accepted: strictly increasing times",
                                        t[Eigen::Index(i)], t[Eigen::Index(i - 1)]));
   r.duration = t[t.size() - 1] - t[0];
+  if (!std::isfinite(r.duration))
+    throw CsvError(table.source, table.row_lines.back(), int(*time_column + 1), "time",
+                   fmt::format("the span {} s to {} s overflows; accepted: times of a run, in s", t[0],
+                               t[t.size() - 1]));
 
   const auto pulses = table.find("pulses"), output = table.find("output");
   if (pulses.has_value() == output.has_value())
@@ -98,6 +118,15 @@ ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, d
     r.mean_output = integral / r.duration;
   }
 
+  // The fit squares the means: beyond 1e150 (SI) its sums overflow, and the failure would surface far from
+  // the log.
+  if (!(std::abs(r.mean_output) <= 1e150)) {
+    const std::size_t k = pulses ? *pulses : *output;
+    throw CsvError(table.source, table.header_line, int(k + 1), table.header[k],
+                   fmt::format("the mean output over the log, {:.6g} (SI), overflows the fit; accepted: the "
+                               "instrument's output in its output unit, or a pulse count, below 1e150",
+                               r.mean_output));
+  }
   if (table.find("theta1")) {
     const Line l = fit_line(t, unwrapped(table, "theta1", t, options.angle_scale, planned_rate));
     r.has_theta1 = true;
@@ -146,6 +175,7 @@ void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::stri
 LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::size_t, CsvTable>>& logs,
                          const RunLogOptions& options, ModelMode mode) {
   const Experiment ex = config.experiment();
+  check_log_count(config.identification, logs.size(), "logs");  // before reading any log: the cheaper mistake
   std::map<std::size_t, LoggedRun> by_run;  // plan order
   for (const auto& [index, table] : logs) {
     if (index >= config.plan.runs.size())
@@ -159,6 +189,13 @@ LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::
     const Run& planned = config.plan.runs[index];
     lr.planned_rate = nominal_rate(planned, ex.geometry, ex.site);
     lr.log = reduce_run_log(table, options, lr.planned_rate);
+    if (lr.log.has_theta1)
+      check_encoder_rate(table.source, planned.name, "main-axis (theta1)", lr.log.theta1_rate, lr.planned_rate,
+                         lr.planned_rate);
+    if (lr.log.has_gamma)
+      check_encoder_rate(table.source, planned.name, "platform (gamma)", lr.log.gamma_rate,
+                         planned.mode == PlatformMode::counter_rotating ? -lr.planned_rate : 0.0,
+                         lr.planned_rate);
     lr.measured = measured_run(planned, lr.log, ex.geometry, ex.site);
     lr.rate = nominal_rate(lr.measured, ex.geometry, ex.site);
     lr.mismatch = measured_platform_mismatch(planned, lr.log);

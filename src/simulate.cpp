@@ -67,23 +67,27 @@ RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, co
   avg.regressors = VecX<S>::Zero(Eigen::Index(terms.size()));
   for (std::size_t n = 0; n < nodes.weight.size(); ++n) {
     const S a_power = -A * nodes.cos_gamma[n];  // the K2, K3 … input: amplitude only
-    S a_k1 = a_power - S(nodes.coriolis[n]);
+    S a_pose = a_power;                          // with the pose errors, without the Coriolis term
     S w_ia = S(nodes.nominal_rate_ia[n]);
-    for (const auto& [i, d] : nodes.force_row[n]) a_k1 += d * e[i];
+    for (const auto& [i, d] : nodes.force_row[n]) a_pose += d * e[i];
     for (const auto& [i, d] : nodes.rate_row[n]) w_ia += d * e[i];
+    const S a_k1 = a_pose - S(nodes.coriolis[n]);  // the constant Coriolis term goes with K1 only
     const Vec3<S> a_cross(a_k1, A * nodes.sin_gamma[n], S(1));
+    const Vec3<S> a_cross_power(a_pose, A * nodes.sin_gamma[n], S(1));  // K2, K3 … with cross terms
     const Vec3<S> a_plain(a_power, A * nodes.sin_gamma[n], S(1));
     const S weight = S(nodes.weight[n]);
     avg.input += weight * a_cross;
     avg.rate_ia += weight * w_ia;
     for (std::size_t k = 0; k < terms.size(); ++k) {
       // The paper's regressors: Z1 carries the errors, Z2, Z3 … are the nominal means (Eq.16/17).
-      const bool plain = !cross_terms && terms[k].kind == TermKind::power && terms[k].power != 1;
-      avg.regressors[Eigen::Index(k)] += weight * term_regressor(terms[k], plain ? a_plain : a_cross, w_ia);
+      // With cross terms the pose errors enter K2, K3 … as well, the Coriolis term still K1 only.
+      const bool power = terms[k].kind == TermKind::power && terms[k].power != 1;
+      const Vec3<S>& a = !power ? a_cross : cross_terms ? a_cross_power : a_plain;
+      avg.regressors[Eigen::Index(k)] += weight * term_regressor(terms[k], a, w_ia);
     }
     if (instrument) {
       S out = cross_terms
-                  ? instrument_output(*instrument, truth_terms, a_cross, w_ia)
+                  ? instrument_output(*instrument, truth_terms, a_cross_power, w_ia) + S(k1) * (a_k1 - a_pose)
                   : instrument_output(*instrument, truth_terms, a_plain, w_ia) + S(k1) * (a_k1 - a_power);
       // The paper's additive −ΔΩ (output in rad/s), a rate-path term: it goes with the instrument's rate
       // gain.

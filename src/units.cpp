@@ -61,6 +61,8 @@ constexpr Prefix kPrefixes[] = {
 
 // Exponents beyond this are certainly typing errors and would only risk overflowing the factor.
 constexpr int kMaxExponent = 12;
+// A whole expression's exponent of any dimension, likewise.
+constexpr int kMaxDimensionExponent = 1000;
 
 struct UnitValue {
   double factor;
@@ -222,6 +224,12 @@ class UnitParser {
       ++pos_;
       const UnitValue t = term(depth);
       acc = op == '/' ? divide(acc, t) : multiply(acc, t);
+      // Bounded so that a long product cannot overflow the integer exponents (no real unit comes near).
+      const Dimension& d = acc.dim;
+      for (int e : {d.length, d.time, d.angle, d.g_level})
+        if (e < -kMaxDimensionExponent || e > kMaxDimensionExponent)
+          fail(ctx_, fmt::format("a dimension exponent beyond {} in magnitude; accepted: a unit such as m/s^2",
+                                 kMaxDimensionExponent));
     }
   }
 
@@ -292,7 +300,7 @@ class UnitParser {
     if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size()) {
       fail(ctx_, "expected an integer exponent after '^'");
     }
-    if (std::abs(n) > kMaxExponent) {
+    if (n < -kMaxExponent || n > kMaxExponent) {  // not std::abs: |INT_MIN| overflows
       fail(ctx_, fmt::format("exponent {} is out of range (at most {} in magnitude)", n, kMaxExponent));
     }
     return n;

@@ -13,6 +13,7 @@
 #include "ccal/version.hpp"
 #include "commands.hpp"
 #include "output.hpp"
+#include "result_checks.hpp"
 
 namespace ccal::cli {
 namespace {
@@ -293,7 +294,9 @@ Command add_allocate(CLI::App& app) {
                   "Monte Carlo trials of the verification on the allocated tolerances (0: none)")
       ->capture_default_str()
       ->type_name("N");
-  cmd->add_option("--seed", o->seed, "Seed of the verification")->capture_default_str()->type_name("S");
+  cmd->add_option("--seed", o->seed, "Seed of the verification")->capture_default_str()
+      ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
+      ->type_name("S");
   cmd->add_option("--threads", o->threads, "Threads of the verification (0: the OpenMP default)")
       ->capture_default_str()
       ->type_name("K");
@@ -316,9 +319,7 @@ Command add_allocate(CLI::App& app) {
           throw InputError(fmt::format(
               "--verify-trials: {} is out of range; accepted: 0 (no verification) or 2 to 1000000000",
               o->verify_trials));
-        if (o->threads < 0)
-          throw InputError(
-              fmt::format("--threads: {} is negative; accepted: 0 (default) or more", o->threads));
+        check_thread_count(o->threads, "--threads");
         const Config cfg = load_config_or_example(o->config);
         if (cfg.tolerances.empty())
           throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
@@ -337,6 +338,7 @@ Command add_allocate(CLI::App& app) {
         ao.threads = o->threads;
         ao.progress = true;  // drawn only when standard error is a terminal
         const AllocationResult r = allocate_tolerances(cfg, targets, ao);
+        check_finite(cfg, r);  // never a nan or inf printed as a result
         const std::string& f = o->output.format;
         write_output(o->output, f == "json"  ? to_json(cfg, r)
                                 : f == "csv" ? to_csv(cfg, r)

@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "observability_report.hpp"
 #include "output.hpp"
+#include "result_checks.hpp"
 
 namespace ccal::cli {
 namespace {
@@ -309,6 +310,7 @@ Command add_budget(CLI::App& app) {
         } catch (const IllPosedFit& e) {
           throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
         }
+        check_finite(cfg, r);  // never a nan or inf printed as a result
         const std::string& f = options->output.format;
         write_output(options->output, f == "json"  ? to_json(cfg, r, observability)
                                       : f == "csv" ? to_csv(cfg, r)

@@ -260,6 +260,7 @@ Command add_identify(CLI::App& app) {
       "      polynomial y = K0 + K1 x + K2 x^2 of a plain table\n");
 
   return {cmd, [o] {
+            note_input(o->file);
             const CsvTable table = read_csv_file(o->file);
             const std::optional<ObservationsHeader> header = observations_header(table);
             const ColumnUnits units = column_units(header, *o);

@@ -220,6 +220,7 @@ Command add_montecarlo(CLI::App& app) {
       ->type_name("N");
   cmd->add_option("--seed", o->seed, "Seed of the random numbers (same seed, same results)")
       ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
       ->type_name("S");
   cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default); the results do not depend on it")
       ->capture_default_str()
@@ -254,9 +255,7 @@ Command add_montecarlo(CLI::App& app) {
         if (o->max_trials < 2 || o->max_trials > kMaxTrials)
           throw InputError(
               fmt::format("--max-trials: {} is out of range; accepted: 2 to {}", o->max_trials, kMaxTrials));
-        if (o->threads < 0)
-          throw InputError(
-              fmt::format("--threads: {} is negative; accepted: 0 (default) or more", o->threads));
+        check_thread_count(o->threads, "--threads");
         if (o->digits < 0 || o->digits > 6)
           throw InputError(
               fmt::format("--digits: {} is out of range; accepted: 0 (fixed M) or 1..6", o->digits));

@@ -68,6 +68,7 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
       throw InputError(fmt::format("--log: run '{}' is logged twice; accepted: one log per run",
                                    cfg.plan.runs[index].name));
     files[index] = item.substr(eq + 1);
+    note_input(files[index]);
     logs.emplace_back(index, read_csv_file(files[index]));
   }
   check_log_count(cfg.identification, logs.size(), "--log");

@@ -200,6 +200,7 @@ Command add_simulate(CLI::App& app) {
       ->check(CLI::IsMember({"exact", "paper"}));
   cmd->add_option("--seed", o->seed, "Seed of the output noise (used only if the instrument has noise)")
       ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
       ->type_name("S");
   add_observations_out_option(*cmd, o->observations_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});

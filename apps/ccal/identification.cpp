@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <set>
 
 #include "ccal/errors.hpp"
@@ -82,6 +83,12 @@ Identification identify_table(const CsvTable& table, const TableFitSpec& spec, c
     for (const auto& t : spec.terms) names.push_back(t.id);
     throw InputError(fmt::format("{}: {}{}", source, message, ill_posed_hint(message, names)));
   }
+  for (Eigen::Index k = 0; k < id.fit.value.size(); ++k)  // never a nan or inf reported as a result
+    if (!std::isfinite(id.fit.value[k]) || !std::isfinite(id.fit.std_error[k]))
+      throw InputError(fmt::format(
+          "{}: the fit gives {} = {} ± {}: the data are beyond double precision; accepted: values in units "
+          "that keep the columns and their products finite",
+          source, id.fit.names[std::size_t(k)], id.fit.value[k], id.fit.std_error[k]));
   for (const auto& t : spec.terms) id.units.push_back(term_unit(t, units));
   id.observability = assess_fit(problem, id.fit, id.units, resolution, source);
   for (const auto& f : spec.fixed) id.fixed.push_back({f.term.id, f.value, term_unit(f.term, units)});
@@ -188,6 +195,17 @@ std::string identification_text(const Identification& id) {
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
                                          const InstrumentModel& instrument, std::string_view source,
                                          const DataResolution* resolution) {
+  // A run mean that is not finite is named by its run, not at a line of the generated CSV (which the source
+  // name would place in the configuration file).
+  for (Eigen::Index j = 0; j < obs.output.size(); ++j) {
+    const bool finite = std::isfinite(obs.output[j]) && std::isfinite(obs.known_rate[j]) &&
+                        std::isfinite(obs.input[j]) && obs.regressors.row(j).allFinite();
+    if (!finite)
+      throw InputError(fmt::format(
+          "{}: the means of run '{}' are not finite (output {}, a_i {}): the errors or the logged values are "
+          "beyond what double precision can carry; accepted: errors and outputs of a real centrifuge test",
+          source, obs.runs[std::size_t(j)], obs.output[j], obs.input[j]));
+  }
   FileIdentification f;
   f.csv = observations_csv(obs, spec, instrument);
   f.table = parse_csv(f.csv, source);

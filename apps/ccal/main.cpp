@@ -1,6 +1,8 @@
 // ccal command-line tool: parse the command line, call the library, print. Exit codes: 0 success, 2 bad input
 // (configuration, units, options), 1 internal error. Errors are one line on standard error.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
 #include <exception>
 #include <iostream>
 #include <string>
@@ -14,11 +16,31 @@ namespace {
 constexpr int kBadInput = 2;
 constexpr int kInternal = 1;
 
+// The message as one printable line: control characters (a newline, a terminal escape sequence echoed from
+// an input file) shown as \xNN, and a huge message (a whole CSV cell echoed back) shortened in the middle, so
+// that its start (the place) and its end (what would be accepted) both remain. UTF-8 text passes unchanged.
+std::string printable_line(std::string_view message) {
+  constexpr std::size_t kHead = 400, kTail = 300;
+  std::string line;
+  for (unsigned char c : message) {
+    if (c == '\n' || c == '\t')
+      line += ' ';
+    else if (c < 0x20 || c == 0x7f)
+      line += fmt::format("\\x{:02x}", c);
+    else
+      line += char(c);
+  }
+  if (line.size() <= kHead + kTail + 40) return line;
+  auto boundary = [&](std::size_t k) {  // back to the start of a UTF-8 character
+    while (k > 0 && (static_cast<unsigned char>(line[k]) & 0xc0) == 0x80) --k;
+    return k;
+  };
+  const std::size_t head = boundary(kHead), tail = boundary(line.size() - kTail);
+  return line.substr(0, head) + fmt::format(" […{} bytes left out…] ", tail - head) + line.substr(tail);
+}
+
 int report(std::string_view kind, std::string_view message) {
-  std::string line(message);
-  for (char& c : line)
-    if (c == '\n') c = ' ';
-  std::cerr << "ccal: " << kind << ": " << line << '\n';
+  std::cerr << "ccal: " << kind << ": " << printable_line(message) << '\n';
   return kind == "error" ? kBadInput : kInternal;
 }
 }  // namespace

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "atomic_file.hpp"
 #include "ccal/errors.hpp"
 
 namespace ccal::cli {
@@ -40,40 +41,19 @@ void check_observations_out(const std::string& path, const OutputOptions& output
         fmt::format("--observations-out: '{}' is also the -o file; accepted: two different files", path));
 }
 
+void note_input(const std::string& path) { note_input_file(path); }
+
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra) {
-  namespace fs = std::filesystem;
-  std::vector<ExtraFile> files = extra;
-  if (!options.path.empty()) files.push_back({"-o", options.path, std::string(text)});
-  std::vector<fs::path> temporaries;
-  auto remove_temporaries = [&] {
-    std::error_code ignored;
-    for (const auto& t : temporaries) fs::remove(t, ignored);
-  };
-  auto fail = [&](const ExtraFile& f, std::string_view why) {
-    remove_temporaries();
-    throw InputError(
-        fmt::format("{}: cannot write '{}': {}; give a writable file path", f.option, f.path, why));
-  };
-  for (const auto& f : files) {
-    fs::path temporary(f.path);
-    temporary += fmt::format(".tmp{}", static_cast<long>(::getpid()));
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) fail(f, "cannot create a file there");
-    temporaries.push_back(temporary);
-    out.write(f.text.data(), static_cast<std::streamsize>(f.text.size()));
-    out.close();
-    if (!out) fail(f, "write failed");
-  }
-  for (std::size_t k = 0; k < files.size(); ++k) {
-    std::error_code ec;
-    fs::rename(temporaries[k], files[k].path, ec);
-    if (ec) fail(files[k], ec.message());
-  }
-  if (options.path.empty()) std::cout << text << std::flush;
+  std::vector<FileToWrite> files;
+  files.push_back({"-o", options.path.empty() ? "-" : options.path, std::string(text)});
+  for (const auto& f : extra) files.push_back({f.option, f.path, f.text});
+  write_files(files);
 }
 
 Config load_config_or_example(const std::string& path) {
-  return path.empty() ? bundled_example() : load_config(path);
+  if (path.empty()) return bundled_example();
+  note_input(path);
+  return load_config(path);
 }
 
 void add_config_argument(CLI::App& command, std::string& path) {

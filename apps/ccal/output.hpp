@@ -23,9 +23,16 @@ struct OutputOptions {
 void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats,
                         bool long_output = true);
 
-// Writes text to standard output, or to options.path through a temporary file in the same folder that is
-// renamed over the target once complete. Throws InputError if the file cannot be written.
+// Writes text to standard output (also for the path "-"), or to options.path. A regular file (or a new one)
+// is replaced atomically: the text goes to a temporary created exclusively (O_EXCL | O_NOFOLLOW, random
+// name) in the target's folder with the target's permissions, then renamed over it; a symbolic link is
+// followed and the file it names replaced. A device or FIFO is written through, never replaced. A path that
+// is one of the command's inputs (note_input) is refused. Throws InputError if the file cannot be written or
+// standard output reports a write error.
 void write_output(const OutputOptions& options, std::string_view text);
+
+// Records a file the command reads (configuration, CSV, log), so that no output replaces it.
+void note_input(const std::string& path);
 
 // A further file a command writes besides its output, e.g. --observations-out.
 struct ExtraFile {
@@ -35,7 +42,8 @@ struct ExtraFile {
 };
 
 // As write_output, with further files: every file is first written to a temporary file and renamed only when
-// all of them were written, so a failure leaves none of them (and no temporary file) behind.
+// all of them were written, so a failure leaves none of them (and no temporary file) behind. SIGINT and
+// SIGTERM remove the temporaries before the process ends.
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra);
 
 // --observations-out FILE (the observations CSV, the input of `ccal identify`, besides the output), and the

@@ -78,10 +78,17 @@
 
 namespace ccal {
 
+// The accepted thread counts: 0 (the OpenMP default) or 1…kMaxThreads. Far more threads than cores only
+// costs memory, and tens of thousands exhaust the OpenMP runtime's stacks (a crash, not an error).
+inline constexpr int kMaxThreads = 1024;
+
+// Throws InputError naming `what` (e.g. "--threads") unless 0 ≤ threads ≤ kMaxThreads.
+void check_thread_count(int threads, const char* what);
+
 struct MonteCarloOptions {
   std::uint64_t trials = 100000;  // M (fixed); adaptive: the stage size is max(trials, ⌈100/(1 − p)⌉, 10⁴)
   std::uint64_t seed = 1;
-  int threads = 0;             // 0: the OpenMP default
+  int threads = 0;             // 0: the OpenMP default; at most kMaxThreads
   int significant_digits = 0;  // n_dig > 0: the adaptive procedure of §7.9 with this many digits of u(y)
   std::uint64_t max_trials = 100000000;  // adaptive: no stage is started that would go beyond this
   double coverage = 0.95;                // p, in (0, 1)

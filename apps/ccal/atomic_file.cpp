@@ -1,0 +1,281 @@
+#include "atomic_file.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <utility>
+
+#include "ccal/errors.hpp"
+
+namespace ccal::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// --- The temporaries a signal must remove: fixed storage, so that the handler only reads memory and calls
+// unlink(2), both async-signal-safe.
+constexpr int kSlots = 16;
+constexpr std::size_t kPathCapacity = 4096;
+char g_temporary[kSlots][kPathCapacity];
+volatile std::sig_atomic_t g_in_use[kSlots];
+
+extern "C" void remove_temporaries_and_end(int signal_number) {
+  for (int k = 0; k < kSlots; ++k)
+    if (g_in_use[k]) ::unlink(g_temporary[k]);
+  struct sigaction default_action {};
+  default_action.sa_handler = SIG_DFL;
+  ::sigaction(signal_number, &default_action, nullptr);
+  ::raise(signal_number);  // end as the signal would have, exit status included
+}
+
+// Blocks SIGINT and SIGTERM while the registry changes, so that the handler never sees half a path.
+class SignalsBlocked {
+ public:
+  SignalsBlocked() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    ::sigprocmask(SIG_BLOCK, &set, &old_);
+  }
+  ~SignalsBlocked() { ::sigprocmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsBlocked(const SignalsBlocked&) = delete;
+  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
+
+ private:
+  sigset_t old_;
+};
+
+void install_handlers_once() {
+  static bool installed = false;
+  if (installed) return;
+  installed = true;
+  for (int s : {SIGINT, SIGTERM}) {
+    struct sigaction current {};
+    ::sigaction(s, nullptr, &current);
+    if (current.sa_handler == SIG_IGN) continue;  // e.g. started in the background by a shell: keep ignoring
+    struct sigaction action {};
+    action.sa_handler = remove_temporaries_and_end;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(s, &action, nullptr);
+  }
+}
+
+// A registered temporary file; removed (and unregistered) on destruction unless released by a rename.
+class Temporary {
+ public:
+  Temporary() = default;
+  Temporary(const Temporary&) = delete;
+  Temporary& operator=(const Temporary&) = delete;
+  ~Temporary() { discard(); }
+
+  // Reserves a slot for `path` (InputError if all are taken or the path is too long).
+  void adopt(const std::string& path) {
+    install_handlers_once();
+    SignalsBlocked blocked;
+    if (path.size() >= kPathCapacity) throw InputError(fmt::format("'{}': the path is too long", path));
+    for (int k = 0; k < kSlots; ++k)
+      if (!g_in_use[k]) {
+        std::memcpy(g_temporary[k], path.c_str(), path.size() + 1);
+        g_in_use[k] = 1;
+        slot_ = k;
+        path_ = path;
+        return;
+      }
+    throw InputError("too many output files at once");
+  }
+  // Renames the temporary over `target`; false (errno set) on failure.
+  bool rename_to(const std::string& target) {
+    SignalsBlocked blocked;
+    if (::rename(path_.c_str(), target.c_str()) != 0) return false;
+    g_in_use[slot_] = 0;
+    slot_ = -1;
+    return true;
+  }
+  void discard() {
+    if (slot_ < 0) return;
+    SignalsBlocked blocked;
+    ::unlink(path_.c_str());
+    g_in_use[slot_] = 0;
+    slot_ = -1;
+  }
+
+ private:
+  int slot_ = -1;
+  std::string path_;
+};
+
+// --- Inputs of the command: (device, inode) of each file read.
+std::vector<std::pair<dev_t, ino_t>>& inputs() {
+  static std::vector<std::pair<dev_t, ino_t>> files;
+  return files;
+}
+
+[[noreturn]] void fail(const FileToWrite& f, std::string_view why) {
+  throw InputError(fmt::format("{}: cannot write '{}': {}", f.option, f.path, why));
+}
+
+std::string errno_text() { return std::strerror(errno); }
+
+bool write_all(int fd, std::string_view text) {
+  while (!text.empty()) {
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    text.remove_prefix(std::size_t(n));
+  }
+  return true;
+}
+
+// How a file is written: replaced through a temporary, or written through (device, FIFO, standard output).
+struct Plan {
+  enum class Kind { replace, through, standard_output } kind = Kind::replace;
+  std::string target;               // the file actually replaced (a symbolic link followed)
+  std::optional<mode_t> mode;       // the existing file's permissions
+  std::optional<std::pair<uid_t, gid_t>> owner;
+  std::optional<std::pair<dev_t, ino_t>> identity;
+};
+
+Plan plan_for(const FileToWrite& f) {
+  Plan p;
+  if (f.path.empty()) fail(f, "the path is empty; accepted: a file path or '-' (standard output)");
+  if (f.path == "-") {
+    p.kind = Plan::Kind::standard_output;
+    return p;
+  }
+  p.target = f.path;
+  struct stat st {};
+  if (::stat(f.path.c_str(), &st) != 0) {  // follows symbolic links
+    if (errno != ENOENT) fail(f, errno_text());
+    struct stat link {};
+    if (::lstat(f.path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
+      fail(f, "it is a symbolic link to nothing; accepted: a link to a file, or a file path");
+    return p;  // a new regular file
+  }
+  p.identity = std::make_pair(st.st_dev, st.st_ino);
+  for (const auto& in : inputs())
+    if (in == *p.identity) fail(f, "it is also an input of the command; accepted: a file the command does not read");
+  if (S_ISDIR(st.st_mode)) fail(f, "it is a folder; accepted: a file path");
+  if (!S_ISREG(st.st_mode)) {
+    p.kind = Plan::Kind::through;  // character or block device, FIFO, socket (also through a link: /dev/stdout)
+    return p;
+  }
+  p.mode = st.st_mode & 07777;
+  p.owner = std::make_pair(st.st_uid, st.st_gid);
+  struct stat link {};
+  if (::lstat(f.path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {  // replace the file, keep the link
+    std::error_code ec;
+    const fs::path resolved = fs::canonical(f.path, ec);
+    if (ec) fail(f, ec.message());
+    p.target = resolved.string();
+  }
+  return p;
+}
+
+std::string random_name() {
+  std::array<unsigned char, 12> bytes{};
+  std::size_t got = 0;
+  while (got < bytes.size()) {
+    const ssize_t n = ::getrandom(bytes.data() + got, bytes.size() - got, 0);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw InputError(std::string("cannot draw a random file name: ") + errno_text());
+    got += std::size_t(n);
+  }
+  std::string name = ".ccal-";
+  for (unsigned char b : bytes) name += fmt::format("{:02x}", b);
+  return name + ".tmp";
+}
+
+mode_t new_file_mode() {
+  const mode_t mask = ::umask(022);
+  ::umask(mask);
+  return 0666 & ~mask;
+}
+
+// Writes f.text to a new temporary next to p.target; the temporary is registered for removal on a signal.
+void write_temporary(const FileToWrite& f, const Plan& p, Temporary& temporary) {
+  const fs::path folder = fs::path(p.target).parent_path();
+  int fd = -1;
+  std::string path;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    path = (folder.empty() ? fs::path(random_name()) : folder / random_name()).string();
+    {
+      SignalsBlocked blocked;  // created and registered as one step
+      fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+      if (fd >= 0) temporary.adopt(path);
+    }
+    if (fd < 0 && errno != EEXIST) fail(f, errno_text() + "; accepted: a file in a writable folder");
+  }
+  if (fd < 0) fail(f, "no temporary file could be created in its folder");
+  if (p.owner) {
+    if (::fchown(fd, p.owner->first, p.owner->second) != 0) {
+      // Only root may give a file away; an ordinary user's replacement is then owned by that user.
+    }
+  }
+  const bool ok = ::fchmod(fd, p.mode ? *p.mode : new_file_mode()) == 0 && write_all(fd, f.text);
+  const int saved = errno;
+  if (::close(fd) != 0 || !ok) {
+    errno = ok ? errno : saved;
+    const std::string why = errno_text();
+    temporary.discard();
+    fail(f, why);
+  }
+}
+
+void write_through(const FileToWrite& f, const Plan& p) {
+  const int fd = ::open(p.target.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) fail(f, errno_text());
+  const bool ok = write_all(fd, f.text);
+  const int saved = errno;
+  if (::close(fd) != 0 || !ok) {
+    if (!ok) errno = saved;
+    fail(f, errno_text());
+  }
+}
+
+}  // namespace
+
+void note_input_file(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) inputs().emplace_back(st.st_dev, st.st_ino);
+}
+
+void write_standard_output(const std::string& text) {
+  std::cout.flush();
+  if (!write_all(STDOUT_FILENO, text) || !std::cout)
+    throw InputError("standard output: write failed: " + errno_text());
+}
+
+void write_files(const std::vector<FileToWrite>& files) {
+  std::vector<Plan> plans;
+  for (const auto& f : files) plans.push_back(plan_for(f));
+  for (std::size_t a = 0; a < files.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b) {
+      const bool same = files[a].path == files[b].path ||
+                        (plans[a].identity && plans[a].identity == plans[b].identity);
+      if (same)
+        fail(files[a], fmt::format("it is also the {} file; accepted: two different files", files[b].option));
+    }
+  std::vector<Temporary> temporaries(files.size());
+  for (std::size_t k = 0; k < files.size(); ++k)
+    if (plans[k].kind == Plan::Kind::replace) write_temporary(files[k], plans[k], temporaries[k]);
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    if (plans[k].kind == Plan::Kind::through) write_through(files[k], plans[k]);
+    if (plans[k].kind == Plan::Kind::standard_output) write_standard_output(files[k].text);
+  }
+  for (std::size_t k = 0; k < files.size(); ++k)
+    if (plans[k].kind == Plan::Kind::replace && !temporaries[k].rename_to(plans[k].target))
+      fail(files[k], errno_text());
+}
+
+}  // namespace ccal::cli

@@ -1,0 +1,28 @@
+#pragma once
+// Writing a command's output files safely: atomic replacement of regular files through exclusively created
+// temporaries, write-through for devices and FIFOs, and removal of the temporaries on SIGINT / SIGTERM.
+
+#include <string>
+#include <vector>
+
+namespace ccal::cli {
+
+// One file to write; `option` names it in messages (e.g. "-o").
+struct FileToWrite {
+  std::string option;
+  std::string path;
+  std::string text;
+};
+
+// Records a file the command reads; write_files refuses to write over it.
+void note_input_file(const std::string& path);
+
+// Writes every file, all or nothing as far as the file system allows: regular files are written to
+// temporaries first, devices and FIFOs then, and the temporaries renamed over their targets last. Throws
+// InputError naming the option and the file on any failure, with no temporary left behind.
+void write_files(const std::vector<FileToWrite>& files);
+
+// Writes text to standard output and flushes it; InputError if the stream reports a write error.
+void write_standard_output(const std::string& text);
+
+}  // namespace ccal::cli

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer in ./build-asan (benchmarks
+# and the Python module off: the module would need the sanitizer runtime preloaded into python3; -O1, which
+# keeps the build short and the checks exact). Any report
+# fails the test that triggers it. Run after scripts/setup.sh (same packages).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+start=$(date +%s)
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
+      -DCCAL_WERROR=ON -DCCAL_SANITIZE=address,undefined \
+      -DCCAL_BUILD_BENCH=OFF -DCCAL_BUILD_PYTHON=OFF >/dev/null
+cmake --build build-asan -j "$(nproc)"
+built=$(date +%s)
+export ASAN_OPTIONS=abort_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --test-dir build-asan --output-on-failure -j2
+echo "sanitize: build $((built - start)) s, tests $(($(date +%s) - built)) s" >&2

@@ -1,0 +1,79 @@
+"""Bad arguments of the Python module that used to crash or were silently misread (issue 12): each raises
+ccal.InputError (a ValueError) naming the argument or the place, and run indices agree between int and str."""
+
+import math
+import os
+import tempfile
+import unittest
+
+import ccal
+
+EXAMPLE_DIR = os.path.join(os.path.dirname(__file__), "..", "..", "examples")
+
+
+def example_text():
+    with open(os.path.join(EXAMPLE_DIR, "wang_ren_2014.toml"), encoding="utf-8") as f:
+        return f.read()
+
+
+class ThreadCountTest(unittest.TestCase):
+    def test_thread_counts_beyond_the_range_are_refused(self):
+        cfg = ccal.bundled_example()
+        for threads in (100000, 1025, -1):
+            with self.assertRaisesRegex(ccal.InputError, "threads.*1 to 1024"):
+                ccal.monte_carlo(cfg, trials=100, threads=threads)
+            with self.assertRaisesRegex(ccal.InputError, "threads.*1 to 1024"):
+                ccal.allocate(cfg, {"K3": 1e-9}, verify_trials=0, threads=threads)
+
+
+class BadArgumentCatalogueTest(unittest.TestCase):
+    """Each bad argument: ccal.InputError whose one-line message names the place."""
+
+    def test_catalogue(self):
+        cfg = ccal.bundled_example()
+        text = example_text()
+        with tempfile.TemporaryDirectory() as d:
+            log = os.path.join(d, "log.csv")
+            with open(log, "w", encoding="utf-8") as f:
+                f.write("time,output\n0,1\n2,1\n1,1\n")
+            cases = [
+                ("parse_config radius", lambda: ccal.parse_config(text.replace('"2.5 m"', '"1e30 m"'), "c.toml"),
+                 "radius"),
+                ("parse_config duration", lambda: ccal.parse_config(
+                    text.replace('duration = "450 s"', 'duration = "1e12 s"'), "c.toml"), "duration"),
+                ("parse_config g_level", lambda: ccal.parse_config(
+                    text.replace('g_level = "5 g"', 'g_level = "1e6 g"'), "c.toml"), "g_level"),
+                ("load_config missing", lambda: ccal.load_config(os.path.join(d, "none.toml")), "none.toml"),
+                ("monte_carlo trials memory", lambda: ccal.monte_carlo(cfg, trials=10**9), "GiB"),
+                ("monte_carlo coverage", lambda: ccal.monte_carlo(cfg, trials=100, coverage=1.5), "coverage"),
+                ("allocate tiny target", lambda: ccal.allocate(cfg, {"K3": 1e-300}, verify_trials=0), "K3"),
+                ("allocate unknown target", lambda: ccal.allocate(cfg, {"K9": 1.0}, verify_trials=0), "K9"),
+                ("sensed_input run", lambda: ccal.sensed_input(cfg, run="99g"), "99g"),
+                ("sensed_input index", lambda: ccal.sensed_input(cfg, run=17), "17"),
+                ("budget mode", lambda: ccal.budget(cfg, mode="fast"), "fast"),
+                ("reduce_logs angle unit", lambda: ccal.reduce_logs(cfg, {"5g": log}, angle_unit="grad"), "grad"),
+                ("reduce_logs bad log", lambda: ccal.reduce_logs(cfg, {0: log, 1: log, 2: log}), "log.csv"),
+            ]
+            for name, call, place in cases:
+                with self.subTest(name):
+                    with self.assertRaises(ccal.InputError) as caught:
+                        call()
+                    message = str(caught.exception)
+                    self.assertIn(place, message)
+                    self.assertNotIn("\n", message)
+
+
+class RunIndexTest(unittest.TestCase):
+    def test_a_string_of_digits_is_the_same_index_as_the_int(self):
+        cfg = ccal.bundled_example()
+        for k in range(len(cfg.runs)):
+            by_int = ccal.sensed_input(cfg, run=k, time=1.0)
+            by_str = ccal.sensed_input(cfg, run=str(k), time=1.0)
+            self.assertEqual(by_int.specific_force[0], by_str.specific_force[0])
+        # run=1 is the second run (10g): A = 10 g nominal, so |a_i| ≈ 10 at a quarter-free time.
+        self.assertAlmostEqual(abs(ccal.sensed_input(cfg, run="1", time=0.0).specific_force[0]),
+                               abs(ccal.sensed_input(cfg, run="10g", time=0.0).specific_force[0]), places=12)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,208 @@
+// A catalogue of bad inputs across configuration, CSV files, run logs and command-line options: each must give
+// exit code 2, one line on standard error naming the place (file, key, option), nothing on standard output,
+// and leave every file in the folder as it was. Table-driven: one row per input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+struct BadInput {
+  std::string name;                                        // test name
+  std::vector<std::pair<std::string, std::string>> files;  // written into the folder before the run
+  std::string args;                                        // command line (shell words)
+  std::vector<std::string> hints;                          // in the message: the place, and what is wrong
+};
+
+std::string example() { return read(kExample); }
+
+// The example with the first occurrence of `from` replaced by `to`.
+std::string example_with(const std::string& from, const std::string& to) {
+  std::string text = example();
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("not in the example: " + from);
+  return text.replace(at, from.size(), to);
+}
+
+// A log of the run at `g_level` (bundled example: R0 = 2.5 m, g = 9.8 m/s²): 0.05 s samples over 20 s, the
+// output column, and the main-axis encoder turning at rate_factor × the planned rate, in `scale` units per rad.
+std::string log_text(double g_level, double rate_factor = 1.0, double scale = 1.0, double output = 100.0) {
+  const double rate = std::sqrt(g_level * 9.8 / 2.5);
+  std::string text = "time,output,theta1\n";
+  for (int k = 0; k <= 400; ++k) {
+    const double t = 0.05 * k;
+    text += std::to_string(t) + "," + std::to_string(output) + "," +
+            std::to_string(std::fmod(rate_factor * rate * t, 2 * std::numbers::pi) * scale) + "\n";
+  }
+  return text;
+}
+
+const std::string kObs = "obs.csv";
+std::string observations() {  // a plain x, y table
+  return "x,y\n1,1.1\n2,2.0\n3,2.9\n4,4.2\n5,5.0\n";
+}
+
+std::vector<BadInput> catalogue() {
+  using F = std::vector<std::pair<std::string, std::string>>;
+  const F cfg = {{"c.toml", example()}};
+  auto config = [](const std::string& from, const std::string& to) { return F{{"c.toml", example_with(from, to)}}; };
+  const F logs = {{"c.toml", example()}, {"a.csv", log_text(5)}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
+  auto logs_with = [&](const std::string& a) {
+    return F{{"c.toml", example()}, {"a.csv", a}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
+  };
+  const std::string reduce = "reduce c.toml --log 5g=a.csv --log 10g=b.csv --log 15g=d.csv";
+  const F obs = {{kObs, observations()}};
+  auto csv = [](const std::string& text) { return F{{"t.csv", text}}; };
+  const std::string fit = "identify t.csv --input x --output y --terms K0,K1";
+  std::string huge_cell(100000, '9');
+  huge_cell = "x,y\n1," + huge_cell + "x\n2,2\n3,3\n";
+
+  return {
+      // --- configuration -------------------------------------------------------------------------------
+      {"ConfigMissing", {}, "budget nothere.toml", {"nothere.toml"}},
+      {"ConfigFolder", {}, "budget .", {"."}},
+      {"ConfigEmpty", {{"c.toml", ""}}, "budget c.toml", {"c.toml"}},
+      {"ConfigNotToml", {{"c.toml", "[site\nlatitude = 1\n"}}, "budget c.toml", {"c.toml:1"}},
+      {"ConfigUnknownKey", config("height = \"0 m\"", "heigth = \"0 m\""), "budget c.toml", {"c.toml", "heigth"}},
+      {"ConfigLatitudeRange", config("\"45.75 deg\"", "\"100 deg\""), "budget c.toml", {"c.toml", "latitude"}},
+      {"ConfigNegativeG", config("\"9.8 m/s^2\"", "\"-9.8 m/s^2\""), "budget c.toml", {"c.toml", "g"}},
+      {"ConfigRadiusUnit", config("\"2.5 m\"", "\"2.5 kg\""), "budget c.toml", {"c.toml", "radius"}},
+      {"ConfigRadiusZero", config("\"2.5 m\"", "\"0 m\""), "budget c.toml", {"c.toml", "radius"}},
+      {"ConfigRadiusHuge", config("\"2.5 m\"", "\"1e30 m\""), "budget c.toml", {"c.toml", "radius"}},
+      {"ConfigRadiusText", config("\"2.5 m\"", "\"two metres\""), "budget c.toml", {"c.toml", "radius"}},
+      {"ConfigHarmonicOrder", config("harmonic_order = 1 ", "harmonic_order = -3 "), "budget c.toml",
+       {"c.toml", "harmonic_order"}},
+      {"ConfigUnknownError", config("[errors]\n", "[errors]\ndxyz = \"1 um\"\n"), "budget c.toml",
+       {"c.toml", "dxyz"}},
+      {"ConfigErrorUnit", config("[errors]\n", "[errors]\ndthz5 = \"2 m\"\n"), "budget c.toml",
+       {"c.toml", "dthz5"}},
+      {"ConfigToleranceNegative", config("dx3_s1 = { bound = \"10 um\"", "dx3_s1 = { bound = \"-10 um\""),
+       "budget c.toml", {"c.toml", "dx3_s1"}},
+      {"ConfigToleranceDistribution", config("distribution = \"arcsine\" }", "distribution = \"cauchy\" }"),
+       "budget c.toml", {"c.toml", "cauchy"}},
+      {"ConfigUnknownTerm", config("terms = [\"K0\", \"K2\", \"K3\"]", "terms = [\"K0\", \"K2\", \"Kx\"]"),
+       "budget c.toml", {"c.toml", "Kx"}},
+      {"ConfigMode", config("mode = \"exact\"", "mode = \"fast\""), "budget c.toml", {"c.toml", "fast"}},
+      {"ConfigDurationZero", config("duration = \"450 s\"", "duration = \"0 s\""), "budget c.toml",
+       {"c.toml", "duration"}},
+      {"ConfigDurationHuge", config("duration = \"450 s\"", "duration = \"1e12 s\""), "budget c.toml",
+       {"c.toml", "duration"}},
+      {"ConfigPlatform", config("platform = \"counter_rotating\"", "platform = \"spinning\""), "budget c.toml",
+       {"c.toml", "platform"}},
+      {"ConfigGLevelNegative", config("g_level = \"5 g\"", "g_level = \"-5 g\""), "budget c.toml",
+       {"c.toml", "g_level"}},
+      {"ConfigGLevelHuge", config("g_level = \"5 g\"", "g_level = \"1e6 g\""), "budget c.toml",
+       {"c.toml", "g_level"}},
+      {"ConfigOutputUnit", config("output_unit = \"deg/s\"", "output_unit = \"furlong\""), "budget c.toml",
+       {"c.toml", "output_unit"}},
+      {"ConfigEscapeSequence", config("mode = \"exact\"", "mode = \"\\u001b[2Jexact\""), "budget c.toml",
+       {"c.toml", "\\x1b"}},
+      {"ConfigErrorOverflowsTheRunMeans", config("[errors]\n", "[errors]\ndR_s = \"1e300 m\"\n"), "simulate c.toml",
+       {"c.toml", "run '5g'", "not finite"}},
+      {"ConfigToleranceOverflowsTheBudget", config("dx3_s1 = { bound = \"10 um\"", "dx3_s1 = { bound = \"1e200 m\""),
+       "budget c.toml", {"c.toml", "dx3_s1", "not a finite number"}},
+      // --- CSV files (identify) -------------------------------------------------------------------------
+      {"CsvMissing", {}, "identify none.csv", {"none.csv"}},
+      {"CsvEmpty", csv(""), fit, {"t.csv"}},
+      {"CsvNumbersFirst", csv("1,2\n3,4\n"), fit, {"t.csv:1"}},
+      {"CsvDuplicateColumn", csv("x,y,x\n1,2,3\n"), fit, {"t.csv:1:3", "duplicate"}},
+      {"CsvRaggedRow", csv("x,y\n1,2\n3\n"), fit, {"t.csv:3", "ragged"}},
+      {"CsvNotANumber", csv("x,y\n1,2\n3,abc\n4,5\n"), fit, {"t.csv:3:2", "abc"}},
+      {"CsvNan", csv("x,y\n1,2\n3,nan\n4,5\n"), fit, {"t.csv:3:2"}},
+      {"CsvHugeCell", csv(huge_cell), fit, {"t.csv:2:2", "bytes left out"}},
+      {"CsvTooFewRows", csv("x,y\n1,2\n"), fit, {"t.csv", "K0, K1"}},
+      {"CsvMissingInputColumn", obs, "identify obs.csv --input a --output y --terms K0,K1", {"obs.csv", "a"}},
+      {"CsvUnknownTerm", obs, "identify obs.csv --input x --output y --terms K0,Q7", {"--terms", "Q7"}},
+      {"CsvPowerOverflow", csv("x,y\n1e200,1\n2e200,2\n3e200,3\n4e200,4\n"),
+       "identify t.csv --input x --output y --terms K0,K1,K2", {"t.csv:2:1", "K2"}},
+      {"CsvWeightZero", csv("x,y,s\n1,1,1\n2,2,0\n3,3,1\n"), fit + " --weight s", {"t.csv:3:3", "σ"}},
+      {"CsvWeightHuge", csv("x,y,s\n1,1,1e200\n2,2,1e200\n3,3,1e200\n"), fit + " --weight s",
+       {"t.csv:2:3", "underflows"}},
+      {"CsvWeightColumnMissing", obs, "identify obs.csv --input x --output y --terms K0,K1 --weight sd",
+       {"obs.csv", "sd"}},
+      // --- run logs (reduce) ------------------------------------------------------------------------------
+      {"LogNotRunEqualsFile", logs, "reduce c.toml --log a.csv", {"--log", "a.csv"}},
+      {"LogUnknownRun", logs, "reduce c.toml --log 7g=a.csv --log 10g=b.csv --log 15g=d.csv", {"--log", "7g"}},
+      {"LogRunTwice", logs, "reduce c.toml --log 5g=a.csv --log 5g=b.csv --log 15g=d.csv", {"--log", "5g"}},
+      {"LogMissingFile", logs, "reduce c.toml --log 5g=zz.csv --log 10g=b.csv --log 15g=d.csv", {"zz.csv"}},
+      {"LogTooFew", logs, "reduce c.toml --log 5g=a.csv", {"--log", "K0, K2, K3"}},
+      {"LogTimeNotIncreasing", logs_with("time,output\n0,1\n2,1\n1,1\n"), reduce, {"a.csv:4:1", "time"}},
+      {"LogNoOutputColumn", logs_with("time,volts\n0,1\n1,1\n"), reduce, {"a.csv", "output"}},
+      {"LogPulsesAndOutput", logs_with("time,pulses,output\n0,1,1\n1,2,1\n"), reduce, {"a.csv", "pulses"}},
+      {"LogOneSample", logs_with("time,output\n0,1\n"), reduce, {"a.csv", "two"}},
+      {"LogOutputOverflows", logs_with("time,output\n0,1e308\n1,1e308\n"), reduce, {"a.csv", "overflows"}},
+      {"LogEncoderInDegrees", logs_with(log_text(5, 1.0, 180 / std::numbers::pi)), reduce,
+       {"a.csv", "5g", "--angle-unit deg"}},
+      {"LogEncoderReversed", logs_with(log_text(5, -1.0)), reduce, {"a.csv", "5g", "reversed"}},
+      {"LogEncoderOtherRun", logs_with(log_text(10)), reduce, {"a.csv", "5g", "another run"}},
+      {"LogAngleUnit", logs, reduce + " --angle-unit grad", {"--angle-unit", "grad"}},
+      {"LogPulseWeight", logs, reduce + " --pulse-weight -1", {"--pulse-weight", "-1"}},
+      // --- command-line options -------------------------------------------------------------------------
+      {"UnknownCommand", {}, "budgit", {"budgit", "budget"}},
+      {"UnknownOption", {}, "budget --frobnicate", {"--frobnicate"}},
+      {"Format", {}, "budget --format xml", {"--format", "xml"}},
+      {"BudgetMode", {}, "budget --mode fast", {"--mode", "fast"}},
+      {"TrialsOne", {}, "montecarlo --trials 1", {"--trials", "2 to"}},
+      {"TrialsMemory", {}, "montecarlo --trials 1000000000", {"1000000000 trials", "GiB"}},
+      {"TrialsText", {}, "montecarlo --trials many", {"--trials", "many"}},
+      {"Threads", {}, "montecarlo --threads 5000", {"--threads", "1 to 1024"}},
+      {"Coverage", {}, "montecarlo --coverage 1.5", {"--coverage", "1.5"}},
+      {"Digits", {}, "montecarlo --digits 9", {"--digits", "9"}},
+      {"SeedNegative", {}, "montecarlo --trials 100 --seed -1", {"--seed", "-1"}},
+      {"AllocateTinyTarget", {}, "allocate --target K3=1e-300 --verify-trials 0", {"K3", "1e-300"}},
+      {"AllocateUnknownTarget", {}, "allocate --target K9=1", {"K9"}},
+      {"AllocateMaxScale", {}, "allocate --target K3=1e-3 --max-scale -1", {"--max-scale", "-1"}},
+      {"AllocateNoTarget", {}, "allocate", {"target"}},
+      {"ForceRun", {}, "force --run 99", {"--run", "99"}},
+      {"ForceTimeUnit", {}, "force --time '10 kg'", {"--time", "kg"}},
+      {"OutputIsTheConfig", cfg, "budget c.toml -o c.toml", {"-o", "c.toml", "input"}},
+      {"OutputIsALog", logs, reduce + " -o b.csv", {"-o", "b.csv", "input"}},
+      {"ObservationsOutIsOutput", cfg, "simulate c.toml -o x.txt --observations-out x.txt",
+       {"--observations-out", "x.txt"}},
+      {"OutputIsAFolder", {}, "budget -o .", {"-o", "'.'"}},
+      {"OutputInAMissingFolder", {}, "budget -o no/such/x.txt", {"-o", "no/such/x.txt"}},
+  };
+}
+
+class BadInputs : public Cli, public ::testing::WithParamInterface<BadInput> {
+ protected:
+  // Every file in the folder with its bytes and permissions.
+  std::map<std::string, std::pair<std::string, fs::perms>> snapshot() const {
+    std::map<std::string, std::pair<std::string, fs::perms>> files;
+    for (const auto& e : fs::recursive_directory_iterator(dir_))
+      files[e.path().string()] = {e.is_regular_file() ? read(e.path()) : "", e.status().permissions()};
+    return files;
+  }
+};
+
+TEST_P(BadInputs, ExitTwoWithOneLinedMessageAndNoFileChanged) {
+  const BadInput& c = GetParam();
+  for (const auto& [name, text] : c.files) write(name, text);
+  const auto before = snapshot();
+  const Result r = run(c.args);
+  std::vector<std::string> hints(c.hints.begin(), c.hints.end());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_TRUE(r.err.starts_with("ccal: error: ")) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_LT(r.err.size(), 1200u) << "the message is not shortened";
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << "a raw escape character in " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  for (const auto& h : hints) EXPECT_NE(r.err.find(h), std::string::npos) << "'" << h << "' in " << r.err;
+  EXPECT_EQ(snapshot(), before) << "a file was changed, created or removed";
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputs, ::testing::ValuesIn(catalogue()),
+                         [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
+
+TEST(BadInputsCatalogue, HoldsAtLeastSixtyInputs) { EXPECT_GE(catalogue().size(), 60u); }
+
+}  // namespace
+}  // namespace ccal::test
