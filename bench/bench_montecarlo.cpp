@@ -27,7 +27,7 @@ void Pipeline(benchmark::State& state) {
   std::uint64_t trials = 0;
   for (auto _ : state) {
     const MonteCarloResult r =
-        run_monte_carlo(cfg.tolerances, model.n_outputs(), model.output_names(), trial, options);
+        run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(), model.output_names(), trial, options);
     benchmark::DoNotOptimize(r.outputs[2].std_dev);
     trials += r.trials;
     ++options.seed;

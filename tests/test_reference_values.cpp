@@ -100,7 +100,7 @@ TEST(ReferenceValues, MonteCarloAtAFixedSeed) {
   o.trials = kMonteCarloTrials;
   o.seed = kMonteCarloSeed;
   const MonteCarloResult r =
-      run_monte_carlo(cfg.tolerances, model.n_outputs(), model.output_names(), calibration_trial(model), o);
+      run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(), model.output_names(), calibration_trial(model), o);
   for (const OutputSummary& out : r.outputs) expect_pin("montecarlo u(" + out.name + ")", out.std_dev / kDeg);
 }
 
