@@ -303,8 +303,8 @@ Command add_allocate(CLI::App& app) {
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
-      "  ccal allocate --target K2=1e-7 --target K3=1e-6\n"
-      "      tolerances of the bundled paper example for U(K2) <= 1e-7 deg/s/g^2 and U(K3) <= 1e-6 "
+      "  ccal allocate --target K2=2e-5 --target K3=2e-3\n"
+      "      tolerances of the bundled paper example for U(K2) <= 2e-5 deg/s/g^2 and U(K3) <= 2e-3 "
       "deg/s/g^3\n"
       "  ccal allocate my.toml --target \"K3=1e-6 deg/s/g^3\" --max-scale 3 --verify-trials 10000\n"
       "  ccal allocate --target K0=1e-3 --format json -o allocation.json\n");

@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  ccal budget                     error budget of the bundled paper example\n"
       "  ccal montecarlo --trials 2000   Monte Carlo (JCGM 101) of the same budget\n"
-      "  ccal allocate --target K2=1e-7 --target K3=1e-6   largest tolerances meeting both targets\n"
+      "  ccal allocate --target K2=2e-5 --target K3=2e-3   largest tolerances meeting both targets\n"
       "  ccal force                      sensed input, run 1 of the bundled paper example\n"
       "  ccal force examples/wang_ren_2014.toml --run 20g --time \"10 s\" --format json\n"
       "  ccal simulate --observations-out obs.csv   run means of the paper's plan and the identified K0, K2, "
