@@ -11,6 +11,7 @@
 
 #include "ccal/budget.hpp"
 #include "ccal/config.hpp"
+#include "independent_lpu.hpp"  // sigma_from_bound: σ of each distribution, written out
 
 namespace ccal {
 namespace {
@@ -19,8 +20,8 @@ namespace {
 // the main-axis levelling pair (normal, 1e-5 rad), whose effects on K0, K2, K3 are large and of mixed signs.
 Config grouped_example() {
   Config cfg = bundled_example();
-  // The paper's tolerances only: no Type A rows of the drives' noise, no ripple rows (which would dominate and
-  // decorrelate K0 and K3).
+  // The paper's tolerances only: no Type A rows of the drives' noise, no ripple rows (which would dominate
+  // and decorrelate K0 and K3).
   cfg.centrifuge.rate_noise = {};
   std::erase_if(cfg.tolerances, [](const Tolerance& t) { return t.id.starts_with("ripple"); });
   for (Tolerance& t : cfg.tolerances) {
@@ -28,22 +29,6 @@ Config grouped_example() {
     if (t.id == "dthx1t" || t.id == "dthy1t") t.group = "levelling";
   }
   return cfg;
-}
-
-// σ of each distribution from its bound, written out (GUM 4.3.7, 4.3.9): normal b, uniform b/√3,
-// triangular b/√6, arcsine b/√2.
-double sigma_of(double bound, Distribution d) {
-  switch (d) {
-    case Distribution::normal:
-      return bound;
-    case Distribution::uniform:
-      return bound / std::sqrt(3.0);
-    case Distribution::triangular:
-      return bound / std::sqrt(6.0);
-    case Distribution::arcsine:
-      return bound / std::numbers::sqrt2;
-  }
-  return 0.0;
 }
 
 // Cov from the per-source effects, by hand.
@@ -74,7 +59,7 @@ TEST(BudgetGroups, TotalsAddGroupMembersLinearlyAndGroupsInQuadrature) {
   ASSERT_EQ(b.sources.size(), cfg.tolerances.size());
   // Each effect is sensitivity × σ, with σ from the bound and distribution written out above.
   for (const SourceBudget& s : b.sources) {
-    const double sigma = sigma_of(s.bound, s.distribution);
+    const double sigma = test::sigma_from_bound(s.bound, s.distribution);
     EXPECT_NEAR(s.standard_uncertainty, sigma, 1e-15 * sigma) << s.id;
     for (Eigen::Index k = 0; k < s.effect.size(); ++k)
       EXPECT_NEAR(s.effect[k], s.sensitivity[k] * sigma, 1e-14 * std::abs(s.effect[k])) << s.id;
