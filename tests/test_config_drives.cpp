@@ -1,0 +1,92 @@
+// The drive keys of a configuration (docs/config.md): the rate ripple's ids, [centrifuge] platform_control,
+// main_rate_noise and platform_rate_noise, accepted in every documented form and refused, located and
+// explained, in every wrong one; and the command line's exit code 2 for them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "ccal/config.hpp"
+#include "cli_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+// A minimal configuration whose last table is [centrifuge], so an appended line lands there.
+const std::string kBase = R"([plan]
+duration = "450 s"
+terminal_phase = "180 deg"
+[[plan.runs]]
+name = "a"
+g_level = "5 g"
+[site]
+latitude = "45.75 deg"
+g = "9.8 m/s^2"
+[centrifuge]
+radius = "2.5 m")";
+
+// The error of kBase + extra: on the extra's last line, naming `key` and each hint, one line.
+void expect_refused(const std::string& extra, const std::string& key,
+                    std::initializer_list<std::string> hints) {
+  const std::string text = kBase + "\n" + extra;
+  const int line = 1 + int(std::count(text.begin(), text.end(), '\n'));
+  try {
+    parse_config(text, "case.toml");
+    ADD_FAILURE() << "accepted: " << extra;
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.line(), line) << what;
+    EXPECT_EQ(e.key(), key) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    for (const auto& h : hints) EXPECT_NE(what.find(h), std::string::npos) << "'" << h << "' in " << what;
+  }
+}
+
+TEST(DriveKeys, AcceptedForms) {
+  // 0.2 ppm/rtHz is 2e-7 /√Hz; an Allan deviation of 0.1 ppm at 4 s is N = 1e-7·√4 = 2e-7 /√Hz (model.md
+  // §3.2).
+  Config c = parse_config(kBase +
+                              "\nplatform_control = \"phase_locked\"\nmain_rate_noise = \"0.2 ppm/rtHz\"\n"
+                              "platform_rate_noise = { allan_deviation = \"0.1 ppm\", tau = \"4 s\" }\n"
+                              "[errors]\nripple1_s1 = \"10 ppm\"\n",
+                          "ok.toml");
+  EXPECT_EQ(c.centrifuge.geometry.platform_control, PlatformControl::phase_locked);
+  EXPECT_NEAR(c.centrifuge.rate_noise.main, 2e-7, 1e-22);
+  EXPECT_NEAR(c.centrifuge.rate_noise.platform, 2e-7, 1e-22);
+  EXPECT_NEAR(c.centrifuge.error("ripple1_s1"), 1e-5, 1e-20);
+  const Config d = parse_config(kBase, "default.toml");
+  EXPECT_EQ(d.centrifuge.geometry.platform_control, PlatformControl::speed);
+  EXPECT_FALSE(d.centrifuge.rate_noise.any());
+}
+
+TEST(DriveKeys, WrongFormsAreRefusedWithTheirPlace) {
+  expect_refused("platform_control = \"locked\"", "centrifuge.platform_control", {"speed", "phase_locked"});
+  expect_refused("main_rate_noise = \"0.2 ppm\"", "centrifuge.main_rate_noise", {"/rtHz"});
+  expect_refused("main_rate_noise = \"-1 ppm/rtHz\"", "centrifuge.main_rate_noise", {"negative"});
+  expect_refused("main_rate_noise = \"1 deg/rtHz\"", "centrifuge.main_rate_noise", {});
+  expect_refused("platform_rate_noise = 3", "centrifuge.platform_rate_noise", {"string or an inline table"});
+  expect_refused("platform_rate_noise = { allan_deviation = \"0.1 ppm\" }", "centrifuge.platform_rate_noise",
+                 {"tau"});
+  expect_refused("platform_rate_noise = { allan_deviation = \"0.1 ppm\", tau = \"0 s\" }",
+                 "centrifuge.platform_rate_noise.tau", {});
+  expect_refused("platform_rate_noise = { allan = \"0.1 ppm\", tau = \"4 s\" }",
+                 "centrifuge.platform_rate_noise.allan", {"allan_deviation"});
+  expect_refused("[errors]\nripple1_c0 = \"10 ppm\"", "errors.ripple1_c0", {"no constant term", "domega"});
+  expect_refused("[tolerances]\nripple3_c0 = \"10 ppm\"", "tolerances.ripple3_c0", {"dOmega"});
+  expect_refused("[errors]\nripple1_c1 = \"10 urad\"", "errors.ripple1_c1", {});
+  expect_refused("[errors]\nripple1_c2 = \"10 ppm\"", "errors.ripple1_c2", {"harmonic_order"});
+}
+
+using DriveKeysCli = Cli;
+
+TEST_F(DriveKeysCli, ExitCodeTwoWithTheKey) {
+  std::string text = read(kExample);
+  const auto at = text.find("platform_control = \"speed\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string("platform_control = \"speed\"").size(), "platform_control = \"sped\"");
+  const std::string bad = write("bad.toml", text);
+  expect_bad_input(run("budget " + bad), {"centrifuge.platform_control", "speed"});
+}
+
+}  // namespace
+}  // namespace ccal::test
