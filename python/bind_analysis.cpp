@@ -20,6 +20,9 @@
 #include "ccal/observation_csv.hpp"
 #include "ccal/run_log.hpp"
 #include "ccal/simulate.hpp"
+#include "ccal/verbs/budget.hpp"
+#include "ccal/verbs/force.hpp"
+#include "ccal/verbs/simulate.hpp"
 
 namespace ccal::python {
 
@@ -82,7 +85,8 @@ void bind_analysis(py::module_& m) {
       .def_readonly("bias", &CompensationChoice::bias, "K̂(effect not modelled) − K̂(modelled), SI")
       .def_readonly("paper_bias", &CompensationChoice::paper_bias);
 
-  py::class_<BudgetResult>(m, "Budget", "The error budget of a configuration (SI; display units alongside).")
+  py::class_<BudgetResult>(m, "BudgetDetail",
+                           "The error budget of a configuration (SI; display units alongside).")
       .def_property_readonly("mode", [](const BudgetResult& b) { return std::string(mode_name(b.mode)); })
       .def_property_readonly("derivatives",
                              [](const BudgetResult& b) {
@@ -117,12 +121,19 @@ void bind_analysis(py::module_& m) {
       .def_readonly("correlation", &BudgetResult::correlation)
       .def_readonly("compensation", &BudgetResult::compensation);
 
+  bind_verb_result<verbs::BudgetResult>(m, "Budget",
+                                        "`ccal budget` of a configuration: its BudgetDetail's fields are "
+                                        "readable on it; str() is the CLI's text, to_json() its JSON.",
+                                        "budget")
+      .def_readonly("config", &verbs::BudgetResult::config)
+      .def_readonly("budget", &verbs::BudgetResult::budget);
+
   m.def(
       "budget",
       [](const Config& cfg, std::optional<std::string> mode, const std::string& derivatives,
          double coverage_factor, bool compare_with_paper) {
-        BudgetOptions o;
-        o.mode = mode ? parse_mode(*mode) : cfg.mode;
+        verbs::BudgetOptions o;
+        if (mode) o.mode = mode_argument(*mode);
         if (derivatives == "linearised")
           o.derivatives = DerivativeMethod::linearised;
         else if (derivatives == "automatic")
@@ -133,7 +144,7 @@ void bind_analysis(py::module_& m) {
         o.coverage_factor = coverage_factor;
         o.compare_with_paper = compare_with_paper;
         py::gil_scoped_release release;
-        return compute_budget(cfg, o);
+        return verbs::budget(cfg, o);
       },
       py::arg("config"), py::arg("mode") = py::none(), py::arg("derivatives") = "linearised",
       py::arg("coverage_factor") = 2.0, py::arg("compare_with_paper") = true,
@@ -147,25 +158,38 @@ void bind_analysis(py::module_& m) {
       .def_readonly("f_ia", &ForceContribution::f_ia, "first-order change of the IA specific force [g]")
       .def_readonly("w_ia", &ForceContribution::w_ia, "first-order change of the IA rate [rad/s]");
 
-  py::class_<ForceResult>(m, "SensedInput", "What the instrument senses at one instant of a run.")
-      .def_readonly("specific_force", &ForceResult::specific_force, "along IA, PA, OA [g]")
-      .def_readonly("angular_rate", &ForceResult::angular_rate, "inertial, about IA, PA, OA [rad/s]")
-      .def_readonly("rate", &ForceResult::rate, "nominal main-axis rate Ω [rad/s]")
-      .def_readonly("initial_phase", &ForceResult::initial_phase, "φ0 [rad]")
-      .def_readonly("time", &ForceResult::time, "[s]")
-      .def_readonly("nominal_f_ia", &ForceResult::nominal_f_ia, "error-free IA specific force [g]")
-      .def_readonly("nominal_w_ia", &ForceResult::nominal_w_ia, "error-free IA rate [rad/s]")
-      .def_readonly("contributions", &ForceResult::contributions, "first order, per non-zero error")
-      .def_readonly("first_order_f_ia", &ForceResult::first_order_f_ia)
-      .def_readonly("first_order_w_ia", &ForceResult::first_order_w_ia)
-      .def_property_readonly("remainder_f_ia", &ForceResult::remainder_f_ia, "exact − first order [g]")
-      .def_property_readonly("remainder_w_ia", &ForceResult::remainder_w_ia, "exact − first order [rad/s]");
+  py::class_<SensedInputBreakdown>(m, "SensedInputDetail",
+                                   "What the instrument senses at one instant of a run.")
+      .def_readonly("specific_force", &SensedInputBreakdown::specific_force, "along IA, PA, OA [g]")
+      .def_readonly("angular_rate", &SensedInputBreakdown::angular_rate, "inertial, about IA, PA, OA [rad/s]")
+      .def_readonly("rate", &SensedInputBreakdown::rate, "nominal main-axis rate Ω [rad/s]")
+      .def_readonly("initial_phase", &SensedInputBreakdown::initial_phase, "φ0 [rad]")
+      .def_readonly("time", &SensedInputBreakdown::time, "[s]")
+      .def_readonly("nominal_f_ia", &SensedInputBreakdown::nominal_f_ia, "error-free IA specific force [g]")
+      .def_readonly("nominal_w_ia", &SensedInputBreakdown::nominal_w_ia, "error-free IA rate [rad/s]")
+      .def_readonly("contributions", &SensedInputBreakdown::contributions, "first order, per non-zero error")
+      .def_readonly("first_order_f_ia", &SensedInputBreakdown::first_order_f_ia)
+      .def_readonly("first_order_w_ia", &SensedInputBreakdown::first_order_w_ia)
+      .def_property_readonly("remainder_f_ia", &SensedInputBreakdown::remainder_f_ia,
+                             "exact − first order [g]")
+      .def_property_readonly("remainder_w_ia", &SensedInputBreakdown::remainder_w_ia,
+                             "exact − first order [rad/s]");
+
+  bind_verb_result<verbs::ForceResult>(m, "SensedInput",
+                                       "`ccal force` at one instant: its SensedInputDetail's fields are "
+                                       "readable on it; str() is the CLI's text, to_json() its JSON.",
+                                       "input")
+      .def_readonly("config", &verbs::ForceResult::config)
+      .def_readonly("input", &verbs::ForceResult::input);
 
   m.def(
       "sensed_input",
       [](const Config& cfg, const std::variant<int, std::string>& run, double time, const std::string& mode) {
-        return evaluate_force(cfg.site, cfg.centrifuge, cfg.plan.runs[run_index(cfg, run)], time,
-                              parse_mode(mode));
+        verbs::ForceOptions o;
+        o.run = cfg.plan.runs[run_index(cfg, run)].name;
+        o.time = time;
+        o.mode = mode_argument(mode);
+        return verbs::force(cfg, o);
       },
       py::arg("config"), py::arg("run") = 0, py::arg("time") = 0.0, py::arg("mode") = "exact",
       "Specific force and angular rate at time t [s] of a run (a name, or a 0-based index) with the "
@@ -180,10 +204,37 @@ void bind_analysis(py::module_& m) {
       .def_readonly("known_rate", &Observations<double>::known_rate, "the model's ⟨s_ω ω_IA⟩ [output SI]")
       .def_readonly("input", &Observations<double>::input, "the model's ⟨a_i⟩ [g]");
 
+  bind_verb_result<verbs::SimulateResult>(m, "Simulation",
+                                          "`ccal simulate`: run means of the plan and their identification; "
+                                          "str() is the CLI's text, to_json() its JSON, to_csv() the "
+                                          "observations file.",
+                                          "observations")
+      .def_readonly("config", &verbs::SimulateResult::config)
+      .def_readonly("observations", &verbs::SimulateResult::observations)
+      .def_property_readonly(
+          "coefficients", [](const verbs::SimulateResult& r) { return r.identification.fit.value; },
+          "identified free terms (SI)")
+      .def_property_readonly("names",
+                             [](const verbs::SimulateResult& r) { return r.identification.fit.names; })
+      .def("to_csv", [](const verbs::SimulateResult& r) { return render::csv(r); });
+
+  m.def(
+      "simulate",
+      [](const Config& cfg, std::optional<std::string> mode, std::uint64_t seed) {
+        verbs::SimulateOptions o;
+        if (mode) o.mode = mode_argument(*mode);
+        o.seed = seed;
+        py::gil_scoped_release release;
+        return verbs::simulate(cfg, o);
+      },
+      py::arg("config"), py::arg("mode") = py::none(), py::arg("seed") = 1,
+      "`ccal simulate`: run means of the test plan with the configured errors and instrument noise, and the "
+      "identification of the configured terms from them, as the CLI gives them.");
+
   m.def(
       "observe",
       [](const Config& cfg, std::optional<std::string> mode, std::uint64_t seed) {
-        const ModelMode model_mode = mode ? parse_mode(*mode) : cfg.mode;
+        const ModelMode model_mode = mode ? mode_argument(*mode) : cfg.mode;
         const Experiment ex = cfg.experiment();
         const Eigen::VectorXd& truth = cfg.centrifuge.errors;
         const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
@@ -341,7 +392,7 @@ void bind_analysis(py::module_& m) {
           throw InputError("angle_unit: '" + angle_unit + "'; accepted: 'rad', 'deg'");
         std::vector<std::pair<std::size_t, CsvTable>> tables;
         for (const auto& [run, path] : logs) tables.emplace_back(run_index(cfg, run), read_csv_file(path));
-        return reduce_logs(cfg, tables, o, mode ? parse_mode(*mode) : cfg.mode);
+        return reduce_logs(cfg, tables, o, mode ? mode_argument(*mode) : cfg.mode);
       },
       py::arg("config"), py::arg("logs"), py::arg("pulse_weight") = py::none(), py::arg("angle_unit") = "rad",
       py::arg("mode") = py::none(),

@@ -13,27 +13,12 @@
 #include "ccal/budget.hpp"
 #include "ccal/errors.hpp"
 #include "ccal/montecarlo.hpp"
+#include "ccal/verbs/allocate.hpp"
+#include "ccal/verbs/montecarlo.hpp"
 
 namespace ccal::python {
 
-namespace {
-
-// The budget (for the LPU validation and the display units) and the calibration model of a configuration,
-// an ill-posed identification reported as bad input, as the CLI does.
-std::pair<BudgetResult, CalibrationModel> model_of(const Config& cfg, ModelMode mode) {
-  if (cfg.tolerances.empty())
-    throw InputError(cfg.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
-  BudgetOptions bo;
-  bo.mode = mode;
-  bo.compare_with_paper = false;
-  try {
-    return {compute_budget(cfg, bo), calibration_model(cfg, mode)};
-  } catch (const IllPosedFit& e) {
-    throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
-  }
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void bind_uncertainty(py::module_& m) {
   py::class_<OutputSummary>(m, "OutputSummary", "One output of a Monte Carlo run (SI).")
@@ -53,7 +38,7 @@ void bind_uncertainty(py::module_& m) {
       .def_readonly("validated", &OutputSummary::validated, "JCGM 101 §8: the LPU interval agrees")
       .def("__repr__", [](const OutputSummary& s) { return "<ccal.OutputSummary " + s.name + ">"; });
 
-  py::class_<MonteCarloResult>(m, "MonteCarlo", "A Monte Carlo propagation of the tolerances (SI).")
+  py::class_<MonteCarloResult>(m, "MonteCarloDetail", "A Monte Carlo propagation of the tolerances (SI).")
       .def_readonly("trials", &MonteCarloResult::trials)
       .def_readonly("stages", &MonteCarloResult::stages)
       .def_readonly("converged", &MonteCarloResult::converged)
@@ -86,27 +71,34 @@ void bind_uncertainty(py::module_& m) {
       .def_readonly("correlation", &MonteCarloResult::correlation)
       .def_readonly("notes", &MonteCarloResult::notes);
 
+  bind_verb_result<verbs::MonteCarloResult>(
+      m, "MonteCarlo",
+      "`ccal montecarlo`: its MonteCarloDetail's fields are readable on "
+      "it; str() is the CLI's text, to_json() its JSON.",
+      "monte_carlo")
+      .def_readonly("config", &verbs::MonteCarloResult::config)
+      .def_readonly("budget", &verbs::MonteCarloResult::budget)
+      .def_readonly("monte_carlo", &verbs::MonteCarloResult::monte_carlo);
+
   m.def(
       "monte_carlo",
-      [](const Config& cfg, std::uint64_t trials, std::uint64_t seed, int threads, int digits,
-         double coverage, std::optional<std::string> mode) {
-        const auto [budget, model] = model_of(cfg, mode ? parse_mode(*mode) : cfg.mode);
-        MonteCarloOptions o;
+      [](const Config& cfg, std::int64_t trials, std::uint64_t seed, int threads, int digits, double coverage,
+         std::optional<std::string> mode) {
+        verbs::MonteCarloOptions o;
+        if (mode) o.mode = mode_argument(*mode);
         o.trials = trials;
         o.seed = seed;
         o.threads = threads;
-        o.significant_digits = digits;
+        o.digits = digits;
         o.coverage = coverage;
         py::gil_scoped_release release;
-        return run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(), model.output_names(),
-                               calibration_trial(model), o, &budget.standard_uncertainty);
+        return verbs::monte_carlo(cfg, o);
       },
-      py::arg("config"), py::arg("trials") = 100000, py::arg("seed") = 1, py::arg("threads") = 0,
-      py::arg("digits") = 0, py::arg("coverage") = 0.95, py::arg("mode") = py::none(),
+      py::arg("config"), py::arg("trials") = verbs::MonteCarloOptions{}.trials, py::arg("seed") = 1,
+      py::arg("threads") = 0, py::arg("digits") = 0, py::arg("coverage") = 0.95, py::arg("mode") = py::none(),
       "Monte Carlo propagation (JCGM 101, `ccal montecarlo`) of the tolerances to the deviations of the "
       "identified coefficients; digits > 0: the adaptive procedure; the same seed gives the same bits for "
-      "any "
-      "thread count.");
+      "any thread count. The defaults are the CLI's.");
 
   py::class_<AllocatedSource>(m, "AllocatedSource")
       .def_readonly("id", &AllocatedSource::id)
@@ -130,7 +122,7 @@ void bind_uncertainty(py::module_& m) {
       .def_property_readonly(
           "verdict", [](const AllocatedCoefficient& c) { return std::string(verdict_name(c.verdict)); });
 
-  py::class_<AllocationResult>(m, "Allocation", "Tolerances allocated to meet the targets (SI).")
+  py::class_<AllocationResult>(m, "AllocationDetail", "Tolerances allocated to meet the targets (SI).")
       .def_readonly("sources", &AllocationResult::sources, "tightened most first")
       .def_readonly("coefficients", &AllocationResult::coefficients)
       .def_readonly("coverage", &AllocationResult::coverage)
@@ -139,29 +131,31 @@ void bind_uncertainty(py::module_& m) {
       .def_readonly("converged", &AllocationResult::converged)
       .def_property_readonly("verified", [](const AllocationResult& r) { return r.verification.passed; });
 
+  bind_verb_result<verbs::AllocateResult>(
+      m, "Allocation",
+      "`ccal allocate`: its AllocationDetail's fields are readable on it; "
+      "str() is the CLI's text, to_json() its JSON.",
+      "allocation")
+      .def_readonly("config", &verbs::AllocateResult::config)
+      .def_readonly("allocation", &verbs::AllocateResult::allocation);
+
   m.def(
       "allocate",
       [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
-         double coverage, double max_scale, std::uint64_t verify_trials, std::uint64_t seed, int threads) {
-        BudgetOptions bo;
-        bo.compare_with_paper = false;
-        const BudgetResult b = compute_budget(cfg, bo);
-        std::vector<AllocationTarget> parsed;
-        for (const auto& [id, value] : targets) {
+         double coverage, double max_scale, std::int64_t verify_trials, std::uint64_t seed, int threads) {
+        verbs::AllocateOptions o;
+        for (const auto& [id, value] : targets)
           // A number is in the coefficient's display unit, as on the command line; a string may carry a unit.
-          const std::string text = std::holds_alternative<double>(value)
-                                       ? fmt::format("{}={:.17g}", id, std::get<double>(value))
-                                       : id + "=" + std::get<std::string>(value);
-          parsed.push_back(parse_allocation_target(text, b.coefficients, b.units, "targets"));
-        }
-        AllocateOptions o;
+          o.targets.push_back(std::holds_alternative<double>(value)
+                                  ? fmt::format("{}={:.17g}", id, std::get<double>(value))
+                                  : id + "=" + std::get<std::string>(value));
         o.coverage = coverage;
         o.max_scale = max_scale;
         o.verify_trials = verify_trials;
         o.seed = seed;
         o.threads = threads;
         py::gil_scoped_release release;
-        return allocate_tolerances(cfg, parsed, o);
+        return verbs::allocate(cfg, o);
       },
       py::arg("config"), py::arg("targets"), py::arg("coverage") = 0.95, py::arg("max_scale") = 10.0,
       py::arg("verify_trials") = 2000, py::arg("seed") = 1, py::arg("threads") = 0,

@@ -7,13 +7,10 @@
 
 namespace ccal::python {
 
-ModelMode parse_mode(const std::string& mode) {
-  if (mode == "exact") return ModelMode::exact;
-  if (mode == "paper") return ModelMode::paper;
+ModelMode mode_argument(const std::string& mode) {
+  if (const auto m = parse_mode(mode)) return *m;
   throw InputError("mode: '" + mode + "' is not a model mode; accepted: 'exact', 'paper'");
 }
-
-const char* mode_name(ModelMode mode) { return mode == ModelMode::paper ? "paper" : "exact"; }
 
 }  // namespace ccal::python
 

@@ -9,7 +9,7 @@
 
 namespace ccal {
 
-ForceResult evaluate_force(const Site& site, const CentrifugeModel& centrifuge, const Run& run, double t,
+SensedInputBreakdown evaluate_force(const Site& site, const CentrifugeModel& centrifuge, const Run& run, double t,
                            ModelMode mode) {
   if (!(t >= 0.0 && t <= run.duration))
     throw InputError(fmt::format("time {} s is outside run '{}', which lasts {} s; accepted: 0 to {} s", t,
@@ -24,7 +24,7 @@ ForceResult evaluate_force(const Site& site, const CentrifugeModel& centrifuge, 
                     "ia_horizontal, ia_reversed or pa_vertical",
                     run.name));
 
-  ForceResult out;
+  SensedInputBreakdown out;
   out.run = run;
   out.rate = nominal_rate(run, geo, site);
   out.initial_phase = initial_phase(run, geo, site);

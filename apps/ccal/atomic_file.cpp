@@ -140,8 +140,8 @@ bool write_all(int fd, std::string_view text) {
 // How a file is written: replaced through a temporary, or written through (device, FIFO, standard output).
 struct Plan {
   enum class Kind { replace, through, standard_output } kind = Kind::replace;
-  std::string target;               // the file actually replaced (a symbolic link followed)
-  std::optional<mode_t> mode;       // the existing file's permissions
+  std::string target;          // the file actually replaced (a symbolic link followed)
+  std::optional<mode_t> mode;  // the existing file's permissions
   std::optional<std::pair<uid_t, gid_t>> owner;
   std::optional<std::pair<dev_t, ino_t>> identity;
 };
@@ -164,10 +164,12 @@ Plan plan_for(const FileToWrite& f) {
   }
   p.identity = std::make_pair(st.st_dev, st.st_ino);
   for (const auto& in : inputs())
-    if (in == *p.identity) fail(f, "it is also an input of the command; accepted: a file the command does not read");
+    if (in == *p.identity)
+      fail(f, "it is also an input of the command; accepted: a file the command does not read");
   if (S_ISDIR(st.st_mode)) fail(f, "it is a folder; accepted: a file path");
   if (!S_ISREG(st.st_mode)) {
-    p.kind = Plan::Kind::through;  // character or block device, FIFO, socket (also through a link: /dev/stdout)
+    p.kind =
+        Plan::Kind::through;  // character or block device, FIFO, socket (also through a link: /dev/stdout)
     return p;
   }
   p.mode = st.st_mode & 07777;
@@ -261,8 +263,8 @@ void write_files(const std::vector<FileToWrite>& files) {
   for (const auto& f : files) plans.push_back(plan_for(f));
   for (std::size_t a = 0; a < files.size(); ++a)
     for (std::size_t b = 0; b < a; ++b) {
-      const bool same = files[a].path == files[b].path ||
-                        (plans[a].identity && plans[a].identity == plans[b].identity);
+      const bool same =
+          files[a].path == files[b].path || (plans[a].identity && plans[a].identity == plans[b].identity);
       if (same)
         fail(files[a], fmt::format("it is also the {} file; accepted: two different files", files[b].option));
     }

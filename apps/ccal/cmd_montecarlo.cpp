@@ -1,15 +1,10 @@
 // ccal montecarlo: propagation of the configured tolerances to the identified coefficients by the Monte Carlo
 // method of JCGM 101 (the engine of ccal/montecarlo.hpp), with the LPU of `ccal budget` for its validation.
-#include <fmt/format.h>
-
 #include <cstdint>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <sstream>
 
-#include "ccal/budget.hpp"
-#include "ccal/montecarlo.hpp"
-#include "ccal/version.hpp"
+#include "ccal/render/montecarlo.hpp"
+#include "ccal/verbs/montecarlo.hpp"
 #include "commands.hpp"
 #include "output.hpp"
 
@@ -24,186 +19,9 @@ struct MonteCarloCli {
   int digits = 0;
   std::int64_t max_trials = 1000000;
   double coverage = 0.95;
-  std::string mode = "exact";
+  std::string mode;  // empty: the configuration's
   OutputOptions output;
 };
-
-// The trial outputs are stored (8 bytes per trial and coefficient): 10⁹ trials of three coefficients are 24
-// GB.
-constexpr std::int64_t kMaxTrials = 1000000000;
-
-std::string mode_name(ModelMode m) { return m == ModelMode::exact ? "exact" : "paper"; }
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);)
-    if (!l.empty()) out.push_back(l);
-  return out;
-}
-
-std::string interval(double low, double high) { return "[" + number(low, 5) + ", " + number(high, 5) + "]"; }
-
-double per_second(const MonteCarloResult& r) { return r.seconds > 0 ? double(r.trials) / r.seconds : 0.0; }
-
-std::string fixed_terms(const Config& cfg) {
-  std::string s;
-  for (const auto& [id, v] : cfg.identification.fixed_terms) s += (s.empty() ? "" : ", ") + id;
-  return s.empty() ? "nothing" : s;
-}
-
-std::string to_text(const Config& cfg, const BudgetResult& b, const MonteCarloResult& r) {
-  const auto n = r.outputs.size();
-  const std::string pct = fmt::format("{:g} %", 100 * r.coverage);
-  std::string out = fmt::format(
-      "ccal montecarlo: {}, {} mode, {} sources; identified {} with {} fixed\n"
-      "Outputs: deviations of the identified coefficients from those identified with no centrifuge "
-      "error.\n\n",
-      cfg.source, mode_name(b.mode), cfg.tolerances.size(), fmt::join(b.coefficients, ", "),
-      fixed_terms(cfg));
-
-  Table stats({"coefficient", "unit", "mean y", "std u(y)", "symmetric " + pct + " interval",
-               "shortest " + pct + " interval"});
-  for (std::size_t k = 0; k < n; ++k) {
-    const OutputSummary& s = r.outputs[k];
-    const double f = b.display_scale[k];
-    stats.add_row({s.name, b.units[k], number(s.mean * f, 5), number(s.std_dev * f, 5),
-                   interval(s.low_symmetric * f, s.high_symmetric * f),
-                   interval(s.low_shortest * f, s.high_shortest * f)});
-  }
-  out += stats.render();
-
-  out += fmt::format(
-      "\nValidation of the LPU (JCGM 101 §8; u_c from `ccal budget --mode {}`, U_p = {:.4f} u_c about the "
-      "model at zero draws):\n",
-      mode_name(b.mode), r.coverage_factor);
-  Table lpu({"coefficient", "unit", "LPU u_c", "U_p = k u_c", "d_low", "d_high", "delta", "validated"});
-  for (std::size_t k = 0; k < n; ++k) {
-    const OutputSummary& s = r.outputs[k];
-    const double f = b.display_scale[k];
-    lpu.add_row({s.name, b.units[k], number(s.lpu_std * f, 5), number(s.lpu_expanded * f, 5),
-                 number(s.d_low * f, 3), number(s.d_high * f, 3), number(s.validation_delta * f, 3),
-                 s.validated ? "yes" : "no"});
-  }
-  out += lpu.render();
-
-  if (r.adaptive) {
-    out += fmt::format(
-        "\nAdaptive procedure (JCGM 101 §7.9.4, n_dig = {}): standard deviations s of the stage averages "
-        "against the numerical tolerance delta of u(y); stable when 2s <= delta.\n",
-        r.significant_digits);
-    Table a({"coefficient", "unit", "delta", "2 s(y)", "2 s(u)", "2 s(y_low)", "2 s(y_high)"});
-    for (std::size_t k = 0; k < n; ++k) {
-      const OutputSummary& s = r.outputs[k];
-      const double f = b.display_scale[k];
-      a.add_row({s.name, b.units[k], number(s.delta * f, 3), number(2 * s.s_mean * f, 3),
-                 number(2 * s.s_std_dev * f, 3), number(2 * s.s_low * f, 3), number(2 * s.s_high * f, 3)});
-    }
-    out += a.render();
-  }
-
-  std::vector<std::string> header = {"correlation (Monte Carlo)"};
-  for (const auto& s : r.outputs) header.push_back(s.name);
-  Table corr(header);
-  for (std::size_t a = 0; a < n; ++a) {
-    std::vector<std::string> row = {r.outputs[a].name};
-    for (std::size_t c = 0; c < n; ++c)
-      row.push_back(fmt::format("{:+.4f}", r.correlation(Eigen::Index(a), Eigen::Index(c))));
-    corr.add_row(row);
-  }
-  out += "\n" + corr.render();
-
-  out += fmt::format(
-      "\nM = {} trials ({} stage{} of {}), seed {}, {} thread{}, {:.3g} s, {:.4g} trials/s; p = {:g}, "
-      "interval over q = {} sorted values{}.\n",
-      r.trials, r.stages, r.stages == 1 ? "" : "s", r.stage_trials, r.seed, r.threads,
-      r.threads == 1 ? "" : "s", r.seconds, per_second(r), r.coverage, r.interval_points,
-      r.adaptive ? (r.converged ? "; adaptive procedure converged" : "; adaptive procedure NOT converged")
-                 : "");
-  out += "\nNotes:\n";
-  for (const auto& l : lines_of(r.notes)) out += "  " + l + "\n";
-  return out;
-}
-
-std::string to_json(const Config& cfg, const BudgetResult& b, const MonteCarloResult& r) {
-  nlohmann::ordered_json j;
-  j["command"] = "montecarlo";
-  j["ccal_version"] = version();
-  j["config"] = cfg.source;
-  j["mode"] = mode_name(b.mode);
-  j["trials"] = r.trials;
-  j["stage_trials"] = r.stage_trials;
-  j["stages"] = r.stages;
-  j["adaptive"] = r.adaptive;
-  j["converged"] = r.converged;
-  j["significant_digits"] = r.significant_digits;
-  j["seed"] = r.seed;
-  j["threads"] = r.threads;
-  j["coverage_probability"] = r.coverage;
-  j["coverage_factor"] = r.coverage_factor;
-  j["interval_points"] = r.interval_points;
-  j["sample_bytes"] = r.sample_bytes;
-  j["wall_time_s"] = r.seconds;
-  j["trials_per_s"] = per_second(r);
-  j["terms"] = b.coefficients;
-  nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
-  for (std::size_t k = 0; k < r.outputs.size(); ++k) {
-    const OutputSummary& s = r.outputs[k];
-    const double f = b.display_scale[k];
-    nlohmann::ordered_json c;
-    c["unit"] = b.units[k];
-    c["mean"] = s.mean * f;
-    c["std_dev"] = s.std_dev * f;
-    c["symmetric_interval"] = {s.low_symmetric * f, s.high_symmetric * f};
-    c["shortest_interval"] = {s.low_shortest * f, s.high_shortest * f};
-    c["estimate"] = s.estimate * f;
-    if (r.adaptive)
-      c["adaptive"] = {{"delta", s.delta * f},
-                       {"s_mean", s.s_mean * f},
-                       {"s_std_dev", s.s_std_dev * f},
-                       {"s_low", s.s_low * f},
-                       {"s_high", s.s_high * f}};
-    c["lpu"] = {{"std_uncertainty", s.lpu_std * f},
-                {"expanded_uncertainty", s.lpu_expanded * f},
-                {"d_low", s.d_low * f},
-                {"d_high", s.d_high * f},
-                {"delta", s.validation_delta * f},
-                {"validated", s.validated}};
-    coefficients[s.name] = c;
-  }
-  j["coefficients"] = coefficients;
-  nlohmann::ordered_json cov = nlohmann::ordered_json::array(), corr = nlohmann::ordered_json::array();
-  for (Eigen::Index a = 0; a < r.covariance.rows(); ++a) {
-    nlohmann::ordered_json rc = nlohmann::ordered_json::array(), rr = nlohmann::ordered_json::array();
-    for (Eigen::Index c = 0; c < r.covariance.cols(); ++c) {
-      rc.push_back(r.covariance(a, c) * b.display_scale[std::size_t(a)] * b.display_scale[std::size_t(c)]);
-      rr.push_back(r.correlation(a, c));
-    }
-    cov.push_back(rc);
-    corr.push_back(rr);
-  }
-  j["covariance"] = cov;
-  j["correlation"] = corr;
-  j["notes"] = lines_of(r.notes);
-  return j.dump(2) + "\n";
-}
-
-std::string to_csv(const BudgetResult& b, const MonteCarloResult& r) {
-  std::string out =
-      "coefficient,unit,mean,std_dev,low_symmetric,high_symmetric,low_shortest,high_shortest,estimate,"
-      "lpu_std,lpu_expanded,d_low,d_high,validation_delta,validated\n";
-  for (std::size_t k = 0; k < r.outputs.size(); ++k) {
-    const OutputSummary& s = r.outputs[k];
-    const double f = b.display_scale[k];
-    out += fmt::format(
-        "{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
-        "{:.17g},{:.17g},{}\n",
-        s.name, b.units[k], s.mean * f, s.std_dev * f, s.low_symmetric * f, s.high_symmetric * f,
-        s.low_shortest * f, s.high_shortest * f, s.estimate * f, s.lpu_std * f, s.lpu_expanded * f,
-        s.d_low * f, s.d_high * f, s.validation_delta * f, s.validated ? "true" : "false");
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -236,9 +54,10 @@ Command add_montecarlo(CLI::App& app) {
   cmd->add_option("--coverage", o->coverage, "Coverage probability p of the intervals, in (0, 1)")
       ->capture_default_str()
       ->type_name("p");
-  cmd->add_option("--mode", o->mode, "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules)")
-      ->check(CLI::IsMember({"exact", "paper"}))
-      ->capture_default_str();
+  cmd->add_option("--mode", o->mode,
+                  "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the "
+                  "configuration's [identification] mode")
+      ->check(CLI::IsMember({"exact", "paper"}));
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -247,52 +66,22 @@ Command add_montecarlo(CLI::App& app) {
       "  ccal montecarlo my.toml --trials 100000 --seed 7 --threads 2 --format json -o mc.json\n"
       "  ccal montecarlo --digits 2\n"
       "      the adaptive procedure: stages of 10000 trials until u(y) is stable to 2 digits\n");
-  return {
-      cmd, [o] {
-        if (o->trials < 2 || o->trials > kMaxTrials)
-          throw InputError(
-              fmt::format("--trials: {} is out of range; accepted: 2 to {}", o->trials, kMaxTrials));
-        if (o->max_trials < 2 || o->max_trials > kMaxTrials)
-          throw InputError(
-              fmt::format("--max-trials: {} is out of range; accepted: 2 to {}", o->max_trials, kMaxTrials));
-        check_thread_count(o->threads, "--threads");
-        if (o->digits < 0 || o->digits > 6)
-          throw InputError(
-              fmt::format("--digits: {} is out of range; accepted: 0 (fixed M) or 1..6", o->digits));
-        if (!(o->coverage > 0 && o->coverage < 1))
-          throw InputError(
-              fmt::format("--coverage: {} is not a probability in (0, 1); e.g. 0.95", o->coverage));
-        const Config cfg = load_config_or_example(o->config);
-        if (cfg.tolerances.empty())
-          throw InputError(cfg.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
-        const ModelMode mode = o->mode == "paper" ? ModelMode::paper : ModelMode::exact;
-        BudgetOptions bo;
-        bo.mode = mode;
-        bo.compare_with_paper = false;
-        BudgetResult budget;
-        CalibrationModel model;
-        try {
-          budget = compute_budget(cfg, bo);
-          model = calibration_model(cfg, mode);
-        } catch (const IllPosedFit& e) {
-          throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
-        }
-        MonteCarloOptions mo;
-        mo.trials = o->trials;
-        mo.seed = o->seed;
-        mo.threads = o->threads;
-        mo.significant_digits = o->digits;
-        mo.max_trials = o->max_trials;
-        mo.coverage = o->coverage;
-        mo.progress = true;  // drawn only when standard error is a terminal
-        const MonteCarloResult r =
-            run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(), model.output_names(),
-                            calibration_trial(model), mo, &budget.standard_uncertainty);
-        const std::string& f = o->output.format;
-        write_output(o->output, f == "json"  ? to_json(cfg, budget, r)
-                                : f == "csv" ? to_csv(budget, r)
-                                             : to_text(cfg, budget, r));
-      }};
+  return {cmd, [o] {
+            verbs::MonteCarloOptions mo;
+            if (!o->mode.empty()) mo.mode = parse_mode(o->mode);
+            mo.trials = o->trials;
+            mo.seed = o->seed;
+            mo.threads = o->threads;
+            mo.digits = o->digits;
+            mo.max_trials = o->max_trials;
+            mo.coverage = o->coverage;
+            mo.progress = true;  // drawn only when standard error is a terminal
+            const verbs::MonteCarloResult r = verbs::monte_carlo(load_config_or_example(o->config), mo);
+            const std::string& f = o->output.format;
+            write_output(o->output, f == "json"  ? render::json(r)
+                                    : f == "csv" ? render::csv(r)
+                                                 : render::text(r));
+          }};
 }
 
 }  // namespace ccal::cli

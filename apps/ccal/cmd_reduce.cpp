@@ -9,11 +9,12 @@
 
 #include "ccal/config.hpp"
 #include "ccal/observation_csv.hpp"
+#include "ccal/render/identification.hpp"
 #include "ccal/run_log.hpp"
 #include "ccal/simulate.hpp"
+#include "ccal/verbs/identification.hpp"
 #include "ccal/version.hpp"
 #include "commands.hpp"
-#include "identification.hpp"
 #include "output.hpp"
 
 namespace ccal::cli {
@@ -34,7 +35,7 @@ struct Reduction {
   double unit = 1;                 // SI size of one output unit
   std::vector<std::string> files;  // per logged run
   LogReduction logs;
-  FileIdentification identification;
+  verbs::FileIdentification identification;
 };
 
 Reduction reduce(const Config& cfg, const ReduceOptions& o) {
@@ -80,10 +81,10 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
     measured.push_back(lr.measured);
     rates.push_back(lr.rate);
   }
-  const DataResolution resolution =
-      run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
-  r.identification = identify_observations(r.logs.observations, cfg.identification, cfg.instrument,
-                                           cfg.source, &resolution);
+  const verbs::DataResolution resolution =
+      verbs::run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
+  r.identification = verbs::identify_observations(r.logs.observations, cfg.identification, cfg.instrument,
+                                                  cfg.source, &resolution);
   return r;
 }
 
@@ -112,7 +113,7 @@ std::string to_text(const Config& cfg, const Reduction& r) {
       "   the platform encoder's or the plan's; dOmega: the model's platform mismatch, measured when both\n"
       "   encoders are logged, else the configured one)\n\n";
   out += "  identification of these observations\n";
-  return out + identification_text(r.identification.id);
+  return out + render::text(r.identification.id);
 }
 
 std::string to_json(const Config& cfg, const Reduction& r) {
@@ -147,7 +148,7 @@ std::string to_json(const Config& cfg, const Reduction& r) {
     runs.push_back(x);
   }
   j["runs"] = runs;
-  j["identification"] = identification_json(r.identification.id);
+  j["identification"] = nlohmann::ordered_json::parse(render::json(r.identification.id));
   return j.dump(2) + "\n";
 }
 
@@ -191,6 +192,7 @@ Command add_reduce(CLI::App& app) {
             const Config cfg = load_config_or_example(o->config);
             check_observations_out(o->observations_out, o->output);
             const Reduction r = reduce(cfg, *o);
+            print_warnings(r.identification.id.observability.warnings);
             const std::string& f = o->output.format;
             const std::string text = f == "json"  ? to_json(cfg, r)
                                      : f == "csv" ? r.identification.csv

@@ -1,8 +1,8 @@
 // ccal command-line tool: parse the command line, call the library, print. Exit codes: 0 success, 2 bad input
 // (configuration, units, options), 1 internal error. Errors are one line on standard error.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 #include <string>

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ccal/config.hpp"
+#include "ccal/render/table.hpp"
 
 namespace ccal::cli {
 
@@ -57,21 +58,10 @@ void add_config_argument(CLI::App& command, std::string& path);
 // The configuration named on the command line, or the bundled paper example if none is.
 Config load_config_or_example(const std::string& path);
 
-// Number with `digits` significant digits (%g style); "0" for zero.
-std::string number(double v, int digits = 9);
+// Prints each warning of a result to standard error as "ccal: warning: <text>".
+void print_warnings(const std::vector<std::string>& warnings);
 
-// A text table: a header row, then rows of cells; columns after the first are right-aligned.
-class Table {
- public:
-  explicit Table(std::vector<std::string> header) : header_(std::move(header)) {}
-  void add_row(std::vector<std::string> cells) { rows_.push_back(std::move(cells)); }
-  void add_rule() { rows_.emplace_back(); }  // a line of dashes
-  // Each line starts with `indent`.
-  std::string render(std::string_view indent = "  ") const;
-
- private:
-  std::vector<std::string> header_;
-  std::vector<std::vector<std::string>> rows_;
-};
+using render::number;
+using render::Table;
 
 }  // namespace ccal::cli

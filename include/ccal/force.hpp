@@ -31,7 +31,7 @@ struct ForceContribution {
   double w_ia = 0.0;      // first-order change of the inertial rate about the IA [rad/s]
 };
 
-struct ForceResult {
+struct SensedInputBreakdown {
   Run run;
   double rate = 0.0;           // nominal main-axis rate Ω [rad/s]
   double initial_phase = 0.0;  // φ0 [rad]
@@ -52,7 +52,7 @@ struct ForceResult {
 
 // Evaluates run `run` at time t ∈ [0, T]. Throws InputError if t is outside the run, or if paper mode is
 // asked for a mounting whose IA is not along ±x5 (the paper's form covers only that).
-ForceResult evaluate_force(const Site& site, const CentrifugeModel& centrifuge, const Run& run, double t,
+SensedInputBreakdown evaluate_force(const Site& site, const CentrifugeModel& centrifuge, const Run& run, double t,
                            ModelMode mode = ModelMode::exact);
 
 }  // namespace ccal

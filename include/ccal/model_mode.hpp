@@ -1,4 +1,6 @@
 #pragma once
+#include <optional>
+#include <string_view>
 
 namespace ccal {
 
@@ -7,5 +9,17 @@ enum class ModelMode {
   exact,  // the full chain (the default)
   paper,  // the paper's first-order rules: frozen-γ, constant Coriolis and Δx5 terms, K1-only error terms
 };
+
+// The name of a mode as the configuration, the options and every report write it: "exact" or "paper".
+constexpr std::string_view mode_name(ModelMode m) noexcept {
+  return m == ModelMode::exact ? "exact" : "paper";
+}
+
+// The mode of a name; nullopt for anything else.
+constexpr std::optional<ModelMode> parse_mode(std::string_view name) noexcept {
+  if (name == "exact") return ModelMode::exact;
+  if (name == "paper") return ModelMode::paper;
+  return std::nullopt;
+}
 
 }  // namespace ccal

@@ -1,9 +1,8 @@
 #pragma once
-// The per-term observability (ccal/observability.hpp, docs/model.md §14) as the commands use it: what is
-// known of the runs, the refusal of an unobservable term, the warning of a weak one, and the text and JSON
-// reports.
+// The per-term observability (ccal/observability.hpp, docs/model.md §14) as the verbs use it: what is known
+// of the runs, the refusal of an unobservable term and the warning of a weak one (returned, for the front
+// end to show).
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,7 +12,7 @@
 #include "ccal/observability.hpp"
 #include "ccal/simulate.hpp"
 
-namespace ccal::cli {
+namespace ccal::verbs {
 
 // What is known of the runs beyond a table of run means, in the table's output unit.
 struct DataResolution {
@@ -41,7 +40,7 @@ struct ObservabilityReport {
 // references). Without `resolution` the resolution of a run is the floating-point resolution of its mean and
 // the fit's scatter: the σ of the weights, else the residual standard deviation. Throws InputError
 // "<source>: the test plan cannot observe <term>: <reason>; <fix>" for an unobservable term; weak terms give
-// a warning each (also printed to standard error).
+// a warning each (in the report's warnings).
 ObservabilityReport assess_fit(const FitProblem& problem, const FitResult& fit,
                                const std::vector<std::string>& units, const DataResolution* resolution,
                                std::string_view source);
@@ -51,7 +50,4 @@ ObservabilityReport assess_fit(const FitProblem& problem, const FitResult& fit,
 // references. Throws InputError as above.
 ObservabilityReport assess_plan(const Config& config, ModelMode mode);
 
-nlohmann::ordered_json observability_json(const ObservabilityReport& report);
-std::string observability_text(const ObservabilityReport& report);
-
-}  // namespace ccal::cli
+}  // namespace ccal::verbs

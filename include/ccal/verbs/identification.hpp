@@ -2,7 +2,6 @@
 // The identification shared by `ccal identify` and `ccal simulate`: the fit of an observations table, its
 // units for display, the hint added to an ill-posed fit, and its text and JSON reports (docs/cli.md).
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -10,9 +9,9 @@
 #include "ccal/fit.hpp"
 #include "ccal/observation_csv.hpp"
 #include "ccal/simulate.hpp"
-#include "observability_report.hpp"
+#include "ccal/verbs/observability_report.hpp"
 
-namespace ccal::cli {
+namespace ccal::verbs {
 
 // How the columns of a table are measured, for the units of the coefficients.
 struct ColumnUnits {
@@ -54,7 +53,6 @@ std::string ill_posed_hint(std::string_view message, const std::vector<std::stri
 Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
                               std::string_view source, const DataResolution* resolution = nullptr);
 
-nlohmann::ordered_json identification_json(const Identification& id);
 // Observations of a test plan written as an observations file, and identified through the file itself, so
 // that the result is what `ccal identify` gives for it (`ccal simulate`, `ccal reduce`).
 struct FileIdentification {
@@ -66,6 +64,5 @@ struct FileIdentification {
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
                                          const InstrumentModel& instrument, std::string_view source,
                                          const DataResolution* resolution = nullptr);
-std::string identification_text(const Identification& id);
 
-}  // namespace ccal::cli
+}  // namespace ccal::verbs

@@ -6,7 +6,7 @@
 
 #include "ccal/errors.hpp"
 
-namespace ccal::cli {
+namespace ccal::verbs {
 namespace {
 
 bool finite(const Eigen::VectorXd& v) { return v.allFinite(); }
@@ -20,10 +20,11 @@ bool finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
 }  // namespace
 
-void check_finite(const Config& cfg, const BudgetResult& b) {
+void check_finite(const Config& cfg, const ccal::BudgetResult& b) {
   std::string first;
   for (const auto& s : b.sources)
-    if (first.empty() && !(std::isfinite(s.standard_uncertainty) && finite(s.effect) && finite(s.sensitivity)))
+    if (first.empty() &&
+        !(std::isfinite(s.standard_uncertainty) && finite(s.effect) && finite(s.sensitivity)))
       first = s.id;
   for (std::size_t k = 0; k < b.coefficients.size(); ++k) {
     const auto i = Eigen::Index(k);
@@ -42,7 +43,7 @@ void check_finite(const Config& cfg, const BudgetResult& b) {
   if (!first.empty() || !b.covariance.allFinite()) refuse(cfg, "the budget", first);
 }
 
-void check_finite(const Config& cfg, const AllocationResult& r) {
+void check_finite(const Config& cfg, const ccal::AllocationResult& r) {
   for (const auto& s : r.sources)
     if (!std::isfinite(s.allocated_bound) || !std::isfinite(s.scale) || !(s.scale > 0))
       refuse(cfg, fmt::format("the allocated tolerance of {} ({})", s.id, s.allocated_bound), s.id);
@@ -52,4 +53,4 @@ void check_finite(const Config& cfg, const AllocationResult& r) {
   if (!std::isfinite(r.objective)) refuse(cfg, "the allocation's objective", "");
 }
 
-}  // namespace ccal::cli
+}  // namespace ccal::verbs

@@ -1,20 +1,20 @@
-#include "observability_report.hpp"
+#include "ccal/verbs/observability_report.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
-#include <iostream>
 #include <numbers>
 
 #include "ccal/budget.hpp"
 #include "ccal/errors.hpp"
 #include "ccal/observation_csv.hpp"
-#include "output.hpp"
+#include "ccal/render/table.hpp"
 
-namespace ccal::cli {
+namespace ccal::verbs {
 namespace {
 
 using Index = Eigen::Index;
+using render::number;
 
 // Raises the refusal of the first unobservable term and collects the warnings of the weak ones.
 void judge(ObservabilityReport& report, std::string_view source) {
@@ -28,7 +28,6 @@ void judge(ObservabilityReport& report, std::string_view source) {
         "coefficient; "
         "{}",
         t.term, number(t.min_detectable, 3), report.units[k], report.result.detection_factor, t.fix));
-    std::cerr << "ccal: warning: " << report.warnings.back() << '\n';
   }
 }
 
@@ -141,51 +140,4 @@ ObservabilityReport assess_plan(const Config& config, ModelMode mode) {
   return report;
 }
 
-nlohmann::ordered_json observability_json(const ObservabilityReport& report) {
-  const ObservabilityResult& r = report.result;
-  nlohmann::ordered_json j;
-  j["detection_factor"] = r.detection_factor;
-  j["resolution_basis"] = report.basis;
-  j["run_resolution"] = std::vector<double>(r.resolution.data(), r.resolution.data() + r.resolution.size());
-  j["whole_revolutions"] = r.whole_revolutions;
-  nlohmann::ordered_json terms = nlohmann::ordered_json::object();
-  for (std::size_t k = 0; k < r.terms.size(); ++k) {
-    const TermObservability& t = r.terms[k];
-    nlohmann::ordered_json x;
-    x["status"] = term_status_name(t.status);
-    x["sensitivity"] = t.sensitivity;
-    x["fraction"] = t.fraction;
-    x["standard_error"] = t.standard_error;
-    x["min_detectable"] = t.min_detectable;
-    x["unit"] = report.units[k];
-    if (!t.reason.empty()) {
-      x["reason"] = t.reason;
-      x["fix"] = t.fix;
-    }
-    terms[t.term] = x;
-  }
-  j["terms"] = terms;
-  j["warnings"] = report.warnings;
-  return j;
-}
-
-std::string observability_text(const ObservabilityReport& report) {
-  const ObservabilityResult& r = report.result;
-  std::string out =
-      fmt::format("  observability (resolution of the run means: {}; detectable = {:g} sigma)\n",
-                  report.basis, r.detection_factor);
-  Table table({"term", "sensitivity", "fraction", "std error", "min detectable", "unit", "status"});
-  for (std::size_t k = 0; k < r.terms.size(); ++k) {
-    const TermObservability& t = r.terms[k];
-    table.add_row({t.term, number(t.sensitivity, 4), number(t.fraction, 3), number(t.standard_error, 3),
-                   number(t.min_detectable, 3), report.units[k], std::string(term_status_name(t.status))});
-  }
-  out += table.render();
-  out +=
-      "  (sensitivity: run-mean change per unit coefficient, root-sum-square over runs, in the regressor's "
-      "unit;\n   fraction: of the regressor's size before averaging, what only this term explains)\n";
-  for (const auto& w : report.warnings) out += "  - warning: " + w + "\n";
-  return out;
-}
-
-}  // namespace ccal::cli
+}  // namespace ccal::verbs

@@ -1,0 +1,12 @@
+#pragma once
+// The reports of `ccal force` (docs/cli.md): text tables and JSON.
+#include <string>
+
+#include "ccal/verbs/force.hpp"
+
+namespace ccal::render {
+
+std::string text(const verbs::ForceResult& result);
+std::string json(const verbs::ForceResult& result);
+
+}  // namespace ccal::render

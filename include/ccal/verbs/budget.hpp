@@ -1,0 +1,31 @@
+#pragma once
+// `ccal budget` as a library call: what each centrifuge tolerance costs every identified coefficient (the law
+// of propagation of uncertainty, docs/model.md §10.1), with the per-term observability of the plan (§14).
+
+#include <optional>
+
+#include "ccal/budget.hpp"
+#include "ccal/config.hpp"
+#include "ccal/model_mode.hpp"
+#include "ccal/verbs/observability_report.hpp"
+
+namespace ccal::verbs {
+
+struct BudgetOptions {
+  std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
+  double coverage_factor = 2.0;   // k of the expanded uncertainty U = k u
+  DerivativeMethod derivatives = DerivativeMethod::linearised;  // same numbers; linearised is faster
+  bool compare_with_paper = true;  // in exact mode, also the paper's first-order effect of each source
+};
+
+struct BudgetResult {
+  Config config;                      // the configuration budgeted
+  ccal::BudgetResult budget;          // per source and per coefficient (SI, with display scales)
+  ObservabilityReport observability;  // of the free terms under this plan
+};
+
+// Throws InputError for an empty [tolerances], a term the plan cannot observe or identify, or a result that
+// is not finite (tolerances beyond double precision).
+BudgetResult budget(const Config& config, const BudgetOptions& options = {});
+
+}  // namespace ccal::verbs

@@ -1,0 +1,37 @@
+#pragma once
+// `ccal identify` as a library call: the least-squares identification of calibration coefficients from a
+// table, either an observations file of `ccal simulate` / `ccal reduce` (which records its terms, fixed
+// terms, known columns and output unit) or any table with an input and an output column (docs/cli.md).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccal/observation_csv.hpp"
+#include "ccal/verbs/identification.hpp"
+
+namespace ccal::verbs {
+
+struct IdentifyOptions {
+  // Free terms, "K2" or "K2:Z2" (a term bound to its regressor column); unset: the file's.
+  std::optional<std::vector<std::string>> terms;
+  // Held terms, "<term>[:<column>]=<value> [unit]"; unset: the file's (except those freed by `terms`).
+  std::optional<std::vector<std::string>> fix;
+  // Columns subtracted from the output ({"none"}: none); unset: the file's.
+  std::optional<std::vector<std::string>> known;
+  std::string input = "a_i";      // column of the input x of the power terms
+  std::string output = "output";  // column of the output y
+  std::string weight;             // column of the σ of y (weights 1/σ²); empty: unweighted
+};
+
+struct IdentifyResult {
+  std::string source;  // the table's name, as in messages
+  std::size_t rows = 0;
+  TableFitSpec spec;  // what was fitted
+  Identification identification;
+};
+
+// Throws InputError naming the option (--terms, --fix, --known, …) or CsvError naming the file's place.
+IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options = {});
+
+}  // namespace ccal::verbs

@@ -1,0 +1,45 @@
+#pragma once
+// `ccal simulate` as a library call: the run means a test plan produces (truth: the exact chain with the
+// configured [errors], plus the instrument's noise), the regressors the analyst computes (with zero errors,
+// or the [errors] values when compensating), as an observations file, and their identification exactly as
+// `ccal identify` gives it for that file (docs/model.md §8–9).
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccal/config.hpp"
+#include "ccal/model_mode.hpp"
+#include "ccal/simulate.hpp"
+#include "ccal/verbs/identification.hpp"
+
+namespace ccal::verbs {
+
+struct SimulateOptions {
+  std::optional<ModelMode> mode;  // reduction of a run; unset: the configuration's [identification] mode
+  std::uint64_t seed = 1;         // of the output noise (used only if the instrument has noise)
+};
+
+struct SimulateResult {
+  Config config;
+  ModelMode mode = ModelMode::exact;
+  std::uint64_t seed = 1;
+  Observations<double> observations;  // run means (output SI, regressors in their term units)
+  double output_unit_si = 1;          // SI size of one output unit
+  bool noisy = false;                 // the instrument's noise or quantum was applied
+  int error_count = 0;                // non-zero [errors] parameters
+  std::vector<std::size_t> order;     // regressor columns in canonical term order, as in the file
+  std::string observations_csv;       // the observations file (the input of `ccal identify`)
+  Identification identification;      // of that file
+};
+
+// Throws InputError for a plan the mode cannot reduce (paper mode off the paper's mounting), an ill-posed or
+// unobservable identification.
+SimulateResult simulate(const Config& config, const SimulateOptions& options = {});
+
+// Unit of a regressor column: gⁿ, or rad/s for K_w.
+std::string regressor_unit(const std::string& term_id);
+
+}  // namespace ccal::verbs

@@ -1,0 +1,262 @@
+#include "ccal/render/allocate.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "ccal/render/table.hpp"
+#include "ccal/units.hpp"
+#include "ccal/version.hpp"
+
+namespace ccal::render {
+namespace {
+
+// The unit a tolerance is written in, as in the bundled example: angles in rad, lengths in µm.
+std::string_view config_unit(SourceUnit u) {
+  switch (u) {
+    case SourceUnit::rad:
+      return "rad";
+    case SourceUnit::m:
+      return "um";
+    case SourceUnit::rad_per_s:
+      return "rad/s";
+    case SourceUnit::m_per_rad_per_s_squared:
+      return "m/(rad/s)^2";
+    case SourceUnit::relative:
+      return "ppm";
+  }
+  return "";
+}
+
+// v rounded down to 4 significant digits, so that a pasted tolerance is never looser than the allocated one.
+double round_down(double v) {
+  if (!(v > 0) || !std::isfinite(v)) return v;
+  const double step = std::pow(10.0, std::floor(std::log10(v)) - 3);
+  const double r = std::floor(v / step * (1 + 1e-15)) * step;
+  return r > v ? v : r;
+}
+
+std::string quantity_text(double si, SourceUnit unit) {
+  const std::string u(config_unit(unit));
+  return format_quantity(round_down(si), parse_unit(u).dim, u, 4);
+}
+
+// One [tolerances] entry for the allocated tolerance (defaults left out).
+std::string toml_entry(const AllocatedSource& s, const ErrorLayout& layout) {
+  const std::string bound = quantity_text(s.allocated_bound, layout.parameter_unit(s.parameter));
+  if (s.distribution == Distribution::normal && s.group.empty() && s.cost == 1.0)
+    return fmt::format("{} = \"{}\"", s.id, bound);
+  std::string e = fmt::format("{} = {{ bound = \"{}\"", s.id, bound);
+  if (s.distribution != Distribution::normal)
+    e += fmt::format(", distribution = \"{}\"", distribution_name(s.distribution));
+  if (!s.group.empty()) e += fmt::format(", group = \"{}\"", s.group);
+  if (s.cost != 1.0) e += fmt::format(", cost = {}", s.cost);
+  return e + " }";
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);)
+    if (!l.empty()) out.push_back(l);
+  return out;
+}
+
+std::string text_of(const Config& cfg, const AllocationResult& r) {
+  const ErrorLayout& layout = cfg.centrifuge.layout;
+  const std::string pct = fmt::format("{:g} %", 100 * r.coverage);
+  std::string out = fmt::format(
+      "ccal allocate: {}, {} sources; LPU with exact-mode AD sensitivities at the configured errors\n"
+      "Targets are expanded uncertainties U = k_p u (half-widths of the {} interval), k_p = {:.5f} "
+      "(the normal quantile of (1 + p)/2, p = {:g}).\n"
+      "Allocation: minimise sum cost_s / lambda_s (tolerance_s = lambda_s x configured) subject to every "
+      "target, lambda_s <= {:g}.\n\n",
+      cfg.source, r.sources.size(), pct, r.coverage_factor, r.coverage, r.max_scale);
+
+  Table coefficients({"coefficient", "unit", "target U", "configured U", "allocated U", "common-scale U",
+                      "constraint", "d objective / d ln target"});
+  for (const AllocatedCoefficient& c : r.coefficients) {
+    const double f = c.display_scale;
+    coefficients.add_row({c.id, c.unit, c.has_target ? number(c.target * f, 4) : "-",
+                          number(c.configured_expanded * f, 4), number(c.allocated_expanded * f, 6),
+                          number(c.common_expanded * f, 4),
+                          c.has_target ? (c.active ? "active" : "inactive") : "(no target)",
+                          c.has_target ? number(c.price, 4) : ""});
+  }
+  out += coefficients.render();
+
+  std::vector<std::string> header = {"rank",       "source",    "distribution", "cost",
+                                     "configured", "allocated", "scale lambda"};
+  for (std::size_t t : r.targets) header.push_back("share " + r.coefficients[t].id + " [%]");
+  Table sources(header);
+  for (std::size_t s = 0; s < r.sources.size(); ++s) {
+    const AllocatedSource& a = r.sources[s];
+    const SourceUnit unit = layout.parameter_unit(a.parameter);
+    std::vector<std::string> row = {std::to_string(s + 1),
+                                    a.id + (a.group.empty() ? "" : " (" + a.group + ")"),
+                                    std::string(distribution_name(a.distribution)),
+                                    number(a.cost, 4),
+                                    quantity_text(a.bound, unit),
+                                    quantity_text(a.allocated_bound, unit),
+                                    number(a.scale, 4)};
+    for (Eigen::Index i = 0; i < a.share.size(); ++i) row.push_back(fmt::format("{:.2f}", 100 * a.share[i]));
+    sources.add_row(row);
+  }
+  out +=
+      "\nAllocated tolerances, tightened most first (shares of the targets' variances at the allocated "
+      "tolerances):\n" +
+      sources.render();
+
+  out += fmt::format(
+      "\nObjective sum cost/lambda: {:.6g} allocated; {:.6g} at the configured tolerances; {:.6g} with one "
+      "common scale lambda = {:.4g} = min(max scale, min over targets of target/U) for every source.\n"
+      "Solved by {} ({} Newton iteration{} on the dual; {}; duality gap {:.2g}).\n",
+      r.objective, r.configured_objective, r.common_objective, r.common_scale, r.method, r.iterations,
+      r.iterations == 1 ? "" : "s", r.converged ? "converged" : "NOT converged", r.dual_gap);
+
+  const AllocationVerification& v = r.verification;
+  if (v.trials > 0) {
+    Table check({"coefficient", "unit", "target U", "MC mean", "MC std", "LPU u", "std/LPU", "MC half-width",
+                 "half-width/target", "verdict"});
+    for (std::size_t t : r.targets) {
+      const AllocatedCoefficient& c = r.coefficients[t];
+      const double f = c.display_scale;
+      check.add_row({c.id, c.unit, number(c.target * f, 4), number(c.mc_mean * f, 4), number(c.mc_std * f, 4),
+                     number(c.lpu_std * f, 4),
+                     fmt::format("{:.3f}", c.lpu_std > 0 ? c.mc_std / c.lpu_std : 0.0),
+                     number(c.mc_half_width * f, 4),
+                     fmt::format("{:.3f}", c.target > 0 ? c.mc_half_width / c.target : 0.0),
+                     std::string(verdict_name(c.verdict))});
+    }
+    out += fmt::format(
+        "\nMonte Carlo verification on the allocated tolerances (JCGM 101, exact nonlinear pipeline, M = {}, "
+        "seed {}, {:.3g} s): half-width = max(y_high - y, y - y_low) of the symmetric {} interval about the "
+        "MC mean y.\n",
+        v.trials, v.seed, v.seconds, pct);
+    out += check.render();
+    out += fmt::format(
+        "The check has sampling error: relative standard error ~{:.2g} of a half-width and ~1/sqrt(2M) = "
+        "{:.2g} "
+        "of a standard deviation (normal output). 'pass within sampling' = half-width at most "
+        "target x (1 + {:.3g}), 3 standard errors. Verification {}.\n",
+        v.half_width_rel_error, v.std_rel_error, v.allowance, v.passed ? "PASSED" : "FAILED");
+  } else {
+    out += "\nNo Monte Carlo verification (--verify-trials 0).\n";
+  }
+
+  out += "\nAllocated [tolerances] in configuration style (bounds rounded down to 4 digits):\n";
+  for (const AllocatedSource& a : r.sources) out += "  " + toml_entry(a, layout) + "\n";
+  return out;
+}
+
+std::string json_of(const Config& cfg, const AllocationResult& r) {
+  const ErrorLayout& layout = cfg.centrifuge.layout;
+  nlohmann::ordered_json j;
+  j["command"] = "allocate";
+  j["ccal_version"] = version();
+  j["config"] = cfg.source;
+  j["mode"] = "exact";
+  j["coverage_probability"] = r.coverage;
+  j["coverage_factor"] = r.coverage_factor;
+  j["max_scale"] = r.max_scale;
+  nlohmann::ordered_json targets = nlohmann::ordered_json::array();
+  for (std::size_t t : r.targets) targets.push_back(r.coefficients[t].id);
+  j["targets"] = targets;
+  j["objective"] = {{"allocated", r.objective},
+                    {"configured", r.configured_objective},
+                    {"common_scale", r.common_objective}};
+  j["common_scale"] = r.common_scale;
+  j["solver"] = {{"method", r.method},
+                 {"iterations", r.iterations},
+                 {"converged", r.converged},
+                 {"dual_gap", r.dual_gap}};
+  nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
+  for (const AllocatedCoefficient& c : r.coefficients) {
+    const double f = c.display_scale;
+    nlohmann::ordered_json o;
+    o["unit"] = c.unit;
+    o["target"] = c.has_target ? nlohmann::ordered_json(c.target * f) : nlohmann::ordered_json(nullptr);
+    o["configured_expanded"] = c.configured_expanded * f;
+    o["allocated_expanded"] = c.allocated_expanded * f;
+    o["common_scale_expanded"] = c.common_expanded * f;
+    o["allocated_std_uncertainty"] = c.lpu_std * f;
+    if (c.has_target) {
+      o["active"] = c.active;
+      o["multiplier"] = c.multiplier;
+      o["objective_per_ln_target"] = c.price;
+    }
+    if (r.verification.trials > 0) {
+      o["mc"] = {{"mean", c.mc_mean * f},
+                 {"std_dev", c.mc_std * f},
+                 {"symmetric_interval", {c.mc_low * f, c.mc_high * f}},
+                 {"half_width", c.mc_half_width * f}};
+      if (c.has_target) o["verdict"] = verdict_name(c.verdict);
+    }
+    coefficients[c.id] = o;
+  }
+  j["coefficients"] = coefficients;
+  nlohmann::ordered_json sources = nlohmann::ordered_json::array();
+  for (std::size_t s = 0; s < r.sources.size(); ++s) {
+    const AllocatedSource& a = r.sources[s];
+    nlohmann::ordered_json o;
+    o["id"] = a.id;
+    o["rank"] = s + 1;
+    o["unit_si"] = unit_symbol(layout.parameter_unit(a.parameter));
+    o["distribution"] = distribution_name(a.distribution);
+    o["group"] = a.group;
+    o["cost"] = a.cost;
+    o["bound_si"] = a.bound;
+    o["allocated_bound_si"] = a.allocated_bound;
+    o["standard_uncertainty_si"] = a.standard_uncertainty;
+    o["allocated_standard_uncertainty_si"] = a.allocated_standard_uncertainty;
+    o["scale"] = a.scale;
+    o["toml"] = toml_entry(a, layout);
+    nlohmann::ordered_json share = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < r.targets.size(); ++i)
+      share[r.coefficients[r.targets[i]].id] = a.share[Eigen::Index(i)];
+    o["share"] = share;
+    sources.push_back(o);
+  }
+  j["sources"] = sources;
+  const AllocationVerification& v = r.verification;
+  if (v.trials > 0)
+    j["verification"] = {{"trials", v.trials},
+                         {"seed", v.seed},
+                         {"threads", v.threads},
+                         {"wall_time_s", v.seconds},
+                         {"half_width_rel_error", v.half_width_rel_error},
+                         {"std_rel_error", v.std_rel_error},
+                         {"allowance", v.allowance},
+                         {"passed", v.passed},
+                         {"notes", lines_of(v.notes)}};
+  else
+    j["verification"] = nullptr;
+  return j.dump(2) + "\n";
+}
+
+std::string csv_of(const Config& cfg, const AllocationResult& r) {
+  std::string out = "rank,source,group,distribution,cost,unit_si,bound_si,allocated_bound_si,scale";
+  for (std::size_t t : r.targets) out += ",share_" + r.coefficients[t].id;
+  out += "\n";
+  for (std::size_t s = 0; s < r.sources.size(); ++s) {
+    const AllocatedSource& a = r.sources[s];
+    out += fmt::format("{},{},{},{},{:.17g},{},{:.17g},{:.17g},{:.17g}", s + 1, a.id, a.group,
+                       distribution_name(a.distribution), a.cost,
+                       unit_symbol(cfg.centrifuge.layout.parameter_unit(a.parameter)), a.bound,
+                       a.allocated_bound, a.scale);
+    for (Eigen::Index i = 0; i < a.share.size(); ++i) out += fmt::format(",{:.17g}", a.share[i]);
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string text(const verbs::AllocateResult& r) { return text_of(r.config, r.allocation); }
+std::string json(const verbs::AllocateResult& r) { return json_of(r.config, r.allocation); }
+std::string csv(const verbs::AllocateResult& r) { return csv_of(r.config, r.allocation); }
+
+}  // namespace ccal::render

@@ -1,0 +1,17 @@
+#pragma once
+// Pieces shared by the reports of several verbs (private to the library): the observability and
+// identification sections, as JSON values and text.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ccal/verbs/identification.hpp"
+#include "ccal/verbs/observability_report.hpp"
+
+namespace ccal::render {
+
+nlohmann::ordered_json observability_json(const verbs::ObservabilityReport& report);
+std::string observability_text(const verbs::ObservabilityReport& report);
+nlohmann::ordered_json identification_json(const verbs::Identification& id);
+std::string identification_text(const verbs::Identification& id);
+
+}  // namespace ccal::render

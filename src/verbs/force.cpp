@@ -1,0 +1,23 @@
+#include "ccal/verbs/force.hpp"
+
+#include <fmt/format.h>
+
+#include "ccal/errors.hpp"
+#include "ccal/render/table.hpp"
+
+namespace ccal::verbs {
+
+ForceResult force(const Config& config, const ForceOptions& options) {
+  ForceResult r;
+  r.config = config;
+  r.run_index = select_run(config.plan, options.run, "--run");
+  const Run& run = config.plan.runs[r.run_index];
+  const double t = options.time;
+  if (!(t >= 0.0 && t <= run.duration))
+    throw InputError(fmt::format("--time: {} s is outside run '{}'; accepted: 0 to {} s", render::number(t),
+                                 run.name, render::number(run.duration)));
+  r.input = evaluate_force(config.site, config.centrifuge, run, t, options.mode);
+  return r;
+}
+
+}  // namespace ccal::verbs

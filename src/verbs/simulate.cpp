@@ -1,0 +1,65 @@
+#include "ccal/verbs/simulate.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "ccal/errors.hpp"
+#include "ccal/observation_csv.hpp"
+
+namespace ccal::verbs {
+
+std::string regressor_unit(const std::string& id) {
+  const TermSpec t = parse_term(id).value();
+  switch (t.kind) {
+    case TermKind::power:
+      return t.power == 0 ? "1" : t.power == 1 ? "g" : fmt::format("g^{}", t.power);
+    case TermKind::p:
+    case TermKind::o:
+      return "g";
+    case TermKind::rate:
+      return "rad/s";
+    default:
+      return "g^2";
+  }
+}
+
+SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
+  SimulateResult s;
+  s.config = cfg;
+  s.seed = o.seed;
+  s.mode = o.mode.value_or(cfg.mode);
+  if (s.mode == ModelMode::paper)
+    for (const Run& run : cfg.plan.runs)
+      if (run.mounting != Mounting::ia_horizontal)
+        throw InputError(
+            fmt::format("run '{}': mode paper reduces runs on the paper's mounting (ia_horizontal) "
+                        "only; accepted: mode exact, or mounting ia_horizontal",
+                        run.name));
+  const Experiment ex = cfg.experiment();
+  const IdentificationSpec& spec = cfg.identification;
+  const Eigen::VectorXd& truth = cfg.centrifuge.errors;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  s.error_count = static_cast<int>((truth.array() != 0.0).count());
+  s.observations = observe<double>(ex, truth, spec.compensate ? truth : zero, spec, s.mode);
+  s.noisy = ex.instrument.noise_density > 0 || ex.instrument.quantum > 0;
+  add_output_noise(s.observations, ex, o.seed);
+  s.output_unit_si = output_unit_si(ex.instrument.output_unit);
+  s.order.resize(s.observations.columns.size());
+  std::iota(s.order.begin(), s.order.end(), std::size_t{0});
+  std::stable_sort(s.order.begin(), s.order.end(), [&](std::size_t a, std::size_t b) {
+    return term_rank(parse_term(s.observations.columns[a]).value()) <
+           term_rank(parse_term(s.observations.columns[b]).value());
+  });
+
+  std::vector<double> rates;
+  for (const Run& run : ex.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));
+  const DataResolution resolution = run_resolution(ex.plan.runs, rates, s.observations, spec, ex.instrument);
+  FileIdentification f = identify_observations(s.observations, spec, ex.instrument, cfg.source, &resolution);
+  s.observations_csv = std::move(f.csv);
+  s.identification = std::move(f.id);
+  return s;
+}
+
+}  // namespace ccal::verbs

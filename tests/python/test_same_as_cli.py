@@ -1,0 +1,66 @@
+"""Every verb gives the same numbers in Python as on the command line: the result's to_json() equals the
+program's JSON for the same configuration and the same options, left at their defaults on both sides (one set
+of defaults, in the library). Only the timing and thread-count fields, which depend on the run, are left out.
+Run by ctest with the module on PYTHONPATH and the program in CCAL_PROGRAM."""
+
+import json
+import os
+import re
+import subprocess
+import unittest
+
+import ccal
+
+SECOND = os.path.join(os.path.dirname(__file__), "..", "data", "golden", "second.toml")
+VOLATILE = {"wall_time_s", "threads", "trials_per_s"}
+
+
+def normalised(value):
+    """The JSON without the fields that depend on the machine and the run."""
+    if isinstance(value, dict):
+        return {k: normalised(v) for k, v in value.items() if k not in VOLATILE}
+    if isinstance(value, list):
+        return [normalised(v) for v in value]
+    if isinstance(value, str):
+        return re.sub(r", \d+ threads?, [0-9.]+ s", "", value)
+    return value
+
+
+def program_json(*args):
+    out = subprocess.run([os.environ["CCAL_PROGRAM"], *args, "--format", "json"], check=True,
+                         capture_output=True, text=True).stdout
+    return normalised(json.loads(out))
+
+
+class SameAsCli(unittest.TestCase):
+    def check(self, result, *args):
+        self.assertEqual(normalised(json.loads(result.to_json())), program_json(*args))
+
+    def test_every_verb_on_two_configurations(self):
+        for path in [None, SECOND]:
+            cfg = ccal.load_config(path) if path else ccal.bundled_example()
+            arg = [path] if path else []
+            with self.subTest(config=path or "bundled"):
+                self.check(ccal.budget(cfg), "budget", *arg)
+                self.check(ccal.budget(cfg, derivatives="automatic"), "budget", *arg,
+                           "--derivatives", "automatic")
+                self.check(ccal.sensed_input(cfg), "force", *arg)
+                self.check(ccal.sensed_input(cfg, run=2, time=123.4), "force", *arg, "--run", "3", "--time",
+                           "123.4")
+                self.check(ccal.simulate(cfg), "simulate", *arg)
+                self.check(ccal.monte_carlo(cfg, trials=3000, seed=7), "montecarlo", *arg, "--trials",
+                           "3000", "--seed", "7")
+                self.check(ccal.monte_carlo(cfg), "montecarlo", *arg)  # the defaults are the same
+                targets = {"K2": 2e-5, "K3": 2e-3} if path is None else {"K2": 1e-5, "K3": 1e-3}
+                self.check(ccal.allocate(cfg, targets), "allocate", *arg,
+                           *[f"--target={k}={v}" for k, v in targets.items()])
+
+    def test_text_report_is_the_cli_text(self):
+        cfg = ccal.bundled_example()
+        out = subprocess.run([os.environ["CCAL_PROGRAM"], "budget"], check=True, capture_output=True,
+                             text=True).stdout
+        self.assertEqual(str(ccal.budget(cfg)), out)
+
+
+if __name__ == "__main__":
+    unittest.main()
