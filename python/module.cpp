@@ -23,14 +23,14 @@ PYBIND11_MODULE(ccal, m) {
   m.attr("__version__") = ccal::version();
   // Bad input (configuration, options, data) and ill-posed identifications, as ValueError subclasses.
   static py::exception<ccal::InputError> input_error(m, "InputError", PyExc_ValueError);
-  static py::exception<ccal::IllPosedFit> ill_posed(m, "IllPosedFit", PyExc_ValueError);
+  static py::exception<ccal::IllPosedFit> ill_posed(m, "IllPosedFit", input_error.ptr());
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const ccal::IllPosedFit& e) {  // before its base class
+      ill_posed(e.what());
     } catch (const ccal::InputError& e) {
       input_error(e.what());
-    } catch (const ccal::IllPosedFit& e) {
-      ill_posed(e.what());
     }
   });
   ccal::python::bind_config(m);

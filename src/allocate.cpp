@@ -573,7 +573,8 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   try {
     b = compute_budget(cfg, bo);
   } catch (const IllPosedFit& e) {
-    throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
   }
   const auto nk = b.coefficients.size();
   const auto ns = b.sources.size();
@@ -603,13 +604,15 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
           fmt::format("target on {}: {} is not a positive expanded uncertainty", t.coefficient, t.expanded));
     // Tolerances shrink in proportion to the target: beyond a million-fold tightening of every source the
     // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0).
-    const double configured = kp * b.standard_uncertainty[Eigen::Index(k)], least = kMinTargetFraction * configured;
+    const double configured = kp * b.standard_uncertainty[Eigen::Index(k)],
+                 least = kMinTargetFraction * configured;
     if (t.expanded < least)
-      throw InputError(fmt::format(
-          "target on {}: {:g} {} is below {:g} × its configured U = {:.4g} {}; accepted: at least {:.4g} {} (a "
-          "tighter target cannot be met by any realistic tolerance)",
-          t.coefficient, t.expanded * b.display_scale[k], b.units[k], kMinTargetFraction,
-          configured * b.display_scale[k], b.units[k], least * b.display_scale[k], b.units[k]));
+      throw InputError(
+          fmt::format("target on {}: {:g} {} is below {:g} × its configured U = {:.4g} {}; accepted: at "
+                      "least {:.4g} {} (a "
+                      "tighter target cannot be met by any realistic tolerance)",
+                      t.coefficient, t.expanded * b.display_scale[k], b.units[k], kMinTargetFraction,
+                      configured * b.display_scale[k], b.units[k], least * b.display_scale[k], b.units[k]));
     r.coefficients[k].has_target = true;
     r.coefficients[k].target = t.expanded;
     r.targets.push_back(k);
@@ -723,7 +726,8 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
     model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors,
                               ModelMode::exact);
   } catch (const IllPosedFit& e) {
-    throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
   }
   MonteCarloOptions mo;
   mo.trials = o.verify_trials;

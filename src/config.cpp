@@ -37,33 +37,6 @@ ConfigError::ConfigError(std::string source, int line, int column, std::string k
     : LocatedInputError(format_config_error(source, line, column, key, problem), source, line, column, key,
                         problem) {}
 
-std::string_view distribution_name(Distribution d) noexcept {
-  switch (d) {
-    case Distribution::normal:
-      return "normal";
-    case Distribution::uniform:
-      return "uniform";
-    case Distribution::triangular:
-      return "triangular";
-    case Distribution::arcsine:
-      return "arcsine";
-  }
-  return "normal";
-}
-
-double standard_uncertainty(double bound, Distribution d) noexcept {
-  switch (d) {
-    case Distribution::normal:
-      return bound;
-    case Distribution::uniform:
-      return bound / std::sqrt(3.0);
-    case Distribution::triangular:
-      return bound / std::sqrt(6.0);
-    case Distribution::arcsine:
-      return bound / std::numbers::sqrt2;
-  }
-  return bound;
-}
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);

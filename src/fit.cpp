@@ -159,7 +159,7 @@ std::pair<Index, Index> most_correlated_pair(const Eigen::MatrixXd& corr) {
 // Names the terms taking part in each (numerical) null vector of the scaled design.
 [[noreturn]] void throw_rank_deficient(const Eigen::VectorXd& sigma, const Eigen::MatrixXd& v,
                                        double tolerance, const std::vector<std::string>& names) {
-  std::vector<std::string> groups;
+  std::vector<std::string> groups, all_involved;
   for (Index i = 0; i < sigma.size(); ++i) {
     if (sigma(i) > tolerance) continue;
     const Eigen::VectorXd null_vector = v.col(i);
@@ -169,6 +169,7 @@ std::pair<Index, Index> most_correlated_pair(const Eigen::MatrixXd& corr) {
       // A dependency among q columns has components of order 1/sqrt(q); bystanders are near zero.
       if (std::abs(null_vector(k)) > 0.1 * largest) involved.push_back(names[static_cast<std::size_t>(k)]);
     }
+    all_involved.insert(all_involved.end(), involved.begin(), involved.end());
     if (involved.size() == 1) {
       groups.push_back(
           fmt::format("the plan cannot determine {}: its column is (numerically) zero "
@@ -183,7 +184,7 @@ std::pair<Index, Index> most_correlated_pair(const Eigen::MatrixXd& corr) {
   }
   std::string message = "fit: ";
   for (std::size_t g = 0; g < groups.size(); ++g) message += (g ? "; " : "") + groups[g];
-  throw IllPosedFit(message);
+  throw IllPosedFit(message, all_involved);
 }
 
 }  // namespace
@@ -218,7 +219,8 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
     throw IllPosedFit(
         fmt::format("fit: {} observation{} cannot determine {} free terms ({}); the plan needs at "
                     "least {} runs",
-                    rows, rows == 1 ? "" : "s", m, join_names(result.names), m));
+                    rows, rows == 1 ? "" : "s", m, join_names(result.names), m),
+        result.names);
   }
   Eigen::MatrixXd h_free(rows, m);
   for (Index k = 0; k < m; ++k) h_free.col(k) = p.H.col(free_cols[static_cast<std::size_t>(k)]);
@@ -237,8 +239,9 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
   for (Index k = 0; k < m; ++k) {
     const double norm = a.col(k).stableNorm();
     if (!(norm > 0)) {
-      throw IllPosedFit(fmt::format("fit: the plan cannot determine {}: its column is zero in every run",
-                                    result.names[static_cast<std::size_t>(k)]));
+      const std::string& name = result.names[static_cast<std::size_t>(k)];
+      throw IllPosedFit(
+          fmt::format("fit: the plan cannot determine {}: its column is zero in every run", name), {name});
     }
     scale(k) = std::ldexp(1.0, -std::ilogb(norm));
     a.col(k) *= scale(k);
@@ -274,7 +277,8 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
                       "design exceeds "
                       "max_condition {:.3g}; the most correlated pair is {} and {} (correlation {:.10g})",
                       result.condition_number, o.max_condition, result.names[static_cast<std::size_t>(i)],
-                      result.names[static_cast<std::size_t>(j)], corr(i, j)));
+                      result.names[static_cast<std::size_t>(j)], corr(i, j)),
+          {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
     }
 
     // Refinement of the augmented system [I A; A^T 0] [r; z] = [b; 0] (Bjorck): r is carried in
@@ -391,7 +395,8 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
                         "(beyond {:.8g}), so "
                         "the data determine only a combination of the two",
                         result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
-                        result.correlation(i, j), o.refuse_correlation));
+                        result.correlation(i, j), o.refuse_correlation),
+            {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
       }
       if (std::abs(result.correlation(i, j)) > o.alias_correlation) {
         result.warnings.push_back(

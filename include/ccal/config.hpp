@@ -21,9 +21,10 @@
 
 #include "ccal/centrifuge.hpp"
 #include "ccal/errors.hpp"
+#include "ccal/tolerance.hpp"
 #include "ccal/instrument.hpp"
 #include "ccal/model_mode.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/experiment.hpp"
 #include "ccal/site.hpp"
 #include "ccal/test_plan.hpp"
 
@@ -37,28 +38,6 @@ class ConfigError : public LocatedInputError {
   ConfigError(std::string source, int line, int column, std::string key, std::string problem);
 
   const std::string& key() const noexcept { return item(); }
-};
-
-// How the tolerance of an error source is distributed (GUM terms).
-enum class Distribution {
-  normal,      // bound = standard deviation σ
-  uniform,     // bound = half-width a: uniform on [−a, a], σ = a/√3
-  triangular,  // bound = half-width a: triangular on [−a, a], σ = a/√6
-  arcsine,     // bound = amplitude a: a·sin(uniform phase), σ = a/√2 (harmonic amplitudes)
-};
-
-std::string_view distribution_name(Distribution d) noexcept;
-// Standard deviation of a tolerance with the given bound and distribution.
-double standard_uncertainty(double bound, Distribution d) noexcept;
-
-// Tolerance of one error parameter, for the error budget.
-struct Tolerance {
-  int parameter = 0;  // index in the centrifuge's ErrorLayout
-  std::string id;     // parameter id, e.g. "dthz5", "dx3_c1"
-  double bound = 0;   // SI unit of the parameter (rad, m, rad/s, m/(rad/s)²); meaning set by distribution
-  Distribution distribution = Distribution::normal;
-  std::string group;  // sources with the same non-empty group are fully correlated (same draw, same sign)
-  double cost = 1.0;  // relative cost weight (> 0) for tolerance allocation
 };
 
 struct Config {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace ccal {
 
@@ -45,6 +46,21 @@ class LocatedInputError : public InputError {
 class UnitError : public InputError {
  public:
   using InputError::InputError;
+};
+
+// The test plan (or a table's data) cannot determine the requested terms: fewer observations than free
+// terms, linearly dependent columns, a condition number above the allowed limit, or estimates too correlated
+// to separate. terms() names the terms involved (empty where only column numbers are known), so that a front
+// end can say what would help (more g-levels for powers of a_i, another mounting for terms in a_p or a_o).
+class IllPosedFit : public InputError {
+ public:
+  explicit IllPosedFit(const std::string& message, std::vector<std::string> terms = {})
+      : InputError(message), terms_(std::move(terms)) {}
+
+  const std::vector<std::string>& terms() const noexcept { return terms_; }
+
+ private:
+  std::vector<std::string> terms_;
 };
 
 }  // namespace ccal

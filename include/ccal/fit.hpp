@@ -21,14 +21,9 @@
 #include <type_traits>
 #include <vector>
 
-namespace ccal {
+#include "ccal/errors.hpp"
 
-// The test plan cannot determine the requested terms: fewer runs than free terms, linearly dependent
-// columns (the message names the terms involved) or a condition number above the allowed limit.
-class IllPosedFit : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace ccal {
 
 struct FitProblem {
   std::vector<std::string> term_names;  // one per column of H, unique and non-empty

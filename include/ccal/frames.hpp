@@ -22,6 +22,8 @@ template <class S>
 using Vec3 = Eigen::Matrix<S, 3, 1>;
 template <class S>
 using Mat3 = Eigen::Matrix<S, 3, 3>;
+template <class S>
+using VecX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
 
 // cos q and sin q. Error angles are tiny, and for |q| < kSmallAngle = 1e-3 their Taylor polynomials to q⁹
 // (resp. q⁸) are exact in double precision (the first omitted term is below 1e-30 relative), several times

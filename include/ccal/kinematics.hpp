@@ -21,9 +21,6 @@
 
 namespace ccal {
 
-template <class S>
-using VecX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
-
 // Joint angles, rates and accelerations at one instant. The accelerations are those of the drives' rate
 // ripple (docs/model.md §3.1); β does not move during a run.
 template <class S>

@@ -26,7 +26,8 @@ BudgetResult budget(const Config& config, const BudgetOptions& options) {
   try {
     r.budget = compute_budget(config, bo);
   } catch (const IllPosedFit& e) {
-    throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
   }
   check_finite(config, r.budget);  // never a nan or inf returned as a result
   return r;

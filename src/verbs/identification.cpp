@@ -12,20 +12,6 @@ namespace ccal::verbs {
 
 namespace {
 
-bool is_name_char(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
-}
-
-// Whether the message names the term as a word of its own ("K2" but not inside "K20" or "K2x").
-bool names_term(std::string_view message, std::string_view id) {
-  for (std::size_t pos = message.find(id); pos != std::string_view::npos; pos = message.find(id, pos + 1)) {
-    const bool before = pos == 0 || !is_name_char(message[pos - 1]);
-    const std::size_t after = pos + id.size();
-    if (before && (after == message.size() || !is_name_char(message[after]))) return true;
-  }
-  return false;
-}
-
 std::string power_suffix(int n) { return n == 1 ? "" : fmt::format("^{}", n); }
 
 }  // namespace
@@ -42,11 +28,12 @@ std::string term_unit(const TableTerm& term, const ColumnUnits& units) {
                      power_suffix(spec.power));
 }
 
-std::string ill_posed_hint(std::string_view message, const std::vector<std::string>& terms) {
+std::string ill_posed_hint(const std::vector<std::string>& terms) {
   bool mounting = false, levels = false;
   for (const auto& id : terms) {
-    if (!names_term(message, id)) continue;
-    switch (parse_term(id).value().kind) {
+    const auto term = parse_term(id);
+    if (!term) continue;
+    switch (term->kind) {
       case TermKind::p:
       case TermKind::o:
       case TermKind::ip:
@@ -79,9 +66,7 @@ Identification identify_table(const CsvTable& table, const TableFitSpec& spec, c
   } catch (const IllPosedFit& e) {
     std::string message = e.what();
     if (message.starts_with("fit: ")) message.erase(0, 5);
-    std::vector<std::string> names;
-    for (const auto& t : spec.terms) names.push_back(t.id);
-    throw InputError(fmt::format("{}: {}{}", source, message, ill_posed_hint(message, names)));
+    throw IllPosedFit(fmt::format("{}: {}{}", source, message, ill_posed_hint(e.terms())), e.terms());
   }
   for (Eigen::Index k = 0; k < id.fit.value.size(); ++k)  // never a nan or inf reported as a result
     if (!std::isfinite(id.fit.value[k]) || !std::isfinite(id.fit.std_error[k]))

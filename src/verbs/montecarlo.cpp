@@ -39,7 +39,8 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
     r.budget = compute_budget(config, bo);
     model = calibration_model(config, mode);
   } catch (const IllPosedFit& e) {
-    throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
   }
   ccal::MonteCarloOptions mo;
   mo.trials = o.trials;

@@ -116,7 +116,8 @@ ObservabilityReport assess_plan(const Config& config, ModelMode mode) {
   try {
     static_cast<void>(fit(problem));  // dependent or nearly dependent terms: the fit's own message
   } catch (const IllPosedFit& e) {
-    throw InputError(std::string("the test plan cannot identify the configured terms: ") + e.what());
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
   }
   const double unit = output_unit_si(config.instrument.output_unit);
   std::vector<double> rates;

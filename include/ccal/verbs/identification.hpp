@@ -43,9 +43,9 @@ struct Identification {
 // Unit of a term's coefficient.
 std::string term_unit(const TableTerm& term, const ColumnUnits& units);
 
-// The hint appended to an ill-posed fit's message for the terms it names: another mounting for terms in a_p
-// or a_o, more g-levels for powers of a_i; "" if it names neither.
-std::string ill_posed_hint(std::string_view message, const std::vector<std::string>& terms);
+// The hint appended to an ill-posed fit's message for the terms involved (IllPosedFit::terms): another
+// mounting for terms in a_p or a_o, more g-levels for powers of a_i; "" for neither.
+std::string ill_posed_hint(const std::vector<std::string>& terms);
 
 // Fits the table and assesses the observability of each free term (with what is known of the runs, if given;
 // else from the fit's scatter). An ill-posed fit is an InputError "<source>: <the fit's message><hint>", an

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""The include rules of docs/architecture.md: a library header or source in layer L includes only headers of
+L and of the layers below it (core < model < setup < reduction < uncertainty < io < verbs < render), plus
+version.hpp; library headers include no private header of src/. Exit 1 with one line per violation."""
+import pathlib
+import re
+import sys
+
+LAYERS = ["core", "model", "setup", "reduction", "uncertainty", "io", "verbs", "render"]
+RANK = {name: k for k, name in enumerate(LAYERS)}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+
+
+def layer_of(path, root):
+    """The layer of a library file (include/ccal/<layer>/… or src/<layer>/…), None for any other file."""
+    rel = path.relative_to(root).parts
+    if rel[:2] == ("include", "ccal") and len(rel) > 3:
+        return rel[2]
+    if rel[0] == "src" and len(rel) > 2:
+        return rel[1]
+    return None
+
+
+def main(root):
+    root = pathlib.Path(root).resolve()
+    problems, checked = [], 0
+    files = list((root / "include" / "ccal").rglob("*.hpp")) + list((root / "src").rglob("*.[ch]pp"))
+    for path in sorted(files):
+        layer = layer_of(path, root)
+        if layer is None:
+            if path.name != "version.hpp" and path.parent.name != "src":
+                problems.append(f"{path.relative_to(root)}: outside every layer folder")
+            continue
+        if layer not in RANK:
+            problems.append(f"{path.relative_to(root)}: unknown layer '{layer}'; accepted: {', '.join(LAYERS)}")
+            continue
+        text = path.read_text(encoding="utf-8")
+        for n, line in enumerate(text.splitlines(), 1):
+            m = INCLUDE.match(line)
+            if not m:
+                continue
+            target = m.group(1)
+            checked += 1
+            if not target.startswith("ccal/"):
+                if path.suffix == ".hpp" and path.is_relative_to(root / "include"):
+                    problems.append(f"{path.relative_to(root)}:{n}: installed header includes '{target}', "
+                                    "not part of the installed tree")
+                continue
+            parts = target.split("/")
+            if parts == ["ccal", "version.hpp"]:
+                continue
+            if len(parts) != 3 or parts[1] not in RANK:
+                problems.append(f"{path.relative_to(root)}:{n}: '{target}' is not in a layer folder")
+                continue
+            if RANK[parts[1]] > RANK[layer]:
+                problems.append(f"{path.relative_to(root)}:{n}: layer '{layer}' includes '{target}' of the "
+                                f"higher layer '{parts[1]}'")
+    for p in problems:
+        print(p)
+    print(f"{len(files)} files, {checked} includes checked, {len(problems)} violation(s)")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parents[1]))
