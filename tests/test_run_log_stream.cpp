@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -109,6 +111,33 @@ TEST(RunLogStream, LineFitIsExactToRoundOff) {
   EXPECT_NEAR(r.theta1_start, double(start), 1e-13);  // measured: 2e-15
   // the RMS of the 7e-8 rad wobble from Σd² − βᵀXᵀd, with d ~ 1e-7 rad: to 1e-6 of itself
   EXPECT_NEAR(r.theta1_rms, double(std::sqrt(rss / n)), 1e-6 * double(std::sqrt(rss / n)));
+}
+
+TEST(RunLogStream, NumbersReadAsStdFromCharsReadsThem) {
+  // Sampled outputs of every shape a logger writes (1 to 17 significant digits, signs, integers, long
+  // fractions, exponents, a '+'): the trapezoid mean over unit time steps, summed here from std::from_chars'
+  // doubles in the same order, is the same to the bit.
+  std::string text = "time,output\n";
+  std::vector<double> y;
+  std::uint64_t state = 12345;
+  auto next = [&] { return state = state * 6364136223846793005ull + 1442695040888963407ull; };
+  for (int k = 0; k < 20000; ++k) {
+    const double v = (double(next() >> 11) / double(1ull << 53) - 0.3) * std::pow(10.0, int(next() % 12) - 4);
+    std::string cell = fmt::format("{:.{}g}", v, 1 + int(next() % 17));
+    if (k % 7 == 0) cell = fmt::format("{:.{}f}", v, int(next() % 25));
+    if (k % 11 == 0) cell = fmt::format("{}", std::llround(v * 1e3));
+    if (k % 13 == 0 && cell[0] != '-') cell = "+" + cell;
+    text += fmt::format("{},{}\n", k, cell);
+    double parsed = 0;
+    const std::string_view digits =
+        cell[0] == '+' ? std::string_view(cell).substr(1) : std::string_view(cell);
+    std::from_chars(digits.data(), digits.data() + digits.size(), parsed);
+    y.push_back(parsed);
+  }
+  double integral = 0;
+  for (std::size_t i = 1; i < y.size(); ++i) integral += 0.5 * (y[i] + y[i - 1]) * 1.0;
+  const ReducedLog r = reduce_run_log(parse_csv(text, "numbers.csv"), RunLogOptions{}, 8.8);
+  EXPECT_EQ(r.mean_output, integral / double(y.size() - 1));
 }
 
 // The message of reducing `text` from a file and from a table (the same, or the test fails).
