@@ -4,7 +4,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdint>
 #include <numbers>
 
 namespace ccal::detail {
@@ -16,40 +15,6 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 double wrapped(double angle) {
   const double a = std::fmod(angle, kTwoPi);
   return a < 0 ? a + kTwoPi : a;
-}
-
-// Clinger's fast path for the plain decimals of a log, [-]digits[.digits]: a mantissa m < 2^53 and a
-// fraction of at most 22 digits are exact doubles, so m / 10^f, one correctly rounded division, is the
-// correctly rounded value of the text, the same double std::from_chars gives. Anything else: false.
-bool plain_decimal(std::string_view text, double& value) {
-  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  constexpr std::uint64_t kExact = std::uint64_t(1) << 53;
-  const char* p = text.data();
-  const char* const end = p + text.size();
-  const bool negative = p != end && *p == '-';
-  if (negative) ++p;
-  std::uint64_t m = 0;
-  const char* const first = p;
-  const char* dot = nullptr;
-  for (; p != end; ++p) {
-    const unsigned digit = unsigned(*p) - unsigned('0');
-    if (digit < 10) {
-      if (m >= kExact) return false;
-      m = 10 * m + digit;
-    } else if (*p == '.' && dot == nullptr) {
-      dot = p;
-    } else {
-      return false;
-    }
-  }
-  if (p == first || dot == first || (dot != nullptr && dot + 1 == end) || m >= kExact)
-    return false;  // no digit, or none before or after the point
-  const std::ptrdiff_t fraction = dot == nullptr ? 0 : end - dot - 1;
-  if (fraction > 22) return false;
-  value = double(m) / kPow10[fraction];
-  if (negative) value = -value;
-  return true;
 }
 
 }  // namespace
@@ -116,7 +81,7 @@ std::optional<double> LogReducer::cell(const std::string_view* fields, std::size
   // which accepts the same numbers.
   const std::string_view f = fields[column];
   double value = 0;
-  if (plain_decimal(f, value)) return value;
+  if (parse_plain_decimal(f, value)) return value;
   const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
   if (ec == std::errc{} && end == f.data() + f.size() && std::isfinite(value)) return value;
   if (const std::optional<double> v = parse_number(f)) return v;

@@ -18,6 +18,12 @@ class CsvRowSink {
   virtual void row(const std::string_view* fields, int line) = 0;
 };
 
+// Clinger's fast path for the plain decimals of a log, [-]digits[.digits]: a mantissa m < 2^53 and a
+// fraction of at most 22 digits are exact doubles, so m / 10^f, one correctly rounded division, is the
+// correctly rounded value of the text: the same double std::from_chars gives. False for anything else
+// (exponents, a '+', blanks, more digits), which the caller reads the general way.
+bool parse_plain_decimal(std::string_view text, double& value);
+
 // Streams a file to `sink`. Throws CsvError (file unreadable, empty, no header, bad header, bad row) and
 // whatever the sink throws.
 void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink);
