@@ -1,7 +1,5 @@
 #include "ccal/csv_stream.hpp"
 
-#include <cstddef>
-#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -42,23 +40,28 @@ class LineReader {
       sink_.header(header_, line_no_);
       return;
     }
-    if (line.find('"') == std::string_view::npos) {
-      std::size_t count = 0, start = 0;
-      while (true) {
-        const std::size_t comma = line.find(',', start);
-        const std::string_view field = trim(
-            line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
-        if (count < views_.size()) views_[count] = field;
-        ++count;
-        if (comma == std::string_view::npos) break;
-        start = comma + 1;
+    // One scan: fields at the commas, until a quote sends the line to parse_csv's splitter.
+    std::size_t count = 0, start = 0;
+    bool quoted = false;
+    for (std::size_t i = 0; i <= line.size(); ++i) {
+      if (i < line.size() && line[i] != ',') {
+        if (line[i] == '"') {
+          quoted = true;
+          break;
+        }
+        continue;
       }
-      if (count != header_.size()) check_csv_row(count, CsvFieldProblem{}, header_, source_, line_no_);
-    } else {
+      if (count < views_.size()) views_[count] = trim(line.substr(start, i - start));
+      ++count;
+      start = i + 1;
+    }
+    if (quoted) {
       CsvFieldProblem bad;
       quoted_ = split_csv_fields(line, bad);
       check_csv_row(quoted_.size(), bad, header_, source_, line_no_);
       for (std::size_t k = 0; k < quoted_.size(); ++k) views_[k] = quoted_[k];
+    } else if (count != header_.size()) {
+      check_csv_row(count, CsvFieldProblem{}, header_, source_, line_no_);
     }
     sink_.row(views_.data(), line_no_);
   }
@@ -95,37 +98,6 @@ struct FileCloser {
 };
 
 }  // namespace
-
-bool parse_plain_decimal(std::string_view text, double& value) {
-  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  constexpr std::uint64_t kExact = std::uint64_t(1) << 53;
-  const char* p = text.data();
-  const char* const end = p + text.size();
-  const bool negative = p != end && *p == '-';
-  if (negative) ++p;
-  std::uint64_t m = 0;
-  const char* const first = p;
-  const char* dot = nullptr;
-  for (; p != end; ++p) {
-    const unsigned digit = unsigned(*p) - unsigned('0');
-    if (digit < 10) {
-      if (m >= kExact) return false;
-      m = 10 * m + digit;
-    } else if (*p == '.' && dot == nullptr) {
-      dot = p;
-    } else {
-      return false;
-    }
-  }
-  if (p == first || dot == first || (dot != nullptr && dot + 1 == end) || m >= kExact)
-    return false;  // no digit, or none before or after the point
-  const std::ptrdiff_t fraction = dot == nullptr ? 0 : end - dot - 1;
-  if (fraction > 22) return false;
-  value = double(m) / kPow10[fraction];
-  if (negative) value = -value;
-  return true;
-}
 
 void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink& sink) {
   LineReader reader{std::string(source), sink};

@@ -175,6 +175,10 @@ TEST(RunLogStream, ProblemsAreReportedInTheOrderOfTheWholeTableReduction) {
   EXPECT_NE(refusal("temperature\n1\n").find("no such column"), std::string::npos);
   EXPECT_NE(refusal("# only a comment\n").find("no header"), std::string::npos);
   EXPECT_NE(refusal("time,pulses\n0,1\n").find("at least two"), std::string::npos);
+  // quoted fields go through parse_csv's splitter: a quoted number is a number, an open quote a CSV error
+  EXPECT_NE(refusal("time,pulses\n\"0\",1\n1,\"x\"\n2,\"3\n").find(":4:2"), std::string::npos);
+  EXPECT_NE(refusal("time,pulses\n\"0\",1\n1,\"x\"\n").find(":3:2: pulses: 'x' is not a number"),
+            std::string::npos);
 }
 
 }  // namespace
