@@ -152,8 +152,8 @@ void warn_about_control(const Config& cfg, const Reduction& r) {
     if (look != ControlLook::speed && look != ControlLook::phase_locked) continue;
     if ((look == ControlLook::speed) == (configured == PlatformControl::speed)) continue;
     std::cerr << fmt::format(
-        "ccal: warning: run '{}': the encoders look like platform_control = \"{}\" (the platform follows "
-        "{:.3g} of the main axis's ripple), the configuration has \"{}\" (model.md §13.2)\n",
+        "ccal: warning: run '{}': the encoders look like platform_control = \"{}\" (the platform angle "
+        "carries lambda = {:.3g} of the main axis's ripple), the configuration has \"{}\" (model.md §13.2)\n",
         lr.measured.name, control_look_name(look), lr.control.following, name);
   }
 }
