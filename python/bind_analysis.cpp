@@ -365,7 +365,20 @@ void bind_analysis(py::module_& m) {
       .def_readonly("gamma_rate", &ReducedLog::gamma_rate, "[rad/s]")
       .def_readonly("gamma_start", &ReducedLog::gamma_start, "φ0 [rad]")
       .def_readonly("gamma_end", &ReducedLog::gamma_end, "ψ [rad]")
-      .def_readonly("gamma_rms", &ReducedLog::gamma_rms, "[rad]");
+      .def_readonly("gamma_rms", &ReducedLog::gamma_rms, "[rad]")
+      .def_readonly("theta1_harmonics", &ReducedLog::theta1_harmonics,
+                    "angle harmonics Ĉ1, Ŝ1, … of θ1 [rad] (empty: not fitted)")
+      .def_readonly("theta1_harmonic_sigma", &ReducedLog::theta1_harmonic_sigma, "[rad]")
+      .def_readonly("gamma_harmonics", &ReducedLog::gamma_harmonics, "angle harmonics of γ [rad]")
+      .def_readonly("gamma_harmonic_sigma", &ReducedLog::gamma_harmonic_sigma, "[rad]");
+
+  py::class_<ControlEvidence>(m, "ControlEvidence", "The platform's control as both encoders show it.")
+      .def_property_readonly(
+          "look", [](const ControlEvidence& e) { return std::string(control_look_name(e.look)); },
+          "'speed', 'phase_locked', 'undetermined' or 'not tested'")
+      .def_readonly("following", &ControlEvidence::following, "λ: 1 phase-locked, 0 speed")
+      .def_readonly("main_in_gamma", &ControlEvidence::main_in_gamma, "|p| [rad]")
+      .def_readonly("threshold", &ControlEvidence::threshold, "[rad]");
 
   py::class_<LoggedRun>(m, "LoggedRun")
       .def_readonly("index", &LoggedRun::index, "0-based index in the plan")
@@ -373,7 +386,11 @@ void bind_analysis(py::module_& m) {
       .def_readonly("measured", &LoggedRun::measured, "the planned run as the log measured it")
       .def_readonly("planned_rate", &LoggedRun::planned_rate, "[rad/s]")
       .def_readonly("rate", &LoggedRun::rate, "[rad/s]")
-      .def_readonly("mismatch", &LoggedRun::mismatch, "ΔΩ of the model [rad/s]");
+      .def_readonly("mismatch", &LoggedRun::mismatch, "ΔΩ of the model [rad/s]")
+      .def_readonly("main_ripple", &LoggedRun::main_ripple,
+                    "measured main-axis ripple c1, s1, … (relative; empty: the configured one)")
+      .def_readonly("platform_ripple", &LoggedRun::platform_ripple, "measured platform ripple c1, s1, …")
+      .def_readonly("control", &LoggedRun::control);
 
   py::class_<LogReduction>(m, "LogReduction")
       .def_readonly("runs", &LogReduction::runs)

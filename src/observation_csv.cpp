@@ -132,6 +132,71 @@ std::optional<double> parse_number(std::string_view text) {
   return std::nullopt;
 }
 
+std::string number_cell_problem(std::string_view cell) {
+  double v = 0;
+  switch (read_number(cell, v)) {
+    case NumberKind::finite:
+      return "";
+    case NumberKind::empty:
+      return "empty cell; accepted: a finite number";
+    case NumberKind::non_finite:
+      return fmt::format("'{}' is not a finite number; accepted: a finite number", cell);
+    case NumberKind::not_a_number:
+      break;
+  }
+  return fmt::format("'{}' is not a number; accepted: a decimal number such as 1.5 or -2e-3", cell);
+}
+
+std::vector<std::string> split_csv_fields(std::string_view line, CsvFieldProblem& bad) {
+  return split_fields(line, bad);
+}
+
+void check_csv_header(const std::vector<std::string>& fields, const CsvFieldProblem& bad,
+                      const std::string& source, int line_no) {
+  if (bad) throw CsvError(source, line_no, static_cast<int>(bad->first + 1), "", bad->second);
+  // Duplicates found through a map of the names seen (O(n log n); a pairwise check took seconds for a
+  // header of tens of thousands of columns).
+  std::map<std::string_view, std::size_t> seen;
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    if (fields[k].empty())
+      throw CsvError(source, line_no, static_cast<int>(k + 1), "",
+                     "empty column name in the header; accepted: a header row naming every column, e.g. x,y");
+    const auto [it, fresh] = seen.emplace(fields[k], k);
+    if (!fresh)
+      throw CsvError(
+          source, line_no, static_cast<int>(k + 1), fields[k],
+          fmt::format("duplicate column name (also column {}); accepted: unique names", it->second + 1));
+  }
+  if (std::all_of(fields.begin(), fields.end(),
+                  [](const std::string& f) { return parse_number(f).has_value(); }))
+    throw CsvError(source, line_no, 1, "",
+                   fmt::format("the first row holds numbers, not column names; accepted: a header row naming "
+                               "the columns first, e.g. {}",
+                               fields.size() == 2 ? "x,y" : "run,a_i,output"));
+}
+
+void check_csv_row(std::size_t field_count, const CsvFieldProblem& bad,
+                   const std::vector<std::string>& header, const std::string& source, int line_no) {
+  if (bad) {
+    const std::size_t k = std::min(bad->first, header.size() - 1);
+    throw CsvError(source, line_no, static_cast<int>(bad->first + 1), header[k], bad->second);
+  }
+  if (field_count != header.size()) {
+    const std::size_t k = std::min(field_count, header.size());
+    throw CsvError(
+        source, line_no, static_cast<int>(k + 1), k < header.size() ? header[k] : "",
+        fmt::format("ragged row: {} field{}, the header has {}; accepted: one field per column "
+                    "({})",
+                    field_count, field_count == 1 ? "" : "s", header.size(), fmt::join(header, ", ")));
+  }
+}
+
+CsvError no_csv_header(const std::string& source, int line_no) {
+  return CsvError(source, std::max(line_no, 1), 0, "",
+                  fmt::format("{}; accepted: a header row naming the columns, then one row per observation",
+                              line_no == 0 ? "empty file" : "no header row (only comments and blank lines)"));
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Tables
 
@@ -155,18 +220,7 @@ Eigen::VectorXd CsvTable::numbers(std::string_view column, std::string_view need
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::string& cell = rows[r][*k];
     double v = 0;
-    switch (read_number(cell, v)) {
-      case NumberKind::finite:
-        break;
-      case NumberKind::empty:
-        throw error_at(r, *k, "empty cell; accepted: a finite number");
-      case NumberKind::non_finite:
-        throw error_at(r, *k, fmt::format("'{}' is not a finite number; accepted: a finite number", cell));
-      case NumberKind::not_a_number:
-        throw error_at(
-            r, *k,
-            fmt::format("'{}' is not a number; accepted: a decimal number such as 1.5 or -2e-3", cell));
-    }
+    if (read_number(cell, v) != NumberKind::finite) throw error_at(r, *k, number_cell_problem(cell));
     out[static_cast<Eigen::Index>(r)] = v;
   }
   return out;
@@ -190,57 +244,19 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
       t.comments.push_back({line_no, std::string(trim(content.substr(1)))});
       continue;
     }
-    std::optional<std::pair<std::size_t, std::string>> bad;
+    CsvFieldProblem bad;
     std::vector<std::string> fields = split_fields(line, bad);
     if (t.header.empty()) {
-      if (bad) throw CsvError(t.source, line_no, static_cast<int>(bad->first + 1), "", bad->second);
-      // Duplicates found through a map of the names seen (O(n log n); a pairwise check took seconds for a
-      // header of tens of thousands of columns).
-      std::map<std::string_view, std::size_t> seen;
-      for (std::size_t k = 0; k < fields.size(); ++k) {
-        if (fields[k].empty())
-          throw CsvError(
-              t.source, line_no, static_cast<int>(k + 1), "",
-              "empty column name in the header; accepted: a header row naming every column, e.g. x,y");
-        const auto [it, fresh] = seen.emplace(fields[k], k);
-        if (!fresh)
-          throw CsvError(
-              t.source, line_no, static_cast<int>(k + 1), fields[k],
-              fmt::format("duplicate column name (also column {}); accepted: unique names", it->second + 1));
-      }
-      if (std::all_of(fields.begin(), fields.end(),
-                      [](const std::string& f) { return parse_number(f).has_value(); }))
-        throw CsvError(
-            t.source, line_no, 1, "",
-            fmt::format("the first row holds numbers, not column names; accepted: a header row naming "
-                        "the columns first, e.g. {}",
-                        fields.size() == 2 ? "x,y" : "run,a_i,output"));
+      check_csv_header(fields, bad, t.source, line_no);
       t.header = std::move(fields);
       t.header_line = line_no;
       continue;
     }
-    const std::size_t row = t.rows.size();
-    if (bad) {
-      const std::size_t k = std::min(bad->first, t.header.size() - 1);
-      throw CsvError(t.source, line_no, static_cast<int>(bad->first + 1), t.header[k], bad->second);
-    }
-    if (fields.size() != t.header.size()) {
-      const std::size_t k = std::min(fields.size(), t.header.size());
-      throw CsvError(t.source, line_no, static_cast<int>(k + 1), k < t.header.size() ? t.header[k] : "",
-                     fmt::format("ragged row: {} field{}, the header has {}; accepted: one field per column "
-                                 "({})",
-                                 fields.size(), fields.size() == 1 ? "" : "s", t.header.size(),
-                                 fmt::join(t.header, ", ")));
-    }
-    (void)row;
+    check_csv_row(fields.size(), bad, t.header, t.source, line_no);
     t.rows.push_back(std::move(fields));
     t.row_lines.push_back(line_no);
   }
-  if (t.header.empty())
-    throw CsvError(
-        t.source, std::max(line_no, 1), 0, "",
-        fmt::format("{}; accepted: a header row naming the columns, then one row per observation",
-                    line_no == 0 ? "empty file" : "no header row (only comments and blank lines)"));
+  if (t.header.empty()) throw no_csv_header(t.source, line_no);
   return t;
 }
 

@@ -3,64 +3,20 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
-#include <numbers>
 
 #include "ccal/errors.hpp"
+#include "run_log_reducer.hpp"
 
 namespace ccal {
 
 namespace {
 
-constexpr double kTwoPi = 2 * std::numbers::pi;
-
-double wrapped(double angle) {
-  const double a = std::fmod(angle, kTwoPi);
-  return a < 0 ? a + kTwoPi : a;
-}
-
-// The least-squares line through (t_k, a_k) of unwrapped angles: slope, value at t_0, value at t_last, and
-// the RMS residual. Times are centred on their mean for a well-conditioned solution.
-struct Line {
-  double slope = 0, start = 0, end = 0, rms = 0;
-};
-Line fit_line(const Eigen::VectorXd& t, const Eigen::VectorXd& a) {
-  const double tm = t.mean(), am = a.mean();
-  const Eigen::VectorXd dt = t.array() - tm, da = a.array() - am;
-  const double slope = dt.dot(da) / dt.squaredNorm();
-  Line l;
-  l.slope = slope;
-  l.start = am + slope * (t[0] - tm);
-  l.end = am + slope * (t[t.size() - 1] - tm);
-  l.rms = std::sqrt((da - slope * dt).squaredNorm() / double(t.size()));
-  return l;
-}
-
-// The encoder column unwrapped: each step mapped to (−π, π]. The samples must be less than half a revolution
-// apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping would alias.
-Eigen::VectorXd unwrapped(const CsvTable& table, std::string_view column, const Eigen::VectorXd& time,
-                          double scale, double planned_rate) {
-  const std::size_t k = *table.find(column);
-  Eigen::VectorXd a = table.numbers(column, "the encoder reduction") * scale;
-  for (Eigen::Index i = 1; i < a.size(); ++i) {
-    const double step_time = time[i] - time[i - 1];
-    if (std::abs(planned_rate) * step_time > 0.75 * std::numbers::pi)
-      throw table.error_at(
-          std::size_t(i), k,
-          fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the planned rate; "
-                      "accepted: less than 0.75π rad between encoder samples",
-                      step_time, std::abs(planned_rate) * step_time));
-    double step = std::remainder(a[i] - a[i - 1], kTwoPi);
-    if (step == -std::numbers::pi) step = std::numbers::pi;
-    a[i] = a[i - 1] + step;
-  }
-  return a;
-}
-
-// An encoder's fitted rate against the plan: beyond this fraction of the planned main-axis rate the log does not
-// belong to the run as planned. Real speed errors and platform mismatches are ppm-sized; a log in degrees read
-// as radians, the log of another g-level (rates differ by ≥ 10 % between the paper's levels), a stopped or
-// reversed encoder are off by far more.
+// An encoder's fitted rate against the plan: beyond this fraction of the planned main-axis rate the log does
+// not belong to the run as planned. Real speed errors and platform mismatches are ppm-sized; a log in degrees
+// read as radians, the log of another g-level (rates differ by ≥ 10 % between the paper's levels), a stopped
+// or reversed encoder are off by far more.
 constexpr double kEncoderRateTolerance = 0.05;
 
 void check_encoder_rate(std::string_view source, std::string_view run, std::string_view encoder,
@@ -76,73 +32,21 @@ void check_encoder_rate(std::string_view source, std::string_view run, std::stri
 }  // namespace
 
 ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, double planned_rate) {
-  ReducedLog r;
-  r.source = table.source;
-  r.samples = table.rows.size();
-  const auto time_column = table.find("time");
-  const Eigen::VectorXd t = table.numbers("time", "every run log");
-  if (r.samples < 2)
-    throw CsvError(
-        table.source, table.header_line, int(*time_column + 1), "time",
-        fmt::format("{} sample(s); accepted: at least two, the first and last of the run", r.samples));
-  for (std::size_t i = 1; i < r.samples; ++i)
-    if (!(t[Eigen::Index(i)] > t[Eigen::Index(i - 1)]))
-      throw table.error_at(i, *time_column,
-                           fmt::format("time {} s does not follow {} s; accepted: strictly increasing times",
-                                       t[Eigen::Index(i)], t[Eigen::Index(i - 1)]));
-  r.duration = t[t.size() - 1] - t[0];
-  if (!std::isfinite(r.duration))
-    throw CsvError(table.source, table.row_lines.back(), int(*time_column + 1), "time",
-                   fmt::format("the span {} s to {} s overflows; accepted: times of a run, in s", t[0],
-                               t[t.size() - 1]));
+  detail::LogReducer reducer(table.source, options, planned_rate);
+  reducer.header(table.header, table.header_line);
+  std::vector<std::string_view> fields(table.header.size());
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    for (std::size_t k = 0; k < fields.size(); ++k) fields[k] = table.rows[i][k];
+    reducer.row(fields.data(), table.row_lines[i]);
+  }
+  return reducer.finish();
+}
 
-  const auto pulses = table.find("pulses"), output = table.find("output");
-  if (pulses.has_value() == output.has_value())
-    throw CsvError(table.source, table.header_line, 0, pulses ? "pulses" : "output",
-                   pulses ? "both 'pulses' and 'output' columns; accepted: exactly one of them"
-                          : fmt::format("no output column; accepted: 'pulses' (cumulative count) or 'output' "
-                                        "(the instrument's output); the columns are {}",
-                                        fmt::join(table.header, ", ")));
-  if (pulses) {
-    if (!(options.pulse_weight > 0))
-      throw CsvError(table.source, table.header_line, int(*pulses + 1), "pulses",
-                     "a pulse count needs the pulse weight (the instrument's quantum, or --pulse-weight); "
-                     "accepted: a positive integrated output per pulse");
-    const Eigen::VectorXd p = table.numbers("pulses", "the output mean");
-    r.pulses = true;
-    r.mean_output = (p[p.size() - 1] - p[0]) * options.pulse_weight / r.duration;
-  } else {
-    const Eigen::VectorXd y = table.numbers("output", "the output mean") * options.output_scale;
-    double integral = 0;
-    for (Eigen::Index i = 1; i < y.size(); ++i) integral += 0.5 * (y[i] + y[i - 1]) * (t[i] - t[i - 1]);
-    r.mean_output = integral / r.duration;
-  }
-
-  // The fit squares the means: beyond 1e150 (SI) its sums overflow, and the failure would surface far from
-  // the log.
-  if (!(std::abs(r.mean_output) <= 1e150)) {
-    const std::size_t k = pulses ? *pulses : *output;
-    throw CsvError(table.source, table.header_line, int(k + 1), table.header[k],
-                   fmt::format("the mean output over the log, {:.6g} (SI), overflows the fit; accepted: the "
-                               "instrument's output in its output unit, or a pulse count, below 1e150",
-                               r.mean_output));
-  }
-  if (table.find("theta1")) {
-    const Line l = fit_line(t, unwrapped(table, "theta1", t, options.angle_scale, planned_rate));
-    r.has_theta1 = true;
-    r.theta1_rate = l.slope;
-    r.theta1_start = wrapped(l.start);
-    r.theta1_rms = l.rms;
-  }
-  if (table.find("gamma")) {
-    const Line l = fit_line(t, unwrapped(table, "gamma", t, options.angle_scale, planned_rate));
-    r.has_gamma = true;
-    r.gamma_rate = l.slope;
-    r.gamma_start = wrapped(l.start);
-    r.gamma_end = wrapped(l.end);
-    r.gamma_rms = l.rms;
-  }
-  return r;
+ReducedLog reduce_run_log_file(const std::filesystem::path& path, const RunLogOptions& options,
+                               double planned_rate) {
+  detail::LogReducer reducer(path.string(), options, planned_rate);
+  stream_csv_file(path, reducer);
+  return reducer.finish();
 }
 
 Run measured_run(const Run& planned, const ReducedLog& log, const Geometry& geometry, const Site& site) {
@@ -172,40 +76,89 @@ void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::stri
         where, logs, spec.free_terms.size(), fmt::join(spec.free_terms, ", "), spec.free_terms.size()));
 }
 
-LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::size_t, CsvTable>>& logs,
-                         const RunLogOptions& options, ModelMode mode) {
+namespace {
+
+// A log's source name and its reduction (at the run's planned rate), one per logged run.
+using LogSource = std::function<std::string(std::size_t)>;
+using LogReader = std::function<ReducedLog(std::size_t, double)>;
+
+// The configured ripple of a drive's channel, replaced by the measured one when there is one.
+void set_ripple(Eigen::VectorXd& known, const ErrorLayout& layout, int channel,
+                const std::vector<double>& ripple) {
+  for (int k = 1; k <= layout.harmonic_order() && std::size_t(2 * k) <= ripple.size(); ++k) {
+    known[layout.harmonic_index(channel, k, false)] = ripple[std::size_t(2 * k - 2)];
+    known[layout.harmonic_index(channel, k, true)] = ripple[std::size_t(2 * k - 1)];
+  }
+}
+
+std::vector<double> configured_ripple(const Eigen::VectorXd& known, const ErrorLayout& layout, int channel) {
+  std::vector<double> r;
+  for (int k = 1; k <= layout.harmonic_order(); ++k)
+    for (bool sine : {false, true}) r.push_back(known[layout.harmonic_index(channel, k, sine)]);
+  return r;
+}
+
+// The measured ripple of the drives (model.md §13.1): the main axis's from θ1's harmonics; the platform's
+// from γ's, less what a phase-locked platform takes over from the main axis (−δ1, in the model's main ripple,
+// measured or configured).
+void measured_ripple(LoggedRun& lr, const Config& config, Eigen::VectorXd& known) {
+  const ErrorLayout& layout = config.centrifuge.layout;
+  if (!lr.log.theta1_harmonics.empty()) {
+    lr.main_ripple = ripple_from_angle_harmonics(
+        resolved_harmonics(lr.log.theta1_harmonics, lr.log.theta1_harmonic_sigma));
+    set_ripple(known, layout, ripple1, lr.main_ripple);
+  }
+  if (!lr.log.gamma_harmonics.empty() && lr.measured.mode == PlatformMode::counter_rotating) {
+    std::vector<double> angle = resolved_harmonics(lr.log.gamma_harmonics, lr.log.gamma_harmonic_sigma);
+    if (config.centrifuge.geometry.platform_control == PlatformControl::phase_locked) {
+      const double psi0 = lr.measured.arm_azimuth + lr.measured.initial_phase.value_or(0.0);
+      const std::vector<double> main = main_angle_error_in_gamma(
+          angle_harmonics_from_ripple(configured_ripple(known, layout, ripple1)), psi0);
+      for (std::size_t i = 0; i < angle.size() && i < main.size(); ++i) angle[i] += main[i];
+    }
+    lr.platform_ripple = ripple_from_angle_harmonics(angle);
+    set_ripple(known, layout, ripple3, lr.platform_ripple);
+  }
+}
+
+LogReduction model_logged_runs(const Config& config, const std::vector<std::size_t>& indices,
+                               const LogSource& source, const LogReader& read, ModelMode mode) {
   const Experiment ex = config.experiment();
-  check_log_count(config.identification, logs.size(), "logs");  // before reading any log: the cheaper mistake
+  check_log_count(config.identification, indices.size(),
+                  "logs");                  // before reading any log: the cheaper mistake
   std::map<std::size_t, LoggedRun> by_run;  // plan order
-  for (const auto& [index, table] : logs) {
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    const std::size_t index = indices[i];
     if (index >= config.plan.runs.size())
-      throw InputError(fmt::format("{}: run index {} is outside the plan's {} runs", table.source, index,
+      throw InputError(fmt::format("{}: run index {} is outside the plan's {} runs", source(i), index,
                                    config.plan.runs.size()));
     if (by_run.count(index))
-      throw InputError(fmt::format("{}: run '{}' is logged twice; accepted: one log per run", table.source,
+      throw InputError(fmt::format("{}: run '{}' is logged twice; accepted: one log per run", source(i),
                                    config.plan.runs[index].name));
     LoggedRun lr;
     lr.index = index;
     const Run& planned = config.plan.runs[index];
     lr.planned_rate = nominal_rate(planned, ex.geometry, ex.site);
-    lr.log = reduce_run_log(table, options, lr.planned_rate);
+    lr.log = read(i, lr.planned_rate);
     if (lr.log.has_theta1)
-      check_encoder_rate(table.source, planned.name, "main-axis (theta1)", lr.log.theta1_rate, lr.planned_rate,
-                         lr.planned_rate);
+      check_encoder_rate(lr.log.source, planned.name, "main-axis (theta1)", lr.log.theta1_rate,
+                         lr.planned_rate, lr.planned_rate);
     if (lr.log.has_gamma)
-      check_encoder_rate(table.source, planned.name, "platform (gamma)", lr.log.gamma_rate,
+      check_encoder_rate(lr.log.source, planned.name, "platform (gamma)", lr.log.gamma_rate,
                          planned.mode == PlatformMode::counter_rotating ? -lr.planned_rate : 0.0,
                          lr.planned_rate);
     lr.measured = measured_run(planned, lr.log, ex.geometry, ex.site);
     lr.rate = nominal_rate(lr.measured, ex.geometry, ex.site);
     lr.mismatch = measured_platform_mismatch(planned, lr.log);
+    if (planned.mode == PlatformMode::counter_rotating) lr.control = platform_control_evidence(lr.log);
     by_run.emplace(index, std::move(lr));
   }
   const IdentificationSpec& spec = config.identification;
   check_log_count(spec, by_run.size(), "logs");
 
   // The model of each run as measured: its own rate and phases, so the speed error is in the rate (Δω = 0 in
-  // the model) and a measured platform mismatch replaces the configured one.
+  // the model), a measured platform mismatch replaces the configured one and a measured ripple the
+  // configured ripple of its drive.
   LogReduction r;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
   Observations<double>& obs = r.observations;
@@ -214,6 +167,7 @@ LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::
     if (lr.log.has_theta1) known[domega] = 0.0;
     if (lr.log.has_theta1 && lr.log.has_gamma) known[dOmega] = lr.mismatch;
     if (!lr.log.has_gamma) lr.mismatch = known[dOmega];
+    measured_ripple(lr, config, known);
     Experiment one = ex;
     one.plan.runs = {lr.measured};
     const Observations<double> row = observe<double>(one, known, known, spec, mode);
@@ -234,6 +188,34 @@ LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::
     r.runs.push_back(std::move(lr));
   }
   return r;
+}
+
+RunLogOptions with_order(RunLogOptions o, const Config& config) {
+  o.harmonic_order = config.centrifuge.layout.harmonic_order();
+  return o;
+}
+
+}  // namespace
+
+LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::size_t, CsvTable>>& logs,
+                         const RunLogOptions& options, ModelMode mode) {
+  std::vector<std::size_t> indices;
+  for (const auto& log : logs) indices.push_back(log.first);
+  const RunLogOptions o = with_order(options, config);
+  return model_logged_runs(
+      config, indices, [&](std::size_t i) { return logs[i].second.source; },
+      [&](std::size_t i, double rate) { return reduce_run_log(logs[i].second, o, rate); }, mode);
+}
+
+LogReduction reduce_log_files(const Config& config,
+                              const std::vector<std::pair<std::size_t, std::filesystem::path>>& logs,
+                              const RunLogOptions& options, ModelMode mode) {
+  std::vector<std::size_t> indices;
+  for (const auto& log : logs) indices.push_back(log.first);
+  const RunLogOptions o = with_order(options, config);
+  return model_logged_runs(
+      config, indices, [&](std::size_t i) { return logs[i].second.string(); },
+      [&](std::size_t i, double rate) { return reduce_run_log_file(logs[i].second, o, rate); }, mode);
 }
 
 }  // namespace ccal

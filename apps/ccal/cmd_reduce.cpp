@@ -2,6 +2,10 @@
 // regressors for the runs as measured, and the identification of the [identification] terms (docs/cli.md).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -38,6 +42,13 @@ struct Reduction {
   verbs::FileIdentification identification;
 };
 
+// A log file that cannot be opened, refused as the reader refuses it.
+void check_readable(const std::string& name) {
+  std::error_code ec;
+  if (std::ifstream(name, std::ios::binary) && !std::filesystem::is_directory(name, ec)) return;
+  throw CsvError(name, 0, 0, "", "cannot read the file; check the path and permissions");
+}
+
 Reduction reduce(const Config& cfg, const ReduceOptions& o) {
   Reduction r;
   r.mode = o.mode.empty() ? cfg.mode : (o.mode == "paper" ? ModelMode::paper : ModelMode::exact);
@@ -55,7 +66,7 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
                       o.pulse_weight, cfg.instrument.output_unit));
     lo.pulse_weight = *w * r.unit;
   }
-  std::vector<std::pair<std::size_t, CsvTable>> logs;
+  std::vector<std::pair<std::size_t, std::filesystem::path>> logs;
   std::map<std::size_t, std::string> files;
   for (const std::string& item : o.logs) {
     const std::size_t eq = item.find('=');
@@ -70,10 +81,11 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
                                    cfg.plan.runs[index].name));
     files[index] = item.substr(eq + 1);
     note_input(files[index]);
-    logs.emplace_back(index, read_csv_file(files[index]));
+    check_readable(files[index]);  // a missing file before the count of logs, as when logs were read whole
+    logs.emplace_back(index, files[index]);
   }
   check_log_count(cfg.identification, logs.size(), "--log");
-  r.logs = reduce_logs(cfg, logs, lo, r.mode);
+  r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
   std::vector<Run> measured;
   std::vector<double> rates;
@@ -89,6 +101,63 @@ Reduction reduce(const Config& cfg, const ReduceOptions& o) {
 }
 
 std::string or_dash(bool has, double v, int digits = 9) { return has ? number(v, digits) : "-"; }
+
+// Parameter ids of a drive's ripple channel up to the configuration's order: ripple1_c1, ripple1_s1, …
+std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel) {
+  std::vector<std::string> ids;
+  for (int k = 1; k <= cfg.centrifuge.layout.harmonic_order(); ++k)
+    for (const char* part : {"c", "s"}) ids.push_back(fmt::format("{}_{}{}", channel, part, k));
+  return ids;
+}
+
+// The measured ripple of each run's drives [ppm] and the platform control its encoders look like.
+std::string ripple_text(const Config& cfg, const Reduction& r) {
+  const bool any = std::any_of(r.logs.runs.begin(), r.logs.runs.end(), [](const LoggedRun& lr) {
+    return !lr.main_ripple.empty() || !lr.platform_ripple.empty() ||
+           lr.control.look != ControlLook::not_tested;
+  });
+  if (!any) return "";
+  std::vector<std::string> columns{"run"};
+  const std::vector<std::string> main = ripple_ids(cfg, "ripple1"), platform = ripple_ids(cfg, "ripple3");
+  for (const auto& id : main) columns.push_back(id + " [ppm]");
+  for (const auto& id : platform) columns.push_back(id + " [ppm]");
+  for (const char* c : {"control looks", "lambda", "|p| [rad]", "threshold [rad]"}) columns.push_back(c);
+  Table t(columns);
+  for (const LoggedRun& lr : r.logs.runs) {
+    std::vector<std::string> row{lr.measured.name};
+    for (std::size_t i = 0; i < main.size(); ++i)
+      row.push_back(i < lr.main_ripple.size() ? number(1e6 * lr.main_ripple[i], 6) : "-");
+    for (std::size_t i = 0; i < platform.size(); ++i)
+      row.push_back(i < lr.platform_ripple.size() ? number(1e6 * lr.platform_ripple[i], 6) : "-");
+    const ControlEvidence& c = lr.control;
+    const bool decided = c.look == ControlLook::speed || c.look == ControlLook::phase_locked;
+    row.push_back(c.look == ControlLook::not_tested ? "-" : std::string(control_look_name(c.look)));
+    row.push_back(decided ? number(c.following, 4) : "-");
+    row.push_back(c.look == ControlLook::not_tested ? "-" : number(c.main_in_gamma, 3));
+    row.push_back(c.look == ControlLook::not_tested ? "-" : number(c.threshold, 3));
+    t.add_row(row);
+  }
+  return "  drive rate ripple measured by the encoders (model.md §13.1; '-': configured value used)\n" +
+         t.render() +
+         "\n  (control looks: the platform angle's share lambda of the main axis's ripple, 1 phase_locked,\n"
+         "   0 speed; undetermined when the main axis's ripple |p| is below the threshold, model.md "
+         "§13.2)\n\n";
+}
+
+// A warning on stderr for each run whose encoders contradict the configured platform control.
+void warn_about_control(const Config& cfg, const Reduction& r) {
+  const PlatformControl configured = cfg.centrifuge.geometry.platform_control;
+  const std::string_view name = configured == PlatformControl::speed ? "speed" : "phase_locked";
+  for (const LoggedRun& lr : r.logs.runs) {
+    const ControlLook look = lr.control.look;
+    if (look != ControlLook::speed && look != ControlLook::phase_locked) continue;
+    if ((look == ControlLook::speed) == (configured == PlatformControl::speed)) continue;
+    std::cerr << fmt::format(
+        "ccal: warning: run '{}': the encoders look like platform_control = \"{}\" (the platform angle "
+        "carries lambda = {:.3g} of the main axis's ripple), the configuration has \"{}\" (model.md §13.2)\n",
+        lr.measured.name, control_look_name(look), lr.control.following, name);
+  }
+}
 
 std::string to_text(const Config& cfg, const Reduction& r) {
   const std::string& unit = cfg.instrument.output_unit;
@@ -112,6 +181,7 @@ std::string to_text(const Config& cfg, const Reduction& r) {
       "phase,\n"
       "   the platform encoder's or the plan's; dOmega: the model's platform mismatch, measured when both\n"
       "   encoders are logged, else the configured one)\n\n";
+  out += ripple_text(cfg, r);
   out += "  identification of these observations\n";
   return out + render::text(r.identification.id);
 }
@@ -145,6 +215,23 @@ std::string to_json(const Config& cfg, const Reduction& r) {
                                {"terminal_phase_rad", lr.log.gamma_end},
                                {"rms_rad", lr.log.gamma_rms}};
     x["platform_mismatch_rad_per_s"] = lr.mismatch;
+    auto ripple = [](const std::vector<std::string>& ids, const std::vector<double>& values) {
+      nlohmann::ordered_json o = nlohmann::ordered_json::object();
+      for (std::size_t i = 0; i < ids.size() && i < values.size(); ++i) o[ids[i]] = values[i];
+      return o;
+    };
+    if (!lr.main_ripple.empty())
+      x["main_encoder"]["ripple"] = ripple(ripple_ids(cfg, "ripple1"), lr.main_ripple);
+    if (!lr.platform_ripple.empty())
+      x["platform_encoder"]["ripple"] = ripple(ripple_ids(cfg, "ripple3"), lr.platform_ripple);
+    if (lr.control.look != ControlLook::not_tested) {
+      nlohmann::ordered_json c;
+      c["looks_like"] = control_look_name(lr.control.look);
+      c["following"] = lr.control.following;
+      c["main_ripple_in_gamma_rad"] = lr.control.main_in_gamma;
+      c["threshold_rad"] = lr.control.threshold;
+      x["platform_control"] = c;
+    }
     runs.push_back(x);
   }
   j["runs"] = runs;
@@ -193,6 +280,7 @@ Command add_reduce(CLI::App& app) {
             check_observations_out(o->observations_out, o->output);
             const Reduction r = reduce(cfg, *o);
             print_warnings(r.identification.id.observability.warnings);
+            warn_about_control(cfg, r);
             const std::string& f = o->output.format;
             const std::string text = f == "json"  ? to_json(cfg, r)
                                      : f == "csv" ? r.identification.csv

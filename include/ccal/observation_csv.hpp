@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ccal/errors.hpp"
@@ -68,6 +69,22 @@ struct CsvTable {
 CsvTable parse_csv(std::string_view text, std::string_view source);
 // Reads and parses a file. Throws CsvError (also when the file cannot be read).
 CsvTable read_csv_file(const std::filesystem::path& path);
+
+// The pieces of parse_csv, for readers that stream a file line by line (csv_stream.hpp) and must refuse what
+// parse_csv refuses, with the same messages and places.
+using CsvFieldProblem = std::optional<std::pair<std::size_t, std::string>>;  // 0-based field, problem
+// One line's trimmed fields, quotes removed; a malformed quote is reported in `bad`.
+std::vector<std::string> split_csv_fields(std::string_view line, CsvFieldProblem& bad);
+// Throws the CsvError of a bad header line (malformed quote, empty or duplicate name, numbers only).
+void check_csv_header(const std::vector<std::string>& fields, const CsvFieldProblem& bad,
+                      const std::string& source, int line);
+// Throws the CsvError of a bad row (malformed quote, ragged).
+void check_csv_row(std::size_t field_count, const CsvFieldProblem& bad,
+                   const std::vector<std::string>& header, const std::string& source, int line);
+// The error of a text without a header after `lines` lines (0: an empty file).
+CsvError no_csv_header(const std::string& source, int lines);
+// Why a cell is not a finite number ("" if it is one): the problem text of CsvTable::numbers.
+std::string number_cell_problem(std::string_view cell);
 
 // A finite decimal number, the whole text (blanks around it allowed; a leading '+' too); nullopt otherwise.
 std::optional<double> parse_number(std::string_view text);

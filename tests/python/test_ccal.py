@@ -241,6 +241,11 @@ class ReduceLogsTest(unittest.TestCase):
             self.assertAlmostEqual(r.rate - r.planned_rate, 2e-6, delta=1e-12)
             self.assertAlmostEqual(r.mismatch, -1e-6, delta=1e-12)
             self.assertTrue(r.log.has_theta1 and r.log.has_gamma and r.log.pulses)
+            # ripple-free encoders: no harmonic resolved, the model's ripple exactly 0; no main ripple to
+            # tell the platform's control by
+            self.assertEqual(r.main_ripple, [0.0, 0.0])
+            self.assertEqual(r.platform_ripple, [0.0, 0.0])
+            self.assertEqual(r.control.look, "undetermined")
         got = ccal.identify(red.observations, cfg)
         np.testing.assert_allclose(got.value, want.value, rtol=1e-9)
 

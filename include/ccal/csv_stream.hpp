@@ -1,0 +1,63 @@
+#pragma once
+// A CSV file read in one pass, row by row, in blocks: memory independent of the file's length. The grammar,
+// the refusals and their places are parse_csv's (observation_csv.hpp); '#' comment lines are skipped.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ccal {
+
+class CsvRowSink {
+ public:
+  virtual ~CsvRowSink() = default;
+  // The header (once, before any row) and its 1-based line.
+  virtual void header(const std::vector<std::string>& names, int line) = 0;
+  // One row: exactly as many trimmed fields (quotes removed) as the header has names; valid until it returns.
+  virtual void row(const std::string_view* fields, int line) = 0;
+};
+
+// Clinger's fast path for the plain decimals of a log, [-]digits[.digits]: a mantissa m < 2^53 and a
+// fraction of at most 22 digits are exact doubles, so m / 10^f, one correctly rounded division, is the
+// correctly rounded value of the text: the same double std::from_chars gives. False for anything else
+// (exponents, a '+', blanks, more digits), which the caller reads the general way.
+inline bool parse_plain_decimal(std::string_view text, double& value) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  constexpr std::uint64_t kExact = std::uint64_t(1) << 53;
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  const bool negative = p != end && *p == '-';
+  if (negative) ++p;
+  std::uint64_t m = 0;
+  const char* const first = p;
+  const char* dot = nullptr;
+  for (; p != end; ++p) {
+    const unsigned digit = unsigned(*p) - unsigned('0');
+    if (digit < 10) {
+      if (m >= kExact) return false;
+      m = 10 * m + digit;
+    } else if (*p == '.' && dot == nullptr) {
+      dot = p;
+    } else {
+      return false;
+    }
+  }
+  if (p == first || dot == first || (dot != nullptr && dot + 1 == end) || m >= kExact)
+    return false;  // no digit, or none before or after the point
+  const std::ptrdiff_t fraction = dot == nullptr ? 0 : end - dot - 1;
+  if (fraction > 22) return false;
+  value = double(m) / kPow10[fraction];
+  if (negative) value = -value;
+  return true;
+}
+
+// Streams a file to `sink`. Throws CsvError (file unreadable, empty, no header, bad header, bad row) and
+// whatever the sink throws.
+void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink);
+// The same for text in memory; `source` names it in messages.
+void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink& sink);
+
+}  // namespace ccal

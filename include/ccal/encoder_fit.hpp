@@ -1,0 +1,57 @@
+#pragma once
+// One-pass least-squares fit of an encoder's unwrapped angle (docs/model.md §13.1):
+//     α(τ) = a + b τ + Σ_{k=1..N} (Ĉk cos kα + Ŝk sin kα) + residual,   τ = t − t_first,
+// the line being the joint's nominal angle and the harmonics its angle error δ. The harmonics take the
+// measured angle α as argument where the model has the nominal one: the two differ by δ, so the regressors
+// differ by O(δ) and the fitted coefficients by O(δ²), second order in the ripple.
+//
+// Accumulated as normal equations in one pass, memory independent of the number of samples. The sums are of
+// the angle less a reference line (the centred least-squares line of the first kReferenceSamples samples):
+// what is summed is then of the size of the ripple and the rate error of the reference, not of the angle
+// travelled (thousands of radians), so the residual sum of squares Σr² = Σd² − βᵀXᵀd keeps its digits.
+#include <cstddef>
+#include <vector>
+
+namespace ccal {
+
+struct EncoderFitResult {
+  std::size_t samples = 0;
+  double slope = 0;  // b [rad/s]
+  double start = 0;  // a, the line at τ = 0 [rad] (unwrapped)
+  double end = 0;    // the line at the last sample [rad] (unwrapped)
+  double rms = 0;    // RMS residual of the fit [rad]
+  // Ĉ1, Ŝ1, …, ĈN, ŜN [rad]; empty when not fitted (N = 0, less than a revolution, or too few samples).
+  std::vector<double> harmonics;
+  double harmonic_sigma = 0;  // standard error of one harmonic coefficient [rad] (their largest)
+};
+
+class EncoderFit {
+ public:
+  static constexpr std::size_t kReferenceSamples = 4096;
+  explicit EncoderFit(int harmonic_order);
+  // One sample: τ [s], the unwrapped angle [rad] and the reading it came from (the same angle up to whole
+  // turns; the argument of the harmonics), τ increasing.
+  void add(double tau, double angle, double reading);
+  // The fit of all samples added (at least two).
+  EncoderFitResult result();
+
+ private:
+  void set_reference();
+  void accumulate(double tau, double angle, double reading);
+  template <std::size_t P>
+  void accumulate_products(const double* x, double d);
+
+  int order_;
+  std::size_t p_;               // unknowns: 2 + 2N
+  std::vector<double> buffer_;  // τ, α, reading until the reference line is set
+  bool referenced_ = false;
+  double ref_start_ = 0, ref_slope_ = 0;
+  std::vector<double> normal_;  // XᵀX, p×p row-major (upper triangle accumulated)
+  std::vector<double> rhs_;     // Xᵀd
+  std::vector<double> x_;       // regressors of one sample
+  double dd_ = 0;               // Σd²
+  double last_tau_ = 0;
+  std::size_t n_ = 0;
+};
+
+}  // namespace ccal

@@ -1,0 +1,205 @@
+#include "run_log_reducer.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+namespace ccal::detail {
+
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+double wrapped(double angle) {
+  const double a = std::fmod(angle, kTwoPi);
+  return a < 0 ? a + kTwoPi : a;
+}
+
+}  // namespace
+
+LogReducer::LogReducer(std::string source, const RunLogOptions& options, double planned_rate)
+    : source_(std::move(source)), options_(options), planned_rate_(planned_rate) {}
+
+void LogReducer::defer(Problem kind, CsvError error) {
+  if (pending_kind_ && *pending_kind_ <= kind) return;  // an earlier kind, or the first of this kind, stays
+  pending_kind_ = kind;
+  pending_.emplace(std::move(error));
+}
+
+void LogReducer::throw_pending_before(Problem kind) const {
+  if (pending_kind_ && *pending_kind_ <= kind) throw *pending_;
+}
+
+CsvError LogReducer::cell_error(std::size_t column, int line, std::string problem) const {
+  return CsvError(source_, line, int(column + 1), header_[column], std::move(problem));
+}
+
+void LogReducer::header(const std::vector<std::string>& names, int line) {
+  header_ = names;
+  header_line_ = line;
+  auto find = [&](std::string_view name) -> std::optional<std::size_t> {
+    for (std::size_t k = 0; k < header_.size(); ++k)
+      if (header_[k] == name) return k;
+    return std::nullopt;
+  };
+  const auto time = find("time");
+  if (!time)
+    defer(Problem::no_time,
+          CsvError(source_, header_line_, 0, "time",
+                   fmt::format("no such column (needed by every run log); accepted: one of the columns {}",
+                               fmt::join(header_, ", "))));
+  time_ = time.value_or(0);
+  const auto pulses = find("pulses"), output = find("output");
+  if (pulses.has_value() == output.has_value()) {
+    defer(Problem::output_columns,
+          CsvError(source_, header_line_, 0, pulses ? "pulses" : "output",
+                   pulses ? "both 'pulses' and 'output' columns; accepted: exactly one of them"
+                          : fmt::format("no output column; accepted: 'pulses' (cumulative count) or 'output' "
+                                        "(the instrument's output); the columns are {}",
+                                        fmt::join(header_, ", "))));
+  } else if (pulses && !(options_.pulse_weight > 0)) {
+    defer(Problem::pulse_weight,
+          CsvError(source_, header_line_, int(*pulses + 1), "pulses",
+                   "a pulse count needs the pulse weight (the instrument's quantum, or --pulse-weight); "
+                   "accepted: a positive integrated output per pulse"));
+  } else {
+    output_ = pulses ? pulses : output;
+    pulses_ = pulses.has_value();
+  }
+  const int order = options_.harmonic_order;
+  if (const auto k = find("theta1"))
+    theta1_.emplace(Encoder{*k, Problem::theta1_cell, Problem::theta1_spacing, EncoderFit(order)});
+  if (const auto k = find("gamma"))
+    gamma_.emplace(Encoder{*k, Problem::gamma_cell, Problem::gamma_spacing, EncoderFit(order)});
+}
+
+std::optional<double> LogReducer::cell(const std::string_view* fields, std::size_t column, Problem kind,
+                                       int line) {
+  // The fields come trimmed: a plain number is read directly; anything else (a '+', blanks) by parse_number,
+  // which accepts the same numbers.
+  const std::string_view f = fields[column];
+  double value = 0;
+  if (parse_plain_decimal(f, value)) return value;
+  const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
+  if (ec == std::errc{} && end == f.data() + f.size() && std::isfinite(value)) return value;
+  if (const std::optional<double> v = parse_number(f)) return v;
+  defer(kind, cell_error(column, line, number_cell_problem(fields[column])));
+  return std::nullopt;
+}
+
+// One encoder sample: unwrapped (each step mapped to (−π, π]) and added to the fit. The samples must be less
+// than half a revolution apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping
+// would alias.
+void LogReducer::encoder_sample(Encoder& e, const std::string_view* fields, int line, bool time_ok,
+                                double t) {
+  const std::optional<double> raw = cell(fields, e.column, e.cell, line);
+  if (time_ok && rows_ > 0 && have_previous_time_) {
+    const double step_time = t - t_previous_;
+    if (std::abs(planned_rate_) * step_time > 0.75 * std::numbers::pi)
+      defer(e.spacing, cell_error(e.column, line,
+                                  fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the "
+                                              "planned rate; accepted: less than 0.75π rad between encoder "
+                                              "samples",
+                                              step_time, std::abs(planned_rate_) * step_time)));
+  }
+  if (!raw || !time_ok || pending_kind_) return;  // the log will be refused: nothing more to fit
+  const double a = *raw * options_.angle_scale;
+  if (!e.started) {
+    e.unwrapped = a;
+    e.started = true;
+  } else {
+    // The step from the previous reading, mapped to (−π, π] (remainder(x, 2π) is x itself for |x| < π, so
+    // the usual step needs no division); taken between raw readings, it keeps their digits.
+    double step = a - e.raw;
+    if (!(step > -std::numbers::pi && step <= std::numbers::pi)) step = std::remainder(step, kTwoPi);
+    if (step == -std::numbers::pi) step = std::numbers::pi;
+    e.unwrapped += step;
+  }
+  e.raw = a;
+  e.fit.add(t - t_first_, e.unwrapped, a);
+}
+
+void LogReducer::row(const std::string_view* fields, int line) {
+  last_line_ = line;
+  if (pending_kind_ == Problem::no_time) return;
+  const std::optional<double> t = cell(fields, time_, Problem::time_cell, line);
+  if (t && have_previous_time_ && !(*t > t_previous_))
+    defer(Problem::time_order, cell_error(time_, line,
+                                          fmt::format("time {} s does not follow {} s; accepted: strictly "
+                                                      "increasing times",
+                                                      *t, t_previous_)));
+  if (t && rows_ == 0) t_first_ = *t;
+  if (output_) {
+    if (const std::optional<double> v = cell(fields, *output_, Problem::output_cell, line); v && t) {
+      if (pulses_) {
+        if (rows_ == 0) output_first_ = *v;
+        output_previous_ = *v;
+      } else {
+        const double y = *v * options_.output_scale;
+        if (rows_ > 0) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);
+        output_previous_ = y;
+      }
+    }
+  }
+  if (theta1_) encoder_sample(*theta1_, fields, line, t.has_value(), t.value_or(0));
+  if (gamma_) encoder_sample(*gamma_, fields, line, t.has_value(), t.value_or(0));
+  if (t) {
+    t_previous_ = *t;
+    have_previous_time_ = true;
+  } else {
+    have_previous_time_ = false;
+  }
+  ++rows_;
+}
+
+ReducedLog LogReducer::finish() {
+  ReducedLog r;
+  r.source = source_;
+  r.samples = rows_;
+  throw_pending_before(Problem::time_cell);
+  if (rows_ < 2)
+    throw CsvError(source_, header_line_, int(time_ + 1), "time",
+                   fmt::format("{} sample(s); accepted: at least two, the first and last of the run", rows_));
+  throw_pending_before(Problem::time_order);
+  r.duration = t_previous_ - t_first_;
+  if (!std::isfinite(r.duration))
+    throw CsvError(source_, last_line_, int(time_ + 1), "time",
+                   fmt::format("the span {} s to {} s overflows; accepted: times of a run, in s", t_first_,
+                               t_previous_));
+  throw_pending_before(Problem::output_cell);
+  r.pulses = pulses_;
+  r.mean_output = pulses_ ? (output_previous_ - output_first_) * options_.pulse_weight / r.duration
+                          : integral_ / r.duration;
+  // The fit squares the means: beyond 1e150 (SI) its sums overflow, and the failure would surface far from
+  // the log.
+  if (!(std::abs(r.mean_output) <= 1e150))
+    throw CsvError(source_, header_line_, int(*output_ + 1), header_[*output_],
+                   fmt::format("the mean output over the log, {:.6g} (SI), overflows the fit; accepted: the "
+                               "instrument's output in its output unit, or a pulse count, below 1e150",
+                               r.mean_output));
+  throw_pending_before(Problem::gamma_spacing);
+  if (theta1_) {
+    const EncoderFitResult f = theta1_->fit.result();
+    r.has_theta1 = true;
+    r.theta1_rate = f.slope;
+    r.theta1_start = wrapped(f.start);
+    r.theta1_rms = f.rms;
+    r.theta1_harmonics = f.harmonics;
+    r.theta1_harmonic_sigma = f.harmonic_sigma;
+  }
+  if (gamma_) {
+    const EncoderFitResult f = gamma_->fit.result();
+    r.has_gamma = true;
+    r.gamma_rate = f.slope;
+    r.gamma_start = wrapped(f.start);
+    r.gamma_end = wrapped(f.end);
+    r.gamma_rms = f.rms;
+    r.gamma_harmonics = f.harmonics;
+    r.gamma_harmonic_sigma = f.harmonic_sigma;
+  }
+  return r;
+}
+
+}  // namespace ccal::detail
