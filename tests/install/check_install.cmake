@@ -1,5 +1,5 @@
 # The test install.consumer (tests/install/CMakeLists.txt): the package that `cmake --install` makes works.
-#  1. cmake --install BUILD_DIR into a fresh prefix WORK_DIR/prefix;
+#  1. cmake --install BUILD_DIR into a fresh prefix WORK_DIR/prefix, with every header of include/;
 #  2. the installed CMake files name no path of the build machine (the source or build folder);
 #  3. the consumer project (consumer/) configures with find_package(ccal) against the prefix alone, builds and
 #     prints the nominal rate of the bundled example's 20 g run;
@@ -26,6 +26,14 @@ file(MAKE_DIRECTORY ${WORK_DIR})
 
 # 1. Install.
 run_step("cmake --install ${BUILD_DIR} --prefix ${prefix}" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+
+# The header tree as a whole, sub-folders included.
+file(GLOB_RECURSE source_headers RELATIVE ${SOURCE_DIR}/include ${SOURCE_DIR}/include/*.hpp)
+foreach(header ${source_headers})
+  if(NOT EXISTS ${prefix}/include/${header})
+    message(FATAL_ERROR "install.consumer: the header ${header} was not installed")
+  endif()
+endforeach()
 
 # 2. Relocatable and free of build-machine paths: the prefix is computed from the files' own location, and
 # neither the source folder nor the build folder is named (e.g. a compile definition CCAL_SOURCE_DIR="...").
