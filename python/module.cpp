@@ -21,6 +21,7 @@ PYBIND11_MODULE(ccal, m) {
       "coefficients, and the error budget of the centrifuge's tolerances. Values are SI unless a name says "
       "otherwise (specific force in g); display units are given alongside.";
   m.attr("__version__") = ccal::version();
+  m.attr("__commit__") = ccal::version_commit();  // the git commit built from, or "unknown"
   // Bad input (configuration, options, data) and ill-posed identifications, as ValueError subclasses.
   static py::exception<ccal::InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<ccal::IllPosedFit> ill_posed(m, "IllPosedFit", input_error.ptr());

@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
       "ccal: precision-centrifuge calibration of accelerometers (error budget of centrifuge errors on "
       "identified coefficients).",
       "ccal"};
-  app.set_version_flag("--version", std::string("ccal ") + ccal::version());
+  app.set_version_flag("--version", ccal::version_line());
   app.require_subcommand(1);
   app.footer(
       "Examples:\n"
