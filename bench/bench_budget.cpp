@@ -3,7 +3,8 @@
 //   build/bench/bench_budget --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
-#include "ccal/budget.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/budget.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "ccal/kinematics.hpp"
+#include "ccal/model/kinematics.hpp"
 
 namespace {
 

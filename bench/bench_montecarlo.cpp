@@ -7,10 +7,10 @@
 
 #include <numeric>
 
-#include "ccal/config.hpp"
-#include "ccal/montecarlo.hpp"
-#include "ccal/reduce.hpp"
-#include "ccal/run_means.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/run_average.hpp"
+#include "ccal/reduction/run_means.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 
 namespace {
 

@@ -22,10 +22,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "ccal/config.hpp"
-#include "ccal/observation_csv.hpp"
-#include "ccal/run_log.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/io/run_log.hpp"
+#include "ccal/reduction/observe.hpp"
 
 namespace {
 

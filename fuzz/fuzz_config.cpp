@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "ccal/config.hpp"
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -5,9 +5,9 @@
 #include <numbers>
 #include <string_view>
 
-#include "ccal/config.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/run_log.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/run_log.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const ccal::Config cfg = ccal::bundled_example();

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "ccal/errors.hpp"
-#include "ccal/units.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

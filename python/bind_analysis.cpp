@@ -11,17 +11,18 @@
 #include <vector>
 
 #include "bindings.hpp"
-#include "ccal/budget.hpp"
-#include "ccal/config.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/fit.hpp"
-#include "ccal/force.hpp"
-#include "ccal/observability.hpp"
-#include "ccal/observation_csv.hpp"
-#include "ccal/run_log.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/io/run_log.hpp"
+#include "ccal/model/sensed_input.hpp"
+#include "ccal/reduction/fit.hpp"
+#include "ccal/reduction/observability.hpp"
+#include "ccal/reduction/observe.hpp"
+#include "ccal/uncertainty/budget.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/force.hpp"
+#include "ccal/verbs/reduce.hpp"
 #include "ccal/verbs/simulate.hpp"
 
 namespace ccal::python {
@@ -395,6 +396,42 @@ void bind_analysis(py::module_& m) {
   py::class_<LogReduction>(m, "LogReduction")
       .def_readonly("runs", &LogReduction::runs)
       .def_readonly("observations", &LogReduction::observations);
+
+  bind_verb_result<verbs::ReduceResult>(m, "Reduction",
+                                        "`ccal reduce`: logged runs, their observations and identification; "
+                                        "str() is the CLI's text, to_json() its JSON.",
+                                        "logs")
+      .def_readonly("config", &verbs::ReduceResult::config)
+      .def_readonly("logs", &verbs::ReduceResult::logs)
+      .def_readonly("warnings", &verbs::ReduceResult::warnings)
+      .def_property_readonly(
+          "coefficients", [](const verbs::ReduceResult& r) { return r.identification.id.fit.value; },
+          "identified free terms (SI)")
+      .def_property_readonly("names",
+                             [](const verbs::ReduceResult& r) { return r.identification.id.fit.names; });
+
+  m.def(
+      "reduce",
+      [](const Config& cfg, const std::map<std::variant<int, std::string>, std::string>& logs,
+         std::optional<double> pulse_weight, const std::string& angle_unit, std::optional<std::string> mode) {
+        verbs::ReduceOptions o;
+        for (const auto& [run, path] : logs)
+          o.logs.push_back({cfg.plan.runs[run_index(cfg, run)].name, path});
+        o.pulse_weight = pulse_weight;
+        if (angle_unit == "deg")
+          o.angles_in_degrees = true;
+        else if (angle_unit != "rad")
+          throw InputError("angle_unit: '" + angle_unit + "'; accepted: 'rad', 'deg'");
+        if (mode) o.mode = mode_argument(*mode);
+        py::gil_scoped_release release;
+        return verbs::reduce(cfg, o);
+      },
+      py::arg("config"), py::arg("logs"), py::arg("pulse_weight") = py::none(), py::arg("angle_unit") = "rad",
+      py::arg("mode") = py::none(),
+      "`ccal reduce`: recorded run logs (run name or 0-based index → CSV file) to run means, the model of "
+      "the "
+      "runs as measured and the identification, as the CLI gives them; pulse_weight in the output unit × s "
+      "(default: the instrument's quantum).");
 
   m.def(
       "reduce_logs",

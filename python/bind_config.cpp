@@ -5,7 +5,7 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "ccal/config.hpp"
+#include "ccal/io/config_file.hpp"
 
 namespace ccal::python {
 

@@ -9,10 +9,10 @@
 #include <variant>
 
 #include "bindings.hpp"
-#include "ccal/allocate.hpp"
-#include "ccal/budget.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/montecarlo.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/verbs/allocate.hpp"
 #include "ccal/verbs/montecarlo.hpp"
 

@@ -5,11 +5,12 @@
 
 #include <string>
 
-#include "ccal/model_mode.hpp"
+#include "ccal/core/model_mode.hpp"
 #include "ccal/render/allocate.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/force.hpp"
 #include "ccal/render/montecarlo.hpp"
+#include "ccal/render/reduce.hpp"
 #include "ccal/render/simulate.hpp"
 
 namespace ccal::python {

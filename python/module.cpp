@@ -1,8 +1,8 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/fit.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/reduction/fit.hpp"
 #include "ccal/version.hpp"
 
 namespace ccal::python {

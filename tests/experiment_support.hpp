@@ -4,8 +4,8 @@
 #include <numbers>
 #include <string>
 
-#include "ccal/config.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/observe.hpp"
 #include "kinematics_support.hpp"
 
 namespace ccal::test {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "ccal/config.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/observe.hpp"
 
 namespace ccal::test {
 
@@ -33,8 +33,9 @@ inline double sigma_from_bound(double bound, Distribution d) {
 // ∂K̂/∂e_s (free coefficients × sources, SI) by central differences with step h_s = the source's bound
 // (second-order terms cancel; third-order ones are O(h²) ≈ 1e-10 relative for bounds of 1e-5).
 inline Eigen::MatrixXd finite_difference_sensitivities(const Experiment& ex, const IdentificationSpec& spec,
-                                                      const Eigen::VectorXd& at, const Eigen::VectorXd& known,
-                                                      const std::vector<Tolerance>& sources) {
+                                                       const Eigen::VectorXd& at,
+                                                       const Eigen::VectorXd& known,
+                                                       const std::vector<Tolerance>& sources) {
   Eigen::MatrixXd J(Eigen::Index(spec.free_terms.size()), Eigen::Index(sources.size()));
   for (std::size_t s = 0; s < sources.size(); ++s) {
     const double h = sources[s].bound;
@@ -47,7 +48,8 @@ inline Eigen::MatrixXd finite_difference_sensitivities(const Experiment& ex, con
   }
   return J;
 }
-inline Eigen::MatrixXd finite_difference_sensitivities(const Config& cfg, const std::vector<Tolerance>& sources) {
+inline Eigen::MatrixXd finite_difference_sensitivities(const Config& cfg,
+                                                       const std::vector<Tolerance>& sources) {
   const Eigen::VectorXd& at = cfg.centrifuge.errors;
   const IdentificationSpec& spec = cfg.identification;
   const Eigen::VectorXd known = spec.compensate ? at : Eigen::VectorXd::Zero(at.size());

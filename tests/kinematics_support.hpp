@@ -6,10 +6,10 @@
 #include <random>
 #include <unsupported/Eigen/AutoDiff>
 
-#include "ccal/centrifuge.hpp"
-#include "ccal/kinematics.hpp"
-#include "ccal/scalar.hpp"
-#include "ccal/site.hpp"
+#include "ccal/core/scalar.hpp"
+#include "ccal/model/centrifuge.hpp"
+#include "ccal/model/kinematics.hpp"
+#include "ccal/model/site.hpp"
 
 namespace ccal::test {
 

@@ -9,10 +9,10 @@
 #include <numbers>
 #include <random>
 
-#include "ccal/allocate.hpp"
-#include "ccal/budget.hpp"
-#include "ccal/config.hpp"
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/uncertainty/budget.hpp"
 #include "independent_lpu.hpp"
 
 namespace ccal::test {

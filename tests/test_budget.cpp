@@ -2,7 +2,8 @@
 // effects the paper omits (§5.4), AD against finite differences and against nonlinear re-identification.
 #include <gtest/gtest.h>
 
-#include "ccal/budget.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/budget.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {

@@ -9,8 +9,8 @@
 #include <map>
 #include <numbers>
 
-#include "ccal/budget.hpp"
-#include "ccal/config.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/budget.hpp"
 #include "independent_lpu.hpp"  // sigma_from_bound: σ of each distribution, written out
 
 namespace ccal {

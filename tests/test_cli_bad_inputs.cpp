@@ -1,6 +1,6 @@
-// A catalogue of bad inputs across configuration, CSV files, run logs and command-line options: each must give
-// exit code 2, one line on standard error naming the place (file, key, option), nothing on standard output,
-// and leave every file in the folder as it was. Table-driven: one row per input.
+// A catalogue of bad inputs across configuration, CSV files, run logs and command-line options: each must
+// give exit code 2, one line on standard error naming the place (file, key, option), nothing on standard
+// output, and leave every file in the folder as it was. Table-driven: one row per input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,7 +33,8 @@ std::string example_with(const std::string& from, const std::string& to) {
 }
 
 // A log of the run at `g_level` (bundled example: R0 = 2.5 m, g = 9.8 m/s²): 0.05 s samples over 20 s, the
-// output column, and the main-axis encoder turning at rate_factor × the planned rate, in `scale` units per rad.
+// output column, and the main-axis encoder turning at rate_factor × the planned rate, in `scale` units per
+// rad.
 std::string log_text(double g_level, double rate_factor = 1.0, double scale = 1.0, double output = 100.0) {
   const double rate = std::sqrt(g_level * 9.8 / 2.5);
   std::string text = "time,output,theta1\n";
@@ -53,8 +54,11 @@ std::string observations() {  // a plain x, y table
 std::vector<BadInput> catalogue() {
   using F = std::vector<std::pair<std::string, std::string>>;
   const F cfg = {{"c.toml", example()}};
-  auto config = [](const std::string& from, const std::string& to) { return F{{"c.toml", example_with(from, to)}}; };
-  const F logs = {{"c.toml", example()}, {"a.csv", log_text(5)}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
+  auto config = [](const std::string& from, const std::string& to) {
+    return F{{"c.toml", example_with(from, to)}};
+  };
+  const F logs = {
+      {"c.toml", example()}, {"a.csv", log_text(5)}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
   auto logs_with = [&](const std::string& a) {
     return F{{"c.toml", example()}, {"a.csv", a}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
   };
@@ -71,44 +75,80 @@ std::vector<BadInput> catalogue() {
       {"ConfigFolder", {}, "budget .", {"."}},
       {"ConfigEmpty", {{"c.toml", ""}}, "budget c.toml", {"c.toml"}},
       {"ConfigNotToml", {{"c.toml", "[site\nlatitude = 1\n"}}, "budget c.toml", {"c.toml:1"}},
-      {"ConfigUnknownKey", config("height = \"0 m\"", "heigth = \"0 m\""), "budget c.toml", {"c.toml", "heigth"}},
-      {"ConfigLatitudeRange", config("\"45.75 deg\"", "\"100 deg\""), "budget c.toml", {"c.toml", "latitude"}},
+      {"ConfigUnknownKey",
+       config("height = \"0 m\"", "heigth = \"0 m\""),
+       "budget c.toml",
+       {"c.toml", "heigth"}},
+      {"ConfigLatitudeRange",
+       config("\"45.75 deg\"", "\"100 deg\""),
+       "budget c.toml",
+       {"c.toml", "latitude"}},
       {"ConfigNegativeG", config("\"9.8 m/s^2\"", "\"-9.8 m/s^2\""), "budget c.toml", {"c.toml", "g"}},
       {"ConfigRadiusUnit", config("\"2.5 m\"", "\"2.5 kg\""), "budget c.toml", {"c.toml", "radius"}},
       {"ConfigRadiusZero", config("\"2.5 m\"", "\"0 m\""), "budget c.toml", {"c.toml", "radius"}},
       {"ConfigRadiusHuge", config("\"2.5 m\"", "\"1e30 m\""), "budget c.toml", {"c.toml", "radius"}},
       {"ConfigRadiusText", config("\"2.5 m\"", "\"two metres\""), "budget c.toml", {"c.toml", "radius"}},
-      {"ConfigHarmonicOrder", config("harmonic_order = 1 ", "harmonic_order = -3 "), "budget c.toml",
+      {"ConfigHarmonicOrder",
+       config("harmonic_order = 1 ", "harmonic_order = -3 "),
+       "budget c.toml",
        {"c.toml", "harmonic_order"}},
-      {"ConfigUnknownError", config("[errors]\n", "[errors]\ndxyz = \"1 um\"\n"), "budget c.toml",
+      {"ConfigUnknownError",
+       config("[errors]\n", "[errors]\ndxyz = \"1 um\"\n"),
+       "budget c.toml",
        {"c.toml", "dxyz"}},
-      {"ConfigErrorUnit", config("[errors]\n", "[errors]\ndthz5 = \"2 m\"\n"), "budget c.toml",
+      {"ConfigErrorUnit",
+       config("[errors]\n", "[errors]\ndthz5 = \"2 m\"\n"),
+       "budget c.toml",
        {"c.toml", "dthz5"}},
-      {"ConfigToleranceNegative", config("dx3_s1 = { bound = \"10 um\"", "dx3_s1 = { bound = \"-10 um\""),
-       "budget c.toml", {"c.toml", "dx3_s1"}},
-      {"ConfigToleranceDistribution", config("distribution = \"arcsine\" }", "distribution = \"cauchy\" }"),
-       "budget c.toml", {"c.toml", "cauchy"}},
-      {"ConfigUnknownTerm", config("terms = [\"K0\", \"K2\", \"K3\"]", "terms = [\"K0\", \"K2\", \"Kx\"]"),
-       "budget c.toml", {"c.toml", "Kx"}},
+      {"ConfigToleranceNegative",
+       config("dx3_s1 = { bound = \"10 um\"", "dx3_s1 = { bound = \"-10 um\""),
+       "budget c.toml",
+       {"c.toml", "dx3_s1"}},
+      {"ConfigToleranceDistribution",
+       config("distribution = \"arcsine\" }", "distribution = \"cauchy\" }"),
+       "budget c.toml",
+       {"c.toml", "cauchy"}},
+      {"ConfigUnknownTerm",
+       config("terms = [\"K0\", \"K2\", \"K3\"]", "terms = [\"K0\", \"K2\", \"Kx\"]"),
+       "budget c.toml",
+       {"c.toml", "Kx"}},
       {"ConfigMode", config("mode = \"exact\"", "mode = \"fast\""), "budget c.toml", {"c.toml", "fast"}},
-      {"ConfigDurationZero", config("duration = \"450 s\"", "duration = \"0 s\""), "budget c.toml",
+      {"ConfigDurationZero",
+       config("duration = \"450 s\"", "duration = \"0 s\""),
+       "budget c.toml",
        {"c.toml", "duration"}},
-      {"ConfigDurationHuge", config("duration = \"450 s\"", "duration = \"1e12 s\""), "budget c.toml",
+      {"ConfigDurationHuge",
+       config("duration = \"450 s\"", "duration = \"1e12 s\""),
+       "budget c.toml",
        {"c.toml", "duration"}},
-      {"ConfigPlatform", config("platform = \"counter_rotating\"", "platform = \"spinning\""), "budget c.toml",
+      {"ConfigPlatform",
+       config("platform = \"counter_rotating\"", "platform = \"spinning\""),
+       "budget c.toml",
        {"c.toml", "platform"}},
-      {"ConfigGLevelNegative", config("g_level = \"5 g\"", "g_level = \"-5 g\""), "budget c.toml",
+      {"ConfigGLevelNegative",
+       config("g_level = \"5 g\"", "g_level = \"-5 g\""),
+       "budget c.toml",
        {"c.toml", "g_level"}},
-      {"ConfigGLevelHuge", config("g_level = \"5 g\"", "g_level = \"1e6 g\""), "budget c.toml",
+      {"ConfigGLevelHuge",
+       config("g_level = \"5 g\"", "g_level = \"1e6 g\""),
+       "budget c.toml",
        {"c.toml", "g_level"}},
-      {"ConfigOutputUnit", config("output_unit = \"deg/s\"", "output_unit = \"furlong\""), "budget c.toml",
+      {"ConfigOutputUnit",
+       config("output_unit = \"deg/s\"", "output_unit = \"furlong\""),
+       "budget c.toml",
        {"c.toml", "output_unit"}},
-      {"ConfigEscapeSequence", config("mode = \"exact\"", "mode = \"\\u001b[2Jexact\""), "budget c.toml",
+      {"ConfigEscapeSequence",
+       config("mode = \"exact\"", "mode = \"\\u001b[2Jexact\""),
+       "budget c.toml",
        {"c.toml", "\\x1b"}},
-      {"ConfigErrorOverflowsTheRunMeans", config("[errors]\n", "[errors]\ndR_s = \"1e300 m\"\n"), "simulate c.toml",
+      {"ConfigErrorOverflowsTheRunMeans",
+       config("[errors]\n", "[errors]\ndR_s = \"1e300 m\"\n"),
+       "simulate c.toml",
        {"c.toml", "run '5g'", "not finite"}},
-      {"ConfigToleranceOverflowsTheBudget", config("dx3_s1 = { bound = \"10 um\"", "dx3_s1 = { bound = \"1e200 m\""),
-       "budget c.toml", {"c.toml", "dx3_s1", "not a finite number"}},
+      {"ConfigToleranceOverflowsTheBudget",
+       config("dx3_s1 = { bound = \"10 um\"", "dx3_s1 = { bound = \"1e200 m\""),
+       "budget c.toml",
+       {"c.toml", "dx3_s1", "not a finite number"}},
       // --- CSV files (identify) -------------------------------------------------------------------------
       {"CsvMissing", {}, "identify none.csv", {"none.csv"}},
       {"CsvEmpty", csv(""), fit, {"t.csv"}},
@@ -121,16 +161,25 @@ std::vector<BadInput> catalogue() {
       {"CsvTooFewRows", csv("x,y\n1,2\n"), fit, {"t.csv", "K0, K1"}},
       {"CsvMissingInputColumn", obs, "identify obs.csv --input a --output y --terms K0,K1", {"obs.csv", "a"}},
       {"CsvUnknownTerm", obs, "identify obs.csv --input x --output y --terms K0,Q7", {"--terms", "Q7"}},
-      {"CsvPowerOverflow", csv("x,y\n1e200,1\n2e200,2\n3e200,3\n4e200,4\n"),
-       "identify t.csv --input x --output y --terms K0,K1,K2", {"t.csv:2:1", "K2"}},
+      {"CsvPowerOverflow",
+       csv("x,y\n1e200,1\n2e200,2\n3e200,3\n4e200,4\n"),
+       "identify t.csv --input x --output y --terms K0,K1,K2",
+       {"t.csv:2:1", "K2"}},
       {"CsvWeightZero", csv("x,y,s\n1,1,1\n2,2,0\n3,3,1\n"), fit + " --weight s", {"t.csv:3:3", "σ"}},
-      {"CsvWeightHuge", csv("x,y,s\n1,1,1e200\n2,2,1e200\n3,3,1e200\n"), fit + " --weight s",
+      {"CsvWeightHuge",
+       csv("x,y,s\n1,1,1e200\n2,2,1e200\n3,3,1e200\n"),
+       fit + " --weight s",
        {"t.csv:2:3", "underflows"}},
-      {"CsvWeightColumnMissing", obs, "identify obs.csv --input x --output y --terms K0,K1 --weight sd",
+      {"CsvWeightColumnMissing",
+       obs,
+       "identify obs.csv --input x --output y --terms K0,K1 --weight sd",
        {"obs.csv", "sd"}},
       // --- run logs (reduce) ------------------------------------------------------------------------------
       {"LogNotRunEqualsFile", logs, "reduce c.toml --log a.csv", {"--log", "a.csv"}},
-      {"LogUnknownRun", logs, "reduce c.toml --log 7g=a.csv --log 10g=b.csv --log 15g=d.csv", {"--log", "7g"}},
+      {"LogUnknownRun",
+       logs,
+       "reduce c.toml --log 7g=a.csv --log 10g=b.csv --log 15g=d.csv",
+       {"--log", "7g"}},
       {"LogRunTwice", logs, "reduce c.toml --log 5g=a.csv --log 5g=b.csv --log 15g=d.csv", {"--log", "5g"}},
       {"LogMissingFile", logs, "reduce c.toml --log 5g=zz.csv --log 10g=b.csv --log 15g=d.csv", {"zz.csv"}},
       {"LogTooFew", logs, "reduce c.toml --log 5g=a.csv", {"--log", "K0, K2, K3"}},
@@ -139,7 +188,9 @@ std::vector<BadInput> catalogue() {
       {"LogPulsesAndOutput", logs_with("time,pulses,output\n0,1,1\n1,2,1\n"), reduce, {"a.csv", "pulses"}},
       {"LogOneSample", logs_with("time,output\n0,1\n"), reduce, {"a.csv", "two"}},
       {"LogOutputOverflows", logs_with("time,output\n0,1e308\n1,1e308\n"), reduce, {"a.csv", "overflows"}},
-      {"LogEncoderInDegrees", logs_with(log_text(5, 1.0, 180 / std::numbers::pi)), reduce,
+      {"LogEncoderInDegrees",
+       logs_with(log_text(5, 1.0, 180 / std::numbers::pi)),
+       reduce,
        {"a.csv", "5g", "--angle-unit deg"}},
       {"LogEncoderReversed", logs_with(log_text(5, -1.0)), reduce, {"a.csv", "5g", "reversed"}},
       {"LogEncoderOtherRun", logs_with(log_text(10)), reduce, {"a.csv", "5g", "another run"}},
@@ -165,7 +216,9 @@ std::vector<BadInput> catalogue() {
       {"ForceTimeUnit", {}, "force --time '10 kg'", {"--time", "kg"}},
       {"OutputIsTheConfig", cfg, "budget c.toml -o c.toml", {"-o", "c.toml", "input"}},
       {"OutputIsALog", logs, reduce + " -o b.csv", {"-o", "b.csv", "input"}},
-      {"ObservationsOutIsOutput", cfg, "simulate c.toml -o x.txt --observations-out x.txt",
+      {"ObservationsOutIsOutput",
+       cfg,
+       "simulate c.toml -o x.txt --observations-out x.txt",
        {"--observations-out", "x.txt"}},
       {"OutputIsAFolder", {}, "budget -o .", {"-o", "'.'"}},
       {"OutputInAMissingFolder", {}, "budget -o no/such/x.txt", {"-o", "no/such/x.txt"}},

@@ -1,5 +1,6 @@
 // Regression tests of issue-12 hardening at the command line: inputs that used to crash, end with an internal
-// error or print a wrong answer as success now give exit code 2 and a one-line message with the accepted range.
+// error or print a wrong answer as success now give exit code 2 and a one-line message with the accepted
+// range.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,10 +8,10 @@
 #include <span>
 #include <string>
 
-#include "ccal/allocate.hpp"
-#include "ccal/config.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/montecarlo.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "cli_support.hpp"
 
 namespace ccal::test {
@@ -40,7 +41,6 @@ TEST(HardeningLibrary, ThreadCountsBeyondTheAcceptedRangeAreInputErrors) {
   ao.threads = 100000;
   EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-9}}, ao), InputError);
 }
-
 
 // Wrong answers reported as success: results that are not finite, a target no tolerance can meet, an encoder
 // log that contradicts the plan. Each used to exit 0 (or 1, an internal error) and is now exit code 2.
@@ -87,10 +87,11 @@ TEST_F(Hardening, EncoderRatesThatContradictThePlanAreRefused) {
   write("b.csv", encoder_log(10, 1, 1));
   write("d.csv", encoder_log(15, 1, 1));
   const std::string cmd = "reduce c.toml --log 5g=a.csv --log 10g=b.csv --log 15g=d.csv";
-  write("a.csv", encoder_log(5, 1, 180 / std::numbers::pi));  // degrees, read as radians: K3 = 33.6 with exit code 0
+  write("a.csv",
+        encoder_log(5, 1, 180 / std::numbers::pi));  // degrees, read as radians: K3 = 33.6 with exit code 0
   expect_bad_input(run(cmd), {"a.csv", "run '5g'", "--angle-unit deg", "rad/s"});
   EXPECT_EQ(run(cmd + " --angle-unit deg").code, 2);  // only a.csv is in degrees now: b.csv is refused
-  write("a.csv", encoder_log(5, -1, 1));  // reversed
+  write("a.csv", encoder_log(5, -1, 1));              // reversed
   expect_bad_input(run(cmd), {"a.csv", "reversed"});
   write("a.csv", encoder_log(5, 1.0 + 1e-4, 1));  // a 100 ppm speed error is accepted
   EXPECT_EQ(run(cmd).code, 0);

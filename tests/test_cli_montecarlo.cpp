@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "ccal/config.hpp"
+#include "ccal/io/config_file.hpp"
 #include "cli_support.hpp"
 #include "independent_lpu.hpp"
 

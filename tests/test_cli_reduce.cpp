@@ -10,8 +10,8 @@
 #include <numbers>
 #include <string>
 
-#include "ccal/config.hpp"
-#include "ccal/reduce.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/run_average.hpp"
 #include "cli_support.hpp"
 
 namespace {

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "ccal/config.hpp"
-#include "ccal/constants.hpp"
+#include "ccal/core/constants.hpp"
+#include "ccal/io/config_file.hpp"
 
 namespace ccal {
 namespace {

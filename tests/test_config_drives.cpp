@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "ccal/config.hpp"
+#include "ccal/io/config_file.hpp"
 #include "cli_support.hpp"
 
 namespace ccal::test {

@@ -7,7 +7,7 @@
 #include <map>
 #include <random>
 
-#include "ccal/first_order.hpp"
+#include "ccal/model/first_order.hpp"
 #include "kinematics_support.hpp"
 
 namespace ccal::test {

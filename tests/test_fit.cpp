@@ -16,7 +16,7 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
-#include "ccal/fit.hpp"
+#include "ccal/reduction/fit.hpp"
 
 namespace {
 

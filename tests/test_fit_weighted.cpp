@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "ccal/fit.hpp"
+#include "ccal/reduction/fit.hpp"
 
 namespace {
 

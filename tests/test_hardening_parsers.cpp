@@ -5,9 +5,9 @@
 #include <chrono>
 #include <string>
 
-#include "ccal/errors.hpp"
-#include "ccal/observation_csv.hpp"
-#include "ccal/units.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
+#include "ccal/io/observation_csv.hpp"
 
 namespace ccal {
 namespace {
@@ -15,7 +15,8 @@ namespace {
 // |INT_MIN| overflowed (undefined behaviour) and the exponent passed the range check: m^-2147483648 was
 // accepted as a unit.
 TEST(HardeningUnits, ExtremeExponentsAreRefused) {
-  for (const char* unit : {"m^-2147483648", "m^2147483647", "m^-2147483649", "s^99999999999", "m^13", "m^-13"}) {
+  for (const char* unit :
+       {"m^-2147483648", "m^2147483647", "m^-2147483649", "s^99999999999", "m^13", "m^-13"}) {
     SCOPED_TRACE(unit);
     EXPECT_THROW(parse_unit(unit), InputError);
   }

@@ -4,8 +4,8 @@
 
 #include <Eigen/Core>
 
-#include "ccal/errors.hpp"
-#include "ccal/fit.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/reduction/fit.hpp"
 #include "ccal/verbs/identification.hpp"
 
 namespace {

@@ -15,8 +15,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "ccal/config.hpp"
-#include "ccal/montecarlo.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
 #include "independent_lpu.hpp"
 

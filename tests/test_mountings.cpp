@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "ccal/force.hpp"
-#include "ccal/test_plan.hpp"
+#include "ccal/model/plan.hpp"
+#include "ccal/model/sensed_input.hpp"
 #include "kinematics_support.hpp"
 
 namespace ccal::test {
@@ -53,10 +53,12 @@ TEST(Mountings, GravityAndCentripetalInputOnEveryAxisOfAFixedPlatform) {
     for (double phi0 : {0.0, kPi / 2, kPi, 1.1}) {
       const Eigen::Vector3d f5(-A * std::cos(phi0), A * std::sin(phi0), 1.0);
       const Eigen::Vector3d want = axes.from_frame5(f5);
-      const auto r = evaluate_force(site, error_free(), run_with(axes.mounting, PlatformMode::fixed, A, phi0), 3.0);
+      const auto r =
+          evaluate_force(site, error_free(), run_with(axes.mounting, PlatformMode::fixed, A, phi0), 3.0);
       for (int k = 0; k < 3; ++k)
-        EXPECT_NEAR(r.specific_force[k], want[k], 1e-12) << mounting_name(axes.mounting) << " φ0=" << phi0
-                                                          << " axis " << "IPO"[k];
+        EXPECT_NEAR(r.specific_force[k], want[k], 1e-12)
+            << mounting_name(axes.mounting) << " φ0=" << phi0 << " axis "
+            << "IPO"[k];
     }
 }
 
@@ -95,11 +97,12 @@ TEST(Mountings, CounterRotatingPlatformAtAnyInstant) {
   const double gamma = phi0 - rate * t;
   const Eigen::Vector3d f5(-A * std::cos(gamma), A * std::sin(gamma), 1.0);
   for (const Axes& axes : kAxes) {
-    const auto r =
-        evaluate_force(site, error_free(), run_with(axes.mounting, PlatformMode::counter_rotating, A, phi0), t);
+    const auto r = evaluate_force(site, error_free(),
+                                  run_with(axes.mounting, PlatformMode::counter_rotating, A, phi0), t);
     const Eigen::Vector3d want = axes.from_frame5(f5);
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(r.specific_force[k], want[k], 1e-11) << mounting_name(axes.mounting) << " axis " << "IPO"[k];
+      EXPECT_NEAR(r.specific_force[k], want[k], 1e-11) << mounting_name(axes.mounting) << " axis "
+                                                       << "IPO"[k];
   }
 }
 
@@ -111,10 +114,12 @@ TEST(Mountings, AngularRateOfAFixedPlatformLandsOnTheVerticalAxis) {
   const double A = 20.0;
   const double rate = std::sqrt(A * site.g / 2.5);
   for (const Axes& axes : kAxes) {
-    const auto r = evaluate_force(site, error_free(), run_with(axes.mounting, PlatformMode::fixed, A, 0.7), 1.0);
+    const auto r =
+        evaluate_force(site, error_free(), run_with(axes.mounting, PlatformMode::fixed, A, 0.7), 1.0);
     const Eigen::Vector3d want = axes.from_frame5(Eigen::Vector3d(0.0, 0.0, rate));
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(r.angular_rate[k], want[k], 1e-13) << mounting_name(axes.mounting) << " axis " << "IPO"[k];
+      EXPECT_NEAR(r.angular_rate[k], want[k], 1e-13) << mounting_name(axes.mounting) << " axis "
+                                                     << "IPO"[k];
   }
 }
 

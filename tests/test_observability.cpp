@@ -1,13 +1,13 @@
-// Observability of each term (ccal/observability.hpp, docs/model.md §14): the whole-revolution plan that
-// hides K3, the paper's plan that does not, the measure against closed forms of ⟨a_iⁿ⟩, and its scaling with
-// noise and duration.
+// Observability of each term (ccal/reduction/observability.hpp, docs/model.md §14): the whole-revolution plan
+// that hides K3, the paper's plan that does not, the measure against closed forms of ⟨a_iⁿ⟩, and its scaling
+// with noise and duration.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
-#include "ccal/observability.hpp"
+#include "ccal/reduction/observability.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {

@@ -5,7 +5,7 @@
 
 #include <numbers>
 
-#include "ccal/observation_csv.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "ccal/kinematics.hpp"
-#include "ccal/quadrature.hpp"
+#include "ccal/model/kinematics.hpp"
+#include "ccal/reduction/quadrature.hpp"
 
 namespace ccal {
 namespace {

@@ -6,9 +6,10 @@
 #include <numbers>
 #include <random>
 
-#include "ccal/budget.hpp"
-#include "ccal/montecarlo.hpp"
-#include "ccal/rate_noise.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/uncertainty/rate_noise.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {

@@ -5,9 +5,9 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <random>
 
-#include "ccal/config.hpp"
-#include "ccal/montecarlo.hpp"
-#include "ccal/reduce.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/run_average.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {

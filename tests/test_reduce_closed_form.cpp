@@ -16,9 +16,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "ccal/config.hpp"
-#include "ccal/run_log.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/run_log.hpp"
+#include "ccal/reduction/observe.hpp"
 
 namespace ccal {
 namespace {
@@ -38,7 +38,8 @@ std::string closed_form_log(const Motion& m, double T, double B, double K[4], do
     const double g = p0 - W * t;
     const double i1 = (std::sin(p0) - std::sin(g)) / W;
     const double i2 = t / 2 + (std::sin(2 * p0) - std::sin(2 * g)) / (4 * W);
-    const double i3 = 3 * (std::sin(p0) - std::sin(g)) / (4 * W) + (std::sin(3 * p0) - std::sin(3 * g)) / (12 * W);
+    const double i3 =
+        3 * (std::sin(p0) - std::sin(g)) / (4 * W) + (std::sin(3 * p0) - std::sin(3 * g)) / (12 * W);
     return K[0] * t - K[1] * B * i1 + K[2] * B * B * i2 - K[3] * B * B * B * i3 + rate_ia * t;
   };
   std::string text = "time,pulses,theta1,gamma\n";
@@ -53,15 +54,15 @@ std::string closed_form_log(const Motion& m, double T, double B, double K[4], do
 
 TEST(ClosedFormLogs, ReduceToTheInstrumentsCoefficients) {
   // The bundled example's site and plan, written out: 45.75° N, g = 9.8 m/s², R0 = 2.5 m, six 450 s runs at
-  // 5 … 30 g ending at ψ = π (φ0 = (π + ΩT) mod 2π), arm on East at t = 0; the paper's PIGA K0 = 0.061973 °/s,
-  // K1 = 505.2097 °/s/g, K2 = 0.02 °/s/g², K3 = 0.003 °/s/g³, s_ω = +1; pulses of 1e-4 rad (not rounded to
-  // whole counts: the test is of the physics, not of quantisation).
-  // Tolerances: the logs' means are exact to round-off (~1e-15 of the output swing of 0.3 rad/s); the
-  // encoder line fits give Ω and φ0 to ~1e-13 rad/s and 1e-10 rad, which moves the model's means by at most
-  // ~1e-10 of the swing; H⁺ of the six runs amplifies that by up to ~1e3 on K3 (its column Z3 is small):
-  // tolerances 1e-9 relative on K0 and K2, 1e-8 on K3. Against them: leaving the Coriolis term out moves
-  // (K0, K2, K3) by (2.8e-5, 3.6e-7, 1.3e-5) in °/s/gⁿ, i.e. 5e-4, 2e-5, 4e-3 relative; swapping sin φ and
-  // cos φ in the Earth rate moves K0 by 2e-3 relative.
+  // 5 … 30 g ending at ψ = π (φ0 = (π + ΩT) mod 2π), arm on East at t = 0; the paper's PIGA K0 = 0.061973
+  // °/s, K1 = 505.2097 °/s/g, K2 = 0.02 °/s/g², K3 = 0.003 °/s/g³, s_ω = +1; pulses of 1e-4 rad (not rounded
+  // to whole counts: the test is of the physics, not of quantisation). Tolerances: the logs' means are exact
+  // to round-off (~1e-15 of the output swing of 0.3 rad/s); the encoder line fits give Ω and φ0 to ~1e-13
+  // rad/s and 1e-10 rad, which moves the model's means by at most ~1e-10 of the swing; H⁺ of the six runs
+  // amplifies that by up to ~1e3 on K3 (its column Z3 is small): tolerances 1e-9 relative on K0 and K2, 1e-8
+  // on K3. Against them: leaving the Coriolis term out moves (K0, K2, K3) by (2.8e-5, 3.6e-7, 1.3e-5) in
+  // °/s/gⁿ, i.e. 5e-4, 2e-5, 4e-3 relative; swapping sin φ and cos φ in the Earth rate moves K0 by 2e-3
+  // relative.
   const Config cfg = bundled_example();
   const double g = 9.8, R0 = 2.5, lat = 45.75 * kDeg, we = 7.2921150e-5, T = 450.0, w = 1e-4;
   double K[4] = {0.061973 * kDeg, 505.2097 * kDeg, 0.02 * kDeg, 0.003 * kDeg};

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "ccal/config.hpp"
-#include "ccal/reduce.hpp"
-#include "ccal/run_log.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/run_log.hpp"
+#include "ccal/reduction/run_average.hpp"
 #include "cli_support.hpp"
 
 namespace {

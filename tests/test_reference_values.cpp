@@ -21,10 +21,10 @@
 #include <numbers>
 #include <string>
 
-#include "ccal/budget.hpp"
-#include "ccal/config.hpp"
-#include "ccal/montecarlo.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/observe.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal {
 namespace {

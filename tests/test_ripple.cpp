@@ -8,11 +8,12 @@
 #include <numbers>
 #include <random>
 
-#include "ccal/budget.hpp"
-#include "ccal/first_order.hpp"
-#include "ccal/montecarlo.hpp"
-#include "ccal/reduce.hpp"
-#include "ccal/run_means.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/model/first_order.hpp"
+#include "ccal/reduction/run_average.hpp"
+#include "ccal/reduction/run_means.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "ccal/run_log.hpp"
+#include "ccal/io/run_log.hpp"
 
 namespace ccal::test {
 namespace {

@@ -14,8 +14,8 @@
 #include <numbers>
 #include <string>
 
-#include "ccal/csv_stream.hpp"
-#include "ccal/run_log.hpp"
+#include "ccal/io/csv_stream.hpp"
+#include "ccal/io/run_log.hpp"
 
 namespace ccal::test {
 namespace {

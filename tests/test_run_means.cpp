@@ -4,10 +4,10 @@
 
 #include <random>
 
-#include "ccal/config.hpp"
-#include "ccal/montecarlo.hpp"
-#include "ccal/reduce.hpp"
-#include "ccal/run_means.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/run_average.hpp"
+#include "ccal/reduction/run_means.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {

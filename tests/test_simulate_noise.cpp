@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "ccal/simulate.hpp"
+#include "ccal/reduction/observe.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {
@@ -39,8 +39,8 @@ TEST(SimulatedNoise, QuantisedOutputErrsUniformlyByQOverT) {
   // q = 1e-4 rad (a PIGA pulse weight of ≈ 20 arcsec). 4000 seeds × 6 runs. Each deviation must lie within
   // ±q/(2T) (exactly: round-off margin 1e-12 relative). The variance of all 24 000 deviations, each divided
   // by its (q/T)²/12, is 1 within sampling error: a uniform variable has kurtosis 1.8, so the sample variance
-  // has relative standard error √(0.8/n) = 0.58 %: 5 of them, 2.9 %. Per run (n = 4000): 1.4 %, 5 of them 7 %.
-  // A noise of width q instead of q/T would be 100–850 times too wide.
+  // has relative standard error √(0.8/n) = 0.58 %: 5 of them, 2.9 %. Per run (n = 4000): 1.4 %, 5 of them 7
+  // %. A noise of width q instead of q/T would be 100–850 times too wide.
   const double q = 1e-4;
   const Experiment ex = noisy_experiment(0.0, q);
   const int seeds = 4000;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "ccal/site.hpp"
+#include "ccal/model/site.hpp"
 
 namespace ccal {
 namespace {
@@ -30,7 +30,8 @@ TEST(NormalGravity, PublishedWgs84Values) {
   EXPECT_NEAR(normal_gravity(-90 * kDeg), gp, 1e-9);
   EXPECT_NEAR(somigliana(45 * kDeg), 9.8061977693, 1e-9);  // the formula as written reproduces the table
   EXPECT_NEAR(normal_gravity(45 * kDeg), 9.8061977693, 1e-9);
-  for (double deg : {10.0, 30.0, 45.75, 60.0}) EXPECT_NEAR(normal_gravity(deg * kDeg), somigliana(deg * kDeg), 1e-9) << deg;
+  for (double deg : {10.0, 30.0, 45.75, 60.0})
+    EXPECT_NEAR(normal_gravity(deg * kDeg), somigliana(deg * kDeg), 1e-9) << deg;
 }
 
 TEST(NormalGravity, FreeAirGradientLowersItWithHeight) {

@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "ccal/constants.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/units.hpp"
+#include "ccal/core/constants.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
 
 namespace ccal {
 // Lets GoogleTest print dimensions in failure messages.

@@ -15,7 +15,7 @@
 #include <optional>
 #include <utility>
 
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
 
 namespace ccal::cli {
 namespace {

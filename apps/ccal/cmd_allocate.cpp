@@ -1,5 +1,5 @@
 // ccal allocate: the largest centrifuge tolerances for which every target on an identified coefficient holds
-// (ccal/allocate.hpp), with a Monte Carlo check of the result.
+// (ccal/uncertainty/allocate.hpp), with a Monte Carlo check of the result.
 #include <cstdint>
 #include <memory>
 

@@ -2,8 +2,8 @@
 // of first-order contributions of the configured centrifuge errors (docs/cli.md).
 #include <memory>
 
+#include "ccal/core/units.hpp"
 #include "ccal/render/force.hpp"
-#include "ccal/units.hpp"
 #include "ccal/verbs/force.hpp"
 #include "commands.hpp"
 #include "output.hpp"

@@ -3,7 +3,7 @@
 // output column (docs/cli.md).
 #include <memory>
 
-#include "ccal/observation_csv.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "ccal/render/identify.hpp"
 #include "ccal/verbs/identify.hpp"
 #include "commands.hpp"

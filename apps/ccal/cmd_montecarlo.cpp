@@ -1,5 +1,6 @@
 // ccal montecarlo: propagation of the configured tolerances to the identified coefficients by the Monte Carlo
-// method of JCGM 101 (the engine of ccal/montecarlo.hpp), with the LPU of `ccal budget` for its validation.
+// method of JCGM 101 (the engine of ccal/uncertainty/montecarlo.hpp), with the LPU of `ccal budget` for its
+// validation.
 #include <cstdint>
 #include <memory>
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
 #include "ccal/version.hpp"
 #include "commands.hpp"
 

@@ -10,7 +10,7 @@
 #include <iostream>
 
 #include "atomic_file.hpp"
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
 
 namespace ccal::cli {
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ccal/config.hpp"
+#include "ccal/io/config_file.hpp"
 #include "ccal/render/table.hpp"
 
 namespace ccal::cli {

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
-#include "ccal/units.hpp"
 #include "ccal/version.hpp"
 
 namespace ccal::render {

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
-#include "ccal/units.hpp"
 #include "ccal/version.hpp"
 #include "parts.hpp"
 

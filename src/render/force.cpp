@@ -5,7 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "ccal/constants.hpp"
+#include "ccal/core/constants.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
 

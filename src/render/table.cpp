@@ -6,11 +6,6 @@
 
 namespace ccal::render {
 
-std::string number(double v, int digits) {
-  if (v == 0.0) return "0";
-  return fmt::format("{:.{}g}", v, digits);
-}
-
 std::string Table::render(std::string_view indent) const {
   std::vector<std::size_t> width(header_.size(), 0);
   auto measure = [&](const std::vector<std::string>& row) {

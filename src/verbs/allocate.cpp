@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "ccal/budget.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/montecarlo.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "result_checks.hpp"
 
 namespace ccal::verbs {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
 #include "result_checks.hpp"
 
 namespace ccal::verbs {

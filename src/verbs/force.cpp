@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "ccal/errors.hpp"
-#include "ccal/render/table.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/format.hpp"
 
 namespace ccal::verbs {
 
@@ -14,8 +14,8 @@ ForceResult force(const Config& config, const ForceOptions& options) {
   const Run& run = config.plan.runs[r.run_index];
   const double t = options.time;
   if (!(t >= 0.0 && t <= run.duration))
-    throw InputError(fmt::format("--time: {} s is outside run '{}'; accepted: 0 to {} s", render::number(t),
-                                 run.name, render::number(run.duration)));
+    throw InputError(fmt::format("--time: {} s is outside run '{}'; accepted: 0 to {} s", number(t), run.name,
+                                 number(run.duration)));
   r.input = evaluate_force(config.site, config.centrifuge, run, t, options.mode);
   return r;
 }

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <set>
 
-#include "ccal/errors.hpp"
-#include "ccal/render/table.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/format.hpp"
 
 namespace ccal::verbs {
 

@@ -5,8 +5,8 @@
 
 #include <set>
 
-#include "ccal/errors.hpp"
-#include "ccal/units.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
 
 namespace ccal::verbs {
 namespace {

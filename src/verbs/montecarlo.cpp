@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
 
 namespace ccal::verbs {
 

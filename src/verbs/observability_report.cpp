@@ -5,16 +5,15 @@
 #include <cmath>
 #include <numbers>
 
-#include "ccal/budget.hpp"
-#include "ccal/errors.hpp"
-#include "ccal/observation_csv.hpp"
-#include "ccal/render/table.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/format.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/uncertainty/budget.hpp"
 
 namespace ccal::verbs {
 namespace {
 
 using Index = Eigen::Index;
-using render::number;
 
 // Raises the refusal of the first unobservable term and collects the warnings of the weak ones.
 void judge(ObservabilityReport& report, std::string_view source) {

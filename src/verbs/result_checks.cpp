@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "ccal/errors.hpp"
+#include "ccal/core/errors.hpp"
 
 namespace ccal::verbs {
 namespace {

@@ -3,9 +3,9 @@
 // InputError naming the configuration, the coefficient and the first source whose figures are not finite
 // (input beyond what double precision can carry, e.g. a tolerance of 1e200 m).
 
-#include "ccal/allocate.hpp"
-#include "ccal/budget.hpp"
-#include "ccal/config.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/uncertainty/budget.hpp"
 
 namespace ccal::verbs {
 

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <numeric>
 
-#include "ccal/errors.hpp"
-#include "ccal/observation_csv.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/observation_csv.hpp"
 
 namespace ccal::verbs {
 

@@ -4,9 +4,11 @@ of defaults, in the library). Only the timing and thread-count fields, which dep
 Run by ctest with the module on PYTHONPATH and the program in CCAL_PROGRAM."""
 
 import json
+import math
 import os
 import re
 import subprocess
+import tempfile
 import unittest
 
 import ccal
@@ -54,6 +56,27 @@ class SameAsCli(unittest.TestCase):
                 targets = {"K2": 2e-5, "K3": 2e-3} if path is None else {"K2": 1e-5, "K3": 1e-3}
                 self.check(ccal.allocate(cfg, targets), "allocate", *arg,
                            *[f"--target={k}={v}" for k, v in targets.items()])
+
+    def test_reduce(self):
+        # Synthetic logs of the first three runs (as in tests/test_golden_outputs.cpp): pulses of 1e-3 deg,
+        # encoders at the planned rate of a 2.5 m arm, every 0.1 s.
+        with tempfile.TemporaryDirectory() as tmp:
+            logs = {}
+            for r, (level, mean) in enumerate([(5, 2526.171), (10, 5052.236), (15, 7578.517)]):
+                rate = math.sqrt(level * 9.8 / 2.5)
+                rows = ["time,pulses,theta1,gamma"]
+                for k in range(1201):
+                    t = 120 * k / 1200
+                    rows.append(f"{t:.6f},{math.floor(mean * t / 1e-3):.6f},"
+                                f"{math.fmod(0.3 + rate * (1 + 1e-6) * t, 2 * math.pi):.6f},"
+                                f"{math.fmod(8 * math.pi + 1.1 - rate * (1 - 2e-6) * t, 2 * math.pi):.6f}")
+                path = os.path.join(tmp, f"run{r + 1}.csv")
+                with open(path, "w") as f:
+                    f.write("\n".join(rows) + "\n")
+                logs[r] = path
+            result = ccal.reduce(ccal.bundled_example(), logs, pulse_weight=1e-3)
+            self.check(result, "reduce", *[f"--log={r + 1}={p}" for r, p in logs.items()], "--pulse-weight",
+                       "1e-3")
 
     def test_text_report_is_the_cli_text(self):
         cfg = ccal.bundled_example()

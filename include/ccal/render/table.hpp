@@ -6,10 +6,11 @@
 #include <string_view>
 #include <vector>
 
+#include "ccal/core/format.hpp"
+
 namespace ccal::render {
 
-// Number with `digits` significant digits (%g style); "0" for zero.
-std::string number(double v, int digits = 9);
+using ccal::number;
 
 // A text table: a header row, then rows of cells; columns after the first are right-aligned.
 class Table {

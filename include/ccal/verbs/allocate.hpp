@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "ccal/allocate.hpp"
-#include "ccal/config.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/allocate.hpp"
 
 namespace ccal::verbs {
 

@@ -4,9 +4,9 @@
 
 #include <optional>
 
-#include "ccal/budget.hpp"
-#include "ccal/config.hpp"
-#include "ccal/model_mode.hpp"
+#include "ccal/core/model_mode.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/budget.hpp"
 #include "ccal/verbs/observability_report.hpp"
 
 namespace ccal::verbs {

@@ -4,9 +4,9 @@
 
 #include <cstddef>
 
-#include "ccal/config.hpp"
-#include "ccal/force.hpp"
-#include "ccal/model_mode.hpp"
+#include "ccal/core/model_mode.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/model/sensed_input.hpp"
 
 namespace ccal::verbs {
 

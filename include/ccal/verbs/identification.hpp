@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
-#include "ccal/fit.hpp"
-#include "ccal/observation_csv.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/reduction/fit.hpp"
+#include "ccal/reduction/observe.hpp"
 #include "ccal/verbs/observability_report.hpp"
 
 namespace ccal::verbs {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "ccal/observation_csv.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "ccal/verbs/identification.hpp"
 
 namespace ccal::verbs {

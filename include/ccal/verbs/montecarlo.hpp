@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <optional>
 
-#include "ccal/budget.hpp"
-#include "ccal/config.hpp"
-#include "ccal/model_mode.hpp"
-#include "ccal/montecarlo.hpp"
+#include "ccal/core/model_mode.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal::verbs {
 

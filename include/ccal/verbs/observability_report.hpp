@@ -1,16 +1,16 @@
 #pragma once
-// The per-term observability (ccal/observability.hpp, docs/model.md §14) as the verbs use it: what is known
-// of the runs, the refusal of an unobservable term and the warning of a weak one (returned, for the front
-// end to show).
+// The per-term observability (ccal/reduction/observability.hpp, docs/model.md §14) as the verbs use it: what
+// is known of the runs, the refusal of an unobservable term and the warning of a weak one (returned, for the
+// front end to show).
 
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "ccal/config.hpp"
-#include "ccal/fit.hpp"
-#include "ccal/observability.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/fit.hpp"
+#include "ccal/reduction/observability.hpp"
+#include "ccal/reduction/observe.hpp"
 
 namespace ccal::verbs {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "ccal/config.hpp"
-#include "ccal/model_mode.hpp"
-#include "ccal/simulate.hpp"
+#include "ccal/core/model_mode.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/reduction/observe.hpp"
 #include "ccal/verbs/identification.hpp"
 
 namespace ccal::verbs {

@@ -1,8 +1,9 @@
-// Loads the bundled example through the installed library and prints the nominal main-axis rate of its 20 g run.
+// Loads the bundled example through the installed library and prints the nominal main-axis rate of its 20 g
+// run.
 #include <cstdio>
 
-#include "ccal/config.hpp"
-#include "ccal/test_plan.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/model/plan.hpp"
 #include "ccal/version.hpp"
 
 #ifdef CCAL_SOURCE_DIR

@@ -1,0 +1,42 @@
+#pragma once
+// The whole set-up of a calibration test as one value: site, centrifuge (geometry and known errors),
+// instrument, test plan, tolerances, what is identified and how runs are reduced. Read from a file by
+// io/config_file.hpp; every verb takes one (verbs/).
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/core/model_mode.hpp"
+#include "ccal/model/centrifuge.hpp"
+#include "ccal/model/instrument.hpp"
+#include "ccal/model/plan.hpp"
+#include "ccal/model/site.hpp"
+#include "ccal/setup/experiment.hpp"
+#include "ccal/setup/tolerance.hpp"
+
+namespace ccal {
+
+struct Config {
+  std::string source;  // file name (or the name given to parse_config), as used in messages
+  Site site;
+  CentrifugeModel centrifuge;  // geometry and the known/actual values of the [errors] section
+  InstrumentModel instrument;
+  TestPlan plan;
+  std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order
+  // What is identified ([identification]; default: K0, K2, K3 free and K1 held at the instrument's value, as
+  // in the paper). Fixed terms hold the instrument's configured coefficients (SI).
+  IdentificationSpec identification;
+  // How runs are reduced ([identification] mode): the exact chain (default) or the paper's first-order rules.
+  ModelMode mode = ModelMode::exact;
+
+  // The experiment (geometry, layout, site, plan, instrument) of this configuration.
+  Experiment experiment() const;
+};
+
+// Index of a run chosen by the user: a run name, or else a 1-based index ("3"). Throws InputError listing the
+// runs if there is no such run; option_name (e.g. "--run") starts the message.
+std::size_t select_run(const TestPlan& plan, std::string_view name_or_index, std::string_view option_name);
+
+}  // namespace ccal

@@ -1,0 +1,127 @@
+#pragma once
+// The error budget (docs/model.md §10): how much each centrifuge error source biases each identified
+// coefficient, and in total.
+//
+// The identified coefficients are a function of the true errors e through the whole pipeline:
+//     K̂(e) = H⁺ (ȳ(e) − s_ω⟨ω_IA⟩ − Σ_fixed K Z),   ȳ_j(e) = ⟨instrument output⟩ over run j (exact chain)
+// with the design H, the known rate term and the fixed terms from the analyst's model (zero errors, or the
+// measured ones when compensating), which do not depend on e. The sensitivity J = ∂K̂/∂e is computed by
+// forward-mode automatic differentiation through kinematics, reduction and least squares (ccal::Dual, in
+// passes of kDualWidth sources), at the configured error values.
+//
+// Totals follow the law of propagation of uncertainty (GUM §5): the standard uncertainty u_s of each source
+// (bound and distribution), contribution c_ks = J_ks u_s, fully correlated sources of a group added with
+// their signs, groups added in quadrature; the coefficient covariance is Σ_groups g gᵀ.
+
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/reduction/observe.hpp"
+#include "ccal/setup/config.hpp"
+#include "ccal/uncertainty/rate_noise.hpp"
+
+namespace ccal {
+
+// How ∂ȳ/∂e is obtained. Both are exact (they agree to round-off, tests/test_budget.cpp):
+//   automatic:  forward-mode AD (ccal::Dual) through kinematics and reduction, in passes of kDualWidth
+//   sources; linearised: at zero errors, the closed-form linearisation of the chain (exact_first_order,
+//   itself checked
+//               against AD) contracted with the output's gradient at each quadrature node, AD for the drive
+//               errors only — an order of magnitude faster; used only where valid (exact mode, truth errors
+//               all zero), otherwise automatic.
+enum class DerivativeMethod { automatic, linearised };
+
+struct BudgetOptions {
+  ModelMode mode = ModelMode::exact;
+  double coverage_factor = 2.0;      // k of the expanded uncertainty U = k u (≈ 95 % for a normal total)
+  bool compare_with_paper = true;    // in exact mode, also compute the paper's sensitivities per source
+  double disagreement_factor = 2.0;  // flag sources whose exact and paper effects differ by more than this
+  ReductionOptions reduction;
+  DerivativeMethod derivatives = DerivativeMethod::linearised;
+};
+
+// Sensitivities of the free coefficients (rows) to the given parameters (columns), SI per SI unit, split
+// into the specific-force path (the instrument's rate gain set to zero) and the angular-rate path (the rest).
+struct SensitivityTable {
+  std::vector<std::string> coefficients;
+  std::vector<int> parameters;
+  Eigen::MatrixXd total, force_path, rate_path;
+  DerivativeMethod method = DerivativeMethod::automatic;  // the one used
+};
+
+// J at the truth errors `at` (indexed by the layout), with the model's errors `known`.
+SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
+                               const std::vector<int>& parameters, const Eigen::VectorXd& at,
+                               const Eigen::VectorXd& known, ModelMode mode,
+                               const ReductionOptions& reduction = {},
+                               DerivativeMethod method = DerivativeMethod::automatic);
+
+struct SourceBudget {
+  int parameter = 0;
+  std::string id;
+  std::string group;
+  Distribution distribution = Distribution::normal;
+  double bound = 0;                 // SI
+  double standard_uncertainty = 0;  // u_s, SI
+  Eigen::VectorXd sensitivity;      // ∂K/∂e per coefficient, SI per SI unit
+  Eigen::VectorXd effect;           // J u_s per coefficient (signed), coefficient SI units
+  Eigen::VectorXd effect_force;     // of which through the specific force
+  Eigen::VectorXd effect_rate;      // and through the angular rate
+  Eigen::VectorXd share;            // c_ks² / u_k² per coefficient (0…1)
+  Eigen::VectorXd paper_effect;     // the paper-mode effect at the same u_s (empty if not computed)
+  std::vector<bool> disagrees;      // exact vs paper beyond the disagreement factor, per coefficient
+  bool paper_counterpart = true;    // false where the paper's rules have no such error (the drives' ripple)
+  int rank = 0;                     // 1 = largest contributor (by the largest share over coefficients)
+};
+
+// A modelling choice rather than an uncertain quantity: the bias of the coefficients when the analyst's model
+// leaves an effect out that the truth has (Earth rate sensed by the instrument; the Coriolis force).
+struct CompensationChoice {
+  std::string id;  // "earth_rate", "coriolis"
+  std::string description;
+  Eigen::VectorXd bias;        // K̂(effect not modelled) − K̂(modelled), SI, in the budget's mode
+  Eigen::VectorXd paper_bias;  // the same in paper mode (empty unless compared)
+};
+
+// The compensation-choice rows (empty if the site's Earth rotation is off).
+std::vector<CompensationChoice> compensation_choices(const Experiment& ex, const IdentificationSpec& spec,
+                                                     const Eigen::VectorXd& at, const Eigen::VectorXd& known,
+                                                     ModelMode mode, bool with_paper,
+                                                     const ReductionOptions& reduction = {});
+
+// The random rate noise of one drive (docs/model.md §3.2): a Type A component, independent from run to run,
+// so its covariance is H⁺ diag(σ_j²) H⁺ᵀ rather than a signed effect.
+struct RateNoiseBudget {
+  std::string id;          // "main_rate_noise" or "platform_rate_noise"
+  double density = 0;      // N [1/√Hz]
+  Eigen::VectorXd run_sd;  // σ_j of each run's output mean [output SI]
+  Eigen::VectorXd effect;  // u per coefficient (≥ 0, coefficient SI units)
+  Eigen::VectorXd share;   // of the coefficient's variance (0…1)
+  Eigen::MatrixXd covariance;
+};
+
+struct BudgetResult {
+  ModelMode mode = ModelMode::exact;
+  DerivativeMethod derivatives = DerivativeMethod::automatic;  // used for the sensitivity table
+  std::vector<std::string> coefficients;                       // free terms
+  std::vector<std::string> units;                              // their display units (output unit per g^n)
+  std::vector<double> display_scale;                           // SI → display unit factor per coefficient
+  std::vector<SourceBudget> sources;                           // in tolerance order
+  std::vector<RateNoiseBudget> rate_noise;                     // drives with rate noise (in the totals)
+  Eigen::VectorXd standard_uncertainty;                        // u_k per coefficient (SI)
+  Eigen::VectorXd expanded_uncertainty;                        // k u_k
+  double coverage_factor = 2.0;
+  Eigen::MatrixXd covariance;  // of the coefficients (SI)
+  Eigen::MatrixXd correlation;
+  std::vector<CompensationChoice> compensation;  // systematic, not in the totals
+};
+
+BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});
+
+// The display unit of a coefficient: the instrument's output unit per gⁿ for a term of order n in the inputs,
+// e.g. "deg/s/g^3" for K3 of a PIGA read in deg/s (BudgetResult::units). term_id must be a valid term id.
+std::string coefficient_unit(std::string_view output_unit, std::string_view term_id);
+
+}  // namespace ccal

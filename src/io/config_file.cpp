@@ -1,0 +1,104 @@
+#include "ccal/io/config_file.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "ccal/core/units.hpp"
+#include "config_reader.hpp"
+
+namespace ccal {
+
+// ---------------------------------------------------------------------------------------------------------
+// Errors, distributions, run selection, edit distance
+
+namespace {
+std::string format_config_error(const std::string& source, int line, int column, const std::string& key,
+                                const std::string& problem) {
+  std::string out = source;
+  if (line > 0) out += fmt::format(":{}:{}", line, std::max(column, 1));
+  out += ": ";
+  if (!key.empty()) out += key + ": ";
+  out += problem;
+  return out;
+}
+}  // namespace
+
+ConfigError::ConfigError(std::string source, int line, int column, std::string key, std::string problem)
+    : LocatedInputError(format_config_error(source, line, column, key, problem), source, line, column, key,
+                        problem) {}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Public interface
+
+using namespace config_reading;
+
+Config parse_config(std::string_view text, std::string_view source_name) {
+  const Reader r{std::string(source_name)};
+  toml::table root;
+#if TOML_EXCEPTIONS
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}", e.description()));
+  }
+#else
+  auto result = toml::parse(text, source_name);
+  if (!result)
+    r.fail(where(result.error().source()), "",
+           fmt::format("TOML syntax error: {}", result.error().description()));
+  root = std::move(result).table();
+#endif
+  r.check_keys(root, "", kRootKeys);
+  Config cfg;
+  cfg.source = std::string(source_name);
+  cfg.site = read_site(r, root);
+  cfg.centrifuge = read_centrifuge(r, root);
+  read_errors(r, root, cfg.centrifuge);
+  cfg.tolerances = read_tolerances(r, root, cfg.centrifuge.layout);
+  cfg.instrument = read_instrument(r, root);
+  cfg.plan = read_plan(r, root, cfg.centrifuge.geometry, cfg.site);
+  read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);
+  return cfg;
+}
+
+Config load_config(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  if (!in || std::filesystem::is_directory(path, ec))
+    throw ConfigError(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ConfigError(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  return parse_config(text.str(), name);
+}
+
+Config bundled_example() { return parse_config(bundled_example_text(), kBundledExampleName); }
+
+}  // namespace ccal

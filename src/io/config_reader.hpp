@@ -1,0 +1,309 @@
+#pragma once
+// The TOML configuration reader's pieces (private to the library): the located-error reader of a parsed
+// file, the keys each table accepts, and one reader per section (docs/config.md). io/config_file.cpp puts
+// them together.
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "ccal/core/units.hpp"
+#include "ccal/io/config_file.hpp"
+
+namespace ccal::config_reading {
+
+using Keys = std::vector<std::string_view>;
+
+inline std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
+}
+
+// The candidate closest to `word` if it is close enough to be a plausible typing error. Case differences cost
+// little: "dr_s" finds "dR_s".
+inline std::optional<std::string> closest(std::string_view word, const std::vector<std::string>& candidates) {
+  std::optional<std::string> best;
+  std::size_t best_distance = 0;
+  const std::string w = lower(word);
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(w, lower(c));
+    if (!best || d < best_distance) {
+      best_distance = d;
+      best = c;
+    }
+  }
+  const std::size_t limit = std::max<std::size_t>(2, word.size() / 3);
+  if (best && best_distance <= limit) return best;
+  return std::nullopt;
+}
+
+inline std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+    case toml::node_type::time:
+    case toml::node_type::date_time:
+      return "a date/time";
+    default:
+      return "nothing";
+  }
+}
+
+// A number as TOML holds it (integer or float), if the node is one.
+inline std::optional<double> number_of(const toml::node& n) {
+  if (const auto* i = n.as_integer()) return double(i->get());
+  if (const auto* f = n.as_floating_point()) return f->get();
+  return std::nullopt;
+}
+
+inline std::string number_text(double v) { return fmt::format("{:g}", v); }
+
+// The unit a user most likely means for a dimension, for "such as" examples.
+inline std::string example_unit(Dimension d) {
+  if (d == kind::angle) return "deg";
+  if (d == kind::length) return "m";
+  if (d == kind::time) return "s";
+  if (d == kind::angular_rate) return "rad/s";
+  if (d == kind::acceleration_g) return "g";
+  if (d == kind::acceleration) return "m/s^2";
+  return si_unit(d);
+}
+
+struct Location {
+  int line = 0;
+  int column = 0;
+};
+
+inline Location where(const toml::source_region& r) {
+  return {static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+
+// A quantity's output dimension: how an instrument's output unit is written and what it is in SI.
+struct OutputUnit {
+  std::string text;  // as the user wrote it, e.g. "deg/s"
+  Dimension dim;     // SI dimension (pulse counted as rad, see below)
+  bool pulse = false;
+};
+
+// The instrument's output may be counted in pulses, which units.hpp does not know: "pulse" is read as "rad"
+// (a pulse is then one unit of an angle-like count), and a string given for a pulse-output instrument must
+// name pulses, so that "deg/s" cannot be silently taken for pulses.
+inline std::string pulse_as_rad(std::string_view text) {
+  std::string out(text);
+  for (std::size_t pos = out.find("pulse"); pos != std::string::npos; pos = out.find("pulse", pos + 3))
+    out.replace(pos, 5, "rad");
+  return out;
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(Location at, std::string_view key, std::string problem) const {
+    throw ConfigError(source_, at.line, at.column, std::string(key), std::move(problem));
+  }
+  [[noreturn]] void fail(const toml::node& n, std::string_view key, std::string problem) const {
+    fail(where(n.source()), key, std::move(problem));
+  }
+
+  static std::string path(std::string_view parent, std::string_view key) {
+    return parent.empty() ? std::string(key) : fmt::format("{}.{}", parent, key);
+  }
+
+  // Rejects any key of t not in `allowed`, suggesting the closest allowed one.
+  void check_keys(const toml::table& t, std::string_view table_path, const Keys& allowed) const {
+    std::vector<std::string> names(allowed.begin(), allowed.end());
+    for (const auto& [key, node] : t) {
+      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
+      const std::string p = path(table_path, key.str());
+      if (auto best = closest(key.str(), names))
+        fail(where(key.source()), p, fmt::format("unknown key; did you mean '{}'?", *best));
+      fail(where(key.source()), p, fmt::format("unknown key; accepted keys: {}", fmt::join(names, ", ")));
+    }
+  }
+
+  const toml::table* table(const toml::table& parent, std::string_view parent_path, std::string_view key,
+                           bool required, std::string_view what_if_missing = {}) const {
+    const toml::node* n = parent.get(key);
+    const std::string p = path(parent_path, key);
+    if (!n) {
+      if (required) fail(where(parent.source()), p, fmt::format("missing table; {}", what_if_missing));
+      return nullptr;
+    }
+    if (const auto* t = n->as_table()) return t;
+    fail(*n, p, fmt::format("expected a table, got {}", type_name(*n)));
+  }
+
+  // A quantity string of the given dimension, in SI; nullopt if absent. `example` is a number and unit in the
+  // expected dimension for the message about a bare number (e.g. "2.5 m").
+  std::optional<double> quantity(const toml::table& t, std::string_view table_path, std::string_view key,
+                                 Dimension dim, const OutputUnit* output = nullptr,
+                                 std::string_view example = {}) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    return quantity_node(*n, path(table_path, key), dim, output, example);
+  }
+
+  double quantity_node(const toml::node& n, const std::string& p, Dimension dim, const OutputUnit* output,
+                       std::string_view example) const {
+    const std::string unit = example.empty() ? "1 " + example_unit(dim) : std::string(example);
+    if (const auto* s = n.as_string())
+      return quantity_text(s->get(), where(n.source()), p, dim, output, unit);
+    if (const auto v = number_of(n)) {
+      if (dim == kind::dimensionless) {
+        if (!std::isfinite(*v)) fail(n, p, "not a finite number; give a finite number");
+        return *v;
+      }
+      // Replace the example's number by the user's, so the hint is the likely intended value.
+      const std::string unit_only = unit.substr(unit.find(' ') + 1);
+      fail(n, p,
+           fmt::format("expected a quantity string such as \"{} {}\", got the bare number {}",
+                       number_text(std::isfinite(*v) ? *v : 1.0), unit_only, number_text(*v)));
+    }
+    fail(n, p, fmt::format("expected a quantity string such as \"{}\", got {}", unit, type_name(n)));
+  }
+
+  // Parses a quantity string at a place in the file (see quantity_node).
+  double quantity_text(const std::string& written, Location at, const std::string& p, Dimension dim,
+                       const OutputUnit* output, std::string_view example) const {
+    std::string text = written;
+    if (output && output->pulse) {
+      if (text.find("pulse") == std::string::npos)
+        fail(at, p,
+             fmt::format("'{}': the instrument's output_unit is 'pulse/s', so this value must be in pulses; "
+                         "accepted: e.g. \"{}\"",
+                         text, example));
+      text = pulse_as_rad(text);
+    }
+    try {
+      return parse_as(text, dim, "", dim == kind::dimensionless);
+    } catch (const UnitError& e) {
+      if (output && output->pulse)
+        fail(at, p,
+             fmt::format("'{}': not a valid quantity in pulses; accepted: e.g. \"{}\"", written, example));
+      fail(at, p, e.what());
+    }
+  }
+
+  std::optional<double> number(const toml::table& t, std::string_view table_path,
+                               std::string_view key) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    const std::string p = path(table_path, key);
+    const auto v = number_of(*n);
+    if (!v) fail(*n, p, fmt::format("expected a number, got {}", type_name(*n)));
+    if (!std::isfinite(*v)) fail(*n, p, "not a finite number; give a finite number such as 1.0");
+    return v;
+  }
+
+  std::optional<std::string> string(const toml::table& t, std::string_view table_path,
+                                    std::string_view key) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    if (const auto* s = n->as_string()) return s->get();
+    fail(*n, path(table_path, key), fmt::format("expected a string, got {}", type_name(*n)));
+  }
+
+  std::optional<bool> boolean(const toml::table& t, std::string_view table_path, std::string_view key) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    if (const auto* b = n->as_boolean()) return b->get();
+    fail(*n, path(table_path, key), fmt::format("expected true or false, got {}", type_name(*n)));
+  }
+
+  // One of a list of words; the message lists them.
+  template <class E>
+  std::optional<E> word(const toml::table& t, std::string_view table_path, std::string_view key,
+                        const std::vector<std::pair<std::string_view, E>>& words) const {
+    const auto s = string(t, table_path, key);
+    if (!s) return std::nullopt;
+    std::vector<std::string> names;
+    for (const auto& [name, value] : words) {
+      if (name == *s) return value;
+      names.emplace_back(name);
+    }
+    const toml::node& n = *t.get(key);
+    const auto best = closest(*s, names);
+    fail(n, path(table_path, key),
+         fmt::format("unknown value '{}'; {}accepted: {}", *s,
+                     best ? fmt::format("did you mean '{}'? ", *best) : std::string(),
+                     fmt::join(names, ", ")));
+  }
+
+  void require_positive(const toml::table& t, std::string_view table_path, std::string_view key, double v,
+                        std::string_view hint) const {
+    if (v > 0) return;
+    fail(*t.get(key), path(table_path, key),
+         fmt::format("must be positive, got {}; {}", number_text(v), hint));
+  }
+  void require_non_negative(const toml::table& t, std::string_view table_path, std::string_view key, double v,
+                            std::string_view hint) const {
+    if (v >= 0) return;
+    fail(*t.get(key), path(table_path, key),
+         fmt::format("must not be negative, got {}; {}", number_text(v), hint));
+  }
+
+  // Plausibility: a value beyond what any centrifuge test uses is a typing or unit error.
+  void require_at_most(const toml::table& t, std::string_view table_path, std::string_view key, double v,
+                       double most, std::string_view accepted) const {
+    if (v <= most) return;
+    fail(*t.get(key), path(table_path, key),
+         fmt::format("{} is implausible; accepted: {}", number_text(v), accepted));
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+inline const Keys kRootKeys{"site",       "centrifuge", "errors",        "tolerances",
+                            "instrument", "plan",       "identification"};
+inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
+inline const Keys kCentrifugeKeys{
+    "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
+    "harmonic_order", "platform_control",  "main_rate_noise",   "platform_rate_noise"};
+inline const Keys kRateNoiseKeys{"allan_deviation", "tau"};
+inline const Keys kToleranceKeys{"bound", "distribution", "group", "cost"};
+inline const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density", "quantum", "terms"};
+inline const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
+                            "mounting", "runs"};
+inline const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "paper_cross_terms"};
+inline const Keys kRunKeys{"name",           "g_level",       "speed",       "duration", "platform",
+                           "terminal_phase", "initial_phase", "arm_azimuth", "mounting"};
+
+inline constexpr int kMaxHarmonicOrder = 16;
+
+// The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
+Site read_site(const Reader& r, const toml::table& root);
+CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root);
+void read_errors(const Reader& r, const toml::table& root, CentrifugeModel& model);
+std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const ErrorLayout& layout);
+InstrumentModel read_instrument(const Reader& r, const toml::table& root);
+TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site);
+void read_identification(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
+                         IdentificationSpec& spec, ModelMode& mode);
+
+}  // namespace ccal::config_reading

@@ -1,0 +1,349 @@
+// The configuration file's [instrument], [plan] and [identification] sections (docs/config.md).
+#include "config_reader.hpp"
+
+namespace ccal::config_reading {
+
+// Coefficient dimension of a term for an output dimension.
+Dimension term_dimension(const TermSpec& term, Dimension output) {
+  switch (term.kind) {
+    case TermKind::power:
+      return kind::coefficient(output, term.power);
+    case TermKind::p:
+    case TermKind::o:
+      return kind::coefficient(output, 1);
+    case TermKind::rate:
+      return output / kind::angular_rate;
+    default:
+      return kind::coefficient(output, 2);
+  }
+}
+
+InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
+  const toml::table* t = r.table(root, "", "instrument", false);
+  if (!t) return paper_piga();
+  const std::string_view p = "instrument";
+  r.check_keys(*t, p, kInstrumentKeys);
+  enum class Model { piga, ieee };
+  const Model model =
+      r.word(*t, p, "model",
+             std::vector<std::pair<std::string_view, Model>>{{"piga", Model::piga}, {"ieee", Model::ieee}})
+          .value_or(Model::piga);
+
+  InstrumentModel m = model == Model::piga ? paper_piga() : InstrumentModel{};
+  if (model == Model::ieee) {
+    m.name = "IEEE-style accelerometer";
+    m.output_unit = "g";
+    m.rate_gain = 0.0;
+    m.term_ids.clear();
+    m.coefficients.resize(0);
+  }
+
+  // Output unit: an angular rate (rate-output PIGA), a g-level, an acceleration, or pulses per second.
+  OutputUnit out{m.output_unit, kind::angular_rate, false};
+  if (const auto text = r.string(*t, p, "output_unit")) {
+    out.text = *text;
+    const std::string accepted =
+        "accepted: an angular rate (deg/s, rad/s, deg/h), a g-level (g, mg, ug), "
+        "an acceleration (m/s^2) or pulse/s";
+    if (*text == "pulse/s") {
+      out.pulse = true;
+      out.dim = kind::angular_rate;
+    } else {
+      try {
+        const Quantity q = parse_unit(*text);
+        if (q.dim != kind::angular_rate && q.dim != kind::acceleration_g && q.dim != kind::acceleration)
+          r.fail(*t->get("output_unit"), "instrument.output_unit",
+                 fmt::format("'{}' is {}; {}", *text, describe(q.dim), accepted));
+        out.dim = q.dim;
+      } catch (const UnitError& e) {
+        r.fail(*t->get("output_unit"), "instrument.output_unit", fmt::format("{}; {}", e.what(), accepted));
+      }
+    }
+    m.output_unit = *text;
+  } else if (model == Model::ieee) {
+    out = {"g", kind::acceleration_g, false};
+  }
+
+  if (const toml::table* terms = r.table(*t, p, "terms", false)) {
+    struct Parsed {
+      TermSpec spec;
+      std::string id;
+      double value;
+    };
+    std::vector<Parsed> parsed;
+    const std::vector<std::string> valid = all_term_ids();
+    for (const auto& [key, node] : *terms) {
+      const std::string kp = Reader::path("instrument.terms", key.str());
+      const auto spec = parse_term(key.str());
+      if (!spec) {
+        const auto best = closest(key.str(), valid);
+        r.fail(where(key.source()), kp,
+               fmt::format("not a term id; {}accepted: {}",
+                           best ? fmt::format("did you mean '{}'? ", *best) : "", fmt::join(valid, ", ")));
+      }
+      const Dimension dim = term_dimension(*spec, out.dim);
+      std::string example = out.text;
+      if (spec->kind == TermKind::rate)
+        example += "/(rad/s)";
+      else if (const int order = term_dimension(*spec, kind::dimensionless).g_level; order != 0)
+        example += -order == 1 ? "/g" : fmt::format("/g^{}", -order);
+      const double v = r.quantity_node(node, kp, dim, &out, "1 " + example);
+      parsed.push_back({*spec, std::string(key.str()), v});
+    }
+    std::sort(parsed.begin(), parsed.end(),
+              [](const Parsed& a, const Parsed& b) { return term_rank(a.spec) < term_rank(b.spec); });
+    m.term_ids.clear();
+    m.coefficients.resize(Eigen::Index(parsed.size()));
+    for (std::size_t k = 0; k < parsed.size(); ++k) {
+      m.term_ids.push_back(parsed[k].id);
+      m.coefficients[Eigen::Index(k)] = parsed[k].value;
+    }
+  } else if (model == Model::ieee) {
+    r.fail(where(t->source()), "instrument.terms",
+           "missing table; model 'ieee' needs [instrument.terms] with coefficients, e.g. K1 = \"1 g/g\"");
+  } else if (out.dim != kind::angular_rate || out.pulse) {
+    r.fail(*t->get("output_unit"), "instrument.output_unit",
+           fmt::format("'{}' cannot use the paper's PIGA coefficients, which are in deg/s; give "
+                       "[instrument.terms] in this unit or use an angular-rate output such as deg/s",
+                       out.text));
+  }
+
+  if (const auto gain = r.number(*t, p, "rate_gain")) m.rate_gain = *gain;
+
+  if (const toml::node* n = t->get("noise_density")) {
+    const std::string kp = "instrument.noise_density";
+    const auto* s = n->as_string();
+    if (!s)
+      r.fail(*n, kp,
+             fmt::format("expected a quantity string such as \"0.001 {}/rtHz\", got {}", out.text,
+                         type_name(*n)));
+    std::string text = s->get();
+    bool stripped = false;
+    for (std::string_view suffix : {"/rtHz", "/sqrt(Hz)", "/√Hz"}) {
+      std::string_view view(text);
+      while (!view.empty() && view.back() == ' ') view.remove_suffix(1);
+      if (view.ends_with(suffix)) {
+        text = std::string(view.substr(0, view.size() - suffix.size()));
+        stripped = true;
+        break;
+      }
+    }
+    if (!stripped)
+      r.fail(*n, kp,
+             fmt::format("'{}' must end in /rtHz (or /sqrt(Hz)); accepted: \"<value> {}/rtHz\"", s->get(),
+                         out.text));
+    const double v = r.quantity_text(text, where(n->source()), kp, out.dim, &out, "0.001 " + out.text);
+    if (v < 0)
+      r.fail(*n, kp,
+             fmt::format("must not be negative; a noise density >= 0 such as \"0.001 {}/rtHz\"", out.text));
+    m.noise_density = v;
+  }
+  if (const toml::node* n = t->get("quantum")) {
+    const Dimension dim = out.dim * kind::time;
+    const double v = r.quantity_node(*n, "instrument.quantum", dim, &out, "0 " + si_unit(dim));
+    if (v < 0) r.fail(*n, "instrument.quantum", "must not be negative; a quantisation step >= 0");
+    m.quantum = v;
+  }
+  return m;
+}
+
+// Plan-level defaults and the run-level values that override them.
+struct RunFields {
+  std::optional<double> duration;
+  std::optional<PlatformMode> platform;
+  std::optional<double> initial_phase, terminal_phase;
+  std::optional<double> arm_azimuth;
+  std::optional<Mounting> mounting;
+};
+
+RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_view p) {
+  RunFields f;
+  f.duration = r.quantity(t, p, "duration", kind::time, nullptr, "450 s");
+  if (f.duration && !(*f.duration > 0))
+    r.fail(*t.get("duration"), Reader::path(p, "duration"),
+           fmt::format("must be positive, got {} s; a run duration such as \"450 s\"",
+                       number_text(*f.duration)));
+  if (f.duration)
+    r.require_at_most(t, p, "duration", *f.duration, 1e6, "a run duration up to 1e6 s (11.6 days)");
+  f.platform =
+      r.word(t, p, "platform",
+             std::vector<std::pair<std::string_view, PlatformMode>>{
+                 {"counter_rotating", PlatformMode::counter_rotating}, {"fixed", PlatformMode::fixed}});
+  f.initial_phase = r.quantity(t, p, "initial_phase", kind::angle, nullptr, "180 deg");
+  f.terminal_phase = r.quantity(t, p, "terminal_phase", kind::angle, nullptr, "180 deg");
+  if (f.initial_phase && f.terminal_phase) {
+    const toml::node* second = t.get("initial_phase");
+    const toml::node* other = t.get("terminal_phase");
+    if (other->source().begin.line > second->source().begin.line) std::swap(second, other);
+    r.fail(*second, Reader::path(p, second == t.get("initial_phase") ? "initial_phase" : "terminal_phase"),
+           "both initial_phase and terminal_phase are given; accepted: exactly one of them in one table");
+  }
+  f.arm_azimuth = r.quantity(t, p, "arm_azimuth", kind::angle, nullptr, "0 deg");
+  f.mounting =
+      r.word(t, p, "mounting",
+             std::vector<std::pair<std::string_view, Mounting>>{{"ia_horizontal", Mounting::ia_horizontal},
+                                                                {"ia_reversed", Mounting::ia_reversed},
+                                                                {"pa_vertical", Mounting::pa_vertical},
+                                                                {"ia_vertical", Mounting::ia_vertical}});
+  return f;
+}
+
+TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site) {
+  const toml::table* t =
+      r.table(root, "", "plan", true, "add [plan] and at least one [[plan.runs]] with g_level");
+  r.check_keys(*t, "plan", kPlanKeys);
+  const RunFields defaults = read_run_fields(r, *t, "plan");
+  const toml::node* runs_node = t->get("runs");
+  if (!runs_node)
+    r.fail(where(t->source()), "plan.runs",
+           "missing runs; add at least one [[plan.runs]] with g_level = \"5 g\"");
+  const toml::array* runs = runs_node->as_array();
+  if (!runs)
+    r.fail(*runs_node, "plan.runs",
+           fmt::format("expected an array of tables ([[plan.runs]]), got {}", type_name(*runs_node)));
+  if (runs->empty())
+    r.fail(*runs_node, "plan.runs", "no runs; add at least one [[plan.runs]] with g_level = \"5 g\"");
+
+  TestPlan plan;
+  std::map<std::string, Location> names;
+  for (std::size_t k = 0; k < runs->size(); ++k) {
+    const toml::node& node = *runs->get(k);
+    const std::string p = fmt::format("plan.runs[{}]", k + 1);
+    const toml::table* rt = node.as_table();
+    if (!rt) r.fail(node, p, fmt::format("expected a table ([[plan.runs]]), got {}", type_name(node)));
+    r.check_keys(*rt, p, kRunKeys);
+    Run run;
+    run.name = r.string(*rt, p, "name").value_or(fmt::format("run{}", k + 1));
+    if (run.name.empty()) r.fail(*rt->get("name"), p + ".name", "empty run name; give a name such as \"5g\"");
+    const Location at = rt->get("name") ? where(rt->get("name")->source()) : where(rt->source());
+    if (const auto it = names.find(run.name); it != names.end())
+      r.fail(
+          at, p + ".name",
+          fmt::format("duplicate run name '{}' (first used at line {}); accepted: a name unique in the plan",
+                      run.name, it->second.line));
+    names.emplace(run.name, at);
+
+    // A run is set by its g-level A or by the main-axis speed Ω (then A = Ω² R0 / g of the site).
+    const auto g_level = r.quantity(*rt, p, "g_level", kind::acceleration_g, nullptr, "5 g");
+    const auto speed = r.quantity(*rt, p, "speed", kind::angular_rate, nullptr, "120 rpm");
+    if (g_level && speed)
+      r.fail(*rt->get("speed"), p + ".speed",
+             "both g_level and speed are given; accepted: exactly one of them per run");
+    if (!g_level && !speed)
+      r.fail(where(rt->source()), p + ".g_level",
+             "missing value; give e.g. g_level = \"5 g\" (or the speed, e.g. speed = \"120 rpm\")");
+    if (g_level) {
+      r.require_positive(*rt, p, "g_level", *g_level, "the centripetal level such as \"5 g\"");
+      r.require_at_most(*rt, p, "g_level", *g_level, 1000.0, "a centripetal level up to 1000 g");
+      run.g_level = *g_level;
+    } else {
+      r.require_positive(*rt, p, "speed", *speed, "the main-axis speed such as \"120 rpm\"");
+      run.g_level = *speed * *speed * geometry.R0 / site.g;
+      r.require_at_most(*rt, p, "speed", run.g_level, 1000.0, "a speed giving at most 1000 g at the radius");
+    }
+
+    const RunFields own = read_run_fields(r, *rt, p);
+    const auto duration = own.duration ? own.duration : defaults.duration;
+    if (!duration)
+      r.fail(where(rt->source()), p + ".duration",
+             "missing value; give duration = \"450 s\" in this run or in [plan]");
+    run.duration = *duration;
+    run.mode = own.platform.value_or(defaults.platform.value_or(PlatformMode::counter_rotating));
+    if (own.initial_phase || own.terminal_phase) {
+      run.initial_phase = own.initial_phase;
+      run.terminal_phase = own.terminal_phase;
+    } else {
+      run.initial_phase = defaults.initial_phase;
+      run.terminal_phase = defaults.terminal_phase;
+    }
+    if (!run.initial_phase && !run.terminal_phase)
+      r.fail(where(rt->source()), p + ".terminal_phase",
+             "missing phase; give terminal_phase = \"180 deg\" or initial_phase = \"...\" in this run or in "
+             "[plan]");
+    run.arm_azimuth = own.arm_azimuth.value_or(defaults.arm_azimuth.value_or(0.0));
+    run.mounting = own.mounting.value_or(defaults.mounting.value_or(Mounting::ia_horizontal));
+    plan.runs.push_back(std::move(run));
+  }
+  return plan;
+}
+
+// A list of term ids (identification.terms or .fixed), each with its place in the file.
+std::vector<std::pair<std::string, const toml::node*>> read_term_list(const Reader& r, const toml::table& t,
+                                                                      std::string_view key) {
+  const std::string p = Reader::path("identification", key);
+  const toml::node* n = t.get(key);
+  const auto* array = n->as_array();
+  if (!array)
+    r.fail(
+        *n, p,
+        fmt::format("expected an array of term ids such as [\"K0\", \"K2\", \"K3\"], got {}", type_name(*n)));
+  const std::vector<std::string> valid = all_term_ids();
+  std::vector<std::pair<std::string, const toml::node*>> out;
+  for (const toml::node& item : *array) {
+    const auto* s = item.as_string();
+    if (!s) r.fail(item, p, fmt::format("expected a term id string such as \"K2\", got {}", type_name(item)));
+    const std::string id = s->get();
+    if (!parse_term(id)) {
+      const auto best = closest(id, valid);
+      r.fail(item, p,
+             fmt::format("'{}' is not a term id; {}accepted: {}", id,
+                         best ? fmt::format("did you mean '{}'? ", *best) : "", fmt::join(valid, ", ")));
+    }
+    for (const auto& [seen, node] : out)
+      if (seen == id)
+        r.fail(item, p,
+               fmt::format("'{}' is listed twice (first at line {}); accepted: each term once", id,
+                           node->source().begin.line));
+    out.emplace_back(id, &item);
+  }
+  return out;
+}
+
+// [identification]: free and fixed terms, compensation and the model of the reduction. Fixed terms are held
+// at the instrument's configured coefficients.
+void read_identification(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
+                         IdentificationSpec& spec, ModelMode& mode) {
+  spec = IdentificationSpec{};
+  mode = ModelMode::exact;
+  const toml::table* t = r.table(root, "", "identification", false);
+  const std::string_view p = "identification";
+  if (t) r.check_keys(*t, p, kIdentificationKeys);
+  if (t && t->get("terms")) {
+    spec.free_terms.clear();
+    for (const auto& [id, node] : read_term_list(r, *t, "terms")) spec.free_terms.push_back(id);
+    if (spec.free_terms.empty())
+      r.fail(*t->get("terms"), "identification.terms",
+             "empty; give at least one free term, e.g. terms = [\"K0\", \"K2\", \"K3\"]");
+  }
+  auto is_free = [&](const std::string& id) {
+    return std::find(spec.free_terms.begin(), spec.free_terms.end(), id) != spec.free_terms.end();
+  };
+  spec.fixed_terms.clear();
+  if (t && t->get("fixed")) {
+    for (const auto& [id, node] : read_term_list(r, *t, "fixed")) {
+      if (is_free(id))
+        r.fail(*node, "identification.fixed",
+               fmt::format("'{}' is also in identification.terms; accepted: a term is either free (terms) or "
+                           "held at the instrument's value (fixed), not both",
+                           id));
+      const auto value = instrument.coefficient(id);
+      if (!value)
+        r.fail(*node, "identification.fixed",
+               fmt::format("the instrument has no term '{}' to hold fixed; accepted: {} (the terms of the "
+                           "instrument)",
+                           id, fmt::join(instrument.term_ids, ", ")));
+      spec.fixed_terms[id] = *value;
+    }
+  } else if (const auto k1 = instrument.coefficient("K1"); k1 && !is_free("K1")) {
+    spec.fixed_terms["K1"] = *k1;
+  }
+  if (!t) return;
+  spec.compensate = r.boolean(*t, p, "compensate").value_or(false);
+  spec.paper_cross_terms = r.boolean(*t, p, "paper_cross_terms").value_or(false);
+  mode = r.word(*t, p, "mode",
+                std::vector<std::pair<std::string_view, ModelMode>>{{"exact", ModelMode::exact},
+                                                                    {"paper", ModelMode::paper}})
+             .value_or(ModelMode::exact);
+}
+
+}  // namespace ccal::config_reading

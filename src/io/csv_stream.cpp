@@ -1,0 +1,148 @@
+#include "ccal/io/csv_stream.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <system_error>
+
+#include "ccal/io/observation_csv.hpp"
+
+namespace ccal {
+
+namespace {
+
+bool blank(char c) { return c == ' ' || c == '\t'; }
+
+// parse_csv's trimming: blanks around, and a carriage return at the end.
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && (blank(s.back()) || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+// Lines to rows, with parse_csv's line numbers and checks. Lines without a quote (all of a numeric log's)
+// are split in place into views; others through parse_csv's field splitter.
+class LineReader {
+ public:
+  LineReader(std::string source, CsvRowSink& sink) : source_(std::move(source)), sink_(sink) {}
+
+  void line(std::string_view line) {
+    ++line_no_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const std::string_view content = trim(line);
+    if (content.empty() || content.front() == '#') return;
+    if (header_.empty()) {
+      CsvFieldProblem bad;
+      std::vector<std::string> fields = split_csv_fields(line, bad);
+      check_csv_header(fields, bad, source_, line_no_);
+      header_ = std::move(fields);
+      views_.resize(header_.size());
+      sink_.header(header_, line_no_);
+      return;
+    }
+    // One scan: fields at the commas, until a quote sends the line to parse_csv's splitter.
+    std::size_t count = 0, start = 0;
+    bool quoted = false;
+    for (std::size_t i = 0; i <= line.size(); ++i) {
+      if (i < line.size() && line[i] != ',') {
+        if (line[i] == '"') {
+          quoted = true;
+          break;
+        }
+        continue;
+      }
+      if (count < views_.size()) views_[count] = trim(line.substr(start, i - start));
+      ++count;
+      start = i + 1;
+    }
+    if (quoted) {
+      CsvFieldProblem bad;
+      quoted_ = split_csv_fields(line, bad);
+      check_csv_row(quoted_.size(), bad, header_, source_, line_no_);
+      for (std::size_t k = 0; k < quoted_.size(); ++k) views_[k] = quoted_[k];
+    } else if (count != header_.size()) {
+      check_csv_row(count, CsvFieldProblem{}, header_, source_, line_no_);
+    }
+    sink_.row(views_.data(), line_no_);
+  }
+
+  void finish() const {
+    if (header_.empty()) throw no_csv_header(source_, line_no_);
+  }
+
+ private:
+  std::string source_;
+  CsvRowSink& sink_;
+  int line_no_ = 0;
+  std::vector<std::string> header_;
+  std::vector<std::string_view> views_;
+  std::vector<std::string> quoted_;
+};
+
+constexpr std::string_view kBom = "\xEF\xBB\xBF";
+
+// The complete lines of `text` to the reader; returns where the incomplete last line starts.
+std::size_t feed_lines(std::string_view text, LineReader& reader) {
+  std::size_t start = 0;
+  while (true) {
+    const void* nl = std::memchr(text.data() + start, '\n', text.size() - start);
+    if (nl == nullptr) return start;
+    const std::size_t end = std::size_t(static_cast<const char*>(nl) - text.data());
+    reader.line(text.substr(start, end - start));
+    start = end + 1;
+  }
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+}  // namespace
+
+void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink& sink) {
+  LineReader reader{std::string(source), sink};
+  if (text.starts_with(kBom)) text.remove_prefix(kBom.size());
+  const std::size_t rest = feed_lines(text, reader);
+  if (rest < text.size()) reader.line(text.substr(rest));
+  reader.finish();
+}
+
+void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
+  const std::string name = path.string();
+  const CsvError unreadable(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw unreadable;
+  const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(name.c_str(), "rb"));
+  if (!file) throw unreadable;
+  LineReader reader{name, sink};
+  // Blocks of 4 MiB; the incomplete line at a block's end moves to the front of the next.
+  constexpr std::size_t kBlock = std::size_t(1) << 22;
+  std::vector<char> buffer(kBlock);
+  std::size_t held = 0;
+  bool first = true;
+  while (true) {
+    if (held == buffer.size()) buffer.resize(2 * buffer.size());  // a line longer than a block
+    const std::size_t got = std::fread(buffer.data() + held, 1, buffer.size() - held, file.get());
+    if (std::ferror(file.get())) throw unreadable;
+    std::string_view text(buffer.data(), held + got);
+    std::size_t skip = 0;
+    if (first && (text.size() >= kBom.size() || got == 0)) {
+      if (text.starts_with(kBom)) skip = kBom.size();
+      first = false;
+    }
+    if (got == 0) {  // end of file: the last line, if it has no newline
+      if (!first && skip < text.size()) reader.line(text.substr(skip));
+      break;
+    }
+    if (first) {  // fewer than three bytes so far: the mark cannot be told yet
+      held = text.size();
+      continue;
+    }
+    const std::size_t rest = skip + feed_lines(text.substr(skip), reader);
+    held = text.size() - rest;
+    std::memmove(buffer.data(), buffer.data() + rest, held);
+  }
+  reader.finish();
+}
+
+}  // namespace ccal

@@ -1,0 +1,80 @@
+#pragma once
+// The one-pass reduction of a run log (docs/model.md §13): rows in, ReducedLog out, the same for a log
+// streamed from its file and for a CsvTable in memory, so both give the same bits.
+//
+// A bad log is refused with the error the whole-table reduction gave before it streamed: that reduction
+// checked the time column over all rows first, then the output column, then each encoder column. The first
+// problem of each kind is kept while the rows go by (a CSV error, found by the reader, still ends the read at
+// once, as parse_csv did before any reduction), and the earliest kind in that order is thrown at the end.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/io/csv_stream.hpp"
+#include "ccal/io/encoder_fit.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/io/run_log.hpp"
+
+namespace ccal::detail {
+
+class LogReducer final : public CsvRowSink {
+ public:
+  LogReducer(std::string source, const RunLogOptions& options, double planned_rate);
+  void header(const std::vector<std::string>& names, int line) override;
+  void row(const std::string_view* fields, int line) override;
+  // The reduction of the rows seen; throws the log's first problem (CsvError).
+  ReducedLog finish();
+
+ private:
+  // The kinds of problem, in the order they are reported.
+  enum class Problem {
+    no_time,
+    time_cell,
+    too_few,
+    time_order,
+    span,
+    output_columns,
+    pulse_weight,
+    output_cell,
+    mean_overflow,
+    theta1_cell,
+    theta1_spacing,
+    gamma_cell,
+    gamma_spacing,
+  };
+  struct Encoder {
+    std::size_t column = 0;
+    Problem cell, spacing;
+    EncoderFit fit;
+    double unwrapped = 0;  // the last sample's unwrapped angle [rad]
+    double raw = 0;        // and its reading [rad]
+    bool started = false;
+  };
+
+  void defer(Problem kind, CsvError error);
+  void throw_pending_before(Problem kind) const;
+  CsvError cell_error(std::size_t column, int line, std::string problem) const;
+  std::optional<double> cell(const std::string_view* fields, std::size_t column, Problem kind, int line);
+  void encoder_sample(Encoder& e, const std::string_view* fields, int line, bool time_ok, double t);
+
+  std::string source_;
+  RunLogOptions options_;
+  double planned_rate_;
+  std::vector<std::string> header_;
+  int header_line_ = 0;
+  std::size_t time_ = 0;
+  std::optional<std::size_t> output_;  // the pulses or output column, when exactly one and usable
+  bool pulses_ = false;
+  std::optional<Encoder> theta1_, gamma_;
+  std::optional<Problem> pending_kind_;
+  std::optional<CsvError> pending_;
+
+  std::size_t rows_ = 0;
+  int last_line_ = 0;
+  bool have_previous_time_ = false;
+  double t_first_ = 0, t_previous_ = 0;
+  double output_first_ = 0, output_previous_ = 0, integral_ = 0;
+};
+
+}  // namespace ccal::detail

@@ -1,0 +1,439 @@
+#include "ccal/reduction/fit.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace ccal {
+namespace {
+
+using Index = Eigen::Index;
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// A sum accumulated in twice the working precision (Ogita, Rump & Oishi, "Accurate sum and dot
+// product", SIAM J. Sci. Comput. 26, 2005): TwoSum and the fma-based TwoProduct are error-free
+// transformations, so the result is as accurate as if computed in double-double and then rounded, on
+// every platform (no reliance on an extended long double).
+class CompensatedSum {
+ public:
+  CompensatedSum() = default;
+  explicit CompensatedSum(double v) : hi_(v) {}
+  void add(double v) {
+    const double s = hi_ + v;
+    const double v_part = s - hi_;
+    lo_ += (hi_ - (s - v_part)) + (v - v_part);
+    hi_ = s;
+  }
+  void add_product(double a, double b) {
+    const double product = a * b;
+    add(product);
+    lo_ += std::fma(a, b, -product);
+  }
+  double value() const { return hi_ + lo_; }
+  // The sum as an unevaluated pair: value() and the part of the sum that value() rounded away.
+  std::pair<double, double> split() const {
+    const double s = hi_ + lo_;
+    return {s, lo_ - (s - hi_)};
+  }
+
+ private:
+  double hi_ = 0;
+  double lo_ = 0;
+};
+
+// "A", "A and B", "A, B and C".
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += (i + 1 == names.size()) ? " and " : ", ";
+    out += names[i];
+  }
+  return out;
+}
+
+std::string row_text(const FitProblem& p, Index row) {
+  std::string text = fmt::format("row {}", row + 1);
+  if (!p.row_labels.empty()) text += fmt::format(" ({})", p.row_labels[static_cast<std::size_t>(row)]);
+  return text;
+}
+
+void validate(const FitProblem& p, const FitOptions& o) {
+  const Index rows = p.H.rows();
+  const Index cols = p.H.cols();
+  if (static_cast<Index>(p.term_names.size()) != cols) {
+    throw std::invalid_argument(
+        fmt::format("fit: {} term names for a design with {} columns", p.term_names.size(), cols));
+  }
+  if (p.y.size() != rows) {
+    throw std::invalid_argument(
+        fmt::format("fit: the design has {} rows but y has {} entries", rows, p.y.size()));
+  }
+  if (p.weights.size() != 0 && p.weights.size() != rows) {
+    throw std::invalid_argument(fmt::format(
+        "fit: {} weights for {} rows (leave weights empty for unit weights)", p.weights.size(), rows));
+  }
+  if (!p.row_labels.empty() && static_cast<Index>(p.row_labels.size()) != rows) {
+    throw std::invalid_argument(fmt::format("fit: {} row labels for {} rows", p.row_labels.size(), rows));
+  }
+  std::set<std::string> seen;
+  for (const auto& name : p.term_names) {
+    if (name.empty()) throw std::invalid_argument("fit: a term name is empty");
+    if (!seen.insert(name).second) {
+      throw std::invalid_argument(fmt::format("fit: duplicate term name \"{}\"", name));
+    }
+  }
+  for (const auto& [name, value] : p.fixed) {
+    if (seen.count(name) == 0) {
+      throw std::invalid_argument(
+          fmt::format("fit: fixed term \"{}\" is not a term of the model; valid names: {}", name,
+                      fmt::join(p.term_names, ", ")));
+    }
+    if (!std::isfinite(value)) {
+      throw std::invalid_argument(
+          fmt::format("fit: fixed term \"{}\" has the non-finite value {}", name, value));
+    }
+  }
+  for (Index i = 0; i < rows; ++i) {
+    if (!std::isfinite(p.y(i))) {
+      throw std::invalid_argument(fmt::format("fit: non-finite value {} in y at {}", p.y(i), row_text(p, i)));
+    }
+    for (Index k = 0; k < cols; ++k) {
+      if (!std::isfinite(p.H(i, k))) {
+        throw std::invalid_argument(fmt::format("fit: non-finite value {} in H at {}, column {} ({})",
+                                                p.H(i, k), row_text(p, i), k + 1,
+                                                p.term_names[static_cast<std::size_t>(k)]));
+      }
+    }
+    if (p.weights.size() != 0 && !(std::isfinite(p.weights(i)) && p.weights(i) > 0)) {
+      throw std::invalid_argument(
+          fmt::format("fit: weight {} at {} is not positive and finite", p.weights(i), row_text(p, i)));
+    }
+  }
+  if (!(std::isfinite(o.rank_tolerance) && o.rank_tolerance >= 0)) {
+    throw std::invalid_argument("fit: rank_tolerance must be finite and >= 0");
+  }
+  if (!(o.alias_correlation > 0 && o.alias_correlation <= 1)) {
+    throw std::invalid_argument("fit: alias_correlation must lie in (0, 1]");
+  }
+  if (!(o.max_condition >= 1)) throw std::invalid_argument("fit: max_condition must be >= 1");
+  if (o.refinement_steps < 0) throw std::invalid_argument("fit: refinement_steps must be >= 0");
+}
+
+// Correlation matrix of a covariance matrix (any positive scale factor cancels).
+Eigen::MatrixXd correlation_of(const Eigen::MatrixXd& cov) {
+  const Index m = cov.rows();
+  Eigen::MatrixXd corr(m, m);
+  for (Index i = 0; i < m; ++i) {
+    for (Index j = 0; j < m; ++j) {
+      const double denom = std::sqrt(cov(i, i) * cov(j, j));
+      corr(i, j) = (i == j) ? 1.0 : (denom > 0 ? cov(i, j) / denom : 0.0);
+    }
+  }
+  return corr;
+}
+
+// The pair with the largest |correlation|; m >= 2.
+std::pair<Index, Index> most_correlated_pair(const Eigen::MatrixXd& corr) {
+  std::pair<Index, Index> best{0, 1};
+  double best_value = -1;
+  for (Index i = 0; i < corr.rows(); ++i) {
+    for (Index j = i + 1; j < corr.cols(); ++j) {
+      if (std::abs(corr(i, j)) > best_value) {
+        best_value = std::abs(corr(i, j));
+        best = {i, j};
+      }
+    }
+  }
+  return best;
+}
+
+// Names the terms taking part in each (numerical) null vector of the scaled design.
+[[noreturn]] void throw_rank_deficient(const Eigen::VectorXd& sigma, const Eigen::MatrixXd& v,
+                                       double tolerance, const std::vector<std::string>& names) {
+  std::vector<std::string> groups, all_involved;
+  for (Index i = 0; i < sigma.size(); ++i) {
+    if (sigma(i) > tolerance) continue;
+    const Eigen::VectorXd null_vector = v.col(i);
+    const double largest = null_vector.cwiseAbs().maxCoeff();
+    std::vector<std::string> involved;
+    for (Index k = 0; k < null_vector.size(); ++k) {
+      // A dependency among q columns has components of order 1/sqrt(q); bystanders are near zero.
+      if (std::abs(null_vector(k)) > 0.1 * largest) involved.push_back(names[static_cast<std::size_t>(k)]);
+    }
+    all_involved.insert(all_involved.end(), involved.begin(), involved.end());
+    if (involved.size() == 1) {
+      groups.push_back(
+          fmt::format("the plan cannot determine {}: its column is (numerically) zero "
+                      "(singular value {:.3g} of the scaled design)",
+                      involved.front(), sigma(i)));
+    } else {
+      groups.push_back(
+          fmt::format("the plan cannot separate {}: their columns are linearly dependent "
+                      "(singular value {:.3g} of the scaled design)",
+                      join_names(involved), sigma(i)));
+    }
+  }
+  std::string message = "fit: ";
+  for (std::size_t g = 0; g < groups.size(); ++g) message += (g ? "; " : "") + groups[g];
+  throw IllPosedFit(message, all_involved);
+}
+
+}  // namespace
+
+FitResult fit(const FitProblem& p, const FitOptions& o) {
+  validate(p, o);
+  const Index rows = p.H.rows();
+  const bool weighted = p.weights.size() != 0;
+
+  // Split free and fixed terms; move the fixed contributions to the left-hand side.
+  FitResult result;
+  std::vector<Index> free_cols;
+  std::vector<std::pair<Index, double>> fixed_cols;
+  for (std::size_t k = 0; k < p.term_names.size(); ++k) {
+    const auto found = p.fixed.find(p.term_names[k]);
+    const Index col = static_cast<Index>(k);
+    if (found == p.fixed.end()) {
+      free_cols.push_back(col);
+      result.names.push_back(p.term_names[k]);
+    } else {
+      fixed_cols.emplace_back(col, found->second);
+    }
+  }
+  // y minus the fixed contributions, accumulated accurately, for row i.
+  const auto reduced_y = [&](Index i) {
+    CompensatedSum sum(p.y(i));
+    for (const auto& [col, value] : fixed_cols) sum.add_product(-p.H(i, col), value);
+    return sum;
+  };
+  const Index m = static_cast<Index>(free_cols.size());
+  if (rows < m) {
+    throw IllPosedFit(
+        fmt::format("fit: {} observation{} cannot determine {} free terms ({}); the plan needs at "
+                    "least {} runs",
+                    rows, rows == 1 ? "" : "s", m, join_names(result.names), m),
+        result.names);
+  }
+  Eigen::MatrixXd h_free(rows, m);
+  for (Index k = 0; k < m; ++k) h_free.col(k) = p.H.col(free_cols[static_cast<std::size_t>(k)]);
+
+  // Weighted design A = sqrt(W) H and right-hand side b = sqrt(W) y.
+  const Eigen::VectorXd sqrt_w = weighted ? p.weights.cwiseSqrt().eval() : Eigen::VectorXd::Ones(rows).eval();
+  Eigen::MatrixXd a = weighted ? (sqrt_w.asDiagonal() * h_free).eval() : h_free;
+  Eigen::VectorXd b(rows);
+  for (Index i = 0; i < rows; ++i) {
+    const auto [hi, lo] = reduced_y(i).split();
+    b(i) = weighted ? sqrt_w(i) * hi + sqrt_w(i) * lo : hi;
+  }
+
+  // Scale each column by a power of two close to 1/norm: exact, so the scaled problem is the same problem.
+  Eigen::VectorXd scale(m);
+  for (Index k = 0; k < m; ++k) {
+    const double norm = a.col(k).stableNorm();
+    if (!(norm > 0)) {
+      const std::string& name = result.names[static_cast<std::size_t>(k)];
+      throw IllPosedFit(
+          fmt::format("fit: the plan cannot determine {}: its column is zero in every run", name), {name});
+    }
+    scale(k) = std::ldexp(1.0, -std::ilogb(norm));
+    a.col(k) *= scale(k);
+  }
+
+  result.value = Eigen::VectorXd::Zero(m);
+  result.std_error = Eigen::VectorXd::Zero(m);
+  result.covariance = Eigen::MatrixXd::Zero(m, m);
+  result.correlation = Eigen::MatrixXd::Identity(m, m);
+  result.dof = static_cast<int>(rows - m);
+
+  Eigen::MatrixXd cov_unit = Eigen::MatrixXd::Zero(m, m);  // (H^T W H)^-1
+  if (m > 0) {
+    // Singular values and right singular vectors always: they are the rank and conditioning diagnostics.
+    const unsigned svd_options =
+        o.method == FitMethod::svd ? (Eigen::ComputeThinU | Eigen::ComputeThinV) : Eigen::ComputeThinV;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, svd_options);
+    const Eigen::VectorXd sigma = svd.singularValues();
+    const double tolerance =
+        o.rank_tolerance > 0 ? o.rank_tolerance : static_cast<double>(std::max(rows, m)) * kEps * sigma(0);
+    result.rank = static_cast<int>((sigma.array() > tolerance).count());
+    if (result.rank < m) throw_rank_deficient(sigma, svd.matrixV(), tolerance, result.names);
+    result.condition_number = sigma(0) / sigma(m - 1);
+
+    // (A^T A)^-1 for the scaled unknowns z (x = scale .* z), from V and the singular values.
+    const Eigen::MatrixXd v_over_s = svd.matrixV() * sigma.cwiseInverse().asDiagonal();
+    const Eigen::MatrixXd cov_z_svd = v_over_s * v_over_s.transpose();
+    if (result.condition_number > o.max_condition) {
+      const Eigen::MatrixXd corr = correlation_of(cov_z_svd);
+      const auto [i, j] = most_correlated_pair(corr);
+      throw IllPosedFit(
+          fmt::format("fit: the design is too ill-conditioned: condition number {:.3g} of the column-scaled "
+                      "design exceeds "
+                      "max_condition {:.3g}; the most correlated pair is {} and {} (correlation {:.10g})",
+                      result.condition_number, o.max_condition, result.names[static_cast<std::size_t>(i)],
+                      result.names[static_cast<std::size_t>(j)], corr(i, j)),
+          {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
+    }
+
+    // Refinement of the augmented system [I A; A^T 0] [r; z] = [b; 0] (Bjorck): r is carried in
+    // double-double, both residuals of the system are accumulated in double-double and each correction
+    // comes from the same factorisation. Unlike refining z alone with b - A z, this also removes the error
+    // that a large least-squares residual r induces in z (the cond^2 * eps * |r| term), which dominates for
+    // noisy data such as NIST's Wampler4/5.
+    Eigen::VectorXd z;
+    Eigen::MatrixXd cov_z;
+    const auto refine = [&](const auto& correction) {
+      Eigen::VectorXd r_hi(rows), r_lo(rows), f(rows), g(m);
+      for (Index i = 0; i < rows; ++i) {
+        CompensatedSum sum(b(i));
+        for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
+        std::tie(r_hi(i), r_lo(i)) = sum.split();
+      }
+      for (int step = 0; step < o.refinement_steps; ++step) {
+        for (Index i = 0; i < rows; ++i) {  // f = b - r - A z
+          CompensatedSum sum(b(i));
+          sum.add(-r_hi(i));
+          sum.add(-r_lo(i));
+          for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
+          f(i) = sum.value();
+        }
+        for (Index k = 0; k < m; ++k) {  // g = -A^T r
+          CompensatedSum sum;
+          for (Index i = 0; i < rows; ++i) {
+            sum.add_product(-a(i, k), r_hi(i));
+            sum.add_product(-a(i, k), r_lo(i));
+          }
+          g(k) = sum.value();
+        }
+        const auto [dr, dz] = correction(f, g);
+        for (Index i = 0; i < rows; ++i) {
+          CompensatedSum sum(r_hi(i));
+          sum.add(r_lo(i));
+          sum.add(dr(i));
+          std::tie(r_hi(i), r_lo(i)) = sum.split();
+        }
+        z += dz;
+      }
+    };
+    if (o.method == FitMethod::qr) {
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+      // Full rank was established from the singular values; let QR use every pivot.
+      qr.setThreshold(std::numeric_limits<double>::min());
+      z = qr.solve(b);
+      const auto r_factor = qr.matrixR().topLeftCorner(m, m).triangularView<Eigen::Upper>();
+      // A = Q [R; 0] P^T. Correction of [I A; A^T 0] [dr; dz] = [f; g]:
+      //   R^T u = P^T g,  c = Q^T f,  dr = Q [u; c_2],  R P^T dz = c_1 - u.
+      refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
+        const Eigen::VectorXd c = qr.householderQ().adjoint() * f;
+        const Eigen::VectorXd u = r_factor.transpose().solve(qr.colsPermutation().transpose() * g);
+        Eigen::VectorXd w(rows);
+        w << u, c.tail(rows - m);
+        const Eigen::VectorXd dr = qr.householderQ() * w;
+        const Eigen::VectorXd dz = qr.colsPermutation() * r_factor.solve(c.head(m) - u);
+        return std::pair{dr, dz};
+      });
+      // (A^T A)^-1 = P R^-1 R^-T P^T.
+      const Eigen::MatrixXd r_inv = r_factor.solve(Eigen::MatrixXd::Identity(m, m));
+      const Eigen::MatrixXd permuted = r_inv * r_inv.transpose();
+      cov_z = qr.colsPermutation() * permuted * qr.colsPermutation().transpose();
+    } else {
+      z = svd.solve(b);
+      // A = U S V^T (thin). Correction: u = S^-1 V^T g, dr = U u + (f - U U^T f), dz = V S^-1 (U^T f - u).
+      refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
+        const Eigen::VectorXd u = (svd.matrixV().transpose() * g).cwiseQuotient(sigma);
+        const Eigen::VectorXd utf = svd.matrixU().transpose() * f;
+        const Eigen::VectorXd dr = svd.matrixU() * (u - utf) + f;
+        const Eigen::VectorXd dz = svd.matrixV() * (utf - u).cwiseQuotient(sigma);
+        return std::pair{dr, dz};
+      });
+      cov_z = cov_z_svd;
+    }
+    result.value = z.cwiseProduct(scale);
+    cov_unit = scale.asDiagonal() * cov_z * scale.asDiagonal();
+    result.correlation = correlation_of(cov_unit);
+  }
+
+  // Residuals in the units of y and chi2, accumulated accurately.
+  result.residuals.resize(rows);
+  CompensatedSum chi2;
+  for (Index i = 0; i < rows; ++i) {
+    CompensatedSum sum = reduced_y(i);
+    for (Index k = 0; k < m; ++k) sum.add_product(-h_free(i, k), result.value(k));
+    const double r = sum.value();
+    result.residuals(i) = r;
+    chi2.add_product(weighted ? p.weights(i) * r : r, r);
+  }
+  result.chi2 = chi2.value();
+
+  if (result.dof > 0) {
+    result.chi2_per_dof = result.chi2 / result.dof;
+    result.residual_std = std::sqrt(result.chi2_per_dof);
+    result.covariance = weighted ? cov_unit : (result.chi2_per_dof * cov_unit).eval();
+  } else if (weighted) {
+    result.covariance = cov_unit;
+    result.warnings.push_back(
+        "no degrees of freedom: the residual scale is undefined (residual_std and chi2_per_dof are reported "
+        "as "
+        "0); the covariance comes from the weights");
+  } else {
+    result.warnings.push_back(
+        "no degrees of freedom: standard errors are undefined (std_error and covariance are reported as 0)");
+  }
+  result.std_error = result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+
+  for (Index i = 0; i < m; ++i) {
+    for (Index j = i + 1; j < m; ++j) {
+      if (std::abs(result.correlation(i, j)) > o.refuse_correlation) {
+        throw IllPosedFit(
+            fmt::format("the plan cannot separate {} and {}: the correlation of their estimates is {:.8g} "
+                        "(beyond {:.8g}), so "
+                        "the data determine only a combination of the two",
+                        result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
+                        result.correlation(i, j), o.refuse_correlation),
+            {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
+      }
+      if (std::abs(result.correlation(i, j)) > o.alias_correlation) {
+        result.warnings.push_back(
+            fmt::format("{} and {} are nearly aliased: correlation {:.6g} of their estimates exceeds {:.6g}; "
+                        "the plan barely "
+                        "separates them",
+                        result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
+                        result.correlation(i, j), o.alias_correlation));
+      }
+    }
+  }
+  return result;
+}
+
+Eigen::MatrixXd polynomial_design(const Eigen::VectorXd& x, int degree) {
+  if (degree < 0) throw std::invalid_argument(fmt::format("polynomial_design: negative degree {}", degree));
+  Eigen::MatrixXd h(x.size(), degree + 1);
+  for (Index i = 0; i < x.size(); ++i) {
+    // x^k carried as a double-double pair (hi, lo) and rounded once per entry.
+    double hi = 1.0, lo = 0.0;
+    for (int k = 0; k <= degree; ++k) {
+      h(i, k) = hi + lo;
+      const double product = hi * x(i);
+      const double error = std::fma(hi, x(i), -product) + lo * x(i);
+      hi = product + error;
+      lo = error - (hi - product);
+    }
+  }
+  return h;
+}
+
+std::vector<std::string> polynomial_term_names(int degree) {
+  if (degree < 0)
+    throw std::invalid_argument(fmt::format("polynomial_term_names: negative degree {}", degree));
+  std::vector<std::string> names;
+  for (int k = 0; k <= degree; ++k) names.push_back(fmt::format("K{}", k));
+  return names;
+}
+
+}  // namespace ccal

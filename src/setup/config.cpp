@@ -1,0 +1,37 @@
+#include "ccal/setup/config.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+
+#include "ccal/core/errors.hpp"
+
+namespace ccal {
+
+std::size_t select_run(const TestPlan& plan, std::string_view name_or_index, std::string_view option_name) {
+  for (std::size_t k = 0; k < plan.runs.size(); ++k)
+    if (plan.runs[k].name == name_or_index) return k;
+  std::size_t index = 0;
+  const auto [end, ec] =
+      std::from_chars(name_or_index.data(), name_or_index.data() + name_or_index.size(), index);
+  if (ec == std::errc{} && end == name_or_index.data() + name_or_index.size() && index >= 1 &&
+      index <= plan.runs.size())
+    return index - 1;
+  std::string names;
+  for (const Run& r : plan.runs) names += (names.empty() ? "" : ", ") + r.name;
+  throw InputError(fmt::format("{}: no run '{}'; give a run name ({}) or an index 1..{}", option_name,
+                               name_or_index, names, plan.runs.size()));
+}
+
+Experiment Config::experiment() const {
+  Experiment ex;
+  ex.geometry = centrifuge.geometry;
+  ex.layout = centrifuge.layout;
+  ex.site = site;
+  ex.plan = plan;
+  ex.instrument = instrument;
+  ex.rate_noise = centrifuge.rate_noise;
+  return ex;
+}
+
+}  // namespace ccal

@@ -1,0 +1,36 @@
+#include "ccal/setup/tolerance.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace ccal {
+
+std::string_view distribution_name(Distribution d) noexcept {
+  switch (d) {
+    case Distribution::normal:
+      return "normal";
+    case Distribution::uniform:
+      return "uniform";
+    case Distribution::triangular:
+      return "triangular";
+    case Distribution::arcsine:
+      return "arcsine";
+  }
+  return "normal";
+}
+
+double standard_uncertainty(double bound, Distribution d) noexcept {
+  switch (d) {
+    case Distribution::normal:
+      return bound;
+    case Distribution::uniform:
+      return bound / std::sqrt(3.0);
+    case Distribution::triangular:
+      return bound / std::sqrt(6.0);
+    case Distribution::arcsine:
+      return bound / std::numbers::sqrt2;
+  }
+  return bound;
+}
+
+}  // namespace ccal

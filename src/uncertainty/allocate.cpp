@@ -1,0 +1,770 @@
+#include "ccal/uncertainty/allocate.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <boost/math/policies/policy.hpp>
+#include <boost/math/special_functions/erf.hpp>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
+#include "ccal/reduction/fit.hpp"
+
+namespace ccal {
+namespace {
+
+using ErfPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
+// Sources merged into their correlation groups: C_g = Σ cost, c_kg = Σ J_ks u_s0.
+struct Groups {
+  std::vector<int> of;  // group of each source
+  Eigen::VectorXd cost;
+  Eigen::MatrixXd effect;  // n_rows × n_groups
+};
+
+Groups merge_groups(const Eigen::MatrixXd& J, const Eigen::VectorXd& u0, const Eigen::VectorXd& cost,
+                    const std::vector<std::string>& group) {
+  Groups g;
+  std::map<std::string, int> named;
+  int n = 0;
+  for (Eigen::Index s = 0; s < J.cols(); ++s) {
+    const std::string& name = group.empty() ? std::string() : group[std::size_t(s)];
+    if (name.empty()) {
+      g.of.push_back(n++);
+    } else {
+      const auto [it, inserted] = named.emplace(name, n);
+      if (inserted) ++n;
+      g.of.push_back(it->second);
+    }
+  }
+  g.cost = Eigen::VectorXd::Zero(n);
+  g.effect = Eigen::MatrixXd::Zero(J.rows(), n);
+  for (Eigen::Index s = 0; s < J.cols(); ++s) {
+    const int k = g.of[std::size_t(s)];
+    g.cost[k] += cost[s];
+    g.effect.col(k) += J.col(s) * u0[s];
+  }
+  return g;
+}
+
+// The dual of  min Σ_g C_g x_g^(−1/2)  s.t.  a x ≤ 1,  0 < x ≤ X  (see allocate.hpp).
+struct DualProblem {
+  const Eigen::MatrixXd& a;  // n_targets × n_groups
+  const Eigen::VectorXd& C;
+  double X;
+
+  struct Point {
+    Eigen::VectorXd mu, b, x;
+    std::vector<bool> interior;  // x_g < X (the bound is not active)
+    Eigen::VectorXd slack;       // 1 − a x: the gradient of −D
+    double minus_dual = 0;       // −D(μ)
+  };
+
+  Point at(const Eigen::VectorXd& mu) const {
+    Point p;
+    p.mu = mu;
+    p.b = a.transpose() * mu;
+    const auto n = C.size();
+    p.x.resize(n);
+    p.interior.assign(std::size_t(n), false);
+    double d = 0;
+    for (Eigen::Index g = 0; g < n; ++g) {
+      double x = X;
+      if (p.b[g] > 0) {
+        const double r = std::cbrt(C[g] / (2 * p.b[g]));
+        if (r * r < X) {
+          x = r * r;
+          p.interior[std::size_t(g)] = true;
+        }
+      }
+      p.x[g] = x;
+      d += C[g] / std::sqrt(x) + p.b[g] * x;
+    }
+    p.slack = Eigen::VectorXd::Ones(a.rows()) - a * p.x;
+    p.minus_dual = mu.sum() - d;
+    return p;
+  }
+};
+
+// The primal in y_g = ln x_g, a geometric program in convex form:
+//     minimise Σ_g C_g e^(−y_g/2)   subject to   h_k(y) = ln Σ_g a_kg e^(y_g) ≤ 0 (k used),   y_g ≤ ln X,
+// by the barrier method (Boyd & Vandenberghe, "Convex Optimization", 2004, §11.3: centring by Newton's method
+// with backtracking, t multiplied by 20 until the duality gap m/t is below 1e-10 of the objective). Slower
+// than the dual iteration but robust from any start; its multipliers 1/(t (−h_k)) are those of h_k ≤ 0,
+// equal to those of Σ_g a_kg x_g ≤ 1 where the constraint is active.
+struct BarrierResult {
+  Eigen::VectorXd y, mu;  // mu per row of a (0 for rows not used)
+  double gap = 0;         // m/t at the end, relative to the objective
+};
+
+BarrierResult solve_barrier(const Eigen::MatrixXd& a, const Eigen::VectorXd& C, double X,
+                            const std::vector<bool>& use) {
+  const Eigen::Index ng = C.size();
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index k = 0; k < a.rows(); ++k)
+    if (use[std::size_t(k)]) rows.push_back(k);
+  const auto nr = Eigen::Index(rows.size());
+  const double Y = std::log(X), inf = std::numeric_limits<double>::infinity();
+  Eigen::MatrixXd la(nr, ng);
+  for (Eigen::Index r = 0; r < nr; ++r)
+    for (Eigen::Index g = 0; g < ng; ++g) {
+      const double v = a(rows[std::size_t(r)], g);
+      la(r, g) = v > 0 ? std::log(v) : -inf;
+    }
+  // h_r(y) by log-sum-exp, and its gradient π (a probability vector).
+  auto constraint = [&](const Eigen::VectorXd& y, Eigen::Index r, Eigen::VectorXd* pi) {
+    double top = -inf;
+    for (Eigen::Index g = 0; g < ng; ++g) top = std::max(top, la(r, g) + y[g]);
+    double sum = 0;
+    for (Eigen::Index g = 0; g < ng; ++g) sum += std::exp(la(r, g) + y[g] - top);
+    const double h = top + std::log(sum);
+    if (pi) {
+      pi->resize(ng);
+      for (Eigen::Index g = 0; g < ng; ++g) (*pi)[g] = std::exp(la(r, g) + y[g] - h);
+    }
+    return h;
+  };
+  auto objective = [&](const Eigen::VectorXd& y) { return (C.array() * (-0.5 * y.array()).exp()).sum(); };
+  // t F − Σ ln(−h_r) − Σ ln(Y − y_g), +∞ outside the domain.
+  auto value = [&](const Eigen::VectorXd& y, double t) {
+    double v = t * objective(y);
+    for (Eigen::Index g = 0; g < ng; ++g) {
+      if (!(y[g] < Y)) return inf;
+      v -= std::log(Y - y[g]);
+    }
+    for (Eigen::Index r = 0; r < nr; ++r) {
+      const double h = constraint(y, r, nullptr);
+      if (!(h < 0)) return inf;
+      v -= std::log(-h);
+    }
+    return v;
+  };
+
+  // A strictly feasible start: every y one below its bound, then all lowered until every h_r ≤ −1 (a common
+  // shift of y shifts every h_r by the same amount).
+  BarrierResult res;
+  Eigen::VectorXd y = Eigen::VectorXd::Constant(ng, Y - 1);
+  double worst = -inf;
+  for (Eigen::Index r = 0; r < nr; ++r) worst = std::max(worst, constraint(y, r, nullptr));
+  if (worst > -1) y.array() -= worst + 1;
+  const double m = double(nr + ng);
+  double t = m / objective(y);
+  Eigen::VectorXd grad(ng), pi;
+  Eigen::MatrixXd H(ng, ng);
+  for (int outer = 0; outer < 100; ++outer) {
+    for (int inner = 0; inner < 200; ++inner) {
+      const Eigen::ArrayXd e = (-0.5 * y.array()).exp() * C.array();
+      grad = -0.5 * t * e.matrix();
+      H = (0.25 * t * e).matrix().asDiagonal();
+      for (Eigen::Index g = 0; g < ng; ++g) {
+        const double d = Y - y[g];
+        grad[g] += 1 / d;
+        H(g, g) += 1 / (d * d);
+      }
+      for (Eigen::Index r = 0; r < nr; ++r) {
+        const double h = constraint(y, r, &pi);
+        grad += pi / -h;
+        H.diagonal() += pi / -h;
+        H.noalias() += (1 / (h * h) - 1 / -h) * pi * pi.transpose();
+      }
+      const Eigen::VectorXd dy = -Eigen::LDLT<Eigen::MatrixXd>(H).solve(grad);
+      const double decrement = -grad.dot(dy);
+      if (!dy.allFinite() || !(decrement > 2e-12)) break;
+      const double v0 = value(y, t);
+      double step = 1;
+      while (step > 1e-14 && !(value(y + step * dy, t) <= v0 - 0.01 * step * decrement)) step *= 0.5;
+      if (step <= 1e-14) break;
+      y += step * dy;
+    }
+    res.gap = m / t / objective(y);
+    if (res.gap <= 1e-10) break;
+    t *= 20;
+  }
+  res.y = y;
+  res.mu = Eigen::VectorXd::Zero(a.rows());
+  for (Eigen::Index r = 0; r < nr; ++r) res.mu[rows[std::size_t(r)]] = 1 / (t * -constraint(y, r, nullptr));
+  return res;
+}
+
+// Largest violation of the optimality conditions of the dual over μ ≥ 0 (in units of the normalised
+// constraint): |slack| where μ_k > 0, the violated part of the constraint where μ_k = 0.
+double kkt_residual(const DualProblem::Point& p, const std::vector<bool>& candidate) {
+  double r = 0;
+  for (Eigen::Index k = 0; k < p.slack.size(); ++k) {
+    if (!candidate[std::size_t(k)]) continue;
+    r = std::max(r, p.mu[k] > 0 ? std::abs(p.slack[k]) : std::max(0.0, -p.slack[k]));
+  }
+  return r;
+}
+
+constexpr double kTolerance = 1e-13;  // on the slack of a normalised constraint
+
+struct DualRun {
+  Eigen::VectorXd nu;
+  DualProblem::Point point;
+  double residual = 0;
+  int iterations = 0;
+};
+
+// Projected Newton on −D(m ν) over ν ≥ 0 (Bertsekas, "Projected Newton methods for optimization problems
+// with simple constraints", SIAM J. Control Optim. 20, 1982): multipliers at or near zero whose constraint is
+// slack are sent to zero, the others take a Newton step on the Hessian of −D,
+//     ∂²(−D)/∂μ_k∂μ_l = (2/3) Σ_{g: x_g < X} a_kg a_lg x_g / b_g,
+// with an exact line search. Until the residual is below kTolerance or no progress is possible.
+DualRun run_dual(const DualProblem& dual, const Eigen::VectorXd& m, const std::vector<bool>& candidate,
+                 Eigen::VectorXd nu, int max_iterations) {
+  const Eigen::Index nt = m.size(), ng = dual.C.size();
+  const Eigen::MatrixXd& a = dual.a;
+  DualRun run;
+  DualProblem::Point& point = run.point;
+  double& residual = run.residual;
+  point = dual.at(m.cwiseProduct(nu));
+  residual = kkt_residual(point, candidate);
+  for (int iteration = 0; iteration < max_iterations && residual > kTolerance; ++iteration) {
+    run.iterations = iteration + 1;
+    const Eigen::VectorXd grad = m.cwiseProduct(point.slack);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(nt, nt);
+    for (Eigen::Index g = 0; g < ng; ++g)
+      if (point.interior[std::size_t(g)])
+        H.noalias() += (2.0 / 3.0) * point.x[g] / point.b[g] * a.col(g) * a.col(g).transpose();
+    H = m.asDiagonal() * H * m.asDiagonal();
+
+    // ε-active set: at or near zero with a gradient pushing below it (beyond round-off); these go to zero.
+    double w = 0;
+    for (Eigen::Index k = 0; k < nt; ++k)
+      if (candidate[std::size_t(k)]) w += std::pow(nu[k] - std::max(0.0, nu[k] - grad[k] / m[k]), 2);
+    const double eps = std::min(1e-3, std::sqrt(w));
+    std::vector<bool> held(std::size_t(nt), true);
+    for (Eigen::Index k = 0; k < nt; ++k)
+      if (candidate[std::size_t(k)] && !(nu[k] <= eps && point.slack[k] > kTolerance))
+        held[std::size_t(k)] = false;
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(nt);
+    for (Eigen::Index k = 0; k < nt; ++k)
+      if (candidate[std::size_t(k)] && held[std::size_t(k)]) d[k] = -nu[k];
+    // Newton on the others. A multiplier at zero that the direction would take below zero is held at zero
+    // as well, and the direction recomputed without it.
+    for (bool changed = true; changed;) {
+      changed = false;
+      std::vector<Eigen::Index> free;
+      for (Eigen::Index k = 0; k < nt; ++k)
+        if (!held[std::size_t(k)]) free.push_back(k);
+      if (free.empty()) break;
+      const auto nf = Eigen::Index(free.size());
+      Eigen::MatrixXd Hf(nf, nf);
+      Eigen::VectorXd gf(nf), floor(nf);
+      for (Eigen::Index i = 0; i < nf; ++i) {
+        gf[i] = grad[free[std::size_t(i)]];
+        // The curvature of the target alone at ν = 1 with no bound active.
+        floor[i] = (2.0 / 3.0) * m[free[std::size_t(i)]];
+        for (Eigen::Index j = 0; j < nf; ++j) Hf(i, j) = H(free[std::size_t(i)], free[std::size_t(j)]);
+      }
+      // Directions of no curvature (every source of the target at the largest scale, where −D is linear in
+      // μ_k): the floor curvature, so that the search starts with a step of a sensible size; a small ridge
+      // against near-singularity.
+      for (Eigen::Index i = 0; i < nf; ++i) {
+        if (Hf(i, i) < 1e-8 * floor[i]) Hf(i, i) += floor[i];
+        Hf(i, i) *= 1 + 1e-12;
+      }
+      Eigen::VectorXd df;
+      const Eigen::LDLT<Eigen::MatrixXd> ldlt(Hf);
+      if (ldlt.info() == Eigen::Success && ldlt.isPositive()) df = -ldlt.solve(gf);
+      if (df.size() != nf || !df.allFinite() || !(gf.dot(df) < 0))
+        df = -gf.cwiseQuotient(Hf.diagonal().cwiseMax(floor));  // scaled gradient
+      for (Eigen::Index i = 0; i < nf; ++i) {
+        const Eigen::Index k = free[std::size_t(i)];
+        d[k] = df[i];
+        // Where −D is linear in ν_k and falls towards zero, its minimum along ν_k is at zero.
+        if (H(k, k) < 1e-8 * floor[i] && grad[k] > 0) d[k] = std::min(d[k], -nu[k]);
+        if (nu[k] == 0 && d[k] < 0) {
+          held[std::size_t(k)] = true;
+          d[k] = 0;
+          changed = true;
+        }
+      }
+    }
+    // Exact line search along ν + t d, t in (0, t_max]: t_max = 1, or less where a component would become
+    // negative (it is then set to zero). −D is convex along the segment, so its slope
+    //     ψ'(t) = (m ⊙ s(ν + t d)) · d
+    // is non-decreasing in t: the full step if ψ'(t_max) ≤ 0, else bisection for ψ' = 0. (A backtracking
+    // search is not enough: −D grows like b^(1/3) from b = 0, far from its quadratic model.)
+    const double slope0 = grad.dot(d);
+    if (!(slope0 < 0)) break;  // no descent direction left at this precision
+    double t_max = 1;
+    Eigen::Index stop = -1;
+    for (Eigen::Index k = 0; k < nt; ++k)
+      if (candidate[std::size_t(k)] && d[k] < 0 && nu[k] + d[k] <= 0 && nu[k] / -d[k] <= t_max) {
+        t_max = nu[k] / -d[k];
+        stop = k;
+      }
+    auto along = [&](double t) {
+      Eigen::VectorXd v = (nu + t * d).cwiseMax(0.0);
+      for (Eigen::Index k = 0; k < nt; ++k)
+        if (!candidate[std::size_t(k)] || (k == stop && t == t_max)) v[k] = 0;
+      return v;
+    };
+    auto slope = [&](const DualProblem::Point& p) { return m.cwiseProduct(p.slack).dot(d); };
+    double t = t_max;
+    DualProblem::Point next = dual.at(m.cwiseProduct(along(t)));
+    if (slope(next) > 0) {
+      double lo = 0, hi = t_max;
+      for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        next = dual.at(m.cwiseProduct(along(mid)));
+        (slope(next) > 0 ? hi : lo) = mid;
+      }
+      t = 0.5 * (lo + hi);
+      next = dual.at(m.cwiseProduct(along(t)));
+    }
+    nu = along(t);
+    point = next;
+    // The multipliers sent to zero reach it only with the full step; where the search stopped short, zero
+    // them anyway if that neither raises −D nor breaks their constraints (else they would only shrink
+    // geometrically).
+    if (t < t_max) {
+      Eigen::VectorXd zeroed = nu;
+      for (Eigen::Index k = 0; k < nt; ++k)
+        if (held[std::size_t(k)]) zeroed[k] = 0;
+      if (zeroed != nu) {
+        const DualProblem::Point z = dual.at(m.cwiseProduct(zeroed));
+        bool holds = z.minus_dual <= point.minus_dual;
+        for (Eigen::Index k = 0; k < nt; ++k)
+          if (held[std::size_t(k)] && z.slack[k] < -kTolerance) holds = false;
+        if (holds) {
+          nu = zeroed;
+          point = z;
+        }
+      }
+    }
+    residual = kkt_residual(point, candidate);
+  }
+  run.nu = nu;
+  return run;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+// The output unit may be counted in pulses, which units.hpp does not know; as in the configuration, a pulse
+// is read as one unit of an angle-like count.
+std::string pulse_as_rad(std::string_view text) {
+  std::string out(text);
+  for (std::size_t pos = out.find("pulse"); pos != std::string::npos; pos = out.find("pulse", pos + 3))
+    out.replace(pos, 5, "rad");
+  return out;
+}
+
+bool is_bare_number(std::string_view s, double& value) {
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  return ec == std::errc() && end == s.data() + s.size();
+}
+
+}  // namespace
+
+double normal_coverage_factor(double p) {
+  if (!(p > 0 && p < 1))
+    throw InputError(fmt::format("coverage probability: {} is not in (0, 1); e.g. 0.95", p));
+  return std::numbers::sqrt2 * boost::math::erf_inv(p, ErfPolicy());
+}
+
+AllocationSolution solve_allocation(const AllocationProblem& P) {
+  const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols();
+  if (P.target.size() != nt || P.standard_uncertainty.size() != ns || P.cost.size() != ns ||
+      (!P.group.empty() && Eigen::Index(P.group.size()) != ns))
+    throw InputError(fmt::format(
+        "allocation: inconsistent sizes ({} × {} sensitivities, {} targets, {} uncertainties, {} costs, {} "
+        "groups)",
+        nt, ns, P.target.size(), P.standard_uncertainty.size(), P.cost.size(), P.group.size()));
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (!(std::isfinite(P.target[k]) && P.target[k] > 0))
+      throw InputError(
+          fmt::format("allocation: target {} is {}; every target must be a number > 0", k + 1, P.target[k]));
+  for (Eigen::Index s = 0; s < ns; ++s) {
+    if (!(std::isfinite(P.cost[s]) && P.cost[s] > 0))
+      throw InputError(
+          fmt::format("allocation: the cost of source {} is {}; it must be > 0", s + 1, P.cost[s]));
+    if (!(std::isfinite(P.standard_uncertainty[s]) && P.standard_uncertainty[s] >= 0))
+      throw InputError(fmt::format("allocation: the standard uncertainty of source {} is {}; it must be ≥ 0",
+                                   s + 1, P.standard_uncertainty[s]));
+  }
+  if (!P.sensitivity.allFinite()) throw InputError("allocation: the sensitivities are not all finite");
+  if (!(std::isfinite(P.max_scale) && P.max_scale > 0))
+    throw InputError(fmt::format("allocation: the largest scale is {}; it must be > 0", P.max_scale));
+  if (!(std::isfinite(P.coverage_factor) && P.coverage_factor > 0))
+    throw InputError(fmt::format("allocation: the coverage factor is {}; it must be > 0", P.coverage_factor));
+
+  const Groups groups = merge_groups(P.sensitivity, P.standard_uncertainty, P.cost, P.group);
+  const Eigen::Index ng = groups.cost.size();
+  const double X = P.max_scale * P.max_scale;
+  // a_kg = (k_p c_kg / T_k)²: the normalised constraints Σ_g a_kg x_g ≤ 1.
+  Eigen::MatrixXd a(nt, ng);
+  for (Eigen::Index k = 0; k < nt; ++k)
+    for (Eigen::Index g = 0; g < ng; ++g) {
+      const double v = P.coverage_factor * groups.effect(k, g) / P.target[k];
+      a(k, g) = v * v;
+    }
+  const DualProblem dual{a, groups.cost, X};
+
+  // A target met with every tolerance at the largest scale can never be active (x ≤ X), μ_k = 0. Each other
+  // target gets the scale m_k of its multiplier when alone and no bound is active:
+  //     x_g = (C_g / (2 μ a_g))^(2/3),  Σ_g a_g x_g = 1  ⇒  μ = (Σ_g a_g^(1/3) (C_g/2)^(2/3))^(3/2).
+  // The search runs in ν = μ/m, where every multiplier is of order one.
+  std::vector<bool> candidate(std::size_t(nt), false);
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(nt);
+  for (Eigen::Index k = 0; k < nt; ++k) {
+    if (X * a.row(k).sum() <= 1) continue;
+    double sum = 0;
+    for (Eigen::Index g = 0; g < ng; ++g)
+      if (a(k, g) > 0) sum += std::cbrt(a(k, g)) * std::pow(groups.cost[g] / 2, 2.0 / 3.0);
+    m[k] = std::pow(sum, 1.5);
+    candidate[std::size_t(k)] = m[k] > 0;
+  }
+  // The dual iteration from ν = 1; should it fail (it can on badly scaled problems), the barrier method on
+  // the primal, then the dual iteration from the barrier's multipliers; should that fail too, the barrier's
+  // own (feasible, near-optimal) point.
+  AllocationSolution sol;
+  Eigen::VectorXd start = Eigen::VectorXd::Zero(nt);
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (candidate[std::size_t(k)]) start[k] = 1.0;
+  DualRun run = run_dual(dual, m, candidate, start, 500);
+  sol.iterations = run.iterations;
+  sol.method = "dual Newton";
+  Eigen::VectorXd x = run.point.x, mu = m.cwiseProduct(run.nu);
+  double residual = run.residual, minus_dual = run.point.minus_dual;
+  if (residual > 1e-12) {
+    const BarrierResult barrier = solve_barrier(a, groups.cost, X, candidate);
+    for (Eigen::Index k = 0; k < nt; ++k) start[k] = candidate[std::size_t(k)] ? barrier.mu[k] / m[k] : 0.0;
+    run = run_dual(dual, m, candidate, start, 500);
+    sol.iterations += run.iterations;
+    if (run.residual <= 1e-12) {
+      sol.method = "barrier, then dual Newton";
+      x = run.point.x;
+      mu = m.cwiseProduct(run.nu);
+      residual = run.residual;
+      minus_dual = run.point.minus_dual;
+    } else {
+      sol.method = "barrier";
+      x = barrier.y.array().exp().min(X).matrix();
+      mu = barrier.mu;
+      const DualProblem::Point p = dual.at(mu);
+      minus_dual = p.minus_dual;
+      residual = barrier.gap;
+    }
+  }
+  sol.converged = residual <= 1e-12 || (sol.method == "barrier" && residual <= 1e-9);
+
+  // The primal solution; scaled onto the feasible set should round-off leave a constraint above 1.
+  const double primal_before = (groups.cost.array() / x.array().sqrt()).sum();
+  sol.dual_gap = primal_before + minus_dual;
+  double worst = 0;
+  for (Eigen::Index k = 0; k < nt; ++k) worst = std::max(worst, a.row(k).dot(x));
+  if (worst > 1 + 1e-12) x /= worst;
+
+  sol.multiplier = mu;
+  sol.scale.resize(ns);
+  for (Eigen::Index s = 0; s < ns; ++s) sol.scale[s] = std::sqrt(x[groups.of[std::size_t(s)]]);
+  sol.objective = (P.cost.array() / sol.scale.array()).sum();
+  sol.expanded.resize(nt);
+  sol.configured_expanded.resize(nt);
+  sol.active.assign(std::size_t(nt), false);
+  double common = P.max_scale;
+  for (Eigen::Index k = 0; k < nt; ++k) {
+    const double used = a.row(k).dot(x);
+    sol.expanded[k] = P.target[k] * std::sqrt(used);
+    sol.configured_expanded[k] = P.target[k] * std::sqrt(a.row(k).sum());
+    sol.active[std::size_t(k)] = 1 - used <= 1e-9;
+    if (sol.configured_expanded[k] > 0) common = std::min(common, P.target[k] / sol.configured_expanded[k]);
+  }
+  sol.common_scale = common;
+  sol.common_objective = P.cost.sum() / common;
+  sol.common_expanded = common * sol.configured_expanded;
+  return sol;
+}
+
+AllocationTarget parse_allocation_target(std::string_view text, const std::vector<std::string>& coefficients,
+                                         const std::vector<std::string>& units, std::string_view option) {
+  const auto eq = text.find('=');
+  const std::string_view name = trim(text.substr(0, eq));
+  std::string_view value = eq == std::string_view::npos ? std::string_view() : trim(text.substr(eq + 1));
+  if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
+    value = trim(value.substr(1, value.size() - 2));
+  if (eq == std::string_view::npos || name.empty() || value.empty())
+    throw InputError(fmt::format(
+        "{}: '{}' is not COEFFICIENT=VALUE; e.g. {} K3=1e-6 (in the coefficient's unit) or {} \"K3=1e-6 "
+        "deg/s/g^3\"",
+        option, text, option, option));
+  const auto it = std::find(coefficients.begin(), coefficients.end(), name);
+  if (it == coefficients.end()) {
+    if (parse_term(name))
+      throw InputError(fmt::format("{}: {} is not a free term of the identification; accepted: {}", option,
+                                   name, fmt::join(coefficients, ", ")));
+    throw InputError(fmt::format("{}: unknown coefficient '{}'; accepted: the free terms {}", option, name,
+                                 fmt::join(coefficients, ", ")));
+  }
+  const auto k = std::size_t(it - coefficients.begin());
+  const std::string unit = pulse_as_rad(units[k]);
+  AllocationTarget t;
+  t.coefficient = std::string(name);
+  double bare = 0;
+  try {
+    const Dimension dim = parse_unit(unit).dim;
+    if (is_bare_number(value, bare)) {
+      t.expanded = from_unit(bare, unit);
+    } else {
+      const Quantity q = parse_quantity(pulse_as_rad(value));
+      if (!(q.dim == dim))
+        throw InputError(fmt::format("'{}' is {}, expected {} such as {}", value, describe(q.dim),
+                                     describe(dim), units[k]));
+      t.expanded = q.value_si;
+    }
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{} {}: {}", option, name, e.what()));
+  }
+  if (!(std::isfinite(t.expanded) && t.expanded > 0))
+    throw InputError(
+        fmt::format("{} {}: the target must be a positive expanded uncertainty, got '{}'; e.g. {}={} (in {})",
+                    option, name, value, name, "1e-6", units[k]));
+  return t;
+}
+
+std::string_view verdict_name(Verdict v) noexcept {
+  switch (v) {
+    case Verdict::not_checked:
+      return "not checked";
+    case Verdict::pass:
+      return "pass";
+    case Verdict::pass_within_sampling:
+      return "pass within sampling";
+    case Verdict::fail:
+      return "fail";
+  }
+  return "";
+}
+
+// The smallest accepted target, as a fraction of the coefficient's expanded uncertainty at the configured
+// tolerances.
+constexpr double kMinTargetFraction = 1e-6;
+
+AllocationResult allocate_tolerances(const Config& cfg, const std::vector<AllocationTarget>& targets,
+                                     const AllocateOptions& o) {
+  if (cfg.tolerances.empty())
+    throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
+  if (targets.empty()) throw InputError("no target given; e.g. --target K3=1e-6");
+  const double kp = normal_coverage_factor(o.coverage);
+  if (!(std::isfinite(o.max_scale) && o.max_scale > 0))
+    throw InputError(fmt::format("--max-scale: {} is not a number > 0; e.g. 10", o.max_scale));
+  if (o.verify_trials == 1)
+    throw InputError("--verify-trials: 1 is too few; accepted: 0 (no verification) or 2 and more");
+  check_thread_count(o.threads, "--threads");
+
+  BudgetOptions bo;
+  bo.mode = ModelMode::exact;
+  bo.compare_with_paper = false;
+  BudgetResult b;
+  try {
+    b = compute_budget(cfg, bo);
+  } catch (const IllPosedFit& e) {
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
+  }
+  const auto nk = b.coefficients.size();
+  const auto ns = b.sources.size();
+  const auto nt = targets.size();
+
+  AllocationResult r;
+  r.coverage = o.coverage;
+  r.coverage_factor = kp;
+  r.max_scale = o.max_scale;
+  for (std::size_t k = 0; k < nk; ++k) {
+    AllocatedCoefficient c;
+    c.id = b.coefficients[k];
+    c.unit = b.units[k];
+    c.display_scale = b.display_scale[k];
+    r.coefficients.push_back(c);
+  }
+  for (const AllocationTarget& t : targets) {
+    const auto it = std::find(b.coefficients.begin(), b.coefficients.end(), t.coefficient);
+    if (it == b.coefficients.end())
+      throw InputError(fmt::format("target on '{}': not a free term of the identification; accepted: {}",
+                                   t.coefficient, fmt::join(b.coefficients, ", ")));
+    const auto k = std::size_t(it - b.coefficients.begin());
+    if (r.coefficients[k].has_target)
+      throw InputError(fmt::format("two targets on {}; give one per coefficient", t.coefficient));
+    if (!(std::isfinite(t.expanded) && t.expanded > 0))
+      throw InputError(
+          fmt::format("target on {}: {} is not a positive expanded uncertainty", t.coefficient, t.expanded));
+    // Tolerances shrink in proportion to the target: beyond a million-fold tightening of every source the
+    // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0).
+    const double configured = kp * b.standard_uncertainty[Eigen::Index(k)],
+                 least = kMinTargetFraction * configured;
+    if (t.expanded < least)
+      throw InputError(
+          fmt::format("target on {}: {:g} {} is below {:g} × its configured U = {:.4g} {}; accepted: at "
+                      "least {:.4g} {} (a "
+                      "tighter target cannot be met by any realistic tolerance)",
+                      t.coefficient, t.expanded * b.display_scale[k], b.units[k], kMinTargetFraction,
+                      configured * b.display_scale[k], b.units[k], least * b.display_scale[k], b.units[k]));
+    r.coefficients[k].has_target = true;
+    r.coefficients[k].target = t.expanded;
+    r.targets.push_back(k);
+  }
+
+  // The drives' rate noise (model.md §3.2) is no tolerance: it stays as it is, so each target leaves the
+  // tolerances √(T_k² − (k_p u_noise,k)²); a target the noise alone reaches cannot be met.
+  Eigen::VectorXd noise_variance = Eigen::VectorXd::Zero(Eigen::Index(nk));
+  for (const RateNoiseBudget& n : b.rate_noise) noise_variance += n.covariance.diagonal();
+  std::vector<double> tolerance_target(nt);
+  for (std::size_t i = 0; i < nt; ++i) {
+    const AllocatedCoefficient& c = r.coefficients[r.targets[i]];
+    const double floor = kp * std::sqrt(noise_variance[Eigen::Index(r.targets[i])]);
+    if (!(c.target > floor * (1 + 1e-9)))
+      throw InputError(fmt::format(
+          "target on {}: the drives' rate noise alone gives U = {:.4g} {} (model.md §3.2), at or above the "
+          "target {:.4g} {}; no tolerance can meet it; accepted: a target above {:.4g} {}, or less rate "
+          "noise "
+          "([centrifuge] main_rate_noise, platform_rate_noise)",
+          c.id, floor * c.display_scale, c.unit, c.target * c.display_scale, c.unit, floor * c.display_scale,
+          c.unit));
+    tolerance_target[i] = std::sqrt(c.target * c.target - floor * floor);
+  }
+
+  AllocationProblem P;
+  P.sensitivity.resize(Eigen::Index(nt), Eigen::Index(ns));
+  P.target.resize(Eigen::Index(nt));
+  P.standard_uncertainty.resize(Eigen::Index(ns));
+  P.cost.resize(Eigen::Index(ns));
+  for (std::size_t i = 0; i < nt; ++i) {
+    P.target[Eigen::Index(i)] = tolerance_target[i];
+    for (std::size_t s = 0; s < ns; ++s)
+      P.sensitivity(Eigen::Index(i), Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(r.targets[i])];
+  }
+  for (std::size_t s = 0; s < ns; ++s) {
+    P.standard_uncertainty[Eigen::Index(s)] = b.sources[s].standard_uncertainty;
+    P.cost[Eigen::Index(s)] = cfg.tolerances[s].cost;
+    P.group.push_back(cfg.tolerances[s].group);
+  }
+  P.coverage_factor = kp;
+  P.max_scale = o.max_scale;
+  const AllocationSolution sol = solve_allocation(P);
+  r.objective = sol.objective;
+  r.configured_objective = P.cost.sum();
+  r.common_scale = sol.common_scale;
+  r.common_objective = sol.common_objective;
+  r.iterations = sol.iterations;
+  r.converged = sol.converged;
+  r.method = sol.method;
+  r.dual_gap = sol.dual_gap;
+
+  // Every free coefficient's uncertainty at the allocated tolerances (groups added with their signs).
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(Eigen::Index(nk), Eigen::Index(ns));
+  for (std::size_t s = 0; s < ns; ++s) J.col(Eigen::Index(s)) = b.sources[s].sensitivity;
+  const Eigen::VectorXd u_alloc_s = P.standard_uncertainty.cwiseProduct(sol.scale);
+  const Groups allocated = merge_groups(J, u_alloc_s, P.cost, P.group);
+  const Eigen::VectorXd u_alloc =
+      ((allocated.effect * allocated.effect.transpose()).diagonal() + noise_variance).cwiseSqrt();
+  for (std::size_t k = 0; k < nk; ++k) {
+    AllocatedCoefficient& c = r.coefficients[k];
+    c.configured_expanded = kp * b.standard_uncertainty[Eigen::Index(k)];
+    c.allocated_expanded = kp * u_alloc[Eigen::Index(k)];
+    const double u_configured = b.standard_uncertainty[Eigen::Index(k)];
+    const double noise = noise_variance[Eigen::Index(k)];
+    c.common_expanded = kp * std::sqrt(sol.common_scale * sol.common_scale *
+                                           std::max(u_configured * u_configured - noise, 0.0) +
+                                       noise);
+    c.lpu_std = u_alloc[Eigen::Index(k)];
+  }
+  for (std::size_t i = 0; i < nt; ++i) {
+    AllocatedCoefficient& c = r.coefficients[r.targets[i]];
+    c.multiplier = sol.multiplier[Eigen::Index(i)];
+    // Raising T_k by a factor 1 + ε scales a_k by 1/(1 + ε)², i.e. relaxes the normalised constraint to
+    // 1 + 2ε; the optimal objective changes by −μ_k per unit of relaxation.
+    c.price = -2 * c.multiplier;
+    c.active = sol.active[i];
+  }
+
+  for (std::size_t s = 0; s < ns; ++s) {
+    const Tolerance& t = cfg.tolerances[s];
+    AllocatedSource a;
+    a.parameter = t.parameter;
+    a.id = t.id;
+    a.group = t.group;
+    a.distribution = t.distribution;
+    a.cost = t.cost;
+    a.bound = t.bound;
+    a.standard_uncertainty = b.sources[s].standard_uncertainty;
+    a.scale = sol.scale[Eigen::Index(s)];
+    a.allocated_bound = a.scale * t.bound;
+    a.allocated_standard_uncertainty = a.scale * a.standard_uncertainty;
+    a.share = Eigen::VectorXd::Zero(Eigen::Index(nt));
+    for (std::size_t i = 0; i < nt; ++i) {
+      const auto k = Eigen::Index(r.targets[i]);
+      const double effect = J(k, Eigen::Index(s)) * a.allocated_standard_uncertainty;
+      const double var = u_alloc[k] * u_alloc[k];
+      a.share[Eigen::Index(i)] = var > 0 ? effect * effect / var : 0.0;
+    }
+    r.sources.push_back(std::move(a));
+  }
+  std::stable_sort(r.sources.begin(), r.sources.end(),
+                   [](const AllocatedSource& x, const AllocatedSource& y) { return x.scale < y.scale; });
+
+  if (o.verify_trials == 0) return r;
+  // Monte Carlo on the allocated tolerances through the exact nonlinear pipeline.
+  std::vector<Tolerance> scaled = cfg.tolerances;
+  for (std::size_t s = 0; s < ns; ++s) scaled[s].bound *= sol.scale[Eigen::Index(s)];
+  for (Tolerance& t : rate_noise_sources(cfg)) scaled.push_back(std::move(t));  // as it is
+  CalibrationModel model;
+  try {
+    model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors,
+                              ModelMode::exact);
+  } catch (const IllPosedFit& e) {
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
+  }
+  MonteCarloOptions mo;
+  mo.trials = o.verify_trials;
+  mo.seed = o.seed;
+  mo.threads = o.threads;
+  mo.coverage = o.coverage;
+  mo.progress = o.progress;
+  const MonteCarloResult mc = run_monte_carlo(scaled, model.n_outputs(), model.output_names(),
+                                              calibration_trial(model), mo, &u_alloc);
+  AllocationVerification& v = r.verification;
+  v.trials = mc.trials;
+  v.seed = mc.seed;
+  v.threads = mc.threads;
+  v.seconds = mc.seconds;
+  v.notes = mc.notes;
+  const double M = double(mc.trials);
+  const double p_end = (1 + o.coverage) / 2;
+  const double density = std::exp(-kp * kp / 2) / std::sqrt(2 * std::numbers::pi);
+  v.half_width_rel_error = std::sqrt(p_end * (1 - p_end)) / (kp * density * std::sqrt(M));
+  v.std_rel_error = 1 / std::sqrt(2 * M);
+  v.allowance = 3 * v.half_width_rel_error;
+  v.passed = true;
+  for (std::size_t k = 0; k < nk; ++k) {
+    AllocatedCoefficient& c = r.coefficients[k];
+    const OutputSummary& s = mc.outputs[k];
+    c.mc_mean = s.mean;
+    c.mc_std = s.std_dev;
+    c.mc_low = s.low_symmetric;
+    c.mc_high = s.high_symmetric;
+    c.mc_half_width = std::max(s.high_symmetric - s.mean, s.mean - s.low_symmetric);
+    if (!c.has_target) continue;
+    c.verdict = c.mc_half_width <= c.target                       ? Verdict::pass
+                : c.mc_half_width <= c.target * (1 + v.allowance) ? Verdict::pass_within_sampling
+                                                                  : Verdict::fail;
+    if (c.verdict == Verdict::fail) v.passed = false;
+  }
+  return r;
+}
+
+}  // namespace ccal

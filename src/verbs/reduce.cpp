@@ -1,0 +1,95 @@
+#include "ccal/verbs/reduce.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/io/observation_csv.hpp"
+
+namespace ccal::verbs {
+
+namespace {
+
+// A log file that cannot be opened, refused as the reader refuses it.
+void check_readable(const std::string& name) {
+  std::error_code ec;
+  if (std::ifstream(name, std::ios::binary) && !std::filesystem::is_directory(name, ec)) return;
+  throw CsvError(name, 0, 0, "", "cannot read the file; check the path and permissions");
+}
+
+// A warning for each run whose encoders contradict the configured platform control.
+void warn_about_control(const Config& cfg, ReduceResult& r) {
+  const PlatformControl configured = cfg.centrifuge.geometry.platform_control;
+  const std::string_view name = configured == PlatformControl::speed ? "speed" : "phase_locked";
+  for (const LoggedRun& lr : r.logs.runs) {
+    const ControlLook look = lr.control.look;
+    if (look != ControlLook::speed && look != ControlLook::phase_locked) continue;
+    if ((look == ControlLook::speed) == (configured == PlatformControl::speed)) continue;
+    r.warnings.push_back(fmt::format(
+        "run '{}': the encoders look like platform_control = \"{}\" (the platform angle carries lambda = "
+        "{:.3g} of the main axis's ripple), the configuration has \"{}\" (model.md §13.2)",
+        lr.measured.name, control_look_name(look), lr.control.following, name));
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel) {
+  std::vector<std::string> ids;
+  for (int k = 1; k <= cfg.centrifuge.layout.harmonic_order(); ++k)
+    for (const char* part : {"c", "s"}) ids.push_back(fmt::format("{}_{}{}", channel, part, k));
+  return ids;
+}
+
+ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
+  ReduceResult r;
+  r.config = cfg;
+  r.mode = o.mode.value_or(cfg.mode);
+  r.output_unit_si = output_unit_si(cfg.instrument.output_unit);
+  RunLogOptions lo;
+  lo.output_scale = r.output_unit_si;
+  lo.angle_scale = o.angles_in_degrees ? std::numbers::pi / 180 : 1.0;
+  lo.pulse_weight = cfg.instrument.quantum;
+  if (o.pulse_weight) {
+    if (!(std::isfinite(*o.pulse_weight) && *o.pulse_weight > 0))
+      throw InputError(fmt::format(
+          "--pulse-weight: '{:g}' is not a positive number; accepted: the integrated output per pulse in "
+          "{}·s, e.g. 2.5e-5",
+          *o.pulse_weight, cfg.instrument.output_unit));
+    lo.pulse_weight = *o.pulse_weight * r.output_unit_si;
+  }
+  std::vector<std::pair<std::size_t, std::filesystem::path>> logs;
+  std::map<std::size_t, std::string> files;
+  for (const LogFile& log : o.logs) {
+    const std::size_t index = select_run(cfg.plan, log.run, "--log");
+    if (files.count(index))
+      throw InputError(fmt::format("--log: run '{}' is logged twice; accepted: one log per run",
+                                   cfg.plan.runs[index].name));
+    files[index] = log.path;
+    check_readable(log.path);  // a missing file before the count of logs, as when logs were read whole
+    logs.emplace_back(index, log.path);
+  }
+  check_log_count(cfg.identification, logs.size(), "--log");
+  r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
+  for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
+  std::vector<Run> measured;
+  std::vector<double> rates;
+  for (const LoggedRun& lr : r.logs.runs) {
+    measured.push_back(lr.measured);
+    rates.push_back(lr.rate);
+  }
+  const DataResolution resolution =
+      run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
+  r.identification =
+      identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source, &resolution);
+  r.warnings = r.identification.id.observability.warnings;
+  warn_about_control(cfg, r);
+  return r;
+}
+
+}  // namespace ccal::verbs
