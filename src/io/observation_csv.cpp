@@ -383,23 +383,6 @@ double output_unit_si(std::string_view output_unit) {
   return parse_unit(text).value_si;
 }
 
-std::string coefficient_unit(std::string_view output_unit, const TermSpec& term) {
-  if (output_unit.empty()) return "";
-  const std::string out(output_unit);
-  switch (term.kind) {
-    case TermKind::power:
-      if (term.power == 0) return out;
-      if (term.power == 1) return out + "/g";
-      return fmt::format("{}/g^{}", out, term.power);
-    case TermKind::p:
-    case TermKind::o:
-      return out + "/g";
-    case TermKind::rate:
-      return out + "/(rad/s)";
-    default:
-      return out + "/g^2";
-  }
-}
 
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
                              const InstrumentModel& instrument) {

@@ -1,5 +1,7 @@
 #include "ccal/model/instrument.hpp"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <charconv>
 #include <numbers>
@@ -80,6 +82,28 @@ InstrumentModel paper_piga() {
   m.coefficients = Eigen::Vector4d(0.061973, 505.2097, 0.02, 0.003) * deg;
   m.rate_gain = 1.0;
   return m;
+}
+
+std::string coefficient_unit(std::string_view output_unit, const TermSpec& term) {
+  if (output_unit.empty()) return "";
+  const std::string out(output_unit);
+  switch (term.kind) {
+    case TermKind::power:
+      if (term.power == 0) return out;
+      if (term.power == 1) return out + "/g";
+      return fmt::format("{}/g^{}", out, term.power);
+    case TermKind::p:
+    case TermKind::o:
+      return out + "/g";
+    case TermKind::rate:
+      return out + "/(rad/s)";
+    default:
+      return out + "/g^2";
+  }
+}
+
+std::string coefficient_unit(std::string_view output_unit, std::string_view term_id) {
+  return coefficient_unit(output_unit, parse_term(term_id).value());
 }
 
 }  // namespace ccal

@@ -189,6 +189,148 @@ std::pair<Index, Index> most_correlated_pair(const Eigen::MatrixXd& corr) {
 
 }  // namespace
 
+namespace {
+
+// The scaled least-squares problem min |A z − b| (A: the weighted design with columns scaled by `scale`):
+// rank and conditioning from the singular values, the solution z refined on the augmented system, and
+// (AᵀA)⁻¹. Fills result.rank and result.condition_number; throws IllPosedFit.
+struct ScaledSolution {
+  Eigen::VectorXd z;
+  Eigen::MatrixXd cov_z;
+};
+ScaledSolution solve_scaled(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const FitOptions& o,
+                            FitResult& result) {
+  const Index rows = a.rows(), m = a.cols();
+  // Singular values and right singular vectors always: they are the rank and conditioning diagnostics.
+  const unsigned svd_options =
+      o.method == FitMethod::svd ? (Eigen::ComputeThinU | Eigen::ComputeThinV) : Eigen::ComputeThinV;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, svd_options);
+  const Eigen::VectorXd sigma = svd.singularValues();
+  const double tolerance =
+      o.rank_tolerance > 0 ? o.rank_tolerance : static_cast<double>(std::max(rows, m)) * kEps * sigma(0);
+  result.rank = static_cast<int>((sigma.array() > tolerance).count());
+  if (result.rank < m) throw_rank_deficient(sigma, svd.matrixV(), tolerance, result.names);
+  result.condition_number = sigma(0) / sigma(m - 1);
+
+  // (A^T A)^-1 for the scaled unknowns z (x = scale .* z), from V and the singular values.
+  const Eigen::MatrixXd v_over_s = svd.matrixV() * sigma.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd cov_z_svd = v_over_s * v_over_s.transpose();
+  if (result.condition_number > o.max_condition) {
+    const Eigen::MatrixXd corr = correlation_of(cov_z_svd);
+    const auto [i, j] = most_correlated_pair(corr);
+    throw IllPosedFit(
+        fmt::format("fit: the design is too ill-conditioned: condition number {:.3g} of the column-scaled "
+                    "design exceeds "
+                    "max_condition {:.3g}; the most correlated pair is {} and {} (correlation {:.10g})",
+                    result.condition_number, o.max_condition, result.names[static_cast<std::size_t>(i)],
+                    result.names[static_cast<std::size_t>(j)], corr(i, j)),
+        {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
+  }
+
+  // Refinement of the augmented system [I A; A^T 0] [r; z] = [b; 0] (Bjorck): r is carried in
+  // double-double, both residuals of the system are accumulated in double-double and each correction
+  // comes from the same factorisation. Unlike refining z alone with b - A z, this also removes the error
+  // that a large least-squares residual r induces in z (the cond^2 * eps * |r| term), which dominates for
+  // noisy data such as NIST's Wampler4/5.
+  Eigen::VectorXd z;
+  Eigen::MatrixXd cov_z;
+  const auto refine = [&](const auto& correction) {
+    Eigen::VectorXd r_hi(rows), r_lo(rows), f(rows), g(m);
+    for (Index i = 0; i < rows; ++i) {
+      CompensatedSum sum(b(i));
+      for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
+      std::tie(r_hi(i), r_lo(i)) = sum.split();
+    }
+    for (int step = 0; step < o.refinement_steps; ++step) {
+      for (Index i = 0; i < rows; ++i) {  // f = b - r - A z
+        CompensatedSum sum(b(i));
+        sum.add(-r_hi(i));
+        sum.add(-r_lo(i));
+        for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
+        f(i) = sum.value();
+      }
+      for (Index k = 0; k < m; ++k) {  // g = -A^T r
+        CompensatedSum sum;
+        for (Index i = 0; i < rows; ++i) {
+          sum.add_product(-a(i, k), r_hi(i));
+          sum.add_product(-a(i, k), r_lo(i));
+        }
+        g(k) = sum.value();
+      }
+      const auto [dr, dz] = correction(f, g);
+      for (Index i = 0; i < rows; ++i) {
+        CompensatedSum sum(r_hi(i));
+        sum.add(r_lo(i));
+        sum.add(dr(i));
+        std::tie(r_hi(i), r_lo(i)) = sum.split();
+      }
+      z += dz;
+    }
+  };
+  if (o.method == FitMethod::qr) {
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+    // Full rank was established from the singular values; let QR use every pivot.
+    qr.setThreshold(std::numeric_limits<double>::min());
+    z = qr.solve(b);
+    const auto r_factor = qr.matrixR().topLeftCorner(m, m).triangularView<Eigen::Upper>();
+    // A = Q [R; 0] P^T. Correction of [I A; A^T 0] [dr; dz] = [f; g]:
+    //   R^T u = P^T g,  c = Q^T f,  dr = Q [u; c_2],  R P^T dz = c_1 - u.
+    refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
+      const Eigen::VectorXd c = qr.householderQ().adjoint() * f;
+      const Eigen::VectorXd u = r_factor.transpose().solve(qr.colsPermutation().transpose() * g);
+      Eigen::VectorXd w(rows);
+      w << u, c.tail(rows - m);
+      const Eigen::VectorXd dr = qr.householderQ() * w;
+      const Eigen::VectorXd dz = qr.colsPermutation() * r_factor.solve(c.head(m) - u);
+      return std::pair{dr, dz};
+    });
+    // (A^T A)^-1 = P R^-1 R^-T P^T.
+    const Eigen::MatrixXd r_inv = r_factor.solve(Eigen::MatrixXd::Identity(m, m));
+    const Eigen::MatrixXd permuted = r_inv * r_inv.transpose();
+    cov_z = qr.colsPermutation() * permuted * qr.colsPermutation().transpose();
+  } else {
+    z = svd.solve(b);
+    // A = U S V^T (thin). Correction: u = S^-1 V^T g, dr = U u + (f - U U^T f), dz = V S^-1 (U^T f - u).
+    refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
+      const Eigen::VectorXd u = (svd.matrixV().transpose() * g).cwiseQuotient(sigma);
+      const Eigen::VectorXd utf = svd.matrixU().transpose() * f;
+      const Eigen::VectorXd dr = svd.matrixU() * (u - utf) + f;
+      const Eigen::VectorXd dz = svd.matrixV() * (utf - u).cwiseQuotient(sigma);
+      return std::pair{dr, dz};
+    });
+    cov_z = cov_z_svd;
+  }
+  return {z, cov_z};
+}
+
+// The pairs of estimates the data cannot separate (refused) or barely separate (a warning).
+void check_correlations(const FitOptions& o, FitResult& result) {
+  const Index m = result.correlation.rows();
+  for (Index i = 0; i < m; ++i) {
+    for (Index j = i + 1; j < m; ++j) {
+      if (std::abs(result.correlation(i, j)) > o.refuse_correlation) {
+        throw IllPosedFit(
+            fmt::format("the plan cannot separate {} and {}: the correlation of their estimates is {:.8g} "
+                        "(beyond {:.8g}), so "
+                        "the data determine only a combination of the two",
+                        result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
+                        result.correlation(i, j), o.refuse_correlation),
+            {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
+      }
+      if (std::abs(result.correlation(i, j)) > o.alias_correlation) {
+        result.warnings.push_back(
+            fmt::format("{} and {} are nearly aliased: correlation {:.6g} of their estimates exceeds {:.6g}; "
+                        "the plan barely "
+                        "separates them",
+                        result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
+                        result.correlation(i, j), o.alias_correlation));
+      }
+    }
+  }
+}
+
+}  // namespace
+
 FitResult fit(const FitProblem& p, const FitOptions& o) {
   validate(p, o);
   const Index rows = p.H.rows();
@@ -255,105 +397,9 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
 
   Eigen::MatrixXd cov_unit = Eigen::MatrixXd::Zero(m, m);  // (H^T W H)^-1
   if (m > 0) {
-    // Singular values and right singular vectors always: they are the rank and conditioning diagnostics.
-    const unsigned svd_options =
-        o.method == FitMethod::svd ? (Eigen::ComputeThinU | Eigen::ComputeThinV) : Eigen::ComputeThinV;
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, svd_options);
-    const Eigen::VectorXd sigma = svd.singularValues();
-    const double tolerance =
-        o.rank_tolerance > 0 ? o.rank_tolerance : static_cast<double>(std::max(rows, m)) * kEps * sigma(0);
-    result.rank = static_cast<int>((sigma.array() > tolerance).count());
-    if (result.rank < m) throw_rank_deficient(sigma, svd.matrixV(), tolerance, result.names);
-    result.condition_number = sigma(0) / sigma(m - 1);
-
-    // (A^T A)^-1 for the scaled unknowns z (x = scale .* z), from V and the singular values.
-    const Eigen::MatrixXd v_over_s = svd.matrixV() * sigma.cwiseInverse().asDiagonal();
-    const Eigen::MatrixXd cov_z_svd = v_over_s * v_over_s.transpose();
-    if (result.condition_number > o.max_condition) {
-      const Eigen::MatrixXd corr = correlation_of(cov_z_svd);
-      const auto [i, j] = most_correlated_pair(corr);
-      throw IllPosedFit(
-          fmt::format("fit: the design is too ill-conditioned: condition number {:.3g} of the column-scaled "
-                      "design exceeds "
-                      "max_condition {:.3g}; the most correlated pair is {} and {} (correlation {:.10g})",
-                      result.condition_number, o.max_condition, result.names[static_cast<std::size_t>(i)],
-                      result.names[static_cast<std::size_t>(j)], corr(i, j)),
-          {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
-    }
-
-    // Refinement of the augmented system [I A; A^T 0] [r; z] = [b; 0] (Bjorck): r is carried in
-    // double-double, both residuals of the system are accumulated in double-double and each correction
-    // comes from the same factorisation. Unlike refining z alone with b - A z, this also removes the error
-    // that a large least-squares residual r induces in z (the cond^2 * eps * |r| term), which dominates for
-    // noisy data such as NIST's Wampler4/5.
-    Eigen::VectorXd z;
-    Eigen::MatrixXd cov_z;
-    const auto refine = [&](const auto& correction) {
-      Eigen::VectorXd r_hi(rows), r_lo(rows), f(rows), g(m);
-      for (Index i = 0; i < rows; ++i) {
-        CompensatedSum sum(b(i));
-        for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
-        std::tie(r_hi(i), r_lo(i)) = sum.split();
-      }
-      for (int step = 0; step < o.refinement_steps; ++step) {
-        for (Index i = 0; i < rows; ++i) {  // f = b - r - A z
-          CompensatedSum sum(b(i));
-          sum.add(-r_hi(i));
-          sum.add(-r_lo(i));
-          for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
-          f(i) = sum.value();
-        }
-        for (Index k = 0; k < m; ++k) {  // g = -A^T r
-          CompensatedSum sum;
-          for (Index i = 0; i < rows; ++i) {
-            sum.add_product(-a(i, k), r_hi(i));
-            sum.add_product(-a(i, k), r_lo(i));
-          }
-          g(k) = sum.value();
-        }
-        const auto [dr, dz] = correction(f, g);
-        for (Index i = 0; i < rows; ++i) {
-          CompensatedSum sum(r_hi(i));
-          sum.add(r_lo(i));
-          sum.add(dr(i));
-          std::tie(r_hi(i), r_lo(i)) = sum.split();
-        }
-        z += dz;
-      }
-    };
-    if (o.method == FitMethod::qr) {
-      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-      // Full rank was established from the singular values; let QR use every pivot.
-      qr.setThreshold(std::numeric_limits<double>::min());
-      z = qr.solve(b);
-      const auto r_factor = qr.matrixR().topLeftCorner(m, m).triangularView<Eigen::Upper>();
-      // A = Q [R; 0] P^T. Correction of [I A; A^T 0] [dr; dz] = [f; g]:
-      //   R^T u = P^T g,  c = Q^T f,  dr = Q [u; c_2],  R P^T dz = c_1 - u.
-      refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
-        const Eigen::VectorXd c = qr.householderQ().adjoint() * f;
-        const Eigen::VectorXd u = r_factor.transpose().solve(qr.colsPermutation().transpose() * g);
-        Eigen::VectorXd w(rows);
-        w << u, c.tail(rows - m);
-        const Eigen::VectorXd dr = qr.householderQ() * w;
-        const Eigen::VectorXd dz = qr.colsPermutation() * r_factor.solve(c.head(m) - u);
-        return std::pair{dr, dz};
-      });
-      // (A^T A)^-1 = P R^-1 R^-T P^T.
-      const Eigen::MatrixXd r_inv = r_factor.solve(Eigen::MatrixXd::Identity(m, m));
-      const Eigen::MatrixXd permuted = r_inv * r_inv.transpose();
-      cov_z = qr.colsPermutation() * permuted * qr.colsPermutation().transpose();
-    } else {
-      z = svd.solve(b);
-      // A = U S V^T (thin). Correction: u = S^-1 V^T g, dr = U u + (f - U U^T f), dz = V S^-1 (U^T f - u).
-      refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
-        const Eigen::VectorXd u = (svd.matrixV().transpose() * g).cwiseQuotient(sigma);
-        const Eigen::VectorXd utf = svd.matrixU().transpose() * f;
-        const Eigen::VectorXd dr = svd.matrixU() * (u - utf) + f;
-        const Eigen::VectorXd dz = svd.matrixV() * (utf - u).cwiseQuotient(sigma);
-        return std::pair{dr, dz};
-      });
-      cov_z = cov_z_svd;
-    }
+    const ScaledSolution solved = solve_scaled(a, b, o, result);
+    const Eigen::VectorXd& z = solved.z;
+    const Eigen::MatrixXd& cov_z = solved.cov_z;
     result.value = z.cwiseProduct(scale);
     cov_unit = scale.asDiagonal() * cov_z * scale.asDiagonal();
     result.correlation = correlation_of(cov_unit);
@@ -387,27 +433,7 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
   }
   result.std_error = result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
 
-  for (Index i = 0; i < m; ++i) {
-    for (Index j = i + 1; j < m; ++j) {
-      if (std::abs(result.correlation(i, j)) > o.refuse_correlation) {
-        throw IllPosedFit(
-            fmt::format("the plan cannot separate {} and {}: the correlation of their estimates is {:.8g} "
-                        "(beyond {:.8g}), so "
-                        "the data determine only a combination of the two",
-                        result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
-                        result.correlation(i, j), o.refuse_correlation),
-            {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
-      }
-      if (std::abs(result.correlation(i, j)) > o.alias_correlation) {
-        result.warnings.push_back(
-            fmt::format("{} and {} are nearly aliased: correlation {:.6g} of their estimates exceeds {:.6g}; "
-                        "the plan barely "
-                        "separates them",
-                        result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)],
-                        result.correlation(i, j), o.alias_correlation));
-      }
-    }
-  }
+  check_correlations(o, result);
   return result;
 }
 

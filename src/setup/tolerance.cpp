@@ -1,5 +1,6 @@
 #include "ccal/setup/tolerance.hpp"
 
+#include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <numbers>
 
@@ -31,6 +32,13 @@ double standard_uncertainty(double bound, Distribution d) noexcept {
       return bound / std::numbers::sqrt2;
   }
   return bound;
+}
+
+// erf⁻¹ in double precision (no promotion to long double: the rational approximations for 64-bit precision
+// are already more accurate than double).
+double normal_erf_quantile(double x) {
+  using Policy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+  return std::numbers::sqrt2 * boost::math::erf_inv(x, Policy());
 }
 
 }  // namespace ccal

@@ -129,19 +129,6 @@ void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& 
 
 }  // namespace
 
-std::string coefficient_unit(std::string_view output_unit, std::string_view term_id) {
-  const TermSpec term = parse_term(term_id).value();
-  const int order = term.kind == TermKind::power ? term.power : (term.kind == TermKind::rate ? 0 : 1);
-  std::string unit(output_unit);
-  if (term.kind == TermKind::power || term.kind == TermKind::p || term.kind == TermKind::o) {
-    if (order == 1) unit += "/g";
-    if (order > 1) unit += "/g^" + std::to_string(order);
-  } else if (term.kind != TermKind::rate) {
-    unit += "/g^2";
-  }
-  return unit;
-}
-
 SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
                                const std::vector<int>& parameters, const Eigen::VectorXd& at,
                                const Eigen::VectorXd& known, ModelMode mode,

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <atomic>
 #include <boost/math/policies/policy.hpp>
-#include <boost/math/special_functions/erf.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +18,8 @@
 #include <utility>
 
 #include "ccal/core/errors.hpp"
+#include "progress_bar.hpp"
+#include "sample_statistics.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -28,6 +29,9 @@
 
 namespace ccal {
 namespace {
+
+using namespace sample_stats;
+using progress_bar::Progress;
 
 using Clock = std::chrono::steady_clock;
 
@@ -75,16 +79,12 @@ class TrialGenerator {
 
 // ---- Distributions ---------------------------------------------------------------------------------------
 
-// erf⁻¹ in double precision (no promotion to long double: the rational approximations for 64-bit precision
-// are already more accurate than double).
-using ErfPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
-
 // F⁻¹(u) of a distribution with bound 1, for u on the grid above (so 2u − 1 and u − ½ are exact and every
 // branch is exactly odd about u = ½).
 double standard_quantile(Distribution d, double u) {
   switch (d) {
     case Distribution::normal:
-      return std::numbers::sqrt2 * boost::math::erf_inv(2.0 * u - 1.0, ErfPolicy());
+      return normal_erf_quantile(2.0 * u - 1.0);
     case Distribution::uniform:
       return 2.0 * u - 1.0;
     case Distribution::triangular:
@@ -131,105 +131,6 @@ void check_sources(const std::vector<Tolerance>& sources) {
   }
 }
 
-// ---- Statistics ------------------------------------------------------------------------------------------
-
-// Neumaier's compensated summation (Z. Angew. Math. Mech. 54, 1974): the rounding error of every addition
-// is accumulated separately, so the error of a sum of M terms does not grow with M.
-class Sum {
- public:
-  void add(double x) {
-    const double t = s_ + x;
-    c_ += std::abs(s_) >= std::abs(x) ? (s_ - t) + x : (x - t) + s_;
-    s_ = t;
-  }
-  double value() const { return s_ + c_; }
-
- private:
-  double s_ = 0;
-  double c_ = 0;
-};
-
-double mean_of(std::span<const double> v) {
-  Sum s;
-  for (double x : v) s.add(x);
-  return s.value() / double(v.size());
-}
-
-double co_moment(std::span<const double> a, double mean_a, std::span<const double> b, double mean_b) {
-  Sum s;
-  for (std::size_t i = 0; i < a.size(); ++i) s.add((a[i] - mean_a) * (b[i] - mean_b));
-  return s.value();
-}
-
-// q of §7.7.2: pM if that is an integer, else ⌊pM + ½⌋; at most M − 1 so that an interval has two ends.
-std::uint64_t interval_points(std::uint64_t M, double p) {
-  const double pm = p * double(M);
-  const double q = pm == std::floor(pm) ? pm : std::floor(pm + 0.5);
-  return std::min<std::uint64_t>(std::uint64_t(q), M - 1);
-}
-
-struct Interval {
-  double low = 0;
-  double high = 0;
-};
-
-// [y_(r), y_(r+q)] with r = (M − q)/2 if an integer, else ⌊(M − q + 1)/2⌋ (1-based): in both cases
-// r = ⌊(M − q + 1)/2⌋.
-Interval symmetric_interval(std::span<const double> sorted, std::uint64_t q) {
-  const std::uint64_t r = (sorted.size() - q + 1) / 2;
-  return {sorted[r - 1], sorted[r - 1 + q]};
-}
-
-// Puts in place the order statistics the intervals of q + 1 points read: the M − q lowest and the M − q
-// highest values, each block sorted (the middle stays unordered). Both intervals only look at those, so the
-// result is that of a full sort at a fraction of its cost (two O(M) selections and sorts of 2(1 − p)M
-// values).
-void sort_tails(std::span<double> v, std::uint64_t q) {
-  const std::size_t M = v.size(), tail = M - q;
-  if (2 * tail >= M) {
-    std::sort(v.begin(), v.end());
-    return;
-  }
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(tail), v.end());
-  std::sort(v.begin(), v.begin() + std::ptrdiff_t(tail));
-  std::nth_element(v.begin() + std::ptrdiff_t(tail), v.begin() + std::ptrdiff_t(q), v.end());
-  std::sort(v.begin() + std::ptrdiff_t(q), v.end());
-}
-
-Interval shortest_interval(std::span<const double> sorted, std::uint64_t q) {
-  std::size_t best = 0;
-  double width = std::numeric_limits<double>::infinity();
-  for (std::size_t r = 0; r + q < sorted.size(); ++r) {
-    const double w = sorted[r + q] - sorted[r];
-    if (w < width) {
-      width = w;
-      best = r;
-    }
-  }
-  return {sorted[best], sorted[best + q]};
-}
-
-// Numerical tolerance of §7.9.2: u = c·10ˡ with c an integer of n_dig digits, δ = ½·10ˡ (0 for u = 0).
-double tolerance_of(double u, int n_dig) {
-  if (!(u > 0) || !std::isfinite(u)) return 0.0;
-  int l = int(std::floor(std::log10(u))) - n_dig + 1;
-  const double top = std::pow(10.0, n_dig);
-  // log10 may be off by one near a power of ten, and rounding c may carry into an extra digit.
-  if (std::round(u / std::pow(10.0, l)) >= top) ++l;
-  if (std::round(u / std::pow(10.0, l)) < top / 10) --l;
-  return 0.5 * std::pow(10.0, l);
-}
-
-// Standard deviation of the average of h values (§7.9.4 f): sqrt(Σ (v − v̄)² / (h(h − 1))).
-double spread_of_average(const std::vector<double>& v) {
-  const std::size_t h = v.size();
-  if (h < 2) return 0.0;
-  const double m = mean_of(v);
-  Sum s;
-  for (double x : v) s.add((x - m) * (x - m));
-  return std::sqrt(s.value() / double(h * (h - 1)));
-}
-
 int default_threads() {
 #ifdef _OPENMP
   return std::min(omp_get_max_threads(), kMaxThreads);  // OMP_NUM_THREADS may ask for more
@@ -237,68 +138,6 @@ int default_threads() {
   return 1;
 #endif
 }
-
-// ---- Progress bar ----------------------------------------------------------------------------------------
-
-std::string clock_text(double seconds) {
-  if (!std::isfinite(seconds) || seconds > 359999) return "--:--:--";
-  const auto s = std::int64_t(seconds + 0.5);
-  return fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);
-}
-
-// A one-line bar on stderr, redrawn at most every 0.1 s by whichever thread finishes a trial first after
-// that.
-class Progress {
- public:
-  explicit Progress(bool wanted) : on_(wanted && isatty(fileno(stderr)) != 0), start_(Clock::now()) {}
-  ~Progress() { finish(); }
-  bool on() const { return on_; }
-
-  // The trials of the current stage end at `target`; `label` describes it ("" for a fixed M).
-  void set_stage(std::uint64_t target, std::string label) {
-    target_ = target;
-    label_ = std::move(label);
-  }
-  void tick() {
-    const std::uint64_t done = done_.fetch_add(1, std::memory_order_relaxed) + 1;
-    if (done % 8 != 0) return;
-    const auto now = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start_).count();
-    std::int64_t last = last_ns_.load(std::memory_order_relaxed);
-    if (now - last < 100'000'000) return;
-    if (!last_ns_.compare_exchange_strong(last, now, std::memory_order_relaxed)) return;
-    draw(done, double(now) * 1e-9);
-  }
-  void finish() {
-    if (!on_ || finished_) return;
-    finished_ = true;
-    draw(done_.load(), std::chrono::duration<double>(Clock::now() - start_).count());
-    std::fputc('\n', stderr);
-    std::fflush(stderr);
-  }
-
- private:
-  void draw(std::uint64_t done, double seconds) {
-    const std::lock_guard lock(mutex_);
-    const double fraction = target_ ? std::min(1.0, double(done) / double(target_)) : 0.0;
-    const double rate = seconds > 0 ? double(done) / seconds : 0.0;
-    const double eta = rate > 0 ? double(target_ > done ? target_ - done : 0) / rate : NAN;
-    constexpr int kWidth = 30;
-    const int filled = int(fraction * kWidth);
-    fmt::print(stderr, "\r{}[{}{}] {:5.1f} % {}/{} trials  {:.3g} trials/s  ETA {}  ", label_,
-               std::string(std::size_t(filled), '#'), std::string(std::size_t(kWidth - filled), ' '),
-               100.0 * fraction, done, target_, rate, clock_text(eta));
-    std::fflush(stderr);
-  }
-
-  bool on_;
-  bool finished_ = false;
-  Clock::time_point start_;
-  std::atomic<std::uint64_t> done_{0};
-  std::atomic<std::int64_t> last_ns_{0};
-  std::uint64_t target_ = 0;
-  std::string label_;
-  std::mutex mutex_;
-};
 
 // ---- The trial loop --------------------------------------------------------------------------------------
 
@@ -421,10 +260,12 @@ void check_thread_count(int threads, const char* what) {
                                  threads, kMaxThreads));
 }
 
-MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
-                                 std::vector<std::string> output_names, const TrialFunction& trial,
-                                 const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
-  const auto start = Clock::now();
+namespace {
+
+// The arguments of run_monte_carlo, each refused with what is accepted.
+void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
+                     std::vector<std::string>& output_names, const TrialFunction& trial,
+                     const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
   if (n_outputs < 1) throw InputError("Monte Carlo: the model must have at least one output");
   if (output_names.empty())
     for (int o = 0; o < n_outputs; ++o) output_names.push_back(fmt::format("y{}", o + 1));
@@ -443,6 +284,178 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
         fmt::format("Monte Carlo: {} LPU uncertainties for {} outputs", lpu_std->size(), n_outputs));
   if (!trial) throw InputError("Monte Carlo: no trial function");
   check_sources(sources);
+}
+
+// The LPU estimate: the model at the expectations of the sources (all zero).
+Eigen::VectorXd model_at_zero(const std::vector<Tolerance>& sources, std::size_t n_out,
+                              const std::vector<std::string>& output_names, const TrialFunction& trial) {
+  Eigen::VectorXd estimate(static_cast<Eigen::Index>(n_out));
+  {
+    const std::vector<double> zero(sources.size(), 0.0);
+    std::vector<double> out(n_out);
+    trial(zero, out);
+    for (std::size_t o = 0; o < n_out; ++o) {
+      if (!std::isfinite(out[o]))
+        throw InputError(
+            fmt::format("Monte Carlo: output '{}' is {} with every source at zero", output_names[o], out[o]));
+      estimate[Eigen::Index(o)] = out[o];
+    }
+  }
+  return estimate;
+}
+
+// §7.9.4 d): the stage's own estimate, standard uncertainty and symmetric interval, per output.
+void record_stage(const std::vector<std::vector<double>>& samples, std::uint64_t begin, std::uint64_t block,
+                  std::uint64_t q_block, int threads, std::vector<StageValues>& stage) {
+  const std::size_t n_out = samples.size();
+#pragma omp parallel num_threads(threads) if (n_out > 1)
+  {
+    std::vector<double> sorted(block);
+#pragma omp for schedule(static)
+    for (std::int64_t oi = 0; oi < std::int64_t(n_out); ++oi) {
+      const auto o = std::size_t(oi);
+      const std::span<const double> values(samples[o].data() + begin, block);
+      const double m = mean_of(values);
+      std::copy(values.begin(), values.end(), sorted.begin());
+      sort_tails(sorted, q_block);
+      const Interval iv = symmetric_interval(sorted, q_block);
+      const double m2 = co_moment(values, m, values, m);
+      stage[o].mean.push_back(m);
+      stage[o].m2.push_back(m2);
+      stage[o].std_dev.push_back(std::sqrt(m2 / double(block - 1)));
+      stage[o].low.push_back(iv.low);
+      stage[o].high.push_back(iv.high);
+    }
+  }
+}
+
+// f)–i): the spreads of the stage averages against δ of u(y) from all h·M values.
+bool stages_stable(const std::vector<StageValues>& stage, std::uint64_t block, int n_dig,
+                   MonteCarloResult& result) {
+  bool stable = true;
+  for (std::size_t o = 0; o < stage.size(); ++o) {
+    OutputSummary& s = result.outputs[o];
+    s.delta = tolerance_of(pooled_std(stage[o], block), n_dig);
+    s.s_mean = spread_of_average(stage[o].mean);
+    s.s_std_dev = spread_of_average(stage[o].std_dev);
+    s.s_low = spread_of_average(stage[o].low);
+    s.s_high = spread_of_average(stage[o].high);
+    if (2 * std::max({s.s_mean, s.s_std_dev, s.s_low, s.s_high}) > s.delta) stable = false;
+  }
+  return stable;
+}
+
+// Means, covariance and correlation of the outputs from all M values, each in a fixed order.
+std::vector<double> sample_moments(const std::vector<std::vector<double>>& samples, std::uint64_t M,
+                                   int threads, MonteCarloResult& result) {
+  const std::size_t n_out = samples.size();
+  const auto n_outputs = Eigen::Index(n_out);
+  std::vector<double> means(n_out);
+  for (std::size_t o = 0; o < n_out; ++o) means[o] = mean_of(samples[o]);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t a = 0; a < n_out; ++a)
+    for (std::size_t b = a; b < n_out; ++b) pairs.emplace_back(a, b);
+  result.covariance.resize(n_outputs, n_outputs);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (pairs.size() > 1)
+  for (std::int64_t k = 0; k < std::int64_t(pairs.size()); ++k) {
+    const auto [a, b] = pairs[std::size_t(k)];
+    const double c = co_moment(samples[a], means[a], samples[b], means[b]) / double(M - 1);
+    result.covariance(Eigen::Index(a), Eigen::Index(b)) = c;
+    result.covariance(Eigen::Index(b), Eigen::Index(a)) = c;
+  }
+  result.correlation = result.covariance;
+  for (Eigen::Index a = 0; a < n_outputs; ++a)
+    for (Eigen::Index b = 0; b < n_outputs; ++b) {
+      const double d = std::sqrt(result.covariance(a, a) * result.covariance(b, b));
+      result.correlation(a, b) = d > 0 ? result.covariance(a, b) / d : 0.0;
+    }
+  return means;
+}
+
+// Each output's summary: intervals from the sorted values and, with the LPU's u, the validation of §8.
+void summarise_outputs(std::vector<std::vector<double>>& samples, const std::vector<double>& means,
+                       const Eigen::VectorXd& estimate, const std::vector<std::string>& output_names,
+                       const Eigen::VectorXd* lpu_std, std::uint64_t q, double k_p, int n_dig, int threads,
+                       MonteCarloResult& result) {
+  const std::size_t n_out = samples.size();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_out > 1)
+  for (std::int64_t oi = 0; oi < std::int64_t(n_out); ++oi) {
+    const auto o = std::size_t(oi);
+    std::vector<double>& v = samples[o];
+    sort_tails(v, q);  // the order of the trials is no longer needed
+    OutputSummary& s = result.outputs[o];
+    s.name = output_names[o];
+    s.mean = means[o];
+    s.std_dev = std::sqrt(result.covariance(Eigen::Index(o), Eigen::Index(o)));
+    const Interval sym = symmetric_interval(v, q);
+    const Interval shortest = shortest_interval(v, q);
+    s.low_symmetric = sym.low;
+    s.high_symmetric = sym.high;
+    s.low_shortest = shortest.low;
+    s.high_shortest = shortest.high;
+    s.estimate = estimate[Eigen::Index(o)];
+    if (lpu_std) {
+      s.has_lpu = true;
+      s.lpu_std = (*lpu_std)[Eigen::Index(o)];
+      s.lpu_expanded = k_p * s.lpu_std;
+      s.validation_delta = tolerance_of(s.lpu_std, n_dig);
+      s.d_low = std::abs(s.estimate - s.lpu_expanded - s.low_symmetric);
+      s.d_high = std::abs(s.estimate + s.lpu_expanded - s.high_symmetric);
+      s.validated = s.d_low <= s.validation_delta && s.d_high <= s.validation_delta;
+    }
+  }
+}
+
+// What a report needs to say about how the numbers were obtained.
+void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const MonteCarloOptions& options,
+              std::uint64_t block, std::uint64_t J, int n_dig, double k_p, bool has_lpu, int n_outputs,
+              MonteCarloResult& result) {
+  const std::uint64_t M = result.trials, q = result.interval_points;
+  const double p = result.coverage;
+  const bool adaptive = result.adaptive, converged = result.converged;
+  const int threads = result.threads;
+  std::string& n = result.notes;
+  n += fmt::format(
+      "Propagation of distributions by the Monte Carlo method of JCGM 101:2008: M = {} trials, seed {}, "
+      "{} thread{}, {:.3g} s.\n",
+      format_count(M), options.seed, threads, threads == 1 ? "" : "s", result.seconds);
+  if (adaptive)
+    n += fmt::format("Adaptive procedure (§7.9.4), n_dig = {}: {} stages of {} trials; {}.\n", n_dig,
+                     result.stages, format_count(block),
+                     converged
+                         ? "every output stable (twice the standard deviation of the stage averages of y, "
+                           "u(y) and the interval ends within δ)"
+                         : fmt::format("NOT converged: another stage would exceed max_trials = {}",
+                                       format_count(options.max_trials)));
+  else
+    n += fmt::format("Fixed M (no adaptive check of the numerical accuracy, §7.9 not applied){}.\n",
+                     M < J ? fmt::format("; fewer than the {} trials JCGM 101 §7.2 recommends for p = {}",
+                                         format_count(J), p)
+                           : std::string());
+  n += fmt::format(
+      "Sources: {} ({} independent draw{}, {} fully correlated group{} sharing one draw: rank "
+      "correlation 1, same sign).\n",
+      sources.size(), plan.slots - plan.groups, plan.slots - plan.groups == 1 ? "" : "s", plan.groups,
+      plan.groups == 1 ? "" : "s");
+  n += fmt::format(
+      "Coverage intervals (§7.7.2): p = {}, q = {} of the M sorted values; probabilistically "
+      "symmetric from r = {}, shortest: the narrowest such window.\n",
+      p, format_count(q), format_count((M - q + 1) / 2));
+  if (has_lpu)
+    n += fmt::format(
+        "LPU validation (§8): y = model at the sources' expectations, U_p = {:.4f}·u_c, δ from u_c "
+        "with n_dig = {}.\n",
+        k_p, n_dig);
+  n += fmt::format("Stored outputs: 8·M·{} = {:.3g} MB.\n", n_outputs, double(result.sample_bytes) / 1e6);
+}
+
+}  // namespace
+
+MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
+                                 std::vector<std::string> output_names, const TrialFunction& trial,
+                                 const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
+  const auto start = Clock::now();
+  check_arguments(sources, n_outputs, output_names, trial, options, lpu_std);
 
   const double p = options.coverage;
   const bool adaptive = options.significant_digits > 0;
@@ -461,19 +474,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   const auto n_out = std::size_t(n_outputs);
   const int threads = options.threads > 0 ? options.threads : default_threads();
 
-  // The LPU estimate: the model at the expectations of the sources (all zero).
-  Eigen::VectorXd estimate(n_outputs);
-  {
-    const std::vector<double> zero(sources.size(), 0.0);
-    std::vector<double> out(n_out);
-    trial(zero, out);
-    for (std::size_t o = 0; o < n_out; ++o) {
-      if (!std::isfinite(out[o]))
-        throw InputError(
-            fmt::format("Monte Carlo: output '{}' is {} with every source at zero", output_names[o], out[o]));
-      estimate[Eigen::Index(o)] = out[o];
-    }
-  }
+  const Eigen::VectorXd estimate = model_at_zero(sources, n_out, output_names, trial);
 
   std::vector<std::vector<double>> samples(n_out);
   Progress progress(options.progress);
@@ -502,38 +503,9 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
     result.stages = h;
     if (!adaptive) break;
 
-      // §7.9.4 d): the stage's own estimate, standard uncertainty and symmetric interval, per output.
-#pragma omp parallel num_threads(threads) if (n_out > 1)
-    {
-      std::vector<double> sorted(block);
-#pragma omp for schedule(static)
-      for (std::int64_t oi = 0; oi < std::int64_t(n_out); ++oi) {
-        const auto o = std::size_t(oi);
-        const std::span<const double> values(samples[o].data() + begin, block);
-        const double m = mean_of(values);
-        std::copy(values.begin(), values.end(), sorted.begin());
-        sort_tails(sorted, q_block);
-        const Interval iv = symmetric_interval(sorted, q_block);
-        const double m2 = co_moment(values, m, values, m);
-        stage[o].mean.push_back(m);
-        stage[o].m2.push_back(m2);
-        stage[o].std_dev.push_back(std::sqrt(m2 / double(block - 1)));
-        stage[o].low.push_back(iv.low);
-        stage[o].high.push_back(iv.high);
-      }
-    }
+    record_stage(samples, begin, block, q_block, threads, stage);
     if (h < 2) continue;
-    // f)–i): the spreads of the stage averages against δ of u(y) from all h·M values.
-    bool stable = true;
-    for (std::size_t o = 0; o < n_out; ++o) {
-      OutputSummary& s = result.outputs[o];
-      s.delta = tolerance_of(pooled_std(stage[o], block), n_dig);
-      s.s_mean = spread_of_average(stage[o].mean);
-      s.s_std_dev = spread_of_average(stage[o].std_dev);
-      s.s_low = spread_of_average(stage[o].low);
-      s.s_high = spread_of_average(stage[o].high);
-      if (2 * std::max({s.s_mean, s.s_std_dev, s.s_low, s.s_high}) > s.delta) stable = false;
-    }
+    const bool stable = stages_stable(stage, block, n_dig, result);
     if (stable) {
       converged = true;
       break;
@@ -548,110 +520,17 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   const std::uint64_t q = interval_points(M, p);
   result.interval_points = q;
   result.sample_bytes = 8 * M * n_out;
-  std::vector<double> means(n_out);
-  for (std::size_t o = 0; o < n_out; ++o) means[o] = mean_of(samples[o]);
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  for (std::size_t a = 0; a < n_out; ++a)
-    for (std::size_t b = a; b < n_out; ++b) pairs.emplace_back(a, b);
-  result.covariance.resize(n_outputs, n_outputs);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (pairs.size() > 1)
-  for (std::int64_t k = 0; k < std::int64_t(pairs.size()); ++k) {
-    const auto [a, b] = pairs[std::size_t(k)];
-    const double c = co_moment(samples[a], means[a], samples[b], means[b]) / double(M - 1);
-    result.covariance(Eigen::Index(a), Eigen::Index(b)) = c;
-    result.covariance(Eigen::Index(b), Eigen::Index(a)) = c;
-  }
-  result.correlation = result.covariance;
-  for (Eigen::Index a = 0; a < n_outputs; ++a)
-    for (Eigen::Index b = 0; b < n_outputs; ++b) {
-      const double d = std::sqrt(result.covariance(a, a) * result.covariance(b, b));
-      result.correlation(a, b) = d > 0 ? result.covariance(a, b) / d : 0.0;
-    }
+  const std::vector<double> means = sample_moments(samples, M, threads, result);
 
-  const double k_p = std::numbers::sqrt2 * boost::math::erf_inv(p, ErfPolicy());
+  const double k_p = normal_erf_quantile(p);
   result.coverage_factor = k_p;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_out > 1)
-  for (std::int64_t oi = 0; oi < std::int64_t(n_out); ++oi) {
-    const auto o = std::size_t(oi);
-    std::vector<double>& v = samples[o];
-    sort_tails(v, q);  // the order of the trials is no longer needed
-    OutputSummary& s = result.outputs[o];
-    s.name = output_names[o];
-    s.mean = means[o];
-    s.std_dev = std::sqrt(result.covariance(Eigen::Index(o), Eigen::Index(o)));
-    const Interval sym = symmetric_interval(v, q);
-    const Interval shortest = shortest_interval(v, q);
-    s.low_symmetric = sym.low;
-    s.high_symmetric = sym.high;
-    s.low_shortest = shortest.low;
-    s.high_shortest = shortest.high;
-    s.estimate = estimate[Eigen::Index(o)];
-    if (lpu_std) {
-      s.has_lpu = true;
-      s.lpu_std = (*lpu_std)[Eigen::Index(o)];
-      s.lpu_expanded = k_p * s.lpu_std;
-      s.validation_delta = tolerance_of(s.lpu_std, n_dig);
-      s.d_low = std::abs(s.estimate - s.lpu_expanded - s.low_symmetric);
-      s.d_high = std::abs(s.estimate + s.lpu_expanded - s.high_symmetric);
-      s.validated = s.d_low <= s.validation_delta && s.d_high <= s.validation_delta;
-    }
-  }
+  summarise_outputs(samples, means, estimate, output_names, lpu_std, q, k_p, n_dig, threads, result);
   samples.clear();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-  // What a report needs to say about how the numbers were obtained.
-  std::string& n = result.notes;
-  n += fmt::format(
-      "Propagation of distributions by the Monte Carlo method of JCGM 101:2008: M = {} trials, seed {}, "
-      "{} thread{}, {:.3g} s.\n",
-      format_count(M), options.seed, threads, threads == 1 ? "" : "s", result.seconds);
-  if (adaptive)
-    n += fmt::format("Adaptive procedure (§7.9.4), n_dig = {}: {} stages of {} trials; {}.\n", n_dig,
-                     result.stages, format_count(block),
-                     converged
-                         ? "every output stable (twice the standard deviation of the stage averages of y, "
-                           "u(y) and the interval ends within δ)"
-                         : fmt::format("NOT converged: another stage would exceed max_trials = {}",
-                                       format_count(options.max_trials)));
-  else
-    n += fmt::format("Fixed M (no adaptive check of the numerical accuracy, §7.9 not applied){}.\n",
-                     M < J ? fmt::format("; fewer than the {} trials JCGM 101 §7.2 recommends for p = {}",
-                                         format_count(J), p)
-                           : std::string());
-  n += fmt::format(
-      "Sources: {} ({} independent draw{}, {} fully correlated group{} sharing one draw: rank "
-      "correlation 1, same sign).\n",
-      sources.size(), plan.slots - plan.groups, plan.slots - plan.groups == 1 ? "" : "s", plan.groups,
-      plan.groups == 1 ? "" : "s");
-  n += fmt::format(
-      "Coverage intervals (§7.7.2): p = {}, q = {} of the M sorted values; probabilistically "
-      "symmetric from r = {}, shortest: the narrowest such window.\n",
-      p, format_count(q), format_count((M - q + 1) / 2));
-  if (lpu_std)
-    n += fmt::format(
-        "LPU validation (§8): y = model at the sources' expectations, U_p = {:.4f}·u_c, δ from u_c "
-        "with n_dig = {}.\n",
-        k_p, n_dig);
-  n += fmt::format("Stored outputs: 8·M·{} = {:.3g} MB.\n", n_outputs, double(result.sample_bytes) / 1e6);
+  describe(sources, plan, options, block, J, n_dig, k_p, lpu_std != nullptr, n_outputs, result);
   return result;
 }
-
-std::uint64_t coverage_points(std::uint64_t M, double p) {
-  if (M < 2 || !(p > 0 && p < 1)) throw InputError("coverage interval: needs M ≥ 2 values and p in (0, 1)");
-  return interval_points(M, p);
-}
-
-std::pair<double, double> symmetric_coverage_interval(std::span<const double> sorted, double p) {
-  const Interval i = symmetric_interval(sorted, coverage_points(sorted.size(), p));
-  return {i.low, i.high};
-}
-
-std::pair<double, double> shortest_coverage_interval(std::span<const double> sorted, double p) {
-  const Interval i = shortest_interval(sorted, coverage_points(sorted.size(), p));
-  return {i.low, i.high};
-}
-
-double numerical_tolerance(double u, int n_dig) { return tolerance_of(u, n_dig); }
 
 LinearPropagation propagate_linear(const std::vector<Tolerance>& sources, int n_outputs,
                                    const TrialFunction& trial, double step_fraction) {
@@ -689,115 +568,6 @@ LinearPropagation propagate_linear(const std::vector<Tolerance>& sources, int n_
   lp.covariance = by_slot * by_slot.transpose();
   lp.std_uncertainty = lp.covariance.diagonal().cwiseSqrt();
   return lp;
-}
-
-CalibrationModel calibration_model(const Experiment& experiment, const IdentificationSpec& spec,
-                                   const std::vector<Tolerance>& sources,
-                                   const Eigen::VectorXd& actual_errors, ModelMode mode) {
-  const int size = experiment.layout.size();
-  if (actual_errors.size() != size)
-    throw InputError(fmt::format("calibration model: {} actual errors for a layout of {} parameters",
-                                 actual_errors.size(), size));
-  CalibrationModel m;
-  m.experiment = experiment;
-  m.spec = spec;
-  m.actual_errors = actual_errors;
-  m.mode = mode;
-  const int runs = int(experiment.plan.runs.size());
-  for (const Tolerance& t : sources) {
-    // A negative parameter is a run's rate noise (rate_noise.hpp), added to that run's mean.
-    const bool noise = t.parameter < 0 && rate_noise_run(t.parameter) < runs;
-    if (!noise && (t.parameter < 0 || t.parameter >= size))
-      throw InputError(
-          fmt::format("calibration model: source '{}' has parameter index {}, outside the layout "
-                      "(0…{})",
-                      t.id, t.parameter, size - 1));
-    m.parameters.push_back(t.parameter);
-  }
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(size);
-  {
-    std::vector<TermSpec> terms = experiment.instrument.terms();
-    int degree = 1;
-    for (const auto& t : terms) degree = std::max(degree, t.kind == TermKind::power ? t.power : 2);
-    const int band = 2 * (degree + experiment.layout.harmonic_order()) + 2;
-    bool kink = false;
-    for (const auto& t : terms) kink = kink || t.kind == TermKind::abs_square;
-    if (!kink)
-      m.reduction.quadrature.fast_nodes = std::max(8, band);  // even; 10 for a cubic with first harmonics
-    // drift^Q/Q! ≤ 5e-6 keeps Q = 2 up to |ΔΩ|T ≈ 1.5e-3 (drift = 2|ΔΩ|T for M = 10); the bound overstates
-    // the error relative to the swing (tests/test_reduce.cpp: below 1e-12 of the swing for 3σ draws).
-    m.reduction.quadrature.slow_tolerance = 5e-6;
-  }
-  if (mode == ModelMode::exact && !m.reduction.chain.frozen_platform)
-    m.run_means =
-        std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
-                                              experiment.plan.runs, experiment.instrument, m.reduction);
-  if (mode == ModelMode::paper)
-    for (const Run& run : experiment.plan.runs)
-      m.paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
-  const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
-  const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
-  const auto nfree = Eigen::Index(spec.free_terms.size());
-  const Eigen::MatrixXd H = model.regressors.leftCols(nfree);
-  m.design_pinv.resize(nfree, H.rows());
-  for (Eigen::Index j = 0; j < H.rows(); ++j)
-    m.design_pinv.col(j) = solve_least_squares<double>(H, Eigen::VectorXd::Unit(H.rows(), j));
-  m.known_part = model.known_rate;
-  Eigen::Index column = nfree;
-  for (const auto& [id, value] : spec.fixed_terms) {
-    (void)id;
-    m.known_part += model.regressors.col(column++) * value;
-  }
-  // The reference goes through the very arithmetic of a trial, so that zero draws on zero errors give
-  // exactly zero deviations.
-  m.reference = Eigen::VectorXd::Zero(nfree);
-  std::vector<double> no_draws(m.parameters.size(), 0.0), out(std::size_t(nfree), 0.0);
-  Eigen::VectorXd saved = m.actual_errors;
-  m.actual_errors = zero;
-  calibration_trial(m)(no_draws, out);
-  m.actual_errors = saved;
-  for (Eigen::Index k = 0; k < nfree; ++k) m.reference[k] = out[std::size_t(k)];
-  return m;
-}
-
-TrialFunction calibration_trial(const CalibrationModel& model) {
-  auto data = std::make_shared<const CalibrationModel>(model);
-  return [data](std::span<const double> draws, std::span<double> outputs) {
-    const CalibrationModel& m = *data;
-    const Experiment& ex = m.experiment;
-    // Per-thread buffers: a trial allocates nothing once they have grown.
-    thread_local Eigen::VectorXd truth, y;
-    truth = m.actual_errors;
-    bool noise = false;
-    for (std::size_t j = 0; j < draws.size(); ++j) {
-      if (m.parameters[j] < 0)
-        noise = true;
-      else
-        truth[m.parameters[j]] += draws[j];
-    }
-    y.resize(Eigen::Index(ex.plan.runs.size()));
-    if (m.run_means) {
-      m.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
-                         std::span<double>(y.data(), std::size_t(y.size())));
-    } else {
-      for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
-        y[Eigen::Index(j)] = m.mode == ModelMode::exact
-                                 ? average_run<double>(ex.geometry, ex.layout, truth, ex.site,
-                                                       ex.plan.runs[j], &ex.instrument, {}, m.reduction)
-                                       .output
-                                 : detail::paper_average<double>(ex, m.paper_nodes[j], truth, &ex.instrument,
-                                                                 {}, m.spec.paper_cross_terms)
-                                       .output;
-    }
-    // The drives' rate noise scatters each run's mean (model.md §3.2).
-    if (noise)
-      for (std::size_t j = 0; j < draws.size(); ++j)
-        if (m.parameters[j] < 0) y[rate_noise_run(m.parameters[j])] += draws[j];
-    // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
-    y -= m.known_part;
-    for (std::size_t o = 0; o < outputs.size(); ++o)
-      outputs[o] = m.design_pinv.row(Eigen::Index(o)).dot(y) - m.reference[Eigen::Index(o)];
-  };
 }
 
 }  // namespace ccal

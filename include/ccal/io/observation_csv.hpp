@@ -115,9 +115,6 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table);
 
 // Size of one output unit in SI ("deg/s" → π/180; a pulse counts as 1, so "pulse/s" → 1). Throws UnitError.
 double output_unit_si(std::string_view output_unit);
-// Unit of a coefficient for an output unit: "deg/s" (K0), "deg/s/g", "deg/s/g^2" (K2, K_pp, …),
-// "deg/s/(rad/s)" (K_w).
-std::string coefficient_unit(std::string_view output_unit, const TermSpec& term);
 
 // The observations file of simulated observations: values in the instrument's output unit (regressors in gⁿ,
 // K_w's in rad/s), fixed values in coefficient units, regressor columns in canonical term order.

@@ -27,6 +27,13 @@ struct TermSpec {
 };
 
 // Parses a term id; nullopt if it is not one (see the list above).
+// The unit of a term's coefficient for an instrument read in `output_unit`: the output unit per gⁿ for a
+// term of order n in the specific force (e.g. "deg/s/g^3" for K3 of a PIGA read in deg/s), per (rad/s) for
+// K_w; "" when the output unit is not known.
+std::string coefficient_unit(std::string_view output_unit, const TermSpec& term);
+// The same for a term id, which must be valid.
+std::string coefficient_unit(std::string_view output_unit, std::string_view term_id);
+
 std::optional<TermSpec> parse_term(std::string_view id);
 std::string term_id(const TermSpec& term);
 // Every term id in canonical order: K0 … K10, then K_oq, K_p, K_o, K_ip, K_io, K_pp, K_oo, K_po, K_w.

@@ -19,6 +19,11 @@ std::string_view distribution_name(Distribution d) noexcept;
 // Standard deviation of a tolerance with the given bound and distribution.
 double standard_uncertainty(double bound, Distribution d) noexcept;
 
+// Φ⁻¹ of the error function's argument: √2 erf⁻¹(x), x ∈ (−1, 1), in double precision. The normal
+// quantile of a probability u is normal_erf_quantile(2u − 1); the coverage factor of a symmetric normal
+// interval of probability p is normal_erf_quantile(p).
+double normal_erf_quantile(double x);
+
 // Tolerance of one error parameter, for the error budget.
 struct Tolerance {
   int parameter = 0;  // index in the centrifuge's ErrorLayout

@@ -120,8 +120,4 @@ struct BudgetResult {
 
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});
 
-// The display unit of a coefficient: the instrument's output unit per gⁿ for a term of order n in the inputs,
-// e.g. "deg/s/g^3" for K3 of a PIGA read in deg/s (BudgetResult::units). term_id must be a valid term id.
-std::string coefficient_unit(std::string_view output_unit, std::string_view term_id);
-
 }  // namespace ccal

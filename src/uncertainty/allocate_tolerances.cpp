@@ -1,0 +1,288 @@
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <boost/math/policies/policy.hpp>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+#include "allocation_groups.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
+#include "ccal/reduction/fit.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/uncertainty/rate_noise.hpp"
+
+namespace ccal {
+namespace {
+
+// The smallest accepted target, as a fraction of the coefficient's expanded uncertainty at the configured
+// tolerances.
+constexpr double kMinTargetFraction = 1e-6;
+
+// Each target against its coefficient: one per free term, positive, and not beyond a million-fold
+// tightening of every source.
+void attach_targets(const BudgetResult& b, const std::vector<AllocationTarget>& targets, double kp,
+                    AllocationResult& r) {
+  for (const AllocationTarget& t : targets) {
+    const auto it = std::find(b.coefficients.begin(), b.coefficients.end(), t.coefficient);
+    if (it == b.coefficients.end())
+      throw InputError(fmt::format("target on '{}': not a free term of the identification; accepted: {}",
+                                   t.coefficient, fmt::join(b.coefficients, ", ")));
+    const auto k = std::size_t(it - b.coefficients.begin());
+    if (r.coefficients[k].has_target)
+      throw InputError(fmt::format("two targets on {}; give one per coefficient", t.coefficient));
+    if (!(std::isfinite(t.expanded) && t.expanded > 0))
+      throw InputError(
+          fmt::format("target on {}: {} is not a positive expanded uncertainty", t.coefficient, t.expanded));
+    // Tolerances shrink in proportion to the target: beyond a million-fold tightening of every source the
+    // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0).
+    const double configured = kp * b.standard_uncertainty[Eigen::Index(k)],
+                 least = kMinTargetFraction * configured;
+    if (t.expanded < least)
+      throw InputError(
+          fmt::format("target on {}: {:g} {} is below {:g} × its configured U = {:.4g} {}; accepted: at "
+                      "least {:.4g} {} (a "
+                      "tighter target cannot be met by any realistic tolerance)",
+                      t.coefficient, t.expanded * b.display_scale[k], b.units[k], kMinTargetFraction,
+                      configured * b.display_scale[k], b.units[k], least * b.display_scale[k], b.units[k]));
+    r.coefficients[k].has_target = true;
+    r.coefficients[k].target = t.expanded;
+    r.targets.push_back(k);
+  }
+}
+
+// The drives' rate noise (model.md §3.2) is no tolerance: it stays as it is, so each target leaves the
+// tolerances √(T_k² − (k_p u_noise,k)²); a target the noise alone reaches cannot be met.
+std::vector<double> tolerance_targets(double kp, const Eigen::VectorXd& noise_variance,
+                                      const AllocationResult& r) {
+  const auto nt = r.targets.size();
+  std::vector<double> tolerance_target(nt);
+  for (std::size_t i = 0; i < nt; ++i) {
+    const AllocatedCoefficient& c = r.coefficients[r.targets[i]];
+    const double floor = kp * std::sqrt(noise_variance[Eigen::Index(r.targets[i])]);
+    if (!(c.target > floor * (1 + 1e-9)))
+      throw InputError(fmt::format(
+          "target on {}: the drives' rate noise alone gives U = {:.4g} {} (model.md §3.2), at or above the "
+          "target {:.4g} {}; no tolerance can meet it; accepted: a target above {:.4g} {}, or less rate "
+          "noise "
+          "([centrifuge] main_rate_noise, platform_rate_noise)",
+          c.id, floor * c.display_scale, c.unit, c.target * c.display_scale, c.unit, floor * c.display_scale,
+          c.unit));
+    tolerance_target[i] = std::sqrt(c.target * c.target - floor * floor);
+  }
+
+  return tolerance_target;
+}
+
+AllocationProblem allocation_problem(const Config& cfg, const BudgetResult& b, const AllocationResult& r,
+                                     const std::vector<double>& tolerance_target, double kp,
+                                     double max_scale) {
+  const auto nt = r.targets.size();
+  const auto ns = b.sources.size();
+  AllocationProblem P;
+  P.sensitivity.resize(Eigen::Index(nt), Eigen::Index(ns));
+  P.target.resize(Eigen::Index(nt));
+  P.standard_uncertainty.resize(Eigen::Index(ns));
+  P.cost.resize(Eigen::Index(ns));
+  for (std::size_t i = 0; i < nt; ++i) {
+    P.target[Eigen::Index(i)] = tolerance_target[i];
+    for (std::size_t s = 0; s < ns; ++s)
+      P.sensitivity(Eigen::Index(i), Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(r.targets[i])];
+  }
+  for (std::size_t s = 0; s < ns; ++s) {
+    P.standard_uncertainty[Eigen::Index(s)] = b.sources[s].standard_uncertainty;
+    P.cost[Eigen::Index(s)] = cfg.tolerances[s].cost;
+    P.group.push_back(cfg.tolerances[s].group);
+  }
+  P.coverage_factor = kp;
+  P.max_scale = max_scale;
+  return P;
+}
+
+// Every free coefficient's uncertainty at the allocated tolerances (groups added with their signs); returns
+// the allocated u per coefficient and fills the coefficients' expanded uncertainties and prices.
+Eigen::VectorXd report_coefficients(const BudgetResult& b, const AllocationProblem& P,
+                                    const AllocationSolution& sol, const Eigen::VectorXd& noise_variance,
+                                    double kp, Eigen::MatrixXd& J, AllocationResult& r) {
+  const auto nk = b.coefficients.size();
+  const auto ns = b.sources.size();
+  const auto nt = r.targets.size();
+  J = Eigen::MatrixXd::Zero(Eigen::Index(nk), Eigen::Index(ns));
+  for (std::size_t s = 0; s < ns; ++s) J.col(Eigen::Index(s)) = b.sources[s].sensitivity;
+  const Eigen::VectorXd u_alloc_s = P.standard_uncertainty.cwiseProduct(sol.scale);
+  const Groups allocated = merge_groups(J, u_alloc_s, P.cost, P.group);
+  const Eigen::VectorXd u_alloc =
+      ((allocated.effect * allocated.effect.transpose()).diagonal() + noise_variance).cwiseSqrt();
+  for (std::size_t k = 0; k < nk; ++k) {
+    AllocatedCoefficient& c = r.coefficients[k];
+    c.configured_expanded = kp * b.standard_uncertainty[Eigen::Index(k)];
+    c.allocated_expanded = kp * u_alloc[Eigen::Index(k)];
+    const double u_configured = b.standard_uncertainty[Eigen::Index(k)];
+    const double noise = noise_variance[Eigen::Index(k)];
+    c.common_expanded = kp * std::sqrt(sol.common_scale * sol.common_scale *
+                                           std::max(u_configured * u_configured - noise, 0.0) +
+                                       noise);
+    c.lpu_std = u_alloc[Eigen::Index(k)];
+  }
+  for (std::size_t i = 0; i < nt; ++i) {
+    AllocatedCoefficient& c = r.coefficients[r.targets[i]];
+    c.multiplier = sol.multiplier[Eigen::Index(i)];
+    // Raising T_k by a factor 1 + ε scales a_k by 1/(1 + ε)², i.e. relaxes the normalised constraint to
+    // 1 + 2ε; the optimal objective changes by −μ_k per unit of relaxation.
+    c.price = -2 * c.multiplier;
+    c.active = sol.active[i];
+  }
+
+  return u_alloc;
+}
+
+void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSolution& sol,
+                    const Eigen::MatrixXd& J, const Eigen::VectorXd& u_alloc, AllocationResult& r) {
+  const auto ns = b.sources.size();
+  const auto nt = r.targets.size();
+  for (std::size_t s = 0; s < ns; ++s) {
+    const Tolerance& t = cfg.tolerances[s];
+    AllocatedSource a;
+    a.parameter = t.parameter;
+    a.id = t.id;
+    a.group = t.group;
+    a.distribution = t.distribution;
+    a.cost = t.cost;
+    a.bound = t.bound;
+    a.standard_uncertainty = b.sources[s].standard_uncertainty;
+    a.scale = sol.scale[Eigen::Index(s)];
+    a.allocated_bound = a.scale * t.bound;
+    a.allocated_standard_uncertainty = a.scale * a.standard_uncertainty;
+    a.share = Eigen::VectorXd::Zero(Eigen::Index(nt));
+    for (std::size_t i = 0; i < nt; ++i) {
+      const auto k = Eigen::Index(r.targets[i]);
+      const double effect = J(k, Eigen::Index(s)) * a.allocated_standard_uncertainty;
+      const double var = u_alloc[k] * u_alloc[k];
+      a.share[Eigen::Index(i)] = var > 0 ? effect * effect / var : 0.0;
+    }
+    r.sources.push_back(std::move(a));
+  }
+  std::stable_sort(r.sources.begin(), r.sources.end(),
+                   [](const AllocatedSource& x, const AllocatedSource& y) { return x.scale < y.scale; });
+}
+
+// Monte Carlo on the allocated tolerances through the exact nonlinear pipeline, against the targets.
+void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::VectorXd& u_alloc, double kp,
+            const AllocateOptions& o, AllocationResult& r) {
+  const auto nk = r.coefficients.size();
+  const auto ns = cfg.tolerances.size();
+  std::vector<Tolerance> scaled = cfg.tolerances;
+  for (std::size_t s = 0; s < ns; ++s) scaled[s].bound *= sol.scale[Eigen::Index(s)];
+  for (Tolerance& t : rate_noise_sources(cfg)) scaled.push_back(std::move(t));  // as it is
+  CalibrationModel model;
+  try {
+    model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors,
+                              ModelMode::exact);
+  } catch (const IllPosedFit& e) {
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
+  }
+  MonteCarloOptions mo;
+  mo.trials = o.verify_trials;
+  mo.seed = o.seed;
+  mo.threads = o.threads;
+  mo.coverage = o.coverage;
+  mo.progress = o.progress;
+  const MonteCarloResult mc = run_monte_carlo(scaled, model.n_outputs(), model.output_names(),
+                                              calibration_trial(model), mo, &u_alloc);
+  AllocationVerification& v = r.verification;
+  v.trials = mc.trials;
+  v.seed = mc.seed;
+  v.threads = mc.threads;
+  v.seconds = mc.seconds;
+  v.notes = mc.notes;
+  const double M = double(mc.trials);
+  const double p_end = (1 + o.coverage) / 2;
+  const double density = std::exp(-kp * kp / 2) / std::sqrt(2 * std::numbers::pi);
+  v.half_width_rel_error = std::sqrt(p_end * (1 - p_end)) / (kp * density * std::sqrt(M));
+  v.std_rel_error = 1 / std::sqrt(2 * M);
+  v.allowance = 3 * v.half_width_rel_error;
+  v.passed = true;
+  for (std::size_t k = 0; k < nk; ++k) {
+    AllocatedCoefficient& c = r.coefficients[k];
+    const OutputSummary& s = mc.outputs[k];
+    c.mc_mean = s.mean;
+    c.mc_std = s.std_dev;
+    c.mc_low = s.low_symmetric;
+    c.mc_high = s.high_symmetric;
+    c.mc_half_width = std::max(s.high_symmetric - s.mean, s.mean - s.low_symmetric);
+    if (!c.has_target) continue;
+    c.verdict = c.mc_half_width <= c.target                       ? Verdict::pass
+                : c.mc_half_width <= c.target * (1 + v.allowance) ? Verdict::pass_within_sampling
+                                                                  : Verdict::fail;
+    if (c.verdict == Verdict::fail) v.passed = false;
+  }
+}
+
+}  // namespace
+
+AllocationResult allocate_tolerances(const Config& cfg, const std::vector<AllocationTarget>& targets,
+                                     const AllocateOptions& o) {
+  if (cfg.tolerances.empty())
+    throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
+  if (targets.empty()) throw InputError("no target given; e.g. --target K3=1e-6");
+  const double kp = normal_coverage_factor(o.coverage);
+  if (!(std::isfinite(o.max_scale) && o.max_scale > 0))
+    throw InputError(fmt::format("--max-scale: {} is not a number > 0; e.g. 10", o.max_scale));
+  if (o.verify_trials == 1)
+    throw InputError("--verify-trials: 1 is too few; accepted: 0 (no verification) or 2 and more");
+  check_thread_count(o.threads, "--threads");
+
+  BudgetOptions bo;
+  bo.mode = ModelMode::exact;
+  bo.compare_with_paper = false;
+  BudgetResult b;
+  try {
+    b = compute_budget(cfg, bo);
+  } catch (const IllPosedFit& e) {
+    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                      e.terms());
+  }
+  const auto nk = b.coefficients.size();
+
+  AllocationResult r;
+  r.coverage = o.coverage;
+  r.coverage_factor = kp;
+  r.max_scale = o.max_scale;
+  for (std::size_t k = 0; k < nk; ++k) {
+    AllocatedCoefficient c;
+    c.id = b.coefficients[k];
+    c.unit = b.units[k];
+    c.display_scale = b.display_scale[k];
+    r.coefficients.push_back(c);
+  }
+  attach_targets(b, targets, kp, r);
+  Eigen::VectorXd noise_variance = Eigen::VectorXd::Zero(Eigen::Index(nk));
+  for (const RateNoiseBudget& n : b.rate_noise) noise_variance += n.covariance.diagonal();
+  const std::vector<double> tolerance_target = tolerance_targets(kp, noise_variance, r);
+  const AllocationProblem P = allocation_problem(cfg, b, r, tolerance_target, kp, o.max_scale);
+  const AllocationSolution sol = solve_allocation(P);
+  r.objective = sol.objective;
+  r.configured_objective = P.cost.sum();
+  r.common_scale = sol.common_scale;
+  r.common_objective = sol.common_objective;
+  r.iterations = sol.iterations;
+  r.converged = sol.converged;
+  r.method = sol.method;
+  r.dual_gap = sol.dual_gap;
+  Eigen::MatrixXd J;
+  const Eigen::VectorXd u_alloc = report_coefficients(b, P, sol, noise_variance, kp, J, r);
+  report_sources(cfg, b, sol, J, u_alloc, r);
+  if (o.verify_trials == 0) return r;
+  verify(cfg, sol, u_alloc, kp, o, r);
+  return r;
+}
+
+}  // namespace ccal

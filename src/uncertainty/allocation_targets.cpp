@@ -1,0 +1,103 @@
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <boost/math/policies/policy.hpp>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
+#include "ccal/reduction/fit.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+
+namespace ccal {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+// The output unit may be counted in pulses, which units.hpp does not know; as in the configuration, a pulse
+// is read as one unit of an angle-like count.
+std::string pulse_as_rad(std::string_view text) {
+  std::string out(text);
+  for (std::size_t pos = out.find("pulse"); pos != std::string::npos; pos = out.find("pulse", pos + 3))
+    out.replace(pos, 5, "rad");
+  return out;
+}
+
+bool is_bare_number(std::string_view s, double& value) {
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  return ec == std::errc() && end == s.data() + s.size();
+}
+
+}  // namespace
+
+AllocationTarget parse_allocation_target(std::string_view text, const std::vector<std::string>& coefficients,
+                                         const std::vector<std::string>& units, std::string_view option) {
+  const auto eq = text.find('=');
+  const std::string_view name = trim(text.substr(0, eq));
+  std::string_view value = eq == std::string_view::npos ? std::string_view() : trim(text.substr(eq + 1));
+  if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
+    value = trim(value.substr(1, value.size() - 2));
+  if (eq == std::string_view::npos || name.empty() || value.empty())
+    throw InputError(fmt::format(
+        "{}: '{}' is not COEFFICIENT=VALUE; e.g. {} K3=1e-6 (in the coefficient's unit) or {} \"K3=1e-6 "
+        "deg/s/g^3\"",
+        option, text, option, option));
+  const auto it = std::find(coefficients.begin(), coefficients.end(), name);
+  if (it == coefficients.end()) {
+    if (parse_term(name))
+      throw InputError(fmt::format("{}: {} is not a free term of the identification; accepted: {}", option,
+                                   name, fmt::join(coefficients, ", ")));
+    throw InputError(fmt::format("{}: unknown coefficient '{}'; accepted: the free terms {}", option, name,
+                                 fmt::join(coefficients, ", ")));
+  }
+  const auto k = std::size_t(it - coefficients.begin());
+  const std::string unit = pulse_as_rad(units[k]);
+  AllocationTarget t;
+  t.coefficient = std::string(name);
+  double bare = 0;
+  try {
+    const Dimension dim = parse_unit(unit).dim;
+    if (is_bare_number(value, bare)) {
+      t.expanded = from_unit(bare, unit);
+    } else {
+      const Quantity q = parse_quantity(pulse_as_rad(value));
+      if (!(q.dim == dim))
+        throw InputError(fmt::format("'{}' is {}, expected {} such as {}", value, describe(q.dim),
+                                     describe(dim), units[k]));
+      t.expanded = q.value_si;
+    }
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{} {}: {}", option, name, e.what()));
+  }
+  if (!(std::isfinite(t.expanded) && t.expanded > 0))
+    throw InputError(
+        fmt::format("{} {}: the target must be a positive expanded uncertainty, got '{}'; e.g. {}={} (in {})",
+                    option, name, value, name, "1e-6", units[k]));
+  return t;
+}
+
+std::string_view verdict_name(Verdict v) noexcept {
+  switch (v) {
+    case Verdict::not_checked:
+      return "not checked";
+    case Verdict::pass:
+      return "pass";
+    case Verdict::pass_within_sampling:
+      return "pass within sampling";
+    case Verdict::fail:
+      return "fail";
+  }
+  return "";
+}
+
+}  // namespace ccal

@@ -1,0 +1,80 @@
+#pragma once
+// The Monte Carlo's progress bar (private to the library): one line on standard error, only when it is a
+// terminal, redrawn at most every 0.1 s; tick() is cheap enough to call once per trial from every thread.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <mutex>
+#include <string>
+
+namespace ccal::progress_bar {
+
+using Clock = std::chrono::steady_clock;
+
+inline std::string clock_text(double seconds) {
+  if (!std::isfinite(seconds) || seconds > 359999) return "--:--:--";
+  const auto s = std::int64_t(seconds + 0.5);
+  return fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);
+}
+
+// A one-line bar on stderr, redrawn at most every 0.1 s by whichever thread finishes a trial first after
+// that.
+class Progress {
+ public:
+  explicit Progress(bool wanted) : on_(wanted && isatty(fileno(stderr)) != 0), start_(Clock::now()) {}
+  ~Progress() { finish(); }
+  bool on() const { return on_; }
+
+  // The trials of the current stage end at `target`; `label` describes it ("" for a fixed M).
+  void set_stage(std::uint64_t target, std::string label) {
+    target_ = target;
+    label_ = std::move(label);
+  }
+  void tick() {
+    const std::uint64_t done = done_.fetch_add(1, std::memory_order_relaxed) + 1;
+    if (done % 8 != 0) return;
+    const auto now = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start_).count();
+    std::int64_t last = last_ns_.load(std::memory_order_relaxed);
+    if (now - last < 100'000'000) return;
+    if (!last_ns_.compare_exchange_strong(last, now, std::memory_order_relaxed)) return;
+    draw(done, double(now) * 1e-9);
+  }
+  void finish() {
+    if (!on_ || finished_) return;
+    finished_ = true;
+    draw(done_.load(), std::chrono::duration<double>(Clock::now() - start_).count());
+    std::fputc('\n', stderr);
+    std::fflush(stderr);
+  }
+
+ private:
+  void draw(std::uint64_t done, double seconds) {
+    const std::lock_guard lock(mutex_);
+    const double fraction = target_ ? std::min(1.0, double(done) / double(target_)) : 0.0;
+    const double rate = seconds > 0 ? double(done) / seconds : 0.0;
+    const double eta = rate > 0 ? double(target_ > done ? target_ - done : 0) / rate : NAN;
+    constexpr int kWidth = 30;
+    const int filled = int(fraction * kWidth);
+    fmt::print(stderr, "\r{}[{}{}] {:5.1f} % {}/{} trials  {:.3g} trials/s  ETA {}  ", label_,
+               std::string(std::size_t(filled), '#'), std::string(std::size_t(kWidth - filled), ' '),
+               100.0 * fraction, done, target_, rate, clock_text(eta));
+    std::fflush(stderr);
+  }
+
+  bool on_;
+  bool finished_ = false;
+  Clock::time_point start_;
+  std::atomic<std::uint64_t> done_{0};
+  std::atomic<std::int64_t> last_ns_{0};
+  std::uint64_t target_ = 0;
+  std::string label_;
+  std::mutex mutex_;
+};
+
+}  // namespace ccal::progress_bar

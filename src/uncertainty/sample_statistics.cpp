@@ -1,0 +1,109 @@
+#include "sample_statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
+
+namespace ccal {
+namespace sample_stats {
+
+double mean_of(std::span<const double> v) {
+  Sum s;
+  for (double x : v) s.add(x);
+  return s.value() / double(v.size());
+}
+
+double co_moment(std::span<const double> a, double mean_a, std::span<const double> b, double mean_b) {
+  Sum s;
+  for (std::size_t i = 0; i < a.size(); ++i) s.add((a[i] - mean_a) * (b[i] - mean_b));
+  return s.value();
+}
+
+// q of §7.7.2: pM if that is an integer, else ⌊pM + ½⌋; at most M − 1 so that an interval has two ends.
+std::uint64_t interval_points(std::uint64_t M, double p) {
+  const double pm = p * double(M);
+  const double q = pm == std::floor(pm) ? pm : std::floor(pm + 0.5);
+  return std::min<std::uint64_t>(std::uint64_t(q), M - 1);
+}
+
+// [y_(r), y_(r+q)] with r = (M − q)/2 if an integer, else ⌊(M − q + 1)/2⌋ (1-based): in both cases
+// r = ⌊(M − q + 1)/2⌋.
+Interval symmetric_interval(std::span<const double> sorted, std::uint64_t q) {
+  const std::uint64_t r = (sorted.size() - q + 1) / 2;
+  return {sorted[r - 1], sorted[r - 1 + q]};
+}
+
+// Puts in place the order statistics the intervals of q + 1 points read: the M − q lowest and the M − q
+// highest values, each block sorted (the middle stays unordered). Both intervals only look at those, so the
+// result is that of a full sort at a fraction of its cost (two O(M) selections and sorts of 2(1 − p)M
+// values).
+void sort_tails(std::span<double> v, std::uint64_t q) {
+  const std::size_t M = v.size(), tail = M - q;
+  if (2 * tail >= M) {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(tail), v.end());
+  std::sort(v.begin(), v.begin() + std::ptrdiff_t(tail));
+  std::nth_element(v.begin() + std::ptrdiff_t(tail), v.begin() + std::ptrdiff_t(q), v.end());
+  std::sort(v.begin() + std::ptrdiff_t(q), v.end());
+}
+
+Interval shortest_interval(std::span<const double> sorted, std::uint64_t q) {
+  std::size_t best = 0;
+  double width = std::numeric_limits<double>::infinity();
+  for (std::size_t r = 0; r + q < sorted.size(); ++r) {
+    const double w = sorted[r + q] - sorted[r];
+    if (w < width) {
+      width = w;
+      best = r;
+    }
+  }
+  return {sorted[best], sorted[best + q]};
+}
+
+// Numerical tolerance of §7.9.2: u = c·10ˡ with c an integer of n_dig digits, δ = ½·10ˡ (0 for u = 0).
+double tolerance_of(double u, int n_dig) {
+  if (!(u > 0) || !std::isfinite(u)) return 0.0;
+  int l = int(std::floor(std::log10(u))) - n_dig + 1;
+  const double top = std::pow(10.0, n_dig);
+  // log10 may be off by one near a power of ten, and rounding c may carry into an extra digit.
+  if (std::round(u / std::pow(10.0, l)) >= top) ++l;
+  if (std::round(u / std::pow(10.0, l)) < top / 10) --l;
+  return 0.5 * std::pow(10.0, l);
+}
+
+// Standard deviation of the average of h values (§7.9.4 f): sqrt(Σ (v − v̄)² / (h(h − 1))).
+double spread_of_average(const std::vector<double>& v) {
+  const std::size_t h = v.size();
+  if (h < 2) return 0.0;
+  const double m = mean_of(v);
+  Sum s;
+  for (double x : v) s.add((x - m) * (x - m));
+  return std::sqrt(s.value() / double(h * (h - 1)));
+}
+
+}  // namespace sample_stats
+
+using namespace sample_stats;
+
+std::uint64_t coverage_points(std::uint64_t M, double p) {
+  if (M < 2 || !(p > 0 && p < 1)) throw InputError("coverage interval: needs M ≥ 2 values and p in (0, 1)");
+  return interval_points(M, p);
+}
+
+std::pair<double, double> symmetric_coverage_interval(std::span<const double> sorted, double p) {
+  const Interval i = symmetric_interval(sorted, coverage_points(sorted.size(), p));
+  return {i.low, i.high};
+}
+
+std::pair<double, double> shortest_coverage_interval(std::span<const double> sorted, double p) {
+  const Interval i = shortest_interval(sorted, coverage_points(sorted.size(), p));
+  return {i.low, i.high};
+}
+
+double numerical_tolerance(double u, int n_dig) { return tolerance_of(u, n_dig); }
+
+}  // namespace ccal

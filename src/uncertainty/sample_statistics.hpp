@@ -1,0 +1,42 @@
+#pragma once
+// The sample statistics of a Monte Carlo run (private to the library): compensated sums, moments, and the
+// coverage intervals of JCGM 101 §7.7 (probabilistically symmetric) and §7.7.2 (shortest) from order
+// statistics, the numerical tolerance of §7.9.2.
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace ccal::sample_stats {
+
+// Neumaier's compensated summation (Z. Angew. Math. Mech. 54, 1974): the rounding error of every addition
+// is accumulated separately, so the error of a sum of M terms does not grow with M.
+class Sum {
+ public:
+  void add(double x) {
+    const double t = s_ + x;
+    c_ += std::abs(s_) >= std::abs(x) ? (s_ - t) + x : (x - t) + s_;
+    s_ = t;
+  }
+  double value() const { return s_ + c_; }
+
+ private:
+  double s_ = 0;
+  double c_ = 0;
+};
+
+struct Interval {
+  double low = 0;
+  double high = 0;
+};
+
+double mean_of(std::span<const double> v);
+double co_moment(std::span<const double> a, double mean_a, std::span<const double> b, double mean_b);
+std::uint64_t interval_points(std::uint64_t M, double p);
+Interval symmetric_interval(std::span<const double> sorted, std::uint64_t q);
+void sort_tails(std::span<double> v, std::uint64_t q);
+Interval shortest_interval(std::span<const double> sorted, std::uint64_t q);
+double tolerance_of(double u, int n_dig);
+double spread_of_average(const std::vector<double>& v);
+
+}  // namespace ccal::sample_stats
