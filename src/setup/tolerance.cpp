@@ -2,6 +2,7 @@
 
 #include <boost/math/special_functions/erf.hpp>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 namespace ccal {
@@ -32,6 +33,25 @@ double standard_uncertainty(double bound, Distribution d) noexcept {
       return bound / std::numbers::sqrt2;
   }
   return bound;
+}
+
+CorrelationGroups correlation_groups(const std::vector<std::string>& group_of_each, std::size_t sources) {
+  CorrelationGroups g;
+  std::map<std::string, int> named;
+  for (std::size_t s = 0; s < sources; ++s) {
+    const std::string& name = s < group_of_each.size() ? group_of_each[s] : std::string();
+    if (name.empty()) {
+      g.of.push_back(g.count++);
+      continue;
+    }
+    const auto [it, inserted] = named.try_emplace(name, g.count);
+    if (inserted) {
+      ++g.count;
+      ++g.named;
+    }
+    g.of.push_back(it->second);
+  }
+  return g;
 }
 
 // erf⁻¹ in double precision (no promotion to long double: the rational approximations for 64-bit precision

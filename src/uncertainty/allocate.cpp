@@ -22,18 +22,9 @@ namespace ccal {
 Groups merge_groups(const Eigen::MatrixXd& J, const Eigen::VectorXd& u0, const Eigen::VectorXd& cost,
                     const std::vector<std::string>& group) {
   Groups g;
-  std::map<std::string, int> named;
-  int n = 0;
-  for (Eigen::Index s = 0; s < J.cols(); ++s) {
-    const std::string& name = group.empty() ? std::string() : group[std::size_t(s)];
-    if (name.empty()) {
-      g.of.push_back(n++);
-    } else {
-      const auto [it, inserted] = named.emplace(name, n);
-      if (inserted) ++n;
-      g.of.push_back(it->second);
-    }
-  }
+  const CorrelationGroups index = correlation_groups(group, std::size_t(J.cols()));
+  g.of = index.of;
+  const int n = index.count;
   g.cost = Eigen::VectorXd::Zero(n);
   g.effect = Eigen::MatrixXd::Zero(J.rows(), n);
   for (Eigen::Index s = 0; s < J.cols(); ++s) {

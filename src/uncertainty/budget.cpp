@@ -212,8 +212,10 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   }
 
   // Contributions, grouped sums, totals.
-  std::vector<std::string> groups;
-  Eigen::MatrixXd group_effect = Eigen::MatrixXd::Zero(nk, 0);
+  std::vector<std::string> group_names;
+  for (const Tolerance& t : config.tolerances) group_names.push_back(t.group);
+  const CorrelationGroups groups = correlation_groups(group_names, config.tolerances.size());
+  Eigen::MatrixXd group_effect = Eigen::MatrixXd::Zero(nk, groups.count);
   for (std::size_t s = 0; s < config.tolerances.size(); ++s) {
     const Tolerance& t = config.tolerances[s];
     SourceBudget b;
@@ -230,15 +232,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
     if (compare) b.paper_effect = paper.total.col(Eigen::Index(s)) * b.standard_uncertainty;
     const ErrorKind kind = channels()[config.centrifuge.layout.parameter_channel(t.parameter)].kind;
     b.paper_counterpart = kind != ErrorKind::main_ripple && kind != ErrorKind::platform_ripple;
-    const std::string key = t.group.empty() ? "#" + t.id : t.group;
-    auto it = std::find(groups.begin(), groups.end(), key);
-    if (it == groups.end()) {
-      groups.push_back(key);
-      group_effect.conservativeResize(nk, group_effect.cols() + 1);
-      group_effect.col(group_effect.cols() - 1) = b.effect;
-    } else {
-      group_effect.col(it - groups.begin()) += b.effect;
-    }
+    group_effect.col(groups.of[s]) += b.effect;
     r.sources.push_back(std::move(b));
   }
   r.covariance = group_effect * group_effect.transpose();

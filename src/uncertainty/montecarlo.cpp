@@ -104,21 +104,10 @@ struct SlotPlan {
 };
 
 SlotPlan plan_slots(const std::vector<Tolerance>& sources) {
-  SlotPlan plan;
-  std::map<std::string, int> group_slot;
-  for (const Tolerance& t : sources) {
-    if (t.group.empty()) {
-      plan.slot.push_back(plan.slots++);
-    } else {
-      auto [it, inserted] = group_slot.try_emplace(t.group, plan.slots);
-      if (inserted) {
-        ++plan.slots;
-        ++plan.groups;
-      }
-      plan.slot.push_back(it->second);
-    }
-  }
-  return plan;
+  std::vector<std::string> groups;
+  for (const Tolerance& t : sources) groups.push_back(t.group);
+  const CorrelationGroups g = correlation_groups(groups, sources.size());
+  return {g.of, g.count, g.named};
 }
 
 void check_sources(const std::vector<Tolerance>& sources) {

@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace ccal {
 
@@ -18,6 +19,16 @@ enum class Distribution {
 std::string_view distribution_name(Distribution d) noexcept;
 // Standard deviation of a tolerance with the given bound and distribution.
 double standard_uncertainty(double bound, Distribution d) noexcept;
+
+// The correlation groups of a list of sources (Tolerance::group of each, or none at all): sources with the
+// same non-empty group share one index, every other source has one of its own; indices 0…count−1 in the
+// order of first appearance. The budget, the Monte Carlo and the allocation all draw and add by it.
+struct CorrelationGroups {
+  std::vector<int> of;  // index of each source
+  int count = 0;        // indices in all
+  int named = 0;        // of them, named groups
+};
+CorrelationGroups correlation_groups(const std::vector<std::string>& group_of_each, std::size_t sources);
 
 // Φ⁻¹ of the error function's argument: √2 erf⁻¹(x), x ∈ (−1, 1), in double precision. The normal
 // quantile of a probability u is normal_erf_quantile(2u − 1); the coverage factor of a symmetric normal
