@@ -2,7 +2,7 @@
 // from closed forms written here: with no errors and the Earth switched off, the specific force in frame 5
 // is f/g = −A x̂1 + ẑ0 (the arm pulls the instrument towards the main axis; at rest f = +g z0), and frame 5
 // is the arm frame turned by γ about z, so its components are (−A cos γ, +A sin γ, 1). Each mounting takes
-// its IA, PA, OA from ±x5, ±y5, ±z5 (test_plan.hpp), so every sign and every permutation is fixed here.
+// its IA, PA, OA from ±x5, ±y5, ±z5 (model/plan.hpp), so every sign and every permutation is fixed here.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -124,7 +124,7 @@ TEST(Mountings, AngularRateOfAFixedPlatformLandsOnTheVerticalAxis) {
 }
 
 TEST(Mountings, MatricesAreRightHandedAndOrthonormal) {
-  // IA × PA = OA for every mounting (test_plan.hpp), exactly: entries are 0 and ±1.
+  // IA × PA = OA for every mounting (model/plan.hpp), exactly: entries are 0 and ±1.
   for (const Axes& axes : kAxes) {
     const Eigen::Matrix3d m = mounting_matrix(axes.mounting);
     EXPECT_EQ(m.col(0).cross(m.col(1)), m.col(2)) << mounting_name(axes.mounting);

@@ -1,4 +1,4 @@
-// Simulated measurement noise of the run means (simulate.hpp, add_output_noise), against its closed forms:
+// Simulated measurement noise of the run means (observe.hpp, add_output_noise), against its closed forms:
 // white output noise of density N gives a run mean with variance N²/T; an integrated output counted in whole
 // steps q (e.g. a PIGA's pulse weight) gives a mean off by a uniform error of width q/T, variance (q/T)²/12,
 // never beyond ±q/(2T). Checked over many seeds within the sampling error of a variance estimate.
