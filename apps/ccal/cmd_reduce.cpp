@@ -64,8 +64,8 @@ Command add_reduce(CLI::App& app) {
             check_observations_out(o->observations_out, o->output);
             verbs::ReduceOptions ro;
             if (!o->pulse_weight.empty()) {
-              ro.pulse_weight = parse_number(o->pulse_weight);
-              if (!ro.pulse_weight || !(*ro.pulse_weight > 0))
+              ro.pulse_weight = parse_number(o->pulse_weight);  // its sign and size: verbs::reduce
+              if (!ro.pulse_weight)
                 throw InputError(
                     fmt::format("--pulse-weight: '{}' is not a positive number; accepted: the integrated "
                                 "output per pulse in {}·s, e.g. 2.5e-5",

@@ -78,6 +78,25 @@ class SameAsCli(unittest.TestCase):
             self.check(result, "reduce", *[f"--log={r + 1}={p}" for r, p in logs.items()], "--pulse-weight",
                        "1e-3")
 
+    def test_bad_arguments_of_the_verb_functions(self):
+        # Each refused with InputError naming the argument and what it accepts.
+        cfg = ccal.bundled_example()
+        cases = [
+            (lambda: ccal.reduce(cfg, {0: "a.csv", 1: "b.csv", 2: "c.csv"}, angle_unit="grad"),
+             "angle_unit: 'grad'"),
+            (lambda: ccal.reduce(cfg, {0: "a.csv"}, mode="fast"), "mode: 'fast'"),
+            (lambda: ccal.reduce(cfg, {0: "a.csv", 1: "b.csv", 2: "c.csv"}, pulse_weight=-1.0),
+             "--pulse-weight: '-1' is not a positive number"),
+            (lambda: ccal.simulate(cfg, mode="fast"), "mode: 'fast'"),
+            (lambda: ccal.monte_carlo(cfg, trials=1), "--trials: 1 is out of range"),
+            (lambda: ccal.budget(cfg, coverage_factor=-1.0), "coverage_factor"),
+        ]
+        for call, message in cases:
+            with self.subTest(message=message):
+                with self.assertRaises(ccal.InputError) as e:
+                    call()
+                self.assertIn(message, str(e.exception))
+
     def test_text_report_is_the_cli_text(self):
         cfg = ccal.bundled_example()
         out = subprocess.run([os.environ["CCAL_PROGRAM"], "budget"], check=True, capture_output=True,
