@@ -135,7 +135,9 @@ TEST(RunLogStream, PlainDecimalsReadAsStdFromCharsReadsThem) {
   EXPECT_GT(fast, 500000);  // most take the fast path
   double v = 0;
   for (const char* declined :
-       {"1e5", "+1", " 1", "1.", ".5", "-", "", "1.2.3", "12345678901234567890", "nan"})
+       {"1e5", "+1", " 1", "1.", ".5", "-", "", "1.2.3", "12345678901234567890", "nan",
+        // 2^64 + 1 and 2^64 + 2^53 − 1 wrap to 1 and 2^53 − 1 in 64 bits: declined, not read as 1 or 2^53 − 1
+        "18446744073709551617", "-18455751272964292607"})
     EXPECT_FALSE(parse_plain_decimal(declined, v)) << declined;
 }
 

@@ -75,13 +75,12 @@ void LogReducer::header(const std::vector<std::string>& names, int line) {
     gamma_.emplace(Encoder{*k, Problem::gamma_cell, Problem::gamma_spacing, EncoderFit(order)});
 }
 
-std::optional<double> LogReducer::cell(const std::string_view* fields, std::size_t column, Problem kind,
-                                       int line) {
-  // The fields come trimmed: a plain number is read directly; anything else (a '+', blanks) by parse_number,
-  // which accepts the same numbers.
+std::optional<double> LogReducer::cell_general(const std::string_view* fields, std::size_t column,
+                                               Problem kind, int line) {
+  // The fields come trimmed: a number with an exponent is read directly; anything else (a '+', blanks) by
+  // parse_number, which accepts the same numbers.
   const std::string_view f = fields[column];
   double value = 0;
-  if (parse_plain_decimal(f, value)) return value;
   const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
   if (ec == std::errc{} && end == f.data() + f.size() && std::isfinite(value)) return value;
   if (const std::optional<double> v = parse_number(f)) return v;

@@ -55,7 +55,15 @@ class LogReducer final : public CsvRowSink {
   void defer(Problem kind, CsvError error);
   void throw_pending_before(Problem kind) const;
   CsvError cell_error(std::size_t column, int line, std::string problem) const;
-  std::optional<double> cell(const std::string_view* fields, std::size_t column, Problem kind, int line);
+  // A cell's number: a plain decimal read here (the usual cell of a log, kept inline), anything else by
+  // cell_general.
+  std::optional<double> cell(const std::string_view* fields, std::size_t column, Problem kind, int line) {
+    double value = 0;
+    if (parse_plain_decimal(fields[column], value)) return value;
+    return cell_general(fields, column, kind, line);
+  }
+  [[gnu::noinline]] std::optional<double> cell_general(const std::string_view* fields, std::size_t column,
+                                                       Problem kind, int line);
   void encoder_sample(Encoder& e, const std::string_view* fields, int line, bool time_ok, double t);
 
   std::string source_;

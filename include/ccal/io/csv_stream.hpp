@@ -31,13 +31,15 @@ inline bool parse_plain_decimal(std::string_view text, double& value) {
   const char* const end = p + text.size();
   const bool negative = p != end && *p == '-';
   if (negative) ++p;
+  // At most 19 digits cannot overflow 64 bits (10^19 < 2^64), so the loop checks the count only, and the
+  // mantissa's size once at the end.
+  if (end - p > 20) return false;
   std::uint64_t m = 0;
   const char* const first = p;
   const char* dot = nullptr;
   for (; p != end; ++p) {
     const unsigned digit = unsigned(*p) - unsigned('0');
     if (digit < 10) {
-      if (m >= kExact) return false;
       m = 10 * m + digit;
     } else if (*p == '.' && dot == nullptr) {
       dot = p;
@@ -47,6 +49,8 @@ inline bool parse_plain_decimal(std::string_view text, double& value) {
   }
   if (p == first || dot == first || (dot != nullptr && dot + 1 == end) || m >= kExact)
     return false;  // no digit, or none before or after the point
+  // Twenty digits and no point: m may have wrapped.
+  if (dot == nullptr && end - first > 19) return false;
   const std::ptrdiff_t fraction = dot == nullptr ? 0 : end - dot - 1;
   if (fraction > 22) return false;
   value = double(m) / kPow10[fraction];
