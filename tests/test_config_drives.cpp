@@ -8,39 +8,15 @@
 
 #include "ccal/io/config_file.hpp"
 #include "cli_support.hpp"
+#include "config_test_support.hpp"
 
 namespace ccal::test {
 namespace {
 
-// A minimal configuration whose last table is [centrifuge], so an appended line lands there.
-const std::string kBase = R"([plan]
-duration = "450 s"
-terminal_phase = "180 deg"
-[[plan.runs]]
-name = "a"
-g_level = "5 g"
-[site]
-latitude = "45.75 deg"
-g = "9.8 m/s^2"
-[centrifuge]
-radius = "2.5 m")";
-
-// The error of kBase + extra: on the extra's last line, naming `key` and each hint, one line.
-void expect_refused(const std::string& extra, const std::string& key,
-                    std::initializer_list<std::string> hints) {
-  const std::string text = kBase + "\n" + extra;
-  const int line = 1 + int(std::count(text.begin(), text.end(), '\n'));
-  try {
-    parse_config(text, "case.toml");
-    ADD_FAILURE() << "accepted: " << extra;
-  } catch (const ConfigError& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(e.line(), line) << what;
-    EXPECT_EQ(e.key(), key) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    for (const auto& h : hints) EXPECT_NE(what.find(h), std::string::npos) << "'" << h << "' in " << what;
-  }
-}
+// kBase (config_test_support.hpp) ends in [centrifuge], so an appended line lands there; a refused line's
+// error names its line, its key and each hint, on one line.
+using config_test::kBase;
+const auto expect_refused = config_test::expect_appended_error;
 
 TEST(DriveKeys, AcceptedForms) {
   // 0.2 ppm/rtHz is 2e-7 /√Hz; an Allan deviation of 0.1 ppm at 4 s is N = 1e-7·√4 = 2e-7 /√Hz (model.md

@@ -18,29 +18,14 @@ Dimension term_dimension(const TermSpec& term, Dimension output) {
   }
 }
 
-InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
-  const toml::table* t = r.table(root, "", "instrument", false);
-  if (!t) return paper_piga();
+namespace {
+
+// [instrument] output_unit: an angular rate (rate-output PIGA), a g-level, an acceleration, or pulses per
+// second; the model's default when absent.
+OutputUnit read_output_unit(const Reader& r, const toml::table& t, InstrumentModel& m, bool ieee) {
   const std::string_view p = "instrument";
-  r.check_keys(*t, p, kInstrumentKeys);
-  enum class Model { piga, ieee };
-  const Model model =
-      r.word(*t, p, "model",
-             std::vector<std::pair<std::string_view, Model>>{{"piga", Model::piga}, {"ieee", Model::ieee}})
-          .value_or(Model::piga);
-
-  InstrumentModel m = model == Model::piga ? paper_piga() : InstrumentModel{};
-  if (model == Model::ieee) {
-    m.name = "IEEE-style accelerometer";
-    m.output_unit = "g";
-    m.rate_gain = 0.0;
-    m.term_ids.clear();
-    m.coefficients.resize(0);
-  }
-
-  // Output unit: an angular rate (rate-output PIGA), a g-level, an acceleration, or pulses per second.
   OutputUnit out{m.output_unit, kind::angular_rate, false};
-  if (const auto text = r.string(*t, p, "output_unit")) {
+  if (const auto text = r.string(t, p, "output_unit")) {
     out.text = *text;
     const std::string accepted =
         "accepted: an angular rate (deg/s, rad/s, deg/h), a g-level (g, mg, ug), "
@@ -52,19 +37,25 @@ InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
       try {
         const Quantity q = parse_unit(*text);
         if (q.dim != kind::angular_rate && q.dim != kind::acceleration_g && q.dim != kind::acceleration)
-          r.fail(*t->get("output_unit"), "instrument.output_unit",
+          r.fail(*t.get("output_unit"), "instrument.output_unit",
                  fmt::format("'{}' is {}; {}", *text, describe(q.dim), accepted));
         out.dim = q.dim;
       } catch (const UnitError& e) {
-        r.fail(*t->get("output_unit"), "instrument.output_unit", fmt::format("{}; {}", e.what(), accepted));
+        r.fail(*t.get("output_unit"), "instrument.output_unit", fmt::format("{}; {}", e.what(), accepted));
       }
     }
     m.output_unit = *text;
-  } else if (model == Model::ieee) {
+  } else if (ieee) {
     out = {"g", kind::acceleration_g, false};
   }
+  return out;
+}
 
-  if (const toml::table* terms = r.table(*t, p, "terms", false)) {
+// [instrument.terms]: each coefficient in the output unit per g^n (per rad/s for K_w), sorted into the
+// model's term order; a model without its own coefficients must give them.
+void read_terms(const Reader& r, const toml::table& t, const OutputUnit& out, bool ieee, InstrumentModel& m) {
+  const std::string_view p = "instrument";
+  if (const toml::table* terms = r.table(t, p, "terms", false)) {
     struct Parsed {
       TermSpec spec;
       std::string id;
@@ -98,19 +89,20 @@ InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
       m.term_ids.push_back(parsed[k].id);
       m.coefficients[Eigen::Index(k)] = parsed[k].value;
     }
-  } else if (model == Model::ieee) {
-    r.fail(where(t->source()), "instrument.terms",
+  } else if (ieee) {
+    r.fail(where(t.source()), "instrument.terms",
            "missing table; model 'ieee' needs [instrument.terms] with coefficients, e.g. K1 = \"1 g/g\"");
   } else if (out.dim != kind::angular_rate || out.pulse) {
-    r.fail(*t->get("output_unit"), "instrument.output_unit",
+    r.fail(*t.get("output_unit"), "instrument.output_unit",
            fmt::format("'{}' cannot use the paper's PIGA coefficients, which are in deg/s; give "
                        "[instrument.terms] in this unit or use an angular-rate output such as deg/s",
                        out.text));
   }
+}
 
-  if (const auto gain = r.number(*t, p, "rate_gain")) m.rate_gain = *gain;
-
-  if (const toml::node* n = t->get("noise_density")) {
+// [instrument] noise_density ("<value> <output unit>/rtHz") and quantum (the output's quantisation step).
+void read_noise(const Reader& r, const toml::table& t, const OutputUnit& out, InstrumentModel& m) {
+  if (const toml::node* n = t.get("noise_density")) {
     const std::string kp = "instrument.noise_density";
     const auto* s = n->as_string();
     if (!s)
@@ -138,12 +130,40 @@ InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
              fmt::format("must not be negative; a noise density >= 0 such as \"0.001 {}/rtHz\"", out.text));
     m.noise_density = v;
   }
-  if (const toml::node* n = t->get("quantum")) {
+  if (const toml::node* n = t.get("quantum")) {
     const Dimension dim = out.dim * kind::time;
     const double v = r.quantity_node(*n, "instrument.quantum", dim, &out, "0 " + si_unit(dim));
     if (v < 0) r.fail(*n, "instrument.quantum", "must not be negative; a quantisation step >= 0");
     m.quantum = v;
   }
+}
+
+}  // namespace
+
+InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
+  const toml::table* t = r.table(root, "", "instrument", false);
+  if (!t) return paper_piga();
+  const std::string_view p = "instrument";
+  r.check_keys(*t, p, kInstrumentKeys);
+  enum class Model { piga, ieee };
+  const Model model =
+      r.word(*t, p, "model",
+             std::vector<std::pair<std::string_view, Model>>{{"piga", Model::piga}, {"ieee", Model::ieee}})
+          .value_or(Model::piga);
+
+  InstrumentModel m = model == Model::piga ? paper_piga() : InstrumentModel{};
+  if (model == Model::ieee) {
+    m.name = "IEEE-style accelerometer";
+    m.output_unit = "g";
+    m.rate_gain = 0.0;
+    m.term_ids.clear();
+    m.coefficients.resize(0);
+  }
+
+  const OutputUnit out = read_output_unit(r, *t, m, model == Model::ieee);
+  read_terms(r, *t, out, model == Model::ieee, m);
+  if (const auto gain = r.number(*t, p, "rate_gain")) m.rate_gain = *gain;
+  read_noise(r, *t, out, m);
   return m;
 }
 

@@ -339,7 +339,10 @@ double normal_coverage_factor(double p) {
   return normal_erf_quantile(p);
 }
 
-AllocationSolution solve_allocation(const AllocationProblem& P) {
+namespace {
+
+// Refuses a problem of inconsistent sizes or with a value no allocation can use.
+void check_problem(const AllocationProblem& P) {
   const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols();
   if (P.target.size() != nt || P.standard_uncertainty.size() != ns || P.cost.size() != ns ||
       (!P.group.empty() && Eigen::Index(P.group.size()) != ns))
@@ -364,7 +367,76 @@ AllocationSolution solve_allocation(const AllocationProblem& P) {
     throw InputError(fmt::format("allocation: the largest scale is {}; it must be > 0", P.max_scale));
   if (!(std::isfinite(P.coverage_factor) && P.coverage_factor > 0))
     throw InputError(fmt::format("allocation: the coverage factor is {}; it must be > 0", P.coverage_factor));
+}
 
+// The scale m_k of each target's multiplier, and whether the target can be active at all. A target met with
+// every tolerance at the largest scale can never be active (x ≤ X), μ_k = 0. Each other target gets the
+// scale of its multiplier when alone and no bound is active:
+//     x_g = (C_g / (2 μ a_g))^(2/3),  Σ_g a_g x_g = 1  ⇒  μ = (Σ_g a_g^(1/3) (C_g/2)^(2/3))^(3/2).
+void multiplier_scales(const Eigen::MatrixXd& a, const Eigen::VectorXd& cost, double X, Eigen::VectorXd& m,
+                       std::vector<bool>& candidate) {
+  const Eigen::Index nt = a.rows(), ng = a.cols();
+  candidate.assign(std::size_t(nt), false);
+  m = Eigen::VectorXd::Zero(nt);
+  for (Eigen::Index k = 0; k < nt; ++k) {
+    if (X * a.row(k).sum() <= 1) continue;
+    double sum = 0;
+    for (Eigen::Index g = 0; g < ng; ++g)
+      if (a(k, g) > 0) sum += std::cbrt(a(k, g)) * std::pow(cost[g] / 2, 2.0 / 3.0);
+    m[k] = std::pow(sum, 1.5);
+    candidate[std::size_t(k)] = m[k] > 0;
+  }
+}
+
+// The optimum of the normalised problem: x per group, μ per target.
+struct GroupOptimum {
+  Eigen::VectorXd x, mu;
+  double residual = 0, minus_dual = 0;
+  int iterations = 0;
+  std::string method;
+};
+
+// The dual iteration from ν = μ/m = 1 (where every multiplier is of order one); should it fail (it can on
+// badly scaled problems), the barrier method on the primal, then the dual iteration from the barrier's
+// multipliers; should that fail too, the barrier's own (feasible, near-optimal) point.
+GroupOptimum optimise_groups(const Eigen::MatrixXd& a, const Eigen::VectorXd& cost, double X) {
+  const Eigen::Index nt = a.rows();
+  const DualProblem dual{a, cost, X};
+  Eigen::VectorXd m;
+  std::vector<bool> candidate;
+  multiplier_scales(a, cost, X, m, candidate);
+  Eigen::VectorXd start = Eigen::VectorXd::Zero(nt);
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (candidate[std::size_t(k)]) start[k] = 1.0;
+  DualRun run = run_dual(dual, m, candidate, start, 500);
+  GroupOptimum o{run.point.x,          m.cwiseProduct(run.nu), run.residual,
+                 run.point.minus_dual, run.iterations,         "dual Newton"};
+  if (o.residual <= 1e-12) return o;
+  const BarrierResult barrier = solve_barrier(a, cost, X, candidate);
+  for (Eigen::Index k = 0; k < nt; ++k) start[k] = candidate[std::size_t(k)] ? barrier.mu[k] / m[k] : 0.0;
+  run = run_dual(dual, m, candidate, start, 500);
+  o.iterations += run.iterations;
+  if (run.residual <= 1e-12) {
+    o.method = "barrier, then dual Newton";
+    o.x = run.point.x;
+    o.mu = m.cwiseProduct(run.nu);
+    o.residual = run.residual;
+    o.minus_dual = run.point.minus_dual;
+  } else {
+    o.method = "barrier";
+    o.x = barrier.y.array().exp().min(X).matrix();
+    o.mu = barrier.mu;
+    o.minus_dual = dual.at(o.mu).minus_dual;
+    o.residual = barrier.gap;
+  }
+  return o;
+}
+
+}  // namespace
+
+AllocationSolution solve_allocation(const AllocationProblem& P) {
+  check_problem(P);
+  const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols();
   const Groups groups = merge_groups(P.sensitivity, P.standard_uncertainty, P.cost, P.group);
   const Eigen::Index ng = groups.cost.size();
   const double X = P.max_scale * P.max_scale;
@@ -375,64 +447,21 @@ AllocationSolution solve_allocation(const AllocationProblem& P) {
       const double v = P.coverage_factor * groups.effect(k, g) / P.target[k];
       a(k, g) = v * v;
     }
-  const DualProblem dual{a, groups.cost, X};
-
-  // A target met with every tolerance at the largest scale can never be active (x ≤ X), μ_k = 0. Each other
-  // target gets the scale m_k of its multiplier when alone and no bound is active:
-  //     x_g = (C_g / (2 μ a_g))^(2/3),  Σ_g a_g x_g = 1  ⇒  μ = (Σ_g a_g^(1/3) (C_g/2)^(2/3))^(3/2).
-  // The search runs in ν = μ/m, where every multiplier is of order one.
-  std::vector<bool> candidate(std::size_t(nt), false);
-  Eigen::VectorXd m = Eigen::VectorXd::Zero(nt);
-  for (Eigen::Index k = 0; k < nt; ++k) {
-    if (X * a.row(k).sum() <= 1) continue;
-    double sum = 0;
-    for (Eigen::Index g = 0; g < ng; ++g)
-      if (a(k, g) > 0) sum += std::cbrt(a(k, g)) * std::pow(groups.cost[g] / 2, 2.0 / 3.0);
-    m[k] = std::pow(sum, 1.5);
-    candidate[std::size_t(k)] = m[k] > 0;
-  }
-  // The dual iteration from ν = 1; should it fail (it can on badly scaled problems), the barrier method on
-  // the primal, then the dual iteration from the barrier's multipliers; should that fail too, the barrier's
-  // own (feasible, near-optimal) point.
+  const GroupOptimum o = optimise_groups(a, groups.cost, X);
   AllocationSolution sol;
-  Eigen::VectorXd start = Eigen::VectorXd::Zero(nt);
-  for (Eigen::Index k = 0; k < nt; ++k)
-    if (candidate[std::size_t(k)]) start[k] = 1.0;
-  DualRun run = run_dual(dual, m, candidate, start, 500);
-  sol.iterations = run.iterations;
-  sol.method = "dual Newton";
-  Eigen::VectorXd x = run.point.x, mu = m.cwiseProduct(run.nu);
-  double residual = run.residual, minus_dual = run.point.minus_dual;
-  if (residual > 1e-12) {
-    const BarrierResult barrier = solve_barrier(a, groups.cost, X, candidate);
-    for (Eigen::Index k = 0; k < nt; ++k) start[k] = candidate[std::size_t(k)] ? barrier.mu[k] / m[k] : 0.0;
-    run = run_dual(dual, m, candidate, start, 500);
-    sol.iterations += run.iterations;
-    if (run.residual <= 1e-12) {
-      sol.method = "barrier, then dual Newton";
-      x = run.point.x;
-      mu = m.cwiseProduct(run.nu);
-      residual = run.residual;
-      minus_dual = run.point.minus_dual;
-    } else {
-      sol.method = "barrier";
-      x = barrier.y.array().exp().min(X).matrix();
-      mu = barrier.mu;
-      const DualProblem::Point p = dual.at(mu);
-      minus_dual = p.minus_dual;
-      residual = barrier.gap;
-    }
-  }
-  sol.converged = residual <= 1e-12 || (sol.method == "barrier" && residual <= 1e-9);
+  sol.iterations = o.iterations;
+  sol.method = o.method;
+  sol.converged = o.residual <= 1e-12 || (sol.method == "barrier" && o.residual <= 1e-9);
+  Eigen::VectorXd x = o.x;
 
   // The primal solution; scaled onto the feasible set should round-off leave a constraint above 1.
   const double primal_before = (groups.cost.array() / x.array().sqrt()).sum();
-  sol.dual_gap = primal_before + minus_dual;
+  sol.dual_gap = primal_before + o.minus_dual;
   double worst = 0;
   for (Eigen::Index k = 0; k < nt; ++k) worst = std::max(worst, a.row(k).dot(x));
   if (worst > 1 + 1e-12) x /= worst;
 
-  sol.multiplier = mu;
+  sol.multiplier = o.mu;
   sol.scale.resize(ns);
   for (Eigen::Index s = 0; s < ns; ++s) sol.scale[s] = std::sqrt(x[groups.of[std::size_t(s)]]);
   sol.objective = (P.cost.array() / sol.scale.array()).sum();

@@ -184,34 +184,13 @@ std::vector<CompensationChoice> compensation_choices(const Experiment& ex, const
   return out;
 }
 
-BudgetResult compute_budget(const Config& config, const BudgetOptions& options) {
-  const Experiment ex = config.experiment();
-  const IdentificationSpec& spec = config.identification;
-  const Eigen::VectorXd& at = config.centrifuge.errors;
-  const Eigen::VectorXd known = spec.compensate ? at : Eigen::VectorXd::Zero(at.size());
+namespace {
 
-  BudgetResult r;
-  std::vector<int> parameters;
-  for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
-  const SensitivityTable table =
-      sensitivities(ex, spec, parameters, at, known, options.mode, options.reduction, options.derivatives);
-  SensitivityTable paper;
-  const bool compare = options.mode == ModelMode::exact && options.compare_with_paper;
-  if (compare)
-    paper = sensitivities(ex, spec, parameters, at, known, ModelMode::paper, options.reduction,
-                          options.derivatives);
-  r.derivatives = table.method;
-
-  r.mode = options.mode;
-  r.coefficients = spec.free_terms;
-  r.coverage_factor = options.coverage_factor;
+// Each tolerance's line of the budget (u(xᵢ), cᵢ, uᵢ(y) = cᵢ u(xᵢ), and its paths), and the covariance of the
+// coefficients from the correlation groups: sources of one group add their effects, groups add variances.
+void add_tolerance_sources(const Config& config, const SensitivityTable& table, const SensitivityTable* paper,
+                           BudgetResult& r) {
   const auto nk = Eigen::Index(r.coefficients.size());
-  for (const auto& id : r.coefficients) {
-    r.units.push_back(coefficient_unit(config.instrument.output_unit, id));
-    r.display_scale.push_back(to_unit(1.0, config.instrument.output_unit));
-  }
-
-  // Contributions, grouped sums, totals.
   std::vector<std::string> group_names;
   for (const Tolerance& t : config.tolerances) group_names.push_back(t.group);
   const CorrelationGroups groups = correlation_groups(group_names, config.tolerances.size());
@@ -229,32 +208,41 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
     b.effect = b.sensitivity * b.standard_uncertainty;
     b.effect_force = table.force_path.col(Eigen::Index(s)) * b.standard_uncertainty;
     b.effect_rate = table.rate_path.col(Eigen::Index(s)) * b.standard_uncertainty;
-    if (compare) b.paper_effect = paper.total.col(Eigen::Index(s)) * b.standard_uncertainty;
+    if (paper != nullptr) b.paper_effect = paper->total.col(Eigen::Index(s)) * b.standard_uncertainty;
     const ErrorKind kind = channels()[config.centrifuge.layout.parameter_channel(t.parameter)].kind;
     b.paper_counterpart = kind != ErrorKind::main_ripple && kind != ErrorKind::platform_ripple;
     group_effect.col(groups.of[s]) += b.effect;
     r.sources.push_back(std::move(b));
   }
   r.covariance = group_effect * group_effect.transpose();
-  // The drives' rate noise: independent per run, so H⁺ diag(σ_j²) H⁺ᵀ (model.md §3.2).
-  if (ex.rate_noise.any()) {
-    const Eigen::MatrixXd pinv =
-        design_pseudo_inverse(observe<double>(ex, at, known, spec, options.mode, options.reduction), spec);
-    for (auto [drive, density, id] :
-         {std::tuple{int(ripple1), ex.rate_noise.main, "main_rate_noise"},
-          std::tuple{int(ripple3), ex.rate_noise.platform, "platform_rate_noise"}}) {
-      if (!(density > 0)) continue;
-      RateNoiseBudget n;
-      n.id = id;
-      n.density = density;
-      n.run_sd = density * rate_noise_gain(ex, at, drive);
-      const Eigen::MatrixXd effects = pinv * n.run_sd.asDiagonal();
-      n.covariance = effects * effects.transpose();
-      n.effect = n.covariance.diagonal().cwiseSqrt();
-      r.covariance += n.covariance;
-      r.rate_noise.push_back(std::move(n));
-    }
+}
+
+// The drives' rate noise: independent per run, so H⁺ diag(σ_j²) H⁺ᵀ (model.md §3.2), added to the
+// covariance.
+void add_rate_noise(const Experiment& ex, const IdentificationSpec& spec, const Eigen::VectorXd& at,
+                    const Eigen::VectorXd& known, const BudgetOptions& options, BudgetResult& r) {
+  if (!ex.rate_noise.any()) return;
+  const Eigen::MatrixXd pinv =
+      design_pseudo_inverse(observe<double>(ex, at, known, spec, options.mode, options.reduction), spec);
+  for (auto [drive, density, id] :
+       {std::tuple{int(ripple1), ex.rate_noise.main, "main_rate_noise"},
+        std::tuple{int(ripple3), ex.rate_noise.platform, "platform_rate_noise"}}) {
+    if (!(density > 0)) continue;
+    RateNoiseBudget n;
+    n.id = id;
+    n.density = density;
+    n.run_sd = density * rate_noise_gain(ex, at, drive);
+    const Eigen::MatrixXd effects = pinv * n.run_sd.asDiagonal();
+    n.covariance = effects * effects.transpose();
+    n.effect = n.covariance.diagonal().cwiseSqrt();
+    r.covariance += n.covariance;
+    r.rate_noise.push_back(std::move(n));
   }
+}
+
+// u, U = k u and the correlation matrix from the covariance.
+void set_totals(BudgetResult& r) {
+  const auto nk = Eigen::Index(r.coefficients.size());
   r.standard_uncertainty = r.covariance.diagonal().cwiseSqrt();
   r.expanded_uncertainty = r.coverage_factor * r.standard_uncertainty;
   r.correlation = Eigen::MatrixXd::Identity(nk, nk);
@@ -262,23 +250,27 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
     for (Eigen::Index j = 0; j < nk; ++j)
       if (i != j && r.standard_uncertainty[i] > 0 && r.standard_uncertainty[j] > 0)
         r.correlation(i, j) = r.covariance(i, j) / (r.standard_uncertainty[i] * r.standard_uncertainty[j]);
+}
 
-  // Exact vs paper: flagged where they differ by more than the factor (or in sign) and the larger of the two
-  // matters, i.e. reaches 1e-3 of the coefficient's total standard uncertainty (a factor between two
-  // negligible numbers is no finding).
-  if (compare) {
-    for (SourceBudget& b : r.sources) {
-      for (Eigen::Index k = 0; k < nk; ++k) {
-        const double x = std::abs(b.effect[k]), p = std::abs(b.paper_effect[k]);
-        const double big = std::max(x, p), small = std::min(x, p);
-        const bool material = big >= 1e-3 * r.standard_uncertainty[k] && big > 0.0;
-        const bool opposite = b.effect[k] * b.paper_effect[k] < 0;
-        b.disagrees.push_back(b.paper_counterpart && material &&
-                              (opposite || big > options.disagreement_factor * small));
-      }
+// Exact vs paper: flagged where they differ by more than the factor (or in sign) and the larger of the two
+// matters, i.e. reaches 1e-3 of the coefficient's total standard uncertainty (a factor between two
+// negligible numbers is no finding).
+void flag_paper_disagreements(double factor, BudgetResult& r) {
+  for (SourceBudget& b : r.sources) {
+    for (Eigen::Index k = 0; k < Eigen::Index(r.coefficients.size()); ++k) {
+      const double x = std::abs(b.effect[k]), p = std::abs(b.paper_effect[k]);
+      const double big = std::max(x, p), small = std::min(x, p);
+      const bool material = big >= 1e-3 * r.standard_uncertainty[k] && big > 0.0;
+      const bool opposite = b.effect[k] * b.paper_effect[k] < 0;
+      b.disagrees.push_back(b.paper_counterpart && material && (opposite || big > factor * small));
     }
   }
+}
 
+// Each source's and each noise's share of every coefficient's variance, and the sources ranked by their
+// largest share (ties in tolerance order).
+void rank_by_share(BudgetResult& r) {
+  const auto nk = Eigen::Index(r.coefficients.size());
   std::vector<double> largest(r.sources.size(), 0.0);
   for (std::size_t s = 0; s < r.sources.size(); ++s) {
     SourceBudget& b = r.sources[s];
@@ -299,6 +291,39 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return largest[a] > largest[b]; });
   for (std::size_t pos = 0; pos < order.size(); ++pos) r.sources[order[pos]].rank = int(pos) + 1;
+}
+
+}  // namespace
+
+BudgetResult compute_budget(const Config& config, const BudgetOptions& options) {
+  const Experiment ex = config.experiment();
+  const IdentificationSpec& spec = config.identification;
+  const Eigen::VectorXd& at = config.centrifuge.errors;
+  const Eigen::VectorXd known = spec.compensate ? at : Eigen::VectorXd::Zero(at.size());
+
+  BudgetResult r;
+  std::vector<int> parameters;
+  for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
+  const SensitivityTable table =
+      sensitivities(ex, spec, parameters, at, known, options.mode, options.reduction, options.derivatives);
+  SensitivityTable paper;
+  const bool compare = options.mode == ModelMode::exact && options.compare_with_paper;
+  if (compare)
+    paper = sensitivities(ex, spec, parameters, at, known, ModelMode::paper, options.reduction,
+                          options.derivatives);
+  r.derivatives = table.method;
+  r.mode = options.mode;
+  r.coefficients = spec.free_terms;
+  r.coverage_factor = options.coverage_factor;
+  for (const auto& id : r.coefficients) {
+    r.units.push_back(coefficient_unit(config.instrument.output_unit, id));
+    r.display_scale.push_back(to_unit(1.0, config.instrument.output_unit));
+  }
+  add_tolerance_sources(config, table, compare ? &paper : nullptr, r);
+  add_rate_noise(ex, spec, at, known, options, r);
+  set_totals(r);
+  if (compare) flag_paper_disagreements(options.disagreement_factor, r);
+  rank_by_share(r);
   r.compensation = compensation_choices(ex, spec, at, known, options.mode, compare, options.reduction);
   return r;
 }
