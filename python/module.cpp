@@ -41,5 +41,6 @@ PYBIND11_MODULE(ccal, m) {
   ccal::python::bind_uncertainty(m);
   ccal::python::bind_derive(m);
   // Signatures, repr, display(), pickling and the remaining docstrings, written in Python.
+  py::exec(ccal::python::kPropertyDocsSource, m.attr("__dict__"));
   py::exec(ccal::python::kExtrasSource, m.attr("__dict__"));
 }
