@@ -291,6 +291,15 @@ class RunLogs(unittest.TestCase):
     def test_lever_arms_phase_locked_ripple_and_a_fixed_platform(self):
         self.check("lever_arms_ieee.toml", 1.0)  # output in g, a base dimension of its own: SI size 1
 
+    def test_cli_writes_the_same_logs(self):
+        lab = os.path.join(EXAMPLES, "lab.toml")
+        with tempfile.TemporaryDirectory() as folder:
+            subprocess.run([os.environ["CCAL_PROGRAM"], "simulate", lab, "--logs-out", folder, "--seed", "4"],
+                           check=True, capture_output=True)
+            for name, text in ccal.simulate(ccal.load_config(lab), seed=4).run_logs():
+                with open(os.path.join(folder, name)) as f:
+                    self.assertEqual(f.read(), text, name)
+
     def test_logs_have_encoders_and_pulses(self):
         sim = ccal.simulate(ccal.load_config(os.path.join(EXAMPLES, "lab.toml")))
         name, text = sim.run_logs()[3]
