@@ -15,6 +15,7 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/io/run_log.hpp"
+#include "ccal/io/run_log_writer.hpp"
 #include "ccal/model/sensed_input.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/reduction/observability.hpp"
@@ -213,11 +214,27 @@ void bind_analysis(py::module_& m) {
       .def_readonly("config", &verbs::SimulateResult::config)
       .def_readonly("observations", &verbs::SimulateResult::observations)
       .def_property_readonly(
-          "coefficients", [](const verbs::SimulateResult& r) { return r.identification.fit.value; },
+          "coefficients",
+          // the fit is of the observations file, in the output unit: × its SI size gives output SI per gⁿ
+          [](const verbs::SimulateResult& r) { return Eigen::VectorXd(r.identification.fit.value * r.output_unit_si); },
           "identified free terms (SI)")
       .def_property_readonly("names",
                              [](const verbs::SimulateResult& r) { return r.identification.fit.names; })
-      .def("to_csv", [](const verbs::SimulateResult& r) { return render::csv(r); });
+      .def("to_csv", [](const verbs::SimulateResult& r) { return render::csv(r); },
+           "The observations file (the CLI's --format csv, the input of `ccal identify`).")
+      .def(
+          "run_logs",
+          [](const verbs::SimulateResult& r, std::optional<double> step) {
+            const Eigen::VectorXd& means = r.observations.output;
+            std::vector<std::pair<std::string, std::string>> out;
+            for (auto& log : write_run_logs(r.config, {means.data(), means.data() + means.size()},
+                                            step ? *step : default_log_step(r.config)))
+              out.emplace_back(std::move(log.name), std::move(log.text));
+            return out;
+          },
+          py::arg("step") = py::none(),
+          "The runs' logs as `ccal simulate --logs-out` writes them: (file name, CSV text) per run, in plan "
+          "order; step: sampling interval [s] (default 0.1 s, or an eighth of a revolution if shorter).");
 
   m.def(
       "simulate",
@@ -405,7 +422,8 @@ void bind_analysis(py::module_& m) {
       .def_readonly("logs", &verbs::ReduceResult::logs)
       .def_readonly("warnings", &verbs::ReduceResult::warnings)
       .def_property_readonly(
-          "coefficients", [](const verbs::ReduceResult& r) { return r.identification.id.fit.value; },
+          "coefficients",
+          [](const verbs::ReduceResult& r) { return Eigen::VectorXd(r.identification.id.fit.value * r.output_unit_si); },
           "identified free terms (SI)")
       .def_property_readonly("names",
                              [](const verbs::ReduceResult& r) { return r.identification.id.fit.names; });

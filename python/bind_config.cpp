@@ -35,7 +35,7 @@ void bind_config(py::module_& m) {
       .def_readonly("cost", &Tolerance::cost, "relative cost weight for the allocation")
       .def("__repr__", [](const Tolerance& t) { return "<ccal.Tolerance " + t.id + ">"; });
 
-  py::class_<Config>(m, "Config", "A centrifuge, site, instrument, test plan, tolerances and identification.")
+  py::class_<Config>(m, "Config", py::dynamic_attr(), "A centrifuge, site, instrument, test plan, tolerances and identification.")
       .def_readonly("source", &Config::source, "file name, or the name given to parse_config")
       .def_property_readonly("runs", [](const Config& c) { return c.plan.runs; })
       .def_readonly("tolerances", &Config::tolerances)

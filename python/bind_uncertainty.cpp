@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "bindings.hpp"
+#include "interruptible.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "ccal/uncertainty/budget.hpp"
@@ -83,7 +84,7 @@ void bind_uncertainty(py::module_& m) {
   m.def(
       "monte_carlo",
       [](const Config& cfg, std::int64_t trials, std::uint64_t seed, int threads, int digits, double coverage,
-         std::optional<std::string> mode) {
+         std::optional<std::string> mode, const py::object& progress) {
         verbs::MonteCarloOptions o;
         if (mode) o.mode = mode_argument(*mode);
         o.trials = trials;
@@ -91,14 +92,19 @@ void bind_uncertainty(py::module_& m) {
         o.threads = threads;
         o.digits = digits;
         o.coverage = coverage;
-        py::gil_scoped_release release;
-        return verbs::monte_carlo(cfg, o);
+        return run_interruptible(progress, [&](ProgressCallback on_progress) {
+          o.on_progress = std::move(on_progress);
+          return verbs::monte_carlo(cfg, o);
+        });
       },
       py::arg("config"), py::arg("trials") = verbs::MonteCarloOptions{}.trials, py::arg("seed") = 1,
       py::arg("threads") = 0, py::arg("digits") = 0, py::arg("coverage") = 0.95, py::arg("mode") = py::none(),
+      py::arg("progress") = py::none(),
       "Monte Carlo propagation (JCGM 101, `ccal montecarlo`) of the tolerances to the deviations of the "
       "identified coefficients; digits > 0: the adaptive procedure; the same seed gives the same bits for "
-      "any thread count. The defaults are the CLI's.");
+      "any thread count. The defaults are the CLI's. progress: None or progress(done, total) called "
+      "with the trials done about every 0.1 s; Ctrl-C (or an exception from progress) stops the run within "
+      "a fraction of a second and raises KeyboardInterrupt (or that exception).");
 
   py::class_<AllocatedSource>(m, "AllocatedSource")
       .def_readonly("id", &AllocatedSource::id)
@@ -142,7 +148,8 @@ void bind_uncertainty(py::module_& m) {
   m.def(
       "allocate",
       [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
-         double coverage, double max_scale, std::int64_t verify_trials, std::uint64_t seed, int threads) {
+         double coverage, double max_scale, std::int64_t verify_trials, std::uint64_t seed, int threads,
+         const py::object& progress) {
         verbs::AllocateOptions o;
         for (const auto& [id, value] : targets)
           // A number is in the coefficient's display unit, as on the command line; a string may carry a unit.
@@ -154,13 +161,17 @@ void bind_uncertainty(py::module_& m) {
         o.verify_trials = verify_trials;
         o.seed = seed;
         o.threads = threads;
-        py::gil_scoped_release release;
-        return verbs::allocate(cfg, o);
+        return run_interruptible(progress, [&](ProgressCallback on_progress) {
+          o.on_progress = std::move(on_progress);
+          return verbs::allocate(cfg, o);
+        });
       },
       py::arg("config"), py::arg("targets"), py::arg("coverage") = 0.95, py::arg("max_scale") = 10.0,
       py::arg("verify_trials") = 2000, py::arg("seed") = 1, py::arg("threads") = 0,
+      py::arg("progress") = py::none(),
       "Largest tolerances for which every target (coefficient id → allowed expanded uncertainty, a number in "
-      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo.");
+      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. progress: None or progress(done, total) "
+      "of the verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt.");
 }
 
 }  // namespace ccal::python

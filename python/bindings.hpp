@@ -25,7 +25,7 @@ ModelMode mode_argument(const std::string& mode);
 // r.budget.standard_uncertainty.
 template <class Result>
 py::class_<Result> bind_verb_result(py::module_& m, const char* name, const char* doc, const char* inner) {
-  py::class_<Result> c(m, name, doc);
+  py::class_<Result> c(m, name, doc, py::dynamic_attr());  // attributes: python/ccal_extras.py
   c.def(
        "to_json", [](const Result& r) { return render::json(r); }, "The report as the CLI's JSON (text).")
       .def("__str__", [](const Result& r) { return render::text(r); })
@@ -38,5 +38,6 @@ py::class_<Result> bind_verb_result(py::module_& m, const char* name, const char
 void bind_config(py::module_& m);       // Config, Run, Tolerance and their readers
 void bind_analysis(py::module_& m);     // budget, sensed_input, observe, identify, fit
 void bind_uncertainty(py::module_& m);  // monte_carlo, allocate
+void bind_derive(py::module_& m);       // Config.with_tolerance, .with_error, .with_plan
 
 }  // namespace ccal::python

@@ -1,6 +1,8 @@
+#include <pybind11/eval.h>
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
+#include "ccal_extras.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/version.hpp"
@@ -37,4 +39,8 @@ PYBIND11_MODULE(ccal, m) {
   ccal::python::bind_config(m);
   ccal::python::bind_analysis(m);
   ccal::python::bind_uncertainty(m);
+  ccal::python::bind_derive(m);
+  // Signatures, repr, display(), pickling and the remaining docstrings, written in Python.
+  py::exec(ccal::python::kPropertyDocsSource, m.attr("__dict__"));
+  py::exec(ccal::python::kExtrasSource, m.attr("__dict__"));
 }

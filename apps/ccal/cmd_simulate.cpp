@@ -2,7 +2,12 @@
 // the regressors the analyst computes (with zero errors, or the [errors] values when compensating), written
 // as an observations file and identified as `ccal identify` would (docs/cli.md).
 #include <cstdint>
+#include <filesystem>
 #include <memory>
+#include <system_error>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/io/run_log_writer.hpp"
 
 #include "ccal/render/simulate.hpp"
 #include "ccal/verbs/simulate.hpp"
@@ -17,6 +22,7 @@ struct SimulateCli {
   std::string mode;  // empty: the configuration's
   std::uint64_t seed = 1;
   std::string observations_out;
+  std::string logs_out;  // folder for one run log per run
   OutputOptions output;
 };
 
@@ -39,6 +45,10 @@ Command add_simulate(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
       ->type_name("S");
   add_observations_out_option(*cmd, o->observations_out);
+  cmd->add_option("--logs-out", o->logs_out,
+                  "Also write one run log per run into folder DIR (created if missing), named after the run: "
+                  "time, pulses (or output), theta1, gamma, as `ccal reduce` reads them")
+      ->type_name("DIR");
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -46,7 +56,9 @@ Command add_simulate(CLI::App& app) {
       "      the bundled paper example: run means and the identified K0, K2, K3\n"
       "  ccal simulate my.toml --observations-out obs.csv && ccal identify obs.csv\n"
       "  ccal simulate my.toml --mode paper --format json -o sim.json\n"
-      "  ccal simulate --format csv > obs.csv\n");
+      "  ccal simulate --format csv > obs.csv\n"
+      "  ccal simulate my.toml --logs-out logs\n"
+      "      also the runs' logs, logs/5g.csv, …, for `ccal reduce my.toml --log 5g=logs/5g.csv …`\n");
 
   return {cmd, [o] {
             const Config cfg = load_config_or_example(o->config);
@@ -63,6 +75,14 @@ Command add_simulate(CLI::App& app) {
             std::vector<ExtraFile> extra;
             if (!o->observations_out.empty())
               extra.push_back({"--observations-out", o->observations_out, s.observations_csv});
+            if (!o->logs_out.empty()) {
+              std::error_code ec;
+              std::filesystem::create_directories(o->logs_out, ec);
+              if (ec) throw InputError("--logs-out: cannot create the folder '" + o->logs_out + "': " + ec.message());
+              const Eigen::VectorXd& means = s.observations.output;
+              for (auto& log : write_run_logs(cfg, {means.data(), means.data() + means.size()}, default_log_step(cfg)))
+                extra.push_back({"--logs-out", (std::filesystem::path(o->logs_out) / log.name).string(), log.text});
+            }
             write_outputs(o->output, text, extra);
           }};
 }

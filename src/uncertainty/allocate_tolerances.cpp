@@ -195,6 +195,8 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   mo.threads = o.threads;
   mo.coverage = o.coverage;
   mo.progress = o.progress;
+  mo.on_progress = o.on_progress;
+  if (o.on_progress) o.on_progress(0, o.verify_trials);  // may throw Cancelled: stop before the verification
   const MonteCarloResult mc = run_monte_carlo(scaled, model.n_outputs(), model.output_names(),
                                               calibration_trial(model), mo, &u_alloc);
   AllocationVerification& v = r.verification;

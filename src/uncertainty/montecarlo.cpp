@@ -187,10 +187,10 @@ struct Engine {
                               i + 1, names[o], out[o]));
             samples[o][i] = out[o];
           }
+          if (progress.on()) progress.tick();  // a Cancelled from the callback stops the loop
         } catch (...) {
           failure.record(i, std::current_exception());
         }
-        if (progress.on()) progress.tick();
       }
     }
     if (failure.failed.load()) std::rethrow_exception(failure.error);
@@ -466,7 +466,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   const Eigen::VectorXd estimate = model_at_zero(sources, n_out, output_names, trial);
 
   std::vector<std::vector<double>> samples(n_out);
-  Progress progress(options.progress);
+  Progress progress(options.progress, options.on_progress);
   const Engine engine{sources, plan, trial, output_names, mix64(options.seed), threads, samples, progress};
   const std::uint64_t q_block = interval_points(block, p);
 
@@ -486,8 +486,12 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
     const std::uint64_t begin = M;
     M += block;
     check_sample_memory(M, n_out, adaptive);
-    for (auto& s : samples) s.resize(M);
     progress.set_stage(M, adaptive ? fmt::format("stage {} ", h) : std::string());
+    for (auto& s : samples)  // in steps of 2^20 values, asking the callback between them (it may cancel):
+      while (s.size() < M) {  // zero-filling gigabytes takes seconds
+        s.resize(std::min<std::uint64_t>(M, s.size() + (std::uint64_t(1) << 20)));
+        progress.poll();
+      }
     engine.run(begin, M);
     result.stages = h;
     if (!adaptive) break;

@@ -13,6 +13,8 @@
 #include <mutex>
 #include <string>
 
+#include "ccal/core/progress.hpp"
+
 namespace ccal::progress_bar {
 
 using Clock = std::chrono::steady_clock;
@@ -27,9 +29,11 @@ inline std::string clock_text(double seconds) {
 // that.
 class Progress {
  public:
-  explicit Progress(bool wanted) : on_(wanted && isatty(fileno(stderr)) != 0), start_(Clock::now()) {}
+  // The bar when wanted and stderr is a terminal; the callback (if any) at the same moments, whatever stderr.
+  explicit Progress(bool wanted, ProgressCallback callback = {})
+      : on_(wanted && isatty(fileno(stderr)) != 0), callback_(std::move(callback)), start_(Clock::now()) {}
   ~Progress() { finish(); }
-  bool on() const { return on_; }
+  bool on() const { return on_ || callback_; }
 
   // The trials of the current stage end at `target`; `label` describes it ("" for a fixed M).
   void set_stage(std::uint64_t target, std::string label) {
@@ -43,7 +47,12 @@ class Progress {
     std::int64_t last = last_ns_.load(std::memory_order_relaxed);
     if (now - last < 100'000'000) return;
     if (!last_ns_.compare_exchange_strong(last, now, std::memory_order_relaxed)) return;
-    draw(done, double(now) * 1e-9);
+    if (on_) draw(done, double(now) * 1e-9);
+    if (callback_) callback_(done, target_);  // may throw Cancelled: the caller records it as the trial's
+  }
+  // The callback now, unthrottled (between the steps of a long preparation): it may throw Cancelled.
+  void poll() {
+    if (callback_) callback_(done_.load(std::memory_order_relaxed), target_);
   }
   void finish() {
     if (!on_ || finished_) return;
@@ -68,6 +77,7 @@ class Progress {
   }
 
   bool on_;
+  ProgressCallback callback_;
   bool finished_ = false;
   Clock::time_point start_;
   std::atomic<std::uint64_t> done_{0};

@@ -37,6 +37,7 @@ AllocateResult allocate(const Config& config, const AllocateOptions& o) {
   ao.seed = o.seed;
   ao.threads = o.threads;
   ao.progress = o.progress;
+  ao.on_progress = o.on_progress;
   AllocateResult r;
   r.config = config;
   r.allocation = allocate_tolerances(config, targets, ao);

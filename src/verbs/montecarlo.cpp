@@ -50,6 +50,7 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
   mo.max_trials = o.max_trials;
   mo.coverage = o.coverage;
   mo.progress = o.progress;
+  mo.on_progress = o.on_progress;
   r.monte_carlo = run_monte_carlo(monte_carlo_sources(config), model.n_outputs(), model.output_names(),
                                   calibration_trial(model), mo, &r.budget.standard_uncertainty);
   return r;

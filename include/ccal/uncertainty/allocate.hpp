@@ -107,6 +107,7 @@ struct AllocateOptions {
   std::uint64_t seed = 1;
   int threads = 0;        // 0: the OpenMP default
   bool progress = false;  // progress bar of the verification (only on a terminal)
+  ProgressCallback on_progress;  // of the verification; may throw Cancelled to stop (core/progress.hpp)
 };
 
 struct AllocatedSource {

@@ -71,6 +71,7 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/core/progress.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/reduction/run_means.hpp"
 #include "ccal/setup/config.hpp"
@@ -93,6 +94,7 @@ struct MonteCarloOptions {
   std::uint64_t max_trials = 100000000;  // adaptive: no stage is started that would go beyond this
   double coverage = 0.95;                // p, in (0, 1)
   bool progress = false;  // a progress bar (%, trials/s, ETA) on stderr, only if stderr is a terminal
+  ProgressCallback on_progress;  // called every 0.1 s at most; may throw Cancelled to stop (core/progress.hpp)
 };
 
 // One trial: given the drawn source values (SI, one per tolerance, in tolerance order), write the outputs

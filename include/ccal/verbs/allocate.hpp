@@ -21,6 +21,7 @@ struct AllocateOptions {
   std::uint64_t seed = 1;
   int threads = 0;        // 0: all cores
   bool progress = false;  // draw a progress bar on standard error when it is a terminal
+  ProgressCallback on_progress;  // of the verification's trials; may throw Cancelled (core/progress.hpp)
 };
 
 struct AllocateResult {

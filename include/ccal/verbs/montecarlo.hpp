@@ -26,6 +26,7 @@ struct MonteCarloOptions {
   std::int64_t max_trials = 1000000;  // bound of the adaptive procedure
   double coverage = 0.95;             // coverage probability p of the intervals
   bool progress = false;              // draw a progress bar on standard error when it is a terminal
+  ProgressCallback on_progress;       // trials done / of the stage, every 0.1 s at most; may throw Cancelled
 };
 
 struct MonteCarloResult {

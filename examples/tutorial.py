@@ -1,0 +1,75 @@
+"""A lab's path through ccal on the bundled centrifuge, in Python (docs/tutorial.md does it by commands):
+the error budget, what dominates it, the Monte Carlo check, tighter tolerances, the simulated test and its run
+logs, their reduction, and the calibration's result with its uncertainty. Run it with the module on the path:
+
+    PYTHONPATH=build/python /usr/bin/python3 examples/tutorial.py
+
+The test suite runs it (docs.commands runs docs/tutorial.md, which runs this script for its last step).
+"""
+
+import math
+import os
+import tempfile
+
+import numpy as np
+
+import ccal
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def step(title):
+    print(f"\n== {title}")
+
+
+# 1. The error budget of the bundled centrifuge (Wang & Ren 2014): what its tolerances cost K0, K2, K3.
+cfg = ccal.bundled_example()
+budget = ccal.budget(cfg)
+step("1. budget: the centrifuge's tolerances propagated to the coefficients")
+print(budget.display())
+
+# 2. What dominates: the sources with the largest shares of u(K3)².
+step("2. the five largest contributors to u(K3)^2")
+k3 = budget.coefficients.index("K3")
+for i in np.argsort(-budget.share[:, k3])[:5]:
+    print(f"{budget.source_ids[i]:<12} {100 * budget.share[i, k3]:5.1f} %")
+
+# 3. The Monte Carlo method (JCGM 101) confirms the budget, or says where its linearisation fails.
+step("3. Monte Carlo check of the budget")
+mc = ccal.monte_carlo(cfg, trials=20_000)
+print(mc.display())
+
+# 4. Tighter tolerances: the largest ones for which U(K3) is at most 1e-3 deg/s/g^3.
+step("4. tolerances for U(K3) <= 1e-3 deg/s/g^3")
+allocation = ccal.allocate(cfg, {"K3": 1e-3})
+print(allocation.display())
+unit_of = dict(zip(cfg.error_ids, cfg.error_units))
+tight = cfg
+for s in allocation.sources:
+    unit = unit_of[s.id]
+    tight = tight.with_tolerance(s.id, s.allocated_bound, unit=None if unit == "1" else unit)
+u_tight = ccal.budget(tight).display().rows[k3]
+print(f"budget with the allocated tolerances: U(K3) = {u_tight['expanded_uncertainty']:.4g} {u_tight['unit']}")
+
+# 5. (A better plan instead of tighter tolerances: `ccal design`, where available.)
+
+# 6. The test on the lab's centrifuge (examples/lab.toml: the bundled one with its real, unknown errors, a noisy
+#    PIGA counting pulses), as the run logs it records; 7. their reduction to the coefficients.
+step("6-7. the test's run logs, reduced to the coefficients")
+lab = ccal.load_config(os.path.join(HERE, "lab.toml"))
+simulation = ccal.simulate(lab, seed=1)
+with tempfile.TemporaryDirectory() as folder:
+    logs = simulation.write_logs(folder)
+    reduction = ccal.reduce(lab, logs)
+print(reduction.display())
+
+# 8. The result: each coefficient with the standard uncertainty of the centrifuge's tolerances (the budget of
+#    the lab's configuration) and of the test's noise (the fit's standard error), combined; U = 2 u.
+step("8. the calibration's result (U = 2 u, u from the centrifuge's budget and the test's noise)")
+lab_budget = {r["coefficient"]: r for r in ccal.budget(lab).display().rows}
+truth = dict(zip(lab.instrument_terms, lab.instrument_coefficients))
+for row in reduction.display().rows:
+    name, unit = row["coefficient"], row["unit"]
+    u = math.hypot(lab_budget[name]["standard_uncertainty"], row["std_error"])
+    true = truth[name] * (180 / math.pi)  # the simulated instrument's value, deg/s/g^n (known only here)
+    print(f"{name} = {row['value']:.6g} ± {2 * u:.2g} {unit}   (the simulated instrument has {true:.6g})")

@@ -1,0 +1,35 @@
+#pragma once
+// Run logs as a centrifuge test would record them, written from the model (`ccal simulate --logs-out DIR`):
+// what `ccal reduce` reads (io/run_log.hpp), so that the path from a test's logs to its coefficients can be
+// tried, and checked, without a centrifuge. Per run of the plan, sampled every `step` seconds over its
+// duration:
+//   time     t [s];
+//   pulses   the cumulative count ⌊m t / w⌋ of the instrument's quanta w (its `quantum`) for the run mean m
+//            (the simulated one, with the instrument's noise), or, for an instrument without a quantum,
+//   output   m itself, in the output unit (the run's mean is all a reduction reads of it);
+//   theta1   θ1 = θ1ⁿ + δ1(θ1ⁿ), θ1ⁿ = θ1(0) + (Ω + Δω) t, wrapped to [0, 2π);
+//   gamma    γ = γⁿ + δ3(γⁿ) [− δ1(θ1ⁿ) phase-locked], γⁿ = φ0 − (Ω + Δω + ΔΩ) t on a counter-rotating
+//            platform, φ0 on a fixed one;
+// with δ(q) = Σ (ck sin kq − sk cos kq)/k the angle error of a drive's configured rate ripple c1, s1, …
+// (docs/model.md §3.1, §13.1) and Δω, ΔΩ the configured [errors].
+#include <string>
+#include <vector>
+
+#include "ccal/io/config_file.hpp"
+
+namespace ccal {
+
+struct RunLogFile {
+  std::string name;  // file name: the run's name with characters other than letters, digits, '.', '-' as '_'
+  std::string text;  // the CSV table
+};
+
+// One log per run of config's plan; run_means: the runs' mean outputs [output SI], in plan order. step: at
+// most a quarter revolution of the fastest run (the reduction unwraps less than 0.75π between samples);
+// throws InputError otherwise or for a mean count that does not match the plan.
+std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<double>& run_means, double step);
+
+// The default sampling interval: 0.1 s, or an eighth of a revolution of the fastest run if that is shorter.
+double default_log_step(const Config& config);
+
+}  // namespace ccal

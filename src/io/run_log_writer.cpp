@@ -1,0 +1,93 @@
+// Run logs written from the model (io/run_log_writer.hpp).
+#include "ccal/io/run_log_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
+
+namespace ccal {
+
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+double wrapped(double a) { return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi); }
+
+// The configured ripple c1, s1, …, cN, sN of a drive (a channel of the layout).
+std::vector<double> ripple_of(const Config& cfg, int channel) {
+  const ErrorLayout& layout = cfg.centrifuge.layout;
+  std::vector<double> out;
+  for (int k = 1; k <= layout.harmonic_order(); ++k)
+    for (const bool sine : {false, true}) out.push_back(cfg.centrifuge.errors[layout.harmonic_index(channel, k, sine)]);
+  return out;
+}
+
+// δ(q) = Σ (ck sin kq − sk cos kq)/k (docs/model.md §3.1).
+double angle_error(const std::vector<double>& ripple, double q) {
+  double d = 0;
+  for (std::size_t i = 0; i + 1 < ripple.size(); i += 2) {
+    const double k = double(i / 2 + 1);
+    d += (ripple[i] * std::sin(k * q) - ripple[i + 1] * std::cos(k * q)) / k;
+  }
+  return d;
+}
+
+std::string file_name(const std::string& run) {
+  std::string out = run;
+  for (char& c : out)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '_';
+  return out + ".csv";
+}
+
+}  // namespace
+
+double default_log_step(const Config& config) {
+  double fastest = 0;
+  const Experiment ex = config.experiment();
+  for (const Run& run : config.plan.runs) fastest = std::max(fastest, nominal_rate(run, ex.geometry, ex.site));
+  return std::min(0.1, kTwoPi / 8 / std::max(fastest, 1e-9));  // eight samples a revolution at least
+}
+
+std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<double>& run_means, double step) {
+  const auto& runs = config.plan.runs;
+  if (run_means.size() != runs.size())
+    throw InputError(fmt::format("run logs: {} run means for a plan of {} runs", run_means.size(), runs.size()));
+  const Experiment ex = config.experiment();
+  const Eigen::VectorXd& e = config.centrifuge.errors;
+  const std::vector<double> main = ripple_of(config, ripple1), platform = ripple_of(config, ripple3);
+  const bool locked = config.centrifuge.geometry.platform_control == PlatformControl::phase_locked;
+  const double w = config.instrument.quantum;  // output SI × s per pulse
+  // SI size of the output unit, for an instrument without a quantum (whose output is then not in pulses)
+  const double unit = w > 0 ? 1.0 : parse_unit(config.instrument.output_unit).value_si;
+  std::vector<RunLogFile> out;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const Run& run = runs[r];
+    const double rate = nominal_rate(run, ex.geometry, ex.site) + e[domega];
+    if (!(step > 0) || rate * step > 0.25 * kTwoPi)
+      throw InputError(fmt::format("run logs: a step of {:g} s is more than a quarter revolution of run '{}'",
+                                   step, run.name));
+    const bool turning = run.mode == PlatformMode::counter_rotating;
+    const double gamma_rate = turning ? -(rate + e[dOmega]) : 0.0;
+    const double phi0 = initial_phase(run, ex.geometry, ex.site);
+    const double m = run_means[r];
+    std::string text = w > 0 ? "time,pulses,theta1,gamma\n" : "time,output,theta1,gamma\n";
+    const auto n = std::int64_t(std::ceil(run.duration / step - 1e-9));
+    for (std::int64_t k = 0; k <= n; ++k) {
+      const double t = run.duration * double(k) / double(n);
+      const double theta_n = run.arm_azimuth + rate * t, gamma_n = phi0 + gamma_rate * t;
+      const double d1 = angle_error(main, theta_n);
+      const double gamma = turning ? gamma_n + angle_error(platform, gamma_n) - (locked ? d1 : 0.0) : phi0;
+      const double value = w > 0 ? std::floor(m * t / w) : m / unit;
+      text += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", t, value, wrapped(theta_n + d1), wrapped(gamma));
+    }
+    out.push_back({file_name(run.name), std::move(text)});
+  }
+  return out;
+}
+
+}  // namespace ccal
