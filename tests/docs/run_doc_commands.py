@@ -88,7 +88,7 @@ def console_steps(body, start):
 
 
 VOLATILE = [(re.compile(r"\d+ threads?, [0-9.]+ ?s"), "N threads, T s"),
-            (re.compile(r"[0-9.]+ (trials|evaluations)/s"), r"R \1/s"),
+            (re.compile(r"[0-9.]+(e[+-]?[0-9]+)? (trials|evaluations)/s"), r"R \2/s"),
             (re.compile(r"\(commit [0-9a-f]+\)"), "(commit C)")]
 
 
