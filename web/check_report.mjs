@@ -24,7 +24,7 @@ const browser = await chromium.launch({
          '--disable-component-update', '--disable-sync'],
 });
 try {
-  const page = await browser.newPage({ viewport: { width: 1320, height: 900 } });
+  const page = await browser.newPage({ viewport: { width: 1480, height: 900 } });
   const url = pathToFileURL(report).href;
   // The page must need nothing but itself: every other request is refused and counted.
   await page.route('**/*', (route) => {

@@ -23,7 +23,7 @@ body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:24p
 h1{font-size:1.6em;margin-bottom:0}h2{border-bottom:2px solid #4c78a8;padding-bottom:4px;margin-top:2em}
 .sub{color:#555;margin-top:4px}
 .pair{display:flex;flex-wrap:wrap;gap:24px;align-items:flex-start;margin:16px 0}
-.chart{min-width:360px}
+.chart{min-width:340px}
 table{border-collapse:collapse;font-size:0.86em;margin:8px 0}
 caption{text-align:left;font-weight:600;padding:4px 0}
 th,td{border:1px solid #ccc;padding:3px 7px;vertical-align:top}th{background:#f2f5f9;text-align:left}

@@ -71,7 +71,7 @@ Json pareto_spec(const std::string& coefficient, const std::vector<Contributor>&
   }
   const std::string y_title = fmt::format("share of u²({}) [%]", coefficient);
   return {{"title", fmt::format("{}: where the variance comes from", coefficient)},
-          {"width", 340},
+          {"width", 300},
           {"height", 220},
           {"data", {{"values", values}}},
           {"encoding",
@@ -128,17 +128,17 @@ std::string coefficient_table(const Doc& doc, const Json& errors_doc_json, std::
                      num_cell(doc, c.pointer + "/effect/" + id, 4), num_cell(doc, c.pointer + "/share/" + id, 3, 100));
   }
   if (!rest_effects.empty())
-    t += fmt::format("<tr class=\"rest\">{}<td></td><td></td><td></td><td></td><td></td>{}{}</tr>\n",
-                     text_cell(fmt::format("the other {} sources (root-sum-square)", rest_effects.size())),
+    t += fmt::format("<tr class=\"rest\"><td colspan=\"6\">{}</td>{}{}</tr>\n",
+                     escape(fmt::format("the other {} sources (root-sum-square)", rest_effects.size())),
                      combined_cell(doc, rest_effects, "rss", 4, 1.0), combined_cell(doc, rest_shares, "sum", 3, 100));
   const std::string c = fmt::format("/coefficients/{}", k);
   t += fmt::format(
-      "<tr class=\"total\"><td>combined standard uncertainty u<sub>c</sub> (LPU)</td><td></td><td></td><td></td>"
-      "<td></td><td></td>{}<td></td></tr>\n",
+      "<tr class=\"total\"><td colspan=\"6\">combined standard uncertainty u<sub>c</sub> (LPU)</td>{}<td></td>"
+      "</tr>\n",
       num_cell(doc, c + "/standard_uncertainty"));
   t += fmt::format(
-      "<tr class=\"total\"><td>expanded uncertainty U = k u<sub>c</sub>, k = {}</td><td></td><td></td><td></td>"
-      "<td></td><td></td>{}<td></td></tr>\n</table>\n",
+      "<tr class=\"total\"><td colspan=\"6\">expanded uncertainty U = k u<sub>c</sub>, k = {}</td>{}<td></td>"
+      "</tr>\n</table>\n",
       num_span(doc, "/coverage_factor", 3), num_cell(doc, c + "/expanded_uncertainty"));
   return t;
 }

@@ -38,7 +38,7 @@ Json histogram_spec(const std::string& id, const Json& c, double M, double p) {
   const Json x = {{"field", "x0"}, {"type", "quantitative"}, {"title", x_title},
                   {"scale", {{"domain", {lowest, highest}}, {"nice", false}}}};
   return {{"title", fmt::format("{}: distribution of {} trials", id, M)},
-          {"width", 340},
+          {"width", 320},
           {"height", 220},
           {"layer",
            Json::array(

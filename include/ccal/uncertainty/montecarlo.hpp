@@ -60,7 +60,9 @@
 // from stage to stage, so up to about twice that), plus O(n_outputs²) for the covariance, O(n_sources +
 // n_outputs) per thread, and in the adaptive procedure a partly sorted copy of one stage's values per thread
 // (8·stage size bytes each). Only the tails of the values that the intervals read are sorted (the (1 − p)M
-// lowest and highest), in place, after the covariance.
+// lowest and highest), in place, after the covariance. keep_samples copies the values in trial order before
+// that sort: 8·M·n_outputs bytes more (24 MB for 10⁶ trials of 3 outputs); a file of them is written from
+// that copy in blocks (render/montecarlo_samples.hpp), so the file's text is never all in memory.
 //
 // Threads: an OpenMP parallel loop over the trials of a stage, each thread with its own draw and output
 // buffers (nothing is allocated by the engine inside the loop; the TrialFunction must be safe to call
