@@ -105,7 +105,8 @@ void bind_uncertainty(py::module_& m) {
         return verbs::monte_carlo(cfg, o);
       },
       py::arg("config"), py::arg("trials") = verbs::MonteCarloOptions{}.trials,
-      py::arg("seed") = verbs::MonteCarloOptions{}.seed, py::arg("threads") = verbs::MonteCarloOptions{}.threads,
+      py::arg("seed") = verbs::MonteCarloOptions{}.seed,
+      py::arg("threads") = verbs::MonteCarloOptions{}.threads,
       py::arg("digits") = verbs::MonteCarloOptions{}.digits,
       py::arg("coverage_probability") = verbs::MonteCarloOptions{}.coverage_probability,
       py::arg("mode") = py::none(), py::arg("keep_samples") = verbs::MonteCarloOptions{}.keep_samples,

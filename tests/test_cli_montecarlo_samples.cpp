@@ -169,7 +169,8 @@ TEST_F(SamplesCli, AFailedValidationAtFixedMSaysWhetherSamplingExplainsIt) {
     EXPECT_EQ(lpu.at("explained_by_sampling").get<bool>(), excess <= 3 * se);
     EXPECT_NE(t.out.find(id + ": not validated"), std::string::npos) << t.out;
     if (excess <= 3 * se) {
-      EXPECT_NE(t.out.find("sampling error explains it; run `ccal montecarlo --digits 2`"), std::string::npos);
+      EXPECT_NE(t.out.find("sampling error explains it; run `ccal montecarlo --digits 2`"),
+                std::string::npos);
       // M' = M (3 se/δ)², rounded up to 2 digits.
       const double needed = 10000 * std::pow(3 * se / lpu.at("delta").get<double>(), 2);
       EXPECT_GE(lpu.at("trials_needed").get<double>(), needed);

@@ -36,7 +36,8 @@ TEST(MonteCarloDistribution, SamplesHistogramAndEndErrorOfANormalOutput) {
   long double s = 0, q = 0;
   for (Eigen::Index i = 0; i < r.samples.rows(); ++i) s += r.samples(i, 0);
   const long double mean = s / M;
-  for (Eigen::Index i = 0; i < r.samples.rows(); ++i) q += (r.samples(i, 0) - mean) * (r.samples(i, 0) - mean);
+  for (Eigen::Index i = 0; i < r.samples.rows(); ++i)
+    q += (r.samples(i, 0) - mean) * (r.samples(i, 0) - mean);
   const OutputSummary& y = r.outputs[0];
   EXPECT_NEAR(double(mean), y.mean, 1e-13 * sigma);  // rounding of two summation orders
   EXPECT_NEAR(std::sqrt(double(q / (M - 1))), y.std_dev, 1e-13 * sigma);
@@ -59,7 +60,8 @@ TEST(MonteCarloDistribution, SamplesHistogramAndEndErrorOfANormalOutput) {
   // order-statistic estimate from the ~2k values around the end has a relative error of about 1/√k
   // (k = √(Mα) ≈ 70 here): within 40 %.
   const double alpha = 0.025, z = 1.959963984540054;
-  const double closed_form = sigma * std::sqrt(alpha * (1 - alpha) / M) / boost::math::pdf(boost::math::normal(), z);
+  const double closed_form =
+      sigma * std::sqrt(alpha * (1 - alpha) / M) / boost::math::pdf(boost::math::normal(), z);
   EXPECT_NEAR(y.interval_end_std_error, closed_form, 0.4 * closed_form);
 }
 

@@ -1,13 +1,13 @@
 // ccal montecarlo: propagation of the configured tolerances to the identified coefficients by the Monte Carlo
 // method of JCGM 101 (the engine of ccal/uncertainty/montecarlo.hpp), with the LPU of `ccal budget` for its
 // validation.
+#include <fmt/format.h>
+
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string_view>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/render/montecarlo.hpp"
@@ -91,34 +91,35 @@ Command add_montecarlo(CLI::App& app) {
       "      the adaptive procedure: stages of 10000 trials until u(y) is stable to 2 digits\n"
       "  ccal montecarlo --samples-out samples.npy\n"
       "      also every trial's K0, K2, K3 (numpy.load reads it)\n");
-  return {cmd, [o] {
-            if (!o->old_coverage.empty())
-              throw InputError(
-                  "--coverage: no longer accepted, as it meant the factor k in one command and a probability in "
-                  "others; accepted: --coverage-probability p (e.g. 0.95) for the intervals");
-            if (!o->samples_out.empty() && o->samples_out == o->output.path)
-              throw InputError(fmt::format(
-                  "--samples-out: '{}' is also the -o file; accepted: two different files", o->samples_out));
-            verbs::MonteCarloOptions mo;
-            if (!o->mode.empty()) mo.mode = parse_mode(o->mode);
-            mo.trials = o->trials;
-            mo.seed = o->seed;
-            mo.threads = o->threads;
-            mo.digits = o->digits;
-            mo.max_trials = o->max_trials;
-            mo.coverage_probability = o->coverage_probability;
-            mo.progress = true;  // drawn only when standard error is a terminal
-            mo.keep_samples = !o->samples_out.empty();
-            const verbs::MonteCarloResult r = verbs::monte_carlo(load_config_or_example(o->config), mo);
-            const std::string& f = o->output.format;
-            std::vector<ExtraFile> extra;
-            if (!o->samples_out.empty()) extra.push_back(samples_file(o->samples_out, r));
-            write_outputs(o->output,
-                          f == "json"  ? render::json(r)
-                          : f == "csv" ? render::csv(r)
-                                       : render::text(r),
-                          extra);
-          }};
+  return {
+      cmd, [o] {
+        if (!o->old_coverage.empty())
+          throw InputError(
+              "--coverage: no longer accepted, as it meant the factor k in one command and a probability in "
+              "others; accepted: --coverage-probability p (e.g. 0.95) for the intervals");
+        if (!o->samples_out.empty() && o->samples_out == o->output.path)
+          throw InputError(fmt::format(
+              "--samples-out: '{}' is also the -o file; accepted: two different files", o->samples_out));
+        verbs::MonteCarloOptions mo;
+        if (!o->mode.empty()) mo.mode = parse_mode(o->mode);
+        mo.trials = o->trials;
+        mo.seed = o->seed;
+        mo.threads = o->threads;
+        mo.digits = o->digits;
+        mo.max_trials = o->max_trials;
+        mo.coverage_probability = o->coverage_probability;
+        mo.progress = true;  // drawn only when standard error is a terminal
+        mo.keep_samples = !o->samples_out.empty();
+        const verbs::MonteCarloResult r = verbs::monte_carlo(load_config_or_example(o->config), mo);
+        const std::string& f = o->output.format;
+        std::vector<ExtraFile> extra;
+        if (!o->samples_out.empty()) extra.push_back(samples_file(o->samples_out, r));
+        write_outputs(o->output,
+                      f == "json"  ? render::json(r)
+                      : f == "csv" ? render::csv(r)
+                                   : render::text(r),
+                      extra);
+      }};
 }
 
 }  // namespace ccal::cli

@@ -44,7 +44,8 @@ std::string config_text(const std::string& path) {
 // Now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention) when it is set.
 std::string date_utc() {
   std::time_t t = std::time(nullptr);
-  if (const char* e = std::getenv("SOURCE_DATE_EPOCH"); e && *e) t = std::time_t(std::strtoll(e, nullptr, 10));
+  if (const char* e = std::getenv("SOURCE_DATE_EPOCH"); e && *e)
+    t = std::time_t(std::strtoll(e, nullptr, 10));
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(t));
 }
 
@@ -58,17 +59,21 @@ Command add_report(CLI::App& app) {
   cmd->add_option("--mode", o->mode,
                   "Kinematics: exact or paper; default: the configuration's [identification] mode")
       ->check(CLI::IsMember({"exact", "paper"}));
-  cmd->add_option("--trials", o->trials, "Monte Carlo trials M (default 1000000; with --digits, the stage size)")
+  cmd->add_option("--trials", o->trials,
+                  "Monte Carlo trials M (default 1000000; with --digits, the stage size)")
       ->type_name("N");
-  cmd->add_option("--seed", o->seed, "Seed of the Monte Carlo")->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", o->seed, "Seed of the Monte Carlo")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default)")->capture_default_str();
   cmd->add_option("--digits", o->digits, "0: fixed M; 1..6: the adaptive procedure (JCGM 101 §7.9)")
       ->capture_default_str();
   cmd->add_option("--coverage-probability", o->coverage_probability, "Coverage probability of the intervals")
       ->capture_default_str()
       ->type_name("p");
-  cmd->add_option("--run", o->run, "Run whose sensed input is drawn (name or 1-based index); default: the "
-                                   "highest g-level");
+  cmd->add_option("--run", o->run,
+                  "Run whose sensed input is drawn (name or 1-based index); default: the "
+                  "highest g-level");
   o->output.format = "html";
   cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
       ->type_name("FILE.html");

@@ -58,8 +58,9 @@ void set_command_line(int argc, char** argv) {
   text.clear();
   for (int k = 0; k < argc; ++k) {
     const std::string_view a = k == 0 ? std::string_view("ccal") : std::string_view(argv[k]);
-    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                         "0123456789-_=.,/:+@%") == std::string_view::npos;
+    const bool plain = !a.empty() && a.find_first_not_of(
+                                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                         "0123456789-_=.,/:+@%") == std::string_view::npos;
     std::string quoted;
     if (!plain) {
       quoted = "'";

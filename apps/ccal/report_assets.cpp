@@ -9,11 +9,14 @@
 asm(".pushsection .rodata\n"
     ".global ccal_report_scripts_begin\n"
     "ccal_report_scripts_begin:\n"
-    ".incbin \"" CCAL_REPORT_ASSETS_DIR "/vega/build/vega.min.js\"\n"
+    ".incbin \"" CCAL_REPORT_ASSETS_DIR
+    "/vega/build/vega.min.js\"\n"
     ".byte 10\n"
-    ".incbin \"" CCAL_REPORT_ASSETS_DIR "/vega-lite/build/vega-lite.min.js\"\n"
+    ".incbin \"" CCAL_REPORT_ASSETS_DIR
+    "/vega-lite/build/vega-lite.min.js\"\n"
     ".byte 10\n"
-    ".incbin \"" CCAL_REPORT_ASSETS_DIR "/vega-embed/build/vega-embed.min.js\"\n"
+    ".incbin \"" CCAL_REPORT_ASSETS_DIR
+    "/vega-embed/build/vega-embed.min.js\"\n"
     ".byte 10\n"
     ".global ccal_report_scripts_end\n"
     "ccal_report_scripts_end:\n"
@@ -26,7 +29,8 @@ extern "C" const char ccal_report_scripts_end[];
 
 namespace ccal::cli {
 std::string_view report_scripts() noexcept {
-  return {ccal_report_scripts_begin, static_cast<std::size_t>(ccal_report_scripts_end - ccal_report_scripts_begin)};
+  return {ccal_report_scripts_begin,
+          static_cast<std::size_t>(ccal_report_scripts_end - ccal_report_scripts_begin)};
 }
 }  // namespace ccal::cli
 #else

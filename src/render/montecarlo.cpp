@@ -20,7 +20,9 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-std::string interval(double low, double high) { return fmt::format("[{}, {}]", number(low, 5), number(high, 5)); }
+std::string interval(double low, double high) {
+  return fmt::format("[{}, {}]", number(low, 5), number(high, 5));
+}
 
 double per_second(const MonteCarloResult& r) { return r.seconds > 0 ? double(r.trials) / r.seconds : 0.0; }
 
@@ -43,7 +45,8 @@ std::vector<std::string> advice_of(const BudgetResult& b, const MonteCarloResult
     const ValidationDiagnosis d = validation_diagnosis(s, r.trials);
     const double f = b.display_scale[k];
     const std::string measured = fmt::format(
-        "{}: not validated: max(d_low, d_high) exceeds delta by {} {}, {:.2g} standard errors of the interval "
+        "{}: not validated: max(d_low, d_high) exceeds delta by {} {}, {:.2g} standard errors of the "
+        "interval "
         "ends ({} at M = {})",
         s.name, number(d.excess * f, 2), b.units[k], d.excess_in_std_errors,
         number(s.interval_end_std_error * f, 2), r.trials);

@@ -19,7 +19,8 @@ using namespace report_html;
 constexpr std::size_t kTopSources = 8;  // rows of each budget table before "the other sources"
 
 constexpr const char* kStyle = R"(
-body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:24px auto;max-width:1440px;color:#222;padding:0 16px}
+body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:24px auto;
+max-width:1440px;color:#222;padding:0 16px}
 h1{font-size:1.6em;margin-bottom:0}h2{border-bottom:2px solid #4c78a8;padding-bottom:4px;margin-top:2em}
 .sub{color:#555;margin-top:4px}
 .pair{display:flex;flex-wrap:wrap;gap:24px;align-items:flex-start;margin:16px 0}
@@ -57,7 +58,8 @@ constexpr const char* kDraw = R"(
 // "<\/script" (the same characters to JavaScript, inside a string or a regular expression alike).
 std::string script_text(std::string_view scripts) {
   std::string out(scripts);
-  for (std::size_t at = 0; (at = out.find("</script", at)) != std::string::npos; at += 2) out.replace(at, 2, "<\\/");
+  for (std::size_t at = 0; (at = out.find("</script", at)) != std::string::npos; at += 2)
+    out.replace(at, 2, "<\\/");
   return out;
 }
 
@@ -72,17 +74,20 @@ std::string command_text(const std::vector<std::string>& args, const Config& con
 
 std::string summary(const Doc& budget, const Doc& mc) {
   std::string t =
-      "<table class=\"summary\"><caption>Summary per identified coefficient</caption>\n<tr><th>coefficient</th>"
-      "<th>unit</th><th>u<sub>c</sub> (LPU)</th><th>U (LPU)</th><th>Monte Carlo u(y)</th><th colspan=\"2\">Monte "
+      "<table class=\"summary\"><caption>Summary per identified "
+      "coefficient</caption>\n<tr><th>coefficient</th>"
+      "<th>unit</th><th>u<sub>c</sub> (LPU)</th><th>U (LPU)</th><th>Monte Carlo u(y)</th><th "
+      "colspan=\"2\">Monte "
       "Carlo 95 % interval</th><th>LPU validated</th></tr>\n";
   for (std::size_t k = 0; k < budget.json["coefficients"].size(); ++k) {
     const Json& c = budget.json["coefficients"][k];
     const std::string id = c["id"].get<std::string>(), b = fmt::format("/coefficients/{}", k),
                       m = "/coefficients/" + id;
     const bool ok = mc.json["coefficients"][id]["lpu"]["validated"].get<bool>();
-    t += "<tr>" + text_cell(id) + text_cell(c["unit"].get<std::string>()) + num_cell(budget, b + "/standard_uncertainty") +
-         num_cell(budget, b + "/expanded_uncertainty") + num_cell(mc, m + "/std_dev") +
-         num_cell(mc, m + "/symmetric_interval/0") + num_cell(mc, m + "/symmetric_interval/1") +
+    t += "<tr>" + text_cell(id) + text_cell(c["unit"].get<std::string>()) +
+         num_cell(budget, b + "/standard_uncertainty") + num_cell(budget, b + "/expanded_uncertainty") +
+         num_cell(mc, m + "/std_dev") + num_cell(mc, m + "/symmetric_interval/0") +
+         num_cell(mc, m + "/symmetric_interval/1") +
          fmt::format("<td class=\"{}\">{}</td></tr>\n", ok ? "good" : "bad", ok ? "yes" : "no");
   }
   return t + "</table>\n";
@@ -94,13 +99,14 @@ std::string provenance_section(const verbs::ReportResult& r, const ReportProvena
       "<tr><th>program</th><td>{}</td></tr>\n<tr><th>command line</th><td><code>{}</code></td></tr>\n"
       "<tr><th>date (UTC)</th><td>{}</td></tr>\n<tr><th>configuration</th><td><code>{}</code></td></tr>\n"
       "<tr><th>SHA-256 of the configuration</th><td><code id=\"config-sha256\">{}</code></td></tr>\n"
-      "<tr><th>the same numbers from</th><td><code id=\"cmd-budget\">{}</code><br><code id=\"cmd-montecarlo\">{}"
+      "<tr><th>the same numbers from</th><td><code id=\"cmd-budget\">{}</code><br><code "
+      "id=\"cmd-montecarlo\">{}"
       "</code><br><code>ccal force … --run {} --time T</code> (the input table)</td></tr>\n</table>\n"
       "<h3>The configuration ({} bytes)</h3>\n<pre id=\"config-text\">{}</pre>\n</section>\n",
       escape(version_line()), escape(p.command_line), escape(p.date_utc), escape(r.config.source),
       sha256_hex(p.config_text), escape(command_text(p.budget_command, r.config)),
-      escape(command_text(p.montecarlo_command, r.config)), r.sensed_input.run_index + 1, p.config_text.size(),
-      escape(p.config_text));
+      escape(command_text(p.montecarlo_command, r.config)), r.sensed_input.run_index + 1,
+      p.config_text.size(), escape(p.config_text));
 }
 
 }  // namespace
@@ -155,7 +161,8 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
 
   std::string page = fmt::format(
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>ccal report: {0}</title>\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>ccal report: "
+      "{0}</title>\n"
       "<style>{1}</style>\n</head>\n<body>\n<h1>Centrifuge calibration: uncertainty report</h1>\n"
       "<p class=\"sub\">{0} · {2} mode · {3} · {4}</p>\n",
       escape(r.config.source), kStyle, escape(budget_json["mode"].get<std::string>()), escape(p.date_utc),
@@ -165,7 +172,8 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   page += setup_section(r.config, p.config_text);
   page += budget_section(budget, errors, kTopSources);
   for (const auto& s : extra_sections)
-    page += "<section id=\"" + escape(s.id) + "\"><h2>" + escape(s.title) + "</h2>\n" + s.html + "</section>\n";
+    page +=
+        "<section id=\"" + escape(s.id) + "\"><h2>" + escape(s.title) + "</h2>\n" + s.html + "</section>\n";
   page += montecarlo_section(mc, advice);
   page += paper_section(budget, kTopSources);
   page += sensed_input_section(r.sensed_input, instants);

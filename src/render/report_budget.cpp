@@ -32,7 +32,8 @@ std::vector<Contributor> by_share(const Json& budget, const std::string& coeffic
       all.push_back({fmt::format("/rate_noise/{}", s), j["id"].get<std::string>(),
                      j["share"][coefficient].get<double>(), true});
     }
-  std::stable_sort(all.begin(), all.end(), [](const Contributor& a, const Contributor& b) { return a.share > b.share; });
+  std::stable_sort(all.begin(), all.end(),
+                   [](const Contributor& a, const Contributor& b) { return a.share > b.share; });
   return all;
 }
 
@@ -48,8 +49,9 @@ std::string combined_cell(const Doc& doc, const std::vector<std::string>& pointe
     list += (list.empty() ? "" : " ") + p;
   }
   const double value = (kind == "rss" ? std::sqrt(sum) : sum) * scale;
-  return fmt::format("<td class=\"num\" data-{}=\"{}:{}\" data-digits=\"{}\" data-scale=\"{:g}\">{:.{}g}</td>",
-                     kind, escape(doc.name), escape(list), digits, scale, value, digits);
+  return fmt::format(
+      "<td class=\"num\" data-{}=\"{}:{}\" data-digits=\"{}\" data-scale=\"{:g}\">{:.{}g}</td>", kind,
+      escape(doc.name), escape(list), digits, scale, value, digits);
 }
 
 Json pareto_spec(const std::string& coefficient, const std::vector<Contributor>& top, double rest_share,
@@ -59,8 +61,8 @@ Json pareto_spec(const std::string& coefficient, const std::vector<Contributor>&
   int order = 0;
   for (const auto& c : top) {
     cumulative += c.share;
-    values.push_back({{"source", c.id}, {"share", 100 * c.share}, {"cumulative", 100 * cumulative},
-                      {"order", ++order}});
+    values.push_back(
+        {{"source", c.id}, {"share", 100 * c.share}, {"cumulative", 100 * cumulative}, {"order", ++order}});
   }
   if (rest_count > 0) {
     cumulative += rest_share;
@@ -70,23 +72,30 @@ Json pareto_spec(const std::string& coefficient, const std::vector<Contributor>&
                       {"order", ++order}});
   }
   const std::string y_title = fmt::format("share of u²({}) [%]", coefficient);
-  return {{"title", fmt::format("{}: where the variance comes from", coefficient)},
-          {"width", 300},
-          {"height", 220},
-          {"data", {{"values", values}}},
-          {"encoding",
-           {{"x",
-             {{"field", "source"}, {"type", "nominal"}, {"sort", {{"field", "order"}}}, {"title", nullptr},
-              {"axis", {{"labelAngle", -40}}}}}}},
-          {"layer",
-           Json::array(
-               {{{"mark", {{"type", "bar"}, {"color", "#4c78a8"}}},
-                 {"encoding",
-                  {{"y", {{"field", "share"}, {"type", "quantitative"}, {"title", y_title},
-                          {"scale", {{"domain", {0, 100}}}}}},
-                   {"tooltip", Json::array({{{"field", "source"}}, {{"field", "share"}, {"format", ".3g"}}})}}}},
-                {{"mark", {{"type", "line"}, {"color", "#e45756"}, {"point", true}}},
-                 {"encoding", {{"y", {{"field", "cumulative"}, {"type", "quantitative"}}}}}}})}};
+  return {
+      {"title", fmt::format("{}: where the variance comes from", coefficient)},
+      {"width", 300},
+      {"height", 220},
+      {"data", {{"values", values}}},
+      {"encoding",
+       {{"x",
+         {{"field", "source"},
+          {"type", "nominal"},
+          {"sort", {{"field", "order"}}},
+          {"title", nullptr},
+          {"axis", {{"labelAngle", -40}}}}}}},
+      {"layer",
+       Json::array(
+           {{{"mark", {{"type", "bar"}, {"color", "#4c78a8"}}},
+             {"encoding",
+              {{"y",
+                {{"field", "share"},
+                 {"type", "quantitative"},
+                 {"title", y_title},
+                 {"scale", {{"domain", {0, 100}}}}}},
+               {"tooltip", Json::array({{{"field", "source"}}, {{"field", "share"}, {"format", ".3g"}}})}}}},
+            {{"mark", {{"type", "line"}, {"color", "#e45756"}, {"point", true}}},
+             {"encoding", {{"y", {{"field", "cumulative"}, {"type", "quantitative"}}}}}}})}};
 }
 
 // A source's SI unit as a column shows it: a dimensionless (relative) one is "1".
@@ -99,7 +108,8 @@ std::string coefficient_table(const Doc& doc, const Json& errors_doc_json, std::
   const std::string unit = budget["coefficients"][k]["unit"].get<std::string>();
   const Doc errors{"errors", errors_doc_json};
   std::string t = fmt::format(
-      "<table class=\"budget\" data-coefficient=\"{0}\"><caption>{0} [{1}]: uncertainty budget (JCGM 100), largest "
+      "<table class=\"budget\" data-coefficient=\"{0}\"><caption>{0} [{1}]: uncertainty budget (JCGM 100), "
+      "largest "
       "sources</caption>\n<tr><th>source</th><th>x<sub>i</sub></th><th>u(x<sub>i</sub>)</th><th>unit</th>"
       "<th>distribution</th><th>c<sub>i</sub> [{1} per unit]</th><th>u<sub>i</sub>(y) [{1}]</th>"
       "<th>share [%]</th></tr>\n",
@@ -113,27 +123,31 @@ std::string coefficient_table(const Doc& doc, const Json& errors_doc_json, std::
       continue;
     }
     if (c.type_a) {
-      t += fmt::format("<tr>{}<td></td><td></td><td></td>{}<td></td>{}{}</tr>\n", text_cell(c.id + " (Type A)"),
-                       text_cell("rate noise"), num_cell(doc, c.pointer + "/u/" + id),
+      t += fmt::format("<tr>{}<td></td><td></td><td></td>{}<td></td>{}{}</tr>\n",
+                       text_cell(c.id + " (Type A)"), text_cell("rate noise"),
+                       num_cell(doc, c.pointer + "/u/" + id),
                        num_cell(doc, c.pointer + "/share/" + id, 3, 100));
       continue;
     }
     const Json& s = budget.at(Json::json_pointer(c.pointer));
     const std::string group = s["group"].get<std::string>();
-    t += fmt::format("<tr>{}{}{}{}{}{}{}{}</tr>\n", text_cell(c.id + (group.empty() ? "" : " (" + group + ")")),
-                     num_cell(errors, "/" + c.id, 4), num_cell(doc, c.pointer + "/standard_uncertainty_si", 4),
-                     text_cell(unit_text(s["unit_si"].get<std::string>())),
-                     text_cell(s["distribution"].get<std::string>()),
-                     num_cell(doc, c.pointer + "/sensitivity_per_si_unit/" + id, 4),
-                     num_cell(doc, c.pointer + "/effect/" + id, 4), num_cell(doc, c.pointer + "/share/" + id, 3, 100));
+    t += fmt::format(
+        "<tr>{}{}{}{}{}{}{}{}</tr>\n", text_cell(c.id + (group.empty() ? "" : " (" + group + ")")),
+        num_cell(errors, "/" + c.id, 4), num_cell(doc, c.pointer + "/standard_uncertainty_si", 4),
+        text_cell(unit_text(s["unit_si"].get<std::string>())),
+        text_cell(s["distribution"].get<std::string>()),
+        num_cell(doc, c.pointer + "/sensitivity_per_si_unit/" + id, 4),
+        num_cell(doc, c.pointer + "/effect/" + id, 4), num_cell(doc, c.pointer + "/share/" + id, 3, 100));
   }
   if (!rest_effects.empty())
     t += fmt::format("<tr class=\"rest\"><td colspan=\"6\">{}</td>{}{}</tr>\n",
                      escape(fmt::format("the other {} sources (root-sum-square)", rest_effects.size())),
-                     combined_cell(doc, rest_effects, "rss", 4, 1.0), combined_cell(doc, rest_shares, "sum", 3, 100));
+                     combined_cell(doc, rest_effects, "rss", 4, 1.0),
+                     combined_cell(doc, rest_shares, "sum", 3, 100));
   const std::string c = fmt::format("/coefficients/{}", k);
   t += fmt::format(
-      "<tr class=\"total\"><td colspan=\"6\">combined standard uncertainty u<sub>c</sub> (LPU)</td>{}<td></td>"
+      "<tr class=\"total\"><td colspan=\"6\">combined standard uncertainty u<sub>c</sub> "
+      "(LPU)</td>{}<td></td>"
       "</tr>\n",
       num_cell(doc, c + "/standard_uncertainty"));
   t += fmt::format(
@@ -149,7 +163,8 @@ std::string budget_section(const Doc& doc, const Json& errors, std::size_t top) 
   const Json& budget = doc.json;
   std::string out =
       "<section id=\"budget\"><h2>Uncertainty budget</h2>\n<p>Each source's standard uncertainty "
-      "u(x<sub>i</sub>) (SI unit of the source), its sensitivity coefficient c<sub>i</sub> = ∂y/∂x<sub>i</sub> "
+      "u(x<sub>i</sub>) (SI unit of the source), its sensitivity coefficient c<sub>i</sub> = "
+      "∂y/∂x<sub>i</sub> "
       "through kinematics, reduction and least squares, its contribution u<sub>i</sub>(y) = c<sub>i</sub> "
       "u(x<sub>i</sub>) and its share of u<sub>c</sub>²(y); x<sub>i</sub> is the configured [errors] value "
       "(SI). From <code>ccal budget</code> (" +
@@ -188,7 +203,9 @@ std::string paper_section(const Doc& doc, std::size_t top) {
       const std::string id = c["id"].get<std::string>();
       const bool counterpart = s.value("paper_counterpart", true);
       t += num_cell(doc, p + "/effect/" + id, 3) + num_cell(doc, p + "/paper_effect/" + id, 3) +
-           text_cell(!counterpart ? "no paper rule" : s["exact_paper_disagree"][id].get<bool>() ? "differ" : "agree");
+           text_cell(!counterpart                                ? "no paper rule"
+                     : s["exact_paper_disagree"][id].get<bool>() ? "differ"
+                                                                 : "agree");
       for (const char* model : {"exact", "paper"})
         values.push_back({{"source", s["id"]},
                           {"coefficient", id + " [" + c["unit"].get<std::string>() + "]"},
@@ -208,11 +225,17 @@ std::string paper_section(const Doc& doc, std::size_t top) {
         {"height", 200},
         {"mark", "bar"},
         {"encoding",
-         {{"x", {{"field", "source"}, {"type", "nominal"}, {"title", nullptr}, {"sort", nullptr},
-                 {"axis", {{"labelAngle", -40}}}}},
+         {{"x",
+           {{"field", "source"},
+            {"type", "nominal"},
+            {"title", nullptr},
+            {"sort", nullptr},
+            {"axis", {{"labelAngle", -40}}}}},
           {"xOffset", {{"field", "model"}, {"type", "nominal"}}},
-          {"y", {{"field", "effect"}, {"type", "quantitative"}, {"title", "effect at u(x) (coefficient unit)"}}},
-          {"color", {{"field", "model"}, {"type", "nominal"}, {"scale", {{"range", {"#4c78a8", "#f58518"}}}}}}}}}}};
+          {"y",
+           {{"field", "effect"}, {"type", "quantitative"}, {"title", "effect at u(x) (coefficient unit)"}}},
+          {"color",
+           {{"field", "model"}, {"type", "nominal"}, {"scale", {{"range", {"#4c78a8", "#f58518"}}}}}}}}}}};
   return "<section id=\"paper\"><h2>Exact chain against the paper's first-order rules</h2>\n<p>The same "
          "sources through the paper's first-order rules (Wang &amp; Ren 2014); \"differ\": by more than a "
          "factor of 2 or in sign where it matters (<code>ccal budget</code>).</p>\n<div class=\"pair\">\n" +

@@ -17,7 +17,8 @@ Json histogram_spec(const std::string& id, const Json& c, double M, double p) {
   const double lowest = h["lowest"].get<double>(), width = h["bin_width"].get<double>();
   Json bars = Json::array();
   for (std::size_t b = 0; b < h["counts"].size(); ++b)
-    bars.push_back({{"x0", lowest + width * double(b)}, {"x1", lowest + width * double(b + 1)},
+    bars.push_back({{"x0", lowest + width * double(b)},
+                    {"x1", lowest + width * double(b + 1)},
                     {"trials", h["counts"][b]}});
   const double mu = c["estimate"].get<double>(), u = c["lpu"]["std_uncertainty"].get<double>();
   const double highest = h["highest"].get<double>();
@@ -25,7 +26,8 @@ Json histogram_spec(const std::string& id, const Json& c, double M, double p) {
   if (u > 0)
     for (int k = 0; k <= 160; ++k) {
       const double x = lowest + (highest - lowest) * k / 160.0, z = (x - mu) / u;
-      curve.push_back({{"x", x}, {"trials", M * width * std::exp(-0.5 * z * z) / (u * std::sqrt(2 * std::numbers::pi))}});
+      curve.push_back(
+          {{"x", x}, {"trials", M * width * std::exp(-0.5 * z * z) / (u * std::sqrt(2 * std::numbers::pi))}});
     }
   const std::string pct = fmt::format("{:g} %", 100 * p);
   const std::string mc = "Monte Carlo " + pct, lpu = "LPU " + pct;
@@ -35,7 +37,9 @@ Json histogram_spec(const std::string& id, const Json& c, double M, double p) {
                             {{"x", mu - U}, {"interval", lpu}},
                             {{"x", mu + U}, {"interval", lpu}}});
   const std::string x_title = fmt::format("{} deviation [{}]", id, c["unit"].get<std::string>());
-  const Json x = {{"field", "x0"}, {"type", "quantitative"}, {"title", x_title},
+  const Json x = {{"field", "x0"},
+                  {"type", "quantitative"},
+                  {"title", x_title},
                   {"scale", {{"domain", {lowest, highest}}, {"nice", false}}}};
   return {{"title", fmt::format("{}: distribution of {} trials", id, M)},
           {"width", 320},
@@ -44,23 +48,32 @@ Json histogram_spec(const std::string& id, const Json& c, double M, double p) {
            Json::array(
                {{{"data", {{"values", bars}}},
                  {"mark", {{"type", "bar"}, {"color", "#9ecae9"}}},
-                 {"encoding", {{"x", x}, {"x2", {{"field", "x1"}}},
-                               {"y", {{"field", "trials"}, {"type", "quantitative"}, {"title", "trials per bin"}}},
-                               {"y2", {{"datum", 0}}}}}},
+                 {"encoding",
+                  {{"x", x},
+                   {"x2", {{"field", "x1"}}},
+                   {"y", {{"field", "trials"}, {"type", "quantitative"}, {"title", "trials per bin"}}},
+                   {"y2", {{"datum", 0}}}}}},
                 {{"data", {{"values", curve}}},
                  {"mark", {{"type", "line"}, {"color", "#e45756"}}},
-                 {"encoding", {{"x", {{"field", "x"}, {"type", "quantitative"}}},
-                               {"y", {{"field", "trials"}, {"type", "quantitative"}}}}}},
+                 {"encoding",
+                  {{"x", {{"field", "x"}, {"type", "quantitative"}}},
+                   {"y", {{"field", "trials"}, {"type", "quantitative"}}}}}},
                 {{"data", {{"values", rules}}},
                  {"mark", {{"type", "rule"}, {"strokeWidth", 2}}},
                  {"encoding",
                   {{"x", {{"field", "x"}, {"type", "quantitative"}}},
-                   {"color", {{"field", "interval"}, {"type", "nominal"}, {"title", nullptr},
-                              {"scale", {{"range", {"#54a24b", "#f58518"}}}}, {"legend", {{"orient", "bottom"}}}}},
+                   {"color",
+                    {{"field", "interval"},
+                     {"type", "nominal"},
+                     {"title", nullptr},
+                     {"scale", {{"range", {"#54a24b", "#f58518"}}}},
+                     {"legend", {{"orient", "bottom"}}}}},
                    {"strokeDash", {{"field", "interval"}, {"type", "nominal"}, {"legend", nullptr}}}}}}})}};
 }
 
-std::string row(const std::string& label, const std::string& cells) { return "<tr><th>" + label + "</th>" + cells + "</tr>\n"; }
+std::string row(const std::string& label, const std::string& cells) {
+  return "<tr><th>" + label + "</th>" + cells + "</tr>\n";
+}
 
 std::string coefficient_table(const Doc& doc, const std::string& id, const std::string& advice) {
   const std::string c = "/coefficients/" + id;
@@ -69,12 +82,16 @@ std::string coefficient_table(const Doc& doc, const std::string& id, const std::
                               escape(id), escape(j["unit"].get<std::string>()));
   t += row("mean y", num_cell(doc, c + "/mean") + "<td></td>");
   t += row("standard deviation u(y)", num_cell(doc, c + "/std_dev") + "<td></td>");
-  t += row("symmetric interval", num_cell(doc, c + "/symmetric_interval/0") + num_cell(doc, c + "/symmetric_interval/1"));
-  t += row("shortest interval", num_cell(doc, c + "/shortest_interval/0") + num_cell(doc, c + "/shortest_interval/1"));
+  t += row("symmetric interval",
+           num_cell(doc, c + "/symmetric_interval/0") + num_cell(doc, c + "/symmetric_interval/1"));
+  t += row("shortest interval",
+           num_cell(doc, c + "/shortest_interval/0") + num_cell(doc, c + "/shortest_interval/1"));
   t += row("LPU estimate", num_cell(doc, c + "/estimate") + "<td></td>");
   t += row("LPU u<sub>c</sub>", num_cell(doc, c + "/lpu/std_uncertainty") + "<td></td>");
-  t += row("LPU U<sub>p</sub> = k u<sub>c</sub>", num_cell(doc, c + "/lpu/expanded_uncertainty") + "<td></td>");
-  t += row("d<sub>low</sub>, d<sub>high</sub>", num_cell(doc, c + "/lpu/d_low", 3) + num_cell(doc, c + "/lpu/d_high", 3));
+  t += row("LPU U<sub>p</sub> = k u<sub>c</sub>",
+           num_cell(doc, c + "/lpu/expanded_uncertainty") + "<td></td>");
+  t += row("d<sub>low</sub>, d<sub>high</sub>",
+           num_cell(doc, c + "/lpu/d_low", 3) + num_cell(doc, c + "/lpu/d_high", 3));
   t += row("tolerance δ", num_cell(doc, c + "/lpu/delta", 3) + "<td></td>");
   t += row("sampling error of the ends", num_cell(doc, c + "/lpu/interval_end_std_error", 3) + "<td></td>");
   const bool ok = j["lpu"]["validated"].get<bool>();
@@ -93,8 +110,10 @@ std::string montecarlo_section(const Doc& doc, const std::vector<std::string>& a
   std::string out = fmt::format(
       "<section id=\"montecarlo\"><h2>Monte Carlo distribution (JCGM 101)</h2>\n<p>{} trials"
       " ({}), seed {}: every tolerance drawn from its distribution, the plan simulated and the coefficients "
-      "identified; the bars are the trials' deviations, the red curve the normal distribution the LPU assumes "
-      "(mean the estimate, standard deviation u<sub>c</sub>); the rules mark the Monte Carlo probabilistically "
+      "identified; the bars are the trials' deviations, the red curve the normal distribution the LPU "
+      "assumes "
+      "(mean the estimate, standard deviation u<sub>c</sub>); the rules mark the Monte Carlo "
+      "probabilistically "
       "symmetric {:g} % interval and the LPU's estimate ± U<sub>p</sub>. The LPU is validated when both ends "
       "agree within δ (§8). From <code>ccal montecarlo</code>.</p>\n",
       num_span(doc, "/trials", 12), j["adaptive"].get<bool>() ? "adaptive procedure" : "fixed M",
@@ -111,12 +130,14 @@ std::string montecarlo_section(const Doc& doc, const std::vector<std::string>& a
 std::string sensed_input_section(const verbs::SensedInputSeries& s, const std::vector<Json>& instants) {
   Json values = Json::array();
   for (std::size_t i = 0; i < s.time.size(); ++i)
-    for (const auto& [axis, v] : {std::pair{"IA", s.ia[i]}, std::pair{"PA", s.pa[i]}, std::pair{"OA", s.oa[i]}})
+    for (const auto& [axis, v] :
+         {std::pair{"IA", s.ia[i]}, std::pair{"PA", s.pa[i]}, std::pair{"OA", s.oa[i]}})
       values.push_back({{"t", s.time[i]}, {"axis", axis}, {"f", v}});
   const Json spec = {
       {"title", fmt::format("Specific force sensed in run {} ({:g} g)", s.run_name, s.g_level)},
       {"data", {{"values", values}}},
-      {"facet", {{"row", {{"field", "axis"}, {"type", "nominal"}, {"sort", {"IA", "PA", "OA"}}, {"title", nullptr}}}}},
+      {"facet",
+       {{"row", {{"field", "axis"}, {"type", "nominal"}, {"sort", {"IA", "PA", "OA"}}, {"title", nullptr}}}}},
       {"resolve", {{"scale", {{"y", "independent"}}}}},
       {"spec",
        {{"width", 420},
@@ -127,7 +148,8 @@ std::string sensed_input_section(const verbs::SensedInputSeries& s, const std::v
           {"y", {{"field", "f"}, {"type", "quantitative"}, {"title", "[g]"}, {"scale", {{"zero", false}}}}},
           {"color", {{"field", "axis"}, {"type", "nominal"}, {"legend", nullptr}}}}}}}};
   std::string t =
-      "<table class=\"input\"><caption>The exact input at three instants (<code>ccal force</code>)</caption>\n"
+      "<table class=\"input\"><caption>The exact input at three instants (<code>ccal "
+      "force</code>)</caption>\n"
       "<tr><th>t [s]</th><th>IA [g]</th><th>PA [g]</th><th>OA [g]</th><th>IA, first order [g]</th></tr>\n";
   for (std::size_t i = 0; i < instants.size(); ++i) {
     const Doc d{fmt::format("force{}", i), instants[i]};
@@ -138,13 +160,15 @@ std::string sensed_input_section(const verbs::SensedInputSeries& s, const std::v
   t += "</table>\n";
   const bool whole = s.window >= s.duration;
   return fmt::format(
-      "<section id=\"input\"><h2>The sensed input over one run</h2>\n<p>Run {} ({:g} g, {:g} s): the specific "
+      "<section id=\"input\"><h2>The sensed input over one run</h2>\n<p>Run {} ({:g} g, {:g} s): the "
+      "specific "
       "force along the instrument's input (IA), pendulous (PA) and output (OA) axes from the exact kinematic "
       "chain with the configured [errors], {}.</p>\n<div class=\"pair\">\n{}{}</div>\n</section>\n",
       escape(s.run_name), s.g_level, s.duration,
       whole ? std::string("over the whole run")
-            : fmt::format("over its first three platform revolutions ({:.4g} s; the rest of the run repeats them)",
-                          s.window),
+            : fmt::format(
+                  "over its first three platform revolutions ({:.4g} s; the rest of the run repeats them)",
+                  s.window),
       chart("sensed-input", spec), t);
 }
 

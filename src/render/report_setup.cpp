@@ -1,10 +1,10 @@
 // The report's set-up section: every table of the configuration with its values as written, so in the
 // configuration's own units ("1e-5 rad", "10 um", "450 s"); the tolerances as one table.
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "report_html.hpp"
 
@@ -20,7 +20,8 @@ std::string written(const toml::node& node) {
   }
   if (const auto* t = node.as_table()) {
     std::string out;
-    for (const auto& [k, v] : *t) out += (out.empty() ? "" : ", ") + std::string(k.str()) + " = " + written(v);
+    for (const auto& [k, v] : *t)
+      out += (out.empty() ? "" : ", ") + std::string(k.str()) + " = " + written(v);
     return out;
   }
   std::ostringstream os;
@@ -64,7 +65,8 @@ std::string rows_table(const std::string& caption, const toml::array& rows) {
 // In the configuration's order of sources (the catalogue's, as the budget reads them).
 std::string tolerance_table(const toml::table& tolerances, const Config& config) {
   std::string out =
-      "<table class=\"setup\"><caption>tolerances (as configured)</caption>\n<tr><th>source</th><th>bound</th>"
+      "<table class=\"setup\"><caption>tolerances (as "
+      "configured)</caption>\n<tr><th>source</th><th>bound</th>"
       "<th>distribution</th><th>group</th><th>cost</th></tr>\n";
   for (const Tolerance& tolerance : config.tolerances) {
     const toml::node* node = tolerances.get(tolerance.id);
@@ -102,7 +104,8 @@ void add_tables(const std::string& name, const toml::table& table, const Config&
 std::string setup_section(const Config& config, std::string_view config_text) {
   std::string out = fmt::format(
       "<section id=\"setup\"><h2>Set-up</h2>\n<p>Configuration <code>{}</code>, every value as written in "
-      "it (its units); the whole file is under <a href=\"#provenance\">Provenance</a>.</p>\n<div class=\"setup-grid\">\n",
+      "it (its units); the whole file is under <a href=\"#provenance\">Provenance</a>.</p>\n<div "
+      "class=\"setup-grid\">\n",
       escape(config.source));
   try {
     const toml::table root = toml::parse(config_text, config.source);

@@ -38,8 +38,8 @@ void compress(std::array<std::uint32_t, 8>& h, const unsigned char* block) {
   }
   std::uint32_t a = h[0], b = h[1], c = h[2], d = h[3], e = h[4], f = h[5], g = h[6], k = h[7];
   for (int t = 0; t < 64; ++t) {  // Σ1, Ch, Σ0, Maj of §4.1.2
-    const std::uint32_t t1 = k + (std::rotr(e, 6) ^ std::rotr(e, 11) ^ std::rotr(e, 25)) +
-                             ((e & f) ^ (~e & g)) + kRound[t] + w[t];
+    const std::uint32_t t1 =
+        k + (std::rotr(e, 6) ^ std::rotr(e, 11) ^ std::rotr(e, 25)) + ((e & f) ^ (~e & g)) + kRound[t] + w[t];
     const std::uint32_t t2 =
         (std::rotr(a, 2) ^ std::rotr(a, 13) ^ std::rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
     k = g;
@@ -68,7 +68,8 @@ std::string sha256_hex(std::string_view bytes) {
   tail[rest] = 0x80;
   const std::size_t tail_size = rest < 56 ? 64 : 128;
   const std::uint64_t bits = std::uint64_t(bytes.size()) * 8;
-  for (int k = 0; k < 8; ++k) tail[tail_size - 1 - std::size_t(k)] = static_cast<unsigned char>(bits >> (8 * k));
+  for (int k = 0; k < 8; ++k)
+    tail[tail_size - 1 - std::size_t(k)] = static_cast<unsigned char>(bits >> (8 * k));
   for (std::size_t k = 0; k < tail_size; k += 64) compress(h, tail.data() + k);
   std::string hex;
   for (std::uint32_t v : h) hex += fmt::format("{:08x}", v);

@@ -273,7 +273,8 @@ void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
         fmt::format("Monte Carlo: {} LPU uncertainties for {} outputs", lpu_std->size(), n_outputs));
   if (!trial) throw InputError("Monte Carlo: no trial function");
   if (options.histogram_bins < 1 || options.histogram_bins > 10000)
-    throw InputError(fmt::format("Monte Carlo: histogram bins must be 1…10000, not {}", options.histogram_bins));
+    throw InputError(
+        fmt::format("Monte Carlo: histogram bins must be 1…10000, not {}", options.histogram_bins));
   check_sources(sources);
 }
 
@@ -379,8 +380,8 @@ void summarise_outputs(std::vector<std::vector<double>>& samples, const std::vec
     s.histogram.lowest = v.front();  // the tails are sorted: the extremes are at the ends
     s.histogram.highest = v.back();
     s.histogram.counts = histogram_counts(v, v.front(), v.back(), histogram_bins);
-    s.interval_end_std_error = std::max(order_statistic_std_error(v, r, 1, M - q),
-                                        order_statistic_std_error(v, r + q, q + 1, M));
+    s.interval_end_std_error =
+        std::max(order_statistic_std_error(v, r, 1, M - q), order_statistic_std_error(v, r + q, q + 1, M));
     s.name = output_names[o];
     s.mean = means[o];
     s.std_dev = std::sqrt(result.covariance(Eigen::Index(o), Eigen::Index(o)));
@@ -524,7 +525,8 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   if (options.keep_samples) {
     result.samples.resize(Eigen::Index(M), Eigen::Index(n_out));
     for (std::size_t o = 0; o < n_out; ++o)
-      result.samples.col(Eigen::Index(o)) = Eigen::Map<const Eigen::VectorXd>(samples[o].data(), Eigen::Index(M));
+      result.samples.col(Eigen::Index(o)) =
+          Eigen::Map<const Eigen::VectorXd>(samples[o].data(), Eigen::Index(M));
   }
   summarise_outputs(samples, means, estimate, output_names, lpu_std, q, k_p, n_dig, options.histogram_bins,
                     threads, result);

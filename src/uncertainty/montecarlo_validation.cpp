@@ -9,7 +9,8 @@
 namespace ccal {
 
 namespace {
-// n rounded up to 2 significant digits (e.g. 123 456 → 130 000), so that a suggested M reads as a round number.
+// n rounded up to 2 significant digits (e.g. 123 456 → 130 000), so that a suggested M reads as a round
+// number.
 std::uint64_t round_up_2_digits(double n) {
   if (!(n > 1)) return 1;
   const double scale = std::pow(10.0, std::floor(std::log10(n)) - 1);
@@ -22,7 +23,8 @@ ValidationDiagnosis validation_diagnosis(const OutputSummary& s, std::uint64_t t
   d.validated = s.validated;
   d.excess = std::max(s.d_low, s.d_high) - s.validation_delta;
   const double se = s.interval_end_std_error;
-  d.excess_in_std_errors = se > 0 ? d.excess / se : (d.excess > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+  d.excess_in_std_errors =
+      se > 0 ? d.excess / se : (d.excess > 0 ? std::numeric_limits<double>::infinity() : 0.0);
   // Three standard errors: a sampling deviation this large has a probability of about 0.3 % (normal).
   d.explained_by_sampling = !s.validated && d.excess <= 3 * se;
   // The standard error falls as 1/√M: at M' = M (3 se/δ)² it is δ/3.

@@ -41,7 +41,8 @@ double spread_of_average(const std::vector<double>& v);
 
 // Counts of M values in `bins` equal bins spanning [lowest, highest] (the last bin closed); one bin when all
 // values are equal. `lowest`, `highest`: the extreme values.
-std::vector<std::uint64_t> histogram_counts(std::span<const double> v, double lowest, double highest, int bins);
+std::vector<std::uint64_t> histogram_counts(std::span<const double> v, double lowest, double highest,
+                                            int bins);
 
 // Distribution-free standard error of the order statistic y_(r) (1-based) of M values: the number of values
 // below a quantile is binomial with standard deviation k = √(r(M − r)/M), so y_(r) moves by about

@@ -44,7 +44,7 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
                       e.terms());
   }
   ccal::MonteCarloOptions mo;
-  mo.trials = std::uint64_t(o.trials != 0           ? o.trials
+  mo.trials = std::uint64_t(o.trials != 0  ? o.trials
                             : o.digits > 0 ? kDefaultMonteCarloStage
                                            : kDefaultMonteCarloTrials);
   mo.seed = o.seed;

@@ -107,8 +107,8 @@ struct MonteCarloOptions {
 
 // The distribution of one output's M values in equal bins.
 struct SampleHistogram {
-  double lowest = 0;   // the smallest value: the first bin's lower edge
-  double highest = 0;  // the largest value: the last bin's upper edge (closed)
+  double lowest = 0;                  // the smallest value: the first bin's lower edge
+  double highest = 0;                 // the largest value: the last bin's upper edge (closed)
   std::vector<std::uint64_t> counts;  // they sum to M
   double bin_width() const { return counts.empty() ? 0.0 : (highest - lowest) / double(counts.size()); }
 };
@@ -181,8 +181,8 @@ struct MonteCarloResult {
   std::vector<OutputSummary> outputs;
   Eigen::MatrixXd covariance;   // of the output vector, 1/(M − 1)
   Eigen::MatrixXd correlation;  // covariance scaled to unit diagonal (0 where an output does not vary)
-  Eigen::MatrixXd samples;      // options.keep_samples: row i = trial i's outputs (M × n_outputs), else empty
-  std::string notes;            // how the results were obtained, one statement a line, for a report
+  Eigen::MatrixXd samples;  // options.keep_samples: row i = trial i's outputs (M × n_outputs), else empty
+  std::string notes;        // how the results were obtained, one statement a line, for a report
 };
 
 // Runs the Monte Carlo propagation. sources: the random inputs (Tolerance::parameter is not used here, only

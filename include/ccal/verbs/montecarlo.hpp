@@ -25,11 +25,11 @@ inline constexpr std::int64_t kDefaultMonteCarloStage = 10000;
 
 struct MonteCarloOptions {
   std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
-  std::int64_t trials = 0;  // M; with digits > 0 the stage size; 0: the defaults below
+  std::int64_t trials = 0;        // M; with digits > 0 the stage size; 0: the defaults below
   std::uint64_t seed = 1;
   int threads = 0;  // 0: all cores
   int digits = 0;   // 0: fixed M; 1..6: the adaptive procedure (JCGM 101 §7.9) to these digits
-  std::int64_t max_trials = 1000000;  // bound of the adaptive procedure
+  std::int64_t max_trials = 1000000;   // bound of the adaptive procedure
   double coverage_probability = 0.95;  // p of the intervals, in (0, 1) (--coverage-probability)
   bool progress = false;               // draw a progress bar on standard error when it is a terminal
   // Keep every trial's outputs (MonteCarloResult::samples, SI; 8·M bytes per coefficient more), for

@@ -29,14 +29,14 @@ struct ReportOptions {
 struct SensedInputSeries {
   std::size_t run_index = 0;
   std::string run_name;
-  double g_level = 0;       // g
-  double duration = 0;      // s, the run's
-  double window = 0;        // s, the part drawn: the whole run, or its first 3 platform revolutions
-  double platform_rate = 0; // rad/s (0 for a fixed platform)
-  std::vector<double> time;                    // s
-  std::vector<double> ia, pa, oa;              // exact specific force along IA, PA, OA [g]
-  std::vector<double> ia_first_order;          // the first-order model's IA value (nominal + contributions) [g]
-  std::vector<ForceResult> instants;           // the window's start, middle and end, in full (`ccal force`)
+  double g_level = 0;              // g
+  double duration = 0;             // s, the run's
+  double window = 0;               // s, the part drawn: the whole run, or its first 3 platform revolutions
+  double platform_rate = 0;        // rad/s (0 for a fixed platform)
+  std::vector<double> time;        // s
+  std::vector<double> ia, pa, oa;  // exact specific force along IA, PA, OA [g]
+  std::vector<double> ia_first_order;  // the first-order model's IA value (nominal + contributions) [g]
+  std::vector<ForceResult> instants;   // the window's start, middle and end, in full (`ccal force`)
 };
 
 struct ReportResult {
