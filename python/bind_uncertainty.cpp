@@ -70,6 +70,15 @@ void bind_uncertainty(py::module_& m) {
                              })
       .def_readonly("covariance", &MonteCarloResult::covariance)
       .def_readonly("correlation", &MonteCarloResult::correlation)
+      .def_property_readonly(
+          "samples",
+          [](const MonteCarloResult& r) -> const Eigen::MatrixXd& {
+            if (r.samples.rows() == 0)
+              throw InputError("samples: not kept; accepted: monte_carlo(..., keep_samples=True)");
+            return r.samples;
+          },
+          py::return_value_policy::reference_internal,
+          "every trial's outputs, M × n_outputs in trial order (SI); needs keep_samples=True")
       .def_readonly("notes", &MonteCarloResult::notes);
 
   bind_verb_result<verbs::MonteCarloResult>(
@@ -83,28 +92,35 @@ void bind_uncertainty(py::module_& m) {
 
   m.def(
       "monte_carlo",
-      [](const Config& cfg, std::int64_t trials, std::uint64_t seed, int threads, int digits, double coverage,
-         std::optional<std::string> mode, const py::object& progress) {
+      [](const Config& cfg, std::int64_t trials, std::uint64_t seed, int threads, int digits,
+         double coverage_probability, std::optional<std::string> mode, bool keep_samples,
+         const py::object& progress) {
         verbs::MonteCarloOptions o;
         if (mode) o.mode = mode_argument(*mode);
         o.trials = trials;
         o.seed = seed;
         o.threads = threads;
         o.digits = digits;
-        o.coverage = coverage;
+        o.coverage_probability = coverage_probability;
+        o.keep_samples = keep_samples;
         return run_interruptible(progress, [&](ProgressCallback on_progress) {
           o.on_progress = std::move(on_progress);
           return verbs::monte_carlo(cfg, o);
         });
       },
-      py::arg("config"), py::arg("trials") = verbs::MonteCarloOptions{}.trials, py::arg("seed") = 1,
-      py::arg("threads") = 0, py::arg("digits") = 0, py::arg("coverage") = 0.95, py::arg("mode") = py::none(),
+      py::arg("config"), py::arg("trials") = verbs::MonteCarloOptions{}.trials,
+      py::arg("seed") = verbs::MonteCarloOptions{}.seed,
+      py::arg("threads") = verbs::MonteCarloOptions{}.threads,
+      py::arg("digits") = verbs::MonteCarloOptions{}.digits,
+      py::arg("coverage_probability") = verbs::MonteCarloOptions{}.coverage_probability,
+      py::arg("mode") = py::none(), py::arg("keep_samples") = verbs::MonteCarloOptions{}.keep_samples,
       py::arg("progress") = py::none(),
       "Monte Carlo propagation (JCGM 101, `ccal montecarlo`) of the tolerances to the deviations of the "
-      "identified coefficients; digits > 0: the adaptive procedure; the same seed gives the same bits for "
-      "any thread count. The defaults are the CLI's. progress: None or progress(done, total) called "
-      "with the trials done about every 0.1 s; Ctrl-C (or an exception from progress) stops the run within "
-      "a fraction of a second and raises KeyboardInterrupt (or that exception).");
+      "identified coefficients; trials = 0: 10⁶, or stages of 10⁴ with digits > 0 (the adaptive procedure); "
+      "the same seed gives the same bits for any thread count; keep_samples: every trial's values in "
+      "`samples`. The defaults are the CLI's. progress: None or progress(done, total) called with the "
+      "trials done about every 0.1 s; Ctrl-C (or an exception from progress) stops the run within a "
+      "fraction of a second and raises KeyboardInterrupt (or that exception).");
 
   py::class_<AllocatedSource>(m, "AllocatedSource")
       .def_readonly("id", &AllocatedSource::id)

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Installs what ccal needs on a Debian 12 machine (only what is missing), then configures and builds it in
-# ./build. Idempotent: a second run only rebuilds what changed.
+# Installs what ccal needs on a Debian 12 machine (only what is missing), fetches the charting library of
+# `ccal report` from npm into web/node_modules (only when web/package-lock.json changed), then configures and
+# builds ccal in ./build. Idempotent: a second run only rebuilds what changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
           libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libboost-math-dev pybind11-dev python3-dev
-          python3-numpy)
+          python3-numpy nodejs chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -18,6 +19,23 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get update -qq
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# npm comes with Debian's nodejs package, or separately (package npm) where nodejs does not bring it.
+if ! command -v npm >/dev/null; then
+  dpkg-query -W -f='${Status}' npm 2>/dev/null | grep -q "install ok installed" || {
+    echo "setup: installing npm" >&2
+    sudo_cmd=()
+    [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends npm >/dev/null
+  }
+fi
+# vega, vega-lite, vega-embed (embedded into ccal for `ccal report`) and playwright-core (the report's browser
+# test), exactly as web/package-lock.json pins them; skipped when node_modules already matches the lock file.
+if ! cmp -s web/package-lock.json web/node_modules/.ccal-package-lock.json 2>/dev/null; then
+  echo "setup: fetching web/node_modules (npm ci)" >&2
+  npm ci --prefix web --no-audit --no-fund --loglevel=error >/dev/null
+  cp web/package-lock.json web/node_modules/.ccal-package-lock.json
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCCAL_WERROR=ON >/dev/null

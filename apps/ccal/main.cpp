@@ -45,6 +45,35 @@ int report(std::string_view kind, std::string_view message) {
 }
 }  // namespace
 
+namespace ccal::cli {
+namespace {
+std::string& stored_command_line() {
+  static std::string text;
+  return text;
+}
+}  // namespace
+
+void set_command_line(int argc, char** argv) {
+  std::string& text = stored_command_line();
+  text.clear();
+  for (int k = 0; k < argc; ++k) {
+    const std::string_view a = k == 0 ? std::string_view("ccal") : std::string_view(argv[k]);
+    const bool plain = !a.empty() && a.find_first_not_of(
+                                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                         "0123456789-_=.,/:+@%") == std::string_view::npos;
+    std::string quoted;
+    if (!plain) {
+      quoted = "'";
+      for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+      quoted += "'";
+    }
+    text += (k ? " " : "") + (plain ? std::string(a) : quoted);
+  }
+}
+
+std::string command_line_text() { return stored_command_line(); }
+}  // namespace ccal::cli
+
 int main(int argc, char** argv) {
   CLI::App app{
       "ccal: precision-centrifuge calibration of accelerometers (error budget of centrifuge errors on "
@@ -63,6 +92,7 @@ int main(int argc, char** argv) {
       "K3\n"
       "  ccal identify obs.csv                      least-squares fit of the observations file\n"
       "  ccal reduce my.toml --log 20g=run20.csv …  recorded run logs to run means and coefficients\n"
+      "  ccal report -o report.html                 the HTML report (budget, Monte Carlo, charts)\n"
       "Run 'ccal <command> --help' for the options of a command.\n");
 
   std::vector<ccal::cli::Command> commands;
@@ -73,6 +103,8 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_reduce(app));
   commands.push_back(ccal::cli::add_montecarlo(app));
   commands.push_back(ccal::cli::add_allocate(app));
+  commands.push_back(ccal::cli::add_report(app));
+  ccal::cli::set_command_line(argc, argv);
 
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
   // required".

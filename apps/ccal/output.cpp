@@ -49,8 +49,8 @@ void print_warnings(const std::vector<std::string>& warnings) {
 
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra) {
   std::vector<FileToWrite> files;
-  files.push_back({"-o", options.path.empty() ? "-" : options.path, std::string(text)});
-  for (const auto& f : extra) files.push_back({f.option, f.path, f.text});
+  files.push_back({"-o", options.path.empty() ? "-" : options.path, std::string(text), {}});
+  for (const auto& f : extra) files.push_back({f.option, f.path, f.text, f.produce});
   write_files(files);
 }
 

@@ -4,6 +4,7 @@
 // the end, so a failing command writes nothing.
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,6 +41,9 @@ struct ExtraFile {
   std::string option;  // the option that named it, for messages
   std::string path;
   std::string text;
+  // When set, the content instead of text, written block by block (a file too large to build in memory):
+  // produce(write) calls write(block) for each block and returns false when a write failed.
+  std::function<bool(const std::function<bool(std::string_view)>& write)> produce = {};
 };
 
 // As write_output, with further files: every file is first written to a temporary file and renamed only when

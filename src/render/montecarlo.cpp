@@ -20,7 +20,9 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-std::string interval(double low, double high) { return fmt::format("[{}, {}]", number(low, 5), number(high, 5)); }
+std::string interval(double low, double high) {
+  return fmt::format("[{}, {}]", number(low, 5), number(high, 5));
+}
 
 double per_second(const MonteCarloResult& r) { return r.seconds > 0 ? double(r.trials) / r.seconds : 0.0; }
 
@@ -28,6 +30,45 @@ std::string fixed_terms(const Config& cfg) {
   std::string s;
   for (const auto& [id, v] : cfg.identification.fixed_terms) s += (s.empty() ? "" : ", ") + id;
   return s.empty() ? "nothing" : s;
+}
+
+// Per coefficient, for one that failed the validation: does the sampling error of the interval ends explain
+// it, and what to run; empty for a validated one.
+std::vector<std::string> advice_of(const BudgetResult& b, const MonteCarloResult& r) {
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < r.outputs.size(); ++k) {
+    const OutputSummary& s = r.outputs[k];
+    if (!s.has_lpu || s.validated) {
+      out.emplace_back();
+      continue;
+    }
+    const ValidationDiagnosis d = validation_diagnosis(s, r.trials);
+    const double f = b.display_scale[k];
+    const std::string measured = fmt::format(
+        "{}: not validated: max(d_low, d_high) exceeds delta by {} {}, {:.2g} standard errors of the "
+        "interval "
+        "ends ({} at M = {})",
+        s.name, number(d.excess * f, 2), b.units[k], d.excess_in_std_errors,
+        number(s.interval_end_std_error * f, 2), r.trials);
+    if (d.explained_by_sampling)
+      out.push_back(fmt::format(
+          "{}: sampling error explains it; run `ccal montecarlo --digits {}` (the adaptive procedure) or "
+          "`--trials {}` (ends to delta/3).",
+          measured, r.adaptive ? r.significant_digits + 1 : 2, d.trials_needed));
+    else
+      out.push_back(fmt::format(
+          "{}: beyond 3 standard errors, so sampling error does not explain it: the LPU interval (first "
+          "order, normal) misses the distribution; report the Monte Carlo interval.",
+          measured));
+  }
+  return out;
+}
+
+std::string validation_advice(const BudgetResult& b, const MonteCarloResult& r) {
+  std::string out;
+  for (const std::string& line : advice_of(b, r))
+    if (!line.empty()) out += line + "\n";
+  return out;
 }
 
 std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloResult& r) {
@@ -64,6 +105,7 @@ std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
                  s.validated ? "yes" : "no"});
   }
   out += lpu.render();
+  out += validation_advice(b, r);
 
   if (r.adaptive) {
     out += fmt::format(
@@ -147,6 +189,14 @@ std::string json_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
                 {"d_high", s.d_high * f},
                 {"delta", s.validation_delta * f},
                 {"validated", s.validated}};
+    const ValidationDiagnosis d = validation_diagnosis(s, r.trials);
+    c["lpu"]["interval_end_std_error"] = s.interval_end_std_error * f;
+    c["lpu"]["explained_by_sampling"] = d.explained_by_sampling;
+    c["lpu"]["trials_needed"] = d.trials_needed;
+    c["histogram"] = {{"lowest", s.histogram.lowest * f},
+                      {"highest", s.histogram.highest * f},
+                      {"bin_width", s.histogram.bin_width() * f},
+                      {"counts", s.histogram.counts}};
     coefficients[s.name] = c;
   }
   j["coefficients"] = coefficients;
@@ -188,5 +238,8 @@ std::string csv_of(const BudgetResult& b, const MonteCarloResult& r) {
 std::string text(const verbs::MonteCarloResult& r) { return text_of(r.config, r.budget, r.monte_carlo); }
 std::string json(const verbs::MonteCarloResult& r) { return json_of(r.config, r.budget, r.monte_carlo); }
 std::string csv(const verbs::MonteCarloResult& r) { return csv_of(r.budget, r.monte_carlo); }
+std::vector<std::string> validation_advice_lines(const verbs::MonteCarloResult& r) {
+  return advice_of(r.budget, r.monte_carlo);
+}
 
 }  // namespace ccal::render

@@ -272,6 +272,9 @@ void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
     throw InputError(
         fmt::format("Monte Carlo: {} LPU uncertainties for {} outputs", lpu_std->size(), n_outputs));
   if (!trial) throw InputError("Monte Carlo: no trial function");
+  if (options.histogram_bins < 1 || options.histogram_bins > 10000)
+    throw InputError(
+        fmt::format("Monte Carlo: histogram bins must be 1…10000, not {}", options.histogram_bins));
   check_sources(sources);
 }
 
@@ -364,8 +367,8 @@ std::vector<double> sample_moments(const std::vector<std::vector<double>>& sampl
 // Each output's summary: intervals from the sorted values and, with the LPU's u, the validation of §8.
 void summarise_outputs(std::vector<std::vector<double>>& samples, const std::vector<double>& means,
                        const Eigen::VectorXd& estimate, const std::vector<std::string>& output_names,
-                       const Eigen::VectorXd* lpu_std, std::uint64_t q, double k_p, int n_dig, int threads,
-                       MonteCarloResult& result) {
+                       const Eigen::VectorXd* lpu_std, std::uint64_t q, double k_p, int n_dig,
+                       int histogram_bins, int threads, MonteCarloResult& result) {
   const std::size_t n_out = samples.size();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_out > 1)
   for (std::int64_t oi = 0; oi < std::int64_t(n_out); ++oi) {
@@ -373,6 +376,12 @@ void summarise_outputs(std::vector<std::vector<double>>& samples, const std::vec
     std::vector<double>& v = samples[o];
     sort_tails(v, q);  // the order of the trials is no longer needed
     OutputSummary& s = result.outputs[o];
+    const std::uint64_t M = v.size(), r = (M - q + 1) / 2;  // the symmetric interval is [y_(r), y_(r+q)]
+    s.histogram.lowest = v.front();  // the tails are sorted: the extremes are at the ends
+    s.histogram.highest = v.back();
+    s.histogram.counts = histogram_counts(v, v.front(), v.back(), histogram_bins);
+    s.interval_end_std_error =
+        std::max(order_statistic_std_error(v, r, 1, M - q), order_statistic_std_error(v, r + q, q + 1, M));
     s.name = output_names[o];
     s.mean = means[o];
     s.std_dev = std::sqrt(result.covariance(Eigen::Index(o), Eigen::Index(o)));
@@ -517,7 +526,14 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
 
   const double k_p = normal_erf_quantile(p);
   result.coverage_factor = k_p;
-  summarise_outputs(samples, means, estimate, output_names, lpu_std, q, k_p, n_dig, threads, result);
+  if (options.keep_samples) {
+    result.samples.resize(Eigen::Index(M), Eigen::Index(n_out));
+    for (std::size_t o = 0; o < n_out; ++o)
+      result.samples.col(Eigen::Index(o)) =
+          Eigen::Map<const Eigen::VectorXd>(samples[o].data(), Eigen::Index(M));
+  }
+  summarise_outputs(samples, means, estimate, output_names, lpu_std, q, k_p, n_dig, options.histogram_bins,
+                    threads, result);
   samples.clear();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
 

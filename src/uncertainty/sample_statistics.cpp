@@ -85,6 +85,29 @@ double spread_of_average(const std::vector<double>& v) {
   return std::sqrt(s.value() / double(h * (h - 1)));
 }
 
+std::vector<std::uint64_t> histogram_counts(std::span<const double> v, double lowest, double highest,
+                                            int bins) {
+  const double width = highest - lowest;
+  if (!(width > 0) || bins < 1) return {std::uint64_t(v.size())};
+  std::vector<std::uint64_t> counts(std::size_t(bins), 0);
+  const double per_unit = double(bins) / width;
+  for (double x : v) {
+    const auto b = std::clamp<std::int64_t>(std::int64_t((x - lowest) * per_unit), 0, bins - 1);
+    ++counts[std::size_t(b)];
+  }
+  return counts;
+}
+
+double order_statistic_std_error(std::span<const double> sorted_tails, std::uint64_t r, std::uint64_t first,
+                                 std::uint64_t last) {
+  const double M = double(sorted_tails.size());
+  const auto k = std::uint64_t(std::ceil(std::sqrt(double(r) * (M - double(r)) / M)));
+  const std::uint64_t below = r > first + k ? r - k : first, above = std::min(r + k, last);
+  if (above <= below) return 0.0;
+  // Scaled to the width of a window of 2k ranks when the window was cut at an end.
+  return (sorted_tails[above - 1] - sorted_tails[below - 1]) * double(k) / double(above - below);
+}
+
 }  // namespace sample_stats
 
 using namespace sample_stats;

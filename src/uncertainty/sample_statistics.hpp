@@ -39,4 +39,16 @@ Interval shortest_interval(std::span<const double> sorted, std::uint64_t q);
 double tolerance_of(double u, int n_dig);
 double spread_of_average(const std::vector<double>& v);
 
+// Counts of M values in `bins` equal bins spanning [lowest, highest] (the last bin closed); one bin when all
+// values are equal. `lowest`, `highest`: the extreme values.
+std::vector<std::uint64_t> histogram_counts(std::span<const double> v, double lowest, double highest,
+                                            int bins);
+
+// Distribution-free standard error of the order statistic y_(r) (1-based) of M values: the number of values
+// below a quantile is binomial with standard deviation k = √(r(M − r)/M), so y_(r) moves by about
+// (y_(r+k) − y_(r−k))/2 from one sample to the next (H. A. David, H. N. Nagaraja, "Order statistics", 3rd
+// ed., 2003, §7.1). Reads only y_(first) … y_(last), which must be sorted; the window is cut to them.
+double order_statistic_std_error(std::span<const double> sorted_tails, std::uint64_t r, std::uint64_t first,
+                                 std::uint64_t last);
+
 }  // namespace ccal::sample_stats

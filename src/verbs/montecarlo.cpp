@@ -9,17 +9,18 @@ namespace ccal::verbs {
 namespace {
 
 void check_options(const MonteCarloOptions& o) {
-  if (o.trials < 2 || o.trials > kMaxMonteCarloTrials)
-    throw InputError(
-        fmt::format("--trials: {} is out of range; accepted: 2 to {}", o.trials, kMaxMonteCarloTrials));
+  if (o.trials != 0 && (o.trials < 2 || o.trials > kMaxMonteCarloTrials))
+    throw InputError(fmt::format("--trials: {} is out of range; accepted: 2 to {} (0: the default)", o.trials,
+                                 kMaxMonteCarloTrials));
   if (o.max_trials < 2 || o.max_trials > kMaxMonteCarloTrials)
     throw InputError(fmt::format("--max-trials: {} is out of range; accepted: 2 to {}", o.max_trials,
                                  kMaxMonteCarloTrials));
   check_thread_count(o.threads, "--threads");
   if (o.digits < 0 || o.digits > 6)
     throw InputError(fmt::format("--digits: {} is out of range; accepted: 0 (fixed M) or 1..6", o.digits));
-  if (!(o.coverage > 0 && o.coverage < 1))
-    throw InputError(fmt::format("--coverage: {} is not a probability in (0, 1); e.g. 0.95", o.coverage));
+  if (!(o.coverage_probability > 0 && o.coverage_probability < 1))
+    throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
+                                 o.coverage_probability));
 }
 
 }  // namespace
@@ -43,12 +44,15 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
                       e.terms());
   }
   ccal::MonteCarloOptions mo;
-  mo.trials = o.trials;
+  mo.trials = std::uint64_t(o.trials != 0  ? o.trials
+                            : o.digits > 0 ? kDefaultMonteCarloStage
+                                           : kDefaultMonteCarloTrials);
   mo.seed = o.seed;
   mo.threads = o.threads;
   mo.significant_digits = o.digits;
   mo.max_trials = o.max_trials;
-  mo.coverage = o.coverage;
+  mo.coverage = o.coverage_probability;
+  mo.keep_samples = o.keep_samples;
   mo.progress = o.progress;
   mo.on_progress = o.on_progress;
   r.monte_carlo = run_monte_carlo(monte_carlo_sources(config), model.n_outputs(), model.output_names(),

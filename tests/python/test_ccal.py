@@ -267,6 +267,20 @@ class UncertaintyTest(unittest.TestCase):
             self.assertLess(o.mean, o.high_symmetric)
         np.testing.assert_allclose(np.sqrt(np.diag(one.covariance)), one.std_dev, rtol=1e-12)
 
+    def test_monte_carlo_keeps_its_samples(self):
+        cfg = ccal.bundled_example()
+        one = ccal.monte_carlo(cfg, trials=3000, seed=5, threads=1, keep_samples=True)
+        two = ccal.monte_carlo(cfg, trials=3000, seed=5, threads=2, keep_samples=True)
+        s = one.samples
+        self.assertIsInstance(s, np.ndarray)
+        self.assertEqual(s.shape, (3000, 3))
+        self.assertTrue(np.array_equal(s, two.samples))  # trial i depends on (seed, i) only
+        # The reported statistics are those of the kept values (two summation orders: 1e-12 of u).
+        np.testing.assert_allclose(s.mean(axis=0), one.mean, rtol=0, atol=1e-12 * one.std_dev.max())
+        np.testing.assert_allclose(s.std(axis=0, ddof=1), one.std_dev, rtol=1e-12)
+        with self.assertRaisesRegex(ccal.InputError, "keep_samples"):
+            ccal.monte_carlo(cfg, trials=100).samples
+
     def test_monte_carlo_and_lpu_of_a_base_plane_tilt_are_the_closed_form(self):
         # One source whose effect is known in closed form: a tilt θ of the working base plane about y3 turns the
         # IA towards the vertical, a_i = −A cos γ cos θ − sin θ, i.e. −θ g to first order (the centripetal part

@@ -50,13 +50,19 @@
 // against the symmetric MC interval; validated iff both ≤ δ, the numerical tolerance (§7.9.2) of the LPU's
 // u_c with n_dig significant digits (options.significant_digits, or 2 when the run is not adaptive).
 //
+// Histograms: per output, histogram_bins equal bins from its smallest to its largest value (the counts sum to
+// M). Sampling error of an interval end y_(r): distribution-free, from the order statistics around it
+// (sample_statistics.hpp), reported with the validation so that a failed one says whether M explains it.
+//
 // Memory: the trial outputs are kept for the quantiles, 8·M·n_outputs bytes (M counted over all stages; the
 // intervals read only the 2(M − q + 1) ≈ 2(1 − p)M extreme order statistics of each output, but keeping every
 // value lets adaptive stages merge exactly and every sum run in a fixed order; the buffers grow geometrically
 // from stage to stage, so up to about twice that), plus O(n_outputs²) for the covariance, O(n_sources +
 // n_outputs) per thread, and in the adaptive procedure a partly sorted copy of one stage's values per thread
 // (8·stage size bytes each). Only the tails of the values that the intervals read are sorted (the (1 − p)M
-// lowest and highest), in place, after the covariance.
+// lowest and highest), in place, after the covariance. keep_samples copies the values in trial order before
+// that sort: 8·M·n_outputs bytes more (24 MB for 10⁶ trials of 3 outputs); a file of them is written from
+// that copy in blocks (render/montecarlo_samples.hpp), so the file's text is never all in memory.
 //
 // Threads: an OpenMP parallel loop over the trials of a stage, each thread with its own draw and output
 // buffers (nothing is allocated by the engine inside the loop; the TrialFunction must be safe to call
@@ -95,6 +101,18 @@ struct MonteCarloOptions {
   double coverage = 0.95;                // p, in (0, 1)
   bool progress = false;  // a progress bar (%, trials/s, ETA) on stderr, only if stderr is a terminal
   ProgressCallback on_progress;  // called every 0.1 s at most; may throw Cancelled to stop (core/progress.hpp)
+  // Keep every trial's outputs in MonteCarloResult::samples (M × n_outputs, trial order): 8·M·n_outputs bytes
+  // more, besides the engine's own copy, which is partly sorted for the intervals.
+  bool keep_samples = false;
+  int histogram_bins = 60;  // bins of each output's histogram over [lowest, highest] value, 1…10⁴
+};
+
+// The distribution of one output's M values in equal bins.
+struct SampleHistogram {
+  double lowest = 0;                  // the smallest value: the first bin's lower edge
+  double highest = 0;                 // the largest value: the last bin's upper edge (closed)
+  std::vector<std::uint64_t> counts;  // they sum to M
+  double bin_width() const { return counts.empty() ? 0.0 : (highest - lowest) / double(counts.size()); }
 };
 
 // One trial: given the drawn source values (SI, one per tolerance, in tolerance order), write the outputs
@@ -127,7 +145,24 @@ struct OutputSummary {
   double d_low = 0;             // |estimate − U_p − low_symmetric|
   double d_high = 0;            // |estimate + U_p − high_symmetric|
   bool validated = false;       // d_low ≤ δ and d_high ≤ δ
+
+  // Sampling error of the symmetric interval's ends, distribution-free (the larger of the two): what a
+  // failed validation must exceed before it says more about the LPU than about M (validation_diagnosis).
+  double interval_end_std_error = 0;
+  SampleHistogram histogram;
 };
+
+// Why a validation failed (JCGM 101 §8 at a fixed M): whether the excess of d = max(d_low, d_high) over δ
+// is within 3 standard errors of the interval ends (then more trials may well validate it), and the M at
+// which that standard error would be a third of δ (the sampling error no longer decides the verdict).
+struct ValidationDiagnosis {
+  bool validated = false;
+  double excess = 0;                // max(d_low, d_high) − δ, ≤ 0 when validated
+  double excess_in_std_errors = 0;  // excess / interval_end_std_error
+  bool explained_by_sampling = false;
+  std::uint64_t trials_needed = 0;  // M·(3·std_error/δ)², rounded up to 2 significant digits
+};
+ValidationDiagnosis validation_diagnosis(const OutputSummary& summary, std::uint64_t trials);
 
 struct MonteCarloResult {
   std::uint64_t trials = 0;        // M, over all stages
@@ -148,7 +183,8 @@ struct MonteCarloResult {
   std::vector<OutputSummary> outputs;
   Eigen::MatrixXd covariance;   // of the output vector, 1/(M − 1)
   Eigen::MatrixXd correlation;  // covariance scaled to unit diagonal (0 where an output does not vary)
-  std::string notes;            // how the results were obtained, one statement a line, for a report
+  Eigen::MatrixXd samples;  // options.keep_samples: row i = trial i's outputs (M × n_outputs), else empty
+  std::string notes;        // how the results were obtained, one statement a line, for a report
 };
 
 // Runs the Monte Carlo propagation. sources: the random inputs (Tolerance::parameter is not used here, only

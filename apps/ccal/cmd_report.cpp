@@ -1,0 +1,110 @@
+// ccal report: the HTML report of a configuration (budget, Monte Carlo distribution, exact-vs-paper
+// comparison, sensed input, provenance), one self-contained page with the charting library inlined.
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/render/report.hpp"
+#include "ccal/verbs/report.hpp"
+#include "commands.hpp"
+#include "output.hpp"
+#include "report_assets.hpp"
+
+namespace ccal::cli {
+namespace {
+
+struct ReportCli {
+  std::string config;
+  std::string mode;
+  std::int64_t trials = 0;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  int digits = 0;
+  double coverage_probability = verbs::MonteCarloOptions{}.coverage_probability;
+  std::string run;
+  OutputOptions output;
+};
+
+// The configuration's bytes exactly as read (hashed and shown in the report).
+std::string config_text(const std::string& path) {
+  if (path.empty()) return std::string(bundled_example_text());
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw InputError(fmt::format("{}: cannot read the file again", path));
+  return text.str();
+}
+
+// Now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention) when it is set.
+std::string date_utc() {
+  std::time_t t = std::time(nullptr);
+  if (const char* e = std::getenv("SOURCE_DATE_EPOCH"); e && *e)
+    t = std::time_t(std::strtoll(e, nullptr, 10));
+  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(t));
+}
+
+}  // namespace
+
+Command add_report(CLI::App& app) {
+  auto o = std::make_shared<ReportCli>();
+  CLI::App* cmd = app.add_subcommand(
+      "report", "HTML report: budget, Monte Carlo distribution, exact vs paper, sensed input, provenance");
+  add_config_argument(*cmd, o->config);
+  cmd->add_option("--mode", o->mode,
+                  "Kinematics: exact or paper; default: the configuration's [identification] mode")
+      ->check(CLI::IsMember({"exact", "paper"}));
+  cmd->add_option("--trials", o->trials,
+                  "Monte Carlo trials M (default 1000000; with --digits, the stage size)")
+      ->type_name("N");
+  cmd->add_option("--seed", o->seed, "Seed of the Monte Carlo")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default)")->capture_default_str();
+  cmd->add_option("--digits", o->digits, "0: fixed M; 1..6: the adaptive procedure (JCGM 101 §7.9)")
+      ->capture_default_str();
+  cmd->add_option("--coverage-probability", o->coverage_probability, "Coverage probability of the intervals")
+      ->capture_default_str()
+      ->type_name("p");
+  cmd->add_option("--run", o->run,
+                  "Run whose sensed input is drawn (name or 1-based index); default: the "
+                  "highest g-level");
+  o->output.format = "html";
+  cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
+      ->type_name("FILE.html");
+  cmd->footer(
+      "Examples:\n"
+      "  ccal report -o report.html\n"
+      "      the report of the bundled paper example (opens in any browser, with no network)\n"
+      "  ccal report my.toml --trials 100000 --run 20g -o my-report.html\n");
+  return {cmd, [o] {
+            if (report_scripts().empty())
+              throw InputError(
+                  "report: this ccal was built without its charting library (web/node_modules was missing); "
+                  "run scripts/setup.sh (or `npm ci --prefix web`), then build again");
+            verbs::ReportOptions ro;
+            if (!o->mode.empty()) ro.mode = parse_mode(o->mode);
+            ro.monte_carlo.trials = o->trials;
+            ro.monte_carlo.seed = o->seed;
+            ro.monte_carlo.threads = o->threads;
+            ro.monte_carlo.digits = o->digits;
+            ro.monte_carlo.coverage_probability = o->coverage_probability;
+            ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
+            ro.run = o->run;
+            const Config config = load_config_or_example(o->config);
+            const verbs::ReportResult r = verbs::report(config, ro);
+            render::ReportProvenance p;
+            p.config_text = config_text(o->config);
+            p.command_line = command_line_text();
+            p.date_utc = date_utc();
+            render::report_commands(r, ro, p);
+            write_output(o->output, render::html(r, p, report_scripts()));
+          }};
+}
+
+}  // namespace ccal::cli

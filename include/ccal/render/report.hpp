@@ -1,0 +1,41 @@
+#pragma once
+// The HTML report of `ccal report` (docs/cli.md): one self-contained page that a lab can attach to a
+// calibration record. Every number in it is taken from the JSON output of the verb that computes it
+// (`ccal budget`, `ccal montecarlo`, `ccal force`), and each number's cell names its place in that output
+// (data-src="budget:/coefficients/2/standard_uncertainty"); the page lists the command line of each verb, so
+// that any number can be checked by running it. Charts are Vega-Lite specifications drawn by vega-embed,
+// whose scripts the caller passes in (the program embeds them), so the page needs no network.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/verbs/report.hpp"
+
+namespace ccal::render {
+
+// A further section (e.g. an allocation or a design, before and after), placed after the budget: its title
+// and its HTML body, which the caller has escaped.
+struct ReportSection {
+  std::string id;     // the anchor, [a-z0-9-]
+  std::string title;  // plain text
+  std::string html;
+};
+
+struct ReportProvenance {
+  std::string config_text;   // the configuration's bytes, as read (hashed and shown in full)
+  std::string command_line;  // as typed
+  std::string date_utc;      // ISO 8601, e.g. 2026-12-01T07:00:00Z
+  // The verbs' own command lines that give the same numbers (without the configuration and --format json),
+  // e.g. {"montecarlo", "--trials", "1000000"}; filled by report_commands when empty.
+  std::vector<std::string> budget_command, montecarlo_command;
+};
+
+// The options of `ccal budget` and `ccal montecarlo` that reproduce a report's numbers.
+void report_commands(const verbs::ReportResult& result, const verbs::ReportOptions& options,
+                     ReportProvenance& provenance);
+
+// The page. scripts: vega, vega-lite and vega-embed (their UMD builds, concatenated).
+std::string html(const verbs::ReportResult& result, const ReportProvenance& provenance,
+                 std::string_view scripts, const std::vector<ReportSection>& extra_sections = {});
+
+}  // namespace ccal::render

@@ -1,0 +1,52 @@
+#pragma once
+// `ccal report` as a library call: everything the HTML report of a configuration shows, computed by the
+// other verbs with the same options (so that every number equals that verb's output): the budget (exact mode
+// with the paper's first-order effect of each source beside it), the Monte Carlo propagation with its kept
+// distribution, and the sensed input along the instrument's axes over part of one run.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccal/core/model_mode.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/verbs/budget.hpp"
+#include "ccal/verbs/force.hpp"
+#include "ccal/verbs/montecarlo.hpp"
+
+namespace ccal::verbs {
+
+struct ReportOptions {
+  std::optional<ModelMode> mode;  // kinematics of budget and Monte Carlo; unset: the configuration's
+  double coverage_factor = 2.0;   // k of the budget's expanded uncertainty (as `ccal budget`)
+  MonteCarloOptions monte_carlo;  // as `ccal montecarlo` (its mode is set from `mode`)
+  std::string run;                // the run whose sensed input is drawn; empty: the one of highest g-level
+  int input_points = 241;         // instants of the sensed-input curve, 2…100000
+};
+
+// The specific force the instrument senses over a window of one run, exact (verbs::force at each instant).
+struct SensedInputSeries {
+  std::size_t run_index = 0;
+  std::string run_name;
+  double g_level = 0;              // g
+  double duration = 0;             // s, the run's
+  double window = 0;               // s, the part drawn: the whole run, or its first 3 platform revolutions
+  double platform_rate = 0;        // rad/s (0 for a fixed platform)
+  std::vector<double> time;        // s
+  std::vector<double> ia, pa, oa;  // exact specific force along IA, PA, OA [g]
+  std::vector<double> ia_first_order;  // the first-order model's IA value (nominal + contributions) [g]
+  std::vector<ForceResult> instants;   // the window's start, middle and end, in full (`ccal force`)
+};
+
+struct ReportResult {
+  Config config;
+  BudgetResult budget;           // verbs::budget(config, {mode, coverage_factor})
+  MonteCarloResult monte_carlo;  // verbs::monte_carlo(config, options.monte_carlo), samples kept
+  SensedInputSeries sensed_input;
+};
+
+// Throws InputError as the verbs it calls do, and for an unknown --run or input_points out of range.
+ReportResult report(const Config& config, const ReportOptions& options = {});
+
+}  // namespace ccal::verbs

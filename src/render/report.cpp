@@ -1,0 +1,185 @@
+// The HTML report of `ccal report`: the page around its sections (report_*.cpp), the summary, the provenance
+// and the script that draws the charts.
+#include "ccal/render/report.hpp"
+
+#include <fmt/format.h>
+
+#include "ccal/render/budget.hpp"
+#include "ccal/render/force.hpp"
+#include "ccal/render/montecarlo.hpp"
+#include "ccal/render/report_sha256.hpp"
+#include "ccal/version.hpp"
+#include "report_html.hpp"
+
+namespace ccal::render {
+namespace {
+
+using namespace report_html;
+
+constexpr std::size_t kTopSources = 8;  // rows of each budget table before "the other sources"
+
+constexpr const char* kStyle = R"(
+body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:24px auto;
+max-width:1440px;color:#222;padding:0 16px}
+h1{font-size:1.6em;margin-bottom:0}h2{border-bottom:2px solid #4c78a8;padding-bottom:4px;margin-top:2em}
+.sub{color:#555;margin-top:4px}
+.pair{display:flex;flex-wrap:wrap;gap:24px;align-items:flex-start;margin:16px 0}
+.chart{min-width:340px}
+table{border-collapse:collapse;font-size:0.86em;margin:8px 0}
+caption{text-align:left;font-weight:600;padding:4px 0}
+th,td{border:1px solid #ccc;padding:3px 7px;vertical-align:top}th{background:#f2f5f9;text-align:left}
+td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
+tr.total td{font-weight:600;background:#f7f7f7}tr.rest td{font-style:italic}
+td.good{color:#1a7f37;font-weight:600}td.bad{color:#b42318;font-weight:600}
+.setup-grid{display:flex;flex-wrap:wrap;gap:20px;align-items:flex-start}
+pre{background:#f6f8fa;border:1px solid #ddd;padding:10px;overflow:auto;font-size:0.8em;max-height:480px}
+.advice{max-width:520px;color:#8a4b00}
+code{background:#f2f2f2;padding:0 3px}
+@media print{.chart{break-inside:avoid}pre{max-height:none}}
+)";
+
+// Draws every chart of the page; window.ccalReport resolves when all are drawn (rejects if one fails, after
+// writing the error to the console).
+constexpr const char* kDraw = R"(
+(function () {
+  var jobs = [];
+  document.querySelectorAll('script.vl-spec').forEach(function (s) {
+    var target = document.getElementById(s.dataset.target);
+    jobs.push(vegaEmbed(target, JSON.parse(s.textContent), {renderer: 'svg', actions: false})
+      .then(function (r) { target.dataset.rendered = 'yes'; return r; }));
+  });
+  window.ccalReport = Promise.all(jobs).then(function () {
+    document.body.dataset.charts = String(jobs.length);
+  }, function (e) { console.error('ccal report: a chart failed: ' + e); throw e; });
+})();
+)";
+
+// The scripts as the text of a <script> element: "</script" would end it early, so it is written
+// "<\/script" (the same characters to JavaScript, inside a string or a regular expression alike).
+std::string script_text(std::string_view scripts) {
+  std::string out(scripts);
+  for (std::size_t at = 0; (at = out.find("</script", at)) != std::string::npos; at += 2)
+    out.replace(at, 2, "<\\/");
+  return out;
+}
+
+std::string command_text(const std::vector<std::string>& args, const Config& config) {
+  std::string out = "ccal";
+  for (const auto& a : args) {
+    out += " " + a;
+    if (&a == &args.front() && config.source.rfind("bundled:", 0) != 0) out += " " + config.source;
+  }
+  return out + " --format json";
+}
+
+std::string summary(const Doc& budget, const Doc& mc) {
+  std::string t =
+      "<table class=\"summary\"><caption>Summary per identified "
+      "coefficient</caption>\n<tr><th>coefficient</th>"
+      "<th>unit</th><th>u<sub>c</sub> (LPU)</th><th>U (LPU)</th><th>Monte Carlo u(y)</th><th "
+      "colspan=\"2\">Monte "
+      "Carlo 95 % interval</th><th>LPU validated</th></tr>\n";
+  for (std::size_t k = 0; k < budget.json["coefficients"].size(); ++k) {
+    const Json& c = budget.json["coefficients"][k];
+    const std::string id = c["id"].get<std::string>(), b = fmt::format("/coefficients/{}", k),
+                      m = "/coefficients/" + id;
+    const bool ok = mc.json["coefficients"][id]["lpu"]["validated"].get<bool>();
+    t += "<tr>" + text_cell(id) + text_cell(c["unit"].get<std::string>()) +
+         num_cell(budget, b + "/standard_uncertainty") + num_cell(budget, b + "/expanded_uncertainty") +
+         num_cell(mc, m + "/std_dev") + num_cell(mc, m + "/symmetric_interval/0") +
+         num_cell(mc, m + "/symmetric_interval/1") +
+         fmt::format("<td class=\"{}\">{}</td></tr>\n", ok ? "good" : "bad", ok ? "yes" : "no");
+  }
+  return t + "</table>\n";
+}
+
+std::string provenance_section(const verbs::ReportResult& r, const ReportProvenance& p) {
+  return fmt::format(
+      "<section id=\"provenance\"><h2>Provenance</h2>\n<table class=\"provenance\">\n"
+      "<tr><th>program</th><td>{}</td></tr>\n<tr><th>command line</th><td><code>{}</code></td></tr>\n"
+      "<tr><th>date (UTC)</th><td>{}</td></tr>\n<tr><th>configuration</th><td><code>{}</code></td></tr>\n"
+      "<tr><th>SHA-256 of the configuration</th><td><code id=\"config-sha256\">{}</code></td></tr>\n"
+      "<tr><th>the same numbers from</th><td><code id=\"cmd-budget\">{}</code><br><code "
+      "id=\"cmd-montecarlo\">{}"
+      "</code><br><code>ccal force … --run {} --time T</code> (the input table)</td></tr>\n</table>\n"
+      "<h3>The configuration ({} bytes)</h3>\n<pre id=\"config-text\">{}</pre>\n</section>\n",
+      escape(version_line()), escape(p.command_line), escape(p.date_utc), escape(r.config.source),
+      sha256_hex(p.config_text), escape(command_text(p.budget_command, r.config)),
+      escape(command_text(p.montecarlo_command, r.config)), r.sensed_input.run_index + 1,
+      p.config_text.size(), escape(p.config_text));
+}
+
+}  // namespace
+
+void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o, ReportProvenance& p) {
+  p.budget_command = {"budget"};
+  p.montecarlo_command = {"montecarlo"};
+  if (o.mode) {
+    for (auto* c : {&p.budget_command, &p.montecarlo_command}) {
+      c->push_back("--mode");
+      c->push_back(std::string(mode_name(*o.mode)));
+    }
+  }
+  const verbs::MonteCarloOptions& m = o.monte_carlo;
+  const verbs::MonteCarloOptions defaults;
+  auto add = [&p](const char* option, std::string value) {
+    p.montecarlo_command.push_back(option);
+    p.montecarlo_command.push_back(std::move(value));
+  };
+  if (m.trials != defaults.trials) add("--trials", std::to_string(m.trials));
+  if (m.seed != defaults.seed) add("--seed", std::to_string(m.seed));
+  if (m.digits != defaults.digits) add("--digits", std::to_string(m.digits));
+  if (m.max_trials != defaults.max_trials) add("--max-trials", std::to_string(m.max_trials));
+  if (m.coverage_probability != defaults.coverage_probability)
+    add("--coverage-probability", fmt::format("{:.17g}", m.coverage_probability));
+  (void)r;
+}
+
+std::string html(const verbs::ReportResult& r, const ReportProvenance& provenance, std::string_view scripts,
+                 const std::vector<ReportSection>& extra_sections) {
+  ReportProvenance p = provenance;
+  if (p.budget_command.empty()) report_commands(r, {}, p);
+  const Json budget_json = Json::parse(json(r.budget)), mc_json = Json::parse(json(r.monte_carlo));
+  std::vector<Json> instants;
+  for (const auto& f : r.sensed_input.instants) instants.push_back(Json::parse(json(f)));
+  Json errors = Json::object();  // x_i: the configured [errors] value of each source (SI)
+  for (const auto& t : r.config.tolerances) errors[t.id] = r.config.centrifuge.errors[t.parameter];
+  const Doc budget{"budget", budget_json}, mc{"montecarlo", mc_json};
+
+  // The verbs' outputs, as the cells name them (the check reads them back), and their command lines.
+  Json sources = {{"budget", {{"command", p.budget_command}}},
+                  {"montecarlo", {{"command", p.montecarlo_command}}},
+                  {"errors", {{"configured_errors_si", errors}}}};
+  for (std::size_t i = 0; i < instants.size(); ++i)
+    sources[fmt::format("force{}", i)] = {
+        {"command",
+         {"force", "--run", std::to_string(r.sensed_input.run_index + 1), "--time",
+          fmt::format("{:.17g}", instants[i]["run"]["time_s"].get<double>())}}};
+
+  std::vector<std::string> advice;
+  for (const std::string& line : validation_advice_lines(r.monte_carlo)) advice.push_back(line);
+
+  std::string page = fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>ccal report: "
+      "{0}</title>\n"
+      "<style>{1}</style>\n</head>\n<body>\n<h1>Centrifuge calibration: uncertainty report</h1>\n"
+      "<p class=\"sub\">{0} · {2} mode · {3} · {4}</p>\n",
+      escape(r.config.source), kStyle, escape(budget_json["mode"].get<std::string>()), escape(p.date_utc),
+      escape(version_line()));
+  page += "<script type=\"application/json\" id=\"ccal-sources\">" + script_json(sources) + "</script>\n";
+  page += summary(budget, mc);
+  page += setup_section(r.config, p.config_text);
+  page += budget_section(budget, errors, kTopSources);
+  for (const auto& s : extra_sections)
+    page +=
+        "<section id=\"" + escape(s.id) + "\"><h2>" + escape(s.title) + "</h2>\n" + s.html + "</section>\n";
+  page += montecarlo_section(mc, advice);
+  page += paper_section(budget, kTopSources);
+  page += sensed_input_section(r.sensed_input, instants);
+  page += provenance_section(r, p);
+  page += "<script>" + script_text(scripts) + "</script>\n<script>" + kDraw + "</script>\n</body>\n</html>\n";
+  return page;
+}
+
+}  // namespace ccal::render

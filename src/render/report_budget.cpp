@@ -1,0 +1,245 @@
+// The report's budget sections: per coefficient a Pareto chart of the variance shares and the JCGM 100
+// table of its largest sources (the rest summed in one row), and the exact-vs-paper comparison.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "report_html.hpp"
+
+namespace ccal::render::report_html {
+namespace {
+
+// A row of the budget: a source of `sources` or of `rate_noise`, by its pointer in the budget's JSON.
+struct Contributor {
+  std::string pointer;  // e.g. "/sources/3" or "/rate_noise/0"
+  std::string id;
+  double share = 0;
+  bool type_a = false;
+};
+
+std::vector<Contributor> by_share(const Json& budget, const std::string& coefficient) {
+  std::vector<Contributor> all;
+  for (std::size_t s = 0; s < budget["sources"].size(); ++s) {
+    const Json& j = budget["sources"][s];
+    all.push_back({fmt::format("/sources/{}", s), j["id"].get<std::string>(),
+                   j["share"][coefficient].get<double>(), false});
+  }
+  if (budget.contains("rate_noise"))
+    for (std::size_t s = 0; s < budget["rate_noise"].size(); ++s) {
+      const Json& j = budget["rate_noise"][s];
+      all.push_back({fmt::format("/rate_noise/{}", s), j["id"].get<std::string>(),
+                     j["share"][coefficient].get<double>(), true});
+    }
+  std::stable_sort(all.begin(), all.end(),
+                   [](const Contributor& a, const Contributor& b) { return a.share > b.share; });
+  return all;
+}
+
+// A cell computed from several numbers of the output: their sum ("sum") or root-sum-square ("rss"), each at
+// its pointer; the cell lists them, so that the check can redo the sum.
+std::string combined_cell(const Doc& doc, const std::vector<std::string>& pointers, const std::string& kind,
+                          int digits, double scale) {
+  double sum = 0;
+  std::string list;
+  for (const auto& p : pointers) {
+    const double v = doc.json.at(Json::json_pointer(p)).get<double>();
+    sum += kind == "rss" ? v * v : v;
+    list += (list.empty() ? "" : " ") + p;
+  }
+  const double value = (kind == "rss" ? std::sqrt(sum) : sum) * scale;
+  return fmt::format(
+      "<td class=\"num\" data-{}=\"{}:{}\" data-digits=\"{}\" data-scale=\"{:g}\">{:.{}g}</td>", kind,
+      escape(doc.name), escape(list), digits, scale, value, digits);
+}
+
+Json pareto_spec(const std::string& coefficient, const std::vector<Contributor>& top, double rest_share,
+                 std::size_t rest_count) {
+  Json values = Json::array();
+  double cumulative = 0;
+  int order = 0;
+  for (const auto& c : top) {
+    cumulative += c.share;
+    values.push_back(
+        {{"source", c.id}, {"share", 100 * c.share}, {"cumulative", 100 * cumulative}, {"order", ++order}});
+  }
+  if (rest_count > 0) {
+    cumulative += rest_share;
+    values.push_back({{"source", fmt::format("rest ({})", rest_count)},
+                      {"share", 100 * rest_share},
+                      {"cumulative", 100 * cumulative},
+                      {"order", ++order}});
+  }
+  const std::string y_title = fmt::format("share of u²({}) [%]", coefficient);
+  return {
+      {"title", fmt::format("{}: where the variance comes from", coefficient)},
+      {"width", 300},
+      {"height", 220},
+      {"data", {{"values", values}}},
+      {"encoding",
+       {{"x",
+         {{"field", "source"},
+          {"type", "nominal"},
+          {"sort", {{"field", "order"}}},
+          {"title", nullptr},
+          {"axis", {{"labelAngle", -40}}}}}}},
+      {"layer",
+       Json::array(
+           {{{"mark", {{"type", "bar"}, {"color", "#4c78a8"}}},
+             {"encoding",
+              {{"y",
+                {{"field", "share"},
+                 {"type", "quantitative"},
+                 {"title", y_title},
+                 {"scale", {{"domain", {0, 100}}}}}},
+               {"tooltip", Json::array({{{"field", "source"}}, {{"field", "share"}, {"format", ".3g"}}})}}}},
+            {{"mark", {{"type", "line"}, {"color", "#e45756"}, {"point", true}}},
+             {"encoding", {{"y", {{"field", "cumulative"}, {"type", "quantitative"}}}}}}})}};
+}
+
+// A source's SI unit as a column shows it: a dimensionless (relative) one is "1".
+std::string unit_text(const std::string& unit) { return unit == "1" ? "1 (relative)" : unit; }
+
+std::string coefficient_table(const Doc& doc, const Json& errors_doc_json, std::size_t k,
+                              const std::vector<Contributor>& all, std::size_t top) {
+  const Json& budget = doc.json;
+  const std::string id = budget["coefficients"][k]["id"].get<std::string>();
+  const std::string unit = budget["coefficients"][k]["unit"].get<std::string>();
+  const Doc errors{"errors", errors_doc_json};
+  std::string t = fmt::format(
+      "<table class=\"budget\" data-coefficient=\"{0}\"><caption>{0} [{1}]: uncertainty budget (JCGM 100), "
+      "largest "
+      "sources</caption>\n<tr><th>source</th><th>x<sub>i</sub></th><th>u(x<sub>i</sub>)</th><th>unit</th>"
+      "<th>distribution</th><th>c<sub>i</sub> [{1} per unit]</th><th>u<sub>i</sub>(y) [{1}]</th>"
+      "<th>share [%]</th></tr>\n",
+      escape(id), escape(unit));
+  std::vector<std::string> rest_effects, rest_shares;
+  for (std::size_t n = 0; n < all.size(); ++n) {
+    const Contributor& c = all[n];
+    if (n >= top) {
+      rest_effects.push_back(c.pointer + (c.type_a ? "/u/" : "/effect/") + id);
+      rest_shares.push_back(c.pointer + "/share/" + id);
+      continue;
+    }
+    if (c.type_a) {
+      t += fmt::format("<tr>{}<td></td><td></td><td></td>{}<td></td>{}{}</tr>\n",
+                       text_cell(c.id + " (Type A)"), text_cell("rate noise"),
+                       num_cell(doc, c.pointer + "/u/" + id),
+                       num_cell(doc, c.pointer + "/share/" + id, 3, 100));
+      continue;
+    }
+    const Json& s = budget.at(Json::json_pointer(c.pointer));
+    const std::string group = s["group"].get<std::string>();
+    t += fmt::format(
+        "<tr>{}{}{}{}{}{}{}{}</tr>\n", text_cell(c.id + (group.empty() ? "" : " (" + group + ")")),
+        num_cell(errors, "/" + c.id, 4), num_cell(doc, c.pointer + "/standard_uncertainty_si", 4),
+        text_cell(unit_text(s["unit_si"].get<std::string>())),
+        text_cell(s["distribution"].get<std::string>()),
+        num_cell(doc, c.pointer + "/sensitivity_per_si_unit/" + id, 4),
+        num_cell(doc, c.pointer + "/effect/" + id, 4), num_cell(doc, c.pointer + "/share/" + id, 3, 100));
+  }
+  if (!rest_effects.empty())
+    t += fmt::format("<tr class=\"rest\"><td colspan=\"6\">{}</td>{}{}</tr>\n",
+                     escape(fmt::format("the other {} sources (root-sum-square)", rest_effects.size())),
+                     combined_cell(doc, rest_effects, "rss", 4, 1.0),
+                     combined_cell(doc, rest_shares, "sum", 3, 100));
+  const std::string c = fmt::format("/coefficients/{}", k);
+  t += fmt::format(
+      "<tr class=\"total\"><td colspan=\"6\">combined standard uncertainty u<sub>c</sub> "
+      "(LPU)</td>{}<td></td>"
+      "</tr>\n",
+      num_cell(doc, c + "/standard_uncertainty"));
+  t += fmt::format(
+      "<tr class=\"total\"><td colspan=\"6\">expanded uncertainty U = k u<sub>c</sub>, k = {}</td>{}<td></td>"
+      "</tr>\n</table>\n",
+      num_span(doc, "/coverage_factor", 3), num_cell(doc, c + "/expanded_uncertainty"));
+  return t;
+}
+
+}  // namespace
+
+std::string budget_section(const Doc& doc, const Json& errors, std::size_t top) {
+  const Json& budget = doc.json;
+  std::string out =
+      "<section id=\"budget\"><h2>Uncertainty budget</h2>\n<p>Each source's standard uncertainty "
+      "u(x<sub>i</sub>) (SI unit of the source), its sensitivity coefficient c<sub>i</sub> = "
+      "∂y/∂x<sub>i</sub> "
+      "through kinematics, reduction and least squares, its contribution u<sub>i</sub>(y) = c<sub>i</sub> "
+      "u(x<sub>i</sub>) and its share of u<sub>c</sub>²(y); x<sub>i</sub> is the configured [errors] value "
+      "(SI). From <code>ccal budget</code> (" +
+      escape(budget["mode"].get<std::string>()) + " mode).</p>\n";
+  for (std::size_t k = 0; k < budget["coefficients"].size(); ++k) {
+    const std::string id = budget["coefficients"][k]["id"].get<std::string>();
+    const std::vector<Contributor> all = by_share(budget, id);
+    const std::size_t n_top = std::min(top, all.size());
+    double rest = 0;
+    for (std::size_t n = n_top; n < all.size(); ++n) rest += all[n].share;
+    const std::vector<Contributor> head(all.begin(), all.begin() + std::ptrdiff_t(n_top));
+    out += "<div class=\"pair\">\n" + chart("pareto-" + id, pareto_spec(id, head, rest, all.size() - n_top)) +
+           coefficient_table(doc, errors, k, all, n_top) + "</div>\n";
+  }
+  return out + "</section>\n";
+}
+
+std::string paper_section(const Doc& doc, std::size_t top) {
+  const Json& budget = doc.json;
+  if (budget["sources"].empty() || !budget["sources"][0].contains("paper_effect")) return {};
+  std::vector<std::size_t> order(budget["sources"].size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t n = std::min(top, order.size());  // sources are in rank order already
+  Json values = Json::array();
+  std::string t =
+      "<table class=\"paper\"><caption>Effect of each source at its u(x<sub>i</sub>): exact chain and the "
+      "paper's first-order rules</caption>\n<tr><th>source</th>";
+  for (const Json& c : budget["coefficients"])
+    t += fmt::format("<th>{0} exact</th><th>{0} paper</th><th>{0}</th>", escape(c["id"].get<std::string>()));
+  t += "</tr>\n";
+  for (std::size_t r = 0; r < n; ++r) {
+    const Json& s = budget["sources"][order[r]];
+    const std::string p = fmt::format("/sources/{}", order[r]);
+    t += "<tr>" + text_cell(s["id"].get<std::string>());
+    for (const Json& c : budget["coefficients"]) {
+      const std::string id = c["id"].get<std::string>();
+      const bool counterpart = s.value("paper_counterpart", true);
+      t += num_cell(doc, p + "/effect/" + id, 3) + num_cell(doc, p + "/paper_effect/" + id, 3) +
+           text_cell(!counterpart                                ? "no paper rule"
+                     : s["exact_paper_disagree"][id].get<bool>() ? "differ"
+                                                                 : "agree");
+      for (const char* model : {"exact", "paper"})
+        values.push_back({{"source", s["id"]},
+                          {"coefficient", id + " [" + c["unit"].get<std::string>() + "]"},
+                          {"model", model},
+                          {"effect", s[model == std::string("exact") ? "effect" : "paper_effect"][id]}});
+    }
+    t += "</tr>\n";
+  }
+  t += "</table>\n";
+  const Json spec = {
+      {"title", "Effect of the largest sources: exact chain against the paper's rules"},
+      {"data", {{"values", values}}},
+      {"facet", {{"column", {{"field", "coefficient"}, {"type", "nominal"}, {"title", nullptr}}}}},
+      {"resolve", {{"scale", {{"y", "independent"}}}}},
+      {"spec",
+       {{"width", 220},
+        {"height", 200},
+        {"mark", "bar"},
+        {"encoding",
+         {{"x",
+           {{"field", "source"},
+            {"type", "nominal"},
+            {"title", nullptr},
+            {"sort", nullptr},
+            {"axis", {{"labelAngle", -40}}}}},
+          {"xOffset", {{"field", "model"}, {"type", "nominal"}}},
+          {"y",
+           {{"field", "effect"}, {"type", "quantitative"}, {"title", "effect at u(x) (coefficient unit)"}}},
+          {"color",
+           {{"field", "model"}, {"type", "nominal"}, {"scale", {{"range", {"#4c78a8", "#f58518"}}}}}}}}}}};
+  return "<section id=\"paper\"><h2>Exact chain against the paper's first-order rules</h2>\n<p>The same "
+         "sources through the paper's first-order rules (Wang &amp; Ren 2014); \"differ\": by more than a "
+         "factor of 2 or in sign where it matters (<code>ccal budget</code>).</p>\n<div class=\"pair\">\n" +
+         chart("paper-vs-exact", spec) + t + "</div>\n</section>\n";
+}
+
+}  // namespace ccal::render::report_html

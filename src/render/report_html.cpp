@@ -1,0 +1,80 @@
+#include "report_html.hpp"
+
+#include <fmt/format.h>
+
+#include "ccal/core/errors.hpp"
+
+namespace ccal::render::report_html {
+
+std::string escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
+    }
+  return out;
+}
+
+std::string script_json(const Json& value) {
+  const std::string text = value.dump(-1, ' ', false, Json::error_handler_t::replace);
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    if (c == '<')
+      out += "\\u003c";
+    else
+      out += c;
+  }
+  return out;
+}
+
+namespace {
+double value_at(const Doc& doc, const std::string& pointer) {
+  const Json::json_pointer p(pointer);
+  if (!doc.json.contains(p) || !doc.json.at(p).is_number())
+    throw std::logic_error(fmt::format("report: {}:{} is not a number of that output", doc.name, pointer));
+  return doc.json.at(p).get<double>();
+}
+
+std::string attributes(const Doc& doc, const std::string& pointer, int digits, double scale) {
+  return fmt::format("data-src=\"{}:{}\" data-digits=\"{}\"{}", escape(doc.name), escape(pointer), digits,
+                     scale == 1.0 ? std::string() : fmt::format(" data-scale=\"{:g}\"", scale));
+}
+}  // namespace
+
+std::string num_cell(const Doc& doc, const std::string& pointer, int digits, double scale) {
+  return fmt::format("<td class=\"num\" {}>{:.{}g}</td>", attributes(doc, pointer, digits, scale),
+                     value_at(doc, pointer) * scale, digits);
+}
+
+std::string num_span(const Doc& doc, const std::string& pointer, int digits, double scale) {
+  return fmt::format("<span class=\"num\" {}>{:.{}g}</span>", attributes(doc, pointer, digits, scale),
+                     value_at(doc, pointer) * scale, digits);
+}
+
+std::string text_cell(std::string_view text) { return "<td>" + escape(text) + "</td>"; }
+
+std::string chart(const std::string& id, const Json& spec) {
+  return fmt::format(
+      "<div class=\"chart\" id=\"{0}\"></div>\n<script type=\"application/json\" class=\"vl-spec\" "
+      "data-target=\"{0}\">{1}</script>\n",
+      escape(id), script_json(spec));
+}
+
+}  // namespace ccal::render::report_html

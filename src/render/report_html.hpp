@@ -1,0 +1,45 @@
+#pragma once
+// Pieces of the HTML report (private to the library): escaping, numbers read from a verb's JSON output into
+// table cells that name their source, Vega-Lite charts, and the report's sections.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "ccal/render/report.hpp"
+
+namespace ccal::render::report_html {
+
+using Json = nlohmann::ordered_json;
+
+// Text as HTML: & < > " ' replaced by entities (safe in element content and in quoted attributes).
+std::string escape(std::string_view text);
+
+// A JSON value for a <script> element: every '<' written as \u003c, so that no "</script>" or "<!--" can
+// end or change the element.
+std::string script_json(const Json& value);
+
+// One verb's JSON output, by the name the cells use ("budget", "montecarlo", "force0", …).
+struct Doc {
+  std::string name;
+  const Json& json;
+};
+
+// A number of a verb's output: the value at `pointer` (RFC 6901) in doc, times scale (100 for a share in %),
+// with `digits` significant digits, as a table cell that names its source.
+std::string num_cell(const Doc& doc, const std::string& pointer, int digits = 4, double scale = 1.0);
+// The same number as plain text (no cell), e.g. for a sentence; also names its source.
+std::string num_span(const Doc& doc, const std::string& pointer, int digits = 4, double scale = 1.0);
+// A text cell (escaped).
+std::string text_cell(std::string_view text);
+
+// A chart: a container and its Vega-Lite specification (drawn by the page's script).
+std::string chart(const std::string& id, const Json& spec);
+
+// The sections.
+std::string setup_section(const Config& config, std::string_view config_text);
+std::string budget_section(const Doc& budget, const Json& errors, std::size_t top);
+std::string paper_section(const Doc& budget, std::size_t top);
+std::string montecarlo_section(const Doc& montecarlo, const std::vector<std::string>& advice);
+std::string sensed_input_section(const verbs::SensedInputSeries& series, const std::vector<Json>& instants);
+
+}  // namespace ccal::render::report_html

@@ -1,0 +1,72 @@
+#include "ccal/verbs/report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/verbs/force.hpp"
+
+namespace ccal::verbs {
+namespace {
+
+std::size_t highest_g_run(const TestPlan& plan) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < plan.runs.size(); ++k)
+    if (plan.runs[k].g_level > plan.runs[best].g_level) best = k;
+  return best;
+}
+
+// The run's exact input at evenly spaced instants of a window: the whole run, or, when the platform turns
+// more than 3 times in it, its first 3 revolutions (a longer window would only alias the curve).
+SensedInputSeries sensed_input(const Config& config, const ReportOptions& o) {
+  if (o.input_points < 2 || o.input_points > 100000)
+    throw InputError(fmt::format("input points: {} is out of range; accepted: 2 to 100000", o.input_points));
+  if (config.plan.runs.empty()) throw InputError(config.source + ": the test plan has no runs");
+  SensedInputSeries s;
+  s.run_index = o.run.empty() ? highest_g_run(config.plan) : select_run(config.plan, o.run, "--run");
+  const Run& run = config.plan.runs[s.run_index];
+  s.run_name = run.name;
+  s.g_level = run.g_level;
+  s.duration = run.duration;
+  s.platform_rate = std::abs(nominal_platform_rate(run, config.centrifuge.geometry, config.site));
+  const double revolutions = s.platform_rate > 0 ? 3 * 2 * std::numbers::pi / s.platform_rate : run.duration;
+  s.window = std::min(run.duration, revolutions);
+  ForceOptions fo;
+  fo.run = std::to_string(s.run_index + 1);
+  for (int k = 0; k < o.input_points; ++k) {
+    fo.time = s.window * double(k) / double(o.input_points - 1);
+    const SensedInputBreakdown b = force(config, fo).input;  // the instrument's exact input at t
+    s.time.push_back(fo.time);
+    s.ia.push_back(b.specific_force[0]);
+    s.pa.push_back(b.specific_force[1]);
+    s.oa.push_back(b.specific_force[2]);
+    s.ia_first_order.push_back(b.first_order_f_ia);
+  }
+  for (const double t : {0.0, s.window / 2, s.window}) {
+    fo.time = t;
+    s.instants.push_back(force(config, fo));
+  }
+  return s;
+}
+
+}  // namespace
+
+ReportResult report(const Config& config, const ReportOptions& o) {
+  ReportResult r;
+  r.config = config;
+  BudgetOptions bo;
+  bo.mode = o.mode;
+  bo.coverage_factor = o.coverage_factor;
+  r.budget = budget(config, bo);
+  MonteCarloOptions mo = o.monte_carlo;
+  mo.mode = o.mode;
+  mo.keep_samples = false;  // the report draws the histograms of the JSON, not the values
+  r.monte_carlo = monte_carlo(config, mo);
+  r.sensed_input = sensed_input(config, o);
+  return r;
+}
+
+}  // namespace ccal::verbs

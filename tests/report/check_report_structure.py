@@ -1,0 +1,168 @@
+#!/usr/bin/env python3
+"""The structure of a report of `ccal report`: every number in its tables is the number of the verb output it
+names (data-src="budget:/coefficients/2/standard_uncertainty"), formatted with the digits it states, where the
+output is the JSON that the program itself prints for the verb's command line listed in the page; sums and
+root-sum-squares of such numbers are redone; no table cell shows a number without a source; the charts' data
+are the same outputs' numbers; the configuration is shown byte for byte with its SHA-256.
+
+    check_report_structure.py CCAL REPORT.html [CONFIG]
+
+Exit 1 with one line per problem."""
+import hashlib
+import html.parser
+import json
+import math
+import os
+import subprocess
+import sys
+import tomllib
+
+
+class Page(html.parser.HTMLParser):
+    """The numeric cells, the other table cells, the JSON scripts and the configuration text of a page."""
+
+    def __init__(self):
+        super().__init__(convert_charrefs=True)
+        self.cells, self.plain_cells, self.specs, self.scripts = [], [], [], {}
+        self.config_text = None
+        self._open = None  # (kind, attributes, text parts) of the element whose text is collected
+        self._table_class = []
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "table":
+            self._table_class.append(a.get("class", ""))
+        if tag in ("td", "span") and "num" in a.get("class", "").split():
+            self._open = ("num", a, [])
+        elif tag == "td" and self._table_class:
+            self._open = ("plain", dict(a, table=self._table_class[-1]), [])
+        elif tag == "script" and a.get("type") == "application/json":
+            self._open = ("script", a, [])
+        elif tag == "pre" and a.get("id") == "config-text":
+            self._open = ("config", a, [])
+
+    def handle_endtag(self, tag):
+        if tag == "table" and self._table_class:
+            self._table_class.pop()
+        if self._open is None or tag not in ("td", "span", "script", "pre"):
+            return
+        kind, a, parts = self._open
+        text = "".join(parts)
+        if kind == "num":
+            self.cells.append((a, text.strip()))
+        elif kind == "plain":
+            self.plain_cells.append((a, text.strip()))
+        elif kind == "script":
+            if a.get("id"):
+                self.scripts[a["id"]] = json.loads(text)
+            else:
+                self.specs.append((a.get("data-target"), json.loads(text)))
+        elif kind == "config":
+            self.config_text = text
+        self._open = None
+
+    def handle_data(self, data):
+        if self._open is not None:
+            self._open[2].append(data)
+
+
+def pointer(doc, path):
+    value = doc
+    for part in path.split("/")[1:]:
+        part = part.replace("~1", "/").replace("~0", "~")
+        value = value[int(part)] if isinstance(value, list) else value[part]
+    return value
+
+
+def formatted(value, digits):
+    """As the page writes it: C's %.<digits>g, which Python's format shares."""
+    return f"{value:.{digits}g}"
+
+
+def is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def main(program, report, config=None):
+    problems = []
+    with open(report, encoding="utf-8") as f:
+        page = Page()
+        page.feed(f.read())
+    sources = page.scripts["ccal-sources"]
+    docs = {}
+    for name, how in sources.items():
+        if "command" in how:
+            args = [program, how["command"][0], *([config] if config else []), *how["command"][1:], "--format",
+                    "json"]
+            docs[name] = json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
+    docs["errors"] = sources["errors"]["configured_errors_si"]
+
+    # x_i: the configured [errors] values; in a configuration without [errors] entries every one is 0.
+    text = open(config, "rb").read() if config else None
+    configured = tomllib.loads(text.decode()).get("errors", {}) if text else {}
+    for source, value in docs["errors"].items():
+        if source not in configured and value != 0:
+            problems.append(f"errors:{source}: {value}, but the configuration does not set it (0)")
+
+    checked = 0
+    for a, shown in page.cells:
+        digits = int(a["data-digits"])
+        scale = float(a.get("data-scale", "1"))
+        if "data-src" in a:
+            name, path = a["data-src"].split(":", 1)
+            expected = pointer(docs[name], path) * scale
+        else:
+            kind = "sum" if "data-sum" in a else "rss"
+            name, paths = a["data-" + kind].split(":", 1)
+            values = [pointer(docs[name], p) for p in paths.split()]
+            expected = (sum(values) if kind == "sum" else math.sqrt(sum(v * v for v in values))) * scale
+        if shown != formatted(expected, digits):
+            problems.append(f"{a.get('data-src') or a.get('data-sum') or a.get('data-rss')}: the page shows "
+                            f"{shown}, the output gives {formatted(expected, digits)} ({expected!r})")
+        checked += 1
+    # No number in a result table without its source (the set-up tables show the configuration as written).
+    for a, shown in page.plain_cells:
+        if a["table"] != "setup" and is_number(shown):
+            problems.append(f"a {a['table']} table shows the number {shown} without a source")
+
+    # The charts draw the same numbers: the Monte Carlo histograms and interval ends, the Pareto shares.
+    mc = docs["montecarlo"]["coefficients"]
+    for target, spec in page.specs:
+        if target.startswith("mc-"):
+            c = mc[target[3:]]
+            counts = [b["trials"] for b in spec["layer"][0]["data"]["values"]]
+            if counts != c["histogram"]["counts"]:
+                problems.append(f"{target}: the bars are not the histogram of `ccal montecarlo`")
+            ends = [r["x"] for r in spec["layer"][2]["data"]["values"]][:2]
+            if ends != c["symmetric_interval"]:
+                problems.append(f"{target}: the interval rules {ends} are not {c['symmetric_interval']}")
+        if target.startswith("pareto-"):
+            coefficient = target[7:]
+            shares = {s["id"]: s["share"][coefficient] for s in docs["budget"]["sources"]}
+            shares.update({s["id"]: s["share"][coefficient] for s in docs["budget"].get("rate_noise", [])})
+            for bar in spec["data"]["values"]:
+                if bar["source"] in shares and bar["share"] != 100 * shares[bar["source"]]:
+                    problems.append(f"{target}: {bar['source']} drawn at {bar['share']} %")
+    if len(page.specs) < 8:
+        problems.append(f"{len(page.specs)} charts, expected at least 8")
+
+    expected_text = (text or b"").decode() if config else None
+    if expected_text is not None and page.config_text != expected_text:
+        problems.append("the configuration text in the page is not the file's")
+    sha = hashlib.sha256((page.config_text or "").encode()).hexdigest()
+    if f'<code id="config-sha256">{sha}</code>' not in open(report, encoding="utf-8").read():
+        problems.append(f"the page's SHA-256 is not that of its configuration text ({sha})")
+
+    for p in problems:
+        print(p)
+    print(f"{checked} numbers checked against {len(docs)} outputs, {len(page.specs)} charts, "
+          f"{len(problems)} problem(s)")
+    return 1 if problems or checked < 100 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:]))

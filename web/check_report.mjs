@@ -1,0 +1,69 @@
+// Opens a report of `ccal report` in headless Chromium with every network request refused, and fails
+// (exit 1, one line per problem) on a console error, an uncaught page error, a failed or non-local request, a
+// chart that was not drawn, or a chart with fewer drawn marks than expected. Saves a PNG of the whole page.
+//   node web/check_report.mjs REPORT.html SCREENSHOT.png [CHROMIUM]
+// Exit 77 (the test is skipped) when no Chromium is installed.
+import { chromium } from 'playwright-core';
+import { existsSync } from 'node:fs';
+import { pathToFileURL } from 'node:url';
+
+const [report, screenshot, browserPath = '/usr/bin/chromium'] = process.argv.slice(2);
+if (!report || !screenshot) {
+  console.error('usage: node check_report.mjs REPORT.html SCREENSHOT.png [CHROMIUM]');
+  process.exit(2);
+}
+if (!existsSync(browserPath)) {
+  console.log(`skipped: no Chromium at ${browserPath} (Debian package chromium; scripts/setup.sh installs it)`);
+  process.exit(77);
+}
+
+const problems = [];
+const browser = await chromium.launch({
+  executablePath: browserPath,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+         '--disable-component-update', '--disable-sync'],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1480, height: 900 } });
+  const url = pathToFileURL(report).href;
+  // The page must need nothing but itself: every other request is refused and counted.
+  await page.route('**/*', (route) => {
+    if (route.request().url() === url) return route.continue();
+    problems.push(`request refused: ${route.request().url()}`);
+    return route.abort();
+  });
+  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  page.on('requestfailed', (r) => { if (r.url() !== url) problems.push(`failed request: ${r.url()}`); });
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForFunction(() => window.ccalReport !== undefined, null, { timeout: 20000 });
+  await page.evaluate(() => window.ccalReport);
+  // Drawn marks per chart: the children of Vega's mark groups (bars, line and rule paths, points), not the
+  // axes or legends.
+  const charts = await page.evaluate(() => [...document.querySelectorAll('div.chart')].map((d) => ({
+    id: d.id,
+    rendered: d.dataset.rendered === 'yes',
+    marks: d.querySelectorAll('svg g.role-mark > *').length,
+    bars: d.querySelectorAll('svg g.mark-rect.role-mark > path').length,
+    lines: d.querySelectorAll('svg g.mark-line.role-mark > path').length,
+    rules: d.querySelectorAll('svg g.mark-rule.role-mark > line').length,
+  })));
+  const minimum = (id) => (id.startsWith('pareto-') ? { bars: 2, lines: 1 }
+    : id.startsWith('mc-') ? { bars: 10, lines: 1, rules: 4 }
+    : id === 'paper-vs-exact' ? { bars: 6 }
+    : id === 'sensed-input' ? { lines: 3 } : {});
+  for (const c of charts) {
+    if (!c.rendered) problems.push(`chart ${c.id}: not drawn`);
+    for (const [kind, least] of Object.entries(minimum(c.id)))
+      if (c[kind] < least) problems.push(`chart ${c.id}: ${c[kind]} ${kind} drawn, expected at least ${least}`);
+    console.log(`chart ${c.id}: ${c.marks} marks (${c.bars} bars, ${c.lines} lines, ${c.rules} rules)`);
+  }
+  const expected = Number(process.env.CCAL_EXPECTED_CHARTS || 0);
+  if (expected && charts.length !== expected) problems.push(`${charts.length} charts, expected ${expected}`);
+  await page.screenshot({ path: screenshot, fullPage: true });
+  console.log(`screenshot: ${screenshot}`);
+} finally {
+  await browser.close();
+}
+for (const p of problems) console.error(p);
+process.exit(problems.length ? 1 : 0);
