@@ -159,11 +159,12 @@ void bind_uncertainty(py::module_& m) {
         py::gil_scoped_release release;
         return verbs::allocate(cfg, o);
       },
-      py::arg("config"), py::arg("targets"), py::arg("coverage_probability") = 0.95, py::arg("max_scale") = 10.0,
-      py::arg("verify_trials") = 2000, py::arg("seed") = 1, py::arg("threads") = 0, py::arg("mode") = py::none(),
+      py::arg("config"), py::arg("targets"), py::arg("coverage_probability") = 0.95,
+      py::arg("max_scale") = 10.0, py::arg("verify_trials") = 2000, py::arg("seed") = 1,
+      py::arg("threads") = 0, py::arg("mode") = py::none(),
       "Largest tolerances for which every target (coefficient id → allowed expanded uncertainty, a number in "
-      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. mode: 'exact' "
-      "or 'paper' (default: the configuration's).");
+      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. mode: "
+      "'exact' or 'paper' (default: the configuration's).");
 }
 
 }  // namespace ccal::python

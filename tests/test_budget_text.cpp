@@ -94,8 +94,8 @@ TEST(BudgetText, AnswerTopRowsAndNextSteps) {
 TEST(BudgetText, Utf8GroupAndRunNamesAlign) {
   // A group and a run named with non-ASCII letters: each row is as wide, in displayed characters, as its
   // table's header (the last column is right-aligned), which byte counts would miss by one per "ä" or "µ".
-  std::string text = replaced(example_text(), "dR_s = \"25 um\"",
-                              "dR_s = { bound = \"25 µm\", group = \"Längen-µ\" }");
+  std::string text =
+      replaced(example_text(), "dR_s = \"25 um\"", "dR_s = { bound = \"25 µm\", group = \"Längen-µ\" }");
   text = replaced(text, "dy2t = \"25 um\"", "dy2t = { bound = \"25 µm\", group = \"Längen-µ\" }");
   text = replaced(text, "name = \"5g\"", "name = \"Lauf-ä-5g\"");
   const Config cfg = parse_config(text, "utf8.toml");
@@ -109,12 +109,13 @@ TEST(BudgetText, Utf8GroupAndRunNamesAlign) {
   const std::string simulate = render::text(verbs::simulate(cfg));
   const auto [run_row, run_header] = row_and_header(simulate, "Lauf-ä-5g");
   ASSERT_FALSE(run_row.empty()) << simulate;
-  EXPECT_EQ(render::display_width(run_row), render::display_width(run_header)) << run_row << "\n" << run_header;
+  EXPECT_EQ(render::display_width(run_row), render::display_width(run_header)) << run_row << "\n"
+                                                                               << run_header;
 }
 
 TEST(BudgetText, ToleranceInTheConfigurationsUnitWithUAndC) {
-  const Config cfg = parse_config(replaced(example_text(), "dthz5 = \"1e-5 rad\"", "dthz5 = \"2 arcsec\""),
-                                  "arcsec.toml");
+  const Config cfg =
+      parse_config(replaced(example_text(), "dthz5 = \"1e-5 rad\"", "dthz5 = \"2 arcsec\""), "arcsec.toml");
   const verbs::BudgetResult r = verbs::budget(cfg);
   const auto j = nlohmann::json::parse(render::json(r));
   bool found = false;
@@ -147,9 +148,12 @@ std::map<std::string, std::string> csv_row(const std::string& csv, const std::st
     std::string cell;
     bool quoted = false;
     for (char c : line) {
-      if (c == '"') quoted = !quoted;
-      else if (c == ',' && !quoted) cells.push_back(std::exchange(cell, ""));
-      else cell += c;
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        cells.push_back(std::exchange(cell, ""));
+      else
+        cell += c;
     }
     cells.push_back(cell);
     return cells;
@@ -186,15 +190,16 @@ TEST(BudgetText, CsvTotalsEqualTheJson) {
   // c_i is there too: c_K3 × u_x = dK3 for the first-ranked source, relative 1e-12.
   const auto first = csv_row(csv, j["sources"][0]["id"]);
   EXPECT_NEAR(std::stod(first.at("c_K3 [deg/s/g^3 per unit]")) * std::stod(first.at("u_x")),
-              std::stod(first.at("dK3 [deg/s/g^3]")), 1e-12 * std::abs(std::stod(first.at("dK3 [deg/s/g^3]"))));
+              std::stod(first.at("dK3 [deg/s/g^3]")),
+              1e-12 * std::abs(std::stod(first.at("dK3 [deg/s/g^3]"))));
 }
 
 TEST(BudgetText, BiasRowEqualsSimulatesShift) {
   // Known errors not compensated: the budget's bias of each coefficient is what `ccal simulate` identifies
   // with the errors minus what it identifies without them (the same plan, no instrument noise).
-  const std::string with_errors = replaced(
-      replaced(example_text(), "# dthz5 = \"2 arcsec\"", "dthz5 = \"2 arcsec\""), "# dx3_c1 = \"5 um\"",
-      "dx3_c1 = \"5 um\"");
+  const std::string with_errors =
+      replaced(replaced(example_text(), "# dthz5 = \"2 arcsec\"", "dthz5 = \"2 arcsec\""),
+               "# dx3_c1 = \"5 um\"", "dx3_c1 = \"5 um\"");
   const Config cfg = parse_config(with_errors, "errors.toml");
   const verbs::BudgetResult b = verbs::budget(cfg);
   ASSERT_EQ(b.known_error_bias.size(), 3);
@@ -221,9 +226,9 @@ TEST(BudgetText, BiasRowEqualsSimulatesShift) {
 
 TEST(Table, DisplayWidthAndCutting) {
   EXPECT_EQ(render::display_width("abc"), 3u);
-  EXPECT_EQ(render::display_width("µm"), 2u);          // U+00B5: 2 bytes, 1 column
+  EXPECT_EQ(render::display_width("µm"), 2u);  // U+00B5: 2 bytes, 1 column
   EXPECT_EQ(render::display_width("Läufe"), 5u);
-  EXPECT_EQ(render::display_width("e\xCC\x81"), 1u);   // e + combining acute
+  EXPECT_EQ(render::display_width("e\xCC\x81"), 1u);     // e + combining acute
   EXPECT_EQ(render::display_width("\xE6\xBC\xA2"), 2u);  // 漢: wide
   EXPECT_EQ(render::truncate_to_width("azimuth-axis wobble", 8), "azimuth…");
   EXPECT_EQ(render::display_width(render::truncate_to_width("Längen-µ-Gruppe", 6)), 6u);

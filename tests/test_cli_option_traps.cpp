@@ -26,7 +26,8 @@ TEST_F(OptionTraps, BudgetCoverageFactorBelowOneIsRefused) {
 TEST_F(OptionTraps, AllocateCoverageIsAProbabilityByName) {
   expect_bad_input(run("allocate --target K3=2e-3 --coverage 0.9"), {"--coverage", "--coverage-probability"});
   expect_bad_input(run("allocate --target K3=2e-3 --coverage-probability 2"), {"--coverage-probability"});
-  const Result r = run("allocate --target K3=2e-3 --coverage-probability 0.9 --verify-trials 0 --format json");
+  const Result r =
+      run("allocate --target K3=2e-3 --coverage-probability 0.9 --verify-trials 0 --format json");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["coverage_probability"], 0.9);
@@ -40,8 +41,7 @@ TEST_F(OptionTraps, AllocateFollowsTheConfigurationsMode) {
   const std::string text = read(kPaperExample);
   const auto at = text.find("mode = \"exact\"");
   ASSERT_NE(at, std::string::npos);
-  const std::string cfg =
-      write("paper.toml", text.substr(0, at) + "mode = \"paper\"" + text.substr(at + 14));
+  const std::string cfg = write("paper.toml", text.substr(0, at) + "mode = \"paper\"" + text.substr(at + 14));
   const Result b = run("budget " + cfg + " --coverage-factor 1.959963984540054 --format json");
   const Result a = run("allocate " + cfg + " --target K3=1e-6 --verify-trials 0 --format json");
   ASSERT_EQ(b.code, 0) << b.err;

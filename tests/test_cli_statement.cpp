@@ -9,7 +9,28 @@
 namespace ccal::test {
 namespace {
 
-using Statement = Cli;
+class Statement : public Cli {
+ protected:
+  // Logs of the first n runs of the bundled plan (5, 10, 15, … g): pulses of 1e-3 deg at K1 × g-level
+  // deg/s, encoders at the planned rate of a 2.5 m arm, every 0.1 s over 120 s. Pure test data. Returns the
+  // --log options.
+  std::string write_logs(int n) const {
+    std::string logs;
+    for (int r = 0; r < n; ++r) {
+      const double g_level = 5.0 * (r + 1), rate = std::sqrt(g_level * 9.8 / 2.5), T = 120;
+      std::string csv = "time,pulses,theta1,gamma\n";
+      for (int k = 0; k <= 1200; ++k) {
+        const double t = T * k / 1200;
+        csv += std::to_string(t) + "," + std::to_string(std::floor(505.2097 * g_level * t / 1e-3)) + "," +
+               std::to_string(std::fmod(rate * t, 2 * std::numbers::pi)) + "," +
+               std::to_string(std::fmod(8 * std::numbers::pi - rate * t, 2 * std::numbers::pi)) + "\n";
+      }
+      write("run" + std::to_string(r) + ".csv", csv);
+      logs += " --log " + std::to_string(r + 1) + "=run" + std::to_string(r) + ".csv";
+    }
+    return logs + " --pulse-weight 1e-3";
+  }
+};
 
 // Φ⁻¹(0.975) to 16 digits.
 constexpr double kZ975 = 1.959963984540054;
@@ -87,30 +108,43 @@ TEST_F(Statement, KnownErrorsAreCorrected) {
   }
 }
 
+TEST_F(Statement, ReduceWithOneDegreeOfFreedom) {
+  // Four logged runs for three free terms: ν_A = 1, so ν_eff = u_c⁴/u_A⁴ and k lies between the normal
+  // quantile and t_{0.975}(1) = 12.706 (table value).
+  const Result r = run("reduce" + write_logs(4) + " --budget --coverage-probability 0.95 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& s = j.at("statement");
+  EXPECT_EQ(s["coverage_probability"], 0.95);
+  for (const std::string id : {"K0", "K2", "K3"}) {
+    const auto& c = s["coefficients"][id];
+    EXPECT_EQ(c["type_a"]["dof"], 1) << id;
+    EXPECT_EQ(c["type_a"]["u"], j["identification"]["coefficients"][id]["std_error"]) << id;
+    const double u_a = c["type_a"]["u"], u_b = c["type_b"]["u"], u_c = std::hypot(u_a, u_b);
+    EXPECT_NEAR(c["combined_standard_uncertainty"].get<double>(), u_c, 1e-12 * u_c);
+    if (u_a > 0) {
+      const double nu = std::pow(u_c / u_a, 4);  // relative 1e-9: a ratio raised to the 4th power
+      EXPECT_NEAR(c["effective_dof"].get<double>(), nu, 1e-9 * nu) << id;
+    }
+    EXPECT_GE(c["coverage_factor"].get<double>(), kZ975 - 1e-12);
+    EXPECT_LE(c["coverage_factor"].get<double>(), 12.7062 + 5e-5);
+  }
+  const Result text = run("reduce" + write_logs(4) + " --budget");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("Calibration statement"), std::string::npos);
+}
+
 TEST_F(Statement, BadUsesAreExitCodeTwo) {
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
   expect_bad_input(run("identify obs.csv --budget " + kExample + " --coverage-probability 1.5"),
                    {"--coverage-probability"});
   expect_bad_input(run("identify obs.csv --budget missing.toml"), {"missing.toml"});
   // A fit of other free terms than the configuration's: its budget does not apply.
-  expect_bad_input(
-      run("identify obs.csv --terms K0,K2 --fix K1=505.2097,K3=0.003 --budget " + kExample),
-      {"--budget", "K0, K2", "K0, K2, K3"});
+  expect_bad_input(run("identify obs.csv --terms K0,K2 --fix K1=505.2097,K3=0.003 --budget " + kExample),
+                   {"--budget", "K0, K2", "K0, K2, K3"});
   // reduce with as many logs as free terms: no degrees of freedom, no Type A.
-  std::string logs;
-  for (int r = 0; r < 3; ++r) {
-    const double g_level = 5.0 * (r + 1), rate = std::sqrt(g_level * 9.8 / 2.5), T = 120;
-    std::string csv = "time,pulses,theta1,gamma\n";
-    for (int k = 0; k <= 1200; ++k) {
-      const double t = T * k / 1200;
-      csv += std::to_string(t) + "," + std::to_string(std::floor(505.2097 * g_level * t / 1e-3)) + "," +
-             std::to_string(std::fmod(rate * t, 2 * std::numbers::pi)) + "," +
-             std::to_string(std::fmod(8 * std::numbers::pi - rate * t, 2 * std::numbers::pi)) + "\n";
-    }
-    write("run" + std::to_string(r) + ".csv", csv);
-    logs += " --log " + std::to_string(r + 1) + "=run" + std::to_string(r) + ".csv";
-  }
-  expect_bad_input(run("reduce" + logs + " --pulse-weight 1e-3 --budget"), {"--budget", "degrees of freedom"});
+  const std::string logs = write_logs(3);
+  expect_bad_input(run("reduce" + logs + " --budget"), {"--budget", "degrees of freedom"});
 }
 
 }  // namespace

@@ -14,8 +14,9 @@ TerminalSize output_terminal(const OutputOptions& output) {
 }
 
 void add_width_options(CLI::App& command, WidthOptions& options, const std::string& wide_help) {
-  command.add_option("--width", options.width,
-                     "Columns of the text (default: the terminal's width, or 100 when not a terminal)")
+  command
+      .add_option("--width", options.width,
+                  "Columns of the text (default: the terminal's width, or 100 when not a terminal)")
       ->check(CLI::Range(40, 10000))
       ->type_name("N");
   command.add_flag("--wide", options.wide, wide_help);

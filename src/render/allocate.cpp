@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "budget_parts.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
-#include "budget_parts.hpp"
 
 namespace ccal::render {
 namespace {
@@ -83,13 +83,14 @@ std::string coefficients_table(const AllocationResult& r, std::size_t width) {
     const double f = c.display_scale;
     t.add_row({coefficient_cell(c), c.has_target ? number(c.target * f, 4) : "-",
                number(c.configured_expanded * f, 4), number(c.allocated_expanded * f, 6),
-               number(c.common_expanded * f, 4),
-               c.has_target ? (c.active ? "active" : "inactive") : "none", c.has_target ? number(c.price, 4) : ""});
+               number(c.common_expanded * f, 4), c.has_target ? (c.active ? "active" : "inactive") : "none",
+               c.has_target ? number(c.price, 4) : ""});
   }
   std::string out = t.render("  ", width);
-  out += wrap_words("  (one-scale U: every tolerance scaled by one common lambda; price: d objective / d ln "
-                    "target, what loosening the target saves)",
-                    width, "   ");
+  out += wrap_words(
+      "  (one-scale U: every tolerance scaled by one common lambda; price: d objective / d ln "
+      "target, what loosening the target saves)",
+      width, "   ");
   return out;
 }
 
@@ -116,7 +117,8 @@ std::string sources_table(const Config& cfg, const AllocationResult& r, const Al
     row.push_back(number(a.bound / unit_si, 4));
     row.push_back(number(round_down(a.allocated_bound / unit_si), 4));  // as pasted below
     row.push_back(number(a.scale, 4));
-    for (Eigen::Index i = 0; i < a.share.size(); ++i) row.push_back(fmt::format("{:.1f} %", 100 * a.share[i]));
+    for (Eigen::Index i = 0; i < a.share.size(); ++i)
+      row.push_back(fmt::format("{:.1f} %", 100 * a.share[i]));
     sources.add_row(row);
   }
   return sources.render("  ", o.wide ? 0 : o.width);
@@ -138,19 +140,19 @@ std::string verification_text(const AllocationResult& r, const std::string& pct,
   }
   std::string out = "\n";
   out += wrap_words(fmt::format("Monte Carlo verification on the allocated tolerances (JCGM "
-                                                  "101, {} mode nonlinear pipeline, M = {}, seed {}, {:.3g} s): "
-                                                  "half-width = max(y_high - y, y - y_low) of the symmetric {} "
-                                                  "interval about the MC mean y.",
-                                                  mode_name(r.mode), v.trials, v.seed, v.seconds, pct),
-                                      width);
-  out += check.render("  ", width);
-  out += wrap_words(fmt::format("The check has sampling error: relative standard error ~{:.2g} of a half-width "
-                                "and ~1/sqrt(2M) = {:.2g} of a standard deviation (normal output). 'pass within "
-                                "sampling' = half-width at most target x (1 + {:.3g}), 3 standard errors. "
-                                "Verification {}.",
-                                v.half_width_rel_error, v.std_rel_error, v.allowance,
-                                v.passed ? "PASSED" : "FAILED"),
+                                "101, {} mode nonlinear pipeline, M = {}, seed {}, {:.3g} s): "
+                                "half-width = max(y_high - y, y - y_low) of the symmetric {} "
+                                "interval about the MC mean y.",
+                                mode_name(r.mode), v.trials, v.seed, v.seconds, pct),
                     width);
+  out += check.render("  ", width);
+  out += wrap_words(
+      fmt::format("The check has sampling error: relative standard error ~{:.2g} of a half-width "
+                  "and ~1/sqrt(2M) = {:.2g} of a standard deviation (normal output). 'pass within "
+                  "sampling' = half-width at most target x (1 + {:.3g}), 3 standard errors. "
+                  "Verification {}.",
+                  v.half_width_rel_error, v.std_rel_error, v.allowance, v.passed ? "PASSED" : "FAILED"),
+      width);
   return out;
 }
 
@@ -168,16 +170,17 @@ std::string text_of(const Config& cfg, const AllocationResult& r, const Allocate
   out += '\n';
   out += coefficients_table(r, width);
   out += '\n';
-  out += wrap_words("Allocated tolerances, tightened most first (in the units of the configuration; "
-                    "shares of the targets' variances at the allocated tolerances):",
-                    width);
+  out += wrap_words(
+      "Allocated tolerances, tightened most first (in the units of the configuration; "
+      "shares of the targets' variances at the allocated tolerances):",
+      width);
   out += sources_table(cfg, r, o);
   out += '\n';
   out += wrap_words(fmt::format("Objective sum cost/lambda: {:.6g} allocated; {:.6g} at the configured "
-                                       "tolerances; {:.6g} with one common scale lambda = {:.4g} = min(max "
-                                       "scale, min over targets of target/U) for every source.",
-                                       r.objective, r.configured_objective, r.common_objective, r.common_scale),
-                           width);
+                                "tolerances; {:.6g} with one common scale lambda = {:.4g} = min(max "
+                                "scale, min over targets of target/U) for every source.",
+                                r.objective, r.configured_objective, r.common_objective, r.common_scale),
+                    width);
   out += wrap_words(fmt::format("Solved by {} ({} Newton iteration{} on the dual; {}; duality gap {:.2g}).",
                                 r.method, r.iterations, r.iterations == 1 ? "" : "s",
                                 r.converged ? "converged" : "NOT converged", r.dual_gap),

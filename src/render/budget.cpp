@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "budget_parts.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
-#include "budget_parts.hpp"
 #include "parts.hpp"
 
 namespace ccal::render {
@@ -135,7 +135,8 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
         fmt::format(",d{0} [{1}],d{0}_force [{1}],d{0}_rate [{1}],share_{0}", r.coefficients[k], r.units[k]);
   // The source as configured, and c_i per that unit (u_i(y) = c_i u(x_i)).
   out += ",name,unit,bound,u_x";
-  for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",c_{} [{} per unit]", r.coefficients[k], r.units[k]);
+  for (std::size_t k = 0; k < nk; ++k)
+    out += fmt::format(",c_{} [{} per unit]", r.coefficients[k], r.units[k]);
   out += "\n";
   for (std::size_t s : by_rank(r)) {
     const SourceBudget& b = r.sources[s];
@@ -149,7 +150,8 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
                          b.effect_force[i] * r.display_scale[k], b.effect_rate[i] * r.display_scale[k],
                          b.share[i]);
     }
-    out += fmt::format(",{},{},{:.17g},{:.17g}", csv_field(view.name), csv_field(view.unit), view.bound, view.u);
+    out +=
+        fmt::format(",{},{},{:.17g},{:.17g}", csv_field(view.name), csv_field(view.unit), view.bound, view.u);
     for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",{:.17g}", sensitivity_per_unit(r, b, view, k));
     out += "\n";
   }
@@ -166,7 +168,8 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
   };
   for (const RateNoiseBudget& n : r.rate_noise) out += row(n.id, "normal (Type A)", n.effect, &n.share);
   out += row("total_standard_uncertainty", "", r.standard_uncertainty, nullptr);
-  out += row(fmt::format("expanded_uncertainty_k{:g}", r.coverage_factor), "", r.expanded_uncertainty, nullptr);
+  out +=
+      row(fmt::format("expanded_uncertainty_k{:g}", r.coverage_factor), "", r.expanded_uncertainty, nullptr);
   if (known_bias.size()) out += row("known_error_bias", "", known_bias, nullptr);
   return out;
 }

@@ -13,11 +13,11 @@ namespace ccal::render::budget_parts {
 
 // A source as the configuration states it.
 struct SourceView {
-  std::string unit;        // as written in [tolerances] ("um", "arcsec"), else a readable SI unit
-  double unit_si = 1;      // SI size of one such unit
-  double bound = 0;        // in `unit`
-  double u = 0;            // standard uncertainty u(x_i), in `unit`
-  std::string name;        // the catalogue's words
+  std::string unit;    // as written in [tolerances] ("um", "arcsec"), else a readable SI unit
+  double unit_si = 1;  // SI size of one such unit
+  double bound = 0;    // in `unit`
+  double u = 0;        // standard uncertainty u(x_i), in `unit`
+  std::string name;    // the catalogue's words
 };
 SourceView source_view(const Config& cfg, const SourceBudget& s);
 

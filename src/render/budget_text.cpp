@@ -31,9 +31,9 @@ std::string heading(const Config& cfg, const ccal::BudgetResult& r, std::size_t 
                   fmt::join(r.coefficients, ", "),
                   fixed.empty() ? "" : fmt::format("; {} fixed", fmt::join(fixed, ", "))),
       width);
-  out += wrap_words(
-      fmt::format("Effects are 1-sigma, shares are of the variance u²; U = k u with k = {:g}.", r.coverage_factor),
-      width);
+  out += wrap_words(fmt::format("Effects are 1-sigma, shares are of the variance u²; U = k u with k = {:g}.",
+                                r.coverage_factor),
+                    width);
   out += '\n';
   return out;
 }
@@ -94,7 +94,8 @@ std::vector<Row> rows_of(const Config& cfg, const ccal::BudgetResult& r, std::si
     Row row{{source_label(s.id, s.group), v.name, fmt::format("{} {}", number(v.bound, 4), v.unit),
              std::string(distribution_name(s.distribution)), number(v.u, 4),
              number(sensitivity_per_unit(r, s, v, k), 4), number(effect, 4), percent(s.share[i])},
-            s.share[i], effect};
+            s.share[i],
+            effect};
     if (paper)
       row.cells.push_back(!s.paper_counterpart ? "no paper rule" : s.disagrees[k] ? "differ" : "agree");
     rows.push_back(std::move(row));
@@ -102,10 +103,12 @@ std::vector<Row> rows_of(const Config& cfg, const ccal::BudgetResult& r, std::si
   for (const RateNoiseBudget& n : r.rate_noise) {
     const double effect = n.effect[i] * r.display_scale[k];
     const double density = n.density * 1e6;  // ppm/rtHz
-    Row row{{n.id, "Type A: the drive's random rate noise, independent per run",
-             number(density, 4) + " ppm/rtHz", "normal", number(density, 4),
-             number(density > 0 ? effect / density : 0.0, 4), fmt::format("±{}", number(effect, 4)), percent(n.share[i])},
-            n.share[i], effect};
+    Row row{
+        {n.id, "Type A: the drive's random rate noise, independent per run", number(density, 4) + " ppm/rtHz",
+         "normal", number(density, 4), number(density > 0 ? effect / density : 0.0, 4),
+         fmt::format("±{}", number(effect, 4)), percent(n.share[i])},
+        n.share[i],
+        effect};
     if (paper) row.cells.push_back("no paper rule");
     rows.push_back(std::move(row));
   }
@@ -119,12 +122,13 @@ std::string coefficient_table(const verbs::BudgetResult& v, std::size_t k, std::
   const ccal::BudgetResult& r = v.budget;
   const auto i = Eigen::Index(k);
   const double u = r.standard_uncertainty[i] * r.display_scale[k];
-  const bool paper = o.wide && r.mode == ModelMode::exact && !r.sources.empty() &&
-                     r.sources.front().paper_effect.size();
-  std::string out = fmt::format("{} [{}]: u = {}, U = {} (k = {:g})\n", r.coefficients[k], r.units[k],
-                                number(u, 4), number(r.expanded_uncertainty[i] * r.display_scale[k], 4),
-                                r.coverage_factor);
-  std::vector<std::string> header = {"source", "name", "tolerance", "PDF", "u(x_i)", "c_i", "u_i(y)", "share"};
+  const bool paper =
+      o.wide && r.mode == ModelMode::exact && !r.sources.empty() && r.sources.front().paper_effect.size();
+  std::string out =
+      fmt::format("{} [{}]: u = {}, U = {} (k = {:g})\n", r.coefficients[k], r.units[k], number(u, 4),
+                  number(r.expanded_uncertainty[i] * r.display_scale[k], 4), r.coverage_factor);
+  std::vector<std::string> header = {"source", "name", "tolerance", "PDF",
+                                     "u(x_i)", "c_i",  "u_i(y)",    "share"};
   if (paper) header.push_back("exact vs paper");
   Table table(header);
   table.align_left(1);
@@ -190,17 +194,19 @@ std::string text(const verbs::BudgetResult& v, const BudgetTextOptions& o) {
       o.top > 0 ? o.top : std::max<std::size_t>(5, o.screen_rows > fixed ? (o.screen_rows - fixed) / nk : 0);
   std::string out = heading(cfg, r, o.wide ? 0 : o.width);
   out += answer(r, o.width);
-  out += wrap_words(fmt::format("Per coefficient: the tolerance as configured and its PDF (distribution), "
-                                "u(x_i) in the tolerance's unit, c_i in the coefficient's unit per that unit, "
-                                "u_i(y) = c_i u(x_i) (signed), share = u_i(y)²/u²{}.",
-                                o.wide ? "" : fmt::format("; the {} largest sources, the rest in one row", top)),
-                    o.wide ? 0 : o.width) +
-         "\n";
+  out +=
+      wrap_words(fmt::format("Per coefficient: the tolerance as configured and its PDF (distribution), "
+                             "u(x_i) in the tolerance's unit, c_i in the coefficient's unit per that unit, "
+                             "u_i(y) = c_i u(x_i) (signed), share = u_i(y)²/u²{}.",
+                             o.wide ? "" : fmt::format("; the {} largest sources, the rest in one row", top)),
+                 o.wide ? 0 : o.width) +
+      "\n";
   for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
     out += coefficient_table(v, k, top, o);
     out += '\n';
   }
-  for (const auto& w : v.observability.warnings) out += wrap_words("warning: " + w, o.wide ? 0 : o.width, "  ");
+  for (const auto& w : v.observability.warnings)
+    out += wrap_words("warning: " + w, o.wide ? 0 : o.width, "  ");
   if (o.wide) out += wide_sections(v);
   out += next_steps(cfg, r);
   return out;
@@ -242,7 +248,8 @@ std::string wide_sections(const verbs::BudgetResult& v) {
     Table comp(ch);
     for (const auto& c : r.compensation) {
       std::vector<std::string> row = {c.id + " left out", std::string(mode_name(r.mode))};
-      for (std::size_t k = 0; k < nk; ++k) row.push_back(number(c.bias[Eigen::Index(k)] * r.display_scale[k], 4));
+      for (std::size_t k = 0; k < nk; ++k)
+        row.push_back(number(c.bias[Eigen::Index(k)] * r.display_scale[k], 4));
       comp.add_row(row);
       if (c.paper_bias.size()) {
         std::vector<std::string> p = {"", "paper"};

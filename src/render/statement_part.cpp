@@ -15,6 +15,26 @@ nlohmann::ordered_json dof_json(double dof) {
 
 std::string dof_text(double dof, int digits = 3) { return std::isfinite(dof) ? number(dof, digits) : "inf"; }
 
+// The statement's line (JCGM 100 §7.2.6): U to two significant digits, the estimate and the interval's ends
+// to the same decimal place.
+std::string statement_line(const CoefficientStatement& c, const std::string& pct) {
+  const double U = c.expanded;
+  std::string estimate = number(c.corrected, 8), expanded = number(U, 2), low = number(c.low, 8),
+              high = number(c.high, 8);
+  if (U > 0 && std::isfinite(U)) {
+    const int last = int(std::floor(std::log10(U))) - 1;  // the place of U's second digit
+    const double step = std::pow(10.0, last);
+    const int decimals = last < 0 ? -last : 0;
+    const auto at = [&](double v) { return fmt::format("{:.{}f}", std::round(v / step) * step, decimals); };
+    estimate = at(c.corrected);
+    expanded = at(U);
+    low = at(c.low);
+    high = at(c.high);
+  }
+  return fmt::format("  {} = ({} ± {}) {}, k = {:.3f}, p = {}: [{}, {}]", c.input.coefficient, estimate,
+                     expanded, c.input.unit, c.coverage_factor, pct, low, high);
+}
+
 }  // namespace
 
 nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
@@ -47,13 +67,14 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
 std::string statement_text(const verbs::CalibrationStatement& st, std::size_t width) {
   const std::string pct = fmt::format("{:g} %", 100 * st.coverage_probability);
   std::string out = wrap_words(
-      fmt::format("Calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of {} "
-                  "({} mode), u_c² = u_A² + u_B², nu_eff by Welch-Satterthwaite, k from Student's t at "
-                  "p = {}; known [errors]: {}.",
-                  st.budget_config, mode_name(st.mode), pct,
-                  st.known_errors == 0 ? "none"
-                  : st.compensated     ? "compensated in the model (no correction)"
-                                       : "not compensated, corrected here"),
+      fmt::format(
+          "Calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of {} "
+          "({} mode), u_c² = u_A² + u_B², nu_eff by Welch-Satterthwaite, k from Student's t at "
+          "p = {}; known [errors]: {}.",
+          st.budget_config, mode_name(st.mode), pct,
+          st.known_errors == 0 ? "none"
+          : st.compensated     ? "compensated in the model (no correction)"
+                               : "not compensated, corrected here"),
       width);
   Table values({"coefficient", "estimate", "correction", "corrected estimate", "unit"});
   values.gap(2);
@@ -69,10 +90,7 @@ std::string statement_text(const verbs::CalibrationStatement& st, std::size_t wi
                    fmt::format("{:.3f}", c.coverage_factor), number(c.expanded, 3)});
   out += parts.render("  ", width);
   for (const CoefficientStatement& c : st.coefficients)
-    out += wrap_words(fmt::format("  {} = ({} ± {}) {}, k = {:.3f}, p = {}: [{}, {}]", c.input.coefficient,
-                                  number(c.corrected, 8), number(c.expanded, 3), c.input.unit,
-                                  c.coverage_factor, pct, number(c.low, 8), number(c.high, 8)),
-                      width, "    ");
+    out += wrap_words(statement_line(c, pct), width, "    ");
   return out;
 }
 

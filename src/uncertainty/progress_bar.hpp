@@ -33,7 +33,8 @@ inline std::string progress_line(const std::string& label, double fraction, std:
                                  std::size_t columns) {
   const std::size_t room = columns > 1 ? columns - 1 : 0;
   const std::string percent = fmt::format("{:5.1f} %", 100.0 * fraction);
-  std::string tail = fmt::format("{} {}/{} trials  {:.3g} trials/s  ETA {}", percent, done, target, rate, eta);
+  std::string tail =
+      fmt::format("{} {}/{} trials  {:.3g} trials/s  ETA {}", percent, done, target, rate, eta);
   if (label.size() + tail.size() + 13 > room) tail = fmt::format("{} ETA {}", percent, eta);
   std::string line = label;
   if (label.size() + tail.size() + 13 <= room) {

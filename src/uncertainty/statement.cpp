@@ -53,8 +53,10 @@ Eigen::VectorXd known_error_shift(const Config& config, ModelMode mode) {
   const Experiment ex = config.experiment();
   const IdentificationSpec& spec = config.identification;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(errors.size());
-  const Eigen::VectorXd with = identify_coefficients<double>(observe<double>(ex, errors, zero, spec, mode), spec);
-  const Eigen::VectorXd without = identify_coefficients<double>(observe<double>(ex, zero, zero, spec, mode), spec);
+  const Eigen::VectorXd with =
+      identify_coefficients<double>(observe<double>(ex, errors, zero, spec, mode), spec);
+  const Eigen::VectorXd without =
+      identify_coefficients<double>(observe<double>(ex, zero, zero, spec, mode), spec);
   return with - without;
 }
 

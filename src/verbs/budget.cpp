@@ -1,9 +1,9 @@
 #include "ccal/verbs/budget.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/statement.hpp"

@@ -34,9 +34,10 @@ double unit_factor(const std::string& from, const std::string& to, const std::st
     if (a.dim == b.dim) return a.value_si / b.value_si;
   } catch (const UnitError&) {
   }
-  throw InputError(fmt::format("{}: {} is in '{}' in the fit and in '{}' in the configuration's budget; "
-                               "accepted: a fit whose output unit is the configuration's output_unit",
-                               option, term, to, from));
+  throw InputError(
+      fmt::format("{}: {} is in '{}' in the fit and in '{}' in the configuration's budget; "
+                  "accepted: a fit whose output unit is the configuration's output_unit",
+                  option, term, to, from));
 }
 
 }  // namespace
@@ -70,10 +71,10 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
   std::sort(fitted.begin(), fitted.end());
   std::sort(budgeted.begin(), budgeted.end());
   if (fitted != budgeted)
-    throw InputError(fmt::format("{}: the fit's free terms ({}) are not those of {} ({}); accepted: a "
-                                 "configuration whose [identification] terms are the fit's",
-                                 option, fmt::join(fit.names, ", "), config.source,
-                                 fmt::join(b.coefficients, ", ")));
+    throw InputError(
+        fmt::format("{}: the fit's free terms ({}) are not those of {} ({}); accepted: a "
+                    "configuration whose [identification] terms are the fit's",
+                    option, fmt::join(fit.names, ", "), config.source, fmt::join(b.coefficients, ", ")));
   for (std::size_t k = 0; k < fit.names.size(); ++k) {
     const auto found = std::find(b.coefficients.begin(), b.coefficients.end(), fit.names[k]);
     const auto j = std::size_t(found - b.coefficients.begin());

@@ -180,8 +180,8 @@ struct AllocationResult {
   AllocationVerification verification;
 };
 
-// Allocates the tolerances of a configuration (sensitivities in options.mode at the configured errors) for the
-// targets, and verifies the result by Monte Carlo. Throws InputError for no tolerances, no or duplicate
+// Allocates the tolerances of a configuration (sensitivities in options.mode at the configured errors) for
+// the targets, and verifies the result by Monte Carlo. Throws InputError for no tolerances, no or duplicate
 // targets, a target on a coefficient that is not free, bad options, or an ill-posed identification.
 AllocationResult allocate_tolerances(const Config& config, const std::vector<AllocationTarget>& targets,
                                      const AllocateOptions& options = {});

@@ -39,21 +39,21 @@ double student_coverage_factor(double p, double dof);
 struct StatementInput {
   std::string coefficient;
   std::string unit;
-  double estimate = 0;           // K̂ as identified
-  double correction = 0;         // b, added to the estimate
-  UncertaintyPart type_a;        // from the fit: its standard error and degrees of freedom
-  UncertaintyPart type_b;        // from the centrifuge budget (tolerances): ν = ∞
+  double estimate = 0;     // K̂ as identified
+  double correction = 0;   // b, added to the estimate
+  UncertaintyPart type_a;  // from the fit: its standard error and degrees of freedom
+  UncertaintyPart type_b;  // from the centrifuge budget (tolerances): ν = ∞
 };
 
 struct CoefficientStatement {
   StatementInput input;
-  double corrected = 0;         // K̂ + b
-  double combined = 0;          // u_c
-  double effective_dof = 0;     // ν_eff (∞ possible)
-  double dof_for_k = 0;         // ⌊ν_eff⌋, or ∞
-  double coverage_factor = 0;   // k
-  double expanded = 0;          // U = k u_c
-  double low = 0, high = 0;     // corrected ∓ U
+  double corrected = 0;        // K̂ + b
+  double combined = 0;         // u_c
+  double effective_dof = 0;    // ν_eff (∞ possible)
+  double dof_for_k = 0;        // ⌊ν_eff⌋, or ∞
+  double coverage_factor = 0;  // k
+  double expanded = 0;         // U = k u_c
+  double low = 0, high = 0;    // corrected ∓ U
 };
 
 // The statement of one coefficient for coverage probability p (throws as the functions above).

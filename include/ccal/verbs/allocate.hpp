@@ -19,8 +19,8 @@ struct AllocateOptions {
   std::vector<std::string> targets;
   double coverage_probability = 0.95;  // p of the expanded uncertainties (the targets), in (0, 1)
   std::optional<ModelMode> mode;       // kinematics; unset: the configuration's [identification] mode
-  double max_scale = 10.0;            // no tolerance grows beyond this factor of its configured value
-  std::int64_t verify_trials = 2000;  // Monte Carlo check of the result; 0: none
+  double max_scale = 10.0;             // no tolerance grows beyond this factor of its configured value
+  std::int64_t verify_trials = 2000;   // Monte Carlo check of the result; 0: none
   std::uint64_t seed = 1;
   int threads = 0;        // 0: all cores
   bool progress = false;  // draw a progress bar on standard error when it is a terminal
@@ -31,9 +31,9 @@ struct AllocateResult {
   AllocationResult allocation;
 };
 
-// Throws InputError naming the option (--target, --coverage-probability, --max-scale, --verify-trials, --threads) for a
-// value out of range, for an empty [tolerances], a target below what the drives' noise allows, or a result
-// that is not finite.
+// Throws InputError naming the option (--target, --coverage-probability, --max-scale, --verify-trials,
+// --threads) for a value out of range, for an empty [tolerances], a target below what the drives' noise
+// allows, or a result that is not finite.
 AllocateResult allocate(const Config& config, const AllocateOptions& options);
 
 }  // namespace ccal::verbs

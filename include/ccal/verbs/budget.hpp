@@ -27,8 +27,8 @@ struct BudgetResult {
   Eigen::VectorXd known_error_bias;
 };
 
-// Throws InputError for a coverage factor below 1 or not finite, an empty [tolerances], a term the plan cannot observe or identify, or a result that
-// is not finite (tolerances beyond double precision).
+// Throws InputError for a coverage factor below 1 or not finite, an empty [tolerances], a term the plan
+// cannot observe or identify, or a result that is not finite (tolerances beyond double precision).
 BudgetResult budget(const Config& config, const BudgetOptions& options = {});
 
 }  // namespace ccal::verbs

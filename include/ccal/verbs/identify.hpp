@@ -36,7 +36,8 @@ struct IdentifyResult {
   std::optional<CalibrationStatement> statement;  // with options.budget
 };
 
-// Throws InputError naming the option (--terms, --fix, --known, --budget, …) or CsvError naming the file's place.
+// Throws InputError naming the option (--terms, --fix, --known, --budget, …) or CsvError naming the file's
+// place.
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options = {});
 
 }  // namespace ccal::verbs

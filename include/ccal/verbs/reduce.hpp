@@ -44,7 +44,8 @@ struct ReduceResult {
   std::optional<CalibrationStatement> statement;  // with `budget`
 };
 
-// Throws InputError naming the option (--log, --pulse-weight, --budget, --coverage-probability) or CsvError naming the log's place.
+// Throws InputError naming the option (--log, --pulse-weight, --budget, --coverage-probability) or CsvError
+// naming the log's place.
 ReduceResult reduce(const Config& config, const ReduceOptions& options);
 
 // Parameter ids of a drive's ripple channel up to the configuration's order: ripple1_c1, ripple1_s1, …
