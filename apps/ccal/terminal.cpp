@@ -28,8 +28,10 @@ std::size_t text_width(const WidthOptions& options, const TerminalSize& terminal
 }
 
 void add_renamed_option(CLI::App& command, const std::string& old_name, const std::string& message) {
-  command.add_option(old_name)
-      ->group("")  // not in --help
+  // Listed in --help under "Renamed" (a hidden option would have no name in the error message).
+  command.add_option(old_name, message)
+      ->group("Renamed")
+      ->type_name("")
       ->check(CLI::Validator([message](std::string&) { return message; }, ""));
 }
 
