@@ -162,21 +162,30 @@ std::string quoted_config(const Config& cfg) {
   return cfg.source.find_first_of(" '\"") == std::string::npos ? " " + cfg.source : " '" + cfg.source + "'";
 }
 
-// What to do next, with the coefficient of the largest relative U as the example.
+// What to do next, with the coefficient of the largest U relative to its configured value as the example
+// (U itself where that value is 0; coefficients of different units are compared only through the ratio).
 std::string next_steps(const Config& cfg, const ccal::BudgetResult& r) {
+  const auto relative = [&](std::size_t k) {
+    const double U = r.expanded_uncertainty[Eigen::Index(k)];
+    const double value = std::abs(cfg.instrument.coefficient(r.coefficients[k]).value_or(0.0));
+    return value > 0 ? U / value : U * r.display_scale[k];
+  };
   std::size_t worst = 0;
   for (std::size_t k = 1; k < r.coefficients.size(); ++k)
-    if (r.expanded_uncertainty[Eigen::Index(k)] * r.display_scale[k] >
-        r.expanded_uncertainty[Eigen::Index(worst)] * r.display_scale[worst])
-      worst = k;
+    if (relative(k) > relative(worst)) worst = k;
   const std::string c = quoted_config(cfg);
   const std::string& id = r.coefficients[worst];
   const double half = r.expanded_uncertainty[Eigen::Index(worst)] * r.display_scale[worst] / 2;
+  const std::string labels[] = {
+      "tolerances for a smaller U:", fmt::format("a test plan that sees {} better:", id),
+      "the LPU checked by Monte Carlo:"};
+  std::size_t w = 0;
+  for (const std::string& l : labels) w = std::max(w, display_width(l));
   return fmt::format(
-      "Next: tolerances for a smaller U:      ccal allocate{} --target {}={}\n"
-      "      a test plan that sees {} better:  ccal design{}\n"
-      "      the LPU checked by Monte Carlo:   ccal montecarlo{} --digits 2\n",
-      c, id, number(half, 2), id, c, c);
+      "Next: {}  ccal allocate{} --target {}={}\n      {}  ccal design{}\n      {}  ccal montecarlo{} "
+      "--digits 2\n",
+      pad_to_width(labels[0], w, true), c, id, number(half, 2), pad_to_width(labels[1], w, true), c,
+      pad_to_width(labels[2], w, true), c);
 }
 
 std::string wide_sections(const verbs::BudgetResult& v);
