@@ -164,15 +164,16 @@ void bind_uncertainty(py::module_& m) {
   m.def(
       "allocate",
       [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
-         double coverage, double max_scale, std::int64_t verify_trials, std::uint64_t seed, int threads,
-         const py::object& progress) {
+         double coverage_probability, double max_scale, std::int64_t verify_trials, std::uint64_t seed,
+         int threads, std::optional<std::string> mode, const py::object& progress) {
         verbs::AllocateOptions o;
+        if (mode) o.mode = mode_argument(*mode);
         for (const auto& [id, value] : targets)
           // A number is in the coefficient's display unit, as on the command line; a string may carry a unit.
           o.targets.push_back(std::holds_alternative<double>(value)
                                   ? fmt::format("{}={:.17g}", id, std::get<double>(value))
                                   : id + "=" + std::get<std::string>(value));
-        o.coverage = coverage;
+        o.coverage_probability = coverage_probability;
         o.max_scale = max_scale;
         o.verify_trials = verify_trials;
         o.seed = seed;
@@ -182,12 +183,13 @@ void bind_uncertainty(py::module_& m) {
           return verbs::allocate(cfg, o);
         });
       },
-      py::arg("config"), py::arg("targets"), py::arg("coverage") = 0.95, py::arg("max_scale") = 10.0,
-      py::arg("verify_trials") = 2000, py::arg("seed") = 1, py::arg("threads") = 0,
-      py::arg("progress") = py::none(),
+      py::arg("config"), py::arg("targets"), py::arg("coverage_probability") = 0.95,
+      py::arg("max_scale") = 10.0, py::arg("verify_trials") = 2000, py::arg("seed") = 1,
+      py::arg("threads") = 0, py::arg("mode") = py::none(), py::arg("progress") = py::none(),
       "Largest tolerances for which every target (coefficient id → allowed expanded uncertainty, a number in "
-      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. progress: None or progress(done, total) "
-      "of the verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt.");
+      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. mode: "
+      "'exact' or 'paper' (default: the configuration's). progress: None or progress(done, total) of the "
+      "verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt.");
 }
 
 }  // namespace ccal::python

@@ -97,7 +97,7 @@ TEST_F(AllocateCli, TheAllocatedTolerancesMeetTheTargetsInTheBudget) {
   ASSERT_NE(begin, std::string::npos);
   ASSERT_NE(end, std::string::npos);
   const std::string cfg = write("allocated.toml", example.substr(0, begin) + block + example.substr(end));
-  const Result b = run("budget " + cfg + " --coverage 1.959963984540054 --format json");
+  const Result b = run("budget " + cfg + " --coverage-factor 1.959963984540054 --format json");
   ASSERT_EQ(b.code, 0) << b.err << block;
   const nlohmann::json j = nlohmann::json::parse(b.out);
   for (const auto& c : j.at("coefficients")) {
@@ -125,7 +125,7 @@ TEST_F(AllocateCli, BadTargetsAndOptionsAreExitCodeTwo) {
   expect_bad_input(run("allocate --target K3=1e-6 --target K3=2e-6"), {"two targets on K3"});
   expect_bad_input(run("allocate"), {"--target"});
   expect_bad_input(run("allocate --target K3=1e-6 --max-scale 0"), {"--max-scale"});
-  expect_bad_input(run("allocate --target K3=1e-6 --coverage 1"), {"--coverage"});
+  expect_bad_input(run("allocate --target K3=1e-6 --coverage-probability 1"), {"--coverage-probability"});
   expect_bad_input(run("allocate --target K3=1e-6 --verify-trials 1"), {"--verify-trials"});
   expect_bad_input(run("allocate --target K3=1e-6 --verify-trials -3"), {"--verify-trials"});
   expect_bad_input(run("allocate --target K3=1e-6 --threads -1"), {"--threads"});

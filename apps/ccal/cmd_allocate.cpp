@@ -7,6 +7,7 @@
 #include "ccal/verbs/allocate.hpp"
 #include "commands.hpp"
 #include "output.hpp"
+#include "terminal.hpp"
 
 namespace ccal::cli {
 namespace {
@@ -14,13 +15,22 @@ namespace {
 struct AllocateCli {
   std::string config;
   std::vector<std::string> targets;
-  double coverage = 0.95;
+  double coverage_probability = 0.95;
+  std::string mode;  // empty: the configuration's
   double max_scale = 10.0;
   std::int64_t verify_trials = 2000;  // signed, so that a negative number is reported rather than wrapped
   std::uint64_t seed = 1;
   int threads = 0;
+  WidthOptions width;
   OutputOptions output;
 };
+
+render::AllocateTextOptions text_options(const WidthOptions& width, const OutputOptions& output) {
+  render::AllocateTextOptions to;
+  to.width = text_width(width, output_terminal(output));
+  to.wide = width.wide;
+  return to;
+}
 
 }  // namespace
 
@@ -38,9 +48,17 @@ Command add_allocate(CLI::App& app) {
       ->required()
       ->allow_extra_args(false)
       ->type_name("COEFF=U");
-  cmd->add_option("--coverage", o->coverage, "Coverage probability p of the targets, in (0, 1)")
+  cmd->add_option("--coverage-probability", o->coverage_probability,
+                  "Coverage probability p of the targets, in (0, 1)")
       ->capture_default_str()
       ->type_name("p");
+  add_renamed_option(*cmd, "--coverage",
+                     "renamed: give the coverage probability of the targets as --coverage-probability p "
+                     "(e.g. 0.95)");
+  cmd->add_option("--mode", o->mode,
+                  "Kinematics of the sensitivities and the verification: exact or paper; default: the "
+                  "config's [identification] mode")
+      ->check(CLI::IsMember({"exact", "paper"}));
   cmd->add_option("--max-scale", o->max_scale, "No tolerance is loosened by more than this factor (> 0)")
       ->capture_default_str()
       ->type_name("X");
@@ -55,6 +73,7 @@ Command add_allocate(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "Threads of the verification (0: the OpenMP default)")
       ->capture_default_str()
       ->type_name("K");
+  add_width_options(*cmd, o->width, "Uncut source names and the cost column; no width limit");
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -66,7 +85,8 @@ Command add_allocate(CLI::App& app) {
   return {cmd, [o] {
             verbs::AllocateOptions ao;
             ao.targets = o->targets;
-            ao.coverage = o->coverage;
+            ao.coverage_probability = o->coverage_probability;
+            if (!o->mode.empty()) ao.mode = parse_mode(o->mode);
             ao.max_scale = o->max_scale;
             ao.verify_trials = o->verify_trials;
             ao.seed = o->seed;
@@ -76,7 +96,7 @@ Command add_allocate(CLI::App& app) {
             const std::string& f = o->output.format;
             write_output(o->output, f == "json"  ? render::json(r)
                                     : f == "csv" ? render::csv(r)
-                                                 : render::text(r));
+                                                 : render::text(r, text_options(o->width, o->output)));
           }};
 }
 

@@ -18,6 +18,8 @@ struct IdentifyCli {
   std::string input = "a_i";
   std::string output_column = "output";
   std::string weight;
+  std::string budget;  // configuration of the statement's Type B part; empty: no statement
+  double coverage_probability = 0.95;
   OutputOptions output;
   CLI::Option* terms_option = nullptr;
   CLI::Option* fix_option = nullptr;
@@ -64,6 +66,14 @@ Command add_identify(CLI::App& app) {
                       "file's known columns")
           ->delimiter(',')
           ->type_name("COL[,COL]");
+  cmd->add_option("--budget", o->budget,
+                  "CONFIG: also the calibration statement (JCGM 100 §7), with the Type B part from this "
+                  "configuration's tolerances and the correction for its known [errors]")
+      ->type_name("CONFIG");
+  cmd->add_option("--coverage-probability", o->coverage_probability,
+                  "Coverage probability p of the statement's intervals, in (0, 1)")
+      ->capture_default_str()
+      ->type_name("p");
   add_output_options(*cmd, o->output, {"text", "json"}, false);  // --output names the output column
   cmd->footer(
       "Examples:\n"
@@ -72,7 +82,9 @@ Command add_identify(CLI::App& app) {
       "file)\n"
       "  ccal identify obs.csv --terms K0,K2:K2,K3:K3 --fix K1=505.2097 --format json\n"
       "  ccal identify data.csv --input x --output y --terms K0,K1,K2 --weight sigma\n"
-      "      polynomial y = K0 + K1 x + K2 x^2 of a plain table\n");
+      "      polynomial y = K0 + K1 x + K2 x^2 of a plain table\n"
+      "  ccal identify obs.csv --budget my.toml\n"
+      "      with the calibration statement: Type A from the fit, Type B from my.toml's tolerances\n");
 
   return {cmd, [o] {
             note_input(o->file);
@@ -84,6 +96,11 @@ Command add_identify(CLI::App& app) {
             io.input = o->input;
             io.output = o->output_column;
             io.weight = o->weight;
+            if (!o->budget.empty()) {
+              note_input(o->budget);
+              io.budget = load_config_or_example(o->budget);
+            }
+            io.statement.coverage_probability = o->coverage_probability;
             const verbs::IdentifyResult r = verbs::identify(table, io);
             print_warnings(r.identification.observability.warnings);
             write_output(o->output, o->output.format == "json" ? render::json(r) : render::text(r));

@@ -20,6 +20,8 @@ struct ReduceCli {
   std::string pulse_weight;  // in the output unit × s; empty: the instrument's quantum
   std::string mode;          // empty: the configuration's
   std::string observations_out;
+  bool budget = false;
+  double coverage_probability = 0.95;
   OutputOptions output;
 };
 
@@ -51,13 +53,22 @@ Command add_reduce(CLI::App& app) {
          "Model of the regressors: exact (full chain) or paper; default: [identification] mode of the "
          "configuration")
       ->check(CLI::IsMember({"exact", "paper"}));
+  cmd->add_flag("--budget", o->budget,
+                "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the "
+                "configuration's tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval");
+  cmd->add_option("--coverage-probability", o->coverage_probability,
+                  "Coverage probability p of the statement's intervals, in (0, 1)")
+      ->capture_default_str()
+      ->type_name("p");
   add_observations_out_option(*cmd, o->observations_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
       "  ccal reduce my.toml --log 5g=run05.csv --log 10g=run10.csv --log 15g=run15.csv --log 20g=run20.csv\n"
       "      mean outputs of four logged runs and the identified terms of my.toml\n"
-      "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --angle-unit deg --format json\n");
+      "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --angle-unit deg --format json\n"
+      "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --budget\n"
+      "      with the calibration statement: each coefficient with its U and interval\n");
 
   return {cmd, [o] {
             const Config cfg = load_config_or_example(o->config);
@@ -83,6 +94,8 @@ Command add_reduce(CLI::App& app) {
             }
             ro.angles_in_degrees = o->angle_unit == "deg";
             if (!o->mode.empty()) ro.mode = parse_mode(o->mode);
+            ro.budget = o->budget;
+            ro.coverage_probability = o->coverage_probability;
             const verbs::ReduceResult r = verbs::reduce(cfg, ro);
             print_warnings(r.warnings);
             const std::string& f = o->output.format;

@@ -1,4 +1,6 @@
 // The configuration file's [site], [centrifuge], [errors] and [tolerances] sections (docs/config.md).
+#include <cstdlib>
+
 #include "config_reader.hpp"
 
 namespace ccal::config_reading {
@@ -183,6 +185,24 @@ void read_errors(const Reader& r, const toml::table& root, CentrifugeModel& mode
   }
 }
 
+// The unit a quantity string was written in ("25 um" gives "um"), kept for display; "" when the node is no
+// string or its unit is not one of the dimension (a value already accepted always has one).
+std::string written_unit(const toml::node* node, Dimension dim) {
+  const auto* s = node ? node->as_string() : nullptr;
+  if (!s) return "";
+  const std::string& text = s->get();
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  std::string unit(end ? end : "");
+  unit.erase(0, unit.find_first_not_of(" \t"));
+  unit.erase(unit.find_last_not_of(" \t") + 1);
+  try {
+    if (!unit.empty() && parse_unit(unit).dim == dim) return unit;
+  } catch (const UnitError&) {
+  }
+  return "";
+}
+
 std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const ErrorLayout& layout) {
   std::vector<Tolerance> out;
   const toml::table* t = r.table(root, "", "tolerances", false);
@@ -208,6 +228,7 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
       r.require_positive(*entry, p, "bound", *bound,
                          "the tolerance bound, e.g. \"" + parameter_example(u) + "\"");
       tol.bound = *bound;
+      tol.unit = written_unit(entry->get("bound"), dim);
       tol.distribution = r.word(*entry, p, "distribution", distributions).value_or(Distribution::normal);
       tol.group = r.string(*entry, p, "group").value_or("");
       if (const auto cost = r.number(*entry, p, "cost")) {
@@ -216,6 +237,7 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
       }
     } else {
       tol.bound = r.quantity_node(node, p, dim, nullptr, parameter_example(u));
+      tol.unit = written_unit(&node, dim);
       if (!(tol.bound > 0))
         r.fail(node, p,
                fmt::format("must be positive, got {}; the standard uncertainty, e.g. \"{}\"",

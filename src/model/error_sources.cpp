@@ -129,6 +129,18 @@ std::string ErrorLayout::parameter_id(int index) const {
          std::to_string(parameter_harmonic(index));
 }
 
+std::string ErrorLayout::parameter_name(int index) const {
+  const Channel& c = kChannels[parameter_channel(index)];
+  if (c.joint == Joint::none) return std::string(c.description);
+  const int k = parameter_harmonic(index);
+  const std::string_view angle = c.joint == Joint::main         ? "theta1"
+                                 : c.joint == Joint::horizontal ? "beta"
+                                                                : "gamma";
+  if (k == 0) return std::string(c.description) + ", constant";
+  return std::string(c.description) + (parameter_is_sine(index) ? ", sin " : ", cos ") +
+         (k == 1 ? "" : std::to_string(k) + " ") + std::string(angle);
+}
+
 std::optional<int> ErrorLayout::find_parameter(std::string_view id) const {
   if (auto c = find_channel(id); c && kChannels[*c].joint == Joint::none) return *c;
   const auto underscore = id.rfind('_');

@@ -7,12 +7,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "budget_parts.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
 
 namespace ccal::render {
 namespace {
+
+using budget_parts::source_label;
 
 // The unit a tolerance is written in, as in the bundled example: angles in rad, lengths in µm.
 std::string_view config_unit(SourceUnit u) {
@@ -39,14 +42,20 @@ double round_down(double v) {
   return r > v ? v : r;
 }
 
-std::string quantity_text(double si, SourceUnit unit) {
-  const std::string u(config_unit(unit));
-  return format_quantity(round_down(si), parse_unit(u).dim, u, 4);
+// The unit the configuration wrote a source's tolerance in, else the bundled example's for its kind.
+std::string written_unit(const Config& cfg, int parameter) {
+  for (const Tolerance& t : cfg.tolerances)
+    if (t.parameter == parameter && !t.unit.empty()) return t.unit;
+  return std::string(config_unit(cfg.centrifuge.layout.parameter_unit(parameter)));
 }
 
-// One [tolerances] entry for the allocated tolerance (defaults left out).
-std::string toml_entry(const AllocatedSource& s, const ErrorLayout& layout) {
-  const std::string bound = quantity_text(s.allocated_bound, layout.parameter_unit(s.parameter));
+std::string quantity_text(double si, const std::string& unit) {
+  return format_quantity(round_down(si), parse_unit(unit).dim, unit, 4);
+}
+
+// One [tolerances] entry for the allocated tolerance (defaults left out), in the unit it was written in.
+std::string toml_entry(const AllocatedSource& s, const Config& cfg) {
+  const std::string bound = quantity_text(s.allocated_bound, written_unit(cfg, s.parameter));
   if (s.distribution == Distribution::normal && s.group.empty() && s.cost == 1.0)
     return fmt::format("{} = \"{}\"", s.id, bound);
   std::string e = fmt::format("{} = {{ bound = \"{}\"", s.id, bound);
@@ -65,90 +74,120 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-std::string text_of(const Config& cfg, const AllocationResult& r) {
-  const ErrorLayout& layout = cfg.centrifuge.layout;
-  const std::string pct = fmt::format("{:g} %", 100 * r.coverage);
-  std::string out = fmt::format(
-      "ccal allocate: {}, {} sources; LPU with exact-mode AD sensitivities at the configured errors\n"
-      "Targets are expanded uncertainties U = k_p u (half-widths of the {} interval), k_p = {:.5f} "
-      "(the normal quantile of (1 + p)/2, p = {:g}).\n"
-      "Allocation: minimise sum cost_s / lambda_s (tolerance_s = lambda_s x configured) subject to every "
-      "target, lambda_s <= {:g}.\n\n",
-      cfg.source, r.sources.size(), pct, r.coverage_factor, r.coverage, r.max_scale);
+std::string coefficient_cell(const AllocatedCoefficient& c) { return c.id + " [" + c.unit + "]"; }
 
-  Table coefficients({"coefficient", "unit", "target U", "configured U", "allocated U", "common-scale U",
-                      "constraint", "d objective / d ln target"});
+std::string coefficients_table(const AllocationResult& r, std::size_t width) {
+  Table t({"coefficient", "target U", "configured U", "allocated U", "one-scale U", "target", "price"});
+  t.gap(2);
   for (const AllocatedCoefficient& c : r.coefficients) {
     const double f = c.display_scale;
-    coefficients.add_row({c.id, c.unit, c.has_target ? number(c.target * f, 4) : "-",
-                          number(c.configured_expanded * f, 4), number(c.allocated_expanded * f, 6),
-                          number(c.common_expanded * f, 4),
-                          c.has_target ? (c.active ? "active" : "inactive") : "(no target)",
-                          c.has_target ? number(c.price, 4) : ""});
+    t.add_row({coefficient_cell(c), c.has_target ? number(c.target * f, 4) : "-",
+               number(c.configured_expanded * f, 4), number(c.allocated_expanded * f, 6),
+               number(c.common_expanded * f, 4), c.has_target ? (c.active ? "active" : "inactive") : "none",
+               c.has_target ? number(c.price, 4) : ""});
   }
-  out += coefficients.render();
+  std::string out = t.render("  ", width);
+  out += wrap_words(
+      "  (one-scale U: every tolerance scaled by one common lambda; price: d objective / d ln "
+      "target, what loosening the target saves)",
+      width, "   ");
+  return out;
+}
 
-  std::vector<std::string> header = {"rank",       "source",    "distribution", "cost",
-                                     "configured", "allocated", "scale lambda"};
-  for (std::size_t t : r.targets) header.push_back("share " + r.coefficients[t].id + " [%]");
+std::string sources_table(const Config& cfg, const AllocationResult& r, const AllocateTextOptions& o) {
+  bool costs = false;
+  for (const AllocatedSource& a : r.sources) costs = costs || a.cost != 1.0;
+  std::vector<std::string> header = {"source", "name", "PDF"};
+  if (costs || o.wide) header.push_back("cost");
+  for (const char* h : {"unit", "configured", "allocated", "lambda"}) header.push_back(h);
+  for (std::size_t t : r.targets) header.push_back("share " + r.coefficients[t].id);
   Table sources(header);
-  for (std::size_t s = 0; s < r.sources.size(); ++s) {
-    const AllocatedSource& a = r.sources[s];
-    const SourceUnit unit = layout.parameter_unit(a.parameter);
-    std::vector<std::string> row = {std::to_string(s + 1),
-                                    a.id + (a.group.empty() ? "" : " (" + a.group + ")"),
-                                    std::string(distribution_name(a.distribution)),
-                                    number(a.cost, 4),
-                                    quantity_text(a.bound, unit),
-                                    quantity_text(a.allocated_bound, unit),
-                                    number(a.scale, 4)};
-    for (Eigen::Index i = 0; i < a.share.size(); ++i) row.push_back(fmt::format("{:.2f}", 100 * a.share[i]));
+  sources.align_left(1);
+  sources.align_left(costs || o.wide ? 4 : 3);  // the unit
+  sources.gap(2);
+  if (!o.wide) sources.shrink(1);
+  for (const AllocatedSource& a : r.sources) {
+    const std::string unit = written_unit(cfg, a.parameter);
+    std::vector<std::string> row = {source_label(a.id, a.group),
+                                    cfg.centrifuge.layout.parameter_name(a.parameter),
+                                    std::string(distribution_name(a.distribution))};
+    if (costs || o.wide) row.push_back(number(a.cost, 4));
+    const double unit_si = parse_unit(unit).value_si;
+    row.push_back(unit);
+    row.push_back(number(a.bound / unit_si, 4));
+    row.push_back(number(round_down(a.allocated_bound / unit_si), 4));  // as pasted below
+    row.push_back(number(a.scale, 4));
+    for (Eigen::Index i = 0; i < a.share.size(); ++i)
+      row.push_back(fmt::format("{:.1f} %", 100 * a.share[i]));
     sources.add_row(row);
   }
-  out +=
-      "\nAllocated tolerances, tightened most first (shares of the targets' variances at the allocated "
-      "tolerances):\n" +
-      sources.render();
+  return sources.render("  ", o.wide ? 0 : o.width);
+}
 
-  out += fmt::format(
-      "\nObjective sum cost/lambda: {:.6g} allocated; {:.6g} at the configured tolerances; {:.6g} with one "
-      "common scale lambda = {:.4g} = min(max scale, min over targets of target/U) for every source.\n"
-      "Solved by {} ({} Newton iteration{} on the dual; {}; duality gap {:.2g}).\n",
-      r.objective, r.configured_objective, r.common_objective, r.common_scale, r.method, r.iterations,
-      r.iterations == 1 ? "" : "s", r.converged ? "converged" : "NOT converged", r.dual_gap);
-
+std::string verification_text(const AllocationResult& r, const std::string& pct, std::size_t width) {
   const AllocationVerification& v = r.verification;
-  if (v.trials > 0) {
-    Table check({"coefficient", "unit", "target U", "MC mean", "MC std", "LPU u", "std/LPU", "MC half-width",
-                 "half-width/target", "verdict"});
-    for (std::size_t t : r.targets) {
-      const AllocatedCoefficient& c = r.coefficients[t];
-      const double f = c.display_scale;
-      check.add_row({c.id, c.unit, number(c.target * f, 4), number(c.mc_mean * f, 4), number(c.mc_std * f, 4),
-                     number(c.lpu_std * f, 4),
-                     fmt::format("{:.3f}", c.lpu_std > 0 ? c.mc_std / c.lpu_std : 0.0),
-                     number(c.mc_half_width * f, 4),
-                     fmt::format("{:.3f}", c.target > 0 ? c.mc_half_width / c.target : 0.0),
-                     std::string(verdict_name(c.verdict))});
-    }
-    out += fmt::format(
-        "\nMonte Carlo verification on the allocated tolerances (JCGM 101, exact nonlinear pipeline, M = {}, "
-        "seed {}, {:.3g} s): half-width = max(y_high - y, y - y_low) of the symmetric {} interval about the "
-        "MC mean y.\n",
-        v.trials, v.seed, v.seconds, pct);
-    out += check.render();
-    out += fmt::format(
-        "The check has sampling error: relative standard error ~{:.2g} of a half-width and ~1/sqrt(2M) = "
-        "{:.2g} "
-        "of a standard deviation (normal output). 'pass within sampling' = half-width at most "
-        "target x (1 + {:.3g}), 3 standard errors. Verification {}.\n",
-        v.half_width_rel_error, v.std_rel_error, v.allowance, v.passed ? "PASSED" : "FAILED");
-  } else {
-    out += "\nNo Monte Carlo verification (--verify-trials 0).\n";
+  if (v.trials == 0) return "\nNo Monte Carlo verification (--verify-trials 0).\n";
+  Table check({"coefficient", "target U", "MC mean", "half-width", "/target", "MC std", "/LPU u", "verdict"});
+  check.gap(2);
+  for (std::size_t t : r.targets) {
+    const AllocatedCoefficient& c = r.coefficients[t];
+    const double f = c.display_scale;
+    check.add_row({coefficient_cell(c), number(c.target * f, 4), number(c.mc_mean * f, 4),
+                   number(c.mc_half_width * f, 4),
+                   fmt::format("{:.3f}", c.target > 0 ? c.mc_half_width / c.target : 0.0),
+                   number(c.mc_std * f, 4), fmt::format("{:.3f}", c.lpu_std > 0 ? c.mc_std / c.lpu_std : 0.0),
+                   std::string(verdict_name(c.verdict))});
   }
+  std::string out = "\n";
+  out += wrap_words(fmt::format("Monte Carlo verification on the allocated tolerances (JCGM "
+                                "101, {} mode nonlinear pipeline, M = {}, seed {}, {:.3g} s): "
+                                "half-width = max(y_high - y, y - y_low) of the symmetric {} "
+                                "interval about the MC mean y.",
+                                mode_name(r.mode), v.trials, v.seed, v.seconds, pct),
+                    width);
+  out += check.render("  ", width);
+  out += wrap_words(
+      fmt::format("The check has sampling error: relative standard error ~{:.2g} of a half-width "
+                  "and ~1/sqrt(2M) = {:.2g} of a standard deviation (normal output). 'pass within "
+                  "sampling' = half-width at most target x (1 + {:.3g}), 3 standard errors. "
+                  "Verification {}.",
+                  v.half_width_rel_error, v.std_rel_error, v.allowance, v.passed ? "PASSED" : "FAILED"),
+      width);
+  return out;
+}
 
+std::string text_of(const Config& cfg, const AllocationResult& r, const AllocateTextOptions& o) {
+  const std::size_t width = o.wide ? 0 : o.width;
+  const std::string pct = fmt::format("{:g} %", 100 * r.coverage);
+  std::string out = fmt::format("ccal allocate: {}\n", cfg.source);
+  out += wrap_words(
+      fmt::format("{} sources; LPU with {} mode sensitivities at the configured errors. Targets are expanded "
+                  "uncertainties U = k_p u (half-widths of the {} interval), k_p = {:.5f} (the normal "
+                  "quantile of (1 + p)/2, p = {:g}). Allocation: minimise sum cost_s / lambda_s (tolerance_s "
+                  "= lambda_s x configured) subject to every target, lambda_s <= {:g}.",
+                  r.sources.size(), mode_name(r.mode), pct, r.coverage_factor, r.coverage, r.max_scale),
+      width);
+  out += '\n';
+  out += coefficients_table(r, width);
+  out += '\n';
+  out += wrap_words(
+      "Allocated tolerances, tightened most first (in the units of the configuration; "
+      "shares of the targets' variances at the allocated tolerances):",
+      width);
+  out += sources_table(cfg, r, o);
+  out += '\n';
+  out += wrap_words(fmt::format("Objective sum cost/lambda: {:.6g} allocated; {:.6g} at the configured "
+                                "tolerances; {:.6g} with one common scale lambda = {:.4g} = min(max "
+                                "scale, min over targets of target/U) for every source.",
+                                r.objective, r.configured_objective, r.common_objective, r.common_scale),
+                    width);
+  out += wrap_words(fmt::format("Solved by {} ({} Newton iteration{} on the dual; {}; duality gap {:.2g}).",
+                                r.method, r.iterations, r.iterations == 1 ? "" : "s",
+                                r.converged ? "converged" : "NOT converged", r.dual_gap),
+                    width);
+  out += verification_text(r, pct, width);
   out += "\nAllocated [tolerances] in configuration style (bounds rounded down to 4 digits):\n";
-  for (const AllocatedSource& a : r.sources) out += "  " + toml_entry(a, layout) + "\n";
+  for (const AllocatedSource& a : r.sources) out += "  " + toml_entry(a, cfg) + "\n";
   return out;
 }
 
@@ -158,7 +197,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
   j["command"] = "allocate";
   j["ccal_version"] = version();
   j["config"] = cfg.source;
-  j["mode"] = "exact";
+  j["mode"] = mode_name(r.mode);
   j["coverage_probability"] = r.coverage;
   j["coverage_factor"] = r.coverage_factor;
   j["max_scale"] = r.max_scale;
@@ -213,7 +252,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
     o["standard_uncertainty_si"] = a.standard_uncertainty;
     o["allocated_standard_uncertainty_si"] = a.allocated_standard_uncertainty;
     o["scale"] = a.scale;
-    o["toml"] = toml_entry(a, layout);
+    o["toml"] = toml_entry(a, cfg);
     nlohmann::ordered_json share = nlohmann::ordered_json::object();
     for (std::size_t i = 0; i < r.targets.size(); ++i)
       share[r.coefficients[r.targets[i]].id] = a.share[Eigen::Index(i)];
@@ -255,7 +294,9 @@ std::string csv_of(const Config& cfg, const AllocationResult& r) {
 
 }  // namespace
 
-std::string text(const verbs::AllocateResult& r) { return text_of(r.config, r.allocation); }
+std::string text(const verbs::AllocateResult& r, const AllocateTextOptions& o) {
+  return text_of(r.config, r.allocation, o);
+}
 std::string json(const verbs::AllocateResult& r) { return json_of(r.config, r.allocation); }
 std::string csv(const verbs::AllocateResult& r) { return csv_of(r.config, r.allocation); }
 

@@ -7,6 +7,7 @@
 
 #include "ccal/version.hpp"
 #include "parts.hpp"
+#include "statement_part.hpp"
 
 namespace ccal::render {
 
@@ -18,7 +19,12 @@ std::string text(const verbs::IdentifyResult& r) {
   std::string out = fmt::format("ccal identify: {}, {} rows; {}{} fitted on {}{}\n\n", r.source, r.rows,
                                 spec.output, subtracted, fmt::join(id.fit.names, ", "),
                                 spec.weight.empty() ? "" : fmt::format(" (weights 1/{}^2)", spec.weight));
-  return out + identification_text(id);
+  out += identification_text(id);
+  if (r.statement) {
+    out += '\n';
+    out += statement_text(*r.statement);
+  }
+  return out;
 }
 
 std::string json(const verbs::IdentifyResult& r) {
@@ -34,6 +40,7 @@ std::string json(const verbs::IdentifyResult& r) {
   j["weight"] = spec.weight.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(spec.weight);
   const nlohmann::ordered_json fit = identification_json(id);
   for (const auto& [key, value] : fit.items()) j[key] = value;
+  if (r.statement) j["statement"] = statement_json(*r.statement);
   return j.dump(2) + "\n";
 }
 

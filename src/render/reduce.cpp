@@ -8,6 +8,7 @@
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
 #include "parts.hpp"
+#include "statement_part.hpp"
 
 namespace ccal::render {
 namespace {
@@ -74,7 +75,12 @@ std::string text_of(const Config& cfg, const verbs::ReduceResult& r) {
       "   encoders are logged, else the configured one)\n\n";
   out += ripple_text(cfg, r);
   out += "  identification of these observations\n";
-  return out + identification_text(r.identification.id);
+  out += identification_text(r.identification.id);
+  if (r.statement) {
+    out += '\n';
+    out += statement_text(*r.statement);
+  }
+  return out;
 }
 
 std::string json_of(const Config& cfg, const verbs::ReduceResult& r) {
@@ -127,6 +133,7 @@ std::string json_of(const Config& cfg, const verbs::ReduceResult& r) {
   }
   j["runs"] = runs;
   j["identification"] = identification_json(r.identification.id);
+  if (r.statement) j["statement"] = statement_json(*r.statement);
   return j.dump(2) + "\n";
 }
 

@@ -173,7 +173,7 @@ void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSo
                    [](const AllocatedSource& x, const AllocatedSource& y) { return x.scale < y.scale; });
 }
 
-// Monte Carlo on the allocated tolerances through the exact nonlinear pipeline, against the targets.
+// Monte Carlo on the allocated tolerances through the nonlinear pipeline of the mode, against the targets.
 void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::VectorXd& u_alloc, double kp,
             const AllocateOptions& o, AllocationResult& r) {
   const auto nk = r.coefficients.size();
@@ -183,8 +183,7 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   for (Tolerance& t : rate_noise_sources(cfg)) scaled.push_back(std::move(t));  // as it is
   CalibrationModel model;
   try {
-    model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors,
-                              ModelMode::exact);
+    model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors, o.mode);
   } catch (const IllPosedFit& e) {
     throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
                       e.terms());
@@ -243,7 +242,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   check_thread_count(o.threads, "--threads");
 
   BudgetOptions bo;
-  bo.mode = ModelMode::exact;
+  bo.mode = o.mode;
   bo.compare_with_paper = false;
   BudgetResult b;
   try {
@@ -255,6 +254,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   const auto nk = b.coefficients.size();
 
   AllocationResult r;
+  r.mode = o.mode;
   r.coverage = o.coverage;
   r.coverage_factor = kp;
   r.max_scale = o.max_scale;

@@ -1,7 +1,9 @@
 #pragma once
 // The Monte Carlo's progress bar (private to the library): one line on standard error, only when it is a
-// terminal, redrawn at most every 0.1 s; tick() is cheap enough to call once per trial from every thread.
+// terminal, redrawn at most every 0.1 s and never wider than the terminal (a line that wraps would scroll
+// the screen at every redraw); tick() is cheap enough to call once per trial from every thread.
 #include <fmt/format.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +20,37 @@
 namespace ccal::progress_bar {
 
 using Clock = std::chrono::steady_clock;
+
+// Columns of standard error's terminal (80 if it cannot tell).
+inline std::size_t stderr_columns() {
+  winsize size{};
+  if (ioctl(fileno(stderr), TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+  return 80;
+}
+
+// The line for a terminal of `columns`: label, bar, figures; the bar (10 to 50 wide) and then the rate and
+// counts give way on a narrow terminal, and the line stays one column short of the edge.
+inline std::string progress_line(const std::string& label, double fraction, std::uint64_t done,
+                                 std::uint64_t target, double rate, const std::string& eta,
+                                 std::size_t columns) {
+  const std::size_t room = columns > 1 ? columns - 1 : 0;
+  const std::string percent = fmt::format("{:5.1f} %", 100.0 * fraction);
+  std::string tail =
+      fmt::format("{} {}/{} trials  {:.3g} trials/s  ETA {}", percent, done, target, rate, eta);
+  if (label.size() + tail.size() + 13 > room) tail = fmt::format("{} ETA {}", percent, eta);
+  std::string line = label;
+  if (label.size() + tail.size() + 13 <= room) {
+    const std::size_t width = std::min<std::size_t>(50, room - label.size() - tail.size() - 3);
+    const auto filled = std::size_t(fraction * double(width));
+    line += '[';
+    line.append(filled, '#');
+    line.append(width - filled, ' ');
+    line += "] ";
+  }
+  line += tail;
+  if (line.size() > room) line.resize(room);
+  return line;
+}
 
 inline std::string clock_text(double seconds) {
   if (!std::isfinite(seconds) || seconds > 359999) return "--:--:--";
@@ -68,11 +101,10 @@ class Progress {
     const double fraction = target_ ? std::min(1.0, double(done) / double(target_)) : 0.0;
     const double rate = seconds > 0 ? double(done) / seconds : 0.0;
     const double eta = rate > 0 ? double(target_ > done ? target_ - done : 0) / rate : NAN;
-    constexpr int kWidth = 30;
-    const int filled = int(fraction * kWidth);
-    fmt::print(stderr, "\r{}[{}{}] {:5.1f} % {}/{} trials  {:.3g} trials/s  ETA {}  ", label_,
-               std::string(std::size_t(filled), '#'), std::string(std::size_t(kWidth - filled), ' '),
-               100.0 * fraction, done, target_, rate, clock_text(eta));
+    const std::string line =
+        progress_line(label_, fraction, done, target_, rate, clock_text(eta), stderr_columns());
+    // \r, the line, then erase to the end of the line (what a longer previous line left).
+    fmt::print(stderr, "\r{}\x1b[K", line);
     std::fflush(stderr);
   }
 

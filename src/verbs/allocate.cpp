@@ -12,8 +12,9 @@
 namespace ccal::verbs {
 
 AllocateResult allocate(const Config& config, const AllocateOptions& o) {
-  if (!(o.coverage > 0 && o.coverage < 1))
-    throw InputError(fmt::format("--coverage: {} is not a probability in (0, 1); e.g. 0.95", o.coverage));
+  if (!(o.coverage_probability > 0 && o.coverage_probability < 1))
+    throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
+                                 o.coverage_probability));
   if (!(std::isfinite(o.max_scale) && o.max_scale > 0))
     throw InputError(fmt::format("--max-scale: {} is not a number > 0; e.g. 10", o.max_scale));
   if (o.verify_trials < 0 || o.verify_trials == 1 || o.verify_trials > 1000000000)
@@ -31,7 +32,8 @@ AllocateResult allocate(const Config& config, const AllocateOptions& o) {
   for (const auto& t : o.targets)
     targets.push_back(parse_allocation_target(t, config.identification.free_terms, units));
   ccal::AllocateOptions ao;
-  ao.coverage = o.coverage;
+  ao.coverage = o.coverage_probability;
+  ao.mode = o.mode.value_or(config.mode);
   ao.max_scale = o.max_scale;
   ao.verify_trials = std::uint64_t(o.verify_trials);
   ao.seed = o.seed;

@@ -1,17 +1,23 @@
 #include "ccal/verbs/budget.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/statement.hpp"
 #include "result_checks.hpp"
 
 namespace ccal::verbs {
 
 BudgetResult budget(const Config& config, const BudgetOptions& options) {
-  if (!(std::isfinite(options.coverage_factor) && options.coverage_factor > 0))
-    throw InputError("--coverage: " + std::to_string(options.coverage_factor) +
-                     " is not a positive number; accepted: a coverage factor such as 2");
+  // k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor.
+  if (!(std::isfinite(options.coverage_factor) && options.coverage_factor >= 1))
+    throw InputError(fmt::format(
+        "--coverage-factor: {:g} is not a coverage factor k >= 1; accepted: e.g. 2 (U = k u); a coverage "
+        "probability such as 0.95 is for `ccal montecarlo` and `ccal allocate` (--coverage-probability)",
+        options.coverage_factor));
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the budget needs at least one source");
   ccal::BudgetOptions bo;
@@ -30,6 +36,7 @@ BudgetResult budget(const Config& config, const BudgetOptions& options) {
                       e.terms());
   }
   check_finite(config, r.budget);  // never a nan or inf returned as a result
+  r.known_error_bias = known_error_shift(config, bo.mode);
   return r;
 }
 

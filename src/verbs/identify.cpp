@@ -179,6 +179,8 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   r.spec = fit_spec(table, header, options, units);
   r.identification = identify_table(table, r.spec, units, table.source);
   if (header) warn_about_powers_of_means(table, r.spec, r.identification);
+  if (options.budget)
+    r.statement = calibration_statement(*options.budget, r.identification, options.statement, "--budget");
   return r;
 }
 

@@ -47,6 +47,9 @@ std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel)
 }
 
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
+  if (o.budget && !(o.coverage_probability > 0 && o.coverage_probability < 1))
+    throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
+                                 o.coverage_probability));
   ReduceResult r;
   r.config = cfg;
   r.mode = o.mode.value_or(cfg.mode);
@@ -89,6 +92,12 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
       identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source, &resolution);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
+  if (o.budget) {
+    StatementOptions so;
+    so.coverage_probability = o.coverage_probability;
+    so.mode = r.mode;
+    r.statement = calibration_statement(cfg, r.identification.id, so, "--budget");
+  }
   return r;
 }
 

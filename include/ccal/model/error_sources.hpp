@@ -125,6 +125,9 @@ class ErrorLayout {
     return k == 0 ? base : base + 2 * k - 1 + (is_sine ? 1 : 0);
   }
   std::string parameter_id(int index) const;
+  // What a parameter is, in words: its channel's description, and for a dynamic one the harmonic, e.g.
+  // "azimuth-axis wobble about y3t, cos gamma" for dthy3_c1.
+  std::string parameter_name(int index) const;
   // Channel of a parameter, and its harmonic (k, is_sine) for dynamic ones.
   int parameter_channel(int index) const noexcept;
   int parameter_harmonic(int index) const noexcept;

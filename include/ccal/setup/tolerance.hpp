@@ -43,6 +43,7 @@ struct Tolerance {
   Distribution distribution = Distribution::normal;
   std::string group;  // sources with the same non-empty group are fully correlated (same draw, same sign)
   double cost = 1.0;  // relative cost weight (> 0) for tolerance allocation
+  std::string unit;   // the unit the bound was written in ("um", "arcsec"), for display only; "": SI
 };
 
 }  // namespace ccal

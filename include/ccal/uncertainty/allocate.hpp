@@ -101,6 +101,7 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
                                          std::string_view option = "--target");
 
 struct AllocateOptions {
+  ModelMode mode = ModelMode::exact;   // of the sensitivities and the verification (verbs: the config's)
   double coverage = 0.95;              // p
   double max_scale = 10.0;             // λ_max
   std::uint64_t verify_trials = 2000;  // M of the Monte Carlo verification; 0: none
@@ -161,6 +162,7 @@ struct AllocationVerification {
 };
 
 struct AllocationResult {
+  ModelMode mode = ModelMode::exact;  // of the sensitivities and the verification
   double coverage = 0.95;
   double coverage_factor = 0;
   double max_scale = 10;
@@ -179,8 +181,8 @@ struct AllocationResult {
   AllocationVerification verification;
 };
 
-// Allocates the tolerances of a configuration (exact mode sensitivities at the configured errors) for the
-// targets, and verifies the result by Monte Carlo. Throws InputError for no tolerances, no or duplicate
+// Allocates the tolerances of a configuration (sensitivities in options.mode at the configured errors) for
+// the targets, and verifies the result by Monte Carlo. Throws InputError for no tolerances, no or duplicate
 // targets, a target on a coefficient that is not free, bad options, or an ill-posed identification.
 AllocationResult allocate_tolerances(const Config& config, const std::vector<AllocationTarget>& targets,
                                      const AllocateOptions& options = {});

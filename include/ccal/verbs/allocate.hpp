@@ -3,9 +3,11 @@
 // expanded uncertainty of an identified coefficient holds, checked by Monte Carlo (docs/model.md §10.3).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "ccal/core/model_mode.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 
@@ -15,9 +17,10 @@ struct AllocateOptions {
   // Targets "<coefficient>=<U> [unit]", e.g. "K3=2e-3" (in the coefficient's display unit) or
   // "K3=2e-3 deg/s/g^3"; at least one.
   std::vector<std::string> targets;
-  double coverage = 0.95;             // probability p of the expanded uncertainties
-  double max_scale = 10.0;            // no tolerance grows beyond this factor of its configured value
-  std::int64_t verify_trials = 2000;  // Monte Carlo check of the result; 0: none
+  double coverage_probability = 0.95;  // p of the expanded uncertainties (the targets), in (0, 1)
+  std::optional<ModelMode> mode;       // kinematics; unset: the configuration's [identification] mode
+  double max_scale = 10.0;             // no tolerance grows beyond this factor of its configured value
+  std::int64_t verify_trials = 2000;   // Monte Carlo check of the result; 0: none
   std::uint64_t seed = 1;
   int threads = 0;        // 0: all cores
   bool progress = false;  // draw a progress bar on standard error when it is a terminal
@@ -29,9 +32,9 @@ struct AllocateResult {
   AllocationResult allocation;
 };
 
-// Throws InputError naming the option (--target, --coverage, --max-scale, --verify-trials, --threads) for a
-// value out of range, for an empty [tolerances], a target below what the drives' noise allows, or a result
-// that is not finite.
+// Throws InputError naming the option (--target, --coverage-probability, --max-scale, --verify-trials,
+// --threads) for a value out of range, for an empty [tolerances], a target below what the drives' noise
+// allows, or a result that is not finite.
 AllocateResult allocate(const Config& config, const AllocateOptions& options);
 
 }  // namespace ccal::verbs

@@ -13,7 +13,7 @@ namespace ccal::verbs {
 
 struct BudgetOptions {
   std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
-  double coverage_factor = 2.0;   // k of the expanded uncertainty U = k u
+  double coverage_factor = 2.0;   // k of the expanded uncertainty U = k u, at least 1 (--coverage-factor)
   DerivativeMethod derivatives = DerivativeMethod::linearised;  // same numbers; linearised is faster
   bool compare_with_paper = true;  // in exact mode, also the paper's first-order effect of each source
 };
@@ -22,10 +22,13 @@ struct BudgetResult {
   Config config;                      // the configuration budgeted
   ccal::BudgetResult budget;          // per source and per coefficient (SI, with display scales)
   ObservabilityReport observability;  // of the free terms under this plan
+  // The bias of the coefficients from the configuration's known [errors] when the model leaves them out
+  // (SI, per coefficient; uncertainty/statement.hpp known_error_shift): empty when compensated or none.
+  Eigen::VectorXd known_error_bias;
 };
 
-// Throws InputError for an empty [tolerances], a term the plan cannot observe or identify, or a result that
-// is not finite (tolerances beyond double precision).
+// Throws InputError for a coverage factor below 1 or not finite, an empty [tolerances], a term the plan
+// cannot observe or identify, or a result that is not finite (tolerances beyond double precision).
 BudgetResult budget(const Config& config, const BudgetOptions& options = {});
 
 }  // namespace ccal::verbs

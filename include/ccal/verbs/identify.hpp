@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
+#include "ccal/verbs/statement.hpp"
 
 namespace ccal::verbs {
 
@@ -22,6 +24,8 @@ struct IdentifyOptions {
   std::string input = "a_i";      // column of the input x of the power terms
   std::string output = "output";  // column of the output y
   std::string weight;             // column of the σ of y (weights 1/σ²); empty: unweighted
+  std::optional<Config> budget;   // set: the calibration statement with this configuration's budget
+  StatementOptions statement;     // its coverage probability and mode
 };
 
 struct IdentifyResult {
@@ -29,9 +33,11 @@ struct IdentifyResult {
   std::size_t rows = 0;
   TableFitSpec spec;  // what was fitted
   Identification identification;
+  std::optional<CalibrationStatement> statement;  // with options.budget
 };
 
-// Throws InputError naming the option (--terms, --fix, --known, …) or CsvError naming the file's place.
+// Throws InputError naming the option (--terms, --fix, --known, --budget, …) or CsvError naming the file's
+// place.
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options = {});
 
 }  // namespace ccal::verbs

@@ -12,6 +12,7 @@
 #include "ccal/io/run_log.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
+#include "ccal/verbs/statement.hpp"
 
 namespace ccal::verbs {
 
@@ -26,6 +27,8 @@ struct ReduceOptions {
   bool angles_in_degrees = false;      // the encoder columns' unit (else rad)
   std::optional<double> pulse_weight;  // integrated output per pulse [output unit × s]; unset: the quantum
   std::optional<ModelMode> mode;       // model of the regressors; unset: the configuration's
+  bool budget = false;                 // also the calibration statement with the configuration's budget
+  double coverage_probability = 0.95;  // p of the statement's intervals
 };
 
 struct ReduceResult {
@@ -38,9 +41,11 @@ struct ReduceResult {
   // Runs whose encoders contradict the configured platform control, and weak terms: for the front end to
   // show (the verb prints nothing).
   std::vector<std::string> warnings;
+  std::optional<CalibrationStatement> statement;  // with `budget`
 };
 
-// Throws InputError naming the option (--log, --pulse-weight) or CsvError naming the log's place.
+// Throws InputError naming the option (--log, --pulse-weight, --budget, --coverage-probability) or CsvError
+// naming the log's place.
 ReduceResult reduce(const Config& config, const ReduceOptions& options);
 
 // Parameter ids of a drive's ripple channel up to the configuration's order: ripple1_c1, ripple1_s1, …

@@ -1,0 +1,38 @@
+#include "terminal.hpp"
+
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+namespace ccal::cli {
+
+TerminalSize output_terminal(const OutputOptions& output) {
+  if (!output.path.empty() && output.path != "-") return {};
+  if (isatty(STDOUT_FILENO) == 0) return {};
+  winsize size{};
+  if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) != 0) return {};
+  return {size.ws_col, size.ws_row};
+}
+
+void add_width_options(CLI::App& command, WidthOptions& options, const std::string& wide_help) {
+  command
+      .add_option("--width", options.width,
+                  "Columns of the text (default: the terminal's width, or 100 when not a terminal)")
+      ->check(CLI::Range(40, 10000))
+      ->type_name("N");
+  command.add_flag("--wide", options.wide, wide_help);
+}
+
+std::size_t text_width(const WidthOptions& options, const TerminalSize& terminal) {
+  if (options.width > 0) return options.width;
+  return terminal.columns >= 40 ? terminal.columns : 100;
+}
+
+void add_renamed_option(CLI::App& command, const std::string& old_name, const std::string& message) {
+  // Listed in --help under "Renamed" (a hidden option would have no name in the error message).
+  command.add_option(old_name, message)
+      ->group("Renamed")
+      ->type_name("")
+      ->check(CLI::Validator([message](std::string&) { return message; }, ""));
+}
+
+}  // namespace ccal::cli

@@ -1,0 +1,68 @@
+#pragma once
+// The calibration statement of JCGM 100 (GUM) §7 and Annex G, the number a laboratory reports for each
+// coefficient (docs/model.md §10.5):
+//
+//   corrected estimate  y = K̂ + b,  b the correction for known systematic effects (GUM §3.2.4)
+//   combined            u_c² = u_A² + u_B²   (the fit's scatter and the centrifuge budget are independent)
+//   Welch–Satterthwaite ν_eff = u_c⁴ / (u_A⁴/ν_A + u_B⁴/ν_B)   (G.2b; ν = ∞ for a part known exactly)
+//   coverage factor     k = t_{(1+p)/2}(⌊ν_eff⌋), Student's t (G.3, G.4.1 note 1: ν_eff truncated to an
+//                       integer), the normal quantile for ν_eff = ∞
+//   expanded            U = k u_c,  interval [y − U, y + U].
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "ccal/core/model_mode.hpp"
+#include "ccal/setup/config.hpp"
+
+namespace ccal {
+
+inline constexpr double kInfiniteDof = std::numeric_limits<double>::infinity();
+
+// One component of a combined standard uncertainty: u_i with its degrees of freedom ν_i (∞: known exactly).
+struct UncertaintyPart {
+  double u = 0;
+  double dof = kInfiniteDof;
+};
+
+// ν_eff of u_c² = Σ u_i² (G.2b); ∞ when every part with u_i > 0 has ν_i = ∞. Throws std::invalid_argument
+// for a negative u_i or a ν_i ≤ 0 of a part with u_i > 0.
+double welch_satterthwaite(const std::vector<UncertaintyPart>& parts);
+
+// k for coverage probability p in (0, 1) at ν degrees of freedom: Student's t quantile at (1 + p)/2 for
+// ⌊ν⌋ (ν ≥ 1), the normal quantile for ν = ∞. Throws std::invalid_argument for p outside (0, 1) or ν < 1.
+double student_coverage_factor(double p, double dof);
+
+// What goes into one coefficient's statement, in one unit.
+struct StatementInput {
+  std::string coefficient;
+  std::string unit;
+  double estimate = 0;     // K̂ as identified
+  double correction = 0;   // b, added to the estimate
+  UncertaintyPart type_a;  // from the fit: its standard error and degrees of freedom
+  UncertaintyPart type_b;  // from the centrifuge budget (tolerances): ν = ∞
+};
+
+struct CoefficientStatement {
+  StatementInput input;
+  double corrected = 0;        // K̂ + b
+  double combined = 0;         // u_c
+  double effective_dof = 0;    // ν_eff (∞ possible)
+  double dof_for_k = 0;        // ⌊ν_eff⌋, or ∞
+  double coverage_factor = 0;  // k
+  double expanded = 0;         // U = k u_c
+  double low = 0, high = 0;    // corrected ∓ U
+};
+
+// The statement of one coefficient for coverage probability p (throws as the functions above).
+CoefficientStatement state_coefficient(const StatementInput& input, double p);
+
+// What the configuration's known [errors] do to the identified coefficients when the model leaves them out:
+// K̂(truth with the [errors], model without) − K̂(truth and model without errors), SI, per free term. Empty
+// when the configuration compensates them ([identification] compensate = true) or has none. Its negative is
+// the correction for known errors; it equals the shift `ccal simulate` shows for the same [errors].
+Eigen::VectorXd known_error_shift(const Config& config, ModelMode mode);
+
+}  // namespace ccal

@@ -1,0 +1,41 @@
+#pragma once
+// The calibration statement (JCGM 100 §7, docs/model.md §10.5) as `ccal reduce --budget` and `ccal identify
+// --budget CONFIG` give it: per identified coefficient the estimate, the correction for known errors, the
+// Type A part from the fit with its degrees of freedom, the Type B part from the centrifuge budget of the
+// configuration, u_c, ν_eff, k from Student's t, U and the interval.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccal/core/model_mode.hpp"
+#include "ccal/setup/config.hpp"
+#include "ccal/uncertainty/statement.hpp"
+#include "ccal/verbs/identification.hpp"
+
+namespace ccal::verbs {
+
+struct StatementOptions {
+  double coverage_probability = 0.95;  // p of the intervals, in (0, 1)
+  std::optional<ModelMode> mode;       // of the budget; unset: the configuration's
+};
+
+struct CalibrationStatement {
+  std::string budget_config;  // the configuration whose tolerances give the Type B part
+  ModelMode mode = ModelMode::exact;
+  double coverage_probability = 0.95;
+  bool compensated = false;  // the model computed the regressors with the known [errors]
+  int known_errors = 0;      // non-zero [errors] parameters
+  std::vector<CoefficientStatement> coefficients;  // in the fit's order, in the fit's units
+};
+
+// Combines an identification with the budget of `config`. Type A: the fit's standard errors with its
+// degrees of freedom (∞ for a weighted fit, whose σ are taken as known); Type B: the configuration's
+// tolerances (the drives' rate noise is left out, the fit's scatter already holds it); correction: minus
+// the shift of the known [errors] when the model does not compensate them. Throws InputError naming
+// `option` when a fitted term is not a free term of the configuration, the units cannot be converted, the
+// fit has no degrees of freedom, or p is not in (0, 1).
+CalibrationStatement calibration_statement(const Config& config, const Identification& identification,
+                                           const StatementOptions& options, const std::string& option);
+
+}  // namespace ccal::verbs

@@ -1,0 +1,239 @@
+// The text, JSON and CSV of `ccal budget` as an engineer reads them (render/budget.hpp): lines within 100
+// columns, UTF-8 names aligned by displayed width, tolerances in the configuration's units with u(x_i) and
+// c_i, CSV totals equal to the JSON, and the bias of uncompensated known errors equal to the coefficient
+// shift `ccal simulate` shows for the same errors.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "ccal/io/config_file.hpp"
+#include "ccal/render/budget.hpp"
+#include "ccal/render/simulate.hpp"
+#include "ccal/render/table.hpp"
+#include "ccal/verbs/budget.hpp"
+#include "ccal/verbs/simulate.hpp"
+
+namespace ccal {
+namespace {
+
+std::string example_text() {
+  std::ifstream in(CCAL_SOURCE_DIR "/examples/wang_ren_2014.toml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The example with `from` replaced by `to` (once; the text must hold `from`).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// The line holding `needle`, and the header of its table: the line above the first rule above it.
+std::pair<std::string, std::string> row_and_header(const std::string& text, const std::string& needle) {
+  const std::vector<std::string> lines = lines_of(text);
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (lines[k].find(needle) == std::string::npos) continue;
+    for (std::size_t r = k; r-- > 1;)
+      if (lines[r].find_first_not_of(" -") == std::string::npos && lines[r].find('-') != std::string::npos)
+        return {lines[k], lines[r - 1]};
+  }
+  return {};
+}
+
+TEST(BudgetText, NoLineOver100ColumnsByDefault) {
+  const verbs::BudgetResult exact = verbs::budget(bundled_example());
+  verbs::BudgetOptions paper_options;
+  paper_options.mode = ModelMode::paper;
+  const verbs::BudgetResult paper = verbs::budget(bundled_example(), paper_options);
+  render::BudgetTextOptions top3;
+  top3.top = 3;
+  for (const std::string& text : {render::text(exact), render::text(paper), render::text(exact, top3)})
+    for (const std::string& line : lines_of(text)) EXPECT_LE(render::display_width(line), 100u) << line;
+  // A 90-column terminal gets 90 columns: the names give way (down to their header's width).
+  render::BudgetTextOptions narrow;
+  narrow.width = 90;
+  for (const std::string& line : lines_of(render::text(exact, narrow)))
+    EXPECT_LE(render::display_width(line), 90u) << line;
+  // --wide cuts nothing: the catalogue's full names are there.
+  render::BudgetTextOptions wide;
+  wide.wide = true;
+  EXPECT_NE(render::text(exact, wide).find("perpendicularity of azimuth axis to horizontal axis"),
+            std::string::npos);
+}
+
+TEST(BudgetText, AnswerTopRowsAndNextSteps) {
+  const verbs::BudgetResult r = verbs::budget(bundled_example());
+  render::BudgetTextOptions o;
+  o.top = 4;
+  const std::string text = render::text(r, o);
+  EXPECT_NE(text.find("The answer"), std::string::npos);
+  EXPECT_NE(text.find("  K3: U = "), std::string::npos);
+  // 52 sources and 2 rate noises per coefficient: 4 listed, 50 in the summed row.
+  EXPECT_NE(text.find("50 more, root-sum-square"), std::string::npos) << text;
+  const std::vector<std::string> lines = lines_of(text);
+  ASSERT_GE(lines.size(), 3u);
+  EXPECT_NE(lines[lines.size() - 3].find("ccal allocate --target"), std::string::npos);
+  EXPECT_NE(lines[lines.size() - 2].find("ccal design"), std::string::npos);
+  EXPECT_NE(lines.back().find("ccal montecarlo --digits 2"), std::string::npos);
+}
+
+TEST(BudgetText, Utf8GroupAndRunNamesAlign) {
+  // A group and a run named with non-ASCII letters: each row is as wide, in displayed characters, as its
+  // table's header (the last column is right-aligned), which byte counts would miss by one per "ä" or "µ".
+  std::string text =
+      replaced(example_text(), "dR_s = \"25 um\"", "dR_s = { bound = \"25 µm\", group = \"Längen-µ\" }");
+  text = replaced(text, "dy2t = \"25 um\"", "dy2t = { bound = \"25 µm\", group = \"Längen-µ\" }");
+  text = replaced(text, "name = \"5g\"", "name = \"Lauf-ä-5g\"");
+  const Config cfg = parse_config(text, "utf8.toml");
+  render::BudgetTextOptions wide;
+  wide.wide = true;  // every source listed
+  const std::string budget = render::text(verbs::budget(cfg), wide);
+  const auto [row, header] = row_and_header(budget, "dR_s (Längen-µ)");
+  ASSERT_FALSE(row.empty()) << budget;
+  EXPECT_EQ(render::display_width(row), render::display_width(header)) << row << "\n" << header;
+  EXPECT_NE(row.size(), header.size());  // bytes differ: the check above is not vacuous
+  const std::string simulate = render::text(verbs::simulate(cfg));
+  const auto [run_row, run_header] = row_and_header(simulate, "Lauf-ä-5g");
+  ASSERT_FALSE(run_row.empty()) << simulate;
+  EXPECT_EQ(render::display_width(run_row), render::display_width(run_header)) << run_row << "\n"
+                                                                               << run_header;
+}
+
+TEST(BudgetText, ToleranceInTheConfigurationsUnitWithUAndC) {
+  const Config cfg =
+      parse_config(replaced(example_text(), "dthz5 = \"1e-5 rad\"", "dthz5 = \"2 arcsec\""), "arcsec.toml");
+  const verbs::BudgetResult r = verbs::budget(cfg);
+  const auto j = nlohmann::json::parse(render::json(r));
+  bool found = false;
+  for (const auto& s : j["sources"]) {
+    // c_i u(x_i) = u_i(y) for every source and coefficient: relative 1e-12 (one product in double).
+    for (const auto& [k, effect] : s["effect"].items()) {
+      const double c = s["sensitivity"][k], u = s["standard_uncertainty"];
+      EXPECT_NEAR(c * u, effect.get<double>(), 1e-12 * std::abs(effect.get<double>()) + 1e-300) << s["id"];
+    }
+    if (s["id"] != "dthz5") continue;
+    found = true;
+    EXPECT_EQ(s["unit"], "arcsec");
+    EXPECT_NEAR(s["bound"].get<double>(), 2, 1e-13);  // arcsec → rad → arcsec: round-off only
+    EXPECT_EQ(s["name"], "instrument azimuth (IA) zero error");
+  }
+  EXPECT_TRUE(found);
+  render::BudgetTextOptions all;
+  all.top = 100;
+  const auto [row, header] = row_and_header(render::text(r, all), "  dthz5");
+  EXPECT_NE(row.find("2 arcsec"), std::string::npos) << row;
+  EXPECT_NE(header.find("u(x_i)"), std::string::npos) << header;
+  EXPECT_NE(header.find("c_i"), std::string::npos) << header;
+}
+
+// The CSV's cells by column name, for the row whose source is `source`.
+std::map<std::string, std::string> csv_row(const std::string& csv, const std::string& source) {
+  const std::vector<std::string> lines = lines_of(csv);
+  auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        cells.push_back(std::exchange(cell, ""));
+      else
+        cell += c;
+    }
+    cells.push_back(cell);
+    return cells;
+  };
+  const std::vector<std::string> header = split(lines.at(0));
+  for (const std::string& line : lines) {
+    const std::vector<std::string> cells = split(line);
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    if (cells.size() > 1 && cells[1] == source) {
+      std::map<std::string, std::string> row;
+      for (std::size_t c = 0; c < header.size() && c < cells.size(); ++c) row[header[c]] = cells[c];
+      return row;
+    }
+  }
+  return {};
+}
+
+TEST(BudgetText, CsvTotalsEqualTheJson) {
+  verbs::BudgetOptions o;
+  o.coverage_factor = 3;
+  const verbs::BudgetResult r = verbs::budget(bundled_example(), o);
+  const auto j = nlohmann::json::parse(render::json(r));
+  const std::string csv = render::csv(r);
+  const auto u = csv_row(csv, "total_standard_uncertainty");
+  const auto U = csv_row(csv, "expanded_uncertainty_k3");
+  ASSERT_FALSE(u.empty()) << csv;
+  ASSERT_FALSE(U.empty()) << csv;
+  for (const auto& c : j["coefficients"]) {
+    const std::string column = "d" + c["id"].get<std::string>() + " [" + c["unit"].get<std::string>() + "]";
+    // Both are the same double printed to 17 digits: equal after parsing.
+    EXPECT_EQ(std::stod(u.at(column)), c["standard_uncertainty"].get<double>()) << column;
+    EXPECT_EQ(std::stod(U.at(column)), c["expanded_uncertainty"].get<double>()) << column;
+  }
+  // c_i is there too: c_K3 × u_x = dK3 for the first-ranked source, relative 1e-12.
+  const auto first = csv_row(csv, j["sources"][0]["id"]);
+  EXPECT_NEAR(std::stod(first.at("c_K3 [deg/s/g^3 per unit]")) * std::stod(first.at("u_x")),
+              std::stod(first.at("dK3 [deg/s/g^3]")),
+              1e-12 * std::abs(std::stod(first.at("dK3 [deg/s/g^3]"))));
+}
+
+TEST(BudgetText, BiasRowEqualsSimulatesShift) {
+  // Known errors not compensated: the budget's bias of each coefficient is what `ccal simulate` identifies
+  // with the errors minus what it identifies without them (the same plan, no instrument noise).
+  const std::string with_errors =
+      replaced(replaced(example_text(), "# dthz5 = \"2 arcsec\"", "dthz5 = \"2 arcsec\""),
+               "# dx3_c1 = \"5 um\"", "dx3_c1 = \"5 um\"");
+  const Config cfg = parse_config(with_errors, "errors.toml");
+  const verbs::BudgetResult b = verbs::budget(cfg);
+  ASSERT_EQ(b.known_error_bias.size(), 3);
+  const verbs::SimulateResult shifted = verbs::simulate(cfg);
+  const verbs::SimulateResult clean = verbs::simulate(bundled_example());
+  const auto j = nlohmann::json::parse(render::json(b));
+  for (std::size_t k = 0; k < b.budget.coefficients.size(); ++k) {
+    const auto i = Eigen::Index(k);
+    const double shift = shifted.identification.fit.value[i] - clean.identification.fit.value[i];
+    const double bias = j["known_error_bias"][b.budget.coefficients[k]];
+    // Two routes (the observations file and its fit against the direct least squares): the shift is the
+    // difference of two coefficients of size |K|, so round-off of 1e-13 |K| bounds the disagreement.
+    const double size = std::abs(clean.identification.fit.value[i]);
+    EXPECT_NEAR(bias, shift, 1e-13 * size + 1e-9 * std::abs(shift)) << b.budget.coefficients[k];
+    EXPECT_NE(shift, 0.0);
+  }
+  const auto [row, header] = row_and_header(render::text(b), "bias of known [errors]");
+  EXPECT_FALSE(row.empty());
+  // Compensated: no bias.
+  const Config compensated =
+      parse_config(replaced(with_errors, "compensate = false", "compensate = true"), "compensated.toml");
+  EXPECT_EQ(verbs::budget(compensated).known_error_bias.size(), 0);
+}
+
+TEST(Table, DisplayWidthAndCutting) {
+  EXPECT_EQ(render::display_width("abc"), 3u);
+  EXPECT_EQ(render::display_width("µm"), 2u);  // U+00B5: 2 bytes, 1 column
+  EXPECT_EQ(render::display_width("Läufe"), 5u);
+  EXPECT_EQ(render::display_width("e\xCC\x81"), 1u);     // e + combining acute
+  EXPECT_EQ(render::display_width("\xE6\xBC\xA2"), 2u);  // 漢: wide
+  EXPECT_EQ(render::truncate_to_width("azimuth-axis wobble", 8), "azimuth…");
+  EXPECT_EQ(render::display_width(render::truncate_to_width("Längen-µ-Gruppe", 6)), 6u);
+  EXPECT_EQ(render::wrap_words("aa bb cc", 5, "  "), "aa bb\n  cc\n");
+}
+
+}  // namespace
+}  // namespace ccal

@@ -1,0 +1,151 @@
+// The calibration statement end to end: `ccal identify --budget CONFIG` and `ccal reduce --budget` (JCGM 100
+// §7, docs/model.md §10.5), checked against the fit and the budget printed by the other verbs.
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "cli_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+class Statement : public Cli {
+ protected:
+  // Logs of the first n runs of the bundled plan (5, 10, 15, … g): pulses of 1e-3 deg at K1 × g-level
+  // deg/s, encoders at the planned rate of a 2.5 m arm, every 0.1 s over 120 s. Pure test data. Returns the
+  // --log options.
+  std::string write_logs(int n) const {
+    std::string logs;
+    for (int r = 0; r < n; ++r) {
+      const double g_level = 5.0 * (r + 1), rate = std::sqrt(g_level * 9.8 / 2.5), T = 120;
+      std::string csv = "time,pulses,theta1,gamma\n";
+      for (int k = 0; k <= 1200; ++k) {
+        const double t = T * k / 1200;
+        csv += std::to_string(t) + "," + std::to_string(std::floor(505.2097 * g_level * t / 1e-3)) + "," +
+               std::to_string(std::fmod(rate * t, 2 * std::numbers::pi)) + "," +
+               std::to_string(std::fmod(8 * std::numbers::pi - rate * t, 2 * std::numbers::pi)) + "\n";
+      }
+      write("run" + std::to_string(r) + ".csv", csv);
+      logs += " --log " + std::to_string(r + 1) + "=run" + std::to_string(r) + ".csv";
+    }
+    return logs + " --pulse-weight 1e-3";
+  }
+};
+
+// Φ⁻¹(0.975) to 16 digits.
+constexpr double kZ975 = 1.959963984540054;
+
+TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  const Result fit = run("identify obs.csv --format json");
+  const Result st = run("identify obs.csv --budget " + kExample + " --format json");
+  const Result budget = run("budget --format json");
+  ASSERT_EQ(fit.code, 0) << fit.err;
+  ASSERT_EQ(st.code, 0) << st.err;
+  ASSERT_EQ(budget.code, 0) << budget.err;
+  const auto jf = nlohmann::json::parse(fit.out), js = nlohmann::json::parse(st.out),
+             jb = nlohmann::json::parse(budget.out);
+  const auto& s = js.at("statement");
+  EXPECT_EQ(s["mode"], "exact");
+  EXPECT_EQ(s["known_errors"], 0);
+  for (std::size_t k = 0; k < jb["coefficients"].size(); ++k) {
+    const std::string id = jb["coefficients"][k]["id"];
+    const auto& c = s["coefficients"][id];
+    // Type A: the fit's standard error and its 3 degrees of freedom (6 runs, 3 free terms).
+    EXPECT_EQ(c["type_a"]["u"], jf["coefficients"][id]["std_error"]);
+    EXPECT_EQ(c["type_a"]["dof"], 3);
+    EXPECT_EQ(c["estimate"], jf["coefficients"][id]["value"]);
+    EXPECT_EQ(c["correction"], 0.0);  // no known errors
+    // Type B: the budget's u without the drives' rate noise (the fit's scatter holds that):
+    // u_B² = u² − Σ u_noise², relative 1e-9 (a difference of sums of squares).
+    double noise = 0;
+    for (const auto& n : jb["rate_noise"]) noise += std::pow(n["u"][id].get<double>(), 2);
+    const double u = jb["coefficients"][k]["standard_uncertainty"];
+    const double u_b = std::sqrt(u * u - noise);
+    EXPECT_NEAR(c["type_b"]["u"].get<double>(), u_b, 1e-9 * u_b) << id;
+    EXPECT_TRUE(c["type_b"]["dof"].is_null());  // infinite
+    // u_c and U = k u_c with ν_eff from Welch–Satterthwaite by hand.
+    const double u_a = c["type_a"]["u"], u_c = std::hypot(u_a, u_b);
+    EXPECT_NEAR(c["combined_standard_uncertainty"].get<double>(), u_c, 1e-9 * u_c);
+    const double nu = std::pow(u_c, 4) / (std::pow(u_a, 4) / 3);
+    if (c["effective_dof"].is_null()) {
+      EXPECT_EQ(u_a, 0.0);
+    } else {
+      EXPECT_NEAR(c["effective_dof"].get<double>(), nu, 1e-9 * nu);
+    }
+    // The simulated fit is nearly exact, so ν_eff is huge and k is the normal quantile within 1e-6.
+    EXPECT_NEAR(c["coverage_factor"].get<double>(), kZ975, 1e-6);
+    const double U = c["expanded_uncertainty"];
+    EXPECT_NEAR(U, c["coverage_factor"].get<double>() * u_c, 1e-12 * U);
+    EXPECT_NEAR(c["interval"][0].get<double>(), c["corrected_estimate"].get<double>() - U, 1e-12 * U + 1e-15);
+  }
+  const Result text = run("identify obs.csv --budget " + kExample);
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("Calibration statement (JCGM 100 §7)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("  K3 = ("), std::string::npos) << text.out;
+}
+
+TEST_F(Statement, KnownErrorsAreCorrected) {
+  // The example with two known errors, not compensated: simulate identifies shifted coefficients; the
+  // statement's correction takes the shift off, so the corrected estimate is the instrument's value (the
+  // [instrument.terms]) to round-off of the fit.
+  std::string text = read(kExample);
+  for (const std::string line : {"# dthz5 = \"2 arcsec\"", "# dx3_c1 = \"5 um\""})
+    text.replace(text.find(line), 2, "");
+  const std::string cfg = write("errors.toml", text);
+  ASSERT_EQ(run("simulate " + cfg + " --observations-out obs.csv -o /dev/null").code, 0);
+  const Result st = run("identify obs.csv --budget " + cfg + " --format json");
+  ASSERT_EQ(st.code, 0) << st.err;
+  const auto s = nlohmann::json::parse(st.out).at("statement");
+  EXPECT_EQ(s["known_errors"], 2);
+  EXPECT_FALSE(s["compensated"].get<bool>());
+  // [instrument.terms] of the example, in deg/s/g^n; tolerance 1e-10 of the value (fit round-off).
+  const std::map<std::string, double> truth{{"K0", 0.061973}, {"K2", 0.02}, {"K3", 0.003}};
+  for (const auto& [id, value] : truth) {
+    const auto& c = s["coefficients"][id];
+    EXPECT_NE(c["correction"].get<double>(), 0.0) << id;
+    EXPECT_NEAR(c["corrected_estimate"].get<double>(), value, 1e-10 * value) << id;
+  }
+}
+
+TEST_F(Statement, ReduceWithOneDegreeOfFreedom) {
+  // Four logged runs for three free terms: ν_A = 1, so ν_eff = u_c⁴/u_A⁴ and k lies between the normal
+  // quantile and t_{0.975}(1) = 12.706 (table value).
+  const Result r = run("reduce" + write_logs(4) + " --budget --coverage-probability 0.95 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& s = j.at("statement");
+  EXPECT_EQ(s["coverage_probability"], 0.95);
+  for (const std::string id : {"K0", "K2", "K3"}) {
+    const auto& c = s["coefficients"][id];
+    EXPECT_EQ(c["type_a"]["dof"], 1) << id;
+    EXPECT_EQ(c["type_a"]["u"], j["identification"]["coefficients"][id]["std_error"]) << id;
+    const double u_a = c["type_a"]["u"], u_b = c["type_b"]["u"], u_c = std::hypot(u_a, u_b);
+    EXPECT_NEAR(c["combined_standard_uncertainty"].get<double>(), u_c, 1e-12 * u_c);
+    if (u_a > 0) {
+      const double nu = std::pow(u_c / u_a, 4);  // relative 1e-9: a ratio raised to the 4th power
+      EXPECT_NEAR(c["effective_dof"].get<double>(), nu, 1e-9 * nu) << id;
+    }
+    EXPECT_GE(c["coverage_factor"].get<double>(), kZ975 - 1e-12);
+    EXPECT_LE(c["coverage_factor"].get<double>(), 12.7062 + 5e-5);
+  }
+  const Result text = run("reduce" + write_logs(4) + " --budget");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("Calibration statement"), std::string::npos);
+}
+
+TEST_F(Statement, BadUsesAreExitCodeTwo) {
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  expect_bad_input(run("identify obs.csv --budget " + kExample + " --coverage-probability 1.5"),
+                   {"--coverage-probability"});
+  expect_bad_input(run("identify obs.csv --budget missing.toml"), {"missing.toml"});
+  // A fit of other free terms than the configuration's: its budget does not apply.
+  expect_bad_input(run("identify obs.csv --terms K0,K2 --fix K1=505.2097,K3=0.003 --budget " + kExample),
+                   {"--budget", "K0, K2", "K0, K2, K3"});
+  // reduce with as many logs as free terms: no degrees of freedom, no Type A.
+  const std::string logs = write_logs(3);
+  expect_bad_input(run("reduce" + logs + " --budget"), {"--budget", "degrees of freedom"});
+}
+
+}  // namespace
+}  // namespace ccal::test

@@ -1,0 +1,92 @@
+// The calibration statement (JCGM 100 §7, Annex G; docs/model.md §10.5): Welch–Satterthwaite, the coverage
+// factor from Student's t, and the statement of a coefficient, against closed forms and published t tables.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "ccal/uncertainty/statement.hpp"
+
+namespace ccal {
+namespace {
+
+// Quantiles of Student's t at 0.975 (two-sided 95 %) as printed in the usual tables (e.g. GUM Table G.2
+// gives 95.45 %; these are the 95 % column of any statistics table), 4 decimals: tolerance half a unit of
+// the last decimal.
+constexpr double kTable = 5e-5;
+constexpr double kT975_3 = 3.1824, kT975_5 = 2.5706, kT975_10 = 2.2281, kT975_30 = 2.0423, kT975_31 = 2.0395;
+// Φ⁻¹(0.975), the normal quantile, to 16 digits.
+constexpr double kZ975 = 1.959963984540054;
+
+TEST(Statement, PureTypeBIsNormal) {
+  // Only a Type B part (ν = ∞): ν_eff = ∞ and k = 1.96 at 95 %, relative 1e-12 (the quantile is computed to
+  // double precision).
+  StatementInput in;
+  in.estimate = 3e-3;
+  in.type_b = {2e-4, kInfiniteDof};
+  const CoefficientStatement s = state_coefficient(in, 0.95);
+  EXPECT_TRUE(std::isinf(s.effective_dof));
+  EXPECT_NEAR(s.coverage_factor, kZ975, 1e-12 * kZ975);
+  EXPECT_NEAR(s.combined, 2e-4, 1e-18);
+  EXPECT_NEAR(s.expanded, kZ975 * 2e-4, 1e-15);
+}
+
+TEST(Statement, OneTypeAPartIsStudentsTAtItsDof) {
+  // u_c = u_A: ν_eff = ν_A exactly, k = t_{0.975, ν_A}.
+  for (const auto& [dof, t] : {std::pair{3.0, kT975_3}, {5.0, kT975_5}, {10.0, kT975_10}}) {
+    StatementInput in;
+    in.type_a = {1.5, dof};
+    const CoefficientStatement s = state_coefficient(in, 0.95);
+    EXPECT_DOUBLE_EQ(s.effective_dof, dof);
+    EXPECT_NEAR(s.coverage_factor, t, kTable) << dof;
+    EXPECT_NEAR(s.expanded, 1.5 * s.coverage_factor, 1e-14);
+  }
+}
+
+TEST(Statement, MixedCaseByHand) {
+  // u_A = 3 with ν_A = 4, u_B = 4 (ν = ∞), correction −0.5 on an estimate of 10:
+  //   u_c = √(9 + 16) = 5; ν_eff = 5⁴ / (3⁴/4) = 2500/81 = 30.864…, truncated to 30 (G.4.1 note 1);
+  //   k = t_{0.975, 30} = 2.0423; U = 5 k = 10.2115; interval 9.5 ∓ U.
+  StatementInput in;
+  in.estimate = 10;
+  in.correction = -0.5;
+  in.type_a = {3, 4};
+  in.type_b = {4, kInfiniteDof};
+  const CoefficientStatement s = state_coefficient(in, 0.95);
+  EXPECT_DOUBLE_EQ(s.corrected, 9.5);
+  EXPECT_DOUBLE_EQ(s.combined, 5);
+  EXPECT_NEAR(s.effective_dof, 2500.0 / 81.0, 1e-12);
+  EXPECT_EQ(s.dof_for_k, 30);
+  EXPECT_NEAR(s.coverage_factor, kT975_30, kTable);
+  // Truncation, not rounding: t at 31 would differ by 2.8e-3, far beyond the table's half unit.
+  EXPECT_GT(std::abs(s.coverage_factor - kT975_31), 10 * kTable);
+  EXPECT_NEAR(s.expanded, 5 * kT975_30, 5 * kTable);
+  EXPECT_NEAR(s.low, 9.5 - 5 * kT975_30, 5 * kTable);
+  EXPECT_NEAR(s.high, 9.5 + 5 * kT975_30, 5 * kTable);
+}
+
+TEST(Statement, WelchSatterthwaiteOfTwoTypeAParts) {
+  // Two equal parts of 10 degrees of freedom: ν_eff = (2u²)² / (2 u⁴/10) = 20 (G.2b by hand).
+  EXPECT_NEAR(welch_satterthwaite({{1.0, 10}, {1.0, 10}}), 20, 1e-12);
+  // Parts of zero size do not count; no finite part at all gives ∞.
+  EXPECT_NEAR(welch_satterthwaite({{2.0, 7}, {0.0, 1}}), 7, 1e-12);
+  EXPECT_TRUE(std::isinf(welch_satterthwaite({{2.0, kInfiniteDof}, {0.0, 3}})));
+}
+
+TEST(Statement, OtherProbabilities) {
+  // p = 0.99 at ν = ∞: Φ⁻¹(0.995) = 2.5758293035489 (16-digit value of the normal quantile); p = 0.6827 at
+  // ν = ∞ gives k ≈ 1 (the 1σ interval holds 68.27 %): 4 decimals of that probability.
+  EXPECT_NEAR(student_coverage_factor(0.99, kInfiniteDof), 2.5758293035489004, 1e-12);
+  EXPECT_NEAR(student_coverage_factor(0.6827, kInfiniteDof), 1.0, 1e-4);
+}
+
+TEST(Statement, BadInputsAreRefused) {
+  EXPECT_THROW(student_coverage_factor(1.0, 5), std::invalid_argument);
+  EXPECT_THROW(student_coverage_factor(0.0, 5), std::invalid_argument);
+  EXPECT_THROW(student_coverage_factor(0.95, 0.5), std::invalid_argument);
+  EXPECT_THROW(welch_satterthwaite({{-1.0, 5}}), std::invalid_argument);
+  EXPECT_THROW(welch_satterthwaite({{1.0, 0}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ccal
