@@ -38,5 +38,6 @@ py::class_<Result> bind_verb_result(py::module_& m, const char* name, const char
 void bind_config(py::module_& m);       // Config, Run, Tolerance and their readers
 void bind_analysis(py::module_& m);     // budget, sensed_input, observe, identify, fit
 void bind_uncertainty(py::module_& m);  // monte_carlo, allocate
+void bind_design(py::module_& m);       // design
 
 }  // namespace ccal::python

@@ -37,4 +37,5 @@ PYBIND11_MODULE(ccal, m) {
   ccal::python::bind_config(m);
   ccal::python::bind_analysis(m);
   ccal::python::bind_uncertainty(m);
+  ccal::python::bind_design(m);
 }

@@ -20,5 +20,6 @@ Command add_identify(CLI::App& app);
 Command add_montecarlo(CLI::App& app);
 Command add_allocate(CLI::App& app);
 Command add_reduce(CLI::App& app);
+Command add_design(CLI::App& app);
 
 }  // namespace ccal::cli
