@@ -103,7 +103,7 @@ std::string text(const verbs::DesignResult& r) {
   for (const auto& t : r.targets)
     if (t.weight > 0)
       counted.push_back(fmt::format("{} (w = {}, {} = {})", t.coefficient, number(t.weight, 3),
-                                    t.is_target ? "target" : "reference", number(t.reference * r.before.budget.display_scale[0], 4)));
+                                    t.is_target ? "target" : "reference", number(t.reference * r.before.budget.display_scale[&t - r.targets.data()], 4)));
   out += fmt::format("Objective: {} of {}\n", objective_name(r.objective), fmt::join(counted, ", "));
   out += fmt::format(
       "Search: {} candidate runs cached in {} s; {} plans scored, {} runs refined in {} s; best from start {}\n",

@@ -179,6 +179,10 @@ ResolvedDesignSpace resolve_design_space(const Config& config) {
   resolve_g_levels(config, s);
   resolve_timing(config, s);
   resolve_angles(config, s);
+  // Each refinement step evaluates up to 8 trial runs per run (the cache's cost per run): a few halvings
+  // (steps down to 1/32 of the grid's) and a bounded number of moves keep it to seconds.
+  s.refinement.halvings = 5;
+  s.refinement.max_moves = 30;
   if (!config.design.refine) s.refinement = Refinement{};
   return s;
 }

@@ -278,7 +278,7 @@ void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows
   std::vector<int> identity(runs.size());
   for (std::size_t j = 0; j < runs.size(); ++j) identity[j] = int(j);
   double f = scorer.objective(rows, identity);
-  for (int halving = 0; halving <= r.halvings;) {
+  for (int halving = 0, moves = 0; halving <= r.halvings && moves < r.max_moves; ++moves) {
     struct Trial {
       std::size_t run;
       DesignRun value;

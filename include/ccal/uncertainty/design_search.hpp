@@ -84,7 +84,8 @@ struct Refinement {
   double duration_step = 0, duration_low = 0, duration_high = 0;  // [s]
   double phase_step = 0;                                        // [rad], periodic
   double azimuth_step = 0;                                      // [rad], periodic
-  int halvings = 12;                                            // steps halved this often before stopping
+  int halvings = 12;   // steps halved this often before stopping
+  int max_moves = 1000;  // improving moves at most
 };
 
 struct DesignProblem {
