@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "ccal/io/config_file.hpp"
@@ -106,6 +107,25 @@ TEST_F(DesignedExample, WrittenPlanBudgetsTheSame) {
   // The rest of the file is kept: tolerances, instrument, the [design] table itself.
   EXPECT_EQ(back.tolerances.size(), r().config.tolerances.size());
   EXPECT_EQ(back.design.turn_fractions, 4);
+}
+
+// The plan text keeps every digit of values that no short decimal carries (17 significant digits).
+TEST(DesignPlanText, RoundTripsEveryDigit) {
+  Config c = bundled_example();
+  for (std::size_t j = 0; j < c.plan.runs.size(); ++j) {
+    ccal::Run& run = c.plan.runs[j];
+    run.g_level = 7.0 / 3.0 + double(j);
+    run.duration = 1000.0 / 7.0;
+    run.terminal_phase = 1.0 / 7.0;
+    run.arm_azimuth = std::exp(1.0);
+  }
+  const Config back = parse_config(render::config_with_plan(bundled_example_text(), c), "x.toml");
+  for (std::size_t j = 0; j < c.plan.runs.size(); ++j) {
+    EXPECT_EQ(back.plan.runs[j].g_level, c.plan.runs[j].g_level);
+    EXPECT_EQ(back.plan.runs[j].duration, c.plan.runs[j].duration);
+    EXPECT_EQ(*back.plan.runs[j].terminal_phase, *c.plan.runs[j].terminal_phase);
+    EXPECT_EQ(back.plan.runs[j].arm_azimuth, c.plan.runs[j].arm_azimuth);
+  }
 }
 
 // A [design] table's bad values: refused with file, line and key, or (for what depends on the plan) with the

@@ -109,13 +109,14 @@ TEST(DesignSearch, DeterministicForASeed) {
   EXPECT_EQ(a.start_objectives, b.start_objectives);
 }
 
-// The time budget holds: with durations 1 … 4 and at most 7 s for three runs, no plan exceeds it; and the
-// objective never rises above that of an initial plan that is a start.
+// The time budget holds: the D-optimal points x = −1, 0, 1 cost 5 s each and every other point 1 s, with at
+// most 7 s for three runs, so the unconstrained optimum (15 s) is out of reach and at most one of them can be
+// used; and the objective never rises above that of an initial plan that is a start.
 TEST(DesignSearch, TimeBudgetAndNeverWorseThanTheStart) {
   DesignProblem p = polynomial_problem(2, 3, 0.25, false);
-  for (Eigen::Index j = 0; j < p.rows.size(); ++j) p.rows.duration[j] = 1 + double(j % 4);
+  for (Eigen::Index j = 0; j < p.rows.size(); ++j) p.rows.duration[j] = (j == 0 || j == 4 || j == 8) ? 5 : 1;
   p.total_time = 7;
-  p.initial_plans = {{0, 4, 8}};  // x = −1, 0, 1 with durations 1 + 1 + 1
+  p.initial_plans = {{1, 3, 6}};  // x = −0.75, −0.25, 0.5: 3 s
   const PlanScore start = score_plan(p.rows.select(p.initial_plans.front()), p.criterion);
   const DesignSearchResult r = search_design(p, {});
   EXPECT_LE(r.rows.duration.sum(), 7 * (1 + 1e-12));
