@@ -39,5 +39,6 @@ void bind_config(py::module_& m);       // Config, Run, Tolerance and their read
 void bind_analysis(py::module_& m);     // budget, sensed_input, observe, identify, fit
 void bind_uncertainty(py::module_& m);  // monte_carlo, allocate
 void bind_derive(py::module_& m);       // Config.with_tolerance, .with_error, .with_plan
+void bind_design(py::module_& m);       // design
 
 }  // namespace ccal::python

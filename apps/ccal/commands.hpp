@@ -21,6 +21,7 @@ Command add_identify(CLI::App& app);
 Command add_montecarlo(CLI::App& app);
 Command add_allocate(CLI::App& app);
 Command add_reduce(CLI::App& app);
+Command add_design(CLI::App& app);
 Command add_report(CLI::App& app);
 
 // The command line as typed (arguments with spaces or shell characters in single quotes), for reports.

@@ -86,6 +86,7 @@ int main(int argc, char** argv) {
       "  ccal budget                     error budget of the bundled paper example\n"
       "  ccal montecarlo --trials 2000   Monte Carlo (JCGM 101) of the same budget\n"
       "  ccal allocate --target K2=2e-5 --target K3=2e-3   largest tolerances meeting both targets\n"
+      "  ccal design --plan-out designed.toml   the test plan under which the tolerances cost least\n"
       "  ccal force                      sensed input, run 1 of the bundled paper example\n"
       "  ccal force examples/wang_ren_2014.toml --run 20g --time \"10 s\" --format json\n"
       "  ccal simulate --observations-out obs.csv   run means of the paper's plan and the identified K0, K2, "
@@ -103,6 +104,7 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_reduce(app));
   commands.push_back(ccal::cli::add_montecarlo(app));
   commands.push_back(ccal::cli::add_allocate(app));
+  commands.push_back(ccal::cli::add_design(app));
   commands.push_back(ccal::cli::add_report(app));
   ccal::cli::set_command_line(argc, argv);
 

@@ -279,8 +279,8 @@ class Reader {
   std::string source_;
 };
 
-inline const Keys kRootKeys{"site",       "centrifuge", "errors",        "tolerances",
-                            "instrument", "plan",       "identification"};
+inline const Keys kRootKeys{"site", "centrifuge", "errors",         "tolerances",
+                            "instrument", "plan",       "identification", "design"};
 inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
 inline const Keys kCentrifugeKeys{
     "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
@@ -294,6 +294,12 @@ inline const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "p
 inline const Keys kRunKeys{"name",           "g_level",       "speed",       "duration", "platform",
                            "terminal_phase", "initial_phase", "arm_azimuth", "mounting"};
 
+inline const Keys kDesignKeys{"runs",         "total_time",     "max_g",        "g_levels",   "g_range",
+                              "g_step",       "durations",      "turn_fractions", "phase",    "phases",
+                              "phase_step",   "arm_azimuths",   "azimuth_step", "mountings",  "platforms",
+                              "refine",       "objective",      "coefficients", "targets",    "weights",
+                              "starts",       "seed"};
+
 inline constexpr int kMaxHarmonicOrder = 16;
 
 // The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
@@ -305,5 +311,8 @@ InstrumentModel read_instrument(const Reader& r, const toml::table& root);
 TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site);
 void read_identification(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
                          IdentificationSpec& spec, ModelMode& mode);
+// [design] (config_sections_design.cpp); the coefficients' units are checked against the free terms.
+DesignSpace read_design(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
+                        const IdentificationSpec& spec);
 
 }  // namespace ccal::config_reading

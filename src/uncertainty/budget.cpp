@@ -129,6 +129,29 @@ void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& 
 
 }  // namespace
 
+OutputJacobian output_jacobian(const Experiment& ex, const IdentificationSpec& spec,
+                               const std::vector<int>& parameters, const Eigen::VectorXd& at, ModelMode mode,
+                               const ReductionOptions& reduction, DerivativeMethod method, bool split) {
+  OutputJacobian j;
+  const bool linearised =
+      method == DerivativeMethod::linearised && mode == ModelMode::exact && at.isZero(0.0);
+  j.method = linearised ? DerivativeMethod::linearised : DerivativeMethod::automatic;
+  if (linearised) {
+    output_jacobian_linearised(ex, spec, parameters, reduction, j.force_path, j.rate_path);
+    j.total = j.force_path + j.rate_path;
+  } else {
+    j.total = output_jacobian_ad(ex, spec, parameters, at, mode, reduction);
+    if (split) {
+      Experiment f = ex;
+      f.instrument = force_only(ex.instrument);
+      j.force_path = output_jacobian_ad(f, spec, parameters, at, mode, reduction);
+      j.rate_path = j.total - j.force_path;
+    }
+  }
+  if (!split) j.force_path = j.rate_path = Eigen::MatrixXd();
+  return j;
+}
+
 SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
                                const std::vector<int>& parameters, const Eigen::VectorXd& at,
                                const Eigen::VectorXd& known, ModelMode mode,
@@ -138,22 +161,17 @@ SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& s
   t.parameters = parameters;
   const Eigen::MatrixXd pinv =
       design_pseudo_inverse(observe<double>(ex, at, known, spec, mode, reduction), spec);
-  const bool linearised =
-      method == DerivativeMethod::linearised && mode == ModelMode::exact && at.isZero(0.0);
-  t.method = linearised ? DerivativeMethod::linearised : DerivativeMethod::automatic;
-  if (linearised) {
-    Eigen::MatrixXd force, rate;
-    output_jacobian_linearised(ex, spec, parameters, reduction, force, rate);
-    t.force_path = pinv * force;
-    t.rate_path = pinv * rate;
+  const OutputJacobian j = output_jacobian(ex, spec, parameters, at, mode, reduction, method);
+  t.method = j.method;
+  if (j.method == DerivativeMethod::linearised) {
+    t.force_path = pinv * j.force_path;
+    t.rate_path = pinv * j.rate_path;
     t.total = t.force_path + t.rate_path;
-    return t;
+  } else {
+    t.total = pinv * j.total;
+    t.force_path = pinv * j.force_path;
+    t.rate_path = t.total - t.force_path;
   }
-  t.total = pinv * output_jacobian_ad(ex, spec, parameters, at, mode, reduction);
-  Experiment f = ex;
-  f.instrument = force_only(ex.instrument);
-  t.force_path = pinv * output_jacobian_ad(f, spec, parameters, at, mode, reduction);
-  t.rate_path = t.total - t.force_path;
   return t;
 }
 

@@ -13,6 +13,7 @@
 #include "ccal/model/instrument.hpp"
 #include "ccal/model/plan.hpp"
 #include "ccal/model/site.hpp"
+#include "ccal/setup/design_space.hpp"
 #include "ccal/setup/experiment.hpp"
 #include "ccal/setup/tolerance.hpp"
 
@@ -30,6 +31,8 @@ struct Config {
   IdentificationSpec identification;
   // How runs are reduced ([identification] mode): the exact chain (default) or the paper's first-order rules.
   ModelMode mode = ModelMode::exact;
+  // The design space of `ccal design` ([design]; every field optional, defaults from the plan).
+  DesignSpace design;
 
   // The experiment (geometry, layout, site, plan, instrument) of this configuration.
   Experiment experiment() const;

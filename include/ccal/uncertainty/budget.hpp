@@ -51,6 +51,20 @@ struct SensitivityTable {
   DerivativeMethod method = DerivativeMethod::automatic;  // the one used
 };
 
+// ∂ȳ_j/∂e_s of every run's output mean (runs × parameters, output SI per SI unit of the error), split by
+// path: the sensitivity table below is H⁺ times these rows, and each row depends on its own run only, so the
+// design search (uncertainty/design_candidates.hpp) caches one per candidate run. `method` as for
+// sensitivities (linearised only in exact mode at zero truth errors); with split = false the paths are not
+// computed separately (force_path and rate_path empty).
+struct OutputJacobian {
+  Eigen::MatrixXd total, force_path, rate_path;
+  DerivativeMethod method = DerivativeMethod::automatic;  // the one used
+};
+OutputJacobian output_jacobian(const Experiment& ex, const IdentificationSpec& spec,
+                               const std::vector<int>& parameters, const Eigen::VectorXd& at, ModelMode mode,
+                               const ReductionOptions& reduction = {},
+                               DerivativeMethod method = DerivativeMethod::automatic, bool split = true);
+
 // J at the truth errors `at` (indexed by the layout), with the model's errors `known`.
 SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& spec,
                                const std::vector<int>& parameters, const Eigen::VectorXd& at,

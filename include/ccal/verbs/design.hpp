@@ -1,0 +1,70 @@
+#pragma once
+// `ccal design` as a library call: the test plan, within the configuration's design space ([design]), under
+// which the centrifuge's tolerances, the drives' rate noise and the instrument's noise cost the chosen
+// coefficients least (docs/model.md §15). The designed plan is re-scored by the full budget (verbs::budget)
+// before it is returned, and optionally checked by Monte Carlo.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccal/io/config_file.hpp"
+#include "ccal/uncertainty/design_candidates.hpp"
+#include "ccal/verbs/budget.hpp"
+#include "ccal/verbs/montecarlo.hpp"
+
+namespace ccal::verbs {
+
+struct DesignOptions {
+  std::optional<DesignObjective> objective;  // unset: [design] objective
+  // Targets "<coefficient>=<U> [unit]" as for `ccal allocate --target`; they replace [design] targets.
+  std::vector<std::string> targets;
+  std::optional<int> starts;                // random starts; unset: [design] starts (default 6)
+  std::optional<std::uint64_t> seed;        // unset: [design] seed (default 1)
+  int threads = 0;                          // 0: all cores
+  std::int64_t verify_trials = 0;           // Monte Carlo check of the designed plan; 0: none
+  // Trade-off curve: the design repeated with the total time scaled by each factor (e.g. 0.5, 0.75, 1).
+  std::vector<double> tradeoff;
+};
+
+// The objective's per-coefficient data, in the order of the free terms.
+struct DesignTarget {
+  std::string coefficient;
+  double weight = 0;      // w_k (0: not counted)
+  double reference = 0;   // R_k [SI]: the target, or the configured plan's value
+  bool is_target = false;  // R_k is a user's target (else the configured plan's U_k)
+};
+
+struct TradeoffPoint {
+  double total_time = 0;       // [s], the budget of the search
+  double used_time = 0;        // Σ T_j of its plan [s]
+  Eigen::VectorXd expanded;    // U_k of every free term, full budget of its plan (SI)
+  double objective = 0;
+};
+
+struct DesignResult {
+  Config config;    // as configured
+  Config designed;  // the same with the designed [plan]
+  ResolvedDesignSpace space;
+  std::size_t candidates = 0;  // candidate runs cached
+  DesignObjective objective = DesignObjective::uncertainty;
+  std::vector<DesignTarget> targets;
+  DesignSearchResult search;
+  double configured_objective = 0;  // of the configured plan, by the cached rows
+  double designed_objective = 0;
+  BudgetResult before, after;  // the full budgets of the configured and the designed plan
+  // Tolerances only (the LPU, without the drives' noise): U_k of every free term before and after (SI).
+  Eigen::VectorXd tolerance_before, tolerance_after;
+  std::string mechanism;  // a sentence on what changed, where the leading sources' leaks cancel
+  std::optional<MonteCarloResult> verification;
+  std::vector<TradeoffPoint> tradeoff;
+  double cache_seconds = 0, search_seconds = 0;
+};
+
+// Throws InputError for an empty or contradictory design space, one with no plan that fits and identifies the
+// free terms, bad options (naming --target, --starts, --verify, --tradeoff, --threads), and whatever
+// verbs::budget refuses.
+DesignResult design(const Config& config, const DesignOptions& options = {});
+
+}  // namespace ccal::verbs

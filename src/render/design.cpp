@@ -1,0 +1,226 @@
+// The reports of `ccal design` (render/design.hpp).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "ccal/render/design.hpp"
+#include "ccal/render/table.hpp"
+#include "ccal/version.hpp"
+
+namespace ccal::render {
+
+namespace {
+
+constexpr double kDeg = 180 / std::numbers::pi;
+
+std::string_view objective_name(DesignObjective o) {
+  switch (o) {
+    case DesignObjective::d_optimal:
+      return "d_optimal";
+    case DesignObjective::a_optimal:
+      return "a_optimal";
+    default:
+      return "uncertainty";
+  }
+}
+
+std::string plan_table(const Config& config) {
+  Table t({"run", "g-level [g]", "duration [s]", "turns", "phi0 [deg]", "psi [deg]", "arm az. [deg]",
+           "mounting", "platform"});
+  double total = 0;
+  for (const Run& run : config.plan.runs) {
+    const double rate = nominal_rate(run, config.centrifuge.geometry, config.site);
+    const double phi0 = initial_phase(run, config.centrifuge.geometry, config.site);
+    const double gamma_rate = nominal_platform_rate(run, config.centrifuge.geometry, config.site);
+    const double psi = std::fmod(std::fmod(phi0 + gamma_rate * run.duration, 2 * std::numbers::pi) +
+                                     2 * std::numbers::pi,
+                                 2 * std::numbers::pi);
+    total += run.duration;
+    t.add_row({run.name, number(run.g_level, 6), number(run.duration, 7),
+               number(rate * run.duration / (2 * std::numbers::pi), 7), number(phi0 * kDeg, 5),
+               number(psi * kDeg, 5), number(run.arm_azimuth * kDeg, 5), std::string(mounting_name(run.mounting)),
+               std::string(platform_mode_name(run.mode))});
+  }
+  return t.render() + fmt::format("  total {} s\n", number(total, 7));
+}
+
+std::string comparison_table(const verbs::DesignResult& r) {
+  const ccal::BudgetResult& b0 = r.before.budget;
+  const ccal::BudgetResult& b1 = r.after.budget;
+  Table t({"coefficient", "unit", "u configured", "u designed", "U configured", "U designed", "ratio",
+           "U tol. configured", "U tol. designed", "ratio"});
+  for (std::size_t k = 0; k < b0.coefficients.size(); ++k) {
+    const auto kk = Eigen::Index(k);
+    const double f = b0.display_scale[k];
+    const double ratio = b1.expanded_uncertainty[kk] / b0.expanded_uncertainty[kk];
+    const double tol = r.tolerance_after[kk] / r.tolerance_before[kk];
+    t.add_row({b0.coefficients[k] + (r.targets[k].weight > 0 ? " *" : ""), b0.units[k],
+               number(b0.standard_uncertainty[kk] * f, 4), number(b1.standard_uncertainty[kk] * f, 4),
+               number(b0.expanded_uncertainty[kk] * f, 4), number(b1.expanded_uncertainty[kk] * f, 4),
+               number(ratio, 3), number(r.tolerance_before[kk] * f, 4), number(r.tolerance_after[kk] * f, 4),
+               number(tol, 3)});
+  }
+  return t.render();
+}
+
+// The leading sources of a coefficient in the configured plan and in the designed one.
+std::string leading_sources(const verbs::DesignResult& r, std::size_t k) {
+  const ccal::BudgetResult& b0 = r.before.budget;
+  const ccal::BudgetResult& b1 = r.after.budget;
+  const auto kk = Eigen::Index(k);
+  auto top = [&](const ccal::BudgetResult& b) {
+    std::vector<std::size_t> order(b.sources.size());
+    for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
+      return std::abs(b.sources[a].effect[kk]) > std::abs(b.sources[c].effect[kk]);
+    });
+    order.resize(std::min<std::size_t>(5, order.size()));
+    return order;
+  };
+  const double f = b0.display_scale[k];
+  Table t({"rank", "configured: source", "1-sigma effect", "share", "designed: source", "1-sigma effect", "share"});
+  const auto a = top(b0), b = top(b1);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const SourceBudget& s0 = b0.sources[a[i]];
+    const SourceBudget& s1 = b1.sources[b[i]];
+    t.add_row({std::to_string(i + 1), s0.id, number(s0.effect[kk] * f, 3), number(s0.share[kk], 3), s1.id,
+               number(s1.effect[kk] * f, 3), number(s1.share[kk], 3)});
+  }
+  return fmt::format("\nLeading sources of {} [{}]:\n", b0.coefficients[k], b0.units[k]) + t.render();
+}
+
+}  // namespace
+
+std::string text(const verbs::DesignResult& r) {
+  std::string out = fmt::format("Test-plan design (docs/model.md §15) of {}\n\n", r.config.source);
+  out += "Design space\n";
+  for (const auto& s : r.space.free) out += "  free:  " + s + "\n";
+  for (const auto& s : r.space.fixed) out += "  kept:  " + s + "\n";
+  std::vector<std::string> counted;
+  for (const auto& t : r.targets)
+    if (t.weight > 0)
+      counted.push_back(fmt::format("{} (w = {}, {} = {})", t.coefficient, number(t.weight, 3),
+                                    t.is_target ? "target" : "reference", number(t.reference * r.before.budget.display_scale[&t - r.targets.data()], 4)));
+  out += fmt::format("Objective: {} of {}\n", objective_name(r.objective), fmt::join(counted, ", "));
+  out += fmt::format(
+      "Search: {} candidate runs cached in {} s; {} plans scored, {} runs refined in {} s; best from start {}\n",
+      r.candidates, number(r.cache_seconds, 3), r.search.evaluations, r.search.row_evaluations,
+      number(r.search_seconds, 3), r.search.start + 1);
+  out += fmt::format("Objective: configured {}, designed {} (grid {})\n\n", number(r.configured_objective, 6),
+                     number(r.designed_objective, 6), number(r.search.grid_objective, 6));
+  out += "Configured plan\n" + plan_table(r.config) + "\nDesigned plan\n" + plan_table(r.designed);
+  out += fmt::format("\nConfigured against designed (full budget, k = {}; 'U tol.': the tolerances alone; * counted)\n",
+                     number(r.before.budget.coverage_factor, 3));
+  out += comparison_table(r);
+  for (std::size_t k = 0; k < r.targets.size(); ++k)
+    if (r.targets[k].weight > 0) out += leading_sources(r, k);
+  if (!r.mechanism.empty()) out += "\nMechanism\n" + r.mechanism;
+  if (!r.tradeoff.empty()) {
+    std::vector<std::string> header{"total time [s]", "used [s]"};
+    for (std::size_t k = 0; k < r.targets.size(); ++k)
+      header.push_back("U " + r.targets[k].coefficient);
+    Table curve(header);
+    for (const auto& p : r.tradeoff) {
+      std::vector<std::string> row{number(p.total_time, 6), number(p.used_time, 6)};
+      for (std::size_t k = 0; k < r.targets.size(); ++k)
+        row.push_back(number(p.expanded[Eigen::Index(k)] * r.before.budget.display_scale[k], 4));
+      curve.add_row(row);
+    }
+    out += "\nTrade-off: total test time against U (full budget of each designed plan)\n" + curve.render();
+  }
+  if (r.verification) {
+    const auto& mc = r.verification->monte_carlo;
+    out += fmt::format("\nMonte Carlo check of the designed plan ({} trials): u by Monte Carlo / u by LPU:", mc.trials);
+    for (std::size_t k = 0; k < r.after.budget.coefficients.size(); ++k) {
+      const auto kk = Eigen::Index(k);
+      out += fmt::format(" {} {}", r.after.budget.coefficients[k],
+                         number(mc.outputs[k].std_dev / mc.outputs[k].lpu_std, 4));
+      (void)kk;
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string json(const verbs::DesignResult& r) {
+  nlohmann::ordered_json j;
+  j["command"] = "design";
+  j["ccal_version"] = version();
+  j["config"] = r.config.source;
+  j["objective"] = objective_name(r.objective);
+  j["candidates"] = r.candidates;
+  j["free"] = r.space.free;
+  j["kept"] = r.space.fixed;
+  j["total_time_limit_s"] = r.space.total_time;
+  j["objective_value"] = {{"configured", r.configured_objective},
+                          {"designed", r.designed_objective},
+                          {"grid", r.search.grid_objective}};
+  j["search"] = {{"starts", r.search.start_objectives.size()},
+                 {"best_start", r.search.start + 1},
+                 {"plans_scored", r.search.evaluations},
+                 {"runs_refined", r.search.row_evaluations},
+                 {"cache_seconds", r.cache_seconds},
+                 {"search_seconds", r.search_seconds}};
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  for (const Run& run : r.designed.plan.runs) {
+    nlohmann::ordered_json o;
+    o["name"] = run.name;
+    o["g_level_g"] = run.g_level;
+    o["duration_s"] = run.duration;
+    o["initial_phase_rad"] = initial_phase(run, r.designed.centrifuge.geometry, r.designed.site);
+    if (run.terminal_phase) o["terminal_phase_rad"] = *run.terminal_phase;
+    o["arm_azimuth_rad"] = run.arm_azimuth;
+    o["mounting"] = mounting_name(run.mounting);
+    o["platform"] = platform_mode_name(run.mode);
+    runs.push_back(o);
+  }
+  j["designed_plan"] = runs;
+  nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
+  const ccal::BudgetResult& b0 = r.before.budget;
+  const ccal::BudgetResult& b1 = r.after.budget;
+  for (std::size_t k = 0; k < b0.coefficients.size(); ++k) {
+    const auto kk = Eigen::Index(k);
+    const double f = b0.display_scale[k];
+    nlohmann::ordered_json o;
+    o["unit"] = b0.units[k];
+    o["weight"] = r.targets[k].weight;
+    o["reference"] = r.targets[k].reference * f;
+    o["is_target"] = r.targets[k].is_target;
+    o["configured_std_uncertainty"] = b0.standard_uncertainty[kk] * f;
+    o["designed_std_uncertainty"] = b1.standard_uncertainty[kk] * f;
+    o["configured_expanded"] = b0.expanded_uncertainty[kk] * f;
+    o["designed_expanded"] = b1.expanded_uncertainty[kk] * f;
+    o["configured_tolerance_expanded"] = r.tolerance_before[kk] * f;
+    o["designed_tolerance_expanded"] = r.tolerance_after[kk] * f;
+    coefficients[b0.coefficients[k]] = o;
+  }
+  j["coefficients"] = coefficients;
+  j["mechanism"] = r.mechanism;
+  nlohmann::ordered_json curve = nlohmann::ordered_json::array();
+  for (const auto& p : r.tradeoff) {
+    nlohmann::ordered_json o;
+    o["total_time_s"] = p.total_time;
+    o["used_time_s"] = p.used_time;
+    nlohmann::ordered_json u = nlohmann::ordered_json::object();
+    for (std::size_t k = 0; k < b0.coefficients.size(); ++k)
+      u[b0.coefficients[k]] = p.expanded[Eigen::Index(k)] * b0.display_scale[k];
+    o["expanded"] = u;
+    curve.push_back(o);
+  }
+  j["tradeoff"] = curve;
+  if (r.verification) {
+    nlohmann::ordered_json v = nlohmann::ordered_json::object();
+    const auto& mc = r.verification->monte_carlo;
+    v["trials"] = mc.trials;
+    for (std::size_t k = 0; k < b1.coefficients.size(); ++k)
+      v[b1.coefficients[k]] = {{"mc_std_uncertainty", mc.outputs[k].std_dev * b1.display_scale[k]},
+                               {"lpu_std_uncertainty", mc.outputs[k].lpu_std * b1.display_scale[k]}};
+    j["verification"] = v;
+  }
+  return j.dump(2) + "\n";
+}
+
+}  // namespace ccal::render

@@ -1,0 +1,393 @@
+#include "ccal/uncertainty/design_search.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "ccal/core/errors.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace ccal {
+
+CandidateRows CandidateRows::select(const std::vector<int>& runs) const {
+  CandidateRows out;
+  const auto n = Eigen::Index(runs.size());
+  out.regressors.resize(n, regressors.cols());
+  out.leaks.resize(n, leaks.cols());
+  out.scatter.resize(n);
+  out.noise.resize(n);
+  out.natural.resize(n, natural.cols());
+  out.duration.resize(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Index c = runs[std::size_t(j)];
+    out.regressors.row(j) = regressors.row(c);
+    out.leaks.row(j) = leaks.row(c);
+    out.scatter[j] = scatter[c];
+    out.noise[j] = noise[c];
+    out.natural.row(j) = natural.row(c);
+    out.duration[j] = duration[c];
+  }
+  return out;
+}
+
+void CandidateRows::append(const CandidateRows& more) {
+  if (size() == 0) {
+    *this = more;
+    return;
+  }
+  auto stack = [](Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    Eigen::MatrixXd c(a.rows() + b.rows(), a.cols());
+    c << a, b;
+    a = std::move(c);
+  };
+  auto stackv = [](Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    Eigen::VectorXd c(a.size() + b.size());
+    c << a, b;
+    a = std::move(c);
+  };
+  stack(regressors, more.regressors);
+  stack(leaks, more.leaks);
+  stack(natural, more.natural);
+  stackv(scatter, more.scatter);
+  stackv(noise, more.noise);
+  stackv(duration, more.duration);
+}
+
+namespace {
+
+// Scores plans given as indices into a set of rows, with its own workspace (one per thread).
+class PlanScorer {
+ public:
+  explicit PlanScorer(const DesignCriterion& c) : c_(c) {}
+
+  // The objective of rows[plan] (infinity when the plan is ill-posed); the covariance too when `full`.
+  double objective(const CandidateRows& rows, const std::vector<int>& plan, PlanScore* full = nullptr) {
+    const auto n = Eigen::Index(plan.size());
+    const Eigen::Index p = rows.regressors.cols();
+    if (n < p) return fail(full);
+    H_.resize(n, p);
+    nat_.resize(n, p);
+    v_.resize(n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Eigen::Index r = plan[std::size_t(j)];
+      H_.row(j) = rows.regressors.row(r);
+      nat_.row(j) = rows.natural.row(r);
+      v_[j] = rows.noise[r];
+    }
+    // Column scaling, as the fit does (model.md §9): the projected norms then come from a well-scaled matrix.
+    scale_.resize(p);
+    for (Eigen::Index k = 0; k < p; ++k) {
+      const double norm = H_.col(k).norm();
+      if (!(norm > 0) || !std::isfinite(norm)) return fail(full);
+      scale_[k] = 1.0 / norm;
+    }
+    Hs_.noalias() = H_ * scale_.asDiagonal();
+    N_.noalias() = Hs_.transpose() * Hs_;
+    ldlt_.compute(N_);
+    if (ldlt_.info() != Eigen::Success) return fail(full);
+    Ninv_ = ldlt_.solve(Eigen::MatrixXd::Identity(p, p));
+    // Well posed: ‖P⊥h_k‖ = ‖h_k‖/√[N⁻¹]_kk above the round-off of its natural size, correlations below the
+    // limit (model.md §14, §9).
+    for (Eigen::Index k = 0; k < p; ++k) {
+      const double d = Ninv_(k, k);
+      if (!(d > 0) || !std::isfinite(d)) return fail(full);
+      const double projected = 1.0 / (scale_[k] * std::sqrt(d));
+      if (!(projected > c_.roundoff_fraction * nat_.col(k).norm())) return fail(full);
+      for (Eigen::Index l = 0; l < k; ++l)
+        if (std::abs(Ninv_(k, l)) > c_.max_correlation * std::sqrt(d * Ninv_(l, l))) return fail(full);
+    }
+    if (c_.objective == DesignObjective::uncertainty) return uncertainty(rows, plan, full);
+    return noise_alone(full);
+  }
+
+ private:
+  double fail(PlanScore* full) const {
+    if (full) *full = PlanScore{};
+    return std::numeric_limits<double>::infinity();
+  }
+
+  double uncertainty(const CandidateRows& rows, const std::vector<int>& plan, PlanScore* full) {
+    const auto n = Eigen::Index(plan.size());
+    const Eigen::Index p = H_.cols();
+    // H⁺ = S (Hsᵀ Hs)⁻¹ Hsᵀ with S the column scales.
+    pinv_.noalias() = scale_.asDiagonal() * (Ninv_ * Hs_.transpose());
+    L_.resize(n, rows.leaks.cols());
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Eigen::Index r = plan[std::size_t(j)];
+      L_.row(j) = rows.leaks.row(r);
+      v_[j] = rows.scatter[r] + rows.noise[r];
+    }
+    A_.noalias() = pinv_ * L_;
+    double f = 0;
+    for (Eigen::Index k = 0; k < p; ++k) {
+      if (!(c_.weight[k] > 0) && !full) continue;
+      const double var = A_.row(k).squaredNorm() + (pinv_.row(k).array().square() * v_.transpose().array()).sum();
+      if (c_.weight[k] > 0) f += c_.weight[k] * c_.coverage_factor * c_.coverage_factor * var /
+                                 (c_.reference[k] * c_.reference[k]);
+    }
+    if (full) {
+      full->well_posed = true;
+      full->objective = f;
+      full->covariance = A_ * A_.transpose() + pinv_ * v_.asDiagonal() * pinv_.transpose();
+      full->expanded = c_.coverage_factor * full->covariance.diagonal().cwiseSqrt();
+    }
+    return f;
+  }
+
+  // D- and A-optimality with the instrument's noise alone: information Hᵀ W H, W = diag(1/σ_j²), or I when the
+  // instrument has no noise.
+  double noise_alone(PlanScore* full) {
+    const Eigen::Index p = H_.cols();
+    const bool unit = !(v_.maxCoeff() > 0);
+    if (!unit && !(v_.minCoeff() > 0)) return fail(full);
+    w_ = unit ? Eigen::VectorXd::Ones(v_.size()) : Eigen::VectorXd(v_.cwiseInverse());
+    N_.noalias() = Hs_.transpose() * w_.asDiagonal() * Hs_;
+    ldlt_.compute(N_);
+    if (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0)) return fail(full);
+    Ninv_ = scale_.asDiagonal() * ldlt_.solve(Eigen::MatrixXd::Identity(p, p)) * scale_.asDiagonal();
+    double f = 0;
+    if (c_.objective == DesignObjective::d_optimal) {
+      // ln det(HᵀWH) = ln det(Hsᵀ W Hs) − 2 Σ ln s_k.
+      f = -(ldlt_.vectorD().array().log().sum() - 2 * scale_.array().log().sum());
+    } else {
+      for (Eigen::Index k = 0; k < p; ++k)
+        if (c_.weight[k] > 0) f += c_.weight[k] * Ninv_(k, k) / (c_.reference[k] * c_.reference[k]);
+    }
+    if (full) {
+      full->well_posed = true;
+      full->objective = f;
+      full->covariance = Ninv_;
+      full->expanded = c_.coverage_factor * Ninv_.diagonal().cwiseSqrt();
+    }
+    return f;
+  }
+
+  const DesignCriterion& c_;
+  Eigen::MatrixXd H_, Hs_, nat_, N_, Ninv_, pinv_, L_, A_;
+  Eigen::VectorXd v_, w_, scale_;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt_;
+};
+
+// A deterministic stream per start: SplitMix64 of the seed and the start's index.
+std::uint64_t start_seed(std::uint64_t seed, int start) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * std::uint64_t(start + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+double plan_time(const CandidateRows& rows, const std::vector<int>& plan) {
+  double t = 0;
+  for (int c : plan) t += rows.duration[c];
+  return t;
+}
+
+bool within(double time, double budget) { return time <= budget * (1 + 1e-12); }
+
+// A random plan that meets the time budget and is well posed, or an empty one after `attempts` draws.
+std::vector<int> random_plan(const DesignProblem& pr, PlanScorer& scorer, std::uint64_t seed, int attempts) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> pick(0, int(pr.candidates.size()) - 1);
+  std::vector<int> plan(std::size_t(pr.runs));
+  for (int a = 0; a < attempts; ++a) {
+    for (int& c : plan) c = pick(rng);
+    if (within(plan_time(pr.rows, plan), pr.total_time) && std::isfinite(scorer.objective(pr.rows, plan)))
+      return plan;
+  }
+  return {};
+}
+
+// Exchange: for each run in turn, the candidate that lowers the objective most (ties: the lowest index), until
+// a sweep changes nothing.
+double exchange(const DesignProblem& pr, std::vector<int>& plan, int max_sweeps, long long& evaluations) {
+  PlanScorer scorer(pr.criterion);
+  double f = scorer.objective(pr.rows, plan);
+  const int count = int(pr.candidates.size());
+  for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+    bool improved = false;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+      const double others = plan_time(pr.rows, plan) - pr.rows.duration[plan[i]];
+      // The lexicographic minimum of (objective, index) over the feasible candidates: the same for any
+      // number of threads.
+      double best_f = std::numeric_limits<double>::infinity();
+      int best_c = -1;
+#pragma omp parallel
+      {
+        PlanScorer local(pr.criterion);
+        std::vector<int> trial = plan;
+        double tf = std::numeric_limits<double>::infinity();
+        int tc = -1;
+#pragma omp for schedule(static) nowait
+        for (int c = 0; c < count; ++c) {
+          if (c == plan[i] || !within(others + pr.rows.duration[c], pr.total_time)) continue;
+          trial[i] = c;
+          const double v = local.objective(pr.rows, trial);
+          if (v < tf) {
+            tf = v;
+            tc = c;
+          }
+        }
+#pragma omp critical
+        if (tc >= 0 && (tf < best_f || (tf == best_f && tc < best_c))) {
+          best_f = tf;
+          best_c = tc;
+        }
+      }
+      evaluations += count;
+      if (best_c >= 0 && best_f < f - 1e-12 * std::abs(f)) {
+        plan[i] = best_c;
+        f = best_f;
+        improved = true;
+      }
+    }
+    if (!improved) break;
+  }
+  return f;
+}
+
+// One variable of a run moved by a signed step: 0 g-level, 1 duration, 2 phase, 3 arm azimuth. False when the
+// move leaves the bounds.
+bool move(DesignRun& run, int variable, double step, const Refinement& r) {
+  switch (variable) {
+    case 0:
+      run.g_level += step;
+      return run.g_level >= r.g_low && run.g_level <= r.g_high;
+    case 1:
+      run.duration += step;
+      return run.duration >= r.duration_low && run.duration <= r.duration_high;
+    case 2:
+      run.phase += step;
+      return true;
+    default:
+      run.arm_azimuth += step;
+      return true;
+  }
+}
+
+// Local refinement of the continuous variables: best-improvement coordinate steps, all trial runs of a step
+// evaluated in one batch; a step size that improves nothing is halved.
+void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows& rows, PlanScorer& scorer,
+            DesignSearchResult& out) {
+  const Refinement& r = pr.refinement;
+  double steps[4] = {r.g_step, r.duration_step, r.phase_step, r.azimuth_step};
+  std::vector<int> identity(runs.size());
+  for (std::size_t j = 0; j < runs.size(); ++j) identity[j] = int(j);
+  double f = scorer.objective(rows, identity);
+  for (int halving = 0, moves = 0; halving <= r.halvings && moves < r.max_moves; ++moves) {
+    struct Trial {
+      std::size_t run;
+      DesignRun value;
+    };
+    std::vector<Trial> trials;
+    const double time = rows.duration.sum();
+    for (std::size_t j = 0; j < runs.size(); ++j)
+      for (int v = 0; v < 4; ++v)
+        for (double sign : {1.0, -1.0}) {
+          if (!(steps[v] > 0)) continue;
+          DesignRun t = runs[j];
+          if (!move(t, v, sign * steps[v], r)) continue;
+          if (v == 1 && !within(time - runs[j].duration + t.duration, pr.total_time)) continue;
+          trials.push_back({j, t});
+        }
+    if (trials.empty()) break;
+    std::vector<DesignRun> batch;
+    for (const Trial& t : trials) batch.push_back(t.value);
+    const CandidateRows trial_rows = pr.evaluate(batch);
+    out.row_evaluations += Eigen::Index(batch.size());
+    double best = f;
+    std::size_t chosen = trials.size();
+    for (std::size_t t = 0; t < trials.size(); ++t) {
+      CandidateRows candidate = rows;
+      const auto j = Eigen::Index(trials[t].run), s = Eigen::Index(t);
+      candidate.regressors.row(j) = trial_rows.regressors.row(s);
+      candidate.leaks.row(j) = trial_rows.leaks.row(s);
+      candidate.natural.row(j) = trial_rows.natural.row(s);
+      candidate.scatter[j] = trial_rows.scatter[s];
+      candidate.noise[j] = trial_rows.noise[s];
+      candidate.duration[j] = trial_rows.duration[s];
+      const double v = scorer.objective(candidate, identity);
+      ++out.evaluations;
+      if (v < best - 1e-12 * std::abs(best)) {
+        best = v;
+        chosen = t;
+      }
+    }
+    if (chosen == trials.size()) {
+      for (double& s : steps) s /= 2;
+      ++halving;
+      continue;
+    }
+    const std::size_t j = trials[chosen].run;
+    runs[j] = trials[chosen].value;
+    const CandidateRows one = trial_rows.select({int(chosen)});
+    const auto jj = Eigen::Index(j);
+    rows.regressors.row(jj) = one.regressors.row(0);
+    rows.leaks.row(jj) = one.leaks.row(0);
+    rows.natural.row(jj) = one.natural.row(0);
+    rows.scatter[jj] = one.scatter[0];
+    rows.noise[jj] = one.noise[0];
+    rows.duration[jj] = one.duration[0];
+    f = best;
+  }
+}
+
+}  // namespace
+
+PlanScore score_plan(const CandidateRows& plan, const DesignCriterion& criterion) {
+  PlanScorer scorer(criterion);
+  std::vector<int> all(std::size_t(plan.size()));
+  for (std::size_t j = 0; j < all.size(); ++j) all[j] = int(j);
+  PlanScore s;
+  scorer.objective(plan, all, &s);
+  return s;
+}
+
+DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOptions& options) {
+  if (pr.runs < 1) throw InputError("the design needs at least one run");
+  if (pr.candidates.empty()) throw InputError("the design space has no candidate run");
+  DesignSearchResult out;
+  PlanScorer scorer(pr.criterion);
+  std::vector<int> best;
+  double best_f = std::numeric_limits<double>::infinity();
+  const int starts = int(pr.initial_plans.size()) + options.starts;
+  for (int s = 0; s < starts; ++s) {
+    std::vector<int> plan;
+    if (s < int(pr.initial_plans.size())) {
+      plan = pr.initial_plans[std::size_t(s)];
+      if (int(plan.size()) != pr.runs || !within(plan_time(pr.rows, plan), pr.total_time) ||
+          !std::isfinite(scorer.objective(pr.rows, plan)))
+        plan.clear();
+    } else {
+      plan = random_plan(pr, scorer, start_seed(options.seed, s), 2000);
+    }
+    if (plan.empty()) {
+      out.start_objectives.push_back(std::numeric_limits<double>::infinity());
+      continue;
+    }
+    const double f = exchange(pr, plan, options.max_sweeps, out.evaluations);
+    out.start_objectives.push_back(f);
+    if (f < best_f) {
+      best_f = f;
+      best = plan;
+      out.start = s;
+    }
+  }
+  if (best.empty())
+    throw InputError(
+        "no plan of " + std::to_string(pr.runs) +
+        " runs from the design space both fits the total time and identifies every free term; widen the "
+        "design space ([design] g_range, durations, phases) or raise total_time");
+  out.grid_objective = best_f;
+  for (int c : best) out.runs.push_back(pr.candidates[std::size_t(c)]);
+  out.rows = pr.rows.select(best);
+  if (pr.evaluate) refine(pr, out.runs, out.rows, scorer, out);
+  out.score = score_plan(out.rows, pr.criterion);
+  return out;
+}
+
+}  // namespace ccal

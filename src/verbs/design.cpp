@@ -1,0 +1,282 @@
+#include "ccal/verbs/design.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+
+namespace ccal::verbs {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void check_options(const DesignOptions& o) {
+  if (o.starts && (*o.starts < 0 || *o.starts > 1000))
+    throw InputError(fmt::format("--starts: {} is out of range; accepted: 0 to 1000 random starts", *o.starts));
+  if (o.threads < 0) throw InputError(fmt::format("--threads: {} is negative; accepted: 0 (all cores) or more", o.threads));
+  if (o.verify_trials < 0 || o.verify_trials > kMaxMonteCarloTrials)
+    throw InputError(fmt::format("--verify: {} trials is out of range; accepted: 0 (none) to {}", o.verify_trials,
+                                 kMaxMonteCarloTrials));
+  for (double f : o.tradeoff)
+    if (!(std::isfinite(f) && f > 0 && f <= 10))
+      throw InputError(fmt::format(
+          "--tradeoff: {} is not a factor of the total time in (0, 10]; accepted: e.g. 0.5,0.75,1", f));
+}
+
+// U_k from the tolerances alone: the budget's signed group sums added in quadrature (model.md §10.1).
+Eigen::VectorXd tolerance_expanded(const Config& config, const ccal::BudgetResult& b) {
+  std::vector<std::string> names;
+  for (const Tolerance& t : config.tolerances) names.push_back(t.group);
+  const CorrelationGroups groups = correlation_groups(names, config.tolerances.size());
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(Eigen::Index(b.coefficients.size()), groups.count);
+  for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
+  return b.coverage_factor * g.rowwise().norm();
+}
+
+// The objective's weights and references (references of the configured plan filled in later).
+std::vector<DesignTarget> design_targets(const Config& config, const DesignOptions& o,
+                                         const ccal::BudgetResult& before) {
+  std::map<std::string, double> targets = config.design.targets;
+  if (!o.targets.empty()) {
+    targets.clear();
+    for (const std::string& t : o.targets) {
+      const AllocationTarget a = parse_allocation_target(t, before.coefficients, before.units, "--target");
+      targets[a.coefficient] = a.expanded;
+    }
+  }
+  std::vector<std::string> chosen = config.design.coefficients;
+  if (chosen.empty())
+    for (const auto& [id, value] : targets) chosen.push_back(id);
+  if (chosen.empty()) chosen = before.coefficients;
+  std::vector<DesignTarget> out;
+  for (const std::string& id : before.coefficients) {
+    DesignTarget t;
+    t.coefficient = id;
+    if (std::find(chosen.begin(), chosen.end(), id) != chosen.end()) {
+      const auto w = config.design.weights.find(id);
+      t.weight = w == config.design.weights.end() ? 1.0 : w->second;
+    }
+    if (const auto it = targets.find(id); it != targets.end()) {
+      t.reference = it->second;
+      t.is_target = true;
+      if (t.weight == 0) t.weight = 1.0;
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+// The configured runs as candidates, if every one lies in the design space (then the configured plan is a
+// start, and the design can only improve on it).
+bool configured_in_space(const Config& config, const ResolvedDesignSpace& s) {
+  if (int(config.plan.runs.size()) != s.runs) return false;
+  double total = 0;
+  for (const Run& r : config.plan.runs) {
+    total += r.duration;
+    const bool g_ok = s.refinement.g_step > 0
+                          ? r.g_level >= s.refinement.g_low && r.g_level <= s.refinement.g_high
+                          : std::find(s.g_levels.begin(), s.g_levels.end(), r.g_level) != s.g_levels.end();
+    if (!g_ok || r.g_level > s.max_g) return false;
+    if (std::find(s.mountings.begin(), s.mountings.end(), r.mounting) == s.mountings.end()) return false;
+    if (std::find(s.platforms.begin(), s.platforms.end(), r.mode) == s.platforms.end()) return false;
+  }
+  return total <= s.total_time * (1 + 1e-12);
+}
+
+Config with_plan(const Config& config, const std::vector<DesignRun>& runs) {
+  std::vector<DesignRun> sorted = runs;
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const DesignRun& a, const DesignRun& b) { return a.g_level < b.g_level; });
+  Config c = config;
+  c.plan.runs.clear();
+  for (std::size_t j = 0; j < sorted.size(); ++j) c.plan.runs.push_back(plan_run(sorted[j], fmt::format("run{}", j + 1)));
+  return c;
+}
+
+BudgetResult rescore(const Config& designed) {
+  try {
+    return budget(designed);
+  } catch (const IllPosedFit& e) {
+    throw InputError(std::string("the designed plan does not identify the free terms by the full budget: ") +
+                     e.what());
+  }
+}
+
+// How far the IA's inertial headings ψ_IA = θ1(0) + φ0 of the runs at each g-level fail to balance: the
+// largest |Σ e^{iψ}| / count over the levels (0: opposite headings in pairs, 1: all alike).
+double heading_imbalance(const Config& c) {
+  double worst = 0;
+  std::vector<bool> done(c.plan.runs.size(), false);
+  for (std::size_t a = 0; a < c.plan.runs.size(); ++a) {
+    if (done[a]) continue;
+    double x = 0, y = 0;
+    int n = 0;
+    for (std::size_t b = a; b < c.plan.runs.size(); ++b) {
+      if (c.plan.runs[b].g_level != c.plan.runs[a].g_level) continue;
+      done[b] = true;
+      const double psi = initial_ia_azimuth(c.plan.runs[b], c.centrifuge.geometry, c.site);
+      x += std::cos(psi);
+      y += std::sin(psi);
+      ++n;
+    }
+    worst = std::max(worst, std::hypot(x, y) / n);
+  }
+  return worst;
+}
+
+std::string mechanism_sentence(const DesignResult& r) {
+  std::string out;
+  const ccal::BudgetResult& b0 = r.before.budget;
+  const ccal::BudgetResult& b1 = r.after.budget;
+  for (std::size_t k = 0; k < r.targets.size(); ++k) {
+    if (!(r.targets[k].weight > 0)) continue;
+    const auto kk = Eigen::Index(k);
+    const double f = b0.display_scale[k];
+    const double u0 = r.tolerance_before[kk], u1 = r.tolerance_after[kk];
+    if (!(u0 > 0 && u1 > 0)) continue;
+    const double signal = r.after.observability.result.terms[k].sensitivity /
+                          r.before.observability.result.terms[k].sensitivity;
+    std::vector<std::size_t> order(b0.sources.size());
+    for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
+      return std::abs(b0.sources[a].effect[kk]) > std::abs(b0.sources[c].effect[kk]);
+    });
+    std::vector<std::string> leading;
+    for (std::size_t i = 0; i < std::min<std::size_t>(4, order.size()); ++i) {
+      const SourceBudget& s0 = b0.sources[order[i]];
+      leading.push_back(fmt::format("{} {:.2g} -> {:.2g}", s0.id, std::abs(s0.effect[kk]) * f,
+                                    std::abs(b1.sources[order[i]].effect[kk]) * f));
+    }
+    // U ∝ (leak projected on the column) / s²: a column s times larger divides every leak by about s, the
+    // rest is the leaks' cancellation (model.md §15.3).
+    out += fmt::format(
+        "{}: U from the tolerances {:.3g} -> {:.3g} {} (x{:.3g}); the column only {} explains (its projected "
+        "size s, model.md §14) grew x{:.3g}, the rest (x{:.3g}) is the leaks cancelling; leading sources "
+        "(1-sigma effect before -> after): {}.\n",
+        r.targets[k].coefficient, u0 * f, u1 * f, b0.units[k], u1 / u0, r.targets[k].coefficient, signal,
+        (u1 / u0) * signal, fmt::join(leading, ", "));
+  }
+  const double before = heading_imbalance(r.config), after = heading_imbalance(r.designed);
+  if (after < 0.05 && after < before)
+    out += fmt::format(
+        "The runs at each g-level have opposite inertial IA headings psi_IA = theta1(0) + phi0 in pairs "
+        "(imbalance {:.2g}, configured {:.2g}): what leaks in proportion to cos or sin psi_IA - the main "
+        "axis's levelling (model.md §5.2) and the first harmonic of its rate ripple (§2.3) - cancels in each "
+        "level's mean instead of reaching the coefficients.\n",
+        after, before);
+  return out;
+}
+
+}  // namespace
+
+DesignResult design(const Config& config, const DesignOptions& options) {
+  check_options(options);
+  if (config.tolerances.empty())
+    throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
+  DesignResult r;
+  r.config = config;
+  r.space = resolve_design_space(config);
+  r.objective = options.objective.value_or(config.design.objective);
+  r.before = budget(config);
+  r.targets = design_targets(config, options, r.before.budget);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<DesignRun> candidates = candidate_runs(r.space, config);
+  std::vector<std::vector<int>> initial;
+  if (configured_in_space(config, r.space)) {
+    std::vector<int> plan;
+    for (const Run& run : config.plan.runs) {
+      plan.push_back(int(candidates.size()));
+      candidates.push_back(design_run(run));
+    }
+    initial.push_back(plan);
+  }
+  r.candidates = candidates.size();
+  DesignProblem problem;
+  problem.runs = r.space.runs;
+  problem.total_time = r.space.total_time;
+  problem.rows = candidate_rows(config, candidates, options.threads);
+  problem.candidates = std::move(candidates);
+  r.cache_seconds = seconds_since(t0);
+
+  // References: the targets, else the configured plan's own value of the criterion.
+  const auto nk = Eigen::Index(r.targets.size());
+  DesignCriterion& c = problem.criterion;
+  c.objective = r.objective;
+  c.coverage_factor = r.before.budget.coverage_factor;
+  c.weight = Eigen::VectorXd::Zero(nk);
+  c.reference = Eigen::VectorXd::Ones(nk);
+  for (Eigen::Index k = 0; k < nk; ++k) c.weight[k] = r.targets[std::size_t(k)].weight;
+  if (!initial.empty()) {
+    const PlanScore configured = score_plan(problem.rows.select(initial.front()), c);
+    for (Eigen::Index k = 0; k < nk; ++k) {
+      DesignTarget& t = r.targets[std::size_t(k)];
+      if (!t.is_target && configured.well_posed)
+        t.reference = r.objective == DesignObjective::uncertainty ? configured.expanded[k]
+                                                                  : std::sqrt(configured.covariance(k, k));
+    }
+  }
+  for (Eigen::Index k = 0; k < nk; ++k) {
+    DesignTarget& t = r.targets[std::size_t(k)];
+    if (!(t.reference > 0)) t.reference = r.before.budget.expanded_uncertainty[k];
+    if (!(t.reference > 0)) t.weight = 0;  // a coefficient no tolerance reaches cannot be improved
+    c.reference[k] = t.reference > 0 ? t.reference : 1.0;
+  }
+  if (!(c.weight.maxCoeff() > 0) && r.objective != DesignObjective::d_optimal)
+    throw InputError(config.source + ": design: no chosen coefficient has an uncertainty to reduce");
+  if (!initial.empty()) r.configured_objective = score_plan(problem.rows.select(initial.front()), c).objective;
+  problem.initial_plans = initial;
+  problem.refinement = r.space.refinement;
+  const int threads = options.threads;
+  problem.evaluate = [&config, threads](const std::vector<DesignRun>& runs) {
+    return candidate_rows(config, runs, threads);
+  };
+
+  const auto t1 = std::chrono::steady_clock::now();
+  DesignSearchOptions so;
+  so.starts = options.starts.value_or(config.design.starts.value_or(6));
+  so.seed = options.seed.value_or(config.design.seed.value_or(1));
+  r.search = search_design(problem, so);
+  r.search_seconds = seconds_since(t1);
+  r.designed_objective = r.search.score.objective;
+
+  r.designed = with_plan(config, r.search.runs);
+  r.after = rescore(r.designed);
+  r.tolerance_before = tolerance_expanded(config, r.before.budget);
+  r.tolerance_after = tolerance_expanded(r.designed, r.after.budget);
+  r.mechanism = mechanism_sentence(r);
+
+  // The trade-off curve: the same design with the total time (and the default nominal duration) scaled.
+  for (double factor : options.tradeoff) {
+    Config scaled = config;
+    scaled.design.total_time = r.space.total_time * factor;
+    if (config.design.durations.empty()) scaled.design.durations = {r.space.durations.front() * factor};
+    DesignOptions o = options;
+    o.tradeoff.clear();
+    o.verify_trials = 0;
+    const DesignResult d = design(scaled, o);
+    TradeoffPoint point;
+    point.total_time = d.space.total_time;
+    point.used_time = d.search.rows.duration.sum();
+    point.expanded = d.after.budget.expanded_uncertainty;
+    point.objective = d.designed_objective;
+    r.tradeoff.push_back(point);
+  }
+  if (options.verify_trials > 0) {
+    MonteCarloOptions mo;
+    mo.trials = options.verify_trials;
+    mo.seed = so.seed;
+    mo.threads = options.threads;
+    r.verification = monte_carlo(r.designed, mo);
+  }
+  return r;
+}
+
+}  // namespace ccal::verbs

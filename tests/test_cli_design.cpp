@@ -1,0 +1,72 @@
+// End-to-end tests of `ccal design`: the configuration written by --plan-out budgets (`ccal budget`) exactly as
+// the design reports, and bad design spaces and options are refused with exit code 2 and one line.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+using DesignCli = Cli;
+
+// A small space (192 candidates) so that a design takes seconds.
+const std::string kSmallSpace =
+    "\n[design]\ng_step = \"5 g\"\nturn_fractions = 4\nphase_step = \"90 deg\"\nazimuth_step = \"180 deg\"\n"
+    "starts = 2\n";
+
+// --plan-out writes the whole file with the designed [plan]; `ccal budget` of it gives the designed U of the
+// report (relative 1e-12: both are the full budget of the same numbers, read back exactly from 17 digits).
+TEST_F(DesignCli, PlanOutBudgetsAsReported) {
+  const std::string config = write("small.toml", read(kExample) + kSmallSpace);
+  const Result d = run("design " + config + " --format json --plan-out designed.toml");
+  ASSERT_EQ(d.code, 0) << d.err;
+  const nlohmann::json j = nlohmann::json::parse(d.out);
+  EXPECT_EQ(j.at("command"), "design");
+  const Result b = run("budget designed.toml --format json");
+  ASSERT_EQ(b.code, 0) << b.err;
+  const nlohmann::json budget = nlohmann::json::parse(b.out);
+  for (const auto& c : budget.at("coefficients")) {
+    const std::string id = c.at("id");
+    SCOPED_TRACE(id);
+    const double designed = j.at("coefficients").at(id).at("designed_expanded").get<double>();
+    const double written = c.at("expanded_uncertainty").get<double>();
+    EXPECT_NEAR(written, designed, 1e-12 * designed);
+    // Never worse than the configured plan on the coefficients the objective counts (all three here).
+    EXPECT_LE(designed, j.at("coefficients").at(id).at("configured_expanded").get<double>() * (1 + 1e-12));
+  }
+  // The rest of the configuration is kept, the [design] table included.
+  const std::string text = read(dir_ / "designed.toml");
+  EXPECT_NE(text.find("[tolerances]"), std::string::npos);
+  EXPECT_NE(text.find("turn_fractions = 4"), std::string::npos);
+  EXPECT_EQ(text.find("name = \"5g\""), std::string::npos);  // the configured runs are gone
+}
+
+TEST_F(DesignCli, BadDesignSpacesAreRefused) {
+  const std::string base = read(kExample);
+  const std::string key = write("key.toml", base + "\n[design]\nrunz = 6\n");
+  expect_bad_input(run("design " + key), {"key.toml:", "design.runz: unknown key; did you mean 'runs'?"});
+  const std::string high = write("high.toml", base + "\n[design]\ng_levels = [\"5 g\", \"45 g\"]\n");
+  expect_bad_input(run("design " + high), {"design.g_levels: 45 g exceeds max_g = 30 g"});
+  const std::string few = write("few.toml", base + "\n[design]\nruns = 2\n");
+  expect_bad_input(run("design " + few), {"design.runs: 2 runs cannot identify 3 free terms"});
+  const std::string long_runs = write("long.toml", base + "\n[design]\ndurations = [\"1000 s\"]\n");
+  expect_bad_input(run("design " + long_runs), {"cannot fit total_time"});
+  // Two g-levels and whole turns cannot separate K0, K2 and K3: no plan is well posed.
+  const std::string blind = write(
+      "blind.toml", base + "\n[design]\ng_levels = [\"10 g\", \"20 g\"]\nturn_fractions = 1\n"
+                           "phases = [\"180 deg\"]\narm_azimuths = [\"0 deg\"]\n");
+  expect_bad_input(run("design " + blind), {"identifies every free term"});
+}
+
+TEST_F(DesignCli, BadOptionsAreRefused) {
+  const std::string config = write("small.toml", read(kExample) + kSmallSpace);
+  expect_bad_input(run("design " + config + " --plan-out small.toml"), {"small.toml"});
+  expect_bad_input(run("design " + config + " --target K9=1"), {"--target", "K9"});
+  expect_bad_input(run("design " + config + " --tradeoff 0,1"), {"--tradeoff"});
+  expect_bad_input(run("design " + config + " --objective best"), {"--objective"});
+}
+
+}  // namespace
+}  // namespace ccal::test

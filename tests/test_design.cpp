@@ -1,0 +1,162 @@
+// `ccal design` on the bundled example (verbs/design.hpp): the cached rows score a plan exactly as the full
+// budget does, the designed plan is never worse than the configured one and keeps every constraint, the
+// configuration written with the designed [plan] budgets to the same numbers, and the [design] table's bad
+// values are refused with their place in the file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ccal/io/config_file.hpp"
+#include "ccal/render/design.hpp"
+#include "ccal/uncertainty/design_candidates.hpp"
+#include "ccal/verbs/design.hpp"
+
+namespace ccal {
+namespace {
+
+// A small design space (6 g-levels × 4 cuts of the last turn × 4 phases × 2 azimuths = 192 candidates), so
+// that the whole design runs in a few seconds.
+const std::string kSmallSpace = R"(
+[design]
+g_step = "5 g"
+turn_fractions = 4
+phase_step = "90 deg"
+azimuth_step = "180 deg"
+starts = 2
+)";
+
+Config small_config(const std::string& extra = "") {
+  return parse_config(std::string(bundled_example_text()) + kSmallSpace + extra, "design_test.toml");
+}
+
+double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+
+// The cache scores the configured plan with the budget's rows (output_jacobian, observe's model means,
+// rate_noise_gain, groups and u_s): its U must equal the full budget's to the round-off of two different
+// least-squares solutions (normal equations of scaled columns against QR): 1e-9 relative.
+TEST(Design, CachedRowsScoreAsTheBudget) {
+  const Config config = small_config();
+  std::vector<DesignRun> runs;
+  for (const ccal::Run& r : config.plan.runs) runs.push_back(design_run(r));
+  const CandidateRows rows = candidate_rows(config, runs, 1);
+  DesignCriterion c;
+  c.weight = Eigen::VectorXd::Ones(3);
+  c.reference = Eigen::VectorXd::Ones(3);
+  const PlanScore s = score_plan(rows, c);
+  ASSERT_TRUE(s.well_posed);
+  const verbs::BudgetResult b = verbs::budget(config);
+  for (Eigen::Index k = 0; k < 3; ++k)
+    EXPECT_LT(relative(s.expanded[k], b.budget.expanded_uncertainty[k]), 1e-9) << b.budget.coefficients[k];
+  EXPECT_LT((s.covariance - b.budget.covariance).norm(), 1e-9 * b.budget.covariance.norm());
+}
+
+class DesignedExample : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { result_ = new verbs::DesignResult(verbs::design(small_config())); }
+  static void TearDownTestSuite() { delete result_; }
+  static const verbs::DesignResult& r() { return *result_; }
+  static verbs::DesignResult* result_;
+};
+verbs::DesignResult* DesignedExample::result_ = nullptr;
+
+// Never worse: the configured plan is one of the starts, so the objective (by the cache) cannot rise, and the
+// full budget agrees with the cache on the designed plan (1e-9, as above).
+TEST_F(DesignedExample, NeverWorseThanTheConfiguredPlan) {
+  EXPECT_LE(r().designed_objective, r().configured_objective);
+  for (Eigen::Index k = 1; k < 3; ++k) {  // K2, K3: the coefficients the objective counts (all three here)
+    EXPECT_LE(r().after.budget.expanded_uncertainty[k], r().before.budget.expanded_uncertainty[k])
+        << r().after.budget.coefficients[k];
+    EXPECT_LT(relative(r().search.score.expanded[k], r().after.budget.expanded_uncertainty[k]), 1e-9);
+  }
+}
+
+// Every constraint of the space holds: six runs, at most the paper plan's 2700 s in all, g-levels within
+// 5 … 30 g, the platform mode and mounting of the configured plan, the designed phase kind (terminal).
+TEST_F(DesignedExample, EveryConstraintHolds) {
+  const auto& runs = r().designed.plan.runs;
+  ASSERT_EQ(runs.size(), 6u);
+  double total = 0;
+  for (const ccal::Run& run : runs) {
+    total += run.duration;
+    EXPECT_GE(run.g_level, 5.0 * (1 - 1e-15));
+    EXPECT_LE(run.g_level, 30.0 * (1 + 1e-15));
+    EXPECT_EQ(run.mode, PlatformMode::counter_rotating);
+    EXPECT_EQ(run.mounting, Mounting::ia_horizontal);
+    EXPECT_TRUE(run.terminal_phase.has_value());
+  }
+  EXPECT_LE(total, 2700 * (1 + 1e-12));
+}
+
+// The configuration written with the designed [plan] reads back to the same runs, bit for bit (17 digits in
+// g, s and rad), so its budget equals the designed plan's (relative 1e-12; in fact exactly).
+TEST_F(DesignedExample, WrittenPlanBudgetsTheSame) {
+  const std::string text = render::config_with_plan(std::string(bundled_example_text()) + kSmallSpace, r().designed);
+  const Config back = parse_config(text, "designed.toml");
+  ASSERT_EQ(back.plan.runs.size(), r().designed.plan.runs.size());
+  for (std::size_t j = 0; j < back.plan.runs.size(); ++j) {
+    EXPECT_EQ(back.plan.runs[j].g_level, r().designed.plan.runs[j].g_level);
+    EXPECT_EQ(back.plan.runs[j].duration, r().designed.plan.runs[j].duration);
+    EXPECT_EQ(*back.plan.runs[j].terminal_phase, *r().designed.plan.runs[j].terminal_phase);
+    EXPECT_EQ(back.plan.runs[j].arm_azimuth, r().designed.plan.runs[j].arm_azimuth);
+  }
+  const verbs::BudgetResult b = verbs::budget(back);
+  for (Eigen::Index k = 0; k < 3; ++k)
+    EXPECT_LT(relative(b.budget.expanded_uncertainty[k], r().after.budget.expanded_uncertainty[k]), 1e-12);
+  // The rest of the file is kept: tolerances, instrument, the [design] table itself.
+  EXPECT_EQ(back.tolerances.size(), r().config.tolerances.size());
+  EXPECT_EQ(back.design.turn_fractions, 4);
+}
+
+// The plan text keeps every digit of values that no short decimal carries (17 significant digits).
+TEST(DesignPlanText, RoundTripsEveryDigit) {
+  Config c = bundled_example();
+  for (std::size_t j = 0; j < c.plan.runs.size(); ++j) {
+    ccal::Run& run = c.plan.runs[j];
+    run.g_level = 7.0 / 3.0 + double(j);
+    run.duration = 1000.0 / 7.0;
+    run.terminal_phase = 1.0 / 7.0;
+    run.arm_azimuth = std::exp(1.0);
+  }
+  const Config back = parse_config(render::config_with_plan(bundled_example_text(), c), "x.toml");
+  for (std::size_t j = 0; j < c.plan.runs.size(); ++j) {
+    EXPECT_EQ(back.plan.runs[j].g_level, c.plan.runs[j].g_level);
+    EXPECT_EQ(back.plan.runs[j].duration, c.plan.runs[j].duration);
+    EXPECT_EQ(*back.plan.runs[j].terminal_phase, *c.plan.runs[j].terminal_phase);
+    EXPECT_EQ(back.plan.runs[j].arm_azimuth, c.plan.runs[j].arm_azimuth);
+  }
+}
+
+// A [design] table's bad values: refused with file, line and key, or (for what depends on the plan) with the
+// key and what would be accepted.
+TEST(DesignConfig, BadValuesAreRefusedWithTheirPlace) {
+  auto message = [](const std::string& design) -> std::string {
+    try {
+      const Config c = parse_config(std::string(bundled_example_text()) + "\n[design]\n" + design, "d.toml");
+      verbs::design(c);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const int line = 1 + int(std::count(bundled_example_text().begin(), bundled_example_text().end(), '\n')) + 2;
+  EXPECT_EQ(message("runz = 6"), "d.toml:" + std::to_string(line) + ":1: design.runz: unknown key; did you mean 'runs'?");
+  EXPECT_NE(message("runs = 2").find("design.runs: 2 runs cannot identify 3 free terms"), std::string::npos);
+  EXPECT_NE(message("g_levels = [\"5 g\", \"40 g\"]").find("design.g_levels: 40 g exceeds max_g = 30 g"),
+            std::string::npos);
+  EXPECT_NE(message("g_range = [\"30 g\", \"5 g\"]").find("design.g_range"), std::string::npos);
+  EXPECT_NE(message("durations = [\"900 s\"]").find("cannot fit total_time"), std::string::npos);
+  EXPECT_NE(message("phase_step = \"-5 deg\"").find("design.phase_step: must be positive"), std::string::npos);
+  EXPECT_NE(message("targets = { K9 = \"1e-6 deg/s/g^3\" }").find("not a free term"), std::string::npos);
+  EXPECT_NE(message("targets = { K3 = \"1e-6 m\" }").find("design.targets.K3"), std::string::npos);
+  EXPECT_NE(message("objective = \"e_optimal\"").find("accepted: uncertainty, d_optimal, a_optimal"),
+            std::string::npos);
+  // Two g-levels cannot separate K0, K2 and K3 on this platform: the search finds no well-posed plan.
+  EXPECT_NE(message("g_levels = [\"10 g\", \"20 g\"]\nturn_fractions = 1\nphases = [\"180 deg\"]\narm_azimuths = [\"0 deg\"]")
+                .find("identifies every free term"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace ccal
