@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <optional>
 #include <set>
 #include <string>
@@ -36,9 +37,10 @@ double quantity(const Value& value, const std::optional<std::string>& unit, Dime
   } else if (dim == kind::dimensionless) {
     text = fmt::format("{:.17g}", std::get<double>(value));
   } else {
-    throw InputError(fmt::format("{}: the bare number {:g} has no unit; give a string such as \"{:g} deg\" or "
-                                 "unit=\"...\"",
-                                 what, std::get<double>(value), std::get<double>(value)));
+    throw InputError(
+        fmt::format("{}: the bare number {:g} has no unit; give a string such as \"{:g} deg\" or "
+                    "unit=\"...\"",
+                    what, std::get<double>(value), std::get<double>(value)));
   }
   try {
     return parse_as(text, dim, "", dim == kind::dimensionless);
@@ -64,15 +66,16 @@ int parameter(const Config& cfg, const std::string& id, const std::string& what)
         best = d;
         hint = fmt::format("; did you mean '{}'?", candidate);
       }
-    throw InputError(fmt::format("{}: '{}' is not an error parameter of this centrifuge (harmonic order {}){}; "
-                                 "accepted: Config.error_ids",
-                                 what, id, layout.harmonic_order(), hint));
+    throw InputError(
+        fmt::format("{}: '{}' is not an error parameter of this centrifuge (harmonic order {}){}; "
+                    "accepted: Config.error_ids",
+                    what, id, layout.harmonic_order(), hint));
   }
   const Channel& c = channels()[layout.parameter_channel(*index)];
   if ((c.kind == ErrorKind::main_ripple || c.kind == ErrorKind::platform_ripple) &&
       layout.parameter_harmonic(*index) == 0)
-    throw InputError(fmt::format("{}: a rate ripple has no constant term; accepted: {}_c<k>, {}_s<k>", what,
-                                 c.id, c.id));
+    throw InputError(
+        fmt::format("{}: a rate ripple has no constant term; accepted: {}_c<k>, {}_s<k>", what, c.id, c.id));
   return *index;
 }
 
@@ -81,6 +84,24 @@ Distribution distribution_named(const std::string& name) {
        {Distribution::normal, Distribution::uniform, Distribution::triangular, Distribution::arcsine})
     if (distribution_name(d) == name) return d;
   throw InputError("distribution: '" + name + "'; accepted: 'normal', 'uniform', 'triangular', 'arcsine'");
+}
+
+// The unit the bound was written in (kept for display, as the file reader keeps it): unit=, or the text after
+// the number; "" when it is not one of the expected dimension.
+std::string written_unit(const Value& bound, const std::optional<std::string>& unit, Dimension dim) {
+  std::string text = unit.value_or("");
+  if (const auto* s = std::get_if<std::string>(&bound)) {
+    char* end = nullptr;
+    std::strtod(s->c_str(), &end);
+    text = end ? end : "";
+  }
+  text.erase(0, text.find_first_not_of(" \t"));
+  text.erase(text.find_last_not_of(" \t") + 1);
+  try {
+    if (!text.empty() && parse_unit(text).dim == dim) return text;
+  } catch (const UnitError&) {
+  }
+  return "";
 }
 
 Config with_tolerance(const Config& cfg, const std::string& id, const Value& bound,
@@ -94,13 +115,14 @@ Config with_tolerance(const Config& cfg, const std::string& id, const Value& bou
     Tolerance t;
     t.parameter = index;
     t.id = cfg.centrifuge.layout.parameter_id(index);
-    it = out.tolerances.insert(
-        std::upper_bound(out.tolerances.begin(), out.tolerances.end(), index,
-                         [](int i, const Tolerance& x) { return i < x.parameter; }),
-        std::move(t));
+    it = out.tolerances.insert(std::upper_bound(out.tolerances.begin(), out.tolerances.end(), index,
+                                                [](int i, const Tolerance& x) { return i < x.parameter; }),
+                               std::move(t));
   }
-  it->bound = quantity(bound, unit, parameter_dimension(cfg.centrifuge.layout, index), "with_tolerance: " + id);
+  it->bound =
+      quantity(bound, unit, parameter_dimension(cfg.centrifuge.layout, index), "with_tolerance: " + id);
   if (!(it->bound > 0)) throw InputError(fmt::format("with_tolerance: {}: the bound must be positive", id));
+  it->unit = written_unit(bound, unit, parameter_dimension(cfg.centrifuge.layout, index));
   if (distribution) it->distribution = distribution_named(*distribution);
   if (group) it->group = *group;
   if (cost) {
@@ -141,7 +163,8 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
   if (c.g) {
     if (c.g->empty()) throw InputError("with_plan: g: no runs; give at least one g-level");
     if (c.names && c.names->size() != c.g->size())
-      throw InputError(fmt::format("with_plan: names: {} names for {} g-levels", c.names->size(), c.g->size()));
+      throw InputError(
+          fmt::format("with_plan: names: {} names for {} g-levels", c.names->size(), c.g->size()));
     std::vector<Run> fresh;
     for (std::size_t k = 0; k < c.g->size(); ++k) {
       Run run = cfg.plan.runs.front();
@@ -150,8 +173,8 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
                         ? quantity(level, std::string("g"), kind::acceleration_g, "with_plan: g")
                         : quantity(level, std::nullopt, kind::acceleration_g, "with_plan: g");
       if (!(run.g_level > 0) || run.g_level > 1000)
-        throw InputError(fmt::format("with_plan: g: {:g} g; accepted: a centripetal level in (0, 1000] g",
-                                     run.g_level));
+        throw InputError(
+            fmt::format("with_plan: g: {:g} g; accepted: a centripetal level in (0, 1000] g", run.g_level));
       run.name = c.names ? (*c.names)[k] : fmt::format("{:g}g", run.g_level);
       fresh.push_back(std::move(run));
     }
@@ -178,10 +201,12 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
       run.terminal_phase.reset();
     }
     if (c.terminal_phase) {
-      run.terminal_phase = quantity(*c.terminal_phase, std::nullopt, kind::angle, "with_plan: terminal_phase");
+      run.terminal_phase =
+          quantity(*c.terminal_phase, std::nullopt, kind::angle, "with_plan: terminal_phase");
       run.initial_phase.reset();
     }
-    if (c.arm_azimuth) run.arm_azimuth = quantity(*c.arm_azimuth, std::nullopt, kind::angle, "with_plan: arm_azimuth");
+    if (c.arm_azimuth)
+      run.arm_azimuth = quantity(*c.arm_azimuth, std::nullopt, kind::angle, "with_plan: arm_azimuth");
     if (c.platform) {
       if (*c.platform == "counter_rotating")
         run.mode = PlatformMode::counter_rotating;
@@ -192,8 +217,8 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
     }
     if (c.mounting) {
       bool found = false;
-      for (const Mounting m : {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical,
-                               Mounting::ia_vertical})
+      for (const Mounting m :
+           {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical, Mounting::ia_vertical})
         if (mounting_name(m) == *c.mounting) {
           run.mounting = m;
           found = true;
@@ -210,24 +235,26 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
 
 void bind_derive(py::module_& m) {
   auto config = py::reinterpret_borrow<py::class_<Config>>(m.attr("Config"));
-  config.def("with_tolerance", &with_tolerance, py::arg("id"), py::arg("bound"), py::arg("unit") = py::none(),
-             py::arg("distribution") = py::none(), py::arg("group") = py::none(), py::arg("cost") = py::none(),
-             "A copy with the tolerance of error parameter `id` set: bound as in [tolerances] (\"2 arcsec\", or a "
-             "number with unit=\"arcsec\"); distribution ('normal', 'uniform', 'triangular', 'arcsine'), "
-             "group and cost change only if given (a source without a tolerance gets a normal one, no group, "
-             "cost 1).");
+  config.def(
+      "with_tolerance", &with_tolerance, py::arg("id"), py::arg("bound"), py::arg("unit") = py::none(),
+      py::arg("distribution") = py::none(), py::arg("group") = py::none(), py::arg("cost") = py::none(),
+      "A copy with the tolerance of error parameter `id` set: bound as in [tolerances] (\"2 arcsec\", or a "
+      "number with unit=\"arcsec\"); distribution ('normal', 'uniform', 'triangular', 'arcsine'), "
+      "group and cost change only if given (a source without a tolerance gets a normal one, no group, "
+      "cost 1).");
   config.def("without_tolerance", &without_tolerance, py::arg("id"),
              "A copy without the tolerance of error parameter `id` (as if its line of [tolerances] were "
              "removed).");
-  config.def("with_error", &with_error, py::arg("id"), py::arg("value"), py::arg("unit") = py::none(),
-             "A copy with the known (actual) value of error parameter `id` set, as in [errors] (\"2 arcsec\", "
-             "or a number with unit=...; 0 removes it).");
+  config.def(
+      "with_error", &with_error, py::arg("id"), py::arg("value"), py::arg("unit") = py::none(),
+      "A copy with the known (actual) value of error parameter `id` set, as in [errors] (\"2 arcsec\", "
+      "or a number with unit=...; 0 removes it).");
   config.def(
       "with_plan",
       [](const Config& cfg, std::optional<std::vector<Value>> g, std::optional<Value> duration,
          std::optional<std::string> platform, std::optional<Value> terminal_phase,
-         std::optional<Value> initial_phase, std::optional<Value> arm_azimuth, std::optional<std::string> mounting,
-         std::optional<std::vector<std::string>> names) {
+         std::optional<Value> initial_phase, std::optional<Value> arm_azimuth,
+         std::optional<std::string> mounting, std::optional<std::vector<std::string>> names) {
         return with_plan(cfg, PlanChange{std::move(g), std::move(names), std::move(duration),
                                          std::move(initial_phase), std::move(terminal_phase),
                                          std::move(arm_azimuth), std::move(platform), std::move(mounting)});

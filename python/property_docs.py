@@ -222,4 +222,22 @@ _PROPERTY_DOCS = {
     "AllocationDetail.converged": "the solver converged [—]",
     "AllocationDetail.verified": "the Monte Carlo check passed [—]",
     "Allocation.allocation": "the allocation itself (its fields are readable on the result) [AllocationDetail]",
+    # Monte Carlo samples
+    "MonteCarloDetail.samples": "every trial's outputs, M × n_outputs in trial order; needs keep_samples=True [coefficient SI: output SI per gⁿ]",
+    # Design
+    "DesignTarget.coefficient": "the coefficient's id, e.g. 'K3' [—]",
+    "DesignTarget.weight": "w_k in the objective (0: not counted) [—]",
+    "DesignTarget.reference": "R_k: the user's target, or the configured plan's U_k [coefficient SI: output SI per gⁿ]",
+    "DesignTarget.is_target": "R_k is a user's target (else the configured plan's U_k) [—]",
+    "Design.config": "the configuration as given [Config]",
+    "Design.designed": "the configuration with the designed plan [Config]",
+    "Design.before": "the full budget of the configured plan [Budget]",
+    "Design.after": "the full budget of the designed plan [Budget]",
+    "Design.targets": "the objective's coefficients, list of DesignTarget [—]",
+    "Design.candidates": "the number of candidate runs cached [—]",
+    "Design.configured_objective": "the objective of the configured plan, by the cached rows [—]",
+    "Design.designed_objective": "the objective of the designed plan [—]",
+    "Design.tolerance_before": "U_k from the tolerances, configured plan, per coefficient [coefficient SI: output SI per gⁿ]",
+    "Design.tolerance_after": "U_k from the tolerances, designed plan, per coefficient [coefficient SI: output SI per gⁿ]",
+    "Design.mechanism": "a sentence on what the designed plan does differently, where one can be named [—]",
 }
