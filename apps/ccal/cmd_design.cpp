@@ -27,15 +27,6 @@ struct DesignCli {
   OutputOptions output;
 };
 
-std::string config_text(const std::string& path) {
-  if (path.empty()) return std::string(bundled_example_text());
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) throw InputError(path + ": cannot read the file again for --plan-out");
-  return text.str();
-}
-
 }  // namespace
 
 Command add_design(CLI::App& app) {
@@ -57,7 +48,9 @@ Command add_design(CLI::App& app) {
   cmd->add_option("--starts", o->starts, "Random starts of the search (besides the configured plan)")
       ->check(CLI::Range(0, 1000))
       ->type_name("N");
-  cmd->add_option("--seed", o->seed, "Seed of the random starts")->check(CLI::NonNegativeNumber)->type_name("S");
+  cmd->add_option("--seed", o->seed, "Seed of the random starts")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("S");
   cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str()
@@ -94,14 +87,16 @@ Command add_design(CLI::App& app) {
             d.verify_trials = o->verify;
             d.tradeoff = o->tradeoff;
             if (!o->plan_out.empty() && o->plan_out == o->output.path)
-              throw InputError("--plan-out: '" + o->plan_out + "' is also the -o file; accepted: two different files");
+              throw InputError("--plan-out: '" + o->plan_out +
+                               "' is also the -o file; accepted: two different files");
             const Config config = load_config_or_example(o->config);
             const verbs::DesignResult r = verbs::design(config, d);
             print_warnings(r.after.observability.warnings);
             const std::string report = o->output.format == "json" ? render::json(r) : render::text(r);
             std::vector<ExtraFile> extra;
             if (!o->plan_out.empty())
-              extra.push_back({"--plan-out", o->plan_out, render::config_with_plan(config_text(o->config), r.designed)});
+              extra.push_back({"--plan-out", o->plan_out,
+                               render::config_with_plan(config_file_text(o->config), r.designed)});
             write_outputs(o->output, report, extra);
           }};
 }

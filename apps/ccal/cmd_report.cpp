@@ -31,16 +31,6 @@ struct ReportCli {
   OutputOptions output;
 };
 
-// The configuration's bytes exactly as read (hashed and shown in the report).
-std::string config_text(const std::string& path) {
-  if (path.empty()) return std::string(bundled_example_text());
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) throw InputError(fmt::format("{}: cannot read the file again", path));
-  return text.str();
-}
-
 // Now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention) when it is set.
 std::string date_utc() {
   std::time_t t = std::time(nullptr);
@@ -99,7 +89,7 @@ Command add_report(CLI::App& app) {
             const Config config = load_config_or_example(o->config);
             const verbs::ReportResult r = verbs::report(config, ro);
             render::ReportProvenance p;
-            p.config_text = config_text(o->config);
+            p.config_text = config_file_text(o->config);
             p.command_line = command_line_text();
             p.date_utc = date_utc();
             render::report_commands(r, ro, p);

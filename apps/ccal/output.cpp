@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "atomic_file.hpp"
 #include "ccal/core/errors.hpp"
@@ -65,6 +66,15 @@ void add_config_argument(CLI::App& command, std::string& path) {
       .add_option("config", path,
                   "Configuration file (TOML, docs/config.md); default: the bundled paper example")
       ->type_name("CONFIG");
+}
+
+std::string config_file_text(const std::string& path) {
+  if (path.empty()) return std::string(bundled_example_text());
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw InputError(fmt::format("{}: cannot read the file again", path));
+  return text.str();
 }
 
 }  // namespace ccal::cli

@@ -56,6 +56,10 @@ void write_outputs(const OutputOptions& options, std::string_view text, const st
 void add_observations_out_option(CLI::App& command, std::string& path);
 void check_observations_out(const std::string& path, const OutputOptions& output);
 
+// The configuration's bytes exactly as read (the bundled example's text for an empty path), for a report's
+// hash or a --plan-out file built from it. InputError if the file cannot be read again.
+std::string config_file_text(const std::string& path);
+
 // The optional CONFIG argument every configuration-driven command takes.
 void add_config_argument(CLI::App& command, std::string& path);
 
