@@ -51,7 +51,7 @@ for s in allocation.sources:
 u_tight = ccal.budget(tight).display().rows[k3]
 print(f"budget with the allocated tolerances: U(K3) = {u_tight['expanded_uncertainty']:.4g} {u_tight['unit']}")
 
-# 5. (A better plan instead of tighter tolerances: `ccal design`, where available.)
+# 5. A better plan instead of tighter tolerances: ccal.design(cfg), as `ccal design` (docs/tutorial.md §5).
 
 # 6. The test on the lab's centrifuge (examples/lab.toml: the bundled one with its real, unknown errors, a noisy
 #    PIGA counting pulses), as the run logs it records; 7. their reduction to the coefficients.
