@@ -23,6 +23,13 @@ TEST_F(OptionTraps, BudgetCoverageFactorBelowOneIsRefused) {
                 1e-15 * c["expanded_uncertainty"].get<double>());
 }
 
+TEST_F(OptionTraps, BudgetTopAndWidthOutOfRangeAreRefusedWithTheRange) {
+  // Exit 2, one line naming the option and the accepted range (not the largest double).
+  expect_bad_input(run("budget --top 0"), {"--top", "1 to 100000"});
+  expect_bad_input(run("budget --top -3"), {"--top", "1 to 100000"});
+  expect_bad_input(run("budget --width 10"), {"--width", "40 to 10000"});
+}
+
 TEST_F(OptionTraps, AllocateCoverageIsAProbabilityByName) {
   expect_bad_input(run("allocate --target K3=2e-3 --coverage 0.9"), {"--coverage", "--coverage-probability"});
   expect_bad_input(run("allocate --target K3=2e-3 --coverage-probability 2"), {"--coverage-probability"});

@@ -58,7 +58,7 @@ Command add_budget(CLI::App& app) {
   cmd->add_option("--top", options->top,
                   "Sources listed per coefficient, the rest summed in one row (default: what fits the "
                   "screen, at least 5)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, 100000))
       ->type_name("N");
   add_width_options(*cmd, options->width,
                     "Everything: every source, uncut names, exact-vs-paper flags, force and rate paths, "
