@@ -52,6 +52,46 @@ TEST(Design, CachedRowsScoreAsTheBudget) {
   EXPECT_LT((s.covariance - b.budget.covariance).norm(), 1e-9 * b.budget.covariance.norm());
 }
 
+// The design scores plans under the configured platform control (model.md §2.3): with the platform slaved to
+// the main encoder, the main axis's once-per-revolution ripple no longer turns the instrument's heading, so
+// the cache, like the budget, gives a different U for the same plan. Each mode's cached score must equal that
+// mode's full budget (1e-9, as above), and the two modes must differ by more than any round-off (the bundled
+// example's U(K3) falls by more than a factor 2 when the heading wobble of the ±10 ppm main ripple goes), and
+// the designed plan keeps the configured mode in the file it writes.
+TEST(Design, FollowsThePlatformControl) {
+  std::string text = std::string(bundled_example_text()) + kSmallSpace;
+  const auto at = text.find("platform_control = \"speed\"");
+  ASSERT_NE(at, std::string::npos);
+  const Config speed = parse_config(text, "speed.toml");
+  text.replace(at, std::string("platform_control = \"speed\"").size(), "platform_control = \"phase_locked\"");
+  const Config locked = parse_config(text, "locked.toml");
+  ASSERT_EQ(locked.centrifuge.geometry.platform_control, PlatformControl::phase_locked);
+
+  Eigen::VectorXd u_k3(2);
+  int i = 0;
+  for (const Config* config : {&speed, &locked}) {
+    std::vector<DesignRun> runs;
+    for (const ccal::Run& r : config->plan.runs) runs.push_back(design_run(r));
+    const CandidateRows rows = candidate_rows(*config, runs, 1);
+    DesignCriterion c;
+    c.weight = Eigen::VectorXd::Ones(3);
+    c.reference = Eigen::VectorXd::Ones(3);
+    const PlanScore s = score_plan(rows, c);
+    ASSERT_TRUE(s.well_posed);
+    const verbs::BudgetResult b = verbs::budget(*config);
+    for (Eigen::Index k = 0; k < 3; ++k)
+      EXPECT_LT(relative(s.expanded[k], b.budget.expanded_uncertainty[k]), 1e-9) << b.budget.coefficients[k];
+    u_k3[i++] = s.expanded[2];
+  }
+  EXPECT_GT(u_k3[0], 2 * u_k3[1]) << "U(K3) speed " << u_k3[0] << ", phase_locked " << u_k3[1];
+
+  const verbs::DesignResult designed = verbs::design(locked);
+  EXPECT_EQ(designed.designed.centrifuge.geometry.platform_control, PlatformControl::phase_locked);
+  EXPECT_LT(relative(designed.before.budget.expanded_uncertainty[2], u_k3[1]), 1e-9);
+  const Config reread = parse_config(render::config_with_plan(text, designed.designed), "designed.toml");
+  EXPECT_EQ(reread.centrifuge.geometry.platform_control, PlatformControl::phase_locked);
+}
+
 class DesignedExample : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { result_ = new verbs::DesignResult(verbs::design(small_config())); }
@@ -92,7 +132,8 @@ TEST_F(DesignedExample, EveryConstraintHolds) {
 // The configuration written with the designed [plan] reads back to the same runs, bit for bit (17 digits in
 // g, s and rad), so its budget equals the designed plan's (relative 1e-12; in fact exactly).
 TEST_F(DesignedExample, WrittenPlanBudgetsTheSame) {
-  const std::string text = render::config_with_plan(std::string(bundled_example_text()) + kSmallSpace, r().designed);
+  const std::string text =
+      render::config_with_plan(std::string(bundled_example_text()) + kSmallSpace, r().designed);
   const Config back = parse_config(text, "designed.toml");
   ASSERT_EQ(back.plan.runs.size(), r().designed.plan.runs.size());
   for (std::size_t j = 0; j < back.plan.runs.size(); ++j) {
@@ -140,20 +181,24 @@ TEST(DesignConfig, BadValuesAreRefusedWithTheirPlace) {
     }
     return "accepted";
   };
-  const int line = 1 + int(std::count(bundled_example_text().begin(), bundled_example_text().end(), '\n')) + 2;
-  EXPECT_EQ(message("runz = 6"), "d.toml:" + std::to_string(line) + ":1: design.runz: unknown key; did you mean 'runs'?");
+  const int line =
+      1 + int(std::count(bundled_example_text().begin(), bundled_example_text().end(), '\n')) + 2;
+  EXPECT_EQ(message("runz = 6"),
+            "d.toml:" + std::to_string(line) + ":1: design.runz: unknown key; did you mean 'runs'?");
   EXPECT_NE(message("runs = 2").find("design.runs: 2 runs cannot identify 3 free terms"), std::string::npos);
   EXPECT_NE(message("g_levels = [\"5 g\", \"40 g\"]").find("design.g_levels: 40 g exceeds max_g = 30 g"),
             std::string::npos);
   EXPECT_NE(message("g_range = [\"30 g\", \"5 g\"]").find("design.g_range"), std::string::npos);
   EXPECT_NE(message("durations = [\"900 s\"]").find("cannot fit total_time"), std::string::npos);
-  EXPECT_NE(message("phase_step = \"-5 deg\"").find("design.phase_step: must be positive"), std::string::npos);
+  EXPECT_NE(message("phase_step = \"-5 deg\"").find("design.phase_step: must be positive"),
+            std::string::npos);
   EXPECT_NE(message("targets = { K9 = \"1e-6 deg/s/g^3\" }").find("not a free term"), std::string::npos);
   EXPECT_NE(message("targets = { K3 = \"1e-6 m\" }").find("design.targets.K3"), std::string::npos);
   EXPECT_NE(message("objective = \"e_optimal\"").find("accepted: uncertainty, d_optimal, a_optimal"),
             std::string::npos);
   // Two g-levels cannot separate K0, K2 and K3 on this platform: the search finds no well-posed plan.
-  EXPECT_NE(message("g_levels = [\"10 g\", \"20 g\"]\nturn_fractions = 1\nphases = [\"180 deg\"]\narm_azimuths = [\"0 deg\"]")
+  EXPECT_NE(message("g_levels = [\"10 g\", \"20 g\"]\nturn_fractions = 1\nphases = [\"180 "
+                    "deg\"]\narm_azimuths = [\"0 deg\"]")
                 .find("identifies every free term"),
             std::string::npos);
 }
