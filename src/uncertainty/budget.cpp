@@ -60,12 +60,13 @@ Eigen::MatrixXd output_jacobian_ad(const Experiment& ex, const IdentificationSpe
 // ∂ȳ/∂e at zero errors from the closed-form linearisation of the exact chain (exact_first_order, which equals
 // the AD Jacobian of the chain, tests/test_first_order.cpp), split by path: at each quadrature node the
 // output's gradient in (a, ω_IA) times the node's kinematic sensitivities, averaged with the rule's weights.
-// The drive errors move the nodes and weights themselves and go through AD. With zero errors and ΔΩ = 0 the
-// integrand is periodic in the fast phase, so one slow node suffices; its band limit in the fast phase is
-// (polynomial degree − 1) + (N + 1) for a harmonic of order ≤ N.
+// The drive errors move the nodes and weights themselves and go through AD (twice when the paths are split:
+// the whole output and the force path alone). With zero errors and ΔΩ = 0 the integrand is periodic in the
+// fast phase, so one slow node suffices; its band limit in the fast phase is (polynomial degree − 1) + (N +
+// 1) for a harmonic of order ≤ N.
 void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& spec,
                                 const std::vector<int>& parameters, const ReductionOptions& reduction,
-                                Eigen::MatrixXd& force, Eigen::MatrixXd& rate) {
+                                bool split, Eigen::MatrixXd& force, Eigen::MatrixXd& rate) {
   const auto runs = Eigen::Index(ex.plan.runs.size());
   const auto np = Eigen::Index(parameters.size());
   force = Eigen::MatrixXd::Zero(runs, np);
@@ -116,6 +117,13 @@ void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& 
   }
   if (!drive.empty()) {
     const Eigen::MatrixXd total = output_jacobian_ad(ex, spec, drive, zero, ModelMode::exact, reduction);
+    if (!split) {  // only the sum of the paths is asked for: the drive columns' total, in the force path
+      for (std::size_t d = 0; d < drive.size(); ++d) {
+        force.col(drive_columns[d]) = total.col(Eigen::Index(d));
+        rate.col(drive_columns[d]).setZero();
+      }
+      return;
+    }
     Experiment f = ex;
     f.instrument = force_only(ex.instrument);
     const Eigen::MatrixXd through_force =
@@ -137,7 +145,7 @@ OutputJacobian output_jacobian(const Experiment& ex, const IdentificationSpec& s
       method == DerivativeMethod::linearised && mode == ModelMode::exact && at.isZero(0.0);
   j.method = linearised ? DerivativeMethod::linearised : DerivativeMethod::automatic;
   if (linearised) {
-    output_jacobian_linearised(ex, spec, parameters, reduction, j.force_path, j.rate_path);
+    output_jacobian_linearised(ex, spec, parameters, reduction, split, j.force_path, j.rate_path);
     j.total = j.force_path + j.rate_path;
   } else {
     j.total = output_jacobian_ad(ex, spec, parameters, at, mode, reduction);

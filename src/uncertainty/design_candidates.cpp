@@ -56,10 +56,11 @@ void resolve_g_levels(const Config& config, ResolvedDesignSpace& s) {
   }
   s.max_g = d.max_g.value_or(g_hi);
   auto above = [&](double g, std::string_view key) {
-    throw InputError(fmt::format(
-        "{}: design.{}: {:g} g exceeds max_g = {:g} g (the machine's largest g-level{}); accepted: g-levels up "
-        "to max_g, or a larger max_g",
-        config.source, key, g, s.max_g, d.max_g ? "" : ", by default the plan's largest"));
+    throw InputError(
+        fmt::format("{}: design.{}: {:g} g exceeds max_g = {:g} g (the machine's largest g-level{}); "
+                    "accepted: g-levels up "
+                    "to max_g, or a larger max_g",
+                    config.source, key, g, s.max_g, d.max_g ? "" : ", by default the plan's largest"));
   };
   if (!d.g_levels.empty()) {
     for (double g : d.g_levels)
@@ -79,9 +80,10 @@ void resolve_g_levels(const Config& config, ResolvedDesignSpace& s) {
     if (g > hi * (1 + 1e-12)) break;
     s.g_levels.push_back(std::min(g, hi));
     if (k > 100000)
-      throw InputError(fmt::format("{}: design.g_step: {:g} g makes more than 1e5 g-levels; accepted: a "
-                                   "coarser step such as 1 g",
-                                   config.source, step));
+      throw InputError(
+          fmt::format("{}: design.g_step: {:g} g makes more than 1e5 g-levels; accepted: a "
+                      "coarser step such as 1 g",
+                      config.source, step));
   }
   if (s.g_levels.back() < hi * (1 - 1e-12)) s.g_levels.push_back(hi);
   if (s.g_levels.size() > 1) {
@@ -119,9 +121,9 @@ void resolve_timing(const Config& config, ResolvedDesignSpace& s) {
         turn_period(s.g_levels[s.g_levels.size() / 2], config) / (2.0 * s.turn_fractions);
     s.refinement.duration_low = least;
     s.refinement.duration_high = longest;
-    s.free.push_back(fmt::format(
-        "durations: whole turns of {} s less k/{} of a turn, the total at most {:g} s",
-        fmt::join(s.durations, " s, "), s.turn_fractions, s.total_time));
+    s.free.push_back(
+        fmt::format("durations: whole turns of {} s less k/{} of a turn, the total at most {:g} s",
+                    fmt::join(s.durations, " s, "), s.turn_fractions, s.total_time));
   } else {
     s.fixed.push_back(fmt::format("durations {} s, the total at most {:g} s", fmt::join(s.durations, " s, "),
                                   s.total_time));
@@ -144,7 +146,8 @@ void resolve_angles(const Config& config, ResolvedDesignSpace& s) {
   }
   if (!d.arm_azimuths.empty()) {
     s.arm_azimuths = distinct(d.arm_azimuths);
-    s.fixed.push_back(fmt::format("arm azimuths from design.arm_azimuths ({} values)", s.arm_azimuths.size()));
+    s.fixed.push_back(
+        fmt::format("arm azimuths from design.arm_azimuths ({} values)", s.arm_azimuths.size()));
   } else {
     s.arm_azimuths = circle_grid(d.azimuth_step.value_or(90 * kDeg));
     s.refinement.azimuth_step = kTurn / double(s.arm_azimuths.size()) / 2;
@@ -168,14 +171,15 @@ void resolve_angles(const Config& config, ResolvedDesignSpace& s) {
 }  // namespace
 
 ResolvedDesignSpace resolve_design_space(const Config& config) {
-  if (config.plan.runs.empty()) throw InputError(config.source + ": the plan has no runs to start a design from");
+  if (config.plan.runs.empty())
+    throw InputError(config.source + ": the plan has no runs to start a design from");
   ResolvedDesignSpace s;
   const auto nfree = int(config.identification.free_terms.size());
   s.runs = config.design.runs.value_or(int(config.plan.runs.size()));
   if (s.runs < nfree)
-    throw InputError(fmt::format(
-        "{}: design.runs: {} runs cannot identify {} free terms ({}); accepted: at least {} runs",
-        config.source, s.runs, nfree, fmt::join(config.identification.free_terms, ", "), nfree));
+    throw InputError(
+        fmt::format("{}: design.runs: {} runs cannot identify {} free terms ({}); accepted: at least {} runs",
+                    config.source, s.runs, nfree, fmt::join(config.identification.free_terms, ", "), nfree));
   resolve_g_levels(config, s);
   resolve_timing(config, s);
   resolve_angles(config, s);
@@ -200,7 +204,8 @@ std::vector<DesignRun> candidate_runs(const ResolvedDesignSpace& s, const Config
             continue;
           }
           const double whole = std::floor(nominal / period) * period;
-          for (int k = 0; k < s.turn_fractions; ++k) durations.push_back(whole - period * k / s.turn_fractions);
+          for (int k = 0; k < s.turn_fractions; ++k)
+            durations.push_back(whole - period * k / s.turn_fractions);
         }
         for (double duration : durations)
           for (double phase : s.phases)
@@ -249,7 +254,8 @@ CandidateRows block_rows(const Config& config, const Experiment& base, const std
   const Eigen::VectorXd known = spec.compensate ? at : Eigen::VectorXd::Zero(at.size());
   Experiment ex = base;
   ex.plan.runs.clear();
-  for (std::size_t j = 0; j < runs.size(); ++j) ex.plan.runs.push_back(plan_run(runs[j], fmt::format("c{}", j)));
+  for (std::size_t j = 0; j < runs.size(); ++j)
+    ex.plan.runs.push_back(plan_run(runs[j], fmt::format("c{}", j)));
   const auto n = Eigen::Index(runs.size());
   const auto nfree = Eigen::Index(spec.free_terms.size());
   std::vector<TermSpec> terms, free_terms;
@@ -283,12 +289,38 @@ CandidateRows block_rows(const Config& config, const Experiment& base, const std
       output_jacobian(ex, spec, parameters, at, config.mode, {}, DerivativeMethod::linearised, false);
   rows.leaks = J.total * group_map;
   rows.scatter = Eigen::VectorXd::Zero(n);
-  for (auto [drive, density] : {std::pair{int(ripple1), ex.rate_noise.main},
-                                std::pair{int(ripple3), ex.rate_noise.platform}}) {
-    if (!(density > 0)) continue;
-    rows.scatter += (density * rate_noise_gain(ex, at, drive)).array().square().matrix();
+  const double main = ex.rate_noise.main, platform = ex.rate_noise.platform;
+  if (main > 0 || platform > 0) {
+    const RateNoiseGains gains = rate_noise_gains(ex, at, main > 0, platform > 0);
+    if (main > 0) rows.scatter += (main * gains.main).array().square().matrix();
+    if (platform > 0) rows.scatter += (platform * gains.platform).array().square().matrix();
   }
   return rows;
+}
+
+// The blocks' rows one after the other, copied once into storage sized for all of them.
+CandidateRows stacked(const std::vector<CandidateRows>& parts) {
+  Eigen::Index n = 0;
+  for (const CandidateRows& p : parts) n += p.size();
+  CandidateRows all;
+  if (parts.empty()) return all;
+  const CandidateRows& first = parts.front();
+  all.regressors.resize(n, first.regressors.cols());
+  all.leaks.resize(n, first.leaks.cols());
+  all.natural.resize(n, first.natural.cols());
+  all.scatter.resize(n), all.noise.resize(n), all.duration.resize(n);
+  Eigen::Index at = 0;
+  for (const CandidateRows& p : parts) {
+    const Eigen::Index k = p.size();
+    all.regressors.middleRows(at, k) = p.regressors;
+    all.leaks.middleRows(at, k) = p.leaks;
+    all.natural.middleRows(at, k) = p.natural;
+    all.scatter.segment(at, k) = p.scatter;
+    all.noise.segment(at, k) = p.noise;
+    all.duration.segment(at, k) = p.duration;
+    at += k;
+  }
+  return all;
 }
 
 }  // namespace
@@ -330,9 +362,7 @@ CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>&
     }
   }
   if (failure) std::rethrow_exception(failure);
-  CandidateRows all;
-  for (const CandidateRows& p : parts) all.append(p);
-  return all;
+  return stacked(parts);
 }
 
 }  // namespace ccal

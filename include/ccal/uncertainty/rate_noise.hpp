@@ -20,6 +20,12 @@ namespace ccal {
 // layout). The runs' integrands are taken as periodic in the fast phase: the slow drift ΔΩ t and the
 // partial last revolution change it by O(|ΔΩ|T) and O(1/(ΩT)) relative.
 Eigen::VectorXd rate_noise_gain(const Experiment& ex, const Eigen::VectorXd& e, int drive);
+// Both drives' σ_j / N in one pass over the runs (the output's derivatives with respect to both drives'
+// joints come from one evaluation per node); a drive not asked for gets zeros.
+struct RateNoiseGains {
+  Eigen::VectorXd main, platform;
+};
+RateNoiseGains rate_noise_gains(const Experiment& ex, const Eigen::VectorXd& e, bool main, bool platform);
 
 // The rate noise as independent per-run sources for the Monte Carlo: one normal source per drive with noise
 // and per run it moves, of standard deviation σ_j [output SI] at the configured errors, added to that run's
