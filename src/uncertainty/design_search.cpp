@@ -7,6 +7,7 @@
 #include <string>
 
 #include "ccal/core/errors.hpp"
+#include "design_exchange.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -126,9 +127,11 @@ class PlanScorer {
     double f = 0;
     for (Eigen::Index k = 0; k < p; ++k) {
       if (!(c_.weight[k] > 0) && !full) continue;
-      const double var = A_.row(k).squaredNorm() + (pinv_.row(k).array().square() * v_.transpose().array()).sum();
-      if (c_.weight[k] > 0) f += c_.weight[k] * c_.coverage_factor * c_.coverage_factor * var /
-                                 (c_.reference[k] * c_.reference[k]);
+      const double var =
+          A_.row(k).squaredNorm() + (pinv_.row(k).array().square() * v_.transpose().array()).sum();
+      if (c_.weight[k] > 0)
+        f += c_.weight[k] * c_.coverage_factor * c_.coverage_factor * var /
+             (c_.reference[k] * c_.reference[k]);
     }
     if (full) {
       full->well_posed = true;
@@ -139,8 +142,8 @@ class PlanScorer {
     return f;
   }
 
-  // D- and A-optimality with the instrument's noise alone: information Hᵀ W H, W = diag(1/σ_j²), or I when the
-  // instrument has no noise.
+  // D- and A-optimality with the instrument's noise alone: information Hᵀ W H, W = diag(1/σ_j²), or I when
+  // the instrument has no noise.
   double noise_alone(PlanScore* full) {
     const Eigen::Index p = H_.cols();
     const bool unit = !(v_.maxCoeff() > 0);
@@ -202,9 +205,12 @@ std::vector<int> random_plan(const DesignProblem& pr, PlanScorer& scorer, std::u
   return {};
 }
 
-// Exchange: for each run in turn, the candidate that lowers the objective most (ties: the lowest index), until
-// a sweep changes nothing.
-double exchange(const DesignProblem& pr, std::vector<int>& plan, int max_sweeps, long long& evaluations) {
+// Exchange: for each run in turn, the candidate that lowers the objective most (ties: the lowest index),
+// until a sweep changes nothing. The uncertainty objective is scored by rank-one updates of the other runs'
+// sums (design_exchange.hpp), the noise-alone criteria by a fit per candidate.
+double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms, std::vector<int>& plan,
+                int max_sweeps, long long& evaluations) {
+  const bool by_update = pr.criterion.objective == DesignObjective::uncertainty;
   PlanScorer scorer(pr.criterion);
   double f = scorer.objective(pr.rows, plan);
   const int count = int(pr.candidates.size());
@@ -212,6 +218,12 @@ double exchange(const DesignProblem& pr, std::vector<int>& plan, int max_sweeps,
     bool improved = false;
     for (std::size_t i = 0; i < plan.size(); ++i) {
       const double others = plan_time(pr.rows, plan) - pr.rows.duration[plan[i]];
+      double current = f;  // the plan as it is, by the same scorer as the trials
+      if (by_update) {
+        design_detail::ExchangeScorer update(pr.rows, leak_norms, pr.criterion);
+        update.set_others(plan, i);
+        current = update.objective(plan[i]);
+      }
       // The lexicographic minimum of (objective, index) over the feasible candidates: the same for any
       // number of threads.
       double best_f = std::numeric_limits<double>::infinity();
@@ -219,6 +231,8 @@ double exchange(const DesignProblem& pr, std::vector<int>& plan, int max_sweeps,
 #pragma omp parallel
       {
         PlanScorer local(pr.criterion);
+        design_detail::ExchangeScorer update(pr.rows, leak_norms, pr.criterion);
+        if (by_update) update.set_others(plan, i);
         std::vector<int> trial = plan;
         double tf = std::numeric_limits<double>::infinity();
         int tc = -1;
@@ -226,7 +240,7 @@ double exchange(const DesignProblem& pr, std::vector<int>& plan, int max_sweeps,
         for (int c = 0; c < count; ++c) {
           if (c == plan[i] || !within(others + pr.rows.duration[c], pr.total_time)) continue;
           trial[i] = c;
-          const double v = local.objective(pr.rows, trial);
+          const double v = by_update ? update.objective(c) : local.objective(pr.rows, trial);
           if (v < tf) {
             tf = v;
             tc = c;
@@ -239,7 +253,7 @@ double exchange(const DesignProblem& pr, std::vector<int>& plan, int max_sweeps,
         }
       }
       evaluations += count;
-      if (best_c >= 0 && best_f < f - 1e-12 * std::abs(f)) {
+      if (best_c >= 0 && best_f < current - 1e-12 * std::abs(current)) {
         plan[i] = best_c;
         f = best_f;
         improved = true;
@@ -355,6 +369,7 @@ DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOpti
   std::vector<int> best;
   double best_f = std::numeric_limits<double>::infinity();
   const int starts = int(pr.initial_plans.size()) + options.starts;
+  const Eigen::VectorXd norms = design_detail::leak_norms(pr.rows);
   for (int s = 0; s < starts; ++s) {
     std::vector<int> plan;
     if (s < int(pr.initial_plans.size())) {
@@ -369,7 +384,7 @@ DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOpti
       out.start_objectives.push_back(std::numeric_limits<double>::infinity());
       continue;
     }
-    const double f = exchange(pr, plan, options.max_sweeps, out.evaluations);
+    const double f = exchange(pr, norms, plan, options.max_sweeps, out.evaluations);
     out.start_objectives.push_back(f);
     if (f < best_f) {
       best_f = f;
