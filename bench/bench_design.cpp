@@ -3,7 +3,10 @@
 // and six random starts, local refinement, the full budgets before and after).
 //   build/bench/bench_design
 //   OMP_NUM_THREADS=2 build/bench/bench_design --benchmark_filter=WholeDesign
+//   CCAL_BENCH_CONFIG=tests/data/golden/second.toml build/bench/bench_design   (another configuration)
 #include <benchmark/benchmark.h>
+
+#include <cstdlib>
 
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
@@ -13,10 +16,15 @@ namespace {
 
 using namespace ccal;
 
+Config bench_config() {
+  const char* path = std::getenv("CCAL_BENCH_CONFIG");
+  return path && *path ? load_config(path) : bundled_example();
+}
+
 // The rows of the default design space's candidates (26 g-levels × 8 cuts of the last turn × 12 terminal
 // phases × 4 arm azimuths = 9984, plus the six configured runs: 9990), as `ccal design` caches them.
 void CandidateCache(benchmark::State& state) {
-  const Config cfg = bundled_example();
+  const Config cfg = bench_config();
   const std::vector<DesignRun> runs = candidate_runs(resolve_design_space(cfg), cfg);
   for (auto _ : state) {
     const CandidateRows rows = candidate_rows(cfg, runs);
@@ -30,7 +38,7 @@ BENCHMARK(CandidateCache)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime(
 
 // The whole `ccal design` of the bundled example with its defaults.
 void WholeDesign(benchmark::State& state) {
-  const Config cfg = bundled_example();
+  const Config cfg = bench_config();
   std::size_t candidates = 0;
   for (auto _ : state) {
     const verbs::DesignResult r = verbs::design(cfg);
