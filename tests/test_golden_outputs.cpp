@@ -31,7 +31,8 @@ const fs::path kGolden = fs::path(CCAL_SOURCE_DIR) / "tests/data/golden";
 
 // Fields that depend on the machine or the build, not on the computation.
 bool volatile_key(const std::string& key) {
-  return key == "ccal_version" || key == "wall_time_s" || key == "threads" || key == "trials_per_s";
+  return key == "ccal_version" || key == "wall_time_s" || key == "threads" || key == "trials_per_s" ||
+         key == "cache_seconds" || key == "search_seconds";
 }
 
 // The Monte Carlo note names its thread count and run time: "…, seed 1, 2 threads, 0.262 s."
@@ -101,6 +102,8 @@ std::vector<Case> cases() {
     all.push_back({stem + ".identify",
                    "simulate" + c + " --observations-out obs.csv -o /dev/null && ccal_identify obs.csv"});
     all.push_back({stem + ".reduce", "reduce" + c});
+    // The design of the bundled plan with the [design] defaults (9990 candidates, a few seconds).
+    if (stem == "bundled") all.push_back({stem + ".design", "design --format json"});
   }
   return all;
 }

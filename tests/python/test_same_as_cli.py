@@ -14,7 +14,7 @@ import unittest
 import ccal
 
 SECOND = os.path.join(os.path.dirname(__file__), "..", "data", "golden", "second.toml")
-VOLATILE = {"wall_time_s", "threads", "trials_per_s"}
+VOLATILE = {"wall_time_s", "threads", "trials_per_s", "cache_seconds", "search_seconds"}
 
 
 def normalised(value):
@@ -56,6 +56,13 @@ class SameAsCli(unittest.TestCase):
                 targets = {"K2": 2e-5, "K3": 2e-3} if path is None else {"K2": 1e-5, "K3": 1e-3}
                 self.check(ccal.allocate(cfg, targets), "allocate", *arg,
                            *[f"--target={k}={v}" for k, v in targets.items()])
+
+    def test_design(self):
+        # The bundled example with the [design] defaults, and with targets and another seed.
+        cfg = ccal.bundled_example()
+        self.check(ccal.design(cfg), "design")
+        self.check(ccal.design(cfg, targets={"K2": 2e-5, "K3": "1e-3 deg/s/g^3"}, seed=3, starts=2), "design",
+                   "--target", "K2=2e-5", "--target", "K3=1e-3 deg/s/g^3", "--seed", "3", "--starts", "2")
 
     def test_reduce(self):
         # Synthetic logs of the first three runs (as in tests/test_golden_outputs.cpp): pulses of 1e-3 deg,
