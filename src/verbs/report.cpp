@@ -81,11 +81,8 @@ ReportResult report(const Config& config, const ReportOptions& o) {
   bo.mode = o.mode;
   bo.coverage_factor = o.coverage_factor;
   r.budget = budget(config, bo);
-  MonteCarloOptions mo = o.monte_carlo;
-  mo.mode = o.mode;
-  mo.keep_samples = false;  // the report draws the histograms of the JSON, not the values
-  r.monte_carlo = monte_carlo(config, mo);
-  r.sensed_input = sensed_input(config, o);
+  // The allocation and the design before the Monte Carlo, so that a target they refuse stops the report
+  // early.
   if (o.allocate) {
     AllocateOptions ao = *o.allocate;
     if (!ao.mode) ao.mode = o.mode;
@@ -99,6 +96,11 @@ ReportResult report(const Config& config, const ReportOptions& o) {
       r.configured_runs.push_back(force(config, fo));
     }
   }
+  MonteCarloOptions mo = o.monte_carlo;
+  mo.mode = o.mode;
+  mo.keep_samples = false;  // the report draws the histograms of the JSON, not the values
+  r.monte_carlo = monte_carlo(config, mo);
+  r.sensed_input = sensed_input(config, o);
   return r;
 }
 
