@@ -48,7 +48,9 @@ std::string date_utc() {
 Command add_report(CLI::App& app) {
   auto o = std::make_shared<ReportCli>();
   CLI::App* cmd = app.add_subcommand(
-      "report", "HTML report: budget, Monte Carlo distribution, exact vs paper, sensed input, provenance");
+      "report",
+      "HTML report: budget, Monte Carlo distribution, exact vs paper, sensed input, provenance; optionally "
+      "a tolerance allocation and a test-plan design, each against the configured one");
   add_config_argument(*cmd, o->config);
   cmd->add_option("--mode", o->mode,
                   "Kinematics: exact or paper; default: the configuration's [identification] mode")
