@@ -182,6 +182,36 @@ void design_command(const verbs::DesignOptions& d, ReportProvenance& p) {
   if (d.verify_trials != 0) c.insert(c.end(), {"--verify", std::to_string(d.verify_trials)});
 }
 
+// The allocation and the design sections (when the result has them), each output their cells name added to
+// `sources` with its command line.
+std::string optional_sections(const verbs::ReportResult& r, const ReportProvenance& p, Json& sources) {
+  std::string out;
+  if (r.allocation) {
+    const Json allocate_json = Json::parse(json(*r.allocation));
+    sources["allocate"] = {{"command", p.allocate_command}};
+    out += allocation_section(Doc{"allocate", allocate_json}, *r.allocation);
+  }
+  if (r.design) {
+    const Json design_json = Json::parse(json(*r.design)), before_json = Json::parse(json(r.design->before)),
+               after_json = Json::parse(json(r.design->after));
+    sources["design"] = {{"command", p.design_command}, {"writes", {{"--plan-out", kDesignedPlan}}}};
+    sources["design-before"] = {{"command", {"budget"}}};
+    sources["design-after"] = {{"command", {"budget"}}, {"config", kDesignedPlan}};
+    std::vector<Json> run_jsons;
+    std::vector<Doc> runs;
+    for (const auto& f : r.configured_runs) run_jsons.push_back(Json::parse(json(f)));
+    for (std::size_t k = 0; k < run_jsons.size(); ++k) {
+      const std::string name = fmt::format("configured-run{}", k + 1);
+      sources[name] = {{"command", {"force", "--run", std::to_string(k + 1), "--time", "0"}}};
+      runs.push_back(Doc{name, run_jsons[k]});
+    }
+    const Doc design{"design", design_json}, before{"design-before", before_json},
+        after{"design-after", after_json};
+    out += design_section(DesignDocs{design, before, after, runs});
+  }
+  return out;
+}
+
 }  // namespace
 
 void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o, ReportProvenance& p) {
@@ -236,33 +266,7 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
          {"force", "--run", std::to_string(r.sensed_input.run_index + 1), "--time",
           fmt::format("{:.17g}", instants[i]["run"]["time_s"].get<double>())}}};
 
-  // The allocation and the design sections, and the outputs their cells name.
-  Json allocate_json, design_json, before_json, after_json;
-  std::vector<Json> run_jsons;
-  std::string section_html;
-  if (r.allocation) {
-    allocate_json = Json::parse(json(*r.allocation));
-    sources["allocate"] = {{"command", p.allocate_command}};
-    section_html += allocation_section(Doc{"allocate", allocate_json}, *r.allocation);
-  }
-  if (r.design) {
-    design_json = Json::parse(json(*r.design));
-    before_json = Json::parse(json(r.design->before));
-    after_json = Json::parse(json(r.design->after));
-    sources["design"] = {{"command", p.design_command}, {"writes", {{"--plan-out", kDesignedPlan}}}};
-    sources["design-before"] = {{"command", {"budget"}}};
-    sources["design-after"] = {{"command", {"budget"}}, {"config", kDesignedPlan}};
-    std::vector<Doc> runs;
-    for (const auto& f : r.configured_runs) run_jsons.push_back(Json::parse(json(f)));
-    for (std::size_t k = 0; k < run_jsons.size(); ++k) {
-      const std::string name = fmt::format("configured-run{}", k + 1);
-      sources[name] = {{"command", {"force", "--run", std::to_string(k + 1), "--time", "0"}}};
-      runs.push_back(Doc{name, run_jsons[k]});
-    }
-    const Doc design{"design", design_json}, before{"design-before", before_json},
-        after{"design-after", after_json};
-    section_html += design_section(DesignDocs{design, before, after, runs});
-  }
+  const std::string section_html = optional_sections(r, p, sources);
 
   std::vector<std::string> advice;
   for (const std::string& line : validation_advice_lines(r.monte_carlo)) advice.push_back(line);
