@@ -174,7 +174,9 @@ def main(program, report, config=None):
                     problems.append(f"{target}: {bar['coefficient']} ({bar['budget']}) drawn at {bar['ratio']}")
     # The sections the sources announce are on the page, with their charts and a cell from each output.
     targets = {t for t, _ in page.specs}
-    expected_charts = 8
+    # A Pareto chart and a histogram per coefficient, the sensed input, exact vs paper (exact mode only).
+    budget = docs["budget"]
+    expected_charts = 2 * len(budget["coefficients"]) + 1 + ("paper_effect" in (budget["sources"] or [{}])[0])
     for doc, chart in (("allocate", "allocate-scale"), ("design", "design-ratio")):
         if doc in docs:
             expected_charts += 1
