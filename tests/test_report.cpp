@@ -1,8 +1,11 @@
-// The HTML report's pieces: SHA-256 against the FIPS 180-2 examples, and the page's escaping of everything a
-// configuration brings (its text, its file name) so that no input can add markup or end a script.
+// The HTML report's pieces: SHA-256 against the FIPS 180-2 examples, the page's escaping of everything a
+// configuration brings (its text, its file name) so that no input can add markup or end a script, and the
+// allocation section's numbers and command line.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "ccal/io/config_file.hpp"
 #include "ccal/render/report.hpp"
@@ -60,6 +63,52 @@ TEST(ReportHtml, TheLibraryCannotEndItsScriptEarly) {
   const std::string page = render::html(r, {}, "var s = '</script><p>';");
   EXPECT_NE(page.find("var s = '<\\/script><p>';"), std::string::npos);
   EXPECT_EQ(page.find("'</script><p>'"), std::string::npos);
+}
+
+TEST(ReportSections, TheAllocationIsTheVerbsWithTheReportsModeAndItsCommandLine) {
+  // The section's numbers are those of verbs::allocate with the same options (the report's mode filled in):
+  // the same deterministic computation and the same seeded Monte Carlo, so equal to the last bit.
+  const Config cfg = bundled_example();
+  verbs::ReportOptions o;
+  o.mode = ModelMode::paper;
+  o.monte_carlo.trials = 200;
+  o.input_points = 3;
+  verbs::AllocateOptions a;
+  a.targets = {"K3=2e-3 deg/s/g^3"};
+  a.verify_trials = 200;
+  o.allocate = a;
+  const verbs::ReportResult r = verbs::report(cfg, o);
+  ASSERT_TRUE(r.allocation.has_value());
+  EXPECT_FALSE(r.design.has_value());
+  a.mode = ModelMode::paper;
+  const verbs::AllocateResult direct = verbs::allocate(cfg, a);
+  const AllocationResult &x = r.allocation->allocation, &y = direct.allocation;
+  EXPECT_EQ(x.mode, ModelMode::paper);
+  ASSERT_EQ(x.sources.size(), y.sources.size());
+  for (std::size_t s = 0; s < x.sources.size(); ++s) {
+    EXPECT_EQ(x.sources[s].id, y.sources[s].id);
+    EXPECT_EQ(x.sources[s].scale, y.sources[s].scale);
+  }
+  for (std::size_t k = 0; k < x.coefficients.size(); ++k) {
+    EXPECT_EQ(x.coefficients[k].allocated_expanded, y.coefficients[k].allocated_expanded);
+    EXPECT_EQ(x.coefficients[k].mc_half_width, y.coefficients[k].mc_half_width);
+  }
+  // The command line that gives the same numbers, and the page's section with cells naming that output.
+  render::ReportProvenance p;
+  render::report_commands(r, o, p);
+  EXPECT_EQ(p.allocate_command, (std::vector<std::string>{"allocate", "--target", "K3=2e-3 deg/s/g^3",
+                                                          "--mode", "paper", "--verify-trials", "200"}));
+  EXPECT_TRUE(p.design_command.empty());
+  const std::string page = render::html(r, p, "/* the charting library */");
+  EXPECT_NE(page.find("<section id=\"allocation\">"), std::string::npos);
+  EXPECT_EQ(page.find("<section id=\"design\">"), std::string::npos);
+  EXPECT_NE(page.find("data-src=\"allocate:/coefficients/K3/allocated_expanded\""), std::string::npos);
+  // The target with a space is quoted for the shell.
+  EXPECT_NE(page.find("ccal allocate --target &#39;K3=2e-3 deg/s/g^3&#39; --mode paper --verify-trials 200 "
+                      "--format json"),
+            std::string::npos);
+  // Without report_commands the page cannot name the allocation's command: refused, not left out.
+  EXPECT_THROW(render::html(r, {}, ""), std::logic_error);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Opens a report of `ccal report` in headless Chromium with every network request refused, and fails
 // (exit 1, one line per problem) on a console error, an uncaught page error, a failed or non-local request, a
-// chart that was not drawn, or a chart with fewer drawn marks than expected. Saves a PNG of the whole page.
+// chart that was not drawn, or a chart with fewer drawn marks (bars with an area) than expected. Saves a PNG
+// of the whole page.
 //   node web/check_report.mjs REPORT.html SCREENSHOT.png [CHROMIUM]
 // Exit 77 (the test is skipped) when no Chromium is installed.
 import { chromium } from 'playwright-core';
@@ -44,14 +45,23 @@ try {
     id: d.id,
     rendered: d.dataset.rendered === 'yes',
     marks: d.querySelectorAll('svg g.role-mark > *').length,
-    bars: d.querySelectorAll('svg g.mark-rect.role-mark > path').length,
+    // a bar counts when it has an area on the page (a bar from 0 on a log axis is drawn with none)
+    bars: [...d.querySelectorAll('svg g.mark-rect.role-mark > path')].filter((b) => {
+      const box = b.getBBox();
+      return box.width > 0.5 && box.height > 0.5;
+    }).length,
     lines: d.querySelectorAll('svg g.mark-line.role-mark > path').length,
     rules: d.querySelectorAll('svg g.mark-rule.role-mark > line').length,
   })));
   const minimum = (id) => (id.startsWith('pareto-') ? { bars: 2, lines: 1 }
     : id.startsWith('mc-') ? { bars: 10, lines: 1, rules: 4 }
     : id === 'paper-vs-exact' ? { bars: 6 }
-    : id === 'sensed-input' ? { lines: 3 } : {});
+    : id === 'sensed-input' ? { lines: 3 }
+    // the allocation: a bar per source (the bundled example has 52) and the rules at 1 and at the largest λ
+    : id === 'allocate-scale' ? { bars: Number(process.env.CCAL_EXPECTED_SOURCES || 2), rules: 2 }
+    // the design: two bars (full budget, tolerances alone) per coefficient and the rule at 1
+    : id === 'design-ratio' ? { bars: 2 * Number(process.env.CCAL_EXPECTED_COEFFICIENTS || 1), rules: 1 }
+    : {});
   for (const c of charts) {
     if (!c.rendered) problems.push(`chart ${c.id}: not drawn`);
     for (const [kind, least] of Object.entries(minimum(c.id)))

@@ -1,5 +1,6 @@
 // ccal report: the HTML report of a configuration (budget, Monte Carlo distribution, exact-vs-paper
-// comparison, sensed input, provenance), one self-contained page with the charting library inlined.
+// comparison, sensed input, provenance; optionally a tolerance allocation and a test-plan design, each before
+// and after), one self-contained page with the charting library inlined.
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
@@ -28,6 +29,9 @@ struct ReportCli {
   int digits = 0;
   double coverage_probability = verbs::MonteCarloOptions{}.coverage_probability;
   std::string run;
+  std::vector<std::string> allocate_targets;  // non-empty: the allocation section
+  bool design = false;                        // the design section
+  std::vector<std::string> design_targets;    // the design's targets (imply the section)
   OutputOptions output;
 };
 
@@ -44,7 +48,9 @@ std::string date_utc() {
 Command add_report(CLI::App& app) {
   auto o = std::make_shared<ReportCli>();
   CLI::App* cmd = app.add_subcommand(
-      "report", "HTML report: budget, Monte Carlo distribution, exact vs paper, sensed input, provenance");
+      "report",
+      "HTML report: budget, Monte Carlo distribution, exact vs paper, sensed input, provenance; optionally "
+      "a tolerance allocation and a test-plan design, each against the configured one");
   add_config_argument(*cmd, o->config);
   cmd->add_option("--mode", o->mode,
                   "Kinematics: exact or paper; default: the configuration's [identification] mode")
@@ -64,6 +70,19 @@ Command add_report(CLI::App& app) {
   cmd->add_option("--run", o->run,
                   "Run whose sensed input is drawn (name or 1-based index); default: the "
                   "highest g-level");
+  cmd->add_option("--allocate-target", o->allocate_targets,
+                  "COEFF=U: add the tolerance allocation (as `ccal allocate --target`, with this report's "
+                  "--mode, --coverage-probability, --seed and --threads); repeat for each coefficient")
+      ->allow_extra_args(false)
+      ->type_name("COEFF=U");
+  cmd->add_flag("--design", o->design,
+                "Add the test-plan design (as `ccal design` with the configuration's [design] table)");
+  cmd->add_option(
+         "--design-target", o->design_targets,
+         "COEFF=U: the design's target (as `ccal design --target`); implies --design; repeat for each "
+         "coefficient")
+      ->allow_extra_args(false)
+      ->type_name("COEFF=U");
   o->output.format = "html";
   cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
       ->type_name("FILE.html");
@@ -71,7 +90,10 @@ Command add_report(CLI::App& app) {
       "Examples:\n"
       "  ccal report -o report.html\n"
       "      the report of the bundled paper example (opens in any browser, with no network)\n"
-      "  ccal report my.toml --trials 100000 --run 20g -o my-report.html\n");
+      "  ccal report my.toml --trials 100000 --run 20g -o my-report.html\n"
+      "  ccal report --allocate-target K2=2e-5 --allocate-target K3=2e-3 --design -o report.html\n"
+      "      with the allocation for those targets and the designed plan, each against the configured one\n"
+      "      (the same numbers as `ccal allocate --target K2=2e-5 --target K3=2e-3` and `ccal design`)\n");
   return {cmd, [o] {
             if (report_scripts().empty())
               throw InputError(
@@ -86,6 +108,21 @@ Command add_report(CLI::App& app) {
             ro.monte_carlo.coverage_probability = o->coverage_probability;
             ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
             ro.run = o->run;
+            if (!o->allocate_targets.empty()) {
+              verbs::AllocateOptions ao;
+              ao.targets = o->allocate_targets;
+              ao.coverage_probability = o->coverage_probability;
+              ao.seed = o->seed;
+              ao.threads = o->threads;
+              ao.progress = true;
+              ro.allocate = ao;  // its mode: the report's (verbs::report)
+            }
+            if (o->design || !o->design_targets.empty()) {
+              verbs::DesignOptions d;
+              d.targets = o->design_targets;
+              d.threads = o->threads;
+              ro.design = d;
+            }
             const Config config = load_config_or_example(o->config);
             const verbs::ReportResult r = verbs::report(config, ro);
             render::ReportProvenance p;

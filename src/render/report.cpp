@@ -4,7 +4,11 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
+#include "ccal/render/allocate.hpp"
 #include "ccal/render/budget.hpp"
+#include "ccal/render/design.hpp"
 #include "ccal/render/force.hpp"
 #include "ccal/render/montecarlo.hpp"
 #include "ccal/render/report_sha256.hpp"
@@ -63,14 +67,36 @@ std::string script_text(std::string_view scripts) {
   return out;
 }
 
-std::string command_text(const std::vector<std::string>& args, const Config& config) {
-  std::string out = "ccal";
-  for (const auto& a : args) {
-    out += " " + a;
-    if (&a == &args.front() && config.source.rfind("bundled:", 0) != 0) out += " " + config.source;
-  }
-  return out + " --format json";
+// An argument as a POSIX shell reads it back: as it is when it has only safe characters, else in quotes.
+std::string shell_word(const std::string& a) {
+  const bool safe = !a.empty() && a.find_first_not_of(
+                                      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                      "0123456789_-+=.,/:@%^") == std::string::npos;
+  if (safe) return a;
+  std::string out = "'";
+  for (char c : a) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
 }
+
+// The command line of a verb: its name, the configuration (none for the bundled example), its options;
+// `config` replaces the configuration's path when it is given.
+std::string command_text(const std::vector<std::string>& args, const Config& config,
+                         const std::string& extra = {}, const std::string& config_path = {}) {
+  std::vector<std::string> words{"ccal"};
+  for (const auto& a : args) {
+    words.push_back(shell_word(a));
+    if (&a != &args.front()) continue;
+    if (!config_path.empty())
+      words.push_back(shell_word(config_path));
+    else if (config.source.rfind("bundled:", 0) != 0)
+      words.push_back(shell_word(config.source));
+  }
+  std::string out;
+  for (const auto& w : words) out.append(out.empty() ? "" : " ").append(w);
+  return out.append(extra).append(" --format json");
+}
+
+constexpr const char* kDesignedPlan = "designed.toml";  // the file `ccal design --plan-out` writes
 
 std::string summary(const Doc& budget, const Doc& mc) {
   std::string t =
@@ -93,6 +119,23 @@ std::string summary(const Doc& budget, const Doc& mc) {
   return t + "</table>\n";
 }
 
+// The command lines of the allocation and the design sections, for the provenance table.
+std::string section_commands(const verbs::ReportResult& r, const ReportProvenance& p) {
+  std::string out;
+  if (r.allocation)
+    out += "<br><code id=\"cmd-allocate\">" + escape(command_text(p.allocate_command, r.config)) + "</code>";
+  if (r.design) {
+    out +=
+        "<br><code id=\"cmd-design\">" +
+        escape(command_text(p.design_command, r.config, std::string(" --plan-out ") + kDesignedPlan)) +
+        "</code><br><code>" + escape(command_text({"budget"}, r.config)) + "</code>, <code>" +
+        escape(command_text({"budget"}, r.config, {}, kDesignedPlan)) +
+        "</code> (the budgets of both plans)<br><code>ccal force … --run K --time 0</code> (the configured "
+        "plan's runs)";
+  }
+  return out;
+}
+
 std::string provenance_section(const verbs::ReportResult& r, const ReportProvenance& p) {
   return fmt::format(
       "<section id=\"provenance\"><h2>Provenance</h2>\n<table class=\"provenance\">\n"
@@ -101,12 +144,72 @@ std::string provenance_section(const verbs::ReportResult& r, const ReportProvena
       "<tr><th>SHA-256 of the configuration</th><td><code id=\"config-sha256\">{}</code></td></tr>\n"
       "<tr><th>the same numbers from</th><td><code id=\"cmd-budget\">{}</code><br><code "
       "id=\"cmd-montecarlo\">{}"
-      "</code><br><code>ccal force … --run {} --time T</code> (the input table)</td></tr>\n</table>\n"
+      "</code><br><code>ccal force … --run {} --time T</code> (the input table){}</td></tr>\n</table>\n"
       "<h3>The configuration ({} bytes)</h3>\n<pre id=\"config-text\">{}</pre>\n</section>\n",
       escape(version_line()), escape(p.command_line), escape(p.date_utc), escape(r.config.source),
       sha256_hex(p.config_text), escape(command_text(p.budget_command, r.config)),
       escape(command_text(p.montecarlo_command, r.config)), r.sensed_input.run_index + 1,
-      p.config_text.size(), escape(p.config_text));
+      section_commands(r, p), p.config_text.size(), escape(p.config_text));
+}
+
+// `ccal allocate` with the options that differ from its defaults.
+void allocate_command(const verbs::AllocateOptions& a, std::optional<ModelMode> mode, ReportProvenance& p) {
+  const verbs::AllocateOptions defaults;
+  auto& c = p.allocate_command;
+  c = {"allocate"};
+  for (const auto& t : a.targets) c.insert(c.end(), {"--target", t});
+  if (mode) c.insert(c.end(), {"--mode", std::string(mode_name(*mode))});
+  if (a.coverage_probability != defaults.coverage_probability)
+    c.insert(c.end(), {"--coverage-probability", fmt::format("{:.17g}", a.coverage_probability)});
+  if (a.max_scale != defaults.max_scale)
+    c.insert(c.end(), {"--max-scale", fmt::format("{:.17g}", a.max_scale)});
+  if (a.verify_trials != defaults.verify_trials)
+    c.insert(c.end(), {"--verify-trials", std::to_string(a.verify_trials)});
+  if (a.seed != defaults.seed) c.insert(c.end(), {"--seed", std::to_string(a.seed)});
+}
+
+// `ccal design` with the options that are set.
+void design_command(const verbs::DesignOptions& d, ReportProvenance& p) {
+  auto& c = p.design_command;
+  c = {"design"};
+  if (d.objective)
+    c.insert(c.end(), {"--objective", *d.objective == DesignObjective::d_optimal   ? "d_optimal"
+                                      : *d.objective == DesignObjective::a_optimal ? "a_optimal"
+                                                                                   : "uncertainty"});
+  for (const auto& t : d.targets) c.insert(c.end(), {"--target", t});
+  if (d.starts) c.insert(c.end(), {"--starts", std::to_string(*d.starts)});
+  if (d.seed) c.insert(c.end(), {"--seed", std::to_string(*d.seed)});
+  if (d.verify_trials != 0) c.insert(c.end(), {"--verify", std::to_string(d.verify_trials)});
+}
+
+// The allocation and the design sections (when the result has them), each output their cells name added to
+// `sources` with its command line.
+std::string optional_sections(const verbs::ReportResult& r, const ReportProvenance& p, Json& sources) {
+  std::string out;
+  if (r.allocation) {
+    const Json allocate_json = Json::parse(json(*r.allocation));
+    sources["allocate"] = {{"command", p.allocate_command}};
+    out += allocation_section(Doc{"allocate", allocate_json}, *r.allocation);
+  }
+  if (r.design) {
+    const Json design_json = Json::parse(json(*r.design)), before_json = Json::parse(json(r.design->before)),
+               after_json = Json::parse(json(r.design->after));
+    sources["design"] = {{"command", p.design_command}, {"writes", {{"--plan-out", kDesignedPlan}}}};
+    sources["design-before"] = {{"command", {"budget"}}};
+    sources["design-after"] = {{"command", {"budget"}}, {"config", kDesignedPlan}};
+    std::vector<Json> run_jsons;
+    std::vector<Doc> runs;
+    for (const auto& f : r.configured_runs) run_jsons.push_back(Json::parse(json(f)));
+    for (std::size_t k = 0; k < run_jsons.size(); ++k) {
+      const std::string name = fmt::format("configured-run{}", k + 1);
+      sources[name] = {{"command", {"force", "--run", std::to_string(k + 1), "--time", "0"}}};
+      runs.push_back(Doc{name, run_jsons[k]});
+    }
+    const Doc design{"design", design_json}, before{"design-before", before_json},
+        after{"design-after", after_json};
+    out += design_section(DesignDocs{design, before, after, runs});
+  }
+  return out;
 }
 
 }  // namespace
@@ -133,12 +236,19 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
   if (m.coverage_probability != defaults.coverage_probability)
     add("--coverage-probability", fmt::format("{:.17g}", m.coverage_probability));
   (void)r;
+  if (o.allocate) allocate_command(*o.allocate, o.allocate->mode ? o.allocate->mode : o.mode, p);
+  if (o.design) design_command(*o.design, p);
 }
 
 std::string html(const verbs::ReportResult& r, const ReportProvenance& provenance, std::string_view scripts,
                  const std::vector<ReportSection>& extra_sections) {
   ReportProvenance p = provenance;
   if (p.budget_command.empty()) report_commands(r, {}, p);
+  if (r.allocation && p.allocate_command.empty())
+    throw std::logic_error(
+        "report: the allocation's command line is missing (report_commands with its options)");
+  if (r.design && p.design_command.empty())
+    throw std::logic_error("report: the design's command line is missing (report_commands with its options)");
   const Json budget_json = Json::parse(json(r.budget)), mc_json = Json::parse(json(r.monte_carlo));
   std::vector<Json> instants;
   for (const auto& f : r.sensed_input.instants) instants.push_back(Json::parse(json(f)));
@@ -156,6 +266,8 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
          {"force", "--run", std::to_string(r.sensed_input.run_index + 1), "--time",
           fmt::format("{:.17g}", instants[i]["run"]["time_s"].get<double>())}}};
 
+  const std::string section_html = optional_sections(r, p, sources);
+
   std::vector<std::string> advice;
   for (const std::string& line : validation_advice_lines(r.monte_carlo)) advice.push_back(line);
 
@@ -171,6 +283,7 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   page += summary(budget, mc);
   page += setup_section(r.config, p.config_text);
   page += budget_section(budget, errors, kTopSources);
+  page += section_html;
   for (const auto& s : extra_sections)
     page +=
         "<section id=\"" + escape(s.id) + "\"><h2>" + escape(s.title) + "</h2>\n" + s.html + "</section>\n";

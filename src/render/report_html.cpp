@@ -54,7 +54,7 @@ double value_at(const Doc& doc, const std::string& pointer) {
 
 std::string attributes(const Doc& doc, const std::string& pointer, int digits, double scale) {
   return fmt::format("data-src=\"{}:{}\" data-digits=\"{}\"{}", escape(doc.name), escape(pointer), digits,
-                     scale == 1.0 ? std::string() : fmt::format(" data-scale=\"{:g}\"", scale));
+                     scale == 1.0 ? std::string() : fmt::format(" data-scale=\"{:.17g}\"", scale));
 }
 }  // namespace
 
@@ -66,6 +66,13 @@ std::string num_cell(const Doc& doc, const std::string& pointer, int digits, dou
 std::string num_span(const Doc& doc, const std::string& pointer, int digits, double scale) {
   return fmt::format("<span class=\"num\" {}>{:.{}g}</span>", attributes(doc, pointer, digits, scale),
                      value_at(doc, pointer) * scale, digits);
+}
+
+std::string ratio_cell(const Doc& doc, const std::string& numerator, const std::string& denominator,
+                       int digits) {
+  const double value = value_at(doc, numerator) / value_at(doc, denominator);
+  return fmt::format("<td class=\"num\" data-ratio=\"{}:{} {}\" data-digits=\"{}\">{:.{}g}</td>",
+                     escape(doc.name), escape(numerator), escape(denominator), digits, value, digits);
 }
 
 std::string text_cell(std::string_view text) { return "<td>" + escape(text) + "</td>"; }

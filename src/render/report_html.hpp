@@ -29,6 +29,10 @@ struct Doc {
 std::string num_cell(const Doc& doc, const std::string& pointer, int digits = 4, double scale = 1.0);
 // The same number as plain text (no cell), e.g. for a sentence; also names its source.
 std::string num_span(const Doc& doc, const std::string& pointer, int digits = 4, double scale = 1.0);
+// The ratio of two numbers of the output, numerator / denominator, as a cell that names both
+// (data-ratio="design:/a /b"), so that the check can redo the division.
+std::string ratio_cell(const Doc& doc, const std::string& numerator, const std::string& denominator,
+                       int digits = 3);
 // A text cell (escaped).
 std::string text_cell(std::string_view text);
 
@@ -41,5 +45,16 @@ std::string budget_section(const Doc& budget, const Json& errors, std::size_t to
 std::string paper_section(const Doc& budget, std::size_t top);
 std::string montecarlo_section(const Doc& montecarlo, const std::vector<std::string>& advice);
 std::string sensed_input_section(const verbs::SensedInputSeries& series, const std::vector<Json>& instants);
+// The allocation (`ccal allocate`, doc "allocate"), configured against allocated.
+std::string allocation_section(const Doc& allocate, const verbs::AllocateResult& result);
+// The design (`ccal design`, doc "design"), configured against designed: the budgets of both plans (docs
+// "design-before", "design-after": `ccal budget` of each) and the configured runs (`ccal force --run k`).
+struct DesignDocs {
+  const Doc& design;
+  const Doc& before;
+  const Doc& after;
+  const std::vector<Doc>& configured_runs;
+};
+std::string design_section(const DesignDocs& docs);
 
 }  // namespace ccal::render::report_html

@@ -7,6 +7,8 @@
 #include <numbers>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/model/instrument.hpp"
+#include "ccal/uncertainty/allocate.hpp"
 #include "ccal/verbs/force.hpp"
 
 namespace ccal::verbs {
@@ -52,15 +54,48 @@ SensedInputSeries sensed_input(const Config& config, const ReportOptions& o) {
   return s;
 }
 
+// The allocation's and the design's targets, parsed as the verbs will parse them, so that a bad one is
+// refused (naming the report's option) before the long computations start.
+void check_targets(const Config& config, const ReportOptions& o) {
+  std::vector<std::string> units;
+  for (const auto& id : config.identification.free_terms)
+    units.push_back(coefficient_unit(config.instrument.output_unit, id));
+  if (o.allocate) {
+    if (o.allocate->targets.empty())
+      throw InputError("--allocate-target: the allocation needs at least one target; e.g. K3=2e-3");
+    for (const auto& t : o.allocate->targets)
+      parse_allocation_target(t, config.identification.free_terms, units, "--allocate-target");
+  }
+  if (o.design)
+    for (const auto& t : o.design->targets)
+      parse_allocation_target(t, config.identification.free_terms, units, "--design-target");
+}
+
 }  // namespace
 
 ReportResult report(const Config& config, const ReportOptions& o) {
+  check_targets(config, o);
   ReportResult r;
   r.config = config;
   BudgetOptions bo;
   bo.mode = o.mode;
   bo.coverage_factor = o.coverage_factor;
   r.budget = budget(config, bo);
+  // The allocation and the design before the Monte Carlo, so that a target they refuse stops the report
+  // early.
+  if (o.allocate) {
+    AllocateOptions ao = *o.allocate;
+    if (!ao.mode) ao.mode = o.mode;
+    r.allocation = allocate(config, ao);
+  }
+  if (o.design) {
+    r.design = design(config, *o.design);
+    ForceOptions fo;
+    for (std::size_t k = 0; k < config.plan.runs.size(); ++k) {
+      fo.run = std::to_string(k + 1);
+      r.configured_runs.push_back(force(config, fo));
+    }
+  }
   MonteCarloOptions mo = o.monte_carlo;
   mo.mode = o.mode;
   mo.keep_samples = false;  // the report draws the histograms of the JSON, not the values

@@ -1,9 +1,14 @@
 #!/usr/bin/env python3
 """The structure of a report of `ccal report`: every number in its tables is the number of the verb output it
 names (data-src="budget:/coefficients/2/standard_uncertainty"), formatted with the digits it states, where the
-output is the JSON that the program itself prints for the verb's command line listed in the page; sums and
-root-sum-squares of such numbers are redone; no table cell shows a number without a source; the charts' data
-are the same outputs' numbers; the configuration is shown byte for byte with its SHA-256.
+output is the JSON that the program itself prints for the verb's command line listed in the page; sums,
+root-sum-squares and ratios of such numbers are redone; no table cell shows a number without a source; the
+charts' data are the same outputs' numbers; the configuration is shown byte for byte with its SHA-256.
+
+Each output the page names (its "ccal-sources" script) is {"command": [verb, options...]}, run as
+`ccal VERB CONFIG OPTIONS --format json`, optionally with "writes": {option: file} (the command also writes
+that file, e.g. `ccal design --plan-out designed.toml`) and "config": file (a file written by an earlier
+command replaces CONFIG, e.g. `ccal budget designed.toml`); the files go to a temporary directory.
 
     check_report_structure.py CCAL REPORT.html [CONFIG]
 
@@ -15,6 +20,7 @@ import math
 import os
 import subprocess
 import sys
+import tempfile
 import tomllib
 
 
@@ -94,11 +100,15 @@ def main(program, report, config=None):
         page.feed(f.read())
     sources = page.scripts["ccal-sources"]
     docs = {}
-    for name, how in sources.items():
-        if "command" in how:
-            args = [program, how["command"][0], *([config] if config else []), *how["command"][1:], "--format",
-                    "json"]
-            docs[name] = json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
+    with tempfile.TemporaryDirectory() as written:
+        for name, how in sources.items():
+            if "command" in how:
+                verb, *options = how["command"]
+                where = [os.path.join(written, how["config"])] if "config" in how else [config] if config else []
+                for option, file in how.get("writes", {}).items():
+                    options += [option, os.path.join(written, file)]
+                args = [program, verb, *where, *options, "--format", "json"]
+                docs[name] = json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
     docs["errors"] = sources["errors"]["configured_errors_si"]
 
     # x_i: the configured [errors] values; in a configuration without [errors] entries every one is 0.
@@ -116,12 +126,16 @@ def main(program, report, config=None):
             name, path = a["data-src"].split(":", 1)
             expected = pointer(docs[name], path) * scale
         else:
-            kind = "sum" if "data-sum" in a else "rss"
+            kind = next(k for k in ("sum", "rss", "ratio") if "data-" + k in a)
             name, paths = a["data-" + kind].split(":", 1)
             values = [pointer(docs[name], p) for p in paths.split()]
-            expected = (sum(values) if kind == "sum" else math.sqrt(sum(v * v for v in values))) * scale
+            if kind == "ratio":
+                expected = values[0] / values[1] * scale
+            else:
+                expected = (sum(values) if kind == "sum" else math.sqrt(sum(v * v for v in values))) * scale
         if shown != formatted(expected, digits):
-            problems.append(f"{a.get('data-src') or a.get('data-sum') or a.get('data-rss')}: the page shows "
+            where = a.get("data-src") or a.get("data-sum") or a.get("data-rss") or a.get("data-ratio")
+            problems.append(f"{where}: the page shows "
                             f"{shown}, the output gives {formatted(expected, digits)} ({expected!r})")
         checked += 1
     # No number in a result table without its source (the set-up tables show the configuration as written).
@@ -147,8 +161,33 @@ def main(program, report, config=None):
             for bar in spec["data"]["values"]:
                 if bar["source"] in shares and bar["share"] != 100 * shares[bar["source"]]:
                     problems.append(f"{target}: {bar['source']} drawn at {bar['share']} %")
-    if len(page.specs) < 8:
-        problems.append(f"{len(page.specs)} charts, expected at least 8")
+        if target == "allocate-scale":
+            drawn = {b["source"]: b["scale"] for b in spec["layer"][0]["data"]["values"]}
+            given = {s["id"]: s["scale"] for s in docs["allocate"]["sources"]}
+            if drawn != given:
+                problems.append(f"{target}: the bars are not the factors λ of `ccal allocate`")
+        if target == "design-ratio":
+            for bar in spec["layer"][0]["data"]["values"]:
+                c = docs["design"]["coefficients"][bar["coefficient"]]
+                key = "expanded" if bar["budget"] == "full budget" else "tolerance_expanded"
+                if bar["ratio"] != c["designed_" + key] / c["configured_" + key]:
+                    problems.append(f"{target}: {bar['coefficient']} ({bar['budget']}) drawn at {bar['ratio']}")
+    # The sections the sources announce are on the page, with their charts and a cell from each output.
+    targets = {t for t, _ in page.specs}
+    # A Pareto chart and a histogram per coefficient, the sensed input, exact vs paper (exact mode only).
+    budget = docs["budget"]
+    expected_charts = 2 * len(budget["coefficients"]) + 1 + ("paper_effect" in (budget["sources"] or [{}])[0])
+    for doc, chart in (("allocate", "allocate-scale"), ("design", "design-ratio")):
+        if doc in docs:
+            expected_charts += 1
+            if chart not in targets:
+                problems.append(f"the {doc} section has no chart {chart}")
+    named = {a.get("data-src", a.get("data-ratio", ":")).split(":", 1)[0] for a, _ in page.cells}
+    for name in docs:
+        if name != "errors" and name not in named:
+            problems.append(f"no number of the page is taken from the output {name}")
+    if len(page.specs) < expected_charts:
+        problems.append(f"{len(page.specs)} charts, expected at least {expected_charts}")
 
     expected_text = (text or b"").decode() if config else None
     if expected_text is not None and page.config_text != expected_text:

@@ -28,13 +28,18 @@ struct ReportProvenance {
   // The verbs' own command lines that give the same numbers (without the configuration and --format json),
   // e.g. {"montecarlo", "--trials", "1000000"}; filled by report_commands when empty.
   std::vector<std::string> budget_command, montecarlo_command;
+  // With an allocation or a design section: `ccal allocate …` and `ccal design …` likewise (the design's is
+  // run with --plan-out designed.toml, whose budget the section shows beside the configuration's).
+  std::vector<std::string> allocate_command, design_command;
 };
 
-// The options of `ccal budget` and `ccal montecarlo` that reproduce a report's numbers.
+// The options of `ccal budget`, `ccal montecarlo`, `ccal allocate` and `ccal design` that reproduce a
+// report's numbers.
 void report_commands(const verbs::ReportResult& result, const verbs::ReportOptions& options,
                      ReportProvenance& provenance);
 
-// The page. scripts: vega, vega-lite and vega-embed (their UMD builds, concatenated).
+// The page, with the allocation and the design sections when the result has them. scripts: vega, vega-lite
+// and vega-embed (their UMD builds, concatenated).
 std::string html(const verbs::ReportResult& result, const ReportProvenance& provenance,
                  std::string_view scripts, const std::vector<ReportSection>& extra_sections = {});
 

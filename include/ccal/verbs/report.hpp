@@ -2,7 +2,8 @@
 // `ccal report` as a library call: everything the HTML report of a configuration shows, computed by the
 // other verbs with the same options (so that every number equals that verb's output): the budget (exact mode
 // with the paper's first-order effect of each source beside it), the Monte Carlo propagation with its kept
-// distribution, and the sensed input along the instrument's axes over part of one run.
+// distribution, and the sensed input along the instrument's axes over part of one run; optionally a tolerance
+// allocation (`ccal allocate`) and a test-plan design (`ccal design`), each before and after.
 
 #include <cstddef>
 #include <optional>
@@ -11,7 +12,9 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/verbs/allocate.hpp"
 #include "ccal/verbs/budget.hpp"
+#include "ccal/verbs/design.hpp"
 #include "ccal/verbs/force.hpp"
 #include "ccal/verbs/montecarlo.hpp"
 
@@ -23,6 +26,10 @@ struct ReportOptions {
   MonteCarloOptions monte_carlo;  // as `ccal montecarlo` (its mode is set from `mode`)
   std::string run;                // the run whose sensed input is drawn; empty: the one of highest g-level
   int input_points = 241;         // instants of the sensed-input curve, 2…100000
+  // The allocation section: as `ccal allocate` with these options (its mode set from `mode` when unset).
+  std::optional<AllocateOptions> allocate;
+  // The design section: as `ccal design` with these options (the design uses the configuration's mode).
+  std::optional<DesignOptions> design;
 };
 
 // The specific force the instrument senses over a window of one run, exact (verbs::force at each instant).
@@ -44,9 +51,15 @@ struct ReportResult {
   BudgetResult budget;           // verbs::budget(config, {mode, coverage_factor})
   MonteCarloResult monte_carlo;  // verbs::monte_carlo(config, options.monte_carlo), samples kept
   SensedInputSeries sensed_input;
+  std::optional<AllocateResult> allocation;  // verbs::allocate(config, *options.allocate)
+  std::optional<DesignResult> design;        // verbs::design(config, *options.design)
+  // With the design: each configured run at its start (`ccal force --run k --time 0`), whose plan is shown
+  // beside the designed one.
+  std::vector<ForceResult> configured_runs;
 };
 
-// Throws InputError as the verbs it calls do, and for an unknown --run or input_points out of range.
+// Throws InputError as the verbs it calls do, for an unknown --run or input_points out of range, and for a
+// bad allocation or design target before anything is computed (naming --allocate-target or --design-target).
 ReportResult report(const Config& config, const ReportOptions& options = {});
 
 }  // namespace ccal::verbs
