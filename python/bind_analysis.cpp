@@ -59,9 +59,8 @@ std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& r
   return select_run(cfg.plan, text, "run");
 }
 
-}  // namespace
-
-void bind_analysis(py::module_& m) {
+// The budget in detail: every source's line, the matrices and the compensation choices.
+void bind_budget(py::module_& m) {
   py::class_<SourceBudget>(m, "SourceBudget", "One error source's line of the budget (SI).")
       .def_readonly("id", &SourceBudget::id)
       .def_readonly("parameter", &SourceBudget::parameter)
@@ -152,7 +151,10 @@ void bind_analysis(py::module_& m) {
       py::arg("coverage_factor") = 2.0, py::arg("compare_with_paper") = true,
       "Error budget (`ccal budget`): sensitivity of every identified coefficient to every tolerance, the "
       "effects, totals and compensation choices. mode: 'exact' or 'paper' (default: the configuration's).");
+}
 
+// The sensed input at one instant, with the first-order contributions.
+void bind_sensed_input(py::module_& m) {
   py::class_<ForceContribution>(m, "ForceContribution")
       .def_readonly("id", &ForceContribution::id)
       .def_readonly("value", &ForceContribution::value_si, "the parameter's value, SI")
@@ -197,7 +199,10 @@ void bind_analysis(py::module_& m) {
       "Specific force and angular rate at time t [s] of a run (a name, or a 0-based index) with the "
       "configured "
       "errors (`ccal force`).");
+}
 
+// Observations, their identification by least squares and the observability of the free terms.
+void bind_observations_and_fit(py::module_& m) {
   py::class_<Observations<double>>(m, "Observations", "Run means: one row per run (SI, inputs in g).")
       .def_readonly("runs", &Observations<double>::runs)
       .def_readonly("columns", &Observations<double>::columns, "term ids of the regressor columns")
@@ -216,12 +221,15 @@ void bind_analysis(py::module_& m) {
       .def_property_readonly(
           "coefficients",
           // the fit is of the observations file, in the output unit: × its SI size gives output SI per gⁿ
-          [](const verbs::SimulateResult& r) { return Eigen::VectorXd(r.identification.fit.value * r.output_unit_si); },
+          [](const verbs::SimulateResult& r) {
+            return Eigen::VectorXd(r.identification.fit.value * r.output_unit_si);
+          },
           "identified free terms (SI)")
       .def_property_readonly("names",
                              [](const verbs::SimulateResult& r) { return r.identification.fit.names; })
-      .def("to_csv", [](const verbs::SimulateResult& r) { return render::csv(r); },
-           "The observations file (the CLI's --format csv, the input of `ccal identify`).")
+      .def(
+          "to_csv", [](const verbs::SimulateResult& r) { return render::csv(r); },
+          "The observations file (the CLI's --format csv, the input of `ccal identify`).")
       .def(
           "run_logs",
           [](const verbs::SimulateResult& r, std::optional<double> step) {
@@ -368,7 +376,10 @@ void bind_analysis(py::module_& m) {
       py::arg("H"), py::arg("y"), py::arg("names"), py::arg("weights") = py::none(),
       py::arg("fixed") = std::map<std::string, double>{}, py::arg("method") = "qr",
       "Least squares y ≈ H x with named columns: weights 1/σ² per row, fixed columns held at given values.");
+}
 
+// Recorded run logs reduced to the observations of the runs as measured.
+void bind_log_reduction(py::module_& m) {
   py::class_<ReducedLog>(m, "ReducedLog", "One recorded run log, reduced (SI).")
       .def_readonly("source", &ReducedLog::source)
       .def_readonly("samples", &ReducedLog::samples)
@@ -423,7 +434,9 @@ void bind_analysis(py::module_& m) {
       .def_readonly("warnings", &verbs::ReduceResult::warnings)
       .def_property_readonly(
           "coefficients",
-          [](const verbs::ReduceResult& r) { return Eigen::VectorXd(r.identification.id.fit.value * r.output_unit_si); },
+          [](const verbs::ReduceResult& r) {
+            return Eigen::VectorXd(r.identification.id.fit.value * r.output_unit_si);
+          },
           "identified free terms (SI)")
       .def_property_readonly("names",
                              [](const verbs::ReduceResult& r) { return r.identification.id.fit.names; });
@@ -471,6 +484,15 @@ void bind_analysis(py::module_& m) {
       "Recorded run logs (run name or 0-based index → CSV file) to observations of the runs as measured "
       "(`ccal reduce`); pulse_weight: integrated output per pulse in SI (default: the instrument's quantum). "
       "Identify them with identify(reduction.observations, config).");
+}
+
+}  // namespace
+
+void bind_analysis(py::module_& m) {
+  bind_budget(m);
+  bind_sensed_input(m);
+  bind_observations_and_fit(m);
+  bind_log_reduction(m);
 }
 
 }  // namespace ccal::python
