@@ -268,7 +268,7 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
       p.identify_command.insert(p.identify_command.end(), {"--mode", std::string(mode_name(*o.mode))});
     if (m.coverage_probability != verbs::StatementOptions{}.coverage_probability)
       p.identify_command.insert(p.identify_command.end(),
-                                {"--coverage-probability", fmt::format("{:.17g}", m.coverage_probability)});
+                                {"--coverage-probability", fmt::format("{}", m.coverage_probability)});
   }
 }
 
