@@ -261,7 +261,7 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
     add("--coverage-probability", fmt::format("{:.17g}", m.coverage_probability));
   if (o.allocate) allocate_command(*o.allocate, o.allocate->mode ? o.allocate->mode : o.mode, p);
   if (o.design) design_command(*o.design, p);
-  if (r.observed) {
+  if (o.observations && r.observed) {
     // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
     p.identify_command = {"identify", r.observed->source};
     if (o.mode)
