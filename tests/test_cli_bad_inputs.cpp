@@ -239,6 +239,18 @@ std::vector<BadInput> catalogue() {
        {},
        "report --trials 100 --design-target 'K3=1e-4 kg' -o r.html",
        {"--design-target", "kg"}},
+      // The statement's observations: a file that cannot be read, and one whose terms are not the
+      // configuration's (K0, K1 against the bundled example's K0, K2, K3).
+      {"ReportObservationsMissing",
+       {},
+       "report --trials 100 --observations none.csv -o r.html",
+       {"--observations", "none.csv"}},
+      {"ReportObservationsTerms",
+       {{"obs.csv",
+         "# ccal observations v1; terms=K0:K0,K1:K1; fixed=; known=; output_unit=deg/s\n"
+         "run,a_i,output,K0,K1\n1g,1,1.1,1,1\n2g,2,2.0,1,2\n3g,3,2.9,1,3\n4g,4,4.2,1,4\n"}},
+       "report --trials 100 --observations obs.csv -o r.html",
+       {"--observations", "K1", "K0, K2, K3"}},
       {"SeedNegative", {}, "montecarlo --trials 100 --seed -1", {"--seed", "-1"}},
       {"AllocateTinyTarget", {}, "allocate --target K3=1e-300 --verify-trials 0", {"K3", "1e-300"}},
       {"AllocateUnknownTarget", {}, "allocate --target K9=1", {"K9"}},

@@ -108,6 +108,27 @@ TEST_F(Statement, KnownErrorsAreCorrected) {
   }
 }
 
+TEST_F(Statement, IdentifyModeSetsTheBudgetsKinematics) {
+  // `--mode paper`: Type B from the paper-mode budget (`ccal budget --mode paper`) without the rate noise,
+  // as in exact mode above; relative 1e-9 (a difference of sums of squares).
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  const Result st = run("identify obs.csv --budget " + kExample + " --mode paper --format json");
+  const Result budget = run("budget --mode paper --format json");
+  ASSERT_EQ(st.code, 0) << st.err;
+  ASSERT_EQ(budget.code, 0) << budget.err;
+  const auto s = nlohmann::json::parse(st.out).at("statement");
+  const auto jb = nlohmann::json::parse(budget.out);
+  EXPECT_EQ(s["mode"], "paper");
+  for (const auto& b : jb["coefficients"]) {
+    const std::string id = b["id"];
+    double noise = 0;
+    for (const auto& n : jb["rate_noise"]) noise += std::pow(n["u"][id].get<double>(), 2);
+    const double u = b["standard_uncertainty"], u_b = std::sqrt(u * u - noise);
+    EXPECT_NEAR(s["coefficients"][id]["type_b"]["u"].get<double>(), u_b, 1e-9 * u_b) << id;
+  }
+  expect_bad_input(run("identify obs.csv --budget " + kExample + " --mode first"), {"--mode", "first"});
+}
+
 TEST_F(Statement, ReduceWithOneDegreeOfFreedom) {
   // Four logged runs for three free terms: ν_A = 1, so ν_eff = u_c⁴/u_A⁴ and k lies between the normal
   // quantile and t_{0.975}(1) = 12.706 (table value).

@@ -1,13 +1,16 @@
 // The HTML report's pieces: SHA-256 against the FIPS 180-2 examples, the page's escaping of everything a
 // configuration brings (its text, its file name) so that no input can add markup or end a script, and the
-// allocation section's numbers and command line.
+// allocation section's numbers and command line, and the statement section's.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/render/report_sha256.hpp"
 #include "ccal/verbs/report.hpp"
@@ -109,6 +112,99 @@ TEST(ReportSections, TheAllocationIsTheVerbsWithTheReportsModeAndItsCommandLine)
             std::string::npos);
   // Without report_commands the page cannot name the allocation's command: refused, not left out.
   EXPECT_THROW(render::html(r, {}, ""), std::logic_error);
+}
+
+// The bundled example's run means as `ccal simulate --observations-out` writes them, with the 10g and 20g
+// outputs moved by +2e-4 and -3e-4 deg/s so that the fit has a scatter (a Type A part well above round-off).
+CsvTable observations() {
+  return parse_csv(
+      "# ccal observations v1; terms=K0:K0,K2:K2,K3:K3; fixed=K1:K1=505.2097 deg/s/g; known=rate; "
+      "output_unit=deg/s\n"
+      "run,a_i,output,rate,K0,K1,K2,K3\n"
+      "5g,0.0011258647673581118,0.87960387298876774,-0.0013078191577280609,1,0.0011258647673581118,"
+      "12.503105558100096,0.026259875629783602\n"
+      "10g,0.001894267171119568,2.0180067347005011,-0.0015559323219851468,1,0.001894267171119568,"
+      "49.993658702524705,0.17144791027889283\n"
+      "15g,0.004024892939033603,4.3449185147206109,-0.0026993518875195925,1,0.004024892939033603,"
+      "112.51446997604825,0.64683760857359807\n"
+      "20g,0.0040248706513405647,6.0971092168112426,-0.0023376986301180238,1,0.0040248706513405647,"
+      "200.02876985513265,1.2649413451187916\n"
+      "25g,-3.1771231287280877e-05,6.2960027667124328,1.6505024563838392e-05,1,-3.1771231287280877e-05,"
+      "312.50619837971044,-0.019857226505450853\n"
+      "30g,-0.0053797588949902643,6.3367545720364937,0.0025512599853871726,1,-0.0053797588949902643,"
+      "450.04772400165359,-3.6059301907758177\n",
+      "obs.csv");
+}
+
+TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
+  const Config cfg = bundled_example();
+  verbs::ReportOptions o;
+  o.mode = ModelMode::paper;
+  o.monte_carlo.trials = 200;
+  o.monte_carlo.coverage_probability = 0.9;
+  o.input_points = 3;
+  o.observations = observations();
+  const verbs::ReportResult r = verbs::report(cfg, o);
+  ASSERT_TRUE(r.observed.has_value());
+  ASSERT_TRUE(r.observed->statement.has_value());
+  // The same as `ccal identify obs.csv --budget CONFIG --mode paper --coverage-probability 0.9`: the same
+  // deterministic computation, so equal to the last bit.
+  verbs::IdentifyOptions io;
+  io.budget = cfg;
+  io.statement.mode = ModelMode::paper;
+  io.statement.coverage_probability = 0.9;
+  const verbs::IdentifyResult direct = verbs::identify(observations(), io);
+  const verbs::CalibrationStatement &x = *r.observed->statement, &y = *direct.statement;
+  EXPECT_EQ(x.mode, ModelMode::paper);
+  EXPECT_EQ(x.coverage_probability, 0.9);
+  ASSERT_EQ(x.coefficients.size(), 3u);
+  ASSERT_EQ(y.coefficients.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const CoefficientStatement &a = x.coefficients[k], &b = y.coefficients[k];
+    EXPECT_EQ(a.input.coefficient, b.input.coefficient);
+    EXPECT_EQ(a.corrected, b.corrected);
+    EXPECT_EQ(a.input.type_a.u, b.input.type_a.u);
+    EXPECT_EQ(a.input.type_b.u, b.input.type_b.u);
+    EXPECT_EQ(a.expanded, b.expanded);
+    // The statement's own relations (JCGM 100 §7, G.2b): 6 runs, 3 free terms, so ν_A = 3; u_c² = u_A² +
+    // u_B² and U = k u_c (to round-off, 1e-14 relative); k at least the normal quantile z_0.95 =
+    // 1.6448536269514722 (Student's t is wider for a finite ν_eff).
+    EXPECT_EQ(a.input.type_a.dof, 3.0);
+    EXPECT_GT(a.input.type_a.u, 0.0);
+    EXPECT_NEAR(a.combined, std::hypot(a.input.type_a.u, a.input.type_b.u), 1e-14 * a.combined);
+    EXPECT_NEAR(a.expanded, a.coverage_factor * a.combined, 1e-14 * a.expanded);
+    EXPECT_GE(a.coverage_factor, 1.6448536269514722 - 1e-12);
+  }
+  // The command line that gives the same numbers, and the page's section with cells naming that output.
+  render::ReportProvenance p;
+  render::report_commands(r, o, p);
+  EXPECT_EQ(p.identify_command, (std::vector<std::string>{"identify", "obs.csv", "--mode", "paper",
+                                                          "--coverage-probability", "0.9"}));
+  const std::string page = render::html(r, p, "/* the charting library */");
+  EXPECT_NE(page.find("<section id=\"statement\">"), std::string::npos);
+  EXPECT_NE(page.find("data-src=\"identify:/statement/coefficients/K3/expanded_uncertainty\""),
+            std::string::npos);
+  EXPECT_NE(page.find("ccal identify obs.csv --budget examples/wang_ren_2014.toml --mode paper "
+                      "--coverage-probability 0.9 --format json"),
+            std::string::npos);
+  EXPECT_THROW(render::html(r, {}, ""), std::logic_error);
+}
+
+TEST(ReportSections, ObservationsOfOtherTermsAreRefusedNamingTheOption) {
+  verbs::ReportOptions o;
+  o.monte_carlo.trials = 200;
+  o.observations = parse_csv(
+      "# ccal observations v1; terms=K0:K0,K1:K1; fixed=; known=; output_unit=deg/s\n"
+      "run,a_i,output,K0,K1\n1g,1,1.1,1,1\n2g,2,2.0,1,2\n3g,3,2.9,1,3\n4g,4,4.2,1,4\n",
+      "obs.csv");
+  try {
+    verbs::report(bundled_example(), o);
+    FAIL() << "observations of K0, K1 accepted for a configuration of K0, K2, K3";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("--observations", 0), 0u) << message;
+    EXPECT_EQ(message.find("--budget"), std::string::npos) << message;  // not an option of the report
+  }
 }
 
 }  // namespace

@@ -61,6 +61,9 @@ try {
     : id === 'allocate-scale' ? { bars: Number(process.env.CCAL_EXPECTED_SOURCES || 2), rules: 2 }
     // the design: two bars (full budget, tolerances alone) per coefficient and the rule at 1
     : id === 'design-ratio' ? { bars: 2 * Number(process.env.CCAL_EXPECTED_COEFFICIENTS || 1), rules: 1 }
+    // the statement: per coefficient its Type A and Type B shares of u_c² stacked; the noise-free example's
+    // Type A share (1e-20 %) has no area, so at least one bar per coefficient
+    : id === 'statement-split' ? { bars: Number(process.env.CCAL_EXPECTED_COEFFICIENTS || 1) }
     : {});
   for (const c of charts) {
     if (!c.rendered) problems.push(`chart ${c.id}: not drawn`);

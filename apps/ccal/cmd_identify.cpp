@@ -19,6 +19,7 @@ struct IdentifyCli {
   std::string output_column = "output";
   std::string weight;
   std::string budget;  // configuration of the statement's Type B part; empty: no statement
+  std::string mode;    // kinematics of the statement's budget; empty: the configuration's
   double coverage_probability = 0.95;
   OutputOptions output;
   CLI::Option* terms_option = nullptr;
@@ -70,6 +71,10 @@ Command add_identify(CLI::App& app) {
                   "CONFIG: also the calibration statement (JCGM 100 §7), with the Type B part from this "
                   "configuration's tolerances and the correction for its known [errors]")
       ->type_name("CONFIG");
+  cmd->add_option("--mode", o->mode,
+                  "Kinematics of the statement's budget (with --budget): exact or paper; default: the "
+                  "configuration's [identification] mode")
+      ->check(CLI::IsMember({"exact", "paper"}));
   cmd->add_option("--coverage-probability", o->coverage_probability,
                   "Coverage probability p of the statement's intervals, in (0, 1)")
       ->capture_default_str()
@@ -101,6 +106,7 @@ Command add_identify(CLI::App& app) {
               io.budget = load_config_or_example(o->budget);
             }
             io.statement.coverage_probability = o->coverage_probability;
+            if (!o->mode.empty()) io.statement.mode = parse_mode(o->mode);
             const verbs::IdentifyResult r = verbs::identify(table, io);
             print_warnings(r.identification.observability.warnings);
             write_output(o->output, o->output.format == "json" ? render::json(r) : render::text(r));

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "commands.hpp"
@@ -32,6 +33,7 @@ struct ReportCli {
   std::vector<std::string> allocate_targets;  // non-empty: the allocation section
   bool design = false;                        // the design section
   std::vector<std::string> design_targets;    // the design's targets (imply the section)
+  std::string observations;                   // non-empty: the calibration statement section
   OutputOptions output;
 };
 
@@ -41,6 +43,16 @@ std::string date_utc() {
   if (const char* e = std::getenv("SOURCE_DATE_EPOCH"); e && *e)
     t = std::time_t(std::strtoll(e, nullptr, 10));
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(t));
+}
+
+// The observations file, or an error naming --observations.
+CsvTable read_observations(const std::string& path) {
+  note_input(path);
+  try {
+    return read_csv_file(path);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--observations: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -83,6 +95,10 @@ Command add_report(CLI::App& app) {
          "coefficient")
       ->allow_extra_args(false)
       ->type_name("COEFF=U");
+  cmd->add_option("--observations", o->observations,
+                  "OBS.csv: add the calibration statement of these observations (as `ccal identify OBS.csv "
+                  "--budget CONFIG` with this report's --mode and --coverage-probability)")
+      ->type_name("OBS.csv");
   o->output.format = "html";
   cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
       ->type_name("FILE.html");
@@ -93,7 +109,10 @@ Command add_report(CLI::App& app) {
       "  ccal report my.toml --trials 100000 --run 20g -o my-report.html\n"
       "  ccal report --allocate-target K2=2e-5 --allocate-target K3=2e-3 --design -o report.html\n"
       "      with the allocation for those targets and the designed plan, each against the configured one\n"
-      "      (the same numbers as `ccal allocate --target K2=2e-5 --target K3=2e-3` and `ccal design`)\n");
+      "      (the same numbers as `ccal allocate --target K2=2e-5 --target K3=2e-3` and `ccal design`)\n"
+      "  ccal simulate my.toml --observations-out obs.csv && ccal report my.toml --observations obs.csv\n"
+      "      with the calibration statement of the observations (`ccal identify obs.csv --budget "
+      "my.toml`)\n");
   return {cmd, [o] {
             if (report_scripts().empty())
               throw InputError(
@@ -123,6 +142,7 @@ Command add_report(CLI::App& app) {
               d.threads = o->threads;
               ro.design = d;
             }
+            if (!o->observations.empty()) ro.observations = read_observations(o->observations);
             const Config config = load_config_or_example(o->config);
             const verbs::ReportResult r = verbs::report(config, ro);
             render::ReportProvenance p;

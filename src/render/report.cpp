@@ -4,12 +4,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <stdexcept>
 
 #include "ccal/render/allocate.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/design.hpp"
 #include "ccal/render/force.hpp"
+#include "ccal/render/identify.hpp"
 #include "ccal/render/montecarlo.hpp"
 #include "ccal/render/report_sha256.hpp"
 #include "ccal/version.hpp"
@@ -98,6 +101,19 @@ std::string command_text(const std::vector<std::string>& args, const Config& con
 
 constexpr const char* kDesignedPlan = "designed.toml";  // the file `ccal design --plan-out` writes
 
+// `ccal identify OBS.csv … --budget CONFIG --format json`; the bundled example's file is its copy in the
+// source tree.
+std::string identify_command_text(const std::vector<std::string>& args, const Config& config) {
+  std::vector<std::string> words = args;
+  words.insert(words.begin() + std::min<std::ptrdiff_t>(2, std::ptrdiff_t(words.size())), "--budget");
+  const bool bundled = config.source.rfind("bundled:", 0) == 0;
+  words.insert(words.begin() + std::min<std::ptrdiff_t>(3, std::ptrdiff_t(words.size())),
+               bundled ? "examples/" + config.source.substr(8) : config.source);
+  std::string out = "ccal";
+  for (const auto& w : words) out.append(" ").append(shell_word(w));
+  return out.append(" --format json");
+}
+
 std::string summary(const Doc& budget, const Doc& mc) {
   std::string t =
       "<table class=\"summary\"><caption>Summary per identified "
@@ -133,6 +149,9 @@ std::string section_commands(const verbs::ReportResult& r, const ReportProvenanc
         "</code> (the budgets of both plans)<br><code>ccal force … --run K --time 0</code> (the configured "
         "plan's runs)";
   }
+  if (r.observed)
+    out += "<br><code id=\"cmd-identify\">" + escape(identify_command_text(p.identify_command, r.config)) +
+           "</code> (the calibration statement)";
   return out;
 }
 
@@ -182,8 +201,8 @@ void design_command(const verbs::DesignOptions& d, ReportProvenance& p) {
   if (d.verify_trials != 0) c.insert(c.end(), {"--verify", std::to_string(d.verify_trials)});
 }
 
-// The allocation and the design sections (when the result has them), each output their cells name added to
-// `sources` with its command line.
+// The allocation, the design and the statement sections (when the result has them), each output their cells
+// name added to `sources` with its command line.
 std::string optional_sections(const verbs::ReportResult& r, const ReportProvenance& p, Json& sources) {
   std::string out;
   if (r.allocation) {
@@ -208,6 +227,11 @@ std::string optional_sections(const verbs::ReportResult& r, const ReportProvenan
     const Doc design{"design", design_json}, before{"design-before", before_json},
         after{"design-after", after_json};
     out += design_section(DesignDocs{design, before, after, runs});
+  }
+  if (r.observed) {
+    const Json identify_json = Json::parse(json(*r.observed));
+    sources["identify"] = {{"command", p.identify_command}, {"config_option", "--budget"}};
+    out += statement_section(Doc{"identify", identify_json});
   }
   return out;
 }
@@ -235,9 +259,17 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
   if (m.max_trials != defaults.max_trials) add("--max-trials", std::to_string(m.max_trials));
   if (m.coverage_probability != defaults.coverage_probability)
     add("--coverage-probability", fmt::format("{:.17g}", m.coverage_probability));
-  (void)r;
   if (o.allocate) allocate_command(*o.allocate, o.allocate->mode ? o.allocate->mode : o.mode, p);
   if (o.design) design_command(*o.design, p);
+  if (o.observations && r.observed) {
+    // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
+    p.identify_command = {"identify", r.observed->source};
+    if (o.mode)
+      p.identify_command.insert(p.identify_command.end(), {"--mode", std::string(mode_name(*o.mode))});
+    if (m.coverage_probability != verbs::StatementOptions{}.coverage_probability)
+      p.identify_command.insert(p.identify_command.end(),
+                                {"--coverage-probability", fmt::format("{}", m.coverage_probability)});
+  }
 }
 
 std::string html(const verbs::ReportResult& r, const ReportProvenance& provenance, std::string_view scripts,
@@ -249,6 +281,9 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
         "report: the allocation's command line is missing (report_commands with its options)");
   if (r.design && p.design_command.empty())
     throw std::logic_error("report: the design's command line is missing (report_commands with its options)");
+  if (r.observed && p.identify_command.empty())
+    throw std::logic_error(
+        "report: the statement's command line is missing (report_commands with its options)");
   const Json budget_json = Json::parse(json(r.budget)), mc_json = Json::parse(json(r.monte_carlo));
   std::vector<Json> instants;
   for (const auto& f : r.sensed_input.instants) instants.push_back(Json::parse(json(f)));

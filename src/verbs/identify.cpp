@@ -180,7 +180,8 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   r.identification = identify_table(table, r.spec, units, table.source);
   if (header) warn_about_powers_of_means(table, r.spec, r.identification);
   if (options.budget)
-    r.statement = calibration_statement(*options.budget, r.identification, options.statement, "--budget");
+    r.statement =
+        calibration_statement(*options.budget, r.identification, options.statement, options.budget_option);
   return r;
 }
 

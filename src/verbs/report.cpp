@@ -71,12 +71,30 @@ void check_targets(const Config& config, const ReportOptions& o) {
       parse_allocation_target(t, config.identification.free_terms, units, "--design-target");
 }
 
+// The observations identified with the configuration's budget (`ccal identify OBS.csv --budget CONFIG`); an
+// error of the file or of its terms is refused naming --observations.
+IdentifyResult identify_observations(const Config& config, const ReportOptions& o) {
+  IdentifyOptions io;
+  io.budget = config;
+  io.budget_option = "--observations";
+  io.statement.mode = o.mode;
+  io.statement.coverage_probability = o.monte_carlo.coverage_probability;
+  try {
+    return identify(*o.observations, io);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind("--observations", 0) == 0) throw;
+    throw InputError("--observations: " + what);  // what names the file where it is the file's fault
+  }
+}
+
 }  // namespace
 
 ReportResult report(const Config& config, const ReportOptions& o) {
   check_targets(config, o);
   ReportResult r;
   r.config = config;
+  if (o.observations) r.observed = identify_observations(config, o);
   BudgetOptions bo;
   bo.mode = o.mode;
   bo.coverage_factor = o.coverage_factor;

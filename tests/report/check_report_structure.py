@@ -8,7 +8,9 @@ charts' data are the same outputs' numbers; the configuration is shown byte for 
 Each output the page names (its "ccal-sources" script) is {"command": [verb, options...]}, run as
 `ccal VERB CONFIG OPTIONS --format json`, optionally with "writes": {option: file} (the command also writes
 that file, e.g. `ccal design --plan-out designed.toml`) and "config": file (a file written by an earlier
-command replaces CONFIG, e.g. `ccal budget designed.toml`); the files go to a temporary directory.
+command replaces CONFIG, e.g. `ccal budget designed.toml`) or "config_option": option (CONFIG is given
+as that option's value instead of as the first argument, e.g. `ccal identify OBS.csv --budget CONFIG`); the
+files go to a temporary directory.
 
     check_report_structure.py CCAL REPORT.html [CONFIG]
 
@@ -105,6 +107,11 @@ def main(program, report, config=None):
             if "command" in how:
                 verb, *options = how["command"]
                 where = [os.path.join(written, how["config"])] if "config" in how else [config] if config else []
+                if "config_option" in how:
+                    if not config:
+                        sys.exit(f"the output {name} needs the configuration's file: give CONFIG")
+                    options += [how["config_option"], config]
+                    where = []
                 for option, file in how.get("writes", {}).items():
                     options += [option, os.path.join(written, file)]
                 args = [program, verb, *where, *options, "--format", "json"]
@@ -166,6 +173,15 @@ def main(program, report, config=None):
             given = {s["id"]: s["scale"] for s in docs["allocate"]["sources"]}
             if drawn != given:
                 problems.append(f"{target}: the bars are not the factors λ of `ccal allocate`")
+        if target == "statement-split":
+            # Per coefficient the Type A and Type B shares of u_c² = u_A² + u_B², in %.
+            statement = docs["identify"]["statement"]["coefficients"]
+            for bar in spec["data"]["values"]:
+                c = statement[bar["coefficient"]]
+                a, b = c["type_a"]["u"] ** 2, c["type_b"]["u"] ** 2
+                part = a if bar["part"].startswith("Type A") else b
+                if not math.isclose(bar["share"], 100 * part / (a + b), rel_tol=1e-12, abs_tol=1e-300):
+                    problems.append(f"{target}: {bar['coefficient']} {bar['part']} drawn at {bar['share']} %")
         if target == "design-ratio":
             for bar in spec["layer"][0]["data"]["values"]:
                 c = docs["design"]["coefficients"][bar["coefficient"]]
@@ -177,7 +193,7 @@ def main(program, report, config=None):
     # A Pareto chart and a histogram per coefficient, the sensed input, exact vs paper (exact mode only).
     budget = docs["budget"]
     expected_charts = 2 * len(budget["coefficients"]) + 1 + ("paper_effect" in (budget["sources"] or [{}])[0])
-    for doc, chart in (("allocate", "allocate-scale"), ("design", "design-ratio")):
+    for doc, chart in (("allocate", "allocate-scale"), ("design", "design-ratio"), ("identify", "statement-split")):
         if doc in docs:
             expected_charts += 1
             if chart not in targets:

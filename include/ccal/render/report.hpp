@@ -31,15 +31,17 @@ struct ReportProvenance {
   // With an allocation or a design section: `ccal allocate …` and `ccal design …` likewise (the design's is
   // run with --plan-out designed.toml, whose budget the section shows beside the configuration's).
   std::vector<std::string> allocate_command, design_command;
+  // With the statement section: `ccal identify OBS.csv …`, run with `--budget CONFIG` (the report's).
+  std::vector<std::string> identify_command;
 };
 
-// The options of `ccal budget`, `ccal montecarlo`, `ccal allocate` and `ccal design` that reproduce a
-// report's numbers.
+// The options of `ccal budget`, `ccal montecarlo`, `ccal allocate`, `ccal design` and `ccal identify` that
+// reproduce a report's numbers.
 void report_commands(const verbs::ReportResult& result, const verbs::ReportOptions& options,
                      ReportProvenance& provenance);
 
-// The page, with the allocation and the design sections when the result has them. scripts: vega, vega-lite
-// and vega-embed (their UMD builds, concatenated).
+// The page, with the allocation, the design and the statement sections when the result has them. scripts:
+// vega, vega-lite and vega-embed (their UMD builds, concatenated).
 std::string html(const verbs::ReportResult& result, const ReportProvenance& provenance,
                  std::string_view scripts, const std::vector<ReportSection>& extra_sections = {});
 

@@ -21,11 +21,12 @@ struct IdentifyOptions {
   std::optional<std::vector<std::string>> fix;
   // Columns subtracted from the output ({"none"}: none); unset: the file's.
   std::optional<std::vector<std::string>> known;
-  std::string input = "a_i";      // column of the input x of the power terms
-  std::string output = "output";  // column of the output y
-  std::string weight;             // column of the σ of y (weights 1/σ²); empty: unweighted
-  std::optional<Config> budget;   // set: the calibration statement with this configuration's budget
-  StatementOptions statement;     // its coverage probability and mode
+  std::string input = "a_i";               // column of the input x of the power terms
+  std::string output = "output";           // column of the output y
+  std::string weight;                      // column of the σ of y (weights 1/σ²); empty: unweighted
+  std::optional<Config> budget;            // set: the calibration statement with this configuration's budget
+  StatementOptions statement;              // its coverage probability and mode
+  std::string budget_option = "--budget";  // the option its errors name
 };
 
 struct IdentifyResult {

@@ -3,7 +3,8 @@
 // other verbs with the same options (so that every number equals that verb's output): the budget (exact mode
 // with the paper's first-order effect of each source beside it), the Monte Carlo propagation with its kept
 // distribution, and the sensed input along the instrument's axes over part of one run; optionally a tolerance
-// allocation (`ccal allocate`) and a test-plan design (`ccal design`), each before and after.
+// allocation (`ccal allocate`), a test-plan design (`ccal design`), each before and after, and the
+// calibration statement of an observations file (`ccal identify OBS.csv --budget CONFIG`).
 
 #include <cstddef>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/design.hpp"
 #include "ccal/verbs/force.hpp"
+#include "ccal/verbs/identify.hpp"
 #include "ccal/verbs/montecarlo.hpp"
 
 namespace ccal::verbs {
@@ -30,6 +32,10 @@ struct ReportOptions {
   std::optional<AllocateOptions> allocate;
   // The design section: as `ccal design` with these options (the design uses the configuration's mode).
   std::optional<DesignOptions> design;
+  // The statement section: this observations file (as `ccal simulate --observations-out` writes it),
+  // identified as `ccal identify OBS.csv --budget CONFIG` with the report's mode and the Monte Carlo's
+  // coverage probability.
+  std::optional<CsvTable> observations;
 };
 
 // The specific force the instrument senses over a window of one run, exact (verbs::force at each instant).
@@ -56,10 +62,15 @@ struct ReportResult {
   // With the design: each configured run at its start (`ccal force --run k --time 0`), whose plan is shown
   // beside the designed one.
   std::vector<ForceResult> configured_runs;
+  // With observations: their identification with its calibration statement (verbs::identify with the
+  // configuration as budget); `statement` is always set.
+  std::optional<IdentifyResult> observed;
 };
 
 // Throws InputError as the verbs it calls do, for an unknown --run or input_points out of range, and for a
-// bad allocation or design target before anything is computed (naming --allocate-target or --design-target).
+// bad allocation or design target before anything is computed (naming --allocate-target or --design-target),
+// and for observations that cannot be identified or whose terms are not the configuration's (naming
+// --observations), also before the long computations.
 ReportResult report(const Config& config, const ReportOptions& options = {});
 
 }  // namespace ccal::verbs
