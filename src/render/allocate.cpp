@@ -42,20 +42,13 @@ double round_down(double v) {
   return r > v ? v : r;
 }
 
-// The unit the configuration wrote a source's tolerance in, else the bundled example's for its kind.
-std::string written_unit(const Config& cfg, int parameter) {
-  for (const Tolerance& t : cfg.tolerances)
-    if (t.parameter == parameter && !t.unit.empty()) return t.unit;
-  return std::string(config_unit(cfg.centrifuge.layout.parameter_unit(parameter)));
-}
-
 std::string quantity_text(double si, const std::string& unit) {
   return format_quantity(round_down(si), parse_unit(unit).dim, unit, 4);
 }
 
 // One [tolerances] entry for the allocated tolerance (defaults left out), in the unit it was written in.
 std::string toml_entry(const AllocatedSource& s, const Config& cfg) {
-  const std::string bound = quantity_text(s.allocated_bound, written_unit(cfg, s.parameter));
+  const std::string bound = quantity_text(s.allocated_bound, tolerance_display_unit(cfg, s.parameter));
   if (s.distribution == Distribution::normal && s.group.empty() && s.cost == 1.0)
     return fmt::format("{} = \"{}\"", s.id, bound);
   std::string e = fmt::format("{} = {{ bound = \"{}\"", s.id, bound);
@@ -107,7 +100,7 @@ std::string sources_table(const Config& cfg, const AllocationResult& r, const Al
   sources.gap(2);
   if (!o.wide) sources.shrink(1);
   for (const AllocatedSource& a : r.sources) {
-    const std::string unit = written_unit(cfg, a.parameter);
+    const std::string unit = tolerance_display_unit(cfg, a.parameter);
     std::vector<std::string> row = {source_label(a.id, a.group),
                                     cfg.centrifuge.layout.parameter_name(a.parameter),
                                     std::string(distribution_name(a.distribution))};
@@ -293,6 +286,12 @@ std::string csv_of(const Config& cfg, const AllocationResult& r) {
 }
 
 }  // namespace
+
+std::string tolerance_display_unit(const Config& cfg, int parameter) {
+  for (const Tolerance& t : cfg.tolerances)
+    if (t.parameter == parameter && !t.unit.empty()) return t.unit;
+  return std::string(config_unit(cfg.centrifuge.layout.parameter_unit(parameter)));
+}
 
 std::string text(const verbs::AllocateResult& r, const AllocateTextOptions& o) {
   return text_of(r.config, r.allocation, o);

@@ -8,30 +8,11 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/units.hpp"
+#include "ccal/render/allocate.hpp"
 #include "report_html.hpp"
 
 namespace ccal::render::report_html {
 namespace {
-
-// The unit a tolerance is shown in: the one the configuration wrote it in, else the bundled example's for
-// its kind (angles in rad, lengths in µm, relative errors in ppm), as `ccal allocate` shows it.
-std::string shown_unit(const Config& config, int parameter) {
-  for (const Tolerance& t : config.tolerances)
-    if (t.parameter == parameter && !t.unit.empty()) return t.unit;
-  switch (config.centrifuge.layout.parameter_unit(parameter)) {
-    case SourceUnit::rad:
-      return "rad";
-    case SourceUnit::m:
-      return "um";
-    case SourceUnit::rad_per_s:
-      return "rad/s";
-    case SourceUnit::m_per_rad_per_s_squared:
-      return "m/(rad/s)^2";
-    case SourceUnit::relative:
-      return "ppm";
-  }
-  return "1";
-}
 
 std::string coefficient_table(const Doc& doc) {
   const Json& j = doc.json;
@@ -81,7 +62,7 @@ std::string tolerance_table(const Doc& doc, const verbs::AllocateResult& r) {
     const AllocatedSource& a = r.allocation.sources.at(s);
     if (a.id != src["id"].get<std::string>())
       throw std::logic_error("report: the allocation's sources are not in the order of its JSON");
-    const std::string unit = shown_unit(r.config, a.parameter);
+    const std::string unit = tolerance_display_unit(r.config, a.parameter);
     const double per_si = 1.0 / parse_unit(unit).value_si;
     const std::string p = fmt::format("/sources/{}", s), group = src["group"].get<std::string>();
     t += "<tr>" + text_cell(a.id + (group.empty() ? "" : " (" + group + ")")) +

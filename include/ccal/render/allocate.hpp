@@ -13,6 +13,10 @@ struct AllocateTextOptions {
   bool wide = false;        // uncut names, the cost column, no width limit
 };
 
+// The unit a source's tolerance is shown in: the one the configuration wrote it in, else the bundled
+// example's for its kind (angles in rad, lengths in µm, relative errors in ppm).
+std::string tolerance_display_unit(const Config& config, int parameter);
+
 std::string text(const verbs::AllocateResult& result, const AllocateTextOptions& options = {});
 std::string json(const verbs::AllocateResult& result);
 std::string csv(const verbs::AllocateResult& result);
