@@ -250,14 +250,16 @@ void add_rate_noise(const Experiment& ex, const IdentificationSpec& spec, const 
   if (!ex.rate_noise.any()) return;
   const Eigen::MatrixXd pinv =
       design_pseudo_inverse(observe<double>(ex, at, known, spec, options.mode, options.reduction), spec);
-  for (auto [drive, density, id] :
-       {std::tuple{int(ripple1), ex.rate_noise.main, "main_rate_noise"},
-        std::tuple{int(ripple3), ex.rate_noise.platform, "platform_rate_noise"}}) {
+  // Both drives' gains from one pass over the runs' nodes.
+  const RateNoiseGains gains = rate_noise_gains(ex, at, ex.rate_noise.main > 0, ex.rate_noise.platform > 0);
+  for (auto [gain, density, id] :
+       {std::tuple{&gains.main, ex.rate_noise.main, "main_rate_noise"},
+        std::tuple{&gains.platform, ex.rate_noise.platform, "platform_rate_noise"}}) {
     if (!(density > 0)) continue;
     RateNoiseBudget n;
     n.id = id;
     n.density = density;
-    n.run_sd = density * rate_noise_gain(ex, at, drive);
+    n.run_sd = density * *gain;
     const Eigen::MatrixXd effects = pinv * n.run_sd.asDiagonal();
     n.covariance = effects * effects.transpose();
     n.effect = n.covariance.diagonal().cwiseSqrt();

@@ -179,11 +179,14 @@ std::array<double, 2> run_gains(const Experiment& ex, const Eigen::VectorXd& e, 
 std::vector<Tolerance> rate_noise_sources(const Config& cfg) {
   std::vector<Tolerance> out;
   const Experiment ex = cfg.experiment();
-  for (auto [drive, density, name] :
-       {std::tuple{int(ripple1), ex.rate_noise.main, "main_rate_noise"},
-        std::tuple{int(ripple3), ex.rate_noise.platform, "platform_rate_noise"}}) {
+  if (!ex.rate_noise.any()) return out;
+  const RateNoiseGains gains =
+      rate_noise_gains(ex, cfg.centrifuge.errors, ex.rate_noise.main > 0, ex.rate_noise.platform > 0);
+  for (auto [drive_gain, density, name] :
+       {std::tuple{&gains.main, ex.rate_noise.main, "main_rate_noise"},
+        std::tuple{&gains.platform, ex.rate_noise.platform, "platform_rate_noise"}}) {
     if (!(density > 0)) continue;
-    const Eigen::VectorXd gain = rate_noise_gain(ex, cfg.centrifuge.errors, drive);
+    const Eigen::VectorXd& gain = *drive_gain;
     for (std::size_t j = 0; j < ex.plan.runs.size(); ++j) {
       if (!(gain[Eigen::Index(j)] > 0)) continue;
       Tolerance t;
