@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The include rules of docs/architecture.md: a library header or source in layer L includes only headers of
 L and of the layers below it (core < model < setup < reduction < uncertainty < io < verbs < render), plus
-version.hpp; library headers include no private header of src/. Exit 1 with one line per violation."""
+version.hpp; a layer's internals (include/ccal/<layer>/detail/) are included by that layer only; a source's
+relative include of another layer's private header (../<layer>/x.hpp) follows the same order; library headers
+include no private header of src/. Exit 1 with one line per violation."""
 import pathlib
 import re
 import sys
@@ -41,6 +43,15 @@ def main(root):
                 continue
             target = m.group(1)
             checked += 1
+            private = target.split("/")
+            if path.is_relative_to(root / "src") and len(private) == 3 and private[0] == "..":
+                # a private header of another layer's sources: the same rank rule
+                if private[1] not in RANK:
+                    problems.append(f"{path.relative_to(root)}:{n}: '{target}' is not in a layer folder")
+                elif RANK[private[1]] > RANK[layer]:
+                    problems.append(f"{path.relative_to(root)}:{n}: layer '{layer}' includes '{target}' of the "
+                                    f"higher layer '{private[1]}'")
+                continue
             if not target.startswith("ccal/"):
                 if path.suffix == ".hpp" and path.is_relative_to(root / "include"):
                     problems.append(f"{path.relative_to(root)}:{n}: installed header includes '{target}', "
@@ -48,6 +59,12 @@ def main(root):
                 continue
             parts = target.split("/")
             if parts == ["ccal", "version.hpp"]:
+                continue
+            if len(parts) == 4 and parts[2] == "detail" and parts[1] in RANK:
+                # a layer's internals (ccal/<layer>/detail/): for that layer's own templates only
+                if parts[1] != layer:
+                    problems.append(f"{path.relative_to(root)}:{n}: '{target}' is internal to layer "
+                                    f"'{parts[1]}'; include its public header instead")
                 continue
             if len(parts) != 3 or parts[1] not in RANK:
                 problems.append(f"{path.relative_to(root)}:{n}: '{target}' is not in a layer folder")

@@ -15,6 +15,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "../src/uncertainty/calibration_cache.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
@@ -481,7 +482,7 @@ TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
   const Config cfg = bundled_example();
   const Experiment ex = cfg.experiment();
   const CalibrationModel model = calibration_model(cfg);
-  ASSERT_TRUE(model.run_means);  // exact mode goes through the kernel
+  ASSERT_TRUE(model.cache->run_means);  // exact mode goes through the kernel
   const TrialFunction trial = calibration_trial(model);
   const IdentificationSpec& spec = cfg.identification;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
@@ -501,8 +502,8 @@ TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
         identify_coefficients<double>(observe<double>(ex, truth, known, spec), spec) - reference;
     for (Eigen::Index k = 0; k < want.size(); ++k) {
       double bound = 0;
-      for (Eigen::Index j = 0; j < model.design_pinv.cols(); ++j)
-        bound += std::abs(model.design_pinv(k, j)) * 1e-12 * K1 * ex.plan.runs[std::size_t(j)].g_level;
+      for (Eigen::Index j = 0; j < model.cache->design_pinv.cols(); ++j)
+        bound += std::abs(model.cache->design_pinv(k, j)) * 1e-12 * K1 * ex.plan.runs[std::size_t(j)].g_level;
       EXPECT_NEAR(out[std::size_t(k)], want[k], bound)
           << spec.free_terms[std::size_t(k)] << ", draw " << draw;
       EXPECT_GT(std::abs(want[k]), 1e3 * bound);  // a real deviation, far above the tolerance

@@ -2,6 +2,7 @@
 // compensation.
 #include <gtest/gtest.h>
 
+#include "../src/reduction/paper_nodes.hpp"
 #include "experiment_support.hpp"
 
 namespace ccal::test {
@@ -178,7 +179,7 @@ TEST(Identification, PaperReductionFromCachedNodesIsTheSame) {
   for (const ccal::Run& run : ex.plan.runs)
     for (bool cross : {false, true}) {
       const detail::PaperRunNodes nodes = detail::paper_run_nodes(ex, run, {});
-      const double direct = detail::paper_average<double>(ex, e, run, &ex.instrument, {}, cross).output;
+      const double direct = paper_average<double>(ex, e, run, &ex.instrument, {}, cross).output;
       const double cached = detail::paper_average<double>(ex, nodes, e, &ex.instrument, {}, cross).output;
       EXPECT_EQ(direct, cached) << run.name;
       EXPECT_NE(direct, detail::paper_average<double>(ex, nodes, Eigen::VectorXd::Zero(e.size()).eval(),

@@ -4,6 +4,7 @@
 
 #include "ccal/core/scalar.hpp"
 #include "ccal/model/first_order.hpp"
+#include "paper_nodes.hpp"
 
 namespace ccal {
 
@@ -97,6 +98,12 @@ RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, co
   return avg;
 }
 
+template RunAverage<double> paper_average<double>(const Experiment&, const PaperRunNodes&,
+                                                  const VecX<double>&, const InstrumentModel*,
+                                                  const std::vector<TermSpec>&, bool);
+
+}  // namespace detail
+
 // The paper's reduction of one run (docs/model.md §5.1, §7.1): a_i from the first-order form with the
 // frozen-γ rules and a constant Coriolis term, phases on the nominal rate, Δω in the amplitude
 // A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors in the K1 term only unless cross_terms,
@@ -105,18 +112,14 @@ template <class S>
 RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
                             const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
                             bool cross_terms) {
-  return paper_average<S>(ex, paper_run_nodes(ex, run, terms), e, instrument, terms, cross_terms);
+  return detail::paper_average<S>(ex, detail::paper_run_nodes(ex, run, terms), e, instrument, terms,
+                                  cross_terms);
 }
 
 template RunAverage<double> paper_average<double>(const Experiment&, const VecX<double>&, const ccal::Run&,
                                                   const InstrumentModel*, const std::vector<TermSpec>&, bool);
 template RunAverage<Dual> paper_average<Dual>(const Experiment&, const VecX<Dual>&, const ccal::Run&,
                                               const InstrumentModel*, const std::vector<TermSpec>&, bool);
-template RunAverage<double> paper_average<double>(const Experiment&, const PaperRunNodes&,
-                                                  const VecX<double>&, const InstrumentModel*,
-                                                  const std::vector<TermSpec>&, bool);
-
-}  // namespace detail
 
 void add_output_noise(Observations<double>& obs, const Experiment& ex, std::uint64_t seed) {
   const InstrumentModel& ins = ex.instrument;

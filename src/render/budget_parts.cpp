@@ -12,8 +12,7 @@ SourceView source_view(const Config& cfg, const SourceBudget& s) {
   SourceView v;
   const ErrorLayout& layout = cfg.centrifuge.layout;
   v.name = layout.parameter_name(s.parameter);
-  for (const Tolerance& t : cfg.tolerances)
-    if (t.parameter == s.parameter) v.unit = t.unit;
+  v.unit = s.unit;
   const SourceUnit si = layout.parameter_unit(s.parameter);
   if (v.unit.empty()) v.unit = si == SourceUnit::relative ? "ppm" : std::string(unit_symbol(si));
   v.unit_si = parse_unit(v.unit).value_si;
@@ -30,9 +29,7 @@ double sensitivity_per_unit(const ccal::BudgetResult& r, const SourceBudget& s, 
 std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t k) {
   const auto i = Eigen::Index(k);
   const double variance = r.standard_uncertainty[i] * r.standard_uncertainty[i];
-  std::vector<std::string> group_of;
-  for (const SourceBudget& s : r.sources) group_of.push_back(s.group);
-  const CorrelationGroups groups = correlation_groups(group_of, r.sources.size());
+  const CorrelationGroups groups = correlation_groups(r.sources);
   std::vector<double> effect(std::size_t(groups.count), 0.0);
   std::vector<std::string> members(std::size_t(groups.count));
   for (std::size_t s = 0; s < r.sources.size(); ++s) {

@@ -150,12 +150,7 @@ void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSo
   for (std::size_t s = 0; s < ns; ++s) {
     const Tolerance& t = cfg.tolerances[s];
     AllocatedSource a;
-    a.parameter = t.parameter;
-    a.id = t.id;
-    a.group = t.group;
-    a.distribution = t.distribution;
-    a.cost = t.cost;
-    a.bound = t.bound;
+    static_cast<Tolerance&>(a) = t;
     a.standard_uncertainty = b.sources[s].standard_uncertainty;
     a.scale = sol.scale[Eigen::Index(s)];
     a.allocated_bound = a.scale * t.bound;

@@ -50,7 +50,7 @@ Eigen::MatrixXd output_jacobian_ad(const Experiment& ex, const IdentificationSpe
       const RunAverage<Dual> avg =
           mode == ModelMode::exact
               ? average_run<Dual>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, reduction)
-              : detail::paper_average<Dual>(ex, e, run, &ex.instrument, {}, spec.paper_cross_terms);
+              : paper_average<Dual>(ex, e, run, &ex.instrument, {}, spec.paper_cross_terms);
       for (int k = 0; k < width; ++k) dy(j, Eigen::Index(first) + k) = avg.output.derivatives()[k];
     }
   }
@@ -217,18 +217,12 @@ namespace {
 void add_tolerance_sources(const Config& config, const SensitivityTable& table, const SensitivityTable* paper,
                            BudgetResult& r) {
   const auto nk = Eigen::Index(r.coefficients.size());
-  std::vector<std::string> group_names;
-  for (const Tolerance& t : config.tolerances) group_names.push_back(t.group);
-  const CorrelationGroups groups = correlation_groups(group_names, config.tolerances.size());
+  const CorrelationGroups groups = correlation_groups(config.tolerances);
   Eigen::MatrixXd group_effect = Eigen::MatrixXd::Zero(nk, groups.count);
   for (std::size_t s = 0; s < config.tolerances.size(); ++s) {
     const Tolerance& t = config.tolerances[s];
     SourceBudget b;
-    b.parameter = t.parameter;
-    b.id = t.id;
-    b.group = t.group;
-    b.distribution = t.distribution;
-    b.bound = t.bound;
+    static_cast<Tolerance&>(b) = t;
     b.standard_uncertainty = standard_uncertainty(t.bound, t.distribution);
     b.sensitivity = table.total.col(Eigen::Index(s));
     b.effect = b.sensitivity * b.standard_uncertainty;

@@ -2,6 +2,9 @@
 // coefficients (docs/model.md §10.2).
 #include <fmt/format.h>
 
+#include <stdexcept>
+
+#include "calibration_cache.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 
@@ -44,26 +47,28 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     // the error relative to the swing (tests/test_reduce.cpp: below 1e-12 of the swing for 3σ draws).
     m.reduction.quadrature.slow_tolerance = 5e-6;
   }
+  auto cache = std::make_shared<CalibrationTrialCache>();
   if (mode == ModelMode::exact && !m.reduction.chain.frozen_platform)
-    m.run_means =
+    cache->run_means =
         std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
                                               experiment.plan.runs, experiment.instrument, m.reduction);
   if (mode == ModelMode::paper)
     for (const Run& run : experiment.plan.runs)
-      m.paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
+      cache->paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
   const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
   const auto nfree = Eigen::Index(spec.free_terms.size());
   const Eigen::MatrixXd H = model.regressors.leftCols(nfree);
-  m.design_pinv.resize(nfree, H.rows());
+  cache->design_pinv.resize(nfree, H.rows());
   for (Eigen::Index j = 0; j < H.rows(); ++j)
-    m.design_pinv.col(j) = solve_least_squares<double>(H, Eigen::VectorXd::Unit(H.rows(), j));
-  m.known_part = model.known_rate;
+    cache->design_pinv.col(j) = solve_least_squares<double>(H, Eigen::VectorXd::Unit(H.rows(), j));
+  cache->known_part = model.known_rate;
   Eigen::Index column = nfree;
   for (const auto& [id, value] : spec.fixed_terms) {
     (void)id;
-    m.known_part += model.regressors.col(column++) * value;
+    cache->known_part += model.regressors.col(column++) * value;
   }
+  m.cache = std::move(cache);
   // The reference goes through the very arithmetic of a trial, so that zero draws on zero errors give
   // exactly zero deviations.
   m.reference = Eigen::VectorXd::Zero(nfree);
@@ -77,9 +82,13 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
 }
 
 TrialFunction calibration_trial(const CalibrationModel& model) {
+  if (!model.cache)
+    throw std::invalid_argument(
+        "calibration_trial: the model was not built by calibration_model (no trial cache)");
   auto data = std::make_shared<const CalibrationModel>(model);
   return [data](std::span<const double> draws, std::span<double> outputs) {
     const CalibrationModel& m = *data;
+    const CalibrationTrialCache& cache = *m.cache;
     const Experiment& ex = m.experiment;
     // Per-thread buffers: a trial allocates nothing once they have grown.
     thread_local Eigen::VectorXd truth, y;
@@ -92,17 +101,17 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
         truth[m.parameters[j]] += draws[j];
     }
     y.resize(Eigen::Index(ex.plan.runs.size()));
-    if (m.run_means) {
-      m.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
-                         std::span<double>(y.data(), std::size_t(y.size())));
+    if (cache.run_means) {
+      cache.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
+                             std::span<double>(y.data(), std::size_t(y.size())));
     } else {
       for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
         y[Eigen::Index(j)] = m.mode == ModelMode::exact
                                  ? average_run<double>(ex.geometry, ex.layout, truth, ex.site,
                                                        ex.plan.runs[j], &ex.instrument, {}, m.reduction)
                                        .output
-                                 : detail::paper_average<double>(ex, m.paper_nodes[j], truth, &ex.instrument,
-                                                                 {}, m.spec.paper_cross_terms)
+                                 : detail::paper_average<double>(ex, cache.paper_nodes[j], truth,
+                                                                 &ex.instrument, {}, m.spec.paper_cross_terms)
                                        .output;
     }
     // The drives' rate noise scatters each run's mean (model.md §3.2).
@@ -110,9 +119,9 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
       for (std::size_t j = 0; j < draws.size(); ++j)
         if (m.parameters[j] < 0) y[rate_noise_run(m.parameters[j])] += draws[j];
     // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
-    y -= m.known_part;
+    y -= cache.known_part;
     for (std::size_t o = 0; o < outputs.size(); ++o)
-      outputs[o] = m.design_pinv.row(Eigen::Index(o)).dot(y) - m.reference[Eigen::Index(o)];
+      outputs[o] = cache.design_pinv.row(Eigen::Index(o)).dot(y) - m.reference[Eigen::Index(o)];
   };
 }
 

@@ -273,7 +273,7 @@ CandidateRows block_rows(const Config& config, const Experiment& base, const std
     const RunAverage<double> model =
         config.mode == ModelMode::exact
             ? average_run<double>(ex.geometry, ex.layout, known, ex.site, run, nullptr, terms)
-            : detail::paper_average<double>(ex, known, run, nullptr, terms, spec.paper_cross_terms);
+            : paper_average<double>(ex, known, run, nullptr, terms, spec.paper_cross_terms);
     rows.regressors.row(j) = model.regressors.head(nfree).transpose();
     const double T = run.duration;
     rows.duration[j] = T;
@@ -333,13 +333,9 @@ CandidateRows stacked(const std::vector<CandidateRows>& parts) {
 CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>& runs, int threads) {
   const Experiment base = config.experiment();
   std::vector<int> parameters;
-  std::vector<std::string> group_names;
-  for (const Tolerance& t : config.tolerances) {
-    parameters.push_back(t.parameter);
-    group_names.push_back(t.group);
-  }
+  for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
   // Scaled by u_s and summed per correlation group, as the budget adds them (model.md §10.1).
-  const CorrelationGroups groups = correlation_groups(group_names, config.tolerances.size());
+  const CorrelationGroups groups = correlation_groups(config.tolerances);
   Eigen::MatrixXd group_map = Eigen::MatrixXd::Zero(Eigen::Index(parameters.size()), groups.count);
   for (std::size_t s = 0; s < config.tolerances.size(); ++s)
     group_map(Eigen::Index(s), groups.of[s]) =

@@ -104,9 +104,7 @@ struct SlotPlan {
 };
 
 SlotPlan plan_slots(const std::vector<Tolerance>& sources) {
-  std::vector<std::string> groups;
-  for (const Tolerance& t : sources) groups.push_back(t.group);
-  const CorrelationGroups g = correlation_groups(groups, sources.size());
+  const CorrelationGroups g = correlation_groups(sources);
   return {g.of, g.count, g.named};
 }
 
@@ -496,7 +494,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
     M += block;
     check_sample_memory(M, n_out, adaptive);
     progress.set_stage(M, adaptive ? fmt::format("stage {} ", h) : std::string());
-    for (auto& s : samples)  // in steps of 2^20 values, asking the callback between them (it may cancel):
+    for (auto& s : samples)   // in steps of 2^20 values, asking the callback between them (it may cancel):
       while (s.size() < M) {  // zero-filling gigabytes takes seconds
         s.resize(std::min<std::uint64_t>(M, s.size() + (std::uint64_t(1) << 20)));
         progress.poll();

@@ -19,11 +19,13 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 void check_options(const DesignOptions& o) {
   if (o.starts && (*o.starts < 0 || *o.starts > 1000))
-    throw InputError(fmt::format("--starts: {} is out of range; accepted: 0 to 1000 random starts", *o.starts));
-  if (o.threads < 0) throw InputError(fmt::format("--threads: {} is negative; accepted: 0 (all cores) or more", o.threads));
+    throw InputError(
+        fmt::format("--starts: {} is out of range; accepted: 0 to 1000 random starts", *o.starts));
+  if (o.threads < 0)
+    throw InputError(fmt::format("--threads: {} is negative; accepted: 0 (all cores) or more", o.threads));
   if (o.verify_trials < 0 || o.verify_trials > kMaxMonteCarloTrials)
-    throw InputError(fmt::format("--verify: {} trials is out of range; accepted: 0 (none) to {}", o.verify_trials,
-                                 kMaxMonteCarloTrials));
+    throw InputError(fmt::format("--verify: {} trials is out of range; accepted: 0 (none) to {}",
+                                 o.verify_trials, kMaxMonteCarloTrials));
   for (double f : o.tradeoff)
     if (!(std::isfinite(f) && f > 0 && f <= 10))
       throw InputError(fmt::format(
@@ -32,9 +34,7 @@ void check_options(const DesignOptions& o) {
 
 // U_k from the tolerances alone: the budget's signed group sums added in quadrature (model.md §10.1).
 Eigen::VectorXd tolerance_expanded(const Config& config, const ccal::BudgetResult& b) {
-  std::vector<std::string> names;
-  for (const Tolerance& t : config.tolerances) names.push_back(t.group);
-  const CorrelationGroups groups = correlation_groups(names, config.tolerances.size());
+  const CorrelationGroups groups = correlation_groups(config.tolerances);
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(Eigen::Index(b.coefficients.size()), groups.count);
   for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
   return b.coverage_factor * g.rowwise().norm();
@@ -96,7 +96,8 @@ Config with_plan(const Config& config, const std::vector<DesignRun>& runs) {
                    [](const DesignRun& a, const DesignRun& b) { return a.g_level < b.g_level; });
   Config c = config;
   c.plan.runs.clear();
-  for (std::size_t j = 0; j < sorted.size(); ++j) c.plan.runs.push_back(plan_run(sorted[j], fmt::format("run{}", j + 1)));
+  for (std::size_t j = 0; j < sorted.size(); ++j)
+    c.plan.runs.push_back(plan_run(sorted[j], fmt::format("run{}", j + 1)));
   return c;
 }
 
@@ -231,7 +232,8 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   }
   if (!(c.weight.maxCoeff() > 0) && r.objective != DesignObjective::d_optimal)
     throw InputError(config.source + ": design: no chosen coefficient has an uncertainty to reduce");
-  if (!initial.empty()) r.configured_objective = score_plan(problem.rows.select(initial.front()), c).objective;
+  if (!initial.empty())
+    r.configured_objective = score_plan(problem.rows.select(initial.front()), c).objective;
   problem.initial_plans = initial;
   problem.refinement = r.space.refinement;
   const int threads = options.threads;

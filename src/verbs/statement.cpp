@@ -16,9 +16,7 @@ namespace {
 // u_B of each coefficient from the tolerances alone: effects of a group added with their signs, groups in
 // quadrature (docs/model.md §10.1), without the drives' rate noise.
 Eigen::VectorXd type_b(const ccal::BudgetResult& b) {
-  std::vector<std::string> group_of;
-  for (const SourceBudget& s : b.sources) group_of.push_back(s.group);
-  const CorrelationGroups groups = correlation_groups(group_of, b.sources.size());
+  const CorrelationGroups groups = correlation_groups(b.sources);
   const auto nk = Eigen::Index(b.coefficients.size());
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nk, groups.count);
   for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;

@@ -1,20 +1,13 @@
 #pragma once
 // The scalar types ccal's templates are instantiated with: double, and Eigen's forward-mode AutoDiffScalar
-// (for exact derivatives with respect to error sources). value_of() strips the derivatives.
+// (for exact derivatives with respect to error sources). value_of() (value_of.hpp) strips the derivatives.
 
 #include <Eigen/Dense>  // must precede the AutoDiff module
 #include <unsupported/Eigen/AutoDiff>
 
-namespace ccal {
+#include "ccal/core/value_of.hpp"
 
-inline double value_of(double x) { return x; }
-
-template <class Derivatives>
-double value_of(const Eigen::AutoDiffScalar<Derivatives>& x) {
-  return value_of(x.value());
-}
-
-}  // namespace ccal
+namespace ccal {}  // namespace ccal
 
 namespace ccal {
 

@@ -87,28 +87,6 @@ ChannelValue<S> dynamic_channel(const ErrorLayout& layout, const Errors& e, int 
   return out;
 }
 
-namespace detail {
-template <class S, class Errors>
-void translate_dynamic(FrameMotion<S>& m, const ErrorLayout& layout, const Errors& e, int first_channel,
-                       const S& q, const S& q_rate, const S& q_acc = S(0)) {
-  Vec3<S> d, dd, ddd;
-  for (int i = 0; i < 3; ++i) {
-    const auto c = dynamic_channel<S>(layout, e, first_channel + i, q, q_rate, q_acc);
-    d[i] = c.value;
-    dd[i] = c.rate;
-    ddd[i] = c.acc;
-  }
-  m.translate(d, dd, ddd);
-}
-
-template <class S, class Errors>
-void rotate_dynamic(FrameMotion<S>& m, const ErrorLayout& layout, const Errors& e, int channel, int axis,
-                    const S& q, const S& q_rate, const S& q_acc = S(0)) {
-  const auto c = dynamic_channel<S>(layout, e, channel, q, q_rate, q_acc);
-  m.rotate(axis, c.value, c.rate, c.acc);
-}
-}  // namespace detail
-
 // Exact state of the instrument for error vector `e` (indexed by `layout`, SI values).
 template <class S, class Errors>
 InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, const Errors& e,
@@ -116,22 +94,38 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   constexpr int X = 0, Y = 1, Z = 2;
   auto E = [&](int i) { return S(e[i]); };
   FrameMotion<S> m;
+  // A dynamic error (model.md §3): its harmonic series in the joint's angle q, with its rates, moves the
+  // frame.
+  auto translate_dynamic = [&](int first_channel, const S& q, const S& q_rate, const S& q_acc) {
+    Vec3<S> d, dd, ddd;
+    for (int i = 0; i < 3; ++i) {
+      const auto c = dynamic_channel<S>(layout, e, first_channel + i, q, q_rate, q_acc);
+      d[i] = c.value;
+      dd[i] = c.rate;
+      ddd[i] = c.acc;
+    }
+    m.translate(d, dd, ddd);
+  };
+  auto rotate_dynamic = [&](int channel, int axis, const S& q, const S& q_rate, const S& q_acc) {
+    const auto c = dynamic_channel<S>(layout, e, channel, q, q_rate, q_acc);
+    m.rotate(axis, c.value, c.rate, c.acc);
+  };
   // 0 → 1t: levelling of the main-axis sleeve.
   m.rotate(Y, E(dthy1t));
   m.rotate(X, E(dthx1t));
   // 1t → 1: runouts, wobbles, then the main axis itself.
-  detail::translate_dynamic<S>(m, layout, e, dx1, j.theta1, j.theta1_rate, j.theta1_acc);
-  detail::rotate_dynamic<S>(m, layout, e, dthy1, Y, j.theta1, j.theta1_rate, j.theta1_acc);
-  detail::rotate_dynamic<S>(m, layout, e, dthx1, X, j.theta1, j.theta1_rate, j.theta1_acc);
+  translate_dynamic(dx1, j.theta1, j.theta1_rate, j.theta1_acc);
+  rotate_dynamic(dthy1, Y, j.theta1, j.theta1_rate, j.theta1_acc);
+  rotate_dynamic(dthx1, X, j.theta1, j.theta1_rate, j.theta1_acc);
   m.rotate(Z, j.theta1, j.theta1_rate, j.theta1_acc);
   // 1 → 2t: arm of radius R0 + ΔR_s + c·θ̇1² (at the mean rate), intersection, perpendicularity.
   const S mean_rate = j.theta1_rate - j.theta1_ripple_rate;
   m.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * mean_rate * mean_rate, E(dy2t), S(0)));
   m.rotate(Y, E(dthy2t));
   // 2t → 2: horizontal-axis float, runouts, wobbles, then Rx(β).
-  detail::translate_dynamic<S>(m, layout, e, dx2, j.beta, j.beta_rate);
-  detail::rotate_dynamic<S>(m, layout, e, dthz2, Z, j.beta, j.beta_rate);
-  detail::rotate_dynamic<S>(m, layout, e, dthy2, Y, j.beta, j.beta_rate);
+  translate_dynamic(dx2, j.beta, j.beta_rate, S(0));
+  rotate_dynamic(dthz2, Z, j.beta, j.beta_rate, S(0));
+  rotate_dynamic(dthy2, Y, j.beta, j.beta_rate, S(0));
   m.rotate(X, j.beta, j.beta_rate, S(0));
   // 2 → 3t: azimuth sleeve.
   m.translate(Vec3<S>(S(0), E(dy3t), S(0)));
@@ -140,9 +134,9 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   // 3t → 3: platform runouts, float, wobbles, then Rz(γ). Frozen-γ drops γ̇ from the position derivatives.
   const S gamma_rate_in_position = options.frozen_platform ? S(0) : j.gamma_rate;
   const S gamma_acc_in_position = options.frozen_platform ? S(0) : j.gamma_acc;
-  detail::translate_dynamic<S>(m, layout, e, dx3, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
-  detail::rotate_dynamic<S>(m, layout, e, dthy3, Y, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
-  detail::rotate_dynamic<S>(m, layout, e, dthx3, X, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  translate_dynamic(dx3, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  rotate_dynamic(dthy3, Y, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  rotate_dynamic(dthx3, X, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
   const Vec3<S> azimuth_axis = m.R.col(Z);
   m.rotate(Z, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
   // 3 → 4: working base plane.

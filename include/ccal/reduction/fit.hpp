@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/value_of.hpp"
 
 namespace ccal {
 
@@ -91,18 +92,6 @@ Eigen::MatrixXd polynomial_design(const Eigen::VectorXd& x, int degree);
 // "K0" .. "K<degree>".
 std::vector<std::string> polynomial_term_names(int degree);
 
-namespace detail {
-// The double value of a scalar, looking through (nested) automatic-differentiation scalars.
-template <class T>
-double scalar_value(const T& v) {
-  if constexpr (std::is_arithmetic_v<T>) {
-    return static_cast<double>(v);
-  } else {
-    return scalar_value(v.value());
-  }
-}
-}  // namespace detail
-
 // Least-squares solution of H b ~= y for any Eigen scalar type, in particular Eigen::AutoDiffScalar,
 // so that fitted coefficients can be differentiated with respect to parameters entering H and y.
 // Columns are scaled to unit norm, the scaled design is factorised by (unpivoted) Householder QR, which
@@ -130,7 +119,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> solve_least_squares(
   for (Eigen::Index k = 0; k < cols; ++k) {
     using std::sqrt;
     const Scalar norm = sqrt(H.col(k).squaredNorm());
-    if (!(detail::scalar_value(norm) > 0)) {
+    if (!(value_of(norm) > 0)) {
       throw IllPosedFit(fmt::format("solve_least_squares: column {} is zero", k + 1));
     }
     scale(k) = Scalar(1) / norm;
@@ -139,11 +128,11 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> solve_least_squares(
   const Eigen::HouseholderQR<Matrix> qr(scaled);
   double max_diag = 0;
   for (Eigen::Index k = 0; k < cols; ++k) {
-    max_diag = std::max(max_diag, std::abs(detail::scalar_value(qr.matrixQR()(k, k))));
+    max_diag = std::max(max_diag, std::abs(value_of(qr.matrixQR()(k, k))));
   }
   const double tiny = static_cast<double>(std::max(rows, cols)) * 2.220446049250313e-16 * max_diag;
   for (Eigen::Index k = 0; k < cols; ++k) {
-    if (!(std::abs(detail::scalar_value(qr.matrixQR()(k, k))) > tiny)) {
+    if (!(std::abs(value_of(qr.matrixQR()(k, k))) > tiny)) {
       throw IllPosedFit(
           fmt::format("solve_least_squares: the columns are linearly dependent (column {} adds nothing to "
                       "the previous ones)",

@@ -24,27 +24,13 @@
 
 namespace ccal {
 
-namespace detail {
+// The paper's reduction of one run (docs/model.md §5.1, §7.1): the first-order form with the frozen-γ rules,
+// phases on the nominal rate, Δω in the amplitude of every power term, pose errors in the K1 term only
+// unless `cross_terms`. Instantiated for double and Dual.
 template <class S>
 RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
                             const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
                             bool cross_terms);
-// What paper_average needs of a run that does not depend on the errors: the quadrature on the nominal rate
-// and, per node, the paper form's error-free IA input and rate and their sensitivity rows (non-zero entries).
-struct PaperRunNodes {
-  double rate = 0;  // nominal Ω [rad/s]
-  std::vector<double> weight, cos_gamma, sin_gamma;
-  std::vector<double> coriolis;         // the constant Coriolis term of a_i [g]
-  std::vector<double> nominal_rate_ia;  // error-free ω_IA [rad/s]
-  std::vector<std::vector<std::pair<int, double>>> force_row, rate_row;  // ∂a_i/∂e, ∂ω_IA/∂e (Δω excluded)
-};
-PaperRunNodes paper_run_nodes(const Experiment& ex, const ccal::Run& run, const std::vector<TermSpec>& terms);
-// paper_average from the nodes of the run (same result; for repeated evaluation, e.g. Monte Carlo trials).
-template <class S>
-RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, const VecX<S>& e,
-                            const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
-                            bool cross_terms);
-}  // namespace detail
 
 // Observations of every run, with the truth reduced through `ex` and the analyst's model through `model`
 // (the same experiment, except perhaps for what the model compensates, e.g. its Site's Earth-rotation
@@ -71,8 +57,8 @@ Observations<S> observe(const Experiment& ex, const Experiment& model, const Vec
       model_avg =
           average_run<S>(model.geometry, model.layout, known, model.site, run, nullptr, terms, options);
     } else {
-      truth_avg = detail::paper_average<S>(ex, truth, run, &ex.instrument, {}, spec.paper_cross_terms);
-      model_avg = detail::paper_average<S>(model, known, run, nullptr, terms, spec.paper_cross_terms);
+      truth_avg = paper_average<S>(ex, truth, run, &ex.instrument, {}, spec.paper_cross_terms);
+      model_avg = paper_average<S>(model, known, run, nullptr, terms, spec.paper_cross_terms);
     }
     obs.output[j] = truth_avg.output;
     obs.regressors.row(j) = model_avg.regressors.transpose();

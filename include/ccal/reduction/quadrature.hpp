@@ -26,6 +26,7 @@
 #include "ccal/core/scalar.hpp"
 #include "ccal/model/centrifuge.hpp"
 #include "ccal/model/kinematics.hpp"
+#include "ccal/reduction/detail/spectral_weights.hpp"
 
 namespace ccal {
 
@@ -54,102 +55,6 @@ struct RunQuadrature {
 int fast_nodes_for(int polynomial_degree, int input_harmonics);
 // Q for a phase drift of `drift` radians over the run: the smallest Q ≤ 10 with drift^Q / Q! < 1e-16.
 int slow_nodes_for(double drift, double tolerance = 1e-16);
-
-namespace detail {
-inline constexpr int kMaxSlowNodes = 16;
-// J_p(κ) = ½ ∫₋₁¹ x^p e^{iκx} dx for p = 0..P−1 (real and imaginary parts, into re[0..P) and im[0..P)),
-// given cos κ and sin κ: the Taylor series
-// Σ_n (iκ)^n/n! · (1 + (−1)^{n+p}) / (2(n+p+1)) for |κ| < 4, otherwise the forward recursion
-// J_p = (e^{iκ} − (−1)^p e^{−iκ}) / (2iκ) − p J_{p−1} / (iκ), stable while p < |κ|.
-template <class S>
-void oscillatory_moments(const S& kappa, const S& cos_kappa, const S& sin_kappa, int P, S* re, S* im) {
-  using std::abs;
-  for (int p = 0; p < P; ++p) re[p] = im[p] = S(0);
-  if (abs(kappa) < 4.0 + P) {
-    // Terms until |κ|^n/n! < 1e-20 (at most 80: (4+P)^n/n! has fallen below that by then for P ≤ 24); only
-    // the n = 0 term when κ = 0, where J_p = (1 + (−1)^p) / (2(p+1)).
-    const double k_abs = std::abs(value_of(kappa));
-    int terms = 1;
-    for (double t = 1.0; terms < 80 && t >= 1e-20; ++terms) t *= k_abs / terms;
-    for (int p = 0; p < P; ++p) {
-      S term_re{1}, term_im{0};  // (iκ)^n / n!
-      for (int n = 0; n < terms; ++n) {
-        if ((n + p) % 2 == 0) {
-          re[p] += term_re / double(n + p + 1);
-          im[p] += term_im / double(n + p + 1);
-        }
-        const S next_re = -term_im * kappa / double(n + 1);
-        term_im = term_re * kappa / double(n + 1);
-        term_re = next_re;
-      }
-    }
-    return;
-  }
-  for (int p = 0; p < P; ++p) {
-    // (e^{iκ} − (−1)^p e^{−iκ}) / 2 is i·sin κ for even p and cos κ for odd p.
-    S xr = p % 2 == 0 ? S(0) : cos_kappa;
-    S xi = p % 2 == 0 ? sin_kappa : S(0);
-    if (p > 0) {
-      xr -= double(p) * re[p - 1];
-      xi -= double(p) * im[p - 1];
-    }
-    // dividing by iκ maps (x + iy) to (y − ix)/κ
-    re[p] = xi / kappa;
-    im[p] = -xr / kappa;
-  }
-}
-// Monomial coefficients a_qp of the Lagrange basis on the Q nodes x_q ∈ [−1, 1]: L_q(x) = Σ_p a_qp x^p.
-Eigen::MatrixXd lagrange_monomials(const std::vector<double>& nodes);
-// Chebyshev–Lobatto points on [−1, 1] (well-conditioned interpolation), or {0} for Q = 1.
-std::vector<double> slow_time_nodes(int Q);
-// The M equispaced fast phases θ_j = 2πj/M, with cos and sin of mθ_j = 2π (m j mod M)/M from one table.
-struct FastPhaseTable {
-  explicit FastPhaseTable(int fast_nodes);
-  double phase(int j) const { return 2 * std::numbers::pi * j / M; }
-  int M;
-  std::vector<double> cos_k, sin_k;  // cos(2πk/M), sin(2πk/M), k = 0..M−1
-};
-// ν_mq = e^{iκ/2} Σ_p a_qp J_p(κ/2) (q = 0..Q−1, into nu_re[q], nu_im[q]) for one harmonic m, given κ/2 =
-// mΩT/2 and its cosine and sine, and the Lagrange monomials a (Q × Q).
-template <class S>
-void harmonic_slow_moments(const S& half_kappa, const S& c, const S& s, const Eigen::MatrixXd& a, S* nu_re,
-                           S* nu_im) {
-  const int Q = int(a.rows());
-  S mu_re[kMaxSlowNodes], mu_im[kMaxSlowNodes];
-  oscillatory_moments<S>(half_kappa, c, s, Q, mu_re, mu_im);
-  for (int q = 0; q < Q; ++q) {
-    S sr{0}, si{0};
-    for (int p = 0; p < Q; ++p) {
-      sr += a(q, p) * mu_re[p];
-      si += a(q, p) * mu_im[p];
-    }
-    nu_re[q] = c * sr - s * si;
-    nu_im[q] = s * sr + c * si;
-  }
-}
-// The weights w[q·M + j] of the rule from ν (stored [m·Q + q], m = 0..M/2):
-//     w_jq = (1/M) Σ_{m=−M/2+1}^{M/2} e^{−imθ_j} ν_mq,
-// real because ν_{−m} = conj(ν_m); the Nyquist term is taken once (symmetric convention, M even).
-// With it the rule is exact for cos(Mθ/2) as well as for every harmonic below M/2 (tests/test_quadrature.cpp
-// checks each against its closed form; sin(Mθ/2) vanishes at every node). ccal sizes M so that its integrands
-// are band-limited below M/2 (fast_nodes_for); for them the Nyquist term multiplies Σ_j (−1)^j Φ(θ_j), which
-// vanishes up to their aliasing error, so it moves no ccal result beyond that error: only a direct test of
-// the rule can see it.
-template <class S>
-void dft_weights(const FastPhaseTable& table, int Q, const S* nu_re, const S* nu_im, S* weights) {
-  const int M = table.M, half = M / 2;
-  for (int q = 0; q < Q; ++q)
-    for (int j = 0; j < M; ++j) {
-      S w = nu_re[q];
-      for (int m = 1; m <= half; ++m) {
-        const int k = (m * j) % M;
-        const S term = table.cos_k[k] * nu_re[m * Q + q] + table.sin_k[k] * nu_im[m * Q + q];
-        w += (m == half ? 1.0 : 2.0) * term;
-      }
-      weights[q * M + j] = w / double(M);
-    }
-}
-}  // namespace detail
 
 // The spectral rule for one run of duration T.
 template <class S>

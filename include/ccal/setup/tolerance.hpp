@@ -29,6 +29,15 @@ struct CorrelationGroups {
   int named = 0;        // of them, named groups
 };
 CorrelationGroups correlation_groups(const std::vector<std::string>& group_of_each, std::size_t sources);
+// The same for a list of sources that carry their group (Tolerance and the results built on it).
+template <class Source>
+requires requires(const Source& s) { std::string(s.group); }
+CorrelationGroups correlation_groups(const std::vector<Source>& sources) {
+  std::vector<std::string> group_of_each;
+  group_of_each.reserve(sources.size());
+  for (const Source& s : sources) group_of_each.push_back(s.group);
+  return correlation_groups(group_of_each, sources.size());
+}
 
 // Φ⁻¹ of the error function's argument: √2 erf⁻¹(x), x ∈ (−1, 1), in double precision. The normal
 // quantile of a probability u is normal_erf_quantile(2u − 1); the coverage factor of a symmetric normal

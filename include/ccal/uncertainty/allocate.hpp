@@ -106,18 +106,13 @@ struct AllocateOptions {
   double max_scale = 10.0;             // λ_max
   std::uint64_t verify_trials = 2000;  // M of the Monte Carlo verification; 0: none
   std::uint64_t seed = 1;
-  int threads = 0;        // 0: the OpenMP default
-  bool progress = false;  // progress bar of the verification (only on a terminal)
+  int threads = 0;               // 0: the OpenMP default
+  bool progress = false;         // progress bar of the verification (only on a terminal)
   ProgressCallback on_progress;  // of the verification; may throw Cancelled to stop (core/progress.hpp)
 };
 
-struct AllocatedSource {
-  int parameter = 0;
-  std::string id;
-  std::string group;
-  Distribution distribution = Distribution::normal;
-  double cost = 1;
-  double bound = 0;                 // configured, SI
+// One tolerance as configured (bound in SI, cost, group …) and as allocated.
+struct AllocatedSource : Tolerance {
   double standard_uncertainty = 0;  // configured u_s0, SI
   double scale = 1;                 // λ_s
   double allocated_bound = 0;       // λ_s · bound

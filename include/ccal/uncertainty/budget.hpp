@@ -72,12 +72,9 @@ SensitivityTable sensitivities(const Experiment& ex, const IdentificationSpec& s
                                const ReductionOptions& reduction = {},
                                DerivativeMethod method = DerivativeMethod::automatic);
 
-struct SourceBudget {
-  int parameter = 0;
-  std::string id;
-  std::string group;
-  Distribution distribution = Distribution::normal;
-  double bound = 0;                 // SI
+// One tolerance's line of the budget: the tolerance as configured (its parameter, id, bound in SI,
+// distribution, group, cost and the unit it was written in), then what it costs each coefficient.
+struct SourceBudget : Tolerance {
   double standard_uncertainty = 0;  // u_s, SI
   Eigen::VectorXd sensitivity;      // ∂K/∂e per coefficient, SI per SI unit
   Eigen::VectorXd effect;           // J u_s per coefficient (signed), coefficient SI units

@@ -71,6 +71,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -79,7 +80,6 @@
 #include "ccal/core/model_mode.hpp"
 #include "ccal/core/progress.hpp"
 #include "ccal/reduction/observe.hpp"
-#include "ccal/reduction/run_means.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/rate_noise.hpp"
 
@@ -100,7 +100,8 @@ struct MonteCarloOptions {
   std::uint64_t max_trials = 100000000;  // adaptive: no stage is started that would go beyond this
   double coverage = 0.95;                // p, in (0, 1)
   bool progress = false;  // a progress bar (%, trials/s, ETA) on stderr, only if stderr is a terminal
-  ProgressCallback on_progress;  // called every 0.1 s at most; may throw Cancelled to stop (core/progress.hpp)
+  ProgressCallback
+      on_progress;  // called every 0.1 s at most; may throw Cancelled to stop (core/progress.hpp)
   // Keep every trial's outputs in MonteCarloResult::samples (M × n_outputs, trial order): 8·M·n_outputs bytes
   // more, besides the engine's own copy, which is partly sorted for the intervals.
   bool keep_samples = false;
@@ -223,6 +224,7 @@ LinearPropagation propagate_linear(const std::vector<Tolerance>& sources, int n_
 // identified with no error at all. The analyst knows the actual errors only: the model side uses them when
 // spec.compensate, zero otherwise; the drawn errors are never known. So the means show the bias of the actual
 // errors, the spreads those of the tolerances.
+struct CalibrationTrialCache;
 struct CalibrationModel {
   Experiment experiment;
   IdentificationSpec spec;
@@ -230,11 +232,6 @@ struct CalibrationModel {
   std::vector<int> parameters;    // the layout index of each source
   ModelMode mode = ModelMode::exact;
   Eigen::VectorXd reference;  // the free terms identified with zero errors (SI)
-  // The analyst's side of the observation equations does not change from trial to trial: H⁺ of the model's
-  // design and the known part of each run mean (rate term and fixed terms), so a trial only reduces the
-  // truth.
-  Eigen::MatrixXd design_pinv;
-  Eigen::VectorXd known_part;
   // Quadrature for the trials. A trial needs the run means to ~1e-12 of the output's swing (the coefficient
   // spread is ~1e-3 of it), not to round-off: M covers the harmonics that carry first-order error terms,
   // 2(degree + N) + 2 (the ε² harmonics beyond it alias at ~1e-10 of ε-sized terms), and two slow nodes
@@ -242,11 +239,9 @@ struct CalibrationModel {
   // error-sized part or an oscillatory harmonic reduced by 1/(mΩT) after integration, so linear interpolation
   // in time errs by < 1e-12 of the swing for 3σ draws of the bundled tolerances (tests/test_reduce.cpp).
   ReductionOptions reduction;
-  // The truth's run means in exact mode (run_means.hpp): the same rule and chain as average_run, without its
-  // per-call set-up.
-  std::shared_ptr<const RunMeanKernel> run_means;
-  // In paper mode: the error-independent part of each run's paper reduction.
-  std::vector<detail::PaperRunNodes> paper_nodes;
+  // What every trial shares, computed once by calibration_model (the analyst's H⁺ and known part, the
+  // truth's run-mean kernel): internal to the library (src/uncertainty/calibration_cache.hpp).
+  std::shared_ptr<const CalibrationTrialCache> cache;
 
   std::vector<std::string> output_names() const { return spec.free_terms; }
   int n_outputs() const { return int(spec.free_terms.size()); }
