@@ -201,8 +201,8 @@ void bind_sensed_input(py::module_& m) {
       "errors (`ccal force`).");
 }
 
-// Observations, their identification by least squares and the observability of the free terms.
-void bind_observations_and_fit(py::module_& m) {
+// Simulated observations: the Observations and Simulation results, simulate() and observe().
+void bind_simulated_observations(py::module_& m) {
   py::class_<Observations<double>>(m, "Observations", "Run means: one row per run (SI, inputs in g).")
       .def_readonly("runs", &Observations<double>::runs)
       .def_readonly("columns", &Observations<double>::columns, "term ids of the regressor columns")
@@ -272,7 +272,10 @@ void bind_observations_and_fit(py::module_& m) {
       py::arg("config"), py::arg("mode") = py::none(), py::arg("seed") = 1,
       "Simulated run means of the test plan with the configured errors and instrument noise (`ccal "
       "simulate`).");
+}
 
+// The results of an identification: Fit, TermObservability and Observability.
+void bind_fit_and_observability_results(py::module_& m) {
   py::class_<FitResult>(m, "Fit", "A least-squares identification with its diagnostics.")
       .def_readonly("names", &FitResult::names)
       .def_readonly("value", &FitResult::value)
@@ -312,26 +315,28 @@ void bind_observations_and_fit(py::module_& m) {
       .def_readonly("resolution", &ObservabilityResult::resolution, "σ of each run mean [output SI]")
       .def_readonly("detection_factor", &ObservabilityResult::detection_factor)
       .def_readonly("whole_revolutions", &ObservabilityResult::whole_revolutions);
+}
 
-  // The observability of the configuration's free terms in its planned runs, `reference` (SI per free term)
-  // compared with the detection limits if given.
-  const auto plan_observability = [](const Observations<double>& obs, const Config& cfg,
-                                     const std::optional<Eigen::VectorXd>& reference) {
-    const Experiment ex = cfg.experiment();
-    if (std::size_t(obs.output.size()) != ex.plan.runs.size())
-      throw InputError("observations: " + std::to_string(obs.output.size()) +
-                       " runs, the configuration plans " + std::to_string(ex.plan.runs.size()));
-    std::vector<double> rates;
-    for (const Run& run : ex.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));
-    ObservabilityProblem p =
-        observability_problem(obs, cfg.identification, ex.instrument, ex.plan.runs, rates);
-    if (reference) p.reference = *reference;
-    return assess_observability(p);
-  };
+// The observability of the configuration's free terms in its planned runs, `reference` (SI per free term)
+// compared with the detection limits if given.
+ObservabilityResult plan_observability(const Observations<double>& obs, const Config& cfg,
+                                       const std::optional<Eigen::VectorXd>& reference) {
+  const Experiment ex = cfg.experiment();
+  if (std::size_t(obs.output.size()) != ex.plan.runs.size())
+    throw InputError("observations: " + std::to_string(obs.output.size()) +
+                     " runs, the configuration plans " + std::to_string(ex.plan.runs.size()));
+  std::vector<double> rates;
+  for (const Run& run : ex.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));
+  ObservabilityProblem p = observability_problem(obs, cfg.identification, ex.instrument, ex.plan.runs, rates);
+  if (reference) p.reference = *reference;
+  return assess_observability(p);
+}
+
+// The identification functions: observability(), identify() and the general least-squares fit().
+void bind_identification(py::module_& m) {
   m.def(
       "observability",
-      [plan_observability](const Observations<double>& obs, const Config& cfg,
-                           std::optional<Eigen::VectorXd> reference) {
+      [](const Observations<double>& obs, const Config& cfg, std::optional<Eigen::VectorXd> reference) {
         return plan_observability(obs, cfg, reference);
       },
       py::arg("observations"), py::arg("config"), py::arg("reference") = py::none(),
@@ -340,7 +345,7 @@ void bind_observations_and_fit(py::module_& m) {
 
   m.def(
       "identify",
-      [plan_observability](const Observations<double>& obs, const Config& cfg) {
+      [](const Observations<double>& obs, const Config& cfg) {
         const FitResult r = fit(fit_problem(obs, cfg.identification));
         // A term the plan cannot see is refused rather than fitted from round-off (as `ccal simulate`).
         if (obs.output.size() == Eigen::Index(cfg.plan.runs.size())) {
@@ -378,8 +383,8 @@ void bind_observations_and_fit(py::module_& m) {
       "Least squares y ≈ H x with named columns: weights 1/σ² per row, fixed columns held at given values.");
 }
 
-// Recorded run logs reduced to the observations of the runs as measured.
-void bind_log_reduction(py::module_& m) {
+// The results of reducing recorded run logs: ReducedLog, ControlEvidence, LoggedRun and LogReduction.
+void bind_log_reduction_results(py::module_& m) {
   py::class_<ReducedLog>(m, "ReducedLog", "One recorded run log, reduced (SI).")
       .def_readonly("source", &ReducedLog::source)
       .def_readonly("samples", &ReducedLog::samples)
@@ -424,7 +429,10 @@ void bind_log_reduction(py::module_& m) {
   py::class_<LogReduction>(m, "LogReduction")
       .def_readonly("runs", &LogReduction::runs)
       .def_readonly("observations", &LogReduction::observations);
+}
 
+// Run logs reduced to observations of the runs as measured: the Reduction result, reduce(), reduce_logs().
+void bind_log_reduction(py::module_& m) {
   bind_verb_result<verbs::ReduceResult>(m, "Reduction",
                                         "`ccal reduce`: logged runs, their observations and identification; "
                                         "str() is the CLI's text, to_json() its JSON.",
@@ -491,7 +499,10 @@ void bind_log_reduction(py::module_& m) {
 void bind_analysis(py::module_& m) {
   bind_budget(m);
   bind_sensed_input(m);
-  bind_observations_and_fit(m);
+  bind_simulated_observations(m);
+  bind_fit_and_observability_results(m);
+  bind_identification(m);
+  bind_log_reduction_results(m);
   bind_log_reduction(m);
 }
 

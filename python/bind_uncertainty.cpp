@@ -9,19 +9,20 @@
 #include <variant>
 
 #include "bindings.hpp"
-#include "interruptible.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/verbs/allocate.hpp"
 #include "ccal/verbs/montecarlo.hpp"
+#include "interruptible.hpp"
 
 namespace ccal::python {
 
-namespace {}  // namespace
+namespace {
 
-void bind_uncertainty(py::module_& m) {
+// The results of a Monte Carlo propagation: OutputSummary, MonteCarloDetail and MonteCarlo.
+void bind_monte_carlo_results(py::module_& m) {
   py::class_<OutputSummary>(m, "OutputSummary", "One output of a Monte Carlo run (SI).")
       .def_readonly("name", &OutputSummary::name)
       .def_readonly("mean", &OutputSummary::mean)
@@ -89,7 +90,10 @@ void bind_uncertainty(py::module_& m) {
       .def_readonly("config", &verbs::MonteCarloResult::config)
       .def_readonly("budget", &verbs::MonteCarloResult::budget)
       .def_readonly("monte_carlo", &verbs::MonteCarloResult::monte_carlo);
+}
 
+// The Monte Carlo propagation function monte_carlo().
+void bind_monte_carlo_function(py::module_& m) {
   m.def(
       "monte_carlo",
       [](const Config& cfg, std::int64_t trials, std::uint64_t seed, int threads, int digits,
@@ -121,7 +125,10 @@ void bind_uncertainty(py::module_& m) {
       "`samples`. The defaults are the CLI's. progress: None or progress(done, total) called with the "
       "trials done about every 0.1 s; Ctrl-C (or an exception from progress) stops the run within a "
       "fraction of a second and raises KeyboardInterrupt (or that exception).");
+}
 
+// The results of a tolerance allocation: AllocatedSource, AllocatedCoefficient, AllocationDetail, Allocation.
+void bind_allocation_results(py::module_& m) {
   py::class_<AllocatedSource>(m, "AllocatedSource")
       .def_readonly("id", &AllocatedSource::id)
       .def_readonly("bound", &AllocatedSource::bound, "configured, SI")
@@ -160,7 +167,10 @@ void bind_uncertainty(py::module_& m) {
       "allocation")
       .def_readonly("config", &verbs::AllocateResult::config)
       .def_readonly("allocation", &verbs::AllocateResult::allocation);
+}
 
+// The tolerance allocation function allocate().
+void bind_allocate_function(py::module_& m) {
   m.def(
       "allocate",
       [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
@@ -190,6 +200,15 @@ void bind_uncertainty(py::module_& m) {
       "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. mode: "
       "'exact' or 'paper' (default: the configuration's). progress: None or progress(done, total) of the "
       "verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt.");
+}
+
+}  // namespace
+
+void bind_uncertainty(py::module_& m) {
+  bind_monte_carlo_results(m);
+  bind_monte_carlo_function(m);
+  bind_allocation_results(m);
+  bind_allocate_function(m);
 }
 
 }  // namespace ccal::python
