@@ -19,11 +19,13 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 void check_options(const DesignOptions& o) {
   if (o.starts && (*o.starts < 0 || *o.starts > 1000))
-    throw InputError(fmt::format("--starts: {} is out of range; accepted: 0 to 1000 random starts", *o.starts));
-  if (o.threads < 0) throw InputError(fmt::format("--threads: {} is negative; accepted: 0 (all cores) or more", o.threads));
+    throw InputError(
+        fmt::format("--starts: {} is out of range; accepted: 0 to 1000 random starts", *o.starts));
+  if (o.threads < 0)
+    throw InputError(fmt::format("--threads: {} is negative; accepted: 0 (all cores) or more", o.threads));
   if (o.verify_trials < 0 || o.verify_trials > kMaxMonteCarloTrials)
-    throw InputError(fmt::format("--verify: {} trials is out of range; accepted: 0 (none) to {}", o.verify_trials,
-                                 kMaxMonteCarloTrials));
+    throw InputError(fmt::format("--verify: {} trials is out of range; accepted: 0 (none) to {}",
+                                 o.verify_trials, kMaxMonteCarloTrials));
   for (double f : o.tradeoff)
     if (!(std::isfinite(f) && f > 0 && f <= 10))
       throw InputError(fmt::format(
@@ -96,7 +98,8 @@ Config with_plan(const Config& config, const std::vector<DesignRun>& runs) {
                    [](const DesignRun& a, const DesignRun& b) { return a.g_level < b.g_level; });
   Config c = config;
   c.plan.runs.clear();
-  for (std::size_t j = 0; j < sorted.size(); ++j) c.plan.runs.push_back(plan_run(sorted[j], fmt::format("run{}", j + 1)));
+  for (std::size_t j = 0; j < sorted.size(); ++j)
+    c.plan.runs.push_back(plan_run(sorted[j], fmt::format("run{}", j + 1)));
   return c;
 }
 
@@ -174,23 +177,13 @@ std::string mechanism_sentence(const DesignResult& r) {
   return out;
 }
 
-}  // namespace
-
-DesignResult design(const Config& config, const DesignOptions& options) {
-  check_options(options);
-  if (config.tolerances.empty())
-    throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
-  DesignResult r;
-  r.config = config;
-  r.space = resolve_design_space(config);
-  r.objective = options.objective.value_or(config.design.objective);
-  r.before = budget(config);
-  r.targets = design_targets(config, options, r.before.budget);
-
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<DesignRun> candidates = candidate_runs(r.space, config);
+// The design problem's candidates: every run of the design space, then the configured runs when they all lie
+// in it (their plan is then the search's initial plan, so that the design can only improve on it), with the
+// rows of every candidate computed once.
+DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace& space, int threads) {
+  std::vector<DesignRun> candidates = candidate_runs(space, config);
   std::vector<std::vector<int>> initial;
-  if (configured_in_space(config, r.space)) {
+  if (configured_in_space(config, space)) {
     std::vector<int> plan;
     for (const Run& run : config.plan.runs) {
       plan.push_back(int(candidates.size()));
@@ -198,15 +191,19 @@ DesignResult design(const Config& config, const DesignOptions& options) {
     }
     initial.push_back(plan);
   }
-  r.candidates = candidates.size();
   DesignProblem problem;
-  problem.runs = r.space.runs;
-  problem.total_time = r.space.total_time;
-  problem.rows = candidate_rows(config, candidates, options.threads);
+  problem.runs = space.runs;
+  problem.total_time = space.total_time;
+  problem.rows = candidate_rows(config, candidates, threads);
   problem.candidates = std::move(candidates);
-  r.cache_seconds = seconds_since(t0);
+  problem.initial_plans = initial;
+  return problem;
+}
 
-  // References: the targets, else the configured plan's own value of the criterion.
+// The criterion's weights and references. A reference is the target, else the configured plan's own value of
+// the criterion (U_k or σ_k by the cached rows), else the budget's U_k; a coefficient no tolerance reaches
+// cannot be improved (weight 0). Also the configured plan's objective, when it is a start.
+void set_criterion(const Config& config, DesignResult& r, DesignProblem& problem) {
   const auto nk = Eigen::Index(r.targets.size());
   DesignCriterion& c = problem.criterion;
   c.objective = r.objective;
@@ -214,6 +211,7 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   c.weight = Eigen::VectorXd::Zero(nk);
   c.reference = Eigen::VectorXd::Ones(nk);
   for (Eigen::Index k = 0; k < nk; ++k) c.weight[k] = r.targets[std::size_t(k)].weight;
+  const std::vector<std::vector<int>>& initial = problem.initial_plans;
   if (!initial.empty()) {
     const PlanScore configured = score_plan(problem.rows.select(initial.front()), c);
     for (Eigen::Index k = 0; k < nk; ++k) {
@@ -231,8 +229,47 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   }
   if (!(c.weight.maxCoeff() > 0) && r.objective != DesignObjective::d_optimal)
     throw InputError(config.source + ": design: no chosen coefficient has an uncertainty to reduce");
-  if (!initial.empty()) r.configured_objective = score_plan(problem.rows.select(initial.front()), c).objective;
-  problem.initial_plans = initial;
+  if (!initial.empty())
+    r.configured_objective = score_plan(problem.rows.select(initial.front()), c).objective;
+}
+
+// One point of the trade-off curve: the same design with the total time (and the default nominal duration)
+// scaled by `factor`, neither verified nor traded off again.
+TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
+                             const ResolvedDesignSpace& space, double factor) {
+  Config scaled = config;
+  scaled.design.total_time = space.total_time * factor;
+  if (config.design.durations.empty()) scaled.design.durations = {space.durations.front() * factor};
+  DesignOptions o = options;
+  o.tradeoff.clear();
+  o.verify_trials = 0;
+  const DesignResult d = design(scaled, o);
+  TradeoffPoint point;
+  point.total_time = d.space.total_time;
+  point.used_time = d.search.rows.duration.sum();
+  point.expanded = d.after.budget.expanded_uncertainty;
+  point.objective = d.designed_objective;
+  return point;
+}
+
+}  // namespace
+
+DesignResult design(const Config& config, const DesignOptions& options) {
+  check_options(options);
+  if (config.tolerances.empty())
+    throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
+  DesignResult r;
+  r.config = config;
+  r.space = resolve_design_space(config);
+  r.objective = options.objective.value_or(config.design.objective);
+  r.before = budget(config);
+  r.targets = design_targets(config, options, r.before.budget);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  DesignProblem problem = candidate_problem(config, r.space, options.threads);
+  r.candidates = problem.candidates.size();
+  r.cache_seconds = seconds_since(t0);
+  set_criterion(config, r, problem);
   problem.refinement = r.space.refinement;
   const int threads = options.threads;
   problem.evaluate = [&config, threads](const std::vector<DesignRun>& runs) {
@@ -253,22 +290,8 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   r.tolerance_after = tolerance_expanded(r.designed, r.after.budget);
   r.mechanism = mechanism_sentence(r);
 
-  // The trade-off curve: the same design with the total time (and the default nominal duration) scaled.
-  for (double factor : options.tradeoff) {
-    Config scaled = config;
-    scaled.design.total_time = r.space.total_time * factor;
-    if (config.design.durations.empty()) scaled.design.durations = {r.space.durations.front() * factor};
-    DesignOptions o = options;
-    o.tradeoff.clear();
-    o.verify_trials = 0;
-    const DesignResult d = design(scaled, o);
-    TradeoffPoint point;
-    point.total_time = d.space.total_time;
-    point.used_time = d.search.rows.duration.sum();
-    point.expanded = d.after.budget.expanded_uncertainty;
-    point.objective = d.designed_objective;
-    r.tradeoff.push_back(point);
-  }
+  for (double factor : options.tradeoff)
+    r.tradeoff.push_back(tradeoff_point(config, options, r.space, factor));
   if (options.verify_trials > 0) {
     MonteCarloOptions mo;
     mo.trials = options.verify_trials;
