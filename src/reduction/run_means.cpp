@@ -111,7 +111,8 @@ struct RunTables {
   Matrix3d mount;
 };
 
-// The kernel's tables (RunMeanKernel::Data), here so that the per-run steps of a trial can see them.
+// The kernel's tables. RunMeanKernel::Data is private to the class; its content is defined here so that the
+// free functions of a trial's steps (below means) can take it.
 struct KernelTables {
   Geometry geometry;
   ErrorLayout layout;
