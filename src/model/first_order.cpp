@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace ccal {
 
@@ -83,140 +84,199 @@ bool is_rotation(ErrorKind kind) {
   return kind == ErrorKind::rotation_x || kind == ErrorKind::rotation_y || kind == ErrorKind::rotation_z;
 }
 
+using Column = Eigen::Matrix<double, 6, 1>;  // (f_IA, f_PA, f_OA [g], ω_IA, ω_PA, ω_OA [rad/s])
+
+// The error-free instrument the sensitivities are taken about: frame 5 of the chain, the specific force
+// f = a + 2 ω_c × v + g ẑ and the inertial rate ω + ω_ie (world coordinates), and R₅ᵀ.
+struct NominalInstrument {
+  const FrameMotion<double>& five;
+  V3 earth;   // in the Coriolis force
+  V3 sensed;  // in the instrument's rate
+  double g;
+  V3 f;
+  V3 w_inertial;
+  Eigen::Matrix3d RT;
+};
+
+NominalInstrument nominal_instrument(const FrameMotion<double>& five, const Site& site) {
+  const V3 earth = site.coriolis_rate_enu();
+  const V3 sensed = site.sensed_rate_enu();
+  const double g = site.g;
+  const V3 f = five.a + 2.0 * earth.cross(five.v) + V3(0, 0, g);
+  const V3 w_inertial = five.w + sensed;
+  return {five, earth, sensed, g, f, w_inertial, five.R.transpose()};
+}
+
+// The column of one link error (not a drive) by small-twist perturbation (first_order.hpp, model.md §5.2):
+// X = R_P n b(t) with its derivatives Ẋ = ω_P × X + R_P n ḃ, Ẍ = ω̇_P × X + ω_P × Ẋ + ω_P × (R_P n ḃ) + R_P n
+// b̈; a rotation turns the instrument about the link's pivot, δr̈ = Ẍ × ℓ + 2 Ẋ × ℓ̇ + X × ℓ̈, δṙ = Ẋ × ℓ + X ×
+// ℓ̇,
+//     δf = δr̈ + 2 ω_c × δṙ − X × f,   δω = R_P n ḃ + X × (ω₅ − ω_P) − X × ω₅ⁱ;
+// a translation moves it: δf = Ẍ + 2 ω_c × Ẋ, δω = 0. Both taken into frame 5 (f over g).
+Column link_error_column(const LinkFrames& lf, const NominalInstrument& nom, ErrorKind kind,
+                         const ChannelValue<double>& b) {
+  const FrameMotion<double>& P = lf.parent;
+  const FrameMotion<double>& five = nom.five;
+  const V3 n = P.R.col(axis_of(kind));
+  const V3 X = n * b.value;
+  const V3 Xd = P.w.cross(X) + n * b.rate;
+  const V3 Xdd = P.dw.cross(X) + P.w.cross(Xd) + P.w.cross(n * b.rate) + n * b.acc;
+  V3 df, dw;
+  if (is_rotation(kind)) {
+    const V3 l = five.p - lf.pivot.p, ld = five.v - lf.pivot.v, ldd = five.a - lf.pivot.a;
+    const V3 drdd = Xdd.cross(l) + 2.0 * Xd.cross(ld) + X.cross(ldd);
+    const V3 drd = Xd.cross(l) + X.cross(ld);
+    df = drdd + 2.0 * nom.earth.cross(drd) - X.cross(nom.f);
+    dw = n * b.rate + X.cross(five.w - P.w) - X.cross(nom.w_inertial);
+  } else {
+    df = Xdd + 2.0 * nom.earth.cross(Xd);
+    dw = V3::Zero();
+  }
+  Column column;
+  column << nom.RT * df / nom.g, nom.RT * dw;
+  return column;
+}
+
+// The outputs' derivatives in the drives' joint variables with β = 0, where the error-free instrument sits on
+// the azimuth axis at r = R0 e(θ1) + (L+l) z, e(α) = (cos α, sin α, 0): v = θ̇1 R0 e(θ1+π/2),
+// a = −θ̇1² R0 e(θ1), axes IA = e(ψ), PA = e(ψ+π/2), OA = z with ψ = θ1 + γ, and ω₀₅ = (θ̇1 + γ̇) z.
+// ∂/∂θ1 and ∂/∂θ̇1 of the force at fixed ψ; ∂/∂ψ of the projections at fixed vectors; ∂/∂γ̇ moves the OA rate
+// alone; θ̈1 adds the tangential R0 θ̈1 e(θ1 + π/2) (γ̈ moves nothing).
+struct DriveDerivatives {
+  Column d_psi, d_theta1, d_theta1_rate, d_gamma_rate, d_theta1_acc;
+};
+
+DriveDerivatives drive_derivatives(const Geometry& geo, const JointState<double>& j,
+                                   const NominalInstrument& nom) {
+  auto e = [](double a) { return V3(std::cos(a), std::sin(a), 0.0); };
+  const double R0 = geo.R0, wr = j.theta1_rate, psi = j.theta1 + j.gamma, g = nom.g;
+  const V3& earth = nom.earth;
+  const V3 ez(0, 0, 1);
+  auto outputs = [&](const V3& force, const V3& rate, double p) {
+    Column y;
+    y << e(p).dot(force) / g, e(p + kHalfPi).dot(force) / g, force.z() / g, e(p).dot(rate),
+        e(p + kHalfPi).dot(rate), rate.z();
+    return y;
+  };
+  const V3 a = -wr * wr * R0 * e(j.theta1), v = wr * R0 * e(j.theta1 + kHalfPi);
+  const V3 force = a + 2.0 * earth.cross(v) + g * ez;
+  const V3 force_theta1 = -wr * wr * R0 * e(j.theta1 + kHalfPi) + 2.0 * earth.cross(-wr * R0 * e(j.theta1));
+  const V3 force_rate = -2.0 * wr * R0 * e(j.theta1) + 2.0 * earth.cross(R0 * e(j.theta1 + kHalfPi));
+  const V3 rate = nom.five.w + nom.sensed;
+  DriveDerivatives D;
+  D.d_psi << e(psi + kHalfPi).dot(force) / g, -e(psi).dot(force) / g, 0.0, e(psi + kHalfPi).dot(rate),
+      -e(psi).dot(rate), 0.0;
+  D.d_theta1 = outputs(force_theta1, V3::Zero(), psi);
+  D.d_theta1_rate = outputs(force_rate, ez, psi);
+  D.d_gamma_rate << 0, 0, 0, 0, 0, 1;
+  D.d_theta1_acc = outputs(R0 * e(j.theta1 + kHalfPi), V3::Zero(), psi);
+  return D;
+}
+
+// The column of a harmonic coefficient of the drives' rate ripple (model.md §3.1) with β = 0: a unit
+// coefficient of harmonic k moves the main axis by δ(q) = sin kq / k (cosine term) or −cos kq / k (sine
+// term), its rate by q̇ r(q) and its acceleration by q̇² r′(q). The platform keeps γ (speed control: ψ moves
+// with θ1) or follows the main axis (phase-locked: γ moves by −δ, ψ stays). A platform ripple moves γ and γ̇
+// alone (nothing on a fixed platform).
+Column ripple_column(const ErrorLayout& layout, int index, const JointState<double>& j,
+                     const DriveDerivatives& D, bool counter, bool follows) {
+  const int channel = layout.parameter_channel(index);
+  const int k = layout.parameter_harmonic(index);
+  Column column = Column::Zero();
+  if (k == 0 || (channel == ripple3 && !counter)) return column;
+  const bool sine = layout.parameter_is_sine(index);
+  const double q = channel == ripple1 ? j.theta1 : j.gamma;
+  const double q_rate = channel == ripple1 ? j.theta1_rate : j.gamma_rate;
+  const double c = std::cos(k * q), s = std::sin(k * q);
+  const double angle = sine ? -c / k : s / k, relative = sine ? s : c, slope = sine ? k * c : -k * s;
+  if (channel == ripple3) return Column(angle * D.d_psi + q_rate * relative * D.d_gamma_rate);
+  column = angle * (follows ? D.d_theta1 : Column(D.d_theta1 + D.d_psi)) +
+           q_rate * relative * D.d_theta1_rate + q_rate * q_rate * slope * D.d_theta1_acc;
+  if (follows) column -= q_rate * relative * D.d_gamma_rate;
+  return column;
+}
+
+// The drives' parameters: Δω, ΔΩ, then every harmonic coefficient of the main and platform rate ripples.
+std::vector<int> drive_parameters(const ErrorLayout& layout) {
+  std::vector<int> parameters{int(domega), int(dOmega)};
+  for (int channel : {int(ripple1), int(ripple3)})
+    for (int k = 1; k <= layout.harmonic_order(); ++k)
+      for (bool sine : {false, true}) parameters.push_back(layout.harmonic_index(channel, k, sine));
+  return parameters;
+}
+
+// The drives' columns in closed form (β = 0). Δω changes θ̇1 by 1, θ1(t) by t and, on a counter-rotating
+// platform, γ̇ by −1 and γ(t) by −t; ΔΩ changes γ̇ by −1 and γ(t) by −t there, nothing on a fixed one.
+void closed_form_drive_columns(const Geometry& geo, const ErrorLayout& layout, const JointState<double>& j,
+                               const NominalInstrument& nom, PlatformMode mode, double t,
+                               const std::vector<int>& parameters, SensitivityMatrix& sensitivity) {
+  const DriveDerivatives D = drive_derivatives(geo, j, nom);
+  const bool counter = mode == PlatformMode::counter_rotating;
+  Column d_domega = D.d_theta1_rate + t * (D.d_theta1 + D.d_psi);
+  Column d_dOmega = Column::Zero();
+  if (counter) {
+    d_domega += -D.d_gamma_rate - t * D.d_psi;
+    d_dOmega = -D.d_gamma_rate - t * D.d_psi;
+  }
+  const bool follows = counter && geo.platform_control == PlatformControl::phase_locked;
+  sensitivity.col(layout.static_index(domega)) = d_domega;
+  sensitivity.col(layout.static_index(dOmega)) = d_dOmega;
+  for (std::size_t i = 2; i < parameters.size(); ++i)
+    sensitivity.col(parameters[i]) = ripple_column(layout, parameters[i], j, D, counter, follows);
+}
+
+// No closed form is kept for a tilted horizontal axis: the drives' columns by central differences of the
+// exact chain, step 1e-7 (rad/s for the rates, relative for the ripple; error O(h²·∂³) ≈ 1e-14 relative on
+// outputs that are quadratic in the rates).
+void drive_columns_by_differences(const Geometry& geo, const ErrorLayout& layout, const Site& site,
+                                  const RunMotion<double>& run, PlatformMode mode, double t,
+                                  const std::vector<int>& parameters, SensitivityMatrix& sensitivity) {
+  const bool counter = mode == PlatformMode::counter_rotating;
+  const double h = 1e-7;
+  for (int index : parameters) {
+    Eigen::VectorXd ep = Eigen::VectorXd::Zero(layout.size()), em = ep;
+    ep[index] = h;
+    em[index] = -h;
+    auto eval = [&](const Eigen::VectorXd& err) {
+      RunMotion<double> r = run;
+      r.theta1_rate += err[domega];
+      if (counter) r.gamma_rate -= err[domega] + err[dOmega];
+      const RunMotion<double> rippled = run_motion<double>(0.0, 0.0, 0.0, mode, geo, layout, err);
+      r.main_ripple = rippled.main_ripple;
+      r.platform_ripple = rippled.platform_ripple;
+      r.platform_follows_main = rippled.platform_follows_main;
+      const auto s = exact_state<double>(geo, layout, err, site, r.at(t));
+      Column y;
+      y << s.specific_force, s.angular_rate;
+      return y;
+    };
+    sensitivity.col(index) = (eval(ep) - eval(em)) / (2 * h);
+  }
+}
+
 }  // namespace
 
 FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layout, const Site& site,
                                    const RunMotion<double>& run, PlatformMode mode, double t) {
   const JointState<double> j = run.at(t);
   const NominalChain chain = nominal_chain(geo, j);
-  const FrameMotion<double>& five = chain.instrument;
-  const V3 earth = site.coriolis_rate_enu();  // in the Coriolis force
-  const V3 sensed = site.sensed_rate_enu();   // in the instrument's rate
-  const double g = site.g;
-  const V3 f = five.a + 2.0 * earth.cross(five.v) + V3(0, 0, g);
-  const V3 w_inertial = five.w + sensed;
-  const Eigen::Matrix3d RT = five.R.transpose();
+  const NominalInstrument nom = nominal_instrument(chain.instrument, site);
 
   FirstOrderResult out;
-  out.nominal << RT * f / g, RT * w_inertial;
+  out.nominal << nom.RT * nom.f / nom.g, nom.RT * nom.w_inertial;
   out.sensitivity = SensitivityMatrix::Zero(6, layout.size());
-
   for (int index = 0; index < layout.size(); ++index) {
     const Channel& ch = channels()[layout.parameter_channel(index)];
     if (ch.link == Link::drive) continue;  // below
-    const LinkFrames& lf = chain.links[static_cast<int>(ch.link)];
-    const FrameMotion<double>& P = lf.parent;
     ChannelValue<double> b = basis(layout, index, j);
     if (ch.kind == ErrorKind::arm_stretch) b = {j.theta1_rate * j.theta1_rate, 0.0, 0.0};
-    const V3 n = P.R.col(axis_of(ch.kind));
-    const V3 X = n * b.value;
-    const V3 Xd = P.w.cross(X) + n * b.rate;
-    const V3 Xdd = P.dw.cross(X) + P.w.cross(Xd) + P.w.cross(n * b.rate) + n * b.acc;
-    V3 df, dw;
-    if (is_rotation(ch.kind)) {
-      const V3 l = five.p - lf.pivot.p, ld = five.v - lf.pivot.v, ldd = five.a - lf.pivot.a;
-      const V3 drdd = Xdd.cross(l) + 2.0 * Xd.cross(ld) + X.cross(ldd);
-      const V3 drd = Xd.cross(l) + X.cross(ld);
-      df = drdd + 2.0 * earth.cross(drd) - X.cross(f);
-      dw = n * b.rate + X.cross(five.w - P.w) - X.cross(w_inertial);
-    } else {
-      df = Xdd + 2.0 * earth.cross(Xd);
-      dw = V3::Zero();
-    }
-    out.sensitivity.col(index) << RT * df / g, RT * dw;
+    out.sensitivity.col(index) = link_error_column(chain.links[static_cast<int>(ch.link)], nom, ch.kind, b);
   }
-
-  // Drive errors. With β = 0 the error-free instrument sits on the azimuth axis at r = R0 e(θ1) + (L+l) z,
-  // e(α) = (cos α, sin α, 0): v = θ̇1 R0 e(θ1+π/2), a = −θ̇1² R0 e(θ1), axes IA = e(ψ), PA = e(ψ+π/2),
-  // OA = z with ψ = θ1 + γ, and ω₀₅ = (θ̇1 + γ̇) z. Δω changes θ̇1 by 1, θ1(t) by t and, on a counter-rotating
-  // platform, γ̇ by −1 and γ(t) by −t; ΔΩ changes γ̇ by −1 and γ(t) by −t there, nothing on a fixed one.
-  auto e = [](double a) { return V3(std::cos(a), std::sin(a), 0.0); };
-  const double R0 = geo.R0, wr = j.theta1_rate, psi = j.theta1 + j.gamma;
-  const V3 ez(0, 0, 1);
-  auto outputs = [&](const V3& force, const V3& rate, double p) {
-    Eigen::Matrix<double, 6, 1> y;
-    y << e(p).dot(force) / g, e(p + kHalfPi).dot(force) / g, force.z() / g, e(p).dot(rate),
-        e(p + kHalfPi).dot(rate), rate.z();
-    return y;
-  };
-  // ∂/∂θ1 and ∂/∂θ̇1 of the force at fixed ψ; ∂/∂ψ of the projections at fixed vectors.
-  const V3 a = -wr * wr * R0 * e(j.theta1), v = wr * R0 * e(j.theta1 + kHalfPi);
-  const V3 force = a + 2.0 * earth.cross(v) + g * ez;
-  const V3 force_theta1 = -wr * wr * R0 * e(j.theta1 + kHalfPi) + 2.0 * earth.cross(-wr * R0 * e(j.theta1));
-  const V3 force_rate = -2.0 * wr * R0 * e(j.theta1) + 2.0 * earth.cross(R0 * e(j.theta1 + kHalfPi));
-  const V3 rate = five.w + sensed;
-  Eigen::Matrix<double, 6, 1> d_psi;
-  d_psi << e(psi + kHalfPi).dot(force) / g, -e(psi).dot(force) / g, 0.0, e(psi + kHalfPi).dot(rate),
-      -e(psi).dot(rate), 0.0;
-  Eigen::Matrix<double, 6, 1> d_theta1 = outputs(force_theta1, V3::Zero(), psi);
-  Eigen::Matrix<double, 6, 1> d_theta1_rate = outputs(force_rate, ez, psi);
-  Eigen::Matrix<double, 6, 1> d_gamma_rate;
-  d_gamma_rate << 0, 0, 0, 0, 0, 1;
-  const bool counter = mode == PlatformMode::counter_rotating;
-  Eigen::Matrix<double, 6, 1> d_domega = d_theta1_rate + t * (d_theta1 + d_psi);
-  Eigen::Matrix<double, 6, 1> d_dOmega = Eigen::Matrix<double, 6, 1>::Zero();
-  if (counter) {
-    d_domega += -d_gamma_rate - t * d_psi;
-    d_dOmega = -d_gamma_rate - t * d_psi;
-  }
-  // The drives' rate ripple (model.md §3.1): a unit coefficient of harmonic k moves the main axis by
-  // δ(q) = sin kq / k (cosine term) or −cos kq / k (sine term), its rate by q̇ r(q) and its acceleration by
-  // q̇² r′(q). The platform keeps γ (speed control: ψ moves with θ1) or follows the main axis (phase-locked:
-  // γ moves by −δ, ψ stays). A platform ripple moves γ and γ̇ alone. With the instrument on the azimuth axis
-  // (β = 0) γ̈ moves nothing; θ̈1 adds the tangential R0 θ̈1 e(θ1 + π/2).
-  Eigen::Matrix<double, 6, 1> d_theta1_acc = outputs(R0 * e(j.theta1 + kHalfPi), V3::Zero(), psi);
-  const bool follows = counter && geo.platform_control == PlatformControl::phase_locked;
-  auto ripple_column = [&](int index) {
-    const int channel = layout.parameter_channel(index);
-    const int k = layout.parameter_harmonic(index);
-    Eigen::Matrix<double, 6, 1> column = Eigen::Matrix<double, 6, 1>::Zero();
-    if (k == 0 || (channel == ripple3 && !counter)) return column;
-    const bool sine = layout.parameter_is_sine(index);
-    const double q = channel == ripple1 ? j.theta1 : j.gamma;
-    const double q_rate = channel == ripple1 ? wr : j.gamma_rate;
-    const double c = std::cos(k * q), s = std::sin(k * q);
-    const double angle = sine ? -c / k : s / k, relative = sine ? s : c, slope = sine ? k * c : -k * s;
-    if (channel == ripple3)
-      return Eigen::Matrix<double, 6, 1>(angle * d_psi + q_rate * relative * d_gamma_rate);
-    column = angle * (follows ? d_theta1 : Eigen::Matrix<double, 6, 1>(d_theta1 + d_psi)) +
-             q_rate * relative * d_theta1_rate + q_rate * q_rate * slope * d_theta1_acc;
-    if (follows) column -= q_rate * relative * d_gamma_rate;
-    return column;
-  };
-  std::vector<int> drive_parameters{int(domega), int(dOmega)};
-  for (int channel : {int(ripple1), int(ripple3)})
-    for (int k = 1; k <= layout.harmonic_order(); ++k)
-      for (bool sine : {false, true}) drive_parameters.push_back(layout.harmonic_index(channel, k, sine));
-  if (geo.beta == 0.0) {
-    out.sensitivity.col(layout.static_index(domega)) = d_domega;
-    out.sensitivity.col(layout.static_index(dOmega)) = d_dOmega;
-    for (std::size_t i = 2; i < drive_parameters.size(); ++i)
-      out.sensitivity.col(drive_parameters[i]) = ripple_column(drive_parameters[i]);
-  } else {
-    // No closed form is kept for a tilted horizontal axis: central differences of the exact chain, step
-    // 1e-7 (rad/s for the rates, relative for the ripple; error O(h²·∂³) ≈ 1e-14 relative on outputs that are
-    // quadratic in the rates).
-    const double h = 1e-7;
-    for (int index : drive_parameters) {
-      Eigen::VectorXd ep = Eigen::VectorXd::Zero(layout.size()), em = ep;
-      ep[index] = h;
-      em[index] = -h;
-      auto eval = [&](const Eigen::VectorXd& err) {
-        RunMotion<double> r = run;
-        r.theta1_rate += err[domega];
-        if (counter) r.gamma_rate -= err[domega] + err[dOmega];
-        const RunMotion<double> rippled = run_motion<double>(0.0, 0.0, 0.0, mode, geo, layout, err);
-        r.main_ripple = rippled.main_ripple;
-        r.platform_ripple = rippled.platform_ripple;
-        r.platform_follows_main = rippled.platform_follows_main;
-        const auto s = exact_state<double>(geo, layout, err, site, r.at(t));
-        Eigen::Matrix<double, 6, 1> y;
-        y << s.specific_force, s.angular_rate;
-        return y;
-      };
-      out.sensitivity.col(index) = (eval(ep) - eval(em)) / (2 * h);
-    }
-  }
+  const std::vector<int> drives = drive_parameters(layout);
+  if (geo.beta == 0.0)
+    closed_form_drive_columns(geo, layout, j, nom, mode, t, drives, out.sensitivity);
+  else
+    drive_columns_by_differences(geo, layout, site, run, mode, t, drives, out.sensitivity);
   return out;
 }
 

@@ -192,20 +192,19 @@ std::pair<Index, Index> most_correlated_pair(const Eigen::MatrixXd& corr) {
 namespace {
 
 // The scaled least-squares problem min |A z − b| (A: the weighted design with columns scaled by `scale`):
-// rank and conditioning from the singular values, the solution z refined on the augmented system, and
-// (AᵀA)⁻¹. Fills result.rank and result.condition_number; throws IllPosedFit.
+// the solution z refined on the augmented system, and (AᵀA)⁻¹.
 struct ScaledSolution {
   Eigen::VectorXd z;
   Eigen::MatrixXd cov_z;
 };
-ScaledSolution solve_scaled(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const FitOptions& o,
-                            FitResult& result) {
-  const Index rows = a.rows(), m = a.cols();
-  // Singular values and right singular vectors always: they are the rank and conditioning diagnostics.
-  const unsigned svd_options =
-      o.method == FitMethod::svd ? (Eigen::ComputeThinU | Eigen::ComputeThinV) : Eigen::ComputeThinV;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, svd_options);
+
+// Rank and conditioning of A from its singular values (always computed: they are the diagnostics). Fills
+// result.rank and result.condition_number; throws IllPosedFit for a rank-deficient design or one whose
+// condition number exceeds max_condition. Returns (AᵀA)⁻¹ = V S⁻² Vᵀ.
+Eigen::MatrixXd rank_and_conditioning(const Eigen::JacobiSVD<Eigen::MatrixXd>& svd, Index rows,
+                                      const FitOptions& o, FitResult& result) {
   const Eigen::VectorXd sigma = svd.singularValues();
+  const Index m = svd.cols();
   const double tolerance =
       o.rank_tolerance > 0 ? o.rank_tolerance : static_cast<double>(std::max(rows, m)) * kEps * sigma(0);
   result.rank = static_cast<int>((sigma.array() > tolerance).count());
@@ -226,81 +225,101 @@ ScaledSolution solve_scaled(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, 
                     result.names[static_cast<std::size_t>(j)], corr(i, j)),
         {result.names[static_cast<std::size_t>(i)], result.names[static_cast<std::size_t>(j)]});
   }
+  return cov_z_svd;
+}
 
-  // Refinement of the augmented system [I A; A^T 0] [r; z] = [b; 0] (Bjorck): r is carried in
-  // double-double, both residuals of the system are accumulated in double-double and each correction
-  // comes from the same factorisation. Unlike refining z alone with b - A z, this also removes the error
-  // that a large least-squares residual r induces in z (the cond^2 * eps * |r| term), which dominates for
-  // noisy data such as NIST's Wampler4/5.
-  Eigen::VectorXd z;
-  Eigen::MatrixXd cov_z;
-  const auto refine = [&](const auto& correction) {
-    Eigen::VectorXd r_hi(rows), r_lo(rows), f(rows), g(m);
-    for (Index i = 0; i < rows; ++i) {
+// Refinement of the augmented system [I A; A^T 0] [r; z] = [b; 0] (Bjorck): r is carried in
+// double-double, both residuals of the system are accumulated in double-double and each correction
+// comes from the same factorisation (`correction(f, g)` solves [I A; A^T 0] [dr; dz] = [f; g]). Unlike
+// refining z alone with b - A z, this also removes the error that a large least-squares residual r induces
+// in z (the cond^2 * eps * |r| term), which dominates for noisy data such as NIST's Wampler4/5.
+template <class Correction>
+void refine_augmented(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, int steps, Eigen::VectorXd& z,
+                      const Correction& correction) {
+  const Index rows = a.rows(), m = a.cols();
+  Eigen::VectorXd r_hi(rows), r_lo(rows), f(rows), g(m);
+  for (Index i = 0; i < rows; ++i) {
+    CompensatedSum sum(b(i));
+    for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
+    std::tie(r_hi(i), r_lo(i)) = sum.split();
+  }
+  for (int step = 0; step < steps; ++step) {
+    for (Index i = 0; i < rows; ++i) {  // f = b - r - A z
       CompensatedSum sum(b(i));
+      sum.add(-r_hi(i));
+      sum.add(-r_lo(i));
       for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
+      f(i) = sum.value();
+    }
+    for (Index k = 0; k < m; ++k) {  // g = -A^T r
+      CompensatedSum sum;
+      for (Index i = 0; i < rows; ++i) {
+        sum.add_product(-a(i, k), r_hi(i));
+        sum.add_product(-a(i, k), r_lo(i));
+      }
+      g(k) = sum.value();
+    }
+    const auto [dr, dz] = correction(f, g);
+    for (Index i = 0; i < rows; ++i) {
+      CompensatedSum sum(r_hi(i));
+      sum.add(r_lo(i));
+      sum.add(dr(i));
       std::tie(r_hi(i), r_lo(i)) = sum.split();
     }
-    for (int step = 0; step < o.refinement_steps; ++step) {
-      for (Index i = 0; i < rows; ++i) {  // f = b - r - A z
-        CompensatedSum sum(b(i));
-        sum.add(-r_hi(i));
-        sum.add(-r_lo(i));
-        for (Index k = 0; k < m; ++k) sum.add_product(-a(i, k), z(k));
-        f(i) = sum.value();
-      }
-      for (Index k = 0; k < m; ++k) {  // g = -A^T r
-        CompensatedSum sum;
-        for (Index i = 0; i < rows; ++i) {
-          sum.add_product(-a(i, k), r_hi(i));
-          sum.add_product(-a(i, k), r_lo(i));
-        }
-        g(k) = sum.value();
-      }
-      const auto [dr, dz] = correction(f, g);
-      for (Index i = 0; i < rows; ++i) {
-        CompensatedSum sum(r_hi(i));
-        sum.add(r_lo(i));
-        sum.add(dr(i));
-        std::tie(r_hi(i), r_lo(i)) = sum.split();
-      }
-      z += dz;
-    }
-  };
-  if (o.method == FitMethod::qr) {
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-    // Full rank was established from the singular values; let QR use every pivot.
-    qr.setThreshold(std::numeric_limits<double>::min());
-    z = qr.solve(b);
-    const auto r_factor = qr.matrixR().topLeftCorner(m, m).triangularView<Eigen::Upper>();
-    // A = Q [R; 0] P^T. Correction of [I A; A^T 0] [dr; dz] = [f; g]:
-    //   R^T u = P^T g,  c = Q^T f,  dr = Q [u; c_2],  R P^T dz = c_1 - u.
-    refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
-      const Eigen::VectorXd c = qr.householderQ().adjoint() * f;
-      const Eigen::VectorXd u = r_factor.transpose().solve(qr.colsPermutation().transpose() * g);
-      Eigen::VectorXd w(rows);
-      w << u, c.tail(rows - m);
-      const Eigen::VectorXd dr = qr.householderQ() * w;
-      const Eigen::VectorXd dz = qr.colsPermutation() * r_factor.solve(c.head(m) - u);
-      return std::pair{dr, dz};
-    });
-    // (A^T A)^-1 = P R^-1 R^-T P^T.
-    const Eigen::MatrixXd r_inv = r_factor.solve(Eigen::MatrixXd::Identity(m, m));
-    const Eigen::MatrixXd permuted = r_inv * r_inv.transpose();
-    cov_z = qr.colsPermutation() * permuted * qr.colsPermutation().transpose();
-  } else {
-    z = svd.solve(b);
-    // A = U S V^T (thin). Correction: u = S^-1 V^T g, dr = U u + (f - U U^T f), dz = V S^-1 (U^T f - u).
-    refine([&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
-      const Eigen::VectorXd u = (svd.matrixV().transpose() * g).cwiseQuotient(sigma);
-      const Eigen::VectorXd utf = svd.matrixU().transpose() * f;
-      const Eigen::VectorXd dr = svd.matrixU() * (u - utf) + f;
-      const Eigen::VectorXd dz = svd.matrixV() * (utf - u).cwiseQuotient(sigma);
-      return std::pair{dr, dz};
-    });
-    cov_z = cov_z_svd;
+    z += dz;
   }
-  return {z, cov_z};
+}
+
+// The solution by column-pivoted QR, A = Q [R; 0] P^T, refined; (A^T A)^-1 = P R^-1 R^-T P^T.
+ScaledSolution refined_qr_solution(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, int refinement_steps) {
+  const Index rows = a.rows(), m = a.cols();
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  // Full rank was established from the singular values; let QR use every pivot.
+  qr.setThreshold(std::numeric_limits<double>::min());
+  Eigen::VectorXd z = qr.solve(b);
+  const auto r_factor = qr.matrixR().topLeftCorner(m, m).triangularView<Eigen::Upper>();
+  // Correction of [I A; A^T 0] [dr; dz] = [f; g]:
+  //   R^T u = P^T g,  c = Q^T f,  dr = Q [u; c_2],  R P^T dz = c_1 - u.
+  refine_augmented(a, b, refinement_steps, z, [&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
+    const Eigen::VectorXd c = qr.householderQ().adjoint() * f;
+    const Eigen::VectorXd u = r_factor.transpose().solve(qr.colsPermutation().transpose() * g);
+    Eigen::VectorXd w(rows);
+    w << u, c.tail(rows - m);
+    const Eigen::VectorXd dr = qr.householderQ() * w;
+    const Eigen::VectorXd dz = qr.colsPermutation() * r_factor.solve(c.head(m) - u);
+    return std::pair{dr, dz};
+  });
+  const Eigen::MatrixXd r_inv = r_factor.solve(Eigen::MatrixXd::Identity(m, m));
+  const Eigen::MatrixXd permuted = r_inv * r_inv.transpose();
+  return {z, qr.colsPermutation() * permuted * qr.colsPermutation().transpose()};
+}
+
+// The solution by the thin SVD A = U S V^T, refined. Correction: u = S^-1 V^T g, dr = U u + (f - U U^T f),
+// dz = V S^-1 (U^T f - u). The covariance is the one rank_and_conditioning formed.
+ScaledSolution refined_svd_solution(const Eigen::JacobiSVD<Eigen::MatrixXd>& svd, const Eigen::MatrixXd& a,
+                                    const Eigen::VectorXd& b, int refinement_steps, Eigen::MatrixXd cov_z) {
+  const Eigen::VectorXd sigma = svd.singularValues();
+  Eigen::VectorXd z = svd.solve(b);
+  refine_augmented(a, b, refinement_steps, z, [&](const Eigen::VectorXd& f, const Eigen::VectorXd& g) {
+    const Eigen::VectorXd u = (svd.matrixV().transpose() * g).cwiseQuotient(sigma);
+    const Eigen::VectorXd utf = svd.matrixU().transpose() * f;
+    const Eigen::VectorXd dr = svd.matrixU() * (u - utf) + f;
+    const Eigen::VectorXd dz = svd.matrixV() * (utf - u).cwiseQuotient(sigma);
+    return std::pair{dr, dz};
+  });
+  return {z, std::move(cov_z)};
+}
+
+// Rank and conditioning from the singular values (throws IllPosedFit), then the solution by the chosen
+// method. Fills result.rank and result.condition_number.
+ScaledSolution solve_scaled(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const FitOptions& o,
+                            FitResult& result) {
+  const unsigned svd_options =
+      o.method == FitMethod::svd ? (Eigen::ComputeThinU | Eigen::ComputeThinV) : Eigen::ComputeThinV;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, svd_options);
+  Eigen::MatrixXd cov_z_svd = rank_and_conditioning(svd, a.rows(), o, result);
+  if (o.method == FitMethod::qr) return refined_qr_solution(a, b, o.refinement_steps);
+  return refined_svd_solution(svd, a, b, o.refinement_steps, std::move(cov_z_svd));
 }
 
 // The pairs of estimates the data cannot separate (refused) or barely separate (a warning).
@@ -329,94 +348,90 @@ void check_correlations(const FitOptions& o, FitResult& result) {
   }
 }
 
-}  // namespace
-
-FitResult fit(const FitProblem& p, const FitOptions& o) {
-  validate(p, o);
-  const Index rows = p.H.rows();
-  const bool weighted = p.weights.size() != 0;
-
-  // Split free and fixed terms; move the fixed contributions to the left-hand side.
-  FitResult result;
+// The free terms (their columns, and their names in result order) and the fixed ones with their values.
+struct TermSplit {
   std::vector<Index> free_cols;
   std::vector<std::pair<Index, double>> fixed_cols;
+};
+TermSplit split_terms(const FitProblem& p, std::vector<std::string>& free_names) {
+  TermSplit split;
   for (std::size_t k = 0; k < p.term_names.size(); ++k) {
     const auto found = p.fixed.find(p.term_names[k]);
     const Index col = static_cast<Index>(k);
     if (found == p.fixed.end()) {
-      free_cols.push_back(col);
-      result.names.push_back(p.term_names[k]);
+      split.free_cols.push_back(col);
+      free_names.push_back(p.term_names[k]);
     } else {
-      fixed_cols.emplace_back(col, found->second);
+      split.fixed_cols.emplace_back(col, found->second);
     }
   }
-  // y minus the fixed contributions, accumulated accurately, for row i.
-  const auto reduced_y = [&](Index i) {
-    CompensatedSum sum(p.y(i));
-    for (const auto& [col, value] : fixed_cols) sum.add_product(-p.H(i, col), value);
-    return sum;
-  };
-  const Index m = static_cast<Index>(free_cols.size());
-  if (rows < m) {
-    throw IllPosedFit(
-        fmt::format("fit: {} observation{} cannot determine {} free terms ({}); the plan needs at "
-                    "least {} runs",
-                    rows, rows == 1 ? "" : "s", m, join_names(result.names), m),
-        result.names);
-  }
-  Eigen::MatrixXd h_free(rows, m);
-  for (Index k = 0; k < m; ++k) h_free.col(k) = p.H.col(free_cols[static_cast<std::size_t>(k)]);
+  return split;
+}
 
-  // Weighted design A = sqrt(W) H and right-hand side b = sqrt(W) y.
+// y_i minus the fixed contributions Σ H_ik x_k, accumulated accurately.
+CompensatedSum reduced_y(const FitProblem& p, const std::vector<std::pair<Index, double>>& fixed_cols,
+                         Index i) {
+  CompensatedSum sum(p.y(i));
+  for (const auto& [col, value] : fixed_cols) sum.add_product(-p.H(i, col), value);
+  return sum;
+}
+
+// Weighted design A = sqrt(W) H and right-hand side b = sqrt(W) (y − fixed contributions), the latter from
+// the double-double reduced y.
+struct WeightedSystem {
+  Eigen::MatrixXd a;
+  Eigen::VectorXd b;
+};
+WeightedSystem weighted_system(const FitProblem& p, const Eigen::MatrixXd& h_free,
+                               const std::vector<std::pair<Index, double>>& fixed_cols) {
+  const Index rows = p.H.rows();
+  const bool weighted = p.weights.size() != 0;
   const Eigen::VectorXd sqrt_w = weighted ? p.weights.cwiseSqrt().eval() : Eigen::VectorXd::Ones(rows).eval();
-  Eigen::MatrixXd a = weighted ? (sqrt_w.asDiagonal() * h_free).eval() : h_free;
-  Eigen::VectorXd b(rows);
+  WeightedSystem s{weighted ? (sqrt_w.asDiagonal() * h_free).eval() : h_free, Eigen::VectorXd(rows)};
   for (Index i = 0; i < rows; ++i) {
-    const auto [hi, lo] = reduced_y(i).split();
-    b(i) = weighted ? sqrt_w(i) * hi + sqrt_w(i) * lo : hi;
+    const auto [hi, lo] = reduced_y(p, fixed_cols, i).split();
+    s.b(i) = weighted ? sqrt_w(i) * hi + sqrt_w(i) * lo : hi;
   }
+  return s;
+}
 
-  // Scale each column by a power of two close to 1/norm: exact, so the scaled problem is the same problem.
-  Eigen::VectorXd scale(m);
-  for (Index k = 0; k < m; ++k) {
+// Scales each column of `a` by a power of two close to 1/norm: exact, so the scaled problem is the same
+// problem. Returns the scales; throws IllPosedFit for a zero column.
+Eigen::VectorXd scale_columns(Eigen::MatrixXd& a, const std::vector<std::string>& names) {
+  Eigen::VectorXd scale(a.cols());
+  for (Index k = 0; k < a.cols(); ++k) {
     const double norm = a.col(k).stableNorm();
     if (!(norm > 0)) {
-      const std::string& name = result.names[static_cast<std::size_t>(k)];
+      const std::string& name = names[static_cast<std::size_t>(k)];
       throw IllPosedFit(
           fmt::format("fit: the plan cannot determine {}: its column is zero in every run", name), {name});
     }
     scale(k) = std::ldexp(1.0, -std::ilogb(norm));
     a.col(k) *= scale(k);
   }
+  return scale;
+}
 
-  result.value = Eigen::VectorXd::Zero(m);
-  result.std_error = Eigen::VectorXd::Zero(m);
-  result.covariance = Eigen::MatrixXd::Zero(m, m);
-  result.correlation = Eigen::MatrixXd::Identity(m, m);
-  result.dof = static_cast<int>(rows - m);
-
-  Eigen::MatrixXd cov_unit = Eigen::MatrixXd::Zero(m, m);  // (H^T W H)^-1
-  if (m > 0) {
-    const ScaledSolution solved = solve_scaled(a, b, o, result);
-    const Eigen::VectorXd& z = solved.z;
-    const Eigen::MatrixXd& cov_z = solved.cov_z;
-    result.value = z.cwiseProduct(scale);
-    cov_unit = scale.asDiagonal() * cov_z * scale.asDiagonal();
-    result.correlation = correlation_of(cov_unit);
-  }
-
-  // Residuals in the units of y and chi2, accumulated accurately.
+// Residuals in the units of y and chi2 = Σ w_i r_i², accumulated accurately.
+void residuals_and_chi2(const FitProblem& p, const Eigen::MatrixXd& h_free,
+                        const std::vector<std::pair<Index, double>>& fixed_cols, FitResult& result) {
+  const Index rows = p.H.rows(), m = h_free.cols();
+  const bool weighted = p.weights.size() != 0;
   result.residuals.resize(rows);
   CompensatedSum chi2;
   for (Index i = 0; i < rows; ++i) {
-    CompensatedSum sum = reduced_y(i);
+    CompensatedSum sum = reduced_y(p, fixed_cols, i);
     for (Index k = 0; k < m; ++k) sum.add_product(-h_free(i, k), result.value(k));
     const double r = sum.value();
     result.residuals(i) = r;
     chi2.add_product(weighted ? p.weights(i) * r : r, r);
   }
   result.chi2 = chi2.value();
+}
 
+// The covariance from (HᵀWH)⁻¹: as it is with weights (they state the scale), scaled by chi2/dof without;
+// with no degrees of freedom only the weights can give it.
+void covariance_from_scale(const Eigen::MatrixXd& cov_unit, bool weighted, FitResult& result) {
   if (result.dof > 0) {
     result.chi2_per_dof = result.chi2 / result.dof;
     result.residual_std = std::sqrt(result.chi2_per_dof);
@@ -432,7 +447,46 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
         "no degrees of freedom: standard errors are undefined (std_error and covariance are reported as 0)");
   }
   result.std_error = result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+}
 
+}  // namespace
+
+FitResult fit(const FitProblem& p, const FitOptions& o) {
+  validate(p, o);
+  const Index rows = p.H.rows();
+  const bool weighted = p.weights.size() != 0;
+
+  // Split free and fixed terms; the fixed contributions move to the left-hand side.
+  FitResult result;
+  const TermSplit split = split_terms(p, result.names);
+  const Index m = static_cast<Index>(split.free_cols.size());
+  if (rows < m) {
+    throw IllPosedFit(
+        fmt::format("fit: {} observation{} cannot determine {} free terms ({}); the plan needs at "
+                    "least {} runs",
+                    rows, rows == 1 ? "" : "s", m, join_names(result.names), m),
+        result.names);
+  }
+  Eigen::MatrixXd h_free(rows, m);
+  for (Index k = 0; k < m; ++k) h_free.col(k) = p.H.col(split.free_cols[static_cast<std::size_t>(k)]);
+  WeightedSystem system = weighted_system(p, h_free, split.fixed_cols);
+  const Eigen::VectorXd scale = scale_columns(system.a, result.names);
+
+  result.value = Eigen::VectorXd::Zero(m);
+  result.std_error = Eigen::VectorXd::Zero(m);
+  result.covariance = Eigen::MatrixXd::Zero(m, m);
+  result.correlation = Eigen::MatrixXd::Identity(m, m);
+  result.dof = static_cast<int>(rows - m);
+
+  Eigen::MatrixXd cov_unit = Eigen::MatrixXd::Zero(m, m);  // (H^T W H)^-1
+  if (m > 0) {
+    const ScaledSolution solved = solve_scaled(system.a, system.b, o, result);
+    result.value = solved.z.cwiseProduct(scale);
+    cov_unit = scale.asDiagonal() * solved.cov_z * scale.asDiagonal();
+    result.correlation = correlation_of(cov_unit);
+  }
+  residuals_and_chi2(p, h_free, split.fixed_cols, result);
+  covariance_from_scale(cov_unit, weighted, result);
   check_correlations(o, result);
   return result;
 }

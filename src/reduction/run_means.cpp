@@ -96,18 +96,24 @@ void turn(double c, double s, double delta, double& c_out, double& s_out) {
 
 }  // namespace
 
-struct RunMeanKernel::Data {
-  struct RunTables {
-    double rate = 0;  // nominal Ω [rad/s]
-    double duration = 0;
-    bool counter = false;
-    int M = 0;
-    detail::FastPhaseTable table{2};
-    std::vector<double> cos_theta, sin_theta;  // θ1(0) + θ_j
-    std::vector<double> cos_gamma, sin_gamma;  // φ0 − θ_j (counter-rotating) or φ0
-    std::vector<double> cos_half, sin_half;    // mΩT/2, m = 0..M/2
-    Matrix3d mount;
-  };
+namespace {
+
+// The tables of one run: everything of the run that does not depend on the errors.
+struct RunTables {
+  double rate = 0;  // nominal Ω [rad/s]
+  double duration = 0;
+  bool counter = false;
+  int M = 0;
+  detail::FastPhaseTable table{2};
+  std::vector<double> cos_theta, sin_theta;  // θ1(0) + θ_j
+  std::vector<double> cos_gamma, sin_gamma;  // φ0 − θ_j (counter-rotating) or φ0
+  std::vector<double> cos_half, sin_half;    // mΩT/2, m = 0..M/2
+  Matrix3d mount;
+};
+
+// The kernel's tables. RunMeanKernel::Data is private to the class; its content is defined here so that the
+// free functions of a trial's steps (below means) can take it.
+struct KernelTables {
   Geometry geometry;
   ErrorLayout layout;
   Site site;
@@ -118,9 +124,15 @@ struct RunMeanKernel::Data {
   std::vector<std::vector<double>> slow_nodes;
   std::vector<Eigen::MatrixXd> lagrange;
 
-  Data(const Geometry& g, const ErrorLayout& l, const Site& s, const InstrumentModel& instrument,
-       const QuadratureOptions& q)
+  KernelTables(const Geometry& g, const ErrorLayout& l, const Site& s, const InstrumentModel& instrument,
+               const QuadratureOptions& q)
       : geometry(g), layout(l), site(s), output(instrument), quadrature(q) {}
+};
+
+}  // namespace
+
+struct RunMeanKernel::Data : KernelTables {
+  using KernelTables::KernelTables;
 };
 
 namespace {
@@ -160,7 +172,7 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
   const std::vector<TermSpec> terms = instrument.terms();
   const int degree = polynomial_degree(terms);
   for (const Run& run : runs) {
-    Data::RunTables t;
+    RunTables t;
     t.rate = nominal_rate(run, geometry, site);
     t.duration = run.duration;
     t.counter = run.mode == PlatformMode::counter_rotating;
@@ -211,6 +223,161 @@ RunMeanKernel& RunMeanKernel::operator=(RunMeanKernel&&) noexcept = default;
 
 std::size_t RunMeanKernel::run_count() const { return data_->runs.size(); }
 
+namespace {
+
+// What a trial's errors give every run alike: the chain's blocks A, B (without the arm stretch, which
+// depends on the run's rate) and C, the dynamic channels of the two halves, the drives' rate ripple, and
+// whether the four-lane small-angle loops apply to each half.
+struct TrialTerms {
+  ChainBlocks<double> blocks;
+  const double* main_coefficients;      // dx1 … dthy1
+  const double* platform_coefficients;  // dx3 … dthy3
+  const double* main_ripple;            // c1, s1, … of the main drive's rate ripple, nullptr when zero
+  const double* platform_ripple;        // the same of the platform drive
+  int order;
+  double g;
+  bool phase_locked, main_small, platform_small;
+};
+
+// The drive's rate ripple of `channel` (c1, s1, … after the channel's unused c0), nullptr when zero.
+const double* nonzero_ripple(const double* errors, const ErrorLayout& layout, int channel, int order) {
+  const double* c = errors + layout.harmonic_index(channel, 0, false) + 1;
+  for (int i = 0; i < 2 * order; ++i)
+    if (c[i] != 0.0) return c;
+  return nullptr;
+}
+
+// A half stays in the small-angle loops where its two wobble channels (the 4th and 5th of its dynamic
+// channels) and the angle its ripple adds (a phase-locked platform also turns by the main axis's) stay below
+// kSmallAngle.
+TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eigen::VectorXd>& e) {
+  const double* errors = e.data();
+  const int order = d.layout.harmonic_order();
+  TrialTerms trial{chain_blocks<double>(d.geometry, d.layout, e, d.site, 0.0, d.geometry.beta),
+                   errors + d.layout.harmonic_index(dx1, 0, false),
+                   errors + d.layout.harmonic_index(dx3, 0, false),
+                   nonzero_ripple(errors, d.layout, ripple1, order),
+                   nonzero_ripple(errors, d.layout, ripple3, order),
+                   order,
+                   d.site.g,
+                   d.geometry.platform_control == PlatformControl::phase_locked,
+                   false,
+                   false};
+  const double main_ripple_bound = run_nodes::ripple_angle_bound(trial.main_ripple, order);
+  trial.main_small = always_small(trial.main_coefficients + 3 * (2 * order + 1), order) &&
+                     always_small(trial.main_coefficients + 4 * (2 * order + 1), order) &&
+                     main_ripple_bound < kSmallAngle;
+  trial.platform_small = always_small(trial.platform_coefficients + 3 * (2 * order + 1), order) &&
+                         always_small(trial.platform_coefficients + 4 * (2 * order + 1), order) &&
+                         run_nodes::ripple_angle_bound(trial.platform_ripple, order) +
+                                 (trial.phase_locked ? main_ripple_bound : 0.0) <
+                             kSmallAngle;
+  return trial;
+}
+
+// The number of slow-time nodes as run_quadrature takes it: one on a fixed platform, else the configured
+// number or enough for the platform's drift |ΔΩ| T M/4 over the run.
+int slow_node_count(const RunTables& t, const QuadratureOptions& quadrature, double dOmega) {
+  const double drift = t.counter ? std::abs(dOmega) * t.duration * (t.M / 4) : 0.0;
+  const int Q = t.counter ? (quadrature.slow_nodes > 0 ? quadrature.slow_nodes
+                                                       : slow_nodes_for(drift, quadrature.slow_tolerance))
+                          : 1;
+  if (Q > detail::kMaxSlowNodes)
+    throw std::invalid_argument("RunMeanKernel: at most 16 slow-time nodes (monomial Lagrange basis)");
+  return Q;
+}
+
+// The quadrature weights (quadrature.hpp): κ/2 = m(Ω + Δω)T/2, its cosine and sine turned from the nominal
+// mΩT/2 by mΔωT/2.
+void quadrature_weights(const RunTables& t, double domega, double theta1_rate, int Q,
+                        const Eigen::MatrixXd& a, Scratch& scratch) {
+  const double omega_T = theta1_rate * t.duration;
+  for (int m = 0; m <= t.M / 2; ++m) {
+    double c, s;
+    turn(t.cos_half[std::size_t(m)], t.sin_half[std::size_t(m)], double(m) * domega * t.duration / 2.0, c, s);
+    detail::harmonic_slow_moments<double>(omega_T * double(m) / 2.0, c, s, a,
+                                          &scratch.nu_re[std::size_t(m * Q)],
+                                          &scratch.nu_im[std::size_t(m * Q)]);
+  }
+  detail::dft_weights<double>(t.table, Q, scratch.nu_re.data(), scratch.nu_im.data(), scratch.weights.data());
+}
+
+// The main-axis half at each fast node, carried into frame-3t coordinates; B's arm stretch c·θ̇1² added.
+void main_axis_half(const RunTables& t, const TrialTerms& trial, double arm_stretch_error, double theta1_rate,
+                    Scratch& scratch) {
+  const ChainBlocks<double>& blocks = trial.blocks;
+  MainAxisInputs main{trial.main_coefficients,
+                      trial.order,
+                      trial.main_ripple,
+                      t.cos_theta.data(),
+                      t.sin_theta.data(),
+                      t.M,
+                      theta1_rate,
+                      trial.g,
+                      to_v3(blocks.pB),
+                      to_v3(blocks.coriolis_1t),
+                      to_v3(blocks.gravity_1t),
+                      to_v3(blocks.earth_1t),
+                      blocks.RB};
+  main.pB.x += arm_stretch_error * theta1_rate * theta1_rate;
+  main_axis_nodes(main, trial.main_small, scratch.main);
+}
+
+// The platform half at every node, slow-major like the weights; slow node q drifts by −ΔΩ t_q,
+// t_q = (1 + x_q) T/2. A fixed platform does not turn: no ripple of its own, nothing to follow
+// (kinematics.hpp, run_motion).
+void platform_half(const RunTables& t, const TrialTerms& trial, double dOmega, double gamma_rate,
+                   const std::vector<double>& x_nodes, int Q, Scratch& scratch) {
+  PlatformInputs platform{trial.platform_coefficients,
+                          trial.order,
+                          t.counter ? trial.platform_ripple : nullptr,
+                          t.counter && trial.phase_locked && trial.main_ripple != nullptr,
+                          t.cos_gamma.data(),
+                          t.sin_gamma.data(),
+                          1.0,
+                          0.0,
+                          t.M,
+                          gamma_rate,
+                          1.0 / trial.g,
+                          to_v3(trial.blocks.pC),
+                          trial.blocks.RC * t.mount};
+  for (int q = 0; q < Q; ++q) {
+    const double slow_offset =
+        t.counter ? -dOmega * (0.5 * (1.0 + x_nodes[std::size_t(q)]) * t.duration) : 0.0;
+    cos_sin(slow_offset, platform.cos_offset, platform.sin_offset);
+    platform_nodes(platform, trial.platform_small, scratch.main, scratch.inputs,
+                   std::size_t(q * padded(t.M)));
+  }
+}
+
+// ⟨output⟩ = Σ_q Σ_j w_qj y(a_i, a_p, a_o, ω_IA at node qj), the padding skipped.
+double weighted_output(const OutputPolynomial& output, const Scratch& scratch, int M, int Q) {
+  double mean = 0;
+  for (int q = 0; q < Q; ++q)
+    for (int j = 0; j < M; ++j) {
+      const auto n = std::size_t(q * padded(M) + j);
+      mean += scratch.weights[std::size_t(q * M + j)] * output(scratch.inputs.a_i[n], scratch.inputs.a_p[n],
+                                                               scratch.inputs.a_o[n], scratch.inputs.w_ia[n]);
+    }
+  return mean;
+}
+
+// One run's mean output for the trial's errors: the drives' rates θ̇1 = Ω + Δω and γ̇ = −(θ̇1 + ΔΩ)
+// (counter-rotating) or 0, the weights, the two halves of the chain at the nodes, the weighted sum.
+double run_mean(const KernelTables& d, const RunTables& t, const TrialTerms& trial,
+                const Eigen::Map<const Eigen::VectorXd>& e, Scratch& scratch) {
+  const double theta1_rate = t.rate + e[domega];
+  const double gamma_rate = t.counter ? -(theta1_rate + e[dOmega]) : 0.0;
+  const int Q = slow_node_count(t, d.quadrature, e[dOmega]);
+  scratch.reserve(t.M, Q);
+  quadrature_weights(t, e[domega], theta1_rate, Q, d.lagrange[std::size_t(Q)], scratch);
+  main_axis_half(t, trial, e[arm_stretch], theta1_rate, scratch);
+  platform_half(t, trial, e[dOmega], gamma_rate, d.slow_nodes[std::size_t(Q)], Q, scratch);
+  return weighted_output(d.output, scratch, t.M, Q);
+}
+
+}  // namespace
+
 void RunMeanKernel::means(std::span<const double> errors, std::span<double> out) const {
   const Data& d = *data_;
   if (errors.size() != std::size_t(d.layout.size()) || out.size() != d.runs.size())
@@ -219,110 +386,8 @@ void RunMeanKernel::means(std::span<const double> errors, std::span<double> out)
                     errors.size(), d.layout.size(), out.size(), d.runs.size()));
   thread_local Scratch scratch;
   const Eigen::Map<const Eigen::VectorXd> e(errors.data(), Eigen::Index(errors.size()));
-  // A, B (without the arm stretch, which depends on the run's rate) and C.
-  const ChainBlocks<double> blocks =
-      chain_blocks<double>(d.geometry, d.layout, e, d.site, 0.0, d.geometry.beta);
-  const double* main_coefficients = errors.data() + d.layout.harmonic_index(dx1, 0, false);
-  const double* platform_coefficients = errors.data() + d.layout.harmonic_index(dx3, 0, false);
-  const int order = d.layout.harmonic_order();
-  const double g = d.site.g;
-  // The drives' rate ripple (c1, s1, … after each channel's unused c0), nullptr when zero.
-  auto ripple = [&](int channel) -> const double* {
-    const double* c = errors.data() + d.layout.harmonic_index(channel, 0, false) + 1;
-    for (int i = 0; i < 2 * order; ++i)
-      if (c[i] != 0.0) return c;
-    return nullptr;
-  };
-  const double* main_ripple = ripple(ripple1);
-  const double* platform_ripple = ripple(ripple3);
-  const double main_ripple_bound = run_nodes::ripple_angle_bound(main_ripple, order);
-  const bool phase_locked = d.geometry.platform_control == PlatformControl::phase_locked;
-  const bool main_small = always_small(main_coefficients + 3 * (2 * order + 1), order) &&
-                          always_small(main_coefficients + 4 * (2 * order + 1), order) &&
-                          main_ripple_bound < kSmallAngle;
-  const bool platform_small =
-      always_small(platform_coefficients + 3 * (2 * order + 1), order) &&
-      always_small(platform_coefficients + 4 * (2 * order + 1), order) &&
-      run_nodes::ripple_angle_bound(platform_ripple, order) + (phase_locked ? main_ripple_bound : 0.0) <
-          kSmallAngle;
-
-  for (std::size_t r = 0; r < d.runs.size(); ++r) {
-    const Data::RunTables& t = d.runs[r];
-    const int M = t.M;
-    const double theta1_rate = t.rate + e[domega];
-    const double gamma_rate = t.counter ? -(theta1_rate + e[dOmega]) : 0.0;
-    const double drift = t.counter ? std::abs(e[dOmega]) * t.duration * (M / 4) : 0.0;
-    const int Q = t.counter
-                      ? (d.quadrature.slow_nodes > 0 ? d.quadrature.slow_nodes
-                                                     : slow_nodes_for(drift, d.quadrature.slow_tolerance))
-                      : 1;
-    if (Q > detail::kMaxSlowNodes)
-      throw std::invalid_argument("RunMeanKernel: at most 16 slow-time nodes (monomial Lagrange basis)");
-    scratch.reserve(M, Q);
-
-    // Weights (quadrature.hpp): κ/2 = m(Ω + Δω)T/2, its cosine and sine turned from the nominal mΩT/2.
-    const double omega_T = theta1_rate * t.duration;
-    const Eigen::MatrixXd& a = d.lagrange[std::size_t(Q)];
-    for (int m = 0; m <= M / 2; ++m) {
-      double c, s;
-      turn(t.cos_half[std::size_t(m)], t.sin_half[std::size_t(m)], double(m) * e[domega] * t.duration / 2.0,
-           c, s);
-      detail::harmonic_slow_moments<double>(omega_T * double(m) / 2.0, c, s, a,
-                                            &scratch.nu_re[std::size_t(m * Q)],
-                                            &scratch.nu_im[std::size_t(m * Q)]);
-    }
-    detail::dft_weights<double>(t.table, Q, scratch.nu_re.data(), scratch.nu_im.data(),
-                                scratch.weights.data());
-
-    // Main-axis half at each fast node, carried into frame-3t coordinates.
-    MainAxisInputs main{main_coefficients,
-                        order,
-                        main_ripple,
-                        t.cos_theta.data(),
-                        t.sin_theta.data(),
-                        M,
-                        theta1_rate,
-                        g,
-                        to_v3(blocks.pB),
-                        to_v3(blocks.coriolis_1t),
-                        to_v3(blocks.gravity_1t),
-                        to_v3(blocks.earth_1t),
-                        blocks.RB};
-    main.pB.x += e[arm_stretch] * theta1_rate * theta1_rate;
-    main_axis_nodes(main, main_small, scratch.main);
-
-    // Platform nodes, slow-major like the weights.
-    // A fixed platform does not turn: no ripple of its own, nothing to follow (kinematics.hpp, run_motion).
-    PlatformInputs platform{platform_coefficients,
-                            order,
-                            t.counter ? platform_ripple : nullptr,
-                            t.counter && phase_locked && main_ripple != nullptr,
-                            t.cos_gamma.data(),
-                            t.sin_gamma.data(),
-                            1.0,
-                            0.0,
-                            M,
-                            gamma_rate,
-                            1.0 / g,
-                            to_v3(blocks.pC),
-                            blocks.RC * t.mount};
-    const std::vector<double>& x_nodes = d.slow_nodes[std::size_t(Q)];
-    for (int q = 0; q < Q; ++q) {
-      const double slow_offset =
-          t.counter ? -e[dOmega] * (0.5 * (1.0 + x_nodes[std::size_t(q)]) * t.duration) : 0.0;
-      cos_sin(slow_offset, platform.cos_offset, platform.sin_offset);
-      platform_nodes(platform, platform_small, scratch.main, scratch.inputs, std::size_t(q * padded(M)));
-    }
-    double mean = 0;
-    for (int q = 0; q < Q; ++q)
-      for (int j = 0; j < M; ++j) {
-        const auto n = std::size_t(q * padded(M) + j);
-        mean +=
-            scratch.weights[std::size_t(q * M + j)] * d.output(scratch.inputs.a_i[n], scratch.inputs.a_p[n],
-                                                               scratch.inputs.a_o[n], scratch.inputs.w_ia[n]);
-      }
-    out[r] = mean;
-  }
+  const TrialTerms trial = trial_terms(d, e);
+  for (std::size_t r = 0; r < d.runs.size(); ++r) out[r] = run_mean(d, d.runs[r], trial, e, scratch);
 }
 
 }  // namespace ccal

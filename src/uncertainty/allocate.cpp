@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <utility>
 
 #include "allocation_groups.hpp"
 #include "ccal/core/errors.hpp"
@@ -196,136 +197,185 @@ struct DualRun {
   int iterations = 0;
 };
 
-// Projected Newton on −D(m ν) over ν ≥ 0 (Bertsekas, "Projected Newton methods for optimization problems
-// with simple constraints", SIAM J. Control Optim. 20, 1982): multipliers at or near zero whose constraint is
-// slack are sent to zero, the others take a Newton step on the Hessian of −D,
-//     ∂²(−D)/∂μ_k∂μ_l = (2/3) Σ_{g: x_g < X} a_kg a_lg x_g / b_g,
-// with an exact line search. Until the residual is below kTolerance or no progress is possible.
-DualRun run_dual(const DualProblem& dual, const Eigen::VectorXd& m, const std::vector<bool>& candidate,
-                 Eigen::VectorXd nu, int max_iterations) {
+// The Hessian of −D(m ν) in ν:  diag(m) H_μ diag(m),  H_μ,kl = ∂²(−D)/∂μ_k∂μ_l = (2/3) Σ_{g: x_g < X} a_kg
+// a_lg x_g / b_g (a group at its bound X does not move with μ).
+Eigen::MatrixXd dual_hessian(const DualProblem& dual, const DualProblem::Point& point,
+                             const Eigen::VectorXd& m) {
   const Eigen::Index nt = m.size(), ng = dual.C.size();
   const Eigen::MatrixXd& a = dual.a;
-  DualRun run;
-  DualProblem::Point& point = run.point;
-  double& residual = run.residual;
-  point = dual.at(m.cwiseProduct(nu));
-  residual = kkt_residual(point, candidate);
-  for (int iteration = 0; iteration < max_iterations && residual > kTolerance; ++iteration) {
-    run.iterations = iteration + 1;
-    const Eigen::VectorXd grad = m.cwiseProduct(point.slack);
-    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(nt, nt);
-    for (Eigen::Index g = 0; g < ng; ++g)
-      if (point.interior[std::size_t(g)])
-        H.noalias() += (2.0 / 3.0) * point.x[g] / point.b[g] * a.col(g) * a.col(g).transpose();
-    H = m.asDiagonal() * H * m.asDiagonal();
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(nt, nt);
+  for (Eigen::Index g = 0; g < ng; ++g)
+    if (point.interior[std::size_t(g)])
+      H.noalias() += (2.0 / 3.0) * point.x[g] / point.b[g] * a.col(g) * a.col(g).transpose();
+  H = m.asDiagonal() * H * m.asDiagonal();
+  return H;
+}
 
-    // ε-active set: at or near zero with a gradient pushing below it (beyond round-off); these go to zero.
-    double w = 0;
+// The ε-active set of the projected Newton method: the multipliers at or near zero (ν_k ≤ ε with
+// ε = min(1e-3, |ν − max(0, ν − ∇/m)|)) whose constraint is slack beyond round-off; these go to zero.
+// Targets that are not candidates are held as well (they stay at zero).
+std::vector<bool> held_multipliers(const Eigen::VectorXd& nu, const Eigen::VectorXd& grad,
+                                   const Eigen::VectorXd& m, const Eigen::VectorXd& slack,
+                                   const std::vector<bool>& candidate) {
+  const Eigen::Index nt = m.size();
+  double w = 0;
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (candidate[std::size_t(k)]) w += std::pow(nu[k] - std::max(0.0, nu[k] - grad[k] / m[k]), 2);
+  const double eps = std::min(1e-3, std::sqrt(w));
+  std::vector<bool> held(std::size_t(nt), true);
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (candidate[std::size_t(k)] && !(nu[k] <= eps && slack[k] > kTolerance)) held[std::size_t(k)] = false;
+  return held;
+}
+
+// The Newton step −H_f⁻¹ g_f on the free multipliers `free`, and the floor curvature of each: that of the
+// target alone at ν = 1 with no bound active, (2/3) m_k. Directions of no curvature (every source of the
+// target at the largest scale, where −D is linear in μ_k) get the floor curvature, so that the search starts
+// with a step of a sensible size; a small ridge guards against near-singularity. Where the factorisation
+// gives no descent direction, the scaled gradient.
+struct FreeStep {
+  Eigen::VectorXd direction, floor;
+};
+FreeStep newton_step_on_free(const Eigen::MatrixXd& H, const Eigen::VectorXd& grad, const Eigen::VectorXd& m,
+                             const std::vector<Eigen::Index>& free) {
+  const auto nf = Eigen::Index(free.size());
+  Eigen::MatrixXd Hf(nf, nf);
+  Eigen::VectorXd gf(nf);
+  FreeStep step;
+  step.floor.resize(nf);
+  for (Eigen::Index i = 0; i < nf; ++i) {
+    gf[i] = grad[free[std::size_t(i)]];
+    step.floor[i] = (2.0 / 3.0) * m[free[std::size_t(i)]];
+    for (Eigen::Index j = 0; j < nf; ++j) Hf(i, j) = H(free[std::size_t(i)], free[std::size_t(j)]);
+  }
+  for (Eigen::Index i = 0; i < nf; ++i) {
+    if (Hf(i, i) < 1e-8 * step.floor[i]) Hf(i, i) += step.floor[i];
+    Hf(i, i) *= 1 + 1e-12;
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(Hf);
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) step.direction = -ldlt.solve(gf);
+  if (step.direction.size() != nf || !step.direction.allFinite() || !(gf.dot(step.direction) < 0))
+    step.direction = -gf.cwiseQuotient(Hf.diagonal().cwiseMax(step.floor));  // scaled gradient
+  return step;
+}
+
+// The search direction d: −ν_k for the held multipliers, the Newton step on the others. A multiplier at zero
+// that the step would take below zero is held at zero as well, and the step recomputed without it. Where −D
+// is linear in ν_k and falls towards zero, its minimum along ν_k is at zero.
+Eigen::VectorXd search_direction(const Eigen::MatrixXd& H, const Eigen::VectorXd& grad,
+                                 const Eigen::VectorXd& m, const Eigen::VectorXd& nu,
+                                 const std::vector<bool>& candidate, std::vector<bool>& held) {
+  const Eigen::Index nt = m.size();
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(nt);
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (candidate[std::size_t(k)] && held[std::size_t(k)]) d[k] = -nu[k];
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<Eigen::Index> free;
     for (Eigen::Index k = 0; k < nt; ++k)
-      if (candidate[std::size_t(k)]) w += std::pow(nu[k] - std::max(0.0, nu[k] - grad[k] / m[k]), 2);
-    const double eps = std::min(1e-3, std::sqrt(w));
-    std::vector<bool> held(std::size_t(nt), true);
-    for (Eigen::Index k = 0; k < nt; ++k)
-      if (candidate[std::size_t(k)] && !(nu[k] <= eps && point.slack[k] > kTolerance))
-        held[std::size_t(k)] = false;
-    Eigen::VectorXd d = Eigen::VectorXd::Zero(nt);
-    for (Eigen::Index k = 0; k < nt; ++k)
-      if (candidate[std::size_t(k)] && held[std::size_t(k)]) d[k] = -nu[k];
-    // Newton on the others. A multiplier at zero that the direction would take below zero is held at zero
-    // as well, and the direction recomputed without it.
-    for (bool changed = true; changed;) {
-      changed = false;
-      std::vector<Eigen::Index> free;
-      for (Eigen::Index k = 0; k < nt; ++k)
-        if (!held[std::size_t(k)]) free.push_back(k);
-      if (free.empty()) break;
-      const auto nf = Eigen::Index(free.size());
-      Eigen::MatrixXd Hf(nf, nf);
-      Eigen::VectorXd gf(nf), floor(nf);
-      for (Eigen::Index i = 0; i < nf; ++i) {
-        gf[i] = grad[free[std::size_t(i)]];
-        // The curvature of the target alone at ν = 1 with no bound active.
-        floor[i] = (2.0 / 3.0) * m[free[std::size_t(i)]];
-        for (Eigen::Index j = 0; j < nf; ++j) Hf(i, j) = H(free[std::size_t(i)], free[std::size_t(j)]);
-      }
-      // Directions of no curvature (every source of the target at the largest scale, where −D is linear in
-      // μ_k): the floor curvature, so that the search starts with a step of a sensible size; a small ridge
-      // against near-singularity.
-      for (Eigen::Index i = 0; i < nf; ++i) {
-        if (Hf(i, i) < 1e-8 * floor[i]) Hf(i, i) += floor[i];
-        Hf(i, i) *= 1 + 1e-12;
-      }
-      Eigen::VectorXd df;
-      const Eigen::LDLT<Eigen::MatrixXd> ldlt(Hf);
-      if (ldlt.info() == Eigen::Success && ldlt.isPositive()) df = -ldlt.solve(gf);
-      if (df.size() != nf || !df.allFinite() || !(gf.dot(df) < 0))
-        df = -gf.cwiseQuotient(Hf.diagonal().cwiseMax(floor));  // scaled gradient
-      for (Eigen::Index i = 0; i < nf; ++i) {
-        const Eigen::Index k = free[std::size_t(i)];
-        d[k] = df[i];
-        // Where −D is linear in ν_k and falls towards zero, its minimum along ν_k is at zero.
-        if (H(k, k) < 1e-8 * floor[i] && grad[k] > 0) d[k] = std::min(d[k], -nu[k]);
-        if (nu[k] == 0 && d[k] < 0) {
-          held[std::size_t(k)] = true;
-          d[k] = 0;
-          changed = true;
-        }
+      if (!held[std::size_t(k)]) free.push_back(k);
+    if (free.empty()) break;
+    const FreeStep step = newton_step_on_free(H, grad, m, free);
+    for (Eigen::Index i = 0; i < Eigen::Index(free.size()); ++i) {
+      const Eigen::Index k = free[std::size_t(i)];
+      d[k] = step.direction[i];
+      if (H(k, k) < 1e-8 * step.floor[i] && grad[k] > 0) d[k] = std::min(d[k], -nu[k]);
+      if (nu[k] == 0 && d[k] < 0) {
+        held[std::size_t(k)] = true;
+        d[k] = 0;
+        changed = true;
       }
     }
-    // Exact line search along ν + t d, t in (0, t_max]: t_max = 1, or less where a component would become
-    // negative (it is then set to zero). −D is convex along the segment, so its slope
-    //     ψ'(t) = (m ⊙ s(ν + t d)) · d
-    // is non-decreasing in t: the full step if ψ'(t_max) ≤ 0, else bisection for ψ' = 0. (A backtracking
-    // search is not enough: −D grows like b^(1/3) from b = 0, far from its quadratic model.)
-    const double slope0 = grad.dot(d);
-    if (!(slope0 < 0)) break;  // no descent direction left at this precision
-    double t_max = 1;
-    Eigen::Index stop = -1;
+  }
+  return d;
+}
+
+// Exact line search along ν + t d, t in (0, t_max]: t_max = 1, or less where a component would become
+// negative (it is then set to zero). −D is convex along the segment, so its slope
+//     ψ'(t) = (m ⊙ s(ν + t d)) · d
+// is non-decreasing in t: the full step if ψ'(t_max) ≤ 0, else bisection for ψ' = 0. (A backtracking
+// search is not enough: −D grows like b^(1/3) from b = 0, far from its quadratic model.)
+struct LineSearch {
+  Eigen::VectorXd nu;
+  DualProblem::Point point;
+  double t = 0, t_max = 0;
+};
+LineSearch exact_line_search(const DualProblem& dual, const Eigen::VectorXd& m,
+                             const std::vector<bool>& candidate, const Eigen::VectorXd& nu,
+                             const Eigen::VectorXd& d) {
+  const Eigen::Index nt = m.size();
+  LineSearch s;
+  s.t_max = 1;
+  Eigen::Index stop = -1;
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (candidate[std::size_t(k)] && d[k] < 0 && nu[k] + d[k] <= 0 && nu[k] / -d[k] <= s.t_max) {
+      s.t_max = nu[k] / -d[k];
+      stop = k;
+    }
+  const double t_max = s.t_max;
+  auto along = [&](double t) {
+    Eigen::VectorXd v = (nu + t * d).cwiseMax(0.0);
     for (Eigen::Index k = 0; k < nt; ++k)
-      if (candidate[std::size_t(k)] && d[k] < 0 && nu[k] + d[k] <= 0 && nu[k] / -d[k] <= t_max) {
-        t_max = nu[k] / -d[k];
-        stop = k;
-      }
-    auto along = [&](double t) {
-      Eigen::VectorXd v = (nu + t * d).cwiseMax(0.0);
-      for (Eigen::Index k = 0; k < nt; ++k)
-        if (!candidate[std::size_t(k)] || (k == stop && t == t_max)) v[k] = 0;
-      return v;
-    };
-    auto slope = [&](const DualProblem::Point& p) { return m.cwiseProduct(p.slack).dot(d); };
-    double t = t_max;
-    DualProblem::Point next = dual.at(m.cwiseProduct(along(t)));
-    if (slope(next) > 0) {
-      double lo = 0, hi = t_max;
-      for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        next = dual.at(m.cwiseProduct(along(mid)));
-        (slope(next) > 0 ? hi : lo) = mid;
-      }
-      t = 0.5 * (lo + hi);
-      next = dual.at(m.cwiseProduct(along(t)));
+      if (!candidate[std::size_t(k)] || (k == stop && t == t_max)) v[k] = 0;
+    return v;
+  };
+  auto slope = [&](const DualProblem::Point& p) { return m.cwiseProduct(p.slack).dot(d); };
+  s.t = t_max;
+  s.point = dual.at(m.cwiseProduct(along(s.t)));
+  if (slope(s.point) > 0) {
+    double lo = 0, hi = t_max;
+    for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      s.point = dual.at(m.cwiseProduct(along(mid)));
+      (slope(s.point) > 0 ? hi : lo) = mid;
     }
-    nu = along(t);
-    point = next;
-    // The multipliers sent to zero reach it only with the full step; where the search stopped short, zero
-    // them anyway if that neither raises −D nor breaks their constraints (else they would only shrink
-    // geometrically).
-    if (t < t_max) {
-      Eigen::VectorXd zeroed = nu;
-      for (Eigen::Index k = 0; k < nt; ++k)
-        if (held[std::size_t(k)]) zeroed[k] = 0;
-      if (zeroed != nu) {
-        const DualProblem::Point z = dual.at(m.cwiseProduct(zeroed));
-        bool holds = z.minus_dual <= point.minus_dual;
-        for (Eigen::Index k = 0; k < nt; ++k)
-          if (held[std::size_t(k)] && z.slack[k] < -kTolerance) holds = false;
-        if (holds) {
-          nu = zeroed;
-          point = z;
-        }
-      }
-    }
-    residual = kkt_residual(point, candidate);
+    s.t = 0.5 * (lo + hi);
+    s.point = dual.at(m.cwiseProduct(along(s.t)));
+  }
+  s.nu = along(s.t);
+  return s;
+}
+
+// The multipliers sent to zero reach it only with the full step; where the search stopped short, zero them
+// anyway if that neither raises −D nor breaks their constraints (else they would only shrink geometrically).
+void zero_held_if_harmless(const DualProblem& dual, const Eigen::VectorXd& m, const std::vector<bool>& held,
+                           Eigen::VectorXd& nu, DualProblem::Point& point) {
+  const Eigen::Index nt = m.size();
+  Eigen::VectorXd zeroed = nu;
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (held[std::size_t(k)]) zeroed[k] = 0;
+  if (zeroed == nu) return;
+  const DualProblem::Point z = dual.at(m.cwiseProduct(zeroed));
+  bool holds = z.minus_dual <= point.minus_dual;
+  for (Eigen::Index k = 0; k < nt; ++k)
+    if (held[std::size_t(k)] && z.slack[k] < -kTolerance) holds = false;
+  if (holds) {
+    nu = zeroed;
+    point = z;
+  }
+}
+
+// Projected Newton on −D(m ν) over ν ≥ 0 (Bertsekas, "Projected Newton methods for optimization problems
+// with simple constraints", SIAM J. Control Optim. 20, 1982): multipliers at or near zero whose constraint is
+// slack are sent to zero, the others take a Newton step on the Hessian of −D (dual_hessian), with an exact
+// line search. Until the residual is below kTolerance or no progress is possible.
+DualRun run_dual(const DualProblem& dual, const Eigen::VectorXd& m, const std::vector<bool>& candidate,
+                 Eigen::VectorXd nu, int max_iterations) {
+  DualRun run;
+  run.point = dual.at(m.cwiseProduct(nu));
+  run.residual = kkt_residual(run.point, candidate);
+  for (int iteration = 0; iteration < max_iterations && run.residual > kTolerance; ++iteration) {
+    run.iterations = iteration + 1;
+    const Eigen::VectorXd grad = m.cwiseProduct(run.point.slack);
+    const Eigen::MatrixXd H = dual_hessian(dual, run.point, m);
+    std::vector<bool> held = held_multipliers(nu, grad, m, run.point.slack, candidate);
+    const Eigen::VectorXd d = search_direction(H, grad, m, nu, candidate, held);
+    if (!(grad.dot(d) < 0)) break;  // no descent direction left at this precision
+    LineSearch s = exact_line_search(dual, m, candidate, nu, d);
+    nu = std::move(s.nu);
+    run.point = std::move(s.point);
+    if (s.t < s.t_max) zero_held_if_harmless(dual, m, held, nu, run.point);
+    run.residual = kkt_residual(run.point, candidate);
   }
   run.nu = nu;
   return run;

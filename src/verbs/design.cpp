@@ -175,23 +175,13 @@ std::string mechanism_sentence(const DesignResult& r) {
   return out;
 }
 
-}  // namespace
-
-DesignResult design(const Config& config, const DesignOptions& options) {
-  check_options(options);
-  if (config.tolerances.empty())
-    throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
-  DesignResult r;
-  r.config = config;
-  r.space = resolve_design_space(config);
-  r.objective = options.objective.value_or(config.design.objective);
-  r.before = budget(config);
-  r.targets = design_targets(config, options, r.before.budget);
-
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<DesignRun> candidates = candidate_runs(r.space, config);
+// The design problem's candidates: every run of the design space, then the configured runs when they all lie
+// in it (their plan is then the search's initial plan, so that the design can only improve on it), with the
+// rows of every candidate computed once.
+DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace& space, int threads) {
+  std::vector<DesignRun> candidates = candidate_runs(space, config);
   std::vector<std::vector<int>> initial;
-  if (configured_in_space(config, r.space)) {
+  if (configured_in_space(config, space)) {
     std::vector<int> plan;
     for (const Run& run : config.plan.runs) {
       plan.push_back(int(candidates.size()));
@@ -199,15 +189,19 @@ DesignResult design(const Config& config, const DesignOptions& options) {
     }
     initial.push_back(plan);
   }
-  r.candidates = candidates.size();
   DesignProblem problem;
-  problem.runs = r.space.runs;
-  problem.total_time = r.space.total_time;
-  problem.rows = candidate_rows(config, candidates, options.threads);
+  problem.runs = space.runs;
+  problem.total_time = space.total_time;
+  problem.rows = candidate_rows(config, candidates, threads);
   problem.candidates = std::move(candidates);
-  r.cache_seconds = seconds_since(t0);
+  problem.initial_plans = initial;
+  return problem;
+}
 
-  // References: the targets, else the configured plan's own value of the criterion.
+// The criterion's weights and references. A reference is the target, else the configured plan's own value of
+// the criterion (U_k or σ_k by the cached rows), else the budget's U_k; a coefficient no tolerance reaches
+// cannot be improved (weight 0). Also the configured plan's objective, when it is a start.
+void set_criterion(const Config& config, DesignResult& r, DesignProblem& problem) {
   const auto nk = Eigen::Index(r.targets.size());
   DesignCriterion& c = problem.criterion;
   c.objective = r.objective;
@@ -215,6 +209,7 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   c.weight = Eigen::VectorXd::Zero(nk);
   c.reference = Eigen::VectorXd::Ones(nk);
   for (Eigen::Index k = 0; k < nk; ++k) c.weight[k] = r.targets[std::size_t(k)].weight;
+  const std::vector<std::vector<int>>& initial = problem.initial_plans;
   if (!initial.empty()) {
     const PlanScore configured = score_plan(problem.rows.select(initial.front()), c);
     for (Eigen::Index k = 0; k < nk; ++k) {
@@ -234,7 +229,45 @@ DesignResult design(const Config& config, const DesignOptions& options) {
     throw InputError(config.source + ": design: no chosen coefficient has an uncertainty to reduce");
   if (!initial.empty())
     r.configured_objective = score_plan(problem.rows.select(initial.front()), c).objective;
-  problem.initial_plans = initial;
+}
+
+// One point of the trade-off curve: the same design with the total time (and the default nominal duration)
+// scaled by `factor`, neither verified nor traded off again.
+TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
+                             const ResolvedDesignSpace& space, double factor) {
+  Config scaled = config;
+  scaled.design.total_time = space.total_time * factor;
+  if (config.design.durations.empty()) scaled.design.durations = {space.durations.front() * factor};
+  DesignOptions o = options;
+  o.tradeoff.clear();
+  o.verify_trials = 0;
+  const DesignResult d = design(scaled, o);
+  TradeoffPoint point;
+  point.total_time = d.space.total_time;
+  point.used_time = d.search.rows.duration.sum();
+  point.expanded = d.after.budget.expanded_uncertainty;
+  point.objective = d.designed_objective;
+  return point;
+}
+
+}  // namespace
+
+DesignResult design(const Config& config, const DesignOptions& options) {
+  check_options(options);
+  if (config.tolerances.empty())
+    throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
+  DesignResult r;
+  r.config = config;
+  r.space = resolve_design_space(config);
+  r.objective = options.objective.value_or(config.design.objective);
+  r.before = budget(config);
+  r.targets = design_targets(config, options, r.before.budget);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  DesignProblem problem = candidate_problem(config, r.space, options.threads);
+  r.candidates = problem.candidates.size();
+  r.cache_seconds = seconds_since(t0);
+  set_criterion(config, r, problem);
   problem.refinement = r.space.refinement;
   const int threads = options.threads;
   problem.evaluate = [&config, threads](const std::vector<DesignRun>& runs) {
@@ -255,22 +288,8 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   r.tolerance_after = tolerance_expanded(r.designed, r.after.budget);
   r.mechanism = mechanism_sentence(r);
 
-  // The trade-off curve: the same design with the total time (and the default nominal duration) scaled.
-  for (double factor : options.tradeoff) {
-    Config scaled = config;
-    scaled.design.total_time = r.space.total_time * factor;
-    if (config.design.durations.empty()) scaled.design.durations = {r.space.durations.front() * factor};
-    DesignOptions o = options;
-    o.tradeoff.clear();
-    o.verify_trials = 0;
-    const DesignResult d = design(scaled, o);
-    TradeoffPoint point;
-    point.total_time = d.space.total_time;
-    point.used_time = d.search.rows.duration.sum();
-    point.expanded = d.after.budget.expanded_uncertainty;
-    point.objective = d.designed_objective;
-    r.tradeoff.push_back(point);
-  }
+  for (double factor : options.tradeoff)
+    r.tradeoff.push_back(tradeoff_point(config, options, r.space, factor));
   if (options.verify_trials > 0) {
     MonteCarloOptions mo;
     mo.trials = options.verify_trials;
