@@ -40,5 +40,6 @@ void bind_analysis(py::module_& m);     // budget, sensed_input, observe, identi
 void bind_uncertainty(py::module_& m);  // monte_carlo, allocate
 void bind_derive(py::module_& m);       // Config.with_tolerance, .with_error, .with_plan
 void bind_design(py::module_& m);       // design
+void bind_identify(py::module_& m);     // identify_file
 
 }  // namespace ccal::python

@@ -40,6 +40,7 @@ PYBIND11_MODULE(ccal, m) {
   ccal::python::bind_analysis(m);
   ccal::python::bind_uncertainty(m);
   ccal::python::bind_design(m);
+  ccal::python::bind_identify(m);
   ccal::python::bind_derive(m);
   // Signatures, repr, display(), pickling and the remaining docstrings, written in Python.
   py::exec(ccal::python::kPropertyDocsSource, m.attr("__dict__"));

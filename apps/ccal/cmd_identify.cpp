@@ -15,12 +15,12 @@ namespace {
 struct IdentifyCli {
   std::string file;
   std::vector<std::string> terms, fix, known;
-  std::string input = "a_i";
-  std::string output_column = "output";
+  std::string input = verbs::IdentifyOptions{}.input;  // the library's defaults
+  std::string output_column = verbs::IdentifyOptions{}.output;
   std::string weight;
   std::string budget;  // configuration of the statement's Type B part; empty: no statement
   std::string mode;    // kinematics of the statement's budget; empty: the configuration's
-  double coverage_probability = 0.95;
+  double coverage_probability = verbs::StatementOptions{}.coverage_probability;
   OutputOptions output;
   CLI::Option* terms_option = nullptr;
   CLI::Option* fix_option = nullptr;

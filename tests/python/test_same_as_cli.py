@@ -64,6 +64,27 @@ class SameAsCli(unittest.TestCase):
         self.check(ccal.design(cfg, targets={"K2": 2e-5, "K3": "1e-3 deg/s/g^3"}, seed=3, starts=2), "design",
                    "--target", "K2=2e-5", "--target", "K3=1e-3 deg/s/g^3", "--seed", "3", "--starts", "2")
 
+    def test_identify(self):
+        # The observations file simulate writes (its own terms, fixed K1 and known rate column), with the
+        # calibration statement of a budget configuration, and a plain table with terms, a fixed term, a
+        # weight column and no known column.
+        with tempfile.TemporaryDirectory() as tmp:
+            obs = os.path.join(tmp, "obs.csv")
+            with open(obs, "w") as f:
+                f.write(ccal.simulate(ccal.bundled_example()).to_csv())
+            self.check(ccal.identify_file(obs), "identify", obs)
+            self.check(ccal.identify_file(obs, budget=ccal.load_config(SECOND), mode="paper",
+                                          coverage_probability=0.9),
+                       "identify", obs, "--budget", SECOND, "--mode", "paper", "--coverage-probability", "0.9")
+            table = os.path.join(tmp, "table.csv")
+            with open(table, "w") as f:
+                f.write("x,y,sigma\n" + "".join(f"{x},{1 + 0.5 * x + 0.01 * x * x + 1e-4 * (-1) ** x},0.001\n"
+                                                  for x in range(1, 9)))
+            self.check(ccal.identify_file(table, terms=["K0", "K2"], fix=["K1=0.5"], known=["none"], input="x",
+                                          output="y", weight="sigma"),
+                       "identify", table, "--terms", "K0,K2", "--fix", "K1=0.5", "--known", "none", "--input",
+                       "x", "--output", "y", "--weight", "sigma")
+
     def test_reduce(self):
         # Synthetic logs of the first three runs (as in tests/test_golden_outputs.cpp): pulses of 1e-3 deg,
         # encoders at the planned rate of a 2.5 m arm, every 0.1 s.
@@ -97,6 +118,9 @@ class SameAsCli(unittest.TestCase):
             (lambda: ccal.simulate(cfg, mode="fast"), "mode: 'fast'"),
             (lambda: ccal.monte_carlo(cfg, trials=1), "--trials: 1 is out of range"),
             (lambda: ccal.budget(cfg, coverage_factor=-1.0), "coverage_factor"),
+            (lambda: ccal.identify_file(os.path.join(os.path.dirname(__file__), "no such file.csv")),
+             "no such file.csv: cannot read the file"),
+            (lambda: ccal.identify_file(SECOND.replace(".toml", ".csv"), mode="fast"), "mode: 'fast'"),
         ]
         for call, message in cases:
             with self.subTest(message=message):
