@@ -161,6 +161,25 @@ TEST_F(Cli, SimulateThenIdentifyRecoversTheCoefficients) {
     EXPECT_NE(text.out.find(part), std::string::npos) << part << " in\n" << text.out;
 }
 
+TEST_F(Cli, SimulateIdentifiesExactlyAsIdentifyDoesItsFile) {
+  // simulate identifies its observations from the numbers the file holds, without writing and reading the
+  // file: every number of the fit (coefficients, standard errors, correlation, residuals, χ², condition) must
+  // equal `ccal identify` of that file to the last bit, on the bundled example and on a configuration with
+  // lever arms, known errors, drive and instrument noise, a fixed-platform run and the IA reversed. Only the
+  // observability may differ: simulate knows the runs' noise, a file alone gives the fit's scatter.
+  const std::string second = std::string(CCAL_SOURCE_DIR) + "/tests/data/golden/second.toml";
+  for (const std::string& config : {std::string(), second}) {
+    ASSERT_EQ(run("simulate " + config + " --observations-out obs.csv -o sim.json --format json").code, 0);
+    const Result id = run("identify obs.csv --format json");
+    ASSERT_EQ(id.code, 0) << id.err;
+    const nlohmann::json file = nlohmann::json::parse(id.out);
+    const nlohmann::json memory = nlohmann::json::parse(read(dir_ / "sim.json")).at("identification");
+    for (const char* key : {"coefficients", "fixed", "known", "terms", "residual_std", "residuals", "dof",
+                            "chi2_per_dof", "condition_number", "correlation", "weighted", "output_unit"})
+      EXPECT_EQ(memory.at(key), file.at(key)) << config << ": " << key;
+  }
+}
+
 TEST_F(Cli, JsonKeys) {
   const Result r = run("simulate --observations-out obs.csv --format json");
   ASSERT_EQ(r.code, 0) << r.err;

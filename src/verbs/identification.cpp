@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -57,9 +58,12 @@ std::string ill_posed_hint(const std::vector<std::string>& terms) {
   return "";
 }
 
-Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
-                              std::string_view source, const DataResolution* resolution) {
-  const FitProblem problem = table_fit_problem(table, spec);
+namespace {
+
+// The fit of a table's problem (the rows' line numbers label repeated run names).
+Identification identify_problem(const FitProblem& problem, const TableFitSpec& spec, const ColumnUnits& units,
+                                std::string_view source, const DataResolution* resolution,
+                                const std::vector<int>& row_lines) {
   Identification id;
   try {
     id.fit = fit(problem);
@@ -86,8 +90,48 @@ Identification identify_table(const CsvTable& table, const TableFitSpec& spec, c
   const std::set<std::string> distinct(id.row_labels.begin(), id.row_labels.end());
   if (distinct.size() != id.row_labels.size())
     for (std::size_t r = 0; r < id.row_labels.size(); ++r)
-      id.row_labels[r] = fmt::format("line {}", table.row_lines[r]);
+      id.row_labels[r] = fmt::format("line {}", row_lines[r]);
   return id;
+}
+
+// What an observations file (observations_csv) holds, as the spec its header line gives: each free and fixed
+// term on its own regressor column, the fixed values in the output unit, the rate term known.
+TableFitSpec observations_spec(const IdentificationSpec& spec, double output_unit) {
+  TableFitSpec s;
+  for (const auto& id : spec.free_terms) s.terms.push_back({id, id});
+  for (const auto& [id, value] : spec.fixed_terms) s.fixed.push_back({{id, id}, value / output_unit});
+  s.known = {"rate"};
+  return s;
+}
+
+// The problem table_fit_problem forms from that file, formed from the observations themselves: the file holds
+// every number to 17 significant digits, which read back to the same doubles, so these are the very numbers
+// (y = output − rate in the output unit, each term's column its regressor) and the fit is bit for bit the one
+// of `ccal identify` on the file (tests/test_cli_simulate.cpp).
+FitProblem observations_problem(const Observations<double>& obs, const TableFitSpec& s, double output_unit) {
+  FitProblem p;
+  const Eigen::Index rows = obs.output.size();
+  p.y.resize(rows);
+  for (Eigen::Index j = 0; j < rows; ++j) p.y[j] = obs.output[j] / output_unit;
+  for (Eigen::Index j = 0; j < rows; ++j) p.y[j] -= obs.known_rate[j] / output_unit;
+  std::vector<TableTerm> all = s.terms;
+  for (const auto& f : s.fixed) all.push_back(f.term);
+  p.H.resize(rows, Eigen::Index(all.size()));
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const auto column = std::find(obs.columns.begin(), obs.columns.end(), all[k].column);
+    p.H.col(Eigen::Index(k)) = obs.regressors.col(Eigen::Index(column - obs.columns.begin()));
+    p.term_names.push_back(all[k].id);
+  }
+  for (const auto& f : s.fixed) p.fixed[f.term.id] = f.value;
+  p.row_labels = obs.runs;
+  return p;
+}
+
+}  // namespace
+
+Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
+                              std::string_view source, const DataResolution* resolution) {
+  return identify_problem(table_fit_problem(table, spec), spec, units, source, resolution, table.row_lines);
 }
 
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
@@ -104,17 +148,21 @@ FileIdentification identify_observations(const Observations<double>& obs, const 
           "beyond what double precision can carry; accepted: errors and outputs of a real centrifuge test",
           source, obs.runs[std::size_t(j)], obs.output[j], obs.input[j]));
   }
+  const double unit = output_unit_si(instrument.output_unit);
   FileIdentification f;
   f.csv = observations_csv(obs, spec, instrument);
-  f.table = parse_csv(f.csv, source);
-  const ObservationsHeader header = observations_header(f.table).value();
-  for (const auto& t : header.terms) f.spec.terms.push_back({t.id, t.column});
-  for (const auto& x : header.fixed) f.spec.fixed.push_back({{x.term.id, x.term.column}, x.value});
-  f.spec.known = header.known;
+  f.spec = observations_spec(spec, unit);
   ColumnUnits units;
-  units.output_unit = header.output_unit;
+  units.output_unit = instrument.output_unit;
   units.input_in_g = true;
-  f.id = identify_table(f.table, f.spec, units, source, resolution);
+  // The file's rows start on line 3, after its header comment and column names.
+  std::vector<int> row_lines(obs.runs.size());
+  for (std::size_t r = 0; r < row_lines.size(); ++r) row_lines[r] = int(r) + 3;
+  if (obs.output.size() < Eigen::Index(spec.free_terms.size()))
+    throw InputError(fmt::format("{}: {} runs cannot determine {} free terms; accepted: at least {} runs",
+                                 source, obs.output.size(), spec.free_terms.size(), spec.free_terms.size()));
+  f.id =
+      identify_problem(observations_problem(obs, f.spec, unit), f.spec, units, source, resolution, row_lines);
   return f;
 }
 

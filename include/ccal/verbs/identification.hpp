@@ -53,12 +53,12 @@ std::string ill_posed_hint(const std::vector<std::string>& terms);
 Identification identify_table(const CsvTable& table, const TableFitSpec& spec, const ColumnUnits& units,
                               std::string_view source, const DataResolution* resolution = nullptr);
 
-// Observations of a test plan written as an observations file, and identified through the file itself, so
-// that the result is what `ccal identify` gives for it (`ccal simulate`, `ccal reduce`).
+// Observations of a test plan as an observations file (`ccal simulate`, `ccal reduce`) and their
+// identification, from the same numbers the file holds: the result is bit for bit what `ccal identify` gives
+// for the file.
 struct FileIdentification {
-  std::string csv;
-  CsvTable table;
-  TableFitSpec spec;
+  std::string csv;    // the observations file
+  TableFitSpec spec;  // what its header line says to fit
   Identification id;
 };
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
