@@ -251,6 +251,11 @@ std::vector<BadInput> catalogue() {
          "run,a_i,output,K0,K1\n1g,1,1.1,1,1\n2g,2,2.0,1,2\n3g,3,2.9,1,3\n4g,4,4.2,1,4\n"}},
        "report --trials 100 --observations obs.csv -o r.html",
        {"--observations", "K1", "K0, K2, K3"}},
+      // A plain table (not an observations file): the report has no --terms to offer.
+      {"ReportObservationsPlainTable",
+       obs,
+       "report --trials 100 --observations obs.csv -o r.html",
+       {"--observations", "obs.csv", "no '# ccal observations' line", "simulate --observations-out"}},
       {"SeedNegative", {}, "montecarlo --trials 100 --seed -1", {"--seed", "-1"}},
       {"AllocateTinyTarget", {}, "allocate --target K3=1e-300 --verify-trials 0", {"K3", "1e-300"}},
       {"AllocateUnknownTarget", {}, "allocate --target K9=1", {"K9"}},

@@ -80,6 +80,13 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
   io.statement.mode = o.mode;
   io.statement.coverage_probability = o.monte_carlo.coverage_probability;
   try {
+    // A plain table needs terms and columns the report has no options for: say so, not identify's --terms.
+    if (!observations_header(*o.observations))
+      throw InputError(fmt::format(
+          "--observations: {}: no '# ccal observations' line, so not an observations file of ccal; accepted: "
+          "a file of `ccal simulate --observations-out` or `ccal reduce --observations-out` (a plain table: "
+          "`ccal identify {} --terms … --budget CONFIG`)",
+          o.observations->source, o.observations->source));
     return identify(*o.observations, io);
   } catch (const InputError& e) {
     const std::string what = e.what();
