@@ -58,7 +58,7 @@ Command add_allocate(CLI::App& app) {
   cmd->add_option("--mode", o->mode,
                   "Kinematics of the sensitivities and the verification: exact or paper; default: the "
                   "config's [identification] mode")
-      ->check(CLI::IsMember({"exact", "paper"}));
+      ->check(mode_names_check());
   cmd->add_option("--max-scale", o->max_scale, "No tolerance is loosened by more than this factor (> 0)")
       ->capture_default_str()
       ->type_name("X");

@@ -31,7 +31,7 @@ Command add_budget(CLI::App& app) {
   cmd->add_option(
          "--mode", options->mode,
          "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the config's")
-      ->check(CLI::IsMember({"exact", "paper"}));
+      ->check(mode_names_check());
   cmd->add_option("--coverage-factor", options->coverage_factor,
                   "Coverage factor k >= 1 of the expanded uncertainty U = k u")
       ->check(CLI::Validator(

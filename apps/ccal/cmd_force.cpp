@@ -15,7 +15,7 @@ struct ForceCli {
   std::string config;
   std::string run = "1";
   std::string time = "0";
-  std::string mode = "exact";
+  std::string mode{mode_name(verbs::ForceOptions{}.mode)};  // the library's default
   OutputOptions output;
 };
 
@@ -34,7 +34,7 @@ Command add_force(CLI::App& app) {
       ->type_name("T");
   cmd->add_option("--mode", options->mode,
                   "First-order model: exact (linearised exact chain) or paper (Wang & Ren Eq.14 form)")
-      ->check(CLI::IsMember({"exact", "paper"}))
+      ->check(mode_names_check())
       ->capture_default_str();
   add_output_options(*cmd, options->output, {"text", "json"});
   cmd->footer(

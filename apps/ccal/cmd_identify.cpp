@@ -74,7 +74,7 @@ Command add_identify(CLI::App& app) {
   cmd->add_option("--mode", o->mode,
                   "Kinematics of the statement's budget (with --budget): exact or paper; default: the "
                   "configuration's [identification] mode")
-      ->check(CLI::IsMember({"exact", "paper"}));
+      ->check(mode_names_check());
   cmd->add_option("--coverage-probability", o->coverage_probability,
                   "Coverage probability p of the statement's intervals, in (0, 1)")
       ->capture_default_str()

@@ -80,7 +80,7 @@ Command add_montecarlo(CLI::App& app) {
   cmd->add_option("--mode", o->mode,
                   "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the "
                   "configuration's [identification] mode")
-      ->check(CLI::IsMember({"exact", "paper"}));
+      ->check(mode_names_check());
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"

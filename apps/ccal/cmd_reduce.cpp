@@ -52,7 +52,7 @@ Command add_reduce(CLI::App& app) {
          "--mode", o->mode,
          "Model of the regressors: exact (full chain) or paper; default: [identification] mode of the "
          "configuration")
-      ->check(CLI::IsMember({"exact", "paper"}));
+      ->check(mode_names_check());
   cmd->add_flag("--budget", o->budget,
                 "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the "
                 "configuration's tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval");

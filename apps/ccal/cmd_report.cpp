@@ -66,7 +66,7 @@ Command add_report(CLI::App& app) {
   add_config_argument(*cmd, o->config);
   cmd->add_option("--mode", o->mode,
                   "Kinematics: exact or paper; default: the configuration's [identification] mode")
-      ->check(CLI::IsMember({"exact", "paper"}));
+      ->check(mode_names_check());
   cmd->add_option("--trials", o->trials,
                   "Monte Carlo trials M (default 1000000; with --digits, the stage size)")
       ->type_name("N");

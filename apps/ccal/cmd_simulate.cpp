@@ -8,7 +8,6 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/run_log_writer.hpp"
-
 #include "ccal/render/simulate.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "commands.hpp"
@@ -39,7 +38,7 @@ Command add_simulate(CLI::App& app) {
   cmd->add_option("--mode", o->mode,
                   "Reduction of a run: exact (full chain) or paper (Wang & Ren's first order); default: "
                   "[identification] mode of the configuration")
-      ->check(CLI::IsMember({"exact", "paper"}));
+      ->check(mode_names_check());
   cmd->add_option("--seed", o->seed, "Seed of the output noise (used only if the instrument has noise)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
@@ -60,31 +59,35 @@ Command add_simulate(CLI::App& app) {
       "  ccal simulate my.toml --logs-out logs\n"
       "      also the runs' logs, logs/5g.csv, …, for `ccal reduce my.toml --log 5g=logs/5g.csv …`\n");
 
-  return {cmd, [o] {
-            const Config cfg = load_config_or_example(o->config);
-            check_observations_out(o->observations_out, o->output);
-            verbs::SimulateOptions so;
-            if (!o->mode.empty()) so.mode = parse_mode(o->mode);
-            so.seed = o->seed;
-            const verbs::SimulateResult s = verbs::simulate(cfg, so);
-            print_warnings(s.identification.observability.warnings);
-            const std::string& f = o->output.format;
-            const std::string text = f == "json"  ? render::json(s)
-                                     : f == "csv" ? render::csv(s)
-                                                  : render::text(s);
-            std::vector<ExtraFile> extra;
-            if (!o->observations_out.empty())
-              extra.push_back({"--observations-out", o->observations_out, s.observations_csv});
-            if (!o->logs_out.empty()) {
-              std::error_code ec;
-              std::filesystem::create_directories(o->logs_out, ec);
-              if (ec) throw InputError("--logs-out: cannot create the folder '" + o->logs_out + "': " + ec.message());
-              const Eigen::VectorXd& means = s.observations.output;
-              for (auto& log : write_run_logs(cfg, {means.data(), means.data() + means.size()}, default_log_step(cfg)))
-                extra.push_back({"--logs-out", (std::filesystem::path(o->logs_out) / log.name).string(), log.text});
-            }
-            write_outputs(o->output, text, extra);
-          }};
+  return {
+      cmd, [o] {
+        const Config cfg = load_config_or_example(o->config);
+        check_observations_out(o->observations_out, o->output);
+        verbs::SimulateOptions so;
+        if (!o->mode.empty()) so.mode = parse_mode(o->mode);
+        so.seed = o->seed;
+        const verbs::SimulateResult s = verbs::simulate(cfg, so);
+        print_warnings(s.identification.observability.warnings);
+        const std::string& f = o->output.format;
+        const std::string text = f == "json"  ? render::json(s)
+                                 : f == "csv" ? render::csv(s)
+                                              : render::text(s);
+        std::vector<ExtraFile> extra;
+        if (!o->observations_out.empty())
+          extra.push_back({"--observations-out", o->observations_out, s.observations_csv});
+        if (!o->logs_out.empty()) {
+          std::error_code ec;
+          std::filesystem::create_directories(o->logs_out, ec);
+          if (ec)
+            throw InputError("--logs-out: cannot create the folder '" + o->logs_out + "': " + ec.message());
+          const Eigen::VectorXd& means = s.observations.output;
+          for (auto& log :
+               write_run_logs(cfg, {means.data(), means.data() + means.size()}, default_log_step(cfg)))
+            extra.push_back(
+                {"--logs-out", (std::filesystem::path(o->logs_out) / log.name).string(), log.text});
+        }
+        write_outputs(o->output, text, extra);
+      }};
 }
 
 }  // namespace ccal::cli
