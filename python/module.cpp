@@ -2,16 +2,19 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
-#include "ccal_extras.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/version.hpp"
+#include "ccal_extras.hpp"
 
 namespace ccal::python {
 
 ModelMode mode_argument(const std::string& mode) {
   if (const auto m = parse_mode(mode)) return *m;
-  throw InputError("mode: '" + mode + "' is not a model mode; accepted: 'exact', 'paper'");
+  std::string accepted;
+  for (std::string_view name : kModeNames)
+    accepted += (accepted.empty() ? "'" : ", '") + std::string(name) + "'";
+  throw InputError("mode: '" + mode + "' is not a model mode; accepted: " + accepted);
 }
 
 }  // namespace ccal::python
