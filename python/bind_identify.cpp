@@ -1,7 +1,5 @@
 // ccal.identify_file: `ccal identify FILE` from Python (docs/python.md): the same table, options and defaults
 // (verbs::IdentifyOptions), the same result, text and JSON.
-#include "ccal/render/identify.hpp"  // before bindings.hpp (keep this order)
-// (keep this order)
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
@@ -11,6 +9,7 @@
 
 #include "bindings.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/render/identify.hpp"  // before bindings.hpp (keep this order)
 #include "ccal/verbs/identify.hpp"
 
 namespace ccal::python {
@@ -60,8 +59,7 @@ void bind_identify(py::module_& m) {
       py::arg("coverage_probability") = defaults.statement.coverage_probability,
       "Identifies coefficients from a CSV file as `ccal identify` does: an observations file of "
       "Simulation.to_csv() or `ccal simulate --observations-out` (terms, fixed terms and known columns from "
-      "its "
-      "'# ccal observations' line unless given), or any table with input and output columns. terms: e.g. "
+      "its '# ccal observations' line unless given), or any table with input and output columns. terms: e.g. "
       "['K0', 'K1', 'K2']; fix: ['K1=505.2 deg/s/g']; known: columns subtracted from the output (['none'] "
       "for none); weight: the column of the σ of the output; budget: a Config whose tolerances give the "
       "calibration statement's Type B part, mode its kinematics ('exact' or 'paper'; default its own).");

@@ -145,6 +145,12 @@ std::vector<BadInput> catalogue() {
        config("[errors]\n", "[errors]\ndR_s = \"1e300 m\"\n"),
        "simulate c.toml",
        {"c.toml", "run '5g'", "not finite"}},
+      // More free terms than runs: refused by simulate before any fit, naming the configuration.
+      {"ConfigMoreTermsThanRuns",
+       config("terms = [\"K0\", \"K2\", \"K3\"]",
+              "terms = [\"K0\", \"K2\", \"K3\", \"K4\", \"K5\", \"K6\", \"K7\"]"),
+       "simulate c.toml",
+       {"c.toml", "6 runs cannot determine 7 free terms", "at least 7 runs"}},
       {"ConfigToleranceOverflowsTheBudget",
        config("dx3_s1 = { bound = \"10 um\"", "dx3_s1 = { bound = \"1e200 m\""),
        "budget c.toml",

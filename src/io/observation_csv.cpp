@@ -383,9 +383,8 @@ double output_unit_si(std::string_view output_unit) {
   return parse_unit(text).value_si;
 }
 
-
-std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
-                             const InstrumentModel& instrument) {
+ObservationsHeader observations_file_header(const IdentificationSpec& spec,
+                                            const InstrumentModel& instrument) {
   const double unit = output_unit_si(instrument.output_unit);
   ObservationsHeader h;
   for (const auto& id : spec.free_terms) h.terms.push_back({id, id});
@@ -394,6 +393,13 @@ std::string observations_csv(const Observations<double>& obs, const Identificati
         {{id, id}, value / unit, coefficient_unit(instrument.output_unit, parse_term(id).value())});
   h.known = {"rate"};
   h.output_unit = instrument.output_unit;
+  return h;
+}
+
+std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
+                             const InstrumentModel& instrument) {
+  const double unit = output_unit_si(instrument.output_unit);
+  const ObservationsHeader h = observations_file_header(spec, instrument);
 
   // Regressor columns in canonical term order.
   std::vector<std::size_t> order(obs.columns.size());

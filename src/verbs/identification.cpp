@@ -94,13 +94,12 @@ Identification identify_problem(const FitProblem& problem, const TableFitSpec& s
   return id;
 }
 
-// What an observations file (observations_csv) holds, as the spec its header line gives: each free and fixed
-// term on its own regressor column, the fixed values in the output unit, the rate term known.
-TableFitSpec observations_spec(const IdentificationSpec& spec, double output_unit) {
+// What the observations file's header line says to fit (observations_file_header), as identify reads it.
+TableFitSpec observations_spec(const ObservationsHeader& header) {
   TableFitSpec s;
-  for (const auto& id : spec.free_terms) s.terms.push_back({id, id});
-  for (const auto& [id, value] : spec.fixed_terms) s.fixed.push_back({{id, id}, value / output_unit});
-  s.known = {"rate"};
+  for (const auto& t : header.terms) s.terms.push_back({t.id, t.column});
+  for (const auto& f : header.fixed) s.fixed.push_back({{f.term.id, f.term.column}, f.value});
+  s.known = header.known;
   return s;
 }
 
@@ -151,7 +150,7 @@ FileIdentification identify_observations(const Observations<double>& obs, const 
   const double unit = output_unit_si(instrument.output_unit);
   FileIdentification f;
   f.csv = observations_csv(obs, spec, instrument);
-  f.spec = observations_spec(spec, unit);
+  f.spec = observations_spec(observations_file_header(spec, instrument));
   ColumnUnits units;
   units.output_unit = instrument.output_unit;
   units.input_in_g = true;

@@ -116,6 +116,11 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table);
 // Size of one output unit in SI ("deg/s" → π/180; a pulse counts as 1, so "pulse/s" → 1). Throws UnitError.
 double output_unit_si(std::string_view output_unit);
 
+// The header observations_csv writes for a spec: each free and fixed term on its own regressor column, the
+// fixed values in the output unit, the rate term known.
+ObservationsHeader observations_file_header(const IdentificationSpec& spec,
+                                            const InstrumentModel& instrument);
+
 // The observations file of simulated observations: values in the instrument's output unit (regressors in gⁿ,
 // K_w's in rad/s), fixed values in coefficient units, regressor columns in canonical term order.
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
