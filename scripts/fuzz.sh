@@ -23,7 +23,11 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release -DCCAL_BUILD_FUZZ=ON \
+# Through ccache where it is installed (scripts/setup.sh installs it), as scripts/setup.sh does.
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR="$PWD"
+CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" -DCCAL_BUILD_FUZZ=ON \
   -DCCAL_SANITIZE=fuzzer-no-link,address,undefined -DCCAL_BUILD_TESTS=OFF -DCCAL_BUILD_BENCH=OFF \
   -DCCAL_BUILD_PYTHON=OFF >/dev/null
 targets=(fuzz_units fuzz_config fuzz_csv fuzz_run_log)

@@ -6,7 +6,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
+# Through ccache where it is installed (scripts/setup.sh installs it), as scripts/setup.sh does.
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR="$PWD"
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
       -DCCAL_WERROR=ON -DCCAL_SANITIZE=address,undefined \
       -DCCAL_BUILD_BENCH=OFF -DCCAL_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-asan -j "$(nproc)"
