@@ -96,7 +96,7 @@ void bind_monte_carlo_results(py::module_& m) {
 void bind_monte_carlo_function(py::module_& m) {
   m.def(
       "monte_carlo",
-      [](const Config& cfg, std::int64_t trials, std::uint64_t seed, int threads, int digits,
+      [](const Config& cfg, std::optional<std::int64_t> trials, std::uint64_t seed, int threads, int digits,
          double coverage_probability, std::optional<std::string> mode, bool keep_samples,
          const py::object& progress) {
         verbs::MonteCarloOptions o;
@@ -120,7 +120,7 @@ void bind_monte_carlo_function(py::module_& m) {
       py::arg("mode") = py::none(), py::arg("keep_samples") = verbs::MonteCarloOptions{}.keep_samples,
       py::arg("progress") = py::none(),
       "Monte Carlo propagation (JCGM 101, `ccal montecarlo`) of the tolerances to the deviations of the "
-      "identified coefficients; trials = 0: 10⁶, or stages of 10⁴ with digits > 0 (the adaptive procedure); "
+      "identified coefficients; trials = None: 10⁶, or stages of 10⁴ with digits > 0 (the adaptive procedure); "
       "the same seed gives the same bits for any thread count; keep_samples: every trial's values in "
       "`samples`. The defaults are the CLI's. progress: None or progress(done, total) called with the "
       "trials done about every 0.1 s; Ctrl-C (or an exception from progress) stops the run within a "

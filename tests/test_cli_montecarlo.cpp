@@ -122,7 +122,7 @@ TEST_F(MonteCarloCli, BadOptionsAreExitCodeTwo) {
   expect_bad_input(run("montecarlo --trials 2000000000"), {"--trials", "2 to 1000000000"});
   expect_bad_input(run("montecarlo --digits 2 --max-trials 1000"), {"max_trials"});
   expect_bad_input(run("montecarlo --threads -1"), {"--threads"});
-  expect_bad_input(run("montecarlo --digits 7"), {"--digits", "1..6"});
+  expect_bad_input(run("montecarlo --digits 7"), {"--digits", "0 (fixed M) or 1 to 6"});
   expect_bad_input(run("montecarlo --digits -1"), {"--digits"});
   expect_bad_input(run("montecarlo --coverage-probability 0"), {"--coverage-probability", "(0, 1)"});
   expect_bad_input(run("montecarlo --coverage-probability 1"), {"--coverage-probability"});

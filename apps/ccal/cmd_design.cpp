@@ -9,6 +9,8 @@
 #include "ccal/render/design.hpp"
 #include "ccal/verbs/design.hpp"
 #include "commands.hpp"
+#include "option_flags.hpp"
+#include "terminal.hpp"
 #include "output.hpp"
 
 namespace ccal::cli {
@@ -16,13 +18,7 @@ namespace {
 
 struct DesignCli {
   std::string config;
-  std::string objective;  // empty: the configuration's
-  std::vector<std::string> targets;
-  int starts = -1;  // -1: the configuration's
-  std::int64_t seed = -1;
-  int threads = 0;
-  std::int64_t verify = 0;
-  std::vector<double> tradeoff;
+  verbs::DesignOptions options;  // its table's flags are bound to it
   std::string plan_out;
   OutputOptions output;
 };
@@ -36,34 +32,8 @@ Command add_design(CLI::App& app) {
       "Test-plan design: the plan within the [design] space under which the centrifuge's tolerances cost the "
       "identified coefficients least, re-scored by the full budget");
   add_config_argument(*cmd, o->config);
-  cmd->add_option("--objective", o->objective,
-                  "uncertainty (U of the chosen coefficients from tolerances and noise), d_optimal or "
-                  "a_optimal (the instrument's noise alone); default: [design] objective")
-      ->check(CLI::IsMember({"uncertainty", "d_optimal", "a_optimal"}));
-  cmd->add_option("--target", o->targets,
-                  "COEFF=U: the objective counts U(COEFF)/U against this target instead of the configured "
-                  "plan's U, e.g. K3=1e-4 or \"K3=1e-4 deg/s/g^3\"; repeat for each coefficient")
-      ->allow_extra_args(false)
-      ->type_name("COEFF=U");
-  cmd->add_option("--starts", o->starts, "Random starts of the search (besides the configured plan)")
-      ->check(CLI::Range(0, 1000))
-      ->type_name("N");
-  cmd->add_option("--seed", o->seed, "Seed of the random starts")
-      ->check(CLI::NonNegativeNumber)
-      ->type_name("S");
-  cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str()
-      ->type_name("K");
-  cmd->add_option("--verify", o->verify, "Monte Carlo trials checking the designed plan's budget (0: none)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str()
-      ->type_name("N");
-  cmd->add_option("--tradeoff", o->tradeoff,
-                  "Factors of the total test time for a trade-off curve (total time against U), e.g. "
-                  "--tradeoff 0.5,0.75,1")
-      ->delimiter(',')
-      ->type_name("F,...");
+  add_option_flags(*cmd, o->options, option_table<verbs::DesignOptions>());
+  add_renamed_option(*cmd, "--verify", "renamed: give the trials of the check as --verify-trials N (e.g. 2000)");
   cmd->add_option("--plan-out", o->plan_out,
                   "Write the whole configuration with the designed [plan] to this TOML file (atomically; "
                   "never over an input)")
@@ -74,18 +44,9 @@ Command add_design(CLI::App& app) {
       "  ccal design\n"
       "      the bundled example: six runs, at most the paper plan's 2700 s, g within 5-30 g\n"
       "  ccal design my.toml --plan-out designed.toml && ccal budget designed.toml\n"
-      "  ccal design --target K3=1e-4 --tradeoff 0.5,1 --verify 2000 --format json -o design.json\n");
+      "  ccal design --target K3=1e-4 --tradeoff 0.5,1 --verify-trials 2000 --format json -o design.json\n");
   return {cmd, [o] {
-            verbs::DesignOptions d;
-            if (o->objective == "uncertainty") d.objective = DesignObjective::uncertainty;
-            if (o->objective == "d_optimal") d.objective = DesignObjective::d_optimal;
-            if (o->objective == "a_optimal") d.objective = DesignObjective::a_optimal;
-            d.targets = o->targets;
-            if (o->starts >= 0) d.starts = o->starts;
-            if (o->seed >= 0) d.seed = std::uint64_t(o->seed);
-            d.threads = o->threads;
-            d.verify_trials = o->verify;
-            d.tradeoff = o->tradeoff;
+            const verbs::DesignOptions& d = o->options;
             if (!o->plan_out.empty() && o->plan_out == o->output.path)
               throw InputError("--plan-out: '" + o->plan_out +
                                "' is also the -o file; accepted: two different files");

@@ -7,6 +7,7 @@
 #include "ccal/render/identify.hpp"
 #include "ccal/verbs/identify.hpp"
 #include "commands.hpp"
+#include "option_flags.hpp"
 #include "output.hpp"
 
 namespace ccal::cli {
@@ -19,8 +20,7 @@ struct IdentifyCli {
   std::string output_column = verbs::IdentifyOptions{}.output;
   std::string weight;
   std::string budget;  // configuration of the statement's Type B part; empty: no statement
-  std::string mode;    // kinematics of the statement's budget; empty: the configuration's
-  double coverage_probability = verbs::StatementOptions{}.coverage_probability;
+  verbs::StatementOptions statement;  // its table's flags are bound to it
   OutputOptions output;
   CLI::Option* terms_option = nullptr;
   CLI::Option* fix_option = nullptr;
@@ -71,14 +71,7 @@ Command add_identify(CLI::App& app) {
                   "CONFIG: also the calibration statement (JCGM 100 §7), with the Type B part from this "
                   "configuration's tolerances and the correction for its known [errors]")
       ->type_name("CONFIG");
-  cmd->add_option("--mode", o->mode,
-                  "Kinematics of the statement's budget (with --budget): exact or paper; default: the "
-                  "configuration's [identification] mode")
-      ->check(mode_names_check());
-  cmd->add_option("--coverage-probability", o->coverage_probability,
-                  "Coverage probability p of the statement's intervals, in (0, 1)")
-      ->capture_default_str()
-      ->type_name("p");
+  add_option_flags(*cmd, o->statement, option_table<verbs::StatementOptions>());
   add_output_options(*cmd, o->output, {"text", "json"}, false);  // --output names the output column
   cmd->footer(
       "Examples:\n"
@@ -105,8 +98,7 @@ Command add_identify(CLI::App& app) {
               note_input(o->budget);
               io.budget = load_config_or_example(o->budget);
             }
-            io.statement.coverage_probability = o->coverage_probability;
-            if (!o->mode.empty()) io.statement.mode = parse_mode(o->mode);
+            io.statement = o->statement;
             const verbs::IdentifyResult r = verbs::identify(table, io);
             print_warnings(r.identification.observability.warnings);
             write_output(o->output, o->output.format == "json" ? render::json(r) : render::text(r));

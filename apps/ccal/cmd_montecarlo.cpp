@@ -14,6 +14,7 @@
 #include "ccal/render/montecarlo_samples.hpp"
 #include "ccal/verbs/montecarlo.hpp"
 #include "commands.hpp"
+#include "option_flags.hpp"
 #include "output.hpp"
 
 namespace ccal::cli {
@@ -21,14 +22,8 @@ namespace {
 
 struct MonteCarloCli {
   std::string config;
-  std::int64_t trials = 0;  // signed, so that a negative number is reported rather than wrapped; 0: default
-  std::uint64_t seed = 1;
-  int threads = 0;
-  int digits = 0;
-  std::int64_t max_trials = 1000000;
-  double coverage_probability = verbs::MonteCarloOptions{}.coverage_probability;
-  std::string old_coverage;  // --coverage, refused: it meant a factor in one verb and a probability here
-  std::string mode;          // empty: the configuration's
+  verbs::MonteCarloOptions options;  // its table's flags are bound to it
+  std::string old_coverage;          // --coverage, refused: it meant a factor in one verb and a probability here
   std::string samples_out;
   OutputOptions output;
 };
@@ -50,37 +45,11 @@ Command add_montecarlo(CLI::App& app) {
       "Monte Carlo propagation (JCGM 101) of the configured tolerances to the identified coefficients, with "
       "the validation of the LPU");
   add_config_argument(*cmd, o->config);
-  cmd->add_option("--trials", o->trials,
-                  "Number of trials M (≥ 2; default 1000000); with --digits, the stage size (default and "
-                  "least 10000)")
-      ->type_name("N");
-  cmd->add_option("--seed", o->seed, "Seed of the random numbers (same seed, same results)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
-      ->type_name("S");
-  cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default); the results do not depend on it")
-      ->capture_default_str()
-      ->type_name("K");
-  cmd->add_option("--digits", o->digits,
-                  "0: fixed M; n in 1..6: adaptive M (JCGM 101 §7.9) until n significant digits of u(y) "
-                  "are stable")
-      ->capture_default_str()
-      ->type_name("n");
-  cmd->add_option("--max-trials", o->max_trials, "Adaptive procedure: no stage beyond this many trials")
-      ->capture_default_str()
-      ->type_name("N");
-  cmd->add_option("--coverage-probability", o->coverage_probability,
-                  "Coverage probability p of the intervals, in (0, 1)")
-      ->capture_default_str()
-      ->type_name("p");
+  add_option_flags(*cmd, o->options, option_table<verbs::MonteCarloOptions>());
   cmd->add_option("--coverage", o->old_coverage)->group("");  // refused with a message, not in --help
   cmd->add_option("--samples-out", o->samples_out,
                   "Also write every trial's coefficients to FILE: CSV, or NumPy .npy by the extension")
       ->type_name("FILE");
-  cmd->add_option("--mode", o->mode,
-                  "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); default: the "
-                  "configuration's [identification] mode")
-      ->check(mode_names_check());
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -100,14 +69,7 @@ Command add_montecarlo(CLI::App& app) {
         if (!o->samples_out.empty() && o->samples_out == o->output.path)
           throw InputError(fmt::format(
               "--samples-out: '{}' is also the -o file; accepted: two different files", o->samples_out));
-        verbs::MonteCarloOptions mo;
-        if (!o->mode.empty()) mo.mode = parse_mode(o->mode);
-        mo.trials = o->trials;
-        mo.seed = o->seed;
-        mo.threads = o->threads;
-        mo.digits = o->digits;
-        mo.max_trials = o->max_trials;
-        mo.coverage_probability = o->coverage_probability;
+        verbs::MonteCarloOptions mo = o->options;
         mo.progress = true;  // drawn only when standard error is a terminal
         mo.keep_samples = !o->samples_out.empty();
         const verbs::MonteCarloResult r = verbs::monte_carlo(load_config_or_example(o->config), mo);

@@ -8,6 +8,7 @@
 #include "ccal/render/reduce.hpp"
 #include "ccal/verbs/reduce.hpp"
 #include "commands.hpp"
+#include "option_flags.hpp"
 #include "output.hpp"
 
 namespace ccal::cli {
@@ -18,10 +19,8 @@ struct ReduceCli {
   std::vector<std::string> logs;  // RUN=FILE
   std::string angle_unit = "rad";
   std::string pulse_weight;  // in the output unit × s; empty: the instrument's quantum
-  std::string mode;          // empty: the configuration's
+  verbs::ReduceOptions options;  // its table's flags are bound to it
   std::string observations_out;
-  bool budget = false;
-  double coverage_probability = 0.95;
   OutputOptions output;
 };
 
@@ -48,18 +47,7 @@ Command add_reduce(CLI::App& app) {
                   "Integrated output per pulse, in the output unit × s (e.g. deg for deg/s); default: the "
                   "instrument's quantum")
       ->type_name("W");
-  cmd->add_option(
-         "--mode", o->mode,
-         "Model of the regressors: exact (full chain) or paper; default: [identification] mode of the "
-         "configuration")
-      ->check(mode_names_check());
-  cmd->add_flag("--budget", o->budget,
-                "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the "
-                "configuration's tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval");
-  cmd->add_option("--coverage-probability", o->coverage_probability,
-                  "Coverage probability p of the statement's intervals, in (0, 1)")
-      ->capture_default_str()
-      ->type_name("p");
+  add_option_flags(*cmd, o->options, option_table<verbs::ReduceOptions>());
   add_observations_out_option(*cmd, o->observations_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
@@ -73,7 +61,7 @@ Command add_reduce(CLI::App& app) {
   return {cmd, [o] {
             const Config cfg = load_config_or_example(o->config);
             check_observations_out(o->observations_out, o->output);
-            verbs::ReduceOptions ro;
+            verbs::ReduceOptions ro = o->options;
             if (!o->pulse_weight.empty()) {
               ro.pulse_weight = parse_number(o->pulse_weight);  // its sign and size: verbs::reduce
               if (!ro.pulse_weight)
@@ -93,9 +81,6 @@ Command add_reduce(CLI::App& app) {
               note_input(ro.logs.back().path);
             }
             ro.angles_in_degrees = o->angle_unit == "deg";
-            if (!o->mode.empty()) ro.mode = parse_mode(o->mode);
-            ro.budget = o->budget;
-            ro.coverage_probability = o->coverage_probability;
             const verbs::ReduceResult r = verbs::reduce(cfg, ro);
             print_warnings(r.warnings);
             const std::string& f = o->output.format;

@@ -15,6 +15,7 @@
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "commands.hpp"
+#include "option_flags.hpp"
 #include "output.hpp"
 #include "report_assets.hpp"
 
@@ -23,13 +24,7 @@ namespace {
 
 struct ReportCli {
   std::string config;
-  std::string mode;
-  std::int64_t trials = 0;
-  std::uint64_t seed = 1;
-  int threads = 0;
-  int digits = 0;
-  double coverage_probability = verbs::MonteCarloOptions{}.coverage_probability;
-  std::string run;
+  verbs::ReportOptions options;  // its table's flags, and the Monte Carlo's but for its mode, are bound to it
   std::vector<std::string> allocate_targets;  // non-empty: the allocation section
   bool design = false;                        // the design section
   std::vector<std::string> design_targets;    // the design's targets (imply the section)
@@ -64,24 +59,8 @@ Command add_report(CLI::App& app) {
       "HTML report: budget, Monte Carlo distribution, exact vs paper, sensed input, provenance; optionally "
       "a tolerance allocation and a test-plan design, each against the configured one");
   add_config_argument(*cmd, o->config);
-  cmd->add_option("--mode", o->mode,
-                  "Kinematics: exact or paper; default: the configuration's [identification] mode")
-      ->check(mode_names_check());
-  cmd->add_option("--trials", o->trials,
-                  "Monte Carlo trials M (default 1000000; with --digits, the stage size)")
-      ->type_name("N");
-  cmd->add_option("--seed", o->seed, "Seed of the Monte Carlo")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--threads", o->threads, "Threads (0: the OpenMP default)")->capture_default_str();
-  cmd->add_option("--digits", o->digits, "0: fixed M; 1..6: the adaptive procedure (JCGM 101 §7.9)")
-      ->capture_default_str();
-  cmd->add_option("--coverage-probability", o->coverage_probability, "Coverage probability of the intervals")
-      ->capture_default_str()
-      ->type_name("p");
-  cmd->add_option("--run", o->run,
-                  "Run whose sensed input is drawn (name or 1-based index); default: the "
-                  "highest g-level");
+  add_option_flags(*cmd, o->options, option_table<verbs::ReportOptions>());
+  add_option_flags(*cmd, o->options.monte_carlo, option_table<verbs::MonteCarloOptions>(), {"mode"});
   cmd->add_option("--allocate-target", o->allocate_targets,
                   "COEFF=U: add the tolerance allocation (as `ccal allocate --target`, with this report's "
                   "--mode, --coverage-probability, --seed and --threads); repeat for each coefficient")
@@ -118,28 +97,21 @@ Command add_report(CLI::App& app) {
               throw InputError(
                   "report: this ccal was built without its charting library (web/node_modules was missing); "
                   "run scripts/setup.sh (or `npm ci --prefix web`), then build again");
-            verbs::ReportOptions ro;
-            if (!o->mode.empty()) ro.mode = parse_mode(o->mode);
-            ro.monte_carlo.trials = o->trials;
-            ro.monte_carlo.seed = o->seed;
-            ro.monte_carlo.threads = o->threads;
-            ro.monte_carlo.digits = o->digits;
-            ro.monte_carlo.coverage_probability = o->coverage_probability;
+            verbs::ReportOptions ro = o->options;
             ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
-            ro.run = o->run;
             if (!o->allocate_targets.empty()) {
               verbs::AllocateOptions ao;
               ao.targets = o->allocate_targets;
-              ao.coverage_probability = o->coverage_probability;
-              ao.seed = o->seed;
-              ao.threads = o->threads;
+              ao.coverage_probability = ro.monte_carlo.coverage_probability;
+              ao.seed = ro.monte_carlo.seed;
+              ao.threads = ro.monte_carlo.threads;
               ao.progress = true;
               ro.allocate = ao;  // its mode: the report's (verbs::report)
             }
             if (o->design || !o->design_targets.empty()) {
               verbs::DesignOptions d;
               d.targets = o->design_targets;
-              d.threads = o->threads;
+              d.threads = ro.monte_carlo.threads;
               ro.design = d;
             }
             if (!o->observations.empty()) ro.observations = read_observations(o->observations);

@@ -11,6 +11,7 @@
 #include "ccal/render/simulate.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "commands.hpp"
+#include "option_flags.hpp"
 #include "output.hpp"
 
 namespace ccal::cli {
@@ -18,8 +19,7 @@ namespace {
 
 struct SimulateCli {
   std::string config;
-  std::string mode;  // empty: the configuration's
-  std::uint64_t seed = 1;
+  verbs::SimulateOptions options;  // its table's flags are bound to it
   std::string observations_out;
   std::string logs_out;  // folder for one run log per run
   OutputOptions output;
@@ -35,14 +35,7 @@ Command add_simulate(CLI::App& app) {
                          "instrument noise), their "
                          "regressors, and the identification of the [identification] terms from them.");
   add_config_argument(*cmd, o->config);
-  cmd->add_option("--mode", o->mode,
-                  "Reduction of a run: exact (full chain) or paper (Wang & Ren's first order); default: "
-                  "[identification] mode of the configuration")
-      ->check(mode_names_check());
-  cmd->add_option("--seed", o->seed, "Seed of the output noise (used only if the instrument has noise)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)  // a negative seed would wrap to 2^64 - 1 silently
-      ->type_name("S");
+  add_option_flags(*cmd, o->options, option_table<verbs::SimulateOptions>());
   add_observations_out_option(*cmd, o->observations_out);
   cmd->add_option("--logs-out", o->logs_out,
                   "Also write one run log per run into folder DIR (created if missing), named after the run: "
@@ -63,10 +56,7 @@ Command add_simulate(CLI::App& app) {
       cmd, [o] {
         const Config cfg = load_config_or_example(o->config);
         check_observations_out(o->observations_out, o->output);
-        verbs::SimulateOptions so;
-        if (!o->mode.empty()) so.mode = parse_mode(o->mode);
-        so.seed = o->seed;
-        const verbs::SimulateResult s = verbs::simulate(cfg, so);
+        const verbs::SimulateResult s = verbs::simulate(cfg, o->options);
         print_warnings(s.identification.observability.warnings);
         const std::string& f = o->output.format;
         const std::string text = f == "json"  ? render::json(s)

@@ -3,14 +3,18 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/version.hpp"
 #include "commands.hpp"
+#include "option_flags.hpp"
+#include "shell_docs.hpp"
 
 namespace {
 constexpr int kBadInput = 2;
@@ -94,7 +98,8 @@ int main(int argc, char** argv) {
       "  ccal identify obs.csv                      least-squares fit of the observations file\n"
       "  ccal reduce my.toml --log 20g=run20.csv …  recorded run logs to run means and coefficients\n"
       "  ccal report -o report.html                 the HTML report (budget, Monte Carlo, charts)\n"
-      "Run 'ccal <command> --help' for the options of a command.\n");
+      "Run 'ccal <command> --help' for the options of a command; 'ccal --man-page' writes the manual page,\n"
+      "'ccal --completion bash' the bash completion.\n");
 
   std::vector<ccal::cli::Command> commands;
   commands.push_back(ccal::cli::add_budget(app));
@@ -108,29 +113,49 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_report(app));
   ccal::cli::set_command_line(argc, argv);
 
+  // The manual page and the shell completion, from the declarations above (shell_docs.hpp).
+  if (argc > 1 && std::string_view(argv[1]) == "--man-page") {
+    if (argc > 2) return report("error", std::string("--man-page: takes no argument; got '") + argv[2] + "'");
+    std::cout << ccal::cli::man_page(app, ccal::version());
+    return 0;
+  }
+  if (argc > 1 && std::string_view(argv[1]) == "--completion") {
+    if (argc != 3 || std::string_view(argv[2]) != "bash")
+      return report("error", "--completion: accepted: bash (e.g. source <(ccal --completion bash))");
+    std::cout << ccal::cli::bash_completion(app);
+    return 0;
+  }
+
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
-  // required".
+  // required", with the nearest command's name.
   if (argc > 1 && argv[1][0] != '-') {
-    std::string names;
-    bool known = false;
-    for (const auto& command : commands) {
-      known = known || command.app->get_name() == argv[1];
-      names += (names.empty() ? "" : ", ") + command.app->get_name();
+    std::vector<std::string> names;
+    for (const auto& command : commands) names.push_back(command.app->get_name());
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end())
+      return report("error", ccal::cli::unknown_command_message(argv[1], names));
+  }
+
+  // The chosen command (for its --help in a hint and the flags of its options), once parsed.
+  const CLI::App* chosen = nullptr;
+  auto help_hint = [&] {
+    return chosen ? "; run 'ccal " + chosen->get_name() + " --help'" : std::string("; run 'ccal --help'");
+  };
+  try {
+    try {
+      if (argc > 1)
+        for (const auto& command : commands)
+          if (command.app->get_name() == argv[1]) chosen = command.app;
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+      return report("error", std::string(e.what()) + help_hint());
     }
-    if (!known) return report("error", std::string("unknown command '") + argv[1] + "'; accepted: " + names);
-  }
-
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    return report("error", std::string(e.what()) + "; run 'ccal --help'");
-  }
-
-  try {
     for (const auto& command : commands)
       if (command.app->parsed()) command.run();
     return 0;
+  } catch (const ccal::OptionError& e) {
+    // Worded with the flag the command declared for the field (the library names the field).
+    return report("error", e.worded(ccal::cli::declared_flag(chosen, e.field())));
   } catch (const ccal::InputError& e) {
     return report("error", e.what());
   } catch (const CLI::Error& e) {

@@ -12,7 +12,6 @@
 
 #include "atomic_file.hpp"
 #include "ccal/core/errors.hpp"
-#include "ccal/core/model_mode.hpp"
 
 namespace ccal::cli {
 
@@ -67,10 +66,6 @@ void add_config_argument(CLI::App& command, std::string& path) {
       .add_option("config", path,
                   "Configuration file (TOML, docs/config.md); default: the bundled paper example")
       ->type_name("CONFIG");
-}
-
-CLI::IsMember mode_names_check() {
-  return CLI::IsMember(std::vector<std::string>(kModeNames.begin(), kModeNames.end()));
 }
 
 std::string config_file_text(const std::string& path) {

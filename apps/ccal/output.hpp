@@ -63,9 +63,6 @@ std::string config_file_text(const std::string& path);
 // The optional CONFIG argument every configuration-driven command takes.
 void add_config_argument(CLI::App& command, std::string& path);
 
-// The check of a --mode option: one of the model modes' names (core/model_mode.hpp).
-CLI::IsMember mode_names_check();
-
 // The configuration named on the command line, or the bundled paper example if none is.
 Config load_config_or_example(const std::string& path);
 

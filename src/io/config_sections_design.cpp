@@ -87,9 +87,9 @@ void read_objective(const Reader& r, const toml::table& t, const InstrumentModel
                     const IdentificationSpec& spec, DesignSpace& d) {
   d.objective = r.word(t, "design", "objective",
                        std::vector<std::pair<std::string_view, DesignObjective>>{
-                           {"uncertainty", DesignObjective::uncertainty},
-                           {"d_optimal", DesignObjective::d_optimal},
-                           {"a_optimal", DesignObjective::a_optimal}})
+                           {design_objective_name(DesignObjective::uncertainty), DesignObjective::uncertainty},
+                           {design_objective_name(DesignObjective::d_optimal), DesignObjective::d_optimal},
+                           {design_objective_name(DesignObjective::a_optimal), DesignObjective::a_optimal}})
                     .value_or(DesignObjective::uncertainty);
   if (const toml::array* a = array_of(r, t, "coefficients", "[\"K2\", \"K3\"]")) {
     for (std::size_t i = 0; i < a->size(); ++i) {

@@ -16,16 +16,7 @@ namespace {
 
 constexpr double kDeg = 180 / std::numbers::pi;
 
-std::string_view objective_name(DesignObjective o) {
-  switch (o) {
-    case DesignObjective::d_optimal:
-      return "d_optimal";
-    case DesignObjective::a_optimal:
-      return "a_optimal";
-    default:
-      return "uncertainty";
-  }
-}
+std::string_view objective_name(DesignObjective o) { return design_objective_name(o); }
 
 std::string plan_table(const Config& config) {
   Table t({"run", "g-level [g]", "duration [s]", "turns", "phi0 [deg]", "psi [deg]", "arm az. [deg]",

@@ -192,13 +192,11 @@ void design_command(const verbs::DesignOptions& d, ReportProvenance& p) {
   auto& c = p.design_command;
   c = {"design"};
   if (d.objective)
-    c.insert(c.end(), {"--objective", *d.objective == DesignObjective::d_optimal   ? "d_optimal"
-                                      : *d.objective == DesignObjective::a_optimal ? "a_optimal"
-                                                                                   : "uncertainty"});
+    c.insert(c.end(), {"--objective", std::string(design_objective_name(*d.objective))});
   for (const auto& t : d.targets) c.insert(c.end(), {"--target", t});
   if (d.starts) c.insert(c.end(), {"--starts", std::to_string(*d.starts)});
   if (d.seed) c.insert(c.end(), {"--seed", std::to_string(*d.seed)});
-  if (d.verify_trials != 0) c.insert(c.end(), {"--verify", std::to_string(d.verify_trials)});
+  if (d.verify_trials != 0) c.insert(c.end(), {"--verify-trials", std::to_string(d.verify_trials)});
 }
 
 // The allocation, the design and the statement sections (when the result has them), each output their cells
@@ -253,7 +251,7 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
     p.montecarlo_command.push_back(option);
     p.montecarlo_command.push_back(std::move(value));
   };
-  if (m.trials != defaults.trials) add("--trials", std::to_string(m.trials));
+  if (m.trials != defaults.trials) add("--trials", std::to_string(*m.trials));
   if (m.seed != defaults.seed) add("--seed", std::to_string(m.seed));
   if (m.digits != defaults.digits) add("--digits", std::to_string(m.digits));
   if (m.max_trials != defaults.max_trials) add("--max-trials", std::to_string(m.max_trials));

@@ -11,17 +11,33 @@
 
 namespace ccal::verbs {
 
+namespace {
+
+constexpr OptionSpec<AllocateOptions> kRows[] = {
+    {"targets", &AllocateOptions::targets, "COEFF=U",
+     "COEFF=U: the allowed expanded uncertainty (half-width of the coverage interval) of a free coefficient, "
+     "in its unit (output unit per g^n) or with a unit, e.g. K3=1e-6 or \"K3=1e-6 deg/s/g^3\"; one per "
+     "coefficient",
+     {},
+     true},
+    rows::coverage_probability(&AllocateOptions::coverage_probability,
+                               "Coverage probability p of the targets, in (0, 1)"),
+    rows::mode<&AllocateOptions::mode>("Kinematics of the sensitivities and the verification: exact or paper; "
+                                       "default: the configuration's [identification] mode"),
+    {"max_scale", &AllocateOptions::max_scale, "X", "No tolerance is loosened by more than this factor (> 0)",
+     OptionRange::at_least(0).open_low().e_g("10")},
+    rows::verify_trials(&AllocateOptions::verify_trials,
+                        "Monte Carlo trials of the verification on the allocated tolerances (0: none)"),
+    rows::seed(&AllocateOptions::seed, "Seed of the verification"),
+    rows::threads(&AllocateOptions::threads, "Threads of the verification (0: the OpenMP default)"),
+};
+
+}  // namespace
+
+OptionTable<AllocateOptions> options_of(std::type_identity<AllocateOptions>) { return kRows; }
+
 AllocateResult allocate(const Config& config, const AllocateOptions& o) {
-  if (!(o.coverage_probability > 0 && o.coverage_probability < 1))
-    throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
-                                 o.coverage_probability));
-  if (!(std::isfinite(o.max_scale) && o.max_scale > 0))
-    throw InputError(fmt::format("--max-scale: {} is not a number > 0; e.g. 10", o.max_scale));
-  if (o.verify_trials < 0 || o.verify_trials == 1 || o.verify_trials > 1000000000)
-    throw InputError(
-        fmt::format("--verify-trials: {} is out of range; accepted: 0 (no verification) or 2 to 1000000000",
-                    o.verify_trials));
-  check_thread_count(o.threads, "--threads");
+  check_options(o, option_table<AllocateOptions>());
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the allocation needs at least one source");
   // The free terms and their units, for the targets.

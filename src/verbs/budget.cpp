@@ -11,13 +11,29 @@
 
 namespace ccal::verbs {
 
+namespace {
+
+constexpr std::string_view kDerivativeNames[] = {"automatic", "linearised"};  // DerivativeMethod's order
+
+constexpr OptionSpec<BudgetOptions> kRows[] = {
+    rows::mode<&BudgetOptions::mode>("Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); "
+                                     "default: the configuration's [identification] mode"),
+    // k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor.
+    {"coverage_factor", &BudgetOptions::coverage_factor, "K", "Coverage factor k of the expanded uncertainty U = k u",
+     OptionRange::at_least(1).e_g("2 (U = k u)").noting(
+         "a coverage probability such as 0.95 is for `ccal montecarlo` and `ccal allocate` "
+         "(--coverage-probability)")},
+    {"derivatives", enum_member<&BudgetOptions::derivatives>(kDerivativeNames), "METHOD",
+     "How the sensitivities are differentiated: linearised (closed-form chain Jacobian at zero errors, AD "
+     "elsewhere; fast) or automatic (forward-mode AD through everything); same numbers"},
+};
+
+}  // namespace
+
+OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { return kRows; }
+
 BudgetResult budget(const Config& config, const BudgetOptions& options) {
-  // k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor.
-  if (!(std::isfinite(options.coverage_factor) && options.coverage_factor >= 1))
-    throw InputError(fmt::format(
-        "--coverage-factor: {:g} is not a coverage factor k >= 1; accepted: e.g. 2 (U = k u); a coverage "
-        "probability such as 0.95 is for `ccal montecarlo` and `ccal allocate` (--coverage-probability)",
-        options.coverage_factor));
+  check_options(options, option_table<BudgetOptions>());
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the budget needs at least one source");
   ccal::BudgetOptions bo;

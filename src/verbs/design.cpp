@@ -17,20 +17,23 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void check_options(const DesignOptions& o) {
-  if (o.starts && (*o.starts < 0 || *o.starts > 1000))
-    throw InputError(
-        fmt::format("--starts: {} is out of range; accepted: 0 to 1000 random starts", *o.starts));
-  if (o.threads < 0)
-    throw InputError(fmt::format("--threads: {} is negative; accepted: 0 (all cores) or more", o.threads));
-  if (o.verify_trials < 0 || o.verify_trials > kMaxMonteCarloTrials)
-    throw InputError(fmt::format("--verify: {} trials is out of range; accepted: 0 (none) to {}",
-                                 o.verify_trials, kMaxMonteCarloTrials));
-  for (double f : o.tradeoff)
-    if (!(std::isfinite(f) && f > 0 && f <= 10))
-      throw InputError(fmt::format(
-          "--tradeoff: {} is not a factor of the total time in (0, 10]; accepted: e.g. 0.5,0.75,1", f));
-}
+constexpr OptionSpec<DesignOptions> kRows[] = {
+    {"objective", enum_member<&DesignOptions::objective>(kDesignObjectiveNames), "NAME",
+     "uncertainty (U of the chosen coefficients from tolerances and noise), d_optimal or a_optimal (the "
+     "instrument's noise alone); default: [design] objective"},
+    {"targets", &DesignOptions::targets, "COEFF=U",
+     "COEFF=U: the objective counts U(COEFF)/U against this target instead of the configured plan's U, e.g. "
+     "K3=1e-4 or \"K3=1e-4 deg/s/g^3\"; one per coefficient"},
+    {"starts", &DesignOptions::starts, "N",
+     "Random starts of the search (besides the configured plan); default: [design] starts", OptionRange::between(0, 1000)},
+    {"seed", &DesignOptions::seed, "S", "Seed of the random starts; default: [design] seed"},
+    rows::threads(&DesignOptions::threads, "Threads (0: the OpenMP default)"),
+    rows::verify_trials(&DesignOptions::verify_trials,
+                        "Monte Carlo trials checking the designed plan's budget (0: none)"),
+    {"tradeoff", &DesignOptions::tradeoff, "F,...",
+     "Factors of the total test time for a trade-off curve (total time against U), e.g. --tradeoff 0.5,0.75,1",
+     OptionRange::between(0, 10).open_low().e_g("0.5,0.75,1")},
+};
 
 // U_k from the tolerances alone: the budget's signed group sums added in quadrature (model.md §10.1).
 Eigen::VectorXd tolerance_expanded(const Config& config, const ccal::BudgetResult& b) {
@@ -252,8 +255,10 @@ TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
 
 }  // namespace
 
+OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>) { return kRows; }
+
 DesignResult design(const Config& config, const DesignOptions& options) {
-  check_options(options);
+  check_options(options, option_table<DesignOptions>());
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
   DesignResult r;

@@ -7,6 +7,19 @@
 
 namespace ccal::verbs {
 
+namespace {
+
+constexpr OptionSpec<ForceOptions> kRows[] = {
+    {"run", &ForceOptions::run, "J", "Run name or 1-based index"},
+    {"time", &ForceOptions::time, "T", "Time into the run [s], within [0, T] (the run's duration)", OptionRange::at_least(0)},
+    {"mode", enum_member<&ForceOptions::mode>(kModeNames), "MODE",
+     "First-order model: exact (linearised exact chain) or paper (Wang & Ren Eq.14 form)"},
+};
+
+}  // namespace
+
+OptionTable<ForceOptions> options_of(std::type_identity<ForceOptions>) { return kRows; }
+
 ForceResult force(const Config& config, const ForceOptions& options) {
   ForceResult r;
   r.config = config;

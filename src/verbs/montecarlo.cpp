@@ -8,25 +8,28 @@ namespace ccal::verbs {
 
 namespace {
 
-void check_options(const MonteCarloOptions& o) {
-  if (o.trials != 0 && (o.trials < 2 || o.trials > kMaxMonteCarloTrials))
-    throw InputError(fmt::format("--trials: {} is out of range; accepted: 2 to {} (0: the default)", o.trials,
-                                 kMaxMonteCarloTrials));
-  if (o.max_trials < 2 || o.max_trials > kMaxMonteCarloTrials)
-    throw InputError(fmt::format("--max-trials: {} is out of range; accepted: 2 to {}", o.max_trials,
-                                 kMaxMonteCarloTrials));
-  check_thread_count(o.threads, "--threads");
-  if (o.digits < 0 || o.digits > 6)
-    throw InputError(fmt::format("--digits: {} is out of range; accepted: 0 (fixed M) or 1..6", o.digits));
-  if (!(o.coverage_probability > 0 && o.coverage_probability < 1))
-    throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
-                                 o.coverage_probability));
-}
+constexpr OptionSpec<MonteCarloOptions> kRows[] = {
+    {"trials", &MonteCarloOptions::trials, "N",
+     "Number of trials M (default 1000000); with digits, the stage size (default and least 10000)",
+     rows::kTrials},
+    rows::seed(&MonteCarloOptions::seed, "Seed of the random numbers (same seed, same results)"),
+    rows::threads(&MonteCarloOptions::threads),
+    {"digits", &MonteCarloOptions::digits, "n",
+     "0: fixed M; n in 1..6: adaptive M (JCGM 101 §7.9) until n significant digits of u(y) are stable",
+     OptionRange::between(1, 6).or_value(0, "fixed M")},
+    {"max_trials", &MonteCarloOptions::max_trials, "N", "Adaptive procedure: no stage beyond this many trials",
+     rows::kTrials},
+    rows::coverage_probability(&MonteCarloOptions::coverage_probability,
+                               "Coverage probability p of the intervals, in (0, 1)"),
+    rows::mode<&MonteCarloOptions::mode>(),
+};
 
 }  // namespace
 
+OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>) { return kRows; }
+
 MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
-  check_options(o);
+  check_options(o, option_table<MonteCarloOptions>());
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
   const ModelMode mode = o.mode.value_or(config.mode);
@@ -44,9 +47,7 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
                       e.terms());
   }
   ccal::MonteCarloOptions mo;
-  mo.trials = std::uint64_t(o.trials != 0  ? o.trials
-                            : o.digits > 0 ? kDefaultMonteCarloStage
-                                           : kDefaultMonteCarloTrials);
+  mo.trials = std::uint64_t(o.trials ? *o.trials : o.digits > 0 ? kDefaultMonteCarloStage : kDefaultMonteCarloTrials);
   mo.seed = o.seed;
   mo.threads = o.threads;
   mo.significant_digits = o.digits;

@@ -46,10 +46,24 @@ std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel)
   return ids;
 }
 
+namespace {
+
+constexpr OptionSpec<ReduceOptions> kRows[] = {
+    rows::mode<&ReduceOptions::mode>("Model of the regressors: exact (full chain) or paper; default: "
+                                     "[identification] mode of the configuration"),
+    {"budget", &ReduceOptions::budget, "",
+     "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the configuration's "
+     "tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval"},
+    rows::coverage_probability(&ReduceOptions::coverage_probability,
+                               "Coverage probability p of the statement's intervals, in (0, 1)"),
+};
+
+}  // namespace
+
+OptionTable<ReduceOptions> options_of(std::type_identity<ReduceOptions>) { return kRows; }
+
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
-  if (o.budget && !(o.coverage_probability > 0 && o.coverage_probability < 1))
-    throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
-                                 o.coverage_probability));
+  check_options(o, option_table<ReduceOptions>());
   ReduceResult r;
   r.config = cfg;
   r.mode = o.mode.value_or(cfg.mode);

@@ -14,6 +14,15 @@
 namespace ccal::verbs {
 namespace {
 
+constexpr OptionSpec<ReportOptions> kRows[] = {
+    rows::mode<&ReportOptions::mode>("Kinematics: exact or paper; default: the configuration's "
+                                     "[identification] mode"),
+    {"run", &ReportOptions::run, "J",
+     "Run whose sensed input is drawn (name or 1-based index); default: the highest g-level"},
+    {"input_points", &ReportOptions::input_points, "N", "Instants of the sensed-input curve",
+     OptionRange::between(2, 100000)},
+};
+
 std::size_t highest_g_run(const TestPlan& plan) {
   std::size_t best = 0;
   for (std::size_t k = 1; k < plan.runs.size(); ++k)
@@ -24,8 +33,6 @@ std::size_t highest_g_run(const TestPlan& plan) {
 // The run's exact input at evenly spaced instants of a window: the whole run, or, when the platform turns
 // more than 3 times in it, its first 3 revolutions (a longer window would only alias the curve).
 SensedInputSeries sensed_input(const Config& config, const ReportOptions& o) {
-  if (o.input_points < 2 || o.input_points > 100000)
-    throw InputError(fmt::format("input points: {} is out of range; accepted: 2 to 100000", o.input_points));
   if (config.plan.runs.empty()) throw InputError(config.source + ": the test plan has no runs");
   SensedInputSeries s;
   s.run_index = o.run.empty() ? highest_g_run(config.plan) : select_run(config.plan, o.run, "--run");
@@ -97,7 +104,10 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
 
 }  // namespace
 
+OptionTable<ReportOptions> options_of(std::type_identity<ReportOptions>) { return kRows; }
+
 ReportResult report(const Config& config, const ReportOptions& o) {
+  check_options(o, option_table<ReportOptions>());
   check_targets(config, o);
   ReportResult r;
   r.config = config;

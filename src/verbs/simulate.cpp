@@ -25,7 +25,20 @@ std::string regressor_unit(const std::string& id) {
   }
 }
 
+namespace {
+
+constexpr OptionSpec<SimulateOptions> kRows[] = {
+    rows::mode<&SimulateOptions::mode>("Model of the reduction: exact (full chain) or paper (Wang & Ren "
+                                       "first-order rules); default: the configuration's [identification] mode"),
+    rows::seed(&SimulateOptions::seed, "Seed of the output noise (used only if the instrument has noise)"),
+};
+
+}  // namespace
+
+OptionTable<SimulateOptions> options_of(std::type_identity<SimulateOptions>) { return kRows; }
+
 SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
+  check_options(o, option_table<SimulateOptions>());
   SimulateResult s;
   s.config = cfg;
   s.seed = o.seed;

@@ -38,13 +38,20 @@ double unit_factor(const std::string& from, const std::string& to, const std::st
                   option, term, to, from));
 }
 
+constexpr OptionSpec<StatementOptions> kRows[] = {
+    rows::coverage_probability(&StatementOptions::coverage_probability,
+                               "Coverage probability p of the statement's intervals, in (0, 1)"),
+    rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
+                                        "configuration's [identification] mode"),
+};
+
 }  // namespace
+
+OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>) { return kRows; }
 
 CalibrationStatement calibration_statement(const Config& config, const Identification& id,
                                            const StatementOptions& o, const std::string& option) {
-  if (!(o.coverage_probability > 0 && o.coverage_probability < 1))
-    throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
-                                 o.coverage_probability));
+  check_options(o, option_table<StatementOptions>());
   const FitResult& fit = id.fit;
   if (!id.weighted && fit.dof <= 0)
     throw InputError(fmt::format(

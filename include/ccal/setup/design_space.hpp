@@ -22,6 +22,13 @@ enum class DesignObjective {
   a_optimal,    // Σ w_k [(Hᵀ Σ⁻¹ H)⁻¹]_kk / R_k² over the chosen coefficients, noise alone
 };
 
+// Every objective's name, in the enumeration's order: what the configuration, the options and the reports
+// write.
+inline constexpr std::string_view kDesignObjectiveNames[] = {"uncertainty", "d_optimal", "a_optimal"};
+constexpr std::string_view design_objective_name(DesignObjective o) noexcept {
+  return kDesignObjectiveNames[static_cast<int>(o)];
+}
+
 // Which phase of a run the design sets (the other follows from g-level and duration, model.md §6.1).
 enum class DesignPhase { terminal, initial };
 

@@ -9,6 +9,7 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/verbs/option_rows.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 
 namespace ccal::verbs {
@@ -27,13 +28,16 @@ struct AllocateOptions {
   ProgressCallback on_progress;  // of the verification's trials; may throw Cancelled (core/progress.hpp)
 };
 
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<AllocateOptions> options_of(std::type_identity<AllocateOptions>);
+
 struct AllocateResult {
   Config config;
   AllocationResult allocation;
 };
 
-// Throws InputError naming the option (--target, --coverage-probability, --max-scale, --verify-trials,
-// --threads) for a value out of range, for an empty [tolerances], a target below what the drives' noise
+// Throws OptionError naming the field for a value out of range (its table), InputError naming --target for a
+// target that is not one, for an empty [tolerances], a target below what the drives' noise
 // allows, or a result that is not finite.
 AllocateResult allocate(const Config& config, const AllocateOptions& options);
 

@@ -8,6 +8,7 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/verbs/observability_report.hpp"
+#include "ccal/verbs/option_rows.hpp"
 
 namespace ccal::verbs {
 
@@ -17,6 +18,9 @@ struct BudgetOptions {
   DerivativeMethod derivatives = DerivativeMethod::linearised;  // same numbers; linearised is faster
   bool compare_with_paper = true;  // in exact mode, also the paper's first-order effect of each source
 };
+
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>);
 
 struct BudgetResult {
   Config config;                      // the configuration budgeted

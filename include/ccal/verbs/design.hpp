@@ -28,6 +28,9 @@ struct DesignOptions {
   std::vector<double> tradeoff;
 };
 
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>);
+
 // The objective's per-coefficient data, in the order of the free terms.
 struct DesignTarget {
   std::string coefficient;

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/model/sensed_input.hpp"
 
@@ -15,6 +16,9 @@ struct ForceOptions {
   double time = 0;                    // t into the run [s], within [0, T]
   ModelMode mode = ModelMode::exact;  // first-order model: the linearised exact chain, or the paper's form
 };
+
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<ForceOptions> options_of(std::type_identity<ForceOptions>);
 
 struct ForceResult {
   Config config;               // the configuration evaluated

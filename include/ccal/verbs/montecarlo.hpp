@@ -10,12 +10,9 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/verbs/option_rows.hpp"
 
 namespace ccal::verbs {
-
-// The trial outputs are stored (8 bytes per trial and coefficient): 10⁹ trials of three coefficients are
-// 24 GB, the most accepted.
-inline constexpr std::int64_t kMaxMonteCarloTrials = 1000000000;
 
 // The default M of a fixed run: at 10⁴ the interval ends of a normal output scatter by about 2.7·u/√M =
 // 0.027 u, as much as the §8 tolerance δ of a two-digit u, so the bundled example's K3 failed its validation
@@ -25,7 +22,7 @@ inline constexpr std::int64_t kDefaultMonteCarloStage = 10000;
 
 struct MonteCarloOptions {
   std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
-  std::int64_t trials = 0;        // M; with digits > 0 the stage size; 0: the defaults below
+  std::optional<std::int64_t> trials;  // M; with digits > 0 the stage size; unset: the defaults above
   std::uint64_t seed = 1;
   int threads = 0;  // 0: all cores
   int digits = 0;   // 0: fixed M; 1..6: the adaptive procedure (JCGM 101 §7.9) to these digits
@@ -38,14 +35,17 @@ struct MonteCarloOptions {
   ProgressCallback on_progress;  // trials done / of the stage, every 0.1 s at most; may throw Cancelled
 };
 
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>);
+
 struct MonteCarloResult {
   Config config;
   ccal::BudgetResult budget;  // the LPU that the Monte Carlo validates, and the display units
   ccal::MonteCarloResult monte_carlo;
 };
 
-// Throws InputError naming the option (--trials, --max-trials, --threads, --digits, --coverage-probability)
-// for a value out of range, for an empty [tolerances] or a plan that cannot identify the terms.
+// Throws OptionError naming the field for a value out of range (its table), InputError for an empty
+// [tolerances] or a plan that cannot identify the terms.
 MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& options = {});
 
 }  // namespace ccal::verbs

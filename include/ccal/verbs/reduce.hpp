@@ -31,6 +31,9 @@ struct ReduceOptions {
   double coverage_probability = 0.95;  // p of the statement's intervals
 };
 
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<ReduceOptions> options_of(std::type_identity<ReduceOptions>);
+
 struct ReduceResult {
   Config config;
   ModelMode mode = ModelMode::exact;

@@ -38,6 +38,10 @@ struct ReportOptions {
   std::optional<CsvTable> observations;
 };
 
+// The options' table (core/options.hpp): the report's own fields (those of its sections are in their verbs'
+// tables).
+OptionTable<ReportOptions> options_of(std::type_identity<ReportOptions>);
+
 // The specific force the instrument senses over a window of one run, exact (verbs::force at each instant).
 struct SensedInputSeries {
   std::size_t run_index = 0;

@@ -12,6 +12,7 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/verbs/option_rows.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/verbs/identification.hpp"
 
@@ -21,6 +22,9 @@ struct SimulateOptions {
   std::optional<ModelMode> mode;  // reduction of a run; unset: the configuration's [identification] mode
   std::uint64_t seed = 1;         // of the output noise (used only if the instrument has noise)
 };
+
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<SimulateOptions> options_of(std::type_identity<SimulateOptions>);
 
 struct SimulateResult {
   Config config;

@@ -10,6 +10,7 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/setup/config.hpp"
+#include "ccal/verbs/option_rows.hpp"
 #include "ccal/uncertainty/statement.hpp"
 #include "ccal/verbs/identification.hpp"
 
@@ -19,6 +20,9 @@ struct StatementOptions {
   double coverage_probability = 0.95;  // p of the intervals, in (0, 1)
   std::optional<ModelMode> mode;       // of the budget; unset: the configuration's
 };
+
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>);
 
 struct CalibrationStatement {
   std::string budget_config;  // the configuration whose tolerances give the Type B part

@@ -1,0 +1,90 @@
+#include "option_flags.hpp"
+
+#include <algorithm>
+#include <map>
+#include <utility>
+
+namespace ccal::cli {
+
+namespace {
+
+// The one table of fields whose flag is not the field's name: lists given one element per flag.
+constexpr std::pair<std::string_view, std::string_view> kFlagSpellings[] = {
+    {"targets", "target"},
+    {"logs", "log"},
+};
+
+std::map<std::pair<const CLI::App*, std::string>, std::string>& declared() {
+  static std::map<std::pair<const CLI::App*, std::string>, std::string> flags;
+  return flags;
+}
+
+}  // namespace
+
+std::string flag_name(std::string_view field, std::string_view prefix) {
+  std::string name(field);
+  for (const auto& [from, to] : kFlagSpellings)
+    if (field == from) name = std::string(to);
+  name = std::string(prefix) + name;
+  for (char& c : name)
+    if (c == '_') c = '-';
+  return "--" + name;
+}
+
+std::string declared_flag(const CLI::App* command, std::string_view field) {
+  const auto found = declared().find({command, std::string(field)});
+  return found != declared().end() ? found->second : flag_name(field);
+}
+
+namespace {
+
+// Levenshtein distance (insertions, deletions, substitutions, each 1), by one row of the table.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names) {
+  std::string accepted, nearest;
+  std::size_t best = std::string::npos, prefixed = 0;
+  for (const std::string& name : names) {
+    accepted += (accepted.empty() ? "" : ", ") + name;
+    const std::size_t d = edit_distance(typed, name);
+    if (d < best) best = d, nearest = name;
+    if (!typed.empty() && name.starts_with(typed)) ++prefixed;
+  }
+  std::string suggestion;
+  if (best != std::string::npos && 3 * best <= nearest.size())
+    suggestion = "; did you mean '" + nearest + "'?";
+  else if (prefixed == 1)
+    for (const std::string& name : names)
+      if (name.starts_with(typed)) suggestion = "; did you mean '" + name + "'?";
+  return "unknown command '" + std::string(typed) + "'" + (suggestion.empty() ? ";" : suggestion) +
+         " accepted: " + accepted;
+}
+
+namespace detail {
+
+void remember_flag(const CLI::App* command, std::string_view field, const std::string& flag) {
+  declared().emplace(std::make_pair(command, std::string(field)), flag);
+}
+
+CLI::Option* add_text_flag(CLI::App& command, const std::string& flag, std::string_view help,
+                           std::function<void(const std::string&)> set) {
+  return command.add_option_function<std::string>(flag, std::move(set), std::string(help));
+}
+
+}  // namespace detail
+}  // namespace ccal::cli

@@ -1,0 +1,116 @@
+#pragma once
+// The command line's flags of a verb, declared from the verb's options table (core/options.hpp): one flag per
+// row, named after the field (flag_name), bound to the verb's options struct, whose values are the defaults
+// the help shows. Numbers are read by the library's parsers, so that 1e5 is a whole number and an error echoes
+// what was typed; the range is checked by the verb itself, so the command line refuses what Python and the
+// library refuse, in the same words but for the option's name.
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/core/options.hpp"
+
+namespace ccal::cli {
+
+// The flag of a field: "--" + the field with '-' for '_' (coverage_probability → --coverage-probability), but
+// for the few fields spelled otherwise on the command line (a list given one element per flag: targets →
+// --target); `prefix` goes before the field (report's allocate_ + targets → --allocate-target).
+std::string flag_name(std::string_view field, std::string_view prefix = "");
+
+// The flag a field of the command `command` was declared with (add_option_flags), for the message of an
+// OptionError; flag_name(field) when the command did not declare it.
+std::string declared_flag(const CLI::App* command, std::string_view field);
+
+// "unknown command 'X'; accepted: a, b, c", with "did you mean 'b'?" when one name is near X (an edit
+// distance of at most a third of its length, or X a prefix of only it).
+std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names);
+
+// Declares a flag for every row of `table` on `command`, bound to `options` (which must outlive the parse),
+// except the fields named in `skip` (bound by hand by the command).
+template <class Options>
+void add_option_flags(CLI::App& command, Options& options, OptionTable<Options> table,
+                      std::initializer_list<std::string_view> skip = {}, std::string_view prefix = "");
+
+namespace detail {
+void remember_flag(const CLI::App* command, std::string_view field, const std::string& flag);
+CLI::Option* add_text_flag(CLI::App& command, const std::string& flag, std::string_view help,
+                           std::function<void(const std::string&)> set);
+
+template <class Options, class Member>
+void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>& row, Member member,
+                  const std::string& flag) {
+  const std::string field(row.field);
+  std::string help(row.help);
+  CLI::Option* option = nullptr;
+  if constexpr (std::is_same_v<Member, OptionEnum<Options>>) {
+    const OptionEnum<Options> e = member;
+    option = add_text_flag(command, flag, help, [&options, e, field](const std::string& text) {
+      e.set(options, parse_choice_option(field, text, e.names));
+    });
+    if (const auto index = e.get(options)) option->default_str(std::string(e.names[*index]));
+    option->type_name(std::string(row.value_name));
+  } else {
+    using Field = std::remove_cvref_t<decltype(options.*member)>;
+    Field& value = options.*member;
+    if constexpr (std::is_same_v<Field, bool>) {
+      option = command.add_flag(flag, value, help);
+    } else if constexpr (std::is_same_v<Field, std::string>) {
+      option = command.add_option(flag, value, help);
+      if (!value.empty()) option->default_str(value);
+    } else if constexpr (std::is_same_v<Field, std::vector<std::string>>) {
+      option = command.add_option(flag, value, help)->allow_extra_args(false);
+      if (row.required) option->required();
+    } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
+      option = command
+                   .add_option_function<std::vector<std::string>>(
+                       flag,
+                       [&value, field](const std::vector<std::string>& texts) {
+                         value.clear();
+                         for (const std::string& t : texts) value.push_back(parse_real_option(field, t));
+                       },
+                       help)
+                   ->delimiter(',');
+    } else {
+      using Number = std::remove_cvref_t<decltype([] {
+        if constexpr (requires { typename Field::value_type; })
+          return typename Field::value_type{};
+        else
+          return Field{};
+      }())>;
+      option = add_text_flag(command, flag, help, [&value, field](const std::string& text) {
+        if constexpr (std::is_floating_point_v<Number>)
+          value = parse_real_option(field, text);
+        else if constexpr (std::is_unsigned_v<Number>)
+          value = Number(parse_unsigned_option(field, text));
+        else
+          value = Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
+                                              std::numeric_limits<Number>::max()));
+      });
+      if constexpr (requires { typename Field::value_type; }) {
+        if (value) option->default_str(option_value_text(*value));
+      } else {
+        option->default_str(option_value_text(value));
+      }
+    }
+    if (!row.value_name.empty() && !std::is_same_v<Field, bool>) option->type_name(std::string(row.value_name));
+  }
+  remember_flag(&command, row.field, flag);
+}
+}  // namespace detail
+
+template <class Options>
+void add_option_flags(CLI::App& command, Options& options, OptionTable<Options> table,
+                      std::initializer_list<std::string_view> skip, std::string_view prefix) {
+  for (const OptionSpec<Options>& row : table) {
+    if (std::find(skip.begin(), skip.end(), row.field) != skip.end()) continue;
+    const std::string flag = flag_name(row.field, prefix);
+    std::visit([&](auto member) { detail::add_one_flag(command, options, row, member, flag); }, row.member);
+  }
+}
+
+}  // namespace ccal::cli

@@ -1,0 +1,238 @@
+#pragma once
+// The options of a library call, described once, as data.
+//
+// Each verb's options struct (verbs/*.hpp) has a table of its fields, `OptionTable<Options>`: per field its
+// name, its member, the accepted values and a line of help. That table is the one home of an option:
+//   - the verb checks its options against it (check_options; an OptionError names the field),
+//   - the command line declares its flags from it (the flag is the field's name with '-' for '_':
+//     coverage_probability → --coverage-probability; apps/ccal/option_flags.cpp), with the struct's default,
+//   - Python takes the same names as keywords and the struct's defaults (python/),
+// and each front end words an OptionError with its own spelling of the field, so the same value gets the same
+// refusal everywhere. A new option is a field of the struct and one row of its table.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/core/model_mode.hpp"
+
+namespace ccal {
+
+// An option of a library call that is not accepted. field(): the option's name in the library (the field of
+// the verb's options struct, e.g. "coverage_probability"); value(): the value as given; problem(): what is
+// wrong with it and what would be accepted. what() is "<field>: <value> <problem>"; a front end rewords it
+// with its own name of the field (worded("--coverage-probability")).
+class OptionError : public InputError {
+ public:
+  OptionError(std::string field, std::string value, std::string problem);
+
+  const std::string& field() const noexcept { return field_; }
+  const std::string& value() const noexcept { return value_; }
+  const std::string& problem() const noexcept { return problem_; }
+  // "<name>: <value> <problem>", or "<name>: <problem>" for an option without a value.
+  std::string worded(std::string_view name) const;
+
+ private:
+  std::string field_, value_, problem_;
+};
+
+// What values a numeric option accepts: [low, high] (each end open when said), finite, plus optionally one
+// more value with its own meaning (e.g. 0: none). For a list, each element.
+struct OptionRange {
+  double low = -1e308, high = 1e308;
+  bool low_open = false, high_open = false;
+  std::optional<double> also;      // a value accepted besides the range
+  std::string_view also_meaning;   // what it means, e.g. "none"
+  std::string_view example;        // shown in the message, e.g. "0.95"
+  std::string_view note;           // a last word of the message, e.g. where a similar option is
+
+  // [low, high]; then, by copies: open ends, one more accepted value, an example, a note.
+  static constexpr OptionRange between(double low, double high) {
+    OptionRange r;
+    r.low = low;
+    r.high = high;
+    return r;
+  }
+  static constexpr OptionRange at_least(double low) { return between(low, 1e308); }
+  constexpr OptionRange open_low() const { return with([](OptionRange& r) { r.low_open = true; }); }
+  constexpr OptionRange open_high() const { return with([](OptionRange& r) { r.high_open = true; }); }
+  constexpr OptionRange or_value(double value, std::string_view meaning) const {
+    return with([&](OptionRange& r) { r.also = value, r.also_meaning = meaning; });
+  }
+  constexpr OptionRange e_g(std::string_view text) const {
+    return with([&](OptionRange& r) { r.example = text; });
+  }
+  constexpr OptionRange noting(std::string_view text) const {
+    return with([&](OptionRange& r) { r.note = text; });
+  }
+
+  bool accepts(double x) const noexcept;
+  // "2 to 1000000000", "a number in (0, 1)", with the extra value, the example and the note: what a message
+  // says is accepted.
+  std::string text() const;
+
+ private:
+  template <class Change>
+  constexpr OptionRange with(Change change) const {
+    OptionRange r = *this;
+    change(r);
+    return r;
+  }
+};
+
+// A member of an enumeration type (or an optional one), set and read through the names of its values, which
+// are listed in the enumeration's order; made by enum_member<&Options::field>(names).
+template <class Options>
+struct OptionEnum {
+  std::span<const std::string_view> names;
+  void (*set)(Options&, std::size_t index) = nullptr;
+  std::optional<std::size_t> (*get)(const Options&) = nullptr;  // nullopt: unset (the configuration's)
+};
+
+template <auto Member, class Options>
+constexpr OptionEnum<Options> enum_member_of(std::span<const std::string_view> names) {
+  using Field = std::remove_cvref_t<decltype(std::declval<Options&>().*Member)>;
+  OptionEnum<Options> e;
+  e.names = names;
+  e.set = [](Options& o, std::size_t index) {
+    if constexpr (requires { typename Field::value_type; })
+      o.*Member = static_cast<typename Field::value_type>(index);
+    else
+      o.*Member = static_cast<Field>(index);
+  };
+  e.get = [](const Options& o) -> std::optional<std::size_t> {
+    if constexpr (requires { typename Field::value_type; }) {
+      if (!(o.*Member)) return std::nullopt;
+      return std::size_t(*(o.*Member));
+    } else {
+      return std::size_t(o.*Member);
+    }
+  };
+  return e;
+}
+
+// The class of a pointer to data member.
+template <class T>
+struct member_class;
+template <class C, class T>
+struct member_class<T C::*> {
+  using type = C;
+};
+
+// enum_member<&DesignOptions::objective>(kObjectiveNames): the row member of an enumeration field.
+template <auto Member>
+constexpr auto enum_member(std::span<const std::string_view> names) {
+  return enum_member_of<Member, typename member_class<decltype(Member)>::type>(names);
+}
+
+// The member of an options struct that an option sets.
+template <class Options>
+using OptionMember =
+    std::variant<bool Options::*, int Options::*, std::int64_t Options::*, std::uint64_t Options::*,
+                 double Options::*, std::string Options::*, std::vector<std::string> Options::*,
+                 std::vector<double> Options::*, std::optional<int> Options::*,
+                 std::optional<std::int64_t> Options::*, std::optional<std::uint64_t> Options::*,
+                 std::optional<double> Options::*, OptionEnum<Options>>;
+
+// One option: the field's name (the front ends derive their spellings from it), the member, the accepted
+// values, the name of its value in a usage line (N, p, FILE) and a line of help.
+template <class Options>
+struct OptionSpec {
+  std::string_view field;
+  OptionMember<Options> member;
+  std::string_view value_name;
+  std::string_view help;
+  OptionRange range;
+  bool required = false;  // a list that needs at least one element
+
+  constexpr OptionSpec(std::string_view field, OptionMember<Options> member, std::string_view value_name,
+                       std::string_view help, OptionRange range = {}, bool required = false)
+      : field(field), member(member), value_name(value_name), help(help), range(range), required(required) {}
+};
+
+template <class Options>
+using OptionTable = std::span<const OptionSpec<Options>>;
+
+// The table of an options struct: each verb's header declares options_of(std::type_identity<Its>) and its
+// source defines the rows.
+template <class Options>
+OptionTable<Options> option_table() {
+  return options_of(std::type_identity<Options>{});
+}
+
+// The text of a number as the options show it: integers in full, others in the shortest form that reads back
+// to the same double.
+std::string option_number_text(double x);
+
+// Throws OptionError for the first field of `options` that its row of `table` does not accept.
+template <class Options>
+void check_options(const Options& options, OptionTable<Options> table);
+template <class Field, class Options>
+void check_member(const Field& value, const OptionSpec<Options>& row);
+
+// The value of an integer option written as text: digits, or any float notation of a whole number (1e5,
+// 100000.0). OptionError naming `field` and echoing `text` for anything else, or a value beyond [low, high].
+std::int64_t parse_integer_option(std::string_view field, std::string_view text, std::int64_t low,
+                                  std::int64_t high);
+std::uint64_t parse_unsigned_option(std::string_view field, std::string_view text);
+// A real option written as text (any float notation); OptionError unless it is a finite number.
+double parse_real_option(std::string_view field, std::string_view text);
+// The index of `text` among `names`; OptionError listing the names otherwise.
+std::size_t parse_choice_option(std::string_view field, std::string_view text,
+                                std::span<const std::string_view> names);
+
+// Throws OptionError(field, value_text, ...) unless range accepts value (a non-finite value never is).
+void check_option_value(std::string_view field, double value, const std::string& value_text,
+                        const OptionRange& range);
+
+// The text of an option's number: an integer in full (not through a double), a double as option_number_text.
+template <class Number>
+std::string option_value_text(Number value) {
+  if constexpr (std::is_integral_v<Number>)
+    return std::to_string(value);
+  else
+    return option_number_text(double(value));
+}
+
+// --- implementation of the template ---
+
+template <class Options>
+void check_options(const Options& options, OptionTable<Options> table) {
+  for (const OptionSpec<Options>& row : table) {
+    std::visit(
+        [&](auto member) {
+          if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
+            return;  // set only by name (parse_choice_option)
+          } else {
+            check_member(options.*member, row);
+          }
+        },
+        row.member);
+  }
+}
+
+template <class Field, class Options>
+void check_member(const Field& value, const OptionSpec<Options>& row) {
+  if constexpr (std::is_same_v<Field, bool> || std::is_same_v<Field, std::string>) {
+    // no range
+  } else if constexpr (std::is_same_v<Field, std::vector<std::string>>) {
+    if (row.required && value.empty())
+      throw OptionError(std::string(row.field), "",
+                        "none given; accepted: at least one " + std::string(row.value_name));
+  } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
+    for (double x : value) check_option_value(row.field, x, option_value_text(x), row.range);
+  } else if constexpr (std::is_arithmetic_v<Field>) {
+    // A 64-bit integer beyond 2^53 is compared as its nearest double: the ranges' ends are exact.
+    check_option_value(row.field, double(value), option_value_text(value), row.range);
+  } else {  // std::optional of a number
+    if (value) check_option_value(row.field, double(*value), option_value_text(*value), row.range);
+  }
+}
+
+}  // namespace ccal
