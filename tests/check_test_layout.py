@@ -2,10 +2,16 @@
 """The test layout of docs/testing.md: every library source src/<layer>/<unit>.cpp has its test file
 tests/<layer>/<unit>_test.cpp, or is listed below with the test files that exercise it instead; every test file
 of a layer's folder is named after a unit of that layer (<unit>_test.cpp, or <unit>_<aspect>_test.cpp for a
-further aspect of a large unit), so that the tests of unit X are found by its name. Exit 1 with one line per
-violation."""
+further aspect of a large unit), so that the tests of unit X are found by its name; and every path under
+tests/ that the documents describing the tests name exists. Exit 1 with one line per violation."""
 import pathlib
+import re
 import sys
+
+# The documents that describe where the tests are (docs/testing.md's layout, the README's Layout table).
+DOCUMENTS = ["docs/testing.md", "docs/architecture.md", "README.md"]
+# A path under tests/ as the documents write it; one with a placeholder (<unit>) or a pattern (*) is skipped.
+DOC_PATH = re.compile(r"(?<![\w/.])tests/[A-Za-z0-9_./<>*-]*[A-Za-z0-9_/]")
 
 LAYERS = ["core", "model", "setup", "reduction", "uncertainty", "io", "verbs", "render"]
 
@@ -94,6 +100,13 @@ def main(root):
             if not named:
                 problems.append(f"{test.relative_to(root)}: not named <unit>_test.cpp or <unit>_<aspect>_test.cpp "
                                 f"after a unit of src/{layer}/ or include/ccal/{layer}/")
+    for doc in DOCUMENTS:
+        text = (root / doc).read_text(encoding="utf-8")
+        for m in DOC_PATH.finditer(text):
+            path = m.group(0)
+            if "<" not in path and "*" not in path and not (root / path).exists():
+                line = text.count("\n", 0, m.start()) + 1
+                problems.append(f"{doc}:{line}: {path} does not exist")
     for p in problems:
         print(p)
     print(f"{len(sources)} library sources checked, {len(sources) - len(TESTED_ELSEWHERE)} with their own test "
