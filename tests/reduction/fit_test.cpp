@@ -1,6 +1,6 @@
 // Tests of the linear least-squares fit. Every tolerance is stated next to its assertion with the
-// reason for its size. (NIST StRD: test_fit_nist.cpp; the differentiable solve:
-// test_solve_least_squares.cpp.)
+// reason for its size. (NIST StRD: tests/system/fit_nist_test.cpp; the differentiable
+// solve: fit_solve_test.cpp.)
 #include "fit_test_support.hpp"
 
 namespace {

@@ -34,7 +34,7 @@ TEST(PaperCrossTermsEarth, ErrorFreeRegressorsEqualThePlainOnes) {
 }
 
 // Δθz5 = 1e-5 rad with cross terms: model.md V3 gives ΔK0 = −1.9171e-5, ΔK2 = +2.1254e-8, ΔK3 = +9.1580e-6
-// °/s/gⁿ (Earth off; tolerance 5e-4 relative for the linear-with-cross-terms model, as in test_simulate).
+// °/s/gⁿ (Earth off; tolerance 5e-4 relative for the linear-with-cross-terms model, as in reduction/observe_test.cpp).
 // Earth rotation adds a per-run constant Coriolis term (fixed K1 absorbs it) and an Earth-rate change on the
 // IA heading of about 1e-5 · 7.3e-5 rad/s ≈ 4e-8 °/s in K0 at most: K2 and K3 keep the Earth-off values, K0
 // within 1e-7. Before the fix the Coriolis term in Z2 gave ΔK2 = 2.85e-8.

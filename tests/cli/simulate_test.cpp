@@ -349,7 +349,7 @@ TEST_F(Cli, BadIdentifyOptions) {
 
 TEST_F(Cli, AliasedTermsAreRefusedWithTheMountingHint) {
   // K0, K2, K3, K_pp on the paper's counter-rotating plan: ⟨a_p²⟩ = A² − ⟨a_i²⟩ + O(A²/ΩT), so K2 and K_pp
-  // are correlated beyond 0.99999 (tests/test_simulate.cpp). simulate refuses the configured terms ...
+  // are correlated beyond 0.99999 (tests/reduction/observe_test.cpp). simulate refuses the configured terms ...
   write("pp.toml", example_with_terms("[\"K0\", \"K2\", \"K3\", \"K_pp\"]"));
   const Result s = run("simulate pp.toml -o out.txt --observations-out obs.csv");
   expect_bad_input(
@@ -443,7 +443,7 @@ TEST_F(Cli, PaperModeAndCompensation) {
   EXPECT_EQ(nlohmann::json::parse(q.out).at("mode"), "paper");
 
   // A main-axis levelling error of 1e-5 rad biases K3 by ≈ −1.45e-3 °/s/g³ (model.md §5.4,
-  // tests/test_simulate.cpp); compensating recomputes the regressors with it and the bias is round-off: 1e-12
+  // tests/reduction/observe_test.cpp); compensating recomputes the regressors with it and the bias is round-off: 1e-12
   // °/s/g³ in the library test, and the 17-digit CSV and the rad/s → °/s conversion add a few ulp of the run
   // means (≈ 1e-12 °/s, see SimulateThenIdentifyRecoversTheCoefficients), so 1e-10 keeps a margin of 100
   // while being 1e-7 of the uncompensated bias.

@@ -230,7 +230,7 @@ TEST(RateRipple, FirstOrderColumnsEqualTheChainsDerivatives) {
 TEST(RateRipple, KernelEqualsTheGeneralReduction) {
   // The Monte Carlo's kernel with both ripples (and every bundled tolerance at ±3σ) against average_run, in
   // both controls and with ripples above the small-angle threshold (the one-node loops). Same 1e-14-of-swing
-  // tolerance as tests/test_run_means.cpp: same chain and rule, another order of operations.
+  // tolerance as tests/reduction/run_means_test.cpp: same chain and rule, another order of operations.
   for (PlatformControl control : {PlatformControl::speed, PlatformControl::phase_locked})
     for (double size : {1e-5, 3e-3}) {
       Config cfg = bundled_example();

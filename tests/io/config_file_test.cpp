@@ -1,5 +1,5 @@
 // Configuration loading: the bundled example gives the paper's numbers, units convert, defaults apply.
-// (Bad input: test_config_errors.cpp.)
+// (Bad input: config_file_errors_test.cpp.)
 #include "config_test_support.hpp"
 
 namespace ccal {
@@ -177,7 +177,7 @@ initial_phase = "0 deg"
 )",
                                 "d.toml");
   // Normal gravity at 30° from WGS-84's published γe, γp and semi-axes by Somigliana's formula (written out
-  // in test_site.cpp): 9.7932472692 m/s². Tolerance 1e-9 m/s²: ten-digit constants.
+  // in tests/model/site_test.cpp): 9.7932472692 m/s². Tolerance 1e-9 m/s²: ten-digit constants.
   EXPECT_NEAR(c.site.g, 9.7932472692, 1e-9);
   EXPECT_TRUE(c.site.earth_rotation);
   EXPECT_DOUBLE_EQ(c.centrifuge.geometry.L, 0.0);

@@ -25,7 +25,7 @@ TEST_F(MonteCarloCli, SmallRunOfTheBundledExample) {
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 
   // The bundled example without the drives' rate noise (its Type A part has no independent reference here;
-  // tests/test_rate_noise.cpp checks it): the tolerances only.
+  // tests/uncertainty/rate_noise_test.cpp checks it): the tolerances only.
   std::string text = read(kExample), kept;
   std::istringstream lines(text);
   for (std::string line; std::getline(lines, line);)

@@ -176,7 +176,7 @@ TEST_F(ReduceRipple, MeasuredRippleGivesTheSimulatedIdentification) {
   // for the rippled centrifuge. Left out of the model (`simulate` with compensate = false) the ripple moves
   // K0 by 25 % and K3 by 4 times its value (`effect`); the measured first harmonic is exact to third order
   // (the argument's error δ turns cos q into harmonics 0 and 2), and the coefficients agree to ~3e-9 of that
-  // effect: tolerance 1e-6 of the effect, plus the line fits' 1e-9 of the value (test_cli_reduce).
+  // effect: tolerance 1e-6 of the effect, plus the line fits' 1e-9 of the value (cli/reduce_test.cpp).
   for (bool phase_locked : {false, true}) {
     SCOPED_TRACE(phase_locked ? "phase_locked" : "speed");
     write("rippled.toml", config_text(true, phase_locked));

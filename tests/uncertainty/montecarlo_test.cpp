@@ -442,7 +442,7 @@ TEST(MonteCarlo, CalibrationPipelineMatchesTheLpuOfItsSensitivities) {
   EXPECT_NEAR(model.reference[2] / kDeg, 0.003, 1e-12);
   const TrialFunction trial = calibration_trial(model);
   const LinearPropagation lp = propagate_linear(s, model.n_outputs(), trial);
-  // The levelling dominates K3 (−1.45e-3 °/s/g³ per 1e-5 rad, test_simulate).
+  // The levelling dominates K3 (−1.45e-3 °/s/g³ per 1e-5 rad, reduction/observe_test.cpp).
   EXPECT_NEAR(lp.sensitivities(2, 2) * 1e-5 / kDeg, -1.45e-3, 0.02e-3);
   // The reference LPU does not use the trial: central differences of the re-identified pipeline
   // (independent_lpu.hpp), σ = bound (normal) and bound/√3 (uniform) written out. The propagate_linear of the
@@ -477,7 +477,7 @@ TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
   // A trial (run-mean kernel with the trial rule, cached H⁺ and known part) at ±3σ corner draws of the
   // bundled tolerances against the full pipeline: observe the truth (configured errors + draw) with the
   // converged default rule, identify, subtract the same identification at zero truth. The two rules differ
-  // by < 1e-12 of each run's swing K1·A (tests/test_reduce.cpp), which H⁺ maps to at most
+  // by < 1e-12 of each run's swing K1·A (tests/reduction/run_average_test.cpp), which H⁺ maps to at most
   // Σ_j |H⁺_kj| · 1e-12 · K1·A_j per coefficient: that bound is the tolerance.
   const Config cfg = bundled_example();
   const Experiment ex = cfg.experiment();

@@ -1,0 +1,142 @@
+// verbs::identify in-process (docs/cli.md `ccal identify`): a plain table's polynomial fit against the closed
+// forms of least squares written out here (a straight line: slope S_xy/S_xx, intercept ȳ − b x̄, standard
+// errors from s² = RSS/(n − 2); a weighted mean: Σ w y / Σ w with variance 1/Σ w), a held term subtracted
+// before the fit, the calibration statement of a budget, and the options' errors naming the option.
+#include "ccal/verbs/identify.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/verbs/simulate.hpp"
+#include "verbs_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+// Points (x, y) off the line 1.5 + 2x by fixed deviations (not random: the closed forms are exact anyway).
+const std::vector<double> kX{0.5, 1, 2, 3, 4.5, 6, 7.5};
+const std::vector<double> kDev{0.01, -0.02, 0.015, 0.0, -0.01, 0.02, -0.005};
+
+CsvTable line_table() {
+  std::string text = "x,y,s\n";
+  for (std::size_t i = 0; i < kX.size(); ++i)
+    text += fmt::format("{:.17g},{:.17g},{:.17g}\n", kX[i], 1.5 + 2 * kX[i] + kDev[i], 0.01 * double(i + 1));
+  return parse_csv(text, "line.csv");
+}
+
+verbs::IdentifyOptions line_options(std::vector<std::string> terms) {
+  verbs::IdentifyOptions o;
+  o.terms = std::move(terms);
+  o.input = std::string("x");
+  o.output = std::string("y");
+  return o;
+}
+
+TEST(IdentifyVerb, StraightLineEqualsTheClosedFormOfLeastSquares) {
+  const verbs::IdentifyResult r = verbs::identify(line_table(), line_options({"K0", "K1"}));
+  const double n = double(kX.size());
+  double sx = 0, sy = 0;
+  for (std::size_t i = 0; i < kX.size(); ++i) sx += kX[i], sy += 1.5 + 2 * kX[i] + kDev[i];
+  const double mx = sx / n, my = sy / n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < kX.size(); ++i) {
+    sxx += (kX[i] - mx) * (kX[i] - mx);
+    sxy += (kX[i] - mx) * (1.5 + 2 * kX[i] + kDev[i] - my);
+  }
+  const double b = sxy / sxx, a = my - b * mx;
+  double rss = 0;
+  for (std::size_t i = 0; i < kX.size(); ++i) rss += std::pow(1.5 + 2 * kX[i] + kDev[i] - a - b * kX[i], 2);
+  const double s2 = rss / (n - 2);
+  // Tolerance 1e-12 relative on the estimates (two different orders of summation of 7 terms of size ~10)
+  // and 1e-9 on the standard errors (s² is a difference of nearly equal sums: RSS ~1e-3 of Σy²·1e-4).
+  ASSERT_EQ(r.identification.fit.names, (std::vector<std::string>{"K0", "K1"}));
+  EXPECT_NEAR(r.identification.fit.value[0], a, 1e-12 * std::abs(a));
+  EXPECT_NEAR(r.identification.fit.value[1], b, 1e-12 * std::abs(b));
+  const double se_b = std::sqrt(s2 / sxx), se_a = std::sqrt(s2 * (1 / n + mx * mx / sxx));
+  EXPECT_NEAR(r.identification.fit.std_error[0], se_a, 1e-9 * se_a);
+  EXPECT_NEAR(r.identification.fit.std_error[1], se_b, 1e-9 * se_b);
+  EXPECT_EQ(r.identification.fit.dof, int(n) - 2);
+  EXPECT_EQ(r.rows, kX.size());
+  // The units of a plain table are written with its column names.
+  EXPECT_EQ(r.identification.units, (std::vector<std::string>{"y", "y/x"}));
+}
+
+TEST(IdentifyVerb, AHeldTermIsSubtractedBeforeTheFit) {
+  // K1 held at 2: K0 is the mean of y − 2x = 1.5 + the mean deviation, to 1e-14 (7 terms of size ~1.5).
+  verbs::IdentifyOptions o = line_options({"K0"});
+  o.fix = std::vector<std::string>{"K1=2"};
+  const verbs::IdentifyResult r = verbs::identify(line_table(), o);
+  double mean_dev = 0;
+  for (double d : kDev) mean_dev += d / double(kDev.size());
+  EXPECT_NEAR(r.identification.fit.value[0], 1.5 + mean_dev, 1e-14);
+  ASSERT_EQ(r.identification.fixed.size(), 1u);
+  EXPECT_EQ(r.identification.fixed[0].value, 2.0);
+}
+
+TEST(IdentifyVerb, WeightedConstantIsTheWeightedMean) {
+  // K0 alone with σ_i from the column s: the weighted mean Σ w y / Σ w, w = 1/σ², with standard error
+  // 1/√Σw (the σ taken as known: a weighted fit's covariance is (HᵀWH)⁻¹). 1e-13 relative: sums of 7 terms.
+  verbs::IdentifyOptions o;
+  o.terms = std::vector<std::string>{"K0"};
+  o.output = std::string("y");
+  o.weight = std::string("s");
+  const verbs::IdentifyResult r = verbs::identify(line_table(), o);
+  double sw = 0, swy = 0;
+  for (std::size_t i = 0; i < kX.size(); ++i) {
+    const double w = 1 / std::pow(0.01 * double(i + 1), 2);
+    sw += w;
+    swy += w * (1.5 + 2 * kX[i] + kDev[i]);
+  }
+  EXPECT_TRUE(r.identification.weighted);
+  EXPECT_NEAR(r.identification.fit.value[0], swy / sw, 1e-13 * swy / sw);
+  EXPECT_NEAR(r.identification.fit.std_error[0], 1 / std::sqrt(sw), 1e-13 / std::sqrt(sw));
+}
+
+TEST(IdentifyVerb, TheBudgetGivesTheStatementOfEachCoefficient) {
+  // Observations of the paper's set-up (no rate noise, so the budget's u is the Type B part) with a noisy
+  // instrument, identified with that configuration as budget: per coefficient the Type A part is the fit's
+  // standard error with ν = 6 runs − 3 terms, and u_c² = u_A² + u_B² (1e-12 relative: one sum of squares).
+  const Config config = parse_config(edited(read_text(kPaperConfigPath), "noise_density = \"0 deg/s/rtHz\"",
+                                            "noise_density = \"0.05 deg/s/rtHz\""),
+                                     "noisy-paper.toml");
+  const verbs::SimulateResult sim = verbs::simulate(config);
+  verbs::IdentifyOptions o;
+  o.budget = config;
+  const verbs::IdentifyResult r = verbs::identify(parse_csv(sim.observations_csv, "obs.csv"), o);
+  ASSERT_TRUE(r.statement.has_value());
+  ASSERT_EQ(r.statement->coefficients.size(), r.identification.fit.names.size());
+  for (std::size_t k = 0; k < r.statement->coefficients.size(); ++k) {
+    const CoefficientStatement& c = r.statement->coefficients[k];
+    EXPECT_EQ(c.input.coefficient, r.identification.fit.names[k]);
+    EXPECT_EQ(c.input.type_a.u, r.identification.fit.std_error[Eigen::Index(k)]);
+    EXPECT_EQ(c.input.type_a.dof, 3.0);
+    EXPECT_GT(c.input.type_b.u, 0.0);
+    EXPECT_NEAR(c.combined, std::hypot(c.input.type_a.u, c.input.type_b.u), 1e-12 * c.combined);
+  }
+}
+
+TEST(IdentifyVerb, BadOptionsNameTheOption) {
+  auto message = [](const verbs::IdentifyOptions& o) -> std::string {
+    try {
+      verbs::identify(line_table(), o);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  const std::string terms = message(line_options({"K0", "Q7"}));
+  EXPECT_NE(terms.find("--terms"), std::string::npos) << terms;
+  verbs::IdentifyOptions fix = line_options({"K0"});
+  fix.fix = std::vector<std::string>{"K1=two"};
+  EXPECT_NE(message(fix).find("--fix"), std::string::npos) << message(fix);
+}
+
+}  // namespace
+}  // namespace ccal::test

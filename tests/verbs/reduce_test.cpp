@@ -1,0 +1,109 @@
+// verbs::reduce in-process (docs/model.md §13): logs written from the model (io/run_log_writer.hpp: the
+// simulated run means and the encoders of the drives' configured rate errors), reduced and identified, give
+// the coefficients verbs::simulate identifies from the same model; the encoders' rate and mismatch are the
+// configured Δω and ΔΩ; with the budget the statement is verbs::calibration_statement of that
+// identification; too few logs and a run logged twice are refused naming --log.
+#include "ccal/verbs/reduce.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/run_log_writer.hpp"
+#include "ccal/model/plan.hpp"
+#include "ccal/verbs/simulate.hpp"
+#include "ccal/verbs/statement.hpp"
+#include "verbs_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The bundled example with known, compensated errors (the model of the runs is their truth) and its logs in a
+// folder of this process.
+class ReduceVerb : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("ccal-reduce-verb-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    config_ = parse_config(example_with_errors(true), "compensated.toml");
+    sim_ = verbs::simulate(config_);
+    const Eigen::VectorXd& means = sim_.observations.output;
+    const auto logs = write_run_logs(config_, std::vector<double>(means.data(), means.data() + means.size()),
+                                     default_log_step(config_));
+    for (std::size_t r = 0; r < logs.size(); ++r) {
+      std::ofstream(dir_ / logs[r].name) << logs[r].text;
+      options_.logs.push_back({config_.plan.runs[r].name, (dir_ / logs[r].name).string()});
+    }
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path dir_;
+  Config config_;
+  verbs::SimulateResult sim_;
+  verbs::ReduceOptions options_;
+};
+
+TEST_F(ReduceVerb, LogsOfTheModelGiveTheSimulatedIdentification) {
+  const verbs::ReduceResult r = verbs::reduce(config_, options_);
+  ASSERT_EQ(r.logs.runs.size(), config_.plan.runs.size());
+  // The encoders' line fits give the configured drive errors: Ω + Δω with Δω = 2e-6 rad/s and ΔΩ = −1e-6
+  // rad/s, to 1e-12 rad/s (angles of 17 digits, ~1e-13 rad, over 450 s of samples).
+  for (const LoggedRun& run : r.logs.runs) {
+    EXPECT_NEAR(run.rate - run.planned_rate, 2e-6, 1e-12) << run.index;
+    EXPECT_NEAR(run.mismatch, -1e-6, 1e-12) << run.index;
+  }
+  // The model of each run is then the simulated one up to the line fits' round-off (~1e-13 rad in the
+  // phases), and the run means are the simulated ones written with 17 digits: the same coefficients to
+  // 1e-9 of their values (K3's effect is ~1e-5 of the outputs).
+  const FitResult& fit = r.identification.id.fit;
+  ASSERT_EQ(fit.names, sim_.identification.fit.names);
+  for (Eigen::Index k = 0; k < fit.value.size(); ++k) {
+    const double expected = sim_.identification.fit.value[k];
+    EXPECT_NEAR(fit.value[k], expected, 1e-9 * std::abs(expected)) << fit.names[std::size_t(k)];
+  }
+  EXPECT_FALSE(r.statement.has_value());
+}
+
+TEST_F(ReduceVerb, TheBudgetGivesTheStatementOfTheIdentification) {
+  verbs::ReduceOptions o = options_;
+  o.budget = true;
+  o.coverage_probability = 0.9;
+  const verbs::ReduceResult r = verbs::reduce(config_, o);
+  ASSERT_TRUE(r.statement.has_value());
+  verbs::StatementOptions so;
+  so.coverage_probability = 0.9;
+  const verbs::CalibrationStatement s =
+      verbs::calibration_statement(config_, r.identification.id, so, "--budget");
+  ASSERT_EQ(r.statement->coefficients.size(), s.coefficients.size());
+  for (std::size_t k = 0; k < s.coefficients.size(); ++k) {
+    EXPECT_EQ(r.statement->coefficients[k].expanded, s.coefficients[k].expanded) << k;
+    EXPECT_EQ(r.statement->coefficients[k].corrected, s.coefficients[k].corrected) << k;
+  }
+}
+
+TEST_F(ReduceVerb, TooFewOrRepeatedLogsAreRefusedNamingTheOption) {
+  auto message = [&](const verbs::ReduceOptions& o) -> std::string {
+    try {
+      verbs::reduce(config_, o);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  verbs::ReduceOptions few, twice = options_;
+  few.logs = {options_.logs[0], options_.logs[1]};  // 2 logs for 3 free terms
+  twice.logs[1].run = twice.logs[0].run;
+  EXPECT_NE(message(few).find("--log"), std::string::npos) << message(few);
+  EXPECT_EQ(message(twice).rfind("--log: ", 0), 0u) << message(twice);
+}
+
+}  // namespace
+}  // namespace ccal::test

@@ -1,0 +1,131 @@
+// verbs::simulate in-process (docs/model.md §8–9): error-free runs identify the configured instrument; known
+// errors the model leaves out shift the coefficients by the budget's first-order shift (known_error_shift),
+// and compensated ones do not; the identification is `verbs::identify` of the observations file it writes,
+// bit for bit; the seed matters only for a noisy instrument.
+#include "ccal/verbs/simulate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/uncertainty/statement.hpp"
+#include "ccal/verbs/identify.hpp"
+#include "verbs_support.hpp"
+
+namespace ccal::test {
+namespace {
+
+TEST(SimulateVerb, ErrorFreeRunsIdentifyTheConfiguredCoefficients) {
+  // The bundled example has no [errors] and a noise-free instrument: the truth and the analyst's model are
+  // the same chain, so the fit recovers [instrument.terms] to round-off. Tolerance 1e-9 of each coefficient:
+  // the outputs are up to 1.5e4 deg/s (K1 at 30 g) and K0 = 0.062 deg/s, so the outputs' round-off
+  // (2e-16 × 1.5e4 per run) is ~5e-11 of K0 before the design's amplification (its condition number ~10).
+  const Config config = bundled_example();
+  const verbs::SimulateResult r = verbs::simulate(config);
+  EXPECT_FALSE(r.noisy);
+  EXPECT_EQ(r.error_count, 0);
+  ASSERT_EQ(r.identification.fit.names, config.identification.free_terms);
+  EXPECT_NEAR(r.output_unit_si, std::numbers::pi / 180, 1e-17);  // deg/s
+  for (std::size_t k = 0; k < r.identification.fit.names.size(); ++k) {
+    const std::string& id = r.identification.fit.names[k];
+    const double expected = configured(config, id, r.output_unit_si);
+    EXPECT_NEAR(r.identification.fit.value[Eigen::Index(k)], expected, 1e-9 * std::abs(expected)) << id;
+  }
+  // One run mean per run of the plan, each the observation equation of its run: truth = model, so the
+  // output is Σ K_j ⟨regressor_j⟩ + s_ω ⟨ω_IA⟩ over every column (free and fixed terms, SI) to the
+  // round-off of the sum, 1e-12 of the output (the regressors come from the same chain).
+  ASSERT_EQ(r.observations.runs.size(), config.plan.runs.size());
+  for (Eigen::Index i = 0; i < r.observations.output.size(); ++i) {
+    double model = r.observations.known_rate[i];
+    for (std::size_t j = 0; j < r.observations.columns.size(); ++j)
+      model += config.instrument.coefficient(r.observations.columns[j]).value() *
+               r.observations.regressors(i, Eigen::Index(j));
+    EXPECT_NEAR(r.observations.output[i], model, 1e-12 * std::abs(r.observations.output[i])) << i;
+  }
+}
+
+TEST(SimulateVerb, UncompensatedKnownErrorsShiftTheCoefficientsByTheirFirstOrderShift) {
+  // With the regressors computed without the known [errors], the identified coefficients are off by the
+  // shift the budget's sensitivities give (uncertainty/statement.hpp known_error_shift, SI): the same
+  // first-order effect, computed through the linearised chain instead of the nonlinear runs. They differ
+  // by the second-order remainder, ~(1e-5 rad)·(the first-order shift) for arcsecond angles: within 1e-3 of
+  // each shift, plus 1e-9 of the coefficient for the fit's round-off.
+  const Config config = parse_config(example_with_errors(false), "errors.toml");
+  const verbs::SimulateResult r = verbs::simulate(config);
+  EXPECT_EQ(r.error_count, 5);
+  const Eigen::VectorXd shift = known_error_shift(config, config.mode);
+  ASSERT_EQ(shift.size(), Eigen::Index(r.identification.fit.names.size()));
+  for (std::size_t k = 0; k < r.identification.fit.names.size(); ++k) {
+    const std::string& id = r.identification.fit.names[k];
+    const double truth = configured(config, id, r.output_unit_si);
+    const double expected_shift = shift[Eigen::Index(k)] / r.output_unit_si;
+    EXPECT_GT(std::abs(expected_shift), 1e-7 * std::abs(truth)) << id << ": the errors must show";
+    EXPECT_NEAR(r.identification.fit.value[Eigen::Index(k)] - truth, expected_shift,
+                1e-3 * std::abs(expected_shift) + 1e-9 * std::abs(truth))
+        << id;
+  }
+}
+
+TEST(SimulateVerb, CompensatedKnownErrorsLeaveTheConfiguredCoefficients) {
+  // The model computed with the known errors is the truth again: the configured values to the round-off of
+  // the first test (1e-9).
+  const Config config = parse_config(example_with_errors(true), "compensated.toml");
+  const verbs::SimulateResult r = verbs::simulate(config);
+  for (std::size_t k = 0; k < r.identification.fit.names.size(); ++k) {
+    const std::string& id = r.identification.fit.names[k];
+    const double expected = configured(config, id, r.output_unit_si);
+    EXPECT_NEAR(r.identification.fit.value[Eigen::Index(k)], expected, 1e-9 * std::abs(expected)) << id;
+  }
+}
+
+TEST(SimulateVerb, IdentificationIsThatOfItsObservationsFile) {
+  // The contract of `ccal simulate` and `ccal identify`: identifying the written file gives the same bits.
+  const Config config = parse_config(example_with_errors(false), "errors.toml");
+  const verbs::SimulateResult r = verbs::simulate(config);
+  const verbs::IdentifyResult id = verbs::identify(parse_csv(r.observations_csv, "obs.csv"));
+  ASSERT_EQ(id.identification.fit.names, r.identification.fit.names);
+  for (Eigen::Index k = 0; k < r.identification.fit.value.size(); ++k) {
+    EXPECT_EQ(id.identification.fit.value[k], r.identification.fit.value[k]) << k;
+    EXPECT_EQ(id.identification.fit.std_error[k], r.identification.fit.std_error[k]) << k;
+  }
+  EXPECT_EQ(id.rows, config.plan.runs.size());
+  EXPECT_EQ(id.identification.units, r.identification.units);
+}
+
+TEST(SimulateVerb, TheSeedMattersOnlyForANoisyInstrument) {
+  const Config quiet = bundled_example();
+  verbs::SimulateOptions a, b;
+  a.seed = 1;
+  b.seed = 2;
+  EXPECT_EQ(verbs::simulate(quiet, a).observations.output, verbs::simulate(quiet, b).observations.output);
+  // White output noise of density N gives run means off by N/√T ≈ 0.1/√450 = 4.7e-3 deg/s: different
+  // seeds, different outputs; the same seed, the same bits.
+  const Config noisy =
+      parse_config(edited(std::string(bundled_example_text()), "noise_density = \"0 deg/s/rtHz\"",
+                          "noise_density = \"0.1 deg/s/rtHz\""),
+                   "noisy.toml");
+  const verbs::SimulateResult n1 = verbs::simulate(noisy, a), n2 = verbs::simulate(noisy, b);
+  EXPECT_TRUE(n1.noisy);
+  EXPECT_EQ(verbs::simulate(noisy, a).observations.output, n1.observations.output);
+  EXPECT_NE(n1.observations.output, n2.observations.output);
+  // The scatter of the noisy means about the quiet ones is N/√T per run: 6 runs, each within 6 σ.
+  const verbs::SimulateResult q = verbs::simulate(quiet, a);
+  const double sigma = 0.1 * std::numbers::pi / 180 / std::sqrt(450.0);
+  for (Eigen::Index i = 0; i < q.observations.output.size(); ++i)
+    EXPECT_NEAR(n1.observations.output[i], q.observations.output[i], 6 * sigma) << i;
+}
+
+TEST(SimulateVerb, PaperModeOffThePapersMountingIsRefused) {
+  Config config = bundled_example();
+  verbs::SimulateOptions o;
+  o.mode = ModelMode::paper;
+  config.plan.runs[0].mounting = Mounting::pa_vertical;
+  EXPECT_THROW(verbs::simulate(config, o), InputError);
+}
+
+}  // namespace
+}  // namespace ccal::test
