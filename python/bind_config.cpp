@@ -11,62 +11,85 @@ namespace ccal::python {
 
 void bind_config(py::module_& m) {
   py::class_<Run>(m, "Run", "One run of the test plan.")
-      .def_readonly("name", &Run::name)
-      .def_readonly("g_level", &Run::g_level, "A = Ω² R0 / g [g]")
-      .def_readonly("duration", &Run::duration, "T [s]")
+      .def_readonly("name", &Run::name, "the run's name [—]")
+      .def_readonly("g_level", &Run::g_level, "A = Ω² R0 / g, the centripetal level [g]")
+      .def_readonly("duration", &Run::duration, "T, the run's duration [s]")
       .def_property_readonly(
           "mode", [](const Run& r) { return std::string(platform_mode_name(r.mode)); },
-          "'counter_rotating' or 'fixed'")
-      .def_readonly("initial_phase", &Run::initial_phase, "φ0 [rad] if given, else None")
-      .def_readonly("terminal_phase", &Run::terminal_phase, "ψ = γ(T) [rad] if given, else None")
-      .def_readonly("arm_azimuth", &Run::arm_azimuth, "θ1(0) [rad]")
-      .def_property_readonly("mounting", [](const Run& r) { return std::string(mounting_name(r.mounting)); })
+          "the platform: 'counter_rotating' or 'fixed' [—]")
+      .def_readonly("initial_phase", &Run::initial_phase, "φ0 = γ(0) if given, else None [rad]")
+      .def_readonly("terminal_phase", &Run::terminal_phase, "ψ = γ(T) if given, else None [rad]")
+      .def_readonly("arm_azimuth", &Run::arm_azimuth,
+                    "θ1(0), the arm's azimuth from East, counter-clockwise [rad]")
+      .def_property_readonly(
+          "mounting", [](const Run& r) { return std::string(mounting_name(r.mounting)); },
+          "'ia_horizontal', 'ia_reversed', 'pa_vertical' or 'ia_vertical' [—]")
       .def("__repr__", [](const Run& r) { return "<ccal.Run " + r.name + ">"; });
 
   py::class_<Tolerance>(m, "Tolerance", "The tolerance of one error source (SI).")
-      .def_readonly("id", &Tolerance::id)
-      .def_readonly("parameter", &Tolerance::parameter, "index in Config.error_ids")
-      .def_readonly("bound", &Tolerance::bound, "σ (normal) or half-width, in the parameter's SI unit")
+      .def_readonly("id", &Tolerance::id, "the error parameter's id, e.g. 'dthz5' [—]")
+      .def_readonly("parameter", &Tolerance::parameter, "its index in Config.error_ids [—]")
+      .def_readonly("bound", &Tolerance::bound,
+                    "σ (normal) or half-width/amplitude, in the parameter's SI unit (Config.error_units) "
+                    "[rad, m, rad/s, m/(rad/s)² or 1]")
       .def_property_readonly(
-          "distribution", [](const Tolerance& t) { return std::string(distribution_name(t.distribution)); })
-      .def_property_readonly("standard_uncertainty",
-                             [](const Tolerance& t) { return standard_uncertainty(t.bound, t.distribution); })
-      .def_readonly("group", &Tolerance::group, "fully correlated sources share a non-empty group")
-      .def_readonly("cost", &Tolerance::cost, "relative cost weight for the allocation")
+          "distribution", [](const Tolerance& t) { return std::string(distribution_name(t.distribution)); },
+          "'normal', 'uniform', 'triangular' or 'arcsine' [—]")
+      .def_property_readonly(
+          "standard_uncertainty",
+          [](const Tolerance& t) { return standard_uncertainty(t.bound, t.distribution); },
+          "u = bound / (1, √3, √6, √2 by distribution), the parameter's SI unit [rad, m, rad/s, m/(rad/s)² "
+          "or 1]")
+      .def_readonly("group", &Tolerance::group, "sources of one non-empty group are fully correlated [—]")
+      .def_readonly("cost", &Tolerance::cost, "relative cost weight of tightening it, for allocate [—]")
       .def("__repr__", [](const Tolerance& t) { return "<ccal.Tolerance " + t.id + ">"; });
 
-  py::class_<Config>(m, "Config", py::dynamic_attr(), "A centrifuge, site, instrument, test plan, tolerances and identification.")
-      .def_readonly("source", &Config::source, "file name, or the name given to parse_config")
-      .def_property_readonly("runs", [](const Config& c) { return c.plan.runs; })
-      .def_readonly("tolerances", &Config::tolerances)
+  py::class_<Config>(m, "Config", py::dynamic_attr(),
+                     "A centrifuge, site, instrument, test plan, tolerances and identification.")
+      .def_readonly("source", &Config::source, "the file name, or the name given to parse_config [—]")
+      .def_property_readonly(
+          "runs", [](const Config& c) { return c.plan.runs; }, "the test plan's runs, list of Run [—]")
+      .def_readonly("tolerances", &Config::tolerances,
+                    "the tolerances, list of Tolerance in catalogue order [—]")
       .def_property_readonly(
           "error_ids", [](const Config& c) { return c.centrifuge.layout.parameter_ids(); },
-          "ids of the error parameters, in the order of `errors`")
+          "ids of the error parameters, in the order of `errors` [—]")
       .def_property_readonly(
           "errors", [](const Config& c) { return Eigen::VectorXd(c.centrifuge.errors); },
-          "the configured (actual) error values, SI")
-      .def_property_readonly("error_units",
-                             [](const Config& c) {
-                               std::vector<std::string> units;
-                               for (int i = 0; i < c.centrifuge.layout.size(); ++i)
-                                 units.emplace_back(unit_symbol(c.centrifuge.layout.parameter_unit(i)));
-                               return units;
-                             })
-      .def_property_readonly("free_terms", [](const Config& c) { return c.identification.free_terms; })
+          "the configured (actual) error values, per error_ids [SI: error_units]")
+      .def_property_readonly(
+          "error_units",
+          [](const Config& c) {
+            std::vector<std::string> units;
+            for (int i = 0; i < c.centrifuge.layout.size(); ++i)
+              units.emplace_back(unit_symbol(c.centrifuge.layout.parameter_unit(i)));
+            return units;
+          },
+          "the SI unit of each error parameter [—]")
+      .def_property_readonly(
+          "free_terms", [](const Config& c) { return c.identification.free_terms; },
+          "the identified terms, e.g. ['K0', 'K2', 'K3'] [—]")
       .def_property_readonly(
           "fixed_terms", [](const Config& c) { return c.identification.fixed_terms; },
-          "term id → value held fixed (SI)")
-      .def_property_readonly("instrument_terms", [](const Config& c) { return c.instrument.term_ids; })
+          "term id → value held fixed [coefficient SI: output SI per gⁿ]")
+      .def_property_readonly(
+          "instrument_terms", [](const Config& c) { return c.instrument.term_ids; },
+          "the instrument's term ids [—]")
       .def_property_readonly(
           "instrument_coefficients",
           [](const Config& c) { return Eigen::VectorXd(c.instrument.coefficients); },
-          "the true coefficients of the simulated instrument, SI (output unit per gⁿ)")
-      .def_property_readonly("output_unit", [](const Config& c) { return c.instrument.output_unit; })
-      .def_property_readonly("mode", [](const Config& c) { return std::string(mode_name(c.mode)); })
+          "the simulated instrument's true coefficients, per instrument_terms [coefficient SI: output SI per "
+          "gⁿ]")
+      .def_property_readonly(
+          "output_unit", [](const Config& c) { return c.instrument.output_unit; },
+          "the instrument's output unit as written, e.g. 'deg/s' [—]")
+      .def_property_readonly(
+          "mode", [](const Config& c) { return std::string(mode_name(c.mode)); },
+          "reduction of a run: 'exact' or 'paper' [—]")
       .def_property_readonly(
           "g", [](const Config& c) { return c.site.g; }, "local gravity [m/s²]")
       .def_property_readonly(
-          "latitude", [](const Config& c) { return c.site.latitude; }, "[rad]")
+          "latitude", [](const Config& c) { return c.site.latitude; }, "the site's latitude [rad]")
       .def("__repr__", [](const Config& c) { return "<ccal.Config " + c.source + ">"; });
 
   m.def(

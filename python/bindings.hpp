@@ -3,9 +3,12 @@
 // values inside (as in C++), display units given alongside where the CLI shows them (docs/python.md).
 #include <pybind11/pybind11.h>
 
+#include <cstddef>
 #include <string>
+#include <variant>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/setup/config.hpp"
 #include "ccal/render/allocate.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/force.hpp"
@@ -25,21 +28,32 @@ ModelMode mode_argument(const std::string& mode);
 // r.budget.standard_uncertainty.
 template <class Result>
 py::class_<Result> bind_verb_result(py::module_& m, const char* name, const char* doc, const char* inner) {
-  py::class_<Result> c(m, name, doc, py::dynamic_attr());  // attributes: python/ccal_extras.py
+  py::class_<Result> c(m, name, doc, py::dynamic_attr());  // attributes: python/ccal/_results.py
   c.def(
        "to_json", [](const Result& r) { return render::json(r); }, "The report as the CLI's JSON (text).")
       .def("__str__", [](const Result& r) { return render::text(r); })
       .def("__getattr__", [inner](py::object self, const std::string& attr) -> py::object {
         return self.attr(inner).attr(attr.c_str());
       });
+  c.attr("_inner") = inner;  // for dir() (python/ccal/_results.py) and the stubs (python/make_stubs.py)
   return c;
 }
 
-void bind_config(py::module_& m);       // Config, Run, Tolerance and their readers
-void bind_analysis(py::module_& m);     // budget, sensed_input, observe, identify, fit
-void bind_uncertainty(py::module_& m);  // monte_carlo, allocate
-void bind_derive(py::module_& m);       // Config.with_tolerance, .with_error, .with_plan
-void bind_design(py::module_& m);       // design
-void bind_identify(py::module_& m);     // identify_file
+// The run of a configuration's plan given by its name or a 0-based index (negative: from the end); an int out
+// of range, or a name that is no run, is an InputError.
+std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run);
+
+// One binding file per verb (module.cpp calls them in order).
+void bind_config(py::module_& m);      // Config, Run, Tolerance and their readers
+void bind_budget(py::module_& m);      // Budget and its parts, budget
+void bind_force(py::module_& m);       // SensedInput and its parts, sensed_input
+void bind_simulate(py::module_& m);    // Observations, Simulation, simulate, observe
+void bind_fit(py::module_& m);         // Fit, Observability, observability, identify, fit
+void bind_reduce(py::module_& m);      // LogReduction and its parts, Reduction, reduce, reduce_logs
+void bind_montecarlo(py::module_& m);  // MonteCarlo and its parts, monte_carlo
+void bind_allocate(py::module_& m);    // Allocation and its parts, allocate
+void bind_design(py::module_& m);      // Design, design
+void bind_identify(py::module_& m);    // Identification, identify_file
+void bind_derive(py::module_& m);      // Config.with_tolerance, .with_error, .with_plan
 
 }  // namespace ccal::python

@@ -1,26 +1,50 @@
-#include <pybind11/eval.h>
 #include <pybind11/pybind11.h>
+
+#include <string>
+#include <variant>
 
 #include "bindings.hpp"
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/reduction/fit.hpp"
+#include "ccal/setup/config.hpp"
 #include "ccal/version.hpp"
-#include "ccal_extras.hpp"
 
 namespace ccal::python {
 
+// The library's parser of a choice, so the refusal is the command line's but for the option's name.
 ModelMode mode_argument(const std::string& mode) {
-  if (const auto m = parse_mode(mode)) return *m;
-  std::string accepted;
-  for (std::string_view name : kModeNames)
-    accepted += (accepted.empty() ? "'" : ", '") + std::string(name) + "'";
-  throw InputError("mode: '" + mode + "' is not a model mode; accepted: " + accepted);
+  return static_cast<ModelMode>(parse_choice_option("mode", mode, kModeNames));
+}
+
+std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run) {
+  if (const int* i = std::get_if<int>(&run)) {
+    const int n = int(cfg.plan.runs.size());
+    if (*i < -n || *i >= n)
+      throw InputError("run: index " + std::to_string(*i) + " is out of range for " + std::to_string(n) +
+                       " runs");
+    return std::size_t(*i < 0 ? *i + n : *i);
+  }
+  // A string of digits that names no run is the same 0-based index as the int (run="1" is run=1, the
+  // second run), not the command line's 1-based index.
+  const std::string& text = std::get<std::string>(run);
+  for (const auto& r : cfg.plan.runs)
+    if (r.name == text) return select_run(cfg.plan, text, "run");
+  if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos && text.size() < 9)
+    return run_index(cfg, std::stoi(text));
+  return select_run(cfg.plan, text, "run");
 }
 
 }  // namespace ccal::python
 
-PYBIND11_MODULE(ccal, m) {
+// The compiled part of the package ccal (python/ccal/__init__.py re-exports it).
+PYBIND11_MODULE(_ccal, m) {
   namespace py = pybind11;
+  // The public home of the classes and functions is the package: they are bound with `ccal` as their module
+  // (their __module__, the type names in signatures and docstrings, pickling by name), then the module takes
+  // back its own name.
+  const py::object own_name = m.attr("__name__");
+  m.attr("__name__") = "ccal";
   m.doc() =
       "Precision-centrifuge calibration of accelerometers: exact kinematics, identification of the "
       "coefficients, and the error budget of the centrifuge's tolerances. Values are SI unless a name says "
@@ -30,22 +54,32 @@ PYBIND11_MODULE(ccal, m) {
   // Bad input (configuration, options, data) and ill-posed identifications, as ValueError subclasses.
   static py::exception<ccal::InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<ccal::IllPosedFit> ill_posed(m, "IllPosedFit", input_error.ptr());
+  // An input file that cannot be opened: an InputError that is also Python's FileNotFoundError.
+  static py::exception<ccal::FileNotFoundMark> file_not_found(
+      m, "FileNotFound", py::make_tuple(input_error, py::handle(PyExc_FileNotFoundError)));
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const ccal::IllPosedFit& e) {  // before its base class
       ill_posed(e.what());
     } catch (const ccal::InputError& e) {
-      input_error(e.what());
+      if (dynamic_cast<const ccal::FileNotFoundMark*>(&e) != nullptr)
+        file_not_found(e.what());
+      else
+        input_error(e.what());
     }
   });
+  // In this order: a class is bound before the functions and classes that name it in their signatures.
   ccal::python::bind_config(m);
-  ccal::python::bind_analysis(m);
-  ccal::python::bind_uncertainty(m);
+  ccal::python::bind_budget(m);
+  ccal::python::bind_force(m);
+  ccal::python::bind_simulate(m);
+  ccal::python::bind_fit(m);
+  ccal::python::bind_reduce(m);
+  ccal::python::bind_montecarlo(m);
+  ccal::python::bind_allocate(m);
   ccal::python::bind_design(m);
   ccal::python::bind_identify(m);
   ccal::python::bind_derive(m);
-  // Signatures, repr, display(), pickling and the remaining docstrings, written in Python.
-  py::exec(ccal::python::kPropertyDocsSource, m.attr("__dict__"));
-  py::exec(ccal::python::kExtrasSource, m.attr("__dict__"));
+  m.attr("__name__") = own_name;
 }

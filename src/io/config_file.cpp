@@ -93,10 +93,10 @@ Config load_config(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::error_code ec;
   if (!in || std::filesystem::is_directory(path, ec))
-    throw ConfigError(name, 0, 0, "", "cannot read the file; check the path and permissions");
+    throw FileNotFound<ConfigError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw ConfigError(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  if (in.bad()) throw FileNotFound<ConfigError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
   return parse_config(text.str(), name);
 }
 

@@ -107,7 +107,7 @@ void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink&
 
 void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
   const std::string name = path.string();
-  const CsvError unreadable(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  const FileNotFound<CsvError> unreadable(name, 0, 0, "", "cannot read the file; check the path and permissions");
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw unreadable;
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(name.c_str(), "rb"));

@@ -4,8 +4,8 @@
 #  3. the consumer project (consumer/) configures with find_package(ccal) against the prefix alone, builds and
 #     prints the nominal rate of the bundled example's 20 g run;
 #  4. the installed `ccal --version` runs (when CLI is true);
-#  5. the installed Python module imports from the prefix with PYTHON and reports the same version and commit
-#     (when PYTHON is set).
+#  5. the installed Python package imports from the prefix with PYTHON, reports the same version and commit,
+#     and its metadata (importlib.metadata) the project's version (when PYTHON is set).
 foreach(argument BUILD_DIR WORK_DIR CONSUMER_DIR SOURCE_DIR GENERATOR CXX_COMPILER VERSION)
   if(NOT DEFINED ${argument} OR "${${argument}}" STREQUAL "")
     message(FATAL_ERROR "check_install.cmake: -D${argument}=... is required")
@@ -96,11 +96,14 @@ if(PYTHON)
   run_step("importing the installed Python module from ${module_dir}"
            ${CMAKE_COMMAND} -E env PYTHONPATH=${module_dir} PYTHONNOUSERSITE=1 ${PYTHON} -c
            # (statements on lines of their own: a semicolon would split the CMake argument)
-           "import ccal, os\nassert os.path.realpath(os.path.dirname(ccal.__file__)) == os.path.realpath('${module_dir}'), ccal.__file__\nprint(f'ccal {ccal.__version__} (commit {ccal.__commit__})')\nprint(len(ccal.bundled_example().runs))")
-  # The same version and commit as the library; the bundled example's plan has six runs (5 g … 30 g).
-  if(NOT step_output STREQUAL "${library_line}\n6\n")
+           "import ccal, ccal._ccal, importlib.metadata, os\nfor m in (ccal, ccal._ccal):\n    assert os.path.realpath(os.path.dirname(m.__file__)) == os.path.realpath('${module_dir}/ccal'), m.__file__\nprint(f'ccal {ccal.__version__} (commit {ccal.__commit__})')\nprint(len(ccal.bundled_example().runs))\nd = importlib.metadata.distribution('ccal')\nprint(d.version, d.metadata['Name'], d.read_text('INSTALLER').strip())\nprint(sorted(str(f) for f in d.files if str(f).startswith('ccal/') and f.hash is not None and f.size == os.path.getsize(f.locate())) == sorted('ccal/' + n for n in os.listdir('${module_dir}/ccal') if n != '__pycache__'))")
+  # The same version and commit as the library; the bundled example's plan has six runs (5 g … 30 g); the
+  # package's metadata gives the project's version, and its RECORD lists every file of the package with its
+  # hash and size.
+  set(expected "${library_line}\n6\n${VERSION} ccal cmake\nTrue\n")
+  if(NOT step_output STREQUAL "${expected}")
     message(FATAL_ERROR "install.consumer: the installed Python module printed\n${step_output}\nexpected\n"
-                        "${library_line}\n6")
+                        "${expected}")
   endif()
 endif()
 set(checked "the consumer")

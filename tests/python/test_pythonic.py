@@ -116,11 +116,12 @@ class DisplayAndRepr(unittest.TestCase):
     def test_to_frame_builds_the_frame_from_the_display_rows(self):
         # A stand-in for pandas records what to_frame gives it (the real pandas is tested below if installed).
         fake = types.ModuleType("pandas")
-        fake.DataFrame = lambda data, columns: ("frame", data, columns)
+        fake.DataFrame = lambda data, columns, index: ("frame", data, columns, index)
         saved = sys.modules.get("pandas")
         sys.modules["pandas"] = fake
         try:
-            _, data, columns = self.budget.to_frame()
+            _, data, columns, index = self.budget.to_frame()
+            _, _, source_columns, source_index = self.budget.sources_frame()
         finally:
             if saved is None:
                 del sys.modules["pandas"]
@@ -128,6 +129,9 @@ class DisplayAndRepr(unittest.TestCase):
                 sys.modules["pandas"] = saved
         self.assertEqual(columns, ["coefficient", "unit", "standard_uncertainty", "expanded_uncertainty"])
         self.assertEqual([row[0] for row in data], ["K0", "K2", "K3"])
+        self.assertEqual(index, ["K0", "K2", "K3"])  # indexed by the coefficient (was a RangeIndex)
+        self.assertEqual(source_columns[:4], ["source", "bound", "unit", "distribution"])
+        self.assertEqual(sorted(source_index), sorted(self.budget.source_ids))
 
     def test_to_frame_with_pandas(self):
         try:

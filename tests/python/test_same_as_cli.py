@@ -117,7 +117,7 @@ class SameAsCli(unittest.TestCase):
              "--pulse-weight: '-1' is not a positive number"),
             (lambda: ccal.simulate(cfg, mode="fast"), "mode: 'fast'"),
             (lambda: ccal.monte_carlo(cfg, trials=1), "--trials: 1 is out of range"),
-            (lambda: ccal.budget(cfg, coverage_factor=-1.0), "coverage_factor"),
+            (lambda: ccal.budget(cfg, coverage_factor=-1.0), "--coverage-factor: -1 is not a coverage factor"),
             (lambda: ccal.identify_file(os.path.join(os.path.dirname(__file__), "no such file.csv")),
              "no such file.csv: cannot read the file"),
             (lambda: ccal.identify_file(SECOND.replace(".toml", ".csv"), mode="fast"), "mode: 'fast'"),

@@ -1,6 +1,7 @@
 #pragma once
 // Exceptions for problems in what the user gave ccal (configuration, data files, command line), as opposed
 // to programming errors. The CLI catches InputError to print the message without a stack of internals.
+#include <concepts>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -61,6 +62,24 @@ class IllPosedFit : public InputError {
 
  private:
   std::vector<std::string> terms_;
+};
+
+// Marks an InputError about an input file that cannot be opened (it does not exist, is a folder or cannot be
+// read), so that a front end can give it its own kind: the Python module raises ccal.FileNotFound, a
+// FileNotFoundError; the CLI treats it as any InputError (exit 2, the message).
+class FileNotFoundMark {
+ public:
+  virtual ~FileNotFoundMark() = default;
+};
+
+// The reader's own error (e.g. CsvError, ConfigError, with its location) for a file it cannot open:
+// `throw FileNotFound<CsvError>(name, 0, 0, "", "cannot read the file; ...")`; caught as the reader's error,
+// as an InputError, or as a FileNotFoundMark.
+template <class Error>
+  requires std::derived_from<Error, InputError>
+class FileNotFound : public Error, public FileNotFoundMark {
+ public:
+  using Error::Error;
 };
 
 }  // namespace ccal

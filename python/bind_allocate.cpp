@@ -1,0 +1,119 @@
+// `ccal allocate` from Python: the tolerance allocation, its results (AllocatedSource,
+// AllocatedCoefficient, AllocationDetail, Allocation) and allocate().
+#include <fmt/format.h>
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+
+#include "bindings.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/verbs/allocate.hpp"
+#include "interruptible.hpp"
+
+namespace ccal::python {
+
+namespace {
+
+// The results of a tolerance allocation: AllocatedSource, AllocatedCoefficient, AllocationDetail, Allocation.
+void bind_allocation_results(py::module_& m) {
+  py::class_<AllocatedSource>(m, "AllocatedSource")
+      .def_readonly("id", &AllocatedSource::id, "the error parameter's id [—]")
+      .def_readonly("bound", &AllocatedSource::bound, "the configured bound [SI unit of the parameter]")
+      .def_readonly("scale", &AllocatedSource::scale, "λ = allocated / configured [—]")
+      .def_readonly("allocated_bound", &AllocatedSource::allocated_bound,
+                    "the allocated bound [SI unit of the parameter]")
+      .def_readonly("cost", &AllocatedSource::cost, "relative cost weight [—]")
+      .def_readonly("share", &AllocatedSource::share,
+                    "share of each target coefficient's variance at the allocated tolerances [—]")
+      .def("__repr__", [](const AllocatedSource& s) { return "<ccal.AllocatedSource " + s.id + ">"; });
+
+  py::class_<AllocatedCoefficient>(m, "AllocatedCoefficient")
+      .def_readonly("id", &AllocatedCoefficient::id, "the coefficient's id [—]")
+      .def_readonly("unit", &AllocatedCoefficient::unit, "its display unit [—]")
+      .def_readonly("display_scale", &AllocatedCoefficient::display_scale,
+                    "SI → display unit factor [display unit per SI]")
+      .def_readonly("has_target", &AllocatedCoefficient::has_target, "a target was given for it [—]")
+      .def_readonly("target", &AllocatedCoefficient::target,
+                    "the target expanded uncertainty [coefficient SI]")
+      .def_readonly("configured_expanded", &AllocatedCoefficient::configured_expanded,
+                    "U at the configured tolerances [coefficient SI]")
+      .def_readonly("allocated_expanded", &AllocatedCoefficient::allocated_expanded,
+                    "U at the allocated tolerances [coefficient SI]")
+      .def_readonly("active", &AllocatedCoefficient::active, "its target limits the allocation [—]")
+      .def_readonly("mc_half_width", &AllocatedCoefficient::mc_half_width,
+                    "the Monte Carlo check's half-width of the interval [coefficient SI]")
+      .def_property_readonly(
+          "verdict", [](const AllocatedCoefficient& c) { return std::string(verdict_name(c.verdict)); },
+          "the Monte Carlo check's verdict, e.g. 'pass within sampling' [—]");
+
+  py::class_<AllocationResult>(m, "AllocationDetail", "Tolerances allocated to meet the targets (SI).")
+      .def_readonly("sources", &AllocationResult::sources,
+                    "the sources, tightened most first, list of AllocatedSource [—]")
+      .def_readonly("coefficients", &AllocationResult::coefficients,
+                    "per coefficient, list of AllocatedCoefficient [—]")
+      .def_readonly("coverage", &AllocationResult::coverage, "p [—]")
+      .def_readonly("coverage_factor", &AllocationResult::coverage_factor, "k_p [—]")
+      .def_readonly("objective", &AllocationResult::objective, "Σ cost/λ of the allocation [cost units]")
+      .def_readonly("converged", &AllocationResult::converged, "the solver converged [—]")
+      .def_property_readonly(
+          "verified", [](const AllocationResult& r) { return r.verification.passed; },
+          "the Monte Carlo check passed [—]");
+
+  bind_verb_result<verbs::AllocateResult>(
+      m, "Allocation",
+      "`ccal allocate`: its AllocationDetail's fields are readable on it; "
+      "str() is the CLI's text, to_json() its JSON.",
+      "allocation")
+      .def_readonly("config", &verbs::AllocateResult::config)
+      .def_readonly("allocation", &verbs::AllocateResult::allocation,
+                    "the allocation itself (its fields are readable on the result) [AllocationDetail]");
+}
+
+// The tolerance allocation function allocate().
+void bind_allocate_function(py::module_& m) {
+  const verbs::AllocateOptions defaults;  // the CLI's defaults
+  m.def(
+      "allocate",
+      [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
+         double coverage_probability, double max_scale, std::int64_t verify_trials, std::uint64_t seed,
+         int threads, std::optional<std::string> mode, const py::object& progress) {
+        verbs::AllocateOptions o;
+        if (mode) o.mode = mode_argument(*mode);
+        for (const auto& [id, value] : targets)
+          // A number is in the coefficient's display unit, as on the command line; a string may carry a unit.
+          o.targets.push_back(std::holds_alternative<double>(value)
+                                  ? fmt::format("{}={:.17g}", id, std::get<double>(value))
+                                  : id + "=" + std::get<std::string>(value));
+        o.coverage_probability = coverage_probability;
+        o.max_scale = max_scale;
+        o.verify_trials = verify_trials;
+        o.seed = seed;
+        o.threads = threads;
+        return run_interruptible(progress, [&](ProgressCallback on_progress) {
+          o.on_progress = std::move(on_progress);
+          return verbs::allocate(cfg, o);
+        });
+      },
+      py::arg("config"), py::arg("targets"), py::arg("coverage_probability") = defaults.coverage_probability,
+      py::arg("max_scale") = defaults.max_scale, py::arg("verify_trials") = defaults.verify_trials,
+      py::arg("seed") = defaults.seed, py::arg("threads") = defaults.threads, py::arg("mode") = py::none(),
+      py::arg("progress") = py::none(),
+      "Largest tolerances for which every target (coefficient id → allowed expanded uncertainty, a number in "
+      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. mode: "
+      "'exact' or 'paper' (default: the configuration's). progress: None or progress(done, total) of the "
+      "verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt.");
+}
+
+}  // namespace
+
+// AllocatedSource, AllocatedCoefficient, AllocationDetail and Allocation; allocate().
+void bind_allocate(py::module_& m) {
+  bind_allocation_results(m);
+  bind_allocate_function(m);
+}
+
+}  // namespace ccal::python

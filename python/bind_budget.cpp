@@ -1,0 +1,158 @@
+// `ccal budget` from Python: the budget in detail (every source's line, the matrices, the compensation
+// choices), the Budget result and budget().
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+
+#include "bindings.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/verbs/budget.hpp"
+
+namespace ccal::python {
+
+namespace {
+
+// Rows of one per-source vector field of the budget: sources × coefficients.
+Eigen::MatrixXd stacked(const BudgetResult& b, Eigen::VectorXd SourceBudget::*field) {
+  Eigen::MatrixXd out(Eigen::Index(b.sources.size()), Eigen::Index(b.coefficients.size()));
+  for (std::size_t s = 0; s < b.sources.size(); ++s) {
+    const Eigen::VectorXd& v = b.sources[s].*field;
+    if (v.size() != out.cols()) return {};
+    out.row(Eigen::Index(s)) = v.transpose();
+  }
+  return out;
+}
+
+// The budget in detail: every source's line (SourceBudget), the compensation choices and BudgetDetail.
+void bind_budget_results(py::module_& m) {
+  py::class_<SourceBudget>(m, "SourceBudget", "One error source's line of the budget (SI).")
+      .def_readonly("id", &SourceBudget::id, "the error parameter's id [—]")
+      .def_readonly("parameter", &SourceBudget::parameter, "its index in Config.error_ids [—]")
+      .def_readonly("group", &SourceBudget::group, "its correlation group ('' for none) [—]")
+      .def_property_readonly(
+          "distribution",
+          [](const SourceBudget& s) { return std::string(distribution_name(s.distribution)); },
+          "'normal', 'uniform', 'triangular' or 'arcsine' [—]")
+      .def_readonly("bound", &SourceBudget::bound, "the tolerance's bound [SI unit of the parameter]")
+      .def_readonly("standard_uncertainty", &SourceBudget::standard_uncertainty,
+                    "u of the parameter [SI unit of the parameter]")
+      .def_readonly("sensitivity", &SourceBudget::sensitivity,
+                    "∂K/∂e per coefficient [coefficient SI per SI unit of the parameter]")
+      .def_readonly("effect", &SourceBudget::effect,
+                    "sensitivity × u, signed, per coefficient [coefficient SI]")
+      .def_readonly("effect_force", &SourceBudget::effect_force,
+                    "the part of effect through the specific force [coefficient SI]")
+      .def_readonly("effect_rate", &SourceBudget::effect_rate,
+                    "the part of effect through the angular rate [coefficient SI]")
+      .def_readonly("share", &SourceBudget::share, "share of each coefficient's variance, 0…1 [—]")
+      .def_readonly("paper_effect", &SourceBudget::paper_effect,
+                    "the paper-mode effect, empty if not computed [coefficient SI]")
+      .def_readonly("disagrees", &SourceBudget::disagrees,
+                    "exact and paper effects differ beyond the factor, per coefficient [—]")
+      .def_readonly("rank", &SourceBudget::rank, "1 = the largest contributor [—]")
+      .def("__repr__", [](const SourceBudget& s) { return "<ccal.SourceBudget " + s.id + ">"; });
+
+  py::class_<CompensationChoice>(m, "CompensationChoice")
+      .def_readonly("id", &CompensationChoice::id, "the modelling choice's id, e.g. 'earth_rate' [—]")
+      .def_readonly("description", &CompensationChoice::description, "what is left out of the model [—]")
+      .def_readonly("bias", &CompensationChoice::bias,
+                    "K̂(effect not modelled) − K̂(modelled), per coefficient [coefficient SI]")
+      .def_readonly("paper_bias", &CompensationChoice::paper_bias, "the same in paper mode [coefficient SI]");
+
+  py::class_<BudgetResult>(m, "BudgetDetail",
+                           "The error budget of a configuration (SI; display units alongside).")
+      .def_property_readonly(
+          "mode", [](const BudgetResult& b) { return std::string(mode_name(b.mode)); },
+          "'exact' or 'paper' [—]")
+      .def_property_readonly(
+          "derivatives",
+          [](const BudgetResult& b) {
+            return b.derivatives == DerivativeMethod::automatic ? "automatic" : "linearised";
+          },
+          "'linearised' or 'automatic' [—]")
+      .def_readonly("coefficients", &BudgetResult::coefficients, "the identified coefficients' ids [—]")
+      .def_readonly("units", &BudgetResult::units,
+                    "the display unit of each coefficient, e.g. 'deg/s/g^3' [—]")
+      .def_readonly("display_scale", &BudgetResult::display_scale,
+                    "SI → display unit factor per coefficient [display unit per SI]")
+      .def_readonly("sources", &BudgetResult::sources, "one SourceBudget per tolerance [—]")
+      .def_property_readonly(
+          "source_ids",
+          [](const BudgetResult& b) {
+            std::vector<std::string> ids;
+            for (const auto& s : b.sources) ids.push_back(s.id);
+            return ids;
+          },
+          "the sources' ids, the rows of the matrices [—]")
+      .def_property_readonly(
+          "sensitivity", [](const BudgetResult& b) { return stacked(b, &SourceBudget::sensitivity); },
+          "∂K/∂e, sources × coefficients [coefficient SI per SI unit of the source]")
+      .def_property_readonly(
+          "effect", [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect); },
+          "sensitivity × u, sources × coefficients [coefficient SI]")
+      .def_property_readonly(
+          "effect_force", [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect_force); },
+          "the part of effect through the specific force, sources × coefficients [coefficient SI]")
+      .def_property_readonly(
+          "effect_rate", [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect_rate); },
+          "the part of effect through the angular rate, sources × coefficients [coefficient SI]")
+      .def_property_readonly(
+          "share", [](const BudgetResult& b) { return stacked(b, &SourceBudget::share); },
+          "share of each coefficient's variance, sources × coefficients, 0…1 [—]")
+      .def_readonly("standard_uncertainty", &BudgetResult::standard_uncertainty,
+                    "u_c per coefficient (LPU with correlation groups) [coefficient SI]")
+      .def_readonly("expanded_uncertainty", &BudgetResult::expanded_uncertainty,
+                    "U = k u_c per coefficient [coefficient SI]")
+      .def_readonly("coverage_factor", &BudgetResult::coverage_factor, "k [—]")
+      .def_readonly("covariance", &BudgetResult::covariance,
+                    "covariance of the coefficients [coefficient SI × coefficient SI]")
+      .def_readonly("correlation", &BudgetResult::correlation, "correlation of the coefficients [—]")
+      .def_readonly("compensation", &BudgetResult::compensation,
+                    "the modelling choices and their biases, list of CompensationChoice [—]");
+}
+
+}  // namespace
+
+// The budget's results, the Budget result of `ccal budget` and budget().
+void bind_budget(py::module_& m) {
+  bind_budget_results(m);
+
+  bind_verb_result<verbs::BudgetResult>(m, "Budget",
+                                        "`ccal budget` of a configuration: its BudgetDetail's fields are "
+                                        "readable on it; str() is the CLI's text, to_json() its JSON.",
+                                        "budget")
+      .def_readonly("config", &verbs::BudgetResult::config)
+      .def_readonly("budget", &verbs::BudgetResult::budget,
+                    "the budget itself (its fields are readable on the result) [BudgetDetail]");
+
+  const verbs::BudgetOptions defaults;  // the CLI's defaults
+  m.def(
+      "budget",
+      [](const Config& cfg, std::optional<std::string> mode, const std::string& derivatives,
+         double coverage_factor, bool compare_with_paper) {
+        verbs::BudgetOptions o;
+        if (mode) o.mode = mode_argument(*mode);
+        if (derivatives == "linearised")
+          o.derivatives = DerivativeMethod::linearised;
+        else if (derivatives == "automatic")
+          o.derivatives = DerivativeMethod::automatic;
+        else
+          throw InputError("derivatives: '" + derivatives + "'; accepted: 'linearised', 'automatic'");
+        o.coverage_factor = coverage_factor;
+        o.compare_with_paper = compare_with_paper;
+        py::gil_scoped_release release;
+        return verbs::budget(cfg, o);
+      },
+      py::arg("config"), py::arg("mode") = py::none(),
+      py::arg("derivatives") =
+          defaults.derivatives == DerivativeMethod::automatic ? "automatic" : "linearised",
+      py::arg("coverage_factor") = defaults.coverage_factor,
+      py::arg("compare_with_paper") = defaults.compare_with_paper,
+      "Error budget (`ccal budget`): sensitivity of every identified coefficient to every tolerance, the "
+      "effects, totals and compensation choices. mode: 'exact' or 'paper' (default: the configuration's).");
+}
+
+}  // namespace ccal::python

@@ -1,0 +1,160 @@
+// `ccal reduce` from Python: recorded run logs reduced to observations of the runs as measured (the
+// LogReduction and Reduction results), reduce() and reduce_logs().
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "bindings.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/io/run_log.hpp"
+#include "ccal/verbs/reduce.hpp"
+
+namespace ccal::python {
+
+namespace {
+
+// The results of reducing recorded run logs: ReducedLog, ControlEvidence, LoggedRun and LogReduction.
+void bind_log_reduction_results(py::module_& m) {
+  py::class_<ReducedLog>(m, "ReducedLog", "One recorded run log, reduced (SI).")
+      .def_readonly("source", &ReducedLog::source, "the log's file name [—]")
+      .def_readonly("samples", &ReducedLog::samples, "number of rows [—]")
+      .def_readonly("pulses", &ReducedLog::pulses, "the output came as a pulse count [—]")
+      .def_readonly("duration", &ReducedLog::duration, "T = t_last − t_first [s]")
+      .def_readonly("mean_output", &ReducedLog::mean_output, "the mean output over the span [output SI]")
+      .def_readonly("has_theta1", &ReducedLog::has_theta1, "the main-axis encoder was logged [—]")
+      .def_readonly("theta1_rate", &ReducedLog::theta1_rate, "θ̇1 = Ω + Δω from the encoder [rad/s]")
+      .def_readonly("theta1_start", &ReducedLog::theta1_start, "θ1(t_first), in [0, 2π) [rad]")
+      .def_readonly("theta1_rms", &ReducedLog::theta1_rms, "RMS residual of the encoder fit [rad]")
+      .def_readonly("has_gamma", &ReducedLog::has_gamma, "the platform encoder was logged [—]")
+      .def_readonly("gamma_rate", &ReducedLog::gamma_rate, "γ̇ from the encoder [rad/s]")
+      .def_readonly("gamma_start", &ReducedLog::gamma_start, "φ0 of the logged span, in [0, 2π) [rad]")
+      .def_readonly("gamma_end", &ReducedLog::gamma_end, "ψ, the terminal phase, in [0, 2π) [rad]")
+      .def_readonly("gamma_rms", &ReducedLog::gamma_rms, "RMS residual of the encoder fit [rad]")
+      .def_readonly("theta1_harmonics", &ReducedLog::theta1_harmonics,
+                    "angle harmonics Ĉ1, Ŝ1, … of θ1 (empty: not fitted) [rad]")
+      .def_readonly("theta1_harmonic_sigma", &ReducedLog::theta1_harmonic_sigma,
+                    "standard error of one of them [rad]")
+      .def_readonly("gamma_harmonics", &ReducedLog::gamma_harmonics,
+                    "angle harmonics Ĉ1, Ŝ1, … of γ (empty: not fitted) [rad]")
+      .def_readonly("gamma_harmonic_sigma", &ReducedLog::gamma_harmonic_sigma,
+                    "standard error of one of them [rad]");
+
+  py::class_<ControlEvidence>(m, "ControlEvidence", "The platform's control as both encoders show it.")
+      .def_property_readonly(
+          "look", [](const ControlEvidence& e) { return std::string(control_look_name(e.look)); },
+          "'speed', 'phase_locked', 'undetermined' or 'not tested' [—]")
+      .def_readonly("following", &ControlEvidence::following, "λ: 1 phase-locked, 0 speed [—]")
+      .def_readonly("main_in_gamma", &ControlEvidence::main_in_gamma,
+                    "|p|, the main axis's angle ripple as a phase-locked γ would carry it [rad]")
+      .def_readonly("threshold", &ControlEvidence::threshold,
+                    "|p| below this leaves the control undetermined [rad]");
+
+  py::class_<LoggedRun>(m, "LoggedRun")
+      .def_readonly("index", &LoggedRun::index, "0-based index in the plan [—]")
+      .def_readonly("log", &LoggedRun::log, "the reduced log [ReducedLog]")
+      .def_readonly("measured", &LoggedRun::measured, "the planned run as the log measured it [Run]")
+      .def_readonly("planned_rate", &LoggedRun::planned_rate, "Ω of the plan [rad/s]")
+      .def_readonly("rate", &LoggedRun::rate, "Ω of the run as measured [rad/s]")
+      .def_readonly("mismatch", &LoggedRun::mismatch, "ΔΩ of the model [rad/s]")
+      .def_readonly("main_ripple", &LoggedRun::main_ripple,
+                    "measured main-axis ripple c1, s1, … (empty: the configured one) [relative rate, 1]")
+      .def_readonly("platform_ripple", &LoggedRun::platform_ripple,
+                    "measured platform ripple c1, s1, … (empty: the configured one) [relative rate, 1]")
+      .def_readonly("control", &LoggedRun::control,
+                    "the platform's control as the encoders show it [ControlEvidence]");
+
+  py::class_<LogReduction>(m, "LogReduction")
+      .def_readonly("runs", &LogReduction::runs, "the logged runs in plan order, list of LoggedRun [—]")
+      .def_readonly("observations", &LogReduction::observations,
+                    "per logged run: the model's regressors and the log's mean [Observations]");
+}
+
+// Run logs reduced to observations of the runs as measured: the Reduction result, reduce(), reduce_logs().
+void bind_log_reduction(py::module_& m) {
+  bind_verb_result<verbs::ReduceResult>(m, "Reduction",
+                                        "`ccal reduce`: logged runs, their observations and identification; "
+                                        "str() is the CLI's text, to_json() its JSON.",
+                                        "logs")
+      .def_readonly("config", &verbs::ReduceResult::config)
+      .def_readonly("logs", &verbs::ReduceResult::logs,
+                    "the reduced logs (their fields are readable on the result) [LogReduction]")
+      .def_readonly("warnings", &verbs::ReduceResult::warnings, "what the reduction noticed in the logs [—]")
+      .def_property_readonly(
+          "has_statement", [](const verbs::ReduceResult& r) { return r.statement.has_value(); },
+          "True when budget=True gave the calibration statement (in str() and to_json()) [—]")
+      .def_property_readonly(
+          "coefficients",
+          [](const verbs::ReduceResult& r) {
+            return Eigen::VectorXd(r.identification.id.fit.value * r.output_unit_si);
+          },
+          "the identified free terms, in the order of names [coefficient SI]")
+      .def_property_readonly(
+          "names", [](const verbs::ReduceResult& r) { return r.identification.id.fit.names; },
+          "the identified terms' ids [—]");
+
+  m.def(
+      "reduce",
+      [](const Config& cfg, const std::map<std::variant<int, std::string>, std::string>& logs,
+         std::optional<double> pulse_weight, const std::string& angle_unit, std::optional<std::string> mode,
+         bool budget, double coverage_probability) {
+        verbs::ReduceOptions o;
+        for (const auto& [run, path] : logs)
+          o.logs.push_back({cfg.plan.runs[run_index(cfg, run)].name, path});
+        o.pulse_weight = pulse_weight;
+        if (angle_unit == "deg")
+          o.angles_in_degrees = true;
+        else if (angle_unit != "rad")
+          throw InputError("angle_unit: '" + angle_unit + "'; accepted: 'rad', 'deg'");
+        if (mode) o.mode = mode_argument(*mode);
+        o.budget = budget;
+        o.coverage_probability = coverage_probability;
+        py::gil_scoped_release release;
+        return verbs::reduce(cfg, o);
+      },
+      py::arg("config"), py::arg("logs"), py::arg("pulse_weight") = py::none(),
+      py::arg("angle_unit") = verbs::ReduceOptions{}.angles_in_degrees ? "deg" : "rad",
+      py::arg("mode") = py::none(), py::arg("budget") = verbs::ReduceOptions{}.budget,
+      py::arg("coverage_probability") = verbs::ReduceOptions{}.coverage_probability,
+      "`ccal reduce`: recorded run logs (run name or 0-based index → CSV file) to run means, the model of "
+      "the runs as measured and the identification, as the CLI gives them; pulse_weight in the output unit "
+      "× s (default: the instrument's quantum); budget: also the calibration statement with the "
+      "configuration's tolerances as its Type B part (`--budget`), its intervals at coverage_probability.");
+
+  m.def(
+      "reduce_logs",
+      [](const Config& cfg, const std::map<std::variant<int, std::string>, std::string>& logs,
+         std::optional<double> pulse_weight, const std::string& angle_unit, std::optional<std::string> mode) {
+        RunLogOptions o;
+        o.output_scale = output_unit_si(cfg.instrument.output_unit);
+        o.pulse_weight = pulse_weight ? *pulse_weight : cfg.instrument.quantum;
+        if (angle_unit == "deg")
+          o.angle_scale = std::numbers::pi / 180;
+        else if (angle_unit != "rad")
+          throw InputError("angle_unit: '" + angle_unit + "'; accepted: 'rad', 'deg'");
+        std::vector<std::pair<std::size_t, CsvTable>> tables;
+        for (const auto& [run, path] : logs) tables.emplace_back(run_index(cfg, run), read_csv_file(path));
+        return reduce_logs(cfg, tables, o, mode ? mode_argument(*mode) : cfg.mode);
+      },
+      py::arg("config"), py::arg("logs"), py::arg("pulse_weight") = py::none(), py::arg("angle_unit") = "rad",
+      py::arg("mode") = py::none(),
+      "Recorded run logs (run name or 0-based index → CSV file) to observations of the runs as measured "
+      "(`ccal reduce`); pulse_weight: integrated output per pulse in SI (default: the instrument's quantum). "
+      "Identify them with identify(reduction.observations, config).");
+}
+
+}  // namespace
+
+// ReducedLog, ControlEvidence, LoggedRun, LogReduction and Reduction; reduce() and reduce_logs().
+void bind_reduce(py::module_& m) {
+  bind_log_reduction_results(m);
+  bind_log_reduction(m);
+}
+
+}  // namespace ccal::python

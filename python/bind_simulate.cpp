@@ -1,0 +1,96 @@
+// `ccal simulate` from Python: simulated observations (the Observations and Simulation results),
+// simulate() and observe().
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bindings.hpp"
+#include "ccal/io/run_log_writer.hpp"
+#include "ccal/reduction/observe.hpp"
+#include "ccal/verbs/simulate.hpp"
+
+namespace ccal::python {
+
+// Simulated observations: the Observations and Simulation results, simulate() and observe().
+void bind_simulate(py::module_& m) {
+  py::class_<Observations<double>>(m, "Observations", "Run means: one row per run (SI, inputs in g).")
+      .def_readonly("runs", &Observations<double>::runs, "the runs' names [—]")
+      .def_readonly("columns", &Observations<double>::columns, "term ids of the regressor columns [—]")
+      .def_readonly("regressors", &Observations<double>::regressors,
+                    "runs × columns, the model's run means of each term [gⁿ, or rad/s for K_w]")
+      .def_readonly("output", &Observations<double>::output,
+                    "the instrument's mean output per run [output SI]")
+      .def_readonly("known_rate", &Observations<double>::known_rate,
+                    "the model's ⟨s_ω ω_IA⟩ per run [output SI]")
+      .def_readonly("input", &Observations<double>::input, "the model's ⟨a_i⟩ per run [g]");
+
+  bind_verb_result<verbs::SimulateResult>(m, "Simulation",
+                                          "`ccal simulate`: run means of the plan and their identification; "
+                                          "str() is the CLI's text, to_json() its JSON, to_csv() the "
+                                          "observations file.",
+                                          "observations")
+      .def_readonly("config", &verbs::SimulateResult::config)
+      .def_readonly("observations", &verbs::SimulateResult::observations,
+                    "the simulated run means (their fields are readable on the result) [Observations]")
+      .def_property_readonly(
+          "coefficients",
+          // the fit is of the observations file, in the output unit: × its SI size gives output SI per gⁿ
+          [](const verbs::SimulateResult& r) {
+            return Eigen::VectorXd(r.identification.fit.value * r.output_unit_si);
+          },
+          "the identified free terms, in the order of names [coefficient SI]")
+      .def_property_readonly(
+          "names", [](const verbs::SimulateResult& r) { return r.identification.fit.names; },
+          "the identified terms' ids [—]")
+      .def(
+          "to_csv", [](const verbs::SimulateResult& r) { return render::csv(r); },
+          "The observations file (the CLI's --format csv, the input of `ccal identify`).")
+      .def(
+          "run_logs",
+          [](const verbs::SimulateResult& r, std::optional<double> step) {
+            const Eigen::VectorXd& means = r.observations.output;
+            std::vector<std::pair<std::string, std::string>> out;
+            for (auto& log : write_run_logs(r.config, {means.data(), means.data() + means.size()},
+                                            step ? *step : default_log_step(r.config)))
+              out.emplace_back(std::move(log.name), std::move(log.text));
+            return out;
+          },
+          py::arg("step") = py::none(),
+          "The runs' logs as `ccal simulate --logs-out` writes them: (file name, CSV text) per run, in plan "
+          "order; step: sampling interval [s] (default 0.1 s, or an eighth of a revolution if shorter).");
+
+  m.def(
+      "simulate",
+      [](const Config& cfg, std::optional<std::string> mode, std::uint64_t seed) {
+        verbs::SimulateOptions o;
+        if (mode) o.mode = mode_argument(*mode);
+        o.seed = seed;
+        py::gil_scoped_release release;
+        return verbs::simulate(cfg, o);
+      },
+      py::arg("config"), py::arg("mode") = py::none(), py::arg("seed") = verbs::SimulateOptions{}.seed,
+      "`ccal simulate`: run means of the test plan with the configured errors and instrument noise, and the "
+      "identification of the configured terms from them, as the CLI gives them.");
+
+  m.def(
+      "observe",
+      [](const Config& cfg, std::optional<std::string> mode, std::uint64_t seed) {
+        const ModelMode model_mode = mode ? mode_argument(*mode) : cfg.mode;
+        const Experiment ex = cfg.experiment();
+        const Eigen::VectorXd& truth = cfg.centrifuge.errors;
+        const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+        Observations<double> obs = observe<double>(ex, truth, cfg.identification.compensate ? truth : zero,
+                                                   cfg.identification, model_mode);
+        add_output_noise(obs, ex, seed);
+        return obs;
+      },
+      py::arg("config"), py::arg("mode") = py::none(), py::arg("seed") = verbs::SimulateOptions{}.seed,
+      "Simulated run means of the test plan with the configured errors and instrument noise (`ccal "
+      "simulate`).");
+}
+
+}  // namespace ccal::python

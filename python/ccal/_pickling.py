@@ -1,0 +1,96 @@
+"""Pickling. A Config is pickled as its origin (the TOML text it was read from, or the bundled example) and
+the derivations applied to it; a verb's result as the call that made it (its Config, its options, and for
+`reduce` the contents of its logs): unpickling computes it again, which gives the same bits (every
+computation is deterministic, the Monte Carlo for any thread count), and checks that the JSON is the one
+pickled, so that a result from another version of ccal is refused rather than silently different."""
+
+import json
+import os
+import re
+import tempfile
+
+from . import _ccal
+
+_VOLATILE = {"wall_time_s", "threads", "trials_per_s"}  # what differs between two runs of the same call
+
+
+def _normalised(value):
+    if isinstance(value, dict):
+        return {k: _normalised(v) for k, v in value.items() if k not in _VOLATILE}
+    if isinstance(value, list):
+        return [_normalised(v) for v in value]
+    if isinstance(value, str):
+        return re.sub(r", \d+ threads?, [0-9.]+ s", "", value)
+    return value
+
+
+def restore_config(origin, edits):
+    kind, *args = origin
+    cfg = _ccal.bundled_example() if kind == "bundled" else _ccal.parse_config(*args)
+    cfg._ccal_origin = origin
+    cfg._ccal_edits = ()
+    for method, method_args, method_kwargs in edits:
+        cfg = getattr(cfg, method)(*method_args, **method_kwargs)
+    return cfg
+
+
+def config_reduce(self):
+    origin = getattr(self, "_ccal_origin", None)
+    if origin is None:
+        raise TypeError("this ccal.Config cannot be pickled: it was not made by load_config, parse_config, "
+                        "bundled_example or a with_… method of one")
+    return restore_config, (origin, self._ccal_edits)
+
+
+def restore_result(verb, config, kwargs, logs, pickled_json, pickled_text=None):
+    kwargs = dict(kwargs)
+    with tempfile.TemporaryDirectory() as folder:
+        paths = {}
+        if logs is not None:
+            files = {}
+            for k, (run, original, data) in enumerate(logs):
+                path = os.path.join(folder, f"{k}_{os.path.basename(original)}")
+                with open(path, "wb") as f:
+                    f.write(data)
+                files[run] = path
+                paths[path] = original
+            kwargs["logs"] = files
+        result = getattr(_ccal, verb)(config, **kwargs)
+    remember_call(result, verb, config, kwargs, logs, paths)
+    if _normalised(json.loads(result.to_json())) != _normalised(json.loads(pickled_json)):
+        raise ValueError(f"ccal: a pickled {type(result).__name__} computed again gives other numbers (pickled "
+                         f"by another version of ccal?); this is ccal {_ccal.__version__}")
+    if pickled_text is not None:  # a reduction's text report names its logs as given, aligned to their names
+        result._ccal_text = pickled_text
+    return result
+
+
+def remember_call(result, verb, config, kwargs, logs, paths):
+    result._ccal_call = (verb, config, {k: v for k, v in kwargs.items() if k not in ("logs", "progress")}, logs)
+    result._ccal_paths = paths  # temporary log copies of an unpickled reduction → the original paths
+
+
+def result_reduce(self):
+    verb, config, kwargs, logs = self._ccal_call
+    return restore_result, (verb, config, kwargs, logs, self.to_json(), None if logs is None else str(self))
+
+
+def original_paths(text, paths, quote):
+    """The JSON of an unpickled reduction, whose logs were read from temporary copies, with the original paths."""
+    for temporary, original in paths.items():
+        text = text.replace(quote(temporary), quote(original))
+    return text
+
+
+def read_logs(logs):
+    """[(run, path, bytes)] of reduce()'s logs, or None when one cannot be read (reduce itself reports it)."""
+    contents = []
+    if not isinstance(logs, dict):
+        return None
+    for run, path in logs.items():
+        try:
+            with open(path, "rb") as f:
+                contents.append((run, path, f.read()))
+        except (OSError, TypeError):
+            return None
+    return contents

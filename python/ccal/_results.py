@@ -1,0 +1,168 @@
+"""What the classes gain in Python: repr (a verb's result, Config and Fit as their display table, every other
+class as its fields), Jupyter tables, display(), to_dict(), to_frame(), and Simulation.write_logs."""
+
+import json
+import os
+
+import numpy as np
+
+from . import _pickling
+from ._tables import Table  # noqa: F401 (named by the annotations below)
+
+
+def _short(value):
+    if isinstance(value, np.ndarray):
+        return np.array2string(value, precision=6, threshold=6, edgeitems=2)
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, (list, tuple)) and len(value) > 6:
+        return "[" + ", ".join(_short(v) for v in value[:3]) + f", … ({len(value)} in all)]"
+    if isinstance(value, list):
+        return "[" + ", ".join(_short(v) for v in value) + "]"
+    if type(type(value)).__name__ == "pybind11_type":
+        return f"<ccal.{type(value).__name__}>"
+    return repr(value)
+
+
+def fields(cls):
+    """The public properties of a class, in the order they were bound."""
+    return [n for n, v in vars(cls).items() if isinstance(v, property) and not n.startswith("_")]
+
+
+def fields_repr(self):
+    cls = type(self)
+    parts = []
+    for name in fields(cls):
+        try:
+            parts.append(f"{name}={_short(getattr(self, name))}")
+        except Exception as e:  # a field that cannot be read is shown as such, never hides the rest
+            parts.append(f"{name}=<{type(e).__name__}>")
+    return f"ccal.{cls.__name__}(" + ", ".join(parts) + ")"
+
+
+def _table_repr(self):
+    return f"ccal.{type(self).__name__}\n{self.display()}"
+
+
+def _table_html(self):
+    return self.display()._repr_html_()
+
+
+def _named(cls, name, f):
+    f.__name__, f.__qualname__, f.__module__ = name, f"{cls.__name__}.{name}", "ccal"
+    setattr(cls, name, f)
+
+
+def verb_result_methods(cls, build):
+    """display, to_json (the log paths of an unpickled reduction as given), to_dict, to_frame, config, str,
+    dir, repr, _repr_html_ and pickling of a verb's result; `build` makes its display table. cls._inner names
+    the inner result whose attributes the result forwards (python/bindings.hpp)."""
+    inner = cls._inner
+    text, to_json, original_config = cls.__str__, cls.to_json, cls.config
+
+    def display(self) -> "Table":
+        """The main values in display units (those of the command line), each with its unit."""
+        return build(self, json.loads(self.to_json()))
+
+    def json_text(self) -> "str":
+        """The report as the CLI's JSON (text)."""
+        return _pickling.original_paths(to_json(self), getattr(self, "_ccal_paths", {}),
+                                        lambda p: json.dumps(p)[1:-1])
+
+    def text_report(self):
+        return getattr(self, "_ccal_text", None) or text(self)
+
+    def to_dict(self) -> "Dict[str, Any]":
+        """The report as the CLI's JSON, parsed (dict)."""
+        return json.loads(self.to_json())
+
+    def to_frame(self) -> "Any":
+        """display() as a pandas DataFrame (pandas is optional: ImportError without it)."""
+        return self.display().to_frame()
+
+    def config(self) -> "Config":
+        """The configuration the result was computed from [Config]."""
+        call = getattr(self, "_ccal_call", None)
+        return call[1] if call else original_config.fget(self)
+
+    def names(self):
+        return sorted(set(object.__dir__(self)) | set(dir(type(getattr(self, inner)))))
+
+    for name, f in (("display", display), ("to_json", json_text), ("to_dict", to_dict), ("to_frame", to_frame)):
+        _named(cls, name, f)
+    cls.__str__ = text_report
+    cls.__dir__ = names
+    cls.config = property(config, None, None, config.__doc__)
+    cls.__repr__ = _table_repr
+    cls._repr_html_ = _table_html
+    cls.__reduce__ = _pickling.result_reduce
+
+
+def identification_methods(cls, build):
+    """display, to_dict, to_frame, repr and _repr_html_ of identify_file()'s result."""
+
+    def display(self) -> "Table":
+        """The identified coefficients in the table's units, with their standard errors."""
+        return build(self, json.loads(self.to_json()))
+
+    def to_dict(self) -> "Dict[str, Any]":
+        """The report as the CLI's JSON, parsed (dict)."""
+        return json.loads(self.to_json())
+
+    def to_frame(self) -> "Any":
+        """display() as a pandas DataFrame (pandas is optional: ImportError without it)."""
+        return self.display().to_frame()
+
+    for name, f in (("display", display), ("to_dict", to_dict), ("to_frame", to_frame)):
+        _named(cls, name, f)
+    cls.__repr__ = _table_repr
+    cls._repr_html_ = _table_html
+
+
+def budget_methods(cls, build):
+    """Budget.sources_table() and .sources_frame(): the budget per source."""
+
+    def sources_table(self) -> "Table":
+        """One row per source: its id, bound and unit, and each coefficient's effect and share, in display
+        units."""
+        return build(self, json.loads(self.to_json()))
+
+    def sources_frame(self) -> "Any":
+        """sources_table() as a pandas DataFrame indexed by the source id (pandas is optional: ImportError
+        without it)."""
+        return self.sources_table().to_frame()
+
+    _named(cls, "sources_table", sources_table)
+    _named(cls, "sources_frame", sources_frame)
+
+
+def table_methods(cls, build):
+    """display, to_frame, repr and _repr_html_ of a class shown as a table (Config, Fit)."""
+
+    def display(self) -> "Table":
+        """The main values as a table (Config: the runs; Fit: the terms), each with its unit."""
+        return build(self)
+
+    def to_frame(self) -> "Any":
+        """display() as a pandas DataFrame (pandas is optional: ImportError without it)."""
+        return self.display().to_frame()
+
+    _named(cls, "display", display)
+    _named(cls, "to_frame", to_frame)
+    cls.__repr__ = _table_repr
+    cls._repr_html_ = _table_html
+
+
+def write_logs(self, folder: "str", step: "Optional[float]" = None) -> "Dict[str, str]":
+    """Writes the runs' logs into `folder` (created if missing), as `ccal simulate --logs-out` does; returns
+    {run name: path}, what reduce() takes."""
+    os.makedirs(folder, exist_ok=True)
+    paths = {}
+    for run, (name, text) in zip(self.config.runs, self.run_logs(step)):
+        paths[run.name] = os.path.join(folder, name)
+        with open(paths[run.name], "w", encoding="utf-8") as f:
+            f.write(text)
+    return paths
+
+
+write_logs.__module__, write_logs.__qualname__ = "ccal", "Simulation.write_logs"

@@ -1,0 +1,83 @@
+"""Signatures for inspect: pybind11 writes "name(arg: type = default, ...) -> type" as the first line of a
+function's docstring; a Python wrapper carries it as __signature__, which inspect.signature reads."""
+
+import ast
+import inspect
+import re
+
+
+class DefaultText:
+    """A default value shown as pybind11 wrote it, when it is not a Python literal."""
+
+    def __init__(self, text):
+        self.text = text
+
+    def __repr__(self):
+        return self.text
+
+
+def split_top_level(text):
+    """The comma-separated parts of `text` that are not inside brackets."""
+    parts, depth, current = [], 0, ""
+    for ch in text:
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        if ch == "," and depth == 0:
+            parts.append(current.strip())
+            current = ""
+        else:
+            current += ch
+    if current.strip():
+        parts.append(current.strip())
+    return parts
+
+
+def signature_from_doc(doc, name):
+    """The signature on the first line of a pybind11 docstring, and the rest of the docstring."""
+    lines = (doc or "").split("\n")
+    match = re.match(r"^\s*" + re.escape(name) + r"\((.*)\)(?: -> (.*))?$", lines[0]) if lines else None
+    if not match:
+        raise ValueError(f"ccal: no signature in the docstring of {name}")
+    parameters = []
+    for part in split_top_level(match.group(1)):
+        part_name, _, rest = part.partition(":")
+        annotation, _, default_text = rest.partition(" = ")
+        default = inspect.Parameter.empty
+        if default_text:
+            try:
+                default = ast.literal_eval(default_text.strip())
+            except (ValueError, SyntaxError):
+                default = DefaultText(default_text.strip())
+        parameters.append(inspect.Parameter(part_name.strip(), inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                            default=default, annotation=annotation.strip() or
+                                            inspect.Parameter.empty))
+    signature = inspect.Signature(parameters, return_annotation=match.group(2) or inspect.Signature.empty)
+    return signature, "\n".join(lines[1:]).strip()
+
+
+def with_signature(function, name, qualname):
+    """`function` (a pybind11 function) wrapped so that inspect.signature and help() show its signature."""
+    signature, doc = signature_from_doc(function.__doc__, name)
+
+    def wrapper(*args, **kwargs):
+        return function(*args, **kwargs)
+
+    wrapper.__name__ = name
+    wrapper.__qualname__ = qualname
+    wrapper.__module__ = "ccal"
+    wrapper.__doc__ = doc
+    wrapper.__signature__ = signature
+    return wrapper
+
+
+def is_pybind_function(value):
+    return type(value).__name__ in ("builtin_function_or_method", "instancemethod")
+
+
+def copy_identity(wrapper, function):
+    """`wrapper` named, documented and signed as `function`; returns it."""
+    for attribute in ("__name__", "__qualname__", "__module__", "__doc__", "__signature__"):
+        setattr(wrapper, attribute, getattr(function, attribute))
+    return wrapper
