@@ -72,23 +72,24 @@ RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, co
     S w_ia = S(nodes.nominal_rate_ia[n]);
     for (const auto& [i, d] : nodes.force_row[n]) a_pose += d * e[i];
     for (const auto& [i, d] : nodes.rate_row[n]) w_ia += d * e[i];
-    const S a_k1 = a_pose - S(nodes.coriolis[n]);  // the constant Coriolis term goes with K1 only
+    // a_i of §5.1: the pose errors and the constant Coriolis term, both first order in small quantities.
+    const S a_k1 = a_pose - S(nodes.coriolis[n]);
     const Vec3<S> a_cross(a_k1, A * nodes.sin_gamma[n], S(1));
-    const Vec3<S> a_cross_power(a_pose, A * nodes.sin_gamma[n], S(1));  // K2, K3 … with cross terms
     const Vec3<S> a_plain(a_power, A * nodes.sin_gamma[n], S(1));
     const S weight = S(nodes.weight[n]);
     avg.input += weight * a_cross;
     avg.rate_ia += weight * w_ia;
     for (std::size_t k = 0; k < terms.size(); ++k) {
-      // The paper's regressors: Z1 carries the errors, Z2, Z3 … are the nominal means (Eq.16/17).
-      // With cross terms the pose errors enter K2, K3 … as well, the Coriolis term still K1 only.
+      // The paper's regressors: Z1 carries the errors, Z2, Z3 … are the nominal means (Eq.16/17). With cross
+      // terms every term takes the same a_i, the Coriolis term included: the instrument cannot tell where a
+      // specific force comes from, so δE = Σ n Kn a0ⁿ⁻¹ δa_i for every δa_i (model.md §5.1).
       const bool power = terms[k].kind == TermKind::power && terms[k].power != 1;
-      const Vec3<S>& a = !power ? a_cross : cross_terms ? a_cross_power : a_plain;
+      const Vec3<S>& a = power && !cross_terms ? a_plain : a_cross;
       avg.regressors[Eigen::Index(k)] += weight * term_regressor(terms[k], a, w_ia);
     }
     if (instrument) {
       S out = cross_terms
-                  ? instrument_output(*instrument, truth_terms, a_cross_power, w_ia) + S(k1) * (a_k1 - a_pose)
+                  ? instrument_output(*instrument, truth_terms, a_cross, w_ia)
                   : instrument_output(*instrument, truth_terms, a_plain, w_ia) + S(k1) * (a_k1 - a_power);
       // The paper's additive −ΔΩ (output in rad/s), a rate-path term: it goes with the instrument's rate
       // gain.
@@ -106,7 +107,8 @@ template RunAverage<double> paper_average<double>(const Experiment&, const Paper
 
 // The paper's reduction of one run (docs/model.md §5.1, §7.1): a_i from the first-order form with the
 // frozen-γ rules and a constant Coriolis term, phases on the nominal rate, Δω in the amplitude
-// A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors in the K1 term only unless cross_terms,
+// A = R0 (Ω + Δω)² / g of every power term (Eq.14/19), pose errors and the Coriolis term in the K1 term only
+// unless cross_terms (then in every term),
 // the Earth-rate term on the IA heading, and the paper's additive −ΔΩ in the output.
 template <class S>
 RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,

@@ -25,8 +25,9 @@
 namespace ccal {
 
 // The paper's reduction of one run (docs/model.md §5.1, §7.1): the first-order form with the frozen-γ rules,
-// phases on the nominal rate, Δω in the amplitude of every power term, pose errors in the K1 term only
-// unless `cross_terms`. Instantiated for double and Dual.
+// phases on the nominal rate, Δω in the amplitude of every power term, pose errors and the constant Coriolis
+// term in the K1 term only unless `cross_terms` (then the whole a_i in every term). Instantiated for double
+// and Dual.
 template <class S>
 RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::Run& run,
                             const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
