@@ -58,7 +58,7 @@ Eigen::MatrixXd output_jacobian_ad(const Experiment& ex, const IdentificationSpe
 }
 
 // ∂ȳ/∂e at zero errors from the closed-form linearisation of the exact chain (exact_first_order, which equals
-// the AD Jacobian of the chain, tests/test_first_order.cpp), split by path: at each quadrature node the
+// the AD Jacobian of the chain, tests/model/first_order_test.cpp), split by path: at each quadrature node the
 // output's gradient in (a, ω_IA) times the node's kinematic sensitivities, averaged with the rule's weights.
 // The drive errors move the nodes and weights themselves and go through AD (twice when the paths are split:
 // the whole output and the force path alone). With zero errors and ΔΩ = 0 the integrand is periodic in the

@@ -44,7 +44,7 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     if (!kink)
       m.reduction.quadrature.fast_nodes = std::max(8, band);  // even; 10 for a cubic with first harmonics
     // drift^Q/Q! ≤ 5e-6 keeps Q = 2 up to |ΔΩ|T ≈ 1.5e-3 (drift = 2|ΔΩ|T for M = 10); the bound overstates
-    // the error relative to the swing (tests/test_reduce.cpp: below 1e-12 of the swing for 3σ draws).
+    // the error relative to the swing (tests/reduction/run_average_test.cpp: below 1e-12 of the swing for 3σ draws).
     m.reduction.quadrature.slow_tolerance = 5e-6;
   }
   auto cache = std::make_shared<CalibrationTrialCache>();

@@ -106,7 +106,7 @@ TableFitSpec observations_spec(const ObservationsHeader& header) {
 // The problem table_fit_problem forms from that file, formed from the observations themselves: the file holds
 // every number to 17 significant digits, which read back to the same doubles, so these are the very numbers
 // (y = output − rate in the output unit, each term's column its regressor) and the fit is bit for bit the one
-// of `ccal identify` on the file (tests/test_cli_simulate.cpp).
+// of `ccal identify` on the file (tests/cli/simulate_test.cpp).
 FitProblem observations_problem(const Observations<double>& obs, const TableFitSpec& s, double output_unit) {
   FitProblem p;
   const Eigen::Index rows = obs.output.size();

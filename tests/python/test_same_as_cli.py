@@ -86,7 +86,7 @@ class SameAsCli(unittest.TestCase):
                        "x", "--output", "y", "--weight", "sigma")
 
     def test_reduce(self):
-        # Synthetic logs of the first three runs (as in tests/test_golden_outputs.cpp): pulses of 1e-3 deg,
+        # Synthetic logs of the first three runs (as in tests/system/golden_outputs_test.cpp): pulses of 1e-3 deg,
         # encoders at the planned rate of a 2.5 m arm, every 0.1 s.
         with tempfile.TemporaryDirectory() as tmp:
             logs = {}

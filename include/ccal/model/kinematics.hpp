@@ -288,7 +288,7 @@ class StaticChain {
 // A (levelling), B (arm, horizontal axis at fixed β, azimuth sleeve) and C (base plane, instrument) are
 // composed once, so that an evaluation propagates the motion through ten elementary joints (the dynamic
 // errors of the main and azimuth axes and the two joint rotations) instead of thirty, and evaluates the
-// Fourier series of each joint once. Same result as exact_state to round-off (tests/test_kinematics.cpp).
+// Fourier series of each joint once. Same result as exact_state to round-off (tests/model/kinematics_test.cpp).
 template <class S>
 class DynamicChain {
  public:

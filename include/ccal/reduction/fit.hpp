@@ -51,7 +51,7 @@ struct FitOptions {
   double max_condition = 1e12;
   // Steps of iterative refinement of the augmented system [I A; A^T 0][r; x] = [b; 0], with its residuals
   // accumulated in double-double. One step already brings the NIST StRD problems to their certified
-  // values to 9+ digits where the data allow (see tests/test_fit.cpp); 0 disables refinement.
+  // values to 9+ digits where the data allow (see tests/reduction/fit_test.cpp); 0 disables refinement.
   int refinement_steps = 1;
 };
 

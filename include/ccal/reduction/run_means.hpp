@@ -1,7 +1,7 @@
 #pragma once
 // The instrument-output means of every run of a test plan, for many error vectors: the Monte Carlo trial's
 // inner loop. Same chain, same spectral rule and same instrument as average_run<double> (run_average.hpp,
-// equal to round-off, tests/test_run_means.cpp), reorganised so that a trial needs no allocation, no library
+// equal to round-off, tests/reduction/run_means_test.cpp), reorganised so that a trial needs no allocation, no library
 // trigonometry, and one pass over the nodes of each run (docs/model.md §12):
 //  - everything that does not depend on the errors is tabulated once: cos and sin of the main-axis angle at
 //    the fast nodes (θ1(0) + 2πj/M), of the nominal platform angle there (φ0 − 2πj/M), and of the nominal

@@ -24,7 +24,7 @@
 
 namespace ccal {
 
-// How ∂ȳ/∂e is obtained. Both are exact (they agree to round-off, tests/test_budget.cpp):
+// How ∂ȳ/∂e is obtained. Both are exact (they agree to round-off, tests/uncertainty/budget_test.cpp):
 //   automatic:  forward-mode AD (ccal::Dual) through kinematics and reduction, in passes of kDualWidth
 //   sources; linearised: at zero errors, the closed-form linearisation of the chain (exact_first_order,
 //   itself checked

@@ -237,7 +237,7 @@ struct CalibrationModel {
   // 2(degree + N) + 2 (the ε² harmonics beyond it alias at ~1e-10 of ε-sized terms), and two slow nodes
   // for |ΔΩ|T ≤ 1e-3 (more beyond): the drift-dependent part of a run is either the heading-dependent,
   // error-sized part or an oscillatory harmonic reduced by 1/(mΩT) after integration, so linear interpolation
-  // in time errs by < 1e-12 of the swing for 3σ draws of the bundled tolerances (tests/test_reduce.cpp).
+  // in time errs by < 1e-12 of the swing for 3σ draws of the bundled tolerances (tests/reduction/run_average_test.cpp).
   ReductionOptions reduction;
   // What every trial shares, computed once by calibration_model (the analyst's H⁺ and known part, the
   // truth's run-mean kernel): internal to the library (src/uncertainty/calibration_cache.hpp).

@@ -87,7 +87,7 @@ void harmonic_slow_moments(const S& half_kappa, const S& c, const S& s, const Ei
 // The weights w[q·M + j] of the rule from ν (stored [m·Q + q], m = 0..M/2):
 //     w_jq = (1/M) Σ_{m=−M/2+1}^{M/2} e^{−imθ_j} ν_mq,
 // real because ν_{−m} = conj(ν_m); the Nyquist term is taken once (symmetric convention, M even).
-// With it the rule is exact for cos(Mθ/2) as well as for every harmonic below M/2 (tests/test_quadrature.cpp
+// With it the rule is exact for cos(Mθ/2) as well as for every harmonic below M/2 (tests/reduction/quadrature_test.cpp
 // checks each against its closed form; sin(Mθ/2) vanishes at every node). ccal sizes M so that its integrands
 // are band-limited below M/2 (fast_nodes_for); for them the Nyquist term multiplies Σ_j (−1)^j Φ(θ_j), which
 // vanishes up to their aliasing error, so it moves no ccal result beyond that error: only a direct test of
