@@ -21,6 +21,9 @@ void check_options(const MonteCarloOptions& o) {
   if (!(o.coverage_probability > 0 && o.coverage_probability < 1))
     throw InputError(fmt::format("--coverage-probability: {} is not a probability in (0, 1); e.g. 0.95",
                                  o.coverage_probability));
+  if (o.digits == 0)  // the adaptive stages are large enough for any p (at least 100/(1 − p) trials)
+    check_coverage_interval(std::uint64_t(o.trials != 0 ? o.trials : kDefaultMonteCarloTrials),
+                            o.coverage_probability, "--trials", "--coverage-probability");
 }
 
 }  // namespace
