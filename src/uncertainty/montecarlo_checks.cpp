@@ -86,7 +86,7 @@ void check_coverage_interval(std::uint64_t trials, double p, const char* trials_
   throw InputError(fmt::format(
       "{} = {} with {} = {}: the coverage interval [y_(r), y_(r+q)] takes q = round(pM) = {} of the M sorted "
       "values, so with q = M its ends do not exist (JCGM 101 §7.7.2); accepted: {} at least {} for this p "
-      "(§7.2 recommends M ≥ 10⁴/(1 − p) = {:.3g}), or {} below 1 − 1/(2M) = {:.6g} for this M",
+      "(§7.2 recommends M ≥ 10⁴/(1 − p) = {:.3g}), or {} below 1 − 1/(2M) = {} for this M",
       trials_name, trials, coverage_name, p, q, trials_name, least_trials_for_coverage(p), 1e4 / (1 - p),
       coverage_name, 1 - 0.5 / double(trials)));
 }
