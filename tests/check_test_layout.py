@@ -59,6 +59,7 @@ TESTED_ELSEWHERE = {
     "uncertainty/calibration_model.cpp": "the trial model: tests/uncertainty/montecarlo_test.cpp",
     "uncertainty/design_candidates.cpp": "the candidate runs: tests/verbs/design_test.cpp",
     "uncertainty/design_exchange.cpp": "the exchange step: tests/uncertainty/design_search_test.cpp",
+    "uncertainty/montecarlo_checks.cpp": "the run's checks: tests/cli/hardening_test.cpp, tests/cli/bad_inputs_test.cpp",
     "uncertainty/montecarlo_validation.cpp": "tests/uncertainty/montecarlo_distribution_test.cpp",
     "uncertainty/sample_statistics.cpp": "tests/uncertainty/montecarlo_distribution_test.cpp",
     "verbs/budget.cpp": "verbs::budget: tests/render/budget_test.cpp, tests/verbs/allocate_test.cpp",

@@ -125,7 +125,45 @@ std::vector<std::pair<dev_t, ino_t>>& inputs() {
   throw InputError(fmt::format("{}: cannot write '{}': {}", f.option, f.path, why));
 }
 
-std::string errno_text() { return std::strerror(errno); }
+std::string errno_text() {
+  const int e = errno;
+  std::string text = std::strerror(e);
+  if (e == EFBIG) text += " (beyond the file-size limit, ulimit -f); accepted: a smaller output or a higher limit";
+  return text;
+}
+
+// Past the file-size limit (ulimit -f) write(2) raises SIGXFSZ, whose default action ends the process with
+// the temporaries left behind; ignored, the write fails with EFBIG instead and the error path removes them.
+void ignore_file_size_signal() {
+  struct sigaction current {};
+  ::sigaction(SIGXFSZ, nullptr, &current);
+  if (current.sa_handler != SIG_DFL) return;  // a handler of the embedding program stays
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  ::sigaction(SIGXFSZ, &ignore, nullptr);
+}
+
+// What identifies an output file: (device, inode) of an existing file, else the absolute path with ".", ".."
+// and symbolic links of its existing part resolved, so that "./x.txt" and "x.txt" are one file.
+struct FileKey {
+  std::optional<std::pair<dev_t, ino_t>> identity;
+  std::string path;
+  bool operator==(const FileKey&) const = default;
+};
+
+FileKey file_key(const std::string& path) {
+  FileKey key;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    key.identity = std::make_pair(st.st_dev, st.st_ino);
+    return key;
+  }
+  std::error_code ec;
+  const fs::path full = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  key.path = ec ? path : full.lexically_normal().string();
+  return key;
+}
 
 bool write_all(int fd, std::string_view text) {
   while (!text.empty()) {
@@ -264,14 +302,19 @@ void write_standard_output(const std::string& text) {
     throw InputError("standard output: write failed: " + errno_text());
 }
 
+bool same_file(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  if (a.empty() || b.empty() || a == "-" || b == "-") return false;
+  return file_key(a) == file_key(b);
+}
+
 void write_files(const std::vector<FileToWrite>& files) {
+  ignore_file_size_signal();
   std::vector<Plan> plans;
   for (const auto& f : files) plans.push_back(plan_for(f));
   for (std::size_t a = 0; a < files.size(); ++a)
     for (std::size_t b = 0; b < a; ++b) {
-      const bool same =
-          files[a].path == files[b].path || (plans[a].identity && plans[a].identity == plans[b].identity);
-      if (same)
+      if (same_file(files[a].path, files[b].path))
         fail(files[a], fmt::format("it is also the {} file; accepted: two different files", files[b].option));
     }
   std::vector<Temporary> temporaries(files.size());

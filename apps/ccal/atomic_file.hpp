@@ -25,9 +25,15 @@ struct FileToWrite {
 // Records a file the command reads; write_files refuses to write over it.
 void note_input_file(const std::string& path);
 
+// Whether two paths name one file: the same spelling, the same (device, inode) for existing files, or the
+// same absolute path with ".", ".." and links resolved for new ones ("./x.txt" and "x.txt"). "-" (standard
+// output) is the same only as "-".
+bool same_file(const std::string& a, const std::string& b);
+
 // Writes every file, all or nothing as far as the file system allows: regular files are written to
 // temporaries first, devices and FIFOs then, and the temporaries renamed over their targets last. Throws
-// InputError naming the option and the file on any failure, with no temporary left behind.
+// InputError naming the option and the file on any failure, with no temporary left behind (also past the
+// file-size limit: SIGXFSZ is ignored, so that the write fails with EFBIG).
 void write_files(const std::vector<FileToWrite>& files);
 
 // Writes text to standard output and flushes it; InputError if the stream reports a write error.

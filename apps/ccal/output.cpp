@@ -37,7 +37,7 @@ void add_observations_out_option(CLI::App& command, std::string& path) {
 }
 
 void check_observations_out(const std::string& path, const OutputOptions& output) {
-  if (!path.empty() && path == output.path)
+  if (!path.empty() && same_file(path, output.path.empty() ? "-" : output.path))
     throw InputError(
         fmt::format("--observations-out: '{}' is also the -o file; accepted: two different files", path));
 }

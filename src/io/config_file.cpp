@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "ccal/core/units.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "config_reader.hpp"
 
 namespace ccal {
@@ -30,7 +31,7 @@ std::string format_config_error(const std::string& source, int line, int column,
   out += ": ";
   if (!key.empty()) out += key + ": ";
   out += problem;
-  return out;
+  return with_nul_shown(std::move(out));  // a TOML string may hold "\u0000"
 }
 }  // namespace
 

@@ -203,6 +203,23 @@ std::string written_unit(const toml::node* node, Dimension dim) {
   return "";
 }
 
+// The largest tolerance bound accepted, in SI units (m, rad, rad/s, 1, m/(rad/s)²). Budgets, allocations and
+// the LPU sum squares of sensitivity × bound in double precision (at most about 1.8e308): 1e100 keeps the
+// square at 1e200, leaving 10¹⁰⁸ for the sensitivities and the sums, and is beyond any physical size by far
+// (the observable universe is 9e26 m across). A larger bound is a typing or unit error, refused here with its
+// place rather than as an infinite U far from the file.
+constexpr double kMaxToleranceBound = 1e100;
+
+void check_bound_size(const Reader& r, const toml::node& at, const std::string& key, double bound,
+                      SourceUnit u) {
+  if (bound <= kMaxToleranceBound) return;
+  const std::string unit = u == SourceUnit::relative ? "relative units" : std::string(unit_symbol(u));
+  r.fail(at, key,
+         fmt::format("{} {} is too large: beyond 1e100 in SI units the budget's sums of squares are not a "
+                     "finite number; accepted: a bound above 0 and up to 1e100 {}, e.g. \"{}\"",
+                     number_text(bound), unit, unit, parameter_example(u)));
+}
+
 std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const ErrorLayout& layout) {
   std::vector<Tolerance> out;
   const toml::table* t = r.table(root, "", "tolerances", false);
@@ -227,6 +244,7 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
                fmt::format("missing value; give e.g. {{ bound = \"{}\" }}", parameter_example(u)));
       r.require_positive(*entry, p, "bound", *bound,
                          "the tolerance bound, e.g. \"" + parameter_example(u) + "\"");
+      check_bound_size(r, *entry->get("bound"), p + ".bound", *bound, u);
       tol.bound = *bound;
       tol.unit = written_unit(entry->get("bound"), dim);
       tol.distribution = r.word(*entry, p, "distribution", distributions).value_or(Distribution::normal);
@@ -242,6 +260,7 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
         r.fail(node, p,
                fmt::format("must be positive, got {}; the standard uncertainty, e.g. \"{}\"",
                            number_text(tol.bound), parameter_example(u)));
+      check_bound_size(r, node, p, tol.bound, u);
     }
     out.push_back(std::move(tol));
   }

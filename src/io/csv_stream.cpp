@@ -29,6 +29,7 @@ class LineReader {
   void line(std::string_view line) {
     ++line_no_;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (header_.empty()) check_csv_line_ends(line, source_, line_no_);  // rows: a CR is a bad cell there
     const std::string_view content = trim(line);
     if (content.empty() || content.front() == '#') return;
     if (header_.empty()) {
@@ -96,6 +97,16 @@ struct FileCloser {
 };
 
 }  // namespace
+
+void check_csv_line_ends(std::string_view line, const std::string& source, int line_no) {
+  const void* cr = std::memchr(line.data(), '\r', line.size());
+  if (cr == nullptr) return;
+  const auto column = int(static_cast<const char*>(cr) - line.data()) + 1;
+  throw CsvError(source, line_no, column, "",
+                 "a carriage return inside the line: the file uses CR-only line ends (classic Mac OS), which "
+                 "are not read; accepted: LF or CRLF line ends (convert it, e.g. tr '\\r' '\\n' < in.csv > "
+                 "out.csv)");
+}
 
 void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink& sink) {
   LineReader reader{std::string(source), sink};

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "ccal/core/units.hpp"
+#include "ccal/io/csv_stream.hpp"
 
 namespace ccal {
 
@@ -27,7 +28,7 @@ std::string format_csv_error(const std::string& source, int line, int column, co
   out += ": ";
   if (!name.empty()) out += name + ": ";
   out += problem;
-  return out;
+  return with_nul_shown(std::move(out));
 }
 
 std::string_view trim(std::string_view s) {
@@ -121,6 +122,12 @@ std::string number17(double v) { return fmt::format("{:.17g}", v); }
 constexpr std::string_view kHeaderKey = "ccal observations header";
 
 }  // namespace
+
+std::string with_nul_shown(std::string message) {
+  for (std::size_t at = message.find('\0'); at != std::string::npos; at = message.find('\0', at + 4))
+    message.replace(at, 1, "\\x00");
+  return message;
+}
 
 CsvError::CsvError(std::string source, int line, int column, std::string column_name, std::string problem)
     : LocatedInputError(format_csv_error(source, line, column, column_name, problem), source, line, column,
@@ -238,6 +245,7 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
     start = end + 1;
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (t.header.empty()) check_csv_line_ends(line, t.source, line_no);
     const std::string_view content = trim(line);
     if (content.empty()) continue;
     if (content.front() == '#') {

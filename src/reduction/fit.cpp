@@ -449,6 +449,25 @@ void covariance_from_scale(const Eigen::MatrixXd& cov_unit, bool weighted, FitRe
   result.std_error = result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
 }
 
+// Finite data can still overflow in the solution (values near 1e308 square to infinity in the norms and in
+// chi2): a fit whose estimates, standard errors or chi2 are not finite is refused, not returned as NaN.
+void check_finite_result(const FitProblem& p, const FitResult& r) {
+  std::string bad;
+  for (Index k = 0; k < r.value.size() && bad.empty(); ++k)
+    if (!std::isfinite(r.value(k)) || !std::isfinite(r.std_error(k)))
+      bad = fmt::format("the estimate of {} or its standard error", r.names[static_cast<std::size_t>(k)]);
+  if (bad.empty() && !std::isfinite(r.chi2)) bad = "chi2, the sum of the squared residuals,";
+  if (bad.empty()) return;
+  const double y_max = p.y.size() ? p.y.cwiseAbs().maxCoeff() : 0.0;
+  const double h_max = p.H.size() ? p.H.cwiseAbs().maxCoeff() : 0.0;
+  throw InputError(
+      fmt::format("fit: {} is not a finite number: the data overflow the arithmetic of the least-squares "
+                  "solution (largest |y| = {:.3g}, largest regressor {:.3g}); accepted: data whose squares and "
+                  "products stay finite: scale y or the input column (e.g. other units) towards magnitudes "
+                  "near 1",
+                  bad, y_max, h_max));
+}
+
 }  // namespace
 
 FitResult fit(const FitProblem& p, const FitOptions& o) {
@@ -487,6 +506,7 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
   }
   residuals_and_chi2(p, h_free, split.fixed_cols, result);
   covariance_from_scale(cov_unit, weighted, result);
+  check_finite_result(p, result);
   check_correlations(o, result);
   return result;
 }

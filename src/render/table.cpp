@@ -105,11 +105,16 @@ std::string wrap_words(std::string_view text, std::size_t width, std::string_vie
 
 std::vector<std::size_t> Table::widths(std::size_t indent, std::size_t max_width) const {
   std::vector<std::size_t> width(header_.size(), 0);
+  // A cell wider than kMaxPaddedWidth does not widen its column (it is printed whole, past the column's end):
+  // one 10 MB run name would otherwise pad every row of the table to 10 MB.
   auto measure = [&](const std::vector<std::string>& row, bool span) {
-    for (std::size_t c = span ? 1 : 0; c < row.size() && c + (span ? 1 : 0) < width.size(); ++c)
-      width[c + (span ? 1 : 0)] = std::max(width[c + (span ? 1 : 0)], display_width(row[c]));
+    for (std::size_t c = span ? 1 : 0; c < row.size() && c + (span ? 1 : 0) < width.size(); ++c) {
+      const std::size_t w = display_width(row[c]);
+      if (w <= kMaxPaddedWidth) width[c + (span ? 1 : 0)] = std::max(width[c + (span ? 1 : 0)], w);
+    }
   };
-  measure(header_, false);
+  for (std::size_t c = 0; c < header_.size(); ++c)
+    width[c] = std::min(display_width(header_[c]), kMaxPaddedWidth);
   for (std::size_t r = 0; r < rows_.size(); ++r) measure(rows_[r], spans_[r]);
   if (max_width == 0 || shrink_ >= width.size()) return width;
   std::size_t total = indent + gap_ * (width.size() - 1);

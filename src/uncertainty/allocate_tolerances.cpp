@@ -234,7 +234,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
     throw InputError(fmt::format("--max-scale: {} is not a number > 0; e.g. 10", o.max_scale));
   if (o.verify_trials == 1)
     throw InputError("--verify-trials: 1 is too few; accepted: 0 (no verification) or 2 and more");
-  check_thread_count(o.threads, "--threads");
+  check_thread_count(o.threads, "threads");
 
   BudgetOptions bo;
   bo.mode = o.mode;

@@ -241,12 +241,6 @@ void check_sample_memory(std::uint64_t trials, std::size_t n_outputs, bool adapt
 }
 }  // namespace
 
-void check_thread_count(int threads, const char* what) {
-  if (threads < 0 || threads > kMaxThreads)
-    throw InputError(fmt::format("{}: {} is out of range; accepted: 0 (the OpenMP default) or 1 to {}", what,
-                                 threads, kMaxThreads));
-}
-
 namespace {
 
 // The arguments of run_monte_carlo, each refused with what is accepted.
@@ -460,6 +454,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   const auto J = std::uint64_t(std::ceil(100.0 / (1.0 - p) - 1e-9));
   const std::uint64_t block = adaptive ? std::max({options.trials, J, std::uint64_t(10000)}) : options.trials;
   if (block < 2) throw InputError("Monte Carlo: at least 2 trials are needed");
+  check_coverage_interval(block, p, "trials", "coverage probability");
   if (adaptive && options.max_trials < 2 * block)
     throw InputError(
         fmt::format("Monte Carlo: max_trials = {} leaves fewer than the 2 stages of {} trials the "

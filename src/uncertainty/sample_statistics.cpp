@@ -21,11 +21,15 @@ double co_moment(std::span<const double> a, double mean_a, std::span<const doubl
   return s.value();
 }
 
-// q of §7.7.2: pM if that is an integer, else ⌊pM + ½⌋; at most M − 1 so that an interval has two ends.
-std::uint64_t interval_points(std::uint64_t M, double p) {
+// q of §7.7.2: pM if that is an integer, else ⌊pM + ½⌋.
+std::uint64_t rounded_points(std::uint64_t M, double p) {
   const double pm = p * double(M);
-  const double q = pm == std::floor(pm) ? pm : std::floor(pm + 0.5);
-  return std::min<std::uint64_t>(std::uint64_t(q), M - 1);
+  return std::uint64_t(pm == std::floor(pm) ? pm : std::floor(pm + 0.5));
+}
+
+// At most M − 1 so that an interval has two ends (run_monte_carlo refuses an M for which q would be M).
+std::uint64_t interval_points(std::uint64_t M, double p) {
+  return std::min<std::uint64_t>(rounded_points(M, p), M - 1);
 }
 
 // [y_(r), y_(r+q)] with r = (M − q)/2 if an integer, else ⌊(M − q + 1)/2⌋ (1-based): in both cases

@@ -32,6 +32,8 @@ struct Interval {
 
 double mean_of(std::span<const double> v);
 double co_moment(std::span<const double> a, double mean_a, std::span<const double> b, double mean_b);
+// q = round(pM) of §7.7.2, and the same at most M − 1.
+std::uint64_t rounded_points(std::uint64_t M, double p);
 std::uint64_t interval_points(std::uint64_t M, double p);
 Interval symmetric_interval(std::span<const double> sorted, std::uint64_t q);
 void sort_tails(std::span<double> v, std::uint64_t q);

@@ -71,13 +71,11 @@ Identification identify_problem(const FitProblem& problem, const TableFitSpec& s
     std::string message = e.what();
     if (message.starts_with("fit: ")) message.erase(0, 5);
     throw IllPosedFit(fmt::format("{}: {}{}", source, message, ill_posed_hint(e.terms())), e.terms());
+  } catch (const InputError& e) {  // a solution that overflows: fit refuses results that are not finite
+    std::string message = e.what();
+    if (message.starts_with("fit: ")) message.erase(0, 5);
+    throw InputError(fmt::format("{}: {}", source, message));
   }
-  for (Eigen::Index k = 0; k < id.fit.value.size(); ++k)  // never a nan or inf reported as a result
-    if (!std::isfinite(id.fit.value[k]) || !std::isfinite(id.fit.std_error[k]))
-      throw InputError(fmt::format(
-          "{}: the fit gives {} = {} ± {}: the data are beyond double precision; accepted: values in units "
-          "that keep the columns and their products finite",
-          source, id.fit.names[std::size_t(k)], id.fit.value[k], id.fit.std_error[k]));
   for (const auto& t : spec.terms) id.units.push_back(term_unit(t, units));
   id.observability = assess_fit(problem, id.fit, id.units, resolution, source);
   for (const auto& f : spec.fixed) id.fixed.push_back({f.term.id, f.value, term_unit(f.term, units)});

@@ -24,12 +24,22 @@ constexpr OptionSpec<MonteCarloOptions> kRows[] = {
     rows::mode<&MonteCarloOptions::mode>(),
 };
 
+// The table's ranges, then what depends on the machine or on two options at once: a thread count the system
+// cannot start, and a fixed M too small for the coverage interval's ends to exist.
+void check_verb_options(const MonteCarloOptions& o) {
+  check_options(o, option_table<MonteCarloOptions>());
+  check_thread_count(o.threads, "threads");
+  if (o.digits == 0)  // the adaptive stages are large enough for any p (at least 100/(1 − p) trials)
+    check_coverage_interval(std::uint64_t(o.trials.value_or(kDefaultMonteCarloTrials)), o.coverage_probability,
+                            "--trials", "--coverage-probability");
+}
+
 }  // namespace
 
 OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>) { return kRows; }
 
 MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
-  check_options(o, option_table<MonteCarloOptions>());
+  check_verb_options(o);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
   const ModelMode mode = o.mode.value_or(config.mode);

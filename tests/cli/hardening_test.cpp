@@ -30,6 +30,30 @@ TEST_F(Hardening, ThreadCountsBeyondTheAcceptedRangeAreRefused) {
   EXPECT_EQ(run("montecarlo --trials 100 --threads 1024").code, 0);  // the limit itself is accepted
 }
 
+// A thread count in range that the system cannot start ended in "libgomp: Thread creation failed", exit
+// code 1. Here the limit is the stacks' memory: under ulimit -v 1 GB, with 8 MiB stacks, about a hundred
+// threads can start, not 600. The count is refused before any work, naming how many can start; a count the
+// system gives runs as before under the same limit.
+TEST_F(Hardening, ThreadCountsTheSystemCannotStartAreRefused) {
+  const std::string limits = "ulimit -s 8192 && ulimit -v 1000000 && ";
+  const std::string err = (dir_ / "err.txt").string();
+  for (const char* command : {"montecarlo --trials 100", "allocate --target K3=1e-6 --verify-trials 100"}) {
+    SCOPED_TRACE(command);
+    const int status = std::system(("cd " + quote(dir_.string()) + " && " + limits + quote(kProgram) + " " +
+                                    command + " --threads 600 > /dev/null 2> " + quote(err))
+                                       .c_str());
+    const std::string message = read(err);
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << message;
+    EXPECT_NE(message.find("--threads: 600 threads cannot be started here"), std::string::npos) << message;
+    EXPECT_NE(message.find("accepted: at most"), std::string::npos) << message;
+    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
+  }
+  const int status = std::system(("cd " + quote(dir_.string()) + " && " + limits + quote(kProgram) +
+                                  " montecarlo --trials 100 --threads 2 > /dev/null 2> " + quote(err))
+                                     .c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << read(err);
+}
+
 TEST(HardeningLibrary, ThreadCountsBeyondTheAcceptedRangeAreInputErrors) {
   const Config cfg = bundled_example();
   MonteCarloOptions mo;

@@ -118,6 +118,35 @@ TEST_F(OutputFiles, WriteErrorsFailTheCommand) {
   // run as root could not replace /dev/full or /dev/null with a regular file.
 }
 
+// Past the file-size limit write(2) raises SIGXFSZ, which ended the process with its temporary left behind;
+// now the write fails with EFBIG: exit code 2, a message naming the file and the limit, no temporary, and the
+// old file as it was. (dash's ulimit -f counts 512-byte blocks: 1 block, far below the budget's text.)
+TEST_F(OutputFiles, TheFileSizeLimitFailsTheCommandAndLeavesNoTemporary) {
+  write("out.txt", "old\n");
+  const std::string err = (dir_ / "err.txt").string();
+  const int code = exit_code_of(in_dir("ulimit -f 1 && " + quote(kProgram) + " budget -o out.txt 2> err.txt"));
+  const std::string message = read(err);
+  fs::remove(err);
+  EXPECT_EQ(code, 2) << message;
+  EXPECT_NE(message.find("-o: cannot write 'out.txt'"), std::string::npos) << message;
+  EXPECT_NE(message.find("ulimit -f"), std::string::npos) << message;
+  EXPECT_EQ(listing(), (std::set<std::string>{"out.txt"}));  // no temporary left
+  EXPECT_EQ(read(dir_ / "out.txt"), "old\n");
+}
+
+// One file by two spellings was written twice (the second replacing the first); now refused by identity, and
+// the -o file is written alone once the other option names a different file.
+TEST_F(OutputFiles, OneFileNamedTwiceIsRefusedWhateverTheSpelling) {
+  const std::string through_parent = "../" + dir_.filename().string() + "/same.txt";
+  for (const std::string& path : {std::string("same.txt"), std::string(".//same.txt"), through_parent}) {
+    SCOPED_TRACE(path);
+    expect_bad_input(run("simulate -o ./same.txt --observations-out " + path), {"--observations-out", "-o file"});
+    EXPECT_TRUE(listing().empty());
+  }
+  ASSERT_EQ(run("simulate -o ./same.txt --observations-out obs.csv").code, 0);
+  EXPECT_EQ(listing(), (std::set<std::string>{"same.txt", "obs.csv"}));
+}
+
 TEST_F(OutputFiles, ALegalLongFileNameIsAccepted) {
   const std::string name(255, 'a');  // NAME_MAX on Linux file systems
   ASSERT_EQ(run("budget -o " + name).code, 0);

@@ -64,6 +64,32 @@ class BadArgumentCatalogueTest(unittest.TestCase):
                     self.assertNotIn("\n", message)
 
 
+class NonFiniteResultTest(unittest.TestCase):
+    """Results that cannot be finite are refused with what to change, not returned as nan or inf."""
+
+    def test_a_fit_that_overflows_is_refused(self):
+        # Finite data near 1e308 overflow in the solution: fit() returned [nan, nan] without an error.
+        import numpy as np
+        x = np.array([1.0, 2.0, 3.0, 4.0])
+        H = np.column_stack([np.ones_like(x), x])
+        y = np.array([1.0e308, 1.2e308, 1.4e308, 1.7e308])
+        with self.assertRaisesRegex(ccal.InputError, "not a finite number.*scale y"):
+            ccal.fit(H, y, ["K0", "K1"])
+        # scaled by 1e-300 the same data fit: slope 1.15/5 (exact to rounding; 1e-12 relative is ample)
+        r = ccal.fit(H, y * 1e-300, ["K0", "K1"])
+        self.assertAlmostEqual(r.value[1] / 0.23e8, 1.0, delta=1e-12)
+
+    def test_a_coverage_interval_the_trials_cannot_give_is_refused(self):
+        cfg = ccal.bundled_example()
+        with self.assertRaisesRegex(ccal.InputError, "coverage-probability.*at least 500001"):
+            ccal.monte_carlo(cfg, trials=10, coverage_probability=0.999999)
+
+    def test_a_tolerance_beyond_any_physical_size_is_refused_where_it_is_written(self):
+        text = example_text().replace('dx3_s1 = { bound = "10 um"', 'dx3_s1 = { bound = "1e300 um"')
+        with self.assertRaisesRegex(ccal.InputError, r"c\.toml:\d+:\d+: tolerances\.dx3_s1\.bound: .*1e100"):
+            ccal.parse_config(text, "c.toml")
+
+
 class RunIndexTest(unittest.TestCase):
     def test_a_string_of_digits_is_the_same_index_as_the_int(self):
         cfg = ccal.bundled_example()

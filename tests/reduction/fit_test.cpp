@@ -391,3 +391,31 @@ TEST(Polynomial, DesignAndNames) {
 }
 
 }  // namespace
+
+namespace {
+
+// Finite data near the largest double (1e308) overflow in the solution: the fit returned NaN estimates
+// without an error. It is refused, naming the estimate and what the user can change.
+TEST(Fit, AnOverflowingSolutionIsRefusedNotReturnedAsNaN) {
+  MatrixXd h(4, 2);
+  h << 1, 1, 1, 2, 1, 3, 1, 4;
+  VectorXd y(4);
+  y << 1.0e308, 1.2e308, 1.4e308, 1.7e308;
+  for (const auto method : {FitMethod::qr, FitMethod::svd}) {
+    FitOptions o;
+    o.method = method;
+    try {
+      const FitResult r = ccal::fit(FitProblem{{"K0", "K1"}, h, y, {}, {}, {}}, o);
+      ADD_FAILURE() << "accepted: K0 = " << r.value(0) << ", chi2 = " << r.chi2;
+    } catch (const ccal::InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("not a finite number"), std::string::npos) << message;
+      EXPECT_NE(message.find("scale y"), std::string::npos) << message;
+    }
+  }
+  // The same data scaled by 1e-300 are an ordinary fit (exact to rounding: 1e-12 relative is ample).
+  const FitResult r = ccal::fit(FitProblem{{"K0", "K1"}, h, y * 1e-300, {}, {}, {}});
+  EXPECT_NEAR(r.value(1), 0.23e8, 0.23e8 * 1e-12);  // Σ(x − x̄)(y − ȳ)/Σ(x − x̄)² = 1.15/5
+}
+
+}  // namespace

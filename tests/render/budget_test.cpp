@@ -235,5 +235,28 @@ TEST(Table, DisplayWidthAndCutting) {
   EXPECT_EQ(render::wrap_words("aa bb cc", 5, "  "), "aa bb\n  cc\n");
 }
 
+// A run named with 10 MB of text padded every row of a table to 10 MB (240 MB of output): a cell wider than
+// kMaxPaddedWidth is printed whole in its own row and leaves the other rows as if it were not there.
+TEST(Table, AHugeCellDoesNotPadTheOtherRows) {
+  const std::string huge(1000000, 'n');
+  render::Table t({"run", "value"});
+  t.add_row({"5g", "1.0"});
+  t.add_row({huge, "2.0"});
+  t.add_row({"15g", "3.0"});
+  const std::string text = t.render();
+  const auto lines = lines_of(text);
+  ASSERT_EQ(lines.size(), 5u);  // header, rule, three rows
+  // "run" (3 wide, left-aligned) and "value" (5, right-aligned) set the widths, 3 spaces apart.
+  EXPECT_EQ(lines[2], "  5g      1.0");
+  EXPECT_EQ(lines[4], "  15g     3.0");
+  EXPECT_EQ(lines[3], "  " + huge + "     2.0");  // the huge cell whole, nothing cut
+  EXPECT_LT(text.size(), huge.size() + 200);  // the huge cell once, not once per row
+  // A cell at the limit still sets its column's width.
+  render::Table edge({"run", "value"});
+  edge.add_row({std::string(render::kMaxPaddedWidth, 'w'), "1"});
+  edge.add_row({"5g", "2"});
+  EXPECT_EQ(lines_of(edge.render())[3].size(), 2 + render::kMaxPaddedWidth + 3 + 5);
+}
+
 }  // namespace
 }  // namespace ccal

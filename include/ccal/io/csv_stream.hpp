@@ -58,6 +58,11 @@ inline bool parse_plain_decimal(std::string_view text, double& value) {
   return true;
 }
 
+// Throws CsvError at the first carriage return in `line` (a line without its LF or CRLF end): the sign of a
+// file with CR-only line ends, which would otherwise read as one line. Both readers apply it to the lines up
+// to the header.
+void check_csv_line_ends(std::string_view line, const std::string& source, int line_no);
+
 // Streams a file to `sink`. Throws CsvError (file unreadable, empty, no header, bad header, bad row) and
 // whatever the sink throws.
 void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink);

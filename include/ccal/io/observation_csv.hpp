@@ -33,6 +33,10 @@ namespace ccal {
 //     <file>:<line>:<column>: <column name>: <problem>; <what is accepted>
 // line is 1-based; column is the 1-based position of the field in its row (0 when the problem concerns a
 // whole line, and then left out of the message, as is a line of 0).
+// The message of an error at a place in a file with every NUL byte (echoed from the file) shown as \x00, as
+// the program shows every control character: what() is read as a C string, which a NUL would end.
+std::string with_nul_shown(std::string message);
+
 class CsvError : public LocatedInputError {
  public:
   CsvError(std::string source, int line, int column, std::string column_name, std::string problem);

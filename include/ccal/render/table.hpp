@@ -27,6 +27,10 @@ std::string pad_to_width(std::string_view text, std::size_t width, bool align_le
 // line.
 std::string wrap_words(std::string_view text, std::size_t width, std::string_view indent = "");
 
+// The widest a column is padded to: a cell (or header) wider than this is printed whole but does not widen
+// its column, so that one huge cell (a run named with megabytes of text) does not pad every other row.
+inline constexpr std::size_t kMaxPaddedWidth = 80;
+
 // A text table: a header row, then rows of cells; columns after the first are right-aligned.
 class Table {
  public:

@@ -89,8 +89,19 @@ namespace ccal {
 // costs memory, and tens of thousands exhaust the OpenMP runtime's stacks (a crash, not an error).
 inline constexpr int kMaxThreads = 1024;
 
-// Throws InputError naming `what` (e.g. "--threads") unless 0 ≤ threads ≤ kMaxThreads.
+// Throws InputError naming `what` (e.g. "--threads") unless 0 ≤ threads ≤ kMaxThreads and the system can
+// start that many threads now (they are started and ended to find out: the OpenMP runtime would end the
+// process, exit code 1, on a thread it cannot create).
 void check_thread_count(int threads, const char* what);
+
+// The least M for which the coverage interval of probability p exists: q = round(pM) of §7.7.2 must leave at
+// least one of the M sorted values out (q ≤ M − 1), about M = 1/(2(1 − p)). InputError unless 0 < p < 1.
+std::uint64_t least_trials_for_coverage(double p);
+
+// Throws InputError, naming both options and what each would need, when `trials` values cannot give the
+// coverage interval of probability p (trials < least_trials_for_coverage(p)).
+void check_coverage_interval(std::uint64_t trials, double p, const char* trials_name,
+                             const char* coverage_name);
 
 struct MonteCarloOptions {
   std::uint64_t trials = 100000;  // M (fixed); adaptive: the stage size is max(trials, ⌈100/(1 − p)⌉, 10⁴)
