@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli_support.hpp"
+#include "test_paths.hpp"
 
 namespace {
 

@@ -1,6 +1,7 @@
 // Configuration loading: the bundled example gives the paper's numbers, units convert, defaults apply.
 // (Bad input: config_file_errors_test.cpp.)
 #include "config_test_support.hpp"
+#include "test_paths.hpp"
 
 namespace ccal {
 namespace {

@@ -46,7 +46,7 @@ class BadArgumentCatalogueTest(unittest.TestCase):
                 ("load_config missing", lambda: ccal.load_config(os.path.join(d, "none.toml")), "none.toml"),
                 ("monte_carlo trials memory", lambda: ccal.monte_carlo(cfg, trials=10**9), "GiB"),
                 ("monte_carlo coverage",
-                 lambda: ccal.monte_carlo(cfg, trials=100, coverage_probability=1.5), "coverage-probability"),
+                 lambda: ccal.monte_carlo(cfg, trials=100, coverage_probability=1.5), "coverage_probability: 1.5"),
                 ("allocate tiny target", lambda: ccal.allocate(cfg, {"K3": 1e-300}, verify_trials=0), "K3"),
                 ("allocate unknown target", lambda: ccal.allocate(cfg, {"K9": 1.0}, verify_trials=0), "K9"),
                 ("sensed_input run", lambda: ccal.sensed_input(cfg, run="99g"), "99g"),

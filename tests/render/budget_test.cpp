@@ -16,12 +16,13 @@
 #include "ccal/render/table.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/simulate.hpp"
+#include "test_paths.hpp"
 
 namespace ccal {
 namespace {
 
 std::string example_text() {
-  std::ifstream in(CCAL_SOURCE_DIR "/examples/wang_ren_2014.toml");
+  std::ifstream in(CCAL_SOURCE_DIR + "/examples/wang_ren_2014.toml");
   std::stringstream s;
   s << in.rdbuf();
   return s.str();

@@ -11,15 +11,16 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "test_paths.hpp"
 
 namespace ccal::test {
 
 namespace fs = std::filesystem;
 
-const std::string kProgram = CCAL_BINARY_DIR "/ccal";
-const std::string kExample = CCAL_SOURCE_DIR "/examples/wang_ren_2014.toml";
+const std::string kProgram = CCAL_BINARY_DIR + "/ccal";
+const std::string kExample = CCAL_SOURCE_DIR + "/examples/wang_ren_2014.toml";
 // The paper's set-up as published: the bundled example without the drives' rate ripple and rate noise.
-const std::string kPaperExample = CCAL_SOURCE_DIR "/tests/data/wang_ren_2014_paper.toml";
+const std::string kPaperExample = CCAL_SOURCE_DIR + "/tests/data/wang_ren_2014_paper.toml";
 
 struct Result {
   int code = -1;

@@ -8,12 +8,13 @@
 #include <string>
 
 #include "ccal/io/config_file.hpp"
+#include "test_paths.hpp"
 
 namespace ccal::test {
 
 // The paper's set-up as published: the bundled example without the drives' rate ripple and rate noise, so
 // that the budget's u is the Type B part of a statement.
-inline const std::string kPaperConfigPath = CCAL_SOURCE_DIR "/tests/data/wang_ren_2014_paper.toml";
+inline const std::string kPaperConfigPath = CCAL_SOURCE_DIR + "/tests/data/wang_ren_2014_paper.toml";
 
 // The text of a file (a configuration to edit).
 inline std::string read_text(const std::string& path) {

@@ -1,5 +1,6 @@
 // The least-squares fit against NIST's Statistical Reference Datasets (certified values to 15 digits).
 #include "fit_test_support.hpp"
+#include "test_paths.hpp"
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ccal/version.hpp"
+#include "test_paths.hpp"
 
 namespace {
 

@@ -14,6 +14,7 @@
 #include "ccal/uncertainty/allocate.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "independent_lpu.hpp"
+#include "test_paths.hpp"
 
 namespace ccal::test {
 namespace {
@@ -374,7 +375,7 @@ TEST(AllocationTarget, ParsesDisplayUnitsAndExplicitUnits) {
 class BundledAllocation : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    config_ = new Config(load_config(CCAL_SOURCE_DIR "/tests/data/wang_ren_2014_paper.toml"));
+    config_ = new Config(load_config(CCAL_SOURCE_DIR + "/tests/data/wang_ren_2014_paper.toml"));
     AllocateOptions o;
     o.verify_trials = 2000;
     o.seed = 1;

@@ -77,9 +77,10 @@ TEST(MonteCarloVerb, BadOptionsNameTheOption) {
   trials.trials = -5;
   p.coverage_probability = 1.5;
   digits.digits = 9;
-  EXPECT_NE(message(trials).find("--trials"), std::string::npos) << message(trials);
-  EXPECT_NE(message(p).find("--coverage-probability"), std::string::npos) << message(p);
-  EXPECT_NE(message(digits).find("--digits"), std::string::npos) << message(digits);
+  // The library names the field (an OptionError); each front end words it with its own name of the option.
+  EXPECT_EQ(message(trials).rfind("trials: -5 ", 0), 0u) << message(trials);
+  EXPECT_EQ(message(p).rfind("coverage_probability: 1.5 ", 0), 0u) << message(p);
+  EXPECT_EQ(message(digits).rfind("digits: 9 ", 0), 0u) << message(digits);
   Config empty = config;
   empty.tolerances.clear();
   verbs::MonteCarloOptions small;

@@ -99,7 +99,7 @@ TEST(StatementVerb, RefusalsNameTheOption) {
     }
     return "no error";
   };
-  EXPECT_NE(message(config, 1.0).find("--coverage-probability"), std::string::npos) << message(config, 1.0);
+  EXPECT_EQ(message(config, 1.0).rfind("coverage_probability: 1 ", 0), 0u) << message(config, 1.0);
   // A budget whose free terms are not the fit's.
   Config other = config;
   other.identification.free_terms = {"K0", "K2"};
