@@ -27,6 +27,9 @@ void bind_allocation_results(py::module_& m) {
       .def_readonly("allocated_bound", &AllocatedSource::allocated_bound,
                     "the allocated bound [SI unit of the parameter]")
       .def_readonly("cost", &AllocatedSource::cost, "relative cost weight [—]")
+      .def_readonly("floor", &AllocatedSource::floor,
+                    "the machine's best achievable bound, 0: none [SI unit of the parameter]")
+      .def_readonly("at_floor", &AllocatedSource::at_floor, "the allocation tightened it to its floor [—]")
       .def_readonly("share", &AllocatedSource::share,
                     "share of each target coefficient's variance at the allocated tolerances [—]")
       .def("__repr__", [](const AllocatedSource& s) { return "<ccal.AllocatedSource " + s.id + ">"; });
@@ -44,6 +47,10 @@ void bind_allocation_results(py::module_& m) {
       .def_readonly("allocated_expanded", &AllocatedCoefficient::allocated_expanded,
                     "U at the allocated tolerances [coefficient SI]")
       .def_readonly("active", &AllocatedCoefficient::active, "its target limits the allocation [—]")
+      .def_readonly("held", &AllocatedCoefficient::held,
+                    "no target, held at its configured expanded uncertainty [—]")
+      .def_readonly("grew", &AllocatedCoefficient::grew,
+                    "no target, and the allocation raised its expanded uncertainty [—]")
       .def_readonly("mc_half_width", &AllocatedCoefficient::mc_half_width,
                     "the Monte Carlo check's half-width of the interval [coefficient SI]")
       .def_property_readonly(
@@ -79,8 +86,8 @@ void bind_allocate_function(py::module_& m) {
   m.def(
       "allocate",
       [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
-         double coverage_probability, double max_scale, std::int64_t verify_trials, std::uint64_t seed,
-         int threads, std::optional<std::string> mode, const py::object& progress) {
+         double coverage_probability, double max_scale, bool let_others_grow, std::int64_t verify_trials,
+         std::uint64_t seed, int threads, std::optional<std::string> mode, const py::object& progress) {
         verbs::AllocateOptions o;
         if (mode) o.mode = mode_argument(*mode);
         for (const auto& [id, value] : targets)
@@ -90,6 +97,7 @@ void bind_allocate_function(py::module_& m) {
                                   : id + "=" + std::get<std::string>(value));
         o.coverage_probability = coverage_probability;
         o.max_scale = max_scale;
+        o.let_others_grow = let_others_grow;
         o.verify_trials = verify_trials;
         o.seed = seed;
         o.threads = threads;
@@ -99,13 +107,14 @@ void bind_allocate_function(py::module_& m) {
         });
       },
       py::arg("config"), py::arg("targets"), py::arg("coverage_probability") = defaults.coverage_probability,
-      py::arg("max_scale") = defaults.max_scale, py::arg("verify_trials") = defaults.verify_trials,
-      py::arg("seed") = defaults.seed, py::arg("threads") = defaults.threads, py::arg("mode") = py::none(),
-      py::arg("progress") = py::none(),
+      py::arg("max_scale") = defaults.max_scale, py::arg("let_others_grow") = defaults.let_others_grow,
+      py::arg("verify_trials") = defaults.verify_trials, py::arg("seed") = defaults.seed,
+      py::arg("threads") = defaults.threads, py::arg("mode") = py::none(), py::arg("progress") = py::none(),
       "Largest tolerances for which every target (coefficient id → allowed expanded uncertainty, a number in "
       "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. mode: "
       "'exact' or 'paper' (default: the configuration's). progress: None or progress(done, total) of the "
-      "verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt.");
+      "verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt. let_others_grow: let the "
+      "coefficients without a target grow (default: each is held at its configured expanded uncertainty).");
 }
 
 }  // namespace

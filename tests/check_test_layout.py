@@ -55,6 +55,10 @@ TESTED_ELSEWHERE = {
     "setup/config.cpp": "Config::experiment: tests/io/config_file_test.cpp",
     "setup/tolerance.cpp": "σ of each distribution: tests/uncertainty/budget_groups_test.cpp, montecarlo_test.cpp",
     "uncertainty/allocate_tolerances.cpp": "a part of the allocation: tests/uncertainty/allocate_test.cpp",
+    "uncertainty/allocate_barrier.cpp": "a part of the allocation's solver: tests/uncertainty/allocate_test.cpp "
+    "(BadlyScaledProblemsAreSolvedToo)",
+    "uncertainty/allocate_bounds.cpp": "a part of the allocation's solver: "
+    "tests/uncertainty/allocate_guards_test.cpp",
     "uncertainty/allocation_targets.cpp": "a part of the allocation: tests/uncertainty/allocate_test.cpp",
     "uncertainty/calibration_model.cpp": "the trial model: tests/uncertainty/montecarlo_test.cpp",
     "uncertainty/design_candidates.cpp": "the candidate runs: tests/verbs/design_test.cpp",

@@ -286,7 +286,7 @@ inline const Keys kCentrifugeKeys{
     "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
     "harmonic_order", "platform_control",  "main_rate_noise",   "platform_rate_noise"};
 inline const Keys kRateNoiseKeys{"allan_deviation", "tau"};
-inline const Keys kToleranceKeys{"bound", "distribution", "group", "cost"};
+inline const Keys kToleranceKeys{"bound", "distribution", "group", "cost", "floor"};
 inline const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density", "quantum", "terms"};
 inline const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
                             "mounting", "runs"};

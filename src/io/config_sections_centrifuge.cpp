@@ -220,6 +220,12 @@ void check_bound_size(const Reader& r, const toml::node& at, const std::string& 
                      number_text(bound), unit, unit, parameter_example(u)));
 }
 
+// A quantity as the file wrote it ("0.1 arcsec"), or its number.
+std::string as_written(const toml::node* node) {
+  if (const auto* s = node->as_string()) return fmt::format("\"{}\"", s->get());
+  return number_text(node->value<double>().value_or(0));
+}
+
 std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const ErrorLayout& layout) {
   std::vector<Tolerance> out;
   const toml::table* t = r.table(root, "", "tolerances", false);
@@ -252,6 +258,18 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
       if (const auto cost = r.number(*entry, p, "cost")) {
         r.require_positive(*entry, p, "cost", *cost, "a relative cost weight such as 1.0");
         tol.cost = *cost;
+      }
+      // The machine's best achievable value: the allocation never tightens the bound below it.
+      if (const auto floor = r.quantity(*entry, p, "floor", dim, nullptr, parameter_example(u))) {
+        r.require_positive(*entry, p, "floor", *floor,
+                           "the best value the machine achieves, in the bound's units, at most the bound");
+        if (*floor > tol.bound)
+          r.fail(
+              *entry->get("floor"), p + ".floor",
+              fmt::format("{} is above the bound {}; accepted: a floor > 0 and at most the bound (the best "
+                          "value the machine achieves)",
+                          as_written(entry->get("floor")), as_written(entry->get("bound"))));
+        tol.floor = *floor;
       }
     } else {
       tol.bound = r.quantity_node(node, p, dim, nullptr, parameter_example(u));

@@ -49,13 +49,15 @@ std::string quantity_text(double si, const std::string& unit) {
 // One [tolerances] entry for the allocated tolerance (defaults left out), in the unit it was written in.
 std::string toml_entry(const AllocatedSource& s, const Config& cfg) {
   const std::string bound = quantity_text(s.allocated_bound, tolerance_display_unit(cfg, s.parameter));
-  if (s.distribution == Distribution::normal && s.group.empty() && s.cost == 1.0)
+  if (s.distribution == Distribution::normal && s.group.empty() && s.cost == 1.0 && s.floor == 0)
     return fmt::format("{} = \"{}\"", s.id, bound);
   std::string e = fmt::format("{} = {{ bound = \"{}\"", s.id, bound);
   if (s.distribution != Distribution::normal)
     e += fmt::format(", distribution = \"{}\"", distribution_name(s.distribution));
   if (!s.group.empty()) e += fmt::format(", group = \"{}\"", s.group);
   if (s.cost != 1.0) e += fmt::format(", cost = {}", s.cost);
+  if (s.floor > 0)
+    e += fmt::format(", floor = \"{}\"", quantity_text(s.floor, tolerance_display_unit(cfg, s.parameter)));
   return e + " }";
 }
 
@@ -69,6 +71,26 @@ std::vector<std::string> lines_of(const std::string& text) {
 
 std::string coefficient_cell(const AllocatedCoefficient& c) { return c.id + " [" + c.unit + "]"; }
 
+// The coefficients without a target that the allocation made worse (only with --let-others-grow), or the
+// statement that they are held.
+std::string grown_text(const AllocationResult& r, std::size_t width) {
+  std::vector<std::string> grown;
+  for (const AllocatedCoefficient& c : r.coefficients)
+    if (c.grew)
+      grown.push_back(fmt::format("{} from {} to {} {} ({:.3g} x)", c.id,
+                                  number(c.configured_expanded * c.display_scale, 4),
+                                  number(c.allocated_expanded * c.display_scale, 4), c.unit,
+                                  c.allocated_expanded / c.configured_expanded));
+  if (!grown.empty())
+    return wrap_words(
+        fmt::format("WARNING: without a target (--let-others-grow), U grew: {}.", fmt::join(grown, "; ")),
+        width);
+  if (r.let_others_grow) return "";
+  return wrap_words(
+      "Coefficients without a target are held at their configured U (--let-others-grow lets them grow).",
+      width);
+}
+
 std::string coefficients_table(const AllocationResult& r, std::size_t width) {
   Table t({"coefficient", "target U", "configured U", "allocated U", "one-scale U", "target", "price"});
   t.gap(2);
@@ -76,14 +98,19 @@ std::string coefficients_table(const AllocationResult& r, std::size_t width) {
     const double f = c.display_scale;
     t.add_row({coefficient_cell(c), c.has_target ? number(c.target * f, 4) : "-",
                number(c.configured_expanded * f, 4), number(c.allocated_expanded * f, 6),
-               number(c.common_expanded * f, 4), c.has_target ? (c.active ? "active" : "inactive") : "none",
+               number(c.common_expanded * f, 4),
+               c.has_target ? (c.active ? "active" : "inactive")
+               : c.held     ? "held"
+               : c.grew     ? "grew"
+                            : "none",
                c.has_target ? number(c.price, 4) : ""});
   }
   std::string out = t.render("  ", width);
   out += wrap_words(
       "  (one-scale U: every tolerance scaled by one common lambda; price: d objective / d ln "
-      "target, what loosening the target saves)",
+      "target, what loosening the target saves; held: no target, held at its configured U)",
       width, "   ");
+  out += grown_text(r, width);
   return out;
 }
 
@@ -92,7 +119,10 @@ std::string sources_table(const Config& cfg, const AllocationResult& r, const Al
   for (const AllocatedSource& a : r.sources) costs = costs || a.cost != 1.0;
   std::vector<std::string> header = {"source", "name", "PDF"};
   if (costs || o.wide) header.push_back("cost");
+  bool floors = false;
+  for (const AllocatedSource& a : r.sources) floors = floors || a.floor > 0;
   for (const char* h : {"unit", "configured", "allocated", "lambda"}) header.push_back(h);
+  if (floors) header.push_back("floor");
   for (std::size_t t : r.targets) header.push_back("share " + r.coefficients[t].id);
   Table sources(header);
   sources.align_left(1);
@@ -110,6 +140,7 @@ std::string sources_table(const Config& cfg, const AllocationResult& r, const Al
     row.push_back(number(a.bound / unit_si, 4));
     row.push_back(number(round_down(a.allocated_bound / unit_si), 4));  // as pasted below
     row.push_back(number(a.scale, 4));
+    if (floors) row.push_back(a.floor > 0 ? number(a.floor / unit_si, 4) + (a.at_floor ? " (at)" : "") : "-");
     for (Eigen::Index i = 0; i < a.share.size(); ++i)
       row.push_back(fmt::format("{:.1f} %", 100 * a.share[i]));
     sources.add_row(row);
@@ -157,8 +188,9 @@ std::string text_of(const Config& cfg, const AllocationResult& r, const Allocate
       fmt::format("{} sources; LPU with {} mode sensitivities at the configured errors. Targets are expanded "
                   "uncertainties U = k_p u (half-widths of the {} interval), k_p = {:.5f} (the normal "
                   "quantile of (1 + p)/2, p = {:g}). Allocation: minimise sum cost_s / lambda_s (tolerance_s "
-                  "= lambda_s x configured) subject to every target, lambda_s <= {:g}.",
-                  r.sources.size(), mode_name(r.mode), pct, r.coverage_factor, r.coverage, r.max_scale),
+                  "= lambda_s x configured) subject to every target{}, floor_s/bound_s <= lambda_s <= {:g}.",
+                  r.sources.size(), mode_name(r.mode), pct, r.coverage_factor, r.coverage,
+                  r.let_others_grow ? "" : ", U <= configured U of every other coefficient", r.max_scale),
       width);
   out += '\n';
   out += coefficients_table(r, width);
@@ -194,6 +226,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
   j["coverage_probability"] = r.coverage;
   j["coverage_factor"] = r.coverage_factor;
   j["max_scale"] = r.max_scale;
+  j["let_others_grow"] = r.let_others_grow;
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
   for (std::size_t t : r.targets) targets.push_back(r.coefficients[t].id);
   j["targets"] = targets;
@@ -215,6 +248,10 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
     o["allocated_expanded"] = c.allocated_expanded * f;
     o["common_scale_expanded"] = c.common_expanded * f;
     o["allocated_std_uncertainty"] = c.lpu_std * f;
+    if (!c.has_target) {
+      o["held"] = c.held;
+      o["grew"] = c.grew;
+    }
     if (c.has_target) {
       o["active"] = c.active;
       o["multiplier"] = c.multiplier;
@@ -230,6 +267,14 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
     coefficients[c.id] = o;
   }
   j["coefficients"] = coefficients;
+  nlohmann::ordered_json grown = nlohmann::ordered_json::array();
+  for (const AllocatedCoefficient& c : r.coefficients)
+    if (c.grew)
+      grown.push_back({{"id", c.id},
+                       {"unit", c.unit},
+                       {"configured_expanded", c.configured_expanded * c.display_scale},
+                       {"allocated_expanded", c.allocated_expanded * c.display_scale}});
+  j["grown"] = grown;
   nlohmann::ordered_json sources = nlohmann::ordered_json::array();
   for (std::size_t s = 0; s < r.sources.size(); ++s) {
     const AllocatedSource& a = r.sources[s];
@@ -245,6 +290,8 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
     o["standard_uncertainty_si"] = a.standard_uncertainty;
     o["allocated_standard_uncertainty_si"] = a.allocated_standard_uncertainty;
     o["scale"] = a.scale;
+    o["floor_si"] = a.floor;
+    o["at_floor"] = a.at_floor;
     o["toml"] = toml_entry(a, cfg);
     nlohmann::ordered_json share = nlohmann::ordered_json::object();
     for (std::size_t i = 0; i < r.targets.size(); ++i)
@@ -270,7 +317,14 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
 }
 
 std::string csv_of(const Config& cfg, const AllocationResult& r) {
-  std::string out = "rank,source,group,distribution,cost,unit_si,bound_si,allocated_bound_si,scale";
+  // The coefficients without a target that grew, as comment lines ahead of the table (--let-others-grow).
+  std::string out;
+  for (const AllocatedCoefficient& c : r.coefficients)
+    if (c.grew)
+      out += fmt::format("# grew without a target: {} configured U {:.17g} {}, allocated U {:.17g} {}\n",
+                         c.id, c.configured_expanded * c.display_scale, c.unit,
+                         c.allocated_expanded * c.display_scale, c.unit);
+  out += "rank,source,group,distribution,cost,unit_si,bound_si,allocated_bound_si,scale,floor_si";
   for (std::size_t t : r.targets) out += ",share_" + r.coefficients[t].id;
   out += "\n";
   for (std::size_t s = 0; s < r.sources.size(); ++s) {
@@ -279,6 +333,7 @@ std::string csv_of(const Config& cfg, const AllocationResult& r) {
                        distribution_name(a.distribution), a.cost,
                        unit_symbol(cfg.centrifuge.layout.parameter_unit(a.parameter)), a.bound,
                        a.allocated_bound, a.scale);
+    out += fmt::format(",{:.17g}", a.floor);
     for (Eigen::Index i = 0; i < a.share.size(); ++i) out += fmt::format(",{:.17g}", a.share[i]);
     out += "\n";
   }

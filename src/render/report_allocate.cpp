@@ -28,7 +28,10 @@ std::string coefficient_table(const Doc& doc) {
     const std::string p = "/coefficients/" + id;
     const bool target = c["target"].is_number();
     t += "<tr>" + text_cell(id) + text_cell(c["unit"].get<std::string>()) +
-         (target ? num_cell(doc, p + "/target") : text_cell("none")) +
+         (target                   ? num_cell(doc, p + "/target")
+          : c.value("held", false) ? text_cell("none (held at its configured U)")
+          : c.value("grew", false) ? text_cell("none (U grew)")
+                                   : text_cell("none")) +
          num_cell(doc, p + "/configured_expanded") + num_cell(doc, p + "/allocated_expanded") +
          num_cell(doc, p + "/common_scale_expanded") + num_cell(doc, p + "/allocated_std_uncertainty");
     if (verified) {

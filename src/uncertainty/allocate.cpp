@@ -38,15 +38,17 @@ Groups merge_groups(const Eigen::MatrixXd& J, const Eigen::VectorXd& u0, const E
 
 namespace {
 
-// The dual of  min Σ_g C_g x_g^(−1/2)  s.t.  a x ≤ 1,  0 < x ≤ X  (see allocate.hpp).
+// The dual of  min Σ_g C_g x_g^(−1/2)  s.t.  a x ≤ 1,  L_g ≤ x_g ≤ X_g  (see allocate.hpp); L_g ≥ 0 (0:
+// x_g > 0 only), L_g < X_g.
 struct DualProblem {
-  const Eigen::MatrixXd& a;  // n_targets × n_groups
+  const Eigen::MatrixXd& a;  // n_rows × n_groups
   const Eigen::VectorXd& C;
-  double X;
+  const Eigen::VectorXd& L;
+  const Eigen::VectorXd& X;
 
   struct Point {
     Eigen::VectorXd mu, b, x;
-    std::vector<bool> interior;  // x_g < X (the bound is not active)
+    std::vector<bool> interior;  // L_g < x_g < X_g (no bound is active)
     Eigen::VectorXd slack;       // 1 − a x: the gradient of −D
     double minus_dual = 0;       // −D(μ)
   };
@@ -60,10 +62,13 @@ struct DualProblem {
     p.interior.assign(std::size_t(n), false);
     double d = 0;
     for (Eigen::Index g = 0; g < n; ++g) {
-      double x = X;
+      // The minimiser of C x^(−1/2) + b x over [L, X]: the stationary point clamped to the interval.
+      double x = X[g];
       if (p.b[g] > 0) {
         const double r = std::cbrt(C[g] / (2 * p.b[g]));
-        if (r * r < X) {
+        if (r * r <= L[g]) {
+          x = L[g];
+        } else if (r * r < X[g]) {
           x = r * r;
           p.interior[std::size_t(g)] = true;
         }
@@ -76,106 +81,6 @@ struct DualProblem {
     return p;
   }
 };
-
-// The primal in y_g = ln x_g, a geometric program in convex form:
-//     minimise Σ_g C_g e^(−y_g/2)   subject to   h_k(y) = ln Σ_g a_kg e^(y_g) ≤ 0 (k used),   y_g ≤ ln X,
-// by the barrier method (Boyd & Vandenberghe, "Convex Optimization", 2004, §11.3: centring by Newton's method
-// with backtracking, t multiplied by 20 until the duality gap m/t is below 1e-10 of the objective). Slower
-// than the dual iteration but robust from any start; its multipliers 1/(t (−h_k)) are those of h_k ≤ 0,
-// equal to those of Σ_g a_kg x_g ≤ 1 where the constraint is active.
-struct BarrierResult {
-  Eigen::VectorXd y, mu;  // mu per row of a (0 for rows not used)
-  double gap = 0;         // m/t at the end, relative to the objective
-};
-
-BarrierResult solve_barrier(const Eigen::MatrixXd& a, const Eigen::VectorXd& C, double X,
-                            const std::vector<bool>& use) {
-  const Eigen::Index ng = C.size();
-  std::vector<Eigen::Index> rows;
-  for (Eigen::Index k = 0; k < a.rows(); ++k)
-    if (use[std::size_t(k)]) rows.push_back(k);
-  const auto nr = Eigen::Index(rows.size());
-  const double Y = std::log(X), inf = std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd la(nr, ng);
-  for (Eigen::Index r = 0; r < nr; ++r)
-    for (Eigen::Index g = 0; g < ng; ++g) {
-      const double v = a(rows[std::size_t(r)], g);
-      la(r, g) = v > 0 ? std::log(v) : -inf;
-    }
-  // h_r(y) by log-sum-exp, and its gradient π (a probability vector).
-  auto constraint = [&](const Eigen::VectorXd& y, Eigen::Index r, Eigen::VectorXd* pi) {
-    double top = -inf;
-    for (Eigen::Index g = 0; g < ng; ++g) top = std::max(top, la(r, g) + y[g]);
-    double sum = 0;
-    for (Eigen::Index g = 0; g < ng; ++g) sum += std::exp(la(r, g) + y[g] - top);
-    const double h = top + std::log(sum);
-    if (pi) {
-      pi->resize(ng);
-      for (Eigen::Index g = 0; g < ng; ++g) (*pi)[g] = std::exp(la(r, g) + y[g] - h);
-    }
-    return h;
-  };
-  auto objective = [&](const Eigen::VectorXd& y) { return (C.array() * (-0.5 * y.array()).exp()).sum(); };
-  // t F − Σ ln(−h_r) − Σ ln(Y − y_g), +∞ outside the domain.
-  auto value = [&](const Eigen::VectorXd& y, double t) {
-    double v = t * objective(y);
-    for (Eigen::Index g = 0; g < ng; ++g) {
-      if (!(y[g] < Y)) return inf;
-      v -= std::log(Y - y[g]);
-    }
-    for (Eigen::Index r = 0; r < nr; ++r) {
-      const double h = constraint(y, r, nullptr);
-      if (!(h < 0)) return inf;
-      v -= std::log(-h);
-    }
-    return v;
-  };
-
-  // A strictly feasible start: every y one below its bound, then all lowered until every h_r ≤ −1 (a common
-  // shift of y shifts every h_r by the same amount).
-  BarrierResult res;
-  Eigen::VectorXd y = Eigen::VectorXd::Constant(ng, Y - 1);
-  double worst = -inf;
-  for (Eigen::Index r = 0; r < nr; ++r) worst = std::max(worst, constraint(y, r, nullptr));
-  if (worst > -1) y.array() -= worst + 1;
-  const double m = double(nr + ng);
-  double t = m / objective(y);
-  Eigen::VectorXd grad(ng), pi;
-  Eigen::MatrixXd H(ng, ng);
-  for (int outer = 0; outer < 100; ++outer) {
-    for (int inner = 0; inner < 200; ++inner) {
-      const Eigen::ArrayXd e = (-0.5 * y.array()).exp() * C.array();
-      grad = -0.5 * t * e.matrix();
-      H = (0.25 * t * e).matrix().asDiagonal();
-      for (Eigen::Index g = 0; g < ng; ++g) {
-        const double d = Y - y[g];
-        grad[g] += 1 / d;
-        H(g, g) += 1 / (d * d);
-      }
-      for (Eigen::Index r = 0; r < nr; ++r) {
-        const double h = constraint(y, r, &pi);
-        grad += pi / -h;
-        H.diagonal() += pi / -h;
-        H.noalias() += (1 / (h * h) - 1 / -h) * pi * pi.transpose();
-      }
-      const Eigen::VectorXd dy = -Eigen::LDLT<Eigen::MatrixXd>(H).solve(grad);
-      const double decrement = -grad.dot(dy);
-      if (!dy.allFinite() || !(decrement > 2e-12)) break;
-      const double v0 = value(y, t);
-      double step = 1;
-      while (step > 1e-14 && !(value(y + step * dy, t) <= v0 - 0.01 * step * decrement)) step *= 0.5;
-      if (step <= 1e-14) break;
-      y += step * dy;
-    }
-    res.gap = m / t / objective(y);
-    if (res.gap <= 1e-10) break;
-    t *= 20;
-  }
-  res.y = y;
-  res.mu = Eigen::VectorXd::Zero(a.rows());
-  for (Eigen::Index r = 0; r < nr; ++r) res.mu[rows[std::size_t(r)]] = 1 / (t * -constraint(y, r, nullptr));
-  return res;
-}
 
 // Largest violation of the optimality conditions of the dual over μ ≥ 0 (in units of the normalised
 // constraint): |slack| where μ_k > 0, the violated part of the constraint where μ_k = 0.
@@ -415,6 +320,14 @@ void check_problem(const AllocationProblem& P) {
   if (!P.sensitivity.allFinite()) throw InputError("allocation: the sensitivities are not all finite");
   if (!(std::isfinite(P.max_scale) && P.max_scale > 0))
     throw InputError(fmt::format("allocation: the largest scale is {}; it must be > 0", P.max_scale));
+  if (P.min_scale.size() != 0 && P.min_scale.size() != ns)
+    throw InputError(fmt::format("allocation: {} least scales for {} sources", P.min_scale.size(), ns));
+  for (Eigen::Index s = 0; s < P.min_scale.size(); ++s)
+    if (!(P.min_scale[s] >= 0 && P.min_scale[s] <= P.max_scale))
+      throw InputError(
+          fmt::format("allocation: the least scale of source {} is {}; accepted: 0 to the largest "
+                      "scale {}",
+                      s + 1, P.min_scale[s], P.max_scale));
   if (!(std::isfinite(P.coverage_factor) && P.coverage_factor > 0))
     throw InputError(fmt::format("allocation: the coverage factor is {}; it must be > 0", P.coverage_factor));
 }
@@ -423,13 +336,13 @@ void check_problem(const AllocationProblem& P) {
 // every tolerance at the largest scale can never be active (x ≤ X), μ_k = 0. Each other target gets the
 // scale of its multiplier when alone and no bound is active:
 //     x_g = (C_g / (2 μ a_g))^(2/3),  Σ_g a_g x_g = 1  ⇒  μ = (Σ_g a_g^(1/3) (C_g/2)^(2/3))^(3/2).
-void multiplier_scales(const Eigen::MatrixXd& a, const Eigen::VectorXd& cost, double X, Eigen::VectorXd& m,
-                       std::vector<bool>& candidate) {
+void multiplier_scales(const Eigen::MatrixXd& a, const Eigen::VectorXd& cost, const Eigen::VectorXd& X,
+                       Eigen::VectorXd& m, std::vector<bool>& candidate) {
   const Eigen::Index nt = a.rows(), ng = a.cols();
   candidate.assign(std::size_t(nt), false);
   m = Eigen::VectorXd::Zero(nt);
   for (Eigen::Index k = 0; k < nt; ++k) {
-    if (X * a.row(k).sum() <= 1) continue;
+    if (a.row(k).dot(X) <= 1) continue;
     double sum = 0;
     for (Eigen::Index g = 0; g < ng; ++g)
       if (a(k, g) > 0) sum += std::cbrt(a(k, g)) * std::pow(cost[g] / 2, 2.0 / 3.0);
@@ -449,9 +362,10 @@ struct GroupOptimum {
 // The dual iteration from ν = μ/m = 1 (where every multiplier is of order one); should it fail (it can on
 // badly scaled problems), the barrier method on the primal, then the dual iteration from the barrier's
 // multipliers; should that fail too, the barrier's own (feasible, near-optimal) point.
-GroupOptimum optimise_groups(const Eigen::MatrixXd& a, const Eigen::VectorXd& cost, double X) {
+GroupOptimum optimise_groups(const Eigen::MatrixXd& a, const Eigen::VectorXd& cost, const Eigen::VectorXd& L,
+                             const Eigen::VectorXd& X) {
   const Eigen::Index nt = a.rows();
-  const DualProblem dual{a, cost, X};
+  const DualProblem dual{a, cost, L, X};
   Eigen::VectorXd m;
   std::vector<bool> candidate;
   multiplier_scales(a, cost, X, m, candidate);
@@ -462,7 +376,7 @@ GroupOptimum optimise_groups(const Eigen::MatrixXd& a, const Eigen::VectorXd& co
   GroupOptimum o{run.point.x,          m.cwiseProduct(run.nu), run.residual,
                  run.point.minus_dual, run.iterations,         "dual Newton"};
   if (o.residual <= 1e-12) return o;
-  const BarrierResult barrier = solve_barrier(a, cost, X, candidate);
+  const BarrierResult barrier = solve_barrier(a, cost, L, X, candidate);
   for (Eigen::Index k = 0; k < nt; ++k) start[k] = candidate[std::size_t(k)] ? barrier.mu[k] / m[k] : 0.0;
   run = run_dual(dual, m, candidate, start, 500);
   o.iterations += run.iterations;
@@ -474,11 +388,53 @@ GroupOptimum optimise_groups(const Eigen::MatrixXd& a, const Eigen::VectorXd& co
     o.minus_dual = run.point.minus_dual;
   } else {
     o.method = "barrier";
-    o.x = barrier.y.array().exp().min(X).matrix();
+    o.x = barrier.y.array().exp().matrix().cwiseMin(X).cwiseMax(L);
     o.mu = barrier.mu;
     o.minus_dual = dual.at(o.mu).minus_dual;
     o.residual = barrier.gap;
   }
+  return o;
+}
+
+}  // namespace
+
+namespace {
+
+// The optimum over the free groups of `bounds` (the pinned ones at L), rows normalised by their capacity:
+// x per group, μ per row of a (of the constraint Σ_g a_kg x_g ≤ 1: μ'_k / capacity_k for the multiplier
+// μ'_k of the renormalised row; 0 for a dropped one).
+GroupOptimum optimise_bounded(const Eigen::MatrixXd& a, const Eigen::VectorXd& cost,
+                              const BoundedRows& bounds) {
+  std::vector<Eigen::Index> rows, cols;
+  for (Eigen::Index k = 0; k < a.rows(); ++k)
+    if (!bounds.dropped[std::size_t(k)]) rows.push_back(k);
+  for (Eigen::Index g = 0; g < a.cols(); ++g)
+    if (!bounds.pinned[std::size_t(g)]) cols.push_back(g);
+  const auto nr = Eigen::Index(rows.size()), nc = Eigen::Index(cols.size());
+  Eigen::MatrixXd af(nr, nc);
+  Eigen::VectorXd Cf(nc), Lf(nc), Xf(nc);
+  for (Eigen::Index j = 0; j < nc; ++j) {
+    const Eigen::Index g = cols[std::size_t(j)];
+    Cf[j] = cost[g];
+    Lf[j] = bounds.L[g];
+    Xf[j] = bounds.X[g];
+    for (Eigen::Index i = 0; i < nr; ++i)
+      af(i, j) = a(rows[std::size_t(i)], g) / bounds.capacity[rows[std::size_t(i)]];
+  }
+  GroupOptimum f;
+  if (nc > 0)
+    f = optimise_groups(af, Cf, Lf, Xf);
+  else
+    f.method = "none (every source at its floor)";
+  GroupOptimum o = f;
+  o.x = bounds.L;
+  for (Eigen::Index j = 0; j < nc; ++j) o.x[cols[std::size_t(j)]] = f.x[j];
+  o.mu = Eigen::VectorXd::Zero(a.rows());
+  for (Eigen::Index i = 0; i < nr && nc > 0; ++i)
+    o.mu[rows[std::size_t(i)]] = f.mu[i] / bounds.capacity[rows[std::size_t(i)]];
+  // The pinned groups' cost is a constant of the primal; the dual of the free groups does not have it.
+  for (Eigen::Index g = 0; g < a.cols(); ++g)
+    if (bounds.pinned[std::size_t(g)]) o.minus_dual -= cost[g] / std::sqrt(bounds.L[g]);
   return o;
 }
 
@@ -489,7 +445,6 @@ AllocationSolution solve_allocation(const AllocationProblem& P) {
   const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols();
   const Groups groups = merge_groups(P.sensitivity, P.standard_uncertainty, P.cost, P.group);
   const Eigen::Index ng = groups.cost.size();
-  const double X = P.max_scale * P.max_scale;
   // a_kg = (k_p c_kg / T_k)²: the normalised constraints Σ_g a_kg x_g ≤ 1.
   Eigen::MatrixXd a(nt, ng);
   for (Eigen::Index k = 0; k < nt; ++k)
@@ -497,19 +452,29 @@ AllocationSolution solve_allocation(const AllocationProblem& P) {
       const double v = P.coverage_factor * groups.effect(k, g) / P.target[k];
       a(k, g) = v * v;
     }
-  const GroupOptimum o = optimise_groups(a, groups.cost, X);
+  const Eigen::VectorXd least =
+      P.min_scale.size() ? Eigen::VectorXd(P.min_scale) : Eigen::VectorXd(Eigen::VectorXd::Zero(ns));
+  const BoundedRows bounds = bound_rows(a, groups, least, P.max_scale);
   AllocationSolution sol;
+  sol.unreachable = bounds.unreachable;
+  sol.least_expanded = P.target.cwiseProduct(bounds.at_floor.cwiseSqrt());
+  if (std::find(sol.unreachable.begin(), sol.unreachable.end(), true) != sol.unreachable.end()) {
+    sol.method = "none (a target cannot be met with every source at its floor)";
+    return sol;
+  }
+  const GroupOptimum o = optimise_bounded(a, groups.cost, bounds);
   sol.iterations = o.iterations;
   sol.method = o.method;
   sol.converged = o.residual <= 1e-12 || (sol.method == "barrier" && o.residual <= 1e-9);
   Eigen::VectorXd x = o.x;
 
-  // The primal solution; scaled onto the feasible set should round-off leave a constraint above 1.
+  // The primal solution; scaled onto the feasible set should round-off leave a constraint above 1 (not
+  // below the floors: a scaled x stays within 1e-12 of them).
   const double primal_before = (groups.cost.array() / x.array().sqrt()).sum();
   sol.dual_gap = primal_before + o.minus_dual;
   double worst = 0;
   for (Eigen::Index k = 0; k < nt; ++k) worst = std::max(worst, a.row(k).dot(x));
-  if (worst > 1 + 1e-12) x /= worst;
+  if (worst > 1 + 1e-12) x = (x / worst).cwiseMax(bounds.L);
 
   sol.multiplier = o.mu;
   sol.scale.resize(ns);

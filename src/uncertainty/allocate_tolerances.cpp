@@ -81,29 +81,71 @@ std::vector<double> tolerance_targets(double kp, const Eigen::VectorXd& noise_va
   return tolerance_target;
 }
 
-AllocationProblem allocation_problem(const Config& cfg, const BudgetResult& b, const AllocationResult& r,
-                                     const std::vector<double>& tolerance_target, double kp,
-                                     double max_scale) {
-  const auto nt = r.targets.size();
+// The problem's rows: the targets (their tolerance parts, tolerance_target), in the order given, then, unless
+// o.let_others_grow, every other free coefficient that the tolerances reach, held at its configured
+// tolerance part k_p √(Σ_g c_kg²) (so that U_k(λ) ≤ U_k(1): the rate noise stays as it is). Each source's
+// least scale is floor/bound. Marks the held coefficients.
+void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vector<double>& tolerance_target,
+                        double kp, const AllocateOptions& o, AllocationProblem& P, AllocationResult& r) {
   const auto ns = b.sources.size();
-  AllocationProblem P;
-  P.sensitivity.resize(Eigen::Index(nt), Eigen::Index(ns));
-  P.target.resize(Eigen::Index(nt));
+  P = AllocationProblem{};
   P.standard_uncertainty.resize(Eigen::Index(ns));
   P.cost.resize(Eigen::Index(ns));
-  for (std::size_t i = 0; i < nt; ++i) {
-    P.target[Eigen::Index(i)] = tolerance_target[i];
-    for (std::size_t s = 0; s < ns; ++s)
-      P.sensitivity(Eigen::Index(i), Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(r.targets[i])];
-  }
+  P.min_scale.resize(Eigen::Index(ns));
   for (std::size_t s = 0; s < ns; ++s) {
+    const Tolerance& t = cfg.tolerances[s];
     P.standard_uncertainty[Eigen::Index(s)] = b.sources[s].standard_uncertainty;
-    P.cost[Eigen::Index(s)] = cfg.tolerances[s].cost;
-    P.group.push_back(cfg.tolerances[s].group);
+    P.cost[Eigen::Index(s)] = t.cost;
+    P.group.push_back(t.group);
+    P.min_scale[Eigen::Index(s)] = t.floor / t.bound;
+    if (P.min_scale[Eigen::Index(s)] > o.max_scale)
+      throw InputError(fmt::format(
+          "--max-scale: {:g} is below the floor of {} ({:g} of its bound); accepted: a max scale of at least "
+          "{:g}, or a lower floor in [tolerances]",
+          o.max_scale, t.id, P.min_scale[Eigen::Index(s)], P.min_scale[Eigen::Index(s)]));
+  }
+  std::vector<std::size_t> rows = r.targets;
+  std::vector<double> target = tolerance_target;
+  Eigen::MatrixXd J(1, Eigen::Index(ns));
+  for (std::size_t k = 0; k < r.coefficients.size() && !o.let_others_grow; ++k) {
+    if (r.coefficients[k].has_target) continue;
+    for (std::size_t s = 0; s < ns; ++s) J(0, Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(k)];
+    const double configured = kp * merge_groups(J, P.standard_uncertainty, P.cost, P.group).effect.norm();
+    if (!(configured > 0)) continue;  // no tolerance reaches it: nothing to hold
+    r.coefficients[k].held = true;
+    rows.push_back(k);
+    target.push_back(configured);
+  }
+  P.sensitivity.resize(Eigen::Index(rows.size()), Eigen::Index(ns));
+  P.target.resize(Eigen::Index(rows.size()));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    P.target[Eigen::Index(i)] = target[i];
+    for (std::size_t s = 0; s < ns; ++s)
+      P.sensitivity(Eigen::Index(i), Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(rows[i])];
   }
   P.coverage_factor = kp;
-  P.max_scale = max_scale;
-  return P;
+  P.max_scale = o.max_scale;
+}
+
+// The targets that the floors make impossible, each with the least U they allow (tolerances at their
+// floors, the others at 0, the rate noise as it is) and its factor above the target.
+void refuse_unreachable(const AllocationSolution& sol, const Eigen::VectorXd& noise_variance, double kp,
+                        const AllocationResult& r) {
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < r.targets.size(); ++i) {
+    if (!sol.unreachable[i]) continue;
+    const AllocatedCoefficient& c = r.coefficients[r.targets[i]];
+    const double tol = sol.least_expanded[Eigen::Index(i)],
+                 least = std::hypot(tol, kp * std::sqrt(noise_variance[Eigen::Index(r.targets[i])]));
+    lines.push_back(fmt::format(
+        "target on {} = {:.4g} {}: the floors allow at least U = {:.4g} {} ({:.3g} × "
+        "the target)",
+        c.id, c.target * c.display_scale, c.unit, least * c.display_scale, c.unit, least / c.target));
+  }
+  throw InputError(
+      fmt::format("{}; no allocation meets {} with every tolerance at or above its floor; "
+                  "accepted: targets above those values, or lower floors ([tolerances] floor)",
+                  fmt::join(lines, "; "), lines.size() == 1 ? "it" : "them"));
 }
 
 // Every free coefficient's uncertainty at the allocated tolerances (groups added with their signs); returns
@@ -130,6 +172,9 @@ Eigen::VectorXd report_coefficients(const BudgetResult& b, const AllocationProbl
                                            std::max(u_configured * u_configured - noise, 0.0) +
                                        noise);
     c.lpu_std = u_alloc[Eigen::Index(k)];
+    // Named in the output: a coefficient without a target that the allocation made worse (1e-9: far above
+    // the solver's round-off on a held row, 1e-13 of the variance, far below any change worth a word).
+    c.grew = !c.has_target && c.allocated_expanded > c.configured_expanded * (1 + 1e-9);
   }
   for (std::size_t i = 0; i < nt; ++i) {
     AllocatedCoefficient& c = r.coefficients[r.targets[i]];
@@ -155,6 +200,8 @@ void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSo
     a.scale = sol.scale[Eigen::Index(s)];
     a.allocated_bound = a.scale * t.bound;
     a.allocated_standard_uncertainty = a.scale * a.standard_uncertainty;
+    a.least_scale = t.floor / t.bound;
+    a.at_floor = t.floor > 0 && a.scale <= a.least_scale * (1 + 1e-12);
     a.share = Eigen::VectorXd::Zero(Eigen::Index(nt));
     for (std::size_t i = 0; i < nt; ++i) {
       const auto k = Eigen::Index(r.targets[i]);
@@ -264,8 +311,12 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   Eigen::VectorXd noise_variance = Eigen::VectorXd::Zero(Eigen::Index(nk));
   for (const RateNoiseBudget& n : b.rate_noise) noise_variance += n.covariance.diagonal();
   const std::vector<double> tolerance_target = tolerance_targets(kp, noise_variance, r);
-  const AllocationProblem P = allocation_problem(cfg, b, r, tolerance_target, kp, o.max_scale);
+  r.let_others_grow = o.let_others_grow;
+  AllocationProblem P;
+  allocation_problem(cfg, b, tolerance_target, kp, o, P, r);
   const AllocationSolution sol = solve_allocation(P);
+  if (std::find(sol.unreachable.begin(), sol.unreachable.end(), true) != sol.unreachable.end())
+    refuse_unreachable(sol, noise_variance, kp, r);
   r.objective = sol.objective;
   r.configured_objective = P.cost.sum();
   r.common_scale = sol.common_scale;

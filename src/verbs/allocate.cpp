@@ -26,6 +26,9 @@ constexpr OptionSpec<AllocateOptions> kRows[] = {
                                        "default: the configuration's [identification] mode"),
     {"max_scale", &AllocateOptions::max_scale, "X", "No tolerance is loosened by more than this factor (> 0)",
      OptionRange::at_least(0).open_low().e_g("10")},
+    {"let_others_grow", &AllocateOptions::let_others_grow, "",
+     "Let the coefficients without a target grow beyond their configured expanded uncertainty (default: each "
+     "is held at it)"},
     rows::verify_trials(&AllocateOptions::verify_trials,
                         "Monte Carlo trials of the verification on the allocated tolerances (0: none)"),
     rows::seed(&AllocateOptions::seed, "Seed of the verification"),
@@ -51,6 +54,7 @@ AllocateResult allocate(const Config& config, const AllocateOptions& o) {
   ao.coverage = o.coverage_probability;
   ao.mode = o.mode.value_or(config.mode);
   ao.max_scale = o.max_scale;
+  ao.let_others_grow = o.let_others_grow;
   ao.verify_trials = std::uint64_t(o.verify_trials);
   ao.seed = o.seed;
   ao.threads = o.threads;

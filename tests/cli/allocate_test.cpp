@@ -78,7 +78,7 @@ TEST_F(AllocateCli, TextAndCsv) {
   ASSERT_EQ(c.code, 0) << c.err;
   EXPECT_TRUE(
       c.out.starts_with("rank,source,group,distribution,cost,unit_si,bound_si,allocated_bound_si,scale,"
-                        "share_K2,share_K3\n"))
+                        "floor_si,share_K2,share_K3\n"))
       << c.out;
   EXPECT_EQ(std::count(c.out.begin(), c.out.end(), '\n'), 49);
 }
@@ -111,6 +111,66 @@ TEST_F(AllocateCli, TheAllocatedTolerancesMeetTheTargetsInTheBudget) {
       EXPECT_GE(c.at("expanded_uncertainty").get<double>(), 1e-6 * (1 - 2e-3));
     }
   }
+}
+
+TEST_F(AllocateCli, OthersHeldByDefaultNamedWhenTheyGrow) {
+  // The bundled example, K3 ≤ 1e-3 deg/s/g³ alone: K0 is held at its configured U = 0.036 deg/s; with
+  // --let-others-grow it grows to about 0.149 deg/s and every output names it.
+  const std::string base = "allocate --target K3=1e-3 --verify-trials 0";
+  const Result held = run(base + " --format json");
+  ASSERT_EQ(held.code, 0) << held.err;
+  const nlohmann::json h = nlohmann::json::parse(held.out);
+  EXPECT_FALSE(h.at("let_others_grow").get<bool>());
+  EXPECT_TRUE(h.at("grown").empty());
+  EXPECT_TRUE(h["coefficients"]["K0"]["held"].get<bool>());
+  EXPECT_LE(h["coefficients"]["K0"]["allocated_expanded"].get<double>(),
+            h["coefficients"]["K0"]["configured_expanded"].get<double>() * (1 + 1e-9));
+  const Result grow = run(base + " --let-others-grow --format json");
+  ASSERT_EQ(grow.code, 0) << grow.err;
+  const nlohmann::json g = nlohmann::json::parse(grow.out);
+  ASSERT_EQ(g.at("grown").size(), 1u);
+  EXPECT_EQ(g["grown"][0]["id"], "K0");
+  EXPECT_GT(g["grown"][0]["allocated_expanded"].get<double>(), 0.14);
+  const Result text = run(base + " --let-others-grow");
+  EXPECT_NE(text.out.find("U grew: K0 from 0.03598 to 0.1485 deg/s"), std::string::npos) << text.out;
+  const Result csv = run(base + " --let-others-grow --format csv");
+  EXPECT_TRUE(csv.out.starts_with("# grew without a target: K0 configured U 0.0359")) << csv.out;
+}
+
+TEST_F(AllocateCli, FloorsAreKeptAndAnImpossibleTargetIsExitCodeTwo) {
+  const std::string example = read(kPaperExample);
+  const auto at = example.find("[tolerances]");
+  ASSERT_NE(at, std::string::npos);
+  auto with = [&](const std::string& name, const std::string& entry) {
+    std::string text = example;
+    const auto line = text.find("\ndthy1t", at);
+    const auto end = text.find('\n', line + 1);
+    text.replace(line + 1, end - line - 1, entry);
+    return write(name, text);
+  };
+  // For K3 ≤ 1e-5 deg/s/g³ dthy1t would be tightened to about 1.9e-8 rad (λ ∝ the target: 1.9e-9 rad for
+  // 1e-6); a floor of 2.5e-8 rad stops it there, where its effect on K3 (about 8.5e-6 deg/s/g³) still leaves
+  // room for the others. 1e-21 rad: the clamp gives the floor to an ulp.
+  const Result r =
+      run("allocate " + with("floor.toml", "dthy1t = { bound = \"1e-5 rad\", floor = \"2.5e-8 rad\" }") +
+          " --target K3=1e-5 --verify-trials 0 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const auto& s : j.at("sources"))
+    if (s.at("id") == "dthy1t") {
+      EXPECT_NEAR(s.at("allocated_bound_si").get<double>(), 2.5e-8, 1e-21);
+      EXPECT_TRUE(s.at("at_floor").get<bool>());
+      EXPECT_NE(s.at("toml").get<std::string>().find("floor = \""), std::string::npos) << s;
+    }
+  // 1e-6 deg/s/g³ is below what the floor alone gives: refused, naming the target and the least U.
+  expect_bad_input(
+      run("allocate " + with("floor.toml", "dthy1t = { bound = \"1e-5 rad\", floor = \"2.5e-8 rad\" }") +
+          " --target K3=1e-6 --verify-trials 0"),
+      {"target on K3 = 1e-06 deg/s/g^3: the floors allow at least U =", "lower floors"});
+  expect_bad_input(
+      run("allocate " + with("bad.toml", "dthy1t = { bound = \"1e-5 rad\", floor = \"2e-5 rad\" }") +
+          " --target K3=1e-5"),
+      {"tolerances.dthy1t.floor", "above the bound"});
 }
 
 TEST_F(AllocateCli, BadTargetsAndOptionsAreExitCodeTwo) {

@@ -362,3 +362,39 @@ terminal_phase = "180 deg"
 
 }  // namespace
 }  // namespace ccal
+
+namespace ccal {
+namespace {
+
+using namespace config_test;
+
+// The floor of a tolerance (the machine's best achievable bound): a quantity of the bound's dimension, > 0
+// and at most the bound; read in the entry's own units.
+TEST(ConfigErrors, ToleranceFloor) {
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"10 arcsec\", floor = \"0 arcsec\" }",
+                        "tolerances.dthz5.floor", {"must be positive", "at most the bound"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"10 arcsec\", floor = \"-1 arcsec\" }",
+                        "tolerances.dthz5.floor", {"must be positive"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"10 arcsec\", floor = \"11 arcsec\" }",
+                        "tolerances.dthz5.floor",
+                        {"\"11 arcsec\" is above the bound \"10 arcsec\"", "at most the bound"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"10 arcsec\", floor = \"1 um\" }",
+                        "tolerances.dthz5.floor", {"rad"});
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"10 arcsec\", flor = \"1 arcsec\" }",
+                        "tolerances.dthz5.flor", {"did you mean 'floor'?"});
+  const Config c = parse_config(kBase + "\n[tolerances]\ndthz5 = { bound = \"10 arcsec\", floor = \"0.1 arcsec\" }\n"
+                                "dR_s = \"25 um\"\n",
+                                "case.toml");
+  ASSERT_EQ(c.tolerances.size(), 2u);
+  for (const Tolerance& t : c.tolerances) {
+    if (t.id == "dthz5") {
+      EXPECT_NEAR(t.floor, 0.1 / 3600 * kDeg, 1e-15 * t.floor);  // arcsec → rad, to round-off
+      EXPECT_NEAR(t.bound, 10.0 / 3600 * kDeg, 1e-15 * t.bound);
+    } else {
+      EXPECT_EQ(t.floor, 0.0);  // no floor given: none
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ccal

@@ -329,6 +329,18 @@ class UncertaintyTest(unittest.TestCase):
         with self.assertRaises(ccal.InputError):
             ccal.allocate(cfg, {"K7": 1e-6})
 
+    def test_allocation_holds_the_others_unless_let_grow(self):
+        # The bundled example, K3 alone: K0 held at its configured U (1e-9 relative: the solver's round-off
+        # with margin), grown about fourfold with let_others_grow=True.
+        cfg = ccal.bundled_example()
+        held = {c.id: c for c in ccal.allocate(cfg, {"K3": 1e-3}, verify_trials=0).coefficients}
+        self.assertTrue(held["K0"].held)
+        self.assertLessEqual(held["K0"].allocated_expanded, held["K0"].configured_expanded * (1 + 1e-9))
+        grown = {c.id: c for c in ccal.allocate(cfg, {"K3": 1e-3}, verify_trials=0,
+                                                 let_others_grow=True).coefficients}
+        self.assertTrue(grown["K0"].grew)
+        self.assertGreater(grown["K0"].allocated_expanded, 3 * grown["K0"].configured_expanded)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -52,6 +52,8 @@ struct Tolerance {
   Distribution distribution = Distribution::normal;
   std::string group;  // sources with the same non-empty group are fully correlated (same draw, same sign)
   double cost = 1.0;  // relative cost weight (> 0) for tolerance allocation
+  double floor = 0;   // the machine's best achievable bound, SI, 0 < floor ≤ bound; 0: none. The allocation
+                      // never tightens the bound below it (scale ≥ floor/bound).
   std::string unit;   // the unit the bound was written in ("um", "arcsec"), for display only; "": SI
 };
 

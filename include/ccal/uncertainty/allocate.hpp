@@ -9,13 +9,16 @@
 // uncertainty of k is
 //     U_k(λ) = k_p · √(Σ_g λ_g² c_kg²),   k_p = Φ⁻¹((1 + p)/2)  (1.95996 for p = 0.95),
 // and the allocation solves
-//     minimise Σ_s cost_s / λ_s   subject to   U_k(λ) ≤ T_k for every target k,   0 < λ_s ≤ λ_max,
+//     minimise Σ_s cost_s / λ_s   subject to   U_k(λ) ≤ T_k for every row k,   λ_min,s ≤ λ_s ≤ λ_max,
 // i.e. tightening a tolerance by a factor costs in proportion to the factor, weighted by Tolerance::cost.
+// The rows are the targets and (allocate_tolerances, unless let_others_grow) every other free coefficient
+// with T_k = U_k(1), its configured value: the same kind of row. λ_min,s = floor_s / bound_s (0 without a
+// floor; a group takes the largest of its members').
 //
 // Solution. With x_g = λ_g² the problem is convex: Σ_g C_g x_g^(−1/2) (C_g = Σ_{s∈g} cost_s) is strictly
 // convex and the constraints Σ_g a_kg x_g ≤ 1, a_kg = (k_p c_kg / T_k)², are linear. Its Lagrange dual has
 // one multiplier μ_k ≥ 0 per target; for given μ the minimiser is explicit,
-//     x_g(μ) = min(λ_max², (C_g / (2 b_g))^(2/3)),   b_g = Σ_k μ_k a_kg   (λ_max² when b_g = 0),
+//     x_g(μ) = clamp((C_g / (2 b_g))^(2/3), λ_min,g², λ_max²),   b_g = Σ_k μ_k a_kg   (λ_max² when b_g = 0),
 // and the dual function D(μ) = Σ_g (C_g x_g^(−1/2) + b_g x_g) − Σ_k μ_k is concave and continuously
 // differentiable with ∂D/∂μ_k = Σ_g a_kg x_g − 1. solve_allocation maximises D over μ ≥ 0 by a projected
 // Newton method (Bertsekas 1982) in multipliers scaled by their single-target values, with an exact line
@@ -24,7 +27,10 @@
 // unique primal optimum (strong duality: Slater's condition holds). On badly scaled problems where that
 // iteration stalls, a barrier (interior-point) method on the primal in ln x, a geometric program, gives the
 // starting multipliers instead (AllocationSolution::method). A source with no sensitivity to any target gets
-// λ_max; a target met even with every tolerance at λ_max has μ_k = 0. Every target can be met (λ → 0 is
+// λ_max; a target met even with every tolerance at λ_max has μ_k = 0. Σ_g a_kg x_g is least at x = λ_min²:
+// a row above 1 there cannot be met (AllocationSolution::unreachable, no allocation); a row at 1 there whose
+// groups all have floors holds only with them at their floors, which are then fixed (the row drops out, the
+// other rows keep the capacity 1 − Σ_{fixed g} a_kg x_g). Without floors every target can be met (λ → 0 is
 // allowed), so a solution always exists for targets > 0.
 //
 // The simple alternative is one common scale for every source, λ = min(λ_max, min_k T_k / U_k(1)).
@@ -60,6 +66,7 @@ struct AllocationProblem {
   std::vector<std::string> group;              // per source; "" = independent (empty vector: all independent)
   double coverage_factor = 1.959963984540054;  // k_p
   double max_scale = 10.0;                     // λ_max > 0
+  Eigen::VectorXd min_scale;  // λ_min,s per source, 0 ≤ λ_min,s ≤ λ_max (floor_s / bound_s); empty: all 0
 };
 
 struct AllocationSolution {
@@ -80,10 +87,14 @@ struct AllocationSolution {
   // The dual iteration reached a KKT residual (largest slack of a constraint with μ_k > 0, largest violation
   // of one with μ_k = 0) of 1e-12; or the barrier's duality gap is 1e-9 of the objective.
   bool converged = false;
+  // Per row: the row cannot be met even with every source at its least scale (then nothing else is
+  // filled: no allocation), and U_k with every source at its least scale (0 where no source has one).
+  std::vector<bool> unreachable;
+  Eigen::VectorXd least_expanded;
 };
 
 // Solves the allocation. Throws InputError for inconsistent sizes, a target ≤ 0 or non-finite, a cost ≤ 0, a
-// negative standard uncertainty or a max_scale ≤ 0.
+// negative standard uncertainty, a max_scale ≤ 0 or a min_scale outside [0, max_scale].
 AllocationSolution solve_allocation(const AllocationProblem& problem);
 
 // A target on one free coefficient: its allowed expanded uncertainty (half-width of the 100p % interval), SI.
@@ -101,9 +112,12 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
                                          std::string_view option = "--target");
 
 struct AllocateOptions {
-  ModelMode mode = ModelMode::exact;   // of the sensitivities and the verification (verbs: the config's)
-  double coverage = 0.95;              // p
-  double max_scale = 10.0;             // λ_max
+  ModelMode mode = ModelMode::exact;  // of the sensitivities and the verification (verbs: the config's)
+  double coverage = 0.95;             // p
+  double max_scale = 10.0;            // λ_max
+  // false: every free coefficient without a target is held at its configured U (U_k(λ) ≤ U_k(1)); true:
+  // only the targets constrain the allocation, and the others may grow.
+  bool let_others_grow = false;
   std::uint64_t verify_trials = 2000;  // M of the Monte Carlo verification; 0: none
   std::uint64_t seed = 1;
   int threads = 0;               // 0: the OpenMP default
@@ -117,7 +131,9 @@ struct AllocatedSource : Tolerance {
   double scale = 1;                 // λ_s
   double allocated_bound = 0;       // λ_s · bound
   double allocated_standard_uncertainty = 0;
-  Eigen::VectorXd share;  // per target: (J_ks u_s)² / u_k² at the allocated tolerances (0…1)
+  double least_scale = 0;  // floor / bound (0: no floor)
+  bool at_floor = false;   // the allocation tightened it to its floor
+  Eigen::VectorXd share;   // per target: (J_ks u_s)² / u_k² at the allocated tolerances (0…1)
 };
 
 enum class Verdict { not_checked, pass, pass_within_sampling, fail };
@@ -136,6 +152,8 @@ struct AllocatedCoefficient {
   double multiplier = 0;           // μ_k (has_target)
   double price = 0;                // ∂(objective)/∂(ln T_k) = −2 μ_k: what loosening the target saves
   bool active = false;             // the target holds with equality (has_target)
+  bool held = false;               // no target, held at its configured U (AllocateOptions::let_others_grow)
+  bool grew = false;               // no target, allocated U above the configured U (beyond 1e-9 of it)
 
   // Monte Carlo on the allocated tolerances (verification.trials > 0).
   double mc_mean = 0, mc_std = 0, mc_low = 0, mc_high = 0;
@@ -161,6 +179,7 @@ struct AllocationResult {
   double coverage = 0.95;
   double coverage_factor = 0;
   double max_scale = 10;
+  bool let_others_grow = false;
   std::vector<AllocatedSource>
       sources;  // sorted by λ, smallest (tightened most) first; catalogue order on ties
   std::vector<AllocatedCoefficient> coefficients;  // every free term, in identification order
@@ -177,8 +196,12 @@ struct AllocationResult {
 };
 
 // Allocates the tolerances of a configuration (sensitivities in options.mode at the configured errors) for
-// the targets, and verifies the result by Monte Carlo. Throws InputError for no tolerances, no or duplicate
-// targets, a target on a coefficient that is not free, bad options, or an ill-posed identification.
+// the targets, and verifies the result by Monte Carlo. Every free coefficient without a target is one more
+// row, U_k(λ) ≤ U_k(1), unless options.let_others_grow; every tolerance with a floor has λ_s ≥ floor/bound.
+// Throws InputError for no tolerances, no or duplicate targets, a target on a coefficient that is not free,
+// a target that cannot be met with every floored source at its floor (naming each such target, the least U
+// the floors allow and the factor it is above the target), a floor above max_scale × bound, bad options,
+// or an ill-posed identification.
 AllocationResult allocate_tolerances(const Config& config, const std::vector<AllocationTarget>& targets,
                                      const AllocateOptions& options = {});
 

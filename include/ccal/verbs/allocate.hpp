@@ -21,6 +21,9 @@ struct AllocateOptions {
   double coverage_probability = 0.95;  // p of the expanded uncertainties (the targets), in (0, 1)
   std::optional<ModelMode> mode;       // kinematics; unset: the configuration's [identification] mode
   double max_scale = 10.0;             // no tolerance grows beyond this factor of its configured value
+  // false: every free coefficient without a target is held at its configured expanded uncertainty; true:
+  // they may grow (the result names each that does).
+  bool let_others_grow = false;
   std::int64_t verify_trials = 2000;   // Monte Carlo check of the result; 0: none
   std::uint64_t seed = 1;
   int threads = 0;        // 0: all cores
