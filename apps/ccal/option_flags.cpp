@@ -4,6 +4,8 @@
 #include <map>
 #include <utility>
 
+#include "ccal/io/config_file.hpp"  // edit_distance, as for a mistyped configuration key
+
 namespace ccal::cli {
 
 namespace {
@@ -35,26 +37,6 @@ std::string declared_flag(const CLI::App* command, std::string_view field) {
   const auto found = declared().find({command, std::string(field)});
   return found != declared().end() ? found->second : flag_name(field);
 }
-
-namespace {
-
-// Levenshtein distance (insertions, deletions, substitutions, each 1), by one row of the table.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-}  // namespace
 
 std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names) {
   std::string accepted, nearest;
