@@ -60,16 +60,31 @@ struct OptionRange {
     return r;
   }
   static constexpr OptionRange at_least(double low) { return between(low, 1e308); }
-  constexpr OptionRange open_low() const { return with([](OptionRange& r) { r.low_open = true; }); }
-  constexpr OptionRange open_high() const { return with([](OptionRange& r) { r.high_open = true; }); }
+  constexpr OptionRange open_low() const {
+    OptionRange r = *this;
+    r.low_open = true;
+    return r;
+  }
+  constexpr OptionRange open_high() const {
+    OptionRange r = *this;
+    r.high_open = true;
+    return r;
+  }
   constexpr OptionRange or_value(double value, std::string_view meaning) const {
-    return with([&](OptionRange& r) { r.also = value, r.also_meaning = meaning; });
+    OptionRange r = *this;
+    r.also = value;
+    r.also_meaning = meaning;
+    return r;
   }
   constexpr OptionRange e_g(std::string_view text) const {
-    return with([&](OptionRange& r) { r.example = text; });
+    OptionRange r = *this;
+    r.example = text;
+    return r;
   }
   constexpr OptionRange noting(std::string_view text) const {
-    return with([&](OptionRange& r) { r.note = text; });
+    OptionRange r = *this;
+    r.note = text;
+    return r;
   }
 
   bool accepts(double x) const noexcept;
@@ -77,13 +92,6 @@ struct OptionRange {
   // says is accepted.
   std::string text() const;
 
- private:
-  template <class Change>
-  constexpr OptionRange with(Change change) const {
-    OptionRange r = *this;
-    change(r);
-    return r;
-  }
 };
 
 // A member of an enumeration type (or an optional one), set and read through the names of its values, which
