@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "bindings.hpp"
+#include "option_keywords.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "ccal/verbs/allocate.hpp"
 #include "interruptible.hpp"
@@ -82,39 +83,22 @@ void bind_allocation_results(py::module_& m) {
 
 // The tolerance allocation function allocate().
 void bind_allocate_function(py::module_& m) {
-  const verbs::AllocateOptions defaults;  // the CLI's defaults
   m.def(
       "allocate",
-      [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
-         double coverage_probability, double max_scale, bool let_others_grow, std::int64_t verify_trials,
-         std::uint64_t seed, int threads, std::optional<std::string> mode, const py::object& progress) {
-        verbs::AllocateOptions o;
-        if (mode) o.mode = mode_argument(*mode);
-        for (const auto& [id, value] : targets)
-          // A number is in the coefficient's display unit, as on the command line; a string may carry a unit.
-          o.targets.push_back(std::holds_alternative<double>(value)
-                                  ? fmt::format("{}={:.17g}", id, std::get<double>(value))
-                                  : id + "=" + std::get<std::string>(value));
-        o.coverage_probability = coverage_probability;
-        o.max_scale = max_scale;
-        o.let_others_grow = let_others_grow;
-        o.verify_trials = verify_trials;
-        o.seed = seed;
-        o.threads = threads;
+      [](const Config& cfg, const TargetMap& targets, const py::object& progress, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::AllocateOptions>(keywords, "allocate", {}, {"targets"});
+        o.targets = target_texts(targets);
         return run_interruptible(progress, [&](ProgressCallback on_progress) {
           o.on_progress = std::move(on_progress);
           return verbs::allocate(cfg, o);
         });
       },
-      py::arg("config"), py::arg("targets"), py::arg("coverage_probability") = defaults.coverage_probability,
-      py::arg("max_scale") = defaults.max_scale, py::arg("let_others_grow") = defaults.let_others_grow,
-      py::arg("verify_trials") = defaults.verify_trials, py::arg("seed") = defaults.seed,
-      py::arg("threads") = defaults.threads, py::arg("mode") = py::none(), py::arg("progress") = py::none(),
+      py::arg("config"), py::arg("targets"), py::kw_only(), py::arg("progress") = py::none(),
       "Largest tolerances for which every target (coefficient id → allowed expanded uncertainty, a number in "
-      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. mode: "
-      "'exact' or 'paper' (default: the configuration's). progress: None or progress(done, total) of the "
-      "verification's trials; Ctrl-C stops the call and raises KeyboardInterrupt. let_others_grow: let the "
-      "coefficients without a target grow (default: each is held at its configured expanded uncertainty).");
+      "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. progress: "
+      "None or progress(done, total) of the verification's trials; Ctrl-C stops the call and raises "
+      "KeyboardInterrupt.");
+  record_keywords<verbs::AllocateOptions>(m, "allocate", {"targets"});
 }
 
 }  // namespace

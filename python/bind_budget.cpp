@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "option_keywords.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/verbs/budget.hpp"
@@ -131,28 +132,17 @@ void bind_budget(py::module_& m) {
   const verbs::BudgetOptions defaults;  // the CLI's defaults
   m.def(
       "budget",
-      [](const Config& cfg, std::optional<std::string> mode, const std::string& derivatives,
-         double coverage_factor, bool compare_with_paper) {
-        verbs::BudgetOptions o;
-        if (mode) o.mode = mode_argument(*mode);
-        if (derivatives == "linearised")
-          o.derivatives = DerivativeMethod::linearised;
-        else if (derivatives == "automatic")
-          o.derivatives = DerivativeMethod::automatic;
-        else
-          throw InputError("derivatives: '" + derivatives + "'; accepted: 'linearised', 'automatic'");
-        o.coverage_factor = coverage_factor;
+      [](const Config& cfg, bool compare_with_paper, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::BudgetOptions>(keywords, "budget");
         o.compare_with_paper = compare_with_paper;
         py::gil_scoped_release release;
         return verbs::budget(cfg, o);
       },
-      py::arg("config"), py::arg("mode") = py::none(),
-      py::arg("derivatives") =
-          defaults.derivatives == DerivativeMethod::automatic ? "automatic" : "linearised",
-      py::arg("coverage_factor") = defaults.coverage_factor,
-      py::arg("compare_with_paper") = defaults.compare_with_paper,
+      py::arg("config"), py::kw_only(), py::arg("compare_with_paper") = defaults.compare_with_paper,
       "Error budget (`ccal budget`): sensitivity of every identified coefficient to every tolerance, the "
-      "effects, totals and compensation choices. mode: 'exact' or 'paper' (default: the configuration's).");
+      "effects, totals and compensation choices. compare_with_paper: in exact mode, also the paper's "
+      "first-order effect of each source.");
+  record_keywords<verbs::BudgetOptions>(m, "budget");
 }
 
 }  // namespace ccal::python

@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "bindings.hpp"
+#include "option_keywords.hpp"
 #include "ccal/verbs/design.hpp"
 
 namespace ccal::python {
@@ -58,42 +59,19 @@ void bind_design(py::module_& m) {
           py::arg("original"),
           "The configuration text `original` with its [plan] replaced by the designed one (as --plan-out).");
 
-  const verbs::DesignOptions defaults;  // the CLI's defaults
   m.def(
       "design",
-      [](const Config& cfg, const std::map<std::string, std::variant<double, std::string>>& targets,
-         std::optional<std::string> objective, std::optional<int> starts, std::optional<std::uint64_t> seed,
-         int threads, std::int64_t verify_trials, const std::vector<double>& tradeoff) {
-        verbs::DesignOptions o;
-        for (const auto& [id, value] : targets)
-          o.targets.push_back(std::holds_alternative<double>(value)
-                                  ? fmt::format("{}={:.17g}", id, std::get<double>(value))
-                                  : id + "=" + std::get<std::string>(value));
-        if (objective) {
-          if (*objective == "uncertainty")
-            o.objective = DesignObjective::uncertainty;
-          else if (*objective == "d_optimal")
-            o.objective = DesignObjective::d_optimal;
-          else if (*objective == "a_optimal")
-            o.objective = DesignObjective::a_optimal;
-          else
-            throw InputError("objective: '" + *objective +
-                             "' is not an objective; accepted: 'uncertainty', 'd_optimal', 'a_optimal'");
-        }
-        o.starts = starts;
-        o.seed = seed;
-        o.threads = threads;
-        o.verify_trials = verify_trials;
-        o.tradeoff = tradeoff;
+      [](const Config& cfg, const TargetMap& targets, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::DesignOptions>(keywords, "design", {}, {"targets"});
+        o.targets = target_texts(targets);
         py::gil_scoped_release release;
         return verbs::design(cfg, o);
       },
-      py::arg("config"), py::arg("targets") = std::map<std::string, std::variant<double, std::string>>{},
-      py::arg("objective") = py::none(), py::arg("starts") = py::none(), py::arg("seed") = py::none(),
-      py::arg("threads") = defaults.threads, py::arg("verify_trials") = defaults.verify_trials,
-      py::arg("tradeoff") = defaults.tradeoff,
+      py::arg("config"), py::arg("targets") = TargetMap{},
       "The test plan within the configuration's [design] space under which the tolerances cost least "
-      "(`ccal design`), re-scored by the full budget. The defaults are the CLI's.");
+      "(`ccal design`), re-scored by the full budget; targets: coefficient id → allowed expanded "
+      "uncertainty (a number in the display unit or a string with a unit), for the objective 'uncertainty'.");
+  record_keywords<verbs::DesignOptions>(m, "design", {"targets"});
 }
 
 }  // namespace ccal::python

@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "bindings.hpp"
+#include "option_keywords.hpp"
 #include "ccal/model/sensed_input.hpp"
 #include "ccal/verbs/force.hpp"
 
@@ -56,18 +57,15 @@ void bind_force(py::module_& m) {
 
   m.def(
       "sensed_input",
-      [](const Config& cfg, const std::variant<int, std::string>& run, double time, const std::string& mode) {
-        verbs::ForceOptions o;
+      [](const Config& cfg, const std::variant<int, std::string>& run, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::ForceOptions>(keywords, "sensed_input", {}, {"run"});
         o.run = cfg.plan.runs[run_index(cfg, run)].name;
-        o.time = time;
-        o.mode = mode_argument(mode);
         return verbs::force(cfg, o);
       },
-      py::arg("config"), py::arg("run") = 0, py::arg("time") = verbs::ForceOptions{}.time,
-      py::arg("mode") = std::string(mode_name(verbs::ForceOptions{}.mode)),
+      py::arg("config"), py::arg("run") = 0,
       "Specific force and angular rate at time t [s] of a run (a name, or a 0-based index) with the "
-      "configured "
-      "errors (`ccal force`).");
+      "configured errors (`ccal force`).");
+  record_keywords<verbs::ForceOptions>(m, "sensed_input", {"run"});
 }
 
 }  // namespace ccal::python

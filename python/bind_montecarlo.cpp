@@ -11,6 +11,7 @@
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/verbs/montecarlo.hpp"
 #include "interruptible.hpp"
+#include "option_keywords.hpp"
 
 namespace ccal::python {
 
@@ -109,35 +110,23 @@ void bind_monte_carlo_results(py::module_& m) {
 void bind_monte_carlo_function(py::module_& m) {
   m.def(
       "monte_carlo",
-      [](const Config& cfg, std::optional<std::int64_t> trials, std::uint64_t seed, int threads, int digits,
-         double coverage_probability, std::optional<std::string> mode, bool keep_samples,
-         const py::object& progress) {
-        verbs::MonteCarloOptions o;
-        if (mode) o.mode = mode_argument(*mode);
-        o.trials = trials;
-        o.seed = seed;
-        o.threads = threads;
-        o.digits = digits;
-        o.coverage_probability = coverage_probability;
+      [](const Config& cfg, bool keep_samples, const py::object& progress, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::MonteCarloOptions>(keywords, "monte_carlo");
         o.keep_samples = keep_samples;
         return run_interruptible(progress, [&](ProgressCallback on_progress) {
           o.on_progress = std::move(on_progress);
           return verbs::monte_carlo(cfg, o);
         });
       },
-      py::arg("config"), py::arg("trials") = verbs::MonteCarloOptions{}.trials,
-      py::arg("seed") = verbs::MonteCarloOptions{}.seed,
-      py::arg("threads") = verbs::MonteCarloOptions{}.threads,
-      py::arg("digits") = verbs::MonteCarloOptions{}.digits,
-      py::arg("coverage_probability") = verbs::MonteCarloOptions{}.coverage_probability,
-      py::arg("mode") = py::none(), py::arg("keep_samples") = verbs::MonteCarloOptions{}.keep_samples,
+      py::arg("config"), py::kw_only(), py::arg("keep_samples") = verbs::MonteCarloOptions{}.keep_samples,
       py::arg("progress") = py::none(),
       "Monte Carlo propagation (JCGM 101, `ccal montecarlo`) of the tolerances to the deviations of the "
       "identified coefficients; trials = None: 10⁶, or stages of 10⁴ with digits > 0 (the adaptive procedure); "
       "the same seed gives the same bits for any thread count; keep_samples: every trial's values in "
-      "`samples`. The defaults are the CLI's. progress: None or progress(done, total) called with the "
-      "trials done about every 0.1 s; Ctrl-C (or an exception from progress) stops the run within a "
+      "`samples`. The options are the CLI's, with its defaults. progress: None or progress(done, total) called "
+      "with the trials done about every 0.1 s; Ctrl-C (or an exception from progress) stops the run within a "
       "fraction of a second and raises KeyboardInterrupt (or that exception).");
+  record_keywords<verbs::MonteCarloOptions>(m, "monte_carlo");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "option_keywords.hpp"
 #include "ccal/io/run_log_writer.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/verbs/simulate.hpp"
@@ -65,32 +66,33 @@ void bind_simulate(py::module_& m) {
 
   m.def(
       "simulate",
-      [](const Config& cfg, std::optional<std::string> mode, std::uint64_t seed) {
-        verbs::SimulateOptions o;
-        if (mode) o.mode = mode_argument(*mode);
-        o.seed = seed;
+      [](const Config& cfg, const py::kwargs& keywords) {
+        const auto o = options_from_keywords<verbs::SimulateOptions>(keywords, "simulate");
         py::gil_scoped_release release;
         return verbs::simulate(cfg, o);
       },
-      py::arg("config"), py::arg("mode") = py::none(), py::arg("seed") = verbs::SimulateOptions{}.seed,
+      py::arg("config"),
       "`ccal simulate`: run means of the test plan with the configured errors and instrument noise, and the "
       "identification of the configured terms from them, as the CLI gives them.");
+  record_keywords<verbs::SimulateOptions>(m, "simulate");
 
   m.def(
       "observe",
-      [](const Config& cfg, std::optional<std::string> mode, std::uint64_t seed) {
-        const ModelMode model_mode = mode ? mode_argument(*mode) : cfg.mode;
+      [](const Config& cfg, const py::kwargs& keywords) {
+        const auto o = options_from_keywords<verbs::SimulateOptions>(keywords, "observe");
+        const ModelMode model_mode = o.mode ? *o.mode : cfg.mode;
         const Experiment ex = cfg.experiment();
         const Eigen::VectorXd& truth = cfg.centrifuge.errors;
         const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
         Observations<double> obs = observe<double>(ex, truth, cfg.identification.compensate ? truth : zero,
                                                    cfg.identification, model_mode);
-        add_output_noise(obs, ex, seed);
+        add_output_noise(obs, ex, o.seed);
         return obs;
       },
-      py::arg("config"), py::arg("mode") = py::none(), py::arg("seed") = verbs::SimulateOptions{}.seed,
+      py::arg("config"),
       "Simulated run means of the test plan with the configured errors and instrument noise (`ccal "
-      "simulate`).");
+      "simulate`), the options of simulate().");
+  record_keywords<verbs::SimulateOptions>(m, "observe");
 }
 
 }  // namespace ccal::python

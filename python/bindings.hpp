@@ -4,8 +4,10 @@
 #include <pybind11/pybind11.h>
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/setup/config.hpp"
@@ -38,6 +40,11 @@ py::class_<Result> bind_verb_result(py::module_& m, const char* name, const char
   c.attr("_inner") = inner;  // for dir() (python/ccal/_results.py) and the stubs (python/make_stubs.py)
   return c;
 }
+
+// Targets as Python gives them: coefficient id → a number in the coefficient's display unit (as on the command
+// line) or a string with a unit; target_texts gives the library's "K3=0.001" / "K3=1e-3 deg/s/g^3".
+using TargetMap = std::map<std::string, std::variant<double, std::string>>;
+std::vector<std::string> target_texts(const TargetMap& targets);
 
 // The run of a configuration's plan given by its name or a 0-based index (negative: from the end); an int out
 // of range, or a name that is no run, is an InputError.

@@ -47,11 +47,14 @@ def annotation(value):
 
 def signature_text(function, name, method):
     sig = inspect.signature(function)
-    params = []
+    params, keyword_only = [], False
     for k, p in enumerate(sig.parameters.values()):
         if method and k == 0:
             params.append("self")
             continue
+        if p.kind == inspect.Parameter.KEYWORD_ONLY and not keyword_only:
+            params.append("*")
+            keyword_only = True
         text = f"{p.name}: {annotation(p.annotation)}"
         if p.default is not inspect.Parameter.empty:
             text += " = ..."

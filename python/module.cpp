@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <pybind11/pybind11.h>
 
 #include <string>
@@ -15,6 +16,14 @@ namespace ccal::python {
 // The library's parser of a choice, so the refusal is the command line's but for the option's name.
 ModelMode mode_argument(const std::string& mode) {
   return static_cast<ModelMode>(parse_choice_option("mode", mode, kModeNames));
+}
+
+std::vector<std::string> target_texts(const TargetMap& targets) {
+  std::vector<std::string> texts;
+  for (const auto& [id, value] : targets)
+    texts.push_back(std::holds_alternative<double>(value) ? fmt::format("{}={:.17g}", id, std::get<double>(value))
+                                                          : id + "=" + std::get<std::string>(value));
+  return texts;
 }
 
 std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run) {

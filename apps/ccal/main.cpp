@@ -155,7 +155,8 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const ccal::OptionError& e) {
     // Worded with the flag the command declared for the field (the library names the field).
-    return report("error", e.worded(ccal::cli::declared_flag(chosen, e.field())));
+    return report("error",
+                  e.worded([&](std::string_view field) { return ccal::cli::declared_flag(chosen, field); }));
   } catch (const ccal::InputError& e) {
     return report("error", e.what());
   } catch (const CLI::Error& e) {

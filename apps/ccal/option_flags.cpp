@@ -24,9 +24,12 @@ std::map<std::pair<const CLI::App*, std::string>, std::string>& declared() {
 }  // namespace
 
 std::string flag_name(std::string_view field, std::string_view prefix) {
+  // The spelling applies to the field's last word too: report's allocate_targets → --allocate-target.
   std::string name(field);
   for (const auto& [from, to] : kFlagSpellings)
-    if (field == from) name = std::string(to);
+    if (field == from || (field.ends_with(from) && field.size() > from.size() &&
+                          field[field.size() - from.size() - 1] == '_'))
+      name = std::string(field.substr(0, field.size() - from.size())) + std::string(to);
   name = std::string(prefix) + name;
   for (char& c : name)
     if (c == '_') c = '-';

@@ -20,10 +20,10 @@ def _verb(name, function):
     signature = function.__signature__
 
     def wrapper(*args, **kwargs):
+        result = function(*args, **kwargs)  # first: its messages name a mistyped keyword's likely intent
         call = dict(signature.bind(*args, **kwargs).arguments)
         config = call.pop("config")
         logs = _pickling.read_logs(call["logs"]) if name == "reduce" else None
-        result = function(*args, **kwargs)
         _pickling.remember_call(result, name, config, call, logs, {})
         return result
 
@@ -73,9 +73,11 @@ def install(namespace):
     functions wrapped, and the Python classes."""
     # The compiled classes and functions are bound with `ccal` as their module (python/module.cpp); so is Table.
     _tables.Table.__module__ = "ccal"
+    keywords = getattr(_ccal, "_option_keywords", {})
     for name, value in vars(_ccal).items():
         if not name.startswith("_"):
-            namespace[name] = with_signature(value, name, name) if is_pybind_function(value) else value
+            namespace[name] = (with_signature(value, name, name, keywords.get(name)) if is_pybind_function(value)
+                               else value)
     for name in VERB_RESULTS:
         namespace[name] = _verb(name, namespace[name])
     for name in ("bundled_example", "load_config", "parse_config"):

@@ -34,14 +34,26 @@ def split_top_level(text):
     return parts
 
 
-def signature_from_doc(doc, name):
-    """The signature on the first line of a pybind11 docstring, and the rest of the docstring."""
+def signature_from_doc(doc, name, keywords=None):
+    """The signature on the first line of a pybind11 docstring, and the rest of the docstring. A bare `*`
+    makes the parameters after it keyword-only; `**kwargs` stands for a verb's options, `keywords` (a list of
+    (name, default, type, help) from the compiled module's _option_keywords), which become keyword-only
+    parameters and a paragraph of the docstring."""
     lines = (doc or "").split("\n")
     match = re.match(r"^\s*" + re.escape(name) + r"\((.*)\)(?: -> (.*))?$", lines[0]) if lines else None
     if not match:
         raise ValueError(f"ccal: no signature in the docstring of {name}")
-    parameters = []
+    parameters, options, kind, options_doc = [], [], inspect.Parameter.POSITIONAL_OR_KEYWORD, []
     for part in split_top_level(match.group(1)):
+        if part == "*":
+            kind = inspect.Parameter.KEYWORD_ONLY
+            continue
+        if part.startswith("**"):
+            for keyword, default, annotation, help_text in keywords or ():
+                options.append(inspect.Parameter(keyword, inspect.Parameter.KEYWORD_ONLY, default=default,
+                                                 annotation=annotation))
+                options_doc.append(f"    {keyword} ({annotation}, default {default!r}): {help_text}")
+            continue
         part_name, _, rest = part.partition(":")
         annotation, _, default_text = rest.partition(" = ")
         default = inspect.Parameter.empty
@@ -50,16 +62,22 @@ def signature_from_doc(doc, name):
                 default = ast.literal_eval(default_text.strip())
             except (ValueError, SyntaxError):
                 default = DefaultText(default_text.strip())
-        parameters.append(inspect.Parameter(part_name.strip(), inspect.Parameter.POSITIONAL_OR_KEYWORD,
-                                            default=default, annotation=annotation.strip() or
-                                            inspect.Parameter.empty))
+        parameters.append(inspect.Parameter(part_name.strip(), kind, default=default,
+                                            annotation=annotation.strip() or inspect.Parameter.empty))
+    # The options come before the binding's own keyword-only parameters (progress, keep_samples).
+    first_own = next((k for k, p in enumerate(parameters) if p.kind == inspect.Parameter.KEYWORD_ONLY),
+                     len(parameters))
+    parameters[first_own:first_own] = options
     signature = inspect.Signature(parameters, return_annotation=match.group(2) or inspect.Signature.empty)
-    return signature, "\n".join(lines[1:]).strip()
+    text = "\n".join(lines[1:]).strip()
+    if options_doc:
+        text += "\n\nOptions (keywords; the command line's flags of the same names):\n" + "\n".join(options_doc)
+    return signature, text
 
 
-def with_signature(function, name, qualname):
+def with_signature(function, name, qualname, keywords=None):
     """`function` (a pybind11 function) wrapped so that inspect.signature and help() show its signature."""
-    signature, doc = signature_from_doc(function.__doc__, name)
+    signature, doc = signature_from_doc(function.__doc__, name, keywords)
 
     def wrapper(*args, **kwargs):
         return function(*args, **kwargs)

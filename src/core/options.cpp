@@ -9,14 +9,39 @@
 
 namespace ccal {
 
+namespace {
+constexpr char kNameMark = '\x1f';  // around an option's field inside a problem's text
+
+// The text with each marked field replaced by spelling(field).
+std::string with_names(std::string_view text, const std::function<std::string(std::string_view)>& spelling) {
+  std::string out;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t open = text.find(kNameMark, at);
+    const std::size_t close = open == std::string_view::npos ? open : text.find(kNameMark, open + 1);
+    if (close == std::string_view::npos) {
+      out += text.substr(at);
+      break;
+    }
+    out += text.substr(at, open - at);
+    out += spelling(text.substr(open + 1, close - open - 1));
+    at = close + 1;
+  }
+  return out;
+}
+
+std::string as_field(std::string_view field) { return std::string(field); }
+}  // namespace
+
 OptionError::OptionError(std::string field, std::string value, std::string problem)
-    : InputError(field + ": " + (value.empty() ? "" : value + " ") + problem),
+    : InputError(field + ": " + (value.empty() ? "" : value + " ") + with_names(problem, as_field)),
       field_(std::move(field)),
       value_(std::move(value)),
       problem_(std::move(problem)) {}
 
-std::string OptionError::worded(std::string_view name) const {
-  return std::string(name) + ": " + (value_.empty() ? "" : value_ + " ") + problem_;
+std::string OptionError::name(std::string_view field) { return kNameMark + std::string(field) + kNameMark; }
+
+std::string OptionError::worded(const std::function<std::string(std::string_view)>& spelling) const {
+  return spelling(field_) + ": " + (value_.empty() ? "" : value_ + " ") + with_names(problem_, spelling);
 }
 
 bool OptionRange::accepts(double x) const noexcept {

@@ -5,6 +5,7 @@
 #include <charconv>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 
 namespace ccal {
 
@@ -19,8 +20,8 @@ std::size_t select_run(const TestPlan& plan, std::string_view name_or_index, std
     return index - 1;
   std::string names;
   for (const Run& r : plan.runs) names += (names.empty() ? "" : ", ") + r.name;
-  throw InputError(fmt::format("{}: no run '{}'; give a run name ({}) or an index 1..{}", option_name,
-                               name_or_index, names, plan.runs.size()));
+  throw OptionError(std::string(option_name), "'" + std::string(name_or_index) + "'",
+                    fmt::format("is no run; accepted: a run name ({}) or an index 1..{}", names, plan.runs.size()));
 }
 
 Experiment Config::experiment() const {

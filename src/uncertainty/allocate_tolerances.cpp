@@ -12,6 +12,7 @@
 
 #include "allocation_groups.hpp"
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/uncertainty/allocate.hpp"
@@ -99,10 +100,10 @@ void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vec
     P.group.push_back(t.group);
     P.min_scale[Eigen::Index(s)] = t.floor / t.bound;
     if (P.min_scale[Eigen::Index(s)] > o.max_scale)
-      throw InputError(fmt::format(
-          "--max-scale: {:g} is below the floor of {} ({:g} of its bound); accepted: a max scale of at least "
-          "{:g}, or a lower floor in [tolerances]",
-          o.max_scale, t.id, P.min_scale[Eigen::Index(s)], P.min_scale[Eigen::Index(s)]));
+      throw OptionError("max_scale", fmt::format("{:g}", o.max_scale),
+                        fmt::format("is below the floor of {} ({:g} of its bound); accepted: a max scale of at "
+                                    "least {:g}, or a lower floor in [tolerances]",
+                                    t.id, P.min_scale[Eigen::Index(s)], P.min_scale[Eigen::Index(s)]));
   }
   std::vector<std::size_t> rows = r.targets;
   std::vector<double> target = tolerance_target;
@@ -275,12 +276,12 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
                                      const AllocateOptions& o) {
   if (cfg.tolerances.empty())
     throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
-  if (targets.empty()) throw InputError("no target given; e.g. --target K3=1e-6");
+  if (targets.empty()) throw OptionError("targets", "", "none given; accepted: at least one, e.g. K3=1e-6");
   const double kp = normal_coverage_factor(o.coverage);
   if (!(std::isfinite(o.max_scale) && o.max_scale > 0))
-    throw InputError(fmt::format("--max-scale: {} is not a number > 0; e.g. 10", o.max_scale));
+    throw OptionError("max_scale", option_number_text(o.max_scale), "is not a number > 0; accepted: e.g. 10");
   if (o.verify_trials == 1)
-    throw InputError("--verify-trials: 1 is too few; accepted: 0 (no verification) or 2 and more");
+    throw OptionError("verify_trials", "1", "is too few; accepted: 0 (no verification) or 2 and more");
   check_thread_count(o.threads, "threads");
 
   BudgetOptions bo;

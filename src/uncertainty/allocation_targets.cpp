@@ -11,6 +11,7 @@
 #include <numeric>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/uncertainty/allocate.hpp"
@@ -41,24 +42,26 @@ bool is_bare_number(std::string_view s, double& value) {
 }  // namespace
 
 AllocationTarget parse_allocation_target(std::string_view text, const std::vector<std::string>& coefficients,
-                                         const std::vector<std::string>& units, std::string_view option) {
+                                         const std::vector<std::string>& units, std::string_view field) {
+  const std::string option(field);
   const auto eq = text.find('=');
   const std::string_view name = trim(text.substr(0, eq));
   std::string_view value = eq == std::string_view::npos ? std::string_view() : trim(text.substr(eq + 1));
   if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
     value = trim(value.substr(1, value.size() - 2));
   if (eq == std::string_view::npos || name.empty() || value.empty())
-    throw InputError(fmt::format(
-        "{}: '{}' is not COEFFICIENT=VALUE; e.g. {} K3=1e-6 (in the coefficient's unit) or {} \"K3=1e-6 "
-        "deg/s/g^3\"",
-        option, text, option, option));
+    throw OptionError(option, fmt::format("'{}'", text),
+                      "is not COEFFICIENT=VALUE; accepted: e.g. K3=1e-6 (in the coefficient's unit) or "
+                      "\"K3=1e-6 deg/s/g^3\"");
   const auto it = std::find(coefficients.begin(), coefficients.end(), name);
   if (it == coefficients.end()) {
     if (parse_term(name))
-      throw InputError(fmt::format("{}: {} is not a free term of the identification; accepted: {}", option,
-                                   name, fmt::join(coefficients, ", ")));
-    throw InputError(fmt::format("{}: unknown coefficient '{}'; accepted: the free terms {}", option, name,
-                                 fmt::join(coefficients, ", ")));
+      throw OptionError(option, std::string(name),
+                        fmt::format("is not a free term of the identification; accepted: {}",
+                                    fmt::join(coefficients, ", ")));
+    throw OptionError(option, "",
+                      fmt::format("unknown coefficient '{}'; accepted: the free terms {}", name,
+                                  fmt::join(coefficients, ", ")));
   }
   const auto k = std::size_t(it - coefficients.begin());
   const std::string unit = pulse_as_rad(units[k]);
@@ -77,12 +80,13 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
       t.expanded = q.value_si;
     }
   } catch (const InputError& e) {
-    throw InputError(fmt::format("{} {}: {}", option, name, e.what()));
+    throw OptionError(option, "", fmt::format("{}: {}", name, e.what()));
   }
   if (!(std::isfinite(t.expanded) && t.expanded > 0))
-    throw InputError(
-        fmt::format("{} {}: the target must be a positive expanded uncertainty, got '{}'; e.g. {}={} (in {})",
-                    option, name, value, name, "1e-6", units[k]));
+    throw OptionError(option, "",
+                      fmt::format("{}: the target must be a positive expanded uncertainty, got '{}'; e.g. "
+                                  "{}=1e-6 (in {})",
+                                  name, value, name, units[k]));
   return t;
 }
 

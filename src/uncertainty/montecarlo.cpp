@@ -454,7 +454,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   const auto J = std::uint64_t(std::ceil(100.0 / (1.0 - p) - 1e-9));
   const std::uint64_t block = adaptive ? std::max({options.trials, J, std::uint64_t(10000)}) : options.trials;
   if (block < 2) throw InputError("Monte Carlo: at least 2 trials are needed");
-  check_coverage_interval(block, p, "trials", "coverage probability");
+  check_coverage_interval(block, p);
   if (adaptive && options.max_trials < 2 * block)
     throw InputError(
         fmt::format("Monte Carlo: max_trials = {} leaves fewer than the 2 stages of {} trials the "

@@ -80,17 +80,19 @@ std::uint64_t least_trials_for_coverage(double p) {
   return M;
 }
 
-void check_coverage_interval(std::uint64_t trials, double p, const char* trials_name,
-                             const char* coverage_name) {
+void check_coverage_interval(std::uint64_t trials, double p) {
   if (trials < 2 || !(p > 0 && p < 1)) return;  // refused elsewhere, with their own messages
   const std::uint64_t q = sample_stats::rounded_points(trials, p);
   if (q <= trials - 1) return;
-  throw InputError(fmt::format(
-      "{} = {} with {} = {}: the coverage interval [y_(r), y_(r+q)] takes q = round(pM) = {} of the M sorted "
-      "values, so with q = M its ends do not exist (JCGM 101 §7.7.2); accepted: {} at least {} for this p "
-      "(§7.2 recommends M ≥ 10⁴/(1 − p) = {:.3g}), or {} below 1 − 1/(2M) = {} for this M",
-      trials_name, trials, coverage_name, p, q, trials_name, least_trials_for_coverage(p), 1e4 / (1 - p),
-      coverage_name, 1 - 0.5 / double(trials)));
+  const std::string trials_name = OptionError::name("trials");
+  throw OptionError(
+      "coverage_probability", option_number_text(p),
+      fmt::format("with {} = {}: the coverage interval [y_(r), y_(r+q)] takes q = round(pM) = {} of the M sorted "
+                  "values, so with q = M its ends do not exist (JCGM 101 §7.7.2); accepted: {} at least {} for "
+                  "this p (§7.2 recommends M ≥ 10⁴/(1 − p) = {:.3g}), or a coverage probability below "
+                  "1 − 1/(2M) = {} for this M",
+                  trials_name, trials, q, trials_name, least_trials_for_coverage(p), 1e4 / (1 - p),
+                  1 - 0.5 / double(trials)));
 }
 
 }  // namespace ccal

@@ -50,7 +50,7 @@ std::vector<DesignTarget> design_targets(const Config& config, const DesignOptio
   if (!o.targets.empty()) {
     targets.clear();
     for (const std::string& t : o.targets) {
-      const AllocationTarget a = parse_allocation_target(t, before.coefficients, before.units, "--target");
+      const AllocationTarget a = parse_allocation_target(t, before.coefficients, before.units);
       targets[a.coefficient] = a.expanded;
     }
   }

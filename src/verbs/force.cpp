@@ -23,12 +23,12 @@ OptionTable<ForceOptions> options_of(std::type_identity<ForceOptions>) { return 
 ForceResult force(const Config& config, const ForceOptions& options) {
   ForceResult r;
   r.config = config;
-  r.run_index = select_run(config.plan, options.run, "--run");
+  r.run_index = select_run(config.plan, options.run, "run");
   const Run& run = config.plan.runs[r.run_index];
   const double t = options.time;
   if (!(t >= 0.0 && t <= run.duration))
-    throw InputError(fmt::format("--time: {} s is outside run '{}'; accepted: 0 to {} s", number(t), run.name,
-                                 number(run.duration)));
+    throw OptionError("time", number(t) + " s",
+                      fmt::format("is outside run '{}'; accepted: 0 to {} s", run.name, number(run.duration)));
   r.input = evaluate_force(config.site, config.centrifuge, run, t, options.mode);
   return r;
 }

@@ -30,8 +30,7 @@ void check_verb_options(const MonteCarloOptions& o) {
   check_options(o, option_table<MonteCarloOptions>());
   check_thread_count(o.threads, "threads");
   if (o.digits == 0)  // the adaptive stages are large enough for any p (at least 100/(1 − p) trials)
-    check_coverage_interval(std::uint64_t(o.trials.value_or(kDefaultMonteCarloTrials)), o.coverage_probability,
-                            "--trials", "--coverage-probability");
+    check_coverage_interval(std::uint64_t(o.trials.value_or(kDefaultMonteCarloTrials)), o.coverage_probability);
 }
 
 }  // namespace

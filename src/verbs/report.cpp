@@ -35,7 +35,7 @@ std::size_t highest_g_run(const TestPlan& plan) {
 SensedInputSeries sensed_input(const Config& config, const ReportOptions& o) {
   if (config.plan.runs.empty()) throw InputError(config.source + ": the test plan has no runs");
   SensedInputSeries s;
-  s.run_index = o.run.empty() ? highest_g_run(config.plan) : select_run(config.plan, o.run, "--run");
+  s.run_index = o.run.empty() ? highest_g_run(config.plan) : select_run(config.plan, o.run, "run");
   const Run& run = config.plan.runs[s.run_index];
   s.run_name = run.name;
   s.g_level = run.g_level;
@@ -69,13 +69,13 @@ void check_targets(const Config& config, const ReportOptions& o) {
     units.push_back(coefficient_unit(config.instrument.output_unit, id));
   if (o.allocate) {
     if (o.allocate->targets.empty())
-      throw InputError("--allocate-target: the allocation needs at least one target; e.g. K3=2e-3");
+      throw OptionError("allocate_targets", "", "none given; the allocation needs at least one target, e.g. K3=2e-3");
     for (const auto& t : o.allocate->targets)
-      parse_allocation_target(t, config.identification.free_terms, units, "--allocate-target");
+      parse_allocation_target(t, config.identification.free_terms, units, "allocate_targets");
   }
   if (o.design)
     for (const auto& t : o.design->targets)
-      parse_allocation_target(t, config.identification.free_terms, units, "--design-target");
+      parse_allocation_target(t, config.identification.free_terms, units, "design_targets");
 }
 
 // The observations identified with the configuration's budget (`ccal identify OBS.csv --budget CONFIG`); an

@@ -176,12 +176,12 @@ TEST_F(AllocateCli, FloorsAreKeptAndAnImpossibleTargetIsExitCodeTwo) {
 TEST_F(AllocateCli, BadTargetsAndOptionsAreExitCodeTwo) {
   expect_bad_input(run("allocate --target K3"), {"--target", "'K3' is not COEFFICIENT=VALUE"});
   expect_bad_input(run("allocate --target =1e-6"), {"--target", "COEFFICIENT=VALUE"});
-  expect_bad_input(run("allocate --target K3=abc"), {"--target K3"});
+  expect_bad_input(run("allocate --target K3=abc"), {"--target: K3"});
   expect_bad_input(run("allocate --target K9x=1e-6"), {"unknown coefficient 'K9x'", "K0, K2, K3"});
   expect_bad_input(run("allocate --target K1=1e-6"), {"K1 is not a free term", "K0, K2, K3"});
-  expect_bad_input(run("allocate --target K3=0"), {"--target K3", "positive"});
-  expect_bad_input(run("allocate --target K3=-1e-6"), {"--target K3", "positive"});
-  expect_bad_input(run("allocate --target 'K3=1e-6 deg/s'"), {"--target K3", "deg/s/g^3"});
+  expect_bad_input(run("allocate --target K3=0"), {"--target: K3", "positive"});
+  expect_bad_input(run("allocate --target K3=-1e-6"), {"--target: K3", "positive"});
+  expect_bad_input(run("allocate --target 'K3=1e-6 deg/s'"), {"--target: K3", "deg/s/g^3"});
   expect_bad_input(run("allocate --target K3=1e-6 --target K3=2e-6"), {"two targets on K3"});
   expect_bad_input(run("allocate"), {"--target"});
   expect_bad_input(run("allocate --target K3=1e-6 --max-scale 0"), {"--max-scale"});

@@ -251,11 +251,11 @@ std::vector<BadInput> catalogue() {
       {"CoverageBeyondTheTrials",
        {},
        "montecarlo --coverage-probability 0.999999 --trials 10",
-       {"--trials = 10", "--coverage-probability = 0.999999", "at least 500001", "below 1 − 1/(2M) = 0.95"}},
+       {"--coverage-probability: 0.999999 with --trials = 10", "--trials at least 500001", "below 1 − 1/(2M) = 0.95"}},
       {"CoverageBeyondTheDefaultTrials",
        {},
        "montecarlo --coverage-probability 0.9999999999",
-       {"--trials = 1000000", "--trials at least 5000", "below 1 − 1/(2M) = 0.9999995"}},
+       {"with --trials = 1000000", "--trials at least 5000", "below 1 − 1/(2M) = 0.9999995"}},
       // --coverage meant the factor k in budget and a probability here: refused, naming the new option.
       {"CoverageAmbiguous",
        {},

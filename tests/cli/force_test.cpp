@@ -172,7 +172,7 @@ TEST_F(Cli, BadConfigIsExitCodeTwoWithFileAndLine) {
 }
 
 TEST_F(Cli, BadRunAndTime) {
-  expect_bad_input(run("force --run 7"), {"--run", "no run '7'", "1..6"});
+  expect_bad_input(run("force --run 7"), {"--run: '7' is no run", "1..6"});
   expect_bad_input(run("force --run 0"), {"--run"});
   expect_bad_input(run("force --run 35g"), {"--run", "5g, 10g"});
   expect_bad_input(run("force --time 451"), {"--time", "outside run '5g'", "0 to 450 s"});

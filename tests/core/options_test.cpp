@@ -183,7 +183,7 @@ class SameRefusal : public test::Cli {
         call(options);
       } catch (const OptionError& e) {
         ASSERT_EQ(e.field(), row.field);
-        library = e.worded(cli_flag(row));
+        library = e.worded([&](std::string_view) { return cli_flag(row); });
       }
       ASSERT_FALSE(library.empty()) << verb << " " << row.field << " = " << value << " was accepted";
       const test::Result r = run(verb + " " + extra + " " + cli_flag(row) + " " + value);

@@ -81,7 +81,7 @@ class NonFiniteResultTest(unittest.TestCase):
 
     def test_a_coverage_interval_the_trials_cannot_give_is_refused(self):
         cfg = ccal.bundled_example()
-        with self.assertRaisesRegex(ccal.InputError, "coverage-probability.*at least 500001"):
+        with self.assertRaisesRegex(ccal.InputError, "coverage_probability.*trials at least 500001"):
             ccal.monte_carlo(cfg, trials=10, coverage_probability=0.999999)
 
     def test_a_tolerance_beyond_any_physical_size_is_refused_where_it_is_written(self):

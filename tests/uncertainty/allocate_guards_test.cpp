@@ -236,7 +236,7 @@ TEST_F(HeldCoefficients, ATargetTheFloorsMakeImpossibleIsRefusedWithWhatTheyAllo
     allocate_tolerances(high, k3, o);
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("--max-scale: 0.5 is below the floor of", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("max_scale: 0.5 is below the floor of", 0), 0u) << e.what();
   }
 }
 

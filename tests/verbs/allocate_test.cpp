@@ -113,8 +113,8 @@ TEST(AllocateVerb, BadOptionsNameTheOption) {
   EXPECT_EQ(message(p).rfind("coverage_probability: ", 0), 0u) << message(p);
   EXPECT_EQ(message(scale).rfind("max_scale: ", 0), 0u) << message(scale);
   EXPECT_EQ(message(trials).rfind("verify_trials: ", 0), 0u) << message(trials);
-  EXPECT_NE(message(target).find("--target"), std::string::npos) << message(target);
-  EXPECT_NE(message(unit).find("--target"), std::string::npos) << message(unit);
+  EXPECT_NE(message(target).find("targets: "), std::string::npos) << message(target);
+  EXPECT_NE(message(unit).find("targets: "), std::string::npos) << message(unit);
   Config empty = config;
   empty.tolerances.clear();
   EXPECT_THROW(verbs::allocate(empty, k2_k3_targets()), InputError);

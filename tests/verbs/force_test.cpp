@@ -94,10 +94,10 @@ TEST(ForceVerb, RunAndTimeOutsideThePlanAreRefusedNamingTheOption) {
     }
     return "no error";
   };
-  EXPECT_EQ(message("7", 0).rfind("--run: ", 0), 0u) << message("7", 0);
-  EXPECT_EQ(message("fast", 0).rfind("--run: ", 0), 0u) << message("fast", 0);
-  EXPECT_EQ(message("1", 450.5).rfind("--time: ", 0), 0u) << message("1", 450.5);
-  EXPECT_EQ(message("1", -1).rfind("--time: ", 0), 0u) << message("1", -1);
+  EXPECT_EQ(message("7", 0).rfind("run: ", 0), 0u) << message("7", 0);
+  EXPECT_EQ(message("fast", 0).rfind("run: ", 0), 0u) << message("fast", 0);
+  EXPECT_EQ(message("1", 450.5).rfind("time: ", 0), 0u) << message("1", 450.5);
+  EXPECT_EQ(message("1", -1).rfind("time: ", 0), 0u) << message("1", -1);
   // By name as by index.
   verbs::ForceOptions by_name;
   by_name.run = "10g";

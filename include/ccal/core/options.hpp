@@ -11,6 +11,7 @@
 // refusal everywhere. A new option is a field of the struct and one row of its table.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -27,16 +28,21 @@ namespace ccal {
 // An option of a library call that is not accepted. field(): the option's name in the library (the field of
 // the verb's options struct, e.g. "coverage_probability"); value(): the value as given; problem(): what is
 // wrong with it and what would be accepted. what() is "<field>: <value> <problem>"; a front end rewords it
-// with its own name of the field (worded("--coverage-probability")).
+// with its own name of each option (worded: the command line's flags, --coverage-probability). A problem that
+// names another option of the call writes it as OptionError::name(field), so that it too is worded.
 class OptionError : public InputError {
  public:
   OptionError(std::string field, std::string value, std::string problem);
 
+  // An option named inside a problem's text: the field between two U+001F marks, worded by each front end.
+  static std::string name(std::string_view field);
+
   const std::string& field() const noexcept { return field_; }
   const std::string& value() const noexcept { return value_; }
   const std::string& problem() const noexcept { return problem_; }
-  // "<name>: <value> <problem>", or "<name>: <problem>" for an option without a value.
-  std::string worded(std::string_view name) const;
+  // "<name>: <value> <problem>", or "<name>: <problem>" for an option without a value, where every option
+  // is named by spelling(field) (what(): the field itself).
+  std::string worded(const std::function<std::string(std::string_view field)>& spelling) const;
 
  private:
   std::string field_, value_, problem_;

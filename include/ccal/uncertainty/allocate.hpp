@@ -105,11 +105,11 @@ struct AllocationTarget {
 
 // Parses "K3=1e-6" (a number in the coefficient's display unit, e.g. deg/s/g^3) or "K3=1e-6 deg/s/g^3" (a
 // quantity whose unit must have the coefficient's dimension) into SI. coefficients and units: the free terms
-// and their display units (BudgetResult::coefficients, ::units). Throws InputError naming `option` for bad
-// syntax, an unknown or non-free coefficient (listing the free terms), a wrong unit or a value ≤ 0.
+// and their display units (BudgetResult::coefficients, ::units). Throws OptionError of `field` (the option
+// the text was given in) for bad syntax, an unknown or non-free coefficient (listing the free terms), a wrong
+// unit or a value ≤ 0.
 AllocationTarget parse_allocation_target(std::string_view text, const std::vector<std::string>& coefficients,
-                                         const std::vector<std::string>& units,
-                                         std::string_view option = "--target");
+                                         const std::vector<std::string>& units, std::string_view field = "targets");
 
 struct AllocateOptions {
   ModelMode mode = ModelMode::exact;  // of the sensitivities and the verification (verbs: the config's)

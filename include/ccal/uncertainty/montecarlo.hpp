@@ -98,10 +98,9 @@ void check_thread_count(int threads, const char* what);
 // least one of the M sorted values out (q ≤ M − 1), about M = 1/(2(1 − p)). InputError unless 0 < p < 1.
 std::uint64_t least_trials_for_coverage(double p);
 
-// Throws InputError, naming both options and what each would need, when `trials` values cannot give the
-// coverage interval of probability p (trials < least_trials_for_coverage(p)).
-void check_coverage_interval(std::uint64_t trials, double p, const char* trials_name,
-                             const char* coverage_name);
+// Throws OptionError of coverage_probability, naming the option trials too and what each would need, when
+// `trials` values cannot give the coverage interval of probability p (trials < least_trials_for_coverage(p)).
+void check_coverage_interval(std::uint64_t trials, double p);
 
 struct MonteCarloOptions {
   std::uint64_t trials = 100000;  // M (fixed); adaptive: the stage size is max(trials, ⌈100/(1 − p)⌉, 10⁴)

@@ -1,0 +1,78 @@
+// The non-template parts of the verbs' Python keywords (option_keywords.hpp).
+#include "option_keywords.hpp"
+
+#include <pybind11/stl.h>
+
+#include "ccal/io/config_file.hpp"  // edit_distance, as for a mistyped flag or configuration key
+
+namespace ccal::python::keywords {
+
+void unknown_keyword(std::string_view function, std::string_view keyword,
+                     const std::vector<std::string_view>& accepted) {
+  std::string list, nearest;
+  std::size_t best = std::string::npos;
+  for (std::string_view name : accepted) {
+    list += (list.empty() ? "" : ", ") + std::string(name);
+    const std::size_t d = edit_distance(keyword, name);
+    if (d < best) best = d, nearest = std::string(name);
+  }
+  // A near name (at most a third of its letters changed) is the likely intent.
+  const std::string suggestion =
+      best != std::string::npos && 3 * best <= nearest.size() ? "; did you mean '" + nearest + "'?" : "";
+  throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" + std::string(keyword) +
+                       "'" + suggestion + "; accepted: config, " + list);
+}
+
+void wrong_type(std::string_view field, std::string_view expected, py::handle value) {
+  throw py::type_error(std::string(field) + ": expected " + std::string(expected) + ", got " +
+                       std::string(py::str(py::type::handle_of(value).attr("__name__"))) + " (" +
+                       std::string(py::repr(value)) + ")");
+}
+
+bool is_number(py::handle value) {
+  if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value))
+    return false;
+  // NumPy's bool_ has __index__ in old versions: refuse it as a number too.
+  if (std::string(py::str(py::type::handle_of(value).attr("__name__"))).starts_with("bool")) return false;
+  return py::hasattr(value, "__index__") || py::hasattr(value, "__float__");
+}
+
+std::string number_text(py::handle value) {
+  if (py::hasattr(value, "__index__")) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
+  // repr of a float is its shortest round-trip text (1e+20, 100000.0, nan, inf).
+  return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
+}
+
+std::vector<std::string> strings(std::string_view field, py::handle value) {
+  if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value))
+    wrong_type(field, "a list of str", value);
+  std::vector<std::string> out;
+  for (py::handle item : py::reinterpret_borrow<py::sequence>(value)) {
+    if (!py::isinstance<py::str>(item)) wrong_type(field, "a list of str", item);
+    out.push_back(item.cast<std::string>());
+  }
+  return out;
+}
+
+std::vector<double> reals(std::string_view field, py::handle value) {
+  if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value))
+    wrong_type(field, "a list of numbers", value);
+  std::vector<double> out;
+  for (py::handle item : py::reinterpret_borrow<py::sequence>(value)) out.push_back(number<double>(field, item));
+  return out;
+}
+
+bool skipped(std::string_view field, std::initializer_list<std::string_view> skip) {
+  return std::find(skip.begin(), skip.end(), field) != skip.end();
+}
+
+void record(py::module_& m, std::string_view function, std::string_view name, py::object default_value,
+            const std::string& type, const std::string& help) {
+  if (!py::hasattr(m, "_option_keywords")) m.attr("_option_keywords") = py::dict();
+  py::dict all = m.attr("_option_keywords");
+  const py::str key{std::string(function)};
+  if (!all.contains(key)) all[key] = py::list();
+  py::list(all[key]).append(py::make_tuple(std::string(name), default_value, type, help));
+}
+
+}  // namespace ccal::python::keywords
