@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "option_keywords.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/render/identify.hpp"  // before bindings.hpp (keep this order)
 #include "ccal/verbs/identify.hpp"
@@ -17,8 +18,8 @@ namespace ccal::python {
 void bind_identify(py::module_& m) {
   py::class_<verbs::IdentifyResult>(m, "Identification",
                                     "`ccal identify`: the fit of a table of observations, with units and the "
-                                    "observability of each term (and the calibration statement when a budget "
-                                    "configuration is given); str() is the CLI's text, to_json() its JSON.")
+                                    "observability of each term (and the calibration statement with "
+                                    "statement=True); str() is the CLI's text, to_json() its JSON.")
       .def("to_json", [](const verbs::IdentifyResult& r) { return render::json(r); })
       .def("__str__", [](const verbs::IdentifyResult& r) { return render::text(r); })
       .def_readonly("source", &verbs::IdentifyResult::source, "the table's file [path]")
@@ -31,38 +32,24 @@ void bind_identify(py::module_& m) {
           "the unit of each free term's coefficient [—]")
       .def_property_readonly(
           "has_statement", [](const verbs::IdentifyResult& r) { return r.statement.has_value(); },
-          "True when a budget configuration gave the calibration statement [—]");
+          "True when statement=True gave the calibration statement [—]");
 
-  const verbs::IdentifyOptions defaults;
   m.def(
       "identify_file",
-      [](const std::string& path, std::optional<std::vector<std::string>> terms,
-         std::optional<std::vector<std::string>> fix, std::optional<std::vector<std::string>> known,
-         const std::string& input, const std::string& output, const std::string& weight,
-         std::optional<Config> budget, std::optional<std::string> mode, double coverage_probability) {
-        verbs::IdentifyOptions o;
-        o.terms = std::move(terms);
-        o.fix = std::move(fix);
-        o.known = std::move(known);
-        o.input = input;
-        o.output = output;
-        o.weight = weight;
-        o.budget = std::move(budget);
-        o.budget_option = "budget";
-        if (mode) o.statement.mode = mode_argument(*mode);
-        o.statement.coverage_probability = coverage_probability;
+      [](const std::string& path, std::optional<Config> config, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::IdentifyOptions>(keywords, "identify_file", {}, {},
+                                                               {"path", "config"});
+        o.config = std::move(config);
         return verbs::identify(read_csv_file(path), o);
       },
-      py::arg("path"), py::arg("terms") = py::none(), py::arg("fix") = py::none(),
-      py::arg("known") = py::none(), py::arg("input") = defaults.input, py::arg("output") = defaults.output,
-      py::arg("weight") = defaults.weight, py::arg("budget") = py::none(), py::arg("mode") = py::none(),
-      py::arg("coverage_probability") = defaults.statement.coverage_probability,
+      py::arg("path"), py::kw_only(), py::arg("config") = py::none(),
       "Identifies coefficients from a CSV file as `ccal identify` does: an observations file of "
       "Simulation.to_csv() or `ccal simulate --observations-out` (terms, fixed terms and known columns from "
       "its '# ccal observations' line unless given), or any table with input and output columns. terms: e.g. "
       "['K0', 'K1', 'K2']; fix: ['K1=505.2 deg/s/g']; known: columns subtracted from the output (['none'] "
-      "for none); weight: the column of the σ of the output; budget: a Config whose tolerances give the "
-      "calibration statement's Type B part, mode its kinematics ('exact' or 'paper'; default its own).");
+      "for none); statement=True with config (a Config whose tolerances give the Type B part): also the "
+      "calibration statement.");
+  record_keywords<verbs::IdentifyOptions>(m, "identify_file");
 }
 
 }  // namespace ccal::python

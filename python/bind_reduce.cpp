@@ -4,13 +4,13 @@
 #include <pybind11/stl.h>
 
 #include <map>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "bindings.hpp"
+#include "option_keywords.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/io/run_log.hpp"
@@ -19,6 +19,15 @@
 namespace ccal::python {
 
 namespace {
+
+using LogMap = std::map<std::variant<int, std::string>, std::string>;
+
+// The logs as the verb takes them: each run by its name (a 0-based index or a name, as run= elsewhere).
+std::vector<verbs::LogFile> log_files(const Config& cfg, const LogMap& logs) {
+  std::vector<verbs::LogFile> files;
+  for (const auto& [run, path] : logs) files.push_back({cfg.plan.runs[run_index(cfg, run)].name, path});
+  return files;
+}
 
 // The results of reducing recorded run logs: ReducedLog, ControlEvidence, LoggedRun and LogReduction.
 void bind_log_reduction_results(py::module_& m) {
@@ -88,7 +97,7 @@ void bind_log_reduction(py::module_& m) {
       .def_readonly("warnings", &verbs::ReduceResult::warnings, "what the reduction noticed in the logs [—]")
       .def_property_readonly(
           "has_statement", [](const verbs::ReduceResult& r) { return r.statement.has_value(); },
-          "True when budget=True gave the calibration statement (in str() and to_json()) [—]")
+          "True when statement=True gave the calibration statement (in str() and to_json()) [—]")
       .def_property_readonly(
           "coefficients",
           [](const verbs::ReduceResult& r) {
@@ -101,52 +110,34 @@ void bind_log_reduction(py::module_& m) {
 
   m.def(
       "reduce",
-      [](const Config& cfg, const std::map<std::variant<int, std::string>, std::string>& logs,
-         std::optional<double> pulse_weight, const std::string& angle_unit, std::optional<std::string> mode,
-         bool budget, double coverage_probability) {
-        verbs::ReduceOptions o;
-        for (const auto& [run, path] : logs)
-          o.logs.push_back({cfg.plan.runs[run_index(cfg, run)].name, path});
-        o.pulse_weight = pulse_weight;
-        if (angle_unit == "deg")
-          o.angles_in_degrees = true;
-        else if (angle_unit != "rad")
-          throw InputError("angle_unit: '" + angle_unit + "'; accepted: 'rad', 'deg'");
-        if (mode) o.mode = mode_argument(*mode);
-        o.budget = budget;
-        o.coverage_probability = coverage_probability;
+      [](const Config& cfg, const LogMap& logs, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::ReduceOptions>(keywords, "reduce", {}, {}, {"config", "logs"});
+        o.logs = log_files(cfg, logs);
         py::gil_scoped_release release;
         return verbs::reduce(cfg, o);
       },
-      py::arg("config"), py::arg("logs"), py::arg("pulse_weight") = py::none(),
-      py::arg("angle_unit") = verbs::ReduceOptions{}.angles_in_degrees ? "deg" : "rad",
-      py::arg("mode") = py::none(), py::arg("budget") = verbs::ReduceOptions{}.budget,
-      py::arg("coverage_probability") = verbs::ReduceOptions{}.coverage_probability,
+      py::arg("config"), py::arg("logs"),
       "`ccal reduce`: recorded run logs (run name or 0-based index → CSV file) to run means, the model of "
-      "the runs as measured and the identification, as the CLI gives them; pulse_weight in the output unit "
-      "× s (default: the instrument's quantum); budget: also the calibration statement with the "
-      "configuration's tolerances as its Type B part (`--budget`), its intervals at coverage_probability.");
+      "the runs as measured and the identification, as the CLI gives them; with statement=True also the "
+      "calibration statement with the configuration's tolerances as its Type B part.");
+  record_keywords<verbs::ReduceOptions>(m, "reduce");
 
+  // The logs alone, without the identification (so without the statement's options).
   m.def(
       "reduce_logs",
-      [](const Config& cfg, const std::map<std::variant<int, std::string>, std::string>& logs,
-         std::optional<double> pulse_weight, const std::string& angle_unit, std::optional<std::string> mode) {
-        RunLogOptions o;
-        o.output_scale = output_unit_si(cfg.instrument.output_unit);
-        o.pulse_weight = pulse_weight ? *pulse_weight : cfg.instrument.quantum;
-        if (angle_unit == "deg")
-          o.angle_scale = std::numbers::pi / 180;
-        else if (angle_unit != "rad")
-          throw InputError("angle_unit: '" + angle_unit + "'; accepted: 'rad', 'deg'");
+      [](const Config& cfg, const LogMap& logs, const py::kwargs& keywords) {
+        const auto o = options_from_keywords<verbs::ReduceOptions>(
+            keywords, "reduce_logs", {}, {"statement", "coverage_probability"}, {"config", "logs"});
+        const RunLogOptions lo = verbs::run_log_options(cfg, o);
         std::vector<std::pair<std::size_t, CsvTable>> tables;
         for (const auto& [run, path] : logs) tables.emplace_back(run_index(cfg, run), read_csv_file(path));
-        return reduce_logs(cfg, tables, o, mode ? mode_argument(*mode) : cfg.mode);
+        return reduce_logs(cfg, tables, lo, o.mode.value_or(cfg.mode));
       },
-      py::arg("config"), py::arg("logs"), py::arg("pulse_weight") = py::none(), py::arg("angle_unit") = "rad",
-      py::arg("mode") = py::none(),
+      py::arg("config"), py::arg("logs"),
       "Recorded run logs (run name or 0-based index → CSV file) to observations of the runs as measured "
-      "(`ccal reduce`); pulse_weight: integrated output per pulse in SI (default: the instrument's quantum). "
-      "Identify them with identify(reduction.observations, config).");
+      "(`ccal reduce` without the identification). Identify them with identify(reduction.observations, "
+      "config).");
+  record_keywords<verbs::ReduceOptions>(m, "reduce_logs", {"statement", "coverage_probability"});
 }
 
 }  // namespace

@@ -8,8 +8,9 @@
 namespace ccal::python::keywords {
 
 void unknown_keyword(std::string_view function, std::string_view keyword,
-                     const std::vector<std::string_view>& accepted) {
+                     std::initializer_list<std::string_view> own, const std::vector<std::string_view>& accepted) {
   std::string list, nearest;
+  for (std::string_view name : own) list += (list.empty() ? "" : ", ") + std::string(name);
   std::size_t best = std::string::npos;
   for (std::string_view name : accepted) {
     list += (list.empty() ? "" : ", ") + std::string(name);
@@ -20,7 +21,7 @@ void unknown_keyword(std::string_view function, std::string_view keyword,
   const std::string suggestion =
       best != std::string::npos && 3 * best <= nearest.size() ? "; did you mean '" + nearest + "'?" : "";
   throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" + std::string(keyword) +
-                       "'" + suggestion + "; accepted: config, " + list);
+                       "'" + suggestion + "; accepted: " + list);
 }
 
 void wrong_type(std::string_view field, std::string_view expected, py::handle value) {

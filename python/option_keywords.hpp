@@ -34,8 +34,10 @@ namespace py = pybind11;
 
 namespace keywords {
 
-// TypeError "<function>() got an unexpected keyword argument 'x'; did you mean 'y'? accepted: ...".
+// TypeError "<function>() got an unexpected keyword argument 'x'; did you mean 'y'? accepted: ...", the
+// accepted names being the binding's own arguments, then the options'.
 [[noreturn]] void unknown_keyword(std::string_view function, std::string_view keyword,
+                                  std::initializer_list<std::string_view> own,
                                   const std::vector<std::string_view>& accepted);
 // TypeError "<field>: expected <expected>, got <type> (<repr>)".
 [[noreturn]] void wrong_type(std::string_view field, std::string_view expected, py::handle value);
@@ -128,7 +130,8 @@ std::string accepted_text(const OptionSpec<Options>& row, const Member& member) 
   } else {
     using Field = std::remove_cvref_t<decltype(std::declval<Options&>().*member)>;
     if constexpr (std::is_same_v<Field, bool> || std::is_same_v<Field, std::string> ||
-                  std::is_same_v<Field, std::vector<std::string>>)
+                  std::is_same_v<Field, std::vector<std::string>> ||
+                  std::is_same_v<Field, std::optional<std::vector<std::string>>>)
       return "";
     else if (row.range.low <= -1e308 && row.range.high >= 1e308 && !row.range.also)
       return "";  // no range but the type's (an unsigned seed)
@@ -145,11 +148,13 @@ void record(py::module_& m, std::string_view function, std::string_view name, py
 }  // namespace keywords
 
 // The options of a verb from its Python keywords: `options` with each keyword's field set. Every keyword must
-// be a row of the table not in `skip` (the binding's own arguments); a value of the wrong type is a TypeError,
-// one the parser refuses an OptionError naming the field (ccal.InputError).
+// be a row of the table not in `skip` (fields the binding converts itself); a value of the wrong type is a
+// TypeError, one the parser refuses an OptionError naming the field (ccal.InputError). `own`: the binding's
+// own arguments, listed first among the accepted names of a mistyped keyword.
 template <class Options>
 Options options_from_keywords(const py::kwargs& given, std::string_view function, Options options = {},
-                              std::initializer_list<std::string_view> skip = {}) {
+                              std::initializer_list<std::string_view> skip = {},
+                              std::initializer_list<std::string_view> own = {"config"}) {
   const OptionTable<Options> table = option_table<Options>();
   for (const auto& [key, value] : given) {
     const std::string name = py::str(key);
@@ -160,7 +165,7 @@ Options options_from_keywords(const py::kwargs& given, std::string_view function
       std::vector<std::string_view> accepted;
       for (const OptionSpec<Options>& r : table)
         if (!keywords::skipped(r.field, skip)) accepted.push_back(r.field);
-      keywords::unknown_keyword(function, name, accepted);
+      keywords::unknown_keyword(function, name, own, accepted);
     }
     std::visit(
         [&](auto member) {

@@ -1,7 +1,11 @@
 // ccal identify: least-squares identification of calibration coefficients from a CSV file of observations,
 // either an observations file of `ccal simulate` (which records its terms) or any table with an input and an
 // output column (docs/cli.md).
+#include <fmt/format.h>
+
+#include <filesystem>
 #include <memory>
+#include <utility>
 
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/render/identify.hpp"
@@ -15,17 +19,15 @@ namespace {
 
 struct IdentifyCli {
   std::string file;
-  std::vector<std::string> terms, fix, known;
-  std::string input = verbs::IdentifyOptions{}.input;  // the library's defaults
-  std::string output_column = verbs::IdentifyOptions{}.output;
-  std::string weight;
-  std::string budget;  // configuration of the statement's Type B part; empty: no statement
-  verbs::StatementOptions statement;  // its table's flags are bound to it
+  verbs::IdentifyOptions options;  // its table's flags are bound to it
+  std::string config;              // --config: the statement's configuration
+  std::string old_budget;          // --budget, refused: it took a file here and was a flag in reduce
+  std::string old_input, old_weight;  // --input, --weight: now --input-column, --weight-column
   OutputOptions output;
-  CLI::Option* terms_option = nullptr;
-  CLI::Option* fix_option = nullptr;
-  CLI::Option* known_option = nullptr;
 };
+
+// The columns of the table, for the refusal of an -o/--output that names one (the former --output COL).
+bool is_column(const CsvTable& table, const std::string& name) { return table.find(name).has_value(); }
 
 }  // namespace
 
@@ -38,70 +40,54 @@ Command add_identify(CLI::App& app) {
   cmd->add_option("file", o->file, "CSV file: a header row, then one row per observation")
       ->required()
       ->type_name("FILE.csv");
-  o->terms_option =
-      cmd->add_option(
-             "--terms", o->terms,
-             "Free terms, comma-separated: Kn is the coefficient of input^n; <term>:<column> takes the "
-             "column as the term's regressor (needed for K_p ... K_w). Default: the file's "
-             "'# ccal observations' line")
-          ->delimiter(',')
-          ->type_name("TERMS");
-  o->fix_option =
-      cmd->add_option("--fix", o->fix,
-                      "Terms held at known values, comma-separated <term>[:<column>]=<value>, the value "
-                      "in the file's output unit per input unit^n (or with a unit). Default: the "
-                      "file's fixed terms")
-          ->delimiter(',')
-          ->type_name("TERM=VALUE");
-  cmd->add_option("--input", o->input, "Column of the input x of the power terms")
-      ->capture_default_str()
-      ->type_name("COL");
-  cmd->add_option("--output", o->output_column, "Column of the output y")
-      ->capture_default_str()
-      ->type_name("COL");
-  cmd->add_option("--weight", o->weight, "Column of the standard deviations sigma of y (weights 1/sigma^2)")
-      ->type_name("COL");
-  o->known_option =
-      cmd->add_option("--known", o->known,
-                      "Columns subtracted from the output, comma-separated, or 'none'. Default: the "
-                      "file's known columns")
-          ->delimiter(',')
-          ->type_name("COL[,COL]");
-  cmd->add_option("--budget", o->budget,
-                  "CONFIG: also the calibration statement (JCGM 100 §7), with the Type B part from this "
-                  "configuration's tolerances and the correction for its known [errors]")
+  add_option_flags(*cmd, o->options, option_table<verbs::IdentifyOptions>());
+  cmd->add_option("--config", o->config,
+                  "CONFIG: with --statement, the configuration whose tolerances give the Type B part and whose "
+                  "known [errors] give the correction")
       ->type_name("CONFIG");
-  add_option_flags(*cmd, o->statement, option_table<verbs::StatementOptions>());
-  add_output_options(*cmd, o->output, {"text", "json"}, false);  // --output names the output column
+  for (auto [flag, target] : {std::pair{"--budget", &o->old_budget}, std::pair{"--input", &o->old_input},
+                              std::pair{"--weight", &o->old_weight}})
+    cmd->add_option(flag, *target)->group("");  // refused with a message, not in --help
+  add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
       "  ccal simulate --observations-out obs.csv && ccal identify obs.csv\n"
       "      the paper's K0, K2, K3 from the simulated run means (terms, fixed K1 and the rate term from the "
       "file)\n"
       "  ccal identify obs.csv --terms K0,K2:K2,K3:K3 --fix K1=505.2097 --format json\n"
-      "  ccal identify data.csv --input x --output y --terms K0,K1,K2 --weight sigma\n"
+      "  ccal identify data.csv --input-column x --output-column y --terms K0,K1,K2 --weight-column sigma\n"
       "      polynomial y = K0 + K1 x + K2 x^2 of a plain table\n"
-      "  ccal identify obs.csv --budget my.toml\n"
+      "  ccal identify obs.csv --statement --config my.toml -o statement.json --format json\n"
       "      with the calibration statement: Type A from the fit, Type B from my.toml's tolerances\n");
 
   return {cmd, [o] {
+            if (!o->old_budget.empty())
+              throw InputError(
+                  "--budget: no longer accepted, as it took a file here and was a flag in reduce; accepted: "
+                  "--statement --config " + o->old_budget + " for the calibration statement");
+            if (!o->old_input.empty() || !o->old_weight.empty())
+              throw InputError(fmt::format("{0}: no longer accepted; accepted: {0}-column COL (the column of "
+                                           "the table), as -o/--output names the file written",
+                                           o->old_input.empty() ? "--weight" : "--input"));
             note_input(o->file);
             const CsvTable table = read_csv_file(o->file);
-            verbs::IdentifyOptions io;
-            if (o->terms_option->count() > 0) io.terms = o->terms;
-            if (o->fix_option->count() > 0) io.fix = o->fix;
-            if (o->known_option->count() > 0) io.known = o->known;
-            io.input = o->input;
-            io.output = o->output_column;
-            io.weight = o->weight;
-            if (!o->budget.empty()) {
-              note_input(o->budget);
-              io.budget = load_config_or_example(o->budget);
+            if (!o->output.path.empty() && is_column(table, o->output.path) &&
+                !std::filesystem::exists(o->output.path))
+              throw InputError(fmt::format(
+                  "-o/--output: '{0}' is a column of {1}, but -o/--output names the file written; accepted: "
+                  "--output-column {0} for the output column, or ./{0} for a file of that name",
+                  o->output.path, o->file));
+            verbs::IdentifyOptions io = o->options;
+            if (!o->config.empty()) {
+              note_input(o->config);
+              io.config = load_config_or_example(o->config);
             }
-            io.statement = o->statement;
             const verbs::IdentifyResult r = verbs::identify(table, io);
             print_warnings(r.identification.observability.warnings);
-            write_output(o->output, o->output.format == "json" ? render::json(r) : render::text(r));
+            const std::string& f = o->output.format;
+            write_output(o->output, f == "json"  ? render::json(r)
+                                    : f == "csv" ? render::csv(r)
+                                                 : render::text(r));
           }};
 }
 

@@ -17,9 +17,8 @@ namespace {
 struct ReduceCli {
   std::string config;
   std::vector<std::string> logs;  // RUN=FILE
-  std::string angle_unit = "rad";
-  std::string pulse_weight;  // in the output unit × s; empty: the instrument's quantum
-  verbs::ReduceOptions options;  // its table's flags are bound to it
+  verbs::ReduceOptions options;   // its table's flags are bound to it
+  bool old_budget = false;        // --budget, refused: a flag here, a file in identify; now --statement
   std::string observations_out;
   OutputOptions output;
 };
@@ -40,14 +39,8 @@ Command add_reduce(CLI::App& app) {
       ->required()
       ->allow_extra_args(false)
       ->type_name("RUN=FILE");
-  cmd->add_option("--angle-unit", o->angle_unit, "Unit of the encoder columns")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"rad", "deg"}));
-  cmd->add_option("--pulse-weight", o->pulse_weight,
-                  "Integrated output per pulse, in the output unit × s (e.g. deg for deg/s); default: the "
-                  "instrument's quantum")
-      ->type_name("W");
   add_option_flags(*cmd, o->options, option_table<verbs::ReduceOptions>());
+  cmd->add_flag("--budget", o->old_budget)->group("");  // refused with a message, not in --help
   add_observations_out_option(*cmd, o->observations_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
@@ -55,21 +48,17 @@ Command add_reduce(CLI::App& app) {
       "  ccal reduce my.toml --log 5g=run05.csv --log 10g=run10.csv --log 15g=run15.csv --log 20g=run20.csv\n"
       "      mean outputs of four logged runs and the identified terms of my.toml\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --angle-unit deg --format json\n"
-      "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --budget\n"
+      "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement\n"
       "      with the calibration statement: each coefficient with its U and interval\n");
 
   return {cmd, [o] {
             const Config cfg = load_config_or_example(o->config);
             check_observations_out(o->observations_out, o->output);
+            if (o->old_budget)
+              throw InputError(
+                  "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "
+                  "--statement for the calibration statement with this configuration's tolerances");
             verbs::ReduceOptions ro = o->options;
-            if (!o->pulse_weight.empty()) {
-              ro.pulse_weight = parse_number(o->pulse_weight);  // its sign and size: verbs::reduce
-              if (!ro.pulse_weight)
-                throw InputError(
-                    fmt::format("--pulse-weight: '{}' is not a positive number; accepted: the integrated "
-                                "output per pulse in {}·s, e.g. 2.5e-5",
-                                o->pulse_weight, cfg.instrument.output_unit));
-            }
             for (const std::string& item : o->logs) {
               const std::size_t eq = item.find('=');
               if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
@@ -80,7 +69,6 @@ Command add_reduce(CLI::App& app) {
               ro.logs.push_back({item.substr(0, eq), item.substr(eq + 1)});
               note_input(ro.logs.back().path);
             }
-            ro.angles_in_degrees = o->angle_unit == "deg";
             const verbs::ReduceResult r = verbs::reduce(cfg, ro);
             print_warnings(r.warnings);
             const std::string& f = o->output.format;

@@ -65,6 +65,13 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
     } else if constexpr (std::is_same_v<Field, std::vector<std::string>>) {
       option = command.add_option(flag, value, help)->allow_extra_args(false);
       if (row.required) option->required();
+    } else if constexpr (std::is_same_v<Field, std::optional<std::vector<std::string>>>) {
+      // Set only when given (unset: the verb's default, e.g. the file's terms); comma-separated or repeated.
+      option = command
+                   .add_option_function<std::vector<std::string>>(
+                       flag, [&value](const std::vector<std::string>& texts) { value = texts; }, help)
+                   ->delimiter(',')
+                   ->allow_extra_args(false);
     } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
       option = command
                    .add_option_function<std::vector<std::string>>(

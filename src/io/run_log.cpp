@@ -7,6 +7,7 @@
 #include <map>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "run_log_reducer.hpp"
 
 namespace ccal {
@@ -68,12 +69,13 @@ double measured_platform_mismatch(const Run& planned, const ReducedLog& log) {
   return -log.gamma_rate - log.theta1_rate;
 }
 
-void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::string_view where) {
+void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::string_view field) {
   if (logs < spec.free_terms.size())
-    throw InputError(fmt::format(
-        "{}: {} logged run(s) cannot determine {} free terms ({}); accepted: at least {} "
-        "logs, of runs at different g-levels",
-        where, logs, spec.free_terms.size(), fmt::join(spec.free_terms, ", "), spec.free_terms.size()));
+    throw OptionError(std::string(field), "",
+                      fmt::format("{} logged run(s) cannot determine {} free terms ({}); accepted: at least {} "
+                                  "logs, of runs at different g-levels",
+                                  logs, spec.free_terms.size(), fmt::join(spec.free_terms, ", "),
+                                  spec.free_terms.size()));
 }
 
 namespace {

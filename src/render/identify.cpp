@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ccal/version.hpp"
+#include "budget_parts.hpp"
 #include "parts.hpp"
 #include "statement_part.hpp"
 
@@ -42,6 +43,31 @@ std::string json(const verbs::IdentifyResult& r) {
   for (const auto& [key, value] : fit.items()) j[key] = value;
   if (r.statement) j["statement"] = statement_json(*r.statement);
   return j.dump(2) + "\n";
+}
+
+// One row per free term: the estimate with its standard error, and with the statement its parts, U and the
+// interval (every number to 17 digits, so that the file reads back to the same doubles; ν = ∞ is "inf").
+std::string csv(const verbs::IdentifyResult& r) {
+  const verbs::Identification& id = r.identification;
+  std::string out = "coefficient,unit,value,std_error";
+  if (r.statement)
+    out += ",correction,corrected,u_a,dof_a,u_b,u_c,nu_eff,coverage_probability,k,expanded,low,high";
+  out += '\n';
+  for (std::size_t k = 0; k < id.fit.names.size(); ++k) {
+    const auto i = Eigen::Index(k);
+    out += fmt::format("{},{},{:.17g},{:.17g}", id.fit.names[k], budget_parts::csv_field(id.units[k]),
+                       id.fit.value[i], id.fit.std_error[i]);
+    if (r.statement) {
+      const CoefficientStatement& c = r.statement->coefficients[k];
+      out += fmt::format(",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
+                         "{:.17g},{:.17g}",
+                         c.input.correction, c.corrected, c.input.type_a.u, c.input.type_a.dof,
+                         c.input.type_b.u, c.combined, c.effective_dof, r.statement->coverage_probability,
+                         c.coverage_factor, c.expanded, c.low, c.high);
+    }
+    out += '\n';
+  }
+  return out;
 }
 
 }  // namespace ccal::render

@@ -101,14 +101,13 @@ std::string command_text(const std::vector<std::string>& args, const Config& con
 
 constexpr const char* kDesignedPlan = "designed.toml";  // the file `ccal design --plan-out` writes
 
-// `ccal identify OBS.csv … --budget CONFIG --format json`; the bundled example's file is its copy in the
-// source tree.
+// `ccal identify OBS.csv --statement --config CONFIG … --format json` from the command's words (identify,
+// OBS.csv, --statement, …); the bundled example's file is its copy in the source tree.
 std::string identify_command_text(const std::vector<std::string>& args, const Config& config) {
   std::vector<std::string> words = args;
-  words.insert(words.begin() + std::min<std::ptrdiff_t>(2, std::ptrdiff_t(words.size())), "--budget");
   const bool bundled = config.source.rfind("bundled:", 0) == 0;
   words.insert(words.begin() + std::min<std::ptrdiff_t>(3, std::ptrdiff_t(words.size())),
-               bundled ? "examples/" + config.source.substr(8) : config.source);
+               {"--config", bundled ? "examples/" + config.source.substr(8) : config.source});
   std::string out = "ccal";
   for (const auto& w : words) out.append(" ").append(shell_word(w));
   return out.append(" --format json");
@@ -228,7 +227,7 @@ std::string optional_sections(const verbs::ReportResult& r, const ReportProvenan
   }
   if (r.observed) {
     const Json identify_json = Json::parse(json(*r.observed));
-    sources["identify"] = {{"command", p.identify_command}, {"config_option", "--budget"}};
+    sources["identify"] = {{"command", p.identify_command}, {"config_option", "--config"}};
     out += statement_section(Doc{"identify", identify_json});
   }
   return out;
@@ -261,7 +260,7 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
   if (o.design) design_command(*o.design, p);
   if (o.observations && r.observed) {
     // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
-    p.identify_command = {"identify", r.observed->source};
+    p.identify_command = {"identify", r.observed->source, "--statement"};
     if (o.mode)
       p.identify_command.insert(p.identify_command.end(), {"--mode", std::string(mode_name(*o.mode))});
     if (m.coverage_probability != verbs::StatementOptions{}.coverage_probability)

@@ -56,7 +56,7 @@ struct DesignDocs {
   const std::vector<Doc>& configured_runs;
 };
 std::string design_section(const DesignDocs& docs);
-// The calibration statement of the observations (`ccal identify OBS.csv --budget CONFIG`, doc "identify").
+// The calibration statement of the observations (`ccal identify OBS.csv --statement --config CONFIG`, doc "identify").
 std::string statement_section(const Doc& identify);
 
 }  // namespace ccal::render::report_html

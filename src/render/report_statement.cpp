@@ -1,7 +1,7 @@
 // The report's calibration statement section (`ccal report --observations`): per coefficient the estimate,
 // the correction for known errors, the Type A part with its degrees of freedom, the Type B part, u_c, ν_eff,
 // k, U and the interval, a reading guide, and a chart of the Type A / Type B split of u_c². Every number is
-// read from the JSON of `ccal identify OBS.csv --budget CONFIG` (render::json of the IdentifyResult).
+// read from the JSON of `ccal identify OBS.csv --statement --config CONFIG` (render::json of the IdentifyResult).
 #include <fmt/format.h>
 
 #include <algorithm>

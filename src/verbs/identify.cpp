@@ -6,31 +6,31 @@
 #include <set>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 
 namespace ccal::verbs {
 namespace {
 
-// "K2" or "K2:Z2" of an option; named terms need a column.
-TableTerm parse_term_option(const std::string& text, std::string_view option) {
+// "K2" or "K2:Z2" of the option `field`; named terms need a column.
+TableTerm parse_term_option(const std::string& text, std::string_view field) {
   const std::size_t colon = text.find(':');
   TableTerm t;
   t.id = text.substr(0, colon);
+  const std::string f(field);
   if (colon != std::string::npos) {
     t.column = text.substr(colon + 1);
     if (t.column.empty())
-      throw InputError(fmt::format(
-          "{}: '{}' binds no column; accepted: <term> or <term>:<column>, e.g. K2:Z2", option, text));
+      throw OptionError(f, "'" + text + "'", "binds no column; accepted: <term> or <term>:<column>, e.g. K2:Z2");
   }
   const auto spec = parse_term(t.id);
   if (!spec)
-    throw InputError(fmt::format("{}: '{}' is not a term id; accepted: {}", option, t.id,
-                                 fmt::join(all_term_ids(), ", ")));
+    throw OptionError(f, "'" + t.id + "'", fmt::format("is not a term id; accepted: {}", fmt::join(all_term_ids(), ", ")));
   if (spec->kind != TermKind::power && t.column.empty())
-    throw InputError(
-        fmt::format("{}: {} is not a power of the input, so it needs its column: bind it as {}:<column>, "
-                    "e.g. {}:{} (only K0 ... K10 are computed from the --input column)",
-                    option, t.id, t.id, t.id, t.id));
+    throw OptionError(f, t.id,
+                      fmt::format("is not a power of the input, so it needs its column: bind it as {0}:<column>, "
+                                  "e.g. {0}:{0} (only K0 ... K10 are computed from the {1} column)",
+                                  t.id, OptionError::name("input_column")));
   return t;
 }
 
@@ -52,78 +52,76 @@ double convert_coefficient(double value, const std::string& unit, const std::str
 
 ColumnUnits column_units(const std::optional<ObservationsHeader>& header, const IdentifyOptions& o) {
   ColumnUnits u;
-  u.output_column = o.output;
-  u.input_column = o.input;
-  if (header && o.output == "output") u.output_unit = header->output_unit;
-  u.input_in_g = header.has_value() && o.input == "a_i";
+  u.output_column = o.output_column;
+  u.input_column = o.input_column;
+  if (header && o.output_column == "output") u.output_unit = header->output_unit;
+  u.input_in_g = header.has_value() && o.input_column == "a_i";
   return u;
+}
+
+// A --fix item "<term>[:<column>]=<value> [unit]", its value in the file's unit of the term.
+TableFixed parse_fixed_option(const std::string& text, const ColumnUnits& units) {
+  const std::string quoted = "'" + text + "'";
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos)
+    throw OptionError("fix", quoted, "has no value; accepted: <term>=<value>, e.g. K1=505.2097");
+  TableFixed f;
+  f.term = parse_term_option(text.substr(0, eq), "fix");
+  std::string_view rest(text);
+  rest.remove_prefix(eq + 1);
+  while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
+  const std::size_t space = rest.find(' ');
+  const auto value = parse_number(rest.substr(0, space));
+  if (!value)
+    throw OptionError("fix", fmt::format("'{}' in {}", rest.substr(0, space), quoted),
+                      "is not a finite number; accepted: <term>=<value>, e.g. K1=505.2097");
+  f.value = *value;
+  if (space == std::string_view::npos) return f;
+  std::string unit(rest.substr(space + 1));
+  while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
+  if (unit.empty()) return f;
+  if (units.output_unit.empty())
+    throw OptionError("fix", quoted,
+                      "has a unit, which needs the file's output_unit (an observations file of ccal simulate); "
+                      "accepted: the bare number in the file's units");
+  try {
+    f.value = convert_coefficient(f.value, unit, term_unit(f.term, units));
+  } catch (const UnitError& e) {
+    throw OptionError("fix", quoted, std::string("has a unit that does not convert: ") + e.what());
+  }
+  return f;
 }
 
 TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHeader>& header,
                       const IdentifyOptions& o, const ColumnUnits& units) {
   TableFitSpec spec;
-  spec.input = o.input;
-  spec.output = o.output;
-  spec.weight = o.weight;
+  spec.input = o.input_column;
+  spec.output = o.output_column;
+  spec.weight = o.weight_column;
 
   if (o.terms) {
-    for (const auto& text : *o.terms) spec.terms.push_back(parse_term_option(text, "--terms"));
+    for (const auto& text : *o.terms) spec.terms.push_back(parse_term_option(text, "terms"));
   } else if (header) {
     for (const auto& t : header->terms) spec.terms.push_back({t.id, t.column});
   } else {
-    throw InputError(fmt::format(
-        "{}: no '# ccal observations' line to take the terms from; accepted: --terms, e.g. --terms K0,K1,K2 "
-        "--input x --output y for y = K0 + K1 x + K2 x^2",
-        table.source));
+    throw OptionError("terms", "",
+                      fmt::format("{}: no '# ccal observations' line to take the terms from; accepted: the terms "
+                                  "to fit, e.g. K0,K1,K2 with {} x and {} y for y = K0 + K1 x + K2 x^2",
+                                  table.source, OptionError::name("input_column"),
+                                  OptionError::name("output_column")));
   }
-  if (spec.terms.empty()) throw InputError("--terms: no terms; accepted: e.g. --terms K0,K2,K3");
   std::set<std::string> ids;
   for (const auto& t : spec.terms)
-    if (!ids.insert(t.id).second)
-      throw InputError(fmt::format("--terms: {} is listed twice; accepted: each term once", t.id));
+    if (!ids.insert(t.id).second) throw OptionError("terms", t.id, "is listed twice; accepted: each term once");
 
-  auto expected_unit = [&](const TableTerm& t) { return term_unit(t, units); };
   if (o.fix) {
     for (const auto& text : *o.fix) {
-      const std::size_t eq = text.find('=');
-      if (eq == std::string::npos)
-        throw InputError(
-            fmt::format("--fix: '{}' has no value; accepted: <term>=<value>, e.g. K1=505.2097", text));
-      TableFixed f;
-      f.term = parse_term_option(text.substr(0, eq), "--fix");
-      std::string_view rest(text);
-      rest.remove_prefix(eq + 1);
-      while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
-      const std::size_t space = rest.find(' ');
-      const auto value = parse_number(rest.substr(0, space));
-      if (!value)
-        throw InputError(
-            fmt::format("--fix: '{}' in '{}' is not a finite number; accepted: <term>=<value>, e.g. "
-                        "K1=505.2097",
-                        rest.substr(0, space), text));
-      f.value = *value;
-      if (space != std::string_view::npos) {
-        std::string unit(rest.substr(space + 1));
-        while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
-        if (!unit.empty()) {
-          if (units.output_unit.empty())
-            throw InputError(
-                fmt::format("--fix: '{}': a value with a unit needs the file's output_unit (an "
-                            "observations file of ccal simulate); accepted: the bare number in the "
-                            "file's units",
-                            text));
-          try {
-            f.value = convert_coefficient(f.value, unit, expected_unit(f.term));
-          } catch (const UnitError& e) {
-            throw InputError(fmt::format("--fix: '{}': {}", text, e.what()));
-          }
-        }
-      }
+      TableFixed f = parse_fixed_option(text, units);
       if (!ids.insert(f.term.id).second)
-        throw InputError(
-            fmt::format("--fix: {} is also a free term or fixed twice; accepted: a term is either "
-                        "free (--terms) or fixed (--fix)",
-                        f.term.id));
+        throw OptionError("fix", f.term.id,
+                          fmt::format("is also a free term or fixed twice; accepted: a term is either free ({}) "
+                                      "or fixed ({})",
+                                      OptionError::name("terms"), OptionError::name("fix")));
       spec.fixed.push_back(std::move(f));
     }
   } else if (header) {
@@ -133,7 +131,7 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
       TableFixed f{{hf.term.id, hf.term.column}, hf.value};
       if (!hf.unit.empty() && !units.output_unit.empty()) {
         try {
-          f.value = convert_coefficient(hf.value, hf.unit, expected_unit(f.term));
+          f.value = convert_coefficient(hf.value, hf.unit, term_unit(f.term, units));
         } catch (const UnitError& e) {
           throw CsvError(table.source, header->line, 0, "ccal observations header",
                          fmt::format("fixed {}: {}", hf.term.id, e.what()));
@@ -168,9 +166,49 @@ void warn_about_powers_of_means(const CsvTable& table, const TableFitSpec& spec,
           t.id, spec.input, parse_term(t.id)->power));
 }
 
+constexpr OptionSpec<IdentifyOptions> kRows[] = {
+    {"terms", &IdentifyOptions::terms, "TERMS",
+     "Free terms, comma-separated: Kn is the coefficient of input^n; <term>:<column> takes the column as the "
+     "term's regressor (needed for K_p ... K_w). Default: the file's '# ccal observations' line",
+     {}, true},
+    {"fix", &IdentifyOptions::fix, "TERM=VALUE",
+     "Terms held at known values, comma-separated <term>[:<column>]=<value>, the value in the file's output "
+     "unit per input unit^n (or with a unit). Default: the file's fixed terms"},
+    {"known", &IdentifyOptions::known, "COL[,COL]",
+     "Columns subtracted from the output, comma-separated, or 'none'. Default: the file's known columns"},
+    {"input_column", &IdentifyOptions::input_column, "COL", "Column of the input x of the power terms"},
+    {"output_column", &IdentifyOptions::output_column, "COL", "Column of the output y"},
+    {"weight_column", &IdentifyOptions::weight_column, "COL",
+     "Column of the standard deviations sigma of y (weights 1/sigma^2); default: unweighted"},
+    {"statement", &IdentifyOptions::statement, "",
+     "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of the "
+     "configuration given as config, the correction for its known [errors], u_c, nu_eff, k, U, interval"},
+    rows::coverage_probability(&IdentifyOptions::coverage_probability,
+                               "Coverage probability p of the statement's intervals, in (0, 1)"),
+    rows::mode<&IdentifyOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
+                                       "configuration's [identification] mode"),
+};
+
+// The table's checks, and a statement asked for without its configuration or the other way round.
+void check_verb_options(const IdentifyOptions& o) {
+  check_options(o, option_table<IdentifyOptions>());
+  if (o.statement && !o.config)
+    throw OptionError("statement", "",
+                      fmt::format("needs the configuration whose tolerances give its Type B part; accepted: "
+                                  "that configuration as {}",
+                                  OptionError::name("config")));
+  if (o.config && !o.statement)
+    throw OptionError("config", o.config->source,
+                      fmt::format("is read only for the calibration statement; accepted: with {}",
+                                  OptionError::name("statement")));
+}
+
 }  // namespace
 
+OptionTable<IdentifyOptions> options_of(std::type_identity<IdentifyOptions>) { return kRows; }
+
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
+  check_verb_options(options);
   IdentifyResult r;
   r.source = table.source;
   r.rows = table.rows.size();
@@ -179,9 +217,12 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   r.spec = fit_spec(table, header, options, units);
   r.identification = identify_table(table, r.spec, units, table.source);
   if (header) warn_about_powers_of_means(table, r.spec, r.identification);
-  if (options.budget)
-    r.statement =
-        calibration_statement(*options.budget, r.identification, options.statement, options.budget_option);
+  if (options.statement) {
+    StatementOptions so;
+    so.coverage_probability = options.coverage_probability;
+    so.mode = options.mode;
+    r.statement = calibration_statement(*options.config, r.identification, so, "statement");
+  }
   return r;
 }
 

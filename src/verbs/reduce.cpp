@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/io/observation_csv.hpp"
 
 namespace ccal::verbs {
@@ -49,9 +50,14 @@ std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel)
 namespace {
 
 constexpr OptionSpec<ReduceOptions> kRows[] = {
+    {"angle_unit", enum_member<&ReduceOptions::angle_unit>(kAngleUnitNames), "UNIT",
+     "Unit of the encoder columns: rad or deg"},
+    {"pulse_weight", &ReduceOptions::pulse_weight, "W",
+     "Integrated output per pulse, in the output unit × s (e.g. deg for deg/s); default: the instrument's "
+     "quantum"},
     rows::mode<&ReduceOptions::mode>("Model of the regressors: exact (full chain) or paper; default: "
                                      "[identification] mode of the configuration"),
-    {"budget", &ReduceOptions::budget, "",
+    {"statement", &ReduceOptions::statement, "",
      "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the configuration's "
      "tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval"},
     rows::coverage_probability(&ReduceOptions::coverage_probability,
@@ -62,36 +68,41 @@ constexpr OptionSpec<ReduceOptions> kRows[] = {
 
 OptionTable<ReduceOptions> options_of(std::type_identity<ReduceOptions>) { return kRows; }
 
+RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
+  RunLogOptions lo;
+  lo.output_scale = output_unit_si(cfg.instrument.output_unit);
+  lo.angle_scale = o.angle_unit == AngleUnit::deg ? std::numbers::pi / 180 : 1.0;
+  lo.pulse_weight = cfg.instrument.quantum;
+  if (o.pulse_weight) {
+    if (!(std::isfinite(*o.pulse_weight) && *o.pulse_weight > 0))
+      throw OptionError("pulse_weight", option_number_text(*o.pulse_weight),
+                        fmt::format("is not a positive number; accepted: the integrated output per pulse in "
+                                    "{}·s, e.g. 2.5e-5",
+                                    cfg.instrument.output_unit));
+    lo.pulse_weight = *o.pulse_weight * lo.output_scale;
+  }
+  return lo;
+}
+
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   check_options(o, option_table<ReduceOptions>());
   ReduceResult r;
   r.config = cfg;
   r.mode = o.mode.value_or(cfg.mode);
   r.output_unit_si = output_unit_si(cfg.instrument.output_unit);
-  RunLogOptions lo;
-  lo.output_scale = r.output_unit_si;
-  lo.angle_scale = o.angles_in_degrees ? std::numbers::pi / 180 : 1.0;
-  lo.pulse_weight = cfg.instrument.quantum;
-  if (o.pulse_weight) {
-    if (!(std::isfinite(*o.pulse_weight) && *o.pulse_weight > 0))
-      throw InputError(fmt::format(
-          "--pulse-weight: '{:g}' is not a positive number; accepted: the integrated output per pulse in "
-          "{}·s, e.g. 2.5e-5",
-          *o.pulse_weight, cfg.instrument.output_unit));
-    lo.pulse_weight = *o.pulse_weight * r.output_unit_si;
-  }
+  const RunLogOptions lo = run_log_options(cfg, o);
   std::vector<std::pair<std::size_t, std::filesystem::path>> logs;
   std::map<std::size_t, std::string> files;
   for (const LogFile& log : o.logs) {
-    const std::size_t index = select_run(cfg.plan, log.run, "--log");
+    const std::size_t index = select_run(cfg.plan, log.run, "logs");
     if (files.count(index))
-      throw InputError(fmt::format("--log: run '{}' is logged twice; accepted: one log per run",
-                                   cfg.plan.runs[index].name));
+      throw OptionError("logs", fmt::format("run '{}'", cfg.plan.runs[index].name),
+                        "is logged twice; accepted: one log per run");
     files[index] = log.path;
     check_readable(log.path);  // a missing file before the count of logs, as when logs were read whole
     logs.emplace_back(index, log.path);
   }
-  check_log_count(cfg.identification, logs.size(), "--log");
+  check_log_count(cfg.identification, logs.size(), "logs");
   r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
   std::vector<Run> measured;
@@ -106,11 +117,11 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
       identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source, &resolution);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
-  if (o.budget) {
+  if (o.statement) {
     StatementOptions so;
     so.coverage_probability = o.coverage_probability;
     so.mode = r.mode;
-    r.statement = calibration_statement(cfg, r.identification.id, so, "--budget");
+    r.statement = calibration_statement(cfg, r.identification.id, so, "statement");
   }
   return r;
 }

@@ -78,27 +78,30 @@ void check_targets(const Config& config, const ReportOptions& o) {
       parse_allocation_target(t, config.identification.free_terms, units, "design_targets");
 }
 
-// The observations identified with the configuration's budget (`ccal identify OBS.csv --budget CONFIG`); an
-// error of the file or of its terms is refused naming --observations.
+// The observations identified, and their calibration statement with the configuration's budget (`ccal
+// identify OBS.csv --statement --config CONFIG`); an error of the file or of its terms is refused naming the
+// observations option.
 IdentifyResult identify_observations(const Config& config, const ReportOptions& o) {
-  IdentifyOptions io;
-  io.budget = config;
-  io.budget_option = "--observations";
-  io.statement.mode = o.mode;
-  io.statement.coverage_probability = o.monte_carlo.coverage_probability;
+  StatementOptions so;
+  so.mode = o.mode;
+  so.coverage_probability = o.monte_carlo.coverage_probability;
   try {
-    // A plain table needs terms and columns the report has no options for: say so, not identify's --terms.
+    // A plain table needs terms and columns the report has no options for: say so, not identify's terms.
     if (!observations_header(*o.observations))
-      throw InputError(fmt::format(
-          "--observations: {}: no '# ccal observations' line, so not an observations file of ccal; accepted: "
-          "a file of `ccal simulate --observations-out` or `ccal reduce --observations-out` (a plain table: "
-          "`ccal identify {} --terms … --budget CONFIG`)",
-          o.observations->source, o.observations->source));
-    return identify(*o.observations, io);
+      throw OptionError(
+          "observations", o.observations->source,
+          fmt::format("has no '# ccal observations' line, so it is not an observations file of ccal; accepted: a "
+                      "file of `ccal simulate --observations-out` or `ccal reduce --observations-out` (a plain "
+                      "table: `ccal identify {} --terms … --statement --config CONFIG`)",
+                      o.observations->source));
+    IdentifyResult r = identify(*o.observations, {});
+    r.statement = calibration_statement(config, r.identification, so, "observations");
+    return r;
+  } catch (const OptionError& e) {
+    if (e.field() == "observations") throw;
+    throw OptionError("observations", "", e.what());
   } catch (const InputError& e) {
-    const std::string what = e.what();
-    if (what.rfind("--observations", 0) == 0) throw;
-    throw InputError("--observations: " + what);  // what names the file where it is the file's fault
+    throw OptionError("observations", "", e.what());  // what names the file where it is the file's fault
   }
 }
 

@@ -25,17 +25,17 @@ Eigen::VectorXd type_b(const ccal::BudgetResult& b) {
 
 // Factor from the budget's display unit of a coefficient to the fit's unit for it.
 double unit_factor(const std::string& from, const std::string& to, const std::string& term,
-                   const std::string& option) {
+                   std::string_view field) {
   if (from == to) return 1;
   try {
     const Quantity a = parse_unit(from), b = parse_unit(to);
     if (a.dim == b.dim) return a.value_si / b.value_si;
   } catch (const UnitError&) {
   }
-  throw InputError(
-      fmt::format("{}: {} is in '{}' in the fit and in '{}' in the configuration's budget; "
-                  "accepted: a fit whose output unit is the configuration's output_unit",
-                  option, term, to, from));
+  throw OptionError(std::string(field), "",
+                    fmt::format("{} is in '{}' in the fit and in '{}' in the configuration's budget; "
+                                "accepted: a fit whose output unit is the configuration's output_unit",
+                                term, to, from));
 }
 
 constexpr OptionSpec<StatementOptions> kRows[] = {
@@ -50,14 +50,15 @@ constexpr OptionSpec<StatementOptions> kRows[] = {
 OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>) { return kRows; }
 
 CalibrationStatement calibration_statement(const Config& config, const Identification& id,
-                                           const StatementOptions& o, const std::string& option) {
+                                           const StatementOptions& o, std::string_view field) {
   check_options(o, option_table<StatementOptions>());
   const FitResult& fit = id.fit;
   if (!id.weighted && fit.dof <= 0)
-    throw InputError(fmt::format(
-        "{}: the fit has no degrees of freedom ({} observations for {} free terms), so its Type A "
-        "uncertainty is undefined; accepted: at least one observation more than free terms",
-        option, fit.residuals.size(), fit.names.size()));
+    throw OptionError(std::string(field), "",
+                      fmt::format("the fit has no degrees of freedom ({} observations for {} free terms), so "
+                                  "its Type A uncertainty is undefined; accepted: at least one observation more "
+                                  "than free terms",
+                                  fit.residuals.size(), fit.names.size()));
   BudgetOptions bo;
   bo.mode = o.mode;
   bo.compare_with_paper = false;
@@ -76,16 +77,16 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
   std::sort(fitted.begin(), fitted.end());
   std::sort(budgeted.begin(), budgeted.end());
   if (fitted != budgeted)
-    throw InputError(
-        fmt::format("{}: the fit's free terms ({}) are not those of {} ({}); accepted: a "
-                    "configuration whose [identification] terms are the fit's",
-                    option, fmt::join(fit.names, ", "), config.source, fmt::join(b.coefficients, ", ")));
+    throw OptionError(std::string(field), "",
+                      fmt::format("the fit's free terms ({}) are not those of {} ({}); accepted: a "
+                                  "configuration whose [identification] terms are the fit's",
+                                  fmt::join(fit.names, ", "), config.source, fmt::join(b.coefficients, ", ")));
   for (std::size_t k = 0; k < fit.names.size(); ++k) {
     const auto found = std::find(b.coefficients.begin(), b.coefficients.end(), fit.names[k]);
     const auto j = std::size_t(found - b.coefficients.begin());
     const auto i = Eigen::Index(k);
     // SI → the budget's display unit → the fit's unit.
-    const double to_fit = b.display_scale[j] * unit_factor(b.units[j], id.units[k], fit.names[k], option);
+    const double to_fit = b.display_scale[j] * unit_factor(b.units[j], id.units[k], fit.names[k], field);
     StatementInput in;
     in.coefficient = fit.names[k];
     in.unit = id.units[k];

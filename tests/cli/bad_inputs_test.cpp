@@ -65,7 +65,7 @@ std::vector<BadInput> catalogue() {
   const std::string reduce = "reduce c.toml --log 5g=a.csv --log 10g=b.csv --log 15g=d.csv";
   const F obs = {{kObs, observations()}};
   auto csv = [](const std::string& text) { return F{{"t.csv", text}}; };
-  const std::string fit = "identify t.csv --input x --output y --terms K0,K1";
+  const std::string fit = "identify t.csv --input-column x --output-column y --terms K0,K1";
   std::string huge_cell(100000, '9');
   huge_cell = "x,y\n1," + huge_cell + "x\n2,2\n3,3\n";
 
@@ -195,20 +195,20 @@ std::vector<BadInput> catalogue() {
        csv("x,y\n1,1e308\n2,1.2e308\n3,1.4e308\n4,1.7e308\n"),
        fit,
        {"t.csv: the estimate of K0", "not a finite number", "scale y"}},
-      {"CsvMissingInputColumn", obs, "identify obs.csv --input a --output y --terms K0,K1", {"obs.csv", "a"}},
-      {"CsvUnknownTerm", obs, "identify obs.csv --input x --output y --terms K0,Q7", {"--terms", "Q7"}},
+      {"CsvMissingInputColumn", obs, "identify obs.csv --input-column a --output-column y --terms K0,K1", {"obs.csv", "a"}},
+      {"CsvUnknownTerm", obs, "identify obs.csv --input-column x --output-column y --terms K0,Q7", {"--terms", "Q7"}},
       {"CsvPowerOverflow",
        csv("x,y\n1e200,1\n2e200,2\n3e200,3\n4e200,4\n"),
-       "identify t.csv --input x --output y --terms K0,K1,K2",
+       "identify t.csv --input-column x --output-column y --terms K0,K1,K2",
        {"t.csv:2:1", "K2"}},
-      {"CsvWeightZero", csv("x,y,s\n1,1,1\n2,2,0\n3,3,1\n"), fit + " --weight s", {"t.csv:3:3", "σ"}},
+      {"CsvWeightZero", csv("x,y,s\n1,1,1\n2,2,0\n3,3,1\n"), fit + " --weight-column s", {"t.csv:3:3", "σ"}},
       {"CsvWeightHuge",
        csv("x,y,s\n1,1,1e200\n2,2,1e200\n3,3,1e200\n"),
-       fit + " --weight s",
+       fit + " --weight-column s",
        {"t.csv:2:3", "underflows"}},
       {"CsvWeightColumnMissing",
        obs,
-       "identify obs.csv --input x --output y --terms K0,K1 --weight sd",
+       "identify obs.csv --input-column x --output-column y --terms K0,K1 --weight-column sd",
        {"obs.csv", "sd"}},
       // --- run logs (reduce) ------------------------------------------------------------------------------
       {"LogNotRunEqualsFile", logs, "reduce c.toml --log a.csv", {"--log", "a.csv"}},

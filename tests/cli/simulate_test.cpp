@@ -233,7 +233,7 @@ TEST_F(Cli, PolynomialFitOfAPlainTable) {
   for (int x = -5; x <= 5; ++x)
     text += std::to_string(x) + "," + std::to_string(1 + 2 * x + 3 * x * x) + "\n";
   write("p.csv", text);
-  const Result r = run("identify p.csv --input x --output y --terms K0,K1,K2 --format json");
+  const Result r = run("identify p.csv --input-column x --output-column y --terms K0,K1,K2 --format json");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(coefficient(j, "K0"), 1.0, 1e-12);
@@ -244,7 +244,7 @@ TEST_F(Cli, PolynomialFitOfAPlainTable) {
   EXPECT_TRUE(j.at("output_unit").is_null());
   EXPECT_TRUE(j.at("residuals").contains("line 2"));  // no run column: rows are named by their line
   // Holding K1 at its value leaves K0, K2 unchanged.
-  const Result f = run("identify p.csv --input x --output y --terms K0,K2 --fix K1=2 --format json");
+  const Result f = run("identify p.csv --input-column x --output-column y --terms K0,K2 --fix K1=2 --format json");
   ASSERT_EQ(f.code, 0) << f.err;
   const nlohmann::json jf = nlohmann::json::parse(f.out);
   EXPECT_NEAR(coefficient(jf, "K0"), 1.0, 1e-12);
@@ -255,7 +255,7 @@ TEST_F(Cli, Weights) {
   // K0 alone of y = 1, 2, 4 with σ = 1, 1, 0.5 (weights 1, 1, 4): the weighted mean 19/6 with standard error
   // √(1/Σw) = √(1/6) from the weights, and residual std √(χ²/dof). Round-off of a 3-term sum: 1e-14.
   write("w.csv", "run,y,s\na,1,1\nb,2,1\nc,4,0.5\n");
-  const Result r = run("identify w.csv --output y --terms K0 --weight s --format json");
+  const Result r = run("identify w.csv --output-column y --terms K0 --weight-column s --format json");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(coefficient(j, "K0"), 19.0 / 6.0, 1e-14);
@@ -266,24 +266,24 @@ TEST_F(Cli, Weights) {
   EXPECT_TRUE(j.at("weighted").get<bool>());
   EXPECT_NEAR(j.at("residuals").at("c").get<double>(), 4 - m, 1e-14);
   // Unweighted, the plain mean 7/3.
-  const Result u = run("identify w.csv --output y --terms K0 --format json");
+  const Result u = run("identify w.csv --output-column y --terms K0 --format json");
   ASSERT_EQ(u.code, 0) << u.err;
   EXPECT_NEAR(coefficient(nlohmann::json::parse(u.out), "K0"), 7.0 / 3.0, 1e-14);
   // A σ that is not positive, and a missing weight column, are located.
   write("w0.csv", "run,y,s\na,1,1\nb,2,0\nc,4,0.5\n");
-  expect_located(run("identify w0.csv --output y --terms K0 --weight s"), "w0.csv:3:3",
+  expect_located(run("identify w0.csv --output-column y --terms K0 --weight-column s"), "w0.csv:3:3",
                  {"s: ", "not positive"});
-  expect_located(run("identify w.csv --output y --terms K0 --weight sigma"), "w.csv:1",
+  expect_located(run("identify w.csv --output-column y --terms K0 --weight-column sigma"), "w.csv:1",
                  {"sigma: no such column", "the weights"});
 }
 
 TEST_F(Cli, BadCsvFilesAreLocated) {
   write("p.csv", "x,y\n0,1\n1,3\n2,7\n");
-  const std::string fit = " --input x --output y --terms K0,K1";
+  const std::string fit = " --input-column x --output-column y --terms K0,K1";
   // Missing column: the header's line and the column's name.
-  expect_located(run("identify p.csv --input z --output y --terms K0,K1"), "p.csv:1",
+  expect_located(run("identify p.csv --input-column z --output-column y --terms K0,K1"), "p.csv:1",
                  {"z: no such column", "accepted: one of the columns x, y"});
-  expect_located(run("identify p.csv --input x --output out --terms K0,K1"), "p.csv:1",
+  expect_located(run("identify p.csv --input-column x --output-column out --terms K0,K1"), "p.csv:1",
                  {"out: no such column"});
   // Non-numeric, NaN, infinite and empty cells: line, 1-based field and the column name.
   write("a.csv", "x,y\n0,1\n1,abc\n2,7\n");
@@ -329,23 +329,23 @@ TEST_F(Cli, BadCsvFilesAreLocated) {
 
 TEST_F(Cli, BadIdentifyOptions) {
   write("p.csv", "x,y\n0,1\n1,3\n2,7\n");
-  expect_bad_input(run("identify p.csv --input x --output y --terms K0,K99"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y --terms K0,K99"),
                    {"--terms: 'K99' is not a term id", "K10", "K_pp"});
-  expect_bad_input(run("identify p.csv --input x --output y --terms K0,K_pp"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y --terms K0,K_pp"),
                    {"--terms: K_pp is not a power of the input", "K_pp:<column>"});
-  expect_bad_input(run("identify p.csv --input x --output y --terms K0,K1,K0"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y --terms K0,K1,K0"),
                    {"--terms: K0 is listed twice"});
-  expect_bad_input(run("identify p.csv --input x --output y --terms K0,K1 --fix K2"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y --terms K0,K1 --fix K2"),
                    {"--fix: 'K2' has no value", "K1=505.2097"});
-  expect_bad_input(run("identify p.csv --input x --output y --terms K0,K1 --fix K2=abc"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y --terms K0,K1 --fix K2=abc"),
                    {"--fix: 'abc' in 'K2=abc' is not a finite number"});
-  expect_bad_input(run("identify p.csv --input x --output y --terms K0,K1 --fix K1=2"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y --terms K0,K1 --fix K1=2"),
                    {"--fix: K1 is also a free term"});
-  expect_bad_input(run("identify p.csv --input x --output y --terms K0 --fix 'K1=2 deg/s/g'"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y --terms K0 --fix 'K1=2 deg/s/g'"),
                    {"--fix", "needs the file's output_unit"});
-  expect_bad_input(run("identify p.csv --input x --output y"),
+  expect_bad_input(run("identify p.csv --input-column x --output-column y"),
                    {"p.csv: no '# ccal observations' line", "--terms"});
-  expect_bad_input(run("identify p.csv --terms K0 --output y --format csv"), {"--format"});
+  expect_bad_input(run("identify p.csv --terms K0 --output-column y --format html"), {"--format", "html"});
 }
 
 TEST_F(Cli, AliasedTermsAreRefusedWithTheMountingHint) {
@@ -371,7 +371,7 @@ TEST_F(Cli, AliasedTermsAreRefusedWithTheMountingHint) {
   EXPECT_FALSE(fs::exists(dir_ / "fit.txt"));
   // Powers of the input alone get the g-level hint: x takes two values, so K0, K1, K2 are dependent.
   write("two.csv", "x,y\n1,1\n1,1\n2,3\n2,3\n");
-  expect_bad_input(run("identify two.csv --input x --output y --terms K0,K1,K2"),
+  expect_bad_input(run("identify two.csv --input-column x --output-column y --terms K0,K1,K2"),
                    {"two.csv: ", "cannot separate", "; add g-levels or runs with the IA reversed"});
 }
 
@@ -387,7 +387,7 @@ TEST_F(Cli, OutputFilesOnlyOnSuccess) {
   EXPECT_EQ(nlohmann::json::parse(read(dir_ / "fit.json")).at("dof"), 3);
 
   write("bad.csv", "x,y\n0,1\n1,abc\n");
-  expect_bad_input(run("identify bad.csv --input x --output y --terms K0 -o failed.json"), {"bad.csv:3:2"});
+  expect_bad_input(run("identify bad.csv --input-column x --output-column y --terms K0 -o failed.json"), {"bad.csv:3:2"});
   EXPECT_FALSE(fs::exists(dir_ / "failed.json"));
   // An unwritable --observations-out fails the command before anything is renamed into place.
   expect_bad_input(run("simulate -o failed.txt --observations-out /nonexistent-dir/obs.csv"),

@@ -1,8 +1,11 @@
-// The calibration statement end to end: `ccal identify --budget CONFIG` and `ccal reduce --budget` (JCGM 100
+// The calibration statement end to end: `ccal identify --statement --config CONFIG` and `ccal reduce --statement` (JCGM 100
 // §7, docs/model.md §10.5), checked against the fit and the budget printed by the other verbs.
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "cli_support.hpp"
 
@@ -38,7 +41,7 @@ constexpr double kZ975 = 1.959963984540054;
 TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
   const Result fit = run("identify obs.csv --format json");
-  const Result st = run("identify obs.csv --budget " + kExample + " --format json");
+  const Result st = run("identify obs.csv --statement --config " + kExample + " --format json");
   const Result budget = run("budget --format json");
   ASSERT_EQ(fit.code, 0) << fit.err;
   ASSERT_EQ(st.code, 0) << st.err;
@@ -79,7 +82,7 @@ TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
     EXPECT_NEAR(U, c["coverage_factor"].get<double>() * u_c, 1e-12 * U);
     EXPECT_NEAR(c["interval"][0].get<double>(), c["corrected_estimate"].get<double>() - U, 1e-12 * U + 1e-15);
   }
-  const Result text = run("identify obs.csv --budget " + kExample);
+  const Result text = run("identify obs.csv --statement --config " + kExample);
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("Calibration statement (JCGM 100 §7)"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("  K3 = ("), std::string::npos) << text.out;
@@ -94,7 +97,7 @@ TEST_F(Statement, KnownErrorsAreCorrected) {
     text.replace(text.find(line), 2, "");
   const std::string cfg = write("errors.toml", text);
   ASSERT_EQ(run("simulate " + cfg + " --observations-out obs.csv -o /dev/null").code, 0);
-  const Result st = run("identify obs.csv --budget " + cfg + " --format json");
+  const Result st = run("identify obs.csv --statement --config " + cfg + " --format json");
   ASSERT_EQ(st.code, 0) << st.err;
   const auto s = nlohmann::json::parse(st.out).at("statement");
   EXPECT_EQ(s["known_errors"], 2);
@@ -112,7 +115,7 @@ TEST_F(Statement, IdentifyModeSetsTheBudgetsKinematics) {
   // `--mode paper`: Type B from the paper-mode budget (`ccal budget --mode paper`) without the rate noise,
   // as in exact mode above; relative 1e-9 (a difference of sums of squares).
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
-  const Result st = run("identify obs.csv --budget " + kExample + " --mode paper --format json");
+  const Result st = run("identify obs.csv --statement --config " + kExample + " --mode paper --format json");
   const Result budget = run("budget --mode paper --format json");
   ASSERT_EQ(st.code, 0) << st.err;
   ASSERT_EQ(budget.code, 0) << budget.err;
@@ -126,13 +129,13 @@ TEST_F(Statement, IdentifyModeSetsTheBudgetsKinematics) {
     const double u = b["standard_uncertainty"], u_b = std::sqrt(u * u - noise);
     EXPECT_NEAR(s["coefficients"][id]["type_b"]["u"].get<double>(), u_b, 1e-9 * u_b) << id;
   }
-  expect_bad_input(run("identify obs.csv --budget " + kExample + " --mode first"), {"--mode", "first"});
+  expect_bad_input(run("identify obs.csv --statement --config " + kExample + " --mode first"), {"--mode", "first"});
 }
 
 TEST_F(Statement, ReduceWithOneDegreeOfFreedom) {
   // Four logged runs for three free terms: ν_A = 1, so ν_eff = u_c⁴/u_A⁴ and k lies between the normal
   // quantile and t_{0.975}(1) = 12.706 (table value).
-  const Result r = run("reduce" + write_logs(4) + " --budget --coverage-probability 0.95 --format json");
+  const Result r = run("reduce" + write_logs(4) + " --statement --coverage-probability 0.95 --format json");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const auto& s = j.at("statement");
@@ -150,22 +153,73 @@ TEST_F(Statement, ReduceWithOneDegreeOfFreedom) {
     EXPECT_GE(c["coverage_factor"].get<double>(), kZ975 - 1e-12);
     EXPECT_LE(c["coverage_factor"].get<double>(), 12.7062 + 5e-5);
   }
-  const Result text = run("reduce" + write_logs(4) + " --budget");
+  const Result text = run("reduce" + write_logs(4) + " --statement");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("Calibration statement"), std::string::npos);
 }
 
 TEST_F(Statement, BadUsesAreExitCodeTwo) {
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
-  expect_bad_input(run("identify obs.csv --budget " + kExample + " --coverage-probability 1.5"),
+  expect_bad_input(run("identify obs.csv --statement --config " + kExample + " --coverage-probability 1.5"),
                    {"--coverage-probability"});
-  expect_bad_input(run("identify obs.csv --budget missing.toml"), {"missing.toml"});
+  expect_bad_input(run("identify obs.csv --statement --config missing.toml"), {"missing.toml"});
   // A fit of other free terms than the configuration's: its budget does not apply.
-  expect_bad_input(run("identify obs.csv --terms K0,K2 --fix K1=505.2097,K3=0.003 --budget " + kExample),
-                   {"--budget", "K0, K2", "K0, K2, K3"});
+  expect_bad_input(run("identify obs.csv --terms K0,K2 --fix K1=505.2097,K3=0.003 --statement --config " + kExample),
+                   {"--statement", "K0, K2", "K0, K2, K3"});
   // reduce with as many logs as free terms: no degrees of freedom, no Type A.
   const std::string logs = write_logs(3);
-  expect_bad_input(run("reduce" + logs + " --budget"), {"--budget", "degrees of freedom"});
+  expect_bad_input(run("reduce" + logs + " --statement"), {"--statement", "degrees of freedom"});
+}
+
+TEST_F(Statement, RetiredSpellingsAreRefusedWithTheirSuccessors) {
+  // --budget took a file in identify and was a flag in reduce; --input/--weight/--output named identify's
+  // columns before -o/--output named the file written. Each is refused saying what replaced it, and nothing
+  // is written.
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  expect_bad_input(run("identify obs.csv --budget " + kExample), {"--budget", "--statement --config " + kExample});
+  expect_bad_input(run("reduce" + write_logs(4) + " --budget"), {"--budget", "--statement"});
+  expect_bad_input(run("identify obs.csv --input a_i"), {"--input", "--input-column"});
+  expect_bad_input(run("identify obs.csv --weight s"), {"--weight", "--weight-column"});
+  expect_bad_input(run("identify obs.csv --output output"),
+                   {"-o/--output: 'output' is a column of obs.csv", "--output-column output"});
+  EXPECT_FALSE(fs::exists(dir_ / "output"));
+  // The statement and its configuration go together.
+  expect_bad_input(run("identify obs.csv --statement"), {"--statement: needs the configuration", "--config"});
+  expect_bad_input(run("identify obs.csv --config " + kExample), {"--config", "only for the calibration statement",
+                                                                  "--statement"});
+}
+
+TEST_F(Statement, IdentifyWritesCsvOfTheCoefficientsAndTheStatement) {
+  // One row per free term with the JSON's numbers to 17 digits: the CSV reads back to the same doubles.
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  const Result csv = run("identify obs.csv --statement --config " + kExample + " --format csv -o st.csv");
+  ASSERT_EQ(csv.code, 0) << csv.err;
+  const Result json = run("identify obs.csv --statement --config " + kExample + " --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  std::ifstream in(dir_ / "st.csv");
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header, "coefficient,unit,value,std_error,correction,corrected,u_a,dof_a,u_b,u_c,nu_eff,"
+                    "coverage_probability,k,expanded,low,high");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    std::vector<std::string> cells;
+    for (std::size_t at = 0;;) {
+      const std::size_t comma = line.find(',', at);
+      cells.push_back(line.substr(at, comma - at));
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    ASSERT_EQ(cells.size(), 16u) << line;
+    const std::string& id = cells[0];
+    const auto& c = j["statement"]["coefficients"][id];
+    EXPECT_EQ(std::stod(cells[2]), j["coefficients"][id]["value"].get<double>()) << id;
+    EXPECT_EQ(std::stod(cells[13]), c["expanded_uncertainty"].get<double>()) << id;
+    EXPECT_EQ(std::stod(cells[12]), c["coverage_factor"].get<double>()) << id;
+  }
+  EXPECT_EQ(rows, 3);
 }
 
 }  // namespace

@@ -229,13 +229,15 @@ class ReduceLogsTest(unittest.TestCase):
                 np.savetxt(path, np.column_stack([t, pulses, theta1, gamma]), delimiter=",", fmt="%.17g",
                            header="time,pulses,theta1,gamma", comments="")
                 logs[run.name if k % 2 else k] = path  # by name and by index
-            red = ccal.reduce_logs(cfg, logs, pulse_weight=w)
+            # pulse_weight in the output unit × s, as on the command line: deg for the example's deg/s
+            self.assertEqual(cfg.output_unit, "deg/s")
+            red = ccal.reduce_logs(cfg, logs, pulse_weight=math.degrees(w))
             with self.assertRaisesRegex(ccal.InputError, "cannot determine 3 free terms"):
-                ccal.reduce_logs(cfg, {"20g": path}, pulse_weight=w)  # one log for three free terms
+                ccal.reduce_logs(cfg, {"20g": path}, pulse_weight=math.degrees(w))  # one log for three free terms
             with self.assertRaisesRegex(ccal.InputError, "angle_unit"):
-                ccal.reduce_logs(cfg, logs, pulse_weight=w, angle_unit="grad")
+                ccal.reduce_logs(cfg, logs, pulse_weight=math.degrees(w), angle_unit="grad")
             with self.assertRaisesRegex(ccal.InputError, "21g"):
-                ccal.reduce_logs(cfg, {"21g": path}, pulse_weight=w)
+                ccal.reduce_logs(cfg, {"21g": path}, pulse_weight=math.degrees(w))
         self.assertEqual([r.index for r in red.runs], list(range(6)))
         for r in red.runs:
             self.assertAlmostEqual(r.rate - r.planned_rate, 2e-6, delta=1e-12)

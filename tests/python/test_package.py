@@ -150,7 +150,9 @@ class LibraryDefaults(unittest.TestCase):
         expected = {"allocate": {"coverage_probability": 0.95, "max_scale": 10.0, "verify_trials": 2000,
                                  "seed": 1, "threads": 0},
                     "design": {"threads": 0, "verify_trials": 0, "tradeoff": []},
-                    "reduce": {"budget": False, "coverage_probability": 0.95, "angle_unit": "rad"},
+                    "reduce": {"statement": False, "coverage_probability": 0.95, "angle_unit": "rad"},
+                    "identify_file": {"statement": False, "input_column": "a_i", "output_column": "output",
+                                      "config": None},
                     "budget": {"coverage_factor": 2.0, "compare_with_paper": True, "derivatives": "linearised"}}
         for function, defaults in expected.items():
             parameters = inspect.signature(getattr(ccal, function)).parameters
@@ -168,15 +170,15 @@ class LibraryDefaults(unittest.TestCase):
 
 class ReduceStatement(unittest.TestCase):
     @unittest.skipUnless(PROGRAM, "CCAL_PROGRAM is not set")
-    def test_reduce_with_budget_is_the_programs(self):
+    def test_reduce_with_statement_is_the_programs(self):
         cfg = ccal.bundled_example()
         with tempfile.TemporaryDirectory() as tmp:
             logs = ccal.simulate(cfg).write_logs(tmp)
             plain = ccal.reduce(cfg, logs)
             self.assertFalse(plain.has_statement)
-            r = ccal.reduce(cfg, logs, budget=True, coverage_probability=0.9)
+            r = ccal.reduce(cfg, logs, statement=True, coverage_probability=0.9)
             self.assertTrue(r.has_statement)
-            args = ["reduce", *[f"--log={k + 1}={p}" for k, p in enumerate(logs.values())], "--budget",
+            args = ["reduce", *[f"--log={k + 1}={p}" for k, p in enumerate(logs.values())], "--statement",
                     "--coverage-probability", "0.9"]
             self.assertEqual(normalised(r.to_dict()), program_json(*args))
             self.assertEqual(r.to_dict()["statement"]["coverage_probability"], 0.9)

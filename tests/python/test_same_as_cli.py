@@ -73,17 +73,18 @@ class SameAsCli(unittest.TestCase):
             with open(obs, "w") as f:
                 f.write(ccal.simulate(ccal.bundled_example()).to_csv())
             self.check(ccal.identify_file(obs), "identify", obs)
-            self.check(ccal.identify_file(obs, budget=ccal.load_config(SECOND), mode="paper",
+            self.check(ccal.identify_file(obs, statement=True, config=ccal.load_config(SECOND), mode="paper",
                                           coverage_probability=0.9),
-                       "identify", obs, "--budget", SECOND, "--mode", "paper", "--coverage-probability", "0.9")
+                       "identify", obs, "--statement", "--config", SECOND, "--mode", "paper",
+                       "--coverage-probability", "0.9")
             table = os.path.join(tmp, "table.csv")
             with open(table, "w") as f:
                 f.write("x,y,sigma\n" + "".join(f"{x},{1 + 0.5 * x + 0.01 * x * x + 1e-4 * (-1) ** x},0.001\n"
                                                   for x in range(1, 9)))
-            self.check(ccal.identify_file(table, terms=["K0", "K2"], fix=["K1=0.5"], known=["none"], input="x",
-                                          output="y", weight="sigma"),
-                       "identify", table, "--terms", "K0,K2", "--fix", "K1=0.5", "--known", "none", "--input",
-                       "x", "--output", "y", "--weight", "sigma")
+            self.check(ccal.identify_file(table, terms=["K0", "K2"], fix=["K1=0.5"], known=["none"],
+                                          input_column="x", output_column="y", weight_column="sigma"),
+                       "identify", table, "--terms", "K0,K2", "--fix", "K1=0.5", "--known", "none",
+                       "--input-column", "x", "--output-column", "y", "--weight-column", "sigma")
 
     def test_reduce(self):
         # Synthetic logs of the first three runs (as in tests/system/golden_outputs_test.cpp): pulses of 1e-3 deg,
@@ -114,7 +115,7 @@ class SameAsCli(unittest.TestCase):
              "angle_unit: 'grad'"),
             (lambda: ccal.reduce(cfg, {0: "a.csv"}, mode="fast"), "mode: 'fast'"),
             (lambda: ccal.reduce(cfg, {0: "a.csv", 1: "b.csv", 2: "c.csv"}, pulse_weight=-1.0),
-             "--pulse-weight: '-1' is not a positive number"),
+             "pulse_weight: -1 is not a positive number"),
             (lambda: ccal.simulate(cfg, mode="fast"), "mode: 'fast'"),
             (lambda: ccal.monte_carlo(cfg, trials=1), "trials: 1 is out of range"),
             (lambda: ccal.budget(cfg, coverage_factor=-1.0), "coverage_factor: -1 is out of range"),

@@ -9,7 +9,7 @@ Each output the page names (its "ccal-sources" script) is {"command": [verb, opt
 `ccal VERB CONFIG OPTIONS --format json`, optionally with "writes": {option: file} (the command also writes
 that file, e.g. `ccal design --plan-out designed.toml`) and "config": file (a file written by an earlier
 command replaces CONFIG, e.g. `ccal budget designed.toml`) or "config_option": option (CONFIG is given
-as that option's value instead of as the first argument, e.g. `ccal identify OBS.csv --budget CONFIG`); the
+as that option's value instead of as the first argument, e.g. `ccal identify OBS.csv --statement --config CONFIG`); the
 files go to a temporary directory.
 
     check_report_structure.py CCAL REPORT.html [CONFIG]

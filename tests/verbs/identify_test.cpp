@@ -9,9 +9,11 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/verbs/simulate.hpp"
@@ -34,8 +36,8 @@ CsvTable line_table() {
 verbs::IdentifyOptions line_options(std::vector<std::string> terms) {
   verbs::IdentifyOptions o;
   o.terms = std::move(terms);
-  o.input = std::string("x");
-  o.output = std::string("y");
+  o.input_column = "x";
+  o.output_column = "y";
   return o;
 }
 
@@ -85,8 +87,8 @@ TEST(IdentifyVerb, WeightedConstantIsTheWeightedMean) {
   // 1/√Σw (the σ taken as known: a weighted fit's covariance is (HᵀWH)⁻¹). 1e-13 relative: sums of 7 terms.
   verbs::IdentifyOptions o;
   o.terms = std::vector<std::string>{"K0"};
-  o.output = std::string("y");
-  o.weight = std::string("s");
+  o.output_column = "y";
+  o.weight_column = "s";
   const verbs::IdentifyResult r = verbs::identify(line_table(), o);
   double sw = 0, swy = 0;
   for (std::size_t i = 0; i < kX.size(); ++i) {
@@ -108,7 +110,8 @@ TEST(IdentifyVerb, TheBudgetGivesTheStatementOfEachCoefficient) {
                                      "noisy-paper.toml");
   const verbs::SimulateResult sim = verbs::simulate(config);
   verbs::IdentifyOptions o;
-  o.budget = config;
+  o.statement = true;
+  o.config = config;
   const verbs::IdentifyResult r = verbs::identify(parse_csv(sim.observations_csv, "obs.csv"), o);
   ASSERT_TRUE(r.statement.has_value());
   ASSERT_EQ(r.statement->coefficients.size(), r.identification.fit.names.size());
@@ -122,20 +125,38 @@ TEST(IdentifyVerb, TheBudgetGivesTheStatementOfEachCoefficient) {
   }
 }
 
-TEST(IdentifyVerb, BadOptionsNameTheOption) {
-  auto message = [](const verbs::IdentifyOptions& o) -> std::string {
+TEST(IdentifyVerb, BadOptionsNameTheField) {
+  // An OptionError names the field of IdentifyOptions (each front end words it with its own spelling).
+  auto refusal = [](const verbs::IdentifyOptions& o) -> std::pair<std::string, std::string> {
     try {
       verbs::identify(line_table(), o);
-    } catch (const std::exception& e) {
-      return e.what();
+    } catch (const OptionError& e) {
+      return {e.field(), e.what()};
     }
-    return "no error";
+    return {"no error", ""};
   };
-  const std::string terms = message(line_options({"K0", "Q7"}));
-  EXPECT_NE(terms.find("--terms"), std::string::npos) << terms;
+  const auto [field, what] = refusal(line_options({"K0", "Q7"}));
+  EXPECT_EQ(field, "terms");
+  EXPECT_EQ(what.rfind("terms: 'Q7' is not a term id; accepted: K0, K1, K2,", 0), 0u) << what;
   verbs::IdentifyOptions fix = line_options({"K0"});
   fix.fix = std::vector<std::string>{"K1=two"};
-  EXPECT_NE(message(fix).find("--fix"), std::string::npos) << message(fix);
+  EXPECT_EQ(refusal(fix).second, "fix: 'two' in 'K1=two' is not a finite number; accepted: <term>=<value>, e.g. "
+                                 "K1=505.2097");
+  verbs::IdentifyOptions bound = line_options({"K0", "K_pp"});
+  EXPECT_EQ(refusal(bound).second, "terms: K_pp is not a power of the input, so it needs its column: bind it as "
+                                   "K_pp:<column>, e.g. K_pp:K_pp (only K0 ... K10 are computed from the "
+                                   "input_column column)");
+  // An empty list of terms is refused by the table's row, as from every front end.
+  EXPECT_EQ(refusal(line_options({})).second, "terms: none given; accepted: at least one TERMS");
+  // The statement needs its configuration, and the configuration is read only for a statement.
+  verbs::IdentifyOptions statement = line_options({"K0", "K1"});
+  statement.statement = true;
+  EXPECT_EQ(refusal(statement).second, "statement: needs the configuration whose tolerances give its Type B "
+                                       "part; accepted: that configuration as config");
+  verbs::IdentifyOptions config = line_options({"K0", "K1"});
+  config.config = parse_config(read_text(kPaperConfigPath), "paper.toml");
+  EXPECT_EQ(refusal(config).second, "config: paper.toml is read only for the calibration statement; accepted: "
+                                    "with statement");
 }
 
 }  // namespace

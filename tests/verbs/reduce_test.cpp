@@ -1,8 +1,9 @@
 // verbs::reduce in-process (docs/model.md §13): logs written from the model (io/run_log_writer.hpp: the
 // simulated run means and the encoders of the drives' configured rate errors), reduced and identified, give
 // the coefficients verbs::simulate identifies from the same model; the encoders' rate and mismatch are the
-// configured Δω and ΔΩ; with the budget the statement is verbs::calibration_statement of that
-// identification; too few logs and a run logged twice are refused naming --log.
+// configured Δω and ΔΩ; with `statement` the statement is verbs::calibration_statement of that
+// identification; too few logs, a run logged twice or unknown, and a pulse weight that is not positive are
+// refused naming their field.
 #include "ccal/verbs/reduce.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/run_log_writer.hpp"
 #include "ccal/model/plan.hpp"
@@ -72,16 +74,16 @@ TEST_F(ReduceVerb, LogsOfTheModelGiveTheSimulatedIdentification) {
   EXPECT_FALSE(r.statement.has_value());
 }
 
-TEST_F(ReduceVerb, TheBudgetGivesTheStatementOfTheIdentification) {
+TEST_F(ReduceVerb, StatementIsThatOfTheIdentificationWithTheBudget) {
   verbs::ReduceOptions o = options_;
-  o.budget = true;
+  o.statement = true;
   o.coverage_probability = 0.9;
   const verbs::ReduceResult r = verbs::reduce(config_, o);
   ASSERT_TRUE(r.statement.has_value());
   verbs::StatementOptions so;
   so.coverage_probability = 0.9;
   const verbs::CalibrationStatement s =
-      verbs::calibration_statement(config_, r.identification.id, so, "--budget");
+      verbs::calibration_statement(config_, r.identification.id, so, "statement");
   ASSERT_EQ(r.statement->coefficients.size(), s.coefficients.size());
   for (std::size_t k = 0; k < s.coefficients.size(); ++k) {
     EXPECT_EQ(r.statement->coefficients[k].expanded, s.coefficients[k].expanded) << k;
@@ -90,19 +92,32 @@ TEST_F(ReduceVerb, TheBudgetGivesTheStatementOfTheIdentification) {
 }
 
 TEST_F(ReduceVerb, TooFewOrRepeatedLogsAreRefusedNamingTheOption) {
+  // OptionErrors naming the field `logs` (the command line words it --log, Python logs).
   auto message = [&](const verbs::ReduceOptions& o) -> std::string {
     try {
       verbs::reduce(config_, o);
-    } catch (const InputError& e) {
-      return e.what();
+    } catch (const OptionError& e) {
+      return e.field() == "logs" ? e.what() : "another field: " + e.field();
     }
     return "no error";
   };
-  verbs::ReduceOptions few, twice = options_;
+  verbs::ReduceOptions few, twice = options_, unknown = options_, weight = options_;
   few.logs = {options_.logs[0], options_.logs[1]};  // 2 logs for 3 free terms
   twice.logs[1].run = twice.logs[0].run;
-  EXPECT_NE(message(few).find("--log"), std::string::npos) << message(few);
-  EXPECT_EQ(message(twice).rfind("--log: ", 0), 0u) << message(twice);
+  unknown.logs[0].run = "21g";
+  EXPECT_EQ(message(few), "logs: 2 logged run(s) cannot determine 3 free terms (K0, K2, K3); accepted: at least 3 "
+                          "logs, of runs at different g-levels");
+  EXPECT_EQ(message(twice), "logs: run '" + twice.logs[0].run + "' is logged twice; accepted: one log per run");
+  EXPECT_EQ(message(unknown).rfind("logs: '21g' is no run; accepted: a run name (", 0), 0u) << message(unknown);
+  // The pulse weight: positive, in the output unit × s.
+  weight.pulse_weight = -1.0;
+  try {
+    verbs::reduce(config_, weight);
+    ADD_FAILURE() << "a negative pulse weight was accepted";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(std::string(e.what()), "pulse_weight: -1 is not a positive number; accepted: the integrated output "
+                                     "per pulse in deg/s·s, e.g. 2.5e-5");
+  }
 }
 
 }  // namespace

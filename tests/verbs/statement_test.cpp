@@ -37,7 +37,7 @@ TEST(StatementVerb, EachPartIsWhatTheOtherVerbsGive) {
   verbs::StatementOptions o;
   o.coverage_probability = 0.9;
   const verbs::CalibrationStatement s =
-      verbs::calibration_statement(config, sim.identification, o, "--budget");
+      verbs::calibration_statement(config, sim.identification, o, "statement");
   EXPECT_EQ(s.coverage_probability, 0.9);
   EXPECT_EQ(s.known_errors, 0);
   ASSERT_EQ(s.coefficients.size(), budget.budget.coefficients.size());
@@ -72,7 +72,7 @@ TEST(StatementVerb, KnownErrorsTheModelLeavesOutAreCorrected) {
   const Config config = noisy_paper(true);
   const verbs::SimulateResult sim = verbs::simulate(config);
   const verbs::CalibrationStatement s =
-      verbs::calibration_statement(config, sim.identification, {}, "--budget");
+      verbs::calibration_statement(config, sim.identification, {}, "statement");
   EXPECT_EQ(s.known_errors, 1);
   EXPECT_FALSE(s.compensated);
   const Eigen::VectorXd shift = known_error_shift(config, config.mode);
@@ -93,7 +93,7 @@ TEST(StatementVerb, RefusalsNameTheOption) {
     verbs::StatementOptions o;
     o.coverage_probability = p;
     try {
-      verbs::calibration_statement(budget_config, sim.identification, o, "--budget");
+      verbs::calibration_statement(budget_config, sim.identification, o, "statement");
     } catch (const InputError& e) {
       return e.what();
     }
@@ -103,7 +103,8 @@ TEST(StatementVerb, RefusalsNameTheOption) {
   // A budget whose free terms are not the fit's.
   Config other = config;
   other.identification.free_terms = {"K0", "K2"};
-  EXPECT_NE(message(other, 0.95).find("--budget"), std::string::npos) << message(other, 0.95);
+  EXPECT_EQ(message(other, 0.95).rfind("statement: the fit's free terms (K0, K2, K3) are not those of ", 0), 0u)
+      << message(other, 0.95);
 }
 
 }  // namespace

@@ -150,7 +150,8 @@ template <class Options>
 using OptionMember =
     std::variant<bool Options::*, int Options::*, std::int64_t Options::*, std::uint64_t Options::*,
                  double Options::*, std::string Options::*, std::vector<std::string> Options::*,
-                 std::vector<double> Options::*, std::optional<int> Options::*,
+                 std::vector<double> Options::*, std::optional<std::vector<std::string>> Options::*,
+                 std::optional<int> Options::*,
                  std::optional<std::int64_t> Options::*, std::optional<std::uint64_t> Options::*,
                  std::optional<double> Options::*, OptionEnum<Options>>;
 
@@ -163,7 +164,7 @@ struct OptionSpec {
   std::string_view value_name;
   std::string_view help;
   OptionRange range;
-  bool required = false;  // a list that needs at least one element
+  bool required = false;  // a list that needs at least one element (an optional list: when it is set)
 
   constexpr OptionSpec(std::string_view field, OptionMember<Options> member, std::string_view value_name,
                        std::string_view help, OptionRange range = {}, bool required = false)
@@ -237,6 +238,10 @@ void check_member(const Field& value, const OptionSpec<Options>& row) {
     // no range
   } else if constexpr (std::is_same_v<Field, std::vector<std::string>>) {
     if (row.required && value.empty())
+      throw OptionError(std::string(row.field), "",
+                        "none given; accepted: at least one " + std::string(row.value_name));
+  } else if constexpr (std::is_same_v<Field, std::optional<std::vector<std::string>>>) {
+    if (row.required && value && value->empty())  // unset: the verb's own default (a file's terms)
       throw OptionError(std::string(row.field), "",
                         "none given; accepted: at least one " + std::string(row.value_name));
   } else if constexpr (std::is_same_v<Field, std::vector<double>>) {

@@ -134,9 +134,9 @@ struct LogReduction {
   std::vector<LoggedRun> runs;        // in plan order
   Observations<double> observations;  // per logged run: the model's regressors, the log's mean output
 };
-// Throws InputError "<where>: n logged run(s) cannot determine …" when fewer runs are logged than the spec
-// has free terms.
-void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::string_view where);
+// Throws OptionError naming `field` (the option that gives the logs), "n logged run(s) cannot determine …",
+// when fewer runs are logged than the spec has free terms.
+void check_log_count(const IdentificationSpec& spec, std::size_t logs, std::string_view field);
 
 // The observations of logged runs (plan index → log table; each run once): every run is modelled as measured
 // (measured_run; with the main-axis encoder Δω = 0 in the model, with both encoders the measured ΔΩ), the

@@ -31,7 +31,7 @@ struct ReportProvenance {
   // With an allocation or a design section: `ccal allocate …` and `ccal design …` likewise (the design's is
   // run with --plan-out designed.toml, whose budget the section shows beside the configuration's).
   std::vector<std::string> allocate_command, design_command;
-  // With the statement section: `ccal identify OBS.csv …`, run with `--budget CONFIG` (the report's).
+  // With the statement section: `ccal identify OBS.csv …`, run with `--config CONFIG` (the report's).
   std::vector<std::string> identify_command;
 };
 

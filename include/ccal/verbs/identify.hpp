@@ -21,13 +21,19 @@ struct IdentifyOptions {
   std::optional<std::vector<std::string>> fix;
   // Columns subtracted from the output ({"none"}: none); unset: the file's.
   std::optional<std::vector<std::string>> known;
-  std::string input = "a_i";               // column of the input x of the power terms
-  std::string output = "output";           // column of the output y
-  std::string weight;                      // column of the σ of y (weights 1/σ²); empty: unweighted
-  std::optional<Config> budget;            // set: the calibration statement with this configuration's budget
-  StatementOptions statement;              // its coverage probability and mode
-  std::string budget_option = "--budget";  // the option its errors name
+  std::string input_column = "a_i";      // column of the input x of the power terms
+  std::string output_column = "output";  // column of the output y
+  std::string weight_column;             // column of the σ of y (weights 1/σ²); empty: unweighted
+  bool statement = false;                // also the calibration statement, with `config`'s budget
+  double coverage_probability = 0.95;    // p of the statement's intervals
+  std::optional<ModelMode> mode;         // kinematics of the statement's budget; unset: `config`'s
+  // The configuration whose tolerances give the statement's Type B part (and its known [errors] the
+  // correction). Not a row of the table: each front end reads it (the command line: --config FILE).
+  std::optional<Config> config;
 };
+
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
+OptionTable<IdentifyOptions> options_of(std::type_identity<IdentifyOptions>);
 
 struct IdentifyResult {
   std::string source;  // the table's name, as in messages
@@ -37,7 +43,7 @@ struct IdentifyResult {
   std::optional<CalibrationStatement> statement;  // with options.budget
 };
 
-// Throws InputError naming the option (--terms, --fix, --known, --budget, …) or CsvError naming the file's
+// Throws OptionError naming the field (terms, fix, known, statement, config, …) or CsvError naming the file's
 // place.
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options = {});
 

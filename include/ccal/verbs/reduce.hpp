@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
@@ -22,13 +23,19 @@ struct LogFile {
   std::string path;  // CSV: time; pulses or output; optionally theta1, gamma
 };
 
+// The unit of the logs' encoder columns.
+enum class AngleUnit { rad, deg };
+inline constexpr std::string_view kAngleUnitNames[] = {"rad", "deg"};  // in the enumeration's order
+
 struct ReduceOptions {
-  std::vector<LogFile> logs;           // at least as many as the identification has free terms
-  bool angles_in_degrees = false;      // the encoder columns' unit (else rad)
-  std::optional<double> pulse_weight;  // integrated output per pulse [output unit × s]; unset: the quantum
-  std::optional<ModelMode> mode;       // model of the regressors; unset: the configuration's
-  bool budget = false;                 // also the calibration statement with the configuration's budget
-  double coverage_probability = 0.95;  // p of the statement's intervals
+  // At least as many as the identification has free terms. Not a row of the table: each front end reads
+  // them (the command line: --log RUN=FILE, repeated; Python: a dict of run → file).
+  std::vector<LogFile> logs;
+  AngleUnit angle_unit = AngleUnit::rad;  // of the encoder columns
+  std::optional<double> pulse_weight;     // integrated output per pulse [output unit × s]; unset: the quantum
+  std::optional<ModelMode> mode;          // model of the regressors; unset: the configuration's
+  bool statement = false;                 // also the calibration statement with the configuration's budget
+  double coverage_probability = 0.95;     // p of the statement's intervals
 };
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
@@ -44,12 +51,16 @@ struct ReduceResult {
   // Runs whose encoders contradict the configured platform control, and weak terms: for the front end to
   // show (the verb prints nothing).
   std::vector<std::string> warnings;
-  std::optional<CalibrationStatement> statement;  // with `budget`
+  std::optional<CalibrationStatement> statement;  // with `statement`
 };
 
-// Throws InputError naming the option (--log, --pulse-weight, --budget, --coverage-probability) or CsvError
-// naming the log's place.
+// Throws OptionError naming the field (logs, pulse_weight, statement, coverage_probability) or CsvError naming
+// the log's place.
 ReduceResult reduce(const Config& config, const ReduceOptions& options);
+
+// How the logs are read (RunLogOptions: SI scales of the output and the angles, the pulse weight) for these
+// options. Throws OptionError naming pulse_weight when it is not a positive number.
+RunLogOptions run_log_options(const Config& config, const ReduceOptions& options);
 
 // Parameter ids of a drive's ripple channel up to the configuration's order: ripple1_c1, ripple1_s1, …
 std::vector<std::string> ripple_ids(const Config& config, std::string_view channel);

@@ -4,7 +4,7 @@
 // with the paper's first-order effect of each source beside it), the Monte Carlo propagation with its kept
 // distribution, and the sensed input along the instrument's axes over part of one run; optionally a tolerance
 // allocation (`ccal allocate`), a test-plan design (`ccal design`), each before and after, and the
-// calibration statement of an observations file (`ccal identify OBS.csv --budget CONFIG`).
+// calibration statement of an observations file (`ccal identify OBS.csv --statement --config CONFIG`).
 
 #include <cstddef>
 #include <optional>
@@ -33,7 +33,7 @@ struct ReportOptions {
   // The design section: as `ccal design` with these options (the design uses the configuration's mode).
   std::optional<DesignOptions> design;
   // The statement section: this observations file (as `ccal simulate --observations-out` writes it),
-  // identified as `ccal identify OBS.csv --budget CONFIG` with the report's mode and the Monte Carlo's
+  // identified as `ccal identify OBS.csv --statement --config CONFIG` with the report's mode and the Monte Carlo's
   // coverage probability.
   std::optional<CsvTable> observations;
 };

@@ -1,11 +1,12 @@
 #pragma once
-// The calibration statement (JCGM 100 §7, docs/model.md §10.5) as `ccal reduce --budget` and `ccal identify
-// --budget CONFIG` give it: per identified coefficient the estimate, the correction for known errors, the
+// The calibration statement (JCGM 100 §7, docs/model.md §10.5) as `ccal reduce --statement` and `ccal identify
+// --statement --config CONFIG` give it: per identified coefficient the estimate, the correction for known errors, the
 // Type A part from the fit with its degrees of freedom, the Type B part from the centrifuge budget of the
 // configuration, u_c, ν_eff, k from Student's t, U and the interval.
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
@@ -36,10 +37,11 @@ struct CalibrationStatement {
 // Combines an identification with the budget of `config`. Type A: the fit's standard errors with its
 // degrees of freedom (∞ for a weighted fit, whose σ are taken as known); Type B: the configuration's
 // tolerances (the drives' rate noise is left out, the fit's scatter already holds it); correction: minus
-// the shift of the known [errors] when the model does not compensate them. Throws InputError naming
-// `option` when a fitted term is not a free term of the configuration, the units cannot be converted, the
-// fit has no degrees of freedom, or p is not in (0, 1).
+// the shift of the known [errors] when the model does not compensate them. Throws OptionError naming
+// `field` (the option that asked for the statement: statement, observations) when a fitted term is not a free
+// term of the configuration, the units cannot be converted or the fit has no degrees of freedom, and naming
+// coverage_probability when p is not in (0, 1).
 CalibrationStatement calibration_statement(const Config& config, const Identification& identification,
-                                           const StatementOptions& options, const std::string& option);
+                                           const StatementOptions& options, std::string_view field);
 
 }  // namespace ccal::verbs
