@@ -55,13 +55,13 @@ struct is_optional<std::optional<T>> : std::true_type {};
 
 // A number of type Number from a Python value, by the library's parsers.
 template <class Number>
-Number number(std::string_view field, py::handle value) {
+Number number(std::string_view field, py::handle value, const OptionRange& range = {}) {
   if (!is_number(value)) wrong_type(field, std::is_floating_point_v<Number> ? "a number" : "an integer", value);
   const std::string text = number_text(value);
   if constexpr (std::is_floating_point_v<Number>)
     return Number(parse_real_option(field, text));
   else if constexpr (std::is_unsigned_v<Number>)
-    return Number(parse_unsigned_option(field, text));
+    return Number(parse_unsigned_option(field, text, range));
   else
     return Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
                                        std::numeric_limits<Number>::max()));
@@ -69,13 +69,13 @@ Number number(std::string_view field, py::handle value) {
 
 // Sets `field` (the member's value) from a Python value.
 template <class Field>
-void assign(Field& field, std::string_view name, py::handle value) {
+void assign(Field& field, std::string_view name, py::handle value, const OptionRange& range = {}) {
   if constexpr (is_optional<Field>::value) {
     if (value.is_none()) {
       field.reset();
     } else {
       typename Field::value_type inner{};
-      assign(inner, name, value);
+      assign(inner, name, value, range);
       field = inner;
     }
   } else if constexpr (std::is_same_v<Field, bool>) {
@@ -89,7 +89,7 @@ void assign(Field& field, std::string_view name, py::handle value) {
   } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
     field = reals(name, value);
   } else {
-    field = number<Field>(name, value);
+    field = number<Field>(name, value, range);
   }
 }
 
@@ -174,7 +174,7 @@ Options options_from_keywords(const py::kwargs& given, std::string_view function
             if (!py::isinstance<py::str>(value)) keywords::wrong_type(name, "a str", value);
             member.set(options, parse_choice_option(name, value.template cast<std::string>(), member.names));
           } else {
-            keywords::assign(options.*member, name, value);
+            keywords::assign(options.*member, name, value, row->range);
           }
         },
         row->member);

@@ -89,11 +89,11 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
         else
           return Field{};
       }())>;
-      option = add_text_flag(command, flag, help, [&value, field](const std::string& text) {
+      option = add_text_flag(command, flag, help, [&value, field, range = row.range](const std::string& text) {
         if constexpr (std::is_floating_point_v<Number>)
           value = parse_real_option(field, text);
         else if constexpr (std::is_unsigned_v<Number>)
-          value = Number(parse_unsigned_option(field, text));
+          value = Number(parse_unsigned_option(field, text, range));
         else
           value = Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
                                               std::numeric_limits<Number>::max()));

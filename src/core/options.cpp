@@ -165,6 +165,18 @@ std::uint64_t parse_unsigned_option(std::string_view field, std::string_view tex
   return std::uint64_t(*x);
 }
 
+std::uint64_t parse_unsigned_option(std::string_view field, std::string_view text, const OptionRange& range) {
+  try {
+    return parse_unsigned_option(field, text);
+  } catch (const OptionError& e) {
+    bool integral = false;
+    const std::optional<double> x = whole_number(trimmed(text), integral);
+    if (x && integral && !range.accepts(*x))
+      throw OptionError(e.field(), e.value(), "is out of range; accepted: " + range.text());
+    throw;
+  }
+}
+
 double parse_real_option(std::string_view field, std::string_view text) {
   const std::string_view t = trimmed(text);
   double x = 0;

@@ -235,7 +235,7 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   mo.trials = o.verify_trials;
   mo.seed = o.seed;
   mo.threads = o.threads;
-  mo.coverage = o.coverage;
+  mo.coverage_probability = o.coverage;
   mo.progress = o.progress;
   mo.on_progress = o.on_progress;
   if (o.on_progress) o.on_progress(0, o.verify_trials);  // may throw Cancelled: stop before the verification

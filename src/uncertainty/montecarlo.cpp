@@ -253,12 +253,12 @@ void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
   if (int(output_names.size()) != n_outputs)
     throw InputError(
         fmt::format("Monte Carlo: {} output names for {} outputs", output_names.size(), n_outputs));
-  if (!(options.coverage > 0 && options.coverage < 1))
+  if (!(options.coverage_probability > 0 && options.coverage_probability < 1))
+    throw InputError(fmt::format("Monte Carlo: the coverage probability must be in (0, 1), not {}",
+                                 options.coverage_probability));
+  if (options.digits < 0 || options.digits > 15)
     throw InputError(
-        fmt::format("Monte Carlo: the coverage probability must be in (0, 1), not {}", options.coverage));
-  if (options.significant_digits < 0 || options.significant_digits > 15)
-    throw InputError(fmt::format("Monte Carlo: significant digits must be 0 (fixed M) or 1…15, not {}",
-                                 options.significant_digits));
+        fmt::format("Monte Carlo: significant digits must be 0 (fixed M) or 1…15, not {}", options.digits));
   check_thread_count(options.threads, "threads");
   if (lpu_std && lpu_std->size() != n_outputs)
     throw InputError(
@@ -447,12 +447,14 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   const auto start = Clock::now();
   check_arguments(sources, n_outputs, output_names, trial, options, lpu_std);
 
-  const double p = options.coverage;
-  const bool adaptive = options.significant_digits > 0;
-  const int n_dig = adaptive ? options.significant_digits : 2;
+  const double p = options.coverage_probability;
+  const bool adaptive = options.digits > 0;
+  const int n_dig = adaptive ? options.digits : 2;
   // J of §7.9.4 b): the least M for which the coverage interval has 100 values outside it.
   const auto J = std::uint64_t(std::ceil(100.0 / (1.0 - p) - 1e-9));
-  const std::uint64_t block = adaptive ? std::max({options.trials, J, std::uint64_t(10000)}) : options.trials;
+  const std::uint64_t block =
+      adaptive ? std::max({options.trials.value_or(kDefaultMonteCarloStage), J, kDefaultMonteCarloStage})
+               : options.trials.value_or(kDefaultMonteCarloTrials);
   if (block < 2) throw InputError("Monte Carlo: at least 2 trials are needed");
   check_coverage_interval(block, p);
   if (adaptive && options.max_trials < 2 * block)

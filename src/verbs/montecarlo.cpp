@@ -12,15 +12,15 @@ constexpr OptionSpec<MonteCarloOptions> kRows[] = {
     {"trials", &MonteCarloOptions::trials, "N",
      "Number of trials M (default 1000000); with digits, the stage size (default and least 10000)",
      rows::kTrials},
-    rows::seed(&MonteCarloOptions::seed, "Seed of the random numbers (same seed, same results)"),
-    rows::threads(&MonteCarloOptions::threads),
+    rows::seed<MonteCarloOptions>(&MonteCarloOptions::seed, "Seed of the random numbers (same seed, same results)"),
+    rows::threads<MonteCarloOptions>(&MonteCarloOptions::threads),
     {"digits", &MonteCarloOptions::digits, "n",
      "0: fixed M; n in 1..6: adaptive M (JCGM 101 §7.9) until n significant digits of u(y) are stable",
      OptionRange::between(1, 6).or_value(0, "fixed M")},
     {"max_trials", &MonteCarloOptions::max_trials, "N", "Adaptive procedure: no stage beyond this many trials",
      rows::kTrials},
-    rows::coverage_probability(&MonteCarloOptions::coverage_probability,
-                               "Coverage probability p of the intervals, in (0, 1)"),
+    rows::coverage_probability<MonteCarloOptions>(&MonteCarloOptions::coverage_probability,
+                                                  "Coverage probability p of the intervals, in (0, 1)"),
     rows::mode<&MonteCarloOptions::mode>(),
 };
 
@@ -30,7 +30,7 @@ void check_verb_options(const MonteCarloOptions& o) {
   check_options(o, option_table<MonteCarloOptions>());
   check_thread_count(o.threads, "threads");
   if (o.digits == 0)  // the adaptive stages are large enough for any p (at least 100/(1 − p) trials)
-    check_coverage_interval(std::uint64_t(o.trials.value_or(kDefaultMonteCarloTrials)), o.coverage_probability);
+    check_coverage_interval(o.trials.value_or(kDefaultMonteCarloTrials), o.coverage_probability);
 }
 
 }  // namespace
@@ -55,16 +55,7 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
     throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
                       e.terms());
   }
-  ccal::MonteCarloOptions mo;
-  mo.trials = std::uint64_t(o.trials ? *o.trials : o.digits > 0 ? kDefaultMonteCarloStage : kDefaultMonteCarloTrials);
-  mo.seed = o.seed;
-  mo.threads = o.threads;
-  mo.significant_digits = o.digits;
-  mo.max_trials = o.max_trials;
-  mo.coverage = o.coverage_probability;
-  mo.keep_samples = o.keep_samples;
-  mo.progress = o.progress;
-  mo.on_progress = o.on_progress;
+  const ccal::MonteCarloOptions& mo = o;  // the engine's fields, as set
   r.monte_carlo = run_monte_carlo(monte_carlo_sources(config), model.n_outputs(), model.output_names(),
                                   calibration_trial(model), mo, &r.budget.standard_uncertainty);
   return r;

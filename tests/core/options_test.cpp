@@ -72,6 +72,27 @@ TEST(OptionParsers, UnsignedSeeds) {
   EXPECT_NE(refusal([] { parse_unsigned_option("seed", "1.8446744073709551616e19"); }), "");
 }
 
+TEST(OptionParsers, UnsignedCountsOutOfTheirRangeAreRefusedInTheRangesWords) {
+  // An unsigned count (trials) written negative or beyond 2^64 is refused as a signed one would be: with the
+  // option's own range, not the type's. Within the type, the parser leaves the range to check_options.
+  const OptionRange trials = OptionRange::between(2, 1e9);
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "-5", trials); }),
+            "trials: -5 is out of range; accepted: 2 to 1000000000");
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "-1e5", trials); }),
+            "trials: -1e5 is out of range; accepted: 2 to 1000000000");
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "1e30", trials); }),
+            "trials: 1e30 is out of range; accepted: 2 to 1000000000");
+  EXPECT_EQ(parse_unsigned_option("trials", "1", trials), 1u);  // in the type: the table's check speaks
+  // Not a whole number, or not a number: the parser's own words.
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "-2.5", trials); }),
+            "trials: -2.5 is not a whole number; accepted: a whole number from 0 to 18446744073709551615");
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "x", trials); }),
+            "trials: 'x' is not a number; accepted: a whole number from 0 to 18446744073709551615");
+  // Without a range (a seed), the type's.
+  EXPECT_EQ(refusal([] { parse_unsigned_option("seed", "-1", OptionRange{}); }),
+            "seed: -1 is out of range; accepted: a whole number from 0 to 18446744073709551615");
+}
+
 TEST(OptionParsers, RealsAndChoices) {
   EXPECT_EQ(parse_real_option("coverage_probability", " 0.95 "), 0.95);
   EXPECT_EQ(refusal([] { parse_real_option("max_scale", "nan"); }),

@@ -325,7 +325,7 @@ TEST(MonteCarlo, SameSeedGivesBitIdenticalResultsForAnyThreadCount) {
 TEST(MonteCarlo, AdaptiveRunEqualsAFixedRunOfTheSameLength) {
   // Trials are numbered over all stages, so h stages of M are the fixed run of h·M trials, for any threads.
   MonteCarloOptions o = fixed(1, 7);
-  o.significant_digits = 1;
+  o.digits = 1;
   o.threads = 1;
   const MonteCarloResult adaptive = run_monte_carlo(kMixedSources, 3, {}, mixed, o);
   ASSERT_TRUE(adaptive.converged);
@@ -353,7 +353,7 @@ TEST(MonteCarlo, AdaptiveProcedureStopsWhenTheStageAveragesAreStable) {
   };
   MonteCarloOptions o;
   o.trials = 1;  // the stage size is then max(1, J = 2000, 10⁴)
-  o.significant_digits = 2;
+  o.digits = 2;
   const MonteCarloResult r = run_monte_carlo(s, 2, {}, f, o);
   EXPECT_TRUE(r.adaptive);
   EXPECT_TRUE(r.converged);
@@ -386,7 +386,7 @@ TEST(MonteCarlo, AdaptiveProcedureStopsWhenTheStageAveragesAreStable) {
   o.max_trials = 2 * 12345;
   EXPECT_EQ(run_monte_carlo(s, 2, {}, f, o).stage_trials, 12345u);
   o.trials = 1;
-  o.coverage = 0.999;
+  o.coverage_probability = 0.999;
   o.max_trials = 200000;
   EXPECT_EQ(run_monte_carlo(s, 2, {}, f, o).stage_trials, 100000u);
 }
@@ -396,7 +396,7 @@ TEST(MonteCarlo, RefusesBadInputAndPassesOnTrialErrors) {
   EXPECT_THROW(run_monte_carlo(s, 1, {"a", "b"}, identity, fixed(100)), InputError);
   EXPECT_THROW(run_monte_carlo(s, 1, {}, identity, fixed(1)), InputError);
   MonteCarloOptions o = fixed(100);
-  o.coverage = 1.0;
+  o.coverage_probability = 1.0;
   EXPECT_THROW(run_monte_carlo(s, 1, {}, identity, o), InputError);
   EXPECT_THROW(run_monte_carlo({source("x", -1.0, Distribution::normal)}, 1, {}, identity, fixed(100)),
                InputError);

@@ -196,6 +196,9 @@ void check_member(const Field& value, const OptionSpec<Options>& row);
 std::int64_t parse_integer_option(std::string_view field, std::string_view text, std::int64_t low,
                                   std::int64_t high);
 std::uint64_t parse_unsigned_option(std::string_view field, std::string_view text);
+// As above, but a whole number beyond the type that the option's range refuses as well (-5 trials) is refused
+// in the range's words, as the same value of a signed option is.
+std::uint64_t parse_unsigned_option(std::string_view field, std::string_view text, const OptionRange& range);
 // A real option written as text (any float notation); OptionError unless it is a finite number.
 double parse_real_option(std::string_view field, std::string_view text);
 // The index of `text` among `names`; OptionError listing the names otherwise.

@@ -37,7 +37,7 @@
 //       shortest: the r in 1 … M − q with the least y_(r+q) − y_(r) (the first one on ties).
 // Sums are compensated (Neumaier), so they stay accurate at M = 10⁸.
 //
-// Adaptive procedure (§7.9.4), options.significant_digits = n_dig > 0: stages of M = max(trials, J, 10⁴)
+// Adaptive procedure (§7.9.4), options.digits = n_dig > 0: stages of M = max(trials, J, 10⁴)
 // trials, J = ⌈100/(1 − p)⌉. After each stage h ≥ 2, for every output, the standard deviations s of the
 // average over stages of the stage values y⁽ʳ⁾, u(y⁽ʳ⁾), y_low⁽ʳ⁾, y_high⁽ʳ⁾ (symmetric interval) are
 // compared with the numerical tolerance δ of u(y) from all h·M values (§7.9.2: u(y) = c·10ˡ with c an
@@ -48,7 +48,7 @@
 // y the LPU estimate: the model at the sources' expectations (all draws zero, every distribution above is
 // centred on zero), evaluated once by run_monte_carlo. d_low = |y − U_p − y_low|, d_high = |y + U_p − y_high|
 // against the symmetric MC interval; validated iff both ≤ δ, the numerical tolerance (§7.9.2) of the LPU's
-// u_c with n_dig significant digits (options.significant_digits, or 2 when the run is not adaptive).
+// u_c with n_dig significant digits (options.digits, or 2 when the run is not adaptive).
 //
 // Histograms: per output, histogram_bins equal bins from its smallest to its largest value (the counts sum to
 // M). Sampling error of an interval end y_(r): distribution-free, from the order statistics around it
@@ -70,6 +70,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <functional>
 #include <memory>
 #include <span>
@@ -102,13 +103,23 @@ std::uint64_t least_trials_for_coverage(double p);
 // `trials` values cannot give the coverage interval of probability p (trials < least_trials_for_coverage(p)).
 void check_coverage_interval(std::uint64_t trials, double p);
 
+// The default M of a fixed run: at 10⁴ the interval ends of a normal output scatter by about 2.7·u/√M =
+// 0.027 u, as much as the §8 tolerance δ of a two-digit u, so the bundled example's K3 failed its validation
+// by sampling noise alone; at 10⁶ they scatter by 0.0027 u. The adaptive procedure's default stage: 10⁴.
+inline constexpr std::uint64_t kDefaultMonteCarloTrials = 1000000;
+inline constexpr std::uint64_t kDefaultMonteCarloStage = 10000;
+
+// The options of a propagation, named as every front end names them (`ccal montecarlo`'s table,
+// verbs/montecarlo.hpp, holds these and the kinematics).
 struct MonteCarloOptions {
-  std::uint64_t trials = 100000;  // M (fixed); adaptive: the stage size is max(trials, ⌈100/(1 − p)⌉, 10⁴)
+  // M; adaptive: the stage size is max(trials, ⌈100/(1 − p)⌉, 10⁴). Unset: kDefaultMonteCarloTrials, or
+  // stages of kDefaultMonteCarloStage.
+  std::optional<std::uint64_t> trials;
   std::uint64_t seed = 1;
-  int threads = 0;             // 0: the OpenMP default; at most kMaxThreads
-  int significant_digits = 0;  // n_dig > 0: the adaptive procedure of §7.9 with this many digits of u(y)
-  std::uint64_t max_trials = 100000000;  // adaptive: no stage is started that would go beyond this
-  double coverage = 0.95;                // p, in (0, 1)
+  int threads = 0;  // 0: the OpenMP default; at most kMaxThreads
+  int digits = 0;   // n_dig > 0: the adaptive procedure of §7.9 with this many significant digits of u(y)
+  std::uint64_t max_trials = 1000000;  // adaptive: no stage is started that would go beyond this
+  double coverage_probability = 0.95;  // p, in (0, 1)
   bool progress = false;  // a progress bar (%, trials/s, ETA) on stderr, only if stderr is a terminal
   ProgressCallback
       on_progress;  // called every 0.1 s at most; may throw Cancelled to stop (core/progress.hpp)

@@ -14,25 +14,11 @@
 
 namespace ccal::verbs {
 
-// The default M of a fixed run: at 10⁴ the interval ends of a normal output scatter by about 2.7·u/√M =
-// 0.027 u, as much as the §8 tolerance δ of a two-digit u, so the bundled example's K3 failed its validation
-// by sampling noise alone; at 10⁶ they scatter by 0.0027 u. The adaptive procedure's default stage: 10⁴.
-inline constexpr std::int64_t kDefaultMonteCarloTrials = 1000000;
-inline constexpr std::int64_t kDefaultMonteCarloStage = 10000;
-
-struct MonteCarloOptions {
+// The options of `ccal montecarlo`: the engine's (uncertainty/montecarlo.hpp: trials, seed, threads, digits,
+// max_trials, coverage_probability, progress, keep_samples), and the kinematics of the model. The table's
+// fields are the engine's own, so a front end sets what the engine reads.
+struct MonteCarloOptions : ccal::MonteCarloOptions {
   std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
-  std::optional<std::int64_t> trials;  // M; with digits > 0 the stage size; unset: the defaults above
-  std::uint64_t seed = 1;
-  int threads = 0;  // 0: all cores
-  int digits = 0;   // 0: fixed M; 1..6: the adaptive procedure (JCGM 101 §7.9) to these digits
-  std::int64_t max_trials = 1000000;   // bound of the adaptive procedure
-  double coverage_probability = 0.95;  // p of the intervals, in (0, 1) (--coverage-probability)
-  bool progress = false;               // draw a progress bar on standard error when it is a terminal
-  // Keep every trial's outputs (MonteCarloResult::samples, SI; 8·M bytes per coefficient more), for
-  // --samples-out and Python's `samples`.
-  bool keep_samples = false;
-  ProgressCallback on_progress;  // trials done / of the stage, every 0.1 s at most; may throw Cancelled
 };
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
