@@ -60,6 +60,7 @@ void bind_reduce(py::module_& m);      // LogReduction and its parts, Reduction,
 void bind_montecarlo(py::module_& m);  // MonteCarlo and its parts, monte_carlo
 void bind_allocate(py::module_& m);    // Allocation and its parts, allocate
 void bind_design(py::module_& m);      // Design, design
+void bind_report(py::module_& m);      // Report, report
 void bind_identify(py::module_& m);    // Identification, identify_file
 void bind_derive(py::module_& m);      // Config.with_tolerance, .with_error, .with_plan
 

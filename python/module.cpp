@@ -89,6 +89,7 @@ PYBIND11_MODULE(_ccal, m) {
   ccal::python::bind_allocate(m);
   ccal::python::bind_design(m);
   ccal::python::bind_identify(m);
+  ccal::python::bind_report(m);
   ccal::python::bind_derive(m);
   m.attr("__name__") = own_name;
 }

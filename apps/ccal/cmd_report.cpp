@@ -1,7 +1,6 @@
 // ccal report: the HTML report of a configuration (budget, Monte Carlo distribution, exact-vs-paper
 // comparison, sensed input, provenance; optionally a tolerance allocation and a test-plan design, each before
 // and after), one self-contained page with the charting library inlined.
-#include <fmt/chrono.h>
 #include <fmt/format.h>
 
 #include <chrono>
@@ -17,7 +16,7 @@
 #include "commands.hpp"
 #include "option_flags.hpp"
 #include "output.hpp"
-#include "report_assets.hpp"
+#include "report_scripts.hpp"
 
 namespace ccal::cli {
 namespace {
@@ -31,14 +30,6 @@ struct ReportCli {
   std::string observations;                   // non-empty: the calibration statement section
   OutputOptions output;
 };
-
-// Now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention) when it is set.
-std::string date_utc() {
-  std::time_t t = std::time(nullptr);
-  if (const char* e = std::getenv("SOURCE_DATE_EPOCH"); e && *e)
-    t = std::time_t(std::strtoll(e, nullptr, 10));
-  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(t));
-}
 
 // The observations file, or an error naming --observations.
 CsvTable read_observations(const std::string& path) {
@@ -120,7 +111,7 @@ Command add_report(CLI::App& app) {
             render::ReportProvenance p;
             p.config_text = config_file_text(o->config);
             p.command_line = command_line_text();
-            p.date_utc = date_utc();
+            p.date_utc = render::report_date_utc();
             render::report_commands(r, ro, p);
             write_output(o->output, render::html(r, p, report_scripts()));
           }};

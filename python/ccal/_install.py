@@ -30,6 +30,20 @@ def _verb(name, function):
     return copy_identity(wrapper, function)
 
 
+def _report(function):
+    """report(), remembering its configuration and its call for the page's provenance (Report.to_html)."""
+    signature = function.__signature__
+
+    def wrapper(*args, **kwargs):
+        result = function(*args, **kwargs)
+        arguments = signature.bind(*args, **kwargs).arguments
+        result._ccal_config = arguments.pop("config")
+        result._ccal_keywords = {**arguments.pop("kwargs", {}), **arguments}
+        return result
+
+    return copy_identity(wrapper, function)
+
+
 def _config_origin(name, function):
     def wrapper(*args, **kwargs):
         cfg = function(*args, **kwargs)
@@ -80,6 +94,7 @@ def install(namespace):
                                else value)
     for name in VERB_RESULTS:
         namespace[name] = _verb(name, namespace[name])
+    namespace["report"] = _report(namespace["report"])
     for name in ("bundled_example", "load_config", "parse_config"):
         namespace[name] = _config_origin(name, namespace[name])
     namespace["Table"] = _tables.Table
@@ -99,3 +114,4 @@ def install(namespace):
     _ccal.Simulation.write_logs = _results.write_logs
     _results.table_methods(Config, _tables.display_config)
     _results.table_methods(_ccal.Fit, _tables.display_fit)
+    _results.report_methods(_ccal.Report)

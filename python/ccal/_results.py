@@ -166,3 +166,37 @@ def write_logs(self, folder: "str", step: "Optional[float]" = None) -> "Dict[str
 
 
 write_logs.__module__, write_logs.__qualname__ = "ccal", "Simulation.write_logs"
+
+
+def config_call_text(config):
+    """The Python expression that made a configuration, for a page's provenance: its reader and each edit."""
+    origin = getattr(config, "_ccal_origin", None) or ("unknown",)
+    if origin[0] == "bundled":
+        text = "ccal.bundled_example()"
+    elif origin[0] == "text" and origin[2].endswith(".toml") and os.path.exists(origin[2]):
+        text = f"ccal.load_config({origin[2]!r})"
+    elif origin[0] == "text":
+        text = f"ccal.parse_config(..., source={origin[2]!r})"
+    else:
+        text = "config"
+    for name, args, kwargs in getattr(config, "_ccal_edits", ()):
+        parts = [repr(a) for a in args] + [f"{k}={v!r}" for k, v in kwargs.items()]
+        text += f".{name}({', '.join(parts)})"
+    return text
+
+
+def report_methods(cls):
+    """Report.to_html(): the page of `ccal report`, its provenance naming the configuration's text and the
+    Python call that made the report."""
+
+    def to_html(self) -> "str":
+        """The self-contained HTML page (as `ccal report -o report.html` writes it), with the configuration's
+        text, its SHA-256 and the call that made the report in its provenance."""
+        config = getattr(self, "_ccal_config", None)
+        origin = getattr(config, "_ccal_origin", None) or ("unknown",)
+        config_text = origin[1] if origin[0] == "text" else None
+        keywords = getattr(self, "_ccal_keywords", {})
+        call = ", ".join([config_call_text(config)] + [f"{k}={v!r}" for k, v in keywords.items()])
+        return self._html(config_text, f"ccal.report({call})")
+
+    _named(cls, "to_html", to_html)

@@ -2,9 +2,12 @@
 // and the script that draws the charts.
 #include "ccal/render/report.hpp"
 
+#include <fmt/chrono.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <ctime>
 #include <cstddef>
 #include <stdexcept>
 
@@ -234,6 +237,12 @@ std::string optional_sections(const verbs::ReportResult& r, const ReportProvenan
 }
 
 }  // namespace
+
+std::string report_date_utc() {
+  std::time_t t = std::time(nullptr);
+  if (const char* e = std::getenv("SOURCE_DATE_EPOCH"); e && *e) t = std::time_t(std::strtoll(e, nullptr, 10));
+  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(t));
+}
 
 void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o, ReportProvenance& p) {
   p.budget_command = {"budget"};

@@ -35,6 +35,10 @@ struct ReportProvenance {
   std::vector<std::string> identify_command;
 };
 
+// The provenance's date: now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention)
+// when it is set, as ISO 8601 UTC.
+std::string report_date_utc();
+
 // The options of `ccal budget`, `ccal montecarlo`, `ccal allocate`, `ccal design` and `ccal identify` that
 // reproduce a report's numbers.
 void report_commands(const verbs::ReportResult& result, const verbs::ReportOptions& options,

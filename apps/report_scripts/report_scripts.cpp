@@ -1,4 +1,4 @@
-#include "report_assets.hpp"
+#include "report_scripts.hpp"
 
 #ifdef CCAL_REPORT_ASSETS_DIR
 // The files' bytes go into the program's read-only data as they are (the assembler's .incbin), between two
@@ -27,14 +27,14 @@ asm(".pushsection .rodata\n"
 extern "C" const char ccal_report_scripts_begin[];
 extern "C" const char ccal_report_scripts_end[];
 
-namespace ccal::cli {
+namespace ccal {
 std::string_view report_scripts() noexcept {
   return {ccal_report_scripts_begin,
           static_cast<std::size_t>(ccal_report_scripts_end - ccal_report_scripts_begin)};
 }
-}  // namespace ccal::cli
+}  // namespace ccal
 #else
-namespace ccal::cli {
+namespace ccal {
 std::string_view report_scripts() noexcept { return {}; }
-}  // namespace ccal::cli
+}  // namespace ccal
 #endif

@@ -1,0 +1,150 @@
+// ccal.report: `ccal report` from Python (docs/python.md): the same sections from the same options
+// (verbs::ReportOptions and the Monte Carlo's verbs::MonteCarloOptions, by their tables), the same page.
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "bindings.hpp"
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/render/report.hpp"
+#include "ccal/verbs/report.hpp"
+#include "interruptible.hpp"
+#include "option_keywords.hpp"
+#include "report_scripts.hpp"
+
+namespace ccal::python {
+namespace {
+
+// A report and the options it was made with, which its page's provenance lists as command lines.
+struct Report {
+  verbs::ReportResult result;
+  verbs::ReportOptions options;
+};
+
+// The report's own arguments besides the tables' keywords.
+constexpr std::string_view kOwnArguments[] = {"config", "allocate_targets", "design", "design_targets",
+                                              "observations"};
+
+bool in_table(std::string_view name, auto table) {
+  for (const auto& row : table)
+    if (row.field == name) return true;
+  return false;
+}
+
+// The keywords split between the report's table and the Monte Carlo's (but its mode, which is the report's);
+// one in neither is a TypeError listing both.
+verbs::ReportOptions report_options(const py::kwargs& keywords) {
+  const auto own = option_table<verbs::ReportOptions>();
+  const auto mc = option_table<verbs::MonteCarloOptions>();
+  py::kwargs own_keywords, mc_keywords;
+  for (const auto& [key, value] : keywords) {
+    const std::string name = py::str(key);
+    if (in_table(name, own)) {
+      own_keywords[key] = value;
+    } else if (name != "mode" && in_table(name, mc)) {
+      mc_keywords[key] = value;
+    } else {
+      std::vector<std::string_view> accepted(std::begin(kOwnArguments) + 1, std::end(kOwnArguments));
+      for (const auto& row : own) accepted.push_back(row.field);
+      for (const auto& row : mc)
+        if (row.field != "mode") accepted.push_back(row.field);
+      keywords::unknown_keyword("report", name, {"config"}, accepted);
+    }
+  }
+  verbs::ReportOptions o = options_from_keywords<verbs::ReportOptions>(own_keywords, "report");
+  o.monte_carlo = options_from_keywords<verbs::MonteCarloOptions>(mc_keywords, "report", {}, {"mode"});
+  return o;
+}
+
+}  // namespace
+
+void bind_report(py::module_& m) {
+  py::class_<Report>(m, "Report",
+                     "`ccal report`: the sections' results (budget, monte_carlo, and allocation, design, observed "
+                     "when asked for); to_html() is the page the CLI writes.",
+                     py::dynamic_attr())  // the call that made it: python/ccal/_results.py
+      .def_property_readonly(
+          "config", [](const Report& r) { return r.result.config; }, "the configuration [Config]")
+      .def_property_readonly(
+          "budget", [](const Report& r) { return r.result.budget; }, "the budget section [Budget]")
+      .def_property_readonly(
+          "monte_carlo", [](const Report& r) { return r.result.monte_carlo; },
+          "the Monte Carlo section [MonteCarlo]")
+      .def_property_readonly(
+          "allocation", [](const Report& r) { return r.result.allocation; },
+          "the allocation section, or None [Allocation]")
+      .def_property_readonly(
+          "design", [](const Report& r) { return r.result.design; }, "the design section, or None [Design]")
+      .def_property_readonly(
+          "observed", [](const Report& r) { return r.result.observed; },
+          "the observations with their calibration statement, or None [Identification]")
+      .def(
+          "_html",
+          [](const Report& r, std::optional<std::string> config_text, const std::string& command_line) {
+            const std::string_view scripts = report_scripts();
+            if (scripts.empty())
+              throw InputError(
+                  "report: this ccal was built without its charting library (web/node_modules was missing); "
+                  "run scripts/setup.sh (or `npm ci --prefix web`), then build again");
+            render::ReportProvenance p;
+            if (config_text)
+              p.config_text = *config_text;
+            else if (r.result.config.source.rfind("bundled:", 0) == 0)
+              p.config_text = std::string(bundled_example_text());
+            else
+              throw InputError("report: the configuration's text is not known (a Config of load_config, "
+                               "parse_config or bundled_example has it)");
+            p.command_line = command_line;
+            p.date_utc = render::report_date_utc();
+            render::report_commands(r.result, r.options, p);
+            return render::html(r.result, p, scripts);
+          },
+          py::arg("config_text"), py::arg("command_line"),
+          "The page for the configuration's text and the call that made the report (to_html() gives them).");
+
+  m.def(
+      "report",
+      [](const Config& cfg, const std::optional<TargetMap>& allocate_targets, bool design,
+         const std::optional<TargetMap>& design_targets, const std::optional<std::string>& observations,
+         const py::kwargs& keywords) {
+        Report r;
+        r.options = report_options(keywords);
+        verbs::ReportOptions& o = r.options;
+        if (allocate_targets) {  // as the command line's --allocate-target: the report's p, seed and threads
+          verbs::AllocateOptions a;
+          a.targets = target_texts(*allocate_targets);
+          a.coverage_probability = o.monte_carlo.coverage_probability;
+          a.seed = o.monte_carlo.seed;
+          a.threads = o.monte_carlo.threads;
+          o.allocate = a;
+        }
+        if (design || design_targets) {
+          verbs::DesignOptions d;
+          if (design_targets) d.targets = target_texts(*design_targets);
+          d.threads = o.monte_carlo.threads;
+          o.design = d;
+        }
+        if (observations) o.observations = read_csv_file(*observations);
+        r.result = run_interruptible(py::none(), [&](ProgressCallback on_progress) {
+          verbs::ReportOptions with_progress = o;
+          with_progress.monte_carlo.on_progress = std::move(on_progress);
+          return verbs::report(cfg, with_progress);
+        });
+        return r;
+      },
+      py::arg("config"), py::kw_only(), py::arg("allocate_targets") = py::none(), py::arg("design") = false,
+      py::arg("design_targets") = py::none(), py::arg("observations") = py::none(),
+      "`ccal report`: the budget, Monte Carlo, exact-vs-paper and sensed-input sections, and with "
+      "allocate_targets (as allocate's targets) the allocation, with design or design_targets the design, with "
+      "observations (an observations CSV path) the calibration statement; to_html() is the self-contained page. "
+      "Ctrl-C stops the call and raises KeyboardInterrupt.");
+  record_keywords<verbs::ReportOptions>(m, "report");
+  record_keywords<verbs::MonteCarloOptions>(m, "report", {"mode"});
+}
+
+}  // namespace ccal::python
