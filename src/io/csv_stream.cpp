@@ -108,14 +108,6 @@ void check_csv_line_ends(std::string_view line, const std::string& source, int l
                  "out.csv)");
 }
 
-void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink& sink) {
-  LineReader reader{std::string(source), sink};
-  if (text.starts_with(kBom)) text.remove_prefix(kBom.size());
-  const std::size_t rest = feed_lines(text, reader);
-  if (rest < text.size()) reader.line(text.substr(rest));
-  reader.finish();
-}
-
 void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
   const std::string name = path.string();
   const FileNotFound<CsvError> unreadable(name, 0, 0, "", "cannot read the file; check the path and permissions");
