@@ -520,6 +520,11 @@ Eigen::MatrixXd polynomial_design(const Eigen::VectorXd& x, int degree) {
   return h;
 }
 
+IllPosedFit plan_cannot_identify(const IllPosedFit& e) {
+  return IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                     e.terms());
+}
+
 std::vector<std::string> polynomial_term_names(int degree) {
   if (degree < 0)
     throw std::invalid_argument(fmt::format("polynomial_term_names: negative degree {}", degree));
