@@ -139,6 +139,23 @@ std::optional<double> parse_number(std::string_view text) {
   return std::nullopt;
 }
 
+std::optional<TermAssignment> split_term_assignment(std::string_view text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string_view::npos) return std::nullopt;
+  auto trim_blanks = [](std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+    return s;
+  };
+  const std::string_view rest = trim_blanks(text.substr(eq + 1));
+  const std::size_t space = rest.find_first_of(" \t");
+  TermAssignment a;
+  a.term = std::string(trim_blanks(text.substr(0, eq)));
+  a.value = std::string(rest.substr(0, space));
+  if (space != std::string_view::npos) a.unit = std::string(trim_blanks(rest.substr(space)));
+  return a;
+}
+
 std::string number_cell_problem(std::string_view cell) {
   double v = 0;
   switch (read_number(cell, v)) {
@@ -339,22 +356,20 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
       } else if (key == "fixed") {
         for (const auto& entry : split(value, ',')) {
           if (entry.empty()) continue;
-          const std::size_t at = entry.find('=');
-          if (at == std::string::npos)
+          const auto assignment = split_term_assignment(entry);
+          if (!assignment)
             throw fail(fmt::format("fixed entry '{}' has no value; accepted: <term>:<column>=<value> <unit>",
                                    entry));
           ObservationsHeader::Fixed f;
-          f.term = read_term(entry.substr(0, at));
-          const std::string_view rest = trim(std::string_view(entry).substr(at + 1));
-          const std::size_t space = rest.find_first_of(" \t");
-          const auto number = parse_number(rest.substr(0, space));
+          f.term = read_term(assignment->term);
+          const auto number = parse_number(assignment->value);
           if (!number)
             throw fail(
                 fmt::format("fixed entry '{}': '{}' is not a finite number; accepted: "
                             "<term>:<column>=<value> <unit>",
-                            entry, rest.substr(0, space)));
+                            entry, assignment->value));
           f.value = *number;
-          f.unit = space == std::string_view::npos ? std::string() : std::string(trim(rest.substr(space)));
+          f.unit = assignment->unit;
           h.fixed.push_back(std::move(f));
         }
       } else if (key == "known") {
