@@ -300,8 +300,6 @@ inline const Keys kDesignKeys{"runs",         "total_time",     "max_g",        
                               "refine",       "objective",      "coefficients", "targets",    "weights",
                               "starts",       "seed"};
 
-inline constexpr int kMaxHarmonicOrder = 16;
-
 // The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
 Site read_site(const Reader& r, const toml::table& root);
 CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root);

@@ -1,6 +1,7 @@
 // The configuration file's [site], [centrifuge], [errors] and [tolerances] sections (docs/config.md).
 #include <cstdlib>
 
+#include "ccal/model/error_sources.hpp"
 #include "config_reader.hpp"
 
 namespace ccal::config_reading {
