@@ -48,6 +48,15 @@ inline std::optional<std::string> closest(std::string_view word, const std::vect
   return std::nullopt;
 }
 
+// A noise density's text without its per-root-hertz suffix ("/rtHz", "/sqrt(Hz)" or "/√Hz", trailing spaces
+// allowed): "0.2 ppm/rtHz" → "0.2 ppm"; nullopt without the suffix.
+inline std::optional<std::string_view> without_per_root_hz(std::string_view text) {
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  for (std::string_view suffix : {"/rtHz", "/sqrt(Hz)", "/√Hz"})
+    if (text.ends_with(suffix)) return text.substr(0, text.size() - suffix.size());
+  return std::nullopt;
+}
+
 inline std::string type_name(const toml::node& n) {
   switch (n.type()) {
     case toml::node_type::table:
