@@ -26,7 +26,6 @@ TESTED_ELSEWHERE = {
     "io/encoder_fit.cpp": "the encoders' line fit: tests/io/run_log_reducer_test.cpp, run_log_ripple_test.cpp",
     "io/run_log_writer.cpp": "logs from the model: tests/verbs/reduce_test.cpp",
     "model/centrifuge.cpp": "the error lookup: tests/model/kinematics*_test.cpp",
-    "model/error_sources.cpp": "the error catalogue: tests/io/config_file*_test.cpp, tests/uncertainty/",
     "model/instrument.cpp": "the terms: tests/io/config_file_test.cpp, tests/io/observation_csv_test.cpp",
     "model/sensed_input.cpp": "evaluate_force: tests/model/plan_test.cpp, tests/verbs/force_test.cpp",
     "reduction/run_means_nodes.cpp": "the kernel's nodes: tests/reduction/run_means_test.cpp",

@@ -54,6 +54,20 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+std::optional<std::string> nearest_name(std::string_view typed, std::span<const std::string> names) {
+  const std::string* nearest = nullptr;
+  const std::string* prefixed = nullptr;
+  std::size_t best = 0, prefixed_count = 0;
+  for (const std::string& name : names) {
+    const std::size_t d = edit_distance(typed, name);
+    if (nearest == nullptr || d < best) best = d, nearest = &name;
+    if (!typed.empty() && name.starts_with(typed)) ++prefixed_count, prefixed = &name;
+  }
+  if (nearest != nullptr && 3 * best <= nearest->size()) return *nearest;
+  if (prefixed_count == 1) return *prefixed;
+  return std::nullopt;
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Public interface
 

@@ -48,6 +48,15 @@ inline std::optional<std::string> closest(std::string_view word, const std::vect
   return std::nullopt;
 }
 
+// A noise density's text without its per-root-hertz suffix ("/rtHz", "/sqrt(Hz)" or "/√Hz", trailing spaces
+// allowed): "0.2 ppm/rtHz" → "0.2 ppm"; nullopt without the suffix.
+inline std::optional<std::string_view> without_per_root_hz(std::string_view text) {
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  for (std::string_view suffix : {"/rtHz", "/sqrt(Hz)", "/√Hz"})
+    if (text.ends_with(suffix)) return text.substr(0, text.size() - suffix.size());
+  return std::nullopt;
+}
+
 inline std::string type_name(const toml::node& n) {
   switch (n.type()) {
     case toml::node_type::table:
@@ -299,8 +308,6 @@ inline const Keys kDesignKeys{"runs",         "total_time",     "max_g",        
                               "phase_step",   "arm_azimuths",   "azimuth_step", "mountings",  "platforms",
                               "refine",       "objective",      "coefficients", "targets",    "weights",
                               "starts",       "seed"};
-
-inline constexpr int kMaxHarmonicOrder = 16;
 
 // The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
 Site read_site(const Reader& r, const toml::table& root);

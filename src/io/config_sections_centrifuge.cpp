@@ -1,6 +1,7 @@
 // The configuration file's [site], [centrifuge], [errors] and [tolerances] sections (docs/config.md).
 #include <cstdlib>
 
+#include "ccal/model/error_sources.hpp"
 #include "config_reader.hpp"
 
 namespace ccal::config_reading {
@@ -45,18 +46,10 @@ double read_rate_noise(const Reader& r, const toml::table& t, std::string_view k
     r.require_positive(*entry, kp, "tau", *tau, "an averaging time > 0 such as \"4 s\"");
     density = *sigma * std::sqrt(*tau);
   } else if (const auto* text = n->as_string()) {
-    std::string_view view(text->get());
-    while (!view.empty() && view.back() == ' ') view.remove_suffix(1);
-    bool stripped = false;
-    for (std::string_view suffix : {"/rtHz", "/sqrt(Hz)", "/√Hz"})
-      if (view.ends_with(suffix)) {
-        view.remove_suffix(suffix.size());
-        stripped = true;
-        break;
-      }
-    if (!stripped) r.fail(*n, kp, fmt::format("'{}' must end in /rtHz; {}", text->get(), accepted));
+    const auto value = without_per_root_hz(text->get());
+    if (!value) r.fail(*n, kp, fmt::format("'{}' must end in /rtHz; {}", text->get(), accepted));
     density =
-        r.quantity_text(std::string(view), where(n->source()), kp, kind::dimensionless, nullptr, "0.2 ppm");
+        r.quantity_text(std::string(*value), where(n->source()), kp, kind::dimensionless, nullptr, "0.2 ppm");
   } else {
     r.fail(*n, kp, fmt::format("expected a string or an inline table, got {}; {}", type_name(*n), accepted));
   }

@@ -109,22 +109,13 @@ void read_noise(const Reader& r, const toml::table& t, const OutputUnit& out, In
       r.fail(*n, kp,
              fmt::format("expected a quantity string such as \"0.001 {}/rtHz\", got {}", out.text,
                          type_name(*n)));
-    std::string text = s->get();
-    bool stripped = false;
-    for (std::string_view suffix : {"/rtHz", "/sqrt(Hz)", "/√Hz"}) {
-      std::string_view view(text);
-      while (!view.empty() && view.back() == ' ') view.remove_suffix(1);
-      if (view.ends_with(suffix)) {
-        text = std::string(view.substr(0, view.size() - suffix.size()));
-        stripped = true;
-        break;
-      }
-    }
-    if (!stripped)
+    const auto text = without_per_root_hz(s->get());
+    if (!text)
       r.fail(*n, kp,
              fmt::format("'{}' must end in /rtHz (or /sqrt(Hz)); accepted: \"<value> {}/rtHz\"", s->get(),
                          out.text));
-    const double v = r.quantity_text(text, where(n->source()), kp, out.dim, &out, "0.001 " + out.text);
+    const double v =
+        r.quantity_text(std::string(*text), where(n->source()), kp, out.dim, &out, "0.001 " + out.text);
     if (v < 0)
       r.fail(*n, kp,
              fmt::format("must not be negative; a noise density >= 0 such as \"0.001 {}/rtHz\"", out.text));

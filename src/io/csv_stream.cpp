@@ -6,19 +6,13 @@
 #include <system_error>
 
 #include "ccal/io/observation_csv.hpp"
+#include "text_trim.hpp"
 
 namespace ccal {
 
 namespace {
 
-bool blank(char c) { return c == ' ' || c == '\t'; }
-
-// parse_csv's trimming: blanks around, and a carriage return at the end.
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && (blank(s.back()) || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
+using detail::trim_csv;
 
 // Lines to rows, with parse_csv's line numbers and checks. Lines without a quote (all of a numeric log's)
 // are split in place into views; others through parse_csv's field splitter.
@@ -30,7 +24,7 @@ class LineReader {
     ++line_no_;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (header_.empty()) check_csv_line_ends(line, source_, line_no_);  // rows: a CR is a bad cell there
-    const std::string_view content = trim(line);
+    const std::string_view content = trim_csv(line);
     if (content.empty() || content.front() == '#') return;
     if (header_.empty()) {
       CsvFieldProblem bad;
@@ -55,7 +49,8 @@ class LineReader {
       while (true) {
         const void* comma = std::memchr(start, ',', std::size_t(end - start));
         const char* stop = comma != nullptr ? static_cast<const char*>(comma) : end;
-        if (count < views_.size()) views_[count] = trim(std::string_view(start, std::size_t(stop - start)));
+        if (count < views_.size())
+          views_[count] = trim_csv(std::string_view(start, std::size_t(stop - start)));
         ++count;
         if (stop == end) break;
         start = stop + 1;
@@ -106,14 +101,6 @@ void check_csv_line_ends(std::string_view line, const std::string& source, int l
                  "a carriage return inside the line: the file uses CR-only line ends (classic Mac OS), which "
                  "are not read; accepted: LF or CRLF line ends (convert it, e.g. tr '\\r' '\\n' < in.csv > "
                  "out.csv)");
-}
-
-void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink& sink) {
-  LineReader reader{std::string(source), sink};
-  if (text.starts_with(kBom)) text.remove_prefix(kBom.size());
-  const std::size_t rest = feed_lines(text, reader);
-  if (rest < text.size()) reader.line(text.substr(rest));
-  reader.finish();
 }
 
 void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {

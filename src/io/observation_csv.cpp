@@ -15,6 +15,7 @@
 
 #include "ccal/core/units.hpp"
 #include "ccal/io/csv_stream.hpp"
+#include "text_trim.hpp"
 
 namespace ccal {
 
@@ -31,18 +32,16 @@ std::string format_csv_error(const std::string& source, int line, int column, co
   return with_nul_shown(std::move(out));
 }
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
+using detail::blank;
+using detail::trim_blanks;
+using detail::trim_csv;
 
 std::vector<std::string> split(std::string_view text, char separator) {
   std::vector<std::string> out;
   std::size_t start = 0;
   while (true) {
     const std::size_t end = text.find(separator, start);
-    out.emplace_back(trim(text.substr(start, end == std::string_view::npos ? text.npos : end - start)));
+    out.emplace_back(trim_csv(text.substr(start, end == std::string_view::npos ? text.npos : end - start)));
     if (end == std::string_view::npos) break;
     start = end + 1;
   }
@@ -52,7 +51,7 @@ std::vector<std::string> split(std::string_view text, char separator) {
 enum class NumberKind { finite, non_finite, empty, not_a_number };
 
 NumberKind read_number(std::string_view text, double& value) {
-  text = trim(text);
+  text = trim_csv(text);
   if (text.empty()) return NumberKind::empty;
   if (text.front() == '+') {
     text.remove_prefix(1);
@@ -70,7 +69,7 @@ std::vector<std::string> split_fields(std::string_view line,
   std::vector<std::string> fields;
   std::size_t i = 0;
   while (true) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    while (i < line.size() && blank(line[i])) ++i;
     std::string field;
     if (i < line.size() && line[i] == '"') {
       ++i;
@@ -93,14 +92,14 @@ std::vector<std::string> split_fields(std::string_view line,
                     "unterminated quote; accepted: a field in double quotes, \"\" for a quote");
         return fields;
       }
-      while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+      while (i < line.size() && (blank(line[i]) || line[i] == '\r')) ++i;
       if (i < line.size() && line[i] != ',') {
         bad.emplace(fields.size(), "text after a closing quote; accepted: a comma after the quoted field");
         return fields;
       }
     } else {
       const std::size_t end = std::min(line.find(',', i), line.size());
-      field = std::string(trim(line.substr(i, end - i)));
+      field = std::string(trim_csv(line.substr(i, end - i)));
       i = end;
     }
     fields.push_back(std::move(field));
@@ -111,7 +110,7 @@ std::vector<std::string> split_fields(std::string_view line,
 }
 
 std::string quote_if_needed(const std::string& s) {
-  if (s.find_first_of(",\"#") == std::string::npos && trim(s) == s && !s.empty()) return s;
+  if (s.find_first_of(",\"#") == std::string::npos && trim_csv(s) == s && !s.empty()) return s;
   std::string out = "\"";
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
@@ -137,6 +136,18 @@ std::optional<double> parse_number(std::string_view text) {
   double v = 0;
   if (read_number(text, v) == NumberKind::finite) return v;
   return std::nullopt;
+}
+
+std::optional<TermAssignment> split_term_assignment(std::string_view text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string_view::npos) return std::nullopt;
+  const std::string_view rest = trim_blanks(text.substr(eq + 1));
+  const std::size_t space = rest.find_first_of(" \t");
+  TermAssignment a;
+  a.term = std::string(trim_blanks(text.substr(0, eq)));
+  a.value = std::string(rest.substr(0, space));
+  if (space != std::string_view::npos) a.unit = std::string(trim_blanks(rest.substr(space)));
+  return a;
 }
 
 std::string number_cell_problem(std::string_view cell) {
@@ -246,10 +257,10 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (t.header.empty()) check_csv_line_ends(line, t.source, line_no);
-    const std::string_view content = trim(line);
+    const std::string_view content = trim_csv(line);
     if (content.empty()) continue;
     if (content.front() == '#') {
-      t.comments.push_back({line_no, std::string(trim(content.substr(1)))});
+      t.comments.push_back({line_no, std::string(trim_csv(content.substr(1)))});
       continue;
     }
     CsvFieldProblem bad;
@@ -313,9 +324,10 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
     auto read_term = [&](const std::string& entry) {
       const std::size_t colon = entry.find(':');
       ObservationsHeader::Term t;
-      t.id = std::string(trim(std::string_view(entry).substr(0, colon)));
-      t.column =
-          colon == std::string::npos ? t.id : std::string(trim(std::string_view(entry).substr(colon + 1)));
+      t.id = std::string(trim_csv(std::string_view(entry).substr(0, colon)));
+      t.column = colon == std::string::npos
+                     ? t.id
+                     : std::string(trim_csv(std::string_view(entry).substr(colon + 1)));
       if (!parse_term(t.id))
         throw fail(fmt::format("'{}' is not a term id; accepted: {}", t.id, fmt::join(all_term_ids(), ", ")));
       if (t.column.empty())
@@ -325,10 +337,10 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
     for (std::size_t k = 1; k < parts.size(); ++k) {
       if (parts[k].empty()) continue;
       const std::size_t eq = parts[k].find('=');
-      const std::string key(trim(std::string_view(parts[k]).substr(0, eq)));
+      const std::string key(trim_csv(std::string_view(parts[k]).substr(0, eq)));
       const std::string value = eq == std::string::npos
                                     ? std::string()
-                                    : std::string(trim(std::string_view(parts[k]).substr(eq + 1)));
+                                    : std::string(trim_csv(std::string_view(parts[k]).substr(eq + 1)));
       if (eq == std::string::npos)
         throw fail(fmt::format("'{}' has no value; accepted: <key>=<value>", parts[k]));
       if (!keys.insert(key).second) throw fail(fmt::format("'{}' is given twice", key));
@@ -339,22 +351,20 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
       } else if (key == "fixed") {
         for (const auto& entry : split(value, ',')) {
           if (entry.empty()) continue;
-          const std::size_t at = entry.find('=');
-          if (at == std::string::npos)
+          const auto assignment = split_term_assignment(entry);
+          if (!assignment)
             throw fail(fmt::format("fixed entry '{}' has no value; accepted: <term>:<column>=<value> <unit>",
                                    entry));
           ObservationsHeader::Fixed f;
-          f.term = read_term(entry.substr(0, at));
-          const std::string_view rest = trim(std::string_view(entry).substr(at + 1));
-          const std::size_t space = rest.find_first_of(" \t");
-          const auto number = parse_number(rest.substr(0, space));
+          f.term = read_term(assignment->term);
+          const auto number = parse_number(assignment->value);
           if (!number)
             throw fail(
                 fmt::format("fixed entry '{}': '{}' is not a finite number; accepted: "
                             "<term>:<column>=<value> <unit>",
-                            entry, rest.substr(0, space)));
+                            entry, assignment->value));
           f.value = *number;
-          f.unit = space == std::string_view::npos ? std::string() : std::string(trim(rest.substr(space)));
+          f.unit = assignment->unit;
           h.fixed.push_back(std::move(f));
         }
       } else if (key == "known") {

@@ -15,12 +15,4 @@ int index_or_throw(const ErrorLayout& layout, std::string_view id) {
 
 double CentrifugeModel::error(std::string_view id) const { return errors[index_or_throw(layout, id)]; }
 
-void CentrifugeModel::set_error(std::string_view id, double value_si) {
-  errors[index_or_throw(layout, id)] = value_si;
-}
-
-bool CentrifugeModel::has_dynamic_errors() const {
-  return (errors.tail(errors.size() - kStaticChannelCount).array() != 0.0).any();
-}
-
 }  // namespace ccal

@@ -96,9 +96,9 @@ std::optional<int> find_channel(std::string_view id) noexcept {
 }
 
 ErrorLayout::ErrorLayout(int harmonic_order) : order_(harmonic_order) {
-  if (harmonic_order < 0 || harmonic_order > 64)
-    throw std::invalid_argument("harmonic order must be between 0 and 64, got " +
-                                std::to_string(harmonic_order));
+  if (harmonic_order < 0 || harmonic_order > kMaxHarmonicOrder)
+    throw std::invalid_argument("harmonic order must be between 0 and " + std::to_string(kMaxHarmonicOrder) +
+                                ", got " + std::to_string(harmonic_order));
 }
 
 int ErrorLayout::parameter_channel(int index) const noexcept {

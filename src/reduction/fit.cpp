@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "text_lists.hpp"
+
 namespace ccal {
 namespace {
 
@@ -49,16 +51,6 @@ class CompensatedSum {
   double hi_ = 0;
   double lo_ = 0;
 };
-
-// "A", "A and B", "A, B and C".
-std::string join_names(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) out += (i + 1 == names.size()) ? " and " : ", ";
-    out += names[i];
-  }
-  return out;
-}
 
 std::string row_text(const FitProblem& p, Index row) {
   std::string text = fmt::format("row {}", row + 1);
@@ -179,7 +171,7 @@ std::pair<Index, Index> most_correlated_pair(const Eigen::MatrixXd& corr) {
       groups.push_back(
           fmt::format("the plan cannot separate {}: their columns are linearly dependent "
                       "(singular value {:.3g} of the scaled design)",
-                      join_names(involved), sigma(i)));
+                      detail::join_names(involved), sigma(i)));
     }
   }
   std::string message = "fit: ";
@@ -483,7 +475,7 @@ FitResult fit(const FitProblem& p, const FitOptions& o) {
     throw IllPosedFit(
         fmt::format("fit: {} observation{} cannot determine {} free terms ({}); the plan needs at "
                     "least {} runs",
-                    rows, rows == 1 ? "" : "s", m, join_names(result.names), m),
+                    rows, rows == 1 ? "" : "s", m, detail::join_names(result.names), m),
         result.names);
   }
   Eigen::MatrixXd h_free(rows, m);
@@ -526,6 +518,11 @@ Eigen::MatrixXd polynomial_design(const Eigen::VectorXd& x, int degree) {
     }
   }
   return h;
+}
+
+IllPosedFit plan_cannot_identify(const IllPosedFit& e) {
+  return IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
+                     e.terms());
 }
 
 std::vector<std::string> polynomial_term_names(int degree) {

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "text_lists.hpp"
+
 namespace ccal {
 namespace {
 
@@ -45,16 +47,6 @@ std::string regressor_unit(const TermSpec& t) {
   if (t.kind == TermKind::rate) return "rad/s";
   const int d = term_degree(t);
   return d == 0 ? "" : d == 1 ? " g" : fmt::format(" g^{}", d);
-}
-
-// "A", "A and B", "A, B and C".
-std::string join_names(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) out += (i + 1 == names.size()) ? " and " : ", ";
-    out += names[i];
-  }
-  return out;
 }
 
 void validate(const ObservabilityProblem& p) {
@@ -288,9 +280,9 @@ ObservabilityResult assess_observability(const ObservabilityProblem& p, const Ob
         t.reason = fmt::format(
             "its column is a combination of those of {} up to round-off (what only {} explains is {:.2g} of "
             "its size)",
-            join_names(t.aliased_with), t.term, t.sensitivity / t.column_norm);
+            detail::join_names(t.aliased_with), t.term, t.sensitivity / t.column_norm);
         t.fix = fmt::format("add runs that separate {} from {} (other g-levels or mountings), or fix {}",
-                            t.term, join_names(t.aliased_with), t.term);
+                            t.term, detail::join_names(t.aliased_with), t.term);
       }
     } else if (p.reference.size() != 0 && p.reference(k) != 0 &&
                std::abs(p.reference(k)) < t.min_detectable) {

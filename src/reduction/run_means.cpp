@@ -221,8 +221,6 @@ RunMeanKernel::~RunMeanKernel() = default;
 RunMeanKernel::RunMeanKernel(RunMeanKernel&&) noexcept = default;
 RunMeanKernel& RunMeanKernel::operator=(RunMeanKernel&&) noexcept = default;
 
-std::size_t RunMeanKernel::run_count() const { return data_->runs.size(); }
-
 namespace {
 
 // What a trial's errors give every run alike: the chain's blocks A, B (without the arm stretch, which

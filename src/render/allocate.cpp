@@ -5,12 +5,12 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "budget_parts.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
+#include "text_lines.hpp"
 
 namespace ccal::render {
 namespace {
@@ -59,14 +59,6 @@ std::string toml_entry(const AllocatedSource& s, const Config& cfg) {
   if (s.floor > 0)
     e += fmt::format(", floor = \"{}\"", quantity_text(s.floor, tolerance_display_unit(cfg, s.parameter)));
   return e + " }";
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);)
-    if (!l.empty()) out.push_back(l);
-  return out;
 }
 
 std::string coefficient_cell(const AllocatedCoefficient& c) { return c.id + " [" + c.unit + "]"; }
@@ -310,7 +302,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
                          {"std_rel_error", v.std_rel_error},
                          {"allowance", v.allowance},
                          {"passed", v.passed},
-                         {"notes", lines_of(v.notes)}};
+                         {"notes", detail::lines_of(v.notes)}};
   else
     j["verification"] = nullptr;
   return j.dump(2) + "\n";

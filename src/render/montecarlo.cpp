@@ -4,21 +4,13 @@
 #include <fmt/ranges.h>
 
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
+#include "text_lines.hpp"
 
 namespace ccal::render {
 namespace {
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);)
-    if (!l.empty()) out.push_back(l);
-  return out;
-}
 
 std::string interval(double low, double high) {
   return fmt::format("[{}, {}]", number(low, 5), number(high, 5));
@@ -141,7 +133,7 @@ std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
       r.adaptive ? (r.converged ? "; adaptive procedure converged" : "; adaptive procedure NOT converged")
                  : "");
   out += "\nNotes:\n";
-  for (const auto& l : lines_of(r.notes)) out += "  " + l + "\n";
+  for (const auto& l : detail::lines_of(r.notes)) out += "  " + l + "\n";
   return out;
 }
 
@@ -212,7 +204,7 @@ std::string json_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
   }
   j["covariance"] = cov;
   j["correlation"] = corr;
-  j["notes"] = lines_of(r.notes);
+  j["notes"] = detail::lines_of(r.notes);
   return j.dump(2) + "\n";
 }
 

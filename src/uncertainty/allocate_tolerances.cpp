@@ -228,8 +228,7 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   try {
     model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors, o.mode);
   } catch (const IllPosedFit& e) {
-    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
-                      e.terms());
+    throw plan_cannot_identify(e);
   }
   MonteCarloOptions mo;
   mo.trials = o.verify_trials;
@@ -291,8 +290,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   try {
     b = compute_budget(cfg, bo);
   } catch (const IllPosedFit& e) {
-    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
-                      e.terms());
+    throw plan_cannot_identify(e);
   }
   const auto nk = b.coefficients.size();
 

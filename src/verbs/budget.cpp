@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/reduction/fit.hpp"
 #include "ccal/uncertainty/statement.hpp"
 #include "result_checks.hpp"
 
@@ -48,8 +49,7 @@ BudgetResult budget(const Config& config, const BudgetOptions& options) {
   try {
     r.budget = compute_budget(config, bo);
   } catch (const IllPosedFit& e) {
-    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
-                      e.terms());
+    throw plan_cannot_identify(e);
   }
   check_finite(config, r.budget);  // never a nan or inf returned as a result
   r.known_error_bias = known_error_shift(config, bo.mode);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/reduction/fit.hpp"
 
 namespace ccal::verbs {
 
@@ -52,8 +53,7 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
     r.budget = compute_budget(config, bo);
     model = calibration_model(config, mode);
   } catch (const IllPosedFit& e) {
-    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
-                      e.terms());
+    throw plan_cannot_identify(e);
   }
   const ccal::MonteCarloOptions& mo = o;  // the engine's fields, as set
   r.monte_carlo = run_monte_carlo(monte_carlo_sources(config), model.n_outputs(), model.output_names(),

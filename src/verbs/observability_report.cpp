@@ -8,6 +8,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/format.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/reduction/fit.hpp"
 #include "ccal/uncertainty/budget.hpp"
 
 namespace ccal::verbs {
@@ -115,8 +116,7 @@ ObservabilityReport assess_plan(const Config& config, ModelMode mode) {
   try {
     static_cast<void>(fit(problem));  // dependent or nearly dependent terms: the fit's own message
   } catch (const IllPosedFit& e) {
-    throw IllPosedFit(std::string("the test plan cannot identify the configured terms: ") + e.what(),
-                      e.terms());
+    throw plan_cannot_identify(e);
   }
   const double unit = output_unit_si(config.instrument.output_unit);
   std::vector<double> rates;

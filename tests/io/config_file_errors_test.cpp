@@ -183,6 +183,8 @@ radius = "0 m")",
                         {"must not be negative"});
   expect_appended_error("instrument_height = \"-1 mm\"", "centrifuge.instrument_height",
                         {"must not be negative"});
+  const Config widest = parse_config(kBase + "\nharmonic_order = 16", "case.toml");
+  EXPECT_EQ(widest.centrifuge.layout.harmonic_order(), 16);
   expect_appended_error("harmonic_order = 17", "centrifuge.harmonic_order", {"out of range", "0..16"});
   expect_appended_error("harmonic_order = -1", "centrifuge.harmonic_order", {"out of range"});
   expect_appended_error("[tolerances]\ndthz5 = \"0 rad\"", "tolerances.dthz5", {"must be positive"});

@@ -410,6 +410,27 @@ TEST(Config, EditDistance) {
   EXPECT_EQ(edit_distance("same", "same"), 0u);
 }
 
+TEST(Config, NearestName) {
+  const std::vector<std::string> verbs = {"budget",   "montecarlo", "simulate",
+                                          "identify", "allocate",   "design"};
+  // The least distance d, if 3·d <= the name's length: "budgte" is 2 from "budget" (6 >= 6).
+  EXPECT_EQ(nearest_name("budgte", verbs), "budget");
+  EXPECT_EQ(nearest_name("simulat", verbs), "simulate");
+  EXPECT_EQ(nearest_name("design", verbs), "design");
+  // Ties go to the first name: "abc" is 1 from both "abd" and "xbc".
+  const std::vector<std::string> tied = {"abd", "xbc"};
+  EXPECT_EQ(nearest_name("abc", tied), "abd");
+  // Too far (the nearest to "mont" is "budget", 5 away), but the only name starting with what was typed.
+  EXPECT_EQ(nearest_name("mont", verbs), "montecarlo");
+  EXPECT_EQ(nearest_name("al", verbs), "allocate");
+  // Too far and no single name it starts: nothing.
+  const std::vector<std::string> two = {"identify", "ident_table"};
+  EXPECT_EQ(nearest_name("iden", two), std::nullopt);
+  EXPECT_EQ(nearest_name("zzzzzz", verbs), std::nullopt);
+  EXPECT_EQ(nearest_name("", verbs), std::nullopt);
+  EXPECT_EQ(nearest_name("budget", std::vector<std::string>{}), std::nullopt);
+}
+
 }  // namespace
 }  // namespace ccal
 

@@ -1,6 +1,7 @@
 // The drive keys of a configuration (docs/config.md): the rate ripple's ids, [centrifuge] platform_control,
-// main_rate_noise and platform_rate_noise, accepted in every documented form and refused, located and
-// explained, in every wrong one; and the command line's exit code 2 for them.
+// main_rate_noise and platform_rate_noise (with the per-root-hertz suffixes they share with [instrument]
+// noise_density), accepted in every documented form and refused, located and explained, in every wrong one;
+// and the command line's exit code 2 for them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,6 +34,22 @@ TEST(DriveKeys, AcceptedForms) {
   const Config d = parse_config(kBase, "default.toml");
   EXPECT_EQ(d.centrifuge.geometry.platform_control, PlatformControl::speed);
   EXPECT_FALSE(d.centrifuge.rate_noise.any());
+}
+
+TEST(DriveKeys, EveryPerRootHertzSuffix) {
+  // A drive's density and the instrument's noise density read the same suffixes, trailing spaces allowed:
+  // 0.2 ppm/√Hz = 2e-7 /√Hz, 10 ug/√Hz = 1e-5 g/√Hz.
+  for (const std::string suffix : {"/rtHz", "/sqrt(Hz)", "/√Hz", "/rtHz  "}) {
+    SCOPED_TRACE(suffix);
+    const Config c = parse_config(kBase + "\nmain_rate_noise = \"0.2 ppm" + suffix +
+                                      "\"\n[instrument]\nmodel = \"ieee\"\nnoise_density = \"10 ug" + suffix +
+                                      "\"\n[instrument.terms]\nK1 = \"1 g/g\"\n",
+                                  "suffix.toml");
+    EXPECT_NEAR(c.centrifuge.rate_noise.main, 2e-7, 1e-22);
+    EXPECT_NEAR(c.instrument.noise_density, 1e-5, 1e-20);
+  }
+  expect_refused("main_rate_noise = \"0.2 ppm/Hz\"", "centrifuge.main_rate_noise", {"must end in /rtHz"});
+  expect_refused("[instrument]\nnoise_density = \"10 ug/rtHz/rtHz \"", "instrument.noise_density", {});
 }
 
 TEST(DriveKeys, WrongFormsAreRefusedWithTheirPlace) {

@@ -70,6 +70,31 @@ TEST(ObservationCsv, CellsAndPlaces) {
   EXPECT_EQ(parse_number(" 2 "), 2.0);
 }
 
+TEST(ObservationCsv, TermAssignmentSplitsAtTheFirstEqualsSign) {
+  auto parts = [](std::string_view text) {
+    const auto a = split_term_assignment(text);
+    return a ? std::vector<std::string>{a->term, a->value, a->unit} : std::vector<std::string>{"none"};
+  };
+  EXPECT_EQ(parts("K1=505.2 deg/s/g"), (std::vector<std::string>{"K1", "505.2", "deg/s/g"}));
+  EXPECT_EQ(parts(" \tK1:Z1 \t= \t505.2\t deg/s/g \t"),
+            (std::vector<std::string>{"K1:Z1", "505.2", "deg/s/g"}));
+  EXPECT_EQ(parts("K0=-1e-3"), (std::vector<std::string>{"K0", "-1e-3", ""}));
+  EXPECT_EQ(parts("K2 = 3 ppm / g"), (std::vector<std::string>{"K2", "3", "ppm / g"}));
+  EXPECT_EQ(parts("K1=a=b c"), (std::vector<std::string>{"K1", "a=b", "c"}));
+  EXPECT_EQ(parts("=5"), (std::vector<std::string>{"", "5", ""}));
+  EXPECT_EQ(parts("K1="), (std::vector<std::string>{"K1", "", ""}));
+  EXPECT_EQ(parts("K1 505.2"), (std::vector<std::string>{"none"}));
+  // The observations header's fixed entries read with it: blanks and tabs around each part.
+  const auto h = observations_header(parse_csv(
+      "# ccal observations v1; terms=K0:K0; fixed=K1:Z1 =\t505.25 \t deg/s/g\nK0,Z1\n1,2\n", "f.csv"));
+  ASSERT_TRUE(h.has_value());
+  ASSERT_EQ(h->fixed.size(), 1u);
+  EXPECT_EQ(h->fixed[0].term.id, "K1");
+  EXPECT_EQ(h->fixed[0].term.column, "Z1");
+  EXPECT_EQ(h->fixed[0].value, 505.25);
+  EXPECT_EQ(h->fixed[0].unit, "deg/s/g");
+}
+
 TEST(ObservationCsv, SimulatedObservationsInOutputUnits) {
   // K_w and K_p columns follow the canonical order (K0 … K10, then the named terms) whatever the spec's
   // order, and every value is written with 17 significant digits so that it reads back exactly.

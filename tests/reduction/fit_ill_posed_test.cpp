@@ -49,6 +49,13 @@ TEST(IllPosedFit, DependentColumnsNameOnlyTheDependentTerms) {
   }
 }
 
+TEST(IllPosedFit, PlanCannotIdentifyPrefixesTheMessageAndKeepsTheTerms) {
+  const IllPosedFit fit_error("K2 and K3 are dependent", {"K2", "K3"});
+  const IllPosedFit e = ccal::plan_cannot_identify(fit_error);
+  EXPECT_STREQ(e.what(), "the test plan cannot identify the configured terms: K2 and K3 are dependent");
+  EXPECT_EQ(e.terms(), (std::vector<std::string>{"K2", "K3"}));
+}
+
 TEST(IllPosedFit, HintFollowsTheTermsInvolved) {
   // Powers of a_i: more g-levels; terms in a_p or a_o: another mounting; neither: nothing.
   EXPECT_NE(ccal::verbs::ill_posed_hint({"K2", "K3"}).find("g-level"), std::string::npos);

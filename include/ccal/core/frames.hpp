@@ -59,15 +59,6 @@ void post_rotate(Mat3<S>& R, int axis, const S& c, const S& s) {
 }
 
 template <class S>
-Mat3<S> elementary_rotation(int axis, const S& q) {
-  using std::cos;
-  using std::sin;
-  Mat3<S> R = Mat3<S>::Identity();
-  post_rotate<S>(R, axis, cos(q), sin(q));
-  return R;
-}
-
-template <class S>
 struct FrameMotion {
   Mat3<S> R = Mat3<S>::Identity();  // columns: the frame's axes in frame 0
   Vec3<S> p = Vec3<S>::Zero();      // origin [m]

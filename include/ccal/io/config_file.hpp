@@ -15,6 +15,8 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,5 +49,10 @@ inline constexpr std::string_view kBundledExampleName = "bundled:wang_ren_2014.t
 
 // Edit distance (insertions, deletions, substitutions) between two strings, used to suggest keys.
 std::size_t edit_distance(std::string_view a, std::string_view b);
+
+// The did-you-mean of a mistyped name (a command, an option): the name at the least edit distance d from
+// `typed` (the first of those tied) if 3·d <= its length, i.e. at most a third of it is wrong; else the only
+// name that starts with `typed` (an abbreviation); else nullopt.
+std::optional<std::string> nearest_name(std::string_view typed, std::span<const std::string> names);
 
 }  // namespace ccal

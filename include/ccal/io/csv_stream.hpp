@@ -66,7 +66,5 @@ void check_csv_line_ends(std::string_view line, const std::string& source, int l
 // Streams a file to `sink`. Throws CsvError (file unreadable, empty, no header, bad header, bad row) and
 // whatever the sink throws.
 void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink);
-// The same for text in memory; `source` names it in messages.
-void stream_csv_text(std::string_view text, std::string_view source, CsvRowSink& sink);
 
 }  // namespace ccal

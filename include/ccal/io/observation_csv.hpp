@@ -93,6 +93,17 @@ std::string number_cell_problem(std::string_view cell);
 // A finite decimal number, the whole text (blanks around it allowed; a leading '+' too); nullopt otherwise.
 std::optional<double> parse_number(std::string_view text);
 
+// A term's value as text, "K1=505.2 deg/s/g": split at the first '='; the term is what precedes it, the value
+// the first word after it and the unit the rest ("" when there is none), each without the blanks (spaces,
+// tabs) around it. nullopt when there is no '='. The parts are not checked (the term may be empty, the value
+// not a number): the caller says what it accepts.
+struct TermAssignment {
+  std::string term;
+  std::string value;
+  std::string unit;
+};
+std::optional<TermAssignment> split_term_assignment(std::string_view text);
+
 // The `# ccal observations v1; ...` comment of an observations file.
 struct ObservationsHeader {
   struct Term {

@@ -49,8 +49,6 @@ struct CentrifugeModel {
 
   // By parameter id ("dthz5", "dx3_c1", …); throws std::out_of_range naming the id if there is none.
   double error(std::string_view id) const;
-  void set_error(std::string_view id, double value_si);
-  bool has_dynamic_errors() const;
 };
 
 }  // namespace ccal

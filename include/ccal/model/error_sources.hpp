@@ -111,8 +111,12 @@ const std::array<Channel, kChannelCount>& channels() noexcept;
 SourceUnit channel_unit(const Channel& channel) noexcept;
 std::optional<int> find_channel(std::string_view id) noexcept;
 
+// The highest harmonic order N an ErrorLayout (and [centrifuge] harmonic_order) accepts.
+inline constexpr int kMaxHarmonicOrder = 16;
+
 // Where each parameter lives in the flat error vector, for a given maximum harmonic order N of the dynamic
 // channels: static channels at 0..17, then per dynamic channel c0, c1, s1, …, cN, sN (2N+1 values).
+// Throws std::invalid_argument for N outside 0..kMaxHarmonicOrder.
 class ErrorLayout {
  public:
   explicit ErrorLayout(int harmonic_order = 1);

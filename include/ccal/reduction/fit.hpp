@@ -87,6 +87,10 @@ struct FitResult {
 // cannot determine the free terms.
 FitResult fit(const FitProblem& problem, const FitOptions& options = {});
 
+// The IllPosedFit a verb throws when the fit of its test plan is ill-posed: "the test plan cannot identify
+// the configured terms: " and the fit's message, naming the same terms. Use: throw plan_cannot_identify(e);
+IllPosedFit plan_cannot_identify(const IllPosedFit& e);
+
 // Columns x^0 .. x^degree. Each power is accumulated in double-double and rounded once.
 Eigen::MatrixXd polynomial_design(const Eigen::VectorXd& x, int degree);
 // "K0" .. "K<degree>".

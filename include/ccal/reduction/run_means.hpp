@@ -40,7 +40,6 @@ class RunMeanKernel {
   RunMeanKernel(RunMeanKernel&&) noexcept;
   RunMeanKernel& operator=(RunMeanKernel&&) noexcept;
 
-  std::size_t run_count() const;
   // ⟨instrument output⟩ of every run [output SI] for `errors` (SI, in the layout's order). Thread-safe: the
   // scratch space is per thread and allocated once.
   void means(std::span<const double> errors, std::span<double> out) const;

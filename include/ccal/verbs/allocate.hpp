@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
-#include "ccal/io/config_file.hpp"
-#include "ccal/verbs/option_rows.hpp"
+#include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/allocate.hpp"
+#include "ccal/verbs/option_rows.hpp"
 
 namespace ccal::verbs {
 

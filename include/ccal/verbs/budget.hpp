@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "ccal/core/model_mode.hpp"
-#include "ccal/io/config_file.hpp"
+#include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/verbs/observability_report.hpp"
 #include "ccal/verbs/option_rows.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "ccal/io/config_file.hpp"
+#include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/montecarlo.hpp"

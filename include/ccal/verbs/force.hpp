@@ -6,8 +6,8 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/core/options.hpp"
-#include "ccal/io/config_file.hpp"
 #include "ccal/model/sensed_input.hpp"
+#include "ccal/setup/config.hpp"
 
 namespace ccal::verbs {
 

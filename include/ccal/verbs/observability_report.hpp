@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "ccal/io/config_file.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/reduction/observability.hpp"
 #include "ccal/reduction/observe.hpp"
+#include "ccal/setup/config.hpp"
 
 namespace ccal::verbs {
 

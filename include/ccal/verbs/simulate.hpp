@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
-#include "ccal/io/config_file.hpp"
-#include "ccal/verbs/option_rows.hpp"
 #include "ccal/reduction/observe.hpp"
+#include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
+#include "ccal/verbs/option_rows.hpp"
 
 namespace ccal::verbs {
 
