@@ -59,13 +59,8 @@ int parameter(const Config& cfg, const std::string& id, const std::string& what)
   const ErrorLayout& layout = cfg.centrifuge.layout;
   const auto index = layout.find_parameter(id);
   if (!index) {
-    std::string hint;
-    std::size_t best = 1000;
-    for (const auto& candidate : layout.parameter_ids())
-      if (const std::size_t d = edit_distance(id, candidate); d < best && d <= 2) {
-        best = d;
-        hint = fmt::format("; did you mean '{}'?", candidate);
-      }
+    const std::optional<std::string> nearest = nearest_name(id, layout.parameter_ids());
+    const std::string hint = nearest ? fmt::format("; did you mean '{}'?", *nearest) : "";
     throw InputError(
         fmt::format("{}: '{}' is not an error parameter of this centrifuge (harmonic order {}){}; "
                     "accepted: Config.error_ids",

@@ -3,25 +3,19 @@
 
 #include <pybind11/stl.h>
 
-#include "ccal/io/config_file.hpp"  // edit_distance, as for a mistyped flag or configuration key
+#include "ccal/io/config_file.hpp"  // nearest_name: the did-you-mean of every mistyped name
 
 namespace ccal::python::keywords {
 
 void unknown_keyword(std::string_view function, std::string_view keyword,
                      std::initializer_list<std::string_view> own, const std::vector<std::string_view>& accepted) {
-  std::string list, nearest;
+  std::string list;
   for (std::string_view name : own) list += (list.empty() ? "" : ", ") + std::string(name);
-  std::size_t best = std::string::npos;
-  for (std::string_view name : accepted) {
-    list += (list.empty() ? "" : ", ") + std::string(name);
-    const std::size_t d = edit_distance(keyword, name);
-    if (d < best) best = d, nearest = std::string(name);
-  }
-  // A near name (at most a third of its letters changed) is the likely intent.
-  const std::string suggestion =
-      best != std::string::npos && 3 * best <= nearest.size() ? "; did you mean '" + nearest + "'?" : "";
+  for (std::string_view name : accepted) list += (list.empty() ? "" : ", ") + std::string(name);
+  const std::vector<std::string> names(accepted.begin(), accepted.end());
+  const std::optional<std::string> nearest = nearest_name(keyword, names);
   throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" + std::string(keyword) +
-                       "'" + suggestion + "; accepted: " + list);
+                       "'" + (nearest ? "; did you mean '" + *nearest + "'?" : "") + "; accepted: " + list);
 }
 
 void wrong_type(std::string_view field, std::string_view expected, py::handle value) {

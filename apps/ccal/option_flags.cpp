@@ -4,7 +4,7 @@
 #include <map>
 #include <utility>
 
-#include "ccal/io/config_file.hpp"  // edit_distance, as for a mistyped configuration key
+#include "ccal/io/config_file.hpp"  // nearest_name: the did-you-mean of every mistyped name
 
 namespace ccal::cli {
 
@@ -42,22 +42,11 @@ std::string declared_flag(const CLI::App* command, std::string_view field) {
 }
 
 std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names) {
-  std::string accepted, nearest;
-  std::size_t best = std::string::npos, prefixed = 0;
-  for (const std::string& name : names) {
-    accepted += (accepted.empty() ? "" : ", ") + name;
-    const std::size_t d = edit_distance(typed, name);
-    if (d < best) best = d, nearest = name;
-    if (!typed.empty() && name.starts_with(typed)) ++prefixed;
-  }
-  std::string suggestion;
-  if (best != std::string::npos && 3 * best <= nearest.size())
-    suggestion = "; did you mean '" + nearest + "'?";
-  else if (prefixed == 1)
-    for (const std::string& name : names)
-      if (name.starts_with(typed)) suggestion = "; did you mean '" + name + "'?";
-  return "unknown command '" + std::string(typed) + "'" + (suggestion.empty() ? ";" : suggestion) +
-         " accepted: " + accepted;
+  std::string accepted;
+  for (const std::string& name : names) accepted += (accepted.empty() ? "" : ", ") + name;
+  const std::optional<std::string> nearest = nearest_name(typed, names);
+  return "unknown command '" + std::string(typed) + "'" +
+         (nearest ? "; did you mean '" + *nearest + "'?" : ";") + " accepted: " + accepted;
 }
 
 namespace detail {

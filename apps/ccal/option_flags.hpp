@@ -26,8 +26,8 @@ std::string flag_name(std::string_view field, std::string_view prefix = "");
 // OptionError; flag_name(field) when the command did not declare it.
 std::string declared_flag(const CLI::App* command, std::string_view field);
 
-// "unknown command 'X'; accepted: a, b, c", with "did you mean 'b'?" when one name is near X (an edit
-// distance of at most a third of its length, or X a prefix of only it).
+// "unknown command 'X'; accepted: a, b, c", with "did you mean 'b'?" when nearest_name (the library's
+// did-you-mean, io/config_file.hpp) finds one.
 std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names);
 
 // Declares a flag for every row of `table` on `command`, bound to `options` (which must outlive the parse),

@@ -59,33 +59,25 @@ ColumnUnits column_units(const std::optional<ObservationsHeader>& header, const 
   return u;
 }
 
-// A --fix item "<term>[:<column>]=<value> [unit]", its value in the file's unit of the term.
+// A fix item "<term>[:<column>]=<value> [unit]", its value in the file's unit of the term.
 TableFixed parse_fixed_option(const std::string& text, const ColumnUnits& units) {
   const std::string quoted = "'" + text + "'";
-  const std::size_t eq = text.find('=');
-  if (eq == std::string::npos)
-    throw OptionError("fix", quoted, "has no value; accepted: <term>=<value>, e.g. K1=505.2097");
+  const std::optional<TermAssignment> parts = split_term_assignment(text);  // as the file's header reads it
+  if (!parts) throw OptionError("fix", quoted, "has no value; accepted: <term>=<value>, e.g. K1=505.2097");
   TableFixed f;
-  f.term = parse_term_option(text.substr(0, eq), "fix");
-  std::string_view rest(text);
-  rest.remove_prefix(eq + 1);
-  while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
-  const std::size_t space = rest.find(' ');
-  const auto value = parse_number(rest.substr(0, space));
+  f.term = parse_term_option(parts->term, "fix");
+  const auto value = parse_number(parts->value);
   if (!value)
-    throw OptionError("fix", fmt::format("'{}' in {}", rest.substr(0, space), quoted),
+    throw OptionError("fix", fmt::format("'{}' in {}", parts->value, quoted),
                       "is not a finite number; accepted: <term>=<value>, e.g. K1=505.2097");
   f.value = *value;
-  if (space == std::string_view::npos) return f;
-  std::string unit(rest.substr(space + 1));
-  while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
-  if (unit.empty()) return f;
+  if (parts->unit.empty()) return f;
   if (units.output_unit.empty())
     throw OptionError("fix", quoted,
                       "has a unit, which needs the file's output_unit (an observations file of ccal simulate); "
                       "accepted: the bare number in the file's units");
   try {
-    f.value = convert_coefficient(f.value, unit, term_unit(f.term, units));
+    f.value = convert_coefficient(f.value, parts->unit, term_unit(f.term, units));
   } catch (const UnitError& e) {
     throw OptionError("fix", quoted, std::string("has a unit that does not convert: ") + e.what());
   }
