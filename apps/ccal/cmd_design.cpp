@@ -38,7 +38,7 @@ Command add_design(CLI::App& app) {
                   "Write the whole configuration with the designed [plan] to this TOML file (atomically; "
                   "never over an input)")
       ->type_name("FILE.toml");
-  add_output_options(*cmd, o->output, {"text", "json"});
+  add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
       "  ccal design\n"
@@ -53,7 +53,10 @@ Command add_design(CLI::App& app) {
             const Config config = load_config_or_example(o->config);
             const verbs::DesignResult r = verbs::design(config, d);
             print_warnings(r.after.observability.warnings);
-            const std::string report = o->output.format == "json" ? render::json(r) : render::text(r);
+            const std::string& f = o->output.format;
+            const std::string report = f == "json"  ? render::json(r)
+                                       : f == "csv" ? render::csv(r)
+                                                    : render::text(r);
             std::vector<ExtraFile> extra;
             if (!o->plan_out.empty())
               extra.push_back({"--plan-out", o->plan_out,

@@ -32,7 +32,7 @@ Command add_force(CLI::App& app) {
   cmd->add_option("--time", options->time, "Time into the run, e.g. \"10 s\" or 10 (seconds), within [0, T]")
       ->capture_default_str()
       ->type_name("T");
-  add_output_options(*cmd, options->output, {"text", "json"});
+  add_output_options(*cmd, options->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
       "  ccal force\n"
@@ -44,8 +44,10 @@ Command add_force(CLI::App& app) {
             verbs::ForceOptions fo = options->options;
             fo.time = parse_as(options->time, kind::time, "--time", true);
             const verbs::ForceResult r = verbs::force(load_config_or_example(options->config), fo);
-            write_output(options->output,
-                         options->output.format == "json" ? render::json(r) : render::text(r));
+            const std::string& f = options->output.format;
+            write_output(options->output, f == "json"  ? render::json(r)
+                                          : f == "csv" ? render::csv(r)
+                                                       : render::text(r));
           }};
 }
 

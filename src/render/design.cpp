@@ -9,6 +9,7 @@
 #include "ccal/render/design.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
+#include "budget_parts.hpp"
 
 namespace ccal::render {
 
@@ -212,6 +213,20 @@ std::string json(const verbs::DesignResult& r) {
     j["verification"] = v;
   }
   return j.dump(2) + "\n";
+}
+
+// The designed plan, one row per run, as the [plan] of `--plan-out` gives it (g-levels in g, durations in s,
+// angles in rad, 17 digits); terminal_phase_rad is empty for a run without one.
+std::string csv(const verbs::DesignResult& r) {
+  std::string out =
+      "run,g_level_g,duration_s,initial_phase_rad,terminal_phase_rad,arm_azimuth_rad,mounting,platform\n";
+  for (const Run& run : r.designed.plan.runs)
+    out += fmt::format("{},{:.17g},{:.17g},{:.17g},{},{:.17g},{},{}\n", budget_parts::csv_field(run.name),
+                       run.g_level, run.duration,
+                       initial_phase(run, r.designed.centrifuge.geometry, r.designed.site),
+                       run.terminal_phase ? fmt::format("{:.17g}", *run.terminal_phase) : "", run.arm_azimuth,
+                       mounting_name(run.mounting), platform_mode_name(run.mode));
+  return out;
 }
 
 }  // namespace ccal::render

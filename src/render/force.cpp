@@ -109,7 +109,29 @@ std::string text_of(const Config& cfg, std::size_t index, const SensedInputBreak
 
 }  // namespace
 
+// The first-order breakdown of the IA input and the exact input on all three axes, one row each: the nominal
+// part, each error's contribution (with the error's value, SI), their sum, the exact value (IA, PA, OA) and
+// the remainder (exact − first order). 17 digits, so that the file reads back to the same doubles.
+std::string csv_of(const SensedInputBreakdown& r) {
+  std::string out =
+      "row,error_value_si,error_unit,f_IA_g,f_PA_g,f_OA_g,w_IA_deg_per_s,w_PA_deg_per_s,w_OA_deg_per_s\n";
+  const auto ia_row = [&](std::string_view row, std::string value, std::string_view unit, double f, double w) {
+    out += fmt::format("{},{},{},{:.17g},,,{:.17g},,\n", row, value, unit, f, w / kDeg);
+  };
+  ia_row("nominal", "", "", r.nominal_f_ia, r.nominal_w_ia);
+  for (const auto& c : r.contributions)
+    ia_row(c.id, fmt::format("{:.17g}", c.value_si), c.unit, c.f_ia, c.w_ia);
+  ia_row("first_order", "", "", r.first_order_f_ia, r.first_order_w_ia);
+  const Eigen::Vector3d& f = r.specific_force;
+  const Eigen::Vector3d w = r.angular_rate / kDeg;
+  out += fmt::format("exact,,,{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", f[0], f[1], f[2], w[0], w[1],
+                     w[2]);
+  ia_row("remainder", "", "", r.remainder_f_ia(), r.remainder_w_ia());
+  return out;
+}
+
 std::string text(const verbs::ForceResult& r) { return text_of(r.config, r.run_index, r.input); }
 std::string json(const verbs::ForceResult& r) { return json_text(r.config, r.run_index, r.input); }
+std::string csv(const verbs::ForceResult& r) { return csv_of(r.input); }
 
 }  // namespace ccal::render

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "ccal/io/config_file.hpp"
 #include "ccal/render/design.hpp"
@@ -148,6 +150,31 @@ TEST_F(DesignedExample, WrittenPlanBudgetsTheSame) {
   // The rest of the file is kept: tolerances, instrument, the [design] table itself.
   EXPECT_EQ(back.tolerances.size(), r().config.tolerances.size());
   EXPECT_EQ(back.design.turn_fractions, 4);
+}
+
+// `ccal design --format csv`: one row per designed run with every digit (17), so that the file reads back to
+// the designed plan exactly.
+TEST_F(DesignedExample, CsvRowsAreTheDesignedRuns) {
+  const std::string csv = render::csv(r());
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "run,g_level_g,duration_s,initial_phase_rad,terminal_phase_rad,arm_azimuth_rad,mounting,platform");
+  for (const ccal::Run& run : r().designed.plan.runs) {
+    ASSERT_TRUE(std::getline(in, line));
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 8u) << line;
+    EXPECT_EQ(cells[0], run.name);
+    EXPECT_EQ(std::stod(cells[1]), run.g_level);
+    EXPECT_EQ(std::stod(cells[2]), run.duration);
+    EXPECT_EQ(std::stod(cells[4]), *run.terminal_phase);
+    EXPECT_EQ(std::stod(cells[5]), run.arm_azimuth);
+    EXPECT_EQ(cells[6], "ia_horizontal");
+    EXPECT_EQ(cells[7], "counter_rotating");
+  }
+  EXPECT_FALSE(std::getline(in, line)) << "a row more than the designed runs: " << line;
 }
 
 // The plan text keeps every digit of values that no short decimal carries (17 significant digits).

@@ -7,10 +7,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/render/force.hpp"
 #include "verbs_support.hpp"
 
 namespace ccal::test {
@@ -102,6 +105,43 @@ TEST(ForceVerb, RunAndTimeOutsideThePlanAreRefusedNamingTheOption) {
   verbs::ForceOptions by_name;
   by_name.run = "10g";
   EXPECT_EQ(verbs::force(config, by_name).run_index, 1u);
+}
+
+// `ccal force --format csv`: the first-order breakdown of IA beside the exact input, each row's numbers those of
+// the result to the last bit (17 digits), the sum of the rows the first-order value.
+TEST(ForceVerb, CsvIsTheBreakdownWithEveryDigit) {
+  verbs::ForceOptions o;
+  o.time = 100;
+  const verbs::ForceResult r =
+      verbs::force(parse_config(edited(without_earth_rotation(), "# dthz5 = \"2 arcsec\"       # instrument azimuth "
+                                                                 "(IA) zero error",
+                                       "dthz5 = \"2 arcsec\""),
+                                "dthz5.toml"),
+                   o);
+  std::istringstream in(render::csv(r));
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::size_t at = 0;
+    for (std::size_t comma; (comma = line.find(',', at)) != std::string::npos; at = comma + 1)
+      cells.push_back(line.substr(at, comma - at));
+    cells.push_back(line.substr(at));
+    rows.push_back(cells);
+  }
+  ASSERT_EQ(rows.size(), 6u);  // header, nominal, dthz5, first_order, exact, remainder
+  EXPECT_EQ(rows[0][0], "row");
+  EXPECT_EQ(rows[1][0], "nominal");
+  EXPECT_EQ(std::stod(rows[1][3]), r.input.nominal_f_ia);
+  EXPECT_EQ(rows[2][0], "dthz5");
+  EXPECT_EQ(std::stod(rows[2][1]), r.input.contributions[0].value_si);
+  EXPECT_EQ(std::stod(rows[2][3]), r.input.contributions[0].f_ia);
+  EXPECT_EQ(rows[3][0], "first_order");
+  EXPECT_EQ(std::stod(rows[3][3]), r.input.first_order_f_ia);
+  EXPECT_EQ(rows[4][0], "exact");
+  for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(std::stod(rows[4][std::size_t(3 + axis)]), r.input.specific_force[axis]);
+  EXPECT_EQ(rows[5][0], "remainder");
+  EXPECT_EQ(std::stod(rows[5][3]), r.input.remainder_f_ia());
+  for (const auto& row : rows) EXPECT_EQ(row.size(), 9u) << row[0];
 }
 
 }  // namespace

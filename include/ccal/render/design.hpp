@@ -11,6 +11,8 @@ namespace ccal::render {
 
 std::string text(const verbs::DesignResult& result);
 std::string json(const verbs::DesignResult& result);
+// The designed plan, one row per run.
+std::string csv(const verbs::DesignResult& result);
 
 // The [plan] of a configuration as TOML: every run in full, g-levels in g, durations in s and angles in rad
 // written with 17 significant digits, so that reading it back gives the same numbers.
