@@ -108,18 +108,18 @@ void measured_ripple(LoggedRun& lr, const Config& config, Eigen::VectorXd& known
   if (!lr.log.theta1_harmonics.empty()) {
     lr.main_ripple = ripple_from_angle_harmonics(
         resolved_harmonics(lr.log.theta1_harmonics, lr.log.theta1_harmonic_sigma));
-    set_ripple(known, layout, ripple1, lr.main_ripple);
+    set_ripple(known, layout, ch::ripple1, lr.main_ripple);
   }
   if (!lr.log.gamma_harmonics.empty() && lr.measured.mode == PlatformMode::counter_rotating) {
     std::vector<double> angle = resolved_harmonics(lr.log.gamma_harmonics, lr.log.gamma_harmonic_sigma);
     if (config.centrifuge.geometry.platform_control == PlatformControl::phase_locked) {
       const double psi0 = lr.measured.arm_azimuth + lr.measured.initial_phase.value_or(0.0);
       const std::vector<double> main = main_angle_error_in_gamma(
-          angle_harmonics_from_ripple(configured_ripple(known, layout, ripple1)), psi0);
+          angle_harmonics_from_ripple(configured_ripple(known, layout, ch::ripple1)), psi0);
       for (std::size_t i = 0; i < angle.size() && i < main.size(); ++i) angle[i] += main[i];
     }
     lr.platform_ripple = ripple_from_angle_harmonics(angle);
-    set_ripple(known, layout, ripple3, lr.platform_ripple);
+    set_ripple(known, layout, ch::ripple3, lr.platform_ripple);
   }
 }
 
@@ -166,9 +166,9 @@ LogReduction model_logged_runs(const Config& config, const std::vector<std::size
   Observations<double>& obs = r.observations;
   for (auto& [index, lr] : by_run) {
     Eigen::VectorXd known = spec.compensate ? config.centrifuge.errors : zero;
-    if (lr.log.has_theta1) known[domega] = 0.0;
-    if (lr.log.has_theta1 && lr.log.has_gamma) known[dOmega] = lr.mismatch;
-    if (!lr.log.has_gamma) lr.mismatch = known[dOmega];
+    if (lr.log.has_theta1) known[ch::domega] = 0.0;
+    if (lr.log.has_theta1 && lr.log.has_gamma) known[ch::dOmega] = lr.mismatch;
+    if (!lr.log.has_gamma) lr.mismatch = known[ch::dOmega];
     measured_ripple(lr, config, known);
     Experiment one = ex;
     one.plan.runs = {lr.measured};

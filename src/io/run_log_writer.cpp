@@ -59,7 +59,7 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<d
     throw InputError(fmt::format("run logs: {} run means for a plan of {} runs", run_means.size(), runs.size()));
   const Experiment ex = config.experiment();
   const Eigen::VectorXd& e = config.centrifuge.errors;
-  const std::vector<double> main = ripple_of(config, ripple1), platform = ripple_of(config, ripple3);
+  const std::vector<double> main = ripple_of(config, ch::ripple1), platform = ripple_of(config, ch::ripple3);
   const bool locked = config.centrifuge.geometry.platform_control == PlatformControl::phase_locked;
   const double w = config.instrument.quantum;  // output SI × s per pulse
   // SI size of the output unit, for an instrument without a quantum (whose output is then not in pulses)
@@ -67,12 +67,12 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<d
   std::vector<RunLogFile> out;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const Run& run = runs[r];
-    const double rate = nominal_rate(run, ex.geometry, ex.site) + e[domega];
+    const double rate = nominal_rate(run, ex.geometry, ex.site) + e[ch::domega];
     if (!(step > 0) || rate * step > 0.25 * kTwoPi)
       throw InputError(fmt::format("run logs: a step of {:g} s is more than a quarter revolution of run '{}'",
                                    step, run.name));
     const bool turning = run.mode == PlatformMode::counter_rotating;
-    const double gamma_rate = turning ? -(rate + e[dOmega]) : 0.0;
+    const double gamma_rate = turning ? -(rate + e[ch::dOmega]) : 0.0;
     const double phi0 = initial_phase(run, ex.geometry, ex.site);
     const double m = run_means[r];
     std::string text = w > 0 ? "time,pulses,theta1,gamma\n" : "time,output,theta1,gamma\n";

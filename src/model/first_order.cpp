@@ -183,13 +183,13 @@ Column ripple_column(const ErrorLayout& layout, int index, const JointState<doub
   const int channel = layout.parameter_channel(index);
   const int k = layout.parameter_harmonic(index);
   Column column = Column::Zero();
-  if (k == 0 || (channel == ripple3 && !counter)) return column;
+  if (k == 0 || (channel == ch::ripple3 && !counter)) return column;
   const bool sine = layout.parameter_is_sine(index);
-  const double q = channel == ripple1 ? j.theta1 : j.gamma;
-  const double q_rate = channel == ripple1 ? j.theta1_rate : j.gamma_rate;
+  const double q = channel == ch::ripple1 ? j.theta1 : j.gamma;
+  const double q_rate = channel == ch::ripple1 ? j.theta1_rate : j.gamma_rate;
   const double c = std::cos(k * q), s = std::sin(k * q);
   const double angle = sine ? -c / k : s / k, relative = sine ? s : c, slope = sine ? k * c : -k * s;
-  if (channel == ripple3) return Column(angle * D.d_psi + q_rate * relative * D.d_gamma_rate);
+  if (channel == ch::ripple3) return Column(angle * D.d_psi + q_rate * relative * D.d_gamma_rate);
   column = angle * (follows ? D.d_theta1 : Column(D.d_theta1 + D.d_psi)) +
            q_rate * relative * D.d_theta1_rate + q_rate * q_rate * slope * D.d_theta1_acc;
   if (follows) column -= q_rate * relative * D.d_gamma_rate;
@@ -198,8 +198,8 @@ Column ripple_column(const ErrorLayout& layout, int index, const JointState<doub
 
 // The drives' parameters: Δω, ΔΩ, then every harmonic coefficient of the main and platform rate ripples.
 std::vector<int> drive_parameters(const ErrorLayout& layout) {
-  std::vector<int> parameters{int(domega), int(dOmega)};
-  for (int channel : {int(ripple1), int(ripple3)})
+  std::vector<int> parameters{int(ch::domega), int(ch::dOmega)};
+  for (int channel : {int(ch::ripple1), int(ch::ripple3)})
     for (int k = 1; k <= layout.harmonic_order(); ++k)
       for (bool sine : {false, true}) parameters.push_back(layout.harmonic_index(channel, k, sine));
   return parameters;
@@ -219,8 +219,8 @@ void closed_form_drive_columns(const Geometry& geo, const ErrorLayout& layout, c
     d_dOmega = -D.d_gamma_rate - t * D.d_psi;
   }
   const bool follows = counter && geo.platform_control == PlatformControl::phase_locked;
-  sensitivity.col(layout.static_index(domega)) = d_domega;
-  sensitivity.col(layout.static_index(dOmega)) = d_dOmega;
+  sensitivity.col(layout.static_index(ch::domega)) = d_domega;
+  sensitivity.col(layout.static_index(ch::dOmega)) = d_dOmega;
   for (std::size_t i = 2; i < parameters.size(); ++i)
     sensitivity.col(parameters[i]) = ripple_column(layout, parameters[i], j, D, counter, follows);
 }
@@ -239,8 +239,8 @@ void drive_columns_by_differences(const Geometry& geo, const ErrorLayout& layout
     em[index] = -h;
     auto eval = [&](const Eigen::VectorXd& err) {
       RunMotion<double> r = run;
-      r.theta1_rate += err[domega];
-      if (counter) r.gamma_rate -= err[domega] + err[dOmega];
+      r.theta1_rate += err[ch::domega];
+      if (counter) r.gamma_rate -= err[ch::domega] + err[ch::dOmega];
       const RunMotion<double> rippled = run_motion<double>(0.0, 0.0, 0.0, mode, geo, layout, err);
       r.main_ripple = rippled.main_ripple;
       r.platform_ripple = rippled.platform_ripple;
@@ -306,47 +306,47 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
     double dai = 0.0, dwi = 0.0;
     switch (channel) {
       // θx group: a_i ∋ +(1 + A(L+l)/R0) θx sin γ;  ω_IA ∋ +Ω θx sin γ.
-      case dthx3t:
-      case dthx3:
+      case ch::dthx3t:
+      case ch::dthx3:
         dai = (1.0 + A * h / R0) * sg * v;
         dwi = Omega * sg * v;
         break;
       // θy group: a_i ∋ −(1 + A(L+l)/R0) θy cos γ;  ω_IA ∋ −Ω θy cos γ.
-      case dthy2t:
-      case dthy2:
-      case dthy3t:
-      case dthy3:
+      case ch::dthy2t:
+      case ch::dthy2:
+      case ch::dthy3t:
+      case ch::dthy3:
         dai = -(1.0 + A * h / R0) * cg * v;
         dwi = -Omega * cg * v;
         break;
-      case dy2t:
-      case dy2:
-      case dy3t:
-      case dy3:
+      case ch::dy2t:
+      case ch::dy2:
+      case ch::dy3t:
+      case ch::dy3:
         dai = -A / R0 * sg * v;
         break;
-      case dthz5:
-      case dthz2:
+      case ch::dthz5:
+      case ch::dthz2:
         dai = A * sg * v;
         break;
-      case dR_s:
-      case dx2:
-      case dx3:
+      case ch::dR_s:
+      case ch::dx2:
+      case ch::dx3:
         dai = -A / R0 * cg * v;
         break;
-      case arm_stretch:
+      case ch::arm_stretch:
         dai = -A / R0 * cg * Omega * Omega;
         break;
-      case dx5:
+      case ch::dx5:
         dai = -A / R0;
         break;
-      case dthy4:
+      case ch::dthy4:
         dai = -1.0 - A * l / R0;
         break;
-      case dthy5:
+      case ch::dthy5:
         dai = -1.0;
         break;
-      case domega:
+      case ch::domega:
         dai = -2.0 * A / Omega * cg;
         break;  // amplitude only: A ∝ (Ω+Δω)² (Eq.19)
       default:

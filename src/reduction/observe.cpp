@@ -42,7 +42,7 @@ PaperRunNodes paper_run_nodes(const Experiment& ex, const ccal::Run& run,
     n.nominal_rate_ia.push_back(fo.nominal[3]);
     std::vector<std::pair<int, double>> force, rate;
     for (int i = 0; i < ex.layout.size(); ++i) {
-      if (i == domega) continue;  // in the amplitude A
+      if (i == ch::domega) continue;  // in the amplitude A
       if (fo.sensitivity(0, i) != 0.0) force.emplace_back(i, fo.sensitivity(0, i));
       if (fo.sensitivity(3, i) != 0.0) rate.emplace_back(i, fo.sensitivity(3, i));
     }
@@ -56,7 +56,7 @@ template <class S>
 RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, const VecX<S>& e,
                             const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
                             bool cross_terms) {
-  const S omega = S(nodes.rate) + e[domega];
+  const S omega = S(nodes.rate) + e[ch::domega];
   const S A = S(ex.geometry.R0) * omega * omega / S(ex.site.g);
   std::vector<TermSpec> truth_terms;
   double k1 = 0.0;
@@ -93,7 +93,7 @@ RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, co
                   : instrument_output(*instrument, truth_terms, a_plain, w_ia) + S(k1) * (a_k1 - a_power);
       // The paper's additive −ΔΩ (output in rad/s), a rate-path term: it goes with the instrument's rate
       // gain.
-      avg.output += weight * (out - (instrument->rate_gain != 0.0 ? e[dOmega] : S(0)));
+      avg.output += weight * (out - (instrument->rate_gain != 0.0 ? e[ch::dOmega] : S(0)));
     }
   }
   return avg;

@@ -252,10 +252,10 @@ TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eigen::Vect
   const double* errors = e.data();
   const int order = d.layout.harmonic_order();
   TrialTerms trial{chain_blocks<double>(d.geometry, d.layout, e, d.site, 0.0, d.geometry.beta),
-                   errors + d.layout.harmonic_index(dx1, 0, false),
-                   errors + d.layout.harmonic_index(dx3, 0, false),
-                   nonzero_ripple(errors, d.layout, ripple1, order),
-                   nonzero_ripple(errors, d.layout, ripple3, order),
+                   errors + d.layout.harmonic_index(ch::dx1, 0, false),
+                   errors + d.layout.harmonic_index(ch::dx3, 0, false),
+                   nonzero_ripple(errors, d.layout, ch::ripple1, order),
+                   nonzero_ripple(errors, d.layout, ch::ripple3, order),
                    order,
                    d.site.g,
                    d.geometry.platform_control == PlatformControl::phase_locked,
@@ -364,13 +364,13 @@ double weighted_output(const OutputPolynomial& output, const Scratch& scratch, i
 // (counter-rotating) or 0, the weights, the two halves of the chain at the nodes, the weighted sum.
 double run_mean(const KernelTables& d, const RunTables& t, const TrialTerms& trial,
                 const Eigen::Map<const Eigen::VectorXd>& e, Scratch& scratch) {
-  const double theta1_rate = t.rate + e[domega];
-  const double gamma_rate = t.counter ? -(theta1_rate + e[dOmega]) : 0.0;
-  const int Q = slow_node_count(t, d.quadrature, e[dOmega]);
+  const double theta1_rate = t.rate + e[ch::domega];
+  const double gamma_rate = t.counter ? -(theta1_rate + e[ch::dOmega]) : 0.0;
+  const int Q = slow_node_count(t, d.quadrature, e[ch::dOmega]);
   scratch.reserve(t.M, Q);
-  quadrature_weights(t, e[domega], theta1_rate, Q, d.lagrange[std::size_t(Q)], scratch);
-  main_axis_half(t, trial, e[arm_stretch], theta1_rate, scratch);
-  platform_half(t, trial, e[dOmega], gamma_rate, d.slow_nodes[std::size_t(Q)], Q, scratch);
+  quadrature_weights(t, e[ch::domega], theta1_rate, Q, d.lagrange[std::size_t(Q)], scratch);
+  main_axis_half(t, trial, e[ch::arm_stretch], theta1_rate, scratch);
+  platform_half(t, trial, e[ch::dOmega], gamma_rate, d.slow_nodes[std::size_t(Q)], Q, scratch);
   return weighted_output(d.output, scratch, t.M, Q);
 }
 

@@ -201,8 +201,8 @@ std::vector<Tolerance> rate_noise_sources(const Config& cfg) {
 }
 
 Eigen::VectorXd rate_noise_gain(const Experiment& ex, const Eigen::VectorXd& e, int drive) {
-  const RateNoiseGains both = rate_noise_gains(ex, e, drive == ripple1, drive == ripple3);
-  return drive == ripple1 ? both.main : both.platform;
+  const RateNoiseGains both = rate_noise_gains(ex, e, drive == ch::ripple1, drive == ch::ripple3);
+  return drive == ch::ripple1 ? both.main : both.platform;
 }
 
 RateNoiseGains rate_noise_gains(const Experiment& ex, const Eigen::VectorXd& e, bool main, bool platform) {

@@ -47,8 +47,8 @@ std::vector<std::string> write_logs(const ccal::Config& cfg, const fs::path& dir
     const ccal::Run& run = cfg.plan.runs[r];
     const double mean =
         ccal::average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}).output;
-    const double rate = ccal::nominal_rate(run, ex.geometry, ex.site) + e[ccal::domega];
-    const double gamma_rate = -(rate + e[ccal::dOmega]);
+    const double rate = ccal::nominal_rate(run, ex.geometry, ex.site) + e[ccal::ch::domega];
+    const double gamma_rate = -(rate + e[ccal::ch::dOmega]);
     const double phi0 = ccal::initial_phase(run, ex.geometry, ex.site);
     const double w = weight_deg * kPi / 180;
     auto wrap = [](double a) { return std::fmod(std::fmod(a, 2 * kPi) + 2 * kPi, 2 * kPi); };

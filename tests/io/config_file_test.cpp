@@ -279,7 +279,7 @@ TEST(Config, EachDistributionWord) {
     EXPECT_EQ(t.distribution, d) << word;
     EXPECT_EQ(distribution_name(d), word);
     EXPECT_EQ(t.id, "dR_s");
-    EXPECT_EQ(t.parameter, ChannelIndex::dR_s);
+    EXPECT_EQ(t.parameter, ch::dR_s);
     EXPECT_NEAR(t.bound, 25e-6, 1e-18);
     EXPECT_EQ(t.group, "radius");
     EXPECT_DOUBLE_EQ(t.cost, 2.5);

@@ -151,8 +151,8 @@ class ReduceRipple : public Cli {
     Drives d;
     d.phase_locked = phase_locked;
     for (bool sine : {false, true}) {
-      d.main.push_back(e[layout.harmonic_index(ccal::ripple1, 1, sine)]);
-      d.platform.push_back(e[layout.harmonic_index(ccal::ripple3, 1, sine)]);
+      d.main.push_back(e[layout.harmonic_index(ccal::ch::ripple1, 1, sine)]);
+      d.platform.push_back(e[layout.harmonic_index(ccal::ch::ripple3, 1, sine)]);
     }
     std::string args;
     for (std::size_t r = 0; r < cfg.plan.runs.size(); ++r) {

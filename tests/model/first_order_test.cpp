@@ -62,12 +62,12 @@ TEST_F(V5, ExactAndFrozenCoefficientsOfEverySource) {
   };
   const double s = std::sin(0.3), c = std::cos(0.3);
   const std::vector<Row> rows = {
-      {dthz5, {0, 0, 20}, {0, 0, 20}},     {dy2t, {0, 0, -8}, {0, 0, -8}},
-      {dy3t, {0, 0, -8}, {0, 0, -8}},      {dR_s, {0, -8, 0}, {0, -8, 0}},
-      {dthy2t, {0, -3, 0}, {0, -3, 0}},    {dthy3t, {0, -3, 0}, {0, -3, 0}},
-      {dthx3t, {0, 0, 3}, {0, 0, 3}},      {dthy4, {-1.0, 0, 0}, {-1.4, 0, 0}},
-      {dthy5, {-1.0, 0, 0}, {-1.0, 0, 0}}, {dx5, {0, 0, 0}, {-8, 0, 0}},
-      {dthx1t, {s, 0, 0}, {s, 0, 0}},      {dthy1t, {-c, 0, 0}, {-c, 0, 0}},
+      {ch::dthz5, {0, 0, 20}, {0, 0, 20}},     {ch::dy2t, {0, 0, -8}, {0, 0, -8}},
+      {ch::dy3t, {0, 0, -8}, {0, 0, -8}},      {ch::dR_s, {0, -8, 0}, {0, -8, 0}},
+      {ch::dthy2t, {0, -3, 0}, {0, -3, 0}},    {ch::dthy3t, {0, -3, 0}, {0, -3, 0}},
+      {ch::dthx3t, {0, 0, 3}, {0, 0, 3}},      {ch::dthy4, {-1.0, 0, 0}, {-1.4, 0, 0}},
+      {ch::dthy5, {-1.0, 0, 0}, {-1.0, 0, 0}}, {ch::dx5, {0, 0, 0}, {-8, 0, 0}},
+      {ch::dthx1t, {s, 0, 0}, {s, 0, 0}},      {ch::dthy1t, {-c, 0, 0}, {-c, 0, 0}},
   };
   for (const Row& row : rows) {
     for (bool frozen : {false, true}) {
@@ -87,10 +87,10 @@ TEST_F(V5, HorizontalAxisDynamicErrorsAtFixedBetaActLikeTheirStaticTwins) {
   // β is constant, so Δθz2(β), Δy2(β), Δx2(β), Δθy2(β) are constants equal to their c0 coefficient.
   const Eigen::VectorXd e = Eigen::VectorXd::Zero(layout.size());
   const auto J = ad_jacobian(geo, layout, e, site, w, 0.0, phi0, PlatformMode::counter_rotating, 0.4);
-  EXPECT_NEAR(J(0, layout.harmonic_index(dthz2, 0, false)), J(0, dthz5), 1e-12);
-  EXPECT_NEAR(J(0, layout.harmonic_index(dy2, 0, false)), J(0, dy2t), 1e-12);
-  EXPECT_NEAR(J(0, layout.harmonic_index(dx2, 0, false)), J(0, dR_s), 1e-12);
-  EXPECT_NEAR(J(0, layout.harmonic_index(dthy2, 0, false)), J(0, dthy2t), 1e-12);
+  EXPECT_NEAR(J(0, layout.harmonic_index(ch::dthz2, 0, false)), J(0, ch::dthz5), 1e-12);
+  EXPECT_NEAR(J(0, layout.harmonic_index(ch::dy2, 0, false)), J(0, ch::dy2t), 1e-12);
+  EXPECT_NEAR(J(0, layout.harmonic_index(ch::dx2, 0, false)), J(0, ch::dR_s), 1e-12);
+  EXPECT_NEAR(J(0, layout.harmonic_index(ch::dthy2, 0, false)), J(0, ch::dthy2t), 1e-12);
 }
 
 TEST_F(V5, CoriolisIsACosGammaTermOfTheCentripetalSign) {
@@ -123,14 +123,14 @@ TEST(V5b, WithoutLeverArmsTheFrozenChainIsThePaperForm) {
     const RunMotion<double> run = run_motion<double>(w, 0.0, 0.3, PlatformMode::counter_rotating, 0.0, e);
     const auto paper = paper_first_order(geo, layout, site, run.at(t), {.lever_arms = true});
     const double gamma = 0.3 - w * t;
-    EXPECT_NEAR(J(0, dthy2t), -std::cos(gamma), 1e-11);
-    EXPECT_NEAR(J(0, dthx3t), std::sin(gamma), 1e-11);
-    EXPECT_NEAR(J(0, dthy4), -1.0, 1e-11);
+    EXPECT_NEAR(J(0, ch::dthy2t), -std::cos(gamma), 1e-11);
+    EXPECT_NEAR(J(0, ch::dthx3t), std::sin(gamma), 1e-11);
+    EXPECT_NEAR(J(0, ch::dthy4), -1.0, 1e-11);
     for (int i = 0; i < layout.size(); ++i) {
       const int ch = layout.parameter_channel(i);
       const Channel& c = channels()[ch];
       if (c.link == Link::main_sleeve || c.link == Link::main_axis || c.link == Link::drive) continue;
-      if (c.kind == ErrorKind::translation_z || ch == dthx4 || ch == dthx5 || ch == dy5) continue;
+      if (c.kind == ErrorKind::translation_z || ch == ch::dthx4 || ch == ch::dthx5 || ch == ch::dy5) continue;
       EXPECT_NEAR(J(0, i), paper.sensitivity(0, i), 1e-11) << layout.parameter_id(i) << " t=" << t;
     }
   }
@@ -243,14 +243,14 @@ TEST(PaperForm, NumbersOfModelMdSection22) {
   JointState<double> j{0.0, w, 0.0, 0.0, 0.0, -w};  // γ = 0: cos γ = 1
   auto with = paper_first_order(geo, layout, site, j, {.lever_arms = true});
   auto without = paper_first_order(geo, layout, site, j, {.lever_arms = false});
-  EXPECT_NEAR(with.sensitivity(0, dthy3t), -3.0, 1e-12);
-  EXPECT_NEAR(without.sensitivity(0, dthy3t), -1.0, 1e-12);
-  EXPECT_NEAR(with.sensitivity(0, dthy4), -1.4, 1e-12);
-  EXPECT_NEAR(without.sensitivity(0, dthy4), -1.0, 1e-12);
+  EXPECT_NEAR(with.sensitivity(0, ch::dthy3t), -3.0, 1e-12);
+  EXPECT_NEAR(without.sensitivity(0, ch::dthy3t), -1.0, 1e-12);
+  EXPECT_NEAR(with.sensitivity(0, ch::dthy4), -1.4, 1e-12);
+  EXPECT_NEAR(without.sensitivity(0, ch::dthy4), -1.0, 1e-12);
   j.gamma = std::numbers::pi / 2;  // sin γ = 1
   with = paper_first_order(geo, layout, site, j, {.lever_arms = true});
-  EXPECT_NEAR(with.sensitivity(0, dthx3t), 3.0, 1e-12);
-  EXPECT_NEAR(with.sensitivity(3, dthx3t), w, 1e-12);
+  EXPECT_NEAR(with.sensitivity(0, ch::dthx3t), 3.0, 1e-12);
+  EXPECT_NEAR(with.sensitivity(3, ch::dthx3t), w, 1e-12);
 }
 
 }  // namespace

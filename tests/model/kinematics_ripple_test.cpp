@@ -49,7 +49,7 @@ TEST(RateRipple, SingleMainHarmonicAtTheInstrumentIsTangentialPlusCentripetal) {
   for (PlatformControl control : {PlatformControl::speed, PlatformControl::phase_locked}) {
     const Geometry geo = axis_geometry(control);
     Eigen::VectorXd e = Eigen::VectorXd::Zero(layout.size());
-    set_ripple(layout, e, ripple1, 1, c, s);
+    set_ripple(layout, e, ch::ripple1, 1, c, s);
     const RunMotion<double> motion =
         run_motion<double>(w, 0.4, 2.1, PlatformMode::counter_rotating, geo, layout, e);
     for (double t : {0.0, 0.37, 1.9, 123.4}) {
@@ -89,7 +89,7 @@ TEST(RateRipple, ExactChainEqualsDifferentiatedMotion) {
   // above: 1e-7 m/s (velocity), 5e-7 m/s² (acceleration), against ripple accelerations of ~0.3 m/s².
   const ErrorLayout layout(2);
   Eigen::VectorXd e = random_errors(layout, 1e-5, 11);
-  for (int ch : {int(ripple1), int(ripple3)}) {
+  for (int ch : {int(ch::ripple1), int(ch::ripple3)}) {
     e[layout.harmonic_index(ch, 0, false)] = 0.0;
     set_ripple(layout, e, ch, 1, 1e-3, -6e-4);
     set_ripple(layout, e, ch, 2, 4e-4, 7e-4);
@@ -142,7 +142,7 @@ TEST(RateRipple, FirstHarmonicDcOfTheMainAxisClosedForm) {
         return odd_part(
             [&](double x) {
               Eigen::VectorXd e = Eigen::VectorXd::Zero(layout.size());
-              set_ripple(layout, e, ripple1, k, c * x, s * x);
+              set_ripple(layout, e, ch::ripple1, k, c * x, s * x);
               return mean_input(geo, layout, e, A, phi0, theta1_0, 7);
             },
             eps);
@@ -169,7 +169,7 @@ TEST(RateRipple, FirstHarmonicDcOfThePlatformClosedForm) {
       const double dc = odd_part(
           [&](double x) {
             Eigen::VectorXd e = Eigen::VectorXd::Zero(layout.size());
-            set_ripple(layout, e, ripple3, 1, c * x, s * x);
+            set_ripple(layout, e, ch::ripple3, 1, c * x, s * x);
             return mean_input(geo, layout, e, A, 0.9, 0.3, 5);
           },
           eps);
@@ -182,7 +182,7 @@ TEST(RateRipple, ZeroRippleLeavesTheMotionUntouched) {
   // Exactly zero ripple coefficients build no ripple at all (the same joint states bit for bit).
   const ErrorLayout layout(2);
   Eigen::VectorXd e = random_errors(layout, 1e-5, 3);
-  for (int ch : {int(ripple1), int(ripple3)})
+  for (int ch : {int(ch::ripple1), int(ch::ripple3)})
     for (int i = 0; i < 5; ++i) e[layout.harmonic_index(ch, 0, false) + i] = 0.0;
   for (PlatformControl control : {PlatformControl::speed, PlatformControl::phase_locked}) {
     Geometry geo{2.5, 0.0, 0.0, 0.0};
@@ -216,7 +216,7 @@ TEST(RateRipple, FirstOrderColumnsEqualTheChainsDerivatives) {
       for (double t : {0.0, 0.77, 31.0}) {
         const auto fo = exact_first_order(geo, layout, site, nominal, mode, t);
         const auto J = ad_jacobian(geo, layout, zero, site, w, 0.4, 1.3, mode, t);
-        for (int ch : {int(ripple1), int(ripple3)})
+        for (int ch : {int(ch::ripple1), int(ch::ripple3)})
           for (int k = 1; k <= 2; ++k)
             for (bool sine : {false, true}) {
               const int i = layout.harmonic_index(ch, k, sine);
@@ -242,8 +242,8 @@ TEST(RateRipple, KernelEqualsTheGeneralReduction) {
       const CalibrationModel model = calibration_model(cfg);
       std::mt19937 rng(17);
       Eigen::VectorXd e = corner_draw(cfg, 3.0, rng);
-      set_ripple(ex.layout, e, ripple1, 1, size, -0.7 * size);
-      set_ripple(ex.layout, e, ripple3, 1, -0.4 * size, 0.9 * size);
+      set_ripple(ex.layout, e, ch::ripple1, 1, size, -0.7 * size);
+      set_ripple(ex.layout, e, ch::ripple3, 1, -0.4 * size, 0.9 * size);
       const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument,
                                  model.reduction);
       std::vector<double> means(ex.plan.runs.size());
@@ -266,7 +266,7 @@ TEST(RateRipple, BudgetRowsEqualTheNonlinearReidentification) {
     Config cfg = bundled_example();
     cfg.centrifuge.geometry.platform_control = control;
     cfg.tolerances.clear();
-    for (int ch : {int(ripple1), int(ripple3)})
+    for (int ch : {int(ch::ripple1), int(ch::ripple3)})
       for (bool sine : {false, true}) {
         Tolerance t;
         t.parameter = cfg.centrifuge.layout.harmonic_index(ch, 1, sine);

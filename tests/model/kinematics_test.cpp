@@ -40,8 +40,8 @@ TEST(ExactChain, LogDerivativesOfAccelerationAreOneForRadiusAndTwoForRate) {
   const auto J = ad_jacobian(geo, layout, e, site, w, 0.0, std::numbers::pi, PlatformMode::fixed, 0.0);
   const auto y = outputs<double>(geo, layout, e, site, w, 0.0, std::numbers::pi, PlatformMode::fixed, 0.0);
   EXPECT_NEAR(y[0], 20.0, 1e-12);
-  EXPECT_NEAR(J(0, dR_s) * geo.R0 / y[0], 1.0, 1e-13);
-  EXPECT_NEAR(J(0, domega) * w / y[0], 2.0, 1e-13);
+  EXPECT_NEAR(J(0, ch::dR_s) * geo.R0 / y[0], 1.0, 1e-13);
+  EXPECT_NEAR(J(0, ch::domega) * w / y[0], 2.0, 1e-13);
 }
 
 Eigen::VectorXd random_errors(const ErrorLayout& layout, double angle, double length, unsigned seed,
@@ -54,8 +54,8 @@ Eigen::VectorXd random_errors(const ErrorLayout& layout, double angle, double le
     const bool is_dynamic = channels()[ch].joint != Joint::none;
     const SourceUnit unit = layout.parameter_unit(i);
     double scale = unit == SourceUnit::rad ? angle : unit == SourceUnit::m ? length : 0.0;
-    if (ch == arm_stretch) scale = length / 100.0;
-    if (ch == domega || ch == dOmega) scale = angle;
+    if (ch == ch::arm_stretch) scale = length / 100.0;
+    if (ch == ch::domega || ch == ch::dOmega) scale = angle;
     e[i] = (is_dynamic && !dynamic) ? 0.0 : scale * u(rng);
   }
   return e;
@@ -72,8 +72,8 @@ TEST(StaticChain, AgreesWithTheGeneralRecursion) {
     for (bool frozen : {false, true}) {
       const Site site = paper_site(earth);
       const ChainOptions options{frozen};
-      const double w = rate_for(30.0, geo.R0, site.g) + e[domega];
-      const double gamma_rate = -(w + e[dOmega]);
+      const double w = rate_for(30.0, geo.R0, site.g) + e[ch::domega];
+      const double gamma_rate = -(w + e[ch::dOmega]);
       const StaticChain<double> chain(geo, layout, e, site, w, geo.beta, options);
       for (double t : {0.0, 0.11, 7.9}) {
         JointState<double> j{0.3 + w * t, w, geo.beta, 0.0, 2.0 + gamma_rate * t, gamma_rate};
@@ -139,10 +139,10 @@ TEST(AngularRate, TiltSensitivitiesHaveThePaperSigns) {
   for (double t : {0.0, 0.1, 0.25}) {
     const double gamma = 0.3 - w * t;
     const auto J = ad_jacobian(geo, layout, e, site, w, 0.0, 0.3, PlatformMode::counter_rotating, t);
-    EXPECT_NEAR(J(3, dthx3t), w * std::sin(gamma), 1e-12);
-    EXPECT_NEAR(J(3, dthy2t), -w * std::cos(gamma), 1e-12);
-    EXPECT_NEAR(J(3, dthy3t), -w * std::cos(gamma), 1e-12);
-    for (int zero : {int(dthy4), int(dthy5), int(dthx1t), int(dthz5)}) EXPECT_NEAR(J(3, zero), 0.0, 1e-12);
+    EXPECT_NEAR(J(3, ch::dthx3t), w * std::sin(gamma), 1e-12);
+    EXPECT_NEAR(J(3, ch::dthy2t), -w * std::cos(gamma), 1e-12);
+    EXPECT_NEAR(J(3, ch::dthy3t), -w * std::cos(gamma), 1e-12);
+    for (int zero : {int(ch::dthy4), int(ch::dthy5), int(ch::dthx1t), int(ch::dthz5)}) EXPECT_NEAR(J(3, zero), 0.0, 1e-12);
   }
 }
 
@@ -164,7 +164,7 @@ TEST(AngularRate, CounterRotatingPlatformDoesNotTurnInertially) {
   EXPECT_NEAR(y[3], we * cos_lat * std::sin(psi), 1e-15);
   EXPECT_NEAR(y[4], we * cos_lat * std::cos(psi), 1e-15);
   EXPECT_NEAR(y[5], we * sin_lat, 1e-15);
-  e[dOmega] = 2e-6;
+  e[ch::dOmega] = 2e-6;
   y = outputs<double>(geo, layout, e, site, w, 0.0, 0.3, PlatformMode::counter_rotating, 5.0);
   EXPECT_NEAR(y[5], we * sin_lat - 2e-6, 1e-15);
 }
@@ -185,9 +185,9 @@ TEST(DynamicChain, AgreesWithTheGeneralRecursion) {
   for (bool frozen : {false, true}) {
     const Site site = paper_site(true);
     const ChainOptions options{frozen};
-    const double w = rate_for(30.0, geo.R0, site.g) + e[domega];
+    const double w = rate_for(30.0, geo.R0, site.g) + e[ch::domega];
     const DynamicChain<double> chain(geo, layout, e, site, w, geo.beta, options);
-    for (double gamma_rate : {-(w + e[dOmega]), 0.0})
+    for (double gamma_rate : {-(w + e[ch::dOmega]), 0.0})
       for (double t : {0.0, 0.11, 7.9}) {
         const JointState<double> j{0.3 + w * t, w, geo.beta, 0.0, 2.0 + gamma_rate * t, gamma_rate};
         const auto s = exact_state<double>(geo, layout, e, site, j, options);

@@ -205,7 +205,7 @@ TEST(PaperCrossTermsEarth, AzimuthErrorMatchesTheClosedForm) {
   const Eigen::Vector3d truth(0.061973, 0.02, 0.003);
   auto bias = [&](const Experiment& ex) {
     Eigen::VectorXd e = Eigen::VectorXd::Zero(ex.layout.size());
-    e[dthz5] = 1e-5;
+    e[ch::dthz5] = 1e-5;
     return Eigen::Vector3d(identified_deg(ex, e, cross, ModelMode::paper) - truth);
   };
   const Eigen::Vector3d off = bias(paper_experiment(false));

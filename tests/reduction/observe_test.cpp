@@ -36,7 +36,7 @@ TEST(Identification, V2BasePlaneTiltGoesToK0Only) {
   // run means are differences of outputs swinging by K1·A ≈ 15 000 °/s, so each carries ≈ 1e-16·15 000 =
   // 1.5e-12 °/s; divided by the spread of the regressors that gives 1e-12 on K0, 1e-14 on K2 (Z2 spans 440
   // g²) and 1e-12 on K3 (Z3 spans 5 g³).
-  const Eigen::Vector3d d = bias(paper_experiment(), dthy4, 1e-5, ModelMode::paper);
+  const Eigen::Vector3d d = bias(paper_experiment(), ch::dthy4, 1e-5, ModelMode::paper);
   EXPECT_NEAR(d[0], -5.052097e-3, 1e-12);
   EXPECT_NEAR(d[1], 0.0, 1e-14);
   EXPECT_NEAR(d[2], 0.0, 1e-12);
@@ -48,13 +48,13 @@ TEST(Identification, V3AzimuthErrorMatchesTable4) {
   // V3 gives ΔK0 = −1.9171e-5, ΔK2 = +2.1254e-8, ΔK3 = +9.1580e-6 for an exact phase shift, which differs
   // from this linear-with-cross-terms model by O(A·δ) ≈ 3e-4 relative: tolerance 5e-4.
   const Experiment ex = paper_experiment();
-  const Eigen::Vector3d d = bias(ex, dthz5, 1e-5, ModelMode::paper);
+  const Eigen::Vector3d d = bias(ex, ch::dthz5, 1e-5, ModelMode::paper);
   EXPECT_NEAR(d[0], -1.9151e-5, 1e-4 * 1.9151e-5);
   EXPECT_NEAR(d[1], 2.1402e-8, 1e-4 * 2.1402e-8);
   EXPECT_NEAR(d[2], 9.1287e-6, 1e-4 * 9.1287e-6);
   IdentificationSpec cross = paper_spec();
   cross.paper_cross_terms = true;
-  const Eigen::Vector3d c = bias(ex, dthz5, 1e-5, ModelMode::paper, cross);
+  const Eigen::Vector3d c = bias(ex, ch::dthz5, 1e-5, ModelMode::paper, cross);
   EXPECT_NEAR(c[0], -1.9171e-5, 5e-4 * 1.9171e-5);
   EXPECT_NEAR(c[1], 2.1254e-8, 5e-4 * 2.1254e-8);
   EXPECT_NEAR(c[2], 9.1580e-6, 5e-4 * 9.1580e-6);
@@ -63,7 +63,7 @@ TEST(Identification, V3AzimuthErrorMatchesTable4) {
 TEST(Identification, V4RadiusErrorIsAnExactAmplitudeScale) {
   // ΔR/R0 = 1e-5 (25 µm) through the exact chain (Earth off, L = l = 0: a_i = −A(1 + ΔR/R0) cos γ exactly):
   // ΔK0 = +9.1840e-6, ΔK2 = +3.8894e-7, ΔK3 = +9.2770e-6 (model.md V4, 5 digits: relative 1e-4).
-  const Eigen::Vector3d d = bias(paper_experiment(), dR_s, 2.5e-5, ModelMode::exact);
+  const Eigen::Vector3d d = bias(paper_experiment(), ch::dR_s, 2.5e-5, ModelMode::exact);
   EXPECT_NEAR(d[0], 9.1840e-6, 1e-4 * 9.1840e-6);
   EXPECT_NEAR(d[1], 3.8894e-7, 1e-4 * 3.8894e-7);
   EXPECT_NEAR(d[2], 9.2770e-6, 1e-4 * 9.2770e-6);
@@ -125,7 +125,7 @@ TEST(Identification, CompensationRemovesTheBiasToRoundOff) {
   // remaining bias is round-off (1e-12 °/s/g³ on K3, see V2), a 1e-9 fraction of the uncompensated one.
   const Experiment ex = paper_experiment(true);
   Eigen::VectorXd e = Eigen::VectorXd::Zero(ex.layout.size());
-  e[dthx1t] = 1e-5;
+  e[ch::dthx1t] = 1e-5;
   const Eigen::Vector3d raw = identified_deg(ex, e, paper_spec(), ModelMode::exact) - kTruth;
   const Eigen::Vector3d comp = identified_deg(ex, e, paper_spec(), ModelMode::exact, &e) - kTruth;
   EXPECT_NEAR(raw[2], -1.45e-3, 0.02e-3);  // 3 digits quoted

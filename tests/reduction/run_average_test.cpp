@@ -133,12 +133,12 @@ TEST(SpectralRule, HandlesPlatformMismatchLikeABruteForceIntegral) {
   const ErrorLayout layout(1);
   const Site site = paper_site(true);
   Eigen::VectorXd e = random_errors(layout, 1e-5, 5);
-  e[dOmega] = 2e-4;
+  e[ch::dOmega] = 2e-4;
   const ccal::Run run = paper_run(20.0);
   const double rate = nominal_rate(run, geo, site), phi0 = initial_phase(run, geo, site);
   const auto motion = run_motion<double>(rate, 0.0, phi0, run.mode, 0.0, e);
   const auto spectral =
-      run_quadrature<double>(motion, run.duration, run.mode, e[dOmega], {fast_nodes_for(3, 2), 0});
+      run_quadrature<double>(motion, run.duration, run.mode, e[ch::dOmega], {fast_nodes_for(3, 2), 0});
   RunQuadrature<double> brute;
   const double period = 2 * kPi / motion.theta1_rate;
   using GL = boost::math::quadrature::gauss<double, 20>;
@@ -171,9 +171,9 @@ TEST(SpectralRule, DerivativesWithRespectToDriveErrorsMatchFiniteDifferences) {
   const ccal::Run run = paper_run(25.0);
   const InstrumentModel piga = paper_piga();
   VecX<AD> e(layout.size());
-  for (int i = 0; i < layout.size(); ++i) e[i] = make_dual(e0[i], i == domega ? 0 : i == dOmega ? 1 : -1);
+  for (int i = 0; i < layout.size(); ++i) e[i] = make_dual(e0[i], i == ch::domega ? 0 : i == ch::dOmega ? 1 : -1);
   const auto avg = average_run<AD>(geo, layout, e, site, run, &piga, {});
-  for (int which : {int(domega), int(dOmega)}) {
+  for (int which : {int(ch::domega), int(ch::dOmega)}) {
     const double h = 1e-9;
     Eigen::VectorXd ep = e0, em = e0;
     ep[which] += h;
@@ -181,7 +181,7 @@ TEST(SpectralRule, DerivativesWithRespectToDriveErrorsMatchFiniteDifferences) {
     const double fp = average_run<double>(geo, layout, ep, site, run, &piga, {}).output;
     const double fm = average_run<double>(geo, layout, em, site, run, &piga, {}).output;
     const double fd = (fp - fm) / (2 * h);
-    const double ad = avg.output.derivatives()[which == domega ? 0 : 1];
+    const double ad = avg.output.derivatives()[which == ch::domega ? 0 : 1];
     EXPECT_NEAR(ad, fd, 1e-5 * std::abs(fd)) << channels()[which].id;
     EXPECT_GT(std::abs(ad), 1.0);  // a real sensitivity, not a vacuous zero
   }

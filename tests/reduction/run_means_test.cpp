@@ -76,11 +76,11 @@ TEST_P(GeneralCentrifuge, EqualsTheGeneralReduction) {
   ex.instrument.coefficients << 1e-3, 8.8, 3e-4, 5e-5, 2e-5, 2e-4, 1e-5, 3e-5, 2e-3;
   ex.instrument.rate_gain = 0.9;
   Eigen::VectorXd e = random_errors(ex.layout, 1e-5, 7);
-  e[dOmega] = 2e-7;
-  e[dthx1t] = 1.5e-3;
+  e[ch::dOmega] = 2e-7;
+  e[ch::dthx1t] = 1.5e-3;
   if (large_wobbles) {
-    e[ex.layout.harmonic_index(dthy3, 0, false)] = 2e-3;  // above the series threshold
-    e[ex.layout.harmonic_index(dthx1, 0, false)] = -1.2e-3;
+    e[ex.layout.harmonic_index(ch::dthy3, 0, false)] = 2e-3;  // above the series threshold
+    e[ex.layout.harmonic_index(ch::dthx1, 0, false)] = -1.2e-3;
   }
   expect_same_means(ex, e, ReductionOptions{}, 1e-14, "order " + std::to_string(order));
 }
@@ -93,7 +93,7 @@ TEST(RunMeanKernel, FollowsTheSlowNodesALargeMismatchNeeds) {
   const Config cfg = bundled_example();
   const Experiment ex = cfg.experiment();
   Eigen::VectorXd e = cfg.centrifuge.errors;
-  e[dOmega] = 2e-5;
+  e[ch::dOmega] = 2e-5;
   ReductionOptions trial = calibration_model(cfg).reduction;
   expect_same_means(ex, e, trial, 1e-14, "trial tolerance");
   expect_same_means(ex, e, ReductionOptions{}, 1e-14, "default tolerance");

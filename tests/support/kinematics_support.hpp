@@ -37,7 +37,7 @@ inline Eigen::VectorXd random_errors(const ErrorLayout& layout, double scale, un
                      : u == SourceUnit::m_per_rad_per_s_squared ? 1e-2 * scale
                                                                 : scale);
   }
-  e[dOmega] = 0.0;
+  e[ch::dOmega] = 0.0;
   return e;
 }
 

@@ -48,7 +48,7 @@ void expect_rows(const Experiment& ex, const std::vector<Row>& rows, ModelMode m
 const int c0_dthy2 = 0, c0_dthy3 = 1, c0_dthx3 = 2, c0_dx2 = 3, c0_dx3 = 4, c0_dy2 = 5, c0_dy3 = 6,
           c0_dthz2 = 7;
 int c0(const Experiment& ex, int which) {
-  const int ch[] = {dthy2, dthy3, dthx3, dx2, dx3, dy2, dy3, dthz2};
+  const int ch[] = {ch::dthy2, ch::dthy3, ch::dthx3, ch::dx2, ch::dx3, ch::dy2, ch::dy3, ch::dthz2};
   return ex.layout.harmonic_index(ch[which], 0, false);
 }
 
@@ -57,13 +57,13 @@ TEST(PaperBudget, Table4ThroughTheSpecificForce) {
   // quotes 5 digits: relative tolerance 2e-4 (one unit in the 5th digit plus round-off).
   const Experiment ex = paper_experiment(true);
   const std::vector<Row> rows = {
-      {{dthz5, c0(ex, c0_dthz2)}, 1e-5, -1.9151e-5, +2.1402e-8, +9.1287e-6},
-      {{dthy2t, c0(ex, c0_dthy2), dthy3t, c0(ex, c0_dthy3)}, 1e-5, +1.2357e-6, -3.0824e-9, +2.3307e-7},
-      {{dthx3t, c0(ex, c0_dthx3)}, 1e-5, -1.8261e-6, +4.4847e-9, +4.4955e-7},
-      {{dthy4, dthy5}, 1e-5, -5.0521e-3, 0, 0},
-      {{dR_s, c0(ex, c0_dx2), c0(ex, c0_dx3)}, 2.5e-5, +9.1840e-6, -1.1065e-8, +9.1870e-6},
-      {{dy2t, dy3t, c0(ex, c0_dy2), c0(ex, c0_dy3)}, 2.5e-5, +1.9151e-5, -2.1402e-8, -9.1287e-6},
-      {{dx5}, 2.5e-5, -2.8513e-2, -3.2486e-4, -6.6988e-3},
+      {{ch::dthz5, c0(ex, c0_dthz2)}, 1e-5, -1.9151e-5, +2.1402e-8, +9.1287e-6},
+      {{ch::dthy2t, c0(ex, c0_dthy2), ch::dthy3t, c0(ex, c0_dthy3)}, 1e-5, +1.2357e-6, -3.0824e-9, +2.3307e-7},
+      {{ch::dthx3t, c0(ex, c0_dthx3)}, 1e-5, -1.8261e-6, +4.4847e-9, +4.4955e-7},
+      {{ch::dthy4, ch::dthy5}, 1e-5, -5.0521e-3, 0, 0},
+      {{ch::dR_s, c0(ex, c0_dx2), c0(ex, c0_dx3)}, 2.5e-5, +9.1840e-6, -1.1065e-8, +9.1870e-6},
+      {{ch::dy2t, ch::dy3t, c0(ex, c0_dy2), c0(ex, c0_dy3)}, 2.5e-5, +1.9151e-5, -2.1402e-8, -9.1287e-6},
+      {{ch::dx5}, 2.5e-5, -2.8513e-2, -3.2486e-4, -6.6988e-3},
   };
   expect_rows(ex, rows, ModelMode::paper, 1, 2e-4);
 }
@@ -72,7 +72,7 @@ TEST(PaperBudget, Equation19MainAxisRateError) {
   // model.md §5.2, the recommended paper reference: Δω = 0.5e-6 rad/s in the amplitude of every power term:
   // ΔK = (+2.711e-7, +3.454e-9, +1.236e-7), 4 digits: relative 5e-4.
   const Experiment ex = paper_experiment(true);
-  expect_rows(ex, {{{domega}, 0.5e-6, +2.711e-7, +3.454e-9, +1.236e-7}}, ModelMode::paper, 0, 5e-4);
+  expect_rows(ex, {{{ch::domega}, 0.5e-6, +2.711e-7, +3.454e-9, +1.236e-7}}, ModelMode::paper, 0, 5e-4);
 }
 
 TEST(PaperBudget, Table5ThroughTheAngularRate) {
@@ -80,9 +80,9 @@ TEST(PaperBudget, Table5ThroughTheAngularRate) {
   // paper's additive −ΔΩ (ΔΩ = 0.5e-6 rad/s → ΔK0 = −2.8648e-5 °/s).
   const Experiment ex = paper_experiment(true);
   const std::vector<Row> rows = {
-      {{dthx3t, c0(ex, c0_dthx3)}, 1e-5, -1.3125e-6, +2.5057e-9, +4.3180e-7},
-      {{dthy2t, c0(ex, c0_dthy2), dthy3t, c0(ex, c0_dthy3)}, 1e-5, +7.5144e-7, -1.4296e-9, +3.6491e-7},
-      {{dOmega}, 0.5e-6, -2.8648e-5, 0, 0},
+      {{ch::dthx3t, c0(ex, c0_dthx3)}, 1e-5, -1.3125e-6, +2.5057e-9, +4.3180e-7},
+      {{ch::dthy2t, c0(ex, c0_dthy2), ch::dthy3t, c0(ex, c0_dthy3)}, 1e-5, +7.5144e-7, -1.4296e-9, +3.6491e-7},
+      {{ch::dOmega}, 0.5e-6, -2.8648e-5, 0, 0},
   };
   expect_rows(ex, rows, ModelMode::paper, 2, 2e-4);
 }
@@ -93,7 +93,7 @@ TEST(PaperBudget, OtherValueOfG) {
   Experiment ex = paper_experiment(true);
   ex.site.g = 9.80665;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-  const SensitivityTable t = sensitivities(ex, paper_spec(), {dthz5, dR_s}, zero, zero, ModelMode::paper);
+  const SensitivityTable t = sensitivities(ex, paper_spec(), {ch::dthz5, ch::dR_s}, zero, zero, ModelMode::paper);
   EXPECT_NEAR(effect(t, 0, 1e-5, 1)[2], -6.32e-6, 2e-3 * 6.32e-6);
   EXPECT_NEAR(effect(t, 1, 2.5e-5, 1)[2], +9.90e-6, 2e-3 * 9.90e-6);
 }
@@ -108,8 +108,8 @@ TEST(ExactBudget, EffectsThePaperOmits) {
   // Δθy1t's K0 moves by 4 % from the K1-only value; the other entries by less than 1 %.
   const Experiment ex = paper_experiment(true);
   const std::vector<Row> rows = {
-      {{dthx1t}, 1e-5, -2.98266e-3, +5.67175e-6, -1.45826e-3},
-      {{dthy1t}, 1e-5, -1.62433e-4, +1.00092e-5, +1.72409e-3},
+      {{ch::dthx1t}, 1e-5, -2.98266e-3, +5.67175e-6, -1.45826e-3},
+      {{ch::dthy1t}, 1e-5, -1.62433e-4, +1.00092e-5, +1.72409e-3},
   };
   expect_rows(ex, rows, ModelMode::exact, 0, 1e-3);
 }
@@ -119,7 +119,7 @@ TEST(ExactBudget, ArmStretchWithCrossTerms) {
   // digits: relative 2e-2).
   const Experiment ex = paper_experiment(true);
   const double w30 = rate_for(30.0, 2.5, 9.8);
-  expect_rows(ex, {{{arm_stretch}, 1e-5 / (w30 * w30), -2.12e-6, +1.41e-7, +7.0e-8}}, ModelMode::exact, 0,
+  expect_rows(ex, {{{ch::arm_stretch}, 1e-5 / (w30 * w30), -2.12e-6, +1.41e-7, +7.0e-8}}, ModelMode::exact, 0,
               2e-2);
 }
 
@@ -130,7 +130,7 @@ TEST(ExactBudget, PlatformRunoutBiasesK2AndK3WithoutDc) {
   // directions.
   const Experiment ex = paper_experiment(true);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-  const int p = ex.layout.harmonic_index(dx3, 1, false);
+  const int p = ex.layout.harmonic_index(ch::dx3, 1, false);
   const SensitivityTable t = sensitivities(ex, paper_spec(), {p}, zero, zero, ModelMode::exact);
   const Eigen::Vector3d d = effect(t, 0, 1e-5, 0);
   EXPECT_NEAR(std::abs(d[1]), 9.7e-7, 5e-2 * 9.7e-7);
@@ -146,14 +146,14 @@ TEST(ExactBudget, AutomaticDerivativesMatchCentralDifferencesOfThePipeline) {
   // difference quotient is off by up to ≈ 3·1.5e-12/h. Tolerance: 1e-6 relative plus 5e-12/h (per unit).
   const Experiment ex = paper_experiment(true);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-  const std::vector<int> params = {dthz5,
-                                   dthx1t,
-                                   dR_s,
-                                   ex.layout.harmonic_index(dthy3, 1, true),
-                                   ex.layout.harmonic_index(dy1, 1, false),
-                                   domega,
-                                   dOmega,
-                                   arm_stretch};
+  const std::vector<int> params = {ch::dthz5,
+                                   ch::dthx1t,
+                                   ch::dR_s,
+                                   ex.layout.harmonic_index(ch::dthy3, 1, true),
+                                   ex.layout.harmonic_index(ch::dy1, 1, false),
+                                   ch::domega,
+                                   ch::dOmega,
+                                   ch::arm_stretch};
   const SensitivityTable t = sensitivities(ex, paper_spec(), params, zero, zero, ModelMode::exact);
   for (std::size_t c = 0; c < params.size(); ++c) {
     const SourceUnit u = ex.layout.parameter_unit(params[c]);
@@ -179,10 +179,10 @@ TEST(ExactBudget, LinearEffectAgreesWithNonlinearReidentification) {
   // applied to 4 digits where second-order effects are negligible (relative O(A·ε) ≈ 3e-4: tolerance 5e-4).
   const Experiment ex = paper_experiment(true);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-  const SensitivityTable t = sensitivities(ex, paper_spec(), {dthz5, dR_s}, zero, zero, ModelMode::exact);
+  const SensitivityTable t = sensitivities(ex, paper_spec(), {ch::dthz5, ch::dR_s}, zero, zero, ModelMode::exact);
   const Eigen::Vector3d base = identified_deg(ex, zero, paper_spec(), ModelMode::exact);
   for (int c = 0; c < 2; ++c) {
-    const int p = c == 0 ? int(dthz5) : int(dR_s);
+    const int p = c == 0 ? int(ch::dthz5) : int(ch::dR_s);
     const double size = c == 0 ? 1e-5 : 2.5e-5;
     Eigen::VectorXd e = zero;
     e[p] = size;
@@ -312,17 +312,17 @@ TEST(PaperBudget, LeverArmsAddTheRadiusAndIntersectionRows) {
   ex.geometry.L = 0.20;
   ex.geometry.l = 0.05;
   const std::vector<Row> rows = {
-      {{dthy3t},
+      {{ch::dthy3t},
        1e-5,
        1.2357e-6 + 0.1 * 9.1840e-6,
        -3.0824e-9 + 0.1 * -1.1065e-8,
        2.3307e-7 + 0.1 * 9.1870e-6},
-      {{dthx3t},
+      {{ch::dthx3t},
        1e-5,
        -1.8261e-6 - 0.1 * 1.9151e-5,
        4.4847e-9 - 0.1 * -2.1402e-8,
        4.4955e-7 - 0.1 * -9.1287e-6},
-      {{dthy4}, 1e-5, -5.0521e-3 + 0.02 * -2.8513e-2, 0.02 * -3.2486e-4, 0.02 * -6.6988e-3},
+      {{ch::dthy4}, 1e-5, -5.0521e-3 + 0.02 * -2.8513e-2, 0.02 * -3.2486e-4, 0.02 * -6.6988e-3},
   };
   expect_rows(ex, rows, ModelMode::paper, 1, 3e-4);
 }

@@ -433,9 +433,9 @@ TEST(MonteCarlo, CalibrationPipelineMatchesTheLpuOfItsSensitivities) {
   std::vector<Tolerance> s = {source("dthz5", 1e-5, Distribution::normal),
                               source("dR_s", 25e-6, Distribution::uniform),
                               source("dthx1t", 1e-5, Distribution::normal)};
-  s[0].parameter = dthz5;
-  s[1].parameter = dR_s;
-  s[2].parameter = dthx1t;
+  s[0].parameter = ch::dthz5;
+  s[1].parameter = ch::dR_s;
+  s[2].parameter = ch::dthx1t;
   const CalibrationModel model =
       calibration_model(ex, paper_spec(), s, Eigen::VectorXd::Zero(ex.layout.size()), ModelMode::exact);
   EXPECT_EQ(model.output_names(), (std::vector<std::string>{"K0", "K2", "K3"}));

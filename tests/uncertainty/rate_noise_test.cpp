@@ -55,16 +55,16 @@ TEST(RateNoise, RunMeanScatterClosedForms) {
   auto gain = [&](PlatformMode mode, PlatformControl control, int drive) {
     return rate_noise_gain(one_run(mode, control, A, T, phi0), zero, drive)[0];
   };
-  EXPECT_NEAR(gain(PlatformMode::fixed, PlatformControl::speed, ripple1),
+  EXPECT_NEAR(gain(PlatformMode::fixed, PlatformControl::speed, ch::ripple1),
               2 * A * std::abs(std::cos(phi0)) / std::sqrt(T), 1e-9 * A);
-  EXPECT_EQ(gain(PlatformMode::fixed, PlatformControl::speed, ripple3), 0.0);
-  EXPECT_NEAR(gain(PlatformMode::counter_rotating, PlatformControl::speed, ripple1), A / std::sqrt(2 * T),
+  EXPECT_EQ(gain(PlatformMode::fixed, PlatformControl::speed, ch::ripple3), 0.0);
+  EXPECT_NEAR(gain(PlatformMode::counter_rotating, PlatformControl::speed, ch::ripple1), A / std::sqrt(2 * T),
               1e-9 * A);
   const double gamma_T = phi0 - w * T;
-  EXPECT_NEAR(gain(PlatformMode::counter_rotating, PlatformControl::phase_locked, ripple1),
+  EXPECT_NEAR(gain(PlatformMode::counter_rotating, PlatformControl::phase_locked, ch::ripple1),
               A * std::abs(std::cos(gamma_T)) / std::sqrt(T), 1e-9 * A);
   for (PlatformControl control : {PlatformControl::speed, PlatformControl::phase_locked})
-    EXPECT_NEAR(gain(PlatformMode::counter_rotating, control, ripple3),
+    EXPECT_NEAR(gain(PlatformMode::counter_rotating, control, ch::ripple3),
                 A * std::sqrt(0.5 + std::pow(std::cos(gamma_T), 2)) / std::sqrt(T), 1e-9 * A);
 }
 

@@ -68,8 +68,11 @@ inline constexpr int kStaticChannelCount = 18;
 inline constexpr int kDynamicChannelCount = 17;
 inline constexpr int kChannelCount = kStaticChannelCount + kDynamicChannelCount;
 
-// Index of each channel in `channels()`; static channels first.
-enum ChannelIndex : int {
+// Index of each channel in `channels()`; static channels first. In a namespace of their own (ch::dOmega), so
+// that 35 short names, two of which differ only in case (domega, dOmega), stay out of namespace ccal; an
+// unscoped enumeration within it, so that an index is an int for the arrays it indexes.
+namespace ch {
+enum Index : int {
   dthx1t,
   dthy1t,
   dR_s,
@@ -106,6 +109,8 @@ enum ChannelIndex : int {
   ripple1,  // main-axis rate ripple
   ripple3,  // platform rate ripple
 };
+}  // namespace ch
+using ChannelIndex = ch::Index;
 
 const std::array<Channel, kChannelCount>& channels() noexcept;
 SourceUnit channel_unit(const Channel& channel) noexcept;

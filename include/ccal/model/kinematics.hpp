@@ -111,43 +111,43 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
     m.rotate(axis, c.value, c.rate, c.acc);
   };
   // 0 → 1t: levelling of the main-axis sleeve.
-  m.rotate(Y, E(dthy1t));
-  m.rotate(X, E(dthx1t));
+  m.rotate(Y, E(ch::dthy1t));
+  m.rotate(X, E(ch::dthx1t));
   // 1t → 1: runouts, wobbles, then the main axis itself.
-  translate_dynamic(dx1, j.theta1, j.theta1_rate, j.theta1_acc);
-  rotate_dynamic(dthy1, Y, j.theta1, j.theta1_rate, j.theta1_acc);
-  rotate_dynamic(dthx1, X, j.theta1, j.theta1_rate, j.theta1_acc);
+  translate_dynamic(ch::dx1, j.theta1, j.theta1_rate, j.theta1_acc);
+  rotate_dynamic(ch::dthy1, Y, j.theta1, j.theta1_rate, j.theta1_acc);
+  rotate_dynamic(ch::dthx1, X, j.theta1, j.theta1_rate, j.theta1_acc);
   m.rotate(Z, j.theta1, j.theta1_rate, j.theta1_acc);
   // 1 → 2t: arm of radius R0 + ΔR_s + c·θ̇1² (at the mean rate), intersection, perpendicularity.
   const S mean_rate = j.theta1_rate - j.theta1_ripple_rate;
-  m.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * mean_rate * mean_rate, E(dy2t), S(0)));
-  m.rotate(Y, E(dthy2t));
+  m.translate(Vec3<S>(S(geo.R0) + E(ch::dR_s) + E(ch::arm_stretch) * mean_rate * mean_rate, E(ch::dy2t), S(0)));
+  m.rotate(Y, E(ch::dthy2t));
   // 2t → 2: horizontal-axis float, runouts, wobbles, then Rx(β).
-  translate_dynamic(dx2, j.beta, j.beta_rate, S(0));
-  rotate_dynamic(dthz2, Z, j.beta, j.beta_rate, S(0));
-  rotate_dynamic(dthy2, Y, j.beta, j.beta_rate, S(0));
+  translate_dynamic(ch::dx2, j.beta, j.beta_rate, S(0));
+  rotate_dynamic(ch::dthz2, Z, j.beta, j.beta_rate, S(0));
+  rotate_dynamic(ch::dthy2, Y, j.beta, j.beta_rate, S(0));
   m.rotate(X, j.beta, j.beta_rate, S(0));
   // 2 → 3t: azimuth sleeve.
-  m.translate(Vec3<S>(S(0), E(dy3t), S(0)));
-  m.rotate(Y, E(dthy3t));
-  m.rotate(X, E(dthx3t));
+  m.translate(Vec3<S>(S(0), E(ch::dy3t), S(0)));
+  m.rotate(Y, E(ch::dthy3t));
+  m.rotate(X, E(ch::dthx3t));
   // 3t → 3: platform runouts, float, wobbles, then Rz(γ). Frozen-γ drops γ̇ from the position derivatives.
   const S gamma_rate_in_position = options.frozen_platform ? S(0) : j.gamma_rate;
   const S gamma_acc_in_position = options.frozen_platform ? S(0) : j.gamma_acc;
-  translate_dynamic(dx3, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
-  rotate_dynamic(dthy3, Y, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
-  rotate_dynamic(dthx3, X, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  translate_dynamic(ch::dx3, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  rotate_dynamic(ch::dthy3, Y, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
+  rotate_dynamic(ch::dthx3, X, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
   const Vec3<S> azimuth_axis = m.R.col(Z);
   m.rotate(Z, j.gamma, gamma_rate_in_position, gamma_acc_in_position);
   // 3 → 4: working base plane.
   m.translate(Vec3<S>(S(0), S(0), S(geo.L)));
-  m.rotate(Y, E(dthy4));
-  m.rotate(X, E(dthx4));
+  m.rotate(Y, E(ch::dthy4));
+  m.rotate(X, E(ch::dthx4));
   // 4 → 5: the instrument.
-  m.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
-  m.rotate(Z, E(dthz5));
-  m.rotate(Y, E(dthy5));
-  m.rotate(X, E(dthx5));
+  m.translate(Vec3<S>(E(ch::dx5), E(ch::dy5), S(geo.l)));
+  m.rotate(Z, E(ch::dthz5));
+  m.rotate(Y, E(ch::dthy5));
+  m.rotate(X, E(ch::dthx5));
 
   if (options.frozen_platform) m.w += azimuth_axis * j.gamma_rate;
 
@@ -189,36 +189,36 @@ ChainBlocks<S> chain_blocks(const Geometry& geo, const ErrorLayout& layout, cons
   auto E = [&](int i) { return S(e[i]); };
   ChainBlocks<S> out;
   FrameMotion<S> a;
-  a.rotate(Y, E(dthy1t));
-  a.rotate(X, E(dthx1t));
+  a.rotate(Y, E(ch::dthy1t));
+  a.rotate(X, E(ch::dthx1t));
   out.gravity_1t = a.R.transpose().col(Z);
   out.coriolis_1t = a.R.transpose() * site.coriolis_rate_enu().template cast<S>();
   out.earth_1t = a.R.transpose() * site.sensed_rate_enu().template cast<S>();
 
   const S zero{0};
   FrameMotion<S> b;
-  b.translate(Vec3<S>(S(geo.R0) + E(dR_s) + E(arm_stretch) * theta1_rate * theta1_rate, E(dy2t), zero));
-  b.rotate(Y, E(dthy2t));
-  b.translate(Vec3<S>(dynamic_channel<S>(layout, e, dx2, beta, zero).value,
-                      dynamic_channel<S>(layout, e, dy2, beta, zero).value,
-                      dynamic_channel<S>(layout, e, dz2, beta, zero).value));
-  b.rotate(Z, dynamic_channel<S>(layout, e, dthz2, beta, zero).value);
-  b.rotate(Y, dynamic_channel<S>(layout, e, dthy2, beta, zero).value);
+  b.translate(Vec3<S>(S(geo.R0) + E(ch::dR_s) + E(ch::arm_stretch) * theta1_rate * theta1_rate, E(ch::dy2t), zero));
+  b.rotate(Y, E(ch::dthy2t));
+  b.translate(Vec3<S>(dynamic_channel<S>(layout, e, ch::dx2, beta, zero).value,
+                      dynamic_channel<S>(layout, e, ch::dy2, beta, zero).value,
+                      dynamic_channel<S>(layout, e, ch::dz2, beta, zero).value));
+  b.rotate(Z, dynamic_channel<S>(layout, e, ch::dthz2, beta, zero).value);
+  b.rotate(Y, dynamic_channel<S>(layout, e, ch::dthy2, beta, zero).value);
   b.rotate(X, beta);
-  b.translate(Vec3<S>(zero, E(dy3t), zero));
-  b.rotate(Y, E(dthy3t));
-  b.rotate(X, E(dthx3t));
+  b.translate(Vec3<S>(zero, E(ch::dy3t), zero));
+  b.rotate(Y, E(ch::dthy3t));
+  b.rotate(X, E(ch::dthx3t));
   out.RB = b.R;
   out.pB = b.p;
 
   FrameMotion<S> c;
   c.translate(Vec3<S>(zero, zero, S(geo.L)));
-  c.rotate(Y, E(dthy4));
-  c.rotate(X, E(dthx4));
-  c.translate(Vec3<S>(E(dx5), E(dy5), S(geo.l)));
-  c.rotate(Z, E(dthz5));
-  c.rotate(Y, E(dthy5));
-  c.rotate(X, E(dthx5));
+  c.rotate(Y, E(ch::dthy4));
+  c.rotate(X, E(ch::dthx4));
+  c.translate(Vec3<S>(E(ch::dx5), E(ch::dy5), S(geo.l)));
+  c.rotate(Z, E(ch::dthz5));
+  c.rotate(Y, E(ch::dthy5));
+  c.rotate(X, E(ch::dthx5));
   out.RC = c.R;
   out.pC = c.p;
   return out;
@@ -354,8 +354,8 @@ class DynamicChain {
 
  private:
   // Main-axis channels dx1, dy1, dz1, dthx1, dthy1, then the azimuth-axis ones.
-  static constexpr int kChannelsOrder[10] = {ccal::dx1, ccal::dy1, ccal::dz1, ccal::dthx1, ccal::dthy1,
-                                             ccal::dx3, ccal::dy3, ccal::dz3, ccal::dthx3, ccal::dthy3};
+  static constexpr int kChannelsOrder[10] = {ccal::ch::dx1, ccal::ch::dy1, ccal::ch::dz1, ccal::ch::dthx1, ccal::ch::dthy1,
+                                             ccal::ch::dx3, ccal::ch::dy3, ccal::ch::dz3, ccal::ch::dthx3, ccal::ch::dthy3};
 
   // Values and time derivatives of five channels of one joint (cos q = c, sin q = s, turning at q̇ with q̈)
   // from one evaluation of its harmonics.
@@ -475,10 +475,10 @@ RunMotion<S> run_motion(double nominal_rate, double theta1_0, double phi0, Platf
                         const Errors& e) {
   RunMotion<S> r;
   r.theta1_0 = S(theta1_0);
-  r.theta1_rate = S(nominal_rate) + S(e[domega]);
+  r.theta1_rate = S(nominal_rate) + S(e[ch::domega]);
   r.beta = S(beta);
   r.gamma_0 = S(phi0);
-  r.gamma_rate = mode == PlatformMode::counter_rotating ? S(-(r.theta1_rate + S(e[dOmega]))) : S(0);
+  r.gamma_rate = mode == PlatformMode::counter_rotating ? S(-(r.theta1_rate + S(e[ch::dOmega]))) : S(0);
   return r;
 }
 
@@ -501,9 +501,9 @@ RunMotion<S> run_motion(double nominal_rate, double theta1_0, double phi0, Platf
     return any ? c : std::vector<S>{};
   };
   const bool counter = mode == PlatformMode::counter_rotating;
-  r.main_ripple = coefficients(ripple1);
+  r.main_ripple = coefficients(ch::ripple1);
   if (counter) {
-    r.platform_ripple = coefficients(ripple3);
+    r.platform_ripple = coefficients(ch::ripple3);
     r.platform_follows_main = geo.platform_control == PlatformControl::phase_locked;
   }
   return r;

@@ -52,8 +52,8 @@ RunAverage<S> average_run(const Geometry& geo, const ErrorLayout& layout, const 
   const RunMotion<S> motion = run_motion<S>(rate, run.arm_azimuth, phi0, run.mode, geo, layout, e);
 
   bool dynamic = false;
-  for (int ch : {int(dx1), int(dy1), int(dz1), int(dthx1), int(dthy1), int(dx3), int(dy3), int(dz3),
-                 int(dthx3), int(dthy3)})
+  for (int ch : {int(ch::dx1), int(ch::dy1), int(ch::dz1), int(ch::dthx1), int(ch::dthy1), int(ch::dx3), int(ch::dy3), int(ch::dz3),
+                 int(ch::dthx3), int(ch::dthy3)})
     for (int k = 0; k <= layout.harmonic_order() && !dynamic; ++k)
       for (bool sine : {false, true}) {
         if (k == 0 && sine) continue;
@@ -73,7 +73,7 @@ RunAverage<S> average_run(const Geometry& geo, const ErrorLayout& layout, const 
     const bool harmonic = dynamic || motion.has_ripple();
     qo.fast_nodes = kink ? 512 : fast_nodes_for(degree, harmonic ? layout.harmonic_order() + 1 : 1);
   }
-  const RunQuadrature<S> quad = run_quadrature<S>(motion, run.duration, run.mode, S(e[dOmega]), qo);
+  const RunQuadrature<S> quad = run_quadrature<S>(motion, run.duration, run.mode, S(e[ch::dOmega]), qo);
 
   const Eigen::Matrix3d mount = mounting_matrix(run.mounting);
   const bool identity_mount = run.mounting == Mounting::ia_horizontal;
