@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <boost/math/quadrature/gauss.hpp>
 #include <stdexcept>
+#include <string>
 
 namespace ccal {
 
@@ -43,15 +44,16 @@ std::vector<double> slow_time_nodes(int Q) {
   return x;
 }
 
-Eigen::MatrixXd lagrange_monomials(const std::vector<double>& nodes) {
-  // The rule only ever asks for Chebyshev–Lobatto nodes of a given count: remember each solution.
-  const int Q = static_cast<int>(nodes.size());
-  thread_local std::vector<std::pair<std::vector<double>, Eigen::MatrixXd>> cache;
-  for (const auto& [x, a] : cache)
-    if (x == nodes) return a;
-  Eigen::MatrixXd a = solve_lagrange(nodes, Q);
-  cache.emplace_back(nodes, a);
-  return a;
+const Eigen::MatrixXd& slow_lagrange_monomials(int Q) {
+  if (Q < 1 || Q > kMaxSlowNodes)
+    throw std::invalid_argument("slow_lagrange_monomials: Q must be 1 … " + std::to_string(kMaxSlowNodes));
+  // The rule only ever asks for Chebyshev–Lobatto nodes of a given count: each basis solved once.
+  static const std::vector<Eigen::MatrixXd> table = [] {
+    std::vector<Eigen::MatrixXd> t(std::size_t(kMaxSlowNodes) + 1);
+    for (int q = 1; q <= kMaxSlowNodes; ++q) t[std::size_t(q)] = solve_lagrange(slow_time_nodes(q), q);
+    return t;
+  }();
+  return table[std::size_t(Q)];
 }
 
 Eigen::MatrixXd solve_lagrange(const std::vector<double>& nodes, int Q) {

@@ -212,7 +212,7 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
   data->lagrange.resize(detail::kMaxSlowNodes + 1);
   for (int Q = 1; Q <= detail::kMaxSlowNodes; ++Q) {
     data->slow_nodes[std::size_t(Q)] = detail::slow_time_nodes(Q);
-    data->lagrange[std::size_t(Q)] = detail::lagrange_monomials(data->slow_nodes[std::size_t(Q)]);
+    data->lagrange[std::size_t(Q)] = detail::slow_lagrange_monomials(Q);
   }
   data_ = std::move(data);
 }

@@ -73,7 +73,7 @@ RunQuadrature<S> run_quadrature(const RunMotion<S>& motion, double duration, Pla
   if (Q > detail::kMaxSlowNodes)
     throw std::invalid_argument("run_quadrature: at most 16 slow-time nodes (monomial Lagrange basis)");
   const std::vector<double> x_nodes = detail::slow_time_nodes(Q);
-  const Eigen::MatrixXd a = detail::lagrange_monomials(x_nodes);
+  const Eigen::MatrixXd& a = detail::slow_lagrange_monomials(Q);
 
   // With t = T(1 + x)/2:  (1/T)∫₀ᵀ L_q e^{imΩt} dt = e^{iκ/2} Σ_p a_qp J_p(κ/2),  κ = mΩT.
   const int half = M / 2;

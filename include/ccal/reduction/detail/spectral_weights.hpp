@@ -55,8 +55,10 @@ void oscillatory_moments(const S& kappa, const S& cos_kappa, const S& sin_kappa,
     im[p] = -xr / kappa;
   }
 }
-// Monomial coefficients a_qp of the Lagrange basis on the Q nodes x_q ∈ [−1, 1]: L_q(x) = Σ_p a_qp x^p.
-Eigen::MatrixXd lagrange_monomials(const std::vector<double>& nodes);
+// Monomial coefficients a_qp of the Lagrange basis on the Q nodes slow_time_nodes(Q): L_q(x) = Σ_p a_qp x^p,
+// for Q = 1 … kMaxSlowNodes, solved once for the process (a table of kMaxSlowNodes entries, built on first
+// use, read-only after: safe from any thread).
+const Eigen::MatrixXd& slow_lagrange_monomials(int Q);
 // Chebyshev–Lobatto points on [−1, 1] (well-conditioned interpolation), or {0} for Q = 1.
 std::vector<double> slow_time_nodes(int Q);
 // The M equispaced fast phases θ_j = 2πj/M, with cos and sin of mθ_j = 2π (m j mod M)/M from one table.
