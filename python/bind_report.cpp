@@ -86,11 +86,7 @@ void bind_report(py::module_& m) {
       .def(
           "_html",
           [](const Report& r, std::optional<std::string> config_text, const std::string& command_line) {
-            const std::string_view scripts = report_scripts();
-            if (scripts.empty())
-              throw InputError(
-                  "report: this ccal was built without its charting library (web/node_modules was missing); "
-                  "run scripts/setup.sh (or `npm ci --prefix web`), then build again");
+            const std::string_view scripts = required_report_scripts();
             render::ReportProvenance p;
             if (config_text)
               p.config_text = *config_text;
@@ -115,20 +111,10 @@ void bind_report(py::module_& m) {
         Report r;
         r.options = report_options(keywords);
         verbs::ReportOptions& o = r.options;
-        if (allocate_targets) {  // as the command line's --allocate-target: the report's p, seed and threads
-          verbs::AllocateOptions a;
-          a.targets = target_texts(*allocate_targets);
-          a.coverage_probability = o.monte_carlo.coverage_probability;
-          a.seed = o.monte_carlo.seed;
-          a.threads = o.monte_carlo.threads;
-          o.allocate = a;
-        }
-        if (design || design_targets) {
-          verbs::DesignOptions d;
-          if (design_targets) d.targets = target_texts(*design_targets);
-          d.threads = o.monte_carlo.threads;
-          o.design = d;
-        }
+        if (allocate_targets) o.allocate = verbs::report_allocation(target_texts(*allocate_targets), o);
+        if (design || design_targets)
+          o.design = verbs::report_design(
+              design_targets ? target_texts(*design_targets) : std::vector<std::string>{}, o);
         if (observations) o.observations = read_csv_file(*observations);
         r.result = run_interruptible(py::none(), [&](ProgressCallback on_progress) {
           verbs::ReportOptions with_progress = o;

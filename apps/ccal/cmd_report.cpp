@@ -84,27 +84,14 @@ Command add_report(CLI::App& app) {
       "      with the calibration statement of the observations (`ccal identify obs.csv --budget "
       "my.toml`)\n");
   return {cmd, [o] {
-            if (report_scripts().empty())
-              throw InputError(
-                  "report: this ccal was built without its charting library (web/node_modules was missing); "
-                  "run scripts/setup.sh (or `npm ci --prefix web`), then build again");
+            const std::string_view scripts = required_report_scripts();  // before the long computation
             verbs::ReportOptions ro = o->options;
             ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
             if (!o->allocate_targets.empty()) {
-              verbs::AllocateOptions ao;
-              ao.targets = o->allocate_targets;
-              ao.coverage_probability = ro.monte_carlo.coverage_probability;
-              ao.seed = ro.monte_carlo.seed;
-              ao.threads = ro.monte_carlo.threads;
-              ao.progress = true;
-              ro.allocate = ao;  // its mode: the report's (verbs::report)
+              ro.allocate = verbs::report_allocation(o->allocate_targets, ro);
+              ro.allocate->progress = true;
             }
-            if (o->design || !o->design_targets.empty()) {
-              verbs::DesignOptions d;
-              d.targets = o->design_targets;
-              d.threads = ro.monte_carlo.threads;
-              ro.design = d;
-            }
+            if (o->design || !o->design_targets.empty()) ro.design = verbs::report_design(o->design_targets, ro);
             if (!o->observations.empty()) ro.observations = read_observations(o->observations);
             const Config config = load_config_or_example(o->config);
             const verbs::ReportResult r = verbs::report(config, ro);
@@ -113,7 +100,7 @@ Command add_report(CLI::App& app) {
             p.command_line = command_line_text();
             p.date_utc = render::report_date_utc();
             render::report_commands(r, ro, p);
-            write_output(o->output, render::html(r, p, report_scripts()));
+            write_output(o->output, render::html(r, p, scripts));
           }};
 }
 

@@ -1,5 +1,7 @@
 #include "report_scripts.hpp"
 
+#include "ccal/core/errors.hpp"
+
 #ifdef CCAL_REPORT_ASSETS_DIR
 // The files' bytes go into the program's read-only data as they are (the assembler's .incbin), between two
 // symbols; a newline separates them. CCAL_REPORT_ASSETS_SHA256 (their hash, set by CMake) makes a changed
@@ -38,3 +40,14 @@ namespace ccal {
 std::string_view report_scripts() noexcept { return {}; }
 }  // namespace ccal
 #endif
+
+namespace ccal {
+std::string_view required_report_scripts() {
+  const std::string_view scripts = report_scripts();
+  if (scripts.empty())
+    throw InputError(
+        "report: this ccal was built without its charting library (web/node_modules was missing); run "
+        "scripts/setup.sh (or `npm ci --prefix web`), then build again");
+  return scripts;
+}
+}  // namespace ccal

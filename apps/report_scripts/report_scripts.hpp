@@ -9,5 +9,7 @@ namespace ccal {
 // The three UMD builds, one after the other; empty when built without them (web/node_modules missing:
 // scripts/setup.sh fetches them).
 std::string_view report_scripts() noexcept;
+// The same, or InputError saying how to get them when they are missing.
+std::string_view required_report_scripts();
 
 }  // namespace ccal

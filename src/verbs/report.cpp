@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/model/instrument.hpp"
@@ -140,6 +141,22 @@ ReportResult report(const Config& config, const ReportOptions& o) {
   r.monte_carlo = monte_carlo(config, mo);
   r.sensed_input = sensed_input(config, o);
   return r;
+}
+
+AllocateOptions report_allocation(std::vector<std::string> targets, const ReportOptions& o) {
+  AllocateOptions a;
+  a.targets = std::move(targets);
+  a.coverage_probability = o.monte_carlo.coverage_probability;
+  a.seed = o.monte_carlo.seed;
+  a.threads = o.monte_carlo.threads;
+  return a;
+}
+
+DesignOptions report_design(std::vector<std::string> targets, const ReportOptions& o) {
+  DesignOptions d;
+  d.targets = std::move(targets);
+  d.threads = o.monte_carlo.threads;
+  return d;
 }
 
 }  // namespace ccal::verbs

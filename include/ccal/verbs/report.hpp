@@ -77,4 +77,10 @@ struct ReportResult {
 // --observations), also before the long computations.
 ReportResult report(const Config& config, const ReportOptions& options = {});
 
+// The allocation section as every front end asks for it: `ccal allocate` for these targets with the report's
+// coverage probability, seed and threads (its mode, left unset, is the report's).
+AllocateOptions report_allocation(std::vector<std::string> targets, const ReportOptions& options);
+// The design section: `ccal design` for these targets (none: the [design] table's) with the report's threads.
+DesignOptions report_design(std::vector<std::string> targets, const ReportOptions& options);
+
 }  // namespace ccal::verbs
