@@ -137,7 +137,7 @@ struct RunMeanKernel::Data : KernelTables {
 
 namespace {
 
-// Per-thread scratch space, grown when a larger rule is met and then reused.
+// Scratch space of one thread, grown when a larger rule is met and then reused (RunMeanKernel::Workspace).
 struct Scratch {
   std::vector<double> nu_re, nu_im, weights;
   MainAxisNodes main;
@@ -376,16 +376,31 @@ double run_mean(const KernelTables& d, const RunTables& t, const TrialTerms& tri
 
 }  // namespace
 
-void RunMeanKernel::means(std::span<const double> errors, std::span<double> out) const {
+struct RunMeanKernel::Workspace::Buffers : Scratch {};
+
+RunMeanKernel::Workspace::Workspace() : buffers_(std::make_unique<Buffers>()) {}
+RunMeanKernel::Workspace::~Workspace() = default;
+RunMeanKernel::Workspace::Workspace(const Workspace&) : Workspace() {}
+RunMeanKernel::Workspace& RunMeanKernel::Workspace::operator=(const Workspace&) { return *this; }
+RunMeanKernel::Workspace::Workspace(Workspace&&) noexcept = default;
+RunMeanKernel::Workspace& RunMeanKernel::Workspace::operator=(Workspace&&) noexcept = default;
+
+void RunMeanKernel::means(std::span<const double> errors, std::span<double> out, Workspace& workspace) const {
   const Data& d = *data_;
   if (errors.size() != std::size_t(d.layout.size()) || out.size() != d.runs.size())
     throw std::invalid_argument(
         fmt::format("RunMeanKernel::means: {} errors for a layout of {}, {} outputs for {} runs",
                     errors.size(), d.layout.size(), out.size(), d.runs.size()));
-  thread_local Scratch scratch;
+  if (!workspace.buffers_) workspace.buffers_ = std::make_unique<Workspace::Buffers>();  // moved from
+  Scratch& scratch = *workspace.buffers_;
   const Eigen::Map<const Eigen::VectorXd> e(errors.data(), Eigen::Index(errors.size()));
   const TrialTerms trial = trial_terms(d, e);
   for (std::size_t r = 0; r < d.runs.size(); ++r) out[r] = run_mean(d, d.runs[r], trial, e, scratch);
+}
+
+void RunMeanKernel::means(std::span<const double> errors, std::span<double> out) const {
+  Workspace workspace;
+  means(errors, out, workspace);
 }
 
 }  // namespace ccal

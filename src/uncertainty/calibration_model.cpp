@@ -10,6 +10,81 @@
 
 namespace ccal {
 
+struct CalibrationModel::State {
+  Experiment experiment;
+  IdentificationSpec spec;
+  Eigen::VectorXd actual_errors;
+  std::vector<int> parameters;
+  ModelMode mode = ModelMode::exact;
+  Eigen::VectorXd reference;
+  ReductionOptions reduction;
+  CalibrationTrialCache cache;
+};
+
+const CalibrationModel::State& CalibrationModel::state() const {
+  if (!state_)
+    throw std::invalid_argument("CalibrationModel: an empty model (it is built by calibration_model)");
+  return *state_;
+}
+const Experiment& CalibrationModel::experiment() const { return state().experiment; }
+const IdentificationSpec& CalibrationModel::spec() const { return state().spec; }
+const Eigen::VectorXd& CalibrationModel::actual_errors() const { return state().actual_errors; }
+const std::vector<int>& CalibrationModel::parameters() const { return state().parameters; }
+ModelMode CalibrationModel::mode() const { return state().mode; }
+const Eigen::VectorXd& CalibrationModel::reference() const { return state().reference; }
+const ReductionOptions& CalibrationModel::reduction() const { return state().reduction; }
+const CalibrationTrialCache& CalibrationModel::trial_cache() const { return state().cache; }
+
+namespace {
+
+// A trial's buffers: grown once, then reused by every trial of the copy that owns them.
+struct TrialScratch {
+  Eigen::VectorXd truth, y;
+  RunMeanKernel::Workspace run_means;
+};
+
+// K̂ − (the reference subtracted later): the free terms identified from the run means of the truth
+// actual_errors + draws.
+void identified_terms(const CalibrationModel& m, const Eigen::VectorXd& actual_errors,
+                      std::span<const double> draws, std::span<double> outputs, TrialScratch& scratch) {
+  const CalibrationTrialCache& cache = m.trial_cache();
+  const Experiment& ex = m.experiment();
+  const std::vector<int>& parameters = m.parameters();
+  Eigen::VectorXd& truth = scratch.truth;
+  Eigen::VectorXd& y = scratch.y;
+  truth = actual_errors;
+  bool noise = false;
+  for (std::size_t j = 0; j < draws.size(); ++j) {
+    if (parameters[j] < 0)
+      noise = true;
+    else
+      truth[parameters[j]] += draws[j];
+  }
+  y.resize(Eigen::Index(ex.plan.runs.size()));
+  if (cache.run_means) {
+    cache.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
+                           std::span<double>(y.data(), std::size_t(y.size())), scratch.run_means);
+  } else {
+    for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
+      y[Eigen::Index(j)] = m.mode() == ModelMode::exact
+                               ? average_run<double>(ex.geometry, ex.layout, truth, ex.site, ex.plan.runs[j],
+                                                     &ex.instrument, {}, m.reduction())
+                                     .output
+                               : detail::paper_average<double>(ex, cache.paper_nodes[j], truth,
+                                                               &ex.instrument, {}, m.spec().paper_cross_terms)
+                                     .output;
+  }
+  // The drives' rate noise scatters each run's mean (model.md §3.2).
+  if (noise)
+    for (std::size_t j = 0; j < draws.size(); ++j)
+      if (parameters[j] < 0) y[rate_noise_run(parameters[j])] += draws[j];
+  // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
+  y -= cache.known_part;
+  for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] = cache.design_pinv.row(Eigen::Index(o)).dot(y);
+}
+
+}  // namespace
+
 CalibrationModel calibration_model(const Experiment& experiment, const IdentificationSpec& spec,
                                    const std::vector<Tolerance>& sources,
                                    const Eigen::VectorXd& actual_errors, ModelMode mode) {
@@ -17,7 +92,8 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
   if (actual_errors.size() != size)
     throw InputError(fmt::format("calibration model: {} actual errors for a layout of {} parameters",
                                  actual_errors.size(), size));
-  CalibrationModel m;
+  auto state = std::make_shared<CalibrationModel::State>();
+  CalibrationModel::State& m = *state;
   m.experiment = experiment;
   m.spec = spec;
   m.actual_errors = actual_errors;
@@ -47,81 +123,47 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     // the error relative to the swing (tests/reduction/run_average_test.cpp: below 1e-12 of the swing for 3σ draws).
     m.reduction.quadrature.slow_tolerance = 5e-6;
   }
-  auto cache = std::make_shared<CalibrationTrialCache>();
+  CalibrationTrialCache& cache = m.cache;
   if (mode == ModelMode::exact && !m.reduction.chain.frozen_platform)
-    cache->run_means =
+    cache.run_means =
         std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
                                               experiment.plan.runs, experiment.instrument, m.reduction);
   if (mode == ModelMode::paper)
     for (const Run& run : experiment.plan.runs)
-      cache->paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
+      cache.paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
   const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
   const auto nfree = Eigen::Index(spec.free_terms.size());
   const Eigen::MatrixXd H = model.regressors.leftCols(nfree);
-  cache->design_pinv.resize(nfree, H.rows());
+  cache.design_pinv.resize(nfree, H.rows());
   for (Eigen::Index j = 0; j < H.rows(); ++j)
-    cache->design_pinv.col(j) = solve_least_squares<double>(H, Eigen::VectorXd::Unit(H.rows(), j));
-  cache->known_part = model.known_rate;
+    cache.design_pinv.col(j) = solve_least_squares<double>(H, Eigen::VectorXd::Unit(H.rows(), j));
+  cache.known_part = model.known_rate;
   Eigen::Index column = nfree;
   for (const auto& [id, value] : spec.fixed_terms) {
     (void)id;
-    cache->known_part += model.regressors.col(column++) * value;
+    cache.known_part += model.regressors.col(column++) * value;
   }
-  m.cache = std::move(cache);
   // The reference goes through the very arithmetic of a trial, so that zero draws on zero errors give
   // exactly zero deviations.
+  CalibrationModel result;
+  result.state_ = state;
   m.reference = Eigen::VectorXd::Zero(nfree);
-  std::vector<double> no_draws(m.parameters.size(), 0.0), out(std::size_t(nfree), 0.0);
-  Eigen::VectorXd saved = m.actual_errors;
-  m.actual_errors = zero;
-  calibration_trial(m)(no_draws, out);
-  m.actual_errors = saved;
-  for (Eigen::Index k = 0; k < nfree; ++k) m.reference[k] = out[std::size_t(k)];
-  return m;
+  const std::vector<double> no_draws(m.parameters.size(), 0.0);
+  TrialScratch scratch;
+  identified_terms(result, zero, no_draws, std::span<double>(m.reference.data(), std::size_t(nfree)), scratch);
+  return result;
 }
 
 TrialFunction calibration_trial(const CalibrationModel& model) {
-  if (!model.cache)
+  if (model.empty())
     throw std::invalid_argument(
         "calibration_trial: the model was not built by calibration_model (no trial cache)");
-  auto data = std::make_shared<const CalibrationModel>(model);
-  return [data](std::span<const double> draws, std::span<double> outputs) {
-    const CalibrationModel& m = *data;
-    const CalibrationTrialCache& cache = *m.cache;
-    const Experiment& ex = m.experiment;
-    // Per-thread buffers: a trial allocates nothing once they have grown.
-    thread_local Eigen::VectorXd truth, y;
-    truth = m.actual_errors;
-    bool noise = false;
-    for (std::size_t j = 0; j < draws.size(); ++j) {
-      if (m.parameters[j] < 0)
-        noise = true;
-      else
-        truth[m.parameters[j]] += draws[j];
-    }
-    y.resize(Eigen::Index(ex.plan.runs.size()));
-    if (cache.run_means) {
-      cache.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
-                             std::span<double>(y.data(), std::size_t(y.size())));
-    } else {
-      for (std::size_t j = 0; j < ex.plan.runs.size(); ++j)
-        y[Eigen::Index(j)] = m.mode == ModelMode::exact
-                                 ? average_run<double>(ex.geometry, ex.layout, truth, ex.site,
-                                                       ex.plan.runs[j], &ex.instrument, {}, m.reduction)
-                                       .output
-                                 : detail::paper_average<double>(ex, cache.paper_nodes[j], truth,
-                                                                 &ex.instrument, {}, m.spec.paper_cross_terms)
-                                       .output;
-    }
-    // The drives' rate noise scatters each run's mean (model.md §3.2).
-    if (noise)
-      for (std::size_t j = 0; j < draws.size(); ++j)
-        if (m.parameters[j] < 0) y[rate_noise_run(m.parameters[j])] += draws[j];
-    // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
-    y -= cache.known_part;
-    for (std::size_t o = 0; o < outputs.size(); ++o)
-      outputs[o] = cache.design_pinv.row(Eigen::Index(o)).dot(y) - m.reference[Eigen::Index(o)];
+  // The model's state is shared and only read; the scratch is the copy's own (copied empty per thread).
+  return [model, scratch = TrialScratch()](std::span<const double> draws, std::span<double> outputs) mutable {
+    const Eigen::VectorXd& reference = model.reference();
+    identified_terms(model, model.actual_errors(), draws, outputs, scratch);
+    for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] -= reference[Eigen::Index(o)];
   };
 }
 

@@ -166,6 +166,7 @@ struct Engine {
 #pragma omp parallel num_threads(threads)
     {
       std::vector<double> u(std::size_t(plan.slots)), draws(n_sources), out(n_outputs);
+      TrialFunction own_trial = trial;  // this thread's copy: its scratch buffers are its own
 #pragma omp for schedule(dynamic, chunk)
       for (std::int64_t k = 0; k < count; ++k) {
         if (failure.failed.load(std::memory_order_relaxed)) continue;
@@ -176,7 +177,7 @@ struct Engine {
           draws[j] =
               sources[j].bound * standard_quantile(sources[j].distribution, u[std::size_t(plan.slot[j])]);
         try {
-          trial(draws, out);
+          own_trial(draws, out);
           for (std::size_t o = 0; o < n_outputs; ++o) {
             if (!std::isfinite(out[o]))
               throw InputError(

@@ -245,12 +245,12 @@ TEST(RateRipple, KernelEqualsTheGeneralReduction) {
       set_ripple(ex.layout, e, ch::ripple1, 1, size, -0.7 * size);
       set_ripple(ex.layout, e, ch::ripple3, 1, -0.4 * size, 0.9 * size);
       const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument,
-                                 model.reduction);
+                                 model.reduction());
       std::vector<double> means(ex.plan.runs.size());
       kernel.means(std::span<const double>(e.data(), std::size_t(e.size())), means);
       for (std::size_t r = 0; r < ex.plan.runs.size(); ++r) {
         const double general = average_run<double>(ex.geometry, ex.layout, e, ex.site, ex.plan.runs[r],
-                                                   &ex.instrument, {}, model.reduction)
+                                                   &ex.instrument, {}, model.reduction())
                                    .output;
         const double swing = std::abs(ex.instrument.coefficient("K1").value()) * ex.plan.runs[r].g_level;
         EXPECT_NEAR(means[r], general, 1e-14 * swing) << "run " << r << ", ripple " << size;

@@ -225,7 +225,7 @@ TEST(SpectralRule, TrialQuadratureOfTheMonteCarloIsConverged) {
     const Eigen::VectorXd e = corner_draw(cfg, 3.0, rng);
     for (const ccal::Run& run : ex.plan.runs) {
       const double trial =
-          average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, model.reduction)
+          average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, model.reduction())
               .output;
       const double reference =
           average_run<double>(ex.geometry, ex.layout, e, ex.site, run, &ex.instrument, {}, converged).output;

@@ -439,7 +439,7 @@ TEST(MonteCarlo, CalibrationPipelineMatchesTheLpuOfItsSensitivities) {
   const CalibrationModel model =
       calibration_model(ex, paper_spec(), s, Eigen::VectorXd::Zero(ex.layout.size()), ModelMode::exact);
   EXPECT_EQ(model.output_names(), (std::vector<std::string>{"K0", "K2", "K3"}));
-  EXPECT_NEAR(model.reference[2] / kDeg, 0.003, 1e-12);
+  EXPECT_NEAR(model.reference()[2] / kDeg, 0.003, 1e-12);
   const TrialFunction trial = calibration_trial(model);
   const LinearPropagation lp = propagate_linear(s, model.n_outputs(), trial);
   // The levelling dominates K3 (−1.45e-3 °/s/g³ per 1e-5 rad, reduction/observe_test.cpp).
@@ -470,7 +470,7 @@ TEST(MonteCarlo, CalibrationPipelineMatchesTheLpuOfItsSensitivities) {
   // drives as one source per run each (rate_noise.hpp).
   const Config cfg = bundled_example();
   const CalibrationModel bundled = calibration_model(cfg);
-  EXPECT_EQ(bundled.parameters.size(), cfg.tolerances.size() + 2 * cfg.plan.runs.size());
+  EXPECT_EQ(bundled.parameters().size(), cfg.tolerances.size() + 2 * cfg.plan.runs.size());
 }
 
 TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
@@ -482,7 +482,7 @@ TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
   const Config cfg = bundled_example();
   const Experiment ex = cfg.experiment();
   const CalibrationModel model = calibration_model(cfg);
-  ASSERT_TRUE(model.cache->run_means);  // exact mode goes through the kernel
+  ASSERT_TRUE(model.trial_cache().run_means);  // exact mode goes through the kernel
   const TrialFunction trial = calibration_trial(model);
   const IdentificationSpec& spec = cfg.identification;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
@@ -502,8 +502,8 @@ TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
         identify_coefficients<double>(observe<double>(ex, truth, known, spec), spec) - reference;
     for (Eigen::Index k = 0; k < want.size(); ++k) {
       double bound = 0;
-      for (Eigen::Index j = 0; j < model.cache->design_pinv.cols(); ++j)
-        bound += std::abs(model.cache->design_pinv(k, j)) * 1e-12 * K1 * ex.plan.runs[std::size_t(j)].g_level;
+      for (Eigen::Index j = 0; j < model.trial_cache().design_pinv.cols(); ++j)
+        bound += std::abs(model.trial_cache().design_pinv(k, j)) * 1e-12 * K1 * ex.plan.runs[std::size_t(j)].g_level;
       EXPECT_NEAR(out[std::size_t(k)], want[k], bound)
           << spec.free_terms[std::size_t(k)] << ", draw " << draw;
       EXPECT_GT(std::abs(want[k]), 1e3 * bound);  // a real deviation, far above the tolerance

@@ -40,8 +40,28 @@ class RunMeanKernel {
   RunMeanKernel(RunMeanKernel&&) noexcept;
   RunMeanKernel& operator=(RunMeanKernel&&) noexcept;
 
-  // ⟨instrument output⟩ of every run [output SI] for `errors` (SI, in the layout's order). Thread-safe: the
-  // scratch space is per thread and allocated once.
+  // The scratch space of means(): grown to the largest rule met and then reused, so that a call allocates
+  // nothing once it has grown. It holds no state between calls, so a copy is a new, empty workspace (a trial
+  // function that owns one can be copied once per thread). One thread at a time uses a workspace.
+  class Workspace {
+   public:
+    Workspace();
+    ~Workspace();
+    Workspace(const Workspace&);
+    Workspace& operator=(const Workspace&);
+    Workspace(Workspace&&) noexcept;
+    Workspace& operator=(Workspace&&) noexcept;
+
+   private:
+    friend class RunMeanKernel;
+    struct Buffers;
+    std::unique_ptr<Buffers> buffers_;
+  };
+
+  // ⟨instrument output⟩ of every run [output SI] for `errors` (SI, in the layout's order), in the caller's
+  // workspace. The kernel is only read: concurrent calls are safe with one workspace each.
+  void means(std::span<const double> errors, std::span<double> out, Workspace& workspace) const;
+  // The same in a workspace of its own, allocated for the call: for single evaluations.
   void means(std::span<const double> errors, std::span<double> out) const;
 
  private:

@@ -65,8 +65,9 @@
 // that copy in blocks (render/montecarlo_samples.hpp), so the file's text is never all in memory.
 //
 // Threads: an OpenMP parallel loop over the trials of a stage, each thread with its own draw and output
-// buffers (nothing is allocated by the engine inside the loop; the TrialFunction must be safe to call
-// concurrently, i.e. read shared data only). An exception thrown by a trial stops the run and is rethrown.
+// buffers and its own copy of the TrialFunction, made before the loop (nothing is allocated by the engine
+// inside it). A trial may so keep scratch buffers in its state; what its copies share they must only read.
+// An exception thrown by a trial stops the run and is rethrown.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -138,7 +139,8 @@ struct SampleHistogram {
 };
 
 // One trial: given the drawn source values (SI, one per tolerance, in tolerance order), write the outputs
-// (every element; non-finite outputs stop the run). Called concurrently from several threads.
+// (every element; non-finite outputs stop the run). The engine calls one copy per thread: a mutable lambda
+// may hold scratch buffers; state shared between copies (e.g. through a shared_ptr) must be read-only.
 using TrialFunction = std::function<void(std::span<const double> draws, std::span<double> outputs)>;
 
 struct OutputSummary {
@@ -246,26 +248,39 @@ LinearPropagation propagate_linear(const std::vector<Tolerance>& sources, int n_
 // spec.compensate, zero otherwise; the drawn errors are never known. So the means show the bias of the actual
 // errors, the spreads those of the tolerances.
 struct CalibrationTrialCache;
-struct CalibrationModel {
-  Experiment experiment;
-  IdentificationSpec spec;
-  Eigen::VectorXd actual_errors;  // indexed by experiment.layout
-  std::vector<int> parameters;    // the layout index of each source
-  ModelMode mode = ModelMode::exact;
-  Eigen::VectorXd reference;  // the free terms identified with zero errors (SI)
+class CalibrationModel {
+ public:
+  // An empty model: calibration_trial refuses it. Only calibration_model builds a usable one.
+  CalibrationModel() = default;
+
+  const Experiment& experiment() const;
+  const IdentificationSpec& spec() const;
+  const Eigen::VectorXd& actual_errors() const;  // indexed by experiment().layout
+  const std::vector<int>& parameters() const;    // the layout index of each source
+  ModelMode mode() const;
+  const Eigen::VectorXd& reference() const;  // the free terms identified with zero errors (SI)
   // Quadrature for the trials. A trial needs the run means to ~1e-12 of the output's swing (the coefficient
   // spread is ~1e-3 of it), not to round-off: M covers the harmonics that carry first-order error terms,
   // 2(degree + N) + 2 (the ε² harmonics beyond it alias at ~1e-10 of ε-sized terms), and two slow nodes
   // for |ΔΩ|T ≤ 1e-3 (more beyond): the drift-dependent part of a run is either the heading-dependent,
   // error-sized part or an oscillatory harmonic reduced by 1/(mΩT) after integration, so linear interpolation
   // in time errs by < 1e-12 of the swing for 3σ draws of the bundled tolerances (tests/reduction/run_average_test.cpp).
-  ReductionOptions reduction;
-  // What every trial shares, computed once by calibration_model (the analyst's H⁺ and known part, the
-  // truth's run-mean kernel): internal to the library (src/uncertainty/calibration_cache.hpp).
-  std::shared_ptr<const CalibrationTrialCache> cache;
+  const ReductionOptions& reduction() const;
+  // What every trial shares, computed once from the fields above (the analyst's H⁺ and known part, the
+  // truth's run-mean kernel). Its type is internal to the library (src/uncertainty/calibration_cache.hpp);
+  // the fields are read-only so that it always matches them.
+  const CalibrationTrialCache& trial_cache() const;
 
-  std::vector<std::string> output_names() const { return spec.free_terms; }
-  int n_outputs() const { return int(spec.free_terms.size()); }
+  std::vector<std::string> output_names() const { return spec().free_terms; }
+  int n_outputs() const { return int(spec().free_terms.size()); }
+  bool empty() const { return !state_; }
+
+ private:
+  struct State;  // defined with calibration_model (src/uncertainty/calibration_model.cpp)
+  friend CalibrationModel calibration_model(const Experiment&, const IdentificationSpec&,
+                                            const std::vector<Tolerance>&, const Eigen::VectorXd&, ModelMode);
+  const State& state() const;
+  std::shared_ptr<const State> state_;  // shared by copies and by the trial functions: never changed
 };
 // Checks that every source names a parameter of the layout (InputError otherwise) and identifies the
 // reference.
@@ -283,7 +298,8 @@ inline CalibrationModel calibration_model(const Config& cfg, ModelMode mode = Mo
   return calibration_model(cfg.experiment(), cfg.identification, monte_carlo_sources(cfg),
                            cfg.centrifuge.errors, mode);
 }
-// The trial function of a model (it keeps its own copy of the model).
+// The trial function of a model: it shares the model's read-only state and owns its scratch buffers, so it
+// must be copied once per thread (as run_monte_carlo does); std::invalid_argument for an empty model.
 TrialFunction calibration_trial(const CalibrationModel& model);
 
 }  // namespace ccal
