@@ -63,7 +63,7 @@ void bind_allocation_results(py::module_& m) {
                     "the sources, tightened most first, list of AllocatedSource [—]")
       .def_readonly("coefficients", &AllocationResult::coefficients,
                     "per coefficient, list of AllocatedCoefficient [—]")
-      .def_readonly("coverage", &AllocationResult::coverage, "p [—]")
+      .def_readonly("coverage_probability", &AllocationResult::coverage_probability, "p [—]")
       .def_readonly("coverage_factor", &AllocationResult::coverage_factor, "k_p [—]")
       .def_readonly("objective", &AllocationResult::objective, "Σ cost/λ of the allocation [cost units]")
       .def_readonly("converged", &AllocationResult::converged, "the solver converged [—]")

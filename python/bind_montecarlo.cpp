@@ -50,7 +50,7 @@ void bind_monte_carlo_results(py::module_& m) {
                     "the adaptive procedure's criterion was met (always true for a fixed M) [—]")
       .def_readonly("seed", &MonteCarloResult::seed, "the seed used [—]")
       .def_readonly("threads", &MonteCarloResult::threads, "the threads used [—]")
-      .def_readonly("coverage", &MonteCarloResult::coverage, "p, the coverage probability [—]")
+      .def_readonly("coverage_probability", &MonteCarloResult::coverage_probability, "p, the coverage probability [—]")
       .def_readonly("seconds", &MonteCarloResult::seconds, "wall time [s]")
       .def_readonly("outputs", &MonteCarloResult::outputs, "per coefficient, list of OutputSummary [—]")
       .def_property_readonly(

@@ -174,14 +174,14 @@ std::string verification_text(const AllocationResult& r, const std::string& pct,
 
 std::string text_of(const Config& cfg, const AllocationResult& r, const AllocateTextOptions& o) {
   const std::size_t width = o.wide ? 0 : o.width;
-  const std::string pct = fmt::format("{:g} %", 100 * r.coverage);
+  const std::string pct = fmt::format("{:g} %", 100 * r.coverage_probability);
   std::string out = fmt::format("ccal allocate: {}\n", cfg.source);
   out += wrap_words(
       fmt::format("{} sources; LPU with {} mode sensitivities at the configured errors. Targets are expanded "
                   "uncertainties U = k_p u (half-widths of the {} interval), k_p = {:.5f} (the normal "
                   "quantile of (1 + p)/2, p = {:g}). Allocation: minimise sum cost_s / lambda_s (tolerance_s "
                   "= lambda_s x configured) subject to every target{}, floor_s/bound_s <= lambda_s <= {:g}.",
-                  r.sources.size(), mode_name(r.mode), pct, r.coverage_factor, r.coverage,
+                  r.sources.size(), mode_name(r.mode), pct, r.coverage_factor, r.coverage_probability,
                   r.let_others_grow ? "" : ", U <= configured U of every other coefficient", r.max_scale),
       width);
   out += '\n';
@@ -215,7 +215,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
   j["ccal_version"] = version();
   j["config"] = cfg.source;
   j["mode"] = mode_name(r.mode);
-  j["coverage_probability"] = r.coverage;
+  j["coverage_probability"] = r.coverage_probability;
   j["coverage_factor"] = r.coverage_factor;
   j["max_scale"] = r.max_scale;
   j["let_others_grow"] = r.let_others_grow;

@@ -46,7 +46,7 @@ std::vector<std::string> advice_of(const BudgetResult& b, const MonteCarloResult
       out.push_back(fmt::format(
           "{}: sampling error explains it; run `ccal montecarlo --digits {}` (the adaptive procedure) or "
           "`--trials {}` (ends to delta/3).",
-          measured, r.adaptive ? r.significant_digits + 1 : 2, d.trials_needed));
+          measured, r.adaptive ? r.digits + 1 : 2, d.trials_needed));
     else
       out.push_back(fmt::format(
           "{}: beyond 3 standard errors, so sampling error does not explain it: the LPU interval (first "
@@ -65,7 +65,7 @@ std::string validation_advice(const BudgetResult& b, const MonteCarloResult& r) 
 
 std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloResult& r) {
   const auto n = r.outputs.size();
-  const std::string pct = fmt::format("{:g} %", 100 * r.coverage);
+  const std::string pct = fmt::format("{:g} %", 100 * r.coverage_probability);
   std::string out = fmt::format(
       "ccal montecarlo: {}, {} mode, {} sources; identified {} with {} fixed\n"
       "Outputs: deviations of the identified coefficients from those identified with no centrifuge "
@@ -103,7 +103,7 @@ std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
     out += fmt::format(
         "\nAdaptive procedure (JCGM 101 §7.9.4, n_dig = {}): standard deviations s of the stage averages "
         "against the numerical tolerance delta of u(y); stable when 2s <= delta.\n",
-        r.significant_digits);
+        r.digits);
     Table a({"coefficient", "unit", "delta", "2 s(y)", "2 s(u)", "2 s(y_low)", "2 s(y_high)"});
     for (std::size_t k = 0; k < n; ++k) {
       const OutputSummary& s = r.outputs[k];
@@ -129,7 +129,7 @@ std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
       "\nM = {} trials ({} stage{} of {}), seed {}, {} thread{}, {:.3g} s, {:.4g} trials/s; p = {:g}, "
       "interval over q = {} sorted values{}.\n",
       r.trials, r.stages, r.stages == 1 ? "" : "s", r.stage_trials, r.seed, r.threads,
-      r.threads == 1 ? "" : "s", r.seconds, per_second(r), r.coverage, r.interval_points,
+      r.threads == 1 ? "" : "s", r.seconds, per_second(r), r.coverage_probability, r.interval_points,
       r.adaptive ? (r.converged ? "; adaptive procedure converged" : "; adaptive procedure NOT converged")
                  : "");
   out += "\nNotes:\n";
@@ -148,10 +148,10 @@ std::string json_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
   j["stages"] = r.stages;
   j["adaptive"] = r.adaptive;
   j["converged"] = r.converged;
-  j["significant_digits"] = r.significant_digits;
+  j["significant_digits"] = r.digits;
   j["seed"] = r.seed;
   j["threads"] = r.threads;
-  j["coverage_probability"] = r.coverage;
+  j["coverage_probability"] = r.coverage_probability;
   j["coverage_factor"] = r.coverage_factor;
   j["interval_points"] = r.interval_points;
   j["sample_bytes"] = r.sample_bytes;

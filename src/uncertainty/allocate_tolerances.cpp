@@ -234,7 +234,7 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   mo.trials = o.verify_trials;
   mo.seed = o.seed;
   mo.threads = o.threads;
-  mo.coverage_probability = o.coverage;
+  mo.coverage_probability = o.coverage_probability;
   mo.progress = o.progress;
   mo.on_progress = o.on_progress;
   if (o.on_progress) o.on_progress(0, o.verify_trials);  // may throw Cancelled: stop before the verification
@@ -247,7 +247,7 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   v.seconds = mc.seconds;
   v.notes = mc.notes;
   const double M = double(mc.trials);
-  const double p_end = (1 + o.coverage) / 2;
+  const double p_end = (1 + o.coverage_probability) / 2;
   const double density = std::exp(-kp * kp / 2) / std::sqrt(2 * std::numbers::pi);
   v.half_width_rel_error = std::sqrt(p_end * (1 - p_end)) / (kp * density * std::sqrt(M));
   v.std_rel_error = 1 / std::sqrt(2 * M);
@@ -276,7 +276,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   if (cfg.tolerances.empty())
     throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
   if (targets.empty()) throw OptionError("targets", "", "none given; accepted: at least one, e.g. K3=1e-6");
-  const double kp = normal_coverage_factor(o.coverage);
+  const double kp = normal_coverage_factor(o.coverage_probability);
   if (!(std::isfinite(o.max_scale) && o.max_scale > 0))
     throw OptionError("max_scale", option_number_text(o.max_scale), "is not a number > 0; accepted: e.g. 10");
   if (o.verify_trials == 1)
@@ -296,7 +296,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
 
   AllocationResult r;
   r.mode = o.mode;
-  r.coverage = o.coverage;
+  r.coverage_probability = o.coverage_probability;
   r.coverage_factor = kp;
   r.max_scale = o.max_scale;
   for (std::size_t k = 0; k < nk; ++k) {

@@ -402,7 +402,7 @@ void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const
               std::uint64_t block, std::uint64_t J, int n_dig, double k_p, bool has_lpu, int n_outputs,
               MonteCarloResult& result) {
   const std::uint64_t M = result.trials, q = result.interval_points;
-  const double p = result.coverage;
+  const double p = result.coverage_probability;
   const bool adaptive = result.adaptive, converged = result.converged;
   const int threads = result.threads;
   std::string& n = result.notes;
@@ -479,8 +479,8 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   result.adaptive = adaptive;
   result.seed = options.seed;
   result.threads = threads;
-  result.coverage = p;
-  result.significant_digits = n_dig;
+  result.coverage_probability = p;
+  result.digits = n_dig;
   result.stage_trials = block;
   result.outputs.resize(n_out);
 

@@ -51,7 +51,7 @@ AllocateResult allocate(const Config& config, const AllocateOptions& o) {
   for (const auto& t : o.targets)
     targets.push_back(parse_allocation_target(t, config.identification.free_terms, units));
   ccal::AllocateOptions ao;
-  ao.coverage = o.coverage_probability;
+  ao.coverage_probability = o.coverage_probability;
   ao.mode = o.mode.value_or(config.mode);
   ao.max_scale = o.max_scale;
   ao.let_others_grow = o.let_others_grow;

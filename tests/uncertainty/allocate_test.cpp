@@ -478,10 +478,10 @@ TEST(AllocateTolerances, RejectsBadTargets) {
   o.max_scale = -1;
   EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-6}}, o), InputError);
   o.max_scale = 10;
-  o.coverage = 1.0;
+  o.coverage_probability = 1.0;
   EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-6}}, o), InputError);
   // Without verification the result has none.
-  o.coverage = 0.95;
+  o.coverage_probability = 0.95;
   const AllocationResult r = allocate_tolerances(cfg, {{"K3", 1e-3 * kDeg}}, o);  // above the noise's 5.6e-4
   EXPECT_EQ(r.verification.trials, 0u);
   EXPECT_EQ(r.coefficients[2].verdict, Verdict::not_checked);

@@ -113,7 +113,7 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
 
 struct AllocateOptions {
   ModelMode mode = ModelMode::exact;  // of the sensitivities and the verification (verbs: the config's)
-  double coverage = 0.95;             // p
+  double coverage_probability = 0.95;  // p
   double max_scale = 10.0;            // λ_max
   // false: every free coefficient without a target is held at its configured U (U_k(λ) ≤ U_k(1)); true:
   // only the targets constrain the allocation, and the others may grow.
@@ -176,7 +176,7 @@ struct AllocationVerification {
 
 struct AllocationResult {
   ModelMode mode = ModelMode::exact;  // of the sensitivities and the verification
-  double coverage = 0.95;
+  double coverage_probability = 0.95;
   double coverage_factor = 0;
   double max_scale = 10;
   bool let_others_grow = false;

@@ -198,9 +198,9 @@ struct MonteCarloResult {
   bool converged = false;
   std::uint64_t seed = 0;
   int threads = 1;                    // threads used
-  double coverage = 0.95;             // p
+  double coverage_probability = 0.95;  // p
   double coverage_factor = 0;         // k = Φ⁻¹((1 + p)/2) for the LPU interval
-  int significant_digits = 0;         // n_dig used for δ (adaptive and validation)
+  int digits = 0;                     // n_dig used for δ (adaptive and validation)
   std::uint64_t interval_points = 0;  // q: the intervals span y_(r) … y_(r+q)
   std::uint64_t sample_bytes = 0;     // memory of the stored outputs, 8·M·n_outputs
   double seconds = 0;                 // wall time of the whole run
