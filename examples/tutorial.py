@@ -63,13 +63,13 @@ with tempfile.TemporaryDirectory() as folder:
     reduction = ccal.reduce(lab, logs)
 print(reduction.display())
 
-# 8. The result: each coefficient with the standard uncertainty of the centrifuge's tolerances (the budget of
-#    the lab's configuration) and of the test's noise (the fit's standard error), combined; U = 2 u.
-step("8. the calibration's result (U = 2 u, u from the centrifuge's budget and the test's noise)")
-lab_budget = {r["coefficient"]: r for r in ccal.budget(lab).display().rows}
+# 8. The result: the calibration statement (JCGM 100 §7), as `ccal reduce --statement` gives it: the fit's
+#    standard error (Type A) and the centrifuge's budget (Type B) combined, U = k u_c with k from Student's t.
+step("8. the calibration statement (U = k u_c, k from Student's t at p = 95 %)")
+with tempfile.TemporaryDirectory() as folder:
+    statement = ccal.reduce(lab, simulation.write_logs(folder), statement=True).to_dict()["statement"]
 truth = dict(zip(lab.instrument_terms, lab.instrument_coefficients))
-for row in reduction.display().rows:
-    name, unit = row["coefficient"], row["unit"]
-    u = math.hypot(lab_budget[name]["standard_uncertainty"], row["std_error"])
+for name, c in statement["coefficients"].items():
     true = truth[name] * (180 / math.pi)  # the simulated instrument's value, deg/s/g^n (known only here)
-    print(f"{name} = {row['value']:.6g} ± {2 * u:.2g} {unit}   (the simulated instrument has {true:.6g})")
+    print(f"{name} = {c['corrected_estimate']:.6g} ± {c['expanded_uncertainty']:.2g} {c['unit']}, "
+          f"k = {c['coverage_factor']:.3f}   (the simulated instrument has {true:.6g})")

@@ -107,7 +107,14 @@ void bind_budget_results(py::module_& m) {
                     "u_c per coefficient (LPU with correlation groups) [coefficient SI]")
       .def_readonly("expanded_uncertainty", &BudgetResult::expanded_uncertainty,
                     "U = k u_c per coefficient [coefficient SI]")
-      .def_readonly("coverage_factor", &BudgetResult::coverage_factor, "k [—]")
+      .def_property_readonly(
+          "coverage_factor", [](const BudgetResult& r) { return r.coverage.factor; }, "k of U = k u [—]")
+      .def_property_readonly(
+          "coverage_probability", [](const BudgetResult& r) { return r.coverage.probability; },
+          "p of U: the option's, or the normal p of a stated k [—]")
+      .def_property_readonly(
+          "coverage_method", [](const BudgetResult& r) { return std::string(coverage_method_name(r.coverage.method)); },
+          "how k was obtained: 'normal' (from p) or 'stated k' [—]")
       .def_readonly("covariance", &BudgetResult::covariance,
                     "covariance of the coefficients [coefficient SI × coefficient SI]")
       .def_readonly("correlation", &BudgetResult::correlation, "correlation of the coefficients [—]")

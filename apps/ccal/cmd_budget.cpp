@@ -28,8 +28,8 @@ Command add_budget(CLI::App& app) {
   add_config_argument(*cmd, options->config);
   add_option_flags(*cmd, options->options, option_table<verbs::BudgetOptions>());
   add_renamed_option(*cmd, "--coverage",
-                     "renamed: give the coverage factor k as --coverage-factor K (e.g. 2); a coverage "
-                     "probability is --coverage-probability of montecarlo and allocate");
+                     "renamed: give the coverage probability as --coverage-probability p (e.g. 0.95), as in "
+                     "every command, or a stated factor k as --coverage-factor K (e.g. 2)");
   cmd->add_option("--top", options->top,
                   "Sources listed per coefficient, the rest summed in one row (default: what fits the "
                   "screen, at least 5)")
@@ -44,7 +44,8 @@ Command add_budget(CLI::App& app) {
       "  ccal budget\n"
       "      the budget of the bundled paper example (exact kinematics)\n"
       "  ccal budget examples/wang_ren_2014.toml --mode paper --top 10\n"
-      "  ccal budget --wide --coverage-factor 3\n"
+      "  ccal budget --wide --coverage-probability 0.99\n"
+      "      every source, U at p = 99 % (k = 2.58); --coverage-factor 2 states k instead\n"
       "  ccal budget my.toml --format csv -o budget.csv\n");
   return {cmd, [options] {
             const verbs::BudgetResult r =

@@ -67,7 +67,7 @@ Command add_report(CLI::App& app) {
       ->type_name("COEFF=U");
   cmd->add_option("--observations", o->observations,
                   "OBS.csv: add the calibration statement of these observations (as `ccal identify OBS.csv "
-                  "--budget CONFIG` with this report's --mode and --coverage-probability)")
+                  "--statement --config CONFIG` with this report's --mode and --coverage-probability)")
       ->type_name("OBS.csv");
   o->output.format = "html";
   cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
@@ -81,8 +81,8 @@ Command add_report(CLI::App& app) {
       "      with the allocation for those targets and the designed plan, each against the configured one\n"
       "      (the same numbers as `ccal allocate --target K2=2e-5 --target K3=2e-3` and `ccal design`)\n"
       "  ccal simulate my.toml --observations-out obs.csv && ccal report my.toml --observations obs.csv\n"
-      "      with the calibration statement of the observations (`ccal identify obs.csv --budget "
-      "my.toml`)\n");
+      "      with the calibration statement of the observations (`ccal identify obs.csv --statement "
+      "--config my.toml`)\n");
   return {cmd, [o] {
             const std::string_view scripts = required_report_scripts();  // before the long computation
             verbs::ReportOptions ro = o->options;

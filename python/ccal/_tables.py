@@ -68,7 +68,8 @@ def _coefficient_rows(coefficients, fields):
 
 def display_budget(r, j):
     rows = [[c["id"], c["unit"], c["standard_uncertainty"], c["expanded_uncertainty"]] for c in j["coefficients"]]
-    return Table(f"budget of {j['config']} ({j['mode']}, k = {j['coverage_factor']:g})",
+    return Table(f"budget of {j['config']} ({j['mode']}, k = {j['coverage_factor']:.3g}, "
+                 f"p = {100 * j['coverage_probability']:.4g} %)",
                  ["coefficient", "unit", "standard_uncertainty", "expanded_uncertainty"], rows)
 
 

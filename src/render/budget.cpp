@@ -37,7 +37,9 @@ std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::Obser
   j["config"] = cfg.source;
   j["mode"] = std::string(mode_name(r.mode));
   j["derivatives"] = r.derivatives == DerivativeMethod::automatic ? "automatic" : "linearised";
-  j["coverage_factor"] = r.coverage_factor;
+  j["coverage_factor"] = r.coverage.factor;
+  j["coverage_probability"] = r.coverage.probability;
+  j["coverage_method"] = std::string(coverage_method_name(r.coverage.method));
   j["coefficients"] = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < r.coefficients.size(); ++k)
     j["coefficients"].push_back(
@@ -168,8 +170,7 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
   };
   for (const RateNoiseBudget& n : r.rate_noise) out += row(n.id, "normal (Type A)", n.effect, &n.share);
   out += row("total_standard_uncertainty", "", r.standard_uncertainty, nullptr);
-  out +=
-      row(fmt::format("expanded_uncertainty_k{:g}", r.coverage_factor), "", r.expanded_uncertainty, nullptr);
+  out += row("expanded_uncertainty", csv_field(coverage_text(r.coverage)), r.expanded_uncertainty, nullptr);
   if (known_bias.size()) out += row("known_error_bias", "", known_bias, nullptr);
   return out;
 }

@@ -31,8 +31,9 @@ std::string heading(const Config& cfg, const ccal::BudgetResult& r, std::size_t 
                   fmt::join(r.coefficients, ", "),
                   fixed.empty() ? "" : fmt::format("; {} fixed", fmt::join(fixed, ", "))),
       width);
-  out += wrap_words(fmt::format("Effects are 1-sigma, shares are of the variance u²; U = k u with k = {:g}.",
-                                r.coverage_factor),
+  out += wrap_words(fmt::format("Effects are 1-sigma, shares are of the variance u²; U = k u, {} (the LPU "
+                                "total, normal).",
+                                coverage_text(r.coverage)),
                     width);
   out += '\n';
   return out;
@@ -125,8 +126,8 @@ std::string coefficient_table(const verbs::BudgetResult& v, std::size_t k, std::
   const bool paper =
       o.wide && r.mode == ModelMode::exact && !r.sources.empty() && r.sources.front().paper_effect.size();
   std::string out =
-      fmt::format("{} [{}]: u = {}, U = {} (k = {:g})\n", r.coefficients[k], r.units[k], number(u, 4),
-                  number(r.expanded_uncertainty[i] * r.display_scale[k], 4), r.coverage_factor);
+      fmt::format("{} [{}]: u = {}, U = {} ({})\n", r.coefficients[k], r.units[k], number(u, 4),
+                  number(r.expanded_uncertainty[i] * r.display_scale[k], 4), coverage_text(r.coverage));
   std::vector<std::string> header = {"source", "name", "tolerance", "PDF",
                                      "u(x_i)", "c_i",  "u_i(y)",    "share"};
   if (paper) header.push_back("exact vs paper");
@@ -148,7 +149,7 @@ std::string coefficient_table(const verbs::BudgetResult& v, std::size_t k, std::
   }
   table.add_rule();
   table.add_spanning_row({"u: combined standard uncertainty", "", "", "", "", number(u, 4), ""});
-  table.add_spanning_row({fmt::format("U: expanded uncertainty, k = {:g}", r.coverage_factor), "", "", "", "",
+  table.add_spanning_row({fmt::format("U: expanded uncertainty, {}", coverage_text(r.coverage)), "", "", "", "",
                           number(r.expanded_uncertainty[i] * r.display_scale[k], 4), ""});
   if (v.known_error_bias.size())
     table.add_spanning_row({"bias of known [errors], not compensated, not in u", "", "", "", "",

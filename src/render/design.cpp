@@ -104,8 +104,8 @@ std::string text(const verbs::DesignResult& r) {
   out += fmt::format("Objective: configured {}, designed {} (grid {})\n\n", number(r.configured_objective, 6),
                      number(r.designed_objective, 6), number(r.search.grid_objective, 6));
   out += "Configured plan\n" + plan_table(r.config) + "\nDesigned plan\n" + plan_table(r.designed);
-  out += fmt::format("\nConfigured against designed (full budget, k = {}; 'U tol.': the tolerances alone; * counted)\n",
-                     number(r.before.budget.coverage_factor, 3));
+  out += fmt::format("\nConfigured against designed (full budget, {}; 'U tol.': the tolerances alone; * counted)\n",
+                     coverage_text(r.before.budget.coverage));
   out += comparison_table(r);
   for (std::size_t k = 0; k < r.targets.size(); ++k)
     if (r.targets[k].weight > 0) out += leading_sources(r, k);

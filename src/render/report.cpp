@@ -117,12 +117,14 @@ std::string identify_command_text(const std::vector<std::string>& args, const Co
 }
 
 std::string summary(const Doc& budget, const Doc& mc) {
-  std::string t =
-      "<table class=\"summary\"><caption>Summary per identified "
-      "coefficient</caption>\n<tr><th>coefficient</th>"
-      "<th>unit</th><th>u<sub>c</sub> (LPU)</th><th>U (LPU)</th><th>Monte Carlo u(y)</th><th "
-      "colspan=\"2\">Monte "
-      "Carlo 95 % interval</th><th>LPU validated</th></tr>\n";
+  // Each U names its method and its k and p: the LPU's normal k beside the Monte Carlo's interval of the
+  // same p (coverage.hpp).
+  std::string t = fmt::format(
+      "<table class=\"summary\"><caption>Summary per identified coefficient</caption>\n<tr><th>coefficient</th>"
+      "<th>unit</th><th>u<sub>c</sub> (LPU)</th><th>U (LPU, k = {}, p = {} %)</th><th>Monte Carlo u(y)</th>"
+      "<th colspan=\"2\">Monte Carlo {} % interval</th><th>LPU validated</th></tr>\n",
+      num_span(budget, "/coverage_factor", 3), num_span(budget, "/coverage_probability", 4, 100),
+      num_span(mc, "/coverage_probability", 4, 100));
   for (std::size_t k = 0; k < budget.json["coefficients"].size(); ++k) {
     const Json& c = budget.json["coefficients"][k];
     const std::string id = c["id"].get<std::string>(), b = fmt::format("/coefficients/{}", k),
@@ -255,6 +257,12 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
   }
   const verbs::MonteCarloOptions& m = o.monte_carlo;
   const verbs::MonteCarloOptions defaults;
+  if (m.coverage_probability != defaults.coverage_probability)
+    p.budget_command.insert(p.budget_command.end(),
+                            {"--coverage-probability", fmt::format("{:.17g}", m.coverage_probability)});
+  if (o.coverage_factor)
+    p.budget_command.insert(p.budget_command.end(),
+                            {"--coverage-factor", fmt::format("{:.17g}", *o.coverage_factor)});
   auto add = [&p](const char* option, std::string value) {
     p.montecarlo_command.push_back(option);
     p.montecarlo_command.push_back(std::move(value));

@@ -151,9 +151,11 @@ std::string coefficient_table(const Doc& doc, const Json& errors_doc_json, std::
       "</tr>\n",
       num_cell(doc, c + "/standard_uncertainty"));
   t += fmt::format(
-      "<tr class=\"total\"><td colspan=\"6\">expanded uncertainty U = k u<sub>c</sub>, k = {}</td>{}<td></td>"
-      "</tr>\n</table>\n",
-      num_span(doc, "/coverage_factor", 3), num_cell(doc, c + "/expanded_uncertainty"));
+      "<tr class=\"total\"><td colspan=\"6\">expanded uncertainty U = k u<sub>c</sub>, k = {}, p = {} %{}</td>"
+      "{}<td></td></tr>\n</table>\n",
+      num_span(doc, "/coverage_factor", 3), num_span(doc, "/coverage_probability", 4, 100),
+      doc.json.value("coverage_method", "") == "stated k" ? " for a normal quantity (k stated)" : "",
+      num_cell(doc, c + "/expanded_uncertainty"));
   return t;
 }
 

@@ -4,7 +4,6 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
-#include <boost/math/policies/policy.hpp>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -287,12 +286,6 @@ DualRun run_dual(const DualProblem& dual, const Eigen::VectorXd& m, const std::v
 }
 
 }  // namespace
-
-double normal_coverage_factor(double p) {
-  if (!(p > 0 && p < 1))
-    throw InputError(fmt::format("coverage probability: {} is not in (0, 1); e.g. 0.95", p));
-  return normal_erf_quantile(p);
-}
 
 namespace {
 

@@ -266,7 +266,7 @@ void add_rate_noise(const Experiment& ex, const IdentificationSpec& spec, const 
 void set_totals(BudgetResult& r) {
   const auto nk = Eigen::Index(r.coefficients.size());
   r.standard_uncertainty = r.covariance.diagonal().cwiseSqrt();
-  r.expanded_uncertainty = r.coverage_factor * r.standard_uncertainty;
+  r.expanded_uncertainty = r.coverage.factor * r.standard_uncertainty;
   r.correlation = Eigen::MatrixXd::Identity(nk, nk);
   for (Eigen::Index i = 0; i < nk; ++i)
     for (Eigen::Index j = 0; j < nk; ++j)
@@ -336,7 +336,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   r.derivatives = table.method;
   r.mode = options.mode;
   r.coefficients = spec.free_terms;
-  r.coverage_factor = options.coverage_factor;
+  r.coverage = normal_coverage(options.coverage_probability, options.coverage_factor);
   for (const auto& id : r.coefficients) {
     r.units.push_back(coefficient_unit(config.instrument.output_unit, id));
     r.display_scale.push_back(to_unit(1.0, config.instrument.output_unit));

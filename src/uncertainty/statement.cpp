@@ -1,7 +1,5 @@
 #include "ccal/uncertainty/statement.hpp"
 
-#include <boost/math/distributions/normal.hpp>
-#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <stdexcept>
 
@@ -20,17 +18,6 @@ double welch_satterthwaite(const std::vector<UncertaintyPart>& parts) {
   }
   if (denominator == 0) return kInfiniteDof;  // every part known exactly (or nothing uncertain)
   return variance * variance / denominator;
-}
-
-double student_coverage_factor(double p, double dof) {
-  if (!(p > 0 && p < 1)) throw std::invalid_argument("coverage probability outside (0, 1)");
-  if (!(dof >= 1)) throw std::invalid_argument("degrees of freedom below 1");
-  const double tail = (1 + p) / 2;
-  if (!std::isfinite(dof)) return boost::math::quantile(boost::math::normal_distribution<double>(), tail);
-  // GUM G.4.1 note 1: a non-integer ν_eff is truncated to the next lower integer (the relative guard keeps an
-  // integer ν that arrives as 4.999999999999 at 5).
-  const double whole = std::floor(dof * (1 + 1e-12));
-  return boost::math::quantile(boost::math::students_t_distribution<double>(whole), tail);
 }
 
 CoefficientStatement state_coefficient(const StatementInput& input, double p) {

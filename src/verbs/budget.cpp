@@ -19,11 +19,10 @@ constexpr std::string_view kDerivativeNames[] = {"automatic", "linearised"};  //
 constexpr OptionSpec<BudgetOptions> kRows[] = {
     rows::mode<&BudgetOptions::mode>("Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); "
                                      "default: the configuration's [identification] mode"),
-    // k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor.
-    {"coverage_factor", &BudgetOptions::coverage_factor, "K", "Coverage factor k of the expanded uncertainty U = k u",
-     OptionRange::at_least(1).e_g("2 (U = k u)").noting(
-         "a coverage probability such as 0.95 is for `ccal montecarlo` and `ccal allocate` "
-         "(--coverage-probability)")},
+    rows::coverage_probability(&BudgetOptions::coverage_probability,
+                               "Coverage probability p of the expanded uncertainty U = k u, in (0, 1): k = "
+                               "1.96 for 0.95, the normal LPU total's"),
+    rows::coverage_factor(&BudgetOptions::coverage_factor),
     {"derivatives", enum_member<&BudgetOptions::derivatives>(kDerivativeNames), "METHOD",
      "How the sensitivities are differentiated: linearised (closed-form chain Jacobian at zero errors, AD "
      "elsewhere; fast) or automatic (forward-mode AD through everything); same numbers"},
@@ -35,10 +34,12 @@ OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { retur
 
 BudgetResult budget(const Config& config, const BudgetOptions& options) {
   check_options(options, option_table<BudgetOptions>());
+  rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the budget needs at least one source");
   ccal::BudgetOptions bo;
   bo.mode = options.mode.value_or(config.mode);
+  bo.coverage_probability = options.coverage_probability;
   bo.coverage_factor = options.coverage_factor;
   bo.derivatives = options.derivatives;
   bo.compare_with_paper = options.compare_with_paper;

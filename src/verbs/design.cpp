@@ -27,6 +27,10 @@ constexpr OptionSpec<DesignOptions> kRows[] = {
     {"starts", &DesignOptions::starts, "N",
      "Random starts of the search (besides the configured plan); default: [design] starts", OptionRange::between(0, 1000)},
     {"seed", &DesignOptions::seed, "S", "Seed of the random starts; default: [design] seed"},
+    rows::coverage_probability(&DesignOptions::coverage_probability,
+                               "Coverage probability p of the expanded uncertainties (the targets, the "
+                               "budgets and the verification), in (0, 1)"),
+    rows::coverage_factor(&DesignOptions::coverage_factor),
     rows::threads(&DesignOptions::threads, "Threads (0: the OpenMP default)"),
     rows::verify_trials(&DesignOptions::verify_trials,
                         "Monte Carlo trials checking the designed plan's budget (0: none)"),
@@ -40,7 +44,7 @@ Eigen::VectorXd tolerance_expanded(const Config& config, const ccal::BudgetResul
   const CorrelationGroups groups = correlation_groups(config.tolerances);
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(Eigen::Index(b.coefficients.size()), groups.count);
   for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
-  return b.coverage_factor * g.rowwise().norm();
+  return b.coverage.factor * g.rowwise().norm();
 }
 
 // The objective's weights and references (references of the configured plan filled in later).
@@ -104,9 +108,17 @@ Config with_plan(const Config& config, const std::vector<DesignRun>& runs) {
   return c;
 }
 
-BudgetResult rescore(const Config& designed) {
+// The budget options of a design: its coverage.
+BudgetOptions budget_options(const DesignOptions& o) {
+  BudgetOptions b;
+  b.coverage_probability = o.coverage_probability;
+  b.coverage_factor = o.coverage_factor;
+  return b;
+}
+
+BudgetResult rescore(const Config& designed, const DesignOptions& options) {
   try {
-    return budget(designed);
+    return budget(designed, budget_options(options));
   } catch (const IllPosedFit& e) {
     throw InputError(std::string("the designed plan does not identify the free terms by the full budget: ") +
                      e.what());
@@ -208,7 +220,7 @@ void set_criterion(const Config& config, DesignResult& r, DesignProblem& problem
   const auto nk = Eigen::Index(r.targets.size());
   DesignCriterion& c = problem.criterion;
   c.objective = r.objective;
-  c.coverage_factor = r.before.budget.coverage_factor;
+  c.coverage_factor = r.before.budget.coverage.factor;
   c.weight = Eigen::VectorXd::Zero(nk);
   c.reference = Eigen::VectorXd::Ones(nk);
   for (Eigen::Index k = 0; k < nk; ++k) c.weight[k] = r.targets[std::size_t(k)].weight;
@@ -259,13 +271,14 @@ OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>) { retur
 
 DesignResult design(const Config& config, const DesignOptions& options) {
   check_options(options, option_table<DesignOptions>());
+  rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
   DesignResult r;
   r.config = config;
   r.space = resolve_design_space(config);
   r.objective = options.objective.value_or(config.design.objective);
-  r.before = budget(config);
+  r.before = budget(config, budget_options(options));
   r.targets = design_targets(config, options, r.before.budget);
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -288,7 +301,7 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   r.designed_objective = r.search.score.objective;
 
   r.designed = with_plan(config, r.search.runs);
-  r.after = rescore(r.designed);
+  r.after = rescore(r.designed, options);
   r.tolerance_before = tolerance_expanded(config, r.before.budget);
   r.tolerance_after = tolerance_expanded(r.designed, r.after.budget);
   r.mechanism = mechanism_sentence(r);
@@ -300,6 +313,7 @@ DesignResult design(const Config& config, const DesignOptions& options) {
     mo.trials = options.verify_trials;
     mo.seed = so.seed;
     mo.threads = options.threads;
+    mo.coverage_probability = r.after.budget.coverage.probability;  // a stated k's normal p
     r.verification = monte_carlo(r.designed, mo);
   }
   return r;

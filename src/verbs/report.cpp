@@ -22,6 +22,7 @@ constexpr OptionSpec<ReportOptions> kRows[] = {
      "Run whose sensed input is drawn (name or 1-based index); default: the highest g-level"},
     {"input_points", &ReportOptions::input_points, "N", "Instants of the sensed-input curve",
      OptionRange::between(2, 100000)},
+    rows::coverage_factor(&ReportOptions::coverage_factor),
 };
 
 std::size_t highest_g_run(const TestPlan& plan) {
@@ -112,12 +113,14 @@ OptionTable<ReportOptions> options_of(std::type_identity<ReportOptions>) { retur
 
 ReportResult report(const Config& config, const ReportOptions& o) {
   check_options(o, option_table<ReportOptions>());
+  rows::check_coverage_choice(o.monte_carlo.coverage_probability, o.coverage_factor);
   check_targets(config, o);
   ReportResult r;
   r.config = config;
   if (o.observations) r.observed = identify_observations(config, o);
   BudgetOptions bo;
   bo.mode = o.mode;
+  bo.coverage_probability = o.monte_carlo.coverage_probability;
   bo.coverage_factor = o.coverage_factor;
   r.budget = budget(config, bo);
   // The allocation and the design before the Monte Carlo, so that a target they refuse stops the report
@@ -155,6 +158,8 @@ AllocateOptions report_allocation(std::vector<std::string> targets, const Report
 DesignOptions report_design(std::vector<std::string> targets, const ReportOptions& o) {
   DesignOptions d;
   d.targets = std::move(targets);
+  d.coverage_probability = o.monte_carlo.coverage_probability;
+  d.coverage_factor = o.coverage_factor;
   d.threads = o.monte_carlo.threads;
   return d;
 }

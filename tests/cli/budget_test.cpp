@@ -49,7 +49,11 @@ TEST_F(Budget, JsonCarriesUnitsAndMatchesTheText) {
   for (const auto& n : j["rate_noise"]) sum += std::pow(n["u"]["K3"].get<double>(), 2);
   const double total = j["coefficients"][2]["standard_uncertainty"];
   EXPECT_NEAR(std::sqrt(sum), total, 1e-12 * total);
-  EXPECT_NEAR(j["coefficients"][2]["expanded_uncertainty"].get<double>(), 2 * total, 1e-12 * total);
+  // U = k u at the default p = 95 %: k = Φ⁻¹(0.975) of the normal LPU total, and the JSON says so.
+  EXPECT_NEAR(j["coefficients"][2]["expanded_uncertainty"].get<double>(), 1.959963984540054 * total,
+              1e-12 * total);
+  EXPECT_EQ(j["coverage_probability"], 0.95);
+  EXPECT_EQ(j["coverage_method"], "normal");
   EXPECT_EQ(j["sources"][0]["id"], "ripple1_c1");  // ranked first: a rate ripple, dimensionless
   EXPECT_EQ(j["sources"][0]["unit_si"], "1");
   for (const auto& s : j["sources"])

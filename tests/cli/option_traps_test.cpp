@@ -1,6 +1,6 @@
-// One meaning per option name across the verbs: --coverage-factor is the factor k (budget; k < 1 refused),
-// --coverage-probability is a probability p (allocate, reduce, identify); the old --coverage is refused with
-// a message naming its successor; allocate follows the configuration's mode. Each of these failed before.
+// One meaning per option name across the verbs: --coverage-factor is a stated factor k (budget, design,
+// report; k < 1 refused), --coverage-probability is a probability p (every verb that states a U); the old
+// --coverage is refused with a message naming its successor; allocate follows the configuration's mode. Each of these failed before.
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
@@ -21,6 +21,14 @@ TEST_F(OptionTraps, BudgetCoverageFactorBelowOneIsRefused) {
   for (const auto& c : j["coefficients"])  // U = 3 u: one product, relative 1e-15
     EXPECT_NEAR(c["expanded_uncertainty"].get<double>(), 3 * c["standard_uncertainty"].get<double>(),
                 1e-15 * c["expanded_uncertainty"].get<double>());
+  EXPECT_EQ(j["coverage_method"], "stated k");
+  EXPECT_NEAR(j["coverage_probability"].get<double>(), 0.9973002039367398, 1e-15);  // erf(3/√2)
+  // One coverage convention: p as in every verb, k = Φ⁻¹((1 + p)/2); both at once are refused.
+  const Result p = run("budget --coverage-probability 0.99 --format json");
+  ASSERT_EQ(p.code, 0) << p.err;
+  EXPECT_NEAR(nlohmann::json::parse(p.out)["coverage_factor"].get<double>(), 2.5758293035489004, 1e-15);
+  expect_bad_input(run("budget --coverage-probability 0.9 --coverage-factor 2"),
+                   {"--coverage-factor: 2 and --coverage-probability 0.9 are two coverages"});
 }
 
 TEST_F(OptionTraps, BudgetTopAndWidthOutOfRangeAreRefusedWithTheRange) {

@@ -135,7 +135,11 @@ TEST(OptionTables, VerbsRefuseOutOfRangeFieldsByName) {
   budget.coverage_factor = 0.95;
   EXPECT_EQ(refusal([&] { verbs::budget(bundled_example(), budget); }),
             "coverage_factor: 0.95 is out of range; accepted: a number >= 1, e.g. 2 (U = k u); a coverage "
-            "probability such as 0.95 is for `ccal montecarlo` and `ccal allocate` (--coverage-probability)");
+            "probability such as 0.95 is given as coverage_probability");
+  budget.coverage_factor = 2;
+  budget.coverage_probability = 0.9;  // two answers to one question
+  EXPECT_EQ(refusal([&] { verbs::budget(bundled_example(), budget); }),
+            "coverage_factor: 2 and coverage_probability 0.9 are two coverages; give one of them");
   verbs::DesignOptions design;
   design.tradeoff = {0.5, 11};
   EXPECT_EQ(refusal([&] { verbs::design(bundled_example(), design); }),
@@ -204,7 +208,10 @@ class SameRefusal : public test::Cli {
         call(options);
       } catch (const OptionError& e) {
         ASSERT_EQ(e.field(), row.field);
-        library = e.worded([&](std::string_view) { return cli_flag(row); });
+        // Every option the message names, worded as the command line spells it.
+        library = e.worded([&](std::string_view field) {
+          return cli_flag(OptionSpec<Options>(field, row.member, "", ""));
+        });
       }
       ASSERT_FALSE(library.empty()) << verb << " " << row.field << " = " << value << " was accepted";
       const test::Result r = run(verb + " " + extra + " " + cli_flag(row) + " " + value);

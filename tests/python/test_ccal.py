@@ -84,6 +84,18 @@ class BudgetTest(unittest.TestCase):
             self.assertAlmostEqual(b.expanded_uncertainty[k] / b.standard_uncertainty[k], b.coverage_factor,
                                    delta=1e-12)
 
+    def test_one_coverage_for_budget_and_allocate(self):
+        # docs/model.md §10.4: p = 95 % and the normal k in both, so allocate's configured U is the budget's U
+        # (relative 1e-12: the same squares summed in another order) and the program's.
+        b = self.budget
+        self.assertEqual((b.coverage_probability, b.coverage_method), (0.95, "normal"))
+        a = ccal.allocate(ccal.bundled_example(), {"K3": 1e-3}, verify_trials=0)
+        self.assertEqual(a.coverage_factor, b.coverage_factor)
+        for k, c in enumerate(a.coefficients):
+            self.assertAlmostEqual(c.configured_expanded / b.expanded_uncertainty[k], 1.0, delta=1e-12)
+            self.assertAlmostEqual(b.expanded_uncertainty[k] * b.display_scale[k]
+                                   / self.cli["coefficients"][k]["expanded_uncertainty"], 1.0, delta=1e-12)
+
     def test_per_source_lines_equal_the_programs(self):
         b = self.budget
         by_id = {s["id"]: s for s in self.cli["sources"]}

@@ -149,11 +149,13 @@ class LibraryDefaults(unittest.TestCase):
         # verbs::AllocateOptions, DesignOptions, ReduceOptions, BudgetOptions (include/ccal/verbs/*.hpp).
         expected = {"allocate": {"coverage_probability": 0.95, "max_scale": 10.0, "verify_trials": 2000,
                                  "seed": 1, "threads": 0},
-                    "design": {"threads": 0, "verify_trials": 0, "tradeoff": []},
+                    "design": {"threads": 0, "verify_trials": 0, "tradeoff": [], "coverage_probability": 0.95,
+                               "coverage_factor": None},
                     "reduce": {"statement": False, "coverage_probability": 0.95, "angle_unit": "rad"},
                     "identify_file": {"statement": False, "input_column": "a_i", "output_column": "output",
                                       "config": None},
-                    "budget": {"coverage_factor": 2.0, "compare_with_paper": True, "derivatives": "linearised"}}
+                    "budget": {"coverage_probability": 0.95, "coverage_factor": None, "compare_with_paper": True,
+                               "derivatives": "linearised"}}
         for function, defaults in expected.items():
             parameters = inspect.signature(getattr(ccal, function)).parameters
             for name, value in defaults.items():

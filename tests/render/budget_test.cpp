@@ -179,9 +179,10 @@ TEST(BudgetText, CsvTotalsEqualTheJson) {
   const auto j = nlohmann::json::parse(render::json(r));
   const std::string csv = render::csv(r);
   const auto u = csv_row(csv, "total_standard_uncertainty");
-  const auto U = csv_row(csv, "expanded_uncertainty_k3");
+  const auto U = csv_row(csv, "expanded_uncertainty");
   ASSERT_FALSE(u.empty()) << csv;
   ASSERT_FALSE(U.empty()) << csv;
+  EXPECT_EQ(U.at("distribution"), "k = 3 (stated), p = 99.73 % for a normal quantity");  // its coverage
   for (const auto& c : j["coefficients"]) {
     const std::string column = "d" + c["id"].get<std::string>() + " [" + c["unit"].get<std::string>() + "]";
     // Both are the same double printed to 17 digits: equal after parsing.

@@ -69,7 +69,7 @@ TEST(BudgetGroups, TotalsAddGroupMembersLinearlyAndGroupsInQuadrature) {
     const double u = std::sqrt(cov(k, k));
     SCOPED_TRACE(b.coefficients[std::size_t(k)]);
     EXPECT_NEAR(b.standard_uncertainty[k], u, 1e-12 * u);
-    EXPECT_NEAR(b.expanded_uncertainty[k], b.coverage_factor * u, 1e-12 * u);
+    EXPECT_NEAR(b.expanded_uncertainty[k], b.coverage.factor * u, 1e-12 * u);
     double rss = 0;
     for (const SourceBudget& s : b.sources) rss += s.effect[k] * s.effect[k];
     EXPECT_GT(std::abs(u - std::sqrt(rss)), 1e-3 * u) << "the groups must matter for this check";

@@ -50,12 +50,10 @@
 
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/coverage.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal {
-
-// k_p = Φ⁻¹((1 + p)/2): the coverage factor of a normal output for coverage probability p in (0, 1).
-double normal_coverage_factor(double p);
 
 // The allocation as a mathematical problem, in SI.
 struct AllocationProblem {
@@ -64,7 +62,7 @@ struct AllocationProblem {
   Eigen::VectorXd standard_uncertainty;        // u_s0 per source, ≥ 0
   Eigen::VectorXd cost;                        // per source, > 0
   std::vector<std::string> group;              // per source; "" = independent (empty vector: all independent)
-  double coverage_factor = 1.959963984540054;  // k_p
+  double coverage_factor = kDefaultCoverageFactor;  // k_p
   double max_scale = 10.0;                     // λ_max > 0
   Eigen::VectorXd min_scale;  // λ_min,s per source, 0 ≤ λ_min,s ≤ λ_max (floor_s / bound_s); empty: all 0
 };

@@ -14,12 +14,14 @@
 // their signs, groups added in quadrature; the coefficient covariance is Σ_groups g gᵀ.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "ccal/reduction/observe.hpp"
 #include "ccal/setup/config.hpp"
+#include "ccal/uncertainty/coverage.hpp"
 #include "ccal/uncertainty/rate_noise.hpp"
 
 namespace ccal {
@@ -35,7 +37,9 @@ enum class DerivativeMethod { automatic, linearised };
 
 struct BudgetOptions {
   ModelMode mode = ModelMode::exact;
-  double coverage_factor = 2.0;      // k of the expanded uncertainty U = k u (≈ 95 % for a normal total)
+  // U = k u with k = Φ⁻¹((1 + p)/2) of the normal LPU total (coverage.hpp), or the stated k when given.
+  double coverage_probability = kDefaultCoverageProbability;
+  std::optional<double> coverage_factor;
   bool compare_with_paper = true;    // in exact mode, also compute the paper's sensitivities per source
   double disagreement_factor = 2.0;  // flag sources whose exact and paper effects differ by more than this
   ReductionOptions reduction;
@@ -123,7 +127,7 @@ struct BudgetResult {
   std::vector<RateNoiseBudget> rate_noise;                     // drives with rate noise (in the totals)
   Eigen::VectorXd standard_uncertainty;                        // u_k per coefficient (SI)
   Eigen::VectorXd expanded_uncertainty;                        // k u_k
-  double coverage_factor = 2.0;
+  Coverage coverage;                                           // k and p of U
   Eigen::MatrixXd covariance;  // of the coefficients (SI)
   Eigen::MatrixXd correlation;
   std::vector<CompensationChoice> compensation;  // systematic, not in the totals

@@ -22,6 +22,7 @@
 
 #include "ccal/model/plan.hpp"
 #include "ccal/setup/design_space.hpp"
+#include "ccal/uncertainty/coverage.hpp"
 
 namespace ccal {
 
@@ -59,7 +60,7 @@ struct DesignCriterion {
   DesignObjective objective = DesignObjective::uncertainty;
   // Per free term: its weight w_k in the objective (0: not counted) and its reference R_k (> 0 where w_k > 0).
   Eigen::VectorXd weight, reference;
-  double coverage_factor = 2.0;  // k_c of U = k_c u
+  double coverage_factor = kDefaultCoverageFactor;  // k_c of U = k_c u (the budget's, coverage.hpp)
   // A plan is well posed when every free term's column keeps more than this fraction of its natural size
   // after the others are projected out (1e6·ε: a thousand times model.md §14's round-off limit), and no two
   // estimates are correlated beyond max_correlation (the fit refuses 0.99999).

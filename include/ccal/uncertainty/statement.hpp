@@ -16,6 +16,7 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/setup/config.hpp"
+#include "ccal/uncertainty/coverage.hpp"
 
 namespace ccal {
 
@@ -30,10 +31,6 @@ struct UncertaintyPart {
 // ν_eff of u_c² = Σ u_i² (G.2b); ∞ when every part with u_i > 0 has ν_i = ∞. Throws std::invalid_argument
 // for a negative u_i or a ν_i ≤ 0 of a part with u_i > 0.
 double welch_satterthwaite(const std::vector<UncertaintyPart>& parts);
-
-// k for coverage probability p in (0, 1) at ν degrees of freedom: Student's t quantile at (1 + p)/2 for
-// ⌊ν⌋ (ν ≥ 1), the normal quantile for ν = ∞. Throws std::invalid_argument for p outside (0, 1) or ν < 1.
-double student_coverage_factor(double p, double dof);
 
 // What goes into one coefficient's statement, in one unit.
 struct StatementInput {

@@ -14,7 +14,10 @@ namespace ccal::verbs {
 
 struct BudgetOptions {
   std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
-  double coverage_factor = 2.0;   // k of the expanded uncertainty U = k u, at least 1 (--coverage-factor)
+  // U = k u: k = Φ⁻¹((1 + p)/2) of the normal LPU total for the coverage probability p, as in every verb
+  // (uncertainty/coverage.hpp); or a stated k ≥ 1 (e.g. 2 by contract), then p is the normal one of that k.
+  double coverage_probability = kDefaultCoverageProbability;
+  std::optional<double> coverage_factor;
   DerivativeMethod derivatives = DerivativeMethod::linearised;  // same numbers; linearised is faster
   bool compare_with_paper = true;  // in exact mode, also the paper's first-order effect of each source
 };
@@ -31,7 +34,8 @@ struct BudgetResult {
   Eigen::VectorXd known_error_bias;
 };
 
-// Throws InputError for a coverage factor below 1 or not finite, an empty [tolerances], a term the plan
+// Throws InputError (OptionError naming the field) for a coverage probability outside (0, 1), a coverage
+// factor below 1 or not finite, both a coverage factor and a coverage probability other than the default, an empty [tolerances], a term the plan
 // cannot observe or identify, or a result that is not finite (tolerances beyond double precision).
 BudgetResult budget(const Config& config, const BudgetOptions& options = {});
 

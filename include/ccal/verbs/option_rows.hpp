@@ -7,6 +7,7 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/uncertainty/coverage.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal::verbs {
@@ -33,6 +34,27 @@ constexpr OptionSpec<O> mode(std::string_view help = "Kinematics: exact (full ch
 template <class O>
 constexpr OptionSpec<O> coverage_probability(double O::*member, std::string_view help) {
   return {"coverage_probability", member, "p", help, kCoverageProbability};
+}
+
+// A stated coverage factor k, used instead of the k of the coverage probability (uncertainty/coverage.hpp).
+// k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor.
+template <class O>
+constexpr OptionSpec<O> coverage_factor(std::optional<double> O::*member) {
+  return {"coverage_factor", member, "K",
+          "A stated coverage factor k instead of the coverage probability's (e.g. 2 by contract); p is then "
+          "that of a normal quantity",
+          OptionRange::at_least(1).e_g("2 (U = k u)").noting(
+              "a coverage probability such as 0.95 is given as "
+              "\x1f" "coverage_probability" "\x1f")};  // OptionError::name's marks: worded by each front end
+}
+
+// A stated coverage factor and a coverage probability other than the default are two answers to one
+// question: refused, naming both.
+inline void check_coverage_choice(double p, const std::optional<double>& k) {
+  if (k && p != kDefaultCoverageProbability)
+    throw OptionError("coverage_factor", option_number_text(*k),
+                      "and " + OptionError::name("coverage_probability") + " " + option_number_text(p) +
+                          " are two coverages; give one of them");
 }
 
 template <class O>

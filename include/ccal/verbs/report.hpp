@@ -24,7 +24,9 @@ namespace ccal::verbs {
 
 struct ReportOptions {
   std::optional<ModelMode> mode;  // kinematics of budget and Monte Carlo; unset: the configuration's
-  double coverage_factor = 2.0;   // k of the budget's expanded uncertainty (as `ccal budget`)
+  // Every U of the report is at the Monte Carlo's coverage probability (monte_carlo.coverage_probability);
+  // a stated k, when given, replaces the normal k of the budget's and the design's LPU (as `ccal budget`).
+  std::optional<double> coverage_factor;
   MonteCarloOptions monte_carlo;  // as `ccal montecarlo` (its mode is set from `mode`)
   std::string run;                // the run whose sensed input is drawn; empty: the one of highest g-level
   int input_points = 241;         // instants of the sensed-input curve, 2…100000
@@ -58,7 +60,7 @@ struct SensedInputSeries {
 
 struct ReportResult {
   Config config;
-  BudgetResult budget;           // verbs::budget(config, {mode, coverage_factor})
+  BudgetResult budget;           // verbs::budget(config, {mode, coverage probability, coverage_factor})
   MonteCarloResult monte_carlo;  // verbs::monte_carlo(config, options.monte_carlo), samples kept
   SensedInputSeries sensed_input;
   std::optional<AllocateResult> allocation;  // verbs::allocate(config, *options.allocate)
@@ -80,7 +82,8 @@ ReportResult report(const Config& config, const ReportOptions& options = {});
 // The allocation section as every front end asks for it: `ccal allocate` for these targets with the report's
 // coverage probability, seed and threads (its mode, left unset, is the report's).
 AllocateOptions report_allocation(std::vector<std::string> targets, const ReportOptions& options);
-// The design section: `ccal design` for these targets (none: the [design] table's) with the report's threads.
+// The design section: `ccal design` for these targets (none: the [design] table's) with the report's
+// coverage and threads.
 DesignOptions report_design(std::vector<std::string> targets, const ReportOptions& options);
 
 }  // namespace ccal::verbs
