@@ -47,6 +47,8 @@ void bind_config(py::module_& m) {
   py::class_<Config>(m, "Config", py::dynamic_attr(),
                      "A centrifuge, site, instrument, test plan, tolerances and identification.")
       .def_readonly("source", &Config::source, "the file name, or the name given to parse_config [—]")
+      .def_readonly("text_sha256", &Config::text_sha256,
+                    "SHA-256 of the text it was read from; empty once changed by a with_… method [—]")
       .def_property_readonly(
           "runs", [](const Config& c) { return c.plan.runs; }, "the test plan's runs, list of Run [—]")
       .def_readonly("tolerances", &Config::tolerances,

@@ -99,10 +99,17 @@ std::string written_unit(const Value& bound, const std::optional<std::string>& u
   return "";
 }
 
+// A configuration changed in code describes no file: it carries no fingerprint (Config::text_sha256).
+Config derived_from(const Config& cfg) {
+  Config out = cfg;
+  out.text_sha256.clear();
+  return out;
+}
+
 Config with_tolerance(const Config& cfg, const std::string& id, const Value& bound,
                       const std::optional<std::string>& unit, const std::optional<std::string>& distribution,
                       const std::optional<std::string>& group, const std::optional<double>& cost) {
-  Config out = cfg;
+  Config out = derived_from(cfg);
   const int index = parameter(cfg, id, "with_tolerance");
   auto it = std::find_if(out.tolerances.begin(), out.tolerances.end(),
                          [&](const Tolerance& t) { return t.parameter == index; });
@@ -128,7 +135,7 @@ Config with_tolerance(const Config& cfg, const std::string& id, const Value& bou
 }
 
 Config without_tolerance(const Config& cfg, const std::string& id) {
-  Config out = cfg;
+  Config out = derived_from(cfg);
   const int index = parameter(cfg, id, "without_tolerance");
   std::erase_if(out.tolerances, [&](const Tolerance& t) { return t.parameter == index; });
   return out;
@@ -136,7 +143,7 @@ Config without_tolerance(const Config& cfg, const std::string& id) {
 
 Config with_error(const Config& cfg, const std::string& id, const Value& value,
                   const std::optional<std::string>& unit) {
-  Config out = cfg;
+  Config out = derived_from(cfg);
   const int index = parameter(cfg, id, "with_error");
   out.centrifuge.errors[index] =
       quantity(value, unit, parameter_dimension(cfg.centrifuge.layout, index), "with_error: " + id);
@@ -153,7 +160,7 @@ struct PlanChange {
 // New runs from the g-levels (each a copy of the first run with its level, named "<level>g"), then the
 // fields given applied to every run, as [plan] defaults with [[plan.runs]] tables that name only g_level.
 Config with_plan(const Config& cfg, const PlanChange& c) {
-  Config out = cfg;
+  Config out = derived_from(cfg);
   auto& runs = out.plan.runs;
   if (c.g) {
     if (c.g->empty()) throw InputError("with_plan: g: no runs; give at least one g-level");

@@ -46,7 +46,6 @@ TESTED_ELSEWHERE = {
     "render/report_html.cpp": _REPORT,
     "render/report_montecarlo.cpp": _REPORT,
     "render/report_setup.cpp": _REPORT,
-    "render/report_sha256.cpp": "SHA-256: tests/render/report_test.cpp (ReportSha256)",
     "render/report_statement.cpp": _REPORT,
     "render/simulate.cpp": _OUTPUT,
     "render/statement_part.cpp": _OUTPUT,

@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "ccal/core/sha256.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "config_reader.hpp"
@@ -92,6 +93,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   r.check_keys(root, "", kRootKeys);
   Config cfg;
   cfg.source = std::string(source_name);
+  cfg.text_sha256 = sha256_hex(text);
   cfg.site = read_site(r, root);
   cfg.centrifuge = read_centrifuge(r, root);
   read_errors(r, root, cfg.centrifuge);

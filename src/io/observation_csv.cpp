@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ccal/core/sha256.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/csv_stream.hpp"
 #include "text_trim.hpp"
@@ -247,6 +248,7 @@ Eigen::VectorXd CsvTable::numbers(std::string_view column, std::string_view need
 CsvTable parse_csv(std::string_view text, std::string_view source) {
   CsvTable t;
   t.source = std::string(source);
+  t.text_sha256 = sha256_hex(text);
   int line_no = 0;
   // A UTF-8 byte-order mark, as spreadsheet programs write it, is not part of the first column's name.
   std::size_t start = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
@@ -302,8 +304,11 @@ std::string format_observations_header(const ObservationsHeader& h) {
     if (!f.unit.empty()) entry += " " + f.unit;
     fixed.push_back(std::move(entry));
   }
-  return fmt::format("# ccal observations v1; terms={}; fixed={}; known={}; output_unit={}",
-                     fmt::join(terms, ","), fmt::join(fixed, ","), fmt::join(h.known, ","), h.output_unit);
+  std::string out = fmt::format("# ccal observations v1; terms={}; fixed={}; known={}; output_unit={}",
+                                fmt::join(terms, ","), fmt::join(fixed, ","), fmt::join(h.known, ","),
+                                h.output_unit);
+  if (!h.config_sha256.empty()) out += "; config_sha256=" + h.config_sha256;
+  return out;
 }
 
 std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
@@ -372,8 +377,15 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
           if (!entry.empty()) h.known.push_back(entry);
       } else if (key == "output_unit") {
         h.output_unit = value;
+      } else if (key == "config_sha256") {
+        const bool hex = value.size() == 64 && value.find_first_not_of("0123456789abcdef") == std::string::npos;
+        if (!hex)
+          throw fail(fmt::format("config_sha256 '{}' is not a SHA-256; accepted: 64 lower-case hex digits",
+                                 value));
+        h.config_sha256 = value;
       } else {
-        throw fail(fmt::format("unknown key '{}'; accepted: terms, fixed, known, output_unit", key));
+        throw fail(fmt::format("unknown key '{}'; accepted: terms, fixed, known, output_unit, config_sha256",
+                               key));
       }
     }
     if (!has_terms || h.terms.empty()) throw fail("no free terms; accepted: terms=<term>:<column>,...");
@@ -402,7 +414,8 @@ double output_unit_si(std::string_view output_unit) {
 }
 
 ObservationsHeader observations_file_header(const IdentificationSpec& spec,
-                                            const InstrumentModel& instrument) {
+                                            const InstrumentModel& instrument,
+                                            std::string_view config_sha256) {
   const double unit = output_unit_si(instrument.output_unit);
   ObservationsHeader h;
   for (const auto& id : spec.free_terms) h.terms.push_back({id, id});
@@ -411,13 +424,14 @@ ObservationsHeader observations_file_header(const IdentificationSpec& spec,
         {{id, id}, value / unit, coefficient_unit(instrument.output_unit, parse_term(id).value())});
   h.known = {"rate"};
   h.output_unit = instrument.output_unit;
+  h.config_sha256 = std::string(config_sha256);
   return h;
 }
 
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
-                             const InstrumentModel& instrument) {
+                             const InstrumentModel& instrument, std::string_view config_sha256) {
   const double unit = output_unit_si(instrument.output_unit);
-  const ObservationsHeader h = observations_file_header(spec, instrument);
+  const ObservationsHeader h = observations_file_header(spec, instrument, config_sha256);
 
   // Regressor columns in canonical term order.
   std::vector<std::size_t> order(obs.columns.size());

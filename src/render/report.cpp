@@ -17,7 +17,7 @@
 #include "ccal/render/force.hpp"
 #include "ccal/render/identify.hpp"
 #include "ccal/render/montecarlo.hpp"
-#include "ccal/render/report_sha256.hpp"
+#include "ccal/core/sha256.hpp"
 #include "ccal/version.hpp"
 #include "report_html.hpp"
 
@@ -159,18 +159,27 @@ std::string section_commands(const verbs::ReportResult& r, const ReportProvenanc
   return out;
 }
 
+// The observations file of the statement, by name and fingerprint, as the configuration is.
+std::string observations_rows(const verbs::ReportResult& r, const ReportProvenance& p) {
+  if (!r.observed) return "";
+  return fmt::format(
+      "<tr><th>observations</th><td><code>{}</code></td></tr>\n"
+      "<tr><th>SHA-256 of the observations</th><td><code id=\"observations-sha256\">{}</code></td></tr>\n",
+      escape(r.observed->source), escape(p.observations_sha256));
+}
+
 std::string provenance_section(const verbs::ReportResult& r, const ReportProvenance& p) {
   return fmt::format(
       "<section id=\"provenance\"><h2>Provenance</h2>\n<table class=\"provenance\">\n"
       "<tr><th>program</th><td>{}</td></tr>\n<tr><th>command line</th><td><code>{}</code></td></tr>\n"
       "<tr><th>date (UTC)</th><td>{}</td></tr>\n<tr><th>configuration</th><td><code>{}</code></td></tr>\n"
-      "<tr><th>SHA-256 of the configuration</th><td><code id=\"config-sha256\">{}</code></td></tr>\n"
+      "<tr><th>SHA-256 of the configuration</th><td><code id=\"config-sha256\">{}</code></td></tr>\n{}"
       "<tr><th>the same numbers from</th><td><code id=\"cmd-budget\">{}</code><br><code "
       "id=\"cmd-montecarlo\">{}"
       "</code><br><code>ccal force … --run {} --time T</code> (the input table){}</td></tr>\n</table>\n"
       "<h3>The configuration ({} bytes)</h3>\n<pre id=\"config-text\">{}</pre>\n</section>\n",
       escape(version_line()), escape(p.command_line), escape(p.date_utc), escape(r.config.source),
-      sha256_hex(p.config_text), escape(command_text(p.budget_command, r.config)),
+      sha256_hex(p.config_text), observations_rows(r, p), escape(command_text(p.budget_command, r.config)),
       escape(command_text(p.montecarlo_command, r.config)), r.sensed_input.run_index + 1,
       section_commands(r, p), p.config_text.size(), escape(p.config_text));
 }
@@ -278,6 +287,7 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
   if (o.observations && r.observed) {
     // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
     p.identify_command = {"identify", r.observed->source, "--statement"};
+    p.observations_sha256 = o.observations->text_sha256;
     if (o.mode)
       p.identify_command.insert(p.identify_command.end(), {"--mode", std::string(mode_name(*o.mode))});
     if (m.coverage_probability != verbs::StatementOptions{}.coverage_probability)

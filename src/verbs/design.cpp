@@ -102,6 +102,7 @@ Config with_plan(const Config& config, const std::vector<DesignRun>& runs) {
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const DesignRun& a, const DesignRun& b) { return a.g_level < b.g_level; });
   Config c = config;
+  c.text_sha256.clear();  // another plan: no longer the file's configuration
   c.plan.runs.clear();
   for (std::size_t j = 0; j < sorted.size(); ++j)
     c.plan.runs.push_back(plan_run(sorted[j], fmt::format("run{}", j + 1)));

@@ -199,6 +199,19 @@ void check_verb_options(const IdentifyOptions& o) {
 
 OptionTable<IdentifyOptions> options_of(std::type_identity<IdentifyOptions>) { return kRows; }
 
+void check_observations_configuration(const CsvTable& table, const Config& config, std::string_view field) {
+  const std::optional<ObservationsHeader> header = observations_header(table);
+  if (!header || header->config_sha256.empty() || config.text_sha256.empty() ||
+      header->config_sha256 == config.text_sha256)
+    return;
+  throw OptionError(std::string(field), "",
+                    fmt::format("{} was made with another configuration than {}: the file's SHA-256 (line {}) "
+                                "is {}, {}'s {}; accepted: the configuration the logs were reduced (or "
+                                "simulated) with",
+                                table.source, config.source, header->line, header->config_sha256, config.source,
+                                config.text_sha256));
+}
+
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   check_verb_options(options);
   IdentifyResult r;
@@ -210,6 +223,7 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   r.identification = identify_table(table, r.spec, units, table.source);
   if (header) warn_about_powers_of_means(table, r.spec, r.identification);
   if (options.statement) {
+    check_observations_configuration(table, *options.config, "config");
     StatementOptions so;
     so.coverage_probability = options.coverage_probability;
     so.mode = options.mode;

@@ -114,7 +114,8 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   const DataResolution resolution =
       run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
   r.identification =
-      identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source, &resolution);
+      identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source, &resolution,
+                            cfg.text_sha256);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
   if (o.statement) {

@@ -96,6 +96,7 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
                       "file of `ccal simulate --observations-out` or `ccal reduce --observations-out` (a plain "
                       "table: `ccal identify {} --terms … --statement --config CONFIG`)",
                       o.observations->source));
+    check_observations_configuration(*o.observations, config, "observations");
     IdentifyResult r = identify(*o.observations, {});
     r.statement = calibration_statement(config, r.identification, so, "observations");
     return r;

@@ -38,6 +38,28 @@ class Statement : public Cli {
 // Φ⁻¹(0.975) to 16 digits.
 constexpr double kZ975 = 1.959963984540054;
 
+TEST_F(Statement, ObservationsOfAnotherConfigurationAreRefusedNamingBothFingerprints) {
+  // The observations file carries the SHA-256 of the configuration it was simulated with; a statement with
+  // another configuration's budget would be silently wrong. Before, it was made with exit code 0.
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  const std::string sha_bundled = "config_sha256=";
+  std::ifstream in(dir_ / "obs.csv");
+  std::string header;
+  std::getline(in, header);
+  const std::size_t at = header.find(sha_bundled);
+  ASSERT_NE(at, std::string::npos) << header;
+  const std::string fingerprint = header.substr(at + sha_bundled.size(), 64);
+  ASSERT_EQ(run("identify obs.csv --statement --config " + kExample).code, 0);  // the same text: accepted
+  std::string other = read(kExample);
+  write("other.toml", other + "\n# a comment changes the file, so its fingerprint\n");
+  const Result r = run("identify obs.csv --statement --config other.toml");
+  expect_bad_input(r, {"--config: obs.csv was made with another configuration than other.toml", fingerprint,
+                       "(line 1)"});
+  const Result report = run("report other.toml --observations obs.csv --trials 1000 -o page.html");
+  expect_bad_input(report, {"--observations", fingerprint});
+  EXPECT_FALSE(fs::exists(dir_ / "page.html"));
+}
+
 TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
   const Result fit = run("identify obs.csv --format json");

@@ -45,6 +45,27 @@ TEST(ObservationCsv, HeaderRoundTrip) {
   }
 }
 
+TEST(ObservationCsv, HeaderCarriesTheConfigurationsFingerprint) {
+  // Written only when known (older files stay readable), read back exactly, a malformed one refused at its line.
+  ObservationsHeader h;
+  h.terms = {{"K0", "K0"}};
+  h.output_unit = "deg/s";
+  EXPECT_EQ(format_observations_header(h).find("config_sha256"), std::string::npos);
+  h.config_sha256 = std::string(64, 'a');
+  const std::string line = format_observations_header(h);
+  EXPECT_TRUE(line.ends_with("; config_sha256=" + std::string(64, 'a'))) << line;
+  EXPECT_EQ(observations_header(parse_csv(line + "\nrun,output\na,1\n", "h.csv"))->config_sha256, h.config_sha256);
+  try {
+    observations_header(parse_csv("# ccal observations v1; terms=K0; config_sha256=ABC\nx\n1\n", "d.csv"));
+    ADD_FAILURE();
+  } catch (const CsvError& e) {
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_NE(std::string(e.what()).find("'ABC' is not a SHA-256; accepted: 64 lower-case hex digits"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ObservationCsv, CellsAndPlaces) {
   const CsvTable t =
       parse_csv("# c\r\n run , x ,y\r\n\r\n\"a, b\", +1.5 ,-2e-3\r\n\"say \"\"hi\"\"\",0,1\r\n", "t.csv");

@@ -73,6 +73,11 @@ class SameAsCli(unittest.TestCase):
             with open(obs, "w") as f:
                 f.write(ccal.simulate(ccal.bundled_example()).to_csv())
             self.check(ccal.identify_file(obs), "identify", obs)
+            # Observations of the bundled example stated with another configuration's budget: refused.
+            with self.assertRaisesRegex(ccal.InputError, "was made with another configuration than"):
+                ccal.identify_file(obs, statement=True, config=ccal.load_config(SECOND))
+            with open(obs, "w") as f:
+                f.write(ccal.simulate(ccal.load_config(SECOND)).to_csv())
             self.check(ccal.identify_file(obs, statement=True, config=ccal.load_config(SECOND), mode="paper",
                                           coverage_probability=0.9),
                        "identify", obs, "--statement", "--config", SECOND, "--mode", "paper",

@@ -1,4 +1,4 @@
-// The HTML report's pieces: SHA-256 against the FIPS 180-2 examples, the page's escaping of everything a
+// The HTML report's pieces: the page's escaping of everything a
 // configuration brings (its text, its file name) so that no input can add markup or end a script, and the
 // allocation section's numbers and command line, and the statement section's.
 #include <gtest/gtest.h>
@@ -10,25 +10,14 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/core/sha256.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/render/report.hpp"
-#include "ccal/render/report_sha256.hpp"
 #include "ccal/verbs/report.hpp"
 
 namespace ccal::test {
 namespace {
-
-TEST(ReportSha256, FipsExamples) {
-  // FIPS 180-2, Appendix B (one block, two blocks: 56 bytes fill the first block's length field, a million
-  // 'a'), and the empty message.
-  EXPECT_EQ(render::sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
-  EXPECT_EQ(render::sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
-            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
-  EXPECT_EQ(render::sha256_hex(std::string(1000000, 'a')),
-            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
-  EXPECT_EQ(render::sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
-}
 
 TEST(ReportHtml, EverythingFromTheConfigurationIsEscaped) {
   Config cfg = bundled_example();
@@ -54,7 +43,7 @@ TEST(ReportHtml, EverythingFromTheConfigurationIsEscaped) {
   for (std::size_t at = 0; (at = page.find("</script", at)) != std::string::npos; ++at) ++ends;
   EXPECT_EQ(scripts, ends);
   EXPECT_EQ(scripts, 1u + 8u + 2u);
-  EXPECT_NE(page.find(render::sha256_hex(p.config_text)), std::string::npos);
+  EXPECT_NE(page.find(sha256_hex(p.config_text)), std::string::npos);
 }
 
 TEST(ReportHtml, TheLibraryCannotEndItsScriptEarly) {
@@ -117,8 +106,8 @@ TEST(ReportSections, TheAllocationIsTheVerbsWithTheReportsModeAndItsCommandLine)
 
 // The bundled example's run means as `ccal simulate --observations-out` writes them, with the 10g and 20g
 // outputs moved by +2e-4 and -3e-4 deg/s so that the fit has a scatter (a Type A part well above round-off).
-CsvTable observations() {
-  return parse_csv(
+std::string observations_text() {
+  return
       "# ccal observations v1; terms=K0:K0,K2:K2,K3:K3; fixed=K1:K1=505.2097 deg/s/g; known=rate; "
       "output_unit=deg/s\n"
       "run,a_i,output,rate,K0,K1,K2,K3\n"
@@ -133,9 +122,9 @@ CsvTable observations() {
       "25g,-3.1771231287280877e-05,6.2960027667124328,1.6505024563838392e-05,1,-3.1771231287280877e-05,"
       "312.50619837971044,-0.019857226505450853\n"
       "30g,-0.0053797588949902643,6.3367545720364937,0.0025512599853871726,1,-0.0053797588949902643,"
-      "450.04772400165359,-3.6059301907758177\n",
-      "obs.csv");
+      "450.04772400165359,-3.6059301907758177\n";
 }
+CsvTable observations() { return parse_csv(observations_text(), "obs.csv"); }
 
 TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
   const Config cfg = bundled_example();
@@ -184,6 +173,10 @@ TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
                                                           "paper", "--coverage-probability", "0.9"}));
   const std::string page = render::html(r, p, "/* the charting library */");
   EXPECT_NE(page.find("<section id=\"statement\">"), std::string::npos);
+  // The observations are named and fingerprinted in the provenance, as the configuration is.
+  EXPECT_EQ(p.observations_sha256, sha256_hex(observations_text()));
+  EXPECT_NE(page.find("<code id=\"observations-sha256\">" + sha256_hex(observations_text()) + "</code>"),
+            std::string::npos);
   EXPECT_NE(page.find("data-src=\"identify:/statement/coefficients/K3/expanded_uncertainty\""),
             std::string::npos);
   EXPECT_NE(page.find("ccal identify obs.csv --statement --config examples/wang_ren_2014.toml --mode paper "

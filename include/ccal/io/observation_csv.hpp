@@ -54,6 +54,7 @@ struct CsvTable {
     std::string text;  // after the '#', trimmed
   };
   std::string source;  // file name for messages
+  std::string text_sha256;  // SHA-256 of the text it was parsed from: the file's fingerprint in a report
   std::vector<Comment> comments;
   int header_line = 0;
   std::vector<std::string> header;
@@ -119,6 +120,9 @@ struct ObservationsHeader {
   std::vector<Fixed> fixed;
   std::vector<std::string> known;  // columns of known contributions, subtracted from the output
   std::string output_unit;         // unit of the output column ("" if not recorded)
+  // SHA-256 of the configuration whose test the file holds (Config::text_sha256; "" if not recorded): the
+  // calibration statement refuses a configuration of another fingerprint.
+  std::string config_sha256;
   int line = 0;                    // where the comment was read
 };
 
@@ -134,12 +138,13 @@ double output_unit_si(std::string_view output_unit);
 // The header observations_csv writes for a spec: each free and fixed term on its own regressor column, the
 // fixed values in the output unit, the rate term known.
 ObservationsHeader observations_file_header(const IdentificationSpec& spec,
-                                            const InstrumentModel& instrument);
+                                            const InstrumentModel& instrument,
+                                            std::string_view config_sha256 = {});
 
 // The observations file of simulated observations: values in the instrument's output unit (regressors in gⁿ,
 // K_w's in rad/s), fixed values in coefficient units, regressor columns in canonical term order.
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
-                             const InstrumentModel& instrument);
+                             const InstrumentModel& instrument, std::string_view config_sha256 = {});
 
 // What to fit from a table. Values are in the file's units (output column per column unit).
 struct TableTerm {

@@ -33,6 +33,7 @@ struct ReportProvenance {
   std::vector<std::string> allocate_command, design_command;
   // With the statement section: `ccal identify OBS.csv …`, run with `--config CONFIG` (the report's).
   std::vector<std::string> identify_command;
+  std::string observations_sha256;  // of the observations file (its CsvTable's), filled by report_commands
 };
 
 // The provenance's date: now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention)

@@ -21,6 +21,9 @@ namespace ccal {
 
 struct Config {
   std::string source;  // file name (or the name given to parse_config), as used in messages
+  // SHA-256 of the text it was read from (parse_config), the fingerprint that observations files and reports
+  // carry; empty for a configuration built or changed in code (it then describes no file).
+  std::string text_sha256;
   Site site;
   CentrifugeModel centrifuge;  // geometry and the known/actual values of the [errors] section
   InstrumentModel instrument;

@@ -63,6 +63,7 @@ struct FileIdentification {
 };
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
                                          const InstrumentModel& instrument, std::string_view source,
-                                         const DataResolution* resolution = nullptr);
+                                         const DataResolution* resolution = nullptr,
+                                         std::string_view config_sha256 = {});
 
 }  // namespace ccal::verbs

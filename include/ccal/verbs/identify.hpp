@@ -47,4 +47,9 @@ struct IdentifyResult {
 // place.
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options = {});
 
+// Throws OptionError of `field`, naming both SHA-256s, when the observations file records the fingerprint of
+// a configuration (config_sha256) and `config` is from another text: its statement would carry the wrong
+// budget. Nothing is checked when either fingerprint is unknown.
+void check_observations_configuration(const CsvTable& table, const Config& config, std::string_view field);
+
 }  // namespace ccal::verbs

@@ -1,6 +1,6 @@
 // SHA-256 as FIPS 180-4 §6.2 states it: 64-byte blocks, the message padded with a 1 bit, zeros and its
 // length in bits (§5.1.1), eight 32-bit working variables and 64 rounds per block.
-#include "ccal/render/report_sha256.hpp"
+#include "ccal/core/sha256.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <bit>
 #include <cstdint>
 
-namespace ccal::render {
+namespace ccal {
 namespace {
 
 // §4.2.2: the first 32 bits of the fractional parts of the cube roots of the first 64 primes.
@@ -76,4 +76,4 @@ std::string sha256_hex(std::string_view bytes) {
   return hex;
 }
 
-}  // namespace ccal::render
+}  // namespace ccal

@@ -1,0 +1,24 @@
+// SHA-256 (core/sha256.hpp) against the FIPS 180-2 examples, and the fingerprint a configuration carries.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "ccal/core/sha256.hpp"
+#include "ccal/io/config_file.hpp"
+
+namespace ccal {
+namespace {
+
+TEST(Sha256, FipsExamples) {
+  // FIPS 180-2, Appendix B (one block, two blocks: 56 bytes fill the first block's length field, a million
+  // 'a'), and the empty message.
+  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(sha256_hex(std::string(1000000, 'a')),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+}
+
+}  // namespace
+}  // namespace ccal
