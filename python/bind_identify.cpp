@@ -32,7 +32,9 @@ void bind_identify(py::module_& m) {
           "the unit of each free term's coefficient [—]")
       .def_property_readonly(
           "has_statement", [](const verbs::IdentifyResult& r) { return r.statement.has_value(); },
-          "True when statement=True gave the calibration statement [—]");
+          "True when statement=True gave the calibration statement [—]")
+      .def_readonly("statement", &verbs::IdentifyResult::statement,
+                    "the calibration statement with statement=True, else None [Statement]");
 
   m.def(
       "identify_file",

@@ -98,6 +98,8 @@ void bind_log_reduction(py::module_& m) {
       .def_property_readonly(
           "has_statement", [](const verbs::ReduceResult& r) { return r.statement.has_value(); },
           "True when statement=True gave the calibration statement (in str() and to_json()) [—]")
+      .def_readonly("statement", &verbs::ReduceResult::statement,
+                    "the calibration statement with statement=True, else None [Statement]")
       .def_property_readonly(
           "coefficients",
           [](const verbs::ReduceResult& r) {

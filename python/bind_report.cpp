@@ -11,6 +11,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/io/pdf_print.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "interruptible.hpp"
@@ -101,7 +102,18 @@ void bind_report(py::module_& m) {
             return render::html(r.result, p, scripts);
           },
           py::arg("config_text"), py::arg("command_line"),
-          "The page for the configuration's text and the call that made the report (to_html() gives them).");
+          "The page for the configuration's text and the call that made the report (to_html() gives them).")
+      .def(
+          "_print_pdf",
+          [](const Report&, const std::string& html) {
+            std::string pdf;
+            {
+              py::gil_scoped_release release;  // the browser takes seconds
+              pdf = print_pdf(html);
+            }
+            return py::bytes(pdf);
+          },
+          py::arg("html"), "A page printed to PDF by headless Chromium (io/pdf_print.hpp), as bytes (to_pdf()).");
 
   m.def(
       "report",

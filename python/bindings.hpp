@@ -56,6 +56,7 @@ void bind_budget(py::module_& m);      // Budget and its parts, budget
 void bind_force(py::module_& m);       // SensedInput and its parts, sensed_input
 void bind_simulate(py::module_& m);    // Observations, Simulation, simulate, observe
 void bind_fit(py::module_& m);         // Fit, Observability, observability, identify, fit
+void bind_statement(py::module_& m);   // Statement
 void bind_reduce(py::module_& m);      // LogReduction and its parts, Reduction, reduce, reduce_logs
 void bind_montecarlo(py::module_& m);  // MonteCarlo and its parts, monte_carlo
 void bind_allocate(py::module_& m);    // Allocation and its parts, allocate

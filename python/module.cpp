@@ -84,6 +84,7 @@ PYBIND11_MODULE(_ccal, m) {
   ccal::python::bind_force(m);
   ccal::python::bind_simulate(m);
   ccal::python::bind_fit(m);
+  ccal::python::bind_statement(m);
   ccal::python::bind_reduce(m);
   ccal::python::bind_montecarlo(m);
   ccal::python::bind_allocate(m);

@@ -7,14 +7,15 @@
 #   bash scripts/setup.sh ccal    the library and the program only (the README's first command)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# The library and the program need the first list; the tests, benchmarks, Python module and the report's browser
-# check the second.
+# The library and the program need the first list; the tests, benchmarks, Python module, the report's browser
+# check and the certificate's PDF check (Chromium prints it, poppler-utils reads it back) the second.
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
           libfmt-dev libboost-math-dev nodejs ccache)
 case "${1:-all}" in
   all) targets=()
        parts=(-DCCAL_BUILD_TESTS=ON -DCCAL_BUILD_BENCH=ON -DCCAL_BUILD_PYTHON=ON)
-       packages+=(libgtest-dev libgmock-dev libbenchmark-dev pybind11-dev python3-dev python3-numpy chromium) ;;
+       packages+=(libgtest-dev libgmock-dev libbenchmark-dev pybind11-dev python3-dev python3-numpy chromium
+                 poppler-utils) ;;
   ccal) targets=(--target ccal_cli)
         parts=(-DCCAL_BUILD_TESTS=OFF -DCCAL_BUILD_BENCH=OFF -DCCAL_BUILD_PYTHON=OFF) ;;
   *) echo "setup: '$1' is not a build choice; accepted: 'ccal' (library and program) or nothing (everything)" >&2

@@ -1,7 +1,8 @@
 // Opens a report of `ccal report` in headless Chromium with every network request refused, and fails
 // (exit 1, one line per problem) on a console error, an uncaught page error, a failed or non-local request, a
 // chart that was not drawn, or a chart with fewer drawn marks (bars with an area) than expected. Saves a PNG
-// of the whole page.
+// of the whole page. Then prints it as the PDF of `ccal report --pdf` would be printed (print media, the width of
+// an A4 page less its margins) and fails on anything wider than the paper.
 //   node web/check_report.mjs REPORT.html SCREENSHOT.png [CHROMIUM]
 // Exit 77 (the test is skipped) when no Chromium is installed.
 import { chromium } from 'playwright-core';
@@ -75,6 +76,16 @@ try {
   if (expected && charts.length !== expected) problems.push(`${charts.length} charts, expected ${expected}`);
   await page.screenshot({ path: screenshot, fullPage: true });
   console.log(`screenshot: ${screenshot}`);
+  // A4 less the page's 12 mm side margins (report.cpp's @page): 186 mm = 703 CSS px at 96 px per inch.
+  const paper = Math.floor((186 / 25.4) * 96);
+  await page.emulateMedia({ media: 'print' });
+  await page.setViewportSize({ width: paper, height: 1000 });
+  const wide = await page.evaluate((width) => [...document.querySelectorAll('body *')]
+    .filter((e) => e.getBoundingClientRect().right > width + 1 && e.getClientRects().length)
+    .filter((e) => !e.parentElement || e.parentElement.getBoundingClientRect().right <= width + 1)
+    .map((e) => `${e.closest('[id]') ? e.closest('[id]').id + ' ' : ''}${e.tagName.toLowerCase()}${e.id ? '#' + e.id : ''}${e.className && typeof e.className === 'string'
+      ? '.' + e.className.split(' ')[0] : ''} (${Math.round(e.getBoundingClientRect().right)} px)`), paper);
+  for (const w of wide.slice(0, 10)) problems.push(`printed on A4 (${paper} px wide), wider than the paper: ${w}`);
 } finally {
   await browser.close();
 }

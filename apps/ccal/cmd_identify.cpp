@@ -21,6 +21,7 @@ struct IdentifyCli {
   std::string file;
   verbs::IdentifyOptions options;  // its table's flags are bound to it
   std::string config;              // --config: the statement's configuration
+  std::string statement_out;       // --statement-out FILE.json|FILE.csv
   std::string old_budget;          // --budget, refused: it took a file here and was a flag in reduce
   std::string old_input, old_weight;  // --input, --weight: now --input-column, --weight-column
   OutputOptions output;
@@ -48,6 +49,7 @@ Command add_identify(CLI::App& app) {
   for (auto [flag, target] : {std::pair{"--budget", &o->old_budget}, std::pair{"--input", &o->old_input},
                               std::pair{"--weight", &o->old_weight}})
     cmd->add_option(flag, *target)->group("");  // refused with a message, not in --help
+  add_statement_out_option(*cmd, o->statement_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -69,6 +71,7 @@ Command add_identify(CLI::App& app) {
               throw InputError(fmt::format("{0}: no longer accepted; accepted: {0}-column COL (the column of "
                                            "the table), as -o/--output names the file written",
                                            o->old_input.empty() ? "--weight" : "--input"));
+            check_statement_out(o->statement_out, o->options.statement, o->output);
             note_input(o->file);
             const CsvTable table = read_csv_file(o->file);
             if (!o->output.path.empty() && is_column(table, o->output.path) &&
@@ -85,9 +88,13 @@ Command add_identify(CLI::App& app) {
             const verbs::IdentifyResult r = verbs::identify(table, io);
             print_warnings(r.identification.observability.warnings);
             const std::string& f = o->output.format;
-            write_output(o->output, f == "json"  ? render::json(r)
-                                    : f == "csv" ? render::csv(r)
-                                                 : render::text(r));
+            std::vector<ExtraFile> extra;
+            add_statement_out_file(extra, o->statement_out, r.statement);
+            write_outputs(o->output,
+                          f == "json"  ? render::json(r)
+                          : f == "csv" ? render::csv(r)
+                                       : render::text(r),
+                          extra);
           }};
 }
 

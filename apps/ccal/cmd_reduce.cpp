@@ -20,6 +20,7 @@ struct ReduceCli {
   verbs::ReduceOptions options;   // its table's flags are bound to it
   bool old_budget = false;        // --budget, refused: a flag here, a file in identify; now --statement
   std::string observations_out;
+  std::string statement_out;
   OutputOptions output;
 };
 
@@ -42,6 +43,7 @@ Command add_reduce(CLI::App& app) {
   add_option_flags(*cmd, o->options, option_table<verbs::ReduceOptions>());
   cmd->add_flag("--budget", o->old_budget)->group("");  // refused with a message, not in --help
   add_observations_out_option(*cmd, o->observations_out);
+  add_statement_out_option(*cmd, o->statement_out);
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -49,11 +51,14 @@ Command add_reduce(CLI::App& app) {
       "      mean outputs of four logged runs and the identified terms of my.toml\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --angle-unit deg --format json\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement\n"
-      "      with the calibration statement: each coefficient with its U and interval\n");
+      "      with the calibration statement: each coefficient with its U and interval\n"
+      "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement \\\n"
+      "      --statement-out statement.csv    the statement also as CSV, with the covariance\n");
 
   return {cmd, [o] {
             const Config cfg = load_config_or_example(o->config);
             check_observations_out(o->observations_out, o->output);
+            check_statement_out(o->statement_out, o->options.statement, o->output);
             if (o->old_budget)
               throw InputError(
                   "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "
@@ -78,6 +83,7 @@ Command add_reduce(CLI::App& app) {
             std::vector<ExtraFile> extra;
             if (!o->observations_out.empty())
               extra.push_back({"--observations-out", o->observations_out, r.identification.csv});
+            add_statement_out_file(extra, o->statement_out, r.statement);
             write_outputs(o->output, text, extra);
           }};
 }

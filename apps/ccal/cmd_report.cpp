@@ -9,8 +9,10 @@
 #include <memory>
 #include <sstream>
 
+#include "atomic_file.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/io/pdf_print.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "commands.hpp"
@@ -28,8 +30,32 @@ struct ReportCli {
   bool design = false;                        // the design section
   std::vector<std::string> design_targets;    // the design's targets (imply the section)
   std::string observations;                   // non-empty: the calibration statement section
+  std::string pdf;                            // non-empty: the page printed to this PDF file too
   OutputOptions output;
 };
+
+// Before the long computation: the PDF file is not the page's, and there is a browser to print it with.
+void check_pdf(const std::string& pdf, const OutputOptions& output) {
+  if (pdf.empty()) return;
+  if (!output.path.empty() && same_file(pdf, output.path))
+    throw InputError(fmt::format("--pdf: '{}' is also the -o file; accepted: two different files", pdf));
+  if (find_pdf_browser().empty()) {
+    try {
+      print_pdf("");  // throws the reason, worded once there
+    } catch (const InputError& e) {
+      throw InputError(std::string("--pdf: ") + e.what());
+    }
+  }
+}
+
+// The page as a PDF (InputError naming --pdf).
+std::string pdf_of(const std::string& page) {
+  try {
+    return print_pdf(page);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--pdf: ") + e.what());
+  }
+}
 
 // The observations file, or an error naming --observations.
 CsvTable read_observations(const std::string& path) {
@@ -72,6 +98,10 @@ Command add_report(CLI::App& app) {
   o->output.format = "html";
   cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
       ->type_name("FILE.html");
+  cmd->add_option("--pdf", o->pdf,
+                  "Print the page to FILE as PDF (A4), through headless Chromium (Debian's chromium, or the "
+                  "program named by CCAL_CHROMIUM); without -o only the PDF is written")
+      ->type_name("FILE.pdf");
   cmd->footer(
       "Examples:\n"
       "  ccal report -o report.html\n"
@@ -82,9 +112,12 @@ Command add_report(CLI::App& app) {
       "      (the same numbers as `ccal allocate --target K2=2e-5 --target K3=2e-3` and `ccal design`)\n"
       "  ccal simulate my.toml --observations-out obs.csv && ccal report my.toml --observations obs.csv\n"
       "      with the calibration statement of the observations (`ccal identify obs.csv --statement "
-      "--config my.toml`)\n");
+      "--config my.toml`)\n"
+      "  ccal report lab.toml --observations obs.csv --pdf certificate.pdf\n"
+      "      the calibration certificate (with lab.toml's [certificate] table) as a PDF to sign and file\n");
   return {cmd, [o] {
             const std::string_view scripts = required_report_scripts();  // before the long computation
+            check_pdf(o->pdf, o->output);
             verbs::ReportOptions ro = o->options;
             ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
             if (!o->allocate_targets.empty()) {
@@ -100,7 +133,13 @@ Command add_report(CLI::App& app) {
             p.command_line = command_line_text();
             p.date_utc = render::report_date_utc();
             render::report_commands(r, ro, p);
-            write_output(o->output, render::html(r, p, scripts));
+            const std::string page = render::html(r, p, scripts);
+            if (o->pdf.empty()) return write_output(o->output, page);
+            std::string bytes = pdf_of(page);
+            if (o->output.path.empty())
+              write_files({{"--pdf", o->pdf, std::move(bytes), {}}});
+            else
+              write_outputs(o->output, page, {{"--pdf", o->pdf, std::move(bytes)}});
           }};
 }
 

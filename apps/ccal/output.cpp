@@ -12,6 +12,7 @@
 
 #include "atomic_file.hpp"
 #include "ccal/core/errors.hpp"
+#include "ccal/render/statement.hpp"
 
 namespace ccal::cli {
 
@@ -40,6 +41,36 @@ void check_observations_out(const std::string& path, const OutputOptions& output
   if (!path.empty() && same_file(path, output.path.empty() ? "-" : output.path))
     throw InputError(
         fmt::format("--observations-out: '{}' is also the -o file; accepted: two different files", path));
+}
+
+void add_statement_out_option(CLI::App& command, std::string& path) {
+  command
+      .add_option("--statement-out", path,
+                  "With --statement, also write the calibration statement alone to FILE: JSON for FILE.json, CSV "
+                  "(one row per coefficient with its covariance row) for FILE.csv")
+      ->type_name("FILE.json|FILE.csv");
+}
+
+void check_statement_out(const std::string& path, bool statement, const OutputOptions& output) {
+  if (path.empty()) return;
+  if (!statement)
+    throw InputError(fmt::format("--statement-out: '{}' asks for the statement's file without --statement; "
+                                 "accepted: --statement --statement-out FILE",
+                                 path));
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".json" && ext != ".csv")
+    throw InputError(fmt::format("--statement-out: '{}' has no .json or .csv extension, which sets the format; "
+                                 "accepted: FILE.json or FILE.csv",
+                                 path));
+  if (same_file(path, output.path.empty() ? "-" : output.path))
+    throw InputError(fmt::format("--statement-out: '{}' is also the -o file; accepted: two different files", path));
+}
+
+void add_statement_out_file(std::vector<ExtraFile>& extra, const std::string& path,
+                            const std::optional<verbs::CalibrationStatement>& statement) {
+  if (path.empty() || !statement) return;
+  const bool json = std::filesystem::path(path).extension() == ".json";
+  extra.push_back({"--statement-out", path, json ? render::json(*statement) : render::csv(*statement)});
 }
 
 void note_input(const std::string& path) { note_input_file(path); }

@@ -5,12 +5,14 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "ccal/io/config_file.hpp"
 #include "ccal/render/table.hpp"
+#include "ccal/verbs/statement.hpp"
 
 namespace ccal::cli {
 
@@ -55,6 +57,16 @@ void write_outputs(const OutputOptions& options, std::string_view text, const st
 // check that it is not also the -o file (InputError).
 void add_observations_out_option(CLI::App& command, std::string& path);
 void check_observations_out(const std::string& path, const OutputOptions& output);
+
+// --statement-out FILE of `reduce` and `identify`: the calibration statement alone (render/statement.hpp), JSON
+// or CSV by the file's extension.
+void add_statement_out_option(CLI::App& command, std::string& path);
+// Before the work: refused without --statement, with another extension than .json or .csv, or naming the -o
+// file (InputError naming --statement-out).
+void check_statement_out(const std::string& path, bool statement, const OutputOptions& output);
+// The file for the extra outputs, if --statement-out named one.
+void add_statement_out_file(std::vector<ExtraFile>& extra, const std::string& path,
+                            const std::optional<verbs::CalibrationStatement>& statement);
 
 // The configuration's bytes exactly as read (the bundled example's text for an empty path), for a report's
 // hash or a --plan-out file built from it. InputError if the file cannot be read again.

@@ -109,6 +109,7 @@ def install(namespace):
     for class_name in VERB_RESULTS.values():
         cls = getattr(_ccal, class_name)
         _results.verb_result_methods(cls, _tables.DISPLAY[class_name])
+    _results.statement_methods(_ccal.Statement)
     _results.budget_methods(_ccal.Budget, _tables.display_budget_sources)
     _results.identification_methods(_ccal.Identification, _tables.DISPLAY["Identification"])
     _ccal.Simulation.write_logs = _results.write_logs

@@ -3,6 +3,7 @@ class as its fields), Jupyter tables, display(), to_dict(), to_frame(), and Simu
 
 import json
 import os
+import tempfile
 
 import numpy as np
 
@@ -119,6 +120,53 @@ def identification_methods(cls, build):
     cls._repr_html_ = _table_html
 
 
+def statement_methods(cls):
+    """Statement.display(), to_dict(), to_frame(), to_uncertainties(), repr and _repr_html_."""
+
+    def display(self) -> "Table":
+        """One row per coefficient: the value and U rounded as the certificate writes them (two significant
+        digits of U, JCGM 100 §7.2.6), unit, k, p, nu_eff, the interval and whether it excludes 0."""
+        d = json.loads(self.to_json())
+        rows = []
+        for name, c in d["coefficients"].items():
+            r = c["rounded"]
+            nu = c["effective_dof"]
+            rows.append([name, r["estimate"], r["expanded_uncertainty"], c["unit"], c["coverage_factor"],
+                         d["coverage_probability"], float("inf") if nu is None else nu, r["interval"][0],
+                         r["interval"][1], c["significant"]])
+        return Table(f"calibration statement, p = {100 * d['coverage_probability']:g} % (U to two significant "
+                     "digits)", ["coefficient", "value", "U", "unit", "k", "p", "nu_eff", "low", "high",
+                                 "significant"], rows)
+
+    def to_dict(self) -> "Dict[str, Any]":
+        """The statement as to_json() writes it, parsed (dict)."""
+        return json.loads(self.to_json())
+
+    def to_frame(self) -> "Any":
+        """display() as a pandas DataFrame (pandas is optional: ImportError without it)."""
+        return self.display().to_frame()
+
+    def to_uncertainties(self) -> "Dict[str, Any]":
+        """The corrected estimates as correlated numbers of the package uncertainties (optional: ImportError
+        without it), {name: ufloat} with the combined covariance, so that a function of them carries its
+        uncertainty: e.g. the modelled output K0 + K2 a² + K3 a³ at any g-level a."""
+        try:
+            import uncertainties
+        except ImportError as e:
+            raise ImportError("to_uncertainties() needs the package uncertainties, which ccal does not require; "
+                              "install it (Debian: apt-get install python3-uncertainties) or use .covariance"
+                              ) from e
+        values = uncertainties.correlated_values(list(self.values), np.asarray(self.covariance),
+                                                 tags=list(self.names))
+        return dict(zip(self.names, values))
+
+    for name, f in (("display", display), ("to_dict", to_dict), ("to_frame", to_frame),
+                    ("to_uncertainties", to_uncertainties)):
+        _named(cls, name, f)
+    cls.__repr__ = _table_repr
+    cls._repr_html_ = _table_html
+
+
 def budget_methods(cls, build):
     """Budget.sources_table() and .sources_frame(): the budget per source."""
 
@@ -199,4 +247,21 @@ def report_methods(cls):
         call = ", ".join([config_call_text(config)] + [f"{k}={v!r}" for k, v in keywords.items()])
         return self._html(config_text, f"ccal.report({call})")
 
+    def to_pdf(self, path: "str") -> "None":
+        """The page printed to PDF (A4, the page count at the foot) as `ccal report --pdf FILE` prints it,
+        through headless Chromium (Debian's chromium, or the program named by CCAL_CHROMIUM), written to path;
+        an existing file is replaced only once the PDF is complete."""
+        data = self._print_pdf(self.to_html())
+        folder = os.path.dirname(os.path.abspath(path))
+        fd, temporary = tempfile.mkstemp(prefix=".ccal-", suffix=".pdf", dir=folder)
+        try:
+            with os.fdopen(fd, "wb") as f:
+                f.write(data)
+            os.replace(temporary, path)
+        except BaseException:
+            if os.path.exists(temporary):
+                os.remove(temporary)
+            raise
+
     _named(cls, "to_html", to_html)
+    _named(cls, "to_pdf", to_pdf)

@@ -102,6 +102,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   cfg.plan = read_plan(r, root, cfg.centrifuge.geometry, cfg.site);
   read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);
   cfg.design = read_design(r, root, cfg.instrument, cfg.identification);
+  cfg.certificate = read_certificate(r, root);
   return cfg;
 }
 

@@ -289,7 +289,7 @@ class Reader {
 };
 
 inline const Keys kRootKeys{"site", "centrifuge", "errors",         "tolerances",
-                            "instrument", "plan",       "identification", "design"};
+                            "instrument", "plan",       "identification", "design", "certificate"};
 inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
 inline const Keys kCentrifugeKeys{
     "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
@@ -321,5 +321,7 @@ void read_identification(const Reader& r, const toml::table& root, const Instrum
 // [design] (config_sections_design.cpp); the coefficients' units are checked against the free terms.
 DesignSpace read_design(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
                         const IdentificationSpec& spec);
+// [certificate] (config_sections_certificate.cpp): its fields as written, the dates checked; unset if absent.
+std::optional<Certificate> read_certificate(const Reader& r, const toml::table& root);
 
 }  // namespace ccal::config_reading

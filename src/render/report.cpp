@@ -45,7 +45,17 @@ td.good{color:#1a7f37;font-weight:600}td.bad{color:#b42318;font-weight:600}
 pre{background:#f6f8fa;border:1px solid #ddd;padding:10px;overflow:auto;font-size:0.8em;max-height:480px}
 .advice{max-width:520px;color:#8a4b00}
 code{background:#f2f2f2;padding:0 3px}
-@media print{.chart{break-inside:avoid}pre{max-height:none}}
+table.result{font-size:1.05em}table.result td{padding:4px 10px}
+table.certificate{font-size:0.95em}table.certificate th{width:14em}
+.signatures{display:flex;gap:48px;margin:40px 0 12px}.signature{flex:1;max-width:300px}
+.signature .line{border-bottom:1px solid #222;height:44px;margin-bottom:4px}.small{font-size:0.8em;color:#555}
+@media print{body{max-width:none;margin:0;padding:0;font-size:9pt}.chart{break-inside:avoid;min-width:0}
+pre{max-height:none;white-space:pre-wrap;overflow-wrap:anywhere}tr,.signatures{break-inside:avoid}
+h2{break-after:avoid}.annex{break-before:page}details::details-content{content-visibility:visible;display:block}
+td.num{white-space:normal}table.statement{font-size:6.5pt}table.statement th,table.statement td{padding:1px 2px}
+table.statement caption{font-size:9pt}
+table.result,table.statement,table.certificate,table.summary,table.statement-correlation,table.statement-output{
+break-inside:avoid}}
 )";
 
 // Draws every chart of the page; window.ccalReport resolves when all are drawn (rejects if one fails, after
@@ -61,6 +71,10 @@ constexpr const char* kDraw = R"(
   window.ccalReport = Promise.all(jobs).then(function () {
     document.body.dataset.charts = String(jobs.length);
   }, function (e) { console.error('ccal report: a chart failed: ' + e); throw e; });
+  // A printed page shows what a collapsed block holds.
+  window.addEventListener('beforeprint', function () {
+    document.querySelectorAll('details').forEach(function (d) { d.open = true; });
+  });
 })();
 )";
 
@@ -212,8 +226,8 @@ void design_command(const verbs::DesignOptions& d, ReportProvenance& p) {
   if (d.verify_trials != 0) c.insert(c.end(), {"--verify-trials", std::to_string(d.verify_trials)});
 }
 
-// The allocation, the design and the statement sections (when the result has them), each output their cells
-// name added to `sources` with its command line.
+// The allocation and the design sections (when the result has them), each output their cells name added to
+// `sources` with its command line.
 std::string optional_sections(const verbs::ReportResult& r, const ReportProvenance& p, Json& sources) {
   std::string out;
   if (r.allocation) {
@@ -239,12 +253,28 @@ std::string optional_sections(const verbs::ReportResult& r, const ReportProvenan
         after{"design-after", after_json};
     out += design_section(DesignDocs{design, before, after, runs});
   }
-  if (r.observed) {
-    const Json identify_json = Json::parse(json(*r.observed));
-    sources["identify"] = {{"command", p.identify_command}, {"config_option", "--config"}};
-    out += statement_section(Doc{"identify", identify_json});
-  }
   return out;
+}
+
+// The calibration statement (with observations): the page's first section, the result a laboratory files.
+std::string statement_first(const verbs::ReportResult& r, const ReportProvenance& p, Json& sources) {
+  if (!r.observed) return "";
+  const Json identify_json = Json::parse(json(*r.observed));
+  sources["identify"] = {{"command", p.identify_command}, {"config_option", "--config"}};
+  return statement_section(Doc{"identify", identify_json});
+}
+
+// The printed page: A4, its number and count at the foot beside the certificate's number (or the
+// configuration's name), and every collapsed block opened for print.
+std::string page_css(const verbs::ReportResult& r, bool certificate) {
+  const std::string left =
+      certificate && !r.config.certificate->number.empty()
+          ? css_string("Certificate " + r.config.certificate->number)
+          : css_string((certificate ? "Calibration certificate: " : "ccal report: ") + r.config.source);
+  return fmt::format(
+      "@page{{size:A4;margin:14mm 12mm 16mm;@bottom-left{{content:{};font-size:8pt;color:#555}}"
+      "@bottom-right{{content:\"Page \" counter(page) \" of \" counter(pages);font-size:8pt;color:#555}}}}\n",
+      left);
 }
 
 }  // namespace
@@ -325,6 +355,10 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
          {"force", "--run", std::to_string(r.sensed_input.run_index + 1), "--time",
           fmt::format("{:.17g}", instants[i]["run"]["time_s"].get<double>())}}};
 
+  const std::string statement_html = statement_first(r, p, sources);
+  // With observations and a [certificate] table the page is a certificate: its fields, the statement, the
+  // method and the signature lines, then the rest of the report as its annex.
+  const bool certificate = r.observed && r.config.certificate;
   const std::string section_html = optional_sections(r, p, sources);
 
   std::vector<std::string> advice;
@@ -332,13 +366,23 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
 
   std::string page = fmt::format(
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>ccal report: "
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{5}: "
       "{0}</title>\n"
-      "<style>{1}</style>\n</head>\n<body>\n<h1>Centrifuge calibration: uncertainty report</h1>\n"
+      "<style>{1}{6}</style>\n</head>\n<body>\n<h1>{5}</h1>\n"
       "<p class=\"sub\">{0} · {2} mode · {3} · {4}</p>\n",
       escape(r.config.source), kStyle, escape(budget_json["mode"].get<std::string>()), escape(p.date_utc),
-      escape(version_line()));
+      escape(version_line()),
+      certificate ? "Calibration certificate" : "Centrifuge calibration: uncertainty report",
+      page_css(r, certificate));
   page += "<script type=\"application/json\" id=\"ccal-sources\">" + script_json(sources) + "</script>\n";
+  if (certificate) page += certificate_head(*r.config.certificate);
+  page += statement_html;
+  if (certificate)
+    page += method_section(r.config, Doc{"identify", Json::parse(json(*r.observed))}) +
+            signature_section(*r.config.certificate) +
+            "<div class=\"annex\">\n<h2 id=\"annex\">Annex: the uncertainty analysis</h2>\n<p>The centrifuge's "
+            "error budget, its Monte Carlo check and the model's provenance, from which the Type B part of the "
+            "result above is computed.</p>\n";
   page += summary(budget, mc);
   page += setup_section(r.config, p.config_text);
   page += budget_section(budget, errors, kTopSources);
@@ -350,6 +394,7 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   page += paper_section(budget, kTopSources);
   page += sensed_input_section(r.sensed_input, instants);
   page += provenance_section(r, p);
+  if (certificate) page += "</div>\n";
   page += "<script>" + script_text(scripts) + "</script>\n<script>" + kDraw + "</script>\n</body>\n</html>\n";
   return page;
 }

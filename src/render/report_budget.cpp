@@ -220,7 +220,9 @@ std::string paper_section(const Doc& doc, std::size_t top) {
   const Json spec = {
       {"title", "Effect of the largest sources: exact chain against the paper's rules"},
       {"data", {{"values", values}}},
-      {"facet", {{"column", {{"field", "coefficient"}, {"type", "nominal"}, {"title", nullptr}}}}},
+      // Two coefficients a row: three would be wider than an A4 page.
+      {"facet", {{"field", "coefficient"}, {"type", "nominal"}, {"title", nullptr}}},
+      {"columns", 2},
       {"resolve", {{"scale", {{"y", "independent"}}}}},
       {"spec",
        {{"width", 220},

@@ -75,6 +75,16 @@ std::string ratio_cell(const Doc& doc, const std::string& numerator, const std::
                      escape(doc.name), escape(numerator), escape(denominator), digits, value, digits);
 }
 
+std::string text_num_cell(const Doc& doc, const std::string& pointer) {
+  return fmt::format("<td class=\"num\" data-text=\"{}:{}\">{}</td>", escape(doc.name), escape(pointer),
+                     escape(doc.json.at(Json::json_pointer(pointer)).get<std::string>()));
+}
+
+std::string text_num_span(const Doc& doc, const std::string& pointer) {
+  return fmt::format("<span class=\"num\" data-text=\"{}:{}\">{}</span>", escape(doc.name), escape(pointer),
+                     escape(doc.json.at(Json::json_pointer(pointer)).get<std::string>()));
+}
+
 std::string text_cell(std::string_view text) { return "<td>" + escape(text) + "</td>"; }
 
 std::string chart(const std::string& id, const Json& spec) {

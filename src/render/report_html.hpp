@@ -33,6 +33,10 @@ std::string num_span(const Doc& doc, const std::string& pointer, int digits = 4,
 // (data-ratio="design:/a /b"), so that the check can redo the division.
 std::string ratio_cell(const Doc& doc, const std::string& numerator, const std::string& denominator,
                        int digits = 3);
+// A text of a verb's output (a string at `pointer`, e.g. a rounded figure) as a numeric cell or span that names its
+// source (data-text="identify:/statement/…/rounded/estimate"): the check compares it character for character.
+std::string text_num_cell(const Doc& doc, const std::string& pointer);
+std::string text_num_span(const Doc& doc, const std::string& pointer);
 // A text cell (escaped).
 std::string text_cell(std::string_view text);
 
@@ -56,6 +60,13 @@ struct DesignDocs {
   const std::vector<Doc>& configured_runs;
 };
 std::string design_section(const DesignDocs& docs);
+// The certificate page (report_certificate.cpp), with the statement of the observations (doc "identify"): the
+// [certificate] fields as written, the method in a paragraph, the signature lines.
+std::string certificate_head(const Certificate& certificate);
+std::string method_section(const Config& config, const Doc& identify);
+std::string signature_section(const Certificate& certificate);
+// Text as a CSS string literal ("…", with " \ < > & and line breaks escaped), e.g. for @page content.
+std::string css_string(std::string_view text);
 // The calibration statement of the observations (`ccal identify OBS.csv --statement --config CONFIG`, doc "identify").
 std::string statement_section(const Doc& identify);
 

@@ -31,7 +31,7 @@ std::string statement_table(const Doc& doc) {
          dof_cell(doc, p + "/type_a/dof") + num_cell(doc, p + "/type_b/u") +
          num_cell(doc, p + "/combined_standard_uncertainty") + dof_cell(doc, p + "/effective_dof") +
          num_cell(doc, p + "/coverage_factor", 4) + num_cell(doc, p + "/expanded_uncertainty", 3) +
-         num_cell(doc, p + "/interval/0", 8) + num_cell(doc, p + "/interval/1", 8) + "</tr>\n";
+         num_cell(doc, p + "/interval/0", 6) + num_cell(doc, p + "/interval/1", 6) + "</tr>\n";
   }
   return t + "</table>\n";
 }
@@ -82,12 +82,75 @@ std::string known_errors_text(const Json& st) {
                "budget</code>).";
 }
 
+// The result as a certificate states it: per coefficient the rounded value ± U (JCGM 100 §7.2.6), unit, k, p,
+// ν_eff and the interval; then a note for each term whose interval holds 0.
+std::string result_table(const Doc& doc) {
+  const Json& st = doc.json["statement"];
+  std::string t =
+      "<table class=\"result\"><caption>Result: U = k u<sub>c</sub> to two significant digits, the value to the "
+      "same decimal place (JCGM 100 §7.2.6)</caption>\n<tr><th>coefficient</th><th>value</th><th>± U</th>"
+      "<th>unit</th><th>k</th><th>p [%]</th><th>ν<sub>eff</sub></th><th colspan=\"2\">interval</th></tr>\n";
+  std::string notes;
+  for (const auto& [id, c] : st["coefficients"].items()) {
+    const std::string p = "/statement/coefficients/" + id;
+    t += "<tr>" + text_cell(id) + text_num_cell(doc, p + "/rounded/estimate") +
+         text_num_cell(doc, p + "/rounded/expanded_uncertainty") + text_cell(c["unit"].get<std::string>()) +
+         num_cell(doc, p + "/coverage_factor", 4) + num_cell(doc, "/statement/coverage_probability", 4, 100) +
+         dof_cell(doc, p + "/effective_dof") + text_num_cell(doc, p + "/rounded/interval/0") +
+         text_num_cell(doc, p + "/rounded/interval/1") + "</tr>\n";
+    if (!c["significant"].get<bool>())
+      notes += fmt::format(
+          "<li><b>{0} is not resolved from zero</b>: its interval holds 0 (|{0}| ≤ U). A plan with higher or "
+          "more g-levels lowers U({0}); <code>ccal design CONFIG --target {0}=U</code> finds one for the U "
+          "needed.</li>\n",
+          escape(id));
+  }
+  t += "</table>\n";
+  return notes.empty() ? t : t + "<ul class=\"advice\">\n" + notes + "</ul>\n";
+}
+
+// The correlation of the corrected estimates (Type A + Type B); the covariance is in the JSON.
+std::string correlation_table(const Doc& doc) {
+  const Json& order = doc.json["statement"]["covariance"]["order"];
+  std::string t = "<table class=\"statement-correlation\"><caption>Correlation of the corrected estimates (Type "
+                  "A + Type B)</caption>\n<tr><th></th>";
+  for (const auto& id : order) t += "<th>" + escape(id.get<std::string>()) + "</th>";
+  t += "</tr>\n";
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    t += "<tr>" + text_cell(order[i].get<std::string>());
+    for (std::size_t j = 0; j < order.size(); ++j)
+      t += num_cell(doc, fmt::format("/statement/covariance/correlation/{}/{}", i, j), 4);
+    t += "</tr>\n";
+  }
+  return t + "</table>\n";
+}
+
+// The modelled output of each run with its uncertainty from the covariance.
+std::string modelled_output_table(const Doc& doc) {
+  const Json& outputs = doc.json["statement"]["modelled_output"];
+  if (outputs.empty()) return "";
+  std::string t = fmt::format(
+      "<table class=\"statement-output\"><caption>Modelled output of each run, ŷ = hᵀ(K̂ + b), with u(ŷ)² = "
+      "hᵀ C h from the covariance C [{}]</caption>\n<tr><th>run</th><th>g-level [g]</th><th>ŷ</th>"
+      "<th>u<sub>c</sub></th><th>ν<sub>eff</sub></th><th>k</th><th>U</th></tr>\n",
+      escape(outputs[0]["unit"].get<std::string>()));
+  for (std::size_t r = 0; r < outputs.size(); ++r) {
+    const std::string p = fmt::format("/statement/modelled_output/{}", r);
+    t += "<tr>" + text_cell(outputs[r]["run"].get<std::string>()) +
+         (outputs[r]["g_level"].is_null() ? text_cell("–") : num_cell(doc, p + "/g_level", 6)) +
+         num_cell(doc, p + "/corrected_estimate", 8) + num_cell(doc, p + "/combined_standard_uncertainty") +
+         dof_cell(doc, p + "/effective_dof") + num_cell(doc, p + "/coverage_factor", 4) +
+         num_cell(doc, p + "/expanded_uncertainty", 3) + "</tr>\n";
+  }
+  return t + "</table>\n";
+}
+
 }  // namespace
 
 std::string statement_section(const Doc& doc) {
   const Json& st = doc.json["statement"];
   std::string out = fmt::format(
-      "<section id=\"statement\"><h2>Calibration statement</h2>\n<p>The observations <code>{}</code> ({} "
+      "<section id=\"statement\"><h2>Calibration statement</h2>\n{}<p>The observations <code>{}</code> ({} "
       "runs) identified as <code>ccal identify</code> does, with the uncertainty the laboratory reports for "
       "each coefficient (JCGM 100 §7 and Annex G, docs/model.md §10.5). <b>Type A</b> is evaluated from "
       "these "
@@ -100,11 +163,12 @@ std::string statement_section(const Doc& doc) {
       "u<sub>B</sub>²; ν<sub>eff</sub> by Welch–Satterthwaite; k the Student's t quantile for "
       "⌊ν<sub>eff</sub>⌋ at p = {}; U = k u<sub>c</sub>; the interval is the corrected estimate ∓ U. {} "
       "Units: the coefficients' (the instrument's output unit per gⁿ).</p>\n",
-      escape(doc.json["file"].get<std::string>()), num_span(doc, "/rows", 6),
+      result_table(doc), escape(doc.json["file"].get<std::string>()), num_span(doc, "/rows", 6),
       escape(st["mode"].get<std::string>()), num_span(doc, "/statement/coverage_probability", 4),
       known_errors_text(st));
   out +=
-      "<div class=\"pair\">\n" + chart("statement-split", split_spec(st)) + statement_table(doc) + "</div>\n";
+      "<div class=\"pair\">\n" + chart("statement-split", split_spec(st)) + statement_table(doc) + "</div>\n" +
+      "<div class=\"pair\">\n" + correlation_table(doc) + modelled_output_table(doc) + "</div>\n";
   return out + "</section>\n";
 }
 

@@ -4,68 +4,133 @@
 
 #include <cmath>
 
+#include "ccal/render/statement.hpp"
 #include "ccal/render/table.hpp"
+#include "budget_parts.hpp"
 
 namespace ccal::render {
 namespace {
 
-nlohmann::ordered_json dof_json(double dof) {
-  return std::isfinite(dof) ? nlohmann::ordered_json(dof) : nlohmann::ordered_json(nullptr);
-}
+using Json = nlohmann::ordered_json;
+
+Json dof_json(double dof) { return std::isfinite(dof) ? Json(dof) : Json(nullptr); }
 
 std::string dof_text(double dof, int digits = 3) { return std::isfinite(dof) ? number(dof, digits) : "inf"; }
 
-// The statement's line (JCGM 100 §7.2.6): U to two significant digits, the estimate and the interval's ends
-// to the same decimal place.
+std::string percent(double p) { return fmt::format("{:g} %", 100 * p); }
+
+// The statement's line: the figures rounded per JCGM 100 §7.2.6 (statement.hpp, round_figures).
 std::string statement_line(const CoefficientStatement& c, const std::string& pct) {
-  const double U = c.expanded;
-  std::string estimate = number(c.corrected, 8), expanded = number(U, 2), low = number(c.low, 8),
-              high = number(c.high, 8);
-  if (U > 0 && std::isfinite(U)) {
-    const int last = int(std::floor(std::log10(U))) - 1;  // the place of U's second digit
-    const double step = std::pow(10.0, last);
-    const int decimals = last < 0 ? -last : 0;
-    const auto at = [&](double v) { return fmt::format("{:.{}f}", std::round(v / step) * step, decimals); };
-    estimate = at(c.corrected);
-    expanded = at(U);
-    low = at(c.low);
-    high = at(c.high);
+  const RoundedFigures r = round_figures(c);
+  return fmt::format("  {} = ({} ± {}) {}, k = {:.3f}, p = {}: [{}, {}]", c.input.coefficient, r.estimate,
+                     r.expanded, c.input.unit, c.coverage_factor, pct, r.low, r.high);
+}
+
+Json matrix_json(const Eigen::MatrixXd& m) {
+  Json rows = Json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    Json row = Json::array();
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
+    rows.push_back(row);
   }
-  return fmt::format("  {} = ({} ± {}) {}, k = {:.3f}, p = {}: [{}, {}]", c.input.coefficient, estimate,
-                     expanded, c.input.unit, c.coverage_factor, pct, low, high);
+  return rows;
+}
+
+Json quantity_json(const CoefficientStatement& c) {
+  const RoundedFigures r = round_figures(c);
+  Json o;
+  o["unit"] = c.input.unit;
+  o["estimate"] = c.input.estimate;
+  o["correction"] = c.input.correction;
+  o["corrected_estimate"] = c.corrected;
+  o["type_a"] = {{"u", c.input.type_a.u}, {"dof", dof_json(c.input.type_a.dof)}};
+  o["type_b"] = {{"u", c.input.type_b.u}, {"dof", dof_json(c.input.type_b.dof)}};
+  o["combined_standard_uncertainty"] = c.combined;
+  o["effective_dof"] = dof_json(c.effective_dof);
+  o["coverage_factor"] = c.coverage_factor;
+  o["expanded_uncertainty"] = c.expanded;
+  o["interval"] = {c.low, c.high};
+  o["significant"] = c.significant;
+  o["rounded"] = {{"estimate", r.estimate},
+                  {"expanded_uncertainty", r.expanded},
+                  {"interval", {r.low, r.high}},
+                  {"place", r.place ? Json(*r.place) : Json(nullptr)}};
+  return o;
+}
+
+// A square matrix of the coefficients as a text table, `digits` significant digits.
+std::string matrix_text(const verbs::CalibrationStatement& st, const Eigen::MatrixXd& m, int digits,
+                        std::size_t width) {
+  std::vector<std::string> header{""};
+  for (const CoefficientStatement& c : st.coefficients) header.push_back(c.input.coefficient);
+  Table t(header);
+  t.gap(2);
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    std::vector<std::string> row{st.coefficients[std::size_t(r)].input.coefficient};
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(number(m(r, c), digits));
+    t.add_row(row);
+  }
+  return t.render("  ", width);
+}
+
+std::string outputs_text(const verbs::CalibrationStatement& st, std::size_t width) {
+  if (st.outputs.empty()) return "";
+  std::vector<std::string> header{"run", "g-level"};
+  for (const char* h : {"modelled output", "u_A", "u_B", "u_c", "nu_eff", "k", "U"}) header.push_back(h);
+  Table t(header);
+  t.gap(2);
+  for (std::size_t r = 0; r < st.outputs.size(); ++r) {
+    const CoefficientStatement& o = st.outputs[r];
+    std::vector<std::string> row{o.input.coefficient};
+    row.push_back(std::isfinite(st.g_levels[r]) ? fmt::format("{} g", number(st.g_levels[r], 6)) : "-");
+    for (const std::string& cell :
+         {number(o.corrected, 10), number(o.input.type_a.u, 4), number(o.input.type_b.u, 4),
+          number(o.combined, 4), dof_text(o.effective_dof), fmt::format("{:.3f}", o.coverage_factor),
+          number(o.expanded, 3)})
+      row.push_back(cell);
+    t.add_row(row);
+  }
+  return wrap_words(fmt::format("Modelled output of each run from the covariance, ŷ = hᵀ(K̂ + b) with h the run's "
+                                "regressors (fixed terms included, known columns left out) [{}]:",
+                                st.outputs.front().input.unit),
+                    width) +
+         t.render("  ", width);
 }
 
 }  // namespace
 
 nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
-  nlohmann::ordered_json j;
+  Json j;
   j["budget_config"] = st.budget_config;
   j["mode"] = mode_name(st.mode);
   j["coverage_probability"] = st.coverage_probability;
   j["known_errors"] = st.known_errors;
   j["compensated"] = st.compensated;
-  nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
+  Json coefficients = Json::object();
+  Json names = Json::array();
   for (const CoefficientStatement& c : st.coefficients) {
-    nlohmann::ordered_json o;
-    o["unit"] = c.input.unit;
-    o["estimate"] = c.input.estimate;
-    o["correction"] = c.input.correction;
-    o["corrected_estimate"] = c.corrected;
-    o["type_a"] = {{"u", c.input.type_a.u}, {"dof", dof_json(c.input.type_a.dof)}};
-    o["type_b"] = {{"u", c.input.type_b.u}, {"dof", dof_json(c.input.type_b.dof)}};
-    o["combined_standard_uncertainty"] = c.combined;
-    o["effective_dof"] = dof_json(c.effective_dof);
-    o["coverage_factor"] = c.coverage_factor;
-    o["expanded_uncertainty"] = c.expanded;
-    o["interval"] = {c.low, c.high};
-    coefficients[c.input.coefficient] = o;
+    coefficients[c.input.coefficient] = quantity_json(c);
+    names.push_back(c.input.coefficient);
   }
   j["coefficients"] = coefficients;
+  j["covariance"] = {{"order", names},
+                     {"type_a", matrix_json(st.covariance_a)},
+                     {"type_b", matrix_json(st.covariance_b)},
+                     {"combined", matrix_json(st.covariance)},
+                     {"correlation", matrix_json(st.correlation)}};
+  Json outputs = Json::array();
+  for (std::size_t r = 0; r < st.outputs.size(); ++r) {
+    Json o = {{"run", st.outputs[r].input.coefficient},
+              {"g_level", std::isfinite(st.g_levels[r]) ? Json(st.g_levels[r]) : Json(nullptr)}};
+    o.update(quantity_json(st.outputs[r]));
+    outputs.push_back(o);
+  }
+  j["modelled_output"] = outputs;
   return j;
 }
 
 std::string statement_text(const verbs::CalibrationStatement& st, std::size_t width) {
-  const std::string pct = fmt::format("{:g} %", 100 * st.coverage_probability);
+  const std::string pct = percent(st.coverage_probability);
   std::string out = wrap_words(
       fmt::format(
           "Calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of {} "
@@ -89,8 +154,54 @@ std::string statement_text(const verbs::CalibrationStatement& st, std::size_t wi
                    number(c.input.type_b.u, 4), number(c.combined, 4), dof_text(c.effective_dof),
                    fmt::format("{:.3f}", c.coverage_factor), number(c.expanded, 3)});
   out += parts.render("  ", width);
+  out += wrap_words("Correlation of the corrected estimates (Type A + Type B; the covariance is in the JSON and "
+                    "CSV exports):",
+                    width);
+  out += matrix_text(st, st.correlation, 4, width);
+  out += outputs_text(st, width);
+  out += wrap_words(fmt::format("Result, U to two significant digits (JCGM 100 §7.2.6):"), width);
   for (const CoefficientStatement& c : st.coefficients)
     out += wrap_words(statement_line(c, pct), width, "    ");
+  for (const CoefficientStatement& c : st.coefficients)
+    if (!c.significant)
+      out += wrap_words(fmt::format("  {0}'s interval holds 0: the test does not tell {0} from zero at p = {1}. A "
+                                    "plan with higher or more g-levels lowers U({0}); ccal design finds one "
+                                    "(--target {0}=U for the U needed).",
+                                    c.input.coefficient, pct),
+                        width, "    ");
+  return out;
+}
+
+std::string text(const verbs::CalibrationStatement& statement) { return statement_text(statement); }
+
+std::string json(const verbs::CalibrationStatement& statement) { return statement_json(statement).dump(2) + "\n"; }
+
+std::string csv(const verbs::CalibrationStatement& st) {
+  // One row per coefficient: its statement in full precision (the shortest digits that read back to the
+  // same doubles), the rounded figures as written, and its row of the combined covariance.
+  std::string out = "coefficient,unit,corrected_estimate,expanded_uncertainty,coverage_factor,"
+                    "coverage_probability,effective_dof,low,high,combined_standard_uncertainty,u_a,dof_a,u_b,"
+                    "significant,rounded_estimate,rounded_expanded_uncertainty,rounded_low,rounded_high";
+  for (const CoefficientStatement& c : st.coefficients)
+    out += fmt::format(",{}", budget_parts::csv_field(fmt::format("cov_{}", c.input.coefficient)));
+  out += "\n";
+  // Shortest round-trip digits; an infinite ν is "inf" (JSON's null), a NaN "nan".
+  const auto full = [](double v) {
+    return std::isfinite(v) ? fmt::format("{}", v) : std::isnan(v) ? std::string("nan") : std::string("inf");
+  };
+  for (std::size_t i = 0; i < st.coefficients.size(); ++i) {
+    const CoefficientStatement& c = st.coefficients[i];
+    const RoundedFigures r = round_figures(c);
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", budget_parts::csv_field(c.input.coefficient),
+                       budget_parts::csv_field(c.input.unit),
+                       full(c.corrected), full(c.expanded), full(c.coverage_factor), full(st.coverage_probability),
+                       full(c.effective_dof), full(c.low), full(c.high), full(c.combined), full(c.input.type_a.u),
+                       full(c.input.type_a.dof), full(c.input.type_b.u), c.significant ? "true" : "false",
+                       r.estimate, r.expanded, r.low, r.high);
+    for (Eigen::Index k = 0; k < st.covariance.cols(); ++k)
+      out += fmt::format(",{}", full(st.covariance(Eigen::Index(i), k)));
+    out += "\n";
+  }
   return out;
 }
 

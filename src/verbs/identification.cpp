@@ -83,6 +83,12 @@ Identification identify_problem(const FitProblem& problem, const TableFitSpec& s
   id.output_unit = units.output_unit;
   id.residual_unit = units.output_unit.empty() ? units.output_column : units.output_unit;
   id.weighted = !spec.weight.empty();
+  id.design.resize(problem.H.rows(), Eigen::Index(id.fit.names.size()));
+  for (std::size_t k = 0; k < id.fit.names.size(); ++k) {
+    const auto column = std::find(problem.term_names.begin(), problem.term_names.end(), id.fit.names[k]);
+    id.design.col(Eigen::Index(k)) = problem.H.col(Eigen::Index(column - problem.term_names.begin()));
+  }
+  id.modelled = problem.y - id.fit.residuals;
   // Residuals are keyed by run label; labels that repeat are replaced by the line numbers.
   id.row_labels = problem.row_labels;
   const std::set<std::string> distinct(id.row_labels.begin(), id.row_labels.end());

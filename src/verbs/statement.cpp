@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/units.hpp"
@@ -13,14 +14,38 @@
 namespace ccal::verbs {
 namespace {
 
-// u_B of each coefficient from the tolerances alone: effects of a group added with their signs, groups in
-// quadrature (docs/model.md §10.1), without the drives' rate noise.
-Eigen::VectorXd type_b(const ccal::BudgetResult& b) {
+// The tolerances' effects per correlation group (coefficients × groups, SI, the budget's order): effects of a
+// group added with their signs (docs/model.md §10.1), without the drives' rate noise. u_B is the norm of a row,
+// the Type B covariance G Gᵀ.
+Eigen::MatrixXd type_b_groups(const ccal::BudgetResult& b) {
   const CorrelationGroups groups = correlation_groups(b.sources);
   const auto nk = Eigen::Index(b.coefficients.size());
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nk, groups.count);
   for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
-  return g.rowwise().norm();
+  return g;
+}
+
+// The modelled output of each run, stated from the coefficients' covariance parts (see CalibrationStatement).
+void state_outputs(const Config& config, const Identification& id, double p, CalibrationStatement& st) {
+  const std::vector<Run>& runs = config.plan.runs;
+  const Eigen::Index nk = id.design.cols();
+  Eigen::VectorXd correction(nk);
+  for (Eigen::Index k = 0; k < nk; ++k) correction[k] = st.coefficients[std::size_t(k)].input.correction;
+  for (Eigen::Index r = 0; r < id.design.rows(); ++r) {
+    const Eigen::VectorXd h = id.design.row(r).transpose();
+    StatementInput in;
+    in.coefficient = id.row_labels.empty() ? fmt::format("{}", r + 1) : id.row_labels[std::size_t(r)];
+    in.unit = id.residual_unit;
+    in.estimate = id.modelled[r];
+    in.correction = h.dot(correction);
+    // Quadratic forms of PSD matrices, ≥ 0 up to round-off: clamped so that the square root exists.
+    in.type_a = {std::sqrt(std::max(0.0, h.dot(st.covariance_a * h))),
+                 st.coefficients.empty() ? kInfiniteDof : st.coefficients.front().input.type_a.dof};
+    in.type_b = {std::sqrt(std::max(0.0, h.dot(st.covariance_b * h))), kInfiniteDof};
+    st.outputs.push_back(state_coefficient(in, p));
+    const auto run = std::find_if(runs.begin(), runs.end(), [&](const Run& x) { return x.name == in.coefficient; });
+    st.g_levels.push_back(run != runs.end() ? run->g_level : std::numeric_limits<double>::quiet_NaN());
+  }
 }
 
 // Factor from the budget's display unit of a coefficient to the fit's unit for it.
@@ -64,7 +89,7 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
   bo.compare_with_paper = false;
   const BudgetResult budget = verbs::budget(config, bo);
   const ccal::BudgetResult& b = budget.budget;
-  const Eigen::VectorXd u_b = type_b(b);
+  const Eigen::MatrixXd groups = type_b_groups(b);
 
   CalibrationStatement st;
   st.budget_config = config.source;
@@ -81,6 +106,8 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
                       fmt::format("the fit's free terms ({}) are not those of {} ({}); accepted: a "
                                   "configuration whose [identification] terms are the fit's",
                                   fmt::join(fit.names, ", "), config.source, fmt::join(b.coefficients, ", ")));
+  const auto nk = Eigen::Index(fit.names.size());
+  Eigen::MatrixXd g_fit(nk, groups.cols());  // the groups' effects in the fit's order and units
   for (std::size_t k = 0; k < fit.names.size(); ++k) {
     const auto found = std::find(b.coefficients.begin(), b.coefficients.end(), fit.names[k]);
     const auto j = std::size_t(found - b.coefficients.begin());
@@ -93,9 +120,20 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
     in.estimate = fit.value[i];
     in.correction = budget.known_error_bias.size() ? -budget.known_error_bias[Eigen::Index(j)] * to_fit : 0.0;
     in.type_a = {fit.std_error[i], id.weighted ? kInfiniteDof : double(fit.dof)};
-    in.type_b = {u_b[Eigen::Index(j)] * to_fit, kInfiniteDof};
+    g_fit.row(i) = groups.row(Eigen::Index(j)) * to_fit;
+    in.type_b = {g_fit.row(i).norm(), kInfiniteDof};
     st.coefficients.push_back(state_coefficient(in, o.coverage_probability));
   }
+  st.covariance_a = fit.covariance;
+  st.covariance_b = g_fit * g_fit.transpose();
+  st.covariance = st.covariance_a + st.covariance_b;
+  st.correlation = st.covariance;
+  for (Eigen::Index r = 0; r < nk; ++r)
+    for (Eigen::Index c = 0; c < nk; ++c) {
+      const double scale = st.coefficients[std::size_t(r)].combined * st.coefficients[std::size_t(c)].combined;
+      st.correlation(r, c) = scale > 0 ? st.covariance(r, c) / scale : (r == c ? 1.0 : 0.0);
+    }
+  state_outputs(config, id, o.coverage_probability, st);
   return st;
 }
 

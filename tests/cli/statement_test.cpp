@@ -1,9 +1,12 @@
 // The calibration statement end to end: `ccal identify --statement --config CONFIG` and `ccal reduce --statement` (JCGM 100
 // §7, docs/model.md §10.5), checked against the fit and the budget printed by the other verbs.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -178,6 +181,58 @@ TEST_F(Statement, ReduceWithOneDegreeOfFreedom) {
   const Result text = run("reduce" + write_logs(4) + " --statement");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("Calibration statement"), std::string::npos);
+}
+
+TEST_F(Statement, TheStatementAloneAsJsonAndCsvWithTheRoundedFiguresOfTheText) {
+  // --statement-out: the JSON file is the report's "statement" object; the CSV's rounded figures are the text's
+  // "K = (value ± U)" line and the JSON's, character for character; its covariance columns are the JSON's
+  // combined covariance (shortest round-trip digits: equal doubles).
+  const std::string logs = write_logs(5);
+  const Result json = run("reduce" + logs + " --statement --statement-out st.json --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const Result text = run("reduce" + logs + " --statement --statement-out st.csv");
+  ASSERT_EQ(text.code, 0) << text.err;
+  const auto report = nlohmann::json::parse(json.out);
+  const auto alone = nlohmann::json::parse(read(dir_ / "st.json"));
+  EXPECT_EQ(alone, report["statement"]);
+  std::istringstream csv(read(dir_ / "st.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("coefficient,unit,corrected_estimate,expanded_uncertainty,coverage_factor,", 0), 0u);
+  EXPECT_NE(header.find(",rounded_estimate,rounded_expanded_uncertainty,rounded_low,rounded_high,cov_K0,cov_K2,"
+                        "cov_K3"),
+            std::string::npos);
+  const auto& order = alone["covariance"]["order"];
+  ASSERT_EQ(order.size(), 3u);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    ASSERT_TRUE(std::getline(csv, line));
+    std::vector<std::string> cells;
+    std::istringstream cells_in(line);
+    for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 21u) << line;
+    const std::string id = order[i];
+    EXPECT_EQ(cells[0], id);
+    const auto& rounded = alone["coefficients"][id]["rounded"];
+    EXPECT_EQ(cells[14], rounded["estimate"]);
+    EXPECT_EQ(cells[15], rounded["expanded_uncertainty"]);
+    const std::string expected_line =
+        fmt::format("{} = ({} ± {}) ", id, rounded["estimate"].get<std::string>(),
+                    rounded["expanded_uncertainty"].get<std::string>());
+    EXPECT_NE(text.out.find(expected_line), std::string::npos) << expected_line << "\n" << text.out;
+    for (std::size_t k = 0; k < 3; ++k)
+      EXPECT_EQ(std::stod(cells[18 + k]), alone["covariance"]["combined"][i][k].get<double>()) << id << k;
+  }
+}
+
+TEST_F(Statement, TheStatementFileIsRefusedWithoutTheStatementOrAKnownExtension) {
+  const std::string logs = write_logs(4);
+  expect_bad_input(run("reduce" + logs + " --statement-out st.json"), {"--statement-out", "without --statement"});
+  expect_bad_input(run("reduce" + logs + " --statement --statement-out st.txt"), {"--statement-out", ".json or .csv"});
+  expect_bad_input(run("reduce" + logs + " --statement --statement-out st.csv -o st.csv"),
+                   {"--statement-out", "also the -o file"});
+  EXPECT_FALSE(fs::exists(dir_ / "st.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "st.txt"));
+  EXPECT_FALSE(fs::exists(dir_ / "st.csv"));
 }
 
 TEST_F(Statement, BadUsesAreExitCodeTwo) {

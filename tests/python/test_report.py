@@ -4,6 +4,7 @@ Carlo's), its sections readable as results."""
 import hashlib
 import os
 import re
+import shutil
 import subprocess
 import tempfile
 import unittest
@@ -41,6 +42,27 @@ class Report(unittest.TestCase):
             ccal.report(cfg, trails=2000)
         with self.assertRaisesRegex(TypeError, r"unexpected keyword argument 'mode_'"):
             ccal.report(cfg, mode_="paper")
+
+    def test_the_pdf_is_printed_and_replaces_a_file_only_when_complete(self):
+        r = ccal.report(ccal.bundled_example(), trials=2000, input_points=5)
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "report.pdf")
+            with open(out, "w", encoding="utf-8") as f:
+                f.write("the old file")
+            os.environ["CCAL_CHROMIUM"] = "/nonexistent/chromium"
+            try:
+                with self.assertRaisesRegex(ccal.InputError, "is not an executable file.*apt-get install chromium"):
+                    r.to_pdf(out)
+            finally:
+                del os.environ["CCAL_CHROMIUM"]
+            with open(out, encoding="utf-8") as f:
+                self.assertEqual(f.read(), "the old file")
+            self.assertEqual(os.listdir(tmp), ["report.pdf"])  # no temporary left
+            if not shutil.which("chromium"):
+                self.skipTest("no Chromium installed")
+            r.to_pdf(out)
+            with open(out, "rb") as f:
+                self.assertEqual(f.read(5), b"%PDF-")
 
     @unittest.skipUnless(PROGRAM, "CCAL_PROGRAM is not set")
     def test_the_page_is_the_programs(self):

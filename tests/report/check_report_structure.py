@@ -127,6 +127,13 @@ def main(program, report, config=None):
 
     checked = 0
     for a, shown in page.cells:
+        if "data-text" in a:  # a text of the output, e.g. a rounded figure: character for character
+            name, path = a["data-text"].split(":", 1)
+            if shown != pointer(docs[name], path):
+                problems.append(f"{a['data-text']}: the page shows {shown}, the output gives "
+                                f"{pointer(docs[name], path)!r}")
+            checked += 1
+            continue
         digits = int(a["data-digits"])
         scale = float(a.get("data-scale", "1"))
         if "data-src" in a:

@@ -88,5 +88,54 @@ TEST(Statement, BadInputsAreRefused) {
   EXPECT_THROW(welch_satterthwaite({{1.0, 0}}), std::invalid_argument);
 }
 
+TEST(Statement, FiguresAreRoundedToTwoSignificantDigitsOfU) {
+  // JCGM 100 §7.2.6: U to two significant digits, the estimate to the same place, the interval's ends the
+  // written estimate ∓ the written U.
+  const RoundedFigures a = round_figures(0.0030046263, 0.046162);
+  EXPECT_EQ(a.place, -3);
+  EXPECT_EQ(a.estimate, "0.003");
+  EXPECT_EQ(a.expanded, "0.046");
+  EXPECT_EQ(a.low, "-0.043");
+  EXPECT_EQ(a.high, "0.049");
+  // 0.06202 ± 0.03649: the ends of the full values would round to 0.026 and 0.099, but the certificate reads
+  // 0.062 ± 0.036, whose ends are 0.026 and 0.098.
+  const RoundedFigures k0 = round_figures(0.062024946, 0.036486914);
+  EXPECT_EQ(k0.low, "0.026");
+  EXPECT_EQ(k0.high, "0.098");
+  // 0.0996 rounds to 0.100: one place coarser keeps two digits, 0.10.
+  const RoundedFigures b = round_figures(1.23456, 0.0996);
+  EXPECT_EQ(b.place, -2);
+  EXPECT_EQ(b.expanded, "0.10");
+  EXPECT_EQ(b.estimate, "1.23");
+  EXPECT_EQ(b.high, "1.33");
+  // An exact power of ten and a large U: 1000 → "1000" (place 2), 56789 ± 1234 → 56800 ± 1200.
+  EXPECT_EQ(round_figures(5, 1000).expanded, "1000");
+  const RoundedFigures c = round_figures(56789, 1234);
+  EXPECT_EQ(c.place, 2);
+  EXPECT_EQ(c.estimate, "56800");
+  EXPECT_EQ(c.expanded, "1200");
+  EXPECT_EQ(c.low, "55600");
+  // A value that rounds to zero is written without a sign; small magnitudes keep their leading zeros.
+  EXPECT_EQ(round_figures(-0.0001, 0.012).estimate, "0.000");
+  EXPECT_EQ(round_figures(-2.5e-7, 3.1e-8).estimate, "-0.000000250");
+  EXPECT_EQ(round_figures(-2.5e-7, 3.1e-8).low, "-0.000000281");
+  // No U to round to, or an estimate too far above it: 8 significant digits and no place.
+  const RoundedFigures d = round_figures(0.123456789, 0);
+  EXPECT_FALSE(d.place.has_value());
+  EXPECT_EQ(d.estimate, "0.12345679");
+  EXPECT_FALSE(round_figures(1e20, 1e-3).place.has_value());
+}
+
+TEST(Statement, ATermIsSignificantWhenItsIntervalExcludesZero) {
+  StatementInput in;
+  in.type_b = {1, kInfiniteDof};
+  in.estimate = 1.9;  // U = 1.96: the interval holds 0
+  EXPECT_FALSE(state_coefficient(in, 0.95).significant);
+  in.estimate = -2.0;
+  EXPECT_TRUE(state_coefficient(in, 0.95).significant);
+  in.estimate = 2.0;
+  EXPECT_TRUE(state_coefficient(in, 0.95).significant);
+}
+
 }  // namespace
 }  // namespace ccal

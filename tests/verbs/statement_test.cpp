@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <string>
 
@@ -83,6 +84,72 @@ TEST(StatementVerb, KnownErrorsTheModelLeavesOutAreCorrected) {
     EXPECT_NE(b, 0.0);
     EXPECT_NEAR(c.input.correction, b, 1e-12 * std::abs(b));
     EXPECT_NEAR(c.corrected, c.input.estimate + b, 1e-12 * std::abs(c.corrected));
+  }
+}
+
+TEST(StatementVerb, TheCovarianceIsTheFitsPlusTheBudgetsAndItsDiagonalIsTheSquaredUc) {
+  // Type A: the fit's covariance, as it is. Type B: the budget's coefficient covariance (Σ_groups g gᵀ, SI)
+  // in the fit's units, an independent product of the same effects: 1e-12 relative to u_i u_j. The sum is
+  // symmetric, positive semi-definite (eigenvalues ≥ −1e-12 of the largest: round-off of a 3×3 sum) and its
+  // diagonal is u_c² (1e-12 relative: u_c is a hypot of the same parts).
+  const Config config = noisy_paper(true);
+  const verbs::SimulateResult sim = verbs::simulate(config);
+  const verbs::BudgetResult budget = verbs::budget(config);
+  const verbs::CalibrationStatement s = verbs::calibration_statement(config, sim.identification, {}, "statement");
+  const Eigen::Index n = Eigen::Index(s.coefficients.size());
+  ASSERT_EQ(s.covariance.rows(), n);
+  ASSERT_EQ(s.covariance.cols(), n);
+  EXPECT_EQ(s.covariance_a, sim.identification.fit.covariance);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double scale = budget.budget.display_scale[std::size_t(i)] * budget.budget.display_scale[std::size_t(j)];
+      const double u_ij = s.coefficients[std::size_t(i)].combined * s.coefficients[std::size_t(j)].combined;
+      EXPECT_NEAR(s.covariance_b(i, j), budget.budget.covariance(i, j) * scale, 1e-12 * u_ij) << i << "," << j;
+      EXPECT_EQ(s.covariance(i, j), s.covariance(j, i));
+      EXPECT_NEAR(s.correlation(i, j), s.covariance(i, j) / u_ij, 1e-15);
+    }
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double u_c = s.coefficients[std::size_t(i)].combined;
+    EXPECT_NEAR(s.covariance(i, i), u_c * u_c, 1e-12 * u_c * u_c);
+    EXPECT_DOUBLE_EQ(s.correlation(i, i), 1.0);
+  }
+  const Eigen::VectorXd eigen = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s.covariance).eigenvalues();
+  EXPECT_GE(eigen.minCoeff(), -1e-12 * eigen.maxCoeff());
+  // The correlation is not the identity: K2 and K3 share tolerances and the fit couples them.
+  EXPECT_GT(std::abs(s.correlation(1, 2)), 0.1);
+}
+
+TEST(StatementVerb, TheModelledOutputOfEachRunIsStatedFromTheCovariance) {
+  // ŷ_r is the fit's modelled output of the run (the observed output less the residual); its u_c² = Σ h_i h_j
+  // ρ_ij u_i u_j, summed here from the per-coefficient u_c and the correlation (another path than hᵀ C h): 1e-10
+  // relative (cancellation in a sum of signed terms); the correction hᵀb; ν_A the fit's; k and U as for a
+  // coefficient.
+  const Config config = noisy_paper(true);
+  const verbs::SimulateResult sim = verbs::simulate(config);
+  const verbs::CalibrationStatement s = verbs::calibration_statement(config, sim.identification, {}, "statement");
+  const verbs::Identification& id = sim.identification;
+  ASSERT_EQ(s.outputs.size(), config.plan.runs.size());
+  ASSERT_EQ(s.g_levels.size(), config.plan.runs.size());
+  for (std::size_t r = 0; r < s.outputs.size(); ++r) {
+    const CoefficientStatement& o = s.outputs[r];
+    SCOPED_TRACE(o.input.coefficient);
+    EXPECT_EQ(o.input.coefficient, config.plan.runs[r].name);
+    EXPECT_EQ(s.g_levels[r], config.plan.runs[r].g_level);
+    const Eigen::Index row = Eigen::Index(r);
+    double var = 0, b = 0;
+    for (std::size_t i = 0; i < s.coefficients.size(); ++i) {
+      b += id.design(row, Eigen::Index(i)) * s.coefficients[i].input.correction;
+      for (std::size_t j = 0; j < s.coefficients.size(); ++j)
+        var += id.design(row, Eigen::Index(i)) * id.design(row, Eigen::Index(j)) *
+               s.correlation(Eigen::Index(i), Eigen::Index(j)) * s.coefficients[i].combined *
+               s.coefficients[j].combined;
+    }
+    EXPECT_NEAR(o.combined, std::sqrt(var), 1e-10 * std::sqrt(var));
+    EXPECT_NEAR(o.input.correction, b, 1e-12 * std::abs(b) + 1e-300);
+    EXPECT_EQ(o.input.type_a.dof, s.coefficients.front().input.type_a.dof);
+    EXPECT_NEAR(o.expanded, o.coverage_factor * o.combined, 1e-12 * o.expanded);
+    EXPECT_EQ(o.input.unit, id.residual_unit);
+    EXPECT_EQ(o.input.estimate, id.modelled[row]);
   }
 }
 

@@ -4,6 +4,7 @@
 // io/config_file.hpp; every verb takes one (verbs/).
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "ccal/model/instrument.hpp"
 #include "ccal/model/plan.hpp"
 #include "ccal/model/site.hpp"
+#include "ccal/setup/certificate.hpp"
 #include "ccal/setup/design_space.hpp"
 #include "ccal/setup/experiment.hpp"
 #include "ccal/setup/tolerance.hpp"
@@ -36,6 +38,9 @@ struct Config {
   ModelMode mode = ModelMode::exact;
   // The design space of `ccal design` ([design]; every field optional, defaults from the plan).
   DesignSpace design;
+  // The certificate's administrative fields ([certificate]; unset without the table): what `ccal report`
+  // prints at the head of the certificate page with the statement of --observations.
+  std::optional<Certificate> certificate;
 
   // The experiment (geometry, layout, site, plan, instrument) of this configuration.
   Experiment experiment() const;

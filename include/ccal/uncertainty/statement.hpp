@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,10 +52,26 @@ struct CoefficientStatement {
   double coverage_factor = 0;  // k
   double expanded = 0;         // U = k u_c
   double low = 0, high = 0;    // corrected ∓ U
+  // The interval excludes zero: the value differs from 0 at probability p. A term whose interval holds 0 is
+  // not resolved by the test (|K̂ + b| ≤ U); a plan of more or higher g-levels lowers its U (`ccal design`).
+  bool significant = false;
 };
 
 // The statement of one coefficient for coverage probability p (throws as the functions above).
 CoefficientStatement state_coefficient(const StatementInput& input, double p);
+
+// The figures of a statement as a certificate writes them (JCGM 100 §7.2.6): U to `digits` significant digits
+// (rounded to nearest; a U that rounds up to a power of ten keeps `digits` digits, 0.0996 → 0.10), the estimate
+// to the same decimal place, and the interval's ends as the written estimate ∓ the written U, so that the
+// certificate's "y ± U" and "[low, high]" agree to the last digit. A U that is 0 or not finite (or an estimate
+// beyond 10¹⁵ of U's last digit) leaves no place: every figure then has 8 significant digits and `place` is
+// unset.
+struct RoundedFigures {
+  std::optional<int> place;  // power of ten of the last digit written (−3: thousandths)
+  std::string estimate, expanded, low, high;
+};
+RoundedFigures round_figures(double estimate, double expanded, int digits = 2);
+RoundedFigures round_figures(const CoefficientStatement& statement);
 
 // What the configuration's known [errors] do to the identified coefficients when the model leaves them out:
 // K̂(truth with the [errors], model without) − K̂(truth and model without errors), SI, per free term. Empty

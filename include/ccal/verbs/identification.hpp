@@ -38,6 +38,10 @@ struct Identification {
   std::string residual_unit;            // unit of the residuals (the output's unit or column name)
   bool weighted = false;
   ObservabilityReport observability;  // per free term (docs/model.md §14)
+  // Per row (run): the regressor of each free term, in the fit's order (∂ modelled output / ∂ term), and the
+  // modelled output Σ H K̂ of the free and fixed terms (the known columns left out), in the residuals' unit.
+  Eigen::MatrixXd design;
+  Eigen::VectorXd modelled;
 };
 
 // Unit of a term's coefficient.

@@ -2,7 +2,8 @@
 // The calibration statement (JCGM 100 §7, docs/model.md §10.5) as `ccal reduce --statement` and `ccal identify
 // --statement --config CONFIG` give it: per identified coefficient the estimate, the correction for known errors, the
 // Type A part from the fit with its degrees of freedom, the Type B part from the centrifuge budget of the
-// configuration, u_c, ν_eff, k from Student's t, U and the interval.
+// configuration, u_c, ν_eff, k from Student's t, U and the interval; the combined covariance of the coefficients
+// and, from it, the uncertainty of the modelled output of each run.
 
 #include <optional>
 #include <string>
@@ -32,6 +33,16 @@ struct CalibrationStatement {
   bool compensated = false;  // the model computed the regressors with the known [errors]
   int known_errors = 0;      // non-zero [errors] parameters
   std::vector<CoefficientStatement> coefficients;  // in the fit's order, in the fit's units
+  // Covariance of the corrected estimates, in the fit's units (row and column i: coefficients[i]): Type A the
+  // fit's, Type B the tolerances' LPU, Σ_g e_g e_gᵀ over the correlation groups of §10.1 (a group's effects added
+  // with their signs), and their sum, whose diagonal is u_c². The correlation is u(K_i, K_j) / (u_c,i u_c,j).
+  Eigen::MatrixXd covariance_a, covariance_b, covariance, correlation;
+  // The modelled output of each run, ŷ = hᵀ(K̂ + b) (h the run's regressors of the free terms, the fixed terms'
+  // part added, the known columns left out), stated like a coefficient: u_A² = hᵀC_A h with ν_A, u_B² = hᵀC_B h;
+  // `coefficient` names the run, `unit` is the output's. g_levels: each run's A [g] in the configuration's plan
+  // (NaN for a row that names no run of the plan).
+  std::vector<CoefficientStatement> outputs;
+  std::vector<double> g_levels;
 };
 
 // Combines an identification with the budget of `config`. Type A: the fit's standard errors with its

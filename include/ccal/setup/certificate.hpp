@@ -1,0 +1,69 @@
+#pragma once
+// The administrative part of a calibration certificate (the configuration's optional [certificate] table,
+// docs/config.md): what was calibrated, for whom, by whom, when, where, under which conditions, by which
+// procedure and against which traceable standards (ISO/IEC 17025 §7.8.2 lists what a certificate carries).
+// The figures of the certificate come from the calibration statement (verbs/statement.hpp); these fields are
+// text, shown as written. Every field is optional; the dates are calendar dates (YYYY-MM-DD).
+
+#include <array>
+#include <string>
+#include <string_view>
+
+namespace ccal {
+
+struct Certificate {
+  std::string number;               // the certificate's identification, e.g. "CAL-2026-0142"
+  std::string laboratory;           // name and address of the calibration laboratory
+  std::string accreditation;        // accreditation body and number, if any
+  std::string customer;             // name and address of the customer
+  std::string instrument;           // the item calibrated: type or model, e.g. "PIGA 16"
+  std::string manufacturer;         // its maker
+  std::string serial_number;        // its serial number
+  std::string date_of_calibration;  // YYYY-MM-DD, the day of the test (of its last run)
+  std::string date_of_issue;        // YYYY-MM-DD, not before the calibration
+  std::string place;                // where it was calibrated, if not at the laboratory
+  std::string conditions;           // the environment during the test, e.g. "(20 ± 1) °C, 40 % RH"
+  std::string procedure;            // the laboratory's written procedure, e.g. "CP-ACC-07 rev. 3"
+  std::string radius_standard;      // traceability of the arm radius: the standard and its certificate
+  std::string rate_standard;        // traceability of the rate (time base, encoders) and its certificate
+  std::string operator_name;        // key "operator": who performed the calibration (a signature line)
+  std::string approved_by;          // who approves the certificate (a signature line)
+  std::string remarks;              // anything else the certificate must say
+
+  bool operator==(const Certificate&) const = default;
+};
+
+// One field of the table: its key in the configuration, its label on the certificate, the member it sets,
+// and whether it is a date. The reader, the certificate page and the docs all list the fields from here.
+struct CertificateField {
+  std::string_view key;
+  std::string_view label;
+  std::string Certificate::*member;
+  bool date = false;
+};
+
+inline const std::array<CertificateField, 17> kCertificateFields{{
+    {"number", "Certificate number", &Certificate::number},
+    {"laboratory", "Calibration laboratory", &Certificate::laboratory},
+    {"accreditation", "Accreditation", &Certificate::accreditation},
+    {"customer", "Customer", &Certificate::customer},
+    {"instrument", "Item calibrated", &Certificate::instrument},
+    {"manufacturer", "Manufacturer", &Certificate::manufacturer},
+    {"serial_number", "Serial number", &Certificate::serial_number},
+    {"date_of_calibration", "Date of calibration", &Certificate::date_of_calibration, true},
+    {"date_of_issue", "Date of issue", &Certificate::date_of_issue, true},
+    {"place", "Place of calibration", &Certificate::place},
+    {"conditions", "Ambient conditions", &Certificate::conditions},
+    {"procedure", "Calibration procedure", &Certificate::procedure},
+    {"radius_standard", "Traceability of the radius", &Certificate::radius_standard},
+    {"rate_standard", "Traceability of the rate", &Certificate::rate_standard},
+    {"operator", "Calibrated by", &Certificate::operator_name},
+    {"approved_by", "Approved by", &Certificate::approved_by},
+    {"remarks", "Remarks", &Certificate::remarks},
+}};
+
+// Why `text` is no calendar date YYYY-MM-DD (a real day of the Gregorian calendar, year 1900…9999), or empty
+// when it is one.
+std::string calendar_date_problem(std::string_view text);
+
+}  // namespace ccal

@@ -1,0 +1,99 @@
+// ccal.Statement: the calibration statement of `reduce(statement=True)` and `identify_file(statement=True)`
+// (verbs/statement.hpp, docs/model.md §10.5): str() the command line's text, to_json() and to_csv() the files of
+// `--statement-out`, the covariance as arrays; display(), to_frame() and to_uncertainties() are added in Python
+// (ccal/_results.py).
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "ccal/render/statement.hpp"
+#include "ccal/verbs/statement.hpp"
+
+namespace ccal::python {
+namespace {
+
+using Statement = verbs::CalibrationStatement;
+
+// One number of each coefficient, in the statement's order.
+template <typename F>
+std::vector<double> per_coefficient(const Statement& s, F f) {
+  std::vector<double> v;
+  for (const CoefficientStatement& c : s.coefficients) v.push_back(f(c));
+  return v;
+}
+
+}  // namespace
+
+void bind_statement(py::module_& m) {
+  py::class_<Statement>(m, "Statement",
+                        "The calibration statement (JCGM 100 §7): per coefficient the corrected estimate, u_c, "
+                        "nu_eff, k, U and the interval, in the fit's units (the coefficients' output unit per "
+                        "g^n); the combined covariance. str() is the command line's text; to_json() and to_csv() "
+                        "are the files of `--statement-out`.")
+      .def("__str__", [](const Statement& s) { return render::text(s); })
+      .def("to_json", [](const Statement& s) { return render::json(s); },
+           "The statement as `--statement-out FILE.json` writes it (text).")
+      .def("to_csv", [](const Statement& s) { return render::csv(s); },
+           "The statement as `--statement-out FILE.csv` writes it: one row per coefficient, with its row of the "
+           "covariance (text).")
+      .def_readonly("budget_config", &Statement::budget_config,
+                    "the configuration whose tolerances give the Type B part [path]")
+      .def_property_readonly(
+          "mode", [](const Statement& s) { return std::string(mode_name(s.mode)); },
+          "kinematics of the Type B budget: exact or paper [—]")
+      .def_readonly("coverage_probability", &Statement::coverage_probability, "p of the intervals [—]")
+      .def_property_readonly(
+          "names",
+          [](const Statement& s) {
+            std::vector<std::string> v;
+            for (const CoefficientStatement& c : s.coefficients) v.push_back(c.input.coefficient);
+            return v;
+          },
+          "the coefficients, in the order of every list and matrix here [—]")
+      .def_property_readonly(
+          "units",
+          [](const Statement& s) {
+            std::vector<std::string> v;
+            for (const CoefficientStatement& c : s.coefficients) v.push_back(c.input.unit);
+            return v;
+          },
+          "each coefficient's unit, the unit of its values here [—]")
+      .def_property_readonly(
+          "values", [](const Statement& s) { return per_coefficient(s, [](auto& c) { return c.corrected; }); },
+          "the corrected estimates K̂ + b [units]")
+      .def_property_readonly(
+          "standard_uncertainties",
+          [](const Statement& s) { return per_coefficient(s, [](auto& c) { return c.combined; }); },
+          "u_c of each coefficient [units]")
+      .def_property_readonly(
+          "effective_dof",
+          [](const Statement& s) { return per_coefficient(s, [](auto& c) { return c.effective_dof; }); },
+          "nu_eff of each coefficient (inf: known exactly) [—]")
+      .def_property_readonly(
+          "coverage_factors",
+          [](const Statement& s) { return per_coefficient(s, [](auto& c) { return c.coverage_factor; }); },
+          "k of each coefficient [—]")
+      .def_property_readonly(
+          "expanded_uncertainties",
+          [](const Statement& s) { return per_coefficient(s, [](auto& c) { return c.expanded; }); },
+          "U = k u_c of each coefficient [units]")
+      .def_property_readonly(
+          "significant",
+          [](const Statement& s) {
+            std::vector<bool> v;
+            for (const CoefficientStatement& c : s.coefficients) v.push_back(c.significant);
+            return v;
+          },
+          "per coefficient: its interval excludes 0 [—]")
+      .def_readonly("covariance", &Statement::covariance,
+                    "combined covariance of the corrected estimates, Type A + Type B [units_i × units_j]")
+      .def_readonly("covariance_a", &Statement::covariance_a, "the fit's covariance (Type A) [units_i × units_j]")
+      .def_readonly("covariance_b", &Statement::covariance_b,
+                    "the tolerances' covariance (Type B) [units_i × units_j]")
+      .def_readonly("correlation", &Statement::correlation, "correlation of the corrected estimates [—]");
+}
+
+}  // namespace ccal::python

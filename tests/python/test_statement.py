@@ -1,0 +1,87 @@
+"""The calibration statement in Python (ccal.Statement): the same statement as `ccal reduce --statement
+--statement-out`, its rounded figures those of the command line's lines, its covariance symmetric, positive
+semi-definite with u_c² on the diagonal, and its conversion to correlated uncertain numbers (the package
+uncertainties is optional: that test is skipped without it). Run by ctest with the module on PYTHONPATH and the
+program in CCAL_PROGRAM."""
+
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import ccal
+
+LAB = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "lab.toml")
+
+
+class StatementObject(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.folder = tempfile.TemporaryDirectory()
+        config = ccal.load_config(LAB)
+        cls.logs = ccal.simulate(config).write_logs(cls.folder.name)
+        cls.statement = ccal.reduce(config, cls.logs, statement=True).statement
+        args = [os.environ["CCAL_PROGRAM"], "reduce", LAB, "--statement"]
+        for run, path in cls.logs.items():
+            args += ["--log", f"{run}={path}"]
+        cls.json_file = os.path.join(cls.folder.name, "st.json")
+        cls.text = subprocess.run(args + ["--statement-out", cls.json_file], check=True, capture_output=True,
+                                  text=True).stdout
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.folder.cleanup()
+
+    def test_the_same_statement_as_the_command_line(self):
+        with open(self.json_file, encoding="utf-8") as f:
+            self.assertEqual(json.loads(self.statement.to_json()), json.load(f))
+        self.assertIn(str(self.statement), self.text)
+        self.assertIsNone(ccal.reduce(ccal.load_config(LAB), self.logs).statement)
+
+    def test_display_rows_are_the_rounded_lines(self):
+        rows = self.statement.display().rows
+        self.assertEqual([r["coefficient"] for r in rows], self.statement.names)
+        for r in rows:
+            line = f"  {r['coefficient']} = ({r['value']} ± {r['U']}) {r['unit']}, k = {r['k']:.3f}"
+            self.assertIn(line, self.text)
+        self.assertEqual(rows[1]["U"], "0.00032")  # K2 of the bundled lab: two significant digits
+        self.assertEqual([r["significant"] for r in rows], self.statement.significant)
+
+    def test_covariance_is_symmetric_psd_with_the_squared_uncertainties_on_its_diagonal(self):
+        c = np.asarray(self.statement.covariance)
+        u = np.asarray(self.statement.standard_uncertainties)
+        self.assertTrue(np.array_equal(c, c.T))
+        # 1e-12 relative: u_c is the hypot of the same Type A and Type B parts whose squares the diagonal sums.
+        np.testing.assert_allclose(np.diag(c), u * u, rtol=1e-12)
+        eigenvalues = np.linalg.eigvalsh(c)
+        self.assertGreaterEqual(eigenvalues.min(), -1e-12 * eigenvalues.max())
+        np.testing.assert_allclose(np.asarray(self.statement.correlation), c / np.outer(u, u), rtol=1e-14)
+        np.testing.assert_allclose(c, np.asarray(self.statement.covariance_a) + np.asarray(self.statement.covariance_b),
+                                   rtol=1e-14, atol=0)
+
+    def test_csv_rows_follow_the_names(self):
+        lines = self.statement.to_csv().splitlines()
+        self.assertTrue(lines[0].endswith(",cov_K0,cov_K2,cov_K3"))
+        self.assertEqual([l.split(",")[0] for l in lines[1:]], self.statement.names)
+
+    def test_correlated_uncertain_numbers(self):
+        try:
+            import uncertainties  # noqa: F401
+        except ImportError:
+            self.skipTest("the package uncertainties is not installed (python3-uncertainties)")
+        numbers = self.statement.to_uncertainties()
+        self.assertEqual(list(numbers), self.statement.names)
+        for name, value, u in zip(self.statement.names, self.statement.values, self.statement.standard_uncertainties):
+            self.assertEqual(numbers[name].nominal_value, value)
+            self.assertAlmostEqual(numbers[name].std_dev / u, 1, delta=1e-12)
+        # A function of correlated numbers carries the covariance: u(K2 + K3) from the matrix, 1e-12 relative.
+        c = np.asarray(self.statement.covariance)
+        total = numbers["K2"] + numbers["K3"]
+        self.assertAlmostEqual(total.std_dev / np.sqrt(c[1, 1] + c[2, 2] + 2 * c[1, 2]), 1, delta=1e-12)
+
+
+if __name__ == "__main__":
+    unittest.main()
