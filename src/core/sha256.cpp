@@ -56,24 +56,38 @@ void compress(std::array<std::uint32_t, 8>& h, const unsigned char* block) {
 
 }  // namespace
 
-std::string sha256_hex(std::string_view bytes) {
-  std::array<std::uint32_t, 8> h = kInitial;
+Sha256& Sha256::update(std::string_view bytes) {
+  if (!started_) state_ = kInitial, started_ = true;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  std::size_t full = bytes.size() / 64 * 64;
-  for (std::size_t k = 0; k < full; k += 64) compress(h, data + k);
-  // The last partial block, the 1 bit, zeros to 56 mod 64 bytes, and the length in bits (big-endian).
+  std::size_t k = 0;
+  length_ += bytes.size();
+  if (held_ > 0) {  // complete the held block first
+    for (; k < bytes.size() && held_ < 64; ++k) block_[held_++] = data[k];
+    if (held_ < 64) return *this;
+    compress(state_, block_.data());
+    held_ = 0;
+  }
+  for (; k + 64 <= bytes.size(); k += 64) compress(state_, data + k);
+  for (; k < bytes.size(); ++k) block_[held_++] = data[k];
+  return *this;
+}
+
+std::string Sha256::hex() {
+  if (!started_) state_ = kInitial, started_ = true;
+  // The held bytes, the 1 bit, zeros to 56 mod 64 bytes, and the length in bits (big-endian), §5.1.1.
   std::array<unsigned char, 128> tail{};
-  const std::size_t rest = bytes.size() - full;
-  for (std::size_t k = 0; k < rest; ++k) tail[k] = data[full + k];
-  tail[rest] = 0x80;
-  const std::size_t tail_size = rest < 56 ? 64 : 128;
-  const std::uint64_t bits = std::uint64_t(bytes.size()) * 8;
+  for (std::size_t k = 0; k < held_; ++k) tail[k] = block_[k];
+  tail[held_] = 0x80;
+  const std::size_t tail_size = held_ < 56 ? 64 : 128;
+  const std::uint64_t bits = length_ * 8;
   for (int k = 0; k < 8; ++k)
     tail[tail_size - 1 - std::size_t(k)] = static_cast<unsigned char>(bits >> (8 * k));
-  for (std::size_t k = 0; k < tail_size; k += 64) compress(h, tail.data() + k);
+  for (std::size_t k = 0; k < tail_size; k += 64) compress(state_, tail.data() + k);
   std::string hex;
-  for (std::uint32_t v : h) hex += fmt::format("{:08x}", v);
+  for (std::uint32_t v : state_) hex += fmt::format("{:08x}", v);
   return hex;
 }
+
+std::string sha256_hex(std::string_view bytes) { return Sha256{}.update(bytes).hex(); }
 
 }  // namespace ccal

@@ -5,6 +5,7 @@
 #include <memory>
 #include <system_error>
 
+#include "ccal/core/sha256.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "text_trim.hpp"
 
@@ -103,7 +104,7 @@ void check_csv_line_ends(std::string_view line, const std::string& source, int l
                  "out.csv)");
 }
 
-void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
+std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
   const std::string name = path.string();
   const FileNotFound<CsvError> unreadable(name, 0, 0, "", "cannot read the file; check the path and permissions");
   std::error_code ec;
@@ -116,10 +117,12 @@ void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
   std::vector<char> buffer(kBlock);
   std::size_t held = 0;
   bool first = true;
+  Sha256 fingerprint;
   while (true) {
     if (held == buffer.size()) buffer.resize(2 * buffer.size());  // a line longer than a block
     const std::size_t got = std::fread(buffer.data() + held, 1, buffer.size() - held, file.get());
     if (std::ferror(file.get())) throw unreadable;
+    fingerprint.update(std::string_view(buffer.data() + held, got));
     std::string_view text(buffer.data(), held + got);
     std::size_t skip = 0;
     if (first && (text.size() >= kBom.size() || got == 0)) {
@@ -139,6 +142,7 @@ void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
     std::memmove(buffer.data(), buffer.data() + rest, held);
   }
   reader.finish();
+  return fingerprint.hex();
 }
 
 }  // namespace ccal

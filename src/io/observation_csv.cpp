@@ -37,18 +37,6 @@ using detail::blank;
 using detail::trim_blanks;
 using detail::trim_csv;
 
-std::vector<std::string> split(std::string_view text, char separator) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t end = text.find(separator, start);
-    out.emplace_back(trim_csv(text.substr(start, end == std::string_view::npos ? text.npos : end - start)));
-    if (end == std::string_view::npos) break;
-    start = end + 1;
-  }
-  return out;
-}
-
 enum class NumberKind { finite, non_finite, empty, not_a_number };
 
 NumberKind read_number(std::string_view text, double& value) {
@@ -119,7 +107,6 @@ std::string quote_if_needed(const std::string& s) {
 
 std::string number17(double v) { return fmt::format("{:.17g}", v); }
 
-constexpr std::string_view kHeaderKey = "ccal observations header";
 
 }  // namespace
 
@@ -294,116 +281,6 @@ CsvTable read_csv_file(const std::filesystem::path& path) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// The observations header
-
-std::string format_observations_header(const ObservationsHeader& h) {
-  std::vector<std::string> terms, fixed;
-  for (const auto& t : h.terms) terms.push_back(t.id + ":" + t.column);
-  for (const auto& f : h.fixed) {
-    std::string entry = fmt::format("{}:{}={}", f.term.id, f.term.column, f.value);
-    if (!f.unit.empty()) entry += " " + f.unit;
-    fixed.push_back(std::move(entry));
-  }
-  std::string out = fmt::format("# ccal observations v1; terms={}; fixed={}; known={}; output_unit={}",
-                                fmt::join(terms, ","), fmt::join(fixed, ","), fmt::join(h.known, ","),
-                                h.output_unit);
-  if (!h.config_sha256.empty()) out += "; config_sha256=" + h.config_sha256;
-  return out;
-}
-
-std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
-  constexpr std::string_view kMark = "ccal observations";
-  for (const auto& comment : table.comments) {
-    if (!comment.text.starts_with(kMark)) continue;
-    const int line = comment.line;
-    auto fail = [&](std::string problem) -> CsvError {
-      return CsvError(table.source, line, 0, std::string(kHeaderKey), std::move(problem));
-    };
-    const std::vector<std::string> parts = split(std::string_view(comment.text).substr(kMark.size()), ';');
-    if (parts.front() != "v1")
-      throw fail(fmt::format("unsupported version '{}'; accepted: v1", parts.front()));
-    ObservationsHeader h;
-    h.line = line;
-    std::set<std::string> keys;
-    bool has_terms = false;
-    auto read_term = [&](const std::string& entry) {
-      const std::size_t colon = entry.find(':');
-      ObservationsHeader::Term t;
-      t.id = std::string(trim_csv(std::string_view(entry).substr(0, colon)));
-      t.column = colon == std::string::npos
-                     ? t.id
-                     : std::string(trim_csv(std::string_view(entry).substr(colon + 1)));
-      if (!parse_term(t.id))
-        throw fail(fmt::format("'{}' is not a term id; accepted: {}", t.id, fmt::join(all_term_ids(), ", ")));
-      if (t.column.empty())
-        throw fail(fmt::format("term '{}' has an empty column name; accepted: <term>:<column>", t.id));
-      return t;
-    };
-    for (std::size_t k = 1; k < parts.size(); ++k) {
-      if (parts[k].empty()) continue;
-      const std::size_t eq = parts[k].find('=');
-      const std::string key(trim_csv(std::string_view(parts[k]).substr(0, eq)));
-      const std::string value = eq == std::string::npos
-                                    ? std::string()
-                                    : std::string(trim_csv(std::string_view(parts[k]).substr(eq + 1)));
-      if (eq == std::string::npos)
-        throw fail(fmt::format("'{}' has no value; accepted: <key>=<value>", parts[k]));
-      if (!keys.insert(key).second) throw fail(fmt::format("'{}' is given twice", key));
-      if (key == "terms") {
-        has_terms = true;
-        for (const auto& entry : split(value, ','))
-          if (!entry.empty()) h.terms.push_back(read_term(entry));
-      } else if (key == "fixed") {
-        for (const auto& entry : split(value, ',')) {
-          if (entry.empty()) continue;
-          const auto assignment = split_term_assignment(entry);
-          if (!assignment)
-            throw fail(fmt::format("fixed entry '{}' has no value; accepted: <term>:<column>=<value> <unit>",
-                                   entry));
-          ObservationsHeader::Fixed f;
-          f.term = read_term(assignment->term);
-          const auto number = parse_number(assignment->value);
-          if (!number)
-            throw fail(
-                fmt::format("fixed entry '{}': '{}' is not a finite number; accepted: "
-                            "<term>:<column>=<value> <unit>",
-                            entry, assignment->value));
-          f.value = *number;
-          f.unit = assignment->unit;
-          h.fixed.push_back(std::move(f));
-        }
-      } else if (key == "known") {
-        for (const auto& entry : split(value, ','))
-          if (!entry.empty()) h.known.push_back(entry);
-      } else if (key == "output_unit") {
-        h.output_unit = value;
-      } else if (key == "config_sha256") {
-        const bool hex = value.size() == 64 && value.find_first_not_of("0123456789abcdef") == std::string::npos;
-        if (!hex)
-          throw fail(fmt::format("config_sha256 '{}' is not a SHA-256; accepted: 64 lower-case hex digits",
-                                 value));
-        h.config_sha256 = value;
-      } else {
-        throw fail(fmt::format("unknown key '{}'; accepted: terms, fixed, known, output_unit, config_sha256",
-                               key));
-      }
-    }
-    if (!has_terms || h.terms.empty()) throw fail("no free terms; accepted: terms=<term>:<column>,...");
-    std::set<std::string> ids;
-    for (const auto& t : h.terms)
-      if (!ids.insert(t.id).second) throw fail(fmt::format("term '{}' is listed twice", t.id));
-    for (const auto& f : h.fixed)
-      if (!ids.insert(f.term.id).second)
-        throw fail(fmt::format("term '{}' is listed twice (free and fixed, or fixed twice)", f.term.id));
-    for (const auto& t : h.terms)
-      if (parse_term(t.id)->kind != TermKind::power && t.column.empty())
-        throw fail(fmt::format("term '{}' needs a column", t.id));
-    return h;
-  }
-  return std::nullopt;
-}
-
-// ---------------------------------------------------------------------------------------------------------
 // Writing simulated observations
 
 double output_unit_si(std::string_view output_unit) {
@@ -415,7 +292,8 @@ double output_unit_si(std::string_view output_unit) {
 
 ObservationsHeader observations_file_header(const IdentificationSpec& spec,
                                             const InstrumentModel& instrument,
-                                            std::string_view config_sha256) {
+                                            std::string_view config_sha256,
+                                            const std::vector<ObservationsHeader::Log>& logs) {
   const double unit = output_unit_si(instrument.output_unit);
   ObservationsHeader h;
   for (const auto& id : spec.free_terms) h.terms.push_back({id, id});
@@ -425,13 +303,15 @@ ObservationsHeader observations_file_header(const IdentificationSpec& spec,
   h.known = {"rate"};
   h.output_unit = instrument.output_unit;
   h.config_sha256 = std::string(config_sha256);
+  h.logs = logs;
   return h;
 }
 
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
-                             const InstrumentModel& instrument, std::string_view config_sha256) {
+                             const InstrumentModel& instrument, std::string_view config_sha256,
+                             const std::vector<ObservationsHeader::Log>& logs) {
   const double unit = output_unit_si(instrument.output_unit);
-  const ObservationsHeader h = observations_file_header(spec, instrument, config_sha256);
+  const ObservationsHeader h = observations_file_header(spec, instrument, config_sha256, logs);
 
   // Regressor columns in canonical term order.
   std::vector<std::size_t> order(obs.columns.size());

@@ -40,14 +40,18 @@ ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, d
     for (std::size_t k = 0; k < fields.size(); ++k) fields[k] = table.rows[i][k];
     reducer.row(fields.data(), table.row_lines[i]);
   }
-  return reducer.finish();
+  ReducedLog log = reducer.finish();
+  log.sha256 = table.text_sha256;
+  return log;
 }
 
 ReducedLog reduce_run_log_file(const std::filesystem::path& path, const RunLogOptions& options,
                                double planned_rate) {
   detail::LogReducer reducer(path.string(), options, planned_rate);
-  stream_csv_file(path, reducer);
-  return reducer.finish();
+  const std::string sha256 = stream_csv_file(path, reducer);
+  ReducedLog log = reducer.finish();
+  log.sha256 = sha256;
+  return log;
 }
 
 Run measured_run(const Run& planned, const ReducedLog& log, const Geometry& geometry, const Site& site) {

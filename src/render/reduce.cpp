@@ -96,6 +96,7 @@ std::string json_of(const Config& cfg, const verbs::ReduceResult& r) {
     nlohmann::ordered_json x;
     x["name"] = lr.measured.name;
     x["log"] = r.files[k];
+    x["log_sha256"] = lr.log.sha256;
     x["samples"] = lr.log.samples;
     x["duration_s"] = lr.log.duration;
     x["output"] = lr.log.mean_output / r.output_unit_si;

@@ -173,13 +173,24 @@ std::string section_commands(const verbs::ReportResult& r, const ReportProvenanc
   return out;
 }
 
+// The run logs of the observations, each by run, file and fingerprint ("" when the file records none).
+std::string log_rows(const std::vector<ObservationsHeader::Log>& logs) {
+  if (logs.empty()) return "";
+  std::string cells;
+  for (const ObservationsHeader::Log& log : logs)
+    cells += fmt::format("{}<span class=\"log\" data-run=\"{}\">{}: <code>{}</code>, SHA-256 <code>{}</code></span>",
+                         cells.empty() ? "" : "<br>", escape(log.run), escape(log.run), escape(log.file),
+                         escape(log.sha256));
+  return fmt::format("<tr><th>run logs ({})</th><td>{}</td></tr>\n", logs.size(), cells);
+}
+
 // The observations file of the statement, by name and fingerprint, as the configuration is.
 std::string observations_rows(const verbs::ReportResult& r, const ReportProvenance& p) {
   if (!r.observed) return "";
   return fmt::format(
       "<tr><th>observations</th><td><code>{}</code></td></tr>\n"
-      "<tr><th>SHA-256 of the observations</th><td><code id=\"observations-sha256\">{}</code></td></tr>\n",
-      escape(r.observed->source), escape(p.observations_sha256));
+      "<tr><th>SHA-256 of the observations</th><td><code id=\"observations-sha256\">{}</code></td></tr>\n{}",
+      escape(r.observed->source), escape(p.observations_sha256), log_rows(p.observation_logs));
 }
 
 std::string provenance_section(const verbs::ReportResult& r, const ReportProvenance& p) {
@@ -318,6 +329,7 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
     // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
     p.identify_command = {"identify", r.observed->source, "--statement"};
     p.observations_sha256 = o.observations->text_sha256;
+    if (const auto header = observations_header(*o.observations)) p.observation_logs = header->logs;
     if (o.mode)
       p.identify_command.insert(p.identify_command.end(), {"--mode", std::string(mode_name(*o.mode))});
     if (m.coverage_probability != verbs::StatementOptions{}.coverage_probability)

@@ -139,7 +139,8 @@ Identification identify_table(const CsvTable& table, const TableFitSpec& spec, c
 
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
                                          const InstrumentModel& instrument, std::string_view source,
-                                         const DataResolution* resolution, std::string_view config_sha256) {
+                                         const DataResolution* resolution, std::string_view config_sha256,
+                                         const std::vector<ObservationsHeader::Log>& logs) {
   // A run mean that is not finite is named by its run, not at a line of the generated CSV (which the source
   // name would place in the configuration file).
   for (Eigen::Index j = 0; j < obs.output.size(); ++j) {
@@ -153,7 +154,7 @@ FileIdentification identify_observations(const Observations<double>& obs, const 
   }
   const double unit = output_unit_si(instrument.output_unit);
   FileIdentification f;
-  f.csv = observations_csv(obs, spec, instrument, config_sha256);
+  f.csv = observations_csv(obs, spec, instrument, config_sha256, logs);
   f.spec = observations_spec(observations_file_header(spec, instrument));
   ColumnUnits units;
   units.output_unit = instrument.output_unit;

@@ -113,9 +113,13 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   }
   const DataResolution resolution =
       run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
+  // The logs' files and fingerprints go into the observations file's header, for the provenance of a result.
+  std::vector<ObservationsHeader::Log> fingerprints;
+  for (std::size_t k = 0; k < r.logs.runs.size(); ++k)
+    fingerprints.push_back({cfg.plan.runs[r.logs.runs[k].index].name, r.logs.runs[k].log.sha256, r.files[k]});
   r.identification =
       identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source, &resolution,
-                            cfg.text_sha256);
+                            cfg.text_sha256, fingerprints);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
   if (o.statement) {

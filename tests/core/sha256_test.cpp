@@ -20,5 +20,21 @@ TEST(Sha256, FipsExamples) {
   EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
 }
 
+TEST(Sha256, PiecesGiveTheDigestOfTheWhole) {
+  // Every split of a 200-byte message into two pieces, and pieces of 1, 63, 64 and 65 bytes (across the block
+  // boundary, at it, and whole blocks with remainders), give the one-shot digest.
+  std::string message;
+  for (int k = 0; k < 200; ++k) message += char('a' + k % 26);
+  const std::string whole = sha256_hex(message);
+  for (std::size_t cut = 0; cut <= message.size(); ++cut)
+    EXPECT_EQ(Sha256{}.update(message.substr(0, cut)).update(message.substr(cut)).hex(), whole) << cut;
+  for (std::size_t piece : {1u, 63u, 64u, 65u}) {
+    Sha256 h;
+    for (std::size_t at = 0; at < message.size(); at += piece) h.update(message.substr(at, piece));
+    EXPECT_EQ(h.hex(), whole) << piece;
+  }
+  EXPECT_EQ(Sha256{}.hex(), sha256_hex(""));
+}
+
 }  // namespace
 }  // namespace ccal

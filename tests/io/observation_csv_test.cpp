@@ -66,6 +66,36 @@ TEST(ObservationCsv, HeaderCarriesTheConfigurationsFingerprint) {
   }
 }
 
+TEST(ObservationCsv, HeaderCarriesEachLogsFileAndFingerprint) {
+  // A line per log after the header, read back exactly, the file name last so that it may hold ';' and '=';
+  // a malformed line is refused at its own line.
+  ObservationsHeader h;
+  h.terms = {{"K0", "K0"}};
+  h.output_unit = "deg/s";
+  h.logs = {{"5g", std::string(64, 'b'), "logs/5g.csv"}, {"run; 2", std::string(64, 'c'), "a; b=c.csv"}};
+  const std::string text = format_observations_header(h);
+  EXPECT_NE(text.find("\n# ccal log v1; run=5g; sha256=" + std::string(64, 'b') + "; file=logs/5g.csv\n"),
+            std::string::npos)
+      << text;
+  const auto back = observations_header(parse_csv(text + "\nrun,output\na,1\n", "h.csv"));
+  ASSERT_TRUE(back.has_value());
+  ASSERT_EQ(back->logs.size(), 2u);
+  EXPECT_EQ(back->logs[0], h.logs[0]);
+  EXPECT_EQ(back->logs[1].file, "a; b=c.csv");
+  for (const auto& [line, hint] :
+       {std::pair{"# ccal log v1; run=5g; sha256=xyz; file=a.csv", "'xyz' is not a SHA-256"},
+        std::pair{"# ccal log v2; run=5g", "unsupported log line"},
+        std::pair{"# ccal log v1; file=a.csv", "bad log line"}}) {
+    try {
+      observations_header(parse_csv(std::string("# ccal observations v1; terms=K0\n") + line + "\nx\n1\n", "d.csv"));
+      ADD_FAILURE() << line;
+    } catch (const CsvError& e) {
+      EXPECT_EQ(e.line(), 2);
+      EXPECT_NE(std::string(e.what()).find(hint), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(ObservationCsv, CellsAndPlaces) {
   const CsvTable t =
       parse_csv("# c\r\n run , x ,y\r\n\r\n\"a, b\", +1.5 ,-2e-3\r\n\"say \"\"hi\"\"\",0,1\r\n", "t.csv");

@@ -17,6 +17,7 @@ HTML and PDF, and what a laboratory files checked:
     check_certificate.py CCAL WORK_FOLDER [--pdf]
 
 Exit 1 with one line per problem."""
+import hashlib
 import html.parser
 import json
 import math
@@ -121,6 +122,20 @@ def main(ccal, work, pdf):
                 f"k = {c['coverage_factor']:.3f}, p = 95 %: [{r['interval'][0]}, {r['interval'][1]}]")
         if line not in text:
             problems.append(f"the text has no line {line!r}")
+
+    # Every log by run, file and SHA-256: in the observations file's header and in the page's provenance.
+    with open("obs.csv", encoding="utf-8") as f:
+        observations = f.read()
+    for r in RUNS:
+        with open(f"logs/{r}.csv", "rb") as f:
+            digest = hashlib.sha256(f.read()).hexdigest()
+        line = f"# ccal log v1; run={r}; sha256={digest}; file=logs/{r}.csv"
+        if line not in observations:
+            problems.append(f"obs.csv has no line {line!r}")
+        if f'data-run="{r}">{r}: <code>logs/{r}.csv</code>, SHA-256 <code>{digest}</code>' not in page:
+            problems.append(f"the provenance does not name log {r} with its SHA-256 {digest}")
+    if f'<code id="observations-sha256">{hashlib.sha256(observations.encode()).hexdigest()}</code>' not in page:
+        problems.append("the provenance does not name the observations' SHA-256")
 
     # One U per method: budget, allocate's configured U, the report's summary, Python.
     budget = json.loads(run(ccal, "budget", LAB, "--format", "json").stdout)

@@ -63,8 +63,9 @@ inline bool parse_plain_decimal(std::string_view text, double& value) {
 // to the header.
 void check_csv_line_ends(std::string_view line, const std::string& source, int line_no);
 
-// Streams a file to `sink`. Throws CsvError (file unreadable, empty, no header, bad header, bad row) and
+// Streams a file to `sink`; returns the SHA-256 of its bytes (core/sha256.hpp), the fingerprint of the file
+// as read, in the same pass. Throws CsvError (file unreadable, empty, no header, bad header, bad row) and
 // whatever the sink throws.
-void stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink);
+std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink);
 
 }  // namespace ccal

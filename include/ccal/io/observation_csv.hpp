@@ -123,10 +123,20 @@ struct ObservationsHeader {
   // SHA-256 of the configuration whose test the file holds (Config::text_sha256; "" if not recorded): the
   // calibration statement refuses a configuration of another fingerprint.
   std::string config_sha256;
+  // The run logs the observations were reduced from (`ccal reduce`), each on a comment line of its own after
+  // the header, "# ccal log v1; run=5g; sha256=<64 hex digits>; file=logs/5g.csv" (the file name last: it may
+  // hold any character but a line end): the provenance of a filed result down to the recorded data.
+  struct Log {
+    std::string run;     // the plan's run name
+    std::string sha256;  // of the log file's bytes, as read
+    std::string file;    // as given to `ccal reduce`
+    bool operator==(const Log&) const = default;
+  };
+  std::vector<Log> logs;
   int line = 0;                    // where the comment was read
 };
 
-// The comment line (with its leading "# ").
+// The comment line (with its leading "# "), and a line for each log after it (no line end after the last).
 std::string format_observations_header(const ObservationsHeader& header);
 // The table's `# ccal observations` comment, if it has one. Throws CsvError, at the comment's line, for an
 // unsupported version or a malformed entry (unknown key, bad term id, term both free and fixed, bad value).
@@ -139,12 +149,14 @@ double output_unit_si(std::string_view output_unit);
 // fixed values in the output unit, the rate term known.
 ObservationsHeader observations_file_header(const IdentificationSpec& spec,
                                             const InstrumentModel& instrument,
-                                            std::string_view config_sha256 = {});
+                                            std::string_view config_sha256 = {},
+                                            const std::vector<ObservationsHeader::Log>& logs = {});
 
 // The observations file of simulated observations: values in the instrument's output unit (regressors in gⁿ,
 // K_w's in rad/s), fixed values in coefficient units, regressor columns in canonical term order.
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
-                             const InstrumentModel& instrument, std::string_view config_sha256 = {});
+                             const InstrumentModel& instrument, std::string_view config_sha256 = {},
+                             const std::vector<ObservationsHeader::Log>& logs = {});
 
 // What to fit from a table. Values are in the file's units (output column per column unit).
 struct TableTerm {

@@ -44,6 +44,7 @@ struct RunLogOptions {
 
 struct ReducedLog {
   std::string source;
+  std::string sha256;  // of the log's bytes as read (the file's; the table's text for a CsvTable)
   std::size_t samples = 0;
   bool pulses = false;     // the output came as a pulse count
   double duration = 0;     // T = t_last − t_first [s]

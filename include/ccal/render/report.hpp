@@ -34,6 +34,9 @@ struct ReportProvenance {
   // With the statement section: `ccal identify OBS.csv …`, run with `--config CONFIG` (the report's).
   std::vector<std::string> identify_command;
   std::string observations_sha256;  // of the observations file (its CsvTable's), filled by report_commands
+  // The run logs the observations were reduced from, as their header records them (`ccal reduce`), filled by
+  // report_commands: each log's run, file and SHA-256 in the provenance.
+  std::vector<ObservationsHeader::Log> observation_logs;
 };
 
 // The provenance's date: now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention)

@@ -68,6 +68,7 @@ struct FileIdentification {
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
                                          const InstrumentModel& instrument, std::string_view source,
                                          const DataResolution* resolution = nullptr,
-                                         std::string_view config_sha256 = {});
+                                         std::string_view config_sha256 = {},
+                                         const std::vector<ObservationsHeader::Log>& logs = {});
 
 }  // namespace ccal::verbs

@@ -1,0 +1,190 @@
+// The observations file's header comments (io/observation_csv.hpp, ObservationsHeader): the
+// "# ccal observations v1; …" line that says what the columns are, and the "# ccal log v1; …" lines of the logs
+// the observations were reduced from.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "ccal/io/observation_csv.hpp"
+#include "ccal/model/instrument.hpp"
+#include "text_trim.hpp"
+
+namespace ccal {
+namespace {
+
+using detail::trim_csv;
+
+constexpr std::string_view kHeaderKey = "ccal observations header";
+constexpr std::string_view kLogMark = "ccal log";  // a reduced log's line (ObservationsHeader::logs)
+
+// The pieces of `text` between separators, each trimmed.
+std::vector<std::string> split(std::string_view text, char separator) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = text.find(separator, start);
+    out.emplace_back(trim_csv(text.substr(start, end == std::string_view::npos ? text.npos : end - start)));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string format_observations_header(const ObservationsHeader& h) {
+  std::vector<std::string> terms, fixed;
+  for (const auto& t : h.terms) terms.push_back(t.id + ":" + t.column);
+  for (const auto& f : h.fixed) {
+    std::string entry = fmt::format("{}:{}={}", f.term.id, f.term.column, f.value);
+    if (!f.unit.empty()) entry += " " + f.unit;
+    fixed.push_back(std::move(entry));
+  }
+  std::string out = fmt::format("# ccal observations v1; terms={}; fixed={}; known={}; output_unit={}",
+                                fmt::join(terms, ","), fmt::join(fixed, ","), fmt::join(h.known, ","),
+                                h.output_unit);
+  if (!h.config_sha256.empty()) out += "; config_sha256=" + h.config_sha256;
+  // A line end in a name (possible in a file name) would end the comment: written as '?'.
+  const auto one_line = [](std::string text) {
+    std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, '?');
+    return text;
+  };
+  for (const ObservationsHeader::Log& log : h.logs)
+    out += fmt::format("\n# {} v1; run={}; sha256={}; file={}", kLogMark, one_line(log.run), log.sha256,
+                       one_line(log.file));
+  return out;
+}
+
+namespace {
+
+bool is_sha256(std::string_view value) {
+  return value.size() == 64 && value.find_first_not_of("0123456789abcdef") == std::string_view::npos;
+}
+
+// A "# ccal log v1; run=…; sha256=…; file=…" comment (the file name is the rest of the line).
+ObservationsHeader::Log read_log_line(const CsvTable& table, const CsvTable::Comment& comment) {
+  auto fail = [&](std::string problem) {
+    return CsvError(table.source, comment.line, 0, std::string(kHeaderKey), std::move(problem));
+  };
+  const std::string accepted = "accepted: # ccal log v1; run=<run>; sha256=<64 hex digits>; file=<file>";
+  std::string_view rest = std::string_view(comment.text).substr(kLogMark.size());
+  constexpr std::string_view kVersion = " v1; ";
+  if (!rest.starts_with(kVersion)) throw fail(fmt::format("unsupported log line; {}", accepted));
+  rest.remove_prefix(kVersion.size());
+  // run=<run>; sha256=<hex>; file=<file>: the run may hold ';' (a hex digest never does), the file anything.
+  constexpr std::string_view kRun = "run=", kSha = "; sha256=", kFile = "; file=";
+  const std::size_t sha = rest.find(kSha);
+  if (!rest.starts_with(kRun) || sha == std::string_view::npos) throw fail(fmt::format("bad log line; {}", accepted));
+  ObservationsHeader::Log log;
+  log.run = std::string(trim_csv(rest.substr(kRun.size(), sha - kRun.size())));
+  rest.remove_prefix(sha + kSha.size());
+  const std::size_t file = rest.find(kFile);
+  if (file == std::string_view::npos) throw fail(fmt::format("bad log line; {}", accepted));
+  log.sha256 = std::string(trim_csv(rest.substr(0, file)));
+  log.file = std::string(rest.substr(file + kFile.size()));
+  if (!is_sha256(log.sha256))
+    throw fail(fmt::format("log sha256 '{}' is not a SHA-256; accepted: 64 lower-case hex digits", log.sha256));
+  if (log.run.empty() || log.file.empty()) throw fail(fmt::format("a log line names no run or no file; {}", accepted));
+  return log;
+}
+
+}  // namespace
+
+std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
+  constexpr std::string_view kMark = "ccal observations";
+  for (const auto& comment : table.comments) {
+    if (!comment.text.starts_with(kMark)) continue;
+    const int line = comment.line;
+    auto fail = [&](std::string problem) -> CsvError {
+      return CsvError(table.source, line, 0, std::string(kHeaderKey), std::move(problem));
+    };
+    const std::vector<std::string> parts = split(std::string_view(comment.text).substr(kMark.size()), ';');
+    if (parts.front() != "v1")
+      throw fail(fmt::format("unsupported version '{}'; accepted: v1", parts.front()));
+    ObservationsHeader h;
+    h.line = line;
+    std::set<std::string> keys;
+    bool has_terms = false;
+    auto read_term = [&](const std::string& entry) {
+      const std::size_t colon = entry.find(':');
+      ObservationsHeader::Term t;
+      t.id = std::string(trim_csv(std::string_view(entry).substr(0, colon)));
+      t.column = colon == std::string::npos
+                     ? t.id
+                     : std::string(trim_csv(std::string_view(entry).substr(colon + 1)));
+      if (!parse_term(t.id))
+        throw fail(fmt::format("'{}' is not a term id; accepted: {}", t.id, fmt::join(all_term_ids(), ", ")));
+      if (t.column.empty())
+        throw fail(fmt::format("term '{}' has an empty column name; accepted: <term>:<column>", t.id));
+      return t;
+    };
+    for (std::size_t k = 1; k < parts.size(); ++k) {
+      if (parts[k].empty()) continue;
+      const std::size_t eq = parts[k].find('=');
+      const std::string key(trim_csv(std::string_view(parts[k]).substr(0, eq)));
+      const std::string value = eq == std::string::npos
+                                    ? std::string()
+                                    : std::string(trim_csv(std::string_view(parts[k]).substr(eq + 1)));
+      if (eq == std::string::npos)
+        throw fail(fmt::format("'{}' has no value; accepted: <key>=<value>", parts[k]));
+      if (!keys.insert(key).second) throw fail(fmt::format("'{}' is given twice", key));
+      if (key == "terms") {
+        has_terms = true;
+        for (const auto& entry : split(value, ','))
+          if (!entry.empty()) h.terms.push_back(read_term(entry));
+      } else if (key == "fixed") {
+        for (const auto& entry : split(value, ',')) {
+          if (entry.empty()) continue;
+          const auto assignment = split_term_assignment(entry);
+          if (!assignment)
+            throw fail(fmt::format("fixed entry '{}' has no value; accepted: <term>:<column>=<value> <unit>",
+                                   entry));
+          ObservationsHeader::Fixed f;
+          f.term = read_term(assignment->term);
+          const auto number = parse_number(assignment->value);
+          if (!number)
+            throw fail(
+                fmt::format("fixed entry '{}': '{}' is not a finite number; accepted: "
+                            "<term>:<column>=<value> <unit>",
+                            entry, assignment->value));
+          f.value = *number;
+          f.unit = assignment->unit;
+          h.fixed.push_back(std::move(f));
+        }
+      } else if (key == "known") {
+        for (const auto& entry : split(value, ','))
+          if (!entry.empty()) h.known.push_back(entry);
+      } else if (key == "output_unit") {
+        h.output_unit = value;
+      } else if (key == "config_sha256") {
+        if (!is_sha256(value))
+          throw fail(fmt::format("config_sha256 '{}' is not a SHA-256; accepted: 64 lower-case hex digits",
+                                 value));
+        h.config_sha256 = value;
+      } else {
+        throw fail(fmt::format("unknown key '{}'; accepted: terms, fixed, known, output_unit, config_sha256",
+                               key));
+      }
+    }
+    if (!has_terms || h.terms.empty()) throw fail("no free terms; accepted: terms=<term>:<column>,...");
+    std::set<std::string> ids;
+    for (const auto& t : h.terms)
+      if (!ids.insert(t.id).second) throw fail(fmt::format("term '{}' is listed twice", t.id));
+    for (const auto& f : h.fixed)
+      if (!ids.insert(f.term.id).second)
+        throw fail(fmt::format("term '{}' is listed twice (free and fixed, or fixed twice)", f.term.id));
+    for (const auto& t : h.terms)
+      if (parse_term(t.id)->kind != TermKind::power && t.column.empty())
+        throw fail(fmt::format("term '{}' needs a column", t.id));
+    for (const auto& c : table.comments)
+      if (c.text.starts_with(kLogMark)) h.logs.push_back(read_log_line(table, c));
+    return h;
+  }
+  return std::nullopt;
+}
+
+}  // namespace ccal
