@@ -150,15 +150,18 @@ def main(ccal, work, pdf):
         cell = re.search(rf'data-src="budget:/coefficients/{k}/expanded_uncertainty"[^>]*>([^<]*)<', page)
         if not cell or not math.isclose(float(cell.group(1)), u, rel_tol=5e-4):
             problems.append(f"{name}: the report's summary U {cell and cell.group(1)} is not budget's {u:.4g}")
-    try:
-        import ccal  # noqa: E402 (PYTHONPATH from ctest)
-        py = json.loads(ccal.budget(ccal.load_config(LAB)).to_json())
-        for c in py["coefficients"]:
+    # Python: Debian's interpreter, which has numpy (the module's PYTHONPATH from ctest).
+    python = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
+    got = subprocess.run([python, "-c", "import ccal, sys; "
+                          "sys.stdout.write(ccal.budget(ccal.load_config(sys.argv[1])).to_json())", LAB],
+                         capture_output=True, text=True)
+    if got.returncode != 0:
+        problems.append(f"Python's budget failed: {got.stderr.strip()[-400:]}")
+    else:
+        for c in json.loads(got.stdout)["coefficients"]:
             if not math.isclose(c["expanded_uncertainty"], budget_u[c["id"]], rel_tol=1e-12):
                 problems.append(f"{c['id']}: Python's U {c['expanded_uncertainty']} is not budget's "
                                 f"{budget_u[c['id']]}")
-    except ImportError:
-        print("the Python module is not importable here: its U not compared")
 
     # The covariance: symmetric, PSD, u_c² on the diagonal (1e-12 relative: the same parts, summed two ways).
     cov = statement["covariance"]["combined"]
