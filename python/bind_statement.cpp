@@ -93,7 +93,29 @@ void bind_statement(py::module_& m) {
       .def_readonly("covariance_a", &Statement::covariance_a, "the fit's covariance (Type A) [units_i × units_j]")
       .def_readonly("covariance_b", &Statement::covariance_b,
                     "the tolerances' covariance (Type B) [units_i × units_j]")
-      .def_readonly("correlation", &Statement::correlation, "correlation of the corrected estimates [—]");
+      .def_readonly("correlation", &Statement::correlation, "correlation of the corrected estimates [—]")
+      .def_property_readonly(
+          "outputs",
+          [](const Statement& s) {
+            py::list out;
+            for (std::size_t r = 0; r < s.outputs.size(); ++r) {
+              const CoefficientStatement& o = s.outputs[r];
+              py::dict d;
+              d["run"] = o.input.coefficient;
+              d["g_level"] = s.g_levels[r];
+              d["unit"] = o.input.unit;
+              d["value"] = o.corrected;
+              d["standard_uncertainty"] = o.combined;
+              d["effective_dof"] = o.effective_dof;
+              d["coverage_factor"] = o.coverage_factor;
+              d["expanded_uncertainty"] = o.expanded;
+              out.append(d);
+            }
+            return out;
+          },
+          "the modelled output of each run, ŷ = hᵀ(K̂ + b) with u from the covariance: per run a dict of run, "
+          "g_level [g] (nan: no run of the plan), unit, value, standard_uncertainty, effective_dof, "
+          "coverage_factor, expanded_uncertainty [the output's unit]");
 }
 
 }  // namespace ccal::python

@@ -62,6 +62,16 @@ class StatementObject(unittest.TestCase):
         np.testing.assert_allclose(c, np.asarray(self.statement.covariance_a) + np.asarray(self.statement.covariance_b),
                                    rtol=1e-14, atol=0)
 
+    def test_modelled_outputs_are_the_jsons(self):
+        outputs = self.statement.outputs
+        stated = self.statement.to_dict()["modelled_output"]
+        self.assertEqual([o["run"] for o in outputs], ["5g", "10g", "15g", "20g", "25g", "30g"])
+        for o, j in zip(outputs, stated):
+            self.assertEqual(o["g_level"], j["g_level"])
+            self.assertEqual(o["value"], j["corrected_estimate"])
+            self.assertEqual(o["expanded_uncertainty"], j["expanded_uncertainty"])
+            self.assertEqual(o["unit"], "deg/s")
+
     def test_csv_rows_follow_the_names(self):
         lines = self.statement.to_csv().splitlines()
         self.assertTrue(lines[0].endswith(",cov_K0,cov_K2,cov_K3"))
