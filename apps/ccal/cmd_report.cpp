@@ -39,12 +39,10 @@ void check_pdf(const std::string& pdf, const OutputOptions& output) {
   if (pdf.empty()) return;
   if (!output.path.empty() && same_file(pdf, output.path))
     throw InputError(fmt::format("--pdf: '{}' is also the -o file; accepted: two different files", pdf));
-  if (find_pdf_browser().empty()) {
-    try {
-      print_pdf("");  // throws the reason, worded once there
-    } catch (const InputError& e) {
-      throw InputError(std::string("--pdf: ") + e.what());
-    }
+  try {
+    require_pdf_browser();
+  } catch (const InputError& e) {
+    throw InputError(std::string("--pdf: ") + e.what());
   }
 }
 

@@ -144,15 +144,18 @@ std::string find_pdf_browser(const PdfPrintOptions& options) {
   return {};
 }
 
+std::string require_pdf_browser(const PdfPrintOptions& options) {
+  std::string browser = find_pdf_browser(options);
+  if (!browser.empty()) return browser;
+  const char* named = std::getenv("CCAL_CHROMIUM");
+  const std::string asked = !options.browser.empty() ? options.browser : named && *named ? named : "";
+  throw InputError(asked.empty() ? fmt::format("no browser to print the PDF with; {}", kInstallHint)
+                                 : fmt::format("the browser '{}' is not an executable file; {}", asked,
+                                               kInstallHint));
+}
+
 std::string print_pdf(std::string_view html, const PdfPrintOptions& options) {
-  const std::string browser = find_pdf_browser(options);
-  if (browser.empty()) {
-    const char* named = std::getenv("CCAL_CHROMIUM");
-    const std::string asked = !options.browser.empty() ? options.browser : named && *named ? named : "";
-    throw InputError(asked.empty() ? fmt::format("no browser to print the PDF with; {}", kInstallHint)
-                                   : fmt::format("the browser '{}' is not an executable file; {}", asked,
-                                                 kInstallHint));
-  }
+  const std::string browser = require_pdf_browser(options);
   const TemporaryFolder folder;
   const fs::path page = folder.path() / "page.html", pdf = folder.path() / "page.pdf",
                  log = folder.path() / "browser.log";

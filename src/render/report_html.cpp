@@ -75,15 +75,19 @@ std::string ratio_cell(const Doc& doc, const std::string& numerator, const std::
                      escape(doc.name), escape(numerator), escape(denominator), digits, value, digits);
 }
 
-std::string text_num_cell(const Doc& doc, const std::string& pointer) {
-  return fmt::format("<td class=\"num\" data-text=\"{}:{}\">{}</td>", escape(doc.name), escape(pointer),
+namespace {
+
+// A string of the output in an element that names its place (the check compares it character for character).
+std::string text_element(std::string_view tag, const Doc& doc, const std::string& pointer) {
+  return fmt::format("<{0} class=\"num\" data-text=\"{1}:{2}\">{3}</{0}>", tag, escape(doc.name), escape(pointer),
                      escape(doc.json.at(Json::json_pointer(pointer)).get<std::string>()));
 }
 
-std::string text_num_span(const Doc& doc, const std::string& pointer) {
-  return fmt::format("<span class=\"num\" data-text=\"{}:{}\">{}</span>", escape(doc.name), escape(pointer),
-                     escape(doc.json.at(Json::json_pointer(pointer)).get<std::string>()));
-}
+}  // namespace
+
+std::string text_num_cell(const Doc& doc, const std::string& pointer) { return text_element("td", doc, pointer); }
+
+std::string text_num_span(const Doc& doc, const std::string& pointer) { return text_element("span", doc, pointer); }
 
 std::string text_cell(std::string_view text) { return "<td>" + escape(text) + "</td>"; }
 

@@ -17,6 +17,9 @@ struct PdfPrintOptions {
 
 // The browser that print_pdf would run (a path), or empty if there is none.
 std::string find_pdf_browser(const PdfPrintOptions& options = {});
+// The same, or InputError saying which browser is missing and how to install one: a front end's check before
+// a long computation whose result it will print.
+std::string require_pdf_browser(const PdfPrintOptions& options = {});
 
 // The page printed to PDF: its bytes (they begin "%PDF-"). InputError when no browser is found (saying how to
 // install one), when the browser fails or times out (with the end of what it wrote on its error stream), or
