@@ -237,6 +237,26 @@ TEST(Table, DisplayWidthAndCutting) {
   EXPECT_EQ(render::wrap_words("aa bb cc", 5, "  "), "aa bb\n  cc\n");
 }
 
+// An optional column goes only when cutting the shrinkable one to its header is not enough, and then the
+// shrinkable column gets back what the optional one freed.
+TEST(Table, AnOptionalColumnGoesOnlyWhenTheWidthNeedsIt) {
+  render::Table t({"id", "name", "x", "div", "u"});
+  t.align_left(1);
+  t.shrink(1);
+  t.optional(3);
+  t.add_row({"a1", "a long descriptive name", "10", "√3", "5.774"});
+  // Natural: 2 (indent) + 2 + 23 + 2 + 3 + 5 + 4 gaps of 3 = 49 columns.
+  EXPECT_EQ(lines_of(t.render("  ", 49))[2], "  a1   a long descriptive name   10    √3   5.774");
+  // 40: the name gives 9 and every column stays.
+  EXPECT_EQ(lines_of(t.render("  ", 40))[2], "  a1   a long descri…   10    √3   5.774");
+  // 28: the name down to its header (4) would still be 30 wide, so "div" goes (6 with its gap) and the name
+  // gets 8.
+  const std::vector<std::string> narrow = lines_of(t.render("  ", 28));
+  EXPECT_EQ(narrow[0], "  id   name        x       u");
+  EXPECT_EQ(narrow[2], "  a1   a long…    10   5.774");  // cut at a space: "a long" and "…" in 8
+  for (const std::string& line : narrow) EXPECT_EQ(render::display_width(line), 28u) << line;
+}
+
 // A run named with 10 MB of text padded every row of a table to 10 MB (240 MB of output): a cell wider than
 // kMaxPaddedWidth is printed whole in its own row and leaves the other rows as if it were not there.
 TEST(Table, AHugeCellDoesNotPadTheOtherRows) {
@@ -252,7 +272,7 @@ TEST(Table, AHugeCellDoesNotPadTheOtherRows) {
   EXPECT_EQ(lines[2], "  5g      1.0");
   EXPECT_EQ(lines[4], "  15g     3.0");
   EXPECT_EQ(lines[3], "  " + huge + "     2.0");  // the huge cell whole, nothing cut
-  EXPECT_LT(text.size(), huge.size() + 200);  // the huge cell once, not once per row
+  EXPECT_LT(text.size(), huge.size() + 200);      // the huge cell once, not once per row
   // A cell at the limit still sets its column's width.
   render::Table edge({"run", "value"});
   edge.add_row({std::string(render::kMaxPaddedWidth, 'w'), "1"});
