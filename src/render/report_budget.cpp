@@ -1,5 +1,5 @@
-// The report's budget sections: per coefficient a Pareto chart of the variance shares and the JCGM 100
-// table of its largest sources (the rest summed in one row), and the exact-vs-paper comparison.
+// The report's budget sections: per coefficient a Pareto chart of the variance shares and the GUM budget table
+// (EA-4/02's columns) of its largest sources (the rest summed in one row), and the exact-vs-paper comparison.
 #include <fmt/format.h>
 
 #include <algorithm>
