@@ -232,19 +232,17 @@ std::string text(const verbs::BudgetResult& v, const BudgetTextOptions& o) {
       o.top > 0 ? o.top : std::max<std::size_t>(5, o.screen_rows > fixed ? (o.screen_rows - fixed) / nk : 0);
   std::string out = heading(cfg, r, o.wide ? 0 : o.width);
   out += answer(r, o.width);
-  out += wrap_words(
-             fmt::format(
-                 "Per coefficient, a GUM budget (JCGM 100{}): {}the tolerance as configured, its PDF and "
-                 "divisor ÷, u(x_i) = tolerance/÷ in the tolerance's unit, {}c_i in the coefficient's unit "
-                 "per that unit, u_i(y) = c_i u(x_i) (signed), share = u_i(y)²/u²; every tolerance is a "
-                 "Type B evaluation, a drive's rate noise Type A, ν_i = ∞ for all; |u_i(y)| < {:g} u is "
-                 "round-off, shown as 0{}.",
-                 o.wide ? ", the columns of EA-4/02" : "; --wide: EA-4/02's columns",
-                 o.wide ? "the type, x_i the configured [errors] value (where c_i is evaluated), " : "",
-                 o.wide ? "ν_i, " : "", kRoundOffFloor,
-                 o.wide ? "" : fmt::format("; the {} largest sources, the rest in one row", top)),
-             o.wide ? 0 : o.width) +
-         "\n";
+  out +=
+      wrap_words(
+          fmt::format("Per coefficient, a GUM budget (JCGM 100; {}): {}the tolerance as configured, PDF and "
+                      "divisor ÷, u(x_i) = tolerance/÷ in its unit, c_i per that unit, u_i(y) = c_i u(x_i) "
+                      "(signed), share of u²; tolerances are Type B, rate noise Type A, ν_i = ∞; |u_i(y)| < "
+                      "{:g} u is round-off, shown as 0{}.",
+                      o.wide ? "EA-4/02's columns" : "EA-4/02's columns with --wide",
+                      o.wide ? "x_i the [errors] value (where c_i is evaluated), " : "", kRoundOffFloor,
+                      o.wide ? "" : fmt::format("; the {} largest sources, the rest in one row", top)),
+          o.wide ? 0 : o.width) +
+      "\n";
   for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
     out += coefficient_table(v, k, top, o);
     out += '\n';
