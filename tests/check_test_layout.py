@@ -54,7 +54,8 @@ TESTED_ELSEWHERE = {
     "render/table.cpp": "the text tables: tests/render/budget_test.cpp (Table)",
     "setup/certificate.cpp": "the dates: tests/io/config_sections_certificate_test.cpp (CertificateDates)",
     "setup/config.cpp": "Config::experiment: tests/io/config_file_test.cpp",
-    "setup/tolerance.cpp": "σ of each distribution: tests/uncertainty/budget_groups_test.cpp, montecarlo_test.cpp",
+    "setup/tolerance.cpp": "σ and divisor of each distribution: tests/io/config_file_test.cpp, "
+    "tests/uncertainty/budget_groups_test.cpp, montecarlo_test.cpp",
     "uncertainty/allocate_tolerances.cpp": "a part of the allocation: tests/uncertainty/allocate_test.cpp",
     "uncertainty/allocate_barrier.cpp": "a part of the allocation's solver: tests/uncertainty/allocate_test.cpp "
     "(BadlyScaledProblemsAreSolvedToo)",

@@ -36,8 +36,9 @@ Command add_budget(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->type_name("N");
   add_width_options(*cmd, options->width,
-                    "Everything: every source, uncut names, exact-vs-paper flags, force and rate paths, "
-                    "compensation choices, observability; no width limit");
+                    "Everything: every source, uncut names, all of EA-4/02's columns (type, x_i, nu_i, unit "
+                    "of c_i), exact-vs-paper flags, force and rate paths, compensation choices, "
+                    "observability; no width limit");
   add_output_options(*cmd, options->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"

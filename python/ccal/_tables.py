@@ -75,12 +75,19 @@ def display_budget(r, j):
 
 def display_budget_sources(r, j):
     """One row per source: its id, bound and unit (display units), and each coefficient's effect (in the
-    coefficient's display unit) and share of its variance."""
+    coefficient's display unit) and share of its variance; then the rest of a GUM budget line (EA-4/02): the
+    description, x_i and u(x_i) in the bound's unit, the divisor, the type, ν_i (inf) and each coefficient's c_i
+    per that unit."""
     coefficients = [(c["id"], c["unit"]) for c in j["coefficients"]]
     columns = ["source", "bound", "unit", "distribution"]
     columns += [f"effect {k} [{unit}]" for k, unit in coefficients] + [f"share {k}" for k, _ in coefficients]
+    columns += ["name", "estimate", "standard_uncertainty", "divisor", "type", "dof"]
+    columns += [f"c {k} [{unit} per unit]" for k, unit in coefficients]
     rows = [[s["id"], s["bound"], s["unit"], s["distribution"]] + [s["effect"][k] for k, _ in coefficients] +
-            [s["share"][k] for k, _ in coefficients] for s in j["sources"]]
+            [s["share"][k] for k, _ in coefficients] +
+            [s["name"], s["estimate"], s["standard_uncertainty"], s["divisor"], s["type"],
+             float("inf") if s["dof"] is None else s["dof"]] +
+            [s["sensitivity"][k] for k, _ in coefficients] for s in j["sources"]]
     return Table(f"budget of {j['config']} per source ({j['mode']}; effect: sensitivity × u, signed; share: of "
                  "the coefficient's variance)", columns, rows)
 

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "budget_parts.hpp"
@@ -30,6 +31,94 @@ nlohmann::ordered_json per_coefficient(const BudgetResult& r, const Eigen::Vecto
   return j;
 }
 
+// ν_i: null for ∞ (as the statement's JSON writes it).
+nlohmann::ordered_json dof_json(double dof) {
+  return std::isinf(dof) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(dof);
+}
+
+// The EA-4/02 fields of a line, after those it shares with the older fields: x_i, the divisor, the type, ν_i,
+// the unit of c_i and, per coefficient, whether the contribution is below the round-off floor.
+void add_gum_fields(nlohmann::ordered_json& o, const BudgetResult& r, const SourceView& view,
+                    const Eigen::VectorXd& effect) {
+  o["estimate"] = view.estimate;
+  o["estimate_si"] = view.estimate_si;
+  o["divisor"] = view.divisor;
+  o["type"] = std::string(1, view.type);
+  o["dof"] = dof_json(view.dof);
+  nlohmann::ordered_json unit = nlohmann::ordered_json::object(), floor = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
+    unit[r.coefficients[k]] = sensitivity_unit(r, k, view);
+    floor[r.coefficients[k]] = below_round_off_floor(r, effect[Eigen::Index(k)], k);
+  }
+  o["sensitivity_unit"] = unit;
+  o["below_round_off_floor"] = floor;
+}
+
+// A source's line: its tolerance in SI, its effects and shares, the same as the configuration wrote it, the
+// columns of EA-4/02, and the paper's effect where computed.
+nlohmann::ordered_json source_json(const Config& cfg, const BudgetResult& r, const SourceBudget& b) {
+  nlohmann::ordered_json o;
+  const SourceView view = source_view(cfg, b);
+  o["id"] = b.id;
+  o["name"] = view.name;
+  o["rank"] = b.rank;
+  o["unit_si"] = unit_symbol(cfg.centrifuge.layout.parameter_unit(b.parameter));
+  o["bound_si"] = b.bound;
+  o["distribution"] = distribution_name(b.distribution);
+  o["group"] = b.group;
+  o["standard_uncertainty_si"] = b.standard_uncertainty;
+  o["effect"] = per_coefficient(r, b.effect);
+  o["effect_specific_force"] = per_coefficient(r, b.effect_force);
+  o["effect_angular_rate"] = per_coefficient(r, b.effect_rate);
+  o["share"] = per_coefficient(r, b.share, false);
+  nlohmann::ordered_json sens = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k)
+    sens[r.coefficients[k]] = b.sensitivity[Eigen::Index(k)] * r.display_scale[k];
+  o["sensitivity_per_si_unit"] = sens;
+  // The same source as the configuration wrote it: c_i per that unit, so that u_i(y) = c_i u(x_i).
+  o["unit"] = view.unit;
+  o["bound"] = view.bound;
+  o["standard_uncertainty"] = view.u;
+  nlohmann::ordered_json c = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k)
+    c[r.coefficients[k]] = sensitivity_per_unit(r, b, view, k);
+  o["sensitivity"] = c;
+  add_gum_fields(o, r, view, b.effect);
+  if (b.paper_effect.size()) {
+    o["paper_effect"] = per_coefficient(r, b.paper_effect);
+    nlohmann::ordered_json d = nlohmann::ordered_json::object();
+    for (std::size_t k = 0; k < r.coefficients.size(); ++k) d[r.coefficients[k]] = bool(b.disagrees[k]);
+    o["exact_paper_disagree"] = d;
+    if (!b.paper_counterpart) o["paper_counterpart"] = false;  // the drives' ripple: no paper rule
+  }
+  return o;
+}
+
+// A drive's rate noise: its density, each run mean's σ, u and share per coefficient; then the same line as a
+// source's: x_i = 0 and u(x_i) = N in ppm/rtHz, normal, c_i = u_i(y) / u(x_i).
+nlohmann::ordered_json rate_noise_json(const Config& cfg, const BudgetResult& r, const RateNoiseBudget& n) {
+  nlohmann::ordered_json runs = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < cfg.plan.runs.size(); ++i)
+    runs[cfg.plan.runs[i].name] = n.run_sd[Eigen::Index(i)] * r.display_scale.front();
+  nlohmann::ordered_json o = {{"id", n.id},
+                              {"type", "A"},
+                              {"density_per_rtHz", n.density},
+                              {"run_mean_sd", runs},
+                              {"u", per_coefficient(r, n.effect)},
+                              {"share", per_coefficient(r, n.share, false)}};
+  const SourceView view = rate_noise_view(n);
+  o["name"] = view.name;
+  o["distribution"] = distribution_name(Distribution::normal);
+  o["unit"] = view.unit;
+  o["standard_uncertainty"] = view.u;
+  nlohmann::ordered_json c = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k)
+    c[r.coefficients[k]] = sensitivity_per_unit(r, n, view, k);
+  o["sensitivity"] = c;
+  add_gum_fields(o, r, view, n.effect);
+  return o;
+}
+
 std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::ObservabilityReport& observability,
                     const Eigen::VectorXd& known_bias) {
   nlohmann::ordered_json j;
@@ -40,51 +129,19 @@ std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::Obser
   j["coverage_factor"] = r.coverage.factor;
   j["coverage_probability"] = r.coverage.probability;
   j["coverage_method"] = std::string(coverage_method_name(r.coverage.method));
+  // A contribution below this fraction of its coefficient's u is round-off (uncertainty/budget.hpp): the
+  // tables show it as 0, the numbers here keep it; each coefficient's "round_off_floor" is the absolute one.
+  j["round_off_floor_relative"] = kRoundOffFloor;
   j["coefficients"] = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < r.coefficients.size(); ++k)
     j["coefficients"].push_back(
         {{"id", r.coefficients[k]},
          {"unit", r.units[k]},
          {"standard_uncertainty", r.standard_uncertainty[Eigen::Index(k)] * r.display_scale[k]},
-         {"expanded_uncertainty", r.expanded_uncertainty[Eigen::Index(k)] * r.display_scale[k]}});
+         {"expanded_uncertainty", r.expanded_uncertainty[Eigen::Index(k)] * r.display_scale[k]},
+         {"round_off_floor", round_off_floor(r, k)}});
   j["sources"] = nlohmann::ordered_json::array();
-  for (std::size_t s : by_rank(r)) {
-    const SourceBudget& b = r.sources[s];
-    nlohmann::ordered_json o;
-    const SourceView view = source_view(cfg, b);
-    o["id"] = b.id;
-    o["name"] = view.name;
-    o["rank"] = b.rank;
-    o["unit_si"] = unit_symbol(cfg.centrifuge.layout.parameter_unit(b.parameter));
-    o["bound_si"] = b.bound;
-    o["distribution"] = distribution_name(b.distribution);
-    o["group"] = b.group;
-    o["standard_uncertainty_si"] = b.standard_uncertainty;
-    o["effect"] = per_coefficient(r, b.effect);
-    o["effect_specific_force"] = per_coefficient(r, b.effect_force);
-    o["effect_angular_rate"] = per_coefficient(r, b.effect_rate);
-    o["share"] = per_coefficient(r, b.share, false);
-    nlohmann::ordered_json sens = nlohmann::ordered_json::object();
-    for (std::size_t k = 0; k < r.coefficients.size(); ++k)
-      sens[r.coefficients[k]] = b.sensitivity[Eigen::Index(k)] * r.display_scale[k];
-    o["sensitivity_per_si_unit"] = sens;
-    // The same source as the configuration wrote it: c_i per that unit, so that u_i(y) = c_i u(x_i).
-    o["unit"] = view.unit;
-    o["bound"] = view.bound;
-    o["standard_uncertainty"] = view.u;
-    nlohmann::ordered_json c = nlohmann::ordered_json::object();
-    for (std::size_t k = 0; k < r.coefficients.size(); ++k)
-      c[r.coefficients[k]] = sensitivity_per_unit(r, b, view, k);
-    o["sensitivity"] = c;
-    if (b.paper_effect.size()) {
-      o["paper_effect"] = per_coefficient(r, b.paper_effect);
-      nlohmann::ordered_json d = nlohmann::ordered_json::object();
-      for (std::size_t k = 0; k < r.coefficients.size(); ++k) d[r.coefficients[k]] = bool(b.disagrees[k]);
-      o["exact_paper_disagree"] = d;
-      if (!b.paper_counterpart) o["paper_counterpart"] = false;  // the drives' ripple: no paper rule
-    }
-    j["sources"].push_back(o);
-  }
+  for (std::size_t s : by_rank(r)) j["sources"].push_back(source_json(cfg, r, r.sources[s]));
   j["correlation"] = nlohmann::ordered_json::array();
   for (Eigen::Index a = 0; a < r.correlation.rows(); ++a) {
     nlohmann::ordered_json jr = nlohmann::ordered_json::array();
@@ -93,17 +150,7 @@ std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::Obser
   }
   if (!r.rate_noise.empty()) {
     j["rate_noise"] = nlohmann::ordered_json::array();
-    for (const RateNoiseBudget& n : r.rate_noise) {
-      nlohmann::ordered_json runs = nlohmann::ordered_json::object();
-      for (std::size_t i = 0; i < cfg.plan.runs.size(); ++i)
-        runs[cfg.plan.runs[i].name] = n.run_sd[Eigen::Index(i)] * r.display_scale.front();
-      j["rate_noise"].push_back({{"id", n.id},
-                                 {"type", "A"},
-                                 {"density_per_rtHz", n.density},
-                                 {"run_mean_sd", runs},
-                                 {"u", per_coefficient(r, n.effect)},
-                                 {"share", per_coefficient(r, n.share, false)}});
-    }
+    for (const RateNoiseBudget& n : r.rate_noise) j["rate_noise"].push_back(rate_noise_json(cfg, r, n));
   }
   j["compensation_choices"] = nlohmann::ordered_json::array();
   for (const auto& c : r.compensation) {
@@ -135,11 +182,25 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
   for (std::size_t k = 0; k < nk; ++k)
     out +=
         fmt::format(",d{0} [{1}],d{0}_force [{1}],d{0}_rate [{1}],share_{0}", r.coefficients[k], r.units[k]);
-  // The source as configured, and c_i per that unit (u_i(y) = c_i u(x_i)).
+  // The source as configured, and c_i per that unit (u_i(y) = c_i u(x_i)); then the further columns of
+  // EA-4/02: the evaluation's type, ν_i ("inf"), the divisor, x_i in that unit and in SI, the unit of each
+  // c_i.
   out += ",name,unit,bound,u_x";
   for (std::size_t k = 0; k < nk; ++k)
     out += fmt::format(",c_{} [{} per unit]", r.coefficients[k], r.units[k]);
+  out += ",type,dof,divisor,estimate,estimate_si";
+  for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",c_{}_unit", r.coefficients[k]);
   out += "\n";
+  // The columns from `name` on, of a source or a drive's rate noise.
+  const auto as_configured = [&](const SourceView& view, const auto& c) {
+    std::string line =
+        fmt::format(",{},{},{:.17g},{:.17g}", csv_field(view.name), csv_field(view.unit), view.bound, view.u);
+    for (std::size_t k = 0; k < nk; ++k) line += fmt::format(",{:.17g}", c(k));
+    line += fmt::format(",{},{:.17g},{:.17g},{:.17g},{:.17g}", view.type, view.dof, view.divisor,
+                        view.estimate, view.estimate_si);
+    for (std::size_t k = 0; k < nk; ++k) line += fmt::format(",{}", csv_field(sensitivity_unit(r, k, view)));
+    return line + "\n";
+  };
   for (std::size_t s : by_rank(r)) {
     const SourceBudget& b = r.sources[s];
     const SourceView view = source_view(cfg, b);
@@ -152,12 +213,9 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
                          b.effect_force[i] * r.display_scale[k], b.effect_rate[i] * r.display_scale[k],
                          b.share[i]);
     }
-    out +=
-        fmt::format(",{},{},{:.17g},{:.17g}", csv_field(view.name), csv_field(view.unit), view.bound, view.u);
-    for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",{:.17g}", sensitivity_per_unit(r, b, view, k));
-    out += "\n";
+    out += as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, b, view, k); });
   }
-  // The drives' rate noise (Type A: u, no sign), then the totals in the d<K> columns.
+  // The drives' rate noise (Type A: u, no sign), then the totals and the round-off floor in the d<K> columns.
   const auto row = [&](const std::string& source, const std::string& distribution, const Eigen::VectorXd& v,
                        const Eigen::VectorXd* share) {
     std::string line = fmt::format(",{},,{},,,", source, distribution);
@@ -166,12 +224,22 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
       line += fmt::format(",{:.17g},,,", v[i] * r.display_scale[k]);
       if (share) line += fmt::format("{:.17g}", (*share)[i]);
     }
-    return line + ",,,," + std::string(nk, ',') + "\n";
+    return line;
   };
-  for (const RateNoiseBudget& n : r.rate_noise) out += row(n.id, "normal (Type A)", n.effect, &n.share);
-  out += row("total_standard_uncertainty", "", r.standard_uncertainty, nullptr);
-  out += row("expanded_uncertainty", csv_field(coverage_text(r.coverage)), r.expanded_uncertainty, nullptr);
-  if (known_bias.size()) out += row("known_error_bias", "", known_bias, nullptr);
+  const std::string blank = std::string(4 + nk + 5 + nk, ',') + "\n";  // name … c_<K>_unit: empty
+  for (const RateNoiseBudget& n : r.rate_noise) {
+    const SourceView view = rate_noise_view(n);
+    out += row(n.id, "normal (Type A)", n.effect, &n.share) +
+           as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, n, view, k); });
+  }
+  out += row("total_standard_uncertainty", "", r.standard_uncertainty, nullptr) + blank;
+  out += row("expanded_uncertainty", csv_field(coverage_text(r.coverage)), r.expanded_uncertainty, nullptr) +
+         blank;
+  if (known_bias.size()) out += row("known_error_bias", "", known_bias, nullptr) + blank;
+  // |dK| below it is round-off of the derivatives (the tables show 0): kRoundOffFloor of each total.
+  out += row("round_off_floor", fmt::format("{:g} of total_standard_uncertainty", kRoundOffFloor),
+             Eigen::VectorXd(kRoundOffFloor * r.standard_uncertainty), nullptr) +
+         blank;
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "ccal/core/units.hpp"
 
@@ -16,14 +17,75 @@ SourceView source_view(const Config& cfg, const SourceBudget& s) {
   const SourceUnit si = layout.parameter_unit(s.parameter);
   if (v.unit.empty()) v.unit = si == SourceUnit::relative ? "ppm" : std::string(unit_symbol(si));
   v.unit_si = parse_unit(v.unit).value_si;
+  v.estimate_si = cfg.centrifuge.errors[s.parameter];
+  v.estimate = v.estimate_si / v.unit_si;
   v.bound = s.bound / v.unit_si;
+  v.divisor = divisor(s.distribution);
   v.u = s.standard_uncertainty / v.unit_si;
+  return v;
+}
+
+SourceView rate_noise_view(const RateNoiseBudget& n) {
+  SourceView v;
+  v.unit = "ppm/rtHz";
+  v.unit_si = 1e-6;
+  v.bound = v.u = n.density / v.unit_si;
+  v.type = 'A';
+  v.name = fmt::format("{} drive's random rate noise, independent per run",
+                       n.id.starts_with("platform") ? "the platform" : "the main-axis");
   return v;
 }
 
 double sensitivity_per_unit(const ccal::BudgetResult& r, const SourceBudget& s, const SourceView& view,
                             std::size_t k) {
   return s.sensitivity[Eigen::Index(k)] * r.display_scale[k] * view.unit_si;
+}
+
+double sensitivity_per_unit(const ccal::BudgetResult& r, const RateNoiseBudget& n, const SourceView& view,
+                            std::size_t k) {
+  return view.u > 0 ? n.effect[Eigen::Index(k)] * r.display_scale[k] / view.u : 0.0;
+}
+
+std::string sensitivity_unit(const ccal::BudgetResult& r, std::size_t k, const SourceView& view) {
+  return fmt::format("{} per {}", r.units[k], view.unit);
+}
+
+std::string divisor_text(double divisor) {
+  const double square = std::round(divisor * divisor);
+  return square == 1 ? "1" : fmt::format("√{}", square);
+}
+
+double round_off_floor(const ccal::BudgetResult& r, std::size_t k) {
+  return kRoundOffFloor * r.standard_uncertainty[Eigen::Index(k)] * r.display_scale[k];
+}
+
+bool below_round_off_floor(const ccal::BudgetResult& r, double contribution_si, std::size_t k) {
+  return std::abs(contribution_si) < kRoundOffFloor * r.standard_uncertainty[Eigen::Index(k)];
+}
+
+std::vector<BudgetLine> budget_lines(const Config& cfg, const ccal::BudgetResult& r, std::size_t k) {
+  const auto i = Eigen::Index(k);
+  std::vector<BudgetLine> lines;
+  for (const SourceBudget& s : r.sources) {
+    BudgetLine l{&s, source_label(s.id, s.group), source_view(cfg, s),
+                 std::string(distribution_name(s.distribution))};
+    l.sensitivity = sensitivity_per_unit(r, s, l.x, k);
+    l.contribution = s.effect[i] * r.display_scale[k];
+    l.share = s.share[i];
+    l.round_off = below_round_off_floor(r, s.effect[i], k);
+    lines.push_back(std::move(l));
+  }
+  for (const RateNoiseBudget& n : r.rate_noise) {
+    BudgetLine l{nullptr, n.id, rate_noise_view(n), std::string(distribution_name(Distribution::normal))};
+    l.sensitivity = sensitivity_per_unit(r, n, l.x, k);
+    l.contribution = n.effect[i] * r.display_scale[k];
+    l.share = n.share[i];
+    l.round_off = below_round_off_floor(r, n.effect[i], k);
+    lines.push_back(std::move(l));
+  }
+  std::stable_sort(lines.begin(), lines.end(),
+                   [](const BudgetLine& a, const BudgetLine& b) { return a.share > b.share; });
+  return lines;
 }
 
 std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t k) {

@@ -1,6 +1,7 @@
-// The text of `ccal budget`: the answer per coefficient in one line, then a JCGM 100 table per coefficient
-// (source, name, tolerance, distribution, u(x_i), c_i, u_i(y), share) with its largest sources and the rest
-// summed, the bias of known errors, and what to do next; --wide adds everything else.
+// The text of `ccal budget`: the answer per coefficient in one line, then a GUM budget table per coefficient
+// (source, name, tolerance, distribution and divisor, u(x_i), c_i, u_i(y), share; round-off below the floor
+// as 0) with its largest sources and the rest summed, the bias of known errors, and what to do next; --wide
+// adds the type, x_i, ν_i and the unit of c_i (every column of EA-4/02) and everything else.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -79,42 +80,51 @@ std::string answer(const ccal::BudgetResult& r, std::size_t width) {
   return out;
 }
 
-// One row of a coefficient's table: a source, or a drive's rate noise (Type A, no sign).
-struct Row {
-  std::vector<std::string> cells;
-  double share = 0;
-  double effect = 0;  // signed u_i(y) in the display unit
-};
+// A number of a table, or "0" for a contribution below the round-off floor (and its c_i).
+std::string shown(double value, bool round_off) { return round_off ? "0" : number(value, 4); }
 
-std::vector<Row> rows_of(const Config& cfg, const ccal::BudgetResult& r, std::size_t k, bool paper) {
-  const auto i = Eigen::Index(k);
-  std::vector<Row> rows;
-  for (const SourceBudget& s : r.sources) {
-    const SourceView v = source_view(cfg, s);
-    const double effect = s.effect[i] * r.display_scale[k];
-    Row row{{source_label(s.id, s.group), v.name, fmt::format("{} {}", number(v.bound, 4), v.unit),
-             std::string(distribution_name(s.distribution)), number(v.u, 4),
-             number(sensitivity_per_unit(r, s, v, k), 4), number(effect, 4), percent(s.share[i])},
-            s.share[i],
-            effect};
-    if (paper)
-      row.cells.push_back(!s.paper_counterpart ? "no paper rule" : s.disagrees[k] ? "differ" : "agree");
-    rows.push_back(std::move(row));
-  }
-  for (const RateNoiseBudget& n : r.rate_noise) {
-    const double effect = n.effect[i] * r.display_scale[k];
-    const double density = n.density * 1e6;  // ppm/rtHz
-    Row row{
-        {n.id, "Type A: the drive's random rate noise, independent per run", number(density, 4) + " ppm/rtHz",
-         "normal", number(density, 4), number(density > 0 ? effect / density : 0.0, 4),
-         fmt::format("±{}", number(effect, 4)), percent(n.share[i])},
-        n.share[i],
-        effect};
-    if (paper) row.cells.push_back("no paper rule");
-    rows.push_back(std::move(row));
-  }
-  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.share > b.share; });
-  return rows;
+std::string with_unit(double value, const std::string& unit) {
+  return fmt::format("{} {}", number(value, 4), unit);
+}
+
+// The cells of one line. The compact table (the default): source, name, tolerance, PDF, divisor, u(x_i), c_i,
+// u_i(y), share, within 100 columns; a type column would leave the names 4 characters there, so a rate
+// noise's name says "Type A" (every other line is a tolerance, Type B). --wide: every column of EA-4/02
+// (type, x_i, ν_i, the unit of c_i) and the exact-vs-paper flag.
+std::vector<std::string> cells_of(const ccal::BudgetResult& r, std::size_t k, const BudgetLine& l, bool wide,
+                                  bool paper) {
+  const std::string contribution = l.round_off   ? "0"
+                                   : l.tolerance ? number(l.contribution, 4)
+                                                 : fmt::format("±{}", number(l.contribution, 4));
+  const std::string share = l.round_off ? "0 %" : percent(l.share);
+  if (!wide)
+    return {l.source,
+            l.x.type == 'A' ? fmt::format("Type A: {}", l.x.name) : l.x.name,
+            with_unit(l.x.bound, l.x.unit),
+            l.distribution,
+            divisor_text(l.x.divisor),
+            number(l.x.u, 4),
+            shown(l.sensitivity, l.round_off),
+            contribution,
+            share};
+  std::vector<std::string> cells = {l.source,
+                                    l.x.name,
+                                    std::string(1, l.x.type),
+                                    with_unit(l.x.estimate, l.x.unit),
+                                    with_unit(l.x.bound, l.x.unit),
+                                    l.distribution,
+                                    divisor_text(l.x.divisor),
+                                    number(l.x.u, 4),
+                                    std::isinf(l.x.dof) ? "∞" : number(l.x.dof, 4),
+                                    shown(l.sensitivity, l.round_off),
+                                    sensitivity_unit(r, k, l.x),
+                                    contribution,
+                                    share};
+  if (paper)
+    cells.push_back(!l.tolerance || !l.tolerance->paper_counterpart ? "no paper rule"
+                    : l.tolerance->disagrees[k]                     ? "differ"
+                                                                    : "agree");
+  return cells;
 }
 
 std::string coefficient_table(const verbs::BudgetResult& v, std::size_t k, std::size_t top,
@@ -128,32 +138,50 @@ std::string coefficient_table(const verbs::BudgetResult& v, std::size_t k, std::
   std::string out =
       fmt::format("{} [{}]: u = {}, U = {} ({})\n", r.coefficients[k], r.units[k], number(u, 4),
                   number(r.expanded_uncertainty[i] * r.display_scale[k], 4), coverage_text(r.coverage));
-  std::vector<std::string> header = {"source", "name", "tolerance", "PDF",
-                                     "u(x_i)", "c_i",  "u_i(y)",    "share"};
+  std::vector<std::string> header =
+      o.wide ? std::vector<std::string>{"source", "name", "type", "x_i",         "tolerance", "PDF",  "÷",
+                                        "u(x_i)", "ν_i",  "c_i",  "unit of c_i", "u_i(y)",    "share"}
+             : std::vector<std::string>{"source", "name", "tolerance", "PDF",  "÷",
+                                        "u(x_i)", "c_i",  "u_i(y)",    "share"};
   if (paper) header.push_back("exact vs paper");
+  // The spanning rows' cells: the label over source and name, blanks up to u_i(y) (column 11 or 7), its
+  // value and the share.
+  const std::size_t blanks = (o.wide ? 11 : 7) - 2;
+  const auto spanning = [&](std::string label, std::string value, std::string share) {
+    std::vector<std::string> cells(1, std::move(label));
+    cells.resize(1 + blanks);
+    cells.push_back(std::move(value));
+    cells.push_back(std::move(share));
+    return cells;
+  };
   Table table(header);
   table.align_left(1);
+  if (o.wide) table.align_left(10);
   table.gap(2);
-  if (!o.wide) table.shrink(1);
-  const std::vector<Row> rows = rows_of(cfg, r, k, paper);
-  const std::size_t shown = o.wide ? rows.size() : std::min(top, rows.size());
-  for (std::size_t s = 0; s < shown; ++s) table.add_row(rows[s].cells);
-  if (shown < rows.size()) {
-    double share = 0, variance = 0;
-    for (std::size_t s = shown; s < rows.size(); ++s) {
-      share += rows[s].share;
-      variance += rows[s].effect * rows[s].effect;
-    }
-    table.add_spanning_row({fmt::format("{} more, root-sum-square", rows.size() - shown), "", "", "", "",
-                            number(std::sqrt(variance), 4), percent(share)});
+  if (!o.wide) {
+    table.shrink(1);
+    table.optional(4);  // ÷: tolerance / u(x_i); a 90-column terminal leaves it out
+  }
+  const std::vector<BudgetLine> lines = budget_lines(cfg, r, k);
+  const std::size_t shown_lines = o.wide ? lines.size() : std::min(top, lines.size());
+  for (std::size_t s = 0; s < shown_lines; ++s) table.add_row(cells_of(r, k, lines[s], o.wide, paper));
+  if (shown_lines < lines.size()) {
+    double share = 0, variance = 0;  // of the lines above the round-off floor
+    for (std::size_t s = shown_lines; s < lines.size(); ++s)
+      if (!lines[s].round_off) {
+        share += lines[s].share;
+        variance += lines[s].contribution * lines[s].contribution;
+      }
+    table.add_spanning_row(spanning(fmt::format("{} more, root-sum-square", lines.size() - shown_lines),
+                                    number(std::sqrt(variance), 4), percent(share)));
   }
   table.add_rule();
-  table.add_spanning_row({"u: combined standard uncertainty", "", "", "", "", number(u, 4), ""});
-  table.add_spanning_row({fmt::format("U: expanded uncertainty, {}", coverage_text(r.coverage)), "", "", "", "",
-                          number(r.expanded_uncertainty[i] * r.display_scale[k], 4), ""});
+  table.add_spanning_row(spanning("u: combined standard uncertainty", number(u, 4), ""));
+  table.add_spanning_row(spanning(fmt::format("U: expanded uncertainty, {}", coverage_text(r.coverage)),
+                                  number(r.expanded_uncertainty[i] * r.display_scale[k], 4), ""));
   if (v.known_error_bias.size())
-    table.add_spanning_row({"bias of known [errors], not compensated, not in u", "", "", "", "",
-                            number(v.known_error_bias[i] * r.display_scale[k], 4), ""});
+    table.add_spanning_row(spanning("bias of known [errors], not compensated, not in u",
+                                    number(v.known_error_bias[i] * r.display_scale[k], 4), ""));
   out += table.render("  ", o.wide ? 0 : o.width);
   return out;
 }
@@ -205,11 +233,15 @@ std::string text(const verbs::BudgetResult& v, const BudgetTextOptions& o) {
   std::string out = heading(cfg, r, o.wide ? 0 : o.width);
   out += answer(r, o.width);
   out +=
-      wrap_words(fmt::format("Per coefficient: the tolerance as configured and its PDF (distribution), "
-                             "u(x_i) in the tolerance's unit, c_i in the coefficient's unit per that unit, "
-                             "u_i(y) = c_i u(x_i) (signed), share = u_i(y)²/u²{}.",
-                             o.wide ? "" : fmt::format("; the {} largest sources, the rest in one row", top)),
-                 o.wide ? 0 : o.width) +
+      wrap_words(
+          fmt::format("Per coefficient, a GUM budget (JCGM 100; {}): {}the tolerance as configured, PDF and "
+                      "divisor ÷, u(x_i) = tolerance/÷ in its unit, c_i per that unit, u_i(y) = c_i u(x_i) "
+                      "(signed), share of u²; tolerances are Type B, rate noise Type A, ν_i = ∞; |u_i(y)| < "
+                      "{:g} u is round-off, shown as 0{}.",
+                      o.wide ? "EA-4/02's columns" : "EA-4/02's columns with --wide",
+                      o.wide ? "x_i the [errors] value (where c_i is evaluated), " : "", kRoundOffFloor,
+                      o.wide ? "" : fmt::format("; the {} largest sources, the rest in one row", top)),
+          o.wide ? 0 : o.width) +
       "\n";
   for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
     out += coefficient_table(v, k, top, o);

@@ -40,6 +40,7 @@ caption{text-align:left;font-weight:600;padding:4px 0}
 th,td{border:1px solid #ccc;padding:3px 7px;vertical-align:top}th{background:#f2f5f9;text-align:left}
 td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 tr.total td{font-weight:600;background:#f7f7f7}tr.rest td{font-style:italic}
+td.quantity{min-width:8em}td.quantity .desc{font-size:0.85em;color:#555}
 td.good{color:#1a7f37;font-weight:600}td.bad{color:#b42318;font-weight:600}
 .setup-grid{display:flex;flex-wrap:wrap;gap:20px;align-items:flex-start}
 pre{background:#f6f8fa;border:1px solid #ddd;padding:10px;overflow:auto;font-size:0.8em;max-height:480px}
@@ -54,6 +55,8 @@ pre{max-height:none;white-space:pre-wrap;overflow-wrap:anywhere}tr,.signatures{b
 h2{break-after:avoid}.annex{break-before:page}details::details-content{content-visibility:visible;display:block}
 td.num{white-space:normal}table.statement{font-size:6.5pt}table.statement th,table.statement td{padding:1px 2px}
 table.statement caption{font-size:9pt}
+table.budget{font-size:6.5pt}table.budget th,table.budget td{padding:1px 2px}table.budget td.num{white-space:nowrap}
+table.budget caption{font-size:9pt}
 table.result,table.statement,table.certificate,table.summary,table.statement-correlation,table.statement-output{
 break-inside:avoid}}
 )";
@@ -353,14 +356,11 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   const Json budget_json = Json::parse(json(r.budget)), mc_json = Json::parse(json(r.monte_carlo));
   std::vector<Json> instants;
   for (const auto& f : r.sensed_input.instants) instants.push_back(Json::parse(json(f)));
-  Json errors = Json::object();  // x_i: the configured [errors] value of each source (SI)
-  for (const auto& t : r.config.tolerances) errors[t.id] = r.config.centrifuge.errors[t.parameter];
   const Doc budget{"budget", budget_json}, mc{"montecarlo", mc_json};
 
   // The verbs' outputs, as the cells name them (the check reads them back), and their command lines.
   Json sources = {{"budget", {{"command", p.budget_command}}},
-                  {"montecarlo", {{"command", p.montecarlo_command}}},
-                  {"errors", {{"configured_errors_si", errors}}}};
+                  {"montecarlo", {{"command", p.montecarlo_command}}}};
   for (std::size_t i = 0; i < instants.size(); ++i)
     sources[fmt::format("force{}", i)] = {
         {"command",
@@ -397,7 +397,7 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
             "result above is computed.</p>\n";
   page += summary(budget, mc);
   page += setup_section(r.config, p.config_text);
-  page += budget_section(budget, errors, kTopSources);
+  page += budget_section(budget, kTopSources);
   page += section_html;
   for (const auto& s : extra_sections)
     page +=

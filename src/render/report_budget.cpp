@@ -1,5 +1,5 @@
-// The report's budget sections: per coefficient a Pareto chart of the variance shares and the JCGM 100
-// table of its largest sources (the rest summed in one row), and the exact-vs-paper comparison.
+// The report's budget sections: per coefficient a Pareto chart of the variance shares and the GUM budget table
+// (EA-4/02's columns) of its largest sources (the rest summed in one row), and the exact-vs-paper comparison.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -98,60 +98,78 @@ Json pareto_spec(const std::string& coefficient, const std::vector<Contributor>&
              {"encoding", {{"y", {{"field", "cumulative"}, {"type", "quantitative"}}}}}}})}};
 }
 
-// A source's SI unit as a column shows it: a dimensionless (relative) one is "1".
-std::string unit_text(const std::string& unit) { return unit == "1" ? "1 (relative)" : unit; }
+// The quantity X_i: its id (and group) and the catalogue's words for it.
+std::string quantity_cell(const Json& line) {
+  const std::string group = line.value("group", "");
+  return fmt::format("<td class=\"quantity\"><code>{}</code>{}<br><span class=\"desc\">{}</span></td>",
+                     escape(line["id"].get<std::string>()),
+                     group.empty() ? std::string() : fmt::format(" ({})", escape(group)),
+                     escape(line["name"].get<std::string>()));
+}
 
-std::string coefficient_table(const Doc& doc, const Json& errors_doc_json, std::size_t k,
-                              const std::vector<Contributor>& all, std::size_t top) {
+// ν_i: "∞" where the output writes null (a value taken as exact), else the number.
+std::string dof_cell(const Doc& doc, const std::string& line) {
+  return doc.json.at(Json::json_pointer(line + "/dof")).is_null() ? text_cell("∞")
+                                                                  : num_cell(doc, line + "/dof", 3);
+}
+
+// One line of the table (EA-4/02's columns): X_i with its description, x_i and u(x_i) in the unit the
+// configuration wrote, the distribution and its divisor, the type of evaluation, ν_i, c_i, u_i(y) and its
+// share, the last three 0 below the round-off floor.
+std::string line_row(const Doc& doc, const Contributor& c, const std::string& id) {
+  const Json& line = doc.json.at(Json::json_pointer(c.pointer));
+  const std::string floor = c.pointer + "/below_round_off_floor/" + id;
+  return fmt::format(
+      "<tr>{}{}{}{}{}{}{}{}{}{}{}</tr>\n", quantity_cell(line), num_cell(doc, c.pointer + "/estimate"),
+      num_cell(doc, c.pointer + "/standard_uncertainty"), text_cell(line["unit"].get<std::string>()),
+      text_cell(line["distribution"].get<std::string>()), num_cell(doc, c.pointer + "/divisor"),
+      text_cell(line["type"].get<std::string>()), dof_cell(doc, c.pointer),
+      num_cell_or_zero(doc, c.pointer + "/sensitivity/" + id, floor),
+      num_cell_or_zero(doc, c.pointer + (c.type_a ? "/u/" : "/effect/") + id, floor),
+      num_cell_or_zero(doc, c.pointer + "/share/" + id, floor, 3, 100));
+}
+
+std::string coefficient_table(const Doc& doc, std::size_t k, const std::vector<Contributor>& all,
+                              std::size_t top) {
   const Json& budget = doc.json;
   const std::string id = budget["coefficients"][k]["id"].get<std::string>();
   const std::string unit = budget["coefficients"][k]["unit"].get<std::string>();
-  const Doc errors{"errors", errors_doc_json};
   std::string t = fmt::format(
-      "<table class=\"budget\" data-coefficient=\"{0}\"><caption>{0} [{1}]: uncertainty budget (JCGM 100), "
-      "largest "
-      "sources</caption>\n<tr><th>source</th><th>x<sub>i</sub></th><th>u(x<sub>i</sub>)</th><th>unit</th>"
-      "<th>distribution</th><th>c<sub>i</sub> [{1} per unit]</th><th>u<sub>i</sub>(y) [{1}]</th>"
+      "<table class=\"budget\" data-coefficient=\"{0}\"><caption>{0} [{1}]: uncertainty budget (JCGM 100, "
+      "EA-4/02), largest sources</caption>\n<tr><th>quantity X<sub>i</sub></th><th>x<sub>i</sub></th>"
+      "<th>u(x<sub>i</sub>)</th><th>unit</th><th>distribution</th><th>divisor</th><th>type</th>"
+      "<th>ν<sub>i</sub></th><th>c<sub>i</sub> [{1} per unit]</th><th>u<sub>i</sub>(y) [{1}]</th>"
       "<th>share [%]</th></tr>\n",
       escape(id), escape(unit));
-  std::vector<std::string> rest_effects, rest_shares;
+  std::size_t rest = 0;
+  std::vector<std::string> rest_effects, rest_shares;  // of the rest above the round-off floor
   for (std::size_t n = 0; n < all.size(); ++n) {
     const Contributor& c = all[n];
-    if (n >= top) {
-      rest_effects.push_back(c.pointer + (c.type_a ? "/u/" : "/effect/") + id);
-      rest_shares.push_back(c.pointer + "/share/" + id);
+    if (n < top) {
+      t += line_row(doc, c, id);
       continue;
     }
-    if (c.type_a) {
-      t += fmt::format("<tr>{}<td></td><td></td><td></td>{}<td></td>{}{}</tr>\n",
-                       text_cell(c.id + " (Type A)"), text_cell("rate noise"),
-                       num_cell(doc, c.pointer + "/u/" + id),
-                       num_cell(doc, c.pointer + "/share/" + id, 3, 100));
-      continue;
-    }
-    const Json& s = budget.at(Json::json_pointer(c.pointer));
-    const std::string group = s["group"].get<std::string>();
-    t += fmt::format(
-        "<tr>{}{}{}{}{}{}{}{}</tr>\n", text_cell(c.id + (group.empty() ? "" : " (" + group + ")")),
-        num_cell(errors, "/" + c.id, 4), num_cell(doc, c.pointer + "/standard_uncertainty_si", 4),
-        text_cell(unit_text(s["unit_si"].get<std::string>())),
-        text_cell(s["distribution"].get<std::string>()),
-        num_cell(doc, c.pointer + "/sensitivity_per_si_unit/" + id, 4),
-        num_cell(doc, c.pointer + "/effect/" + id, 4), num_cell(doc, c.pointer + "/share/" + id, 3, 100));
+    ++rest;
+    if (budget.at(Json::json_pointer(c.pointer + "/below_round_off_floor/" + id)).get<bool>()) continue;
+    rest_effects.push_back(c.pointer + (c.type_a ? "/u/" : "/effect/") + id);
+    rest_shares.push_back(c.pointer + "/share/" + id);
   }
-  if (!rest_effects.empty())
-    t += fmt::format("<tr class=\"rest\"><td colspan=\"6\">{}</td>{}{}</tr>\n",
-                     escape(fmt::format("the other {} sources (root-sum-square)", rest_effects.size())),
+  if (rest > 0)
+    t += fmt::format("<tr class=\"rest\"><td colspan=\"9\">{}</td>{}{}</tr>\n",
+                     escape(fmt::format("the other {} sources (root-sum-square; those below the round-off "
+                                        "floor as 0)",
+                                        rest)),
                      combined_cell(doc, rest_effects, "rss", 4, 1.0),
                      combined_cell(doc, rest_shares, "sum", 3, 100));
   const std::string c = fmt::format("/coefficients/{}", k);
   t += fmt::format(
-      "<tr class=\"total\"><td colspan=\"6\">combined standard uncertainty u<sub>c</sub> "
+      "<tr class=\"total\"><td colspan=\"9\">combined standard uncertainty u<sub>c</sub> "
       "(LPU)</td>{}<td></td>"
       "</tr>\n",
       num_cell(doc, c + "/standard_uncertainty"));
   t += fmt::format(
-      "<tr class=\"total\"><td colspan=\"6\">expanded uncertainty U = k u<sub>c</sub>, k = {}, p = {} %{}</td>"
+      "<tr class=\"total\"><td colspan=\"9\">expanded uncertainty U = k u<sub>c</sub>, k = {}, p = {} "
+      "%{}</td>"
       "{}<td></td></tr>\n</table>\n",
       num_span(doc, "/coverage_factor", 3), num_span(doc, "/coverage_probability", 4, 100),
       doc.json.value("coverage_method", "") == "stated k" ? " for a normal quantity (k stated)" : "",
@@ -161,15 +179,21 @@ std::string coefficient_table(const Doc& doc, const Json& errors_doc_json, std::
 
 }  // namespace
 
-std::string budget_section(const Doc& doc, const Json& errors, std::size_t top) {
+std::string budget_section(const Doc& doc, std::size_t top) {
   const Json& budget = doc.json;
   std::string out =
-      "<section id=\"budget\"><h2>Uncertainty budget</h2>\n<p>Each source's standard uncertainty "
-      "u(x<sub>i</sub>) (SI unit of the source), its sensitivity coefficient c<sub>i</sub> = "
-      "∂y/∂x<sub>i</sub> "
-      "through kinematics, reduction and least squares, its contribution u<sub>i</sub>(y) = c<sub>i</sub> "
-      "u(x<sub>i</sub>) and its share of u<sub>c</sub>²(y); x<sub>i</sub> is the configured [errors] value "
-      "(SI). From <code>ccal budget</code> (" +
+      "<section id=\"budget\"><h2>Uncertainty budget</h2>\n<p>Per input quantity X<sub>i</sub> (a tolerance, "
+      "Type B, or a drive's rate noise, Type A): its estimate x<sub>i</sub>, the configured [errors] value "
+      "at "
+      "which c<sub>i</sub> is evaluated, and its standard uncertainty u(x<sub>i</sub>) = bound / divisor, "
+      "both "
+      "in the unit the configuration wrote; the distribution; the degrees of freedom ν<sub>i</sub> (∞: the "
+      "bounds and the noise densities are stated values); the sensitivity coefficient c<sub>i</sub> = "
+      "∂y/∂x<sub>i</sub> through kinematics, reduction and least squares, per that unit; the contribution "
+      "u<sub>i</sub>(y) = c<sub>i</sub> u(x<sub>i</sub>) and its share of u<sub>c</sub>²(y). A contribution "
+      "below " +
+      num_span(doc, "/round_off_floor_relative", 3) +
+      " u<sub>c</sub> is round-off of the derivatives and is shown as 0. From <code>ccal budget</code> (" +
       escape(budget["mode"].get<std::string>()) + " mode).</p>\n";
   for (std::size_t k = 0; k < budget["coefficients"].size(); ++k) {
     const std::string id = budget["coefficients"][k]["id"].get<std::string>();
@@ -179,7 +203,7 @@ std::string budget_section(const Doc& doc, const Json& errors, std::size_t top) 
     for (std::size_t n = n_top; n < all.size(); ++n) rest += all[n].share;
     const std::vector<Contributor> head(all.begin(), all.begin() + std::ptrdiff_t(n_top));
     out += "<div class=\"pair\">\n" + chart("pareto-" + id, pareto_spec(id, head, rest, all.size() - n_top)) +
-           coefficient_table(doc, errors, k, all, n_top) + "</div>\n";
+           coefficient_table(doc, k, all, n_top) + "</div>\n";
   }
   return out + "</section>\n";
 }

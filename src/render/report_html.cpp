@@ -68,6 +68,18 @@ std::string num_span(const Doc& doc, const std::string& pointer, int digits, dou
                      value_at(doc, pointer) * scale, digits);
 }
 
+std::string num_cell_or_zero(const Doc& doc, const std::string& pointer, const std::string& zero_if,
+                             int digits, double scale) {
+  const Json::json_pointer flag(zero_if);
+  if (!doc.json.contains(flag) || !doc.json.at(flag).is_boolean())
+    throw std::logic_error(fmt::format("report: {}:{} is not a flag of that output", doc.name, zero_if));
+  const double value = value_at(doc, pointer) * scale;
+  return fmt::format(
+      "<td class=\"num\" {} data-round-off=\"{}:{}\">{}</td>", attributes(doc, pointer, digits, scale),
+      escape(doc.name), escape(zero_if),
+      doc.json.at(flag).get<bool>() ? std::string("0") : fmt::format("{:.{}g}", value, digits));
+}
+
 std::string ratio_cell(const Doc& doc, const std::string& numerator, const std::string& denominator,
                        int digits) {
   const double value = value_at(doc, numerator) / value_at(doc, denominator);

@@ -29,6 +29,11 @@ struct Doc {
 std::string num_cell(const Doc& doc, const std::string& pointer, int digits = 4, double scale = 1.0);
 // The same number as plain text (no cell), e.g. for a sentence; also names its source.
 std::string num_span(const Doc& doc, const std::string& pointer, int digits = 4, double scale = 1.0);
+// The same cell, showing 0 where the flag at `zero_if` is true (a budget's contribution below its round-off
+// floor, render/budget_parts.hpp): it names the number and the flag (data-round-off="budget:/…") either way,
+// so that the check can redo both.
+std::string num_cell_or_zero(const Doc& doc, const std::string& pointer, const std::string& zero_if,
+                             int digits = 4, double scale = 1.0);
 // The ratio of two numbers of the output, numerator / denominator, as a cell that names both
 // (data-ratio="design:/a /b"), so that the check can redo the division.
 std::string ratio_cell(const Doc& doc, const std::string& numerator, const std::string& denominator,
@@ -45,7 +50,7 @@ std::string chart(const std::string& id, const Json& spec);
 
 // The sections.
 std::string setup_section(const Config& config, std::string_view config_text);
-std::string budget_section(const Doc& budget, const Json& errors, std::size_t top);
+std::string budget_section(const Doc& budget, std::size_t top);
 std::string paper_section(const Doc& budget, std::size_t top);
 std::string montecarlo_section(const Doc& montecarlo, const std::vector<std::string>& advice);
 std::string sensed_input_section(const verbs::SensedInputSeries& series, const std::vector<Json>& instants);

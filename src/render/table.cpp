@@ -117,22 +117,37 @@ std::vector<std::size_t> Table::widths(std::size_t indent, std::size_t max_width
     width[c] = std::min(display_width(header_[c]), kMaxPaddedWidth);
   for (std::size_t r = 0; r < rows_.size(); ++r) measure(rows_[r], spans_[r]);
   if (max_width == 0 || shrink_ >= width.size()) return width;
-  std::size_t total = indent + gap_ * (width.size() - 1);
-  for (std::size_t w : width) total += w;
-  if (total <= max_width) return width;
-  // Cut the shrinkable column by the excess, down to its header's width.
+  const auto total = [&] {
+    std::size_t sum = indent, shown = 0;
+    for (std::size_t w : width)
+      if (w != kLeftOut) sum += w, ++shown;
+    return sum + gap_ * (shown > 0 ? shown - 1 : 0);
+  };
+  if (total() <= max_width) return width;
+  // Cut the shrinkable column by the excess, down to its header's width; if that is not enough, leave the
+  // optional column out and cut the shrinkable one by what is still in excess.
+  const std::size_t natural = width[shrink_];
   const std::size_t floor = std::max<std::size_t>(display_width(header_[shrink_]), 4);
-  const std::size_t excess = total - max_width;
-  if (width[shrink_] > floor)
-    width[shrink_] = width[shrink_] > floor + excess ? width[shrink_] - excess : floor;
+  const auto cut = [&] {
+    const std::size_t excess = total() - max_width;
+    if (width[shrink_] > floor)
+      width[shrink_] = width[shrink_] > floor + excess ? width[shrink_] - excess : floor;
+  };
+  cut();
+  if (total() > max_width && optional_ > 1 && optional_ < width.size() && optional_ != shrink_) {
+    width[optional_] = kLeftOut;
+    width[shrink_] = natural;
+    if (total() > max_width) cut();
+  }
   return width;
 }
 
 std::string Table::render(std::string_view indent, std::size_t max_width) const {
   const std::vector<std::size_t> width = widths(display_width(indent), max_width);
-  std::size_t total = 0;
-  for (std::size_t w : width) total += w;
-  total += gap_ * (width.size() - 1);
+  std::size_t total = 0, shown = 0;
+  for (std::size_t w : width)
+    if (w != kLeftOut) total += w, ++shown;
+  total += gap_ * (shown > 0 ? shown - 1 : 0);
   const std::string gap(gap_, ' ');
 
   std::string out;
@@ -145,6 +160,7 @@ std::string Table::render(std::string_view indent, std::size_t max_width) const 
       first = 2;
     }
     for (std::size_t c = first; c < width.size(); ++c) {
+      if (width[c] == kLeftOut) continue;
       const std::size_t k = span && first == 2 ? c - 1 : c;  // the cell for column c
       std::string cell = k < row.size() ? row[k] : "";
       if (c == shrink_) cell = truncate_to_width(cell, width[c]);

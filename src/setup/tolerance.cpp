@@ -21,19 +21,21 @@ std::string_view distribution_name(Distribution d) noexcept {
   return "normal";
 }
 
-double standard_uncertainty(double bound, Distribution d) noexcept {
+double divisor(Distribution d) noexcept {
   switch (d) {
     case Distribution::normal:
-      return bound;
+      return 1.0;
     case Distribution::uniform:
-      return bound / std::sqrt(3.0);
+      return std::sqrt(3.0);
     case Distribution::triangular:
-      return bound / std::sqrt(6.0);
+      return std::sqrt(6.0);
     case Distribution::arcsine:
-      return bound / std::numbers::sqrt2;
+      return std::numbers::sqrt2;
   }
-  return bound;
+  return 1.0;
 }
+
+double standard_uncertainty(double bound, Distribution d) noexcept { return bound / divisor(d); }
 
 CorrelationGroups correlation_groups(const std::vector<std::string>& group_of_each, std::size_t sources) {
   CorrelationGroups g;

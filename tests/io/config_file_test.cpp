@@ -290,6 +290,20 @@ TEST(Config, EachDistributionWord) {
   EXPECT_DOUBLE_EQ(standard_uncertainty(1.0, Distribution::arcsine), 1.0 / std::sqrt(2.0));
 }
 
+// The divisor the budget tables print (GUM 4.3.7, 4.3.9; JCGM 101 6.4.6 for the arcsine) is the one σ is
+// computed with: bound / divisor, bit for bit, so the table's u(x_i) is its bound over its divisor.
+TEST(Config, DivisorOfEachDistribution) {
+  const std::pair<Distribution, double> divisors[] = {{Distribution::normal, 1.0},
+                                                      {Distribution::uniform, std::sqrt(3.0)},
+                                                      {Distribution::triangular, std::sqrt(6.0)},
+                                                      {Distribution::arcsine, std::sqrt(2.0)}};
+  for (const auto& [d, want] : divisors) {
+    EXPECT_EQ(divisor(d), want) << distribution_name(d);  // the correctly rounded root: exact
+    for (const double bound : {1.0, 25e-6, 2 * constants::arcsec, 1e-5})
+      EXPECT_EQ(standard_uncertainty(bound, d), bound / divisor(d)) << distribution_name(d);
+  }
+}
+
 TEST(Config, ToleranceShorthandIsNormalSigma) {
   const Config c =
       parse_config(kBase + "\n[tolerances]\ndthz5 = \"2 arcsec\"\ndomega = \"1e-6 rad/s\"\n", "t.toml");

@@ -116,6 +116,18 @@ class Frames(unittest.TestCase):
                                            (b.effect[i, k] * b.display_scale[k]) if b.effect[i, k] else 1.0,
                                            1.0, delta=1e-12)
                     self.assertEqual(row_of[source][f"share {name}"], b.share[i, k])
+                    # The GUM line (EA-4/02): c_i u(x_i) = u_i(y), one product's rounding (relative 1e-15).
+                    row = row_of[source]
+                    self.assertAlmostEqual(row[f"c {name} [{unit} per unit]"] * row["standard_uncertainty"],
+                                           row[f"effect {name} [{unit}]"],
+                                           delta=1e-15 * abs(row[f"effect {name} [{unit}]"]))
+        for row in table.rows:
+            with self.subTest(source=row["source"]):
+                # u(x_i) = bound / divisor (relative 1e-15), a tolerance is Type B with ν = ∞, x_i = 0 here.
+                self.assertAlmostEqual(row["standard_uncertainty"] * row["divisor"], row["bound"],
+                                       delta=1e-15 * row["bound"])
+                self.assertEqual((row["type"], row["dof"], row["estimate"]), ("B", float("inf"), 0.0))
+                self.assertTrue(row["name"])
 
     def test_identification_has_the_display_view(self):
         with tempfile.TemporaryDirectory() as tmp:

@@ -1,15 +1,18 @@
 // The text, JSON and CSV of `ccal budget` as an engineer reads them (render/budget.hpp): lines within 100
 // columns, UTF-8 names aligned by displayed width, tolerances in the configuration's units with u(x_i) and
-// c_i, CSV totals equal to the JSON, and the bias of uncompensated known errors equal to the coefficient
-// shift `ccal simulate` shows for the same errors.
+// c_i, the further columns of a GUM budget (EA-4/02: x_i, divisor, type, ν_i, the unit of c_i) in text, JSON
+// and CSV, round-off below the stated floor shown as 0, CSV totals equal to the JSON, and the bias of
+// uncompensated known errors equal to the coefficient shift `ccal simulate` shows for the same errors.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "ccal/core/constants.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/simulate.hpp"
@@ -196,6 +199,126 @@ TEST(BudgetText, CsvTotalsEqualTheJson) {
               1e-12 * std::abs(std::stod(first.at("dK3 [deg/s/g^3]"))));
 }
 
+// The example with a tolerance written in arcsec and one of each distribution in um, and known [errors].
+Config gum_example() {
+  std::string text = replaced(example_text(), "dthz5 = \"1e-5 rad\"", "dthz5 = \"2 arcsec\"");
+  text = replaced(text, "dR_s = \"25 um\"", "dR_s = { bound = \"30 um\", distribution = \"uniform\" }");
+  text = replaced(text, "dx5 = \"25 um\"", "dx5 = { bound = \"60 um\", distribution = \"triangular\" }");
+  text = replaced(text, "# dthz5 = \"2 arcsec\"", "dthz5 = \"1.5 arcsec\"");
+  text = replaced(text, "# dx3_c1 = \"5 um\"", "dx3_c1 = \"5 um\"");
+  return parse_config(text, "gum.toml");
+}
+
+// The columns of EA-4/02 per source: x_i and u(x_i) in the unit the tolerance was written in, the divisor of
+// its distribution, Type B (a drive's rate noise Type A), ν_i = ∞, the unit of c_i.
+TEST(BudgetText, GumColumnsInTheUnitsAsWritten) {
+  const verbs::BudgetResult r = verbs::budget(gum_example());
+  const auto j = nlohmann::json::parse(render::json(r));
+  std::map<std::string, nlohmann::json> by_id;
+  for (const auto& s : j["sources"]) by_id[s["id"]] = s;
+  // "2 arcsec", normal: u = 2 arcsec, divisor 1, x_i = the [errors] 1.5 arcsec (arcsec → rad → arcsec:
+  // round-off only, 1e-13).
+  const auto& z = by_id.at("dthz5");
+  EXPECT_EQ(z["unit"], "arcsec");
+  EXPECT_NEAR(z["standard_uncertainty"].get<double>(), 2, 1e-13);
+  EXPECT_NEAR(z["estimate"].get<double>(), 1.5, 1e-13);
+  EXPECT_NEAR(z["estimate_si"].get<double>(), 1.5 * constants::arcsec, 1e-20);
+  EXPECT_EQ(z["divisor"].get<double>(), 1.0);
+  EXPECT_EQ(z["type"], "B");
+  EXPECT_TRUE(z["dof"].is_null());  // ∞
+  EXPECT_EQ(z["sensitivity_unit"]["K3"], "deg/s/g^3 per arcsec");
+  EXPECT_EQ(by_id.at("dx3_c1")["estimate"].get<double>(), 5.0);  // "5 um" of [errors] in the tolerance's um
+  EXPECT_EQ(by_id.at("dy5")["estimate"].get<double>(), 0.0);     // not in [errors]
+  // The divisors, exactly those σ is computed with (setup/tolerance.hpp), and u(x_i) = bound / divisor to
+  // the rounding of one division (relative 1e-15).
+  EXPECT_EQ(by_id.at("dR_s")["divisor"].get<double>(), std::sqrt(3.0));
+  EXPECT_NEAR(by_id.at("dR_s")["standard_uncertainty"].get<double>(), 30 / std::sqrt(3.0), 1e-15 * 30);
+  EXPECT_EQ(by_id.at("dx5")["divisor"].get<double>(), std::sqrt(6.0));
+  EXPECT_NEAR(by_id.at("dx5")["standard_uncertainty"].get<double>(), 60 / std::sqrt(6.0), 1e-15 * 60);
+  EXPECT_EQ(by_id.at("ripple1_c1")["divisor"].get<double>(), std::sqrt(2.0));
+  for (const auto& [id, s] : by_id)
+    EXPECT_NEAR(s["standard_uncertainty"].get<double>() * s["divisor"].get<double>(), s["bound"].get<double>(),
+                1e-15 * s["bound"].get<double>())
+        << id;
+  // The drives' rate noise: Type A, ν = ∞, u(x_i) = N in ppm/rtHz, c_i u(x_i) = u_i(y) (relative 1e-15).
+  ASSERT_EQ(j["rate_noise"].size(), 2u);
+  for (const auto& n : j["rate_noise"]) {
+    EXPECT_EQ(n["type"], "A");
+    EXPECT_TRUE(n["dof"].is_null());
+    EXPECT_EQ(n["unit"], "ppm/rtHz");
+    EXPECT_NEAR(n["standard_uncertainty"].get<double>(), n["density_per_rtHz"].get<double>() * 1e6, 1e-15);
+    const double u = n["u"]["K3"], c = n["sensitivity"]["K3"];
+    EXPECT_NEAR(c * n["standard_uncertainty"].get<double>(), u, 1e-15 * u);
+  }
+  // The text: the compact table has the divisor (every line listed: 120 columns keep it); --wide adds x_i
+  // (as configured), the type, ν_i and the unit of c_i (the K0 table comes first).
+  render::BudgetTextOptions all;
+  all.top = 100;
+  all.width = 120;
+  EXPECT_NE(row_and_header(render::text(r, all), "  dR_s ").first.find("√3"), std::string::npos);
+  const auto [row, header] = row_and_header(render::text(r, all), "  dthz5 ");
+  EXPECT_NE(row.find("2 arcsec"), std::string::npos) << row;
+  EXPECT_NE(header.find("÷"), std::string::npos) << header;
+  render::BudgetTextOptions wide;
+  wide.wide = true;
+  const auto [wide_row, wide_header] = row_and_header(render::text(r, wide), "  dthz5 ");
+  for (const char* cell : {"1.5 arcsec", "2 arcsec", " B ", "∞", "deg/s per arcsec"})
+    EXPECT_NE(wide_row.find(cell), std::string::npos) << cell << "\n" << wide_row;
+  for (const char* column : {"type", "x_i", "ν_i", "unit of c_i"})
+    EXPECT_NE(wide_header.find(column), std::string::npos) << column;
+  // The CSV: the same fields at the end of each row.
+  const auto csv = csv_row(render::csv(r), "dthz5");
+  EXPECT_EQ(csv.at("type"), "B");
+  EXPECT_EQ(csv.at("dof"), "inf");
+  EXPECT_EQ(std::stod(csv.at("divisor")), 1.0);
+  EXPECT_NEAR(std::stod(csv.at("estimate")), 1.5, 1e-13);
+  EXPECT_EQ(csv.at("c_K3_unit"), "deg/s/g^3 per arcsec");
+  EXPECT_EQ(csv_row(render::csv(r), "main_rate_noise").at("type"), "A");
+}
+
+// A contribution below 1e-12 of its coefficient's u is round-off: the tables show it, its c_i and its share as
+// 0, JSON and CSV keep it and state the floor. In the bundled example dthx4 and dthx5 turn the instrument about
+// its IA and move nothing; the linearised derivatives leave them 1e-18 u instead of 0.
+TEST(BudgetText, RoundOffBelowTheFloorIsShownAsZero) {
+  const verbs::BudgetResult r = verbs::budget(bundled_example());
+  const auto j = nlohmann::json::parse(render::json(r));
+  EXPECT_EQ(j["round_off_floor_relative"].get<double>(), 1e-12);
+  for (const auto& c : j["coefficients"])  // one product's rounding: relative 1e-15
+    EXPECT_NEAR(c["round_off_floor"].get<double>(), 1e-12 * c["standard_uncertainty"].get<double>(),
+                1e-15 * c["round_off_floor"].get<double>());
+  const auto floor_row = csv_row(render::csv(r), "round_off_floor");
+  ASSERT_FALSE(floor_row.empty());
+  EXPECT_EQ(std::stod(floor_row.at("dK3 [deg/s/g^3]")), j["coefficients"][2]["round_off_floor"].get<double>());
+  int below = 0, above = 0;
+  for (const auto& s : j["sources"])
+    for (const auto& [k, flag] : s["below_round_off_floor"].items()) {
+      const double ratio = std::abs(s["effect"][k].get<double>()) /
+                           j["coefficients"][k == "K0" ? 0 : k == "K2" ? 1 : 2]["round_off_floor"].get<double>();
+      EXPECT_EQ(flag.get<bool>(), ratio < 1) << s["id"] << " " << k;
+      (flag ? below : above)++;
+    }
+  EXPECT_GT(below, 0);
+  EXPECT_GT(above, 0);
+  const nlohmann::json* tilt = nullptr;
+  for (const auto& s : j["sources"])
+    if (s["id"] == "dthx4") tilt = &s;
+  ASSERT_TRUE(tilt);
+  EXPECT_NE((*tilt)["effect"]["K3"].get<double>(), 0.0);  // kept in the JSON…
+  EXPECT_TRUE((*tilt)["below_round_off_floor"]["K3"].get<bool>());
+  render::BudgetTextOptions wide;
+  wide.wide = true;
+  const std::string text = render::text(r, wide);
+  const auto [row, header] = row_and_header(text, "  dthx4 ");
+  // …and 0 in the table: c_i, u_i(y) and the share (K0's table first), where u_i(y) would be -2.9e-20.
+  const std::regex zeros("∞ +0 +deg/s per rad +0 +0 %");
+  EXPECT_TRUE(std::regex_search(row, zeros)) << row;
+  EXPECT_EQ(row.find("e-2"), std::string::npos) << row;
+  // A small contribution above the floor keeps its numbers: dz1_c1's 3e-9 u on K0.
+  const std::string small = row_and_header(text, "  dz1_c1 ").first;
+  EXPECT_FALSE(std::regex_search(small, zeros)) << small;
+  EXPECT_TRUE(std::regex_search(small, std::regex("e-1[0-9] +0\\.0 %"))) << small;
+}
+
 TEST(BudgetText, BiasRowEqualsSimulatesShift) {
   // Known errors not compensated: the budget's bias of each coefficient is what `ccal simulate` identifies
   // with the errors minus what it identifies without them (the same plan, no instrument noise).
@@ -237,6 +360,26 @@ TEST(Table, DisplayWidthAndCutting) {
   EXPECT_EQ(render::wrap_words("aa bb cc", 5, "  "), "aa bb\n  cc\n");
 }
 
+// An optional column goes only when cutting the shrinkable one to its header is not enough, and then the
+// shrinkable column gets back what the optional one freed.
+TEST(Table, AnOptionalColumnGoesOnlyWhenTheWidthNeedsIt) {
+  render::Table t({"id", "name", "x", "div", "u"});
+  t.align_left(1);
+  t.shrink(1);
+  t.optional(3);
+  t.add_row({"a1", "a long descriptive name", "10", "√3", "5.774"});
+  // Natural: 2 (indent) + 2 + 23 + 2 + 3 + 5 + 4 gaps of 3 = 49 columns.
+  EXPECT_EQ(lines_of(t.render("  ", 49))[2], "  a1   a long descriptive name   10    √3   5.774");
+  // 40: the name gives 9 and every column stays.
+  EXPECT_EQ(lines_of(t.render("  ", 40))[2], "  a1   a long descri…   10    √3   5.774");
+  // 28: the name down to its header (4) would still be 30 wide, so "div" goes (6 with its gap) and the name
+  // gets 8.
+  const std::vector<std::string> narrow = lines_of(t.render("  ", 28));
+  EXPECT_EQ(narrow[0], "  id   name        x       u");
+  EXPECT_EQ(narrow[2], "  a1   a long…    10   5.774");  // cut at a space: "a long" and "…" in 8
+  for (const std::string& line : narrow) EXPECT_EQ(render::display_width(line), 28u) << line;
+}
+
 // A run named with 10 MB of text padded every row of a table to 10 MB (240 MB of output): a cell wider than
 // kMaxPaddedWidth is printed whole in its own row and leaves the other rows as if it were not there.
 TEST(Table, AHugeCellDoesNotPadTheOtherRows) {
@@ -252,7 +395,7 @@ TEST(Table, AHugeCellDoesNotPadTheOtherRows) {
   EXPECT_EQ(lines[2], "  5g      1.0");
   EXPECT_EQ(lines[4], "  15g     3.0");
   EXPECT_EQ(lines[3], "  " + huge + "     2.0");  // the huge cell whole, nothing cut
-  EXPECT_LT(text.size(), huge.size() + 200);  // the huge cell once, not once per row
+  EXPECT_LT(text.size(), huge.size() + 200);      // the huge cell once, not once per row
   // A cell at the limit still sets its column's width.
   render::Table edge({"run", "value"});
   edge.add_row({std::string(render::kMaxPaddedWidth, 'w'), "1"});

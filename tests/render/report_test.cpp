@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "ccal/core/sha256.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/render/budget.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 
@@ -56,6 +58,52 @@ TEST(ReportHtml, TheLibraryCannotEndItsScriptEarly) {
   const std::string page = render::html(r, {}, "var s = '</script><p>';");
   EXPECT_NE(page.find("var s = '<\\/script><p>';"), std::string::npos);
   EXPECT_EQ(page.find("'</script><p>'"), std::string::npos);
+}
+
+// The budget's table has EA-4/02's columns, each number naming its place in the budget's JSON; a contribution
+// below the round-off floor (dthx4 and dx5 turn or shift the instrument without moving its input: 1e-18 u and
+// 0) is 0 in c_i, u_i(y) and share, the cell naming its flag, while the JSON keeps the number.
+TEST(ReportSections, TheBudgetTableShowsRoundOffAsZeroAndNamesEveryNumber) {
+  Config cfg = bundled_example();
+  std::vector<Tolerance> few;
+  for (const Tolerance& t : cfg.tolerances)
+    if (t.id == "dthy1t" || t.id == "dthx4" || t.id == "dx5" || t.id == "ripple1_c1") few.push_back(t);
+  ASSERT_EQ(few.size(), 4u);
+  cfg.tolerances = few;
+  verbs::ReportOptions o;
+  o.monte_carlo.trials = 200;
+  o.input_points = 3;
+  const verbs::ReportResult r = verbs::report(cfg, o);
+  const std::string page = render::html(r, {}, "");
+  const auto json = nlohmann::json::parse(render::json(r.budget));
+  const std::string table = page.substr(page.find("<table class=\"budget\" data-coefficient=\"K0\""));
+  const std::string k0 = table.substr(0, table.find("</table>"));
+  for (const char* column : {"quantity X<sub>i</sub>", "<th>x<sub>i</sub></th>", "u(x<sub>i</sub>)", "<th>unit</th>",
+                             "distribution", "divisor", "<th>type</th>", "ν<sub>i</sub>", "c<sub>i</sub> [deg/s per unit]"})
+    EXPECT_NE(k0.find(column), std::string::npos) << column;
+  int floored = 0;
+  for (std::size_t s = 0; s < json["sources"].size(); ++s) {
+    const auto& source = json["sources"][s];
+    const std::string at = "budget:/sources/" + std::to_string(s);
+    const std::string row = k0.substr(k0.find("<code>" + source["id"].get<std::string>() + "</code>"));
+    const std::string line = row.substr(0, row.find("</tr>"));
+    EXPECT_NE(line.find(source["name"].get<std::string>()), std::string::npos) << line;  // its description
+    for (const char* field : {"/estimate\"", "/standard_uncertainty\"", "/divisor\""})
+      EXPECT_NE(line.find(at + field), std::string::npos) << field << "\n" << line;
+    EXPECT_NE(line.find("<td>B</td><td>∞</td>"), std::string::npos) << line;
+    const bool zero = source["below_round_off_floor"]["K0"];
+    const std::string flag = "data-round-off=\"" + at + "/below_round_off_floor/K0\"";
+    for (const char* field : {"/sensitivity/K0\"", "/effect/K0\"", "/share/K0\""}) {
+      const std::string cell = line.substr(line.find(at + field));
+      EXPECT_EQ(cell.substr(0, cell.find("</td>")).find(flag), cell.find(flag)) << cell;
+      EXPECT_EQ(cell.substr(cell.find('>') + 1, cell.find("</td>") - cell.find('>') - 1) == "0", zero)
+          << source["id"] << field << "\n" << cell.substr(0, cell.find("</td>"));
+    }
+    floored += zero;
+  }
+  EXPECT_EQ(floored, 2);  // dthx4 and dx5
+  // The rate noise's line: Type A.
+  EXPECT_NE(k0.find("<td>A</td><td>∞</td>"), std::string::npos);
 }
 
 TEST(ReportSections, TheAllocationIsTheVerbsWithTheReportsModeAndItsCommandLine) {

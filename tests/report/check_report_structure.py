@@ -2,8 +2,10 @@
 """The structure of a report of `ccal report`: every number in its tables is the number of the verb output it
 names (data-src="budget:/coefficients/2/standard_uncertainty"), formatted with the digits it states, where the
 output is the JSON that the program itself prints for the verb's command line listed in the page; sums,
-root-sum-squares and ratios of such numbers are redone; no table cell shows a number without a source; the
-charts' data are the same outputs' numbers; the configuration is shown byte for byte with its SHA-256.
+root-sum-squares and ratios of such numbers are redone; a budget contribution shows 0 where the cell's flag
+(data-round-off) says it is below the round-off floor, and each flag is redone from the floor; no table cell
+shows a number without a source; the charts' data are the same outputs' numbers; the configuration is shown
+byte for byte with its SHA-256.
 
 Each output the page names (its "ccal-sources" script) is {"command": [verb, options...]}, run as
 `ccal VERB CONFIG OPTIONS --format json`, optionally with "writes": {option: file} (the command also writes
@@ -95,6 +97,26 @@ def is_number(text):
         return False
 
 
+def round_off_flags(budget):
+    """Each line's below_round_off_floor flags are |u_i(y)| < round_off_floor_relative u_c (the library decides in
+    SI; a ratio within 1e-9 of the floor is left alone: the display units' rounding may tip it)."""
+    problems = []
+    relative = budget["round_off_floor_relative"]
+    u = {c["id"]: c["standard_uncertainty"] for c in budget["coefficients"]}
+    for c in budget["coefficients"]:
+        if c["round_off_floor"] != relative * c["standard_uncertainty"] and not math.isclose(
+                c["round_off_floor"], relative * c["standard_uncertainty"], rel_tol=1e-15):
+            problems.append(f"budget:{c['id']}: round_off_floor {c['round_off_floor']} is not {relative} u")
+    lines = [(s, s["effect"]) for s in budget["sources"]] + [(n, n["u"]) for n in budget.get("rate_noise", [])]
+    for line, effect in lines:
+        for k, flag in line["below_round_off_floor"].items():
+            ratio = abs(effect[k]) / u[k] / relative if u[k] > 0 else 0.0
+            if abs(ratio - 1) > 1e-9 and flag != (ratio < 1):
+                problems.append(f"budget:{line['id']}: below_round_off_floor/{k} is {flag}, but |u_i(y)| is "
+                                f"{ratio:.3g} times the floor")
+    return problems
+
+
 def main(program, report, config=None):
     problems = []
     with open(report, encoding="utf-8") as f:
@@ -116,14 +138,16 @@ def main(program, report, config=None):
                     options += [option, os.path.join(written, file)]
                 args = [program, verb, *where, *options, "--format", "json"]
                 docs[name] = json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
-    docs["errors"] = sources["errors"]["configured_errors_si"]
 
-    # x_i: the configured [errors] values; in a configuration without [errors] entries every one is 0.
+    # x_i: the configured [errors] values (SI in the budget's estimate_si); every one the configuration does not
+    # set is 0.
     text = open(config, "rb").read() if config else None
     configured = tomllib.loads(text.decode()).get("errors", {}) if text else {}
-    for source, value in docs["errors"].items():
-        if source not in configured and value != 0:
-            problems.append(f"errors:{source}: {value}, but the configuration does not set it (0)")
+    for source in docs["budget"]["sources"]:
+        if source["id"] not in configured and source["estimate_si"] != 0:
+            problems.append(f"budget:{source['id']}: x_i = {source['estimate_si']}, but the configuration does not "
+                            "set it (0)")
+    problems += round_off_flags(docs["budget"])
 
     checked = 0
     for a, shown in page.cells:
@@ -136,6 +160,14 @@ def main(program, report, config=None):
             continue
         digits = int(a["data-digits"])
         scale = float(a.get("data-scale", "1"))
+        if "data-round-off" in a:  # a contribution below the round-off floor is shown as 0
+            name, path = a["data-round-off"].split(":", 1)
+            if pointer(docs[name], path) is True:
+                if shown != "0":
+                    problems.append(f"{a['data-src']}: below the round-off floor ({a['data-round-off']}), but the "
+                                    f"page shows {shown}, not 0")
+                checked += 1
+                continue
         if "data-src" in a:
             name, path = a["data-src"].split(":", 1)
             expected = pointer(docs[name], path) * scale
@@ -207,7 +239,7 @@ def main(program, report, config=None):
                 problems.append(f"the {doc} section has no chart {chart}")
     named = {a.get("data-src", a.get("data-ratio", ":")).split(":", 1)[0] for a, _ in page.cells}
     for name in docs:
-        if name != "errors" and name not in named:
+        if name not in named:
             problems.append(f"no number of the page is taken from the output {name}")
     if len(page.specs) < expected_charts:
         problems.append(f"{len(page.specs)} charts, expected at least {expected_charts}")

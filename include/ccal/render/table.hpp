@@ -54,6 +54,10 @@ class Table {
   // This column gives way when the table is wider than render's max_width: its cells are cut (ending in
   // "…") down to the width of its header, at the least.
   void shrink(std::size_t column) { shrink_ = column; }
+  // This column is left out (header, cells and its gap) when the table, its shrinkable column cut down, is
+  // still wider than render's max_width: for a column the others imply (a budget's divisor). Not one of the
+  // first two columns (a spanning row's label covers them).
+  void optional(std::size_t column) { optional_ = column; }
   // Spaces between columns (default 3).
   void gap(std::size_t spaces) { gap_ = spaces; }
   // Each line starts with `indent`; max_width > 0 bounds the lines (in displayed characters) by cutting the
@@ -61,12 +65,15 @@ class Table {
   std::string render(std::string_view indent = "  ", std::size_t max_width = 0) const;
 
  private:
+  // Each column's width; kLeftOut for an optional column left out.
+  static constexpr std::size_t kLeftOut = std::size_t(-1);
   std::vector<std::size_t> widths(std::size_t indent, std::size_t max_width) const;
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> rows_;
   std::vector<bool> spans_;  // per row: its first cell spans two columns
   std::vector<std::size_t> left_;
   std::size_t shrink_ = std::size_t(-1);
+  std::size_t optional_ = std::size_t(-1);
   std::size_t gap_ = 3;
 };
 

@@ -17,7 +17,11 @@ enum class Distribution {
 };
 
 std::string_view distribution_name(Distribution d) noexcept;
-// Standard deviation of a tolerance with the given bound and distribution.
+// The divisor of a bound: σ = bound / divisor(d), i.e. 1 (normal), √3 (uniform), √6 (triangular), √2
+// (arcsine). The one table of the distributions' σ: standard_uncertainty and every budget's divisor column
+// read it.
+double divisor(Distribution d) noexcept;
+// Standard deviation of a tolerance with the given bound and distribution: bound / divisor(d).
 double standard_uncertainty(double bound, Distribution d) noexcept;
 
 // The correlation groups of a list of sources (Tolerance::group of each, or none at all): sources with the
