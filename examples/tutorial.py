@@ -65,11 +65,12 @@ print(reduction.display())
 
 # 8. The result: the calibration statement (JCGM 100 §7), as `ccal reduce --statement` gives it: the fit's
 #    standard error (Type A) and the centrifuge's budget (Type B) combined, U = k u_c with k from Student's t.
-step("8. the calibration statement (U = k u_c, k from Student's t at p = 95 %)")
+step("8. the calibration statement (p = 95 %: Student's t, or the Monte Carlo's interval where the check asks)")
 with tempfile.TemporaryDirectory() as folder:
     statement = ccal.reduce(lab, simulation.write_logs(folder), statement=True).to_dict()["statement"]
 truth = dict(zip(lab.instrument_terms, lab.instrument_coefficients))
 for name, c in statement["coefficients"].items():
     true = truth[name] * (180 / math.pi)  # the simulated instrument's value, deg/s/g^n (known only here)
-    print(f"{name} = {c['corrected_estimate']:.6g} ± {c['expanded_uncertainty']:.2g} {c['unit']}, "
-          f"k = {c['coverage_factor']:.3f}   (the simulated instrument has {true:.6g})")
+    r = c["rounded"]
+    print(f"{name} = {r['estimate']} {c['unit']}, [{r['interval'][0]}, {r['interval'][1]}] "
+          f"({c['interval_method']})   (the simulated instrument has {true:.6g})")

@@ -129,7 +129,8 @@ void bind_log_reduction(py::module_& m) {
       "reduce_logs",
       [](const Config& cfg, const LogMap& logs, const py::kwargs& keywords) {
         const auto o = options_from_keywords<verbs::ReduceOptions>(
-            keywords, "reduce_logs", {}, {"statement", "coverage_probability"}, {"config", "logs"});
+            keywords, "reduce_logs", {},
+            {"statement", "coverage_probability", "statement_trials", "seed", "threads"}, {"config", "logs"});
         const RunLogOptions lo = verbs::run_log_options(cfg, o);
         std::vector<std::pair<std::size_t, CsvTable>> tables;
         for (const auto& [run, path] : logs) tables.emplace_back(run_index(cfg, run), read_csv_file(path));
@@ -139,7 +140,8 @@ void bind_log_reduction(py::module_& m) {
       "Recorded run logs (run name or 0-based index → CSV file) to observations of the runs as measured "
       "(`ccal reduce` without the identification). Identify them with identify(reduction.observations, "
       "config).");
-  record_keywords<verbs::ReduceOptions>(m, "reduce_logs", {"statement", "coverage_probability"});
+  record_keywords<verbs::ReduceOptions>(
+      m, "reduce_logs", {"statement", "coverage_probability", "statement_trials", "seed", "threads"});
 }
 
 }  // namespace

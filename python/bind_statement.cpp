@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bindings.hpp"
@@ -25,27 +26,9 @@ std::vector<double> per_coefficient(const Statement& s, F f) {
   return v;
 }
 
-}  // namespace
-
-void bind_statement(py::module_& m) {
-  py::class_<Statement>(m, "Statement",
-                        "The calibration statement (JCGM 100 §7): per coefficient the corrected estimate, u_c, "
-                        "nu_eff, k, U and the interval, in the fit's units (the coefficients' output unit per "
-                        "g^n); the combined covariance. str() is the command line's text; to_json() and to_csv() "
-                        "are the files of `--statement-out`.")
-      .def("__str__", [](const Statement& s) { return render::text(s); })
-      .def("to_json", [](const Statement& s) { return render::json(s); },
-           "The statement as `--statement-out FILE.json` writes it (text).")
-      .def("to_csv", [](const Statement& s) { return render::csv(s); },
-           "The statement as `--statement-out FILE.csv` writes it: one row per coefficient, with its row of the "
-           "covariance (text).")
-      .def_readonly("budget_config", &Statement::budget_config,
-                    "the configuration whose tolerances give the Type B part [path]")
-      .def_property_readonly(
-          "mode", [](const Statement& s) { return std::string(mode_name(s.mode)); },
-          "kinematics of the Type B budget: exact or paper [—]")
-      .def_readonly("coverage_probability", &Statement::coverage_probability, "p of the intervals [—]")
-      .def_property_readonly(
+// The per-coefficient lists, in the order of `names`.
+void bind_coefficient_lists(py::class_<Statement>& cls) {
+  cls.def_property_readonly(
           "names",
           [](const Statement& s) {
             std::vector<std::string> v;
@@ -79,7 +62,27 @@ void bind_statement(py::module_& m) {
       .def_property_readonly(
           "expanded_uncertainties",
           [](const Statement& s) { return per_coefficient(s, [](auto& c) { return c.expanded; }); },
-          "U = k u_c of each coefficient [units]")
+          "U = k u_c of each coefficient; with the Monte Carlo's interval half its width [units]")
+      .def_property_readonly(
+          "intervals",
+          [](const Statement& s) {
+            std::vector<std::pair<double, double>> v;
+            for (const CoefficientStatement& c : s.coefficients) v.emplace_back(c.low, c.high);
+            return v;
+          },
+          "the stated coverage interval (low, high) of each coefficient [units]")
+      .def_property_readonly(
+          "interval_methods",
+          [](const Statement& s) {
+            std::vector<std::string> v;
+            for (const CoefficientStatement& c : s.coefficients)
+              v.emplace_back(kIntervalMethodNames[std::size_t(c.method)]);
+            return v;
+          },
+          "per coefficient 'student_t' (y ∓ k u_c) or 'monte_carlo' (the Monte Carlo's interval, stated where "
+          "the JCGM 101 §8 check refused the Student-t one) [—]")
+      .def_readonly("monte_carlo_trials", &Statement::monte_carlo_trials,
+                    "M of the Monte Carlo check (0: none was run) [—]")
       .def_property_readonly(
           "significant",
           [](const Statement& s) {
@@ -87,8 +90,31 @@ void bind_statement(py::module_& m) {
             for (const CoefficientStatement& c : s.coefficients) v.push_back(c.significant);
             return v;
           },
-          "per coefficient: its interval excludes 0 [—]")
-      .def_readonly("covariance", &Statement::covariance,
+          "per coefficient: its interval excludes 0 [—]");
+}
+
+}  // namespace
+
+void bind_statement(py::module_& m) {
+  py::class_<Statement> c(m, "Statement",
+                        "The calibration statement (JCGM 100 §7): per coefficient the corrected estimate, u_c, "
+                        "nu_eff, k, U and the interval, in the fit's units (the coefficients' output unit per "
+                        "g^n); the combined covariance. str() is the command line's text; to_json() and to_csv() "
+                        "are the files of `--statement-out`.");
+  c.def("__str__", [](const Statement& s) { return render::text(s); })
+      .def("to_json", [](const Statement& s) { return render::json(s); },
+           "The statement as `--statement-out FILE.json` writes it (text).")
+      .def("to_csv", [](const Statement& s) { return render::csv(s); },
+           "The statement as `--statement-out FILE.csv` writes it: one row per coefficient, with its row of the "
+           "covariance (text).")
+      .def_readonly("budget_config", &Statement::budget_config,
+                    "the configuration whose tolerances give the Type B part [path]")
+      .def_property_readonly(
+          "mode", [](const Statement& s) { return std::string(mode_name(s.mode)); },
+          "kinematics of the Type B budget: exact or paper [—]")
+      .def_readonly("coverage_probability", &Statement::coverage_probability, "p of the intervals [—]");
+  bind_coefficient_lists(c);
+  c.def_readonly("covariance", &Statement::covariance,
                     "combined covariance of the corrected estimates, Type A + Type B [units_i × units_j]")
       .def_readonly("covariance_a", &Statement::covariance_a, "the fit's covariance (Type A) [units_i × units_j]")
       .def_readonly("covariance_b", &Statement::covariance_b,
@@ -109,13 +135,15 @@ void bind_statement(py::module_& m) {
               d["effective_dof"] = o.effective_dof;
               d["coverage_factor"] = o.coverage_factor;
               d["expanded_uncertainty"] = o.expanded;
+              d["interval"] = py::make_tuple(o.low, o.high);
+              d["interval_method"] = std::string(kIntervalMethodNames[std::size_t(o.method)]);
               out.append(d);
             }
             return out;
           },
           "the modelled output of each run, ŷ = hᵀ(K̂ + b) with u from the covariance: per run a dict of run, "
           "g_level [g] (nan: no run of the plan), unit, value, standard_uncertainty, effective_dof, "
-          "coverage_factor, expanded_uncertainty [the output's unit]");
+          "coverage_factor, expanded_uncertainty, interval (low, high), interval_method [the output's unit]");
 }
 
 }  // namespace ccal::python

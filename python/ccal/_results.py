@@ -125,7 +125,8 @@ def statement_methods(cls):
 
     def display(self) -> "Table":
         """One row per coefficient: the value and U rounded as the certificate writes them (two significant
-        digits of U, JCGM 100 §7.2.6), unit, k, p, nu_eff, the interval and whether it excludes 0."""
+        digits of U, JCGM 100 §7.2.6), unit, k, p, nu_eff, the interval, whether it excludes 0 and how it was
+        obtained (student_t, or monte_carlo where the JCGM 101 §8 check refused the Student-t one)."""
         d = json.loads(self.to_json())
         rows = []
         for name, c in d["coefficients"].items():
@@ -133,10 +134,10 @@ def statement_methods(cls):
             nu = c["effective_dof"]
             rows.append([name, r["estimate"], r["expanded_uncertainty"], c["unit"], c["coverage_factor"],
                          d["coverage_probability"], float("inf") if nu is None else nu, r["interval"][0],
-                         r["interval"][1], c["significant"]])
+                         r["interval"][1], c["significant"], c["interval_method"]])
         return Table(f"calibration statement, p = {100 * d['coverage_probability']:g} % (U to two significant "
                      "digits)", ["coefficient", "value", "U", "unit", "k", "p", "nu_eff", "low", "high",
-                                 "significant"], rows)
+                                 "significant", "interval_method"], rows)
 
     def to_dict(self) -> "Dict[str, Any]":
         """The statement as to_json() writes it, parsed (dict)."""

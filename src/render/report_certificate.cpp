@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
+#include <vector>
 
 #include "ccal/core/units.hpp"
 #include "ccal/model/plan.hpp"
@@ -52,6 +54,21 @@ std::string plan_sentence(const Config& config) {
                                  : "");
 }
 
+// Which intervals the Monte Carlo check (JCGM 101 §8) left to the Student t, and which it replaced.
+std::string monte_carlo_sentence(const Json& statement) {
+  if (statement["monte_carlo"].is_null()) return "";
+  std::vector<std::string> replaced;
+  for (const auto& [id, c] : statement["coefficients"].items())
+    if (c["interval_method"] == "monte_carlo") replaced.push_back(escape(id));
+  const std::string trials = fmt::format("{}", statement["monte_carlo"]["trials"].get<std::uint64_t>());
+  if (replaced.empty())
+    return fmt::format(" A Monte Carlo propagation of the same quantities (JCGM 101, {} trials) validated every "
+                       "interval.", trials);
+  return fmt::format(" A Monte Carlo propagation of the same quantities (JCGM 101, {} trials) did not validate "
+                     "the interval of {}, whose stated interval is therefore the Monte Carlo's.",
+                     trials, fmt::join(replaced, ", "));
+}
+
 std::string model_sentence(const Config& config, const Doc& identify) {
   const IdentificationSpec& spec = config.identification;
   std::vector<std::string> held;
@@ -63,13 +80,13 @@ std::string model_sentence(const Config& config, const Doc& identify) {
       "coefficients {} were identified from the run means by least squares{}. The uncertainty follows JCGM 100: "
       "Type A from the scatter of the run means about the fitted model, Type B from the centrifuge's stated "
       "tolerances ({} error sources, the budget of the annex) propagated through the same model; their "
-      "combination, ν<sub>eff</sub> by Welch–Satterthwaite and k from Student's t give U and the interval.",
+      "combination, ν<sub>eff</sub> by Welch–Satterthwaite and k from Student's t give U and the interval.{}",
       mode, escape(fmt::format("{}", fmt::join(spec.free_terms, ", "))),
       held.empty()       ? std::string()
       : held.size() == 1 ? fmt::format(", the term {} held at the instrument's configured value", held.front())
                          : fmt::format(", the terms {} held at the instrument's configured values",
                                        fmt::join(held, ", ")),
-      config.tolerances.size());
+      config.tolerances.size(), monte_carlo_sentence(identify.json["statement"]));
 }
 
 }  // namespace

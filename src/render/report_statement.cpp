@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 
 #include "report_html.hpp"
 
@@ -88,16 +89,21 @@ std::string result_table(const Doc& doc) {
   const Json& st = doc.json["statement"];
   std::string t =
       "<table class=\"result\"><caption>Result: U = k u<sub>c</sub> to two significant digits, the value to the "
-      "same decimal place (JCGM 100 §7.2.6)</caption>\n<tr><th>coefficient</th><th>value</th><th>± U</th>"
-      "<th>unit</th><th>k</th><th>p [%]</th><th>ν<sub>eff</sub></th><th colspan=\"2\">interval</th></tr>\n";
+      "same decimal place (JCGM 100 §7.2.6); where the method is Monte Carlo (JCGM 101), the interval is its "
+      "ends</caption>\n<tr><th>coefficient</th><th>value</th><th>± U</th>"
+      "<th>unit</th><th>k</th><th>p [%]</th><th>ν<sub>eff</sub></th><th colspan=\"2\">interval</th>"
+      "<th>method</th></tr>\n";
   std::string notes;
   for (const auto& [id, c] : st["coefficients"].items()) {
     const std::string p = "/statement/coefficients/" + id;
+    // The Monte Carlo's interval is not centred on the value: its ends are the statement, not ± U and k.
+    const bool mc = c["interval_method"] == "monte_carlo";
     t += "<tr>" + text_cell(id) + text_num_cell(doc, p + "/rounded/estimate") +
-         text_num_cell(doc, p + "/rounded/expanded_uncertainty") + text_cell(c["unit"].get<std::string>()) +
-         num_cell(doc, p + "/coverage_factor", 4) + num_cell(doc, "/statement/coverage_probability", 4, 100) +
-         dof_cell(doc, p + "/effective_dof") + text_num_cell(doc, p + "/rounded/interval/0") +
-         text_num_cell(doc, p + "/rounded/interval/1") + "</tr>\n";
+         (mc ? text_cell("–") : text_num_cell(doc, p + "/rounded/expanded_uncertainty")) +
+         text_cell(c["unit"].get<std::string>()) + (mc ? text_cell("–") : num_cell(doc, p + "/coverage_factor", 4)) +
+         num_cell(doc, "/statement/coverage_probability", 4, 100) + dof_cell(doc, p + "/effective_dof") +
+         text_num_cell(doc, p + "/rounded/interval/0") + text_num_cell(doc, p + "/rounded/interval/1") +
+         text_cell(mc ? "Monte Carlo" : "Student t") + "</tr>\n";
     if (!c["significant"].get<bool>())
       notes += fmt::format(
           "<li><b>{0} is not resolved from zero</b>: its interval holds 0 (|{0}| ≤ U). A plan with higher or "
@@ -145,6 +151,32 @@ std::string modelled_output_table(const Doc& doc) {
   return t + "</table>\n";
 }
 
+// The Monte Carlo check of each coefficient's Student-t interval (JCGM 101 §8).
+std::string monte_carlo_check_table(const Doc& doc) {
+  const Json& st = doc.json["statement"];
+  if (st["monte_carlo"].is_null()) return "";
+  std::string t = fmt::format(
+      "<table class=\"statement-check\"><caption>Monte Carlo check of the intervals (JCGM 101 §8, M = {}, seed "
+      "{}): the Student-t interval holds where d<sub>low</sub> and d<sub>high</sub> are at most δ</caption>\n"
+      "<tr><th>coefficient</th><th>u (MC)</th><th colspan=\"2\">MC interval</th><th>d<sub>low</sub></th>"
+      "<th>d<sub>high</sub></th><th>δ</th><th>stated</th></tr>\n",
+      num_span(doc, "/statement/monte_carlo/trials", 10), num_span(doc, "/statement/monte_carlo/seed", 20));
+  for (const auto& [id, c] : st["coefficients"].items()) {
+    if (c["monte_carlo"].is_null()) continue;
+    const std::string p = "/statement/coefficients/" + id + "/monte_carlo";
+    t += "<tr>" + text_cell(id) + num_cell(doc, p + "/standard_uncertainty") +
+         num_cell(doc, p + "/interval_symmetric/0", 6) + num_cell(doc, p + "/interval_symmetric/1", 6) +
+         num_cell(doc, p + "/d_low", 2) + num_cell(doc, p + "/d_high", 2) + num_cell(doc, p + "/delta", 2) +
+         text_cell(c["interval_method"] == "monte_carlo" ? "Monte Carlo"
+                   : c["monte_carlo"]["validated"].get<bool>()
+                       ? "Student t"
+                       : fmt::format("Student t (M too small to tell: {} trials would)",
+                                     c["monte_carlo"]["trials_needed"].get<std::uint64_t>())) +
+         "</tr>\n";
+  }
+  return t + "</table>\n";
+}
+
 }  // namespace
 
 std::string statement_section(const Doc& doc) {
@@ -161,14 +193,18 @@ std::string statement_section(const Doc& doc) {
       "<code>[tolerances]</code> ({} mode, the budget above without the rate noise, which would otherwise be "
       "counted twice), known exactly (ν = ∞). They are independent, so u<sub>c</sub>² = u<sub>A</sub>² + "
       "u<sub>B</sub>²; ν<sub>eff</sub> by Welch–Satterthwaite; k the Student's t quantile for "
-      "⌊ν<sub>eff</sub>⌋ at p = {}; U = k u<sub>c</sub>; the interval is the corrected estimate ∓ U. {} "
+      "⌊ν<sub>eff</sub>⌋ at p = {}; U = k u<sub>c</sub>; the interval is the corrected estimate ∓ U. A Monte "
+      "Carlo of the same quantity (the tolerances drawn through the exact model, the Type A part as the fit's "
+      "multivariate t) checks each interval (JCGM 101 §8); where it does not hold, the Monte Carlo's "
+      "probabilistically symmetric interval is stated, and U is half its width. {} "
       "Units: the coefficients' (the instrument's output unit per gⁿ).</p>\n",
       result_table(doc), escape(doc.json["file"].get<std::string>()), num_span(doc, "/rows", 6),
       escape(st["mode"].get<std::string>()), num_span(doc, "/statement/coverage_probability", 4),
       known_errors_text(st));
   out +=
       "<div class=\"pair\">\n" + chart("statement-split", split_spec(st)) + statement_table(doc) + "</div>\n" +
-      "<div class=\"pair\">\n" + correlation_table(doc) + modelled_output_table(doc) + "</div>\n";
+      "<div class=\"pair\">\n" + correlation_table(doc) + modelled_output_table(doc) + "</div>\n" +
+      monte_carlo_check_table(doc);
   return out + "</section>\n";
 }
 

@@ -1,6 +1,7 @@
 #include "statement_part.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 
@@ -19,11 +20,33 @@ std::string dof_text(double dof, int digits = 3) { return std::isfinite(dof) ? n
 
 std::string percent(double p) { return fmt::format("{:g} %", 100 * p); }
 
-// The statement's line: the figures rounded per JCGM 100 §7.2.6 (statement.hpp, round_figures).
+// The statement's line: the figures rounded per JCGM 100 §7.2.6 (statement.hpp, round_figures); the Monte
+// Carlo's interval, not centred on the estimate, with its ends only.
 std::string statement_line(const CoefficientStatement& c, const std::string& pct) {
   const RoundedFigures r = round_figures(c);
+  if (c.method == IntervalMethod::monte_carlo)
+    return fmt::format("  {} = {} {}, p = {}: [{}, {}] (the Monte Carlo's interval, JCGM 101)", c.input.coefficient,
+                       r.estimate, c.input.unit, pct, r.low, r.high);
   return fmt::format("  {} = ({} ± {}) {}, k = {:.3f}, p = {}: [{}, {}]", c.input.coefficient, r.estimate,
                      r.expanded, c.input.unit, c.coverage_factor, pct, r.low, r.high);
+}
+
+Json monte_carlo_json(const CoefficientStatement& c) {
+  if (!c.monte_carlo) return nullptr;
+  const OutputSummary& m = *c.monte_carlo;
+  const ValidationDiagnosis d = validation_diagnosis(m, c.monte_carlo_trials);
+  return {{"mean", m.mean},
+          {"standard_uncertainty", m.std_dev},
+          {"interval_symmetric", {m.low_symmetric, m.high_symmetric}},
+          {"interval_shortest", {m.low_shortest, m.high_shortest}},
+          {"student_t_expanded_uncertainty", m.lpu_expanded},
+          {"d_low", m.d_low},
+          {"d_high", m.d_high},
+          {"delta", m.validation_delta},
+          {"validated", m.validated},
+          {"interval_end_std_error", m.interval_end_std_error},
+          {"explained_by_sampling", d.explained_by_sampling},
+          {"trials_needed", d.trials_needed}};
 }
 
 Json matrix_json(const Eigen::MatrixXd& m) {
@@ -51,6 +74,8 @@ Json quantity_json(const CoefficientStatement& c) {
   o["expanded_uncertainty"] = c.expanded;
   o["interval"] = {c.low, c.high};
   o["significant"] = c.significant;
+  o["interval_method"] = std::string(kIntervalMethodNames[std::size_t(c.method)]);
+  o["monte_carlo"] = monte_carlo_json(c);
   o["rounded"] = {{"estimate", r.estimate},
                   {"expanded_uncertainty", r.expanded},
                   {"interval", {r.low, r.high}},
@@ -97,6 +122,45 @@ std::string outputs_text(const verbs::CalibrationStatement& st, std::size_t widt
          t.render("  ", width);
 }
 
+// Which interval a checked statement states, and why.
+std::string stated_text(const CoefficientStatement& c) {
+  if (c.method == IntervalMethod::monte_carlo) return "Monte Carlo";
+  if (c.monte_carlo->validated) return "Student t";
+  return fmt::format("Student t (M too small to tell: {} trials would)",
+                     validation_diagnosis(*c.monte_carlo, c.monte_carlo_trials).trials_needed);
+}
+
+// The Monte Carlo check of each coefficient, and which modelled outputs take the Monte Carlo's interval.
+std::string monte_carlo_text(const verbs::CalibrationStatement& st, std::size_t width) {
+  if (st.monte_carlo_trials == 0)
+    return wrap_words("No Monte Carlo check of the intervals (statement trials 0, or no [tolerances]).", width);
+  std::string out = wrap_words(
+      fmt::format("Monte Carlo check (JCGM 101 §8; M = {}, seed {}): the Student-t interval holds where both "
+                  "its ends are within δ (u_c to two significant digits) of the Monte Carlo's probabilistically "
+                  "symmetric interval; where not, the Monte Carlo's interval is stated:",
+                  st.monte_carlo_trials, st.monte_carlo_seed),
+      width);
+  Table t({"coefficient", "u (MC)", "MC low", "MC high", "d_low", "d_high", "delta", "stated"});
+  t.gap(2);
+  for (const CoefficientStatement& c : st.coefficients) {
+    if (!c.monte_carlo) continue;
+    const OutputSummary& m = *c.monte_carlo;
+    t.add_row({c.input.coefficient, number(m.std_dev, 4), number(m.low_symmetric, 6), number(m.high_symmetric, 6),
+               number(m.d_low, 2), number(m.d_high, 2), number(m.validation_delta, 2),
+               stated_text(c)});
+  }
+  out += t.render("  ", width);
+  std::vector<std::string> runs;
+  for (const CoefficientStatement& o : st.outputs)
+    if (o.method == IntervalMethod::monte_carlo) runs.push_back(o.input.coefficient);
+  if (!st.outputs.empty())
+    out += wrap_words(runs.empty() ? std::string("Modelled outputs: every Student-t interval holds.")
+                                   : fmt::format("Modelled outputs with the Monte Carlo's interval: {}.",
+                                                 fmt::join(runs, ", ")),
+                      width, "  ");
+  return out;
+}
+
 }  // namespace
 
 nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
@@ -106,6 +170,8 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
   j["coverage_probability"] = st.coverage_probability;
   j["known_errors"] = st.known_errors;
   j["compensated"] = st.compensated;
+  j["monte_carlo"] = st.monte_carlo_trials > 0 ? Json{{"trials", st.monte_carlo_trials}, {"seed", st.monte_carlo_seed}}
+                                               : Json(nullptr);
   Json coefficients = Json::object();
   Json names = Json::array();
   for (const CoefficientStatement& c : st.coefficients) {
@@ -159,6 +225,7 @@ std::string statement_text(const verbs::CalibrationStatement& st, std::size_t wi
                     width);
   out += matrix_text(st, st.correlation, 4, width);
   out += outputs_text(st, width);
+  out += monte_carlo_text(st, width);
   out += wrap_words(fmt::format("Result, U to two significant digits (JCGM 100 §7.2.6):"), width);
   for (const CoefficientStatement& c : st.coefficients)
     out += wrap_words(statement_line(c, pct), width, "    ");
@@ -181,7 +248,8 @@ std::string csv(const verbs::CalibrationStatement& st) {
   // same doubles), the rounded figures as written, and its row of the combined covariance.
   std::string out = "coefficient,unit,corrected_estimate,expanded_uncertainty,coverage_factor,"
                     "coverage_probability,effective_dof,low,high,combined_standard_uncertainty,u_a,dof_a,u_b,"
-                    "significant,rounded_estimate,rounded_expanded_uncertainty,rounded_low,rounded_high";
+                    "significant,rounded_estimate,rounded_expanded_uncertainty,rounded_low,rounded_high,interval_method,"
+                    "mc_trials,mc_standard_uncertainty,mc_low,mc_high,mc_d_low,mc_d_high,mc_delta,mc_validated";
   for (const CoefficientStatement& c : st.coefficients)
     out += fmt::format(",{}", budget_parts::csv_field(fmt::format("cov_{}", c.input.coefficient)));
   out += "\n";
@@ -198,6 +266,15 @@ std::string csv(const verbs::CalibrationStatement& st) {
                        full(c.effective_dof), full(c.low), full(c.high), full(c.combined), full(c.input.type_a.u),
                        full(c.input.type_a.dof), full(c.input.type_b.u), c.significant ? "true" : "false",
                        r.estimate, r.expanded, r.low, r.high);
+    out += fmt::format(",{}", kIntervalMethodNames[std::size_t(c.method)]);
+    if (c.monte_carlo) {
+      const OutputSummary& m = *c.monte_carlo;
+      out += fmt::format(",{},{},{},{},{},{},{},{}", c.monte_carlo_trials, full(m.std_dev), full(m.low_symmetric),
+                         full(m.high_symmetric), full(m.d_low), full(m.d_high), full(m.validation_delta),
+                         m.validated ? "true" : "false");
+    } else {
+      out += ",,,,,,,,";
+    }
     for (Eigen::Index k = 0; k < st.covariance.cols(); ++k)
       out += fmt::format(",{}", full(st.covariance(Eigen::Index(i), k)));
     out += "\n";

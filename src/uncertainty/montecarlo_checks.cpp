@@ -80,11 +80,11 @@ std::uint64_t least_trials_for_coverage(double p) {
   return M;
 }
 
-void check_coverage_interval(std::uint64_t trials, double p) {
+void check_coverage_interval(std::uint64_t trials, double p, std::string_view trials_field) {
   if (trials < 2 || !(p > 0 && p < 1)) return;  // refused elsewhere, with their own messages
   const std::uint64_t q = sample_stats::rounded_points(trials, p);
   if (q <= trials - 1) return;
-  const std::string trials_name = OptionError::name("trials");
+  const std::string trials_name = OptionError::name(std::string(trials_field));
   throw OptionError(
       "coverage_probability", option_number_text(p),
       fmt::format("with {} = {}: the coverage interval [y_(r), y_(r+q)] takes q = round(pM) = {} of the M sorted "

@@ -51,35 +51,91 @@ std::string count_at_place(long long n, int place) {
 
 }  // namespace
 
-RoundedFigures round_figures(double estimate, double expanded, int digits) {
-  RoundedFigures r;
+namespace {
+
+// The power of ten of the last digit written for a U of `digits` significant digits (a U that rounds up to a
+// power of ten keeps `digits` digits: 0.0996 → 0.10), or none for a U that is 0 or not finite, or an estimate
+// beyond 10¹⁵ of that digit (past which a count is no longer exact in a double).
+std::optional<int> rounding_place(double estimate, double expanded, int digits) {
   const double step = std::isfinite(expanded) && expanded > 0 && digits >= 1
                           ? std::pow(10.0, std::floor(std::log10(expanded)) - (digits - 1))
                           : 0;
-  // Past 10^15 steps a count is no longer exact in a double: no place either.
-  if (!(step > 0) || !std::isfinite(estimate) || std::abs(estimate) / step > 1e15) {
-    const auto plain = [](double v) { return fmt::format("{:.8g}", v); };
+  if (!(step > 0) || !std::isfinite(estimate) || std::abs(estimate) / step > 1e15) return std::nullopt;
+  int place = int(std::lround(std::log10(step)));
+  if (std::round(expanded / std::pow(10.0, place)) >= std::pow(10.0, digits)) ++place;
+  return place;
+}
+
+std::string plain(double v) { return fmt::format("{:.8g}", v); }
+
+}  // namespace
+
+RoundedFigures round_figures(double estimate, double expanded, int digits) {
+  RoundedFigures r;
+  r.place = rounding_place(estimate, expanded, digits);
+  if (!r.place) {
     r.estimate = plain(estimate);
     r.expanded = plain(expanded);
     r.low = plain(estimate - expanded);
     r.high = plain(estimate + expanded);
     return r;
   }
-  int place = int(std::lround(std::log10(step)));
-  // 0.0996 rounds to 0.100: one place coarser keeps `digits` digits.
-  if (std::round(expanded / std::pow(10.0, place)) >= std::pow(10.0, digits)) ++place;
-  const double unit = std::pow(10.0, place);
+  const double unit = std::pow(10.0, *r.place);
   const auto e = std::llround(estimate / unit), u = std::llround(expanded / unit);
-  r.place = place;
-  r.estimate = count_at_place(e, place);
-  r.expanded = count_at_place(u, place);
+  r.estimate = count_at_place(e, *r.place);
+  r.expanded = count_at_place(u, *r.place);
   // The interval of the figures as written, so that the certificate reads y − U and y + U exactly.
-  r.low = count_at_place(e - u, place);
-  r.high = count_at_place(e + u, place);
+  r.low = count_at_place(e - u, *r.place);
+  r.high = count_at_place(e + u, *r.place);
   return r;
 }
 
-RoundedFigures round_figures(const CoefficientStatement& s) { return round_figures(s.corrected, s.expanded); }
+RoundedFigures round_interval(double estimate, double low, double high, int digits) {
+  const double half = (high - low) / 2;
+  RoundedFigures r;
+  r.place = rounding_place(estimate, half, digits);
+  if (r.place && std::max(std::abs(low), std::abs(high)) / std::pow(10.0, *r.place) > 1e15) r.place.reset();
+  if (!r.place) {
+    r.estimate = plain(estimate);
+    r.expanded = plain(half);
+    r.low = plain(low);
+    r.high = plain(high);
+    return r;
+  }
+  const double unit = std::pow(10.0, *r.place);
+  const auto at = [&](double v) { return count_at_place(std::llround(v / unit), *r.place); };
+  r.estimate = at(estimate);
+  r.expanded = at(half);
+  r.low = at(low);
+  r.high = at(high);
+  return r;
+}
+
+RoundedFigures round_figures(const CoefficientStatement& s) {
+  return s.method == IntervalMethod::monte_carlo ? round_interval(s.corrected, s.low, s.high)
+                                                 : round_figures(s.corrected, s.expanded);
+}
+
+void check_by_monte_carlo(CoefficientStatement& s, OutputSummary mc, std::uint64_t trials) {
+  mc.has_lpu = true;
+  mc.lpu_std = s.combined;
+  mc.lpu_expanded = s.expanded;
+  mc.validation_delta = numerical_tolerance(s.combined, 2);
+  mc.d_low = std::abs(s.corrected - s.expanded - mc.low_symmetric);
+  mc.d_high = std::abs(s.corrected + s.expanded - mc.high_symmetric);
+  mc.validated = mc.d_low <= mc.validation_delta && mc.d_high <= mc.validation_delta;
+  s.monte_carlo_trials = trials;
+  // A failure within three standard errors of the Monte Carlo's ends is M's, not the LPU's: no verdict.
+  if (!mc.validated && !validation_diagnosis(mc, trials).explained_by_sampling) {
+    s.method = IntervalMethod::monte_carlo;
+    s.low = mc.low_symmetric;
+    s.high = mc.high_symmetric;
+    s.expanded = (s.high - s.low) / 2;
+    s.coverage_factor = s.combined > 0 ? s.expanded / s.combined : 0.0;
+    s.significant = s.low > 0 || s.high < 0;
+  }
+  s.monte_carlo = std::move(mc);
+}
 
 Eigen::VectorXd known_error_shift(const Config& config, ModelMode mode) {
   const Eigen::VectorXd& errors = config.centrifuge.errors;

@@ -179,6 +179,9 @@ constexpr OptionSpec<IdentifyOptions> kRows[] = {
                                "Coverage probability p of the statement's intervals, in (0, 1)"),
     rows::mode<&IdentifyOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                        "configuration's [identification] mode"),
+    rows::statement_trials(&IdentifyOptions::statement_trials),
+    rows::seed(&IdentifyOptions::seed, "Seed of the statement's Monte Carlo check"),
+    rows::threads(&IdentifyOptions::threads),
 };
 
 // The table's checks, and a statement asked for without its configuration or the other way round.
@@ -224,10 +227,8 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   if (header) warn_about_powers_of_means(table, r.spec, r.identification);
   if (options.statement) {
     check_observations_configuration(table, *options.config, "config");
-    StatementOptions so;
-    so.coverage_probability = options.coverage_probability;
-    so.mode = options.mode;
-    r.statement = calibration_statement(*options.config, r.identification, so, "statement");
+    r.statement = calibration_statement(*options.config, r.identification, statement_options(options, options.mode),
+                                        "statement");
   }
   return r;
 }

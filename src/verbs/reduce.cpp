@@ -62,6 +62,9 @@ constexpr OptionSpec<ReduceOptions> kRows[] = {
      "tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval"},
     rows::coverage_probability(&ReduceOptions::coverage_probability,
                                "Coverage probability p of the statement's intervals, in (0, 1)"),
+    rows::statement_trials(&ReduceOptions::statement_trials),
+    rows::seed(&ReduceOptions::seed, "Seed of the statement's Monte Carlo check"),
+    rows::threads(&ReduceOptions::threads),
 };
 
 }  // namespace
@@ -123,10 +126,7 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
   if (o.statement) {
-    StatementOptions so;
-    so.coverage_probability = o.coverage_probability;
-    so.mode = r.mode;
-    r.statement = calibration_statement(cfg, r.identification.id, so, "statement");
+    r.statement = calibration_statement(cfg, r.identification.id, statement_options(o, r.mode), "statement");
   }
   return r;
 }

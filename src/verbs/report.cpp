@@ -23,6 +23,7 @@ constexpr OptionSpec<ReportOptions> kRows[] = {
     {"input_points", &ReportOptions::input_points, "N", "Instants of the sensed-input curve",
      OptionRange::between(2, 100000)},
     rows::coverage_factor(&ReportOptions::coverage_factor),
+    rows::statement_trials(&ReportOptions::statement_trials),
 };
 
 std::size_t highest_g_run(const TestPlan& plan) {
@@ -87,6 +88,9 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
   StatementOptions so;
   so.mode = o.mode;
   so.coverage_probability = o.monte_carlo.coverage_probability;
+  so.statement_trials = o.statement_trials;
+  so.seed = o.monte_carlo.seed;
+  so.threads = o.monte_carlo.threads;
   try {
     // A plain table needs terms and columns the report has no options for: say so, not identify's terms.
     if (!observations_header(*o.observations))

@@ -10,6 +10,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/verbs/budget.hpp"
+#include "statement_montecarlo.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -68,6 +69,9 @@ constexpr OptionSpec<StatementOptions> kRows[] = {
                                "Coverage probability p of the statement's intervals, in (0, 1)"),
     rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                         "configuration's [identification] mode"),
+    rows::statement_trials(&StatementOptions::statement_trials),
+    rows::seed(&StatementOptions::seed, "Seed of the statement's Monte Carlo check"),
+    rows::threads(&StatementOptions::threads),
 };
 
 }  // namespace
@@ -77,6 +81,10 @@ OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>) {
 CalibrationStatement calibration_statement(const Config& config, const Identification& id,
                                            const StatementOptions& o, std::string_view field) {
   check_options(o, option_table<StatementOptions>());
+  if (o.statement_trials > 0) {
+    check_thread_count(o.threads, "threads");
+    check_coverage_interval(std::uint64_t(o.statement_trials), o.coverage_probability, "statement_trials");
+  }
   const FitResult& fit = id.fit;
   if (!id.weighted && fit.dof <= 0)
     throw OptionError(std::string(field), "",
@@ -108,12 +116,14 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
                                   fmt::join(fit.names, ", "), config.source, fmt::join(b.coefficients, ", ")));
   const auto nk = Eigen::Index(fit.names.size());
   Eigen::MatrixXd g_fit(nk, groups.cols());  // the groups' effects in the fit's order and units
+  std::vector<double> to_fit_of(fit.names.size());
   for (std::size_t k = 0; k < fit.names.size(); ++k) {
     const auto found = std::find(b.coefficients.begin(), b.coefficients.end(), fit.names[k]);
     const auto j = std::size_t(found - b.coefficients.begin());
     const auto i = Eigen::Index(k);
     // SI → the budget's display unit → the fit's unit.
     const double to_fit = b.display_scale[j] * unit_factor(b.units[j], id.units[k], fit.names[k], field);
+    to_fit_of[k] = to_fit;
     StatementInput in;
     in.coefficient = fit.names[k];
     in.unit = id.units[k];
@@ -134,6 +144,7 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
       st.correlation(r, c) = scale > 0 ? st.covariance(r, c) / scale : (r == c ? 1.0 : 0.0);
     }
   state_outputs(config, id, o.coverage_probability, st);
+  check_statement_by_monte_carlo(config, id, to_fit_of, o, st);
   return st;
 }
 

@@ -66,7 +66,8 @@ TEST_F(Statement, ObservationsOfAnotherConfigurationAreRefusedNamingBothFingerpr
 TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
   const Result fit = run("identify obs.csv --format json");
-  const Result st = run("identify obs.csv --statement --config " + kExample + " --format json");
+  // The Student-t statement as it is (the Monte Carlo check: TheMonteCarloCheckStatesTheIntervalItGives).
+  const Result st = run("identify obs.csv --statement --statement-trials 0 --config " + kExample + " --format json");
   const Result budget = run("budget --format json");
   ASSERT_EQ(fit.code, 0) << fit.err;
   ASSERT_EQ(st.code, 0) << st.err;
@@ -107,10 +108,57 @@ TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
     EXPECT_NEAR(U, c["coverage_factor"].get<double>() * u_c, 1e-12 * U);
     EXPECT_NEAR(c["interval"][0].get<double>(), c["corrected_estimate"].get<double>() - U, 1e-12 * U + 1e-15);
   }
-  const Result text = run("identify obs.csv --statement --config " + kExample);
+  const Result text = run("identify obs.csv --statement --statement-trials 0 --config " + kExample);
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("Calibration statement (JCGM 100 §7)"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("  K3 = ("), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("No Monte Carlo check of the intervals"), std::string::npos) << text.out;
+  EXPECT_TRUE(s["monte_carlo"].is_null());
+}
+
+TEST_F(Statement, TheMonteCarloCheckStatesTheIntervalItGives) {
+  // On by default (10⁵ trials): every coefficient has its check; where the check refused the Student-t interval,
+  // the JSON's interval is the Monte Carlo's symmetric one, U half its width, and the text's line gives the
+  // ends (`K = value unit, p = 95 %: [low, high] (the Monte Carlo's interval, JCGM 101)`); the same seed on 1
+  // and 2 threads gives the same file.
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  const std::string command = "identify obs.csv --statement --config " + kExample;
+  const Result one = run(command + " --threads 1 --format json");
+  const Result two = run(command + " --threads 2 --format json");
+  const Result text = run(command);
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_EQ(one.out, two.out);
+  const auto s = nlohmann::json::parse(one.out).at("statement");
+  EXPECT_EQ(s["monte_carlo"]["trials"], 100000);
+  EXPECT_EQ(s["monte_carlo"]["seed"], 1);
+  int replaced = 0;
+  for (const auto& [id, c] : s["coefficients"].items()) {
+    const auto& m = c["monte_carlo"];
+    ASSERT_FALSE(m.is_null()) << id;
+    const bool mc = c["interval_method"] == "monte_carlo";
+    EXPECT_EQ(mc, !m["validated"].get<bool>() && !m["explained_by_sampling"].get<bool>()) << id;
+    const auto& r = c["rounded"];
+    if (mc) {
+      ++replaced;
+      EXPECT_EQ(c["interval"], m["interval_symmetric"]) << id;
+      EXPECT_DOUBLE_EQ(c["expanded_uncertainty"].get<double>(),
+                       (c["interval"][1].get<double>() - c["interval"][0].get<double>()) / 2);
+      const std::string line =
+          fmt::format("  {} = {} {}, p = 95 %: [{}, {}] (the Monte Carlo's interval, JCGM 101)", id,
+                      r["estimate"].get<std::string>(), c["unit"].get<std::string>(),
+                      r["interval"][0].get<std::string>(), r["interval"][1].get<std::string>());
+      EXPECT_NE(text.out.find(line), std::string::npos) << line << "\n" << text.out;
+    } else {
+      EXPECT_NE(text.out.find(fmt::format("  {} = ({} ± {}) ", id, r["estimate"].get<std::string>(),
+                                          r["expanded_uncertainty"].get<std::string>())),
+                std::string::npos)
+          << id << "\n" << text.out;
+    }
+  }
+  // The bundled example's tolerances are no normal sum: its K2 and K3 take the Monte Carlo's interval.
+  EXPECT_GE(replaced, 1) << one.out;
+  EXPECT_NE(text.out.find("Monte Carlo check (JCGM 101 §8; M = 100000, seed 1)"), std::string::npos) << text.out;
 }
 
 TEST_F(Statement, KnownErrorsAreCorrected) {
@@ -199,9 +247,11 @@ TEST_F(Statement, TheStatementAloneAsJsonAndCsvWithTheRoundedFiguresOfTheText) {
   std::string header, line;
   std::getline(csv, header);
   EXPECT_EQ(header.rfind("coefficient,unit,corrected_estimate,expanded_uncertainty,coverage_factor,", 0), 0u);
-  EXPECT_NE(header.find(",rounded_estimate,rounded_expanded_uncertainty,rounded_low,rounded_high,cov_K0,cov_K2,"
-                        "cov_K3"),
-            std::string::npos);
+  EXPECT_NE(header.find(",rounded_estimate,rounded_expanded_uncertainty,rounded_low,rounded_high,interval_method,"
+                        "mc_trials,mc_standard_uncertainty,mc_low,mc_high,mc_d_low,mc_d_high,mc_delta,mc_validated,"
+                        "cov_K0,cov_K2,cov_K3"),
+            std::string::npos)
+      << header;
   const auto& order = alone["covariance"]["order"];
   ASSERT_EQ(order.size(), 3u);
   for (std::size_t i = 0; i < order.size(); ++i) {
@@ -209,18 +259,22 @@ TEST_F(Statement, TheStatementAloneAsJsonAndCsvWithTheRoundedFiguresOfTheText) {
     std::vector<std::string> cells;
     std::istringstream cells_in(line);
     for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 21u) << line;
+    ASSERT_EQ(cells.size(), 30u) << line;
     const std::string id = order[i];
     EXPECT_EQ(cells[0], id);
     const auto& rounded = alone["coefficients"][id]["rounded"];
     EXPECT_EQ(cells[14], rounded["estimate"]);
     EXPECT_EQ(cells[15], rounded["expanded_uncertainty"]);
+    const bool mc = alone["coefficients"][id]["interval_method"] == "monte_carlo";
+    EXPECT_EQ(cells[18], mc ? "monte_carlo" : "student_t");
     const std::string expected_line =
-        fmt::format("{} = ({} ± {}) ", id, rounded["estimate"].get<std::string>(),
-                    rounded["expanded_uncertainty"].get<std::string>());
+        mc ? fmt::format("{} = {} ", id, rounded["estimate"].get<std::string>())
+           : fmt::format("{} = ({} ± {}) ", id, rounded["estimate"].get<std::string>(),
+                         rounded["expanded_uncertainty"].get<std::string>());
     EXPECT_NE(text.out.find(expected_line), std::string::npos) << expected_line << "\n" << text.out;
+    EXPECT_EQ(std::stod(cells[21]), alone["coefficients"][id]["monte_carlo"]["interval_symmetric"][0].get<double>());
     for (std::size_t k = 0; k < 3; ++k)
-      EXPECT_EQ(std::stod(cells[18 + k]), alone["covariance"]["combined"][i][k].get<double>()) << id << k;
+      EXPECT_EQ(std::stod(cells[27 + k]), alone["covariance"]["combined"][i][k].get<double>()) << id << k;
   }
 }
 

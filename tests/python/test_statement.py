@@ -45,9 +45,19 @@ class StatementObject(unittest.TestCase):
         rows = self.statement.display().rows
         self.assertEqual([r["coefficient"] for r in rows], self.statement.names)
         for r in rows:
-            line = f"  {r['coefficient']} = ({r['value']} ± {r['U']}) {r['unit']}, k = {r['k']:.3f}"
+            if r["interval_method"] == "monte_carlo":  # the Monte Carlo's interval: its ends, not ± U
+                line = f"  {r['coefficient']} = {r['value']} {r['unit']}, p = 95 %: [{r['low']}, {r['high']}]"
+            else:
+                line = f"  {r['coefficient']} = ({r['value']} ± {r['U']}) {r['unit']}, k = {r['k']:.3f}"
             self.assertIn(line, self.text)
-        self.assertEqual(rows[1]["U"], "0.00032")  # K2 of the bundled lab: two significant digits
+        # K2 of the bundled lab: its Monte Carlo interval (the Student t's fails the JCGM 101 check), half-width
+        # to two significant digits.
+        self.assertEqual(rows[1]["interval_method"], "monte_carlo")
+        self.assertEqual(rows[1]["U"], "0.00031")
+        self.assertEqual([r["interval_method"] for r in rows], self.statement.interval_methods)
+        self.assertEqual(self.statement.monte_carlo_trials, 100000)
+        self.assertEqual([tuple(r) for r in self.statement.intervals][1],
+                         tuple(self.statement.to_dict()["coefficients"]["K2"]["interval"]))
         self.assertEqual([r["significant"] for r in rows], self.statement.significant)
 
     def test_covariance_is_symmetric_psd_with_the_squared_uncertainties_on_its_diagonal(self):

@@ -6,13 +6,14 @@ HTML and PDF, and what a laboratory files checked:
 - the page is a certificate: its fields as the configuration writes them, then the calibration statement as the
   first section, the method, the signature lines, then the annex;
 - the statement's rounded figures on the page are those of `ccal reduce --format json` and of the text's
-  "K = (value ± U) unit" lines, character for character;
+  "K = (value ± U) unit" lines (or "K = value unit, p = 95 %: [low, high]" where the Monte Carlo's interval is
+  stated), character for character;
 - the same U of each coefficient by the same method (the LPU's normal k at p = 95 %) in `ccal budget`,
   `ccal allocate` (its configured U), the report's summary and, where the module is importable, Python's budget;
 - the statement's covariance is symmetric, positive semi-definite, with u_c² on its diagonal;
 - observations reduced with another configuration are refused with exit code 2 naming both SHA-256;
 - the PDF (with --pdf; exit 77, skipped, without a Chromium): A4 pages, the certificate's number and the
-  rounded K2 line in its text (pdftotext, where poppler-utils is installed).
+  rounded K2 interval in its text (pdftotext, where poppler-utils is installed).
 
     check_certificate.py CCAL WORK_FOLDER [--pdf]
 
@@ -113,13 +114,21 @@ def main(ccal, work, pdf):
     for name, c in statement["coefficients"].items():
         r = c["rounded"]
         base = f"identify:/statement/coefficients/{name}/rounded"
-        for key, value in (("estimate", r["estimate"]), ("expanded_uncertainty", r["expanded_uncertainty"]),
-                           ("interval/0", r["interval"][0]), ("interval/1", r["interval"][1])):
+        # The Monte Carlo's interval (where its check refused the Student-t one) is stated by its ends alone.
+        monte_carlo = c["interval_method"] == "monte_carlo"
+        figures = [("estimate", r["estimate"]), ("interval/0", r["interval"][0]), ("interval/1", r["interval"][1])]
+        if not monte_carlo:
+            figures.append(("expanded_uncertainty", r["expanded_uncertainty"]))
+        for key, value in figures:
             if shown.get(f"{base}/{key}") != value:
                 problems.append(f"{name} {key}: the page shows {shown.get(f'{base}/{key}')!r}, reduce's JSON "
                                 f"gives {value!r}")
-        line = (f"  {name} = ({r['estimate']} ± {r['expanded_uncertainty']}) {c['unit']}, "
-                f"k = {c['coverage_factor']:.3f}, p = 95 %: [{r['interval'][0]}, {r['interval'][1]}]")
+        if monte_carlo:
+            line = (f"  {name} = {r['estimate']} {c['unit']}, p = 95 %: [{r['interval'][0]}, {r['interval'][1]}] "
+                    "(the Monte Carlo's interval, JCGM 101)")
+        else:
+            line = (f"  {name} = ({r['estimate']} ± {r['expanded_uncertainty']}) {c['unit']}, "
+                    f"k = {c['coverage_factor']:.3f}, p = 95 %: [{r['interval'][0]}, {r['interval'][1]}]")
         if line not in text:
             problems.append(f"the text has no line {line!r}")
 
@@ -209,8 +218,8 @@ def main(ccal, work, pdf):
             pdf_text = subprocess.run(["pdftotext", "-layout", "certificate.pdf", "-"], capture_output=True,
                                       text=True).stdout
             k2 = statement["coefficients"]["K2"]["rounded"]
-            for expected in ("Calibration certificate", "CAL-2026-0142", "Page 1 of",
-                             k2["expanded_uncertainty"], "Approved by: B. Head of Laboratory"):
+            for expected in ("Calibration certificate", "CAL-2026-0142", "Page 1 of", k2["interval"][0],
+                             k2["interval"][1], "Approved by: B. Head of Laboratory"):
                 if expected not in pdf_text:
                     problems.append(f"certificate.pdf's text has no {expected!r}")
 

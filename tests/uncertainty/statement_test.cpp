@@ -137,5 +137,77 @@ TEST(Statement, ATermIsSignificantWhenItsIntervalExcludesZero) {
   EXPECT_TRUE(state_coefficient(in, 0.95).significant);
 }
 
+TEST(Statement, TheMonteCarloCheckKeepsAnIntervalWithinDeltaAndReplacesOneBeyond) {
+  // y = 1, u_c = 0.0235 (δ = ½·10⁻³ for two digits, 0.023|5), U = 1.96 u_c = 0.04606: Monte Carlo ends
+  // 0.0004 off are kept (d ≤ δ), 0.0006 off replaced.
+  StatementInput in;
+  in.estimate = 1;
+  in.type_b = {0.0235, kInfiniteDof};
+  const CoefficientStatement t = state_coefficient(in, 0.95);
+  OutputSummary mc;
+  mc.low_symmetric = t.low + 4e-4;
+  mc.high_symmetric = t.high - 4e-4;
+  CoefficientStatement kept = t;
+  check_by_monte_carlo(kept, mc, 100000);
+  ASSERT_TRUE(kept.monte_carlo);
+  EXPECT_EQ(kept.monte_carlo_trials, 100000u);
+  EXPECT_DOUBLE_EQ(kept.monte_carlo->validation_delta, 5e-4);
+  EXPECT_NEAR(kept.monte_carlo->d_low, 4e-4, 1e-15);
+  EXPECT_TRUE(kept.monte_carlo->validated);
+  EXPECT_EQ(kept.method, IntervalMethod::student_t);
+  EXPECT_EQ(kept.low, t.low);
+  EXPECT_EQ(kept.expanded, t.expanded);
+
+  mc.low_symmetric = t.low + 6e-4;  // one end beyond δ is enough
+  CoefficientStatement replaced = t;
+  check_by_monte_carlo(replaced, mc, 100000);
+  EXPECT_FALSE(replaced.monte_carlo->validated);
+  EXPECT_EQ(replaced.method, IntervalMethod::monte_carlo);
+  EXPECT_EQ(replaced.low, mc.low_symmetric);
+  EXPECT_EQ(replaced.high, mc.high_symmetric);
+  EXPECT_DOUBLE_EQ(replaced.expanded, (mc.high_symmetric - mc.low_symmetric) / 2);
+  EXPECT_DOUBLE_EQ(replaced.coverage_factor, replaced.expanded / t.combined);
+  EXPECT_EQ(replaced.monte_carlo->lpu_expanded, t.expanded);  // what was checked stays on record
+  EXPECT_TRUE(replaced.significant);
+
+  // The same excess within three standard errors of the Monte Carlo's ends says nothing about the LPU: kept.
+  mc.interval_end_std_error = 1e-4;  // excess 1e-4 = 1 standard error
+  CoefficientStatement undecided = t;
+  check_by_monte_carlo(undecided, mc, 100000);
+  EXPECT_FALSE(undecided.monte_carlo->validated);
+  EXPECT_EQ(undecided.method, IntervalMethod::student_t);
+  EXPECT_EQ(undecided.low, t.low);
+  mc.interval_end_std_error = 0;
+
+  // An interval that the Monte Carlo widens over 0 is no longer significant.
+  in.estimate = 0.05;
+  CoefficientStatement near_zero = state_coefficient(in, 0.95);
+  ASSERT_TRUE(near_zero.significant);  // 0.05 − 0.04606 > 0
+  mc.low_symmetric = -0.001;
+  mc.high_symmetric = 0.1;
+  check_by_monte_carlo(near_zero, mc, 100000);
+  EXPECT_EQ(near_zero.method, IntervalMethod::monte_carlo);
+  EXPECT_FALSE(near_zero.significant);
+}
+
+TEST(Statement, AnIntervalNotCentredIsRoundedAtItsHalfWidthsSecondDigit) {
+  // [−0.04316, 0.04917] about 0.0030046: half-width 0.046165 → the place 10⁻³, each end on its own.
+  const RoundedFigures r = round_interval(0.0030046263, -0.043158576, 0.049167828);
+  ASSERT_TRUE(r.place);
+  EXPECT_EQ(*r.place, -3);
+  EXPECT_EQ(r.estimate, "0.003");
+  EXPECT_EQ(r.expanded, "0.046");
+  EXPECT_EQ(r.low, "-0.043");
+  EXPECT_EQ(r.high, "0.049");
+  // Asymmetric: [9.2, 10.94] about 10: half-width 0.87 → hundredths; the ends are not 10 ∓ 0.87.
+  const RoundedFigures a = round_interval(10, 9.2, 10.94);
+  EXPECT_EQ(a.estimate, "10.00");
+  EXPECT_EQ(a.expanded, "0.87");
+  EXPECT_EQ(a.low, "9.20");
+  EXPECT_EQ(a.high, "10.94");
+  // No place for a zero width: 8 significant digits.
+  EXPECT_FALSE(round_interval(1, 1, 1).place);
+}
+
 }  // namespace
 }  // namespace ccal

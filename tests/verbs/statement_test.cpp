@@ -30,6 +30,14 @@ Config noisy_paper(bool known_error) {
   return parse_config(text, "noisy-paper.toml");
 }
 
+// The statement without its Monte Carlo check: the Student-t intervals as they are (the check is
+// statement_montecarlo_test's).
+verbs::StatementOptions no_check() {
+  verbs::StatementOptions o;
+  o.statement_trials = 0;
+  return o;
+}
+
 TEST(StatementVerb, EachPartIsWhatTheOtherVerbsGive) {
   const Config config = noisy_paper(false);
   const verbs::SimulateResult sim = verbs::simulate(config);
@@ -37,6 +45,7 @@ TEST(StatementVerb, EachPartIsWhatTheOtherVerbsGive) {
   ASSERT_TRUE(budget.budget.rate_noise.empty()) << "the paper's set-up has no rate noise";
   verbs::StatementOptions o;
   o.coverage_probability = 0.9;
+  o.statement_trials = 0;  // the Student-t interval as it is (the Monte Carlo check: statement_montecarlo_test)
   const verbs::CalibrationStatement s =
       verbs::calibration_statement(config, sim.identification, o, "statement");
   EXPECT_EQ(s.coverage_probability, 0.9);
@@ -65,7 +74,10 @@ TEST(StatementVerb, EachPartIsWhatTheOtherVerbsGive) {
     EXPECT_NEAR(c.expanded, c.coverage_factor * u_c, 1e-12 * c.expanded);
     EXPECT_NEAR(c.low, c.corrected - c.expanded, 1e-12 * c.expanded);
     EXPECT_NEAR(c.high, c.corrected + c.expanded, 1e-12 * c.expanded);
+    EXPECT_EQ(c.method, IntervalMethod::student_t);
+    EXPECT_FALSE(c.monte_carlo);
   }
+  EXPECT_EQ(s.monte_carlo_trials, 0u);
 }
 
 TEST(StatementVerb, KnownErrorsTheModelLeavesOutAreCorrected) {
@@ -73,7 +85,7 @@ TEST(StatementVerb, KnownErrorsTheModelLeavesOutAreCorrected) {
   const Config config = noisy_paper(true);
   const verbs::SimulateResult sim = verbs::simulate(config);
   const verbs::CalibrationStatement s =
-      verbs::calibration_statement(config, sim.identification, {}, "statement");
+      verbs::calibration_statement(config, sim.identification, no_check(), "statement");
   EXPECT_EQ(s.known_errors, 1);
   EXPECT_FALSE(s.compensated);
   const Eigen::VectorXd shift = known_error_shift(config, config.mode);
@@ -95,7 +107,7 @@ TEST(StatementVerb, TheCovarianceIsTheFitsPlusTheBudgetsAndItsDiagonalIsTheSquar
   const Config config = noisy_paper(true);
   const verbs::SimulateResult sim = verbs::simulate(config);
   const verbs::BudgetResult budget = verbs::budget(config);
-  const verbs::CalibrationStatement s = verbs::calibration_statement(config, sim.identification, {}, "statement");
+  const verbs::CalibrationStatement s = verbs::calibration_statement(config, sim.identification, no_check(), "statement");
   const Eigen::Index n = Eigen::Index(s.coefficients.size());
   ASSERT_EQ(s.covariance.rows(), n);
   ASSERT_EQ(s.covariance.cols(), n);
@@ -126,7 +138,7 @@ TEST(StatementVerb, TheModelledOutputOfEachRunIsStatedFromTheCovariance) {
   // coefficient.
   const Config config = noisy_paper(true);
   const verbs::SimulateResult sim = verbs::simulate(config);
-  const verbs::CalibrationStatement s = verbs::calibration_statement(config, sim.identification, {}, "statement");
+  const verbs::CalibrationStatement s = verbs::calibration_statement(config, sim.identification, no_check(), "statement");
   const verbs::Identification& id = sim.identification;
   ASSERT_EQ(s.outputs.size(), config.plan.runs.size());
   ASSERT_EQ(s.g_levels.size(), config.plan.runs.size());

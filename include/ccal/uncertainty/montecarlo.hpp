@@ -76,6 +76,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -100,9 +101,10 @@ void check_thread_count(int threads, const char* what);
 // least one of the M sorted values out (q ≤ M − 1), about M = 1/(2(1 − p)). InputError unless 0 < p < 1.
 std::uint64_t least_trials_for_coverage(double p);
 
-// Throws OptionError of coverage_probability, naming the option trials too and what each would need, when
-// `trials` values cannot give the coverage interval of probability p (trials < least_trials_for_coverage(p)).
-void check_coverage_interval(std::uint64_t trials, double p);
+// Throws OptionError of coverage_probability, naming the option of the trials (trials_field) too and what each
+// would need, when `trials` values cannot give the coverage interval of probability p (trials <
+// least_trials_for_coverage(p)).
+void check_coverage_interval(std::uint64_t trials, double p, std::string_view trials_field = "trials");
 
 // The default M of a fixed run: at 10⁴ the interval ends of a normal output scatter by about 2.7·u/√M =
 // 0.027 u, as much as the §8 tolerance δ of a two-digit u, so the bundled example's K3 failed its validation

@@ -12,12 +12,15 @@
 #include <Eigen/Core>
 #include <limits>
 #include <optional>
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/coverage.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal {
 
@@ -43,22 +46,42 @@ struct StatementInput {
   UncertaintyPart type_b;  // from the centrifuge budget (tolerances): ν = ∞
 };
 
+// How a statement's interval was obtained: y ∓ U with k from Student's t at ν_eff (the LPU), or the Monte
+// Carlo's probabilistically symmetric interval (JCGM 101 §7.7.2) where the §8 validation refused the former.
+enum class IntervalMethod { student_t, monte_carlo };
+inline constexpr std::string_view kIntervalMethodNames[] = {"student_t", "monte_carlo"};  // enumeration order
+
 struct CoefficientStatement {
   StatementInput input;
   double corrected = 0;        // K̂ + b
   double combined = 0;         // u_c
   double effective_dof = 0;    // ν_eff (∞ possible)
   double dof_for_k = 0;        // ⌊ν_eff⌋, or ∞
-  double coverage_factor = 0;  // k
-  double expanded = 0;         // U = k u_c
-  double low = 0, high = 0;    // corrected ∓ U
+  double coverage_factor = 0;  // k; with the Monte Carlo's interval U/u_c
+  double expanded = 0;         // U = k u_c; with the Monte Carlo's interval half its width
+  double low = 0, high = 0;    // corrected ∓ U; with the Monte Carlo's interval its ends (not centred on y)
   // The interval excludes zero: the value differs from 0 at probability p. A term whose interval holds 0 is
   // not resolved by the test (|K̂ + b| ≤ U); a plan of more or higher g-levels lowers its U (`ccal design`).
   bool significant = false;
+  IntervalMethod method = IntervalMethod::student_t;
+  // The Monte Carlo of the same quantity, when one was run: its statistics and the §8 validation of the
+  // Student-t interval (lpu_std = u_c, lpu_expanded = the Student-t U, validation_delta = δ of u_c with two
+  // significant digits, d_low, d_high, validated); monte_carlo_trials its M.
+  std::optional<OutputSummary> monte_carlo;
+  std::uint64_t monte_carlo_trials = 0;
 };
 
 // The statement of one coefficient for coverage probability p (throws as the functions above).
 CoefficientStatement state_coefficient(const StatementInput& input, double p);
+
+// JCGM 101 §8 for a statement: its Student-t interval y ∓ U against the Monte Carlo's probabilistically
+// symmetric interval of the same quantity (M = trials values, summarised in `mc`), d_low = |y − U − y_low|,
+// d_high = |y + U − y_high|, validated when both are at most δ, the numerical tolerance of u_c with two
+// significant digits (§7.9.2). Where it is not validated, and the excess over δ is beyond three standard
+// errors of the Monte Carlo's ends (validation_diagnosis: within them M, not the LPU, may explain it, and the
+// Student-t interval stays), the statement takes the Monte Carlo's interval: method = monte_carlo, [low, high]
+// its ends, U half its width, k = U/u_c, and significance from those ends.
+void check_by_monte_carlo(CoefficientStatement& statement, OutputSummary mc, std::uint64_t trials);
 
 // The figures of a statement as a certificate writes them (JCGM 100 §7.2.6): U to `digits` significant digits
 // (rounded to nearest; a U that rounds up to a power of ten keeps `digits` digits, 0.0996 → 0.10), the estimate
@@ -71,6 +94,10 @@ struct RoundedFigures {
   std::string estimate, expanded, low, high;
 };
 RoundedFigures round_figures(double estimate, double expanded, int digits = 2);
+// As above, for an interval not centred on the estimate (the Monte Carlo's): the place from its half-width
+// U = (high − low)/2, and each end rounded to it on its own.
+RoundedFigures round_interval(double estimate, double low, double high, int digits = 2);
+// The statement's figures, by its method.
 RoundedFigures round_figures(const CoefficientStatement& statement);
 
 // What the configuration's known [errors] do to the identified coefficients when the model leaves them out:

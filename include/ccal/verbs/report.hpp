@@ -36,8 +36,9 @@ struct ReportOptions {
   std::optional<DesignOptions> design;
   // The statement section: this observations file (as `ccal simulate --observations-out` writes it),
   // identified as `ccal identify OBS.csv --statement --config CONFIG` with the report's mode and the Monte Carlo's
-  // coverage probability.
+  // coverage probability, seed and threads.
   std::optional<CsvTable> observations;
+  std::int64_t statement_trials = kDefaultStatementTrials;  // the statement's Monte Carlo check; 0: none
 };
 
 // The options' table (core/options.hpp): the report's own fields (those of its sections are in their verbs'

@@ -5,6 +5,7 @@
 // configuration, u_c, ν_eff, k from Student's t, U and the interval; the combined covariance of the coefficients
 // and, from it, the uncertainty of the modelled output of each run.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -21,7 +22,23 @@ namespace ccal::verbs {
 struct StatementOptions {
   double coverage_probability = 0.95;  // p of the intervals, in (0, 1)
   std::optional<ModelMode> mode;       // of the budget; unset: the configuration's
+  // M of the Monte Carlo check (src/verbs/statement_montecarlo.hpp); 0: none, the Student-t intervals stated.
+  std::int64_t statement_trials = kDefaultStatementTrials;
+  std::uint64_t seed = 1;  // of the Monte Carlo check
+  int threads = 0;         // of the Monte Carlo check; 0: the OpenMP default
 };
+
+// The statement's options of a verb that states one (reduce, identify): its fields of the same names.
+template <class VerbOptions>
+StatementOptions statement_options(const VerbOptions& o, std::optional<ModelMode> mode) {
+  StatementOptions so;
+  so.coverage_probability = o.coverage_probability;
+  so.mode = mode;
+  so.statement_trials = o.statement_trials;
+  so.seed = o.seed;
+  so.threads = o.threads;
+  return so;
+}
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
 OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>);
@@ -43,12 +60,17 @@ struct CalibrationStatement {
   // (NaN for a row that names no run of the plan).
   std::vector<CoefficientStatement> outputs;
   std::vector<double> g_levels;
+  // The Monte Carlo check, when one was run (statement_trials > 0 and the configuration has tolerances): its M
+  // and seed; each coefficient and output holds its statistics and verdict.
+  std::uint64_t monte_carlo_trials = 0;
+  std::uint64_t monte_carlo_seed = 0;
 };
 
 // Combines an identification with the budget of `config`. Type A: the fit's standard errors with its
 // degrees of freedom (∞ for a weighted fit, whose σ are taken as known); Type B: the configuration's
 // tolerances (the drives' rate noise is left out, the fit's scatter already holds it); correction: minus
-// the shift of the known [errors] when the model does not compensate them. Throws OptionError naming
+// the shift of the known [errors] when the model does not compensate them. Then, unless statement_trials is 0,
+// the Monte Carlo check of every interval (JCGM 101 §8), the Monte Carlo's interval stated where it fails. Throws OptionError naming
 // `field` (the option that asked for the statement: statement, observations) when a fitted term is not a free
 // term of the configuration, the units cannot be converted or the fit has no degrees of freedom, and naming
 // coverage_probability when p is not in (0, 1).

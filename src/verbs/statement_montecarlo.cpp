@@ -1,0 +1,148 @@
+#include "statement_montecarlo.hpp"
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "ccal/core/errors.hpp"
+
+namespace ccal::verbs {
+namespace {
+
+// What every copy of the trial reads (never written after it is built).
+struct StatementTrialShared {
+  std::size_t n_tolerances = 0;
+  std::vector<Eigen::Index> model_index;  // per coefficient of the fit: its output of the calibration model
+  Eigen::VectorXd to_fit;                 // SI → the fit's unit, per coefficient
+  Eigen::VectorXd corrected;              // K̂ + b
+  Eigen::VectorXd estimate;               // K̂
+  Eigen::VectorXd reference;              // the calibration model's outputs at zero draws (SI)
+  Eigen::MatrixXd type_a_root;            // L with L Lᵀ = C_A, the fit's covariance
+  double type_a_dof = kInfiniteDof;       // ν_A; ∞: the Type A part is normal
+  Eigen::MatrixXd design;                 // h of each run (rows), the fit's regressors of the free terms
+  Eigen::VectorXd modelled;               // ŷ of each run, hᵀK̂ plus the fixed terms' part
+};
+
+// L with L Lᵀ = C for a covariance that may be singular: V √Λ from its eigen-decomposition, negative
+// eigenvalues of round-off set to 0.
+Eigen::MatrixXd covariance_root(const Eigen::MatrixXd& c) {
+  if (c.size() == 0) return c;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (c + c.transpose()));
+  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+}
+
+// The sources of the Monte Carlo: the configuration's tolerances (not the drives' rate noise: the fit's scatter
+// holds it), then one standard normal per coefficient and, for a finite ν_A, one uniform on (−1, 1) that gives
+// the multivariate t's χ²_ν by its quantile.
+std::vector<Tolerance> statement_sources(const Config& config, const Identification& id, bool student) {
+  std::vector<Tolerance> sources = config.tolerances;
+  for (const std::string& name : id.fit.names) {
+    Tolerance t;
+    t.id = "type_a_" + name;
+    t.bound = 1;
+    t.distribution = Distribution::normal;
+    sources.push_back(t);
+  }
+  if (student) {
+    Tolerance t;
+    t.id = "type_a_chi_squared";
+    t.bound = 1;
+    t.distribution = Distribution::uniform;
+    sources.push_back(t);
+  }
+  return sources;
+}
+
+// One trial: y = K̂ + b − C (f(e) − f(0)) + s L z, C the unit factors, f the calibration model at the drawn
+// tolerances e, z standard normal, s = √(ν/χ²_ν) (1 for ν = ∞); then each run's ŷ + hᵀ(y − K̂).
+class StatementTrial {
+ public:
+  StatementTrial(std::shared_ptr<const StatementTrialShared> shared, TrialFunction tolerances, int n_model)
+      : shared_(std::move(shared)), tolerances_(std::move(tolerances)), f_(std::size_t(n_model)) {}
+
+  void operator()(std::span<const double> draws, std::span<double> outputs) {
+    const StatementTrialShared& s = *shared_;
+    const auto nk = s.corrected.size();
+    tolerances_(draws.first(s.n_tolerances), f_);
+    const Eigen::Map<const Eigen::VectorXd> z(draws.data() + s.n_tolerances, nk);
+    double scale = 1;
+    if (std::isfinite(s.type_a_dof)) {
+      const double u = 0.5 * (draws[s.n_tolerances + std::size_t(nk)] + 1);  // in (0, 1): never an end
+      scale = std::sqrt(s.type_a_dof / boost::math::quantile(chi_squared_, u));
+    }
+    y_ = s.corrected + scale * (s.type_a_root * z);
+    for (Eigen::Index k = 0; k < nk; ++k) {
+      const auto m = s.model_index[std::size_t(k)];
+      y_[k] -= s.to_fit[k] * (f_[std::size_t(m)] - s.reference[m]);
+    }
+    for (Eigen::Index k = 0; k < nk; ++k) outputs[std::size_t(k)] = y_[k];
+    const Eigen::VectorXd shift = y_ - s.estimate;
+    for (Eigen::Index r = 0; r < s.design.rows(); ++r)
+      outputs[std::size_t(nk + r)] = s.modelled[r] + s.design.row(r).dot(shift);
+  }
+
+ private:
+  std::shared_ptr<const StatementTrialShared> shared_;
+  TrialFunction tolerances_;
+  std::vector<double> f_;
+  Eigen::VectorXd y_;
+  boost::math::chi_squared chi_squared_{shared_->type_a_dof > 0 && std::isfinite(shared_->type_a_dof)
+                                            ? shared_->type_a_dof
+                                            : 1.0};
+};
+
+}  // namespace
+
+void check_statement_by_monte_carlo(const Config& config, const Identification& id,
+                                    const std::vector<double>& to_fit, const StatementOptions& o,
+                                    CalibrationStatement& st) {
+  if (o.statement_trials <= 0 || config.tolerances.empty()) return;
+  const CalibrationModel model = calibration_model(config.experiment(), config.identification, config.tolerances,
+                                                   config.centrifuge.errors, st.mode);
+  TrialFunction tolerances = calibration_trial(model);
+  const std::vector<std::string> model_names = model.output_names();
+  const FitResult& fit = id.fit;
+  const auto nk = Eigen::Index(fit.names.size());
+
+  auto shared = std::make_shared<StatementTrialShared>();
+  shared->n_tolerances = config.tolerances.size();
+  shared->to_fit = Eigen::Map<const Eigen::VectorXd>(to_fit.data(), Eigen::Index(to_fit.size()));
+  shared->corrected.resize(nk);
+  for (Eigen::Index k = 0; k < nk; ++k) {
+    const auto found = std::find(model_names.begin(), model_names.end(), fit.names[std::size_t(k)]);
+    shared->model_index.push_back(Eigen::Index(found - model_names.begin()));
+    shared->corrected[k] = st.coefficients[std::size_t(k)].corrected;
+  }
+  shared->estimate = fit.value;
+  std::vector<double> reference(model_names.size());
+  tolerances(std::vector<double>(config.tolerances.size(), 0.0), reference);
+  shared->reference = Eigen::Map<const Eigen::VectorXd>(reference.data(), Eigen::Index(reference.size()));
+  shared->type_a_root = covariance_root(st.covariance_a);
+  shared->type_a_dof = st.coefficients.empty() ? kInfiniteDof : st.coefficients.front().input.type_a.dof;
+  shared->design = id.design;
+  shared->modelled = id.modelled;
+
+  std::vector<std::string> names = fit.names;
+  for (const CoefficientStatement& out : st.outputs) names.push_back("run " + out.input.coefficient);
+  ccal::MonteCarloOptions mo;
+  mo.trials = std::uint64_t(o.statement_trials);
+  mo.seed = o.seed;
+  mo.threads = o.threads;
+  mo.coverage_probability = o.coverage_probability;
+  const bool student = std::isfinite(shared->type_a_dof);
+  const MonteCarloResult mc =
+      run_monte_carlo(statement_sources(config, id, student), int(names.size()), names,
+                      StatementTrial(shared, std::move(tolerances), int(model_names.size())), mo);
+  st.monte_carlo_trials = mc.trials;
+  st.monte_carlo_seed = mc.seed;
+  for (std::size_t k = 0; k < st.coefficients.size(); ++k)
+    check_by_monte_carlo(st.coefficients[k], mc.outputs[k], mc.trials);
+  for (std::size_t r = 0; r < st.outputs.size(); ++r)
+    check_by_monte_carlo(st.outputs[r], mc.outputs[st.coefficients.size() + r], mc.trials);
+}
+
+}  // namespace ccal::verbs
