@@ -53,11 +53,12 @@ print(f"budget with the allocated tolerances: U(K3) = {u_tight['expanded_uncerta
 
 # 5. A better plan instead of tighter tolerances: ccal.design(cfg), as `ccal design` (docs/tutorial.md §5).
 
-# 6. The test on the lab's centrifuge (examples/lab.toml: the bundled one with its real, unknown errors, a noisy
-#    PIGA counting pulses), as the run logs it records; 7. their reduction to the coefficients.
+# 6. The test on the lab's centrifuge (examples/lab.toml: the bundled one as the lab knows it, a noisy PIGA
+#    counting pulses), as the run logs it records: the simulated machine has the errors of examples/lab_truth.toml,
+#    which the lab does not know; 7. their reduction to the coefficients.
 step("6-7. the test's run logs, reduced to the coefficients")
 lab = ccal.load_config(os.path.join(HERE, "lab.toml"))
-simulation = ccal.simulate(lab, seed=1)
+simulation = ccal.simulate(lab, seed=1, truth=os.path.join(HERE, "lab_truth.toml"))
 with tempfile.TemporaryDirectory() as folder:
     logs = simulation.write_logs(folder)
     reduction = ccal.reduce(lab, logs)

@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "option_keywords.hpp"
 #include "ccal/core/errors.hpp"
+#include "ccal/io/log_manifest.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/io/run_log.hpp"
 #include "ccal/verbs/reduce.hpp"
@@ -112,14 +113,22 @@ void bind_log_reduction(py::module_& m) {
 
   m.def(
       "reduce",
-      [](const Config& cfg, const LogMap& logs, const py::kwargs& keywords) {
+      [](const Config& cfg, const py::object& logs, const py::kwargs& keywords) {
         auto o = options_from_keywords<verbs::ReduceOptions>(keywords, "reduce", {}, {}, {"config", "logs"});
-        o.logs = log_files(cfg, logs);
+        if (py::isinstance<py::dict>(logs)) {
+          o.logs = log_files(cfg, logs.cast<LogMap>());
+        } else {  // a folder with its manifest, as `ccal reduce --logs DIR`
+          const LogManifest manifest =
+              read_log_manifest(py::module_::import("os").attr("fspath")(logs).cast<std::string>());
+          o.layout = manifest.layout;
+          for (const LogManifest::Entry& entry : manifest.runs) o.logs.push_back({entry.run, entry.file.string()});
+        }
         py::gil_scoped_release release;
         return verbs::reduce(cfg, o);
       },
       py::arg("config"), py::arg("logs"),
-      "`ccal reduce`: recorded run logs (run name or 0-based index → CSV file) to run means, the model of "
+      "`ccal reduce`: recorded run logs (a dict of run name or 0-based index → CSV file, or a folder with its "
+      "manifest.toml, as `--logs DIR`) to run means, the model of "
       "the runs as measured and the identification, as the CLI gives them; with statement=True also the "
       "calibration statement with the configuration's tolerances as its Type B part.");
   record_keywords<verbs::ReduceOptions>(m, "reduce");

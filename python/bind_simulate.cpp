@@ -10,11 +10,23 @@
 
 #include "bindings.hpp"
 #include "option_keywords.hpp"
+#include "ccal/io/log_manifest.hpp"
 #include "ccal/io/run_log_writer.hpp"
+#include "ccal/io/truth_file.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/verbs/simulate.hpp"
 
 namespace ccal::python {
+
+namespace {
+
+// The truth file of a truth= keyword (a path: str or os.PathLike), read against the configuration; None: none.
+std::optional<SimulationTruth> truth_of(const Config& cfg, const py::object& truth) {
+  if (truth.is_none()) return std::nullopt;
+  return load_truth(py::module_::import("os").attr("fspath")(truth).cast<std::string>(), cfg);
+}
+
+}  // namespace
 
 // Simulated observations: the Observations and Simulation results, simulate() and observe().
 void bind_simulate(py::module_& m) {
@@ -55,43 +67,58 @@ void bind_simulate(py::module_& m) {
           [](const verbs::SimulateResult& r, std::optional<double> step) {
             const Eigen::VectorXd& means = r.observations.output;
             std::vector<std::pair<std::string, std::string>> out;
-            for (auto& log : write_run_logs(r.config, {means.data(), means.data() + means.size()},
+            for (auto& log : write_run_logs(r.config, r.machine_errors, {means.data(), means.data() + means.size()},
                                             step ? *step : default_log_step(r.config)))
               out.emplace_back(std::move(log.name), std::move(log.text));
             return out;
           },
           py::arg("step") = py::none(),
           "The runs' logs as `ccal simulate --logs-out` writes them: (file name, CSV text) per run, in plan "
-          "order; step: sampling interval [s] (default 0.1 s, or an eighth of a revolution if shorter).");
+          "order; step: sampling interval [s] (default 0.1 s, or an eighth of a revolution if shorter).")
+      .def(
+          "logs_manifest",
+          [](const verbs::SimulateResult& r) {
+            LogLayout layout;
+            layout.angle_unit = "rad";
+            std::vector<std::pair<std::string, std::string>> runs;
+            for (const Run& run : r.config.plan.runs) runs.emplace_back(run.name, run_log_file_name(run.name));
+            return log_manifest_text(layout, runs);
+          },
+          "The manifest.toml of the logs of run_logs() (ccal's own layout), as `ccal simulate --logs-out` "
+          "writes it beside them.");
 
   m.def(
       "simulate",
-      [](const Config& cfg, const py::kwargs& keywords) {
-        const auto o = options_from_keywords<verbs::SimulateOptions>(keywords, "simulate");
+      [](const Config& cfg, const py::object& truth, const py::kwargs& keywords) {
+        auto o = options_from_keywords<verbs::SimulateOptions>(keywords, "simulate", {}, {}, {"config", "truth"});
+        o.truth = truth_of(cfg, truth);
         py::gil_scoped_release release;
         return verbs::simulate(cfg, o);
       },
-      py::arg("config"),
-      "`ccal simulate`: run means of the test plan with the configured errors and instrument noise, and the "
+      py::arg("config"), py::kw_only(), py::arg("truth") = py::none(),
+      "`ccal simulate`: run means of the test plan with the machine's errors (truth: a truth file's path, "
+      "whose [errors] the machine has; else the configured [errors]) and instrument noise, and the "
       "identification of the configured terms from them, as the CLI gives them.");
   record_keywords<verbs::SimulateOptions>(m, "simulate");
 
   m.def(
       "observe",
-      [](const Config& cfg, const py::kwargs& keywords) {
-        const auto o = options_from_keywords<verbs::SimulateOptions>(keywords, "observe");
+      [](const Config& cfg, const py::object& truth, const py::kwargs& keywords) {
+        const auto o = options_from_keywords<verbs::SimulateOptions>(keywords, "observe", {}, {}, {"config", "truth"});
         const ModelMode model_mode = o.mode ? *o.mode : cfg.mode;
         const Experiment ex = cfg.experiment();
-        const Eigen::VectorXd& truth = cfg.centrifuge.errors;
+        const std::optional<SimulationTruth> machine = truth_of(cfg, truth);
+        const Eigen::VectorXd& known = cfg.centrifuge.errors;
         const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-        Observations<double> obs = observe<double>(ex, truth, cfg.identification.compensate ? truth : zero,
+        Observations<double> obs = observe<double>(ex, machine ? machine->errors : known,
+                                                   cfg.identification.compensate ? known : zero,
                                                    cfg.identification, model_mode);
         add_output_noise(obs, ex, o.seed);
         return obs;
       },
-      py::arg("config"),
-      "Simulated run means of the test plan with the configured errors and instrument noise (`ccal "
-      "simulate`), the options of simulate().");
+      py::arg("config"), py::kw_only(), py::arg("truth") = py::none(),
+      "Simulated run means of the test plan with the machine's errors (truth as in simulate()) and instrument "
+      "noise (`ccal simulate`), the options of simulate().");
   record_keywords<verbs::SimulateOptions>(m, "observe");
 }
 

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "ccal/io/log_manifest.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/render/reduce.hpp"
 #include "ccal/verbs/reduce.hpp"
@@ -17,6 +18,7 @@ namespace {
 struct ReduceCli {
   std::string config;
   std::vector<std::string> logs;  // RUN=FILE
+  std::string log_folder;         // DIR with a manifest (io/log_manifest.hpp)
   verbs::ReduceOptions options;   // its table's flags are bound to it
   bool old_budget = false;        // --budget, refused: a flag here, a file in identify; now --statement
   std::string observations_out;
@@ -37,9 +39,13 @@ Command add_reduce(CLI::App& app) {
                   "RUN=FILE: the log of a run of the plan (its name or 1-based index); repeat for each run. "
                   "CSV columns: time [s]; pulses (cumulative) or output (in the instrument's output unit); "
                   "optionally theta1 and gamma, the encoder angles")
-      ->required()
       ->allow_extra_args(false)
       ->type_name("RUN=FILE");
+  cmd->add_option("--logs", o->log_folder,
+                  "DIR: a folder of logs with its manifest.toml, which names each run's file and how the "
+                  "columns read (names, time unit, encoder unit or counts per revolution); `ccal simulate "
+                  "--logs-out DIR` writes one")
+      ->type_name("DIR");
   add_option_flags(*cmd, o->options, option_table<verbs::ReduceOptions>());
   cmd->add_flag("--budget", o->old_budget)->group("");  // refused with a message, not in --help
   add_observations_out_option(*cmd, o->observations_out);
@@ -49,6 +55,8 @@ Command add_reduce(CLI::App& app) {
       "Examples:\n"
       "  ccal reduce my.toml --log 5g=run05.csv --log 10g=run10.csv --log 15g=run15.csv --log 20g=run20.csv\n"
       "      mean outputs of four logged runs and the identified terms of my.toml\n"
+      "  ccal reduce my.toml --logs logs --statement\n"
+      "      the logs of a folder, by its manifest.toml (as ccal simulate --logs-out writes it)\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --angle-unit deg --format json\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement\n"
       "      with the calibration statement: each coefficient with its U and interval\n"
@@ -64,6 +72,20 @@ Command add_reduce(CLI::App& app) {
                   "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "
                   "--statement for the calibration statement with this configuration's tolerances");
             verbs::ReduceOptions ro = o->options;
+            if (o->logs.empty() == o->log_folder.empty())
+              throw InputError(o->logs.empty() ? "--log or --logs is required; accepted: --log RUN=FILE for each "
+                                                 "run, or --logs DIR for a folder with its manifest.toml"
+                                               : "--log and --logs: give one of them (the folder's manifest names "
+                                                 "its runs' files)");
+            if (!o->log_folder.empty()) {
+              note_input(o->log_folder + "/" + std::string(kLogManifestName));
+              const LogManifest manifest = read_log_manifest(o->log_folder);  // located errors name the file
+              ro.layout = manifest.layout;
+              for (const LogManifest::Entry& entry : manifest.runs) {
+                ro.logs.push_back({entry.run, entry.file.string()});
+                note_input(ro.logs.back().path);
+              }
+            }
             for (const std::string& item : o->logs) {
               const std::size_t eq = item.find('=');
               if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())

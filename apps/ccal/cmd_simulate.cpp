@@ -5,9 +5,13 @@
 #include <filesystem>
 #include <memory>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/io/log_manifest.hpp"
 #include "ccal/io/run_log_writer.hpp"
+#include "ccal/io/truth_file.hpp"
 #include "ccal/render/simulate.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "commands.hpp"
@@ -22,6 +26,8 @@ struct SimulateCli {
   verbs::SimulateOptions options;  // its table's flags are bound to it
   std::string observations_out;
   std::string logs_out;  // folder for one run log per run
+  std::string truth;     // the simulated machine's errors (io/truth_file.hpp); empty: the configuration's
+  std::string log_layout;  // the logs' columns and units (io/log_manifest.hpp); empty: ccal's own
   OutputOptions output;
 };
 
@@ -31,16 +37,26 @@ Command add_simulate(CLI::App& app) {
   auto o = std::make_shared<SimulateCli>();
   CLI::App* cmd =
       app.add_subcommand("simulate",
-                         "Simulated run means of the test plan (exact chain with the configured [errors], "
-                         "instrument noise), their "
+                         "Simulated run means of the test plan (exact chain with the machine's errors: those "
+                         "of --truth, else the configured [errors]; instrument noise), their "
                          "regressors, and the identification of the [identification] terms from them.");
   add_config_argument(*cmd, o->config);
   add_option_flags(*cmd, o->options, option_table<verbs::SimulateOptions>());
+  cmd->add_option("--truth", o->truth,
+                  "The errors the simulated machine really has, a TOML file with an [errors] table as a "
+                  "configuration's; the configuration's [errors] are then only what the lab measured (default: "
+                  "the machine has the configured [errors])")
+      ->type_name("FILE");
   add_observations_out_option(*cmd, o->observations_out);
   cmd->add_option("--logs-out", o->logs_out,
                   "Also write one run log per run into folder DIR (created if missing), named after the run: "
                   "time, pulses (or output), theta1, gamma, as `ccal reduce` reads them")
       ->type_name("DIR");
+  cmd->add_option("--log-layout", o->log_layout,
+                  "With --logs-out: write the logs in this layout, a TOML file with a manifest's [columns] table "
+                  "(column names, time unit, encoders in an angle unit or in counts per revolution), as a data "
+                  "acquisition system writes them")
+      ->type_name("FILE");
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(
       "Examples:\n"
@@ -50,13 +66,32 @@ Command add_simulate(CLI::App& app) {
       "  ccal simulate my.toml --mode paper --format json -o sim.json\n"
       "  ccal simulate --format csv > obs.csv\n"
       "  ccal simulate my.toml --logs-out logs\n"
-      "      also the runs' logs, logs/5g.csv, …, for `ccal reduce my.toml --log 5g=logs/5g.csv …`\n");
+      "      also the runs' logs, logs/5g.csv, … and logs/manifest.toml, for `ccal reduce my.toml --logs logs`\n"
+      "  ccal simulate my.toml --truth my-truth.toml --logs-out logs\n"
+      "      the machine with the truth file's errors, which the lab does not know (my.toml's [errors]: what\n"
+      "      it measured)\n"
+      "  ccal simulate my.toml --logs-out logs --log-layout daq.toml\n"
+      "      the logs in a data acquisition system's columns and units (daq.toml: a manifest's [columns])\n");
 
   return {
       cmd, [o] {
         const Config cfg = load_config_or_example(o->config);
         check_observations_out(o->observations_out, o->output);
-        const verbs::SimulateResult s = verbs::simulate(cfg, o->options);
+        if (!o->log_layout.empty() && o->logs_out.empty())
+          throw InputError("--log-layout: is read only for the logs; accepted: with --logs-out DIR");
+        LogLayout layout;
+        layout.angle_unit = "rad";  // ccal's own: stated in the manifest, so that the folder reads as written
+        if (!o->log_layout.empty()) {
+          note_input(o->log_layout);
+          layout = read_log_layout(o->log_layout);
+          if (layout.angle_unit.empty()) layout.angle_unit = "rad";
+        }
+        verbs::SimulateOptions so = o->options;
+        if (!o->truth.empty()) {
+          note_input(o->truth);
+          so.truth = load_truth(o->truth, cfg);
+        }
+        const verbs::SimulateResult s = verbs::simulate(cfg, so);
         print_warnings(s.identification.observability.warnings);
         const std::string& f = o->output.format;
         const std::string text = f == "json"  ? render::json(s)
@@ -71,10 +106,16 @@ Command add_simulate(CLI::App& app) {
           if (ec)
             throw InputError("--logs-out: cannot create the folder '" + o->logs_out + "': " + ec.message());
           const Eigen::VectorXd& means = s.observations.output;
-          for (auto& log :
-               write_run_logs(cfg, {means.data(), means.data() + means.size()}, default_log_step(cfg)))
+          std::vector<std::pair<std::string, std::string>> runs;
+          const auto logs = write_run_logs(cfg, s.machine_errors, {means.data(), means.data() + means.size()},
+                                           default_log_step(cfg), layout);
+          for (std::size_t r = 0; r < logs.size(); ++r) {
             extra.push_back(
-                {"--logs-out", (std::filesystem::path(o->logs_out) / log.name).string(), log.text});
+                {"--logs-out", (std::filesystem::path(o->logs_out) / logs[r].name).string(), logs[r].text});
+            runs.emplace_back(cfg.plan.runs[r].name, logs[r].name);
+          }
+          extra.push_back({"--logs-out", (std::filesystem::path(o->logs_out) / kLogManifestName).string(),
+                           log_manifest_text(layout, runs)});
         }
         write_outputs(o->output, text, extra);
       }};

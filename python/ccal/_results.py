@@ -203,14 +203,16 @@ def table_methods(cls, build):
 
 
 def write_logs(self, folder: "str", step: "Optional[float]" = None) -> "Dict[str, str]":
-    """Writes the runs' logs into `folder` (created if missing), as `ccal simulate --logs-out` does; returns
-    {run name: path}, what reduce() takes."""
+    """Writes the runs' logs and their manifest.toml into `folder` (created if missing), as `ccal simulate
+    --logs-out` does; returns {run name: path}, what reduce() takes (as does the folder itself)."""
     os.makedirs(folder, exist_ok=True)
     paths = {}
     for run, (name, text) in zip(self.config.runs, self.run_logs(step)):
         paths[run.name] = os.path.join(folder, name)
         with open(paths[run.name], "w", encoding="utf-8") as f:
             f.write(text)
+    with open(os.path.join(folder, "manifest.toml"), "w", encoding="utf-8") as f:
+        f.write(self.logs_manifest())
     return paths
 
 

@@ -44,24 +44,26 @@ void LogReducer::header(const std::vector<std::string>& names, int line) {
       if (header_[k] == name) return k;
     return std::nullopt;
   };
-  const auto time = find("time");
+  const LogColumns& c = options_.columns;
+  const auto time = find(c.time);
   if (!time)
     defer(Problem::no_time,
-          CsvError(source_, header_line_, 0, "time",
+          CsvError(source_, header_line_, 0, c.time,
                    fmt::format("no such column (needed by every run log); accepted: one of the columns {}",
                                fmt::join(header_, ", "))));
   time_ = time.value_or(0);
-  const auto pulses = find("pulses"), output = find("output");
+  const auto pulses = find(c.pulses), output = find(c.output);
   if (pulses.has_value() == output.has_value()) {
     defer(Problem::output_columns,
-          CsvError(source_, header_line_, 0, pulses ? "pulses" : "output",
-                   pulses ? "both 'pulses' and 'output' columns; accepted: exactly one of them"
-                          : fmt::format("no output column; accepted: 'pulses' (cumulative count) or 'output' "
+          CsvError(source_, header_line_, 0, pulses ? c.pulses : c.output,
+                   pulses ? fmt::format("both '{}' and '{}' columns; accepted: exactly one of them", c.pulses,
+                                        c.output)
+                          : fmt::format("no output column; accepted: '{}' (cumulative count) or '{}' "
                                         "(the instrument's output); the columns are {}",
-                                        fmt::join(header_, ", "))));
+                                        c.pulses, c.output, fmt::join(header_, ", "))));
   } else if (pulses && !(options_.pulse_weight > 0)) {
     defer(Problem::pulse_weight,
-          CsvError(source_, header_line_, int(*pulses + 1), "pulses",
+          CsvError(source_, header_line_, int(*pulses + 1), c.pulses,
                    "a pulse count needs the pulse weight (the instrument's quantum, or --pulse-weight); "
                    "accepted: a positive integrated output per pulse"));
   } else {
@@ -69,9 +71,9 @@ void LogReducer::header(const std::vector<std::string>& names, int line) {
     pulses_ = pulses.has_value();
   }
   const int order = options_.harmonic_order;
-  if (const auto k = find("theta1"))
+  if (const auto k = find(c.theta1))
     theta1_.emplace(Encoder{*k, Problem::theta1_cell, Problem::theta1_spacing, EncoderFit(order)});
-  if (const auto k = find("gamma"))
+  if (const auto k = find(c.gamma))
     gamma_.emplace(Encoder{*k, Problem::gamma_cell, Problem::gamma_spacing, EncoderFit(order)});
 }
 
@@ -123,7 +125,8 @@ void LogReducer::encoder_sample(Encoder& e, const std::string_view* fields, int 
 void LogReducer::row(const std::string_view* fields, int line) {
   last_line_ = line;
   if (pending_kind_ == Problem::no_time) return;
-  const std::optional<double> t = cell(fields, time_, Problem::time_cell, line);
+  std::optional<double> t = cell(fields, time_, Problem::time_cell, line);
+  if (t) *t *= options_.columns.time_scale;  // to s
   if (t && have_previous_time_ && !(*t > t_previous_))
     defer(Problem::time_order, cell_error(time_, line,
                                           fmt::format("time {} s does not follow {} s; accepted: strictly "
@@ -159,12 +162,12 @@ ReducedLog LogReducer::finish() {
   r.samples = rows_;
   throw_pending_before(Problem::time_cell);
   if (rows_ < 2)
-    throw CsvError(source_, header_line_, int(time_ + 1), "time",
+    throw CsvError(source_, header_line_, int(time_ + 1), options_.columns.time,
                    fmt::format("{} sample(s); accepted: at least two, the first and last of the run", rows_));
   throw_pending_before(Problem::time_order);
   r.duration = t_previous_ - t_first_;
   if (!std::isfinite(r.duration))
-    throw CsvError(source_, last_line_, int(time_ + 1), "time",
+    throw CsvError(source_, last_line_, int(time_ + 1), options_.columns.time,
                    fmt::format("the span {} s to {} s overflows; accepted: times of a run, in s", t_first_,
                                t_previous_));
   throw_pending_before(Problem::output_cell);

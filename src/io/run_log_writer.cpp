@@ -18,12 +18,12 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 
 double wrapped(double a) { return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi); }
 
-// The configured ripple c1, s1, …, cN, sN of a drive (a channel of the layout).
-std::vector<double> ripple_of(const Config& cfg, int channel) {
+// The machine's ripple c1, s1, …, cN, sN of a drive (a channel of the layout).
+std::vector<double> ripple_of(const Config& cfg, const Eigen::VectorXd& errors, int channel) {
   const ErrorLayout& layout = cfg.centrifuge.layout;
   std::vector<double> out;
   for (int k = 1; k <= layout.harmonic_order(); ++k)
-    for (const bool sine : {false, true}) out.push_back(cfg.centrifuge.errors[layout.harmonic_index(channel, k, sine)]);
+    for (const bool sine : {false, true}) out.push_back(errors[layout.harmonic_index(channel, k, sine)]);
   return out;
 }
 
@@ -37,14 +37,25 @@ double angle_error(const std::vector<double>& ripple, double q) {
   return d;
 }
 
-std::string file_name(const std::string& run) {
+
+// An encoder reading in the layout's unit: in counts the whole count below the angle (a real encoder's), wrapped
+// to one revolution; in an angle unit the angle itself.
+std::string encoder_text(double angle, const LogLayout& layout) {
+  if (layout.angle_unit == "counts") {
+    const auto n = static_cast<long long>(std::floor(angle / layout.angle_scale));
+    return fmt::format("{}", n % layout.counts_per_revolution);
+  }
+  return fmt::format("{:.17g}", angle / layout.angle_scale);
+}
+
+}  // namespace
+
+std::string run_log_file_name(const std::string& run) {
   std::string out = run;
   for (char& c : out)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '_';
   return out + ".csv";
 }
-
-}  // namespace
 
 double default_log_step(const Config& config) {
   double fastest = 0;
@@ -53,13 +64,16 @@ double default_log_step(const Config& config) {
   return std::min(0.1, kTwoPi / 8 / std::max(fastest, 1e-9));  // eight samples a revolution at least
 }
 
-std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<double>& run_means, double step) {
+std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::VectorXd& e,
+                                       const std::vector<double>& run_means, double step, const LogLayout& layout) {
   const auto& runs = config.plan.runs;
   if (run_means.size() != runs.size())
     throw InputError(fmt::format("run logs: {} run means for a plan of {} runs", run_means.size(), runs.size()));
+  if (e.size() != config.centrifuge.errors.size())
+    throw InputError(fmt::format("run logs: {} machine errors for a layout of {}", e.size(),
+                                 config.centrifuge.errors.size()));
   const Experiment ex = config.experiment();
-  const Eigen::VectorXd& e = config.centrifuge.errors;
-  const std::vector<double> main = ripple_of(config, ch::ripple1), platform = ripple_of(config, ch::ripple3);
+  const std::vector<double> main = ripple_of(config, e, ch::ripple1), platform = ripple_of(config, e, ch::ripple3);
   const bool locked = config.centrifuge.geometry.platform_control == PlatformControl::phase_locked;
   const double w = config.instrument.quantum;  // output SI × s per pulse
   // SI size of the output unit, for an instrument without a quantum (whose output is then not in pulses)
@@ -75,7 +89,8 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<d
     const double gamma_rate = turning ? -(rate + e[ch::dOmega]) : 0.0;
     const double phi0 = initial_phase(run, ex.geometry, ex.site);
     const double m = run_means[r];
-    std::string text = w > 0 ? "time,pulses,theta1,gamma\n" : "time,output,theta1,gamma\n";
+    const LogColumns& c = layout.columns;
+    std::string text = fmt::format("{},{},{},{}\n", c.time, w > 0 ? c.pulses : c.output, c.theta1, c.gamma);
     const auto n = std::int64_t(std::ceil(run.duration / step - 1e-9));
     for (std::int64_t k = 0; k <= n; ++k) {
       const double t = run.duration * double(k) / double(n);
@@ -83,9 +98,10 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<d
       const double d1 = angle_error(main, theta_n);
       const double gamma = turning ? gamma_n + angle_error(platform, gamma_n) - (locked ? d1 : 0.0) : phi0;
       const double value = w > 0 ? std::floor(m * t / w) : m / unit;
-      text += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", t, value, wrapped(theta_n + d1), wrapped(gamma));
+      text += fmt::format("{:.17g},{:.17g},{},{}\n", t / c.time_scale, value, encoder_text(wrapped(theta_n + d1), layout),
+                          encoder_text(wrapped(gamma), layout));
     }
-    out.push_back({file_name(run.name), std::move(text)});
+    out.push_back({run_log_file_name(run.name), std::move(text)});
   }
   return out;
 }

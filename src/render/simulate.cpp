@@ -11,11 +11,17 @@
 namespace ccal::render {
 namespace {
 
+// The machine's errors (the truth's, or the configuration's [errors]) and what the model knows of them.
 std::string describe_errors(const Config& cfg, const verbs::SimulateResult& s) {
+  const int known = int((cfg.centrifuge.errors.array() != 0.0).count());
+  const std::string model = cfg.identification.compensate ? "compensated (regressors computed with them)"
+                                                          : "uncompensated (regressors computed without them)";
+  if (s.truth)
+    return fmt::format("machine: {} non-zero errors of the truth {}; known [errors]: {}{}", s.error_count,
+                       s.truth->source, known == 0 ? "none" : fmt::format("{} non-zero, ", known),
+                       known == 0 ? "" : model);
   if (s.error_count == 0) return "[errors]: none";
-  return fmt::format("[errors]: {} non-zero, {}", s.error_count,
-                     cfg.identification.compensate ? "compensated (regressors computed with them)"
-                                                   : "uncompensated (regressors computed without them)");
+  return fmt::format("[errors]: {} non-zero, {}", s.error_count, model);
 }
 
 std::string describe_noise(const Config& cfg, std::uint64_t seed) {
@@ -60,7 +66,8 @@ std::string text_of(const Config& cfg, const verbs::SimulateResult& s) {
   }
   out += "  run means (regressors: the model's, from " +
          std::string(cfg.identification.compensate ? "the [errors] values" : "zero errors") +
-         "; output: the exact chain with the [errors] values)\n";
+         "; output: the exact chain with the " + (s.truth ? "truth's errors" : std::string("[errors] values")) +
+         ")\n";
   out += means.render() + "\n";
   out += "  identification of these observations\n";
   return out + identification_text(s.identification);
@@ -75,6 +82,8 @@ std::string json_of(const Config& cfg, const verbs::SimulateResult& s) {
   j["mode"] = mode_name(s.mode);
   j["compensate"] = cfg.identification.compensate;
   j["errors_nonzero"] = s.error_count;
+  j["truth"] = s.truth ? nlohmann::ordered_json{{"file", s.truth->source}, {"sha256", s.truth->text_sha256}}
+                       : nlohmann::ordered_json(nullptr);
   j["noise"] = {{"density", cfg.instrument.noise_density / s.output_unit_si},
                 {"quantum", cfg.instrument.quantum / s.output_unit_si},
                 {"applied", s.noisy},

@@ -75,6 +75,15 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   RunLogOptions lo;
   lo.output_scale = output_unit_si(cfg.instrument.output_unit);
   lo.angle_scale = o.angle_unit == AngleUnit::deg ? std::numbers::pi / 180 : 1.0;
+  lo.columns = o.layout.columns;
+  if (!o.layout.angle_unit.empty()) {
+    if (o.angle_unit != AngleUnit::rad)
+      throw OptionError("angle_unit", std::string(kAngleUnitNames[std::size_t(o.angle_unit)]),
+                        fmt::format("and the manifest's angle_unit '{}' are two answers for the encoders' unit; "
+                                    "accepted: one of them (the manifest's, leaving this option out)",
+                                    o.layout.angle_unit));
+    lo.angle_scale = o.layout.angle_scale;
+  }
   lo.pulse_weight = cfg.instrument.quantum;
   if (o.pulse_weight) {
     if (!(std::isfinite(*o.pulse_weight) && *o.pulse_weight > 0))

@@ -52,10 +52,18 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
                         run.name));
   const Experiment ex = cfg.experiment();
   const IdentificationSpec& spec = cfg.identification;
-  const Eigen::VectorXd& truth = cfg.centrifuge.errors;
+  // The machine has the truth's errors (the configuration's [errors] without a truth file); the model knows the
+  // configuration's [errors] only, and uses them when it compensates.
+  if (o.truth && o.truth->errors.size() != ex.layout.size())
+    throw InputError(fmt::format("{}: its errors are of another layout than {}'s; accepted: a truth read against "
+                                 "this configuration",
+                                 o.truth->source, cfg.source));
+  s.truth = o.truth;
+  s.machine_errors = o.truth ? o.truth->errors : cfg.centrifuge.errors;
+  const Eigen::VectorXd& known = cfg.centrifuge.errors;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
-  s.error_count = static_cast<int>((truth.array() != 0.0).count());
-  s.observations = observe<double>(ex, truth, spec.compensate ? truth : zero, spec, s.mode);
+  s.error_count = static_cast<int>((s.machine_errors.array() != 0.0).count());
+  s.observations = observe<double>(ex, s.machine_errors, spec.compensate ? known : zero, spec, s.mode);
   s.noisy = ex.instrument.noise_density > 0 || ex.instrument.quantum > 0;
   add_output_noise(s.observations, ex, o.seed);
   s.output_unit_si = output_unit_si(ex.instrument.output_unit);

@@ -6,6 +6,7 @@ import inspect
 import json
 import math
 import os
+import pathlib
 import pickle
 import re
 import signal
@@ -296,13 +297,38 @@ class RunLogs(unittest.TestCase):
         self.check("lever_arms_ieee.toml", 1.0)  # output in g, a base dimension of its own: SI size 1
 
     def test_cli_writes_the_same_logs(self):
+        # With the truth file, as the tutorial runs it: the same logs from the command line and from Python.
         lab = os.path.join(EXAMPLES, "lab.toml")
+        truth = os.path.join(EXAMPLES, "lab_truth.toml")
         with tempfile.TemporaryDirectory() as folder:
-            subprocess.run([os.environ["CCAL_PROGRAM"], "simulate", lab, "--logs-out", folder, "--seed", "4"],
-                           check=True, capture_output=True)
-            for name, text in ccal.simulate(ccal.load_config(lab), seed=4).run_logs():
+            subprocess.run([os.environ["CCAL_PROGRAM"], "simulate", lab, "--truth", truth, "--logs-out", folder,
+                            "--seed", "4"], check=True, capture_output=True)
+            simulation = ccal.simulate(ccal.load_config(lab), seed=4, truth=truth)
+            self.assertEqual(json.loads(simulation.to_json())["truth"]["file"], truth)
+            for name, text in simulation.run_logs():
                 with open(os.path.join(folder, name)) as f:
                     self.assertEqual(f.read(), text, name)
+            # Without it the machine is the lab's knowledge: other logs (the truth's rate errors show).
+            self.assertNotEqual(ccal.simulate(ccal.load_config(lab), seed=4).run_logs()[3][1],
+                                simulation.run_logs()[3][1])
+
+    def test_reduce_takes_the_folder_by_its_manifest(self):
+        # write_logs writes the manifest too; the folder and the dict of its files give the same bits.
+        lab = ccal.load_config(os.path.join(EXAMPLES, "lab.toml"))
+        with tempfile.TemporaryDirectory() as folder:
+            logs = ccal.simulate(lab).write_logs(folder)
+            self.assertTrue(os.path.exists(os.path.join(folder, "manifest.toml")))
+            by_dict = ccal.reduce(lab, logs)
+            by_folder = ccal.reduce(lab, pathlib.Path(folder))
+        self.assertEqual(list(by_dict.coefficients), list(by_folder.coefficients))
+
+    def test_a_bad_truth_file_is_refused_with_its_place(self):
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "truth.toml")
+            with open(path, "w") as f:
+                f.write("[errors]\ndthz6 = \"1 arcsec\"\n")
+            with self.assertRaisesRegex(ccal.InputError, "truth.toml:2:1: errors.dthz6: unknown error parameter"):
+                ccal.simulate(ccal.load_config(os.path.join(EXAMPLES, "lab.toml")), truth=path)
 
     def test_logs_have_encoders_and_pulses(self):
         sim = ccal.simulate(ccal.load_config(os.path.join(EXAMPLES, "lab.toml")))

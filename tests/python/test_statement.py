@@ -15,6 +15,7 @@ import numpy as np
 import ccal
 
 LAB = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "lab.toml")
+LAB_TRUTH = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "lab_truth.toml")
 
 
 class StatementObject(unittest.TestCase):
@@ -22,7 +23,7 @@ class StatementObject(unittest.TestCase):
     def setUpClass(cls):
         cls.folder = tempfile.TemporaryDirectory()
         config = ccal.load_config(LAB)
-        cls.logs = ccal.simulate(config).write_logs(cls.folder.name)
+        cls.logs = ccal.simulate(config, truth=LAB_TRUTH).write_logs(cls.folder.name)
         cls.statement = ccal.reduce(config, cls.logs, statement=True).statement
         args = [os.environ["CCAL_PROGRAM"], "reduce", LAB, "--statement"]
         for run, path in cls.logs.items():

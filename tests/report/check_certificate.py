@@ -30,6 +30,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 LAB = os.path.join(HERE, "..", "..", "examples", "lab.toml")
+LAB_TRUTH = os.path.join(HERE, "..", "..", "examples", "lab_truth.toml")
 RUNS = ["5g", "10g", "15g", "20g", "25g", "30g"]
 
 
@@ -77,7 +78,7 @@ def main(ccal, work, pdf):
         return 77
     os.makedirs(work, exist_ok=True)
     os.chdir(work)
-    run(ccal, "simulate", LAB, "--logs-out", "logs", "-o", "simulate.txt")
+    run(ccal, "simulate", LAB, "--truth", LAB_TRUTH, "--logs-out", "logs", "-o", "simulate.txt")
     logs = [a for r in RUNS for a in ("--log", f"{r}=logs/{r}.csv")]
     reduced = json.loads(run(ccal, "reduce", LAB, *logs, "--statement", "--observations-out", "obs.csv",
                              "--statement-out", "statement.json", "--format", "json").stdout)

@@ -38,7 +38,8 @@ class ReduceVerb : public ::testing::Test {
     config_ = parse_config(example_with_errors(true), "compensated.toml");
     sim_ = verbs::simulate(config_);
     const Eigen::VectorXd& means = sim_.observations.output;
-    const auto logs = write_run_logs(config_, std::vector<double>(means.data(), means.data() + means.size()),
+    const auto logs = write_run_logs(config_, config_.centrifuge.errors,
+                                     std::vector<double>(means.data(), means.data() + means.size()),
                                      default_log_step(config_));
     for (std::size_t r = 0; r < logs.size(); ++r) {
       std::ofstream(dir_ / logs[r].name) << logs[r].text;

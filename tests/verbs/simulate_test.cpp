@@ -12,6 +12,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/io/truth_file.hpp"
 #include "ccal/uncertainty/statement.hpp"
 #include "ccal/verbs/identify.hpp"
 #include "verbs_support.hpp"
@@ -79,6 +80,37 @@ TEST(SimulateVerb, CompensatedKnownErrorsLeaveTheConfiguredCoefficients) {
     const std::string& id = r.identification.fit.names[k];
     const double expected = configured(config, id, r.output_unit_si);
     EXPECT_NEAR(r.identification.fit.value[Eigen::Index(k)], expected, 1e-9 * std::abs(expected)) << id;
+  }
+}
+
+TEST(SimulateVerb, ATruthFileIsTheMachineAndTheConfigurationWhatTheLabKnows) {
+  // The machine has the truth's errors (five), the lab knows one ([errors] dthz5). The run means are the
+  // machine's: bit for bit those of a configuration whose [errors] are the truth's (the same chain at the same
+  // values). The regressors are the model's: with compensate = true those of the configuration's own [errors],
+  // bit for bit, not the truth's; with compensate = false those of zero errors in both.
+  const std::string truth_text = "[errors]\ndthz5 = \"2 arcsec\"\ndthy1t = \"3 arcsec\"\ndomega = \"2e-6 rad/s\"\n"
+                                 "dOmega = \"-1e-6 rad/s\"\ndx3_c1 = \"5 um\"\n";
+  for (const bool compensate : {false, true}) {
+    SCOPED_TRACE(compensate ? "compensated" : "uncompensated");
+    std::string known = edited(std::string(bundled_example_text()),
+                               "# dthz5 = \"2 arcsec\"       # instrument azimuth (IA) zero error", "dthz5 = \"2 arcsec\"");
+    if (compensate) known = edited(known, "compensate = false", "compensate = true");
+    const Config lab = parse_config(known, "lab.toml");
+    const Config machine = parse_config(example_with_errors(compensate), "machine.toml");
+    verbs::SimulateOptions o;
+    o.truth = parse_truth(truth_text, "truth.toml", lab);
+    const verbs::SimulateResult with_truth = verbs::simulate(lab, o);
+    const verbs::SimulateResult as_machine = verbs::simulate(machine);
+    const verbs::SimulateResult as_known = verbs::simulate(lab);
+    EXPECT_EQ(with_truth.error_count, 5);
+    EXPECT_EQ(with_truth.machine_errors, machine.centrifuge.errors);
+    ASSERT_TRUE(with_truth.truth);
+    EXPECT_EQ(with_truth.truth->source, "truth.toml");
+    EXPECT_EQ(with_truth.observations.output, as_machine.observations.output);
+    EXPECT_EQ(with_truth.observations.regressors, as_known.observations.regressors);
+    if (compensate) {
+      EXPECT_NE(with_truth.observations.regressors, as_machine.observations.regressors);
+    }
   }
 }
 

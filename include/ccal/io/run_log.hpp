@@ -3,7 +3,7 @@
 // output — its cumulative pulse count, or the output itself — and optionally of the main-axis and platform
 // encoder angles, reduced to the run's mean output and its measured motion (docs/model.md §13).
 //
-// Columns (names fixed, any order, other columns ignored):
+// Columns (these names by default, or those of RunLogOptions::columns; any order, other columns ignored):
 //   time     [s], strictly increasing;
 //   pulses   cumulative count of output quanta (a PIGA's pulses), or
 //   output   the instrument's output, in its output unit (exactly one of the two);
@@ -35,11 +35,23 @@
 
 namespace ccal {
 
+// The names of a log's columns and the unit of its time column: ccal's own layout by default, a data-acquisition
+// system's as a log folder's manifest maps it (io/log_manifest.hpp).
+struct LogColumns {
+  std::string time = "time";
+  std::string pulses = "pulses";
+  std::string output = "output";
+  std::string theta1 = "theta1";
+  std::string gamma = "gamma";
+  double time_scale = 1;  // s per unit of the time column
+};
+
 struct RunLogOptions {
   double pulse_weight = 0;  // integrated output per pulse [output SI · s]; needed for a `pulses` log
   double output_scale = 1;  // SI per unit of the `output` column
   double angle_scale = 1;   // rad per unit of the encoder columns
   int harmonic_order = 0;   // N: harmonics of the encoder fits (0: straight lines only)
+  LogColumns columns;       // the columns' names and the time unit
 };
 
 struct ReducedLog {

@@ -11,11 +11,13 @@
 //   gamma    γ = γⁿ + δ3(γⁿ) [− δ1(θ1ⁿ) phase-locked], γⁿ = φ0 − (Ω + Δω + ΔΩ) t on a counter-rotating
 //            platform, φ0 on a fixed one;
 // with δ(q) = Σ (ck sin kq − sk cos kq)/k the angle error of a drive's configured rate ripple c1, s1, …
-// (docs/model.md §3.1, §13.1) and Δω, ΔΩ the configured [errors].
+// (docs/model.md §3.1, §13.1) and Δω, ΔΩ those of the machine's errors (the simulation's truth).
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "ccal/io/config_file.hpp"
+#include "ccal/io/log_manifest.hpp"
 
 namespace ccal {
 
@@ -24,10 +26,18 @@ struct RunLogFile {
   std::string text;  // the CSV table
 };
 
-// One log per run of config's plan; run_means: the runs' mean outputs [output SI], in plan order. step: at
-// most a quarter revolution of the fastest run (the reduction unwraps less than 0.75π between samples);
+// One log per run of config's plan; machine_errors: the errors the simulated machine has (SI, by config's
+// layout: SimulateResult::machine_errors); run_means: the runs' mean outputs [output SI], in plan order. step:
+// at most a quarter revolution of the fastest run (the reduction unwraps less than 0.75π between samples);
 // throws InputError otherwise or for a mean count that does not match the plan.
-std::vector<RunLogFile> write_run_logs(const Config& config, const std::vector<double>& run_means, double step);
+// layout: the columns' names, the time unit and the encoders' unit (io/log_manifest.hpp; default: ccal's own,
+// seconds and radians); in counts each reading is the whole count below the angle, wrapped to one revolution.
+std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::VectorXd& machine_errors,
+                                       const std::vector<double>& run_means, double step,
+                                       const LogLayout& layout = {});
+
+// The file name of a run's log: its name with characters other than letters, digits, '.', '-' as '_', and ".csv".
+std::string run_log_file_name(const std::string& run);
 
 // The default sampling interval: 0.1 s, or an eighth of a revolution of the fastest run if that is shorter.
 double default_log_step(const Config& config);

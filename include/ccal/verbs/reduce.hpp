@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/io/log_manifest.hpp"
 #include "ccal/io/run_log.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
@@ -31,7 +32,10 @@ struct ReduceOptions {
   // At least as many as the identification has free terms. Not a row of the table: each front end reads
   // them (the command line: --log RUN=FILE, repeated; Python: a dict of run → file).
   std::vector<LogFile> logs;
-  AngleUnit angle_unit = AngleUnit::rad;  // of the encoder columns
+  // How the logs' columns read (a log folder's manifest, io/log_manifest.hpp); default: ccal's own layout. Not
+  // a row either: the front ends read it with the logs (the command line: --logs DIR).
+  LogLayout layout;
+  AngleUnit angle_unit = AngleUnit::rad;  // of the encoder columns, unless the layout states their unit
   std::optional<double> pulse_weight;     // integrated output per pulse [output unit × s]; unset: the quantum
   std::optional<ModelMode> mode;          // model of the regressors; unset: the configuration's
   bool statement = false;                 // also the calibration statement with the configuration's budget

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/io/truth_file.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
@@ -21,6 +22,9 @@ namespace ccal::verbs {
 struct SimulateOptions {
   std::optional<ModelMode> mode;  // reduction of a run; unset: the configuration's [identification] mode
   std::uint64_t seed = 1;         // of the output noise (used only if the instrument has noise)
+  // What the simulated machine really has (io/truth_file.hpp); unset: the configuration's [errors]. Not a row
+  // of the table: each front end reads the file (the command line: --truth FILE).
+  std::optional<SimulationTruth> truth;
 };
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
@@ -33,7 +37,9 @@ struct SimulateResult {
   Observations<double> observations;  // run means (output SI, regressors in their term units)
   double output_unit_si = 1;          // SI size of one output unit
   bool noisy = false;                 // the instrument's noise or quantum was applied
-  int error_count = 0;                // non-zero [errors] parameters
+  int error_count = 0;                // non-zero errors of the simulated machine (the truth's, or [errors])
+  std::optional<SimulationTruth> truth;  // the truth file, when one was given
+  Eigen::VectorXd machine_errors;        // the errors the simulated machine has (SI, by the layout)
   std::vector<std::size_t> order;     // regressor columns in canonical term order, as in the file
   std::string observations_csv;       // the observations file (the input of `ccal identify`)
   Identification identification;      // of that file

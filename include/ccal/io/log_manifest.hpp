@@ -1,0 +1,66 @@
+#pragma once
+// A folder of run logs and its manifest (docs/cli.md, "A folder of logs"): `manifest.toml` in the folder says
+// which file holds which run of the plan and how the files' columns read, so that `ccal reduce CONFIG --logs DIR`
+// takes the folder as a data-acquisition system wrote it, and `ccal simulate --logs-out DIR` writes one.
+//
+//     # manifest.toml
+//     [columns]                       # all optional: ccal's own layout by default
+//     time = "t_ms"                   # the time column (default "time")
+//     time_unit = "ms"                # its unit (default "s")
+//     pulses = "piga_count"           # the cumulative pulse count (default "pulses"), or
+//     output = "rate"                 #   the instrument's output, in its output unit (default "output")
+//     theta1 = "enc_main"             # the main-axis encoder (default "theta1")
+//     gamma = "enc_platform"          # the platform encoder (default "gamma")
+//     angle_unit = "counts"           # the encoders' unit: an angle unit (rad, deg, …) or counts
+//     counts_per_revolution = 16777216  # with counts: the encoders' counts per revolution (2^24 here)
+//     [runs]                          # run (its name or 1-based index) = file, relative to the folder
+//     5g = "run_05g.csv"
+//     10g = "run_10g.csv"
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccal/io/run_log.hpp"
+
+namespace ccal {
+
+inline constexpr std::string_view kLogManifestName = "manifest.toml";
+
+// How a folder's logs read: the columns, and the encoders' unit when the manifest states one.
+struct LogLayout {
+  LogColumns columns;
+  std::string angle_unit;        // as written ("rad", "deg", "counts"); empty: not stated
+  double angle_scale = 1;        // rad per unit of the encoder columns (2π/counts for counts)
+  long long counts_per_revolution = 0;  // with angle_unit = "counts"
+  std::string time_unit = "s";   // as written
+};
+
+struct LogManifest {
+  std::string source;  // the manifest's path, as in messages
+  LogLayout layout;
+  struct Entry {
+    std::string run;                // as written: a run's name or its 1-based index
+    std::filesystem::path file;     // the folder joined with the file as written
+  };
+  std::vector<Entry> runs;  // in the manifest's order
+};
+
+// Reads DIR/manifest.toml. Throws ConfigError, located (file, line, key), for a folder without one, a TOML error,
+// an unknown table or key, a column name that is empty or used twice, a time unit that is no time, an angle
+// unit that is no angle (or counts without counts_per_revolution, or that number without counts), an empty
+// [runs] or a file that is not a relative path inside the folder.
+LogManifest read_log_manifest(const std::filesystem::path& folder);
+LogManifest parse_log_manifest(std::string_view text, std::string_view source_name,
+                               const std::filesystem::path& folder);
+
+// A layout alone (`ccal simulate --log-layout FILE`): a file with the [columns] table of a manifest and nothing
+// else (the runs of simulated logs are the plan's). ConfigError as above.
+LogLayout read_log_layout(const std::filesystem::path& file);
+LogLayout parse_log_layout(std::string_view text, std::string_view source_name);
+
+// The manifest's text for logs of this layout, one [runs] line per (run, file name).
+std::string log_manifest_text(const LogLayout& layout, const std::vector<std::pair<std::string, std::string>>& runs);
+
+}  // namespace ccal

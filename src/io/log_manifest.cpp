@@ -1,0 +1,195 @@
+#include "ccal/io/log_manifest.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <utility>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "config_reader.hpp"
+
+namespace ccal {
+
+using namespace config_reading;
+
+namespace {
+
+const Keys kManifestKeys{"columns", "runs"};
+const Keys kColumnKeys{"time", "time_unit", "pulses", "output", "theta1", "gamma", "angle_unit",
+                       "counts_per_revolution"};
+
+// A unit of the given dimension, its SI size; the message names what was expected.
+double unit_size(const Reader& r, const toml::table& t, std::string_view key, const std::string& text, Dimension dim,
+                 std::string_view accepted) {
+  try {
+    const Quantity q = parse_unit(text);
+    if (q.dim == dim && q.value_si > 0) return q.value_si;
+  } catch (const UnitError&) {
+  }
+  r.fail(*t.get(key), Reader::path("columns", key), fmt::format("'{}' is not {}", text, accepted));
+}
+
+void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
+  const toml::table* t = r.table(root, "", "columns", false);
+  if (!t) return;
+  r.check_keys(*t, "columns", kColumnKeys);
+  LogColumns& c = layout.columns;
+  std::set<std::string> used;
+  for (auto [key, name] : {std::pair{"time", &c.time}, {"pulses", &c.pulses}, {"output", &c.output},
+                           {"theta1", &c.theta1}, {"gamma", &c.gamma}}) {
+    if (const auto s = r.string(*t, "columns", key)) {
+      if (s->empty()) r.fail(*t->get(key), Reader::path("columns", key), "an empty column name; accepted: the "
+                                                                          "name of the log's column");
+      *name = *s;
+    }
+    if (!used.insert(*name).second)
+      r.fail(t->get(key) ? *t->get(key) : static_cast<const toml::node&>(*t), Reader::path("columns", key),
+             fmt::format("'{}' names two columns; accepted: one name per column", *name));
+  }
+  if (const auto u = r.string(*t, "columns", "time_unit")) {
+    c.time_scale = unit_size(r, *t, "time_unit", *u, kind::time, "a time unit; accepted: s, ms, us, min, …");
+    layout.time_unit = *u;
+  }
+  const auto counts = r.number(*t, "columns", "counts_per_revolution");
+  if (const auto u = r.string(*t, "columns", "angle_unit")) {
+    layout.angle_unit = *u;
+    if (*u == "counts") {
+      if (!counts)
+        r.fail(*t->get("angle_unit"), "columns.angle_unit",
+               "counts need the encoders' resolution; accepted: with counts_per_revolution = N (e.g. 16777216)");
+      if (!(*counts >= 1 && *counts <= 1e15 && *counts == std::floor(*counts)))
+        r.fail(*t->get("counts_per_revolution"), "columns.counts_per_revolution",
+               fmt::format("{} is not a whole number of counts; accepted: 1 to 1e15", number_text(*counts)));
+      layout.counts_per_revolution = static_cast<long long>(*counts);
+      layout.angle_scale = 2 * std::numbers::pi / *counts;
+    } else {
+      layout.angle_scale = unit_size(r, *t, "angle_unit", *u, kind::angle, "an angle unit; accepted: rad, deg, "
+                                                                            "arcsec, … or counts");
+    }
+  }
+  if (counts && layout.angle_unit != "counts")
+    r.fail(*t->get("counts_per_revolution"), "columns.counts_per_revolution",
+           "is read only for encoders in counts; accepted: with angle_unit = \"counts\"");
+}
+
+void read_runs(const Reader& r, const toml::table& root, const std::filesystem::path& folder, LogManifest& m) {
+  const toml::table* t = r.table(root, "", "runs", true, "accepted: run = \"file\" lines, one per logged run");
+  for (const auto& [key, node] : *t) {
+    const std::string p = Reader::path("runs", key.str());
+    const auto* s = node.as_string();
+    if (!s) r.fail(node, p, fmt::format("expected a file name, got {}", type_name(node)));
+    const std::filesystem::path file(s->get());
+    // Inside the folder: a manifest moved with its folder still finds its logs, and reads nothing else.
+    bool outside = file.empty() || file.is_absolute();
+    for (const auto& part : file) outside = outside || part == "..";
+    if (outside)
+      r.fail(node, p, fmt::format("'{}' is not a file inside the folder; accepted: a path relative to {}",
+                                  s->get(), folder.string()));
+    m.runs.push_back({std::string(key.str()), folder / file});
+  }
+  if (m.runs.empty()) r.fail(where(t->source()), "runs", "no run; accepted: run = \"file\" lines, one per run");
+  // A TOML table's keys come sorted: back to the order the manifest wrote them in.
+  std::stable_sort(m.runs.begin(), m.runs.end(), [&](const LogManifest::Entry& a, const LogManifest::Entry& b) {
+    const auto& sa = t->get(a.run)->source().begin;
+    const auto& sb = t->get(b.run)->source().begin;
+    return std::pair(sa.line, sa.column) < std::pair(sb.line, sb.column);
+  });
+}
+
+}  // namespace
+
+namespace {
+
+toml::table parse_toml(const Reader& r, std::string_view text, std::string_view source_name) {
+  toml::table root;
+#if TOML_EXCEPTIONS
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}", e.description()));
+  }
+#else
+  auto result = toml::parse(text, source_name);
+  if (!result)
+    r.fail(where(result.error().source()), "",
+           fmt::format("TOML syntax error: {}", result.error().description()));
+  root = std::move(result).table();
+#endif
+  return root;
+}
+
+std::string read_text(const std::filesystem::path& path, std::string_view missing) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  if (!in || std::filesystem::is_directory(path, ec))
+    throw FileNotFound<ConfigError>(path.string(), 0, 0, "", std::string(missing));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+LogManifest parse_log_manifest(std::string_view text, std::string_view source_name,
+                               const std::filesystem::path& folder) {
+  const Reader r{std::string(source_name)};
+  const toml::table root = parse_toml(r, text, source_name);
+  r.check_keys(root, "", kManifestKeys);
+  LogManifest m;
+  m.source = std::string(source_name);
+  read_columns(r, root, m.layout);
+  read_runs(r, root, folder, m);
+  return m;
+}
+
+LogManifest read_log_manifest(const std::filesystem::path& folder) {
+  const std::filesystem::path path = folder / kLogManifestName;
+  const std::string text = read_text(
+      path, fmt::format("no manifest in the folder; accepted: a folder with {} naming each run's file (`ccal "
+                        "simulate --logs-out DIR` writes one; docs/cli.md, \"A folder of logs\")",
+                        kLogManifestName));
+  return parse_log_manifest(text, path.string(), folder);
+}
+
+LogLayout parse_log_layout(std::string_view text, std::string_view source_name) {
+  const Reader r{std::string(source_name)};
+  const toml::table root = parse_toml(r, text, source_name);
+  // The runs of simulated logs are the plan's: a layout has the columns only.
+  r.check_keys(root, "", Keys{"columns"});
+  LogLayout layout;
+  read_columns(r, root, layout);
+  return layout;
+}
+
+LogLayout read_log_layout(const std::filesystem::path& file) {
+  return parse_log_layout(read_text(file, "cannot read the file; check the path and permissions"), file.string());
+}
+
+std::string log_manifest_text(const LogLayout& layout, const std::vector<std::pair<std::string, std::string>>& runs) {
+  const auto quoted = [](const std::string& s) { return toml::value<std::string>(s); };
+  std::ostringstream out;
+  out << "# The run logs of this folder, as `ccal reduce CONFIG --logs DIR` reads them (docs/cli.md).\n";
+  const LogColumns& c = layout.columns;
+  out << "[columns]\n"
+      << "time = " << quoted(c.time) << "\n"
+      << "time_unit = " << quoted(layout.time_unit) << "\n"
+      << "pulses = " << quoted(c.pulses) << "\n"
+      << "output = " << quoted(c.output) << "\n"
+      << "theta1 = " << quoted(c.theta1) << "\n"
+      << "gamma = " << quoted(c.gamma) << "\n";
+  if (!layout.angle_unit.empty()) out << "angle_unit = " << quoted(layout.angle_unit) << "\n";
+  if (layout.angle_unit == "counts") out << "counts_per_revolution = " << layout.counts_per_revolution << "\n";
+  out << "\n[runs]\n";
+  for (const auto& [run, file] : runs) {
+    toml::table line;
+    line.insert(run, file);
+    out << line << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace ccal
