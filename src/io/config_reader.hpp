@@ -307,7 +307,8 @@ inline const Keys kDesignKeys{"runs",         "total_time",     "max_g",        
                               "g_step",       "durations",      "turn_fractions", "phase",    "phases",
                               "phase_step",   "arm_azimuths",   "azimuth_step", "mountings",  "platforms",
                               "refine",       "objective",      "coefficients", "targets",    "weights",
-                              "starts",       "seed"};
+                              "starts",       "seed",           "g_resolution", "duration_resolution",
+                              "angle_resolution"};
 
 // The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
 Site read_site(const Reader& r, const toml::table& root);

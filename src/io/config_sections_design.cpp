@@ -187,6 +187,13 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
   d.mountings = words(r, *t, "mountings", kMountingWords);
   d.platforms = words(r, *t, "platforms", kPlatformWords);
   d.refine = r.boolean(*t, p, "refine").value_or(true);
+  d.g_resolution = r.quantity(*t, p, "g_resolution", kind::acceleration_g, nullptr, "0.01 g");
+  if (d.g_resolution) positive(*t->get("g_resolution"), "design.g_resolution", *d.g_resolution);
+  d.duration_resolution = r.quantity(*t, p, "duration_resolution", kind::time, nullptr, "0.001 s");
+  if (d.duration_resolution)
+    positive(*t->get("duration_resolution"), "design.duration_resolution", *d.duration_resolution);
+  d.angle_resolution = r.quantity(*t, p, "angle_resolution", kind::angle, nullptr, "0.1 deg");
+  if (d.angle_resolution) positive(*t->get("angle_resolution"), "design.angle_resolution", *d.angle_resolution);
   read_objective(r, *t, instrument, spec, d);
   return d;
 }

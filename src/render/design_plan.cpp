@@ -1,27 +1,45 @@
 // The designed plan as configuration text (render/design.hpp).
 #include <fmt/format.h>
 
+#include <numbers>
 #include <sstream>
 
+#include "ccal/core/units.hpp"
 #include "ccal/render/design.hpp"
 
 namespace ccal::render {
 
+namespace {
+
+// A value as the operator reads it: the fewest decimals (up to 9) in `unit` that read back as the same double,
+// else all 17 digits in the SI unit (a plan not rounded to the machine's resolution still reads back exactly).
+std::string setting(double si, const char* unit, double unit_si, const char* si_unit) {
+  for (int decimals = 0; decimals <= 9; ++decimals) {
+    const std::string text = fmt::format("{:.{}f} {}", si / unit_si, decimals, unit);
+    if (parse_quantity(text).value_si == si) return text;
+  }
+  return fmt::format("{:.17g} {}", si, si_unit);
+}
+
+}  // namespace
+
 std::string plan_toml(const Config& config) {
+  constexpr double kDegree = std::numbers::pi / 180;
   std::string out =
       "# --- The test plan (designed by `ccal design`, docs/model.md §15) ------------------------------------\n"
-      "# Values in g, s and rad with 17 significant digits: they read back exactly as designed.\n"
+      "# Rounded to what the machine sets ([design] g_resolution, duration_resolution, angle_resolution): each\n"
+      "# value reads back exactly as the plan that was scored.\n"
       "[plan]\n";
   for (const Run& run : config.plan.runs) {
     out += fmt::format("\n[[plan.runs]]\nname = \"{}\"\n", run.name);
-    out += fmt::format("g_level = \"{:.17g} g\"\n", run.g_level);
-    out += fmt::format("duration = \"{:.17g} s\"\n", run.duration);
+    out += fmt::format("g_level = \"{}\"\n", setting(run.g_level, "g", 1, "g"));
+    out += fmt::format("duration = \"{}\"\n", setting(run.duration, "s", 1, "s"));
     out += fmt::format("platform = \"{}\"\n", platform_mode_name(run.mode));
     if (run.terminal_phase)
-      out += fmt::format("terminal_phase = \"{:.17g} rad\"\n", *run.terminal_phase);
+      out += fmt::format("terminal_phase = \"{}\"\n", setting(*run.terminal_phase, "deg", kDegree, "rad"));
     else
-      out += fmt::format("initial_phase = \"{:.17g} rad\"\n", run.initial_phase.value_or(0.0));
-    out += fmt::format("arm_azimuth = \"{:.17g} rad\"\n", run.arm_azimuth);
+      out += fmt::format("initial_phase = \"{}\"\n", setting(run.initial_phase.value_or(0.0), "deg", kDegree, "rad"));
+    out += fmt::format("arm_azimuth = \"{}\"\n", setting(run.arm_azimuth, "deg", kDegree, "rad"));
     out += fmt::format("mounting = \"{}\"\n", mounting_name(run.mounting));
   }
   return out;

@@ -53,7 +53,7 @@ table.certificate{font-size:0.95em}table.certificate th{width:14em}
 @media print{body{max-width:none;margin:0;padding:0;font-size:9pt}.chart{break-inside:avoid;min-width:0}
 pre{max-height:none;white-space:pre-wrap;overflow-wrap:anywhere}tr,.signatures{break-inside:avoid}
 h2{break-after:avoid}.annex{break-before:page}details::details-content{content-visibility:visible;display:block}
-td.num{white-space:normal}table.result td{padding:3px 6px}table.statement{font-size:6.5pt}table.statement th,table.statement td{padding:1px 2px}
+td.num{white-space:normal}table.result td{padding:3px 6px}table.design-coefficients th,table.design-coefficients td{padding:2px 4px}table.statement{font-size:6.5pt}table.statement th,table.statement td{padding:1px 2px}
 table.statement caption{font-size:9pt}
 table.budget{font-size:6.5pt}table.budget th,table.budget td{padding:1px 2px}table.budget td.num{white-space:nowrap}
 table.budget caption{font-size:9pt}

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/units.hpp"
 #include "ccal/reduction/observability.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/uncertainty/budget.hpp"
@@ -241,6 +242,44 @@ Run plan_run(const DesignRun& d, std::string name) {
   (d.phase_kind == DesignPhase::terminal ? r.terminal_phase : r.initial_phase) = wrap(d.phase);
   r.arm_azimuth = wrap(d.arm_azimuth);
   r.mounting = d.mounting;
+  return r;
+}
+
+SettingResolution setting_resolution(const DesignSpace& design) {
+  SettingResolution r;
+  r.g = design.g_resolution.value_or(r.g);
+  r.duration = design.duration_resolution.value_or(r.duration);
+  r.angle = design.angle_resolution.value_or(r.angle);
+  return r;
+}
+
+namespace {
+
+// A count of steps as its shortest decimal with the unit, read back as a configuration reads it.
+double as_written(double steps, double step, const char* unit) {
+  return parse_quantity(fmt::format("{:.12g} {}", steps * step, unit)).value_si;
+}
+
+// An angle in [0, 2π) to the nearest step, as written in degrees.
+double rounded_angle(double radians, double step) {
+  const double degrees = std::fmod(std::fmod(radians, kTurn) + kTurn, kTurn) * 180 / std::numbers::pi;
+  const double step_deg = step * 180 / std::numbers::pi;
+  double k = std::round(degrees / step_deg);
+  if (k * step_deg >= 360 - 1e-9) k = 0;
+  return as_written(k, step_deg, "deg");
+}
+
+}  // namespace
+
+Run rounded_run(const Run& run, const SettingResolution& res, double max_g) {
+  Run r = run;
+  double k = std::round(run.g_level / res.g);
+  if (k * res.g > max_g * (1 + 1e-12)) k -= 1;
+  r.g_level = as_written(std::max(k, 1.0), res.g, "g");
+  r.duration = as_written(std::max(std::floor(run.duration / res.duration + 1e-9), 1.0), res.duration, "s");
+  if (r.terminal_phase) r.terminal_phase = rounded_angle(*r.terminal_phase, res.angle);
+  if (r.initial_phase) r.initial_phase = rounded_angle(*r.initial_phase, res.angle);
+  r.arm_azimuth = rounded_angle(run.arm_azimuth, res.angle);
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <chrono>
 #include <cmath>
 
@@ -97,15 +98,25 @@ bool configured_in_space(const Config& config, const ResolvedDesignSpace& s) {
   return total <= s.total_time * (1 + 1e-12);
 }
 
-Config with_plan(const Config& config, const std::vector<DesignRun>& runs) {
+// The designed plan as the operator runs it: each run rounded to what the machine can set, in g-level order,
+// named after its g-level ("29.47g"; "30g", "30g-2", … where several share one), so that a log's name says its
+// g-level.
+Config with_plan(const Config& config, const std::vector<DesignRun>& runs, const ResolvedDesignSpace& space) {
   std::vector<DesignRun> sorted = runs;
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const DesignRun& a, const DesignRun& b) { return a.g_level < b.g_level; });
   Config c = config;
   c.text_sha256.clear();  // another plan: no longer the file's configuration
   c.plan.runs.clear();
-  for (std::size_t j = 0; j < sorted.size(); ++j)
-    c.plan.runs.push_back(plan_run(sorted[j], fmt::format("run{}", j + 1)));
+  const SettingResolution resolution = setting_resolution(config.design);
+  std::map<std::string, int> count;
+  for (const DesignRun& run : sorted) {
+    Run planned = rounded_run(plan_run(run, ""), resolution, space.max_g);
+    const std::string level = fmt::format("{:.12g}g", planned.g_level);
+    const int n = ++count[level];
+    planned.name = n == 1 ? level : fmt::format("{}-{}", level, n);
+    c.plan.runs.push_back(planned);
+  }
   return c;
 }
 
@@ -301,7 +312,7 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   r.search_seconds = seconds_since(t1);
   r.designed_objective = r.search.score.objective;
 
-  r.designed = with_plan(config, r.search.runs);
+  r.designed = with_plan(config, r.search.runs, r.space);
   r.after = rescore(r.designed, options);
   r.tolerance_before = tolerance_expanded(config, r.before.budget);
   r.tolerance_after = tolerance_expanded(r.designed, r.after.budget);

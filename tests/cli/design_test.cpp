@@ -40,7 +40,9 @@ TEST_F(DesignCli, PlanOutBudgetsAsReported) {
   const std::string text = read(dir_ / "designed.toml");
   EXPECT_NE(text.find("[tolerances]"), std::string::npos);
   EXPECT_NE(text.find("turn_fractions = 4"), std::string::npos);
-  EXPECT_EQ(text.find("name = \"5g\""), std::string::npos);  // the configured runs are gone
+  EXPECT_EQ(text.find("name = \"10g\""), std::string::npos);  // the configured runs are gone (10 g: not designed)
+  // The designed runs are named after their g-levels, rounded as the operator sets them (docs/config.md).
+  EXPECT_NE(text.find("name = \"5g-2\"\ng_level = \"5 g\""), std::string::npos) << text;
 }
 
 TEST_F(DesignCli, BadDesignSpacesAreRefused) {

@@ -104,13 +104,15 @@ class DesignedExample : public ::testing::Test {
 verbs::DesignResult* DesignedExample::result_ = nullptr;
 
 // Never worse: the configured plan is one of the starts, so the objective (by the cache) cannot rise, and the
-// full budget agrees with the cache on the designed plan (1e-9, as above).
+// full budget of the plan as run agrees with the cache on the designed plan to its rounding (below).
 TEST_F(DesignedExample, NeverWorseThanTheConfiguredPlan) {
   EXPECT_LE(r().designed_objective, r().configured_objective);
   for (Eigen::Index k = 1; k < 3; ++k) {  // K2, K3: the coefficients the objective counts (all three here)
     EXPECT_LE(r().after.budget.expanded_uncertainty[k], r().before.budget.expanded_uncertainty[k])
         << r().after.budget.coefficients[k];
-    EXPECT_LT(relative(r().search.score.expanded[k], r().after.budget.expanded_uncertainty[k]), 1e-9);
+    // The plan as run is rounded to the machine's settings (0.01 g, 1 ms, 0.1°): it scores within 1 % of the
+    // search's optimum (each setting moved by half a step at most: 0.4 % on K3, the most sensitive).
+    EXPECT_LT(relative(r().search.score.expanded[k], r().after.budget.expanded_uncertainty[k]), 1e-2);
   }
 }
 

@@ -51,6 +51,11 @@ struct DesignSpace {
   std::vector<Mounting> mountings;     // default: the plan's
   std::vector<PlatformMode> platforms;  // default: the plan's
   bool refine = true;                   // refine the continuous variables locally after the grid search
+  // What the machine's operator can set: the designed plan is rounded to these (g-level to the nearest, the
+  // duration down, phases and arm azimuth to the nearest) and scored as rounded. Defaults: 0.01 g, 1 ms, 0.1°.
+  std::optional<double> g_resolution;         // [g]
+  std::optional<double> duration_resolution;  // [s]
+  std::optional<double> angle_resolution;     // [rad]
 
   DesignObjective objective = DesignObjective::uncertainty;
   std::vector<std::string> coefficients;   // the coefficients the objective counts (default: every free term)

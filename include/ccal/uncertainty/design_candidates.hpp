@@ -5,6 +5,7 @@
 // (observe's model means, output_jacobian of uncertainty/budget.hpp, rate_noise_gain), so that a plan scores
 // exactly as the budget would score it.
 
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,24 @@ std::vector<DesignRun> candidate_runs(const ResolvedDesignSpace& space, const Co
 // A plan's run as a design run (its own phase kind kept) and back.
 DesignRun design_run(const Run& run);
 Run plan_run(const DesignRun& run, std::string name);
+
+// What the machine's operator can set ([design] g_resolution, duration_resolution, angle_resolution; defaults
+// 0.01 g, 1 ms, 0.1°).
+struct SettingResolution {
+  double g = 0.01;                   // [g]
+  // [s]. A run's duration places where the platform stops in its last turn, which the designed plans use to
+  // cancel leaks: 0.1 s (1 rad at 10 rad/s) took the bundled example's designed U(K3) from 0.00045 to 0.0056,
+  // 1 ms costs it 0.4 % (a data acquisition window is set to its sample clock, far finer).
+  double duration = 0.001;
+  double angle = 0.1 * std::numbers::pi / 180;  // [rad]
+};
+SettingResolution setting_resolution(const DesignSpace& design);
+
+// A run as the operator sets it: the g-level to the nearest step (the step below when that is above max_g), the
+// duration down to its step (never longer, so a plan keeps within its total time; at least one step), the phase
+// and the arm azimuth to the nearest step in [0°, 360°). Each value is the one its shortest decimal in g, s or
+// deg reads back as, so the plan written out (render/design.hpp, plan_toml) is the plan scored.
+Run rounded_run(const Run& run, const SettingResolution& resolution, double max_g);
 
 // The cached rows of the runs under the configuration (its tolerances, groups, drives' noise, instrument noise,
 // identification and mode), in parallel (OpenMP, `threads` ≤ 0: the default). Deterministic.
