@@ -63,7 +63,7 @@ TESTED_ELSEWHERE = {
     "tests/uncertainty/allocate_guards_test.cpp",
     "uncertainty/allocation_targets.cpp": "a part of the allocation: tests/uncertainty/allocate_test.cpp",
     "uncertainty/calibration_model.cpp": "the trial model: tests/uncertainty/montecarlo_test.cpp",
-    "uncertainty/design_candidates.cpp": "the candidate runs: tests/verbs/design_test.cpp; the rounding to the machine's settings: tests/uncertainty/design_rounding_test.cpp",
+    "uncertainty/design_candidates.cpp": "the candidate runs: tests/verbs/design_test.cpp; the rounding to the machine's settings: tests/uncertainty/design_candidates_rounding_test.cpp",
     "uncertainty/design_exchange.cpp": "the exchange step: tests/uncertainty/design_search_test.cpp",
     "uncertainty/montecarlo_checks.cpp": "the run's checks: tests/cli/hardening_test.cpp, tests/cli/bad_inputs_test.cpp",
     "uncertainty/montecarlo_validation.cpp": "tests/uncertainty/montecarlo_distribution_test.cpp",
