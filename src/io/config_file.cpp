@@ -76,20 +76,7 @@ using namespace config_reading;
 
 Config parse_config(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
-  toml::table root;
-#if TOML_EXCEPTIONS
-  try {
-    root = toml::parse(text, source_name);
-  } catch (const toml::parse_error& e) {
-    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}", e.description()));
-  }
-#else
-  auto result = toml::parse(text, source_name);
-  if (!result)
-    r.fail(where(result.error().source()), "",
-           fmt::format("TOML syntax error: {}", result.error().description()));
-  root = std::move(result).table();
-#endif
+  const toml::table root = parse_toml(r, text, source_name);
   r.check_keys(root, "", kRootKeys);
   Config cfg;
   cfg.source = std::string(source_name);
@@ -107,15 +94,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
 }
 
 Config load_config(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  std::error_code ec;
-  if (!in || std::filesystem::is_directory(path, ec))
-    throw FileNotFound<ConfigError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw FileNotFound<ConfigError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
-  return parse_config(text.str(), name);
+  return parse_config(read_file_text(path), path.string());
 }
 
 Config bundled_example() { return parse_config(bundled_example_text(), kBundledExampleName); }

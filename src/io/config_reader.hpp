@@ -9,6 +9,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -324,5 +325,38 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
                         const IdentificationSpec& spec);
 // [certificate] (config_sections_certificate.cpp): its fields as written, the dates checked; unset if absent.
 std::optional<Certificate> read_certificate(const Reader& r, const toml::table& root);
+
+// A TOML text parsed, a syntax error located as every other (the files ccal reads: configuration, truth, log
+// manifest).
+inline toml::table parse_toml(const Reader& r, std::string_view text, std::string_view source_name) {
+  toml::table root;
+#if TOML_EXCEPTIONS
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}", e.description()));
+  }
+#else
+  auto result = toml::parse(text, source_name);
+  if (!result)
+    r.fail(where(result.error().source()), "",
+           fmt::format("TOML syntax error: {}", result.error().description()));
+  root = std::move(result).table();
+#endif
+  return root;
+}
+
+// A file's text; FileNotFound<ConfigError> with `missing` as the problem when it cannot be read.
+inline std::string read_file_text(const std::filesystem::path& path,
+                                  std::string_view missing = "cannot read the file; check the path and permissions") {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  if (!in || std::filesystem::is_directory(path, ec))
+    throw FileNotFound<ConfigError>(path.string(), 0, 0, "", std::string(missing));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw FileNotFound<ConfigError>(path.string(), 0, 0, "", std::string(missing));
+  return text.str();
+}
 
 }  // namespace ccal::config_reading

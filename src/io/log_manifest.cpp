@@ -102,37 +102,6 @@ void read_runs(const Reader& r, const toml::table& root, const std::filesystem::
 
 }  // namespace
 
-namespace {
-
-toml::table parse_toml(const Reader& r, std::string_view text, std::string_view source_name) {
-  toml::table root;
-#if TOML_EXCEPTIONS
-  try {
-    root = toml::parse(text, source_name);
-  } catch (const toml::parse_error& e) {
-    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}", e.description()));
-  }
-#else
-  auto result = toml::parse(text, source_name);
-  if (!result)
-    r.fail(where(result.error().source()), "",
-           fmt::format("TOML syntax error: {}", result.error().description()));
-  root = std::move(result).table();
-#endif
-  return root;
-}
-
-std::string read_text(const std::filesystem::path& path, std::string_view missing) {
-  std::ifstream in(path, std::ios::binary);
-  std::error_code ec;
-  if (!in || std::filesystem::is_directory(path, ec))
-    throw FileNotFound<ConfigError>(path.string(), 0, 0, "", std::string(missing));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-}  // namespace
 
 LogManifest parse_log_manifest(std::string_view text, std::string_view source_name,
                                const std::filesystem::path& folder) {
@@ -148,9 +117,9 @@ LogManifest parse_log_manifest(std::string_view text, std::string_view source_na
 
 LogManifest read_log_manifest(const std::filesystem::path& folder) {
   const std::filesystem::path path = folder / kLogManifestName;
-  const std::string text = read_text(
-      path, fmt::format("no manifest in the folder; accepted: a folder with {} naming each run's file (`ccal "
-                        "simulate --logs-out DIR` writes one; docs/cli.md, \"A folder of logs\")",
+  const std::string text = read_file_text(
+      path, fmt::format("no manifest in the folder; accepted: a folder with {} naming each run's file (a "
+                        "simulation's logs come with one; docs/cli.md, \"A folder of logs\")",
                         kLogManifestName));
   return parse_log_manifest(text, path.string(), folder);
 }
@@ -166,7 +135,7 @@ LogLayout parse_log_layout(std::string_view text, std::string_view source_name) 
 }
 
 LogLayout read_log_layout(const std::filesystem::path& file) {
-  return parse_log_layout(read_text(file, "cannot read the file; check the path and permissions"), file.string());
+  return parse_log_layout(read_file_text(file), file.string());
 }
 
 std::string log_manifest_text(const LogLayout& layout, const std::vector<std::pair<std::string, std::string>>& runs) {

@@ -106,6 +106,11 @@ TEST_F(Cli, ABadTruthFileIsRefusedWithItsPlaceAndNothingWritten) {
       << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "obs.csv"));
   EXPECT_FALSE(fs::exists(dir_ / "out.txt"));
+  const Result layout = run("simulate " + kLab + " --log-layout daq.toml");
+  EXPECT_EQ(layout.code, 2);
+  EXPECT_NE(layout.err.find("--log-layout: is read only for the logs; accepted: with --logs-out DIR"),
+            std::string::npos)
+      << layout.err;
   const Result missing = run("simulate " + kLab + " --truth none.toml");
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.err.find("none.toml: cannot read the file"), std::string::npos) << missing.err;
