@@ -25,6 +25,31 @@ void bind_design(py::module_& m) {
       .def_readonly("is_target", &verbs::DesignTarget::is_target,
                     "R_k is a user's target (else the configured plan's U_k) [—]");
 
+  py::class_<RunSheetLine>(m, "RunSheetLine", "One run of a run sheet: what the operator sets and sees.")
+      .def_readonly("order", &RunSheetLine::order, "1-based order in which the runs are made [—]")
+      .def_readonly("run", &RunSheetLine::run, "the run's name, which its log carries [—]")
+      .def_readonly("g_level", &RunSheetLine::g_level, "A [g]")
+      .def_readonly("main_rate", &RunSheetLine::main_rate, "the main axis's rate Ω [rad/s]")
+      .def_readonly("platform_rate", &RunSheetLine::platform_rate,
+                    "the platform's rate: −Ω counter-rotating, 0 fixed [rad/s]")
+      .def_readonly("duration", &RunSheetLine::duration, "T [s]")
+      .def_readonly("turns", &RunSheetLine::turns, "revolutions of the main axis in T [—]")
+      .def_readonly("arm_azimuth", &RunSheetLine::arm_azimuth,
+                    "θ1(0): the arm's azimuth from East, counter-clockwise, in [0, 2π) [rad]")
+      .def_readonly("start_phase", &RunSheetLine::start_phase, "φ0 = γ(0) in [0, 2π) [rad]")
+      .def_readonly("stop_phase", &RunSheetLine::stop_phase, "γ(T) in [0, 2π) [rad]")
+      .def_readonly("terminal_phase", &RunSheetLine::terminal_phase,
+                    "the plan sets the stop phase (else the start phase) [—]")
+      .def_property_readonly(
+          "mounting", [](const RunSheetLine& l) { return std::string(mounting_name(l.mounting)); },
+          "the mounting's name, e.g. 'ia_horizontal' [—]")
+      .def_property_readonly(
+          "platform", [](const RunSheetLine& l) { return std::string(platform_mode_name(l.mode)); },
+          "'counter_rotating' or 'fixed' [—]");
+  py::class_<RunSheet>(m, "RunSheet", "A plan as its operator runs it, run by run in order.")
+      .def_readonly("lines", &RunSheet::lines, "the runs in order, list of RunSheetLine [—]")
+      .def_readonly("total_duration", &RunSheet::total_duration, "Σ T [s]");
+
   py::class_<verbs::DesignResult>(
       m, "Design",
       "`ccal design`: the configured and the designed plan with their full budgets; "
@@ -49,8 +74,12 @@ void bind_design(py::module_& m) {
       .def_readonly(
           "tolerance_after", &verbs::DesignResult::tolerance_after,
           "U_k from the tolerances, designed plan, per coefficient [coefficient SI: output SI per gⁿ]")
+      .def_readonly(
+          "sheet", &verbs::DesignResult::sheet,
+          "the designed plan as its operator runs it; `after` is its budget if run as written [RunSheet]")
       .def_readonly("mechanism", &verbs::DesignResult::mechanism,
-                    "a sentence on what the designed plan does differently, where one can be named [—]")
+                    "in words: what the designed plan does differently, how much from a stronger signal and "
+                    "how much from errors cancelling [—]")
       .def(
           "config_text",
           [](const verbs::DesignResult& r, const std::string& original) {

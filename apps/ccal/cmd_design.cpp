@@ -46,7 +46,8 @@ Command add_design(CLI::App& app) {
       "  ccal design my.toml --plan-out designed.toml && ccal budget designed.toml\n"
       "  ccal design --target K3=1e-4 --tradeoff 0.5,1 --verify-trials 2000 --format json -o design.json\n");
   return {cmd, [o] {
-            const verbs::DesignOptions& d = o->options;
+            verbs::DesignOptions d = o->options;
+            d.progress = true;  // drawn only when standard error is a terminal
             if (!o->plan_out.empty() && o->plan_out == o->output.path)
               throw InputError("--plan-out: '" + o->plan_out +
                                "' is also the -o file; accepted: two different files");

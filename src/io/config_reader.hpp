@@ -309,7 +309,7 @@ inline const Keys kDesignKeys{"runs",         "total_time",     "max_g",        
                               "phase_step",   "arm_azimuths",   "azimuth_step", "mountings",  "platforms",
                               "refine",       "objective",      "coefficients", "targets",    "weights",
                               "starts",       "seed",           "g_resolution", "duration_resolution",
-                              "angle_resolution"};
+                              "angle_resolution", "min_g_levels"};
 
 // The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
 Site read_site(const Reader& r, const toml::table& root);

@@ -152,9 +152,12 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
   const std::string_view p = "design";
   r.check_keys(*t, p, kDesignKeys);
   auto positive = [&](const toml::node& n, const std::string& path, double v) {
-    if (!(v > 0)) r.fail(n, path, fmt::format("must be positive, got {}", number_text(v)));
+    // The value as the user wrote it ("-1 ms"), else the number.
+    const std::optional<std::string> written = n.value<std::string>();
+    if (!(v > 0)) r.fail(n, path, fmt::format("must be positive, got {}", written ? *written : number_text(v)));
   };
   d.runs = count(r, *t, "runs", 1, 1000, "a number of runs from 1 to 1000");
+  d.min_g_levels = count(r, *t, "min_g_levels", 1, 1000, "a number of distinct g-levels from 1 to 1000");
   d.total_time = r.quantity(*t, p, "total_time", kind::time, nullptr, "2700 s");
   if (d.total_time) positive(*t->get("total_time"), "design.total_time", *d.total_time);
   d.max_g = r.quantity(*t, p, "max_g", kind::acceleration_g, nullptr, "30 g");

@@ -1,4 +1,6 @@
 // The reports of `ccal design` (render/design.hpp).
+#include "ccal/render/design.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -6,10 +8,10 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "ccal/render/design.hpp"
+#include "budget_parts.hpp"
+#include "ccal/render/run_sheet.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
-#include "budget_parts.hpp"
 
 namespace ccal::render {
 
@@ -84,6 +86,60 @@ std::string leading_sources(const verbs::DesignResult& r, std::size_t k) {
   return fmt::format("\nLeading sources of {} [{}]:\n", b0.coefficients[k], b0.units[k]) + t.render();
 }
 
+// The run sheet in the units it is printed in, with the resolution it is rounded to and its expected U.
+nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
+  constexpr double kRpm = 60 / (2 * std::numbers::pi);
+  const SettingResolution res = setting_resolution(r.config.design);
+  nlohmann::ordered_json lines = nlohmann::ordered_json::array();
+  for (const RunSheetLine& l : r.sheet.lines)
+    lines.push_back({{"order", l.order},
+                     {"run", l.run},
+                     {"g_level_g", l.g_level},
+                     {"main_speed_rpm", l.main_rate * kRpm},
+                     {"platform", platform_mode_name(l.mode)},
+                     {"platform_speed_rpm", l.platform_rate * kRpm},
+                     {"duration_s", l.duration},
+                     {"turns", l.turns},
+                     {"arm_azimuth_deg", l.arm_azimuth * kDeg},
+                     {"start_phase_deg", l.start_phase * kDeg},
+                     {"stop_phase_deg", l.stop_phase * kDeg},
+                     {"sets", l.terminal_phase ? "stop_phase" : "start_phase"},
+                     {"mounting", mounting_name(l.mounting)},
+                     {"mounting_axes", mounting_axes(l.mounting)}});
+  const ccal::BudgetResult& b = r.after.budget;
+  nlohmann::ordered_json expected = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < b.coefficients.size(); ++k)
+    expected[b.coefficients[k]] = {
+        {"unit", b.units[k]}, {"expanded", b.expanded_uncertainty[Eigen::Index(k)] * b.display_scale[k]}};
+  return {
+      {"resolution", {{"g_level_g", res.g}, {"duration_s", res.duration}, {"angle_deg", res.angle * kDeg}}},
+      {"runs", lines},
+      {"total_duration_s", r.sheet.total_duration},
+      {"coverage_factor", b.coverage.factor},
+      {"coverage_probability", b.coverage.probability},
+      {"expected_if_run_as_written", expected}};
+}
+
+// The designed plan's U if run as the sheet says (its full budget, the plan as rounded), beside the
+// configured plan's.
+std::string expected_line(const verbs::DesignResult& r) {
+  const ccal::BudgetResult& b0 = r.before.budget;
+  const ccal::BudgetResult& b1 = r.after.budget;
+  std::vector<std::string> designed, configured;
+  for (std::size_t k = 0; k < b1.coefficients.size(); ++k) {
+    const auto kk = Eigen::Index(k);
+    designed.push_back(fmt::format("U({}) = {} {}", b1.coefficients[k],
+                                   number(b1.expanded_uncertainty[kk] * b1.display_scale[k], 3),
+                                   b1.units[k]));
+    configured.push_back(number(b0.expanded_uncertainty[kk] * b0.display_scale[k], 3));
+  }
+  return wrap_words(
+      fmt::format("Expected if run as written (full budget of the sheet's values, {}): {} "
+                  "(configured plan: {})",
+                  coverage_text(b1.coverage), fmt::join(designed, ", "), fmt::join(configured, ", ")),
+      110, "  ");
+}
+
 }  // namespace
 
 std::string text(const verbs::DesignResult& r) {
@@ -104,12 +160,21 @@ std::string text(const verbs::DesignResult& r) {
   out += fmt::format("Objective: configured {}, designed {} (grid {})\n\n", number(r.configured_objective, 6),
                      number(r.designed_objective, 6), number(r.search.grid_objective, 6));
   out += "Configured plan\n" + plan_table(r.config) + "\nDesigned plan\n" + plan_table(r.designed);
+  out += "\nRun sheet: the designed plan as the operator runs it\n" +
+         text(r.sheet, setting_resolution(r.config.design)) + expected_line(r);
   out += fmt::format("\nConfigured against designed (full budget, {}; 'U tol.': the tolerances alone; * counted)\n",
                      coverage_text(r.before.budget.coverage));
   out += comparison_table(r);
   for (std::size_t k = 0; k < r.targets.size(); ++k)
     if (r.targets[k].weight > 0) out += leading_sources(r, k);
-  if (!r.mechanism.empty()) out += "\nMechanism\n" + r.mechanism;
+  if (!r.mechanism.empty()) {
+    out += "\nMechanism\n";
+    for (std::size_t start = 0; start < r.mechanism.size();) {
+      const std::size_t end = std::min(r.mechanism.find('\n', start), r.mechanism.size());
+      out += wrap_words(std::string_view(r.mechanism).substr(start, end - start), 110, "  ");
+      start = end + 1;
+    }
+  }
   if (!r.tradeoff.empty()) {
     std::vector<std::string> header{"total time [s]", "used [s]"};
     for (std::size_t k = 0; k < r.targets.size(); ++k)
@@ -170,6 +235,7 @@ std::string json(const verbs::DesignResult& r) {
     runs.push_back(o);
   }
   j["designed_plan"] = runs;
+  j["run_sheet"] = run_sheet_json(r);
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
   const ccal::BudgetResult& b0 = r.before.budget;
   const ccal::BudgetResult& b1 = r.after.budget;

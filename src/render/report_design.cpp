@@ -127,6 +127,41 @@ std::string plans(const DesignDocs& d) {
   return plan_table("Configured plan", configured) + plan_table("Designed plan", designed);
 }
 
+// The run sheet of `ccal design` (its "run_sheet"): each run in the order made, in g, rpm, s and degrees, the
+// phase the plan sets named, and the U expected if run as written.
+std::string run_sheet_table(const Doc& doc) {
+  const Json& sheet = doc.json["run_sheet"];
+  std::string t =
+      "<table class=\"run-sheet\"><caption>Run sheet: the designed plan as the operator runs it (each run "
+      "starts "
+      "its record as the arm passes its start azimuth, from East counter-clockwise, with the platform at its "
+      "start phase, the input axis from the outward radial)</caption>\n"
+      "<tr><th>#</th><th>run</th><th>g-level [g]</th><th>main axis [rpm]</th><th>platform [rpm]</th>"
+      "<th>duration [s]</th><th>turns</th><th>arm start az. [deg]</th><th>start phase [deg]</th>"
+      "<th>stop phase [deg]</th><th>phase set</th><th>mounting</th></tr>\n";
+  for (std::size_t k = 0; k < sheet["runs"].size(); ++k) {
+    const Json& line = sheet["runs"][k];
+    const std::string p = fmt::format("/run_sheet/runs/{}", k);
+    const bool stop = line["sets"] == "stop_phase";
+    t += "<tr><th>" + std::to_string(k + 1) + "</th>" + text_cell(line["run"].get<std::string>()) +
+         num_cell(doc, p + "/g_level_g", 6) + num_cell(doc, p + "/main_speed_rpm", 6) +
+         (line["platform"] == "fixed" ? text_cell("fixed") : num_cell(doc, p + "/platform_speed_rpm", 6)) +
+         num_cell(doc, p + "/duration_s", 7) + num_cell(doc, p + "/turns", 6) +
+         num_cell(doc, p + "/arm_azimuth_deg", 4) + num_cell(doc, p + "/start_phase_deg", 4) +
+         num_cell(doc, p + "/stop_phase_deg", 4) + text_cell(stop ? "stop" : "start") +
+         text_cell(line["mounting"].get<std::string>()) + "</tr>\n";
+  }
+  t += "</table>\n<p class=\"run-sheet-expected\">Expected if run as written (the full budget of the sheet's "
+       "values, k = " +
+       num_span(doc, "/run_sheet/coverage_factor", 3) + "):";
+  for (const auto& [id, u] : sheet["expected_if_run_as_written"].items())
+    t += fmt::format(" U({}) = ", escape(id)) +
+         num_span(doc, "/run_sheet/expected_if_run_as_written/" + id + "/expanded", 3) + " " +
+         escape(u["unit"].get<std::string>()) + ";";
+  t.back() = '.';
+  return t + "</p>\n";
+}
+
 // The indices of a budget's sources by |effect| on one coefficient, largest first, at most n.
 std::vector<std::size_t> leading(const Json& budget, const std::string& id, std::size_t n) {
   std::vector<std::size_t> order(budget["sources"].size());
@@ -181,7 +216,7 @@ std::string design_section(const DesignDocs& d) {
       num_span(d.design, "/objective_value/designed", 4), escape(d.after.json["mode"].get<std::string>()));
   out += "<div class=\"pair\">\n" + chart("design-ratio", ratio_spec(j)) + comparison_table(d.design) +
          "</div>\n";
-  out += "<div class=\"pair\">\n" + plans(d) + "</div>\n";
+  out += "<div class=\"pair\">\n" + plans(d) + "</div>\n" + run_sheet_table(d.design);
   const std::string mechanism = j["mechanism"].get<std::string>();
   if (!mechanism.empty()) {
     out += "<h3>Mechanism</h3>\n";

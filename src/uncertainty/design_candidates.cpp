@@ -169,6 +169,41 @@ void resolve_angles(const Config& config, ResolvedDesignSpace& s) {
   (d.platforms.empty() ? s.fixed : s.free).push_back(fmt::format("platform {}", fmt::join(p, ", ")));
 }
 
+// The distinct g-levels a plan keeps: by default one more than the free terms, so that the fit's residuals
+// have a degree of freedom across g-levels and can show a term of the instrument's g-dependence that the
+// model lacks (an unmodelled K1 or K4 leaves a pattern no combination of the free terms' columns absorbs).
+void resolve_min_g_levels(const Config& config, ResolvedDesignSpace& s) {
+  const DesignSpace& d = config.design;
+  const auto nfree = int(config.identification.free_terms.size());
+  s.min_g_levels = d.min_g_levels.value_or(nfree + 1);
+  const int most = std::min(s.runs, int(s.g_levels.size()));
+  if (s.min_g_levels > most) {
+    const std::string why = fmt::format("{} runs over {} allowed g-levels give at most {} distinct g-levels",
+                                        s.runs, s.g_levels.size(), most);
+    if (d.min_g_levels)
+      throw InputError(
+          fmt::format("{}: design.min_g_levels: {} but {}; accepted: at most {}, or more runs or "
+                      "g-levels",
+                      config.source, s.min_g_levels, why, most));
+    throw InputError(
+        fmt::format("{}: design: {}, but a test of the fit of {} free terms ({}) for a missing term needs {} "
+                    "(the default of "
+                    "design.min_g_levels: free terms + 1); accepted: design.runs and the allowed g-levels at "
+                    "least {}, or "
+                    "design.min_g_levels = {} to design without that test",
+                    config.source, why, nfree, fmt::join(config.identification.free_terms, ", "),
+                    s.min_g_levels, s.min_g_levels, most));
+  }
+  if (s.min_g_levels > 1)
+    s.fixed.push_back(
+        d.min_g_levels
+            ? fmt::format("at least {} distinct g-levels (design.min_g_levels)", s.min_g_levels)
+            : fmt::format(
+                  "at least {} distinct g-levels ({} free terms + 1, so that the residuals can show a "
+                  "term the model lacks)",
+                  s.min_g_levels, nfree));
+}
+
 }  // namespace
 
 ResolvedDesignSpace resolve_design_space(const Config& config) {
@@ -184,6 +219,7 @@ ResolvedDesignSpace resolve_design_space(const Config& config) {
   resolve_g_levels(config, s);
   resolve_timing(config, s);
   resolve_angles(config, s);
+  resolve_min_g_levels(config, s);
   // Each refinement step evaluates up to 8 trial runs per run (the cache's cost per run): a few halvings
   // (steps down to 1/32 of the grid's) and a bounded number of moves keep it to seconds.
   s.refinement.halvings = 5;
@@ -369,7 +405,8 @@ CandidateRows stacked(const std::vector<CandidateRows>& parts) {
 
 }  // namespace
 
-CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>& runs, int threads) {
+CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>& runs, int threads,
+                             const std::function<void()>& on_row) {
   const Experiment base = config.experiment();
   std::vector<int> parameters;
   for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
@@ -396,6 +433,8 @@ CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>&
       const auto first = runs.begin() + std::ptrdiff_t(b * kBlock);
       const auto last = runs.begin() + std::ptrdiff_t(std::min(runs.size(), (b + 1) * kBlock));
       parts[b] = block_rows(config, base, std::vector<DesignRun>(first, last), parameters, group_map);
+      if (on_row)
+        for (auto run = first; run != last; ++run) on_row();
     } catch (...) {
 #pragma omp critical
       if (!failure) failure = std::current_exception();

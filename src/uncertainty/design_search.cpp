@@ -192,15 +192,46 @@ double plan_time(const CandidateRows& rows, const std::vector<int>& plan) {
 
 bool within(double time, double budget) { return time <= budget * (1 + 1e-12); }
 
-// A random plan that meets the time budget and is well posed, or an empty one after `attempts` draws.
-std::vector<int> random_plan(const DesignProblem& pr, PlanScorer& scorer, std::uint64_t seed, int attempts) {
+// A g-level's identity: its multiple of the resolution (levels that the operator sets alike are one).
+long long level_key(double g, double resolution) {
+  return resolution > 0 ? std::llround(g / resolution) : std::llround(g * 1e9);
+}
+
+// The distinct g-levels of a plan, as sorted keys.
+std::vector<long long> plan_levels(const std::vector<long long>& keys, const std::vector<int>& plan,
+                                   std::size_t skip = std::size_t(-1)) {
+  std::vector<long long> out;
+  for (std::size_t j = 0; j < plan.size(); ++j)
+    if (j != skip) out.push_back(keys[std::size_t(plan[j])]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Every candidate's level key.
+std::vector<long long> candidate_levels(const DesignProblem& pr) {
+  std::vector<long long> keys;
+  for (const DesignRun& run : pr.candidates) keys.push_back(level_key(run.g_level, pr.g_resolution));
+  return keys;
+}
+
+// A plan meets the time budget, keeps its distinct g-levels and is well posed.
+bool acceptable(const DesignProblem& pr, const std::vector<long long>& keys, PlanScorer& scorer,
+                const std::vector<int>& plan) {
+  return within(plan_time(pr.rows, plan), pr.total_time) &&
+         int(plan_levels(keys, plan).size()) >= pr.min_g_levels &&
+         std::isfinite(scorer.objective(pr.rows, plan));
+}
+
+// A random acceptable plan, or an empty one after `attempts` draws.
+std::vector<int> random_plan(const DesignProblem& pr, const std::vector<long long>& keys, PlanScorer& scorer,
+                             std::uint64_t seed, int attempts) {
   std::mt19937_64 rng(seed);
   std::uniform_int_distribution<int> pick(0, int(pr.candidates.size()) - 1);
   std::vector<int> plan(std::size_t(pr.runs));
   for (int a = 0; a < attempts; ++a) {
     for (int& c : plan) c = pick(rng);
-    if (within(plan_time(pr.rows, plan), pr.total_time) && std::isfinite(scorer.objective(pr.rows, plan)))
-      return plan;
+    if (acceptable(pr, keys, scorer, plan)) return plan;
   }
   return {};
 }
@@ -208,8 +239,9 @@ std::vector<int> random_plan(const DesignProblem& pr, PlanScorer& scorer, std::u
 // Exchange: for each run in turn, the candidate that lowers the objective most (ties: the lowest index),
 // until a sweep changes nothing. The uncertainty objective is scored by rank-one updates of the other runs'
 // sums (design_exchange.hpp), the noise-alone criteria by a fit per candidate.
-double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms, std::vector<int>& plan,
-                int max_sweeps, long long& evaluations) {
+double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms,
+                const std::vector<long long>& keys, std::vector<int>& plan, int max_sweeps,
+                long long& evaluations) {
   const bool by_update = pr.criterion.objective == DesignObjective::uncertainty;
   PlanScorer scorer(pr.criterion);
   double f = scorer.objective(pr.rows, plan);
@@ -218,6 +250,13 @@ double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms, std:
     bool improved = false;
     for (std::size_t i = 0; i < plan.size(); ++i) {
       const double others = plan_time(pr.rows, plan) - pr.rows.duration[plan[i]];
+      // A candidate keeps the plan's distinct g-levels when the others have enough, or it brings a new one.
+      const std::vector<long long> levels = plan_levels(keys, plan, i);
+      const bool any_level = int(levels.size()) >= pr.min_g_levels;
+      auto keeps_levels = [&](int c) {
+        return any_level || (int(levels.size()) + 1 >= pr.min_g_levels &&
+                             !std::binary_search(levels.begin(), levels.end(), keys[std::size_t(c)]));
+      };
       double current = f;  // the plan as it is, by the same scorer as the trials
       if (by_update) {
         design_detail::ExchangeScorer update(pr.rows, leak_norms, pr.criterion);
@@ -238,7 +277,8 @@ double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms, std:
         int tc = -1;
 #pragma omp for schedule(static) nowait
         for (int c = 0; c < count; ++c) {
-          if (c == plan[i] || !within(others + pr.rows.duration[c], pr.total_time)) continue;
+          if (c == plan[i] || !within(others + pr.rows.duration[c], pr.total_time) || !keeps_levels(c))
+            continue;
           trial[i] = c;
           const double v = by_update ? update.objective(c) : local.objective(pr.rows, trial);
           if (v < tf) {
@@ -283,10 +323,19 @@ bool move(DesignRun& run, int variable, double step, const Refinement& r) {
   }
 }
 
+// Whether run j of a plan may move to g-level g and the plan still keep its distinct g-levels.
+bool keeps_levels(const DesignProblem& pr, const std::vector<DesignRun>& runs, std::size_t j, double g) {
+  std::vector<long long> levels;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    levels.push_back(level_key(i == j ? g : runs[i].g_level, pr.g_resolution));
+  std::sort(levels.begin(), levels.end());
+  return std::unique(levels.begin(), levels.end()) - levels.begin() >= pr.min_g_levels;
+}
+
 // Local refinement of the continuous variables: best-improvement coordinate steps, all trial runs of a step
 // evaluated in one batch; a step size that improves nothing is halved.
 void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows& rows, PlanScorer& scorer,
-            DesignSearchResult& out) {
+            DesignSearchResult& out, const std::function<void(std::string_view, int, int)>& report) {
   const Refinement& r = pr.refinement;
   double steps[4] = {r.g_step, r.duration_step, r.phase_step, r.azimuth_step};
   std::vector<int> identity(runs.size());
@@ -306,6 +355,7 @@ void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows
           DesignRun t = runs[j];
           if (!move(t, v, sign * steps[v], r)) continue;
           if (v == 1 && !within(time - runs[j].duration + t.duration, pr.total_time)) continue;
+          if (v == 0 && !keeps_levels(pr, runs, j, t.g_level)) continue;
           trials.push_back({j, t});
         }
     if (trials.empty()) break;
@@ -334,6 +384,7 @@ void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows
     if (chosen == trials.size()) {
       for (double& s : steps) s /= 2;
       ++halving;
+      report("refinement", std::min(halving, r.halvings + 1), r.halvings + 1);
       continue;
     }
     const std::size_t j = trials[chosen].run;
@@ -370,21 +421,24 @@ DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOpti
   double best_f = std::numeric_limits<double>::infinity();
   const int starts = int(pr.initial_plans.size()) + options.starts;
   const Eigen::VectorXd norms = design_detail::leak_norms(pr.rows);
-  for (int s = 0; s < starts; ++s) {
+  const std::vector<long long> keys = candidate_levels(pr);
+  auto report = [&options](std::string_view stage, int done, int total) {
+    if (options.on_progress) options.on_progress(stage, done, total);
+  };
+  // The count of starts done is reported after each, skipped ones included (the increment runs on continue).
+  for (int s = 0; s < starts; ++s, report("search", s, starts)) {
     std::vector<int> plan;
     if (s < int(pr.initial_plans.size())) {
       plan = pr.initial_plans[std::size_t(s)];
-      if (int(plan.size()) != pr.runs || !within(plan_time(pr.rows, plan), pr.total_time) ||
-          !std::isfinite(scorer.objective(pr.rows, plan)))
-        plan.clear();
+      if (int(plan.size()) != pr.runs || !acceptable(pr, keys, scorer, plan)) plan.clear();
     } else {
-      plan = random_plan(pr, scorer, start_seed(options.seed, s), 2000);
+      plan = random_plan(pr, keys, scorer, start_seed(options.seed, s), 2000);
     }
     if (plan.empty()) {
       out.start_objectives.push_back(std::numeric_limits<double>::infinity());
       continue;
     }
-    const double f = exchange(pr, norms, plan, options.max_sweeps, out.evaluations);
+    const double f = exchange(pr, norms, keys, plan, options.max_sweeps, out.evaluations);
     out.start_objectives.push_back(f);
     if (f < best_f) {
       best_f = f;
@@ -394,13 +448,18 @@ DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOpti
   }
   if (best.empty())
     throw InputError(
-        "no plan of " + std::to_string(pr.runs) +
-        " runs from the design space both fits the total time and identifies every free term; widen the "
-        "design space ([design] g_range, durations, phases) or raise total_time");
+        "no plan of " + std::to_string(pr.runs) + " runs from the design space fits the total time, keeps " +
+        std::to_string(pr.min_g_levels) +
+        " distinct g-levels and identifies every free term; widen the design space ([design] g_range, "
+        "durations, phases), raise total_time or lower min_g_levels");
   out.grid_objective = best_f;
   for (int c : best) out.runs.push_back(pr.candidates[std::size_t(c)]);
   out.rows = pr.rows.select(best);
-  if (pr.evaluate) refine(pr, out.runs, out.rows, scorer, out);
+  if (pr.evaluate) {
+    refine(pr, out.runs, out.rows, scorer, out, report);
+    // Done, whether the steps were halved to the end or no move was left.
+    report("refinement", pr.refinement.halvings + 1, pr.refinement.halvings + 1);
+  }
   out.score = score_plan(out.rows, pr.criterion);
   return out;
 }

@@ -30,13 +30,14 @@ inline std::size_t stderr_columns() {
 
 // The line for a terminal of `columns`: label, bar, figures; the bar (10 to 50 wide) and then the rate and
 // counts give way on a narrow terminal, and the line stays one column short of the edge.
+// `unit` names what is counted ("trials", "runs", …).
 inline std::string progress_line(const std::string& label, double fraction, std::uint64_t done,
                                  std::uint64_t target, double rate, const std::string& eta,
-                                 std::size_t columns) {
+                                 std::size_t columns, const std::string& unit = "trials") {
   const std::size_t room = columns > 1 ? columns - 1 : 0;
   const std::string percent = fmt::format("{:5.1f} %", 100.0 * fraction);
   std::string tail =
-      fmt::format("{} {}/{} trials  {:.3g} trials/s  ETA {}", percent, done, target, rate, eta);
+      fmt::format("{} {}/{} {}  {:.3g} {}/s  ETA {}", percent, done, target, unit, rate, unit, eta);
   if (label.size() + tail.size() + 13 > room) tail = fmt::format("{} ETA {}", percent, eta);
   std::string line = label;
   if (label.size() + tail.size() + 13 <= room) {
@@ -83,6 +84,21 @@ class Progress {
     if (on_) draw(done, double(now) * 1e-9);
     if (callback_) callback_(done, target_);  // may throw Cancelled: the caller records it as the trial's
   }
+  // A new stage of other work (`unit` counts it): the count, the clock and the ETA start again.
+  void restart(std::uint64_t target, std::string label, std::string unit) {
+    const std::lock_guard lock(mutex_);
+    target_ = target;
+    label_ = std::move(label);
+    unit_ = std::move(unit);
+    done_.store(0, std::memory_order_relaxed);
+    last_ns_.store(0, std::memory_order_relaxed);
+    start_ = Clock::now();
+  }
+  // The work done of a stage that counts in steps (not once per item from many threads): drawn now.
+  void set_done(std::uint64_t done) {
+    done_.store(done, std::memory_order_relaxed);
+    if (on_) draw(done, std::chrono::duration<double>(Clock::now() - start_).count());
+  }
   // The callback now, unthrottled (between the steps of a long preparation): it may throw Cancelled.
   void poll() {
     if (callback_) callback_(done_.load(std::memory_order_relaxed), target_);
@@ -102,7 +118,7 @@ class Progress {
     const double rate = seconds > 0 ? double(done) / seconds : 0.0;
     const double eta = rate > 0 ? double(target_ > done ? target_ - done : 0) / rate : NAN;
     const std::string line =
-        progress_line(label_, fraction, done, target_, rate, clock_text(eta), stderr_columns());
+        progress_line(label_, fraction, done, target_, rate, clock_text(eta), stderr_columns(), unit_);
     // \r, the line, then erase to the end of the line (what a longer previous line left).
     fmt::print(stderr, "\r{}\x1b[K", line);
     std::fflush(stderr);
@@ -116,6 +132,7 @@ class Progress {
   std::atomic<std::int64_t> last_ns_{0};
   std::uint64_t target_ = 0;
   std::string label_;
+  std::string unit_ = "trials";
   std::mutex mutex_;
 };
 

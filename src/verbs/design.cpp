@@ -3,12 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <map>
 #include <chrono>
 #include <cmath>
+#include <map>
 
+#include "../uncertainty/progress_bar.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/allocate.hpp"
+#include "design_mechanism.hpp"
 
 namespace ccal::verbs {
 
@@ -39,14 +41,6 @@ constexpr OptionSpec<DesignOptions> kRows[] = {
      "Factors of the total test time for a trade-off curve (total time against U), e.g. --tradeoff 0.5,0.75,1",
      OptionRange::between(0, 10).open_low().e_g("0.5,0.75,1")},
 };
-
-// U_k from the tolerances alone: the budget's signed group sums added in quadrature (model.md §10.1).
-Eigen::VectorXd tolerance_expanded(const Config& config, const ccal::BudgetResult& b) {
-  const CorrelationGroups groups = correlation_groups(config.tolerances);
-  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(Eigen::Index(b.coefficients.size()), groups.count);
-  for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
-  return b.coverage.factor * g.rowwise().norm();
-}
 
 // The objective's weights and references (references of the configured plan filled in later).
 std::vector<DesignTarget> design_targets(const Config& config, const DesignOptions& o,
@@ -137,75 +131,11 @@ BudgetResult rescore(const Config& designed, const DesignOptions& options) {
   }
 }
 
-// How far the IA's inertial headings ψ_IA = θ1(0) + φ0 of the runs at each g-level fail to balance: the
-// largest |Σ e^{iψ}| / count over the levels (0: opposite headings in pairs, 1: all alike).
-double heading_imbalance(const Config& c) {
-  double worst = 0;
-  std::vector<bool> done(c.plan.runs.size(), false);
-  for (std::size_t a = 0; a < c.plan.runs.size(); ++a) {
-    if (done[a]) continue;
-    double x = 0, y = 0;
-    int n = 0;
-    for (std::size_t b = a; b < c.plan.runs.size(); ++b) {
-      if (c.plan.runs[b].g_level != c.plan.runs[a].g_level) continue;
-      done[b] = true;
-      const double psi = initial_ia_azimuth(c.plan.runs[b], c.centrifuge.geometry, c.site);
-      x += std::cos(psi);
-      y += std::sin(psi);
-      ++n;
-    }
-    worst = std::max(worst, std::hypot(x, y) / n);
-  }
-  return worst;
-}
-
-std::string mechanism_sentence(const DesignResult& r) {
-  std::string out;
-  const ccal::BudgetResult& b0 = r.before.budget;
-  const ccal::BudgetResult& b1 = r.after.budget;
-  for (std::size_t k = 0; k < r.targets.size(); ++k) {
-    if (!(r.targets[k].weight > 0)) continue;
-    const auto kk = Eigen::Index(k);
-    const double f = b0.display_scale[k];
-    const double u0 = r.tolerance_before[kk], u1 = r.tolerance_after[kk];
-    if (!(u0 > 0 && u1 > 0)) continue;
-    const double signal = r.after.observability.result.terms[k].sensitivity /
-                          r.before.observability.result.terms[k].sensitivity;
-    std::vector<std::size_t> order(b0.sources.size());
-    for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
-      return std::abs(b0.sources[a].effect[kk]) > std::abs(b0.sources[c].effect[kk]);
-    });
-    std::vector<std::string> leading;
-    for (std::size_t i = 0; i < std::min<std::size_t>(4, order.size()); ++i) {
-      const SourceBudget& s0 = b0.sources[order[i]];
-      leading.push_back(fmt::format("{} {:.2g} -> {:.2g}", s0.id, std::abs(s0.effect[kk]) * f,
-                                    std::abs(b1.sources[order[i]].effect[kk]) * f));
-    }
-    // U ∝ (leak projected on the column) / s²: a column s times larger divides every leak by about s, the
-    // rest is the leaks' cancellation (model.md §15.3).
-    out += fmt::format(
-        "{}: U from the tolerances {:.3g} -> {:.3g} {} (x{:.3g}); the column only {} explains (its projected "
-        "size s, model.md §14) grew x{:.3g}, the rest (x{:.3g}) is the leaks cancelling; leading sources "
-        "(1-sigma effect before -> after): {}.\n",
-        r.targets[k].coefficient, u0 * f, u1 * f, b0.units[k], u1 / u0, r.targets[k].coefficient, signal,
-        (u1 / u0) * signal, fmt::join(leading, ", "));
-  }
-  const double before = heading_imbalance(r.config), after = heading_imbalance(r.designed);
-  if (after < 0.05 && after < before)
-    out += fmt::format(
-        "The runs at each g-level have opposite inertial IA headings psi_IA = theta1(0) + phi0 in pairs "
-        "(imbalance {:.2g}, configured {:.2g}): what leaks in proportion to cos or sin psi_IA - the main "
-        "axis's levelling (model.md §5.2) and the first harmonic of its rate ripple (§2.3) - cancels in each "
-        "level's mean instead of reaching the coefficients.\n",
-        after, before);
-  return out;
-}
-
 // The design problem's candidates: every run of the design space, then the configured runs when they all lie
 // in it (their plan is then the search's initial plan, so that the design can only improve on it), with the
 // rows of every candidate computed once.
-DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace& space, int threads) {
+DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace& space, int threads,
+                                progress_bar::Progress& progress) {
   std::vector<DesignRun> candidates = candidate_runs(space, config);
   std::vector<std::vector<int>> initial;
   if (configured_in_space(config, space)) {
@@ -218,8 +148,11 @@ DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace&
   }
   DesignProblem problem;
   problem.runs = space.runs;
+  problem.min_g_levels = space.min_g_levels;
+  problem.g_resolution = setting_resolution(config.design).g;
   problem.total_time = space.total_time;
-  problem.rows = candidate_rows(config, candidates, threads);
+  progress.restart(candidates.size(), "design: candidate runs ", "runs");
+  problem.rows = candidate_rows(config, candidates, threads, [&progress] { progress.tick(); });
   problem.candidates = std::move(candidates);
   problem.initial_plans = initial;
   return problem;
@@ -294,7 +227,8 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   r.targets = design_targets(config, options, r.before.budget);
 
   const auto t0 = std::chrono::steady_clock::now();
-  DesignProblem problem = candidate_problem(config, r.space, options.threads);
+  progress_bar::Progress progress(options.progress);
+  DesignProblem problem = candidate_problem(config, r.space, options.threads, progress);
   r.candidates = problem.candidates.size();
   r.cache_seconds = seconds_since(t0);
   set_criterion(config, r, problem);
@@ -308,15 +242,28 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   DesignSearchOptions so;
   so.starts = options.starts.value_or(config.design.starts.value_or(6));
   so.seed = options.seed.value_or(config.design.seed.value_or(1));
+  if (progress.on()) {
+    std::string stage;
+    so.on_progress = [&progress, &stage](std::string_view now, int done, int total) {
+      if (now != stage) {
+        stage = now;
+        progress.restart(std::uint64_t(total), fmt::format("design: {} ", now),
+                         now == "search" ? "starts" : "halvings");
+      }
+      progress.set_done(std::uint64_t(done));
+    };
+  }
   r.search = search_design(problem, so);
   r.search_seconds = seconds_since(t1);
+  progress.finish();
   r.designed_objective = r.search.score.objective;
 
   r.designed = with_plan(config, r.search.runs, r.space);
+  r.sheet = run_sheet(r.designed.plan, r.designed.centrifuge.geometry, r.designed.site);
   r.after = rescore(r.designed, options);
   r.tolerance_before = tolerance_expanded(config, r.before.budget);
   r.tolerance_after = tolerance_expanded(r.designed, r.after.budget);
-  r.mechanism = mechanism_sentence(r);
+  r.mechanism = mechanism_text(r);
 
   for (double factor : options.tradeoff)
     r.tradeoff.push_back(tradeoff_point(config, options, r.space, factor));

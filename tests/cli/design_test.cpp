@@ -55,10 +55,28 @@ TEST_F(DesignCli, BadDesignSpacesAreRefused) {
   expect_bad_input(run("design " + few), {"design.runs: 2 runs cannot identify 3 free terms"});
   const std::string long_runs = write("long.toml", base + "\n[design]\ndurations = [\"1000 s\"]\n");
   expect_bad_input(run("design " + long_runs), {"cannot fit total_time"});
+  // Two g-levels cannot give the default four distinct ones (free terms + 1), nor 7 the six runs.
+  const std::string two =
+      "\n[design]\ng_levels = [\"10 g\", \"20 g\"]\nturn_fractions = 1\n"
+      "phases = [\"180 deg\"]\narm_azimuths = [\"0 deg\"]\n";
+  expect_bad_input(
+      run("design " + write("two.toml", base + two)),
+      {"two.toml: design: 6 runs over 2 allowed g-levels give at most 2 distinct g-levels, but a test "
+       "of the fit of 3 free terms (K0, K2, K3) for a missing term needs 4 (the default of "
+       "design.min_g_levels: free terms + 1); accepted: design.runs and the allowed g-levels at least "
+       "4, or design.min_g_levels = 2 to design without that test"});
+  expect_bad_input(run("design " + write("seven.toml", base + "\n[design]\nmin_g_levels = 7\n")),
+                   {"seven.toml: design.min_g_levels: 7 but 6 runs over 26 allowed g-levels give at most 6 "
+                    "distinct g-levels; accepted: at most 6, or more runs or g-levels"});
+  expect_bad_input(run("design " + write("zero.toml", base + "\n[design]\nmin_g_levels = 0\n")),
+                   {"zero.toml:", "design.min_g_levels", "a number of distinct g-levels from 1 to 1000"});
+  // A machine that sets nothing finer than zero: the resolutions must be positive, named with their line.
+  expect_bad_input(run("design " + write("res.toml", base + "\n[design]\ng_resolution = \"0 g\"\n")),
+                   {"res.toml:", "design.g_resolution: must be positive, got 0 g"});
+  expect_bad_input(run("design " + write("dur.toml", base + "\n[design]\nduration_resolution = \"-1 ms\"\n")),
+                   {"dur.toml:", "design.duration_resolution: must be positive, got -1 ms"});
   // Two g-levels and whole turns cannot separate K0, K2 and K3: no plan is well posed.
-  const std::string blind = write(
-      "blind.toml", base + "\n[design]\ng_levels = [\"10 g\", \"20 g\"]\nturn_fractions = 1\n"
-                           "phases = [\"180 deg\"]\narm_azimuths = [\"0 deg\"]\n");
+  const std::string blind = write("blind.toml", base + two + "min_g_levels = 2\n");
   expect_bad_input(run("design " + blind), {"identifies every free term"});
 }
 

@@ -1,14 +1,17 @@
-// A lab's week end to end: `ccal simulate --truth FILE` gives the simulated machine the truth file's errors, the
-// lab's configuration only what it measured; its logs, written in a data acquisition system's layout into a
-// folder with its manifest, are reduced by `ccal reduce --logs DIR` as ccal's own are; the statement corrects for
-// the measured error alone; a bad truth file or manifest is refused with its place and nothing is written.
+// A lab's week end to end: `ccal design` writes the plan as its operator runs it (the run sheet, rounded to the
+// machine's steps, runs named after their g-levels); `ccal simulate --truth FILE` gives the simulated machine the
+// truth file's errors, the lab's configuration only what it measured; its logs, written in a data acquisition
+// system's layout into a folder with its manifest, are reduced by `ccal reduce --logs DIR` as ccal's own are; the
+// statement corrects for the measured error alone; an allocation for one target leaves the others no worse; a
+// bad truth file or manifest is refused with its place and nothing is written.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
-#include <fmt/format.h>
-
 #include <nlohmann/json.hpp>
+#include <numbers>
+#include <set>
 #include <string>
 
 #include "ccal/core/sha256.hpp"
@@ -92,6 +95,102 @@ TEST_F(Cli, ADaqFolderIsReducedByItsManifestAsCcalsOwnLogsAre) {
   const Result both = run("reduce " + kLab + " --logs own --log 5g=own/5g.csv");
   EXPECT_EQ(both.code, 2);
   EXPECT_NE(both.err.find("--log and --logs: give one of them"), std::string::npos) << both.err;
+}
+
+// The whole week: the designed plan's run sheet, its logs simulated from the separate truth into a DAQ-layout
+// folder, the folder reduced by its manifest, and a statement corrected for the stated error alone; and an
+// allocation for one target that leaves the other coefficients no worse.
+TEST_F(Cli, TheWholeWeekFromTheDesignedRunSheetToTheStatement) {
+  {
+    std::ofstream f(dir_ / "daq.toml");
+    f << "[columns]\ntime = \"t_ms\"\ntime_unit = \"ms\"\npulses = \"piga_count\"\ntheta1 = \"enc_main\"\n"
+         "gamma = \"enc_platform\"\nangle_unit = \"counts\"\ncounts_per_revolution = 16777216\n";
+  }
+  // Monday: the plan, as the operator sets it.
+  const Result design = run("design " + kLab + " --plan-out designed.toml --format json");
+  ASSERT_EQ(design.code, 0) << design.err;
+  const auto sheet = nlohmann::json::parse(design.out)["run_sheet"];
+  ASSERT_EQ(sheet["runs"].size(), 6u);
+  std::set<std::string> levels;
+  // Each value a whole number of the machine's steps (0.01 g, 1 ms, 0.1 deg): 1e-9 of a step is round-off of
+  // the unit conversion.
+  auto on_step = [](double value, double step) {
+    return std::abs(value / step - std::round(value / step)) < 1e-6;
+  };
+  for (const auto& line : sheet["runs"]) {
+    const double g = line["g_level_g"];
+    EXPECT_TRUE(on_step(g, 0.01)) << line;
+    EXPECT_TRUE(on_step(line["duration_s"].get<double>(), 0.001)) << line;
+    EXPECT_TRUE(
+        on_step(line[line["sets"] == "stop_phase" ? "stop_phase_deg" : "start_phase_deg"].get<double>(), 0.1))
+        << line;
+    EXPECT_TRUE(on_step(line["arm_azimuth_deg"].get<double>(), 0.1)) << line;
+    const std::string level = fmt::format("{:.12g}g", g);
+    EXPECT_TRUE(line["run"].get<std::string>().starts_with(level))
+        << line;  // the log's name says its g-level
+    levels.insert(level);
+  }
+  EXPECT_GE(levels.size(), 4u);  // three free terms + 1: the residuals can show a term the model lacks
+  const std::string written = read(dir_ / "designed.toml");
+  const std::string plan = written.substr(written.find("\n[plan]"));
+  EXPECT_EQ(plan.find(" rad\""), std::string::npos)
+      << plan;  // degrees, seconds and g, as the operator sets them
+  EXPECT_NE(plan.find("terminal_phase = \""), std::string::npos) << plan;
+
+  // Tuesday: the machine, which has the truth's errors, runs the sheet; the DAQ writes its own layout.
+  const Result sim = run("simulate designed.toml --truth " + kLabTruth +
+                         " -o /dev/null --logs-out daq --log-layout daq.toml");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  for (const auto& line : sheet["runs"])
+    EXPECT_TRUE(fs::exists(dir_ / "daq" / (line["run"].get<std::string>() + ".csv"))) << line;
+
+  // Wednesday: the folder reduced by its manifest, against the lab's configuration with the designed plan.
+  const Result reduced =
+      run("reduce designed.toml --logs daq --statement --statement-trials 0 --format json");
+  ASSERT_EQ(reduced.code, 0) << reduced.err;
+  const auto red = nlohmann::json::parse(reduced.out);
+  ASSERT_EQ(red["runs"].size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto& logged = red["runs"][k];
+    EXPECT_EQ(logged["name"], sheet["runs"][k]["run"]);
+    EXPECT_EQ(logged["log_sha256"],
+              ccal::sha256_hex(read(dir_ / "daq" / (logged["name"].get<std::string>() + ".csv"))));
+    // The platform's start as the encoder saw it is the sheet's: the truth's errors move it by arcseconds,
+    // the encoder's counts by 2π/2^24; 0.01 deg is far above both and far below the sheet's 0.1 deg step.
+    const double measured =
+        logged["platform_encoder"]["initial_phase_rad"].get<double>() * 180 / std::numbers::pi;
+    EXPECT_NEAR(std::remainder(measured - sheet["runs"][k]["start_phase_deg"].get<double>(), 360.0), 0, 0.01)
+        << logged["name"];
+  }
+  // The statement corrects for dthz5, the one error lab.toml states, and nothing else: its correction is
+  // minus that error's bias row in `ccal budget` of the same configuration (1e-12 relative: the same shift).
+  const auto st = red["statement"];
+  EXPECT_EQ(st["known_errors"], 1);
+  const Result budget = run("budget designed.toml --format json");
+  ASSERT_EQ(budget.code, 0) << budget.err;
+  const auto b = nlohmann::json::parse(budget.out);
+  for (const auto& c : b["coefficients"]) {
+    const std::string id = c["id"];
+    const double bias = b["known_error_bias"][id];
+    EXPECT_NEAR(st["coefficients"][id]["correction"].get<double>(), -bias, 1e-12 * std::abs(bias) + 1e-300)
+        << id;
+  }
+
+  // Thursday: what the centrifuge must be for U(K3) at half the configured; K0 and K2 are held.
+  const Result configured = run("allocate " + kLab + " --target K3=1 --format json");
+  ASSERT_EQ(configured.code, 0) << configured.err;
+  const double U3 = nlohmann::json::parse(configured.out)["coefficients"]["K3"]["configured_expanded"];
+  const Result allocated = run(fmt::format("allocate {} --target K3={:.6g} --format json", kLab, U3 / 2));
+  ASSERT_EQ(allocated.code, 0) << allocated.err;
+  const auto a = nlohmann::json::parse(allocated.out);
+  EXPECT_TRUE(a["grown"].empty()) << a["grown"];
+  for (const auto& [id, c] : a["coefficients"].items()) {
+    if (id == "K3") continue;
+    // No worse: 1e-9 relative is the solver's tolerance on a held constraint.
+    EXPECT_LE(c["allocated_expanded"].get<double>(), c["configured_expanded"].get<double>() * (1 + 1e-9))
+        << id;
+    EXPECT_TRUE(c["held"].get<bool>()) << id;
+  }
 }
 
 TEST_F(Cli, ABadTruthFileIsRefusedWithItsPlaceAndNothingWritten) {

@@ -23,5 +23,31 @@ TEST(ProgressLine, FitsEveryTerminalWidth) {
   EXPECT_NE(narrow.find("ETA 0:00:01"), std::string::npos) << narrow;
 }
 
+TEST(ProgressLine, NamesWhatItCounts) {
+  // The design counts candidate runs, starts and halvings, not trials.
+  const std::string runs = progress_line("design: candidate runs ", 0.25, 2500, 10000, 4e3, "0:00:02", 200, "runs");
+  EXPECT_NE(runs.find(" 2500/10000 runs  4e+03 runs/s  ETA 0:00:02"), std::string::npos) << runs;
+  EXPECT_EQ(runs.find("trials"), std::string::npos) << runs;
+}
+
+TEST(Progress, ARestartCountsTheNewStageFromZero) {
+  // Not drawn (stderr is not wanted): the count and the callback are the stage's own after a restart.
+  std::uint64_t last_done = 99, last_total = 0;
+  Progress p(false, [&](std::uint64_t done, std::uint64_t total) {
+    last_done = done;
+    last_total = total;
+  });
+  p.restart(10, "a ", "runs");
+  for (int i = 0; i < 7; ++i) p.tick();
+  p.poll();
+  EXPECT_EQ(last_done, 7u);
+  EXPECT_EQ(last_total, 10u);
+  p.restart(3, "b ", "starts");
+  p.set_done(2);
+  p.poll();
+  EXPECT_EQ(last_done, 2u);
+  EXPECT_EQ(last_total, 3u);
+}
+
 }  // namespace
 }  // namespace ccal::progress_bar

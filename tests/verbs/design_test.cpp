@@ -2,16 +2,18 @@
 // budget does, the designed plan is never worse than the configured one and keeps every constraint, the
 // configuration written with the designed [plan] budgets to the same numbers, and the [design] table's bad
 // values are refused with their place in the file.
+#include "ccal/render/design.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "ccal/io/config_file.hpp"
-#include "ccal/render/design.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
 #include "ccal/verbs/design.hpp"
 
@@ -131,6 +133,31 @@ TEST_F(DesignedExample, EveryConstraintHolds) {
     EXPECT_TRUE(run.terminal_phase.has_value());
   }
   EXPECT_LE(total, 2700 * (1 + 1e-12));
+  // At least the free terms + 1 distinct g-levels (the default of min_g_levels), counted as the operator sets
+  // them (0.01 g).
+  std::set<long long> levels;
+  for (const ccal::Run& run : runs) levels.insert(std::llround(run.g_level / 0.01));
+  EXPECT_GE(levels.size(), 4u);
+  // The run sheet is the designed plan, run by run in its order.
+  ASSERT_EQ(r().sheet.lines.size(), runs.size());
+  for (std::size_t j = 0; j < runs.size(); ++j) {
+    EXPECT_EQ(r().sheet.lines[j].run, runs[j].name);
+    EXPECT_EQ(r().sheet.lines[j].g_level, runs[j].g_level);
+    EXPECT_EQ(r().sheet.lines[j].duration, runs[j].duration);
+  }
+}
+
+// min_g_levels = 6: every run at a g-level of its own, where the unconstrained design pairs runs at one level
+// (the pairs of opposite headings of docs/model.md §15.3).
+TEST(DesignMinGLevels, EveryRunOnItsOwnLevelWhenAsked) {
+  const verbs::DesignResult all = verbs::design(small_config("min_g_levels = 6\n"));
+  std::set<long long> levels;
+  for (const ccal::Run& run : all.designed.plan.runs) levels.insert(std::llround(run.g_level / 0.01));
+  EXPECT_EQ(levels.size(), 6u);
+  const verbs::DesignResult free = verbs::design(small_config("min_g_levels = 1\n"));
+  levels.clear();
+  for (const ccal::Run& run : free.designed.plan.runs) levels.insert(std::llround(run.g_level / 0.01));
+  EXPECT_LT(levels.size(), 6u);
 }
 
 // The configuration written with the designed [plan] reads back to the same runs, bit for bit (17 digits in
@@ -227,7 +254,7 @@ TEST(DesignConfig, BadValuesAreRefusedWithTheirPlace) {
             std::string::npos);
   // Two g-levels cannot separate K0, K2 and K3 on this platform: the search finds no well-posed plan.
   EXPECT_NE(message("g_levels = [\"10 g\", \"20 g\"]\nturn_fractions = 1\nphases = [\"180 "
-                    "deg\"]\narm_azimuths = [\"0 deg\"]")
+                    "deg\"]\narm_azimuths = [\"0 deg\"]\nmin_g_levels = 2")
                 .find("identifies every free term"),
             std::string::npos);
 }

@@ -34,6 +34,9 @@ enum class DesignPhase { terminal, initial };
 
 struct DesignSpace {
   std::optional<int> runs;           // number of runs (default: the plan's)
+  // Distinct g-levels the designed plan keeps at least (default: the free terms + 1, so that the residuals can
+  // show a term of the instrument's g-dependence the model lacks, a lack of fit; 1: no such constraint).
+  std::optional<int> min_g_levels;
   std::optional<double> total_time;  // Σ T_j at most [s] (default: the plan's total)
   std::optional<double> max_g;       // the largest g-level the machine allows [g] (default: the plan's largest)
   std::vector<double> g_levels;      // allowed g-levels [g]; empty: the range below

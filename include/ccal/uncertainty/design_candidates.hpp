@@ -5,6 +5,7 @@
 // (observe's model means, output_jacobian of uncertainty/budget.hpp, rate_noise_gain), so that a plan scores
 // exactly as the budget would score it.
 
+#include <functional>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@ namespace ccal {
 // The design space with every default resolved (SI; g-levels in g).
 struct ResolvedDesignSpace {
   int runs = 0;
+  int min_g_levels = 1;   // distinct g-levels a plan keeps at least (default: free terms + 1)
   double total_time = 0;  // Σ T ≤ [s]
   double max_g = 0;       // [g]
   std::vector<double> g_levels;
@@ -32,7 +34,8 @@ struct ResolvedDesignSpace {
 };
 
 // Resolves config.design against config.plan. Throws InputError naming the [design] key for an empty or
-// contradictory space (a g-level above max_g, fewer runs than free terms, runs that cannot fit the total time).
+// contradictory space (a g-level above max_g, fewer runs than free terms, runs that cannot fit the total time,
+// fewer runs or allowed g-levels than min_g_levels).
 ResolvedDesignSpace resolve_design_space(const Config& config);
 
 // Every combination of the grids: g-level × duration (whole revolutions of each nominal duration less k/n of a
@@ -48,8 +51,8 @@ Run plan_run(const DesignRun& run, std::string name);
 struct SettingResolution {
   double g = 0.01;                   // [g]
   // [s]. A run's duration places where the platform stops in its last turn, which the designed plans use to
-  // cancel leaks: 0.1 s (1 rad at 10 rad/s) took the bundled example's designed U(K3) from 0.00045 to 0.0056,
-  // 1 ms costs it 0.4 % (a data acquisition window is set to its sample clock, far finer).
+  // cancel leaks: 0.1 s (1 rad at 10 rad/s) took the bundled example's designed U(K3) (three g-levels) from
+  // 0.00045 to 0.0056, 1 ms costs it 0.4 % (a data acquisition window is set to its sample clock, far finer).
   double duration = 0.001;
   double angle = 0.1 * std::numbers::pi / 180;  // [rad]
 };
@@ -62,7 +65,10 @@ SettingResolution setting_resolution(const DesignSpace& design);
 Run rounded_run(const Run& run, const SettingResolution& resolution, double max_g);
 
 // The cached rows of the runs under the configuration (its tolerances, groups, drives' noise, instrument noise,
-// identification and mode), in parallel (OpenMP, `threads` ≤ 0: the default). Deterministic.
-CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>& runs, int threads = 0);
+// identification and mode), in parallel (OpenMP, `threads` ≤ 0: the default). Deterministic. `on_row` (if set)
+// is called once per run done, from any thread, one at a time or concurrently: it must be thread-safe and
+// must not throw.
+CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>& runs, int threads = 0,
+                             const std::function<void()>& on_row = {});
 
 }  // namespace ccal

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <string_view>
 #include <vector>
 
 #include "ccal/model/plan.hpp"
@@ -98,12 +99,19 @@ struct DesignProblem {
   RowFunction evaluate;  // empty: no local refinement
   Refinement refinement;
   std::vector<std::vector<int>> initial_plans;  // starts besides the random ones (e.g. the configured plan)
+  // Every plan keeps at least this many distinct g-levels, two levels being one when they round to the same
+  // multiple of g_resolution [g] (0: when equal).
+  int min_g_levels = 1;
+  double g_resolution = 0;
 };
 
 struct DesignSearchOptions {
   int starts = 6;  // random starts (besides the initial plans)
   std::uint64_t seed = 1;
   int max_sweeps = 50;  // exchange sweeps per start
+  // Called after each start ("search", starts done, starts) and each halving of the refinement's steps
+  // ("refinement", halvings done, halvings + 1), from the calling thread; may throw to stop the search.
+  std::function<void(std::string_view stage, int done, int total)> on_progress;
 };
 
 struct DesignSearchResult {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ccal/model/run_sheet.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
 #include "ccal/verbs/budget.hpp"
@@ -29,6 +30,9 @@ struct DesignOptions {
   std::int64_t verify_trials = 0;           // Monte Carlo check of the designed plan; 0: none
   // Trade-off curve: the design repeated with the total time scaled by each factor (e.g. 0.5, 0.75, 1).
   std::vector<double> tradeoff;
+  // A progress line on standard error, only when it is a terminal: the candidate runs cached, the search's
+  // starts, the refinement, each with its estimate of the time left.
+  bool progress = false;
 };
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
@@ -51,7 +55,9 @@ struct TradeoffPoint {
 
 struct DesignResult {
   Config config;    // as configured
-  Config designed;  // the same with the designed [plan]
+  Config designed;  // the same with the designed [plan], rounded to what the machine sets ([design]
+                    // *_resolution)
+  RunSheet sheet;   // the designed plan as its operator runs it; `after` is its U if run as written
   ResolvedDesignSpace space;
   std::size_t candidates = 0;  // candidate runs cached
   DesignObjective objective = DesignObjective::uncertainty;
@@ -62,7 +68,7 @@ struct DesignResult {
   BudgetResult before, after;  // the full budgets of the configured and the designed plan
   // Tolerances only (the LPU, without the drives' noise): U_k of every free term before and after (SI).
   Eigen::VectorXd tolerance_before, tolerance_after;
-  std::string mechanism;  // a sentence on what changed, where the leading sources' leaks cancel
+  std::string mechanism;  // in words: what changed, how much from a stronger signal, how much from cancelling
   std::optional<MonteCarloResult> verification;
   std::vector<TradeoffPoint> tradeoff;
   double cache_seconds = 0, search_seconds = 0;
