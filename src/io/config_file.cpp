@@ -85,6 +85,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   cfg.centrifuge = read_centrifuge(r, root);
   read_errors(r, root, cfg.centrifuge);
   cfg.tolerances = read_tolerances(r, root, cfg.centrifuge.layout);
+  cfg.correlations = read_correlations(r, root, cfg.tolerances);
   cfg.instrument = read_instrument(r, root);
   cfg.plan = read_plan(r, root, cfg.centrifuge.geometry, cfg.site);
   read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);

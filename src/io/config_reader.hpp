@@ -289,8 +289,9 @@ class Reader {
   std::string source_;
 };
 
-inline const Keys kRootKeys{"site", "centrifuge", "errors",         "tolerances",
-                            "instrument", "plan",       "identification", "design", "certificate"};
+inline const Keys kRootKeys{"site",       "centrifuge", "errors",         "tolerances", "correlations",
+                            "instrument", "plan",       "identification", "design",     "certificate"};
+inline const Keys kCorrelationKeys{"between", "r"};
 inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
 inline const Keys kCentrifugeKeys{
     "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
@@ -316,6 +317,9 @@ Site read_site(const Reader& r, const toml::table& root);
 CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root);
 void read_errors(const Reader& r, const toml::table& root, CentrifugeModel& model);
 std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const ErrorLayout& layout);
+// [[correlations]] (config_sections_correlations.cpp), after the tolerances it refers to.
+std::vector<Correlation> read_correlations(const Reader& r, const toml::table& root,
+                                           const std::vector<Tolerance>& tolerances);
 InstrumentModel read_instrument(const Reader& r, const toml::table& root);
 TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site);
 void read_identification(const Reader& r, const toml::table& root, const InstrumentModel& instrument,

@@ -148,6 +148,24 @@ std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::Obser
     for (Eigen::Index b = 0; b < r.correlation.cols(); ++b) jr.push_back(r.correlation(a, b));
     j["correlation"].push_back(jr);
   }
+  if (r.input_correlation.size() > 0) {
+    // The inputs' correlation matrix ([[correlations]] and the groups' r = 1), in tolerance order, and the
+    // part of each coefficient's u² its cross terms make (negative where they cancel).
+    nlohmann::ordered_json ids = nlohmann::ordered_json::array(), rows = nlohmann::ordered_json::array();
+    for (Eigen::Index a = 0; a < r.input_correlation.rows(); ++a) {
+      ids.push_back(r.sources[std::size_t(a)].id);
+      nlohmann::ordered_json row = nlohmann::ordered_json::array();
+      for (Eigen::Index b = 0; b < r.input_correlation.cols(); ++b) row.push_back(r.input_correlation(a, b));
+      rows.push_back(row);
+    }
+    const Eigen::VectorXd cross = correlation_variance(r);
+    nlohmann::ordered_json share = nlohmann::ordered_json::object();
+    for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
+      const double u = r.standard_uncertainty[Eigen::Index(k)];
+      share[r.coefficients[k]] = u > 0 ? cross[Eigen::Index(k)] / (u * u) : 0.0;
+    }
+    j["input_correlation"] = {{"sources", ids}, {"matrix", rows}, {"share_of_variance", share}};
+  }
   if (!r.rate_noise.empty()) {
     j["rate_noise"] = nlohmann::ordered_json::array();
     for (const RateNoiseBudget& n : r.rate_noise) j["rate_noise"].push_back(rate_noise_json(cfg, r, n));
@@ -164,12 +182,8 @@ std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::Obser
   j["answer"] = nlohmann::ordered_json::object();  // per coefficient: the contributions that make 90 % of u²
   for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
-    double sum = 0;
-    for (const Contribution& c : contributions(r, k)) {
-      if (sum >= 0.9) break;
-      sum += c.share;
+    for (const Contribution& c : answer_contributions(r, k))
       list.push_back({{"source", c.label}, {"share", c.share}});
-    }
     j["answer"][r.coefficients[k]] = list;
   }
   j["observability"] = observability_json(observability);

@@ -100,6 +100,16 @@ std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t
     members[g] += (members[g].empty() ? "" : ", ") + r.sources[s].id;
   }
   std::vector<Contribution> out;
+  if (r.input_factor.size() > 0) {
+    // Partly correlated sources: each its own share c²u²/u_c², and the cross terms Σ_{s≠t} c_s u_s r_st c_t
+    // u_t as one more line (negative where the correlations cancel), so that the shares add to 1.
+    for (const SourceBudget& s : r.sources)
+      out.push_back({s.group.empty() ? s.id : s.group + " (" + s.id + ")",
+                     variance > 0 ? s.effect[i] * s.effect[i] / variance : 0.0});
+    out.push_back(
+        {"correlations between sources", variance > 0 ? correlation_variance(r)[i] / variance : 0.0});
+    effect.clear();
+  }
   for (std::size_t g = 0; g < effect.size(); ++g) {
     std::string label = members[g];
     for (std::size_t s = 0; s < r.sources.size(); ++s)
@@ -112,6 +122,25 @@ std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t
   for (const RateNoiseBudget& n : r.rate_noise) out.push_back({n.id, n.share[i]});
   std::stable_sort(out.begin(), out.end(),
                    [](const Contribution& a, const Contribution& b) { return a.share > b.share; });
+  return out;
+}
+
+std::vector<Contribution> answer_contributions(const ccal::BudgetResult& r, std::size_t k) {
+  const std::vector<Contribution> all = contributions(r, k);
+  std::vector<Contribution> out, cancelling;
+  double sum = 0;
+  for (const Contribution& c : all)
+    if (c.share < 0) {
+      sum += c.share;
+      if (c.share <= -0.01) cancelling.push_back(c);
+    }
+  for (const Contribution& c : all) {
+    if (sum >= 0.9) break;
+    if (c.share < 0) continue;
+    sum += c.share;
+    out.push_back(c);
+  }
+  out.insert(out.end(), cancelling.begin(), cancelling.end());
   return out;
 }
 

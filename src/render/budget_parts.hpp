@@ -70,6 +70,9 @@ struct Contribution {
   double share = 0;   // of u_k²
 };
 std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t k);
+// "The answer": the largest contributions that make 90 % of u_k², the cross terms of partly correlated
+// sources that cancel (a negative share) counted first and listed last when they reach 1 % of u_k².
+std::vector<Contribution> answer_contributions(const ccal::BudgetResult& r, std::size_t k);
 
 // "id (group)", or the id alone.
 std::string source_label(const std::string& id, const std::string& group);

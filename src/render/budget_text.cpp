@@ -66,12 +66,8 @@ std::string answer(const ccal::BudgetResult& r, std::size_t width) {
   for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
     const auto i = Eigen::Index(k);
     std::vector<std::string> items;
-    double sum = 0;
-    for (const Contribution& c : contributions(r, k)) {
-      if (sum >= 0.9) break;
-      sum += c.share;
+    for (const Contribution& c : answer_contributions(r, k))
       items.push_back(fmt::format("{} {}", c.label, percent(c.share)));
-    }
     out += wrap_items(fmt::format("  {}: U = {} {};", r.coefficients[k],
                                   number(r.expanded_uncertainty[i] * r.display_scale[k], 4), r.units[k]),
                       items, width == 0 ? std::size_t(-1) : width, "      ");

@@ -15,6 +15,7 @@
 #include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/reduction/fit.hpp"
+#include "ccal/setup/input_correlation.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
@@ -275,6 +276,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
                                      const AllocateOptions& o) {
   if (cfg.tolerances.empty())
     throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
+  refuse_partial_correlations(cfg, "the allocation", "the pairs as groups (r = 1), or none");
   if (targets.empty()) throw OptionError("targets", "", "none given; accepted: at least one, e.g. K3=1e-6");
   const double kp = normal_coverage_factor(o.coverage_probability);
   if (!(std::isfinite(o.max_scale) && o.max_scale > 0))

@@ -8,6 +8,7 @@
 #include "ccal/core/scalar.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/model/first_order.hpp"
+#include "ccal/setup/input_correlation.hpp"
 
 namespace ccal {
 
@@ -234,6 +235,12 @@ void add_tolerance_sources(const Config& config, const SensitivityTable& table, 
     group_effect.col(groups.of[s]) += b.effect;
     r.sources.push_back(std::move(b));
   }
+  if (!config.correlations.empty()) {
+    const InputCorrelation inputs = input_correlation(config.tolerances, config.correlations);
+    r.input_correlation = inputs.matrix;
+    r.input_factor = inputs.factor;
+    group_effect = independent_effects(r);
+  }
   r.covariance = group_effect * group_effect.transpose();
 }
 
@@ -316,6 +323,25 @@ void rank_by_share(BudgetResult& r) {
 }
 
 }  // namespace
+
+Eigen::MatrixXd independent_effects(const BudgetResult& b) {
+  const auto nk = Eigen::Index(b.coefficients.size());
+  if (b.input_factor.size() > 0) {
+    Eigen::MatrixXd effects(nk, Eigen::Index(b.sources.size()));
+    for (std::size_t s = 0; s < b.sources.size(); ++s) effects.col(Eigen::Index(s)) = b.sources[s].effect;
+    return effects * b.input_factor;
+  }
+  const CorrelationGroups groups = correlation_groups(b.sources);
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nk, groups.count);
+  for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
+  return g;
+}
+
+Eigen::VectorXd correlation_variance(const BudgetResult& b) {
+  Eigen::VectorXd out = independent_effects(b).rowwise().squaredNorm();
+  for (const SourceBudget& s : b.sources) out -= s.effect.cwiseAbs2();
+  return out;
+}
 
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options) {
   const Experiment ex = config.experiment();

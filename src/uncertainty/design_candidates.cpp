@@ -11,6 +11,7 @@
 #include "ccal/core/units.hpp"
 #include "ccal/reduction/observability.hpp"
 #include "ccal/reduction/observe.hpp"
+#include "ccal/setup/input_correlation.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/rate_noise.hpp"
 
@@ -410,11 +411,11 @@ CandidateRows candidate_rows(const Config& config, const std::vector<DesignRun>&
   const Experiment base = config.experiment();
   std::vector<int> parameters;
   for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
-  // Scaled by u_s and summed per correlation group, as the budget adds them (model.md §10.1).
-  const CorrelationGroups groups = correlation_groups(config.tolerances);
-  Eigen::MatrixXd group_map = Eigen::MatrixXd::Zero(Eigen::Index(parameters.size()), groups.count);
+  // Scaled by u_s and added as the budget's independent components (model.md §10.1): diag(u) F, R = F Fᵀ
+  // (the group indicator when only groups correlate sources).
+  Eigen::MatrixXd group_map = input_correlation(config.tolerances, config.correlations).factor;
   for (std::size_t s = 0; s < config.tolerances.size(); ++s)
-    group_map(Eigen::Index(s), groups.of[s]) =
+    group_map.row(Eigen::Index(s)) *=
         standard_uncertainty(config.tolerances[s].bound, config.tolerances[s].distribution);
 
   constexpr std::size_t kBlock = 32;

@@ -261,8 +261,8 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   r.designed = with_plan(config, r.search.runs, r.space);
   r.sheet = run_sheet(r.designed.plan, r.designed.centrifuge.geometry, r.designed.site);
   r.after = rescore(r.designed, options);
-  r.tolerance_before = tolerance_expanded(config, r.before.budget);
-  r.tolerance_after = tolerance_expanded(r.designed, r.after.budget);
+  r.tolerance_before = tolerance_expanded(r.before.budget);
+  r.tolerance_after = tolerance_expanded(r.after.budget);
   r.mechanism = mechanism_text(r);
 
   for (double factor : options.tradeoff)

@@ -8,11 +8,8 @@
 
 namespace ccal::verbs {
 
-Eigen::VectorXd tolerance_expanded(const Config& config, const ccal::BudgetResult& b) {
-  const CorrelationGroups groups = correlation_groups(config.tolerances);
-  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(Eigen::Index(b.coefficients.size()), groups.count);
-  for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
-  return b.coverage.factor * g.rowwise().norm();
+Eigen::VectorXd tolerance_expanded(const ccal::BudgetResult& b) {
+  return b.coverage.factor * independent_effects(b).rowwise().norm();
 }
 
 double heading_imbalance(const Config& c) {

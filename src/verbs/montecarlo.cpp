@@ -4,6 +4,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/reduction/fit.hpp"
+#include "ccal/setup/input_correlation.hpp"
 
 namespace ccal::verbs {
 
@@ -42,6 +43,8 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
   check_verb_options(o);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
+  refuse_partial_correlations(config, "the Monte Carlo",
+                              "`ccal budget` (the LPU), or the pairs as groups (r = 1)");
   const ModelMode mode = o.mode.value_or(config.mode);
   ccal::BudgetOptions bo;
   bo.mode = mode;

@@ -15,16 +15,9 @@
 namespace ccal::verbs {
 namespace {
 
-// The tolerances' effects per correlation group (coefficients × groups, SI, the budget's order): effects of a
-// group added with their signs (docs/model.md §10.1), without the drives' rate noise. u_B is the norm of a row,
-// the Type B covariance G Gᵀ.
-Eigen::MatrixXd type_b_groups(const ccal::BudgetResult& b) {
-  const CorrelationGroups groups = correlation_groups(b.sources);
-  const auto nk = Eigen::Index(b.coefficients.size());
-  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nk, groups.count);
-  for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
-  return g;
-}
+// The tolerances' effects as independent components (coefficients × m, SI; uncertainty/budget.hpp), without
+// the drives' rate noise. u_B is the norm of a row, the Type B covariance G Gᵀ (docs/model.md §10.1).
+Eigen::MatrixXd type_b_groups(const ccal::BudgetResult& b) { return independent_effects(b); }
 
 // The modelled output of each run, stated from the coefficients' covariance parts (see CalibrationStatement).
 void state_outputs(const Config& config, const Identification& id, double p, CalibrationStatement& st) {

@@ -1,14 +1,15 @@
 #include "statement_montecarlo.hpp"
 
-#include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <memory>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/setup/input_correlation.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -101,6 +102,9 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
                                     const std::vector<double>& to_fit, const StatementOptions& o,
                                     CalibrationStatement& st) {
   if (o.statement_trials <= 0 || config.tolerances.empty()) return;
+  refuse_partial_correlations(
+      config, "the statement's Monte Carlo check",
+      "--statement-trials 0 (the statement by the LPU alone), or the pairs as groups (r = 1)");
   const CalibrationModel model = calibration_model(config.experiment(), config.identification, config.tolerances,
                                                    config.centrifuge.errors, st.mode);
   TrialFunction tolerances = calibration_trial(model);

@@ -38,7 +38,7 @@ TEST(DesignMechanism, ToleranceUIsTheQuadratureSumOfTheSourcesWhenNoneIsGrouped)
   const Config c = bundled();
   for (const Tolerance& t : c.tolerances) ASSERT_TRUE(t.group.empty()) << t.id;
   const BudgetResult b = budget(c);
-  const Eigen::VectorXd u = tolerance_expanded(c, b.budget);
+  const Eigen::VectorXd u = tolerance_expanded(b.budget);
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     double sum = 0;
     for (const SourceBudget& s : b.budget.sources) sum += s.effect[k] * s.effect[k];
@@ -53,7 +53,7 @@ TEST(DesignMechanism, ToleranceUAddsAGroupsSourcesWithTheirSigns) {
   c.tolerances[0].group = "pair";
   c.tolerances[1].group = "pair";
   const BudgetResult b = budget(c);
-  const Eigen::VectorXd u = tolerance_expanded(c, b.budget);
+  const Eigen::VectorXd u = tolerance_expanded(b.budget);
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     double sum = 0;
     for (const SourceBudget& s : b.budget.sources) sum += s.effect[k] * s.effect[k];
@@ -79,8 +79,8 @@ DesignResult result_of(const Config& configured, const Config& designed) {
   r.before = budget(configured);
   r.after = budget(designed);
   for (const std::string& id : r.before.budget.coefficients) r.targets.push_back({id, 1.0, 1.0, false});
-  r.tolerance_before = tolerance_expanded(configured, r.before.budget);
-  r.tolerance_after = tolerance_expanded(designed, r.after.budget);
+  r.tolerance_before = tolerance_expanded(r.before.budget);
+  r.tolerance_after = tolerance_expanded(r.after.budget);
   return r;
 }
 

@@ -31,6 +31,7 @@ struct Config {
   InstrumentModel instrument;
   TestPlan plan;
   std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order
+  std::vector<Correlation> correlations;  // pairs of tolerances partly correlated ([[correlations]])
   // What is identified ([identification]; default: K0, K2, K3 free and K1 held at the instrument's value, as
   // in the paper). Fixed terms hold the instrument's configured coefficients (SI).
   IdentificationSpec identification;

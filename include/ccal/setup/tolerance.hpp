@@ -61,4 +61,12 @@ struct Tolerance {
   std::string unit;   // the unit the bound was written in ("um", "arcsec"), for display only; "": SI
 };
 
+// A correlation the lab knows between the errors of two tolerances ([[correlations]], docs/config.md): the
+// correlation coefficient r ∈ [−1, 1] of the two inputs (JCGM 100 §5.2.2). A group is r = 1 between its
+// members.
+struct Correlation {
+  std::string first, second;  // parameter ids, both in [tolerances]
+  double r = 0;
+};
+
 }  // namespace ccal

@@ -131,7 +131,18 @@ struct BudgetResult {
   Eigen::MatrixXd covariance;  // of the coefficients (SI)
   Eigen::MatrixXd correlation;
   std::vector<CompensationChoice> compensation;  // systematic, not in the totals
+  // With [[correlations]]: the inputs' correlation matrix R (sources × sources, the groups' r = 1 in it) and
+  // a factor F, R = F Fᵀ (setup/input_correlation.hpp); both empty when only groups correlate sources.
+  Eigen::MatrixXd input_correlation, input_factor;
 };
+
+// The tolerances' effects as independent components (coefficients × m, SI): G with G Gᵀ = E R Eᵀ, the
+// tolerances' part of the covariance (E: the sources' signed effects c u). Groups only: one column per group,
+// its members' effects added with their signs; with [[correlations]]: E F.
+Eigen::MatrixXd independent_effects(const BudgetResult& budget);
+// The part of u_k² that correlations between the sources make (coefficients, SI): u_k² from the tolerances
+// less Σ_s (c_ks u_s)², negative when they cancel.
+Eigen::VectorXd correlation_variance(const BudgetResult& budget);
 
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});
 
