@@ -118,6 +118,13 @@ void bind_budget_results(py::module_& m) {
       .def_readonly("covariance", &BudgetResult::covariance,
                     "covariance of the coefficients [coefficient SI × coefficient SI]")
       .def_readonly("correlation", &BudgetResult::correlation, "correlation of the coefficients [—]")
+      .def_readonly("input_correlation", &BudgetResult::input_correlation,
+                    "with [[correlations]]: the inputs' correlation matrix R, sources × sources in the order of "
+                    "`sources` (groups' r = 1 in it); else empty [—]")
+      .def_property_readonly(
+          "correlation_variance", [](const BudgetResult& r) { return correlation_variance(r); },
+          "per coefficient: the part of u² the sources' correlations make (negative where they cancel) "
+          "[coefficient SI²]")
       .def_readonly("compensation", &BudgetResult::compensation,
                     "the modelling choices and their biases, list of CompensationChoice [—]");
 }

@@ -32,13 +32,13 @@ InputCorrelation input_correlation(const std::vector<Tolerance>& tolerances,
       if (groups.of[std::size_t(a)] == groups.of[std::size_t(b)]) out.matrix(a, b) = 1;
   // A pair with a grouped source correlates the other with the whole group, which moves as one (r = 1
   // within it): every member pairs alike, or R would not be a correlation matrix.
+  std::vector<std::vector<Eigen::Index>> members(std::size_t(groups.count));
+  for (Eigen::Index s = 0; s < n; ++s) members[std::size_t(groups.of[std::size_t(s)])].push_back(s);
   for (const Correlation& c : correlations) {
-    const int ga = groups.of[std::size_t(index_of(tolerances, c.first))];
-    const int gb = groups.of[std::size_t(index_of(tolerances, c.second))];
-    for (Eigen::Index a = 0; a < n; ++a)
-      for (Eigen::Index b = 0; b < n; ++b)
-        if (groups.of[std::size_t(a)] == ga && groups.of[std::size_t(b)] == gb)
-          out.matrix(a, b) = out.matrix(b, a) = c.r;
+    const auto ga = std::size_t(groups.of[std::size_t(index_of(tolerances, c.first))]);
+    const auto gb = std::size_t(groups.of[std::size_t(index_of(tolerances, c.second))]);
+    for (const Eigen::Index a : members[ga])
+      for (const Eigen::Index b : members[gb]) out.matrix(a, b) = out.matrix(b, a) = c.r;
     out.partial = true;
   }
   if (!out.partial) {
