@@ -42,6 +42,13 @@ TEST_F(Cli, WhatDoesNotTakeThemYetRefusesThem) {
                    {"c.toml: [[correlations]]: the Monte Carlo does not take partly correlated inputs yet"});
   expect_bad_input(run("allocate " + config + " --target K3=1e-3"),
                    {"c.toml: [[correlations]]: the allocation does not take partly correlated inputs yet"});
+  // The statement: its Monte Carlo check refuses them and says how to go without it; its LPU takes them.
+  ASSERT_EQ(run("simulate " + config + " -o /dev/null --observations-out obs.csv").code, 0);
+  expect_bad_input(run("identify obs.csv --statement --config " + config),
+                   {"the statement's Monte Carlo check does not take partly correlated inputs yet",
+                    "accepted: --statement-trials 0"});
+  const Result lpu = run("identify obs.csv --statement --statement-trials 0 --config " + config + " --format json");
+  ASSERT_EQ(lpu.code, 0) << lpu.err;
 }
 
 }  // namespace
