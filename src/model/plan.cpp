@@ -37,10 +37,13 @@ double initial_phase(const Run& run, const Geometry& geometry, const Site& site)
   if (run.initial_phase) return *run.initial_phase;
   if (!run.terminal_phase)
     throw std::invalid_argument("run '" + run.name + "' gives neither an initial nor a terminal phase");
+  return angle_in_turn(*run.terminal_phase - nominal_platform_rate(run, geometry, site) * run.duration);
+}
+
+double angle_in_turn(double angle) {
   const double two_pi = 2 * std::numbers::pi;
-  const double phi0 =
-      std::fmod(*run.terminal_phase - nominal_platform_rate(run, geometry, site) * run.duration, two_pi);
-  return phi0 < 0 ? phi0 + two_pi : phi0;
+  const double a = std::fmod(angle, two_pi);
+  return a < 0 ? a + two_pi : a;
 }
 
 double initial_ia_azimuth(const Run& run, const Geometry& geometry, const Site& site) {

@@ -1,20 +1,8 @@
 #include "ccal/model/run_sheet.hpp"
 
-#include <cmath>
 #include <numbers>
 
 namespace ccal {
-
-namespace {
-
-// An angle in [0, 2π).
-double wrapped(double angle) {
-  const double two_pi = 2 * std::numbers::pi;
-  const double a = std::fmod(angle, two_pi);
-  return a < 0 ? a + two_pi : a;
-}
-
-}  // namespace
 
 RunSheet run_sheet(const TestPlan& plan, const Geometry& geometry, const Site& site) {
   RunSheet sheet;
@@ -27,11 +15,12 @@ RunSheet run_sheet(const TestPlan& plan, const Geometry& geometry, const Site& s
     line.platform_rate = nominal_platform_rate(run, geometry, site);
     line.duration = run.duration;
     line.turns = line.main_rate * run.duration / (2 * std::numbers::pi);
-    line.arm_azimuth = wrapped(run.arm_azimuth);
-    line.start_phase = wrapped(initial_phase(run, geometry, site));
+    line.arm_azimuth = angle_in_turn(run.arm_azimuth);
+    line.start_phase = angle_in_turn(initial_phase(run, geometry, site));
     // γ(T) = φ0 + γ̇T (model.md §6.1); a terminal phase the plan sets is shown as set, not as recomputed.
-    line.stop_phase = run.terminal_phase ? wrapped(*run.terminal_phase)
-                                         : wrapped(line.start_phase + line.platform_rate * run.duration);
+    line.stop_phase = run.terminal_phase
+                          ? angle_in_turn(*run.terminal_phase)
+                          : angle_in_turn(line.start_phase + line.platform_rate * run.duration);
     line.terminal_phase = run.terminal_phase.has_value();
     line.mounting = run.mounting;
     line.mode = run.mode;

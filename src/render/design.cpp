@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "budget_parts.hpp"
+#include "ccal/core/constants.hpp"
 #include "ccal/render/run_sheet.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
@@ -24,20 +25,14 @@ std::string_view objective_name(DesignObjective o) { return design_objective_nam
 std::string plan_table(const Config& config) {
   Table t({"run", "g-level [g]", "duration [s]", "turns", "phi0 [deg]", "psi [deg]", "arm az. [deg]",
            "mounting", "platform"});
-  double total = 0;
-  for (const Run& run : config.plan.runs) {
-    const double rate = nominal_rate(run, config.centrifuge.geometry, config.site);
-    const double phi0 = initial_phase(run, config.centrifuge.geometry, config.site);
-    const double gamma_rate = nominal_platform_rate(run, config.centrifuge.geometry, config.site);
-    const double psi = std::fmod(std::fmod(phi0 + gamma_rate * run.duration, 2 * std::numbers::pi) +
-                                     2 * std::numbers::pi,
-                                 2 * std::numbers::pi);
-    total += run.duration;
-    t.add_row({run.name, number(run.g_level, 6), number(run.duration, 7),
-               number(rate * run.duration / (2 * std::numbers::pi), 7), number(phi0 * kDeg, 5),
-               number(psi * kDeg, 5), number(run.arm_azimuth * kDeg, 5), std::string(mounting_name(run.mounting)),
-               std::string(platform_mode_name(run.mode))});
-  }
+  // Turns, φ0 and ψ = γ(T) as the run sheet has them (model/run_sheet.hpp).
+  const RunSheet sheet = run_sheet(config.plan, config.centrifuge.geometry, config.site);
+  const double total = sheet.total_duration;
+  for (const RunSheetLine& l : sheet.lines)
+    t.add_row({l.run, number(l.g_level, 6), number(l.duration, 7), number(l.turns, 7),
+               number(l.start_phase * kDeg, 5), number(l.stop_phase * kDeg, 5),
+               number(l.arm_azimuth * kDeg, 5), std::string(mounting_name(l.mounting)),
+               std::string(platform_mode_name(l.mode))});
   return t.render() + fmt::format("  total {} s\n", number(total, 7));
 }
 
@@ -88,16 +83,15 @@ std::string leading_sources(const verbs::DesignResult& r, std::size_t k) {
 
 // The run sheet in the units it is printed in, with the resolution it is rounded to and its expected U.
 nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
-  constexpr double kRpm = 60 / (2 * std::numbers::pi);
   const SettingResolution res = setting_resolution(r.config.design);
   nlohmann::ordered_json lines = nlohmann::ordered_json::array();
   for (const RunSheetLine& l : r.sheet.lines)
     lines.push_back({{"order", l.order},
                      {"run", l.run},
                      {"g_level_g", l.g_level},
-                     {"main_speed_rpm", l.main_rate * kRpm},
+                     {"main_speed_rpm", l.main_rate / constants::rpm},
                      {"platform", platform_mode_name(l.mode)},
-                     {"platform_speed_rpm", l.platform_rate * kRpm},
+                     {"platform_speed_rpm", l.platform_rate / constants::rpm},
                      {"duration_s", l.duration},
                      {"turns", l.turns},
                      {"arm_azimuth_deg", l.arm_azimuth * kDeg},

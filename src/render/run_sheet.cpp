@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "ccal/core/constants.hpp"
 #include "ccal/render/table.hpp"
 
 namespace ccal::render {
@@ -15,7 +16,6 @@ namespace ccal::render {
 namespace {
 
 constexpr double kDegPerRad = 180 / std::numbers::pi;
-constexpr double kRpmPerRadPerSecond = 60 / (2 * std::numbers::pi);
 
 std::string fixed(double value, int decimals) { return fmt::format("{:.{}f}", value, decimals); }
 
@@ -39,7 +39,7 @@ std::string text(const RunSheet& sheet, const SettingResolution& resolution) {
   std::vector<std::string> mountings;
   bool any_terminal = false, any_initial = false;
   for (const RunSheetLine& l : sheet.lines) {
-    const double rpm = l.main_rate * kRpmPerRadPerSecond;
+    const double rpm = l.main_rate / constants::rpm;
     const double rpm_step = rpm * resolution.g / (2 * l.g_level);
     const int rpm_decimals = std::clamp(int(std::ceil(-std::log10(rpm_step))) + 1, 1, 6);
     // A counter-rotating platform turns at −Ω, the speed shown: its control needs no figure of its own.

@@ -44,7 +44,7 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
   refuse_partial_correlations(config, "the Monte Carlo",
-                              "`ccal budget` (the LPU), or the pairs as groups (r = 1)");
+                              "the budget (the LPU), or the pairs as groups (r = 1)");
   const ModelMode mode = o.mode.value_or(config.mode);
   ccal::BudgetOptions bo;
   bo.mode = mode;

@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "ccal/core/errors.hpp"
-#include "ccal/setup/input_correlation.hpp"
+#include "ccal/core/options.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -102,9 +102,13 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
                                     const std::vector<double>& to_fit, const StatementOptions& o,
                                     CalibrationStatement& st) {
   if (o.statement_trials <= 0 || config.tolerances.empty()) return;
-  refuse_partial_correlations(
-      config, "the statement's Monte Carlo check",
-      "--statement-trials 0 (the statement by the LPU alone), or the pairs as groups (r = 1)");
+  // An option of the call that conflicts with the configuration: worded by each front end (OptionError).
+  if (!config.correlations.empty())
+    throw OptionError(
+        "statement_trials", "",
+        fmt::format("{} has [[correlations]], which the statement's Monte Carlo check does not take "
+                    "yet; accepted: 0 (the statement by the LPU alone), or the pairs as groups (r = 1)",
+                    config.source));
   const CalibrationModel model = calibration_model(config.experiment(), config.identification, config.tolerances,
                                                    config.centrifuge.errors, st.mode);
   TrialFunction tolerances = calibration_trial(model);

@@ -45,8 +45,17 @@ TEST_F(Cli, WhatDoesNotTakeThemYetRefusesThem) {
   // The statement: its Monte Carlo check refuses them and says how to go without it; its LPU takes them.
   ASSERT_EQ(run("simulate " + config + " -o /dev/null --observations-out obs.csv").code, 0);
   expect_bad_input(run("identify obs.csv --statement --config " + config),
-                   {"the statement's Monte Carlo check does not take partly correlated inputs yet",
-                    "accepted: --statement-trials 0"});
+                   {"--statement-trials: ",
+                    "has [[correlations]], which the statement's Monte Carlo check does "
+                    "not take yet; accepted: 0 (the statement by the LPU alone)"});
+  // A bad pair through the program: its place, exit code 2, nothing else.
+  const std::string bad =
+      write("bad.toml", read(CCAL_SOURCE_DIR + "/examples/wang_ren_2014.toml") +
+                            "\n[[correlations]]\nbetween = [\"dthy4\", \"dthy5\"]\nr = 1.5\n");
+  expect_bad_input(run("budget " + bad),
+                   {"bad.toml:",
+                    "correlations[1].r: 1.5 is not a correlation coefficient; accepted: a number from "
+                    "-1 to 1"});
   const Result lpu = run("identify obs.csv --statement --statement-trials 0 --config " + config + " --format json");
   ASSERT_EQ(lpu.code, 0) << lpu.err;
 }

@@ -55,6 +55,8 @@ double nominal_rate(const Run& run, const Geometry& geometry, const Site& site);
 double nominal_platform_rate(const Run& run, const Geometry& geometry, const Site& site);
 // φ0 of a run: given, or (ψ − γ̇ T) mod 2π from the terminal phase (= (ψ + ΩT) mod 2π counter-rotating).
 double initial_phase(const Run& run, const Geometry& geometry, const Site& site);
+// An angle as its place in a turn, [0, 2π).
+double angle_in_turn(double angle);
 // The IA's inertial azimuth from East at t = 0: θ1(0) + φ0.
 double initial_ia_azimuth(const Run& run, const Geometry& geometry, const Site& site);
 
