@@ -1,7 +1,7 @@
-// Monte Carlo trials per second for the bundled example (all its tolerances: 48 sources, the six-run plan,
-// K0, K2, K3 identified), with 1 and 2 threads; the engine's own cost per trial (sampling, storage and
-// statistics around a model that only sums the draws); and the truth's six run means of one trial through
-// the Monte Carlo's kernel and through the general average_run.
+// Monte Carlo trials per second for the bundled example (all its tolerances and the drives' rate noise, the
+// six-run plan, K0, K2, K3 identified), with 1 and 2 threads, independent or densely correlated; the engine's
+// own cost per trial (sampling, storage and statistics around a model that only sums the draws); and the
+// truth's six run means of one trial through the Monte Carlo's kernel and through the general average_run.
 //   build/bench/bench_montecarlo --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
@@ -17,9 +17,20 @@ namespace {
 
 using namespace ccal;
 
-// The calibration pipeline: simulate → identify → deviations of K0, K2, K3.
+// Arg 1 of the benchmarks below: a dense [[correlations]] matrix, r = 0.3 between every pair of tolerances
+// (equicorrelation is positive definite), drawn through the Gaussian copula: the cost of the scores' L z and
+// of each source's G_D(y) beside the independent draws'.
+Config with_dense_correlations(Config cfg, bool dense) {
+  if (dense)
+    for (std::size_t a = 0; a < cfg.tolerances.size(); ++a)
+      for (std::size_t b = a + 1; b < cfg.tolerances.size(); ++b)
+        cfg.correlations.push_back({cfg.tolerances[a].id, cfg.tolerances[b].id, 0.3});
+  return cfg;
+}
+
+// The calibration pipeline: simulate → identify → deviations of K0, K2, K3. Arg 0: threads.
 void Pipeline(benchmark::State& state) {
-  const Config cfg = bundled_example();
+  const Config cfg = with_dense_correlations(bundled_example(), state.range(1) == 1);
   const CalibrationModel model = calibration_model(cfg);
   const TrialFunction trial = calibration_trial(model);
   MonteCarloOptions options;
@@ -28,20 +39,28 @@ void Pipeline(benchmark::State& state) {
   std::uint64_t trials = 0;
   for (auto _ : state) {
     const MonteCarloResult r =
-        run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(), model.output_names(), trial, options);
+        run_monte_carlo(monte_carlo_sources(cfg), cfg.correlations, model.n_outputs(), model.output_names(),
+                        trial, options);
     benchmark::DoNotOptimize(r.outputs[2].std_dev);
     trials += r.trials;
     ++options.seed;
   }
   state.SetItemsProcessed(std::int64_t(trials));
-  state.counters["sources"] = double(cfg.tolerances.size());
+  state.counters["sources"] = double(monte_carlo_sources(cfg).size());
+  state.SetLabel(state.range(1) == 1 ? "dense correlations" : "independent sources");
 }
-BENCHMARK(Pipeline)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(Pipeline)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
-// The engine alone: the same 47 sources drawn, a trivial model with 3 outputs, 10⁵ trials per run (the
-// statistics included).
+// The engine alone: the tolerances drawn (independent or densely correlated), a trivial model with 3 outputs,
+// 10⁵ trials per run (the statistics included).
 void EngineOnly(benchmark::State& state) {
-  const Config cfg = bundled_example();
+  const Config cfg = with_dense_correlations(bundled_example(), state.range(1) == 1);
   const TrialFunction trial = [](std::span<const double> x, std::span<double> y) {
     const double s = std::accumulate(x.begin(), x.end(), 0.0);
     y[0] = s;
@@ -53,13 +72,21 @@ void EngineOnly(benchmark::State& state) {
   options.threads = int(state.range(0));
   std::uint64_t trials = 0;
   for (auto _ : state) {
-    const MonteCarloResult r = run_monte_carlo(cfg.tolerances, 3, {}, trial, options);
+    const MonteCarloResult r = run_monte_carlo(cfg.tolerances, cfg.correlations, 3, {}, trial, options);
     benchmark::DoNotOptimize(r.outputs[0].std_dev);
     trials += r.trials;
   }
   state.SetItemsProcessed(std::int64_t(trials));
+  state.counters["sources"] = double(cfg.tolerances.size());
+  state.SetLabel(state.range(1) == 1 ? "dense correlations" : "independent sources");
 }
-BENCHMARK(EngineOnly)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(EngineOnly)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // Errors at +1 tolerance of every bundled source: dynamic errors and ΔΩ ≠ 0, so two slow nodes.
 Eigen::VectorXd one_sigma_errors(const Config& cfg) {

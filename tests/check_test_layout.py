@@ -26,6 +26,8 @@ TESTED_ELSEWHERE = {
     "io/observations_header.cpp": "the header and log lines: tests/io/observation_csv_test.cpp",
     "io/encoder_fit.cpp": "the encoders' line fit: tests/io/run_log_reducer_test.cpp, run_log_ripple_test.cpp",
     "io/run_log_writer.cpp": "logs from the model: tests/verbs/reduce_test.cpp",
+    "uncertainty/linear_propagation.cpp": "propagate_linear: tests/uncertainty/montecarlo_test.cpp, "
+    "montecarlo_correlations_test.cpp",
     "model/centrifuge.cpp": "the error lookup: tests/model/kinematics*_test.cpp",
     "model/instrument.cpp": "the terms: tests/io/config_file_test.cpp, tests/io/observation_csv_test.cpp",
     "model/sensed_input.cpp": "evaluate_force: tests/model/plan_test.cpp, tests/verbs/force_test.cpp",

@@ -148,24 +148,8 @@ std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::Obser
     for (Eigen::Index b = 0; b < r.correlation.cols(); ++b) jr.push_back(r.correlation(a, b));
     j["correlation"].push_back(jr);
   }
-  if (r.input_correlation.size() > 0) {
-    // The inputs' correlation matrix ([[correlations]] and the groups' r = 1), in tolerance order, and the
-    // part of each coefficient's u² its cross terms make (negative where they cancel).
-    nlohmann::ordered_json ids = nlohmann::ordered_json::array(), rows = nlohmann::ordered_json::array();
-    for (Eigen::Index a = 0; a < r.input_correlation.rows(); ++a) {
-      ids.push_back(r.sources[std::size_t(a)].id);
-      nlohmann::ordered_json row = nlohmann::ordered_json::array();
-      for (Eigen::Index b = 0; b < r.input_correlation.cols(); ++b) row.push_back(r.input_correlation(a, b));
-      rows.push_back(row);
-    }
-    const Eigen::VectorXd cross = correlation_variance(r);
-    nlohmann::ordered_json share = nlohmann::ordered_json::object();
-    for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
-      const double u = r.standard_uncertainty[Eigen::Index(k)];
-      share[r.coefficients[k]] = u > 0 ? cross[Eigen::Index(k)] / (u * u) : 0.0;
-    }
-    j["input_correlation"] = {{"sources", ids}, {"matrix", rows}, {"share_of_variance", share}};
-  }
+  if (nlohmann::ordered_json ic = budget_parts::input_correlation_json(r); !ic.is_null())
+    j["input_correlation"] = std::move(ic);
   if (!r.rate_noise.empty()) {
     j["rate_noise"] = nlohmann::ordered_json::array();
     for (const RateNoiseBudget& n : r.rate_noise) j["rate_noise"].push_back(rate_noise_json(cfg, r, n));

@@ -155,4 +155,24 @@ std::string csv_field(std::string_view text) {
   return out + "\"";
 }
 
+nlohmann::ordered_json input_correlation_json(const ccal::BudgetResult& r) {
+  if (r.input_correlation.size() == 0) return nullptr;
+  // The inputs' correlation matrix ([[correlations]] and the groups' r = 1), in tolerance order, and the
+  // part of each coefficient's u² its cross terms make (negative where they cancel).
+  nlohmann::ordered_json ids = nlohmann::ordered_json::array(), rows = nlohmann::ordered_json::array();
+  for (Eigen::Index a = 0; a < r.input_correlation.rows(); ++a) {
+    ids.push_back(r.sources[std::size_t(a)].id);
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
+    for (Eigen::Index b = 0; b < r.input_correlation.cols(); ++b) row.push_back(r.input_correlation(a, b));
+    rows.push_back(row);
+  }
+  const Eigen::VectorXd cross = correlation_variance(r);
+  nlohmann::ordered_json share = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
+    const double u = r.standard_uncertainty[Eigen::Index(k)];
+    share[r.coefficients[k]] = u > 0 ? cross[Eigen::Index(k)] / (u * u) : 0.0;
+  }
+  return {{"sources", ids}, {"matrix", rows}, {"share_of_variance", share}};
+}
+
 }  // namespace ccal::render::budget_parts

@@ -4,6 +4,7 @@
 // the contributions that make up a coefficient's variance. The report's tables read the same fields from the
 // JSON.
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -79,5 +80,10 @@ std::string source_label(const std::string& id, const std::string& group);
 
 // A CSV field, quoted when it holds a comma, a quote or a line break.
 std::string csv_field(std::string_view text);
+
+// The inputs' correlation matrix ([[correlations]] and the groups' r = 1, sources in tolerance order) and the
+// share of each coefficient's u² its cross terms make, as the budget's and the Monte Carlo's JSON carry it;
+// null when the budget has none (no [[correlations]]).
+nlohmann::ordered_json input_correlation_json(const ccal::BudgetResult& r);
 
 }  // namespace ccal::render::budget_parts

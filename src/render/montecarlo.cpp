@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "budget_parts.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
 #include "text_lines.hpp"
@@ -158,6 +159,8 @@ std::string json_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
   j["wall_time_s"] = r.seconds;
   j["trials_per_s"] = per_second(r);
   j["terms"] = b.coefficients;
+  if (nlohmann::ordered_json ic = budget_parts::input_correlation_json(b); !ic.is_null())
+    j["input_correlation"] = std::move(ic);  // drawn through the Gaussian copula (docs/model.md §10.2)
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
   for (std::size_t k = 0; k < r.outputs.size(); ++k) {
     const OutputSummary& s = r.outputs[k];

@@ -1,13 +1,9 @@
 #include "ccal/setup/input_correlation.hpp"
 
-#include <fmt/format.h>
-
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include "ccal/core/errors.hpp"
 
 namespace ccal {
 
@@ -62,15 +58,6 @@ InputCorrelation input_correlation(const std::vector<Tolerance>& tolerances,
   for (Eigen::Index i = n - kept, c = 0; i < n; ++i, ++c)
     out.factor.col(c) = eigen.eigenvectors().col(i) * std::sqrt(lambda[i]);
   return out;
-}
-
-void refuse_partial_correlations(const Config& config, std::string_view computation,
-                                 std::string_view accepted) {
-  if (config.correlations.empty()) return;
-  throw InputError(
-      fmt::format("{}: [[correlations]]: {} does not take partly correlated inputs yet (the budget, "
-                  "the design and the statement's LPU take them); accepted: {}",
-                  config.source, computation, accepted));
 }
 
 }  // namespace ccal

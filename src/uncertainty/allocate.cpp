@@ -435,6 +435,7 @@ GroupOptimum optimise_bounded(const Eigen::MatrixXd& a, const Eigen::VectorXd& c
 
 AllocationSolution solve_allocation(const AllocationProblem& P) {
   check_problem(P);
+  if (P.correlation.size() > 0) return solve_correlated_allocation(P);
   const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols();
   const Groups groups = merge_groups(P.sensitivity, P.standard_uncertainty, P.cost, P.group);
   const Eigen::Index ng = groups.cost.size();

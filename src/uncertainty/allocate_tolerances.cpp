@@ -18,6 +18,7 @@
 #include "ccal/setup/input_correlation.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "ccal/uncertainty/budget.hpp"
+#include "ccal/uncertainty/gaussian_copula.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/uncertainty/rate_noise.hpp"
 
@@ -91,6 +92,7 @@ void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vec
                         double kp, const AllocateOptions& o, AllocationProblem& P, AllocationResult& r) {
   const auto ns = b.sources.size();
   P = AllocationProblem{};
+  if (!cfg.correlations.empty()) P.correlation = input_correlation(cfg.tolerances, cfg.correlations).matrix;
   P.standard_uncertainty.resize(Eigen::Index(ns));
   P.cost.resize(Eigen::Index(ns));
   P.min_scale.resize(Eigen::Index(ns));
@@ -112,7 +114,10 @@ void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vec
   for (std::size_t k = 0; k < r.coefficients.size() && !o.let_others_grow; ++k) {
     if (r.coefficients[k].has_target) continue;
     for (std::size_t s = 0; s < ns; ++s) J(0, Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(k)];
-    const double configured = kp * merge_groups(J, P.standard_uncertainty, P.cost, P.group).effect.norm();
+    const Eigen::RowVectorXd e = J.cwiseProduct(P.standard_uncertainty.transpose());
+    const double configured = kp * (P.correlation.size() > 0 ? std::sqrt(e.dot(e * P.correlation))
+                                                              : merge_groups(J, P.standard_uncertainty, P.cost,
+                                                                             P.group).effect.norm());
     if (!(configured > 0)) continue;  // no tolerance reaches it: nothing to hold
     r.coefficients[k].held = true;
     rows.push_back(k);
@@ -161,9 +166,15 @@ Eigen::VectorXd report_coefficients(const BudgetResult& b, const AllocationProbl
   J = Eigen::MatrixXd::Zero(Eigen::Index(nk), Eigen::Index(ns));
   for (std::size_t s = 0; s < ns; ++s) J.col(Eigen::Index(s)) = b.sources[s].sensitivity;
   const Eigen::VectorXd u_alloc_s = P.standard_uncertainty.cwiseProduct(sol.scale);
-  const Groups allocated = merge_groups(J, u_alloc_s, P.cost, P.group);
-  const Eigen::VectorXd u_alloc =
-      ((allocated.effect * allocated.effect.transpose()).diagonal() + noise_variance).cwiseSqrt();
+  Eigen::VectorXd tolerance_variance;  // Σ_st E_ks R_st E_kt, E = J diag(λ u_0); with groups alone Σ_g c_kg²
+  if (P.correlation.size() > 0) {
+    const Eigen::MatrixXd E = J * u_alloc_s.asDiagonal();
+    tolerance_variance = (E * P.correlation * E.transpose()).diagonal();
+  } else {
+    const Groups allocated = merge_groups(J, u_alloc_s, P.cost, P.group);
+    tolerance_variance = (allocated.effect * allocated.effect.transpose()).diagonal();
+  }
+  const Eigen::VectorXd u_alloc = (tolerance_variance + noise_variance).cwiseSqrt();
   for (std::size_t k = 0; k < nk; ++k) {
     AllocatedCoefficient& c = r.coefficients[k];
     c.configured_expanded = kp * b.standard_uncertainty[Eigen::Index(k)];
@@ -239,7 +250,7 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   mo.progress = o.progress;
   mo.on_progress = o.on_progress;
   if (o.on_progress) o.on_progress(0, o.verify_trials);  // may throw Cancelled: stop before the verification
-  const MonteCarloResult mc = run_monte_carlo(scaled, model.n_outputs(), model.output_names(),
+  const MonteCarloResult mc = run_monte_carlo(scaled, cfg.correlations, model.n_outputs(), model.output_names(),
                                               calibration_trial(model), mo, &u_alloc);
   AllocationVerification& v = r.verification;
   v.trials = mc.trials;
@@ -276,7 +287,7 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
                                      const AllocateOptions& o) {
   if (cfg.tolerances.empty())
     throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
-  refuse_partial_correlations(cfg, "the allocation", "the pairs as groups (r = 1), or none");
+  gaussian_copula(cfg);  // the verification's draws: a pair they cannot make is refused before any work
   if (targets.empty()) throw OptionError("targets", "", "none given; accepted: at least one, e.g. K3=1e-6");
   const double kp = normal_coverage_factor(o.coverage_probability);
   if (!(std::isfinite(o.max_scale) && o.max_scale > 0))

@@ -17,6 +17,12 @@ struct Groups {
 Groups merge_groups(const Eigen::MatrixXd& J, const Eigen::VectorXd& u0, const Eigen::VectorXd& cost,
                     const std::vector<std::string>& group);
 
+struct AllocationProblem;
+struct AllocationSolution;
+// The allocation with AllocationProblem::correlation (allocate.hpp): the barrier method in λ. The problem has
+// passed solve_allocation's checks.
+AllocationSolution solve_correlated_allocation(const AllocationProblem& problem);
+
 }  // namespace ccal
 
 namespace ccal {

@@ -15,9 +15,11 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/gaussian_copula.hpp"
 #include "progress_bar.hpp"
 #include "sample_statistics.hpp"
 
@@ -108,16 +110,6 @@ SlotPlan plan_slots(const std::vector<Tolerance>& sources) {
   return {g.of, g.count, g.named};
 }
 
-void check_sources(const std::vector<Tolerance>& sources) {
-  for (std::size_t j = 0; j < sources.size(); ++j) {
-    const Tolerance& t = sources[j];
-    if (!std::isfinite(t.bound) || t.bound < 0)
-      throw InputError(
-          fmt::format("Monte Carlo source {} ('{}'): the bound must be a finite number ≥ 0, not {}", j + 1,
-                      t.id, t.bound));
-  }
-}
-
 int default_threads() {
 #ifdef _OPENMP
   return std::min(omp_get_max_threads(), kMaxThreads);  // OMP_NUM_THREADS may ask for more
@@ -149,6 +141,7 @@ struct Failure {
 struct Engine {
   const std::vector<Tolerance>& sources;
   const SlotPlan& plan;
+  const GaussianCopula* copula;  // partly correlated sources: the scores' factor L; null: independent slots
   const TrialFunction& trial;
   const std::vector<std::string>& names;
   std::uint64_t key;
@@ -166,16 +159,25 @@ struct Engine {
 #pragma omp parallel num_threads(threads)
     {
       std::vector<double> u(std::size_t(plan.slots)), draws(n_sources), out(n_outputs);
+      Eigen::VectorXd z(copula ? copula->factor.cols() : 0), y(copula ? copula->factor.rows() : 0);
       TrialFunction own_trial = trial;  // this thread's copy: its scratch buffers are its own
 #pragma omp for schedule(dynamic, chunk)
       for (std::int64_t k = 0; k < count; ++k) {
         if (failure.failed.load(std::memory_order_relaxed)) continue;
         const std::uint64_t i = begin + std::uint64_t(k);
         TrialGenerator generator(key, i);
-        for (double& v : u) v = generator.uniform();
-        for (std::size_t j = 0; j < n_sources; ++j)
-          draws[j] =
-              sources[j].bound * standard_quantile(sources[j].distribution, u[std::size_t(plan.slot[j])]);
+        if (copula) {  // y = L z, x = bound · G_D(y_slot)
+          for (double& v : z) v = normal_erf_quantile(2.0 * generator.uniform() - 1.0);
+          y.noalias() = copula->factor * z;
+          for (std::size_t j = 0; j < n_sources; ++j)
+            draws[j] = sources[j].bound *
+                       standard_value_of_score(sources[j].distribution, y[Eigen::Index(plan.slot[j])]);
+        } else {
+          for (double& v : u) v = generator.uniform();
+          for (std::size_t j = 0; j < n_sources; ++j)
+            draws[j] =
+                sources[j].bound * standard_quantile(sources[j].distribution, u[std::size_t(plan.slot[j])]);
+        }
         try {
           own_trial(draws, out);
           for (std::size_t o = 0; o < n_outputs; ++o) {
@@ -268,7 +270,7 @@ void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
   if (options.histogram_bins < 1 || options.histogram_bins > 10000)
     throw InputError(
         fmt::format("Monte Carlo: histogram bins must be 1…10000, not {}", options.histogram_bins));
-  check_sources(sources);
+  check_source_bounds(sources);
 }
 
 // The LPU estimate: the model at the expectations of the sources (all zero).
@@ -398,9 +400,9 @@ void summarise_outputs(std::vector<std::vector<double>>& samples, const std::vec
 }
 
 // What a report needs to say about how the numbers were obtained.
-void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const MonteCarloOptions& options,
-              std::uint64_t block, std::uint64_t J, int n_dig, double k_p, bool has_lpu, int n_outputs,
-              MonteCarloResult& result) {
+void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const GaussianCopula* copula,
+              const MonteCarloOptions& options, std::uint64_t block, std::uint64_t J, int n_dig, double k_p,
+              bool has_lpu, int n_outputs, MonteCarloResult& result) {
   const std::uint64_t M = result.trials, q = result.interval_points;
   const double p = result.coverage_probability;
   const bool adaptive = result.adaptive, converged = result.converged;
@@ -424,10 +426,16 @@ void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const
                                          format_count(J), p)
                            : std::string());
   n += fmt::format(
-      "Sources: {} ({} independent draw{}, {} fully correlated group{} sharing one draw: rank "
-      "correlation 1, same sign).\n",
-      sources.size(), plan.slots - plan.groups, plan.slots - plan.groups == 1 ? "" : "s", plan.groups,
-      plan.groups == 1 ? "" : "s");
+      "Sources: {} ({} {}draw{}, {} fully correlated group{} sharing one draw: rank correlation 1, same "
+      "sign).\n",
+      sources.size(), plan.slots - plan.groups, copula ? "" : "independent ",
+      plan.slots - plan.groups == 1 ? "" : "s", plan.groups, plan.groups == 1 ? "" : "s");
+  if (copula)
+    n += fmt::format(
+        "Partly correlated draws ([[correlations]]): a Gaussian copula, the {} draws' normal scores "
+        "correlated so that each configured Pearson r holds with the two inputs' distributions, which every "
+        "input keeps.\n",
+        plan.slots);
   n += fmt::format(
       "Coverage intervals (§7.7.2): p = {}, q = {} of the M sorted values; probabilistically "
       "symmetric from r = {}, shortest: the narrowest such window.\n",
@@ -442,7 +450,8 @@ void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const
 
 }  // namespace
 
-MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
+MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
+                                 const std::vector<Correlation>& correlations, int n_outputs,
                                  std::vector<std::string> output_names, const TrialFunction& trial,
                                  const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
   const auto start = Clock::now();
@@ -465,6 +474,9 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
                     options.max_trials, block));
 
   const SlotPlan plan = plan_slots(sources);
+  std::optional<GaussianCopula> copula;
+  if (!correlations.empty()) copula = gaussian_copula(sources, correlations);
+  const GaussianCopula* copula_used = copula ? &*copula : nullptr;
   const auto n_out = std::size_t(n_outputs);
   const int threads = options.threads > 0 ? options.threads : default_threads();
 
@@ -472,7 +484,8 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
 
   std::vector<std::vector<double>> samples(n_out);
   Progress progress(options.progress, options.on_progress);
-  const Engine engine{sources, plan, trial, output_names, mix64(options.seed), threads, samples, progress};
+  const Engine engine{sources, plan,    copula_used, trial, output_names, mix64(options.seed),
+                      threads, samples, progress};
   const std::uint64_t q_block = interval_points(block, p);
 
   MonteCarloResult result;
@@ -533,46 +546,8 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_ou
   samples.clear();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-  describe(sources, plan, options, block, J, n_dig, k_p, lpu_std != nullptr, n_outputs, result);
+  describe(sources, plan, copula_used, options, block, J, n_dig, k_p, lpu_std != nullptr, n_outputs, result);
   return result;
-}
-
-LinearPropagation propagate_linear(const std::vector<Tolerance>& sources, int n_outputs,
-                                   const TrialFunction& trial, double step_fraction) {
-  if (n_outputs < 1) throw InputError("LPU: the model must have at least one output");
-  if (!(step_fraction > 0)) throw InputError("LPU: the step fraction must be > 0");
-  check_sources(sources);
-  const auto n = Eigen::Index(sources.size());
-  std::vector<double> draws(sources.size(), 0.0);
-  std::vector<double> out(std::size_t(n_outputs), 0.0);
-  const auto evaluate = [&] {
-    trial(draws, out);
-    return Eigen::Map<const Eigen::VectorXd>(out.data(), n_outputs).eval();
-  };
-  LinearPropagation lp;
-  lp.estimate = evaluate();
-  lp.sensitivities = Eigen::MatrixXd::Zero(n_outputs, n);
-  Eigen::MatrixXd contribution = Eigen::MatrixXd::Zero(n_outputs, n);  // c_ij·u_j
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const Tolerance& t = sources[std::size_t(j)];
-    const double u = standard_uncertainty(t.bound, t.distribution);
-    if (!(u > 0)) continue;
-    const double h = step_fraction * u;
-    draws[std::size_t(j)] = h;
-    const Eigen::VectorXd plus = evaluate();
-    draws[std::size_t(j)] = -h;
-    const Eigen::VectorXd minus = evaluate();
-    draws[std::size_t(j)] = 0.0;
-    lp.sensitivities.col(j) = (plus - minus) / (2 * h);
-    contribution.col(j) = lp.sensitivities.col(j) * u;
-  }
-  // Fully correlated sources add linearly, independent ones (and groups) in quadrature.
-  const SlotPlan plan = plan_slots(sources);
-  Eigen::MatrixXd by_slot = Eigen::MatrixXd::Zero(n_outputs, plan.slots);
-  for (Eigen::Index j = 0; j < n; ++j) by_slot.col(plan.slot[std::size_t(j)]) += contribution.col(j);
-  lp.covariance = by_slot * by_slot.transpose();
-  lp.std_uncertainty = lp.covariance.diagonal().cwiseSqrt();
-  return lp;
 }
 
 }  // namespace ccal

@@ -1,5 +1,5 @@
-// The checks of a Monte Carlo run's counts made before any work starts: the thread count against the range
-// and against what the system can start, and the trial count against the coverage probability.
+// The checks of a Monte Carlo run made before any work starts: the sources' bounds, the thread count against
+// the range and against what the system can start, and the trial count against the coverage probability.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -52,6 +52,16 @@ int startable_threads(int wanted) {
 }
 
 }  // namespace
+
+void check_source_bounds(const std::vector<Tolerance>& sources) {
+  for (std::size_t j = 0; j < sources.size(); ++j) {
+    const Tolerance& t = sources[j];
+    if (!std::isfinite(t.bound) || t.bound < 0)
+      throw InputError(
+          fmt::format("Monte Carlo source {} ('{}'): the bound must be a finite number ≥ 0, not {}", j + 1,
+                      t.id, t.bound));
+  }
+}
 
 void check_thread_count(int threads, const char* what) {
   if (threads < 0 || threads > kMaxThreads)

@@ -4,7 +4,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/reduction/fit.hpp"
-#include "ccal/setup/input_correlation.hpp"
+#include "ccal/uncertainty/gaussian_copula.hpp"
 
 namespace ccal::verbs {
 
@@ -43,8 +43,7 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
   check_verb_options(o);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
-  refuse_partial_correlations(config, "the Monte Carlo",
-                              "the budget (the LPU), or the pairs as groups (r = 1)");
+  gaussian_copula(config);  // a pair the copula cannot draw is refused before the budget's work
   const ModelMode mode = o.mode.value_or(config.mode);
   ccal::BudgetOptions bo;
   bo.mode = mode;
@@ -59,8 +58,9 @@ MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
     throw plan_cannot_identify(e);
   }
   const ccal::MonteCarloOptions& mo = o;  // the engine's fields, as set
-  r.monte_carlo = run_monte_carlo(monte_carlo_sources(config), model.n_outputs(), model.output_names(),
-                                  calibration_trial(model), mo, &r.budget.standard_uncertainty);
+  r.monte_carlo =
+      run_monte_carlo(monte_carlo_sources(config), config.correlations, model.n_outputs(),
+                      model.output_names(), calibration_trial(model), mo, &r.budget.standard_uncertainty);
   return r;
 }
 

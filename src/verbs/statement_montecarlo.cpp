@@ -10,6 +10,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/uncertainty/gaussian_copula.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -102,13 +103,7 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
                                     const std::vector<double>& to_fit, const StatementOptions& o,
                                     CalibrationStatement& st) {
   if (o.statement_trials <= 0 || config.tolerances.empty()) return;
-  // An option of the call that conflicts with the configuration: worded by each front end (OptionError).
-  if (!config.correlations.empty())
-    throw OptionError(
-        "statement_trials", "",
-        fmt::format("{} has [[correlations]], which the statement's Monte Carlo check does not take "
-                    "yet; accepted: 0 (the statement by the LPU alone), or the pairs as groups (r = 1)",
-                    config.source));
+  gaussian_copula(config);  // a pair the copula cannot draw, refused with its place in the file
   const CalibrationModel model = calibration_model(config.experiment(), config.identification, config.tolerances,
                                                    config.centrifuge.errors, st.mode);
   TrialFunction tolerances = calibration_trial(model);
@@ -143,7 +138,7 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   mo.coverage_probability = o.coverage_probability;
   const bool student = std::isfinite(shared->type_a_dof);
   const MonteCarloResult mc =
-      run_monte_carlo(statement_sources(config, id, student), int(names.size()), names,
+      run_monte_carlo(statement_sources(config, id, student), config.correlations, int(names.size()), names,
                       StatementTrial(shared, std::move(tolerances), int(model_names.size())), mo);
   st.monte_carlo_trials = mc.trials;
   st.monte_carlo_seed = mc.seed;

@@ -64,21 +64,5 @@ TEST(InputCorrelation, AMatrixNoDistributionHasIsFoundAlongItsSources) {
   EXPECT_THROW(input_correlation(t, {{"a", "e", 0.5}}), std::invalid_argument);
 }
 
-TEST(InputCorrelation, OnlyAConfigurationWithoutPairsGoesWhereTheyAreNotTakenYet) {
-  Config c;
-  c.source = "c.toml";
-  EXPECT_NO_THROW(refuse_partial_correlations(c, "the Monte Carlo", "none"));
-  c.correlations.push_back({"a", "b", 0.5});
-  try {
-    refuse_partial_correlations(c, "the Monte Carlo", "none");
-    FAIL() << "not refused";
-  } catch (const InputError& e) {
-    EXPECT_EQ(
-        std::string(e.what()),
-        "c.toml: [[correlations]]: the Monte Carlo does not take partly correlated inputs yet (the budget, "
-        "the design and the statement's LPU take them); accepted: none");
-  }
-}
-
 }  // namespace
 }  // namespace ccal

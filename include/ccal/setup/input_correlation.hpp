@@ -7,7 +7,6 @@
 
 #include <Eigen/Core>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "ccal/setup/config.hpp"
@@ -29,11 +28,6 @@ struct InputCorrelation {
 // refuses it first, with its line).
 InputCorrelation input_correlation(const std::vector<Tolerance>& tolerances,
                                    const std::vector<Correlation>& correlations);
-
-// Throws InputError naming [[correlations]] when the configuration has any: `computation` (e.g. "the Monte
-// Carlo") does not draw partly correlated inputs yet; `accepted` says what to do instead.
-void refuse_partial_correlations(const Config& config, std::string_view computation,
-                                 std::string_view accepted);
 
 // Negative eigenvalues of R down to this are round-off (R's entries are given to at most 17 digits); below
 // it the matrix is refused as no joint distribution's.

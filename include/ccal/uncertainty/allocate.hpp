@@ -33,6 +33,14 @@
 // other rows keep the capacity 1 − Σ_{fixed g} a_kg x_g). Without floors every target can be met (λ → 0 is
 // allowed), so a solution always exists for targets > 0.
 //
+// Partly correlated sources (AllocationProblem::correlation): U_k(λ) = k_p √(λᵀ Q_k λ) with Q_k = Gᵀ diag(E_k)
+// R diag(E_k) G (E_k = J_k u_0 per source, G the group indicator). The cross terms make the rows nonlinear
+// in x = λ², but each is a convex quadratic in λ (Q_k is positive semi-definite) and Σ_g C_g/λ_g is convex, so
+// the problem is convex in λ: solved by the barrier method in λ (src/uncertainty/allocate_correlated.cpp,
+// AllocationSolution::method "barrier (partly correlated sources)", duality gap below 1e-11 of the
+// objective). A row is judged at the least scales as above: loosening a source whose error cancels another's
+// is not sought to meet a target the floors otherwise prevent.
+//
 // The simple alternative is one common scale for every source, λ = min(λ_max, min_k T_k / U_k(1)).
 //
 // Verification: a Monte Carlo run (ccal/uncertainty/montecarlo.hpp, exact nonlinear pipeline) on the
@@ -65,6 +73,9 @@ struct AllocationProblem {
   double coverage_factor = kDefaultCoverageFactor;  // k_p
   double max_scale = 10.0;                     // λ_max > 0
   Eigen::VectorXd min_scale;  // λ_min,s per source, 0 ≤ λ_min,s ≤ λ_max (floor_s / bound_s); empty: all 0
+  // R of the sources (sources × sources, input_correlation.hpp: 1 within a group, [[correlations]]' r); empty:
+  // the groups alone. With it the rows are λᵀQ_kλ ≤ 1, solved by a barrier method in λ (see below).
+  Eigen::MatrixXd correlation;
 };
 
 struct AllocationSolution {

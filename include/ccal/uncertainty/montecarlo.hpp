@@ -19,6 +19,9 @@
 // member at its upper tail. Members of one distribution type are exactly proportional (Pearson r = 1);
 // members of different types have a Pearson correlation slightly below 1 (e.g. 0.98 between a normal and a
 // uniform member), which the LPU's r = 1 slightly overstates.
+// Partly correlated sources ([[correlations]]): a Gaussian copula over the same slots (gaussian_copula.hpp).
+// Trial i draws m uniforms from its generator, z_k = Φ⁻¹(u_k), the slots' scores y = L z, and each source
+// bound · G_D(y_slot): its own distribution, with each configured Pearson r between the pairs.
 //
 // Random numbers and determinism. Trial i (0-based, counted over all stages) has its own generator:
 // xoshiro256** (D. Blackman, S. Vigna, "Scrambled linear pseudorandom number generators", ACM TOMS 47(4),
@@ -96,6 +99,9 @@ inline constexpr int kMaxThreads = 1024;
 // start that many threads now (they are started and ended to find out: the OpenMP runtime would end the
 // process, exit code 1, on a thread it cannot create).
 void check_thread_count(int threads, const char* what);
+
+// Throws InputError naming the source unless every bound is finite and ≥ 0.
+void check_source_bounds(const std::vector<Tolerance>& sources);
 
 // The least M for which the coverage interval of probability p exists: q = round(pM) of §7.7.2 must leave at
 // least one of the M sorted values out (q ≤ M − 1), about M = 1/(2(1 − p)). InputError unless 0 < p < 1.
@@ -217,9 +223,18 @@ struct MonteCarloResult {
 // bound, distribution and group); output_names: n_outputs names, or empty for "y1", "y2", …; lpu_std: u_c per
 // output for the §8 validation, or null. Throws InputError for invalid options or sources, or when a trial
 // gives a non-finite output; rethrows an exception thrown by the trial function.
-MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
+// correlations: pairs of source ids with their Pearson r ([[correlations]]), drawn through a Gaussian copula
+// that keeps every source's distribution (gaussian_copula.hpp); InputError where it cannot.
+MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
+                                 const std::vector<Correlation>& correlations, int n_outputs,
                                  std::vector<std::string> output_names, const TrialFunction& trial,
                                  const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std = nullptr);
+inline MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
+                                        std::vector<std::string> output_names, const TrialFunction& trial,
+                                        const MonteCarloOptions& options,
+                                        const Eigen::VectorXd* lpu_std = nullptr) {
+  return run_monte_carlo(sources, {}, n_outputs, std::move(output_names), trial, options, lpu_std);
+}
 
 // The pieces of the statistics (§7.7.2, §7.9.2), for reports and checks:
 // q for M values and coverage probability p (at most M − 1);
@@ -233,15 +248,21 @@ double numerical_tolerance(double u, int n_dig);
 
 // The law of propagation of uncertainty (JCGM 100 §5) for the same model: sensitivities by central
 // differences, c_ij = (f_i(+h e_j) − f_i(−h e_j))/2h with h = step_fraction·u(x_j) about the expectations
-// (zero draws). Sources of one group are fully correlated (r = 1): their contributions c_ij u_j add linearly.
+// (zero draws). Sources of one group are fully correlated (r = 1): their contributions c_ij u_j add linearly;
+// with correlations (pairs of source ids, input_correlation.hpp) the covariance is E R Eᵀ, E_ij = c_ij u_j.
 struct LinearPropagation {
   Eigen::VectorXd estimate;         // f(0)
   Eigen::MatrixXd sensitivities;    // n_outputs × n_sources, output per unit of source (SI)
   Eigen::VectorXd std_uncertainty;  // u_c per output
   Eigen::MatrixXd covariance;       // of the outputs
 };
-LinearPropagation propagate_linear(const std::vector<Tolerance>& sources, int n_outputs,
+LinearPropagation propagate_linear(const std::vector<Tolerance>& sources,
+                                   const std::vector<Correlation>& correlations, int n_outputs,
                                    const TrialFunction& trial, double step_fraction = 1e-2);
+inline LinearPropagation propagate_linear(const std::vector<Tolerance>& sources, int n_outputs,
+                                          const TrialFunction& trial, double step_fraction = 1e-2) {
+  return propagate_linear(sources, {}, n_outputs, trial, step_fraction);
+}
 
 // The calibration as a Monte Carlo model. A trial adds the drawn errors to the actual errors (the [errors]
 // section: Config::centrifuge.errors) of their parameters (Tolerance::parameter), simulates the plan,
