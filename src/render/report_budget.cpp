@@ -161,6 +161,11 @@ std::string coefficient_table(const Doc& doc, std::size_t k, const std::vector<C
                                         rest)),
                      combined_cell(doc, rest_effects, "rss", 4, 1.0),
                      combined_cell(doc, rest_shares, "sum", 3, 100));
+  if (budget.contains("input_correlation"))  // the cross terms Σ_{s≠t} u_s(y) r_st u_t(y): one more line
+    t += fmt::format(
+        "<tr class=\"rest\"><td colspan=\"10\">correlations between sources ([[correlations]]: the cross "
+        "terms, negative where correlated effects cancel)</td>{}</tr>\n",
+        num_cell(doc, "/input_correlation/share_of_variance/" + id, 3, 100));
   const std::string c = fmt::format("/coefficients/{}", k);
   t += fmt::format(
       "<tr class=\"total\"><td colspan=\"9\">combined standard uncertainty u<sub>c</sub> "
@@ -175,6 +180,33 @@ std::string coefficient_table(const Doc& doc, std::size_t k, const std::vector<C
       doc.json.value("coverage_method", "") == "stated k" ? " for a normal quantity (k stated)" : "",
       num_cell(doc, c + "/expanded_uncertainty"));
   return t;
+}
+
+// The inputs' correlation matrix where it is not the identity: the sources that some correlation links
+// (a group's members or a [[correlations]] pair), each r traced to the budget's JSON.
+std::string input_correlation_table(const Doc& doc) {
+  if (!doc.json.contains("input_correlation")) return {};
+  const Json& ic = doc.json["input_correlation"];
+  const Json& matrix = ic["matrix"];
+  std::vector<std::size_t> linked;
+  for (std::size_t a = 0; a < matrix.size(); ++a)
+    for (std::size_t b = 0; b < matrix.size(); ++b)
+      if (a != b && matrix[a][b].get<double>() != 0) {
+        linked.push_back(a);
+        break;
+      }
+  if (linked.empty()) return {};
+  std::string t =
+      "<table class=\"input-correlation\"><caption>Correlation coefficients r of the input quantities that "
+      "are correlated ([[correlations]]; 1 within a group; JCGM 100 §5.2.2)</caption>\n<tr><th></th>";
+  for (const std::size_t b : linked) t += "<th>" + escape(ic["sources"][b].get<std::string>()) + "</th>";
+  t += "</tr>\n";
+  for (const std::size_t a : linked) {
+    t += "<tr><th>" + escape(ic["sources"][a].get<std::string>()) + "</th>";
+    for (const std::size_t b : linked) t += num_cell(doc, fmt::format("/input_correlation/matrix/{}/{}", a, b), 3);
+    t += "</tr>\n";
+  }
+  return t + "</table>\n";
 }
 
 }  // namespace
@@ -205,7 +237,7 @@ std::string budget_section(const Doc& doc, std::size_t top) {
     out += "<div class=\"pair\">\n" + chart("pareto-" + id, pareto_spec(id, head, rest, all.size() - n_top)) +
            coefficient_table(doc, k, all, n_top) + "</div>\n";
   }
-  return out + "</section>\n";
+  return out + input_correlation_table(doc) + "</section>\n";
 }
 
 std::string paper_section(const Doc& doc, std::size_t top) {
