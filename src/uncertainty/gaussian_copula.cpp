@@ -2,13 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/setup/input_correlation.hpp"
@@ -94,7 +97,7 @@ struct PearsonSeries {
   double at_one = 1;
 };
 
-PearsonSeries series(Distribution d, Distribution e) {
+PearsonSeries make_series(Distribution d, Distribution e) {
   const HermiteExpansion &a = expansion(d), &b = expansion(e);
   PearsonSeries s;
   double sum = 0;
@@ -113,6 +116,27 @@ PearsonSeries series(Distribution d, Distribution e) {
   s.at_one = d == e ? 1.0 : at_one;  // E[G_D²]/σ_D² = 1 exactly
   s.remainder = s.at_one - sum;
   return s;
+}
+
+// The series of every pair of distributions, made once.
+const PearsonSeries& series(Distribution d, Distribution e) {
+  static const std::array<PearsonSeries, kDistributions* kDistributions> all = [] {
+    std::array<PearsonSeries, kDistributions * kDistributions> out;
+    for (int a = 0; a < kDistributions; ++a)
+      for (int b = 0; b < kDistributions; ++b)
+        out[std::size_t(a * kDistributions + b)] = make_series(Distribution(a), Distribution(b));
+    return out;
+  }();
+  return all[std::size_t(int(d) * kDistributions + int(e))];
+}
+
+// dc/dρ = Σ_j (2j + 1) c_j ρ^{2j} + (K + 2) t ρ^{K+1}, for Newton's method on c(ρ) = r.
+double slope(const PearsonSeries& s, double rho) {
+  const double rho2 = rho * rho;
+  double sum = 0;
+  for (std::size_t j = s.coefficient.size(); j-- > 0;)
+    sum = sum * rho2 + double(2 * j + 1) * s.coefficient[j];
+  return sum + (kCopulaHermiteTerms + 2) * s.remainder * std::pow(rho, kCopulaHermiteTerms + 1);
 }
 
 double evaluate(const PearsonSeries& s, double rho) {
@@ -178,15 +202,21 @@ double copula_score_correlation(Distribution d, Distribution e, double r) {
   if (std::abs(r) > largest)
     throw std::domain_error(fmt::format("correlation {} beyond the largest, {:.6g}, of a {} and a {} input",
                                         r, largest, distribution_name(d), distribution_name(e)));
-  const PearsonSeries s = series(d, e);
-  // c is increasing: bisection to the last bit (≤ 64 halvings of [−1, 1]).
-  double low = -1, high = 1;
-  while (true) {
-    const double mid = 0.5 * (low + high);
-    if (mid <= low || mid >= high) break;
-    (evaluate(s, mid) < r ? low : high) = mid;
+  const PearsonSeries& s = series(d, e);
+  // c is increasing and nearly linear: Newton's method from ρ = r inside a bracket that every evaluation
+  // narrows, bisecting where a step would leave it; to the last bit (a step below 1e-16, or a bracket that
+  // cannot be halved).
+  double low = -1, high = 1, rho = r;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const double value = evaluate(s, rho) - r;
+    if (value == 0) return rho;
+    (value < 0 ? low : high) = rho;
+    double next = rho - value / slope(s, rho);
+    if (!(next > low && next < high)) next = 0.5 * (low + high);
+    if (std::abs(next - rho) <= 1e-16 || next <= low || next >= high) return next;
+    rho = next;
   }
-  return std::abs(evaluate(s, low) - r) <= std::abs(evaluate(s, high) - r) ? low : high;
+  return rho;
 }
 
 GaussianCopula gaussian_copula(const std::vector<Tolerance>& sources,
@@ -197,17 +227,23 @@ GaussianCopula gaussian_copula(const std::vector<Tolerance>& sources,
   c.slots = groups.count;
   const auto m = Eigen::Index(c.slots);
   c.score_correlation = Eigen::MatrixXd::Identity(m, m);
+  std::map<std::tuple<Distribution, Distribution, double>, double> solved;  // a dense R repeats its r
   for (const Correlation& pair : correlations) {
     const std::size_t a = index_of(sources, pair.first), b = index_of(sources, pair.second);
     const Tolerance &ta = sources[a], &tb = sources[b];
     double rho = 0;
     try {
-      rho = copula_score_correlation(ta.distribution, tb.distribution, pair.r);
+      const auto key = std::make_tuple(ta.distribution, tb.distribution, pair.r);
+      const auto known = solved.find(key);
+      rho = known != solved.end()
+                ? known->second
+                : (solved[key] = copula_score_correlation(ta.distribution, tb.distribution, pair.r));
     } catch (const std::domain_error&) {
       const double largest = largest_pearson(ta.distribution, tb.distribution);
       throw InputError(fmt::format(
           "[[correlations]] {}: no joint distribution of {} and {} has a correlation beyond ±{:.4f} (the "
-          "Monte Carlo keeps each input's distribution); accepted: |r| ≤ {:.4f}, or r = {} (fully correlated: "
+          "Monte Carlo keeps each input's distribution); accepted: |r| ≤ {:.4f}, or r = {} (fully "
+          "correlated: "
           "one draw, as a group)",
           pair_text(ta, tb, pair.r), input_text(ta), input_text(tb), largest, std::floor(largest * 1e4) / 1e4,
           pair.r > 0 ? 1 : -1));
@@ -233,12 +269,14 @@ GaussianCopula gaussian_copula(const std::vector<Tolerance>& sources,
         "budget can; accepted: weaker correlations among these sources, or normal distributions for them",
         c.smallest_eigenvalue, along));
   }
-  const double tiny = 1e-12 * std::max(1.0, m > 0 ? lambda[m - 1] : 1.0);
-  Eigen::Index kept = 0;
-  for (Eigen::Index i = 0; i < m; ++i) kept += lambda[i] > tiny ? 1 : 0;
-  c.factor.resize(m, kept);
-  for (Eigen::Index i = m - kept, k = 0; i < m; ++i, ++k)
-    c.factor.col(k) = eigen.eigenvectors().col(i) * std::sqrt(lambda[i]);
+  // P R_z Pᵀ = L D Lᵀ (pivoted, so a semi-definite R_z of r = ±1 pairs factors too; D's round-off below 0
+  // set to 0): the factor L √D is lower triangular, half the work per draw of a dense one.
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(c.score_correlation);
+  c.factor = Eigen::MatrixXd(ldlt.matrixL()) * ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  const Eigen::VectorXd index = Eigen::VectorXd::LinSpaced(m, 0.0, double(m - 1));
+  const Eigen::VectorXd row_of_slot = ldlt.transpositionsP().transpose() * index;  // y = Pᵀ (L √D z)
+  c.row_of_slot.resize(std::size_t(m));
+  for (Eigen::Index i = 0; i < m; ++i) c.row_of_slot[std::size_t(i)] = int(std::lround(row_of_slot[i]));
   return c;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <boost/math/policies/policy.hpp>
+#include <boost/random/normal_distribution.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -72,6 +73,11 @@ class TrialGenerator {
     s_[3] = rotl(s_[3], 45);
     return result;
   }
+  // As a uniform random bit generator (for Boost.Random's ziggurat normals of the copula).
+  using result_type = std::uint64_t;
+  static constexpr result_type min() { return 0; }
+  static constexpr result_type max() { return ~result_type(0); }
+  result_type operator()() { return next(); }
   // u = (k + ½)·2⁻⁵², k the top 52 bits: exactly representable, in (0, 1), and 1 − u is on the same grid.
   double uniform() { return (double(next() >> 12) + 0.5) * 0x1p-52; }
 
@@ -159,19 +165,21 @@ struct Engine {
 #pragma omp parallel num_threads(threads)
     {
       std::vector<double> u(std::size_t(plan.slots)), draws(n_sources), out(n_outputs);
-      Eigen::VectorXd z(copula ? copula->factor.cols() : 0), y(copula ? copula->factor.rows() : 0);
+      Eigen::VectorXd z(copula ? copula->factor.cols() : 0), w(z.size());
+      boost::random::normal_distribution<double> normal;  // no state between draws: one per thread
       TrialFunction own_trial = trial;  // this thread's copy: its scratch buffers are its own
 #pragma omp for schedule(dynamic, chunk)
       for (std::int64_t k = 0; k < count; ++k) {
         if (failure.failed.load(std::memory_order_relaxed)) continue;
         const std::uint64_t i = begin + std::uint64_t(k);
         TrialGenerator generator(key, i);
-        if (copula) {  // y = L z, x = bound · G_D(y_slot)
-          for (double& v : z) v = normal_erf_quantile(2.0 * generator.uniform() - 1.0);
-          y.noalias() = copula->factor * z;
-          for (std::size_t j = 0; j < n_sources; ++j)
-            draws[j] = sources[j].bound *
-                       standard_value_of_score(sources[j].distribution, y[Eigen::Index(plan.slot[j])]);
+        if (copula) {  // y = Pᵀ L z (L lower triangular), x = bound · G_D(y_slot)
+          for (double& v : z) v = normal(generator);
+          w.noalias() = copula->factor.triangularView<Eigen::Lower>() * z;
+          for (std::size_t j = 0; j < n_sources; ++j) {
+            const auto row = copula->row_of_slot[std::size_t(plan.slot[j])];
+            draws[j] = sources[j].bound * standard_value_of_score(sources[j].distribution, w[row]);
+          }
         } else {
           for (double& v : u) v = generator.uniform();
           for (std::size_t j = 0; j < n_sources; ++j)

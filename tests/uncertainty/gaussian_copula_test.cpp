@@ -147,7 +147,14 @@ TEST(GaussianCopula, SlotsGroupsAndFactor) {
   EXPECT_EQ(c.score_correlation(0, 1), 2 * std::sin(std::numbers::pi * 0.5 / 6));
   EXPECT_EQ(c.score_correlation(0, 2), 2 * std::sin(std::numbers::pi * -0.25 / 6));
   EXPECT_EQ(c.score_correlation(1, 2), 0.0);
-  EXPECT_LT((c.factor * c.factor.transpose() - c.score_correlation).cwiseAbs().maxCoeff(), 1e-15);
+  // The factor is lower triangular, and its rows in the slots' order reproduce R_z.
+  EXPECT_TRUE(c.factor.isLowerTriangular());
+  Eigen::MatrixXd L(c.slots, c.slots);
+  for (int slot = 0; slot < c.slots; ++slot) L.row(slot) = c.factor.row(c.row_of_slot[std::size_t(slot)]);
+  EXPECT_LT((L * L.transpose() - c.score_correlation).cwiseAbs().maxCoeff(), 1e-15);
+  // r = 1 (semi-definite R_z) factors too: the two slots get one score.
+  const GaussianCopula one = gaussian_copula(s, {{"a", "d", 1.0}});
+  EXPECT_EQ(one.factor.row(one.row_of_slot[0]), one.factor.row(one.row_of_slot[2]));
 }
 
 TEST(GaussianCopula, RefusesWhatNoDrawWithTheseMarginalsHas) {

@@ -2,7 +2,8 @@
 // Partly correlated draws that keep every source's own distribution (JCGM 101 §6.4.8; docs/model.md §10.2): a
 // Gaussian copula. Each draw slot s (a lone source, or a group whose members share one draw, montecarlo.hpp)
 // takes a standard normal score y_s; the scores are jointly normal with correlation matrix R_z, y = L z with
-// L Lᵀ = R_z and z independent standard normals; a source of distribution D and bound b in slot s is
+// L Lᵀ = R_z (a pivoted Cholesky factor) and z independent standard normals (Boost.Random's ziggurat from the
+// trial's generator); a source of distribution D and bound b in slot s is
 //     x = b · G_D(y_s),   G_D(y) = F_D⁻¹(Φ(y)) (bound 1; G = identity for the normal),
 // so that every source keeps its marginal exactly. Two sources whose slots have score correlation ρ have the
 // Pearson correlation (Mehler's formula: the orthonormal Hermite polynomials h_k are the eigenfunctions of
@@ -50,8 +51,11 @@ struct GaussianCopula {
       slot;  // per source: its draw slot (groups share one), as the independent sampling numbers them
   int slots = 0;
   Eigen::MatrixXd score_correlation;  // R_z, slots × slots
-  Eigen::MatrixXd factor;             // L, slots × m (m ≤ slots), L Lᵀ = R_z
-  double smallest_eigenvalue = 1;     // of R_z
+  // R_z's pivoted Cholesky factor: `factor` is lower triangular (slots × slots), and the scores y = L z are
+  // y_s = (factor · z)[row_of_slot[s]], so that L = Pᵀ factor with L Lᵀ = R_z.
+  Eigen::MatrixXd factor;
+  std::vector<int> row_of_slot;
+  double smallest_eigenvalue = 1;  // of R_z
 };
 
 // The copula of the sources and the configuration's pairs (ids of sources; a pair naming a grouped source

@@ -20,8 +20,9 @@
 // members of different types have a Pearson correlation slightly below 1 (e.g. 0.98 between a normal and a
 // uniform member), which the LPU's r = 1 slightly overstates.
 // Partly correlated sources ([[correlations]]): a Gaussian copula over the same slots (gaussian_copula.hpp).
-// Trial i draws m uniforms from its generator, z_k = Φ⁻¹(u_k), the slots' scores y = L z, and each source
-// bound · G_D(y_slot): its own distribution, with each configured Pearson r between the pairs.
+// Trial i draws one standard normal per slot from its generator (Boost.Random's ziggurat), the slots' scores
+// y = L z, and each source bound · G_D(y_slot): its own distribution, with each configured Pearson r between
+// the pairs.
 //
 // Random numbers and determinism. Trial i (0-based, counted over all stages) has its own generator:
 // xoshiro256** (D. Blackman, S. Vigna, "Scrambled linear pseudorandom number generators", ACM TOMS 47(4),
