@@ -188,7 +188,13 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
     out += fmt::format(",c_{} [{} per unit]", r.coefficients[k], r.units[k]);
   out += ",type,dof,divisor,estimate,estimate_si";
   for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",c_{}_unit", r.coefficients[k]);
+  // With [[correlations]]: the inputs' correlation matrix, a column r_<id> per source (tolerance order), each
+  // source's row of R in its line; the other lines leave them empty.
+  const bool correlated = r.input_correlation.size() > 0;
+  const std::size_t nr = correlated ? r.sources.size() : 0;
+  for (std::size_t s = 0; s < nr; ++s) out += ",r_" + r.sources[s].id;
   out += "\n";
+  const std::string no_correlations(nr, ',');
   // The columns from `name` on, of a source or a drive's rate noise.
   const auto as_configured = [&](const SourceView& view, const auto& c) {
     std::string line =
@@ -197,6 +203,12 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
     line += fmt::format(",{},{:.17g},{:.17g},{:.17g},{:.17g}", view.type, view.dof, view.divisor,
                         view.estimate, view.estimate_si);
     for (std::size_t k = 0; k < nk; ++k) line += fmt::format(",{}", csv_field(sensitivity_unit(r, k, view)));
+    return line;
+  };
+  const auto correlation_row = [&](std::size_t s) {
+    std::string line;
+    for (std::size_t t = 0; t < nr; ++t)
+      line += fmt::format(",{:.17g}", r.input_correlation(Eigen::Index(s), Eigen::Index(t)));
     return line + "\n";
   };
   for (std::size_t s : by_rank(r)) {
@@ -211,7 +223,8 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
                          b.effect_force[i] * r.display_scale[k], b.effect_rate[i] * r.display_scale[k],
                          b.share[i]);
     }
-    out += as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, b, view, k); });
+    out += as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, b, view, k); }) +
+           correlation_row(s);
   }
   // The drives' rate noise (Type A: u, no sign), then the totals and the round-off floor in the d<K> columns.
   const auto row = [&](const std::string& source, const std::string& distribution, const Eigen::VectorXd& v,
@@ -224,11 +237,21 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
     }
     return line;
   };
-  const std::string blank = std::string(4 + nk + 5 + nk, ',') + "\n";  // name … c_<K>_unit: empty
+  const std::string blank = std::string(4 + nk + 5 + nk, ',') + no_correlations + "\n";  // name …: empty
   for (const RateNoiseBudget& n : r.rate_noise) {
     const SourceView view = rate_noise_view(n);
     out += row(n.id, "normal (Type A)", n.effect, &n.share) +
-           as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, n, view, k); });
+           as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, n, view, k); }) +
+           no_correlations + "\n";
+  }
+  if (correlated) {  // the cross terms' part of u² in the share columns (negative where effects cancel)
+    const Eigen::VectorXd cross = correlation_variance(r);
+    std::string line = ",correlations_between_sources,,,,,";
+    for (std::size_t k = 0; k < nk; ++k) {
+      const double u = r.standard_uncertainty[Eigen::Index(k)];
+      line += fmt::format(",,,,{:.17g}", u > 0 ? cross[Eigen::Index(k)] / (u * u) : 0.0);
+    }
+    out += line + blank;
   }
   out += row("total_standard_uncertainty", "", r.standard_uncertainty, nullptr) + blank;
   out += row("expanded_uncertainty", csv_field(coverage_text(r.coverage)), r.expanded_uncertainty, nullptr) +

@@ -3,8 +3,10 @@
 // allocation meets its targets with them; a pair the copula cannot draw is refused where it is.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli_support.hpp"
 
@@ -32,6 +34,38 @@ TEST_F(Cli, TheBudgetCarriesTheInputCorrelations) {
   EXPECT_EQ(j["matrix"][a][a], 1.0);
   // K2's two ripples cancel: their cross term takes back nearly all of what each adds (-98.9 %).
   EXPECT_LT(j["share_of_variance"]["K2"].get<double>(), -0.9);
+  // The CSV: the matrix as r_<id> columns, each source's row of R in its line, and the cross terms' share.
+  const Result csv = run("budget " + config + " --format csv");
+  ASSERT_EQ(csv.code, 0) << csv.err;
+  const auto cells = [](const std::string& line) {
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (const char c : line) {
+      if (c == '"') quoted = !quoted;
+      if (c == ',' && !quoted) {
+        out.emplace_back();
+      } else {
+        out.back() += c;
+      }
+    }
+    return out;
+  };
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t at = 0, end; (end = csv.out.find('\n', at)) != std::string::npos; at = end + 1)
+    rows.push_back(cells(csv.out.substr(at, end - at)));
+  const auto column = [&](const std::string& name) {
+    return std::size_t(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  const auto row = [&](const std::string& source) {
+    for (const auto& r : rows)
+      if (r.size() > 1 && r[1] == source) return r;
+    return std::vector<std::string>{};
+  };
+  for (const auto& r : rows) ASSERT_EQ(r.size(), rows[0].size());
+  EXPECT_EQ(row("dthy4").at(column("r_dthy5")), "0.59999999999999998");
+  EXPECT_EQ(row("ripple3_c1").at(column("r_ripple1_c1")), "-0.5");
+  EXPECT_EQ(row("dthy4").at(column("r_dthy4")), "1");
+  EXPECT_LT(std::stod(row("correlations_between_sources").at(column("share_K2"))), -0.9);
   const Result text = run("budget " + config);
   EXPECT_NE(text.out.find("correlations between sources -98.9 %"), std::string::npos) << text.out;
 }
@@ -62,9 +96,11 @@ TEST_F(Cli, TheMonteCarloDrawsThemAndTheStatementChecksWithThem) {
   ASSERT_EQ(run("simulate " + config + " -o /dev/null --observations-out obs.csv").code, 0);
   const Result st = run("identify obs.csv --statement --config " + config + " --format json");
   ASSERT_EQ(st.code, 0) << st.err;
-  // A pair the Monte Carlo cannot draw with its inputs' distributions: refused where it is, with what would do.
-  const std::string far = write("far.toml", read(CCAL_SOURCE_DIR + "/examples/wang_ren_2014.toml") +
-                                                "\n[[correlations]]\nbetween = [\"dthy4\", \"ripple1_c1\"]\nr = 0.999\n");
+  // A pair the Monte Carlo cannot draw with its inputs' distributions: refused where it is, with what would
+  // do.
+  const std::string far =
+      write("far.toml", read(CCAL_SOURCE_DIR + "/examples/wang_ren_2014.toml") +
+                            "\n[[correlations]]\nbetween = [\"dthy4\", \"ripple1_c1\"]\nr = 0.999\n");
   expect_bad_input(run("montecarlo " + far + " --trials 100"),
                    {"far.toml: [[correlations]] between = [\"dthy4\", \"ripple1_c1\"], r = 0.999: no joint "
                     "distribution of a",
@@ -77,7 +113,8 @@ TEST_F(Cli, TheMonteCarloDrawsThemAndTheStatementChecksWithThem) {
                    {"bad.toml:",
                     "correlations[1].r: 1.5 is not a correlation coefficient; accepted: a number from "
                     "-1 to 1"});
-  const Result by_lpu = run("identify obs.csv --statement --statement-trials 0 --config " + config + " --format json");
+  const Result by_lpu =
+      run("identify obs.csv --statement --statement-trials 0 --config " + config + " --format json");
   ASSERT_EQ(by_lpu.code, 0) << by_lpu.err;
 }
 
