@@ -1,0 +1,108 @@
+#pragma once
+// The calibration history of instruments (docs/cli.md, `ccal history`): every calibration statement of a
+// serial number kept in one SQLite file, so that drift and agreement between calibrations can be judged
+// (uncertainty/history_trend.hpp).
+//
+// The store. One file (SQLite 3), schema version kHistorySchemaVersion, recorded in its `meta` table with the
+// application's name; a file of an older schema is migrated forward on opening for writing, one of a newer
+// schema is refused, as is any file that is not a ccal history store or fails SQLite's quick_check. Tables:
+//     meta(key, value)                                   schema_version, application
+//     calibration(id, serial, date, instrument, ccal_version, config, statement_sha256 UNIQUE, added_at,
+//                 statement)                            the statement's JSON text, whole
+//     coefficient(calibration, name, unit, value, expanded, coverage_factor, coverage_probability,
+//                 effective_dof)                        one row per coefficient: the corrected estimate, U,
+//                 k, p,
+//                                                       ν_eff (NULL: ∞), in the statement's units
+//     supersession(calibration, by, reason, at)         a record replaced, never changed
+// A record is never changed or deleted (triggers refuse it); one is only superseded, with a reason. Every
+// write is one transaction (BEGIN IMMEDIATE, waiting up to kHistoryBusyMillis for another writer), so two
+// processes adding at once lose nothing, and a process killed mid-add leaves the store as it was before the
+// add.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+struct sqlite3;  // the SQLite connection (sqlite3.h), kept out of this header
+
+namespace ccal {
+
+inline constexpr int kHistorySchemaVersion = 1;
+inline constexpr int kHistoryBusyMillis = 10000;
+
+// One coefficient of a recorded calibration, in the statement's units.
+struct HistoryCoefficient {
+  std::string name, unit;
+  double value = 0;                 // the corrected estimate K̂ + b
+  double expanded = 0;              // U
+  double coverage_factor = 0;       // k
+  double coverage_probability = 0;  // p
+  double effective_dof = 0;         // ν_eff; +∞ where infinite
+  double standard_uncertainty() const { return coverage_factor > 0 ? expanded / coverage_factor : 0.0; }
+};
+
+// One recorded calibration.
+struct HistoryRecord {
+  std::int64_t id = 0;
+  std::string serial;
+  std::string date;  // YYYY-MM-DD, the date of calibration
+  std::string instrument;
+  std::string ccal_version;  // of the ccal that wrote the statement
+  std::string config;        // the configuration the statement names
+  std::string statement_sha256;
+  std::string added_at;  // UTC, ISO 8601
+  std::vector<HistoryCoefficient> coefficients;
+  std::optional<std::int64_t> superseded_by;  // set when superseded (and the reason)
+  std::string superseded_reason;
+};
+
+// What `add` records from a statement's JSON text: the coefficients and the provenance it carries, with
+// serial, date and instrument given or taken from its certificate fields.
+struct HistoryEntry {
+  std::string serial, date, instrument, ccal_version, config;
+  std::string
+      statement_json;  // the statement itself (a reduce/identify output's "statement", or the file whole)
+  std::vector<HistoryCoefficient> coefficients;
+};
+
+// Reads a statement from the JSON text of `ccal reduce --statement-out FILE` (or of a whole `ccal reduce` /
+// `ccal identify --statement` JSON output, whose "statement" is taken); `source` names it in messages.
+// serial, date: given (empty: from the statement's certificate fields, serial_number and
+// date_of_calibration). InputError for text that is no statement, a missing serial or date, or a date not
+// YYYY-MM-DD.
+HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
+                           const std::string& date);
+
+// The default store: $CCAL_HISTORY if set, else $XDG_DATA_HOME/ccal/history.sqlite, else
+// ~/.local/share/ccal/history.sqlite.
+std::string default_history_path();
+
+// The store, opened for one use. Every failure is an InputError naming the file and what would be accepted.
+class HistoryStore {
+ public:
+  // create: make the file (and its folder) if missing; else a missing file is refused. An older schema is
+  // migrated forward (none exists yet: version 1 is the first).
+  static HistoryStore open(const std::string& path, bool create);
+  HistoryStore(HistoryStore&& other) noexcept;
+  HistoryStore& operator=(HistoryStore&& other) noexcept;
+  HistoryStore(const HistoryStore&) = delete;
+  HistoryStore& operator=(const HistoryStore&) = delete;
+  ~HistoryStore();
+
+  // Records a calibration in one transaction; returns its id. InputError for a statement already recorded
+  // (the same SHA-256 of its text), naming the record.
+  std::int64_t add(const HistoryEntry& entry);
+  // Every calibration of a serial number, oldest first (by date, then id), superseded ones included.
+  std::vector<HistoryRecord> records(const std::string& serial) const;
+  // The serial numbers in the store, sorted.
+  std::vector<std::string> serials() const;
+  const std::string& path() const { return path_; }
+
+ private:
+  HistoryStore() = default;
+  ::sqlite3* db_ = nullptr;
+  std::string path_;
+};
+
+}  // namespace ccal

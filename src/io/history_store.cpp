@@ -1,0 +1,427 @@
+#include "ccal/io/history_store.hpp"
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <sqlite3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/core/sha256.hpp"
+
+namespace ccal {
+
+namespace {
+
+constexpr std::string_view kApplication = "ccal calibration history";
+
+// Schema 1. The triggers make every record immutable: a calibration is only ever superseded.
+constexpr const char* kSchema = R"sql(
+CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE calibration(
+  id INTEGER PRIMARY KEY,
+  serial TEXT NOT NULL,
+  date TEXT NOT NULL,
+  instrument TEXT NOT NULL,
+  ccal_version TEXT NOT NULL,
+  config TEXT NOT NULL,
+  statement_sha256 TEXT NOT NULL UNIQUE,
+  added_at TEXT NOT NULL,
+  statement TEXT NOT NULL);
+CREATE INDEX calibration_by_serial ON calibration(serial, date);
+CREATE TABLE coefficient(
+  calibration INTEGER NOT NULL REFERENCES calibration(id),
+  name TEXT NOT NULL,
+  unit TEXT NOT NULL,
+  value REAL NOT NULL,
+  expanded REAL NOT NULL,
+  coverage_factor REAL NOT NULL,
+  coverage_probability REAL NOT NULL,
+  effective_dof REAL,
+  PRIMARY KEY(calibration, name));
+CREATE TABLE supersession(
+  calibration INTEGER PRIMARY KEY REFERENCES calibration(id),
+  by INTEGER REFERENCES calibration(id),
+  reason TEXT NOT NULL,
+  at TEXT NOT NULL);
+CREATE TRIGGER calibration_kept BEFORE UPDATE ON calibration
+  BEGIN SELECT RAISE(ABORT, 'a recorded calibration is never changed'); END;
+CREATE TRIGGER calibration_not_deleted BEFORE DELETE ON calibration
+  BEGIN SELECT RAISE(ABORT, 'a recorded calibration is never deleted'); END;
+CREATE TRIGGER coefficient_kept BEFORE UPDATE ON coefficient
+  BEGIN SELECT RAISE(ABORT, 'a recorded coefficient is never changed'); END;
+CREATE TRIGGER coefficient_not_deleted BEFORE DELETE ON coefficient
+  BEGIN SELECT RAISE(ABORT, 'a recorded coefficient is never deleted'); END;
+)sql";
+
+// A prepared statement, finalised on scope exit.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& path, const char* sql) : db_(db), path_(path) {
+    if (sqlite3_prepare_v2(db, sql, -1, &s_, nullptr) != SQLITE_OK) fail("cannot read it");
+  }
+  ~Statement() { sqlite3_finalize(s_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  Statement& text(int i, const std::string& v) {
+    sqlite3_bind_text(s_, i, v.c_str(), int(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  Statement& number(int i, double v) {
+    if (std::isfinite(v))
+      sqlite3_bind_double(s_, i, v);
+    else
+      sqlite3_bind_null(s_, i);  // ν_eff = ∞
+    return *this;
+  }
+  Statement& integer(int i, std::int64_t v) {
+    sqlite3_bind_int64(s_, i, v);
+    return *this;
+  }
+  // true while there is a row; throws on an error.
+  bool step() {
+    const int rc = sqlite3_step(s_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    fail("cannot use it");
+    return false;
+  }
+  std::string column_text(int i) const {
+    const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(s_, i));
+    return t ? std::string(t) : std::string();
+  }
+  double column_number(int i) const {
+    return sqlite3_column_type(s_, i) == SQLITE_NULL ? std::numeric_limits<double>::infinity()
+                                                     : sqlite3_column_double(s_, i);
+  }
+  std::int64_t column_integer(int i) const { return sqlite3_column_int64(s_, i); }
+  bool column_null(int i) const { return sqlite3_column_type(s_, i) == SQLITE_NULL; }
+
+  [[noreturn]] void fail(const char* what) const { throw_store_error(db_, path_, what); }
+  [[noreturn]] static void throw_store_error(sqlite3* db, const std::string& path, const char* what);
+
+ private:
+  sqlite3* db_;
+  const std::string& path_;
+  sqlite3_stmt* s_ = nullptr;
+};
+
+// What SQLite said, in the words of a history store, with what would be accepted.
+void Statement::throw_store_error(sqlite3* db, const std::string& path, const char* what) {
+  const int code = db ? sqlite3_errcode(db) & 0xff : SQLITE_CANTOPEN;
+  const std::string said = db ? sqlite3_errmsg(db) : "cannot open";
+  std::string accepted;
+  switch (code) {
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+      accepted = fmt::format(
+          "another process holds it for more than {} s; accepted: the same command once it "
+          "has finished",
+          kHistoryBusyMillis / 1000);
+      break;
+    case SQLITE_READONLY:
+    case SQLITE_PERM:
+    case SQLITE_CANTOPEN:
+      accepted =
+          "accepted: a file (and folder) this user may read and write, e.g. --db FILE or $CCAL_HISTORY";
+      break;
+    case SQLITE_CORRUPT:
+    case SQLITE_NOTADB:
+      accepted =
+          "it is damaged or not an SQLite file; accepted: a ccal history store (restore it from a "
+          "backup; nothing was written to it)";
+      break;
+    default:
+      accepted = "accepted: a ccal history store";
+  }
+  throw InputError(fmt::format("{}: history store: {} ({}); {}", path, what, said, accepted));
+}
+
+void execute(sqlite3* db, const std::string& path, const char* sql, const char* what) {
+  if (sqlite3_exec(db, sql, nullptr, nullptr, nullptr) != SQLITE_OK)
+    Statement::throw_store_error(db, path, what);
+}
+
+std::string utc_now() {
+  const auto now = std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now());
+  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now);
+}
+
+bool is_date(const std::string& d) {
+  if (d.size() != 10 || d[4] != '-' || d[7] != '-') return false;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (i != 4 && i != 7 && (d[i] < '0' || d[i] > '9')) return false;
+  const int month = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
+  return month >= 1 && month <= 12 && day >= 1 && day <= 31;
+}
+
+// The schema version of an opened file: 0 for an empty file, -1 for an SQLite file that is no history store.
+int schema_version(sqlite3* db, const std::string& path) {
+  Statement tables(db, path, "SELECT count(*) FROM sqlite_master");
+  tables.step();
+  if (tables.column_integer(0) == 0) return 0;
+  Statement meta(db, path, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'meta'");
+  meta.step();
+  if (meta.column_integer(0) == 0) return -1;
+  Statement app(db, path, "SELECT value FROM meta WHERE key = 'application'");
+  if (!app.step() || app.column_text(0) != kApplication) return -1;
+  Statement version(db, path, "SELECT value FROM meta WHERE key = 'schema_version'");
+  if (!version.step()) return -1;
+  return std::atoi(version.column_text(0).c_str());
+}
+
+}  // namespace
+
+std::string default_history_path() {
+  if (const char* chosen = std::getenv("CCAL_HISTORY"); chosen && *chosen) return chosen;
+  if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
+    return (std::filesystem::path(data) / "ccal" / "history.sqlite").string();
+  const char* home = std::getenv("HOME");
+  return (std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "ccal" / "history.sqlite")
+      .string();
+}
+
+HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
+                           const std::string& date) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(
+        fmt::format("{}: not JSON ({}); accepted: the statement of `ccal reduce --statement-out "
+                    "FILE`, or the JSON of `ccal reduce --statement --format json`",
+                    source, e.what()));
+  }
+  const nlohmann::json& st = j.is_object() && j.contains("statement") ? j["statement"] : j;
+  const auto refuse = [&](const std::string& what) {
+    throw InputError(
+        fmt::format("{}: not a calibration statement: {}; accepted: the statement of `ccal reduce "
+                    "--statement-out FILE`, or the JSON of `ccal reduce --statement --format json`",
+                    source, what));
+  };
+  if (!st.is_object() || !st.contains("coefficients") || !st["coefficients"].is_object() ||
+      st["coefficients"].empty())
+    refuse("no \"coefficients\"");
+  HistoryEntry e;
+  e.statement_json = st.dump();
+  e.ccal_version = j.value("ccal_version", st.value("ccal_version", std::string("unknown")));
+  e.config = st.value("budget_config", j.value("config", std::string()));
+  const double p = st.value("coverage_probability", 0.0);
+  for (const auto& [name, c] : st["coefficients"].items()) {
+    for (const char* key : {"corrected_estimate", "expanded_uncertainty", "coverage_factor"})
+      if (!c.contains(key) || !c[key].is_number())
+        refuse(fmt::format("coefficient {} has no number \"{}\"", name, key));
+    HistoryCoefficient h;
+    h.name = name;
+    h.unit = c.value("unit", std::string());
+    h.value = c["corrected_estimate"].get<double>();
+    h.expanded = c["expanded_uncertainty"].get<double>();
+    h.coverage_factor = c["coverage_factor"].get<double>();
+    h.coverage_probability = p;
+    h.effective_dof = c.contains("effective_dof") && c["effective_dof"].is_number()
+                          ? c["effective_dof"].get<double>()
+                          : std::numeric_limits<double>::infinity();
+    if (!(std::isfinite(h.value) && h.expanded >= 0 && h.coverage_factor > 0))
+      refuse(fmt::format("coefficient {} has no finite value, U ≥ 0 and k > 0", name));
+    e.coefficients.push_back(h);
+  }
+  const nlohmann::json certificate =
+      st.value("certificate", j.value("certificate", nlohmann::json::object()));
+  e.serial = !serial.empty() ? serial : certificate.value("serial_number", std::string());
+  e.date = !date.empty() ? date : certificate.value("date_of_calibration", std::string());
+  e.instrument = certificate.value("instrument", std::string());
+  if (e.serial.empty())
+    throw InputError(
+        fmt::format("{}: the statement names no serial number ([certificate] serial_number); "
+                    "accepted: --serial S",
+                    source));
+  if (e.date.empty())
+    throw InputError(
+        fmt::format("{}: the statement names no date of calibration ([certificate] "
+                    "date_of_calibration); accepted: --date YYYY-MM-DD",
+                    source));
+  if (!is_date(e.date))
+    throw InputError(fmt::format(
+        "{}: date of calibration '{}' is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30", source, e.date));
+  return e;
+}
+
+HistoryStore HistoryStore::open(const std::string& path, bool create) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    if (!create)
+      throw InputError(
+          fmt::format("{}: no history store there; accepted: an existing store (--db FILE, "
+                      "$CCAL_HISTORY), or `ccal history add` to start one",
+                      path));
+    const fs::path folder = fs::path(path).parent_path();
+    if (!folder.empty()) fs::create_directories(folder, ec);
+  } else if (!fs::is_regular_file(path, ec)) {
+    throw InputError(fmt::format("{}: not a file; accepted: a ccal history store (a file)", path));
+  }
+  HistoryStore store;
+  store.path_ = path;
+  const int flags = create ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READWRITE;
+  if (sqlite3_open_v2(path.c_str(), &store.db_, flags, nullptr) != SQLITE_OK)
+    Statement::throw_store_error(store.db_, path, "cannot open it");
+  sqlite3_busy_timeout(store.db_, kHistoryBusyMillis);
+  execute(store.db_, path, "PRAGMA foreign_keys = ON", "cannot open it");
+  {
+    Statement check(store.db_, path, "PRAGMA quick_check");
+    if (!check.step() || check.column_text(0) != "ok")
+      throw InputError(
+          fmt::format("{}: history store: damaged (SQLite's quick check: {}); accepted: a sound "
+                      "store (restore it from a backup; nothing was written to it)",
+                      path, check.column_text(0)));
+  }
+  // The schema: made in one transaction on a new file (two processes creating it at once: one waits and then
+  // finds it made), refused when it is another file or newer.
+  execute(store.db_, path, "BEGIN IMMEDIATE", "cannot lock it");
+  try {
+    const int version = schema_version(store.db_, path);
+    if (version < 0)
+      throw InputError(
+          fmt::format("{}: an SQLite file that is not a ccal history store; accepted: a ccal history "
+                      "store, or a new file name",
+                      path));
+    if (version > kHistorySchemaVersion)
+      throw InputError(
+          fmt::format("{}: history store of schema {}, written by a newer ccal; this ccal reads "
+                      "schema {} and older; accepted: the newer ccal",
+                      path, version, kHistorySchemaVersion));
+    if (version == 0) {
+      if (!create)
+        throw InputError(
+            fmt::format("{}: an empty file, not a history store; accepted: `ccal history add` to "
+                        "start one",
+                        path));
+      execute(store.db_, path, kSchema, "cannot write its schema");
+      Statement meta(store.db_, path,
+                     "INSERT INTO meta(key, value) VALUES ('application', ?1), ('schema_version', ?2)");
+      meta.text(1, std::string(kApplication)).text(2, std::to_string(kHistorySchemaVersion)).step();
+    }
+    execute(store.db_, path, "COMMIT", "cannot write its schema");
+  } catch (...) {
+    sqlite3_exec(store.db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  return store;
+}
+
+HistoryStore::HistoryStore(HistoryStore&& other) noexcept : db_(other.db_), path_(std::move(other.path_)) {
+  other.db_ = nullptr;
+}
+
+HistoryStore& HistoryStore::operator=(HistoryStore&& other) noexcept {
+  if (this != &other) {
+    sqlite3_close_v2(db_);
+    db_ = other.db_;
+    path_ = std::move(other.path_);
+    other.db_ = nullptr;
+  }
+  return *this;
+}
+
+HistoryStore::~HistoryStore() { sqlite3_close_v2(db_); }
+
+std::int64_t HistoryStore::add(const HistoryEntry& entry) {
+  const std::string sha = sha256_hex(entry.statement_json);
+  execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
+  try {
+    {
+      Statement known(db_, path_, "SELECT id, serial, date FROM calibration WHERE statement_sha256 = ?1");
+      known.text(1, sha);
+      if (known.step())
+        throw InputError(fmt::format(
+            "{}: this statement is already recorded, as calibration {} of {} on {} "
+            "(SHA-256 {}); accepted: a statement not yet recorded",
+            path_, known.column_integer(0), known.column_text(1), known.column_text(2), sha.substr(0, 12)));
+    }
+    Statement insert(
+        db_, path_,
+        "INSERT INTO calibration(serial, date, instrument, ccal_version, config, statement_sha256, "
+        "added_at, statement) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+    insert.text(1, entry.serial)
+        .text(2, entry.date)
+        .text(3, entry.instrument)
+        .text(4, entry.ccal_version)
+        .text(5, entry.config)
+        .text(6, sha)
+        .text(7, utc_now())
+        .text(8, entry.statement_json)
+        .step();
+    const std::int64_t id = sqlite3_last_insert_rowid(db_);
+    for (const HistoryCoefficient& c : entry.coefficients) {
+      Statement row(db_, path_,
+                    "INSERT INTO coefficient(calibration, name, unit, value, expanded, coverage_factor, "
+                    "coverage_probability, effective_dof) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+      row.integer(1, id)
+          .text(2, c.name)
+          .text(3, c.unit)
+          .number(4, c.value)
+          .number(5, c.expanded)
+          .number(6, c.coverage_factor)
+          .number(7, c.coverage_probability)
+          .number(8, c.effective_dof)
+          .step();
+    }
+    execute(db_, path_, "COMMIT", "cannot write it");
+    return id;
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) const {
+  std::vector<HistoryRecord> out;
+  Statement list(
+      db_, path_,
+      "SELECT c.id, c.serial, c.date, c.instrument, c.ccal_version, c.config, c.statement_sha256, "
+      "c.added_at, s.by, s.reason FROM calibration c LEFT JOIN supersession s ON s.calibration = c.id "
+      "WHERE c.serial = ?1 ORDER BY c.date, c.id");
+  list.text(1, serial);
+  while (list.step()) {
+    HistoryRecord r;
+    r.id = list.column_integer(0);
+    r.serial = list.column_text(1);
+    r.date = list.column_text(2);
+    r.instrument = list.column_text(3);
+    r.ccal_version = list.column_text(4);
+    r.config = list.column_text(5);
+    r.statement_sha256 = list.column_text(6);
+    r.added_at = list.column_text(7);
+    if (!list.column_null(9)) {
+      if (!list.column_null(8)) r.superseded_by = list.column_integer(8);
+      r.superseded_reason = list.column_text(9);
+    }
+    out.push_back(std::move(r));
+  }
+  for (HistoryRecord& r : out) {
+    Statement rows(db_, path_,
+                   "SELECT name, unit, value, expanded, coverage_factor, coverage_probability, effective_dof "
+                   "FROM coefficient WHERE calibration = ?1 ORDER BY rowid");
+    rows.integer(1, r.id);
+    while (rows.step())
+      r.coefficients.push_back({rows.column_text(0), rows.column_text(1), rows.column_number(2),
+                                rows.column_number(3), rows.column_number(4), rows.column_number(5),
+                                rows.column_number(6)});
+  }
+  return out;
+}
+
+std::vector<std::string> HistoryStore::serials() const {
+  std::vector<std::string> out;
+  Statement list(db_, path_, "SELECT DISTINCT serial FROM calibration ORDER BY serial");
+  while (list.step()) out.push_back(list.column_text(0));
+  return out;
+}
+
+}  // namespace ccal

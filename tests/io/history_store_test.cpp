@@ -1,0 +1,186 @@
+// The calibration history's store (io/history_store.hpp): statements read from their JSON, records added and
+// read back, a duplicate refused, records immutable; two writers at once lose nothing; a missing, damaged,
+// foreign or newer-schema file refused and left byte for byte as it was.
+#include "ccal/io/history_store.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "ccal/core/errors.hpp"
+
+namespace ccal {
+namespace {
+
+namespace fs = std::filesystem;
+
+class History : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              fmt::format("ccal_history_{}_{}", ::getpid(),
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  fs::path folder_;
+};
+
+// A statement as `ccal reduce --statement-out` writes it (the keys history_entry reads), K2 = value.
+std::string statement(double k2, double u2 = 1e-4, const std::string& certificate = "") {
+  return fmt::format(
+      R"({{"budget_config": "lab.toml", "coverage_probability": 0.95, {}"coefficients": {{
+      "K0": {{"unit": "deg/s", "corrected_estimate": 0.06, "expanded_uncertainty": 0.036,
+              "coverage_factor": 1.96, "effective_dof": 4112.7}},
+      "K2": {{"unit": "deg/s/g^2", "corrected_estimate": {}, "expanded_uncertainty": {},
+              "coverage_factor": 2.0, "effective_dof": null}}}}}})",
+      certificate, k2, u2);
+}
+
+std::string bytes_of(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST_F(History, AStatementIsRecordedAndReadBack) {
+  const HistoryEntry e = history_entry(statement(0.02), "s.json", "SN 0815", "2025-11-30");
+  ASSERT_EQ(e.coefficients.size(), 2u);
+  EXPECT_EQ(e.coefficients[1].name, "K2");
+  EXPECT_EQ(e.coefficients[1].value, 0.02);
+  EXPECT_TRUE(std::isinf(e.coefficients[1].effective_dof));
+  EXPECT_EQ(e.config, "lab.toml");
+  HistoryStore store = HistoryStore::open(path("sub/h.sqlite"), true);  // the folder is made
+  const std::int64_t first = store.add(e);
+  store.add(history_entry(statement(0.021), "t.json", "SN 0815", "2024-11-30"));
+  store.add(history_entry(statement(0.5), "u.json", "SN 9", "2024-01-01"));
+  const std::vector<HistoryRecord> r = store.records("SN 0815");
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].date, "2024-11-30");  // by date
+  EXPECT_EQ(r[1].id, first);
+  EXPECT_EQ(r[1].coefficients[1].value, 0.02);
+  EXPECT_EQ(r[1].coefficients[1].expanded, 1e-4);
+  EXPECT_EQ(r[1].coefficients[1].coverage_factor, 2.0);
+  EXPECT_EQ(r[1].coefficients[0].coverage_probability, 0.95);
+  EXPECT_TRUE(std::isinf(r[1].coefficients[1].effective_dof));
+  EXPECT_EQ(r[1].coefficients[0].effective_dof, 4112.7);
+  EXPECT_EQ(store.serials(), (std::vector<std::string>{"SN 0815", "SN 9"}));
+  // The same statement twice: refused, naming the record; nothing added.
+  try {
+    store.add(e);
+    FAIL() << "not refused";
+  } catch (const InputError& x) {
+    EXPECT_NE(std::string(x.what()).find("already recorded, as calibration 1 of SN 0815 on 2025-11-30"),
+              std::string::npos)
+        << x.what();
+  }
+  EXPECT_EQ(store.records("SN 0815").size(), 2u);
+}
+
+TEST_F(History, SerialAndDateComeFromTheCertificateOrAreAskedFor) {
+  const std::string cert =
+      R"("certificate": {"serial_number": "SN 7", "date_of_calibration": "2026-11-30", "instrument": "PIGA"}, )";
+  const HistoryEntry e =
+      history_entry(R"({"statement": )" + statement(0.02, 1e-4, cert) + "}", "r.json", "", "");
+  EXPECT_EQ(e.serial, "SN 7");
+  EXPECT_EQ(e.date, "2026-11-30");
+  EXPECT_EQ(e.instrument, "PIGA");
+  EXPECT_EQ(history_entry(statement(0.02, 1e-4, cert), "r.json", "SN 8", "").serial, "SN 8");
+  const auto refused = [](const std::string& text, const std::string& serial, const std::string& date,
+                          const std::string& says) {
+    try {
+      history_entry(text, "s.json", serial, date);
+      ADD_FAILURE() << "not refused: " << says;
+    } catch (const InputError& x) {
+      EXPECT_NE(std::string(x.what()).find(says), std::string::npos) << x.what();
+    }
+  };
+  refused(statement(0.02), "", "2026-01-01",
+          "s.json: the statement names no serial number ([certificate] "
+          "serial_number); accepted: --serial S");
+  refused(statement(0.02), "SN 1", "", "accepted: --date YYYY-MM-DD");
+  refused(statement(0.02), "SN 1", "2026-13-01", "date of calibration '2026-13-01' is not a date");
+  refused("{", "SN 1", "2026-01-01", "s.json: not JSON");
+  refused(R"({"command": "budget"})", "SN 1", "2026-01-01",
+          "not a calibration statement: no \"coefficients\"");
+}
+
+TEST_F(History, RecordsAreNeverChanged) {
+  HistoryStore store = HistoryStore::open(path("h.sqlite"), true);
+  store.add(history_entry(statement(0.02), "s.json", "SN 1", "2026-01-01"));
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &db), SQLITE_OK);
+  EXPECT_NE(sqlite3_exec(db, "UPDATE coefficient SET value = 1", nullptr, nullptr, nullptr), SQLITE_OK);
+  EXPECT_NE(sqlite3_exec(db, "DELETE FROM calibration", nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+  EXPECT_EQ(store.records("SN 1").at(0).coefficients.at(1).value, 0.02);
+}
+
+TEST_F(History, TwoWritersAtOnceLoseNothing) {
+  const std::string file = path("h.sqlite");
+  const auto writer = [&](int who) {
+    HistoryStore store = HistoryStore::open(file, true);  // both may create it: one makes it, one finds it
+    for (int i = 0; i < 100; ++i)
+      store.add(history_entry(statement(0.02 + 1e-6 * (100 * who + i)), "s.json", "SN 1", "2026-01-01"));
+  };
+  std::thread a(writer, 0), b(writer, 1);
+  a.join();
+  b.join();
+  EXPECT_EQ(HistoryStore::open(file, false).records("SN 1").size(), 200u);
+}
+
+TEST_F(History, BadFilesAreRefusedAndLeftAsTheyWere) {
+  const auto refused = [&](const std::string& file, bool create, const std::string& says) {
+    const bool existed = fs::exists(file);
+    const std::string before = existed ? bytes_of(file) : "";
+    try {
+      HistoryStore::open(file, create);
+      ADD_FAILURE() << "not refused: " << file;
+    } catch (const InputError& x) {
+      EXPECT_NE(std::string(x.what()).find(says), std::string::npos) << x.what();
+    }
+    EXPECT_EQ(fs::exists(file), existed);
+    if (existed) {
+      EXPECT_EQ(bytes_of(file), before) << file;
+    }
+  };
+  refused(path("missing.sqlite"), false, "no history store there; accepted:");
+  // Not SQLite at all.
+  std::ofstream(path("text.sqlite")) << "K2 = 0.02\n";
+  refused(path("text.sqlite"), true, "not an SQLite file");
+  // A store cut short (a copy interrupted): its first half.
+  {
+    HistoryStore store = HistoryStore::open(path("h.sqlite"), true);
+    for (int i = 0; i < 30; ++i)
+      store.add(history_entry(statement(0.02 + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
+  }
+  const std::string whole = bytes_of(path("h.sqlite"));
+  std::ofstream(path("cut.sqlite"), std::ios::binary) << whole.substr(0, whole.size() / 2);
+  refused(path("cut.sqlite"), true, "history store:");
+  // Another application's SQLite file.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("other.sqlite").c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "CREATE TABLE t(x)", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  refused(path("other.sqlite"), true, "an SQLite file that is not a ccal history store");
+  // A store of a newer schema.
+  ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "UPDATE meta SET value = '2' WHERE key = 'schema_version'", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  refused(path("h.sqlite"), true,
+          "history store of schema 2, written by a newer ccal; this ccal reads schema 1");
+  // A folder.
+  refused(folder_.string(), true, "not a file");
+}
+
+}  // namespace
+}  // namespace ccal
