@@ -23,6 +23,7 @@ Command add_allocate(CLI::App& app);
 Command add_reduce(CLI::App& app);
 Command add_design(CLI::App& app);
 Command add_report(CLI::App& app);
+Command add_history(CLI::App& app);
 
 // The command line as typed (arguments with spaces or shell characters in single quotes), for reports.
 void set_command_line(int argc, char** argv);

@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_allocate(app));
   commands.push_back(ccal::cli::add_design(app));
   commands.push_back(ccal::cli::add_report(app));
+  commands.push_back(ccal::cli::add_history(app));
   ccal::cli::set_command_line(argc, argv);
 
   // The manual page and the shell completion, from the declarations above (shell_docs.hpp).

@@ -62,6 +62,11 @@ std::string man_page(const CLI::App& app, std::string_view version) {
   for (const CLI::App* c : commands_of(app)) {
     out += fmt::format(".SS \"ccal {}\"\n{}\n", roff(c->get_name()), roff(c->get_description()));
     out += man_options(*c);
+    for (const CLI::App* sub : commands_of(*c)) {  // a command of commands (ccal history add, show)
+      out += fmt::format(".SS \"ccal {} {}\"\n{}\n", roff(c->get_name()), roff(sub->get_name()),
+                         roff(sub->get_description()));
+      out += man_options(*sub);
+    }
   }
   out += ".SH EXIT STATUS\n.TP\n0\nsuccess\n.TP\n2\nbad input (configuration, data files, options): one line "
          "on standard error naming the place and what would be accepted; no output file is written or changed\n"
@@ -74,7 +79,12 @@ std::string bash_completion(const CLI::App& app) {
   for (const CLI::App* c : commands_of(app)) {
     commands += fmt::format("{}{}", commands.empty() ? "" : " ", c->get_name());
     std::string flags, valued;
-    for (const CLI::Option* o : flags_of(*c)) {
+    std::vector<const CLI::Option*> options = flags_of(*c);
+    for (const CLI::App* sub : commands_of(*c)) {  // a command of commands: its commands' names and flags
+      flags += " " + sub->get_name();
+      for (const CLI::Option* o : flags_of(*sub)) options.push_back(o);
+    }
+    for (const CLI::Option* o : options) {
       std::vector<std::string> names;
       for (const auto& l : o->get_lnames()) names.push_back(fmt::format("--{}", l));
       for (const auto& s : o->get_snames()) names.push_back(fmt::format("-{}", s));

@@ -7,6 +7,7 @@
 
 #include "ccal/render/statement.hpp"
 #include "ccal/render/table.hpp"
+#include "ccal/version.hpp"
 #include "budget_parts.hpp"
 
 namespace ccal::render {
@@ -166,6 +167,13 @@ std::string monte_carlo_text(const verbs::CalibrationStatement& st, std::size_t 
 nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
   Json j;
   j["budget_config"] = st.budget_config;
+  j["config_sha256"] = st.config_sha256;
+  j["ccal_version"] = version();
+  // What `ccal history add` records it under: the [certificate]'s instrument, serial number and date.
+  if (!st.serial_number.empty() || !st.date_of_calibration.empty() || !st.instrument.empty())
+    j["certificate"] = {{"instrument", st.instrument},
+                        {"serial_number", st.serial_number},
+                        {"date_of_calibration", st.date_of_calibration}};
   j["mode"] = mode_name(st.mode);
   j["coverage_probability"] = st.coverage_probability;
   j["known_errors"] = st.known_errors;

@@ -94,6 +94,12 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
 
   CalibrationStatement st;
   st.budget_config = config.source;
+  st.config_sha256 = config.text_sha256;
+  if (config.certificate) {
+    st.instrument = config.certificate->instrument;
+    st.serial_number = config.certificate->serial_number;
+    st.date_of_calibration = config.certificate->date_of_calibration;
+  }
   st.mode = b.mode;
   st.coverage_probability = o.coverage_probability;
   st.compensated = config.identification.compensate;

@@ -265,13 +265,13 @@ TEST_F(SameRefusal, ParsersEchoWhatWasTyped) {
 TEST_F(SameRefusal, UnknownCommandsGetTheNearestName) {
   EXPECT_EQ(run("budgte").err,
             "ccal: error: unknown command 'budgte'; did you mean 'budget'? accepted: budget, force, simulate, "
-            "identify, reduce, montecarlo, allocate, design, report\n");
+            "identify, reduce, montecarlo, allocate, design, report, history\n");
   EXPECT_EQ(run("mont").err,
             "ccal: error: unknown command 'mont'; did you mean 'montecarlo'? accepted: budget, force, simulate, "
-            "identify, reduce, montecarlo, allocate, design, report\n");
+            "identify, reduce, montecarlo, allocate, design, report, history\n");
   EXPECT_EQ(run("xyz").err,
             "ccal: error: unknown command 'xyz'; accepted: budget, force, simulate, identify, reduce, montecarlo, "
-            "allocate, design, report\n");
+            "allocate, design, report, history\n");
 }
 
 TEST_F(SameRefusal, HintsNameTheVerbsOwnHelp) {

@@ -45,6 +45,10 @@ OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>);
 
 struct CalibrationStatement {
   std::string budget_config;  // the configuration whose tolerances give the Type B part
+  std::string config_sha256;  // of its text (Config::text_sha256)
+  // The instrument and the date as its [certificate] names them ("" without it): what `ccal history add`
+  // records the statement under.
+  std::string instrument, serial_number, date_of_calibration;
   ModelMode mode = ModelMode::exact;
   double coverage_probability = 0.95;
   bool compensated = false;  // the model computed the regressors with the known [errors]

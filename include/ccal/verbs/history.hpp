@@ -1,0 +1,62 @@
+#pragma once
+// `ccal history` as library calls (docs/cli.md): record a calibration statement in an instrument's history
+// (io/history_store.hpp), and read a serial number's calibrations back with, per coefficient, the agreement
+// of successive calibrations (E_n), the drift line and its prediction at a date
+// (uncertainty/history_trend.hpp).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccal/core/options.hpp"
+#include "ccal/io/history_store.hpp"
+#include "ccal/uncertainty/history_trend.hpp"
+
+namespace ccal::verbs {
+
+struct HistoryAddOptions {
+  std::string db;      // the store; "": default_history_path()
+  std::string serial;  // "": the statement's [certificate] serial_number
+  std::string date;    // YYYY-MM-DD; "": the statement's [certificate] date_of_calibration
+};
+OptionTable<HistoryAddOptions> options_of(std::type_identity<HistoryAddOptions>);
+
+struct HistoryShowOptions {
+  std::string db;  // the store; "": default_history_path()
+  std::string at;  // YYYY-MM-DD: the drift line's prediction at that date; "": none
+};
+OptionTable<HistoryShowOptions> options_of(std::type_identity<HistoryShowOptions>);
+
+struct HistoryAddResult {
+  std::string db;
+  std::int64_t id = 0;
+  HistoryEntry entry;
+  std::size_t calibrations = 0;  // of the serial, this one included
+};
+
+// One coefficient over the calibrations (those not superseded), oldest first.
+struct CoefficientHistory {
+  std::string name, unit;
+  std::vector<std::string> dates;
+  std::vector<HistoryPoint> points;  // years from the first calibration's date
+  std::vector<NormalisedError> agreement;
+  DriftLine drift;
+  std::optional<DriftPrediction> prediction;  // at options.at, when the line is available
+};
+
+struct HistoryShowResult {
+  std::string db, serial, at;
+  std::vector<HistoryRecord> records;  // every calibration, superseded ones included
+  std::vector<CoefficientHistory> coefficients;
+};
+
+// Reads the statement file, records it; InputError for an unreadable or bad file, a bad option or store.
+HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& options = {});
+// InputError for a serial with no calibration in the store (naming those it has), a bad date or store.
+HistoryShowResult history_show(const std::string& serial, const HistoryShowOptions& options = {});
+
+// Days from 1970-01-01 of a YYYY-MM-DD date (proleptic Gregorian); OptionError of `field` for a non-date.
+std::int64_t history_day(const std::string& date, std::string_view field);
+
+}  // namespace ccal::verbs

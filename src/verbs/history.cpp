@@ -1,0 +1,115 @@
+#include "ccal/verbs/history.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "ccal/core/errors.hpp"
+
+namespace ccal::verbs {
+
+namespace {
+
+constexpr OptionSpec<HistoryAddOptions> kAddRows[] = {
+    {"db", &HistoryAddOptions::db, "FILE",
+     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+    {"serial", &HistoryAddOptions::serial, "S",
+     "Serial number (default: the statement's [certificate] serial_number)"},
+    {"date", &HistoryAddOptions::date, "YYYY-MM-DD",
+     "Date of calibration (default: the statement's [certificate] date_of_calibration)"},
+};
+
+constexpr OptionSpec<HistoryShowOptions> kShowRows[] = {
+    {"db", &HistoryShowOptions::db, "FILE",
+     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+    {"at", &HistoryShowOptions::at, "YYYY-MM-DD",
+     "Predict each coefficient at this date from its drift line"},
+};
+
+std::string store_path(const std::string& db) { return db.empty() ? default_history_path() : db; }
+
+}  // namespace
+
+OptionTable<HistoryAddOptions> options_of(std::type_identity<HistoryAddOptions>) { return kAddRows; }
+OptionTable<HistoryShowOptions> options_of(std::type_identity<HistoryShowOptions>) { return kShowRows; }
+
+std::int64_t history_day(const std::string& date, std::string_view field) {
+  using namespace std::chrono;
+  int y = 0;
+  unsigned m = 0, d = 0;
+  char dash1 = 0, dash2 = 0;
+  std::istringstream in(date);
+  in >> y >> dash1 >> m >> dash2 >> d;
+  const year_month_day ymd{year{y}, month{m}, day{d}};
+  if (date.size() != 10 || !in || !in.eof() || dash1 != '-' || dash2 != '-' || !ymd.ok())
+    throw OptionError(std::string(field), date, "is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30");
+  return sys_days(ymd).time_since_epoch().count();
+}
+
+HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& o) {
+  if (!o.date.empty()) history_day(o.date, "date");
+  std::ifstream in(statement_file, std::ios::binary);
+  if (!in)
+    throw InputError(
+        fmt::format("{}: cannot read it; accepted: a statement file (`ccal reduce --statement-out "
+                    "FILE`) or reduce's JSON",
+                    statement_file));
+  std::stringstream text;
+  text << in.rdbuf();
+  HistoryAddResult r;
+  r.entry = history_entry(text.str(), statement_file, o.serial, o.date);
+  r.db = store_path(o.db);
+  HistoryStore store = HistoryStore::open(r.db, true);
+  r.id = store.add(r.entry);
+  r.calibrations = store.records(r.entry.serial).size();
+  return r;
+}
+
+HistoryShowResult history_show(const std::string& serial, const HistoryShowOptions& o) {
+  HistoryShowResult r;
+  r.db = store_path(o.db);
+  r.serial = serial;
+  r.at = o.at;
+  const bool predicting = !o.at.empty();
+  const std::int64_t at_day = predicting ? history_day(o.at, "at") : 0;
+  const HistoryStore store = HistoryStore::open(r.db, false);
+  r.records = store.records(serial);
+  if (r.records.empty()) {
+    const std::vector<std::string> known = store.serials();
+    throw InputError(fmt::format("{}: no calibration of '{}' in the history store; accepted: {}", r.db,
+                                 serial,
+                                 known.empty() ? std::string("none recorded yet (`ccal history add`)")
+                                               : fmt::format("one of {}", fmt::join(known, ", "))));
+  }
+  // Per coefficient, in the order of the first calibration that has it; time in years from the first date.
+  const std::int64_t origin = history_day(r.records.front().date, "date");
+  std::map<std::string, std::size_t> index;
+  for (const HistoryRecord& rec : r.records) {
+    if (rec.superseded_by || !rec.superseded_reason.empty()) continue;
+    const double years = double(history_day(rec.date, "date") - origin) / 365.25;
+    for (const HistoryCoefficient& c : rec.coefficients) {
+      auto [it, fresh] = index.try_emplace(c.name, r.coefficients.size());
+      if (fresh) r.coefficients.push_back({c.name, c.unit, {}, {}, {}, {}, {}});
+      CoefficientHistory& h = r.coefficients[it->second];
+      if (c.unit != h.unit)
+        throw InputError(
+            fmt::format("{}: {} of '{}' is in {} on {} but in {} on {}; the history compares values "
+                        "of one unit; accepted: statements of one configuration's units",
+                        r.db, c.name, serial, h.unit, h.dates.front(), c.unit, rec.date));
+      h.dates.push_back(rec.date);
+      h.points.push_back({years, c.value, c.expanded, c.coverage_factor});
+    }
+  }
+  for (CoefficientHistory& h : r.coefficients) {
+    h.agreement = normalised_errors(h.points);
+    h.drift = drift_line(h.points);
+    if (predicting && h.drift.available) h.prediction = predict(h.drift, double(at_day - origin) / 365.25);
+  }
+  return r;
+}
+
+}  // namespace ccal::verbs

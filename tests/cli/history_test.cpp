@@ -1,0 +1,128 @@
+// `ccal history` through the program: three yearly calibrations of one instrument whose K2 drifts by a known
+// amount (the lab example simulated with K2 = 0.02 + 0.0002 t deg/s/g², reduced with the statement, each
+// recorded under the serial and date of its [certificate]) give back the drift within its stated uncertainty
+// and E_n equal to a hand computation from the statements; two processes adding 100 statements each at once
+// lose none; a damaged store is refused and left as it was.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_support.hpp"
+
+namespace {
+
+using namespace ccal::test;
+
+const std::string kLab = CCAL_SOURCE_DIR + "/examples/lab.toml";
+const std::string kTruth = CCAL_SOURCE_DIR + "/examples/lab_truth.toml";
+constexpr double kDrift = 2e-4;  // deg/s/g² per year
+
+// The lab's configuration with the instrument's true K2 of year `year` and that year's date of calibration.
+std::string lab_of_year(int year) {
+  std::string text = read(kLab);
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace("K2 = \"0.02 deg/s/g^2\"", "K2 = \"" + std::to_string(0.02 + kDrift * year) + " deg/s/g^2\"");
+  replace("date_of_calibration = 2026-11-30",
+          "date_of_calibration = " + std::to_string(2024 + year) + "-11-30");
+  replace("date_of_issue = 2026-12-03", "date_of_issue = " + std::to_string(2024 + year) + "-12-03");
+  return text;
+}
+
+TEST_F(Cli, ThreeCalibrationsGiveTheDriftAndTheAgreement) {
+  std::vector<nlohmann::json> statements;
+  for (int year = 0; year < 3; ++year) {
+    const std::string config = write("lab" + std::to_string(year) + ".toml", lab_of_year(year));
+    const std::string logs = "logs" + std::to_string(year);
+    ASSERT_EQ(
+        run("simulate " + config + " --truth " + quote(kTruth) + " --logs-out " + logs + " -o /dev/null")
+            .code,
+        0);
+    std::string args;
+    for (const char* r : {"5g", "10g", "15g", "20g", "25g", "30g"})
+      args += std::string(" --log ") + r + "=" + logs + "/" + r + ".csv";
+    const std::string out = "statement" + std::to_string(year) + ".json";
+    const Result reduced = run("reduce " + config + args +
+                               " --statement --statement-trials 0 --statement-out " + out + " -o /dev/null");
+    ASSERT_EQ(reduced.code, 0) << reduced.err;
+    const Result added = run("history add " + out + " --db h.sqlite");
+    ASSERT_EQ(added.code, 0) << added.err;
+    EXPECT_NE(added.out.find("SN 0815 on " + std::to_string(2024 + year) + "-11-30"), std::string::npos)
+        << added.out;
+    statements.push_back(nlohmann::json::parse(read(dir_ / out)));
+  }
+  const Result shown = run("history show 'SN 0815' --db h.sqlite --at 2027-11-30 --format json");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  const auto j = nlohmann::json::parse(shown.out);
+  ASSERT_EQ(j["calibrations"].size(), 3u);
+  const auto& k2 = j["coefficients"]["K2"];
+  // The drift: the true one within the slope's stated standard uncertainty.
+  const double slope = k2["drift"]["slope_per_year"].get<double>(),
+               u = k2["drift"]["std_slope"].get<double>();
+  EXPECT_LT(std::abs(slope - kDrift), u) << slope << " ± " << u;
+  EXPECT_GT(u, 0);
+  // E_n of successive calibrations by hand from the statements: (x₂ − x₁)/√(U₁² + U₂²); the store keeps the
+  // numbers bit for bit, so they agree to round-off of the same expression.
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& a = statements[i]["coefficients"]["K2"];
+    const auto& b = statements[i + 1]["coefficients"]["K2"];
+    const double en =
+        (b["corrected_estimate"].get<double>() - a["corrected_estimate"].get<double>()) /
+        std::hypot(a["expanded_uncertainty"].get<double>(), b["expanded_uncertainty"].get<double>());
+    EXPECT_NEAR(k2["normalised_errors"][i]["en"].get<double>(), en, 1e-15 * std::abs(en) + 1e-300);
+  }
+  // The prediction a year after the last.
+  EXPECT_EQ(k2["prediction"]["date"], "2027-11-30");
+  const Result text = run("history show 'SN 0815' --db h.sqlite");
+  EXPECT_NE(text.out.find("drift:"), std::string::npos) << text.out;
+  const Result csv = run("history show 'SN 0815' --db h.sqlite --format csv");
+  EXPECT_EQ(std::count(csv.out.begin(), csv.out.end(), '\n'), 1 + 3 * 3) << csv.out;
+}
+
+TEST_F(Cli, TwoProcessesAddingAtOnceLoseNothing) {
+  // 2 × 100 different statements (K0 differs), added by two shell loops at once.
+  for (int who = 0; who < 2; ++who)
+    for (int i = 0; i < 100; ++i)
+      write(
+          std::to_string(who) + "_" + std::to_string(i) + ".json",
+          R"({"coverage_probability": 0.95, "coefficients": {"K0": {"unit": "deg/s", "corrected_estimate": )" +
+              std::to_string(who * 1000 + i) +
+              R"(, "expanded_uncertainty": 0.1, "coverage_factor": 2, "effective_dof": null}}})");
+  const std::string loop =
+      "for f in {}_*.json; do " + quote(kProgram) +
+      " history add $f --db h.sqlite --serial S1 --date 2026-01-01 >/dev/null || echo FAILED $f; done";
+  std::string both;
+  for (const char* who : {"0", "1"}) {
+    std::string l = loop;
+    l.replace(l.find("{}"), 2, who);
+    both += "(" + l + ") & ";
+  }
+  ASSERT_EQ(std::system(("cd " + quote(dir_.string()) + " && { " + both + "wait; }").c_str()), 0);
+  const Result shown = run("history show S1 --db h.sqlite --format json");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  EXPECT_EQ(nlohmann::json::parse(shown.out)["calibrations"].size(), 200u);
+}
+
+TEST_F(Cli, ADamagedStoreIsRefusedAndKept) {
+  write("s.json", R"({"coverage_probability": 0.95, "coefficients": {"K0": {"unit": "deg/s",
+      "corrected_estimate": 1, "expanded_uncertainty": 0.1, "coverage_factor": 2}}})");
+  ASSERT_EQ(run("history add s.json --db h.sqlite --serial S1 --date 2026-01-01").code, 0);
+  const std::string whole = read(dir_ / "h.sqlite");
+  write("cut.sqlite", whole.substr(0, whole.size() / 2));
+  expect_bad_input(run("history show S1 --db cut.sqlite"), {"cut.sqlite: history store:"});
+  expect_bad_input(run("history add s.json --db cut.sqlite --serial S2 --date 2026-01-02"),
+                   {"cut.sqlite: history store:"});
+  EXPECT_EQ(read(dir_ / "cut.sqlite"), whole.substr(0, whole.size() / 2));
+  expect_bad_input(run("history show S9 --db h.sqlite"), {"no calibration of 'S9'", "accepted: one of S1"});
+  expect_bad_input(run("history show S1 --db h.sqlite --at 2026-02-30"), {"--at", "is not a date"});
+  expect_bad_input(run("history add s.json --db h.sqlite --serial S1"), {"names no date of calibration"});
+}
+
+}  // namespace
