@@ -63,6 +63,7 @@ void bind_allocate(py::module_& m);    // Allocation and its parts, allocate
 void bind_design(py::module_& m);      // Design, design
 void bind_report(py::module_& m);      // Report, report
 void bind_identify(py::module_& m);    // Identification, identify_file
+void bind_history(py::module_& m);     // History and its parts, history, history_add
 void bind_derive(py::module_& m);      // Config.with_tolerance, .with_error, .with_plan
 
 }  // namespace ccal::python

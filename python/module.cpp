@@ -82,6 +82,7 @@ PYBIND11_MODULE(_ccal, m) {
   ccal::python::bind_config(m);
   ccal::python::bind_budget(m);
   ccal::python::bind_force(m);
+  ccal::python::bind_history(m);
   ccal::python::bind_simulate(m);
   ccal::python::bind_fit(m);
   ccal::python::bind_statement(m);

@@ -1,5 +1,7 @@
 // ccal history: an instrument's calibration history (docs/cli.md): `add` records a calibration statement in
 // the store, `show` lists a serial number's calibrations with the agreement of successive ones and the drift.
+#include <fmt/format.h>
+
 #include <memory>
 
 #include "ccal/render/history.hpp"
@@ -18,6 +20,13 @@ struct HistoryCli {
   std::string serial;
   verbs::HistoryShowOptions show;
   OutputOptions show_output;
+  std::int64_t id = 0;
+  verbs::HistorySupersedeOptions supersede;
+  std::string export_serial;
+  verbs::HistoryStoreOptions export_store;
+  OutputOptions export_output;
+  std::string import_file;
+  verbs::HistoryStoreOptions import_store;
 };
 
 }  // namespace
@@ -41,14 +50,33 @@ Command add_history(CLI::App& app) {
   show->add_option("SERIAL", o->serial, "Serial number, as recorded")->required()->type_name("S");
   add_option_flags(*show, o->show, option_table<verbs::HistoryShowOptions>());
   add_output_options(*show, o->show_output, {"text", "json", "csv"});
+  CLI::App* supersede = cmd->add_subcommand(
+      "supersede",
+      "Mark a record superseded (a wrong statement, a repeated test): kept, left out of drift and E_n");
+  supersede->add_option("ID", o->id, "The record's id, as `ccal history show` lists it")
+      ->required()
+      ->type_name("ID");
+  add_option_flags(*supersede, o->supersede, option_table<verbs::HistorySupersedeOptions>());
+  CLI::App* exported = cmd->add_subcommand("export", "A serial number's history as one JSON file");
+  exported->add_option("SERIAL", o->export_serial, "Serial number, as recorded")->required()->type_name("S");
+  add_option_flags(*exported, o->export_store, option_table<verbs::HistoryStoreOptions>());
+  add_output_options(*exported, o->export_output, {"json"});
+  CLI::App* imported = cmd->add_subcommand("import", "Record the calibrations of an exported history file");
+  imported->add_option("FILE", o->import_file, "A file of `ccal history export`")
+      ->required()
+      ->type_name("FILE");
+  add_option_flags(*imported, o->import_store, option_table<verbs::HistoryStoreOptions>());
   cmd->footer(
       "Examples:\n"
       "  ccal reduce lab.toml --log … --statement --statement-out statement.json\n"
       "  ccal history add statement.json                serial and date from the [certificate]\n"
       "  ccal history add old.json --serial \"SN 0815\" --date 2024-11-28\n"
-      "  ccal history show \"SN 0815\" --at 2027-12-01     drift, E_n and the value predicted then\n");
+      "  ccal history show \"SN 0815\" --at 2027-12-01     drift, E_n and the value predicted then\n"
+      "  ccal history supersede 3 --by 4 --reason \"mounting screw loose; test repeated\"\n"
+      "  ccal history export \"SN 0815\" -o sn0815.json; ccal history import sn0815.json --db "
+      "other.sqlite\n");
 
-  return {cmd, [o, add, show] {
+  return {cmd, [o, add, show, supersede, exported, imported] {
             if (add->parsed()) {
               note_input(o->statement);
               const verbs::HistoryAddResult r = verbs::history_add(o->statement, o->add);
@@ -59,6 +87,20 @@ Command add_history(CLI::App& app) {
               write_output(o->show_output, f == "json"  ? render::json(r)
                                            : f == "csv" ? render::csv(r)
                                                         : render::text(r));
+            } else if (supersede->parsed()) {
+              verbs::history_supersede(o->id, o->supersede);
+              write_output(OutputOptions{}, fmt::format("Calibration {} superseded.\n", o->id));
+            } else if (exported->parsed()) {
+              write_output(o->export_output, verbs::history_export(o->export_serial, o->export_store));
+            } else if (imported->parsed()) {
+              note_input(o->import_file);
+              const HistoryImport r = verbs::history_import(o->import_file, o->import_store);
+              write_output(
+                  OutputOptions{},
+                  fmt::format("Imported the history of {}: {} calibration{} added, {} already there, {} "
+                              "supersession{} recorded.\n",
+                              r.serial, r.added, r.added == 1 ? "" : "s", r.present, r.superseded,
+                              r.superseded == 1 ? "" : "s"));
             }
           }};
 }

@@ -110,8 +110,9 @@ def install(namespace):
         cls = getattr(_ccal, class_name)
         _results.verb_result_methods(cls, _tables.DISPLAY[class_name])
     _results.statement_methods(_ccal.Statement)
+    _results.json_table_methods(_ccal.History, _results.history_table)
     _results.budget_methods(_ccal.Budget, _tables.display_budget_sources)
-    _results.identification_methods(_ccal.Identification, _tables.DISPLAY["Identification"])
+    _results.json_table_methods(_ccal.Identification, _tables.DISPLAY["Identification"])
     _ccal.Simulation.write_logs = _results.write_logs
     _results.table_methods(Config, _tables.display_config)
     _results.table_methods(_ccal.Fit, _tables.display_fit)

@@ -99,12 +99,14 @@ def verb_result_methods(cls, build):
     cls.__reduce__ = _pickling.result_reduce
 
 
-def identification_methods(cls, build):
-    """display, to_dict, to_frame, repr and _repr_html_ of identify_file()'s result."""
+def json_table_methods(cls, build):
+    """display, to_dict, to_frame, repr and _repr_html_ of a result whose display() `build` makes from its JSON
+    (identify_file()'s, history()'s)."""
 
     def display(self) -> "Table":
-        """The identified coefficients in the table's units, with their standard errors."""
         return build(self, json.loads(self.to_json()))
+
+    display.__doc__ = build.__doc__
 
     def to_dict(self) -> "Dict[str, Any]":
         """The report as the CLI's JSON, parsed (dict)."""
@@ -118,6 +120,17 @@ def identification_methods(cls, build):
         _named(cls, name, f)
     cls.__repr__ = _table_repr
     cls._repr_html_ = _table_html
+
+
+def history_table(self, d) -> "Table":
+    """One row per coefficient and calibration (superseded ones left out): the date, the value, U, unit and E_n
+    against the calibration before."""
+    rows = []
+    for h in self.coefficients:
+        en = {e.to_index: e.value for e in h.normalised_errors}
+        for i, date in enumerate(h.dates):
+            rows.append([h.name, date, h.values[i], h.expanded[i], h.unit, en.get(i)])
+    return Table(f"calibration history of {d['serial']}", ["coefficient", "date", "value", "U", "unit", "E_n"], rows)
 
 
 def statement_methods(cls):

@@ -107,6 +107,7 @@ def display_allocation(r, j):
 
 
 def display_identification(r, j):
+    """The identified coefficients in the table's units, with their standard errors."""
     rows = _coefficient_rows(j["identification"]["coefficients"], ["value", "std_error"])
     return Table(f"{j['command']} of {j['config']}: identified coefficients",
                  ["coefficient", "unit", "value", "std_error"], rows)

@@ -54,6 +54,10 @@ CREATE TRIGGER calibration_kept BEFORE UPDATE ON calibration
   BEGIN SELECT RAISE(ABORT, 'a recorded calibration is never changed'); END;
 CREATE TRIGGER calibration_not_deleted BEFORE DELETE ON calibration
   BEGIN SELECT RAISE(ABORT, 'a recorded calibration is never deleted'); END;
+CREATE TRIGGER supersession_kept BEFORE UPDATE ON supersession
+  BEGIN SELECT RAISE(ABORT, 'a supersession is never changed'); END;
+CREATE TRIGGER supersession_not_deleted BEFORE DELETE ON supersession
+  BEGIN SELECT RAISE(ABORT, 'a supersession is never deleted'); END;
 CREATE TRIGGER coefficient_kept BEFORE UPDATE ON coefficient
   BEGIN SELECT RAISE(ABORT, 'a recorded coefficient is never changed'); END;
 CREATE TRIGGER coefficient_not_deleted BEFORE DELETE ON coefficient
@@ -380,13 +384,67 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry) {
   }
 }
 
+void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, const std::string& reason) {
+  if (reason.empty())
+    throw InputError(
+        fmt::format("{}: superseding calibration {} needs a reason; accepted: --reason TEXT", path_, id));
+  execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
+  try {
+    const auto serial_of = [&](std::int64_t which) {
+      Statement find(db_, path_, "SELECT serial FROM calibration WHERE id = ?1");
+      find.integer(1, which);
+      if (!find.step())
+        throw InputError(
+            fmt::format("{}: no calibration {} in the history store; accepted: an id that `ccal "
+                        "history show SERIAL` lists",
+                        path_, which));
+      return find.column_text(0);
+    };
+    const std::string serial = serial_of(id);
+    if (by) {
+      if (*by == id)
+        throw InputError(fmt::format(
+            "{}: calibration {} cannot supersede itself; accepted: another record's id", path_, id));
+      if (serial_of(*by) != serial)
+        throw InputError(
+            fmt::format("{}: calibration {} is of another serial number than {} ({}); accepted: a "
+                        "record of {}",
+                        path_, *by, id, serial, serial));
+    }
+    {
+      Statement done(db_, path_, "SELECT reason FROM supersession WHERE calibration = ?1");
+      done.integer(1, id);
+      if (done.step())
+        throw InputError(
+            fmt::format("{}: calibration {} is already superseded ({}); a record is superseded once", path_,
+                        id, done.column_text(0)));
+    }
+    Statement insert(db_, path_,
+                     "INSERT INTO supersession(calibration, by, reason, at) VALUES (?1, ?2, ?3, ?4)");
+    insert.integer(1, id).text(3, reason).text(4, utc_now());
+    if (by) insert.integer(2, *by);
+    insert.step();
+    execute(db_, path_, "COMMIT", "cannot write it");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::optional<std::int64_t> HistoryStore::id_of_statement(const std::string& statement_json) const {
+  Statement find(db_, path_, "SELECT id FROM calibration WHERE statement_sha256 = ?1");
+  find.text(1, sha256_hex(statement_json));
+  if (!find.step()) return std::nullopt;
+  return find.column_integer(0);
+}
+
 std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) const {
   std::vector<HistoryRecord> out;
-  Statement list(
-      db_, path_,
-      "SELECT c.id, c.serial, c.date, c.instrument, c.ccal_version, c.config, c.statement_sha256, "
-      "c.added_at, s.by, s.reason FROM calibration c LEFT JOIN supersession s ON s.calibration = c.id "
-      "WHERE c.serial = ?1 ORDER BY c.date, c.id");
+  Statement list(db_, path_,
+                 "SELECT c.id, c.serial, c.date, c.instrument, c.ccal_version, c.config, c.statement_sha256, "
+                 "c.added_at, s.by, s.reason, c.statement FROM calibration c LEFT JOIN supersession s ON "
+                 "s.calibration = c.id "
+                 "WHERE c.serial = ?1 ORDER BY c.date, c.id");
   list.text(1, serial);
   while (list.step()) {
     HistoryRecord r;
@@ -398,6 +456,7 @@ std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) cons
     r.config = list.column_text(5);
     r.statement_sha256 = list.column_text(6);
     r.added_at = list.column_text(7);
+    r.statement_json = list.column_text(10);
     if (!list.column_null(9)) {
       if (!list.column_null(8)) r.superseded_by = list.column_integer(8);
       r.superseded_reason = list.column_text(9);

@@ -58,7 +58,10 @@ std::string text(const verbs::HistoryShowResult& r) {
     out += fmt::format("  #{:<4} {}  {}  ccal {}  statement {}{}\n", rec.id, rec.date,
                        rec.instrument.empty() ? "-" : rec.instrument, rec.ccal_version,
                        rec.statement_sha256.substr(0, 12),
-                       rec.superseded_reason.empty() ? "" : "  superseded: " + rec.superseded_reason);
+                       rec.superseded_reason.empty() ? ""
+                       : rec.superseded_by
+                           ? fmt::format("  superseded by #{}: {}", *rec.superseded_by, rec.superseded_reason)
+                           : "  superseded: " + rec.superseded_reason);
   for (const verbs::CoefficientHistory& h : r.coefficients) {
     out += fmt::format("\n{} [{}]\n  {:<10} {:>14} {:>12} {:>6} {:>8}\n", h.name, h.unit, "date", "value",
                        "U", "k", "E_n");

@@ -30,12 +30,50 @@ constexpr OptionSpec<HistoryShowOptions> kShowRows[] = {
      "Predict each coefficient at this date from its drift line"},
 };
 
+constexpr OptionSpec<HistorySupersedeOptions> kSupersedeRows[] = {
+    {"db", &HistorySupersedeOptions::db, "FILE",
+     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+    {"by", &HistorySupersedeOptions::by, "ID", "The record that replaces it (0: none)",
+     OptionRange::at_least(0)},
+    {"reason", &HistorySupersedeOptions::reason, "TEXT", "Why it is superseded (required)"},
+};
+
+constexpr OptionSpec<HistoryStoreOptions> kStoreRows[] = {
+    {"db", &HistoryStoreOptions::db, "FILE",
+     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+};
+
 std::string store_path(const std::string& db) { return db.empty() ? default_history_path() : db; }
 
 }  // namespace
 
 OptionTable<HistoryAddOptions> options_of(std::type_identity<HistoryAddOptions>) { return kAddRows; }
 OptionTable<HistoryShowOptions> options_of(std::type_identity<HistoryShowOptions>) { return kShowRows; }
+
+OptionTable<HistorySupersedeOptions> options_of(std::type_identity<HistorySupersedeOptions>) {
+  return kSupersedeRows;
+}
+OptionTable<HistoryStoreOptions> options_of(std::type_identity<HistoryStoreOptions>) { return kStoreRows; }
+
+void history_supersede(std::int64_t id, const HistorySupersedeOptions& o) {
+  check_options(o, option_table<HistorySupersedeOptions>());
+  HistoryStore store = HistoryStore::open(store_path(o.db), false);
+  store.supersede(id, o.by > 0 ? std::optional<std::int64_t>(o.by) : std::nullopt, o.reason);
+}
+
+std::string history_export(const std::string& serial, const HistoryStoreOptions& o) {
+  return export_history(HistoryStore::open(store_path(o.db), false), serial);
+}
+
+HistoryImport history_import(const std::string& file, const HistoryStoreOptions& o) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw InputError(fmt::format("{}: cannot read it; accepted: a file of `ccal history export`", file));
+  std::stringstream text;
+  text << in.rdbuf();
+  HistoryStore store = HistoryStore::open(store_path(o.db), true);
+  return import_history(store, text.str(), file);
+}
 
 std::int64_t history_day(const std::string& date, std::string_view field) {
   using namespace std::chrono;

@@ -3,6 +3,7 @@
 // recorded under the serial and date of its [certificate]) give back the drift within its stated uncertainty
 // and E_n equal to a hand computation from the statements; two processes adding 100 statements each at once
 // lose none; a damaged store is refused and left as it was.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -84,6 +85,44 @@ TEST_F(Cli, ThreeCalibrationsGiveTheDriftAndTheAgreement) {
   EXPECT_NE(text.out.find("drift:"), std::string::npos) << text.out;
   const Result csv = run("history show 'SN 0815' --db h.sqlite --format csv");
   EXPECT_EQ(std::count(csv.out.begin(), csv.out.end(), '\n'), 1 + 3 * 3) << csv.out;
+}
+
+TEST_F(Cli, ASupersededRecordIsKeptButLeftOutAndTheHistoryMoves) {
+  for (int i = 0; i < 3; ++i) {
+    write(fmt::format("s{}.json", i),
+          fmt::format(R"({{"coverage_probability": 0.95, "coefficients": {{"K0": {{"unit": "deg/s",
+              "corrected_estimate": {}, "expanded_uncertainty": 0.5, "coverage_factor": 2}}}}}})",
+                      1 + i));
+    ASSERT_EQ(
+        run(fmt::format("history add s{}.json --db h.sqlite --serial S1 --date 202{}-06-01", i, 4 + i)).code,
+        0);
+  }
+  const Result done = run("history supersede 2 --by 3 --reason 'fixture loose' --db h.sqlite");
+  ASSERT_EQ(done.code, 0) << done.err;
+  expect_bad_input(run("history supersede 2 --reason again --db h.sqlite"),
+                   {"already superseded (fixture loose)"});
+  expect_bad_input(run("history supersede 1 --db h.sqlite"), {"needs a reason; accepted: --reason TEXT"});
+  const auto j = nlohmann::json::parse(run("history show S1 --db h.sqlite --format json").out);
+  EXPECT_EQ(j["calibrations"][1]["superseded"]["reason"], "fixture loose");
+  EXPECT_EQ(j["calibrations"][1]["superseded"]["by"], 3);
+  EXPECT_EQ(j["coefficients"]["K0"]["dates"].size(), 2u);  // left out of E_n and the drift
+  // (3 − 1)/√(0.5² + 0.5²) = 2.83: the two that remain disagree.
+  EXPECT_NEAR(j["coefficients"]["K0"]["normalised_errors"][0]["en"].get<double>(), 2 / std::sqrt(0.5), 1e-15);
+  EXPECT_TRUE(j["coefficients"]["K0"]["normalised_errors"][0]["disagree"].get<bool>());
+  // Exported, imported elsewhere: the same show.
+  ASSERT_EQ(run("history export S1 --db h.sqlite -o s1.json").code, 0);
+  const Result imported = run("history import s1.json --db other.sqlite");
+  ASSERT_EQ(imported.code, 0) << imported.err;
+  EXPECT_NE(imported.out.find("3 calibrations added, 0 already there, 1 supersession recorded"),
+            std::string::npos)
+      << imported.out;
+  auto moved = nlohmann::json::parse(run("history show S1 --db other.sqlite --format json").out);
+  auto here = j;
+  for (auto* doc : {&moved, &here}) {
+    (*doc).erase("db");
+    for (auto& c : (*doc)["calibrations"]) c.erase("added_at");
+  }
+  EXPECT_EQ(moved, here);
 }
 
 TEST_F(Cli, TwoProcessesAddingAtOnceLoseNothing) {

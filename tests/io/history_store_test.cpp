@@ -125,6 +125,33 @@ TEST_F(History, RecordsAreNeverChanged) {
   EXPECT_EQ(store.records("SN 1").at(0).coefficients.at(1).value, 0.02);
 }
 
+TEST_F(History, ARecordIsSupersededOnceWithAReason) {
+  HistoryStore store = HistoryStore::open(path("h.sqlite"), true);
+  const std::int64_t a = store.add(history_entry(statement(0.02), "a.json", "SN 1", "2026-01-01"));
+  const std::int64_t b = store.add(history_entry(statement(0.03), "b.json", "SN 1", "2026-01-02"));
+  const std::int64_t other = store.add(history_entry(statement(0.04), "c.json", "SN 2", "2026-01-03"));
+  const auto refused = [&](std::int64_t id, std::optional<std::int64_t> by, const std::string& reason,
+                           const std::string& says) {
+    try {
+      store.supersede(id, by, reason);
+      ADD_FAILURE() << "not refused: " << says;
+    } catch (const InputError& x) {
+      EXPECT_NE(std::string(x.what()).find(says), std::string::npos) << x.what();
+    }
+  };
+  refused(a, b, "", "needs a reason; accepted: --reason TEXT");
+  refused(99, std::nullopt, "r", "no calibration 99 in the history store");
+  refused(a, a, "r", "cannot supersede itself");
+  refused(a, other, "r", "is of another serial number");
+  store.supersede(a, b, "mounting screw loose");
+  refused(a, std::nullopt, "again", "is already superseded (mounting screw loose)");
+  const std::vector<HistoryRecord> r = store.records("SN 1");
+  EXPECT_EQ(r[0].superseded_by, b);
+  EXPECT_EQ(r[0].superseded_reason, "mounting screw loose");
+  EXPECT_TRUE(r[1].superseded_reason.empty());
+  EXPECT_EQ(r[0].coefficients.at(1).value, 0.02);  // kept as it was
+}
+
 TEST_F(History, TwoWritersAtOnceLoseNothing) {
   const std::string file = path("h.sqlite");
   const auto writer = [&](int who) {

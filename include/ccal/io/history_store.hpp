@@ -53,8 +53,9 @@ struct HistoryRecord {
   std::string statement_sha256;
   std::string added_at;  // UTC, ISO 8601
   std::vector<HistoryCoefficient> coefficients;
-  std::optional<std::int64_t> superseded_by;  // set when superseded (and the reason)
-  std::string superseded_reason;
+  std::optional<std::int64_t> superseded_by;  // the record that replaces it, if one does
+  std::string superseded_reason;              // not empty: superseded (excluded from drift and E_n)
+  std::string statement_json;                 // the statement as recorded
 };
 
 // What `add` records from a statement's JSON text: the coefficients and the provenance it carries, with
@@ -93,6 +94,12 @@ class HistoryStore {
   // Records a calibration in one transaction; returns its id. InputError for a statement already recorded
   // (the same SHA-256 of its text), naming the record.
   std::int64_t add(const HistoryEntry& entry);
+  // Marks record `id` superseded, by record `by` of the same serial if given, for `reason` (not empty), in one
+  // transaction. InputError for an unknown id, a record already superseded, `by` unknown, of another serial
+  // or the record itself.
+  void supersede(std::int64_t id, std::optional<std::int64_t> by, const std::string& reason);
+  // The id of the record of this statement text (history_entry's statement_json), if recorded.
+  std::optional<std::int64_t> id_of_statement(const std::string& statement_json) const;
   // Every calibration of a serial number, oldest first (by date, then id), superseded ones included.
   std::vector<HistoryRecord> records(const std::string& serial) const;
   // The serial numbers in the store, sorted.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ccal/core/options.hpp"
+#include "ccal/io/history_exchange.hpp"
 #include "ccal/io/history_store.hpp"
 #include "ccal/uncertainty/history_trend.hpp"
 
@@ -27,6 +28,18 @@ struct HistoryShowOptions {
   std::string at;  // YYYY-MM-DD: the drift line's prediction at that date; "": none
 };
 OptionTable<HistoryShowOptions> options_of(std::type_identity<HistoryShowOptions>);
+
+struct HistorySupersedeOptions {
+  std::string db;       // the store; "": default_history_path()
+  std::int64_t by = 0;  // the record that replaces it; 0: none
+  std::string reason;   // why (required)
+};
+OptionTable<HistorySupersedeOptions> options_of(std::type_identity<HistorySupersedeOptions>);
+
+struct HistoryStoreOptions {
+  std::string db;  // the store; "": default_history_path()
+};
+OptionTable<HistoryStoreOptions> options_of(std::type_identity<HistoryStoreOptions>);
 
 struct HistoryAddResult {
   std::string db;
@@ -55,6 +68,12 @@ struct HistoryShowResult {
 HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& options = {});
 // InputError for a serial with no calibration in the store (naming those it has), a bad date or store.
 HistoryShowResult history_show(const std::string& serial, const HistoryShowOptions& options = {});
+
+// Marks a record superseded (never changed otherwise); InputError as HistoryStore::supersede.
+void history_supersede(std::int64_t id, const HistorySupersedeOptions& options);
+// A serial's history as JSON (io/history_exchange.hpp), and a file of it recorded in the store.
+std::string history_export(const std::string& serial, const HistoryStoreOptions& options = {});
+HistoryImport history_import(const std::string& file, const HistoryStoreOptions& options = {});
 
 // Days from 1970-01-01 of a YYYY-MM-DD date (proleptic Gregorian); OptionError of `field` for a non-date.
 std::int64_t history_day(const std::string& date, std::string_view field);

@@ -1,0 +1,72 @@
+"""ccal.history and ccal.history_add against the command-line program (`ccal history`): statements recorded
+from Python, read back with E_n, the drift and a prediction; the JSON the same as the program's; a missing store
+and a bad keyword refused. Run by ctest with Debian's python3, the module on PYTHONPATH and the program in
+CCAL_PROGRAM."""
+
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+import ccal
+
+
+def statement(k2, u):
+    return json.dumps({"coverage_probability": 0.95, "coefficients": {
+        "K2": {"unit": "deg/s/g^2", "corrected_estimate": k2, "expanded_uncertainty": u, "coverage_factor": 2.0,
+               "effective_dof": None}}})
+
+
+class HistoryTest(unittest.TestCase):
+    def setUp(self):
+        self.folder = tempfile.TemporaryDirectory()
+        self.db = os.path.join(self.folder.name, "h.sqlite")
+        # Years 0, 1, 3 (by the dates; 2024 is a leap year, so 366 days to 2025-06-01) with u = 0.1, 0.1, 0.2.
+        for i, (k2, u, date) in enumerate([(5.0, 0.2, "2024-06-01"), (5.25, 0.2, "2025-06-01"),
+                                           (5.75, 0.4, "2027-06-01")]):
+            path = os.path.join(self.folder.name, f"s{i}.json")
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(statement(k2, u))
+            self.assertEqual(ccal.history_add(path, db=self.db, serial="SN 1", date=date), i + 1)
+
+    def tearDown(self):
+        self.folder.cleanup()
+
+    def test_the_history_read_back(self):
+        h = ccal.history("SN 1", db=self.db, at="2028-06-01")
+        self.assertEqual([r.date for r in h.records], ["2024-06-01", "2025-06-01", "2027-06-01"])
+        k2 = h.coefficients[0]
+        self.assertEqual(k2.values, [5.0, 5.25, 5.75])
+        # E_n by hand: 0.25/√(0.2² + 0.2²) and 0.5/√(0.2² + 0.4²).
+        self.assertAlmostEqual(k2.normalised_errors[0].value, 0.25 / math.sqrt(0.08), places=14)
+        self.assertAlmostEqual(k2.normalised_errors[1].value, 0.5 / math.sqrt(0.2), places=14)
+        self.assertTrue(k2.drift.available)
+        self.assertGreater(k2.drift.slope, 0)
+        self.assertIsNotNone(k2.prediction)
+        rows = h.display().rows
+        self.assertEqual(len(rows), 3)
+        self.assertEqual((rows[1]["coefficient"], rows[1]["date"]), ("K2", "2025-06-01"))
+        self.assertAlmostEqual(rows[1]["E_n"], 0.25 / math.sqrt(0.08), places=14)
+        self.assertIsNone(rows[0]["E_n"])
+
+    def test_the_same_json_as_the_program(self):
+        program = os.environ.get("CCAL_PROGRAM")
+        if not program:
+            self.skipTest("CCAL_PROGRAM is not set")
+        out = subprocess.run([program, "history", "show", "SN 1", "--db", self.db, "--format", "json"], check=True,
+                             capture_output=True, text=True).stdout
+        self.assertEqual(json.loads(out), json.loads(ccal.history("SN 1", db=self.db).to_json()))
+
+    def test_refusals(self):
+        with self.assertRaisesRegex(ccal.InputError, "no history store there"):
+            ccal.history("SN 1", db=os.path.join(self.folder.name, "none.sqlite"))
+        with self.assertRaisesRegex(ccal.InputError, "no calibration of 'SN 2'"):
+            ccal.history("SN 2", db=self.db)
+        with self.assertRaises(TypeError):
+            ccal.history("SN 1", db=self.db, unknown=1)
+
+
+if __name__ == "__main__":
+    unittest.main()
