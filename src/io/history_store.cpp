@@ -256,7 +256,8 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
   return e;
 }
 
-HistoryStore HistoryStore::open(const std::string& path, bool create) {
+HistoryStore HistoryStore::open(const std::string& path, Access access, int busy_millis) {
+  const bool create = access == Access::create, writing = access != Access::read;
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) {
@@ -272,10 +273,12 @@ HistoryStore HistoryStore::open(const std::string& path, bool create) {
   }
   HistoryStore store;
   store.path_ = path;
-  const int flags = create ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READWRITE;
+  const int flags = create    ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
+                    : writing ? SQLITE_OPEN_READWRITE
+                              : SQLITE_OPEN_READONLY;
   if (sqlite3_open_v2(path.c_str(), &store.db_, flags, nullptr) != SQLITE_OK)
     Statement::throw_store_error(store.db_, path, "cannot open it");
-  sqlite3_busy_timeout(store.db_, kHistoryBusyMillis);
+  sqlite3_busy_timeout(store.db_, busy_millis);
   execute(store.db_, path, "PRAGMA foreign_keys = ON", "cannot open it");
   {
     Statement check(store.db_, path, "PRAGMA quick_check");
@@ -287,7 +290,7 @@ HistoryStore HistoryStore::open(const std::string& path, bool create) {
   }
   // The schema: made in one transaction on a new file (two processes creating it at once: one waits and then
   // finds it made), refused when it is another file or newer.
-  execute(store.db_, path, "BEGIN IMMEDIATE", "cannot lock it");
+  execute(store.db_, path, writing ? "BEGIN IMMEDIATE" : "BEGIN", "cannot lock it");
   try {
     const int version = schema_version(store.db_, path);
     if (version < 0)

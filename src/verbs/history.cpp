@@ -57,12 +57,12 @@ OptionTable<HistoryStoreOptions> options_of(std::type_identity<HistoryStoreOptio
 
 void history_supersede(std::int64_t id, const HistorySupersedeOptions& o) {
   check_options(o, option_table<HistorySupersedeOptions>());
-  HistoryStore store = HistoryStore::open(store_path(o.db), false);
+  HistoryStore store = HistoryStore::open(store_path(o.db), HistoryStore::Access::write);
   store.supersede(id, o.by > 0 ? std::optional<std::int64_t>(o.by) : std::nullopt, o.reason);
 }
 
 std::string history_export(const std::string& serial, const HistoryStoreOptions& o) {
-  return export_history(HistoryStore::open(store_path(o.db), false), serial);
+  return export_history(HistoryStore::open(store_path(o.db), HistoryStore::Access::read), serial);
 }
 
 HistoryImport history_import(const std::string& file, const HistoryStoreOptions& o) {
@@ -71,7 +71,7 @@ HistoryImport history_import(const std::string& file, const HistoryStoreOptions&
     throw InputError(fmt::format("{}: cannot read it; accepted: a file of `ccal history export`", file));
   std::stringstream text;
   text << in.rdbuf();
-  HistoryStore store = HistoryStore::open(store_path(o.db), true);
+  HistoryStore store = HistoryStore::open(store_path(o.db), HistoryStore::Access::create);
   return import_history(store, text.str(), file);
 }
 
@@ -101,7 +101,7 @@ HistoryAddResult history_add(const std::string& statement_file, const HistoryAdd
   HistoryAddResult r;
   r.entry = history_entry(text.str(), statement_file, o.serial, o.date);
   r.db = store_path(o.db);
-  HistoryStore store = HistoryStore::open(r.db, true);
+  HistoryStore store = HistoryStore::open(r.db, HistoryStore::Access::create);
   r.id = store.add(r.entry);
   r.calibrations = store.records(r.entry.serial).size();
   return r;
@@ -114,7 +114,7 @@ HistoryShowResult history_show(const std::string& serial, const HistoryShowOptio
   r.at = o.at;
   const bool predicting = !o.at.empty();
   const std::int64_t at_day = predicting ? history_day(o.at, "at") : 0;
-  const HistoryStore store = HistoryStore::open(r.db, false);
+  const HistoryStore store = HistoryStore::open(r.db, HistoryStore::Access::read);
   r.records = store.records(serial);
   if (r.records.empty()) {
     const std::vector<std::string> known = store.serials();

@@ -25,14 +25,14 @@ std::string statement(double k2) {
 TEST(HistoryExchange, ExportedAndImportedTheSame) {
   const fs::path folder = fs::temp_directory_path() / fmt::format("ccal_history_exchange_{}", ::getpid());
   fs::remove_all(folder);
-  HistoryStore from = HistoryStore::open((folder / "from.sqlite").string(), true);
+  HistoryStore from = HistoryStore::open((folder / "from.sqlite").string(), HistoryStore::Access::create);
   from.add(history_entry(statement(0.0200001), "a", "SN 1", "2024-11-30"));  // ids 1, 2, 3 here
   const std::int64_t second = from.add(history_entry(statement(0.0202), "b", "SN 1", "2025-11-30"));
   const std::int64_t third = from.add(history_entry(statement(0.0204), "c", "SN 1", "2026-11-30"));
   from.supersede(second, third, "repeated");
   const std::string text = export_history(from, "SN 1");
 
-  HistoryStore to = HistoryStore::open((folder / "to.sqlite").string(), true);
+  HistoryStore to = HistoryStore::open((folder / "to.sqlite").string(), HistoryStore::Access::create);
   to.add(history_entry(statement(9.0), "z", "SN 9", "2020-01-01"));  // so that the new ids differ
   const HistoryImport first = import_history(to, text, "sn1.json");
   EXPECT_EQ(first.added, 3u);

@@ -5,7 +5,9 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sqlite3.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -59,7 +61,8 @@ TEST_F(History, AStatementIsRecordedAndReadBack) {
   EXPECT_EQ(e.coefficients[1].value, 0.02);
   EXPECT_TRUE(std::isinf(e.coefficients[1].effective_dof));
   EXPECT_EQ(e.config, "lab.toml");
-  HistoryStore store = HistoryStore::open(path("sub/h.sqlite"), true);  // the folder is made
+  HistoryStore store =
+      HistoryStore::open(path("sub/h.sqlite"), HistoryStore::Access::create);  // the folder is made
   const std::int64_t first = store.add(e);
   store.add(history_entry(statement(0.021), "t.json", "SN 0815", "2024-11-30"));
   store.add(history_entry(statement(0.5), "u.json", "SN 9", "2024-01-01"));
@@ -115,7 +118,7 @@ TEST_F(History, SerialAndDateComeFromTheCertificateOrAreAskedFor) {
 }
 
 TEST_F(History, RecordsAreNeverChanged) {
-  HistoryStore store = HistoryStore::open(path("h.sqlite"), true);
+  HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
   store.add(history_entry(statement(0.02), "s.json", "SN 1", "2026-01-01"));
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &db), SQLITE_OK);
@@ -126,7 +129,7 @@ TEST_F(History, RecordsAreNeverChanged) {
 }
 
 TEST_F(History, ARecordIsSupersededOnceWithAReason) {
-  HistoryStore store = HistoryStore::open(path("h.sqlite"), true);
+  HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
   const std::int64_t a = store.add(history_entry(statement(0.02), "a.json", "SN 1", "2026-01-01"));
   const std::int64_t b = store.add(history_entry(statement(0.03), "b.json", "SN 1", "2026-01-02"));
   const std::int64_t other = store.add(history_entry(statement(0.04), "c.json", "SN 2", "2026-01-03"));
@@ -155,14 +158,84 @@ TEST_F(History, ARecordIsSupersededOnceWithAReason) {
 TEST_F(History, TwoWritersAtOnceLoseNothing) {
   const std::string file = path("h.sqlite");
   const auto writer = [&](int who) {
-    HistoryStore store = HistoryStore::open(file, true);  // both may create it: one makes it, one finds it
+    HistoryStore store = HistoryStore::open(
+        file, HistoryStore::Access::create);  // both may create it: one makes it, one finds it
     for (int i = 0; i < 100; ++i)
       store.add(history_entry(statement(0.02 + 1e-6 * (100 * who + i)), "s.json", "SN 1", "2026-01-01"));
   };
   std::thread a(writer, 0), b(writer, 1);
   a.join();
   b.join();
-  EXPECT_EQ(HistoryStore::open(file, false).records("SN 1").size(), 200u);
+  EXPECT_EQ(HistoryStore::open(file, HistoryStore::Access::read).records("SN 1").size(), 200u);
+}
+
+TEST_F(History, ALockedStoreIsRefusedAfterWaiting) {
+  HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
+  store.add(history_entry(statement(0.02), "s.json", "SN 1", "2026-01-01"));
+  sqlite3* other = nullptr;  // another process's connection, holding the store's write lock
+  ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &other), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(other, "BEGIN EXCLUSIVE", nullptr, nullptr, nullptr), SQLITE_OK);
+  try {
+    HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create, 100)
+        .add(history_entry(statement(0.03), "t.json", "SN 1", "2026-01-02"));
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& x) {
+    EXPECT_NE(std::string(x.what()).find("another process holds it for more than"), std::string::npos)
+        << x.what();
+  }
+  sqlite3_exec(other, "ROLLBACK", nullptr, nullptr, nullptr);
+  sqlite3_close(other);
+  EXPECT_EQ(store.records("SN 1").size(), 1u);
+}
+
+TEST_F(History, ReadingWritesNothing) {
+  {
+    HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
+    store.add(history_entry(statement(0.02), "s.json", "SN 1", "2026-01-01"));
+  }
+  const std::string before = bytes_of(path("h.sqlite"));
+  const auto modified = fs::last_write_time(path("h.sqlite"));
+  const HistoryStore reader = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::read);
+  EXPECT_EQ(reader.records("SN 1").size(), 1u);
+  EXPECT_EQ(bytes_of(path("h.sqlite")), before);
+  EXPECT_EQ(fs::last_write_time(path("h.sqlite")), modified);
+  EXPECT_FALSE(fs::exists(path("h.sqlite-journal")));
+}
+
+TEST_F(History, AWriterKilledMidAddLeavesTheStoreWhole) {
+  // A child process adds statements as fast as it can and is killed (SIGKILL) at a random moment; every
+  // calibration left has all its coefficients, and the store passes SQLite's integrity check.
+  HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
+  for (int round = 0; round < 5; ++round) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
+      for (int i = 0;; ++i)
+        store.add(history_entry(statement(round + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
+    }
+    ::usleep(useconds_t(20000 + 17000 * round));
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status));
+  }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* check = nullptr;
+  sqlite3_prepare_v2(db,
+                     "SELECT (SELECT count(*) FROM calibration), (SELECT count(*) FROM coefficient), "
+                     "(SELECT integrity_check FROM pragma_integrity_check)",
+                     -1, &check, nullptr);
+  ASSERT_EQ(sqlite3_step(check), SQLITE_ROW);
+  const auto calibrations = sqlite3_column_int64(check, 0), coefficients = sqlite3_column_int64(check, 1);
+  EXPECT_STREQ(reinterpret_cast<const char*>(sqlite3_column_text(check, 2)), "ok");
+  sqlite3_finalize(check);
+  sqlite3_close(db);
+  EXPECT_GT(calibrations, 0);
+  EXPECT_EQ(coefficients, 2 * calibrations);  // two coefficients a statement, none half-written
+  EXPECT_EQ(HistoryStore::open(path("h.sqlite"), HistoryStore::Access::read).records("SN 1").size(),
+            std::size_t(calibrations));
 }
 
 TEST_F(History, BadFilesAreRefusedAndLeftAsTheyWere) {
@@ -170,7 +243,7 @@ TEST_F(History, BadFilesAreRefusedAndLeftAsTheyWere) {
     const bool existed = fs::exists(file);
     const std::string before = existed ? bytes_of(file) : "";
     try {
-      HistoryStore::open(file, create);
+      HistoryStore::open(file, create ? HistoryStore::Access::create : HistoryStore::Access::read);
       ADD_FAILURE() << "not refused: " << file;
     } catch (const InputError& x) {
       EXPECT_NE(std::string(x.what()).find(says), std::string::npos) << x.what();
@@ -186,7 +259,7 @@ TEST_F(History, BadFilesAreRefusedAndLeftAsTheyWere) {
   refused(path("text.sqlite"), true, "not an SQLite file");
   // A store cut short (a copy interrupted): its first half.
   {
-    HistoryStore store = HistoryStore::open(path("h.sqlite"), true);
+    HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
     for (int i = 0; i < 30; ++i)
       store.add(history_entry(statement(0.02 + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
   }

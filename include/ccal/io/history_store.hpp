@@ -82,9 +82,12 @@ std::string default_history_path();
 // The store, opened for one use. Every failure is an InputError naming the file and what would be accepted.
 class HistoryStore {
  public:
-  // create: make the file (and its folder) if missing; else a missing file is refused. An older schema is
-  // migrated forward (none exists yet: version 1 is the first).
-  static HistoryStore open(const std::string& path, bool create);
+  // read: opened read-only (nothing is ever written; a missing file is refused); write: read and write, a
+  // missing file refused; create: make the file (and its folder) if missing. An older schema is migrated
+  // forward when writing (none exists yet: version 1 is the first). busy_millis: how long to wait for another
+  // process's lock before refusing.
+  enum class Access { read, write, create };
+  static HistoryStore open(const std::string& path, Access access, int busy_millis = kHistoryBusyMillis);
   HistoryStore(HistoryStore&& other) noexcept;
   HistoryStore& operator=(HistoryStore&& other) noexcept;
   HistoryStore(const HistoryStore&) = delete;
@@ -94,9 +97,9 @@ class HistoryStore {
   // Records a calibration in one transaction; returns its id. InputError for a statement already recorded
   // (the same SHA-256 of its text), naming the record.
   std::int64_t add(const HistoryEntry& entry);
-  // Marks record `id` superseded, by record `by` of the same serial if given, for `reason` (not empty), in one
-  // transaction. InputError for an unknown id, a record already superseded, `by` unknown, of another serial
-  // or the record itself.
+  // Marks record `id` superseded, by record `by` of the same serial if given, for `reason` (not empty), in
+  // one transaction. InputError for an unknown id, a record already superseded, `by` unknown, of another
+  // serial or the record itself.
   void supersede(std::int64_t id, std::optional<std::int64_t> by, const std::string& reason);
   // The id of the record of this statement text (history_entry's statement_json), if recorded.
   std::optional<std::int64_t> id_of_statement(const std::string& statement_json) const;
