@@ -34,6 +34,7 @@ TESTED_ELSEWHERE = {
     "reduction/run_means_nodes.cpp": "the kernel's nodes: tests/reduction/run_means_test.cpp",
     "render/allocate.cpp": _OUTPUT,
     "render/history.cpp": "the history's text, JSON and CSV: tests/cli/history_test.cpp",
+    "render/report_history.cpp": "the report's history section: tests/report/check_history_report.py (report.history)",
     "render/budget_parts.cpp": "the budget's tables: tests/render/budget_test.cpp",
     "render/budget_text.cpp": "the budget's text: tests/render/budget_test.cpp",
     "render/design.cpp": _OUTPUT,

@@ -6,18 +6,19 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <ctime>
-#include <cstddef>
 #include <stdexcept>
 
+#include "ccal/core/sha256.hpp"
 #include "ccal/render/allocate.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/design.hpp"
 #include "ccal/render/force.hpp"
+#include "ccal/render/history.hpp"
 #include "ccal/render/identify.hpp"
 #include "ccal/render/montecarlo.hpp"
-#include "ccal/core/sha256.hpp"
 #include "ccal/version.hpp"
 #include "report_html.hpp"
 
@@ -338,6 +339,9 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
     if (m.coverage_probability != verbs::StatementOptions{}.coverage_probability)
       p.identify_command.insert(p.identify_command.end(),
                                 {"--coverage-probability", fmt::format("{}", m.coverage_probability)});
+    if (o.statement_trials != verbs::ReportOptions{}.statement_trials)  // the page's statement is this run's
+      p.identify_command.insert(p.identify_command.end(),
+                                {"--statement-trials", std::to_string(o.statement_trials)});
   }
 }
 
@@ -367,7 +371,12 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
          {"force", "--run", std::to_string(r.sensed_input.run_index + 1), "--time",
           fmt::format("{:.17g}", instants[i]["run"]["time_s"].get<double>())}}};
 
-  const std::string statement_html = statement_first(r, p, sources);
+  std::string statement_html = statement_first(r, p, sources);
+  if (r.history) {  // beside the statement: the same instrument's earlier calibrations
+    sources["history"] = {{"command", {"history", "show", r.history->serial, "--db", r.history->db}},
+                          {"no_config", true}};
+    statement_html += history_section(Doc{"history", Json::parse(json(*r.history))});
+  }
   // With observations and a [certificate] table the page is a certificate: its fields, the statement, the
   // method and the signature lines, then the rest of the report as its annex.
   const bool certificate = r.observed && r.config.certificate;

@@ -74,5 +74,7 @@ std::string signature_section(const Certificate& certificate);
 std::string css_string(std::string_view text);
 // The calibration statement of the observations (`ccal identify OBS.csv --statement --config CONFIG`, doc "identify").
 std::string statement_section(const Doc& identify);
+// The calibration history of the certificate's serial number (`ccal history show`, doc "history").
+std::string history_section(const Doc& history);
 
 }  // namespace ccal::render::report_html

@@ -24,6 +24,8 @@ constexpr OptionSpec<ReportOptions> kRows[] = {
      OptionRange::between(2, 100000)},
     rows::coverage_factor(&ReportOptions::coverage_factor),
     rows::statement_trials(&ReportOptions::statement_trials),
+    {"history_db", &ReportOptions::history_db, "FILE",
+     "History store: the calibrations of the [certificate]'s serial number in it, charted with their drift"},
 };
 
 std::size_t highest_g_run(const TestPlan& plan) {
@@ -123,6 +125,17 @@ ReportResult report(const Config& config, const ReportOptions& o) {
   ReportResult r;
   r.config = config;
   if (o.observations) r.observed = identify_observations(config, o);
+  if (!o.history_db.empty()) {
+    if (!config.certificate || config.certificate->serial_number.empty())
+      throw OptionError(
+          "history_db", o.history_db,
+          fmt::format("needs the serial number whose history to show; accepted: a configuration "
+                      "with [certificate] serial_number ({} has none)",
+                      config.source));
+    const std::string& serial = config.certificate->serial_number;
+    if (!HistoryStore::open(o.history_db, HistoryStore::Access::read).records(serial).empty())
+      r.history = history_show(serial, {o.history_db, ""});
+  }
   BudgetOptions bo;
   bo.mode = o.mode;
   bo.coverage_probability = o.monte_carlo.coverage_probability;

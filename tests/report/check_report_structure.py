@@ -10,7 +10,8 @@ byte for byte with its SHA-256.
 Each output the page names (its "ccal-sources" script) is {"command": [verb, options...]}, run as
 `ccal VERB CONFIG OPTIONS --format json`, optionally with "writes": {option: file} (the command also writes
 that file, e.g. `ccal design --plan-out designed.toml`) and "config": file (a file written by an earlier
-command replaces CONFIG, e.g. `ccal budget designed.toml`) or "config_option": option (CONFIG is given
+command replaces CONFIG, e.g. `ccal budget designed.toml`), "no_config": true (the command takes none, e.g.
+`ccal history show SERIAL --db FILE`) or "config_option": option (CONFIG is given
 as that option's value instead of as the first argument, e.g. `ccal identify OBS.csv --statement --config CONFIG`); the
 files go to a temporary directory.
 
@@ -129,6 +130,8 @@ def main(program, report, config=None):
             if "command" in how:
                 verb, *options = how["command"]
                 where = [os.path.join(written, how["config"])] if "config" in how else [config] if config else []
+                if how.get("no_config"):  # e.g. `ccal history show SERIAL --db FILE`
+                    where = []
                 if "config_option" in how:
                     if not config:
                         sys.exit(f"the output {name} needs the configuration's file: give CONFIG")

@@ -17,6 +17,7 @@
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/design.hpp"
 #include "ccal/verbs/force.hpp"
+#include "ccal/verbs/history.hpp"
 #include "ccal/verbs/identify.hpp"
 #include "ccal/verbs/montecarlo.hpp"
 
@@ -39,6 +40,9 @@ struct ReportOptions {
   // coverage probability, seed and threads.
   std::optional<CsvTable> observations;
   std::int64_t statement_trials = kDefaultStatementTrials;  // the statement's Monte Carlo check; 0: none
+  // The history section: this store's calibrations of the [certificate]'s serial number (`ccal history
+  // show`), when it has any; "": none.
+  std::string history_db;
 };
 
 // The options' table (core/options.hpp): the report's own fields (those of its sections are in their verbs'
@@ -72,6 +76,8 @@ struct ReportResult {
   // With observations: their identification with its calibration statement (verbs::identify with the
   // configuration as budget); `statement` is always set.
   std::optional<IdentifyResult> observed;
+  // With options.history_db: the serial's calibrations, when the store has any (verbs::history_show).
+  std::optional<HistoryShowResult> history;
 };
 
 // Throws InputError as the verbs it calls do, for an unknown --run or input_points out of range, and for a

@@ -1,0 +1,123 @@
+// The report's history section (`ccal report --history-db FILE`): the calibrations of the certificate's
+// serial number from `ccal history show` (doc "history"), per coefficient a chart over time (each value with
+// its U as a bar, the drift line from three calibrations on) and a table whose every number is that output's.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <ctime>
+
+#include "report_html.hpp"
+
+namespace ccal::render::report_html {
+namespace {
+
+// Days from 1970-01-01 of a YYYY-MM-DD date (the history's own dates, already checked).
+double day_of(const std::string& date) {
+  std::tm t{};
+  t.tm_year = std::stoi(date.substr(0, 4)) - 1900;
+  t.tm_mon = std::stoi(date.substr(5, 2)) - 1;
+  t.tm_mday = std::stoi(date.substr(8, 2));
+  return double(timegm(&t)) / 86400.0;
+}
+
+Json history_chart(const std::string& id, const Json& calibrations, const Json& c) {
+  Json points = Json::array();
+  for (const Json& cal : calibrations) {
+    if (cal.contains("superseded") || !cal["coefficients"].contains(id)) continue;
+    const Json& k = cal["coefficients"][id];
+    const double v = k["value"].get<double>(), U = k["expanded_uncertainty"].get<double>();
+    points.push_back({{"date", cal["date"]}, {"value", v}, {"low", v - U}, {"high", v + U}});
+  }
+  const std::string y_title = fmt::format("{} [{}]", id, c["unit"].get<std::string>());
+  Json layers = Json::array(
+      {{{"data", {{"values", points}}},
+        {"mark", {{"type", "rule"}, {"color", "#4c78a8"}, {"strokeWidth", 2}}},
+        {"encoding",
+         {{"x",
+           {{"field", "date"},
+            {"type", "temporal"},
+            {"title", "date of calibration"},
+            {"scale", {{"padding", 16}}}}},  // the first and last calibration off the frame
+          {"y",
+           {{"field", "low"}, {"type", "quantitative"}, {"title", y_title}, {"scale", {{"zero", false}}}}},
+          {"y2", {{"field", "high"}}}}}},
+       {{"data", {{"values", points}}},
+        {"mark", {{"type", "point"}, {"filled", true}, {"size", 60}, {"color", "#4c78a8"}}},
+        {"encoding",
+         {{"x", {{"field", "date"}, {"type", "temporal"}}},
+          {"y", {{"field", "value"}, {"type", "quantitative"}}}}}}});
+  if (c["drift"].is_object()) {  // a + b (t − t̄) at the first and the last date, t in years of 365.25 days
+    const Json& d = c["drift"];
+    const double origin = day_of(c["dates"].front().get<std::string>());
+    Json line = Json::array();
+    for (const Json& date : {c["dates"].front(), c["dates"].back()}) {
+      const double t = (day_of(date.get<std::string>()) - origin) / 365.25;
+      line.push_back(
+          {{"date", date},
+           {"value", d["value_at_reference"].get<double>() +
+                         d["slope_per_year"].get<double>() * (t - d["reference_years"].get<double>())}});
+    }
+    layers.push_back({{"data", {{"values", line}}},
+                      {"mark", {{"type", "line"}, {"color", "#e45756"}, {"strokeDash", {6, 3}}}},
+                      {"encoding",
+                       {{"x", {{"field", "date"}, {"type", "temporal"}}},
+                        {"y", {{"field", "value"}, {"type", "quantitative"}}}}}});
+  }
+  return {{"title", fmt::format("{} over the calibrations (bars: ± U; dashed: the drift line)", id)},
+          {"width", 320},
+          {"height", 200},
+          {"layer", layers}};
+}
+
+std::string history_table(const Doc& doc, const std::string& id) {
+  const Json& calibrations = doc.json["calibrations"];
+  const Json& c = doc.json["coefficients"][id];
+  std::string t = fmt::format(
+      "<table class=\"history\"><caption>{0} [{1}]: its calibrations (U at each statement's k), and "
+      "E<sub>n</sub> "
+      "against the one before (|E<sub>n</sub>| &gt; 1: they "
+      "disagree)</caption>\n<tr><th>date</th><th>value</th>"
+      "<th>U</th><th>k</th><th>E<sub>n</sub></th></tr>\n",
+      escape(id), escape(c["unit"].get<std::string>()));
+  std::size_t shown = 0;
+  for (std::size_t j = 0; j < calibrations.size(); ++j) {
+    const Json& cal = calibrations[j];
+    if (cal.contains("superseded") || !cal["coefficients"].contains(id)) continue;
+    const std::string k = fmt::format("/calibrations/{}/coefficients/{}", j, id);
+    t += "<tr><th>" + escape(cal["date"].get<std::string>()) + "</th>" + num_cell(doc, k + "/value", 7) +
+         num_cell(doc, k + "/expanded_uncertainty", 3) + num_cell(doc, k + "/coverage_factor", 3) +
+         (shown > 0 ? num_cell(doc, fmt::format("/coefficients/{}/normalised_errors/{}/en", id, shown - 1), 3)
+                    : std::string("<td></td>")) +
+         "</tr>\n";
+    ++shown;
+  }
+  t += "</table>\n";
+  if (c["drift"].is_object()) {
+    const std::string d = "/coefficients/" + id + "/drift";
+    t += "<p>Drift: " + num_span(doc, d + "/slope_per_year", 3) + " " + escape(c["unit"].get<std::string>()) +
+         " per year, u = " + num_span(doc, d + "/std_slope", 2) + " (weighted straight line; Birge ratio " +
+         num_span(doc, d + "/birge_ratio", 3) + ").</p>\n";
+  } else {
+    t += "<p>Drift: from three calibrations on.</p>\n";
+  }
+  return t;
+}
+
+}  // namespace
+
+std::string history_section(const Doc& doc) {
+  std::string out = fmt::format(
+      "<section id=\"history\"><h2>Calibration history of {}</h2>\n<p>Every calibration of this serial "
+      "number "
+      "in the history store (<code>ccal history show</code>), superseded ones left out: each value with its "
+      "expanded uncertainty, E<sub>n</sub> of successive calibrations (ISO 13528) and, from three on, the "
+      "drift "
+      "by weighted least squares with its standard uncertainty from the stated ones.</p>\n",
+      escape(doc.json["serial"].get<std::string>()));
+  for (const auto& [id, c] : doc.json["coefficients"].items())
+    out += "<div class=\"pair\">\n" + chart("history-" + id, history_chart(id, doc.json["calibrations"], c)) +
+           history_table(doc, id) + "</div>\n";
+  return out + "</section>\n";
+}
+
+}  // namespace ccal::render::report_html
