@@ -5,6 +5,8 @@
 // lose none; a damaged store is refused and left as it was.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -147,6 +149,51 @@ TEST_F(Cli, TwoProcessesAddingAtOnceLoseNothing) {
   const Result shown = run("history show S1 --db h.sqlite --format json");
   ASSERT_EQ(shown.code, 0) << shown.err;
   EXPECT_EQ(nlohmann::json::parse(shown.out)["calibrations"].size(), 200u);
+}
+
+TEST_F(Cli, AStoreTheUserMayOnlyReadServesShowAndRefusesAdd) {
+  // As root (which ignores permissions) the commands run as the user nobody (setpriv); else the file is made
+  // read-only.
+  write("s.json", R"({"coverage_probability": 0.95, "coefficients": {"K0": {"unit": "deg/s",
+      "corrected_estimate": 1, "expanded_uncertainty": 0.1, "coverage_factor": 2}}})");
+  write("t.json", R"({"coverage_probability": 0.95, "coefficients": {"K0": {"unit": "deg/s",
+      "corrected_estimate": 2, "expanded_uncertainty": 0.1, "coverage_factor": 2}}})");
+  ASSERT_EQ(run("history add s.json --db h.sqlite --serial S1 --date 2026-01-01").code, 0);
+  std::string as_reader;
+  if (::geteuid() == 0) {
+    if (std::system("command -v setpriv >/dev/null") != 0)
+      GTEST_SKIP() << "no setpriv to run as another user";
+    as_reader = "setpriv --reuid=nobody --regid=nogroup --clear-groups ";
+    if (std::system((as_reader + quote(kProgram) + " --version >/dev/null 2>&1").c_str()) != 0)
+      GTEST_SKIP() << "the user nobody cannot run " << kProgram << " (a folder above it is private)";
+    fs::permissions(dir_, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                              fs::perms::others_read | fs::perms::others_exec);
+    fs::permissions(dir_ / "h.sqlite", fs::perms::owner_read | fs::perms::owner_write |
+                                           fs::perms::group_read | fs::perms::others_read);
+  } else {
+    fs::permissions(dir_ / "h.sqlite",
+                    fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  }
+  const std::string before = read(dir_ / "h.sqlite");
+  const auto as = [&](const std::string& args) {
+    const fs::path out = dir_ / "out.txt", err = dir_ / "err.txt";
+    const int status = std::system(("cd " + quote(dir_.string()) + " && " + as_reader + quote(kProgram) +
+                                    " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string()))
+                                       .c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read(out);
+    r.err = read(err);
+    return r;
+  };
+  const Result shown = as("history show S1 --db h.sqlite --format json");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  EXPECT_EQ(nlohmann::json::parse(shown.out)["calibrations"].size(), 1u);
+  ASSERT_EQ(as("history export S1 --db h.sqlite").code, 0);
+  expect_bad_input(
+      as("history add t.json --db h.sqlite --serial S1 --date 2026-01-02"),
+      {"h.sqlite: history store:", "readonly", "accepted: a file (and folder) this user may read and write"});
+  EXPECT_EQ(read(dir_ / "h.sqlite"), before);
 }
 
 TEST_F(Cli, ADamagedStoreIsRefusedAndKept) {
