@@ -17,8 +17,7 @@ std::string export_history(const HistoryStore& store, const std::string& serial)
   const std::vector<HistoryRecord> records = store.records(serial);
   if (records.empty())
     throw InputError(
-        fmt::format("{}: no calibration of '{}' to export; accepted: a serial number that `ccal "
-                    "history show` lists",
+        fmt::format("{}: no calibration of '{}' to export; accepted: a serial number recorded in it",
                     store.path(), serial));
   nlohmann::ordered_json j;
   j["format"] = kFormat;
@@ -44,8 +43,8 @@ std::string export_history(const HistoryStore& store, const std::string& serial)
 HistoryImport import_history(HistoryStore& store, const std::string& json_text, const std::string& source) {
   const auto refuse = [&](const std::string& what) {
     throw InputError(
-        fmt::format("{}: not an exported calibration history: {}; accepted: a file of `ccal history "
-                    "export SERIAL`",
+        fmt::format("{}: not an exported calibration history: {}; accepted: a serial number's history as "
+                    "exported (\"format\": \"ccal calibration history\")",
                     source, what));
   };
   nlohmann::json j;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <sqlite3.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include <string_view>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/core/sha256.hpp"
 
 namespace ccal {
@@ -132,8 +134,7 @@ void Statement::throw_store_error(sqlite3* db, const std::string& path, const ch
     case SQLITE_READONLY:
     case SQLITE_PERM:
     case SQLITE_CANTOPEN:
-      accepted =
-          "accepted: a file (and folder) this user may read and write, e.g. --db FILE or $CCAL_HISTORY";
+      accepted = "accepted: a file (and folder) this user may read and write";
       break;
     case SQLITE_CORRUPT:
     case SQLITE_NOTADB:
@@ -157,14 +158,6 @@ std::string utc_now() {
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now);
 }
 
-bool is_date(const std::string& d) {
-  if (d.size() != 10 || d[4] != '-' || d[7] != '-') return false;
-  for (std::size_t i = 0; i < d.size(); ++i)
-    if (i != 4 && i != 7 && (d[i] < '0' || d[i] > '9')) return false;
-  const int month = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
-  return month >= 1 && month <= 12 && day >= 1 && day <= 31;
-}
-
 // The schema version of an opened file: 0 for an empty file, -1 for an SQLite file that is no history store.
 int schema_version(sqlite3* db, const std::string& path) {
   Statement tables(db, path, "SELECT count(*) FROM sqlite_master");
@@ -182,6 +175,20 @@ int schema_version(sqlite3* db, const std::string& path) {
 
 }  // namespace
 
+std::optional<std::int64_t> calendar_day(std::string_view date) {
+  using namespace std::chrono;
+  if (date.size() != 10 || date[4] != '-' || date[7] != '-') return std::nullopt;
+  int y = 0;
+  unsigned m = 0, d = 0;
+  const char* s = date.data();
+  if (std::from_chars(s, s + 4, y).ptr != s + 4 || std::from_chars(s + 5, s + 7, m).ptr != s + 7 ||
+      std::from_chars(s + 8, s + 10, d).ptr != s + 10)
+    return std::nullopt;
+  const year_month_day ymd{year{y}, month{m}, day{d}};
+  if (!ymd.ok()) return std::nullopt;
+  return sys_days(ymd).time_since_epoch().count();
+}
+
 std::string default_history_path() {
   if (const char* chosen = std::getenv("CCAL_HISTORY"); chosen && *chosen) return chosen;
   if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
@@ -198,15 +205,15 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
     j = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(
-        fmt::format("{}: not JSON ({}); accepted: the statement of `ccal reduce --statement-out "
-                    "FILE`, or the JSON of `ccal reduce --statement --format json`",
+        fmt::format("{}: not JSON ({}); accepted: a calibration statement's JSON (alone, or as the "
+                    "\"statement\" of a reduction's or an identification's JSON)",
                     source, e.what()));
   }
   const nlohmann::json& st = j.is_object() && j.contains("statement") ? j["statement"] : j;
   const auto refuse = [&](const std::string& what) {
     throw InputError(
-        fmt::format("{}: not a calibration statement: {}; accepted: the statement of `ccal reduce "
-                    "--statement-out FILE`, or the JSON of `ccal reduce --statement --format json`",
+        fmt::format("{}: not a calibration statement: {}; accepted: a calibration statement's JSON (alone, "
+                    "or as the \"statement\" of a reduction's or an identification's JSON)",
                     source, what));
   };
   if (!st.is_object() || !st.contains("coefficients") || !st["coefficients"].is_object() ||
@@ -240,17 +247,19 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
   e.serial = !serial.empty() ? serial : certificate.value("serial_number", std::string());
   e.date = !date.empty() ? date : certificate.value("date_of_calibration", std::string());
   e.instrument = certificate.value("instrument", std::string());
+  // What the caller did not give and the statement does not name: an option of the call (OptionError, worded
+  // by each front end).
   if (e.serial.empty())
-    throw InputError(
-        fmt::format("{}: the statement names no serial number ([certificate] serial_number); "
-                    "accepted: --serial S",
-                    source));
+    throw OptionError("serial", "",
+                      fmt::format("{} names no serial number ([certificate] serial_number); accepted: the "
+                                  "instrument's serial number",
+                                  source));
   if (e.date.empty())
-    throw InputError(
-        fmt::format("{}: the statement names no date of calibration ([certificate] "
-                    "date_of_calibration); accepted: --date YYYY-MM-DD",
-                    source));
-  if (!is_date(e.date))
+    throw OptionError("date", "",
+                      fmt::format("{} names no date of calibration ([certificate] date_of_calibration); "
+                                  "accepted: the date, YYYY-MM-DD",
+                                  source));
+  if (!calendar_day(e.date))
     throw InputError(fmt::format(
         "{}: date of calibration '{}' is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30", source, e.date));
   return e;
@@ -263,8 +272,8 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
   if (!fs::exists(path, ec)) {
     if (!create)
       throw InputError(
-          fmt::format("{}: no history store there; accepted: an existing store (--db FILE, "
-                      "$CCAL_HISTORY), or `ccal history add` to start one",
+          fmt::format("{}: no history store there; accepted: an existing store, or a first statement added, "
+                      "which makes one",
                       path));
     const fs::path folder = fs::path(path).parent_path();
     if (!folder.empty()) fs::create_directories(folder, ec);
@@ -306,8 +315,8 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
     if (version == 0) {
       if (!create)
         throw InputError(
-            fmt::format("{}: an empty file, not a history store; accepted: `ccal history add` to "
-                        "start one",
+            fmt::format("{}: an empty file, not a history store; accepted: a history store, or a first "
+                        "statement added to it, which makes it one",
                         path));
       execute(store.db_, path, kSchema, "cannot write its schema");
       Statement meta(store.db_, path,
@@ -389,18 +398,17 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry) {
 
 void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, const std::string& reason) {
   if (reason.empty())
-    throw InputError(
-        fmt::format("{}: superseding calibration {} needs a reason; accepted: --reason TEXT", path_, id));
+    throw OptionError(
+        "reason", "",
+        fmt::format("is needed to supersede calibration {} of {}; accepted: the reason, as text", id, path_));
   execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
   try {
     const auto serial_of = [&](std::int64_t which) {
       Statement find(db_, path_, "SELECT serial FROM calibration WHERE id = ?1");
       find.integer(1, which);
       if (!find.step())
-        throw InputError(
-            fmt::format("{}: no calibration {} in the history store; accepted: an id that `ccal "
-                        "history show SERIAL` lists",
-                        path_, which));
+        throw InputError(fmt::format(
+            "{}: no calibration {} in the history store; accepted: the id of a record in it", path_, which));
       return find.column_text(0);
     };
     const std::string serial = serial_of(id);

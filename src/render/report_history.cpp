@@ -4,21 +4,13 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <ctime>
 
+#include "ccal/io/history_store.hpp"
+#include "ccal/uncertainty/history_trend.hpp"
 #include "report_html.hpp"
 
 namespace ccal::render::report_html {
 namespace {
-
-// Days from 1970-01-01 of a YYYY-MM-DD date (the history's own dates, already checked).
-double day_of(const std::string& date) {
-  std::tm t{};
-  t.tm_year = std::stoi(date.substr(0, 4)) - 1900;
-  t.tm_mon = std::stoi(date.substr(5, 2)) - 1;
-  t.tm_mday = std::stoi(date.substr(8, 2));
-  return double(timegm(&t)) / 86400.0;
-}
 
 Json history_chart(const std::string& id, const Json& calibrations, const Json& c) {
   Json points = Json::array();
@@ -48,10 +40,10 @@ Json history_chart(const std::string& id, const Json& calibrations, const Json& 
           {"y", {{"field", "value"}, {"type", "quantitative"}}}}}}});
   if (c["drift"].is_object()) {  // a + b (t − t̄) at the first and the last date, t in years of 365.25 days
     const Json& d = c["drift"];
-    const double origin = day_of(c["dates"].front().get<std::string>());
+    const double origin = double(*calendar_day(c["dates"].front().get<std::string>()));
     Json line = Json::array();
     for (const Json& date : {c["dates"].front(), c["dates"].back()}) {
-      const double t = (day_of(date.get<std::string>()) - origin) / 365.25;
+      const double t = (double(*calendar_day(date.get<std::string>())) - origin) / kDaysPerYear;
       line.push_back(
           {{"date", date},
            {"value", d["value_at_reference"].get<double>() +

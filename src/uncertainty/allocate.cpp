@@ -474,21 +474,31 @@ AllocationSolution solve_allocation(const AllocationProblem& P) {
   sol.scale.resize(ns);
   for (Eigen::Index s = 0; s < ns; ++s) sol.scale[s] = std::sqrt(x[groups.of[std::size_t(s)]]);
   sol.objective = (P.cost.array() / sol.scale.array()).sum();
+  Eigen::VectorXd allocated(nt), configured(nt);
+  for (Eigen::Index k = 0; k < nt; ++k) {  // each row as before (a dot product, a row sum): the same bits
+    allocated[k] = a.row(k).dot(x);
+    configured[k] = a.row(k).sum();
+  }
+  state_rows(P, allocated, configured, sol);
+  return sol;
+}
+
+void state_rows(const AllocationProblem& P, const Eigen::VectorXd& allocated,
+                const Eigen::VectorXd& configured, AllocationSolution& sol) {
+  const Eigen::Index nt = P.target.size();
   sol.expanded.resize(nt);
   sol.configured_expanded.resize(nt);
   sol.active.assign(std::size_t(nt), false);
   double common = P.max_scale;
   for (Eigen::Index k = 0; k < nt; ++k) {
-    const double used = a.row(k).dot(x);
-    sol.expanded[k] = P.target[k] * std::sqrt(used);
-    sol.configured_expanded[k] = P.target[k] * std::sqrt(a.row(k).sum());
-    sol.active[std::size_t(k)] = 1 - used <= 1e-9;
+    sol.expanded[k] = P.target[k] * std::sqrt(std::max(allocated[k], 0.0));
+    sol.configured_expanded[k] = P.target[k] * std::sqrt(std::max(configured[k], 0.0));
+    sol.active[std::size_t(k)] = 1 - allocated[k] <= 1e-9;
     if (sol.configured_expanded[k] > 0) common = std::min(common, P.target[k] / sol.configured_expanded[k]);
   }
   sol.common_scale = common;
   sol.common_objective = P.cost.sum() / common;
   sol.common_expanded = common * sol.configured_expanded;
-  return sol;
 }
 
 }  // namespace ccal

@@ -259,21 +259,13 @@ AllocationSolution solve_correlated_allocation(const AllocationProblem& P) {
   sol.scale.resize(ns);
   for (Eigen::Index s = 0; s < ns; ++s) sol.scale[s] = lambda[groups.of[std::size_t(s)]];
   sol.objective = (P.cost.array() / sol.scale.array()).sum();
-  sol.expanded.resize(nt);
-  sol.configured_expanded.resize(nt);
-  sol.active.assign(std::size_t(nt), false);
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(ng);
-  double common = P.max_scale;
+  Eigen::VectorXd allocated(nt), configured(nt);
   for (Eigen::Index k = 0; k < nt; ++k) {
-    const double used = row_value(R.Q[std::size_t(k)], lambda);
-    sol.expanded[k] = P.target[k] * std::sqrt(std::max(used, 0.0));
-    sol.configured_expanded[k] = P.target[k] * std::sqrt(std::max(row_value(R.Q[std::size_t(k)], ones), 0.0));
-    sol.active[std::size_t(k)] = 1 - used <= 1e-9;
-    if (sol.configured_expanded[k] > 0) common = std::min(common, P.target[k] / sol.configured_expanded[k]);
+    allocated[k] = row_value(R.Q[std::size_t(k)], lambda);
+    configured[k] = row_value(R.Q[std::size_t(k)], ones);
   }
-  sol.common_scale = common;
-  sol.common_objective = P.cost.sum() / common;
-  sol.common_expanded = common * sol.configured_expanded;
+  state_rows(P, allocated, configured, sol);
   return sol;
 }
 

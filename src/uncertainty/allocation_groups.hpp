@@ -19,6 +19,12 @@ Groups merge_groups(const Eigen::MatrixXd& J, const Eigen::VectorXd& u0, const E
 
 struct AllocationProblem;
 struct AllocationSolution;
+// From each row's normalised value s_k at the allocated and at the configured scales: U_k = T_k √s_k of both,
+// the rows that hold with equality (1 − s_k ≤ 1e-9) and the common scale min(λ_max, min_k T_k / U_k(1)) with
+// its objective and U. Both solvers end with it.
+void state_rows(const AllocationProblem& problem, const Eigen::VectorXd& allocated,
+                const Eigen::VectorXd& configured, AllocationSolution& solution);
+
 // The allocation with AllocationProblem::correlation (allocate.hpp): the barrier method in λ. The problem has
 // passed solve_allocation's checks.
 AllocationSolution solve_correlated_allocation(const AllocationProblem& problem);

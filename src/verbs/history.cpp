@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <chrono>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -14,9 +13,13 @@ namespace ccal::verbs {
 
 namespace {
 
+// The db option of every history command (default_history_path()).
+constexpr std::string_view kStoreHelp =
+    "The history store (default: $CCAL_HISTORY, else $XDG_DATA_HOME/ccal/history.sqlite, else "
+    "~/.local/share/ccal/history.sqlite)";
+
 constexpr OptionSpec<HistoryAddOptions> kAddRows[] = {
-    {"db", &HistoryAddOptions::db, "FILE",
-     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+    {"db", &HistoryAddOptions::db, "FILE", kStoreHelp},
     {"serial", &HistoryAddOptions::serial, "S",
      "Serial number (default: the statement's [certificate] serial_number)"},
     {"date", &HistoryAddOptions::date, "YYYY-MM-DD",
@@ -24,23 +27,20 @@ constexpr OptionSpec<HistoryAddOptions> kAddRows[] = {
 };
 
 constexpr OptionSpec<HistoryShowOptions> kShowRows[] = {
-    {"db", &HistoryShowOptions::db, "FILE",
-     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+    {"db", &HistoryShowOptions::db, "FILE", kStoreHelp},
     {"at", &HistoryShowOptions::at, "YYYY-MM-DD",
      "Predict each coefficient at this date from its drift line"},
 };
 
 constexpr OptionSpec<HistorySupersedeOptions> kSupersedeRows[] = {
-    {"db", &HistorySupersedeOptions::db, "FILE",
-     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+    {"db", &HistorySupersedeOptions::db, "FILE", kStoreHelp},
     {"by", &HistorySupersedeOptions::by, "ID", "The record that replaces it (0: none)",
      OptionRange::at_least(0)},
     {"reason", &HistorySupersedeOptions::reason, "TEXT", "Why it is superseded (required)"},
 };
 
 constexpr OptionSpec<HistoryStoreOptions> kStoreRows[] = {
-    {"db", &HistoryStoreOptions::db, "FILE",
-     "The history store (default: $CCAL_HISTORY, else ~/.local/share/ccal/history.sqlite)"},
+    {"db", &HistoryStoreOptions::db, "FILE", kStoreHelp},
 };
 
 std::string store_path(const std::string& db) { return db.empty() ? default_history_path() : db; }
@@ -67,8 +67,7 @@ std::string history_export(const std::string& serial, const HistoryStoreOptions&
 
 HistoryImport history_import(const std::string& file, const HistoryStoreOptions& o) {
   std::ifstream in(file, std::ios::binary);
-  if (!in)
-    throw InputError(fmt::format("{}: cannot read it; accepted: a file of `ccal history export`", file));
+  if (!in) throw InputError(fmt::format("{}: cannot read it; accepted: an exported history file", file));
   std::stringstream text;
   text << in.rdbuf();
   HistoryStore store = HistoryStore::open(store_path(o.db), HistoryStore::Access::create);
@@ -76,16 +75,8 @@ HistoryImport history_import(const std::string& file, const HistoryStoreOptions&
 }
 
 std::int64_t history_day(const std::string& date, std::string_view field) {
-  using namespace std::chrono;
-  int y = 0;
-  unsigned m = 0, d = 0;
-  char dash1 = 0, dash2 = 0;
-  std::istringstream in(date);
-  in >> y >> dash1 >> m >> dash2 >> d;
-  const year_month_day ymd{year{y}, month{m}, day{d}};
-  if (date.size() != 10 || !in || !in.eof() || dash1 != '-' || dash2 != '-' || !ymd.ok())
-    throw OptionError(std::string(field), date, "is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30");
-  return sys_days(ymd).time_since_epoch().count();
+  if (const std::optional<std::int64_t> day = calendar_day(date)) return *day;
+  throw OptionError(std::string(field), date, "is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30");
 }
 
 HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& o) {
@@ -93,9 +84,7 @@ HistoryAddResult history_add(const std::string& statement_file, const HistoryAdd
   std::ifstream in(statement_file, std::ios::binary);
   if (!in)
     throw InputError(
-        fmt::format("{}: cannot read it; accepted: a statement file (`ccal reduce --statement-out "
-                    "FILE`) or reduce's JSON",
-                    statement_file));
+        fmt::format("{}: cannot read it; accepted: a calibration statement's JSON file", statement_file));
   std::stringstream text;
   text << in.rdbuf();
   HistoryAddResult r;
@@ -118,17 +107,16 @@ HistoryShowResult history_show(const std::string& serial, const HistoryShowOptio
   r.records = store.records(serial);
   if (r.records.empty()) {
     const std::vector<std::string> known = store.serials();
-    throw InputError(fmt::format("{}: no calibration of '{}' in the history store; accepted: {}", r.db,
-                                 serial,
-                                 known.empty() ? std::string("none recorded yet (`ccal history add`)")
-                                               : fmt::format("one of {}", fmt::join(known, ", "))));
+    throw InputError(fmt::format(
+        "{}: no calibration of '{}' in the history store; accepted: {}", r.db, serial,
+        known.empty() ? std::string("none recorded yet") : fmt::format("one of {}", fmt::join(known, ", "))));
   }
   // Per coefficient, in the order of the first calibration that has it; time in years from the first date.
   const std::int64_t origin = history_day(r.records.front().date, "date");
   std::map<std::string, std::size_t> index;
   for (const HistoryRecord& rec : r.records) {
     if (rec.superseded_by || !rec.superseded_reason.empty()) continue;
-    const double years = double(history_day(rec.date, "date") - origin) / 365.25;
+    const double years = double(history_day(rec.date, "date") - origin) / kDaysPerYear;
     for (const HistoryCoefficient& c : rec.coefficients) {
       auto [it, fresh] = index.try_emplace(c.name, r.coefficients.size());
       if (fresh) r.coefficients.push_back({c.name, c.unit, {}, {}, {}, {}, {}});
@@ -145,7 +133,8 @@ HistoryShowResult history_show(const std::string& serial, const HistoryShowOptio
   for (CoefficientHistory& h : r.coefficients) {
     h.agreement = normalised_errors(h.points);
     h.drift = drift_line(h.points);
-    if (predicting && h.drift.available) h.prediction = predict(h.drift, double(at_day - origin) / 365.25);
+    if (predicting && h.drift.available)
+      h.prediction = predict(h.drift, double(at_day - origin) / kDaysPerYear);
   }
   return r;
 }

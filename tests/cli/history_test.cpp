@@ -103,7 +103,9 @@ TEST_F(Cli, ASupersededRecordIsKeptButLeftOutAndTheHistoryMoves) {
   ASSERT_EQ(done.code, 0) << done.err;
   expect_bad_input(run("history supersede 2 --reason again --db h.sqlite"),
                    {"already superseded (fixture loose)"});
-  expect_bad_input(run("history supersede 1 --db h.sqlite"), {"needs a reason; accepted: --reason TEXT"});
+  expect_bad_input(
+      run("history supersede 1 --db h.sqlite"),
+      {"--reason: is needed to supersede calibration 1 of h.sqlite; accepted: the reason, as text"});
   const auto j = nlohmann::json::parse(run("history show S1 --db h.sqlite --format json").out);
   EXPECT_EQ(j["calibrations"][1]["superseded"]["reason"], "fixture loose");
   EXPECT_EQ(j["calibrations"][1]["superseded"]["by"], 3);
@@ -208,7 +210,27 @@ TEST_F(Cli, ADamagedStoreIsRefusedAndKept) {
   EXPECT_EQ(read(dir_ / "cut.sqlite"), whole.substr(0, whole.size() / 2));
   expect_bad_input(run("history show S9 --db h.sqlite"), {"no calibration of 'S9'", "accepted: one of S1"});
   expect_bad_input(run("history show S1 --db h.sqlite --at 2026-02-30"), {"--at", "is not a date"});
-  expect_bad_input(run("history add s.json --db h.sqlite --serial S1"), {"names no date of calibration"});
+  expect_bad_input(run("history add s.json --db h.sqlite --serial S1"),
+                   {"--date: s.json names no date of calibration"});
+  expect_bad_input(run("history add s.json --db h.sqlite --date 2026-01-01"),
+                   {"--serial: s.json names no serial number"});
+  expect_bad_input(run("history add s.json --db h.sqlite --serial S1 --date 01/02/2026"),
+                   {"--date: 01/02/2026 is not a date; accepted: YYYY-MM-DD"});
+  // import: a file that is no export; supersede: an unknown id; the report: a history without a serial
+  // number, and a store that is not there.
+  expect_bad_input(
+      run("history import s.json --db h.sqlite"),
+      {"s.json: not an exported calibration history", "accepted: a serial number's history as exported"});
+  expect_bad_input(run("history supersede 42 --reason r --db h.sqlite"),
+                   {"no calibration 42 in the history store; accepted: the id of a record in it"});
+  expect_bad_input(run("report --history-db h.sqlite -o r.html"),
+                   {"--history-db: h.sqlite needs the serial number whose history to show",
+                    "[certificate] serial_number"});
+  EXPECT_FALSE(fs::exists(dir_ / "r.html"));
+  const std::string lab = write("lab.toml", read(kLab));
+  expect_bad_input(run("report " + lab + " --history-db none.sqlite --trials 100 -o r.html"),
+                   {"none.sqlite: no history store there"});
+  EXPECT_FALSE(fs::exists(dir_ / "r.html"));
 }
 
 }  // namespace

@@ -107,10 +107,11 @@ TEST_F(History, SerialAndDateComeFromTheCertificateOrAreAskedFor) {
       EXPECT_NE(std::string(x.what()).find(says), std::string::npos) << x.what();
     }
   };
+  // Options of the call (OptionError of the field, which each front end names with its own flag).
   refused(statement(0.02), "", "2026-01-01",
-          "s.json: the statement names no serial number ([certificate] "
-          "serial_number); accepted: --serial S");
-  refused(statement(0.02), "SN 1", "", "accepted: --date YYYY-MM-DD");
+          "serial: s.json names no serial number ([certificate] serial_number); accepted: the instrument's "
+          "serial number");
+  refused(statement(0.02), "SN 1", "", "date: s.json names no date of calibration");
   refused(statement(0.02), "SN 1", "2026-13-01", "date of calibration '2026-13-01' is not a date");
   refused("{", "SN 1", "2026-01-01", "s.json: not JSON");
   refused(R"({"command": "budget"})", "SN 1", "2026-01-01",
@@ -142,7 +143,7 @@ TEST_F(History, ARecordIsSupersededOnceWithAReason) {
       EXPECT_NE(std::string(x.what()).find(says), std::string::npos) << x.what();
     }
   };
-  refused(a, b, "", "needs a reason; accepted: --reason TEXT");
+  refused(a, b, "", "reason: is needed to supersede calibration 1 of");
   refused(99, std::nullopt, "r", "no calibration 99 in the history store");
   refused(a, a, "r", "cannot supersede itself");
   refused(a, other, "r", "is of another serial number");

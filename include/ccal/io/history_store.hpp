@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 struct sqlite3;  // the SQLite connection (sqlite3.h), kept out of this header
@@ -74,6 +75,10 @@ struct HistoryEntry {
 // YYYY-MM-DD.
 HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
                            const std::string& date);
+
+// Days from 1970-01-01 of a YYYY-MM-DD date (proleptic Gregorian), or none for text that is no such date: the
+// one reader of the history's dates.
+std::optional<std::int64_t> calendar_day(std::string_view date);
 
 // The default store: $CCAL_HISTORY if set, else $XDG_DATA_HOME/ccal/history.sqlite, else
 // ~/.local/share/ccal/history.sqlite.

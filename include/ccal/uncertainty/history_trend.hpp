@@ -20,6 +20,9 @@
 
 namespace ccal {
 
+// The year of the history's times t (days / 365.25): a mean Julian year, the same for every calibration.
+inline constexpr double kDaysPerYear = 365.25;
+
 struct HistoryPoint {
   double years = 0;            // t_i: time of the calibration, in years (365.25 days) from any fixed origin
   double value = 0;            // x_i
