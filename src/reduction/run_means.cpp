@@ -26,6 +26,12 @@ using run_nodes::padded;
 using run_nodes::PlatformInputs;
 using run_nodes::to_v3;
 
+}  // namespace
+
+// The kernel's tables and scratch space are named (not file-local): RunMeanKernel::Data and
+// Workspace::Buffers, declared in the header, derive from them.
+namespace run_nodes {
+
 // The instrument's output as a polynomial in a_i plus the other terms (instrument.hpp), for one pass per
 // node.
 struct OutputPolynomial {
@@ -86,6 +92,10 @@ struct OutputPolynomial {
   }
 };
 
+}  // namespace run_nodes
+
+namespace {
+
 // cos and sin of (a + δ) from those of a and a small (or not) δ.
 void turn(double c, double s, double delta, double& c_out, double& s_out) {
   double cd, sd;
@@ -96,7 +106,7 @@ void turn(double c, double s, double delta, double& c_out, double& s_out) {
 
 }  // namespace
 
-namespace {
+namespace run_nodes {
 
 // The tables of one run: everything of the run that does not depend on the errors.
 struct RunTables {
@@ -129,13 +139,13 @@ struct KernelTables {
       : geometry(g), layout(l), site(s), output(instrument), quadrature(q) {}
 };
 
-}  // namespace
+}  // namespace run_nodes
 
-struct RunMeanKernel::Data : KernelTables {
+struct RunMeanKernel::Data : run_nodes::KernelTables {
   using KernelTables::KernelTables;
 };
 
-namespace {
+namespace run_nodes {
 
 // Scratch space of one thread, grown when a larger rule is met and then reused (RunMeanKernel::Workspace).
 struct Scratch {
@@ -160,6 +170,15 @@ struct Scratch {
     }
   }
 };
+
+}  // namespace run_nodes
+
+namespace {
+
+using run_nodes::KernelTables;
+using run_nodes::OutputPolynomial;
+using run_nodes::RunTables;
+using run_nodes::Scratch;
 
 }  // namespace
 
@@ -376,7 +395,7 @@ double run_mean(const KernelTables& d, const RunTables& t, const TrialTerms& tri
 
 }  // namespace
 
-struct RunMeanKernel::Workspace::Buffers : Scratch {};
+struct RunMeanKernel::Workspace::Buffers : run_nodes::Scratch {};
 
 RunMeanKernel::Workspace::Workspace() : buffers_(std::make_unique<Buffers>()) {}
 RunMeanKernel::Workspace::~Workspace() = default;

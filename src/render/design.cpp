@@ -18,7 +18,7 @@ namespace ccal::render {
 
 namespace {
 
-constexpr double kDeg = 180 / std::numbers::pi;
+constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
 std::string_view objective_name(DesignObjective o) { return design_objective_name(o); }
 
@@ -30,8 +30,8 @@ std::string plan_table(const Config& config) {
   const double total = sheet.total_duration;
   for (const RunSheetLine& l : sheet.lines)
     t.add_row({l.run, number(l.g_level, 6), number(l.duration, 7), number(l.turns, 7),
-               number(l.start_phase * kDeg, 5), number(l.stop_phase * kDeg, 5),
-               number(l.arm_azimuth * kDeg, 5), std::string(mounting_name(l.mounting)),
+               number(l.start_phase * kDegreesPerRadian, 5), number(l.stop_phase * kDegreesPerRadian, 5),
+               number(l.arm_azimuth * kDegreesPerRadian, 5), std::string(mounting_name(l.mounting)),
                std::string(platform_mode_name(l.mode))});
   return t.render() + fmt::format("  total {} s\n", number(total, 7));
 }
@@ -94,9 +94,9 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
                      {"platform_speed_rpm", l.platform_rate / constants::rpm},
                      {"duration_s", l.duration},
                      {"turns", l.turns},
-                     {"arm_azimuth_deg", l.arm_azimuth * kDeg},
-                     {"start_phase_deg", l.start_phase * kDeg},
-                     {"stop_phase_deg", l.stop_phase * kDeg},
+                     {"arm_azimuth_deg", l.arm_azimuth * kDegreesPerRadian},
+                     {"start_phase_deg", l.start_phase * kDegreesPerRadian},
+                     {"stop_phase_deg", l.stop_phase * kDegreesPerRadian},
                      {"sets", l.terminal_phase ? "stop_phase" : "start_phase"},
                      {"mounting", mounting_name(l.mounting)},
                      {"mounting_axes", mounting_axes(l.mounting)}});
@@ -106,7 +106,8 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
     expected[b.coefficients[k]] = {
         {"unit", b.units[k]}, {"expanded", b.expanded_uncertainty[Eigen::Index(k)] * b.display_scale[k]}};
   return {
-      {"resolution", {{"g_level_g", res.g}, {"duration_s", res.duration}, {"angle_deg", res.angle * kDeg}}},
+      {"resolution",
+       {{"g_level_g", res.g}, {"duration_s", res.duration}, {"angle_deg", res.angle * kDegreesPerRadian}}},
       {"runs", lines},
       {"total_duration_s", r.sheet.total_duration},
       {"coverage_factor", b.coverage.factor},

@@ -12,11 +12,9 @@
 namespace ccal::render {
 namespace {
 
-constexpr double kDeg = constants::deg;
-
 // Angle in degrees wrapped to [0, 360).
 double wrapped_deg(double rad) {
-  const double d = std::fmod(rad / kDeg, 360.0);
+  const double d = std::fmod(rad / constants::deg, 360.0);
   return d < 0 ? d + 360.0 : d;
 }
 
@@ -24,7 +22,9 @@ nlohmann::ordered_json axes(const Eigen::Vector3d& v, double scale) {
   return {{"IA", v[0] * scale}, {"PA", v[1] * scale}, {"OA", v[2] * scale}};
 }
 
-nlohmann::ordered_json ia_pair(double f, double w) { return {{"f_IA_g", f}, {"w_IA_deg_per_s", w / kDeg}}; }
+nlohmann::ordered_json ia_pair(double f, double w) {
+  return {{"f_IA_g", f}, {"w_IA_deg_per_s", w / constants::deg}};
+}
 
 std::string json_text(const Config& cfg, std::size_t index, const SensedInputBreakdown& r) {
   nlohmann::ordered_json j;
@@ -48,14 +48,14 @@ std::string json_text(const Config& cfg, std::size_t index, const SensedInputBre
                       {"gamma_rad", r.joints.gamma},
                       {"gamma_rate_rad_per_s", r.joints.gamma_rate}};
   j["specific_force_g"] = axes(r.specific_force, 1.0);
-  j["angular_rate_deg_per_s"] = axes(r.angular_rate, 1.0 / kDeg);
+  j["angular_rate_deg_per_s"] = axes(r.angular_rate, 1.0 / constants::deg);
   nlohmann::ordered_json contributions = nlohmann::ordered_json::array();
   for (const auto& c : r.contributions)
     contributions.push_back({{"id", c.id},
                              {"value_si", c.value_si},
                              {"unit", c.unit},
                              {"f_IA_g", c.f_ia},
-                             {"w_IA_deg_per_s", c.w_ia / kDeg}});
+                             {"w_IA_deg_per_s", c.w_ia / constants::deg}});
   j["contributions"] = contributions;
   j["first_order"] = {{"nominal", ia_pair(r.nominal_f_ia, r.nominal_w_ia)},
                       {"total", ia_pair(r.first_order_f_ia, r.first_order_w_ia)},
@@ -71,8 +71,8 @@ std::string text_of(const Config& cfg, std::size_t index, const SensedInputBreak
   Table run({"run", "value"});
   run.add_row({"g-level [g]", number(r.run.g_level)});
   run.add_row({"main-axis rate Omega [rad/s]", number(r.rate)});
-  run.add_row({"initial phase phi0 [rad]",
-               fmt::format("{} ({} deg)", number(r.initial_phase), number(r.initial_phase / kDeg, 6))});
+  run.add_row({"initial phase phi0 [rad]", fmt::format("{} ({} deg)", number(r.initial_phase),
+                                                       number(r.initial_phase / constants::deg, 6))});
   run.add_row({"duration T [s]", number(r.run.duration)});
   run.add_row({"time t [s]", number(r.time)});
   run.add_row({"platform", std::string(platform_mode_name(r.run.mode))});
@@ -88,21 +88,22 @@ std::string text_of(const Config& cfg, std::size_t index, const SensedInputBreak
   Table sensed({"exact input at t", "IA", "PA", "OA"});
   sensed.add_row({"specific force [g]", number(r.specific_force[0]), number(r.specific_force[1]),
                   number(r.specific_force[2])});
-  sensed.add_row({"angular rate [deg/s]", number(r.angular_rate[0] / kDeg), number(r.angular_rate[1] / kDeg),
-                  number(r.angular_rate[2] / kDeg)});
+  sensed.add_row({"angular rate [deg/s]", number(r.angular_rate[0] / constants::deg),
+                  number(r.angular_rate[1] / constants::deg), number(r.angular_rate[2] / constants::deg)});
   out += sensed.render() + "\n";
 
   Table first({fmt::format("first order along the IA ({} model)", mode), "value", "unit", "f_IA [g]",
                "w_IA [deg/s]"});
-  first.add_row({"error-free", "", "", number(r.nominal_f_ia), number(r.nominal_w_ia / kDeg)});
+  first.add_row({"error-free", "", "", number(r.nominal_f_ia), number(r.nominal_w_ia / constants::deg)});
   for (const auto& c : r.contributions)
-    first.add_row({c.id, number(c.value_si, 6), c.unit, number(c.f_ia), number(c.w_ia / kDeg)});
+    first.add_row({c.id, number(c.value_si, 6), c.unit, number(c.f_ia), number(c.w_ia / constants::deg)});
   if (r.contributions.empty()) first.add_row({"(no non-zero [errors])"});
   first.add_rule();
-  first.add_row({"first-order total", "", "", number(r.first_order_f_ia), number(r.first_order_w_ia / kDeg)});
-  first.add_row({"exact", "", "", number(r.specific_force[0]), number(r.angular_rate[0] / kDeg)});
+  first.add_row(
+      {"first-order total", "", "", number(r.first_order_f_ia), number(r.first_order_w_ia / constants::deg)});
+  first.add_row({"exact", "", "", number(r.specific_force[0]), number(r.angular_rate[0] / constants::deg)});
   first.add_row({"remainder (exact - first order)", "", "", number(r.remainder_f_ia(), 6),
-                 number(r.remainder_w_ia() / kDeg, 6)});
+                 number(r.remainder_w_ia() / constants::deg, 6)});
   out += first.render();
   return out;
 }
@@ -115,15 +116,16 @@ std::string text_of(const Config& cfg, std::size_t index, const SensedInputBreak
 std::string csv_of(const SensedInputBreakdown& r) {
   std::string out =
       "row,error_value_si,error_unit,f_IA_g,f_PA_g,f_OA_g,w_IA_deg_per_s,w_PA_deg_per_s,w_OA_deg_per_s\n";
-  const auto ia_row = [&](std::string_view row, std::string value, std::string_view unit, double f, double w) {
-    out += fmt::format("{},{},{},{:.17g},,,{:.17g},,\n", row, value, unit, f, w / kDeg);
+  const auto ia_row = [&](std::string_view row, std::string value, std::string_view unit, double f,
+                          double w) {
+    out += fmt::format("{},{},{},{:.17g},,,{:.17g},,\n", row, value, unit, f, w / constants::deg);
   };
   ia_row("nominal", "", "", r.nominal_f_ia, r.nominal_w_ia);
   for (const auto& c : r.contributions)
     ia_row(c.id, fmt::format("{:.17g}", c.value_si), c.unit, c.f_ia, c.w_ia);
   ia_row("first_order", "", "", r.first_order_f_ia, r.first_order_w_ia);
   const Eigen::Vector3d& f = r.specific_force;
-  const Eigen::Vector3d w = r.angular_rate / kDeg;
+  const Eigen::Vector3d w = r.angular_rate / constants::deg;
   out += fmt::format("exact,,,{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", f[0], f[1], f[2], w[0], w[1],
                      w[2]);
   ia_row("remainder", "", "", r.remainder_f_ia(), r.remainder_w_ia());

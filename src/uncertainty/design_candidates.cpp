@@ -7,6 +7,7 @@
 #include <exception>
 #include <numbers>
 
+#include "ccal/core/constants.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/reduction/observability.hpp"
@@ -24,7 +25,6 @@ namespace ccal {
 namespace {
 
 constexpr double kTurn = 2 * std::numbers::pi;
-constexpr double kDeg = std::numbers::pi / 180;
 
 std::vector<double> circle_grid(double step) {
   const int m = std::max(1, int(std::lround(kTurn / step)));
@@ -141,7 +141,7 @@ void resolve_angles(const Config& config, ResolvedDesignSpace& s) {
     s.phases = distinct(d.phases);
     s.fixed.push_back(fmt::format("{} from design.phases ({} values)", phase_name, s.phases.size()));
   } else {
-    const double step = d.phase_step.value_or(30 * kDeg);
+    const double step = d.phase_step.value_or(30 * constants::deg);
     s.phases = circle_grid(step);
     s.refinement.phase_step = kTurn / double(s.phases.size()) / 2;
     s.free.push_back(fmt::format("{} (grid of {} over a turn)", phase_name, s.phases.size()));
@@ -151,7 +151,7 @@ void resolve_angles(const Config& config, ResolvedDesignSpace& s) {
     s.fixed.push_back(
         fmt::format("arm azimuths from design.arm_azimuths ({} values)", s.arm_azimuths.size()));
   } else {
-    s.arm_azimuths = circle_grid(d.azimuth_step.value_or(90 * kDeg));
+    s.arm_azimuths = circle_grid(d.azimuth_step.value_or(90 * constants::deg));
     s.refinement.azimuth_step = kTurn / double(s.arm_azimuths.size()) / 2;
     s.free.push_back(fmt::format("arm azimuth (grid of {} over a turn)", s.arm_azimuths.size()));
   }

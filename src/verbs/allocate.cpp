@@ -13,8 +13,10 @@ namespace ccal::verbs {
 
 namespace {
 
-constexpr OptionSpec<AllocateOptions> kRows[] = {
-    {"targets", &AllocateOptions::targets, "COEFF=U",
+constexpr OptionSpec<AllocateOptions> kAllocateRows[] = {
+    {"targets",
+     &AllocateOptions::targets,
+     "COEFF=U",
      "COEFF=U: the allowed expanded uncertainty (half-width of the coverage interval) of a free coefficient, "
      "in its unit (output unit per g^n) or with a unit, e.g. K3=1e-6 or \"K3=1e-6 deg/s/g^3\"; one per "
      "coefficient",
@@ -22,8 +24,9 @@ constexpr OptionSpec<AllocateOptions> kRows[] = {
      true},
     rows::coverage_probability(&AllocateOptions::coverage_probability,
                                "Coverage probability p of the targets, in (0, 1)"),
-    rows::mode<&AllocateOptions::mode>("Kinematics of the sensitivities and the verification: exact or paper; "
-                                       "default: the configuration's [identification] mode"),
+    rows::mode<&AllocateOptions::mode>(
+        "Kinematics of the sensitivities and the verification: exact or paper; "
+        "default: the configuration's [identification] mode"),
     {"max_scale", &AllocateOptions::max_scale, "X", "No tolerance is loosened by more than this factor (> 0)",
      OptionRange::at_least(0).open_low().e_g("10")},
     {"let_others_grow", &AllocateOptions::let_others_grow, "",
@@ -37,7 +40,7 @@ constexpr OptionSpec<AllocateOptions> kRows[] = {
 
 }  // namespace
 
-OptionTable<AllocateOptions> options_of(std::type_identity<AllocateOptions>) { return kRows; }
+OptionTable<AllocateOptions> options_of(std::type_identity<AllocateOptions>) { return kAllocateRows; }
 
 AllocateResult allocate(const Config& config, const AllocateOptions& o) {
   check_options(o, option_table<AllocateOptions>());

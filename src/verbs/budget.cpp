@@ -16,9 +16,10 @@ namespace {
 
 constexpr std::string_view kDerivativeNames[] = {"automatic", "linearised"};  // DerivativeMethod's order
 
-constexpr OptionSpec<BudgetOptions> kRows[] = {
-    rows::mode<&BudgetOptions::mode>("Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); "
-                                     "default: the configuration's [identification] mode"),
+constexpr OptionSpec<BudgetOptions> kBudgetRows[] = {
+    rows::mode<&BudgetOptions::mode>(
+        "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); "
+        "default: the configuration's [identification] mode"),
     rows::coverage_probability(&BudgetOptions::coverage_probability,
                                "Coverage probability p of the expanded uncertainty U = k u, in (0, 1): k = "
                                "1.96 for 0.95, the normal LPU total's"),
@@ -30,7 +31,7 @@ constexpr OptionSpec<BudgetOptions> kRows[] = {
 
 }  // namespace
 
-OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { return kRows; }
+OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { return kBudgetRows; }
 
 BudgetResult budget(const Config& config, const BudgetOptions& options) {
   check_options(options, option_table<BudgetOptions>());

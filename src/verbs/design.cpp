@@ -20,7 +20,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-constexpr OptionSpec<DesignOptions> kRows[] = {
+constexpr OptionSpec<DesignOptions> kDesignRows[] = {
     {"objective", enum_member<&DesignOptions::objective>(kDesignObjectiveNames), "NAME",
      "uncertainty (U of the chosen coefficients from tolerances and noise), d_optimal or a_optimal (the "
      "instrument's noise alone); default: [design] objective"},
@@ -28,7 +28,8 @@ constexpr OptionSpec<DesignOptions> kRows[] = {
      "COEFF=U: the objective counts U(COEFF)/U against this target instead of the configured plan's U, e.g. "
      "K3=1e-4 or \"K3=1e-4 deg/s/g^3\"; one per coefficient"},
     {"starts", &DesignOptions::starts, "N",
-     "Random starts of the search (besides the configured plan); default: [design] starts", OptionRange::between(0, 1000)},
+     "Random starts of the search (besides the configured plan); default: [design] starts",
+     OptionRange::between(0, 1000)},
     {"seed", &DesignOptions::seed, "S", "Seed of the random starts; default: [design] seed"},
     rows::coverage_probability(&DesignOptions::coverage_probability,
                                "Coverage probability p of the expanded uncertainties (the targets, the "
@@ -38,7 +39,8 @@ constexpr OptionSpec<DesignOptions> kRows[] = {
     rows::verify_trials(&DesignOptions::verify_trials,
                         "Monte Carlo trials checking the designed plan's budget (0: none)"),
     {"tradeoff", &DesignOptions::tradeoff, "F,...",
-     "Factors of the total test time for a trade-off curve (total time against U), e.g. --tradeoff 0.5,0.75,1",
+     "Factors of the total test time for a trade-off curve (total time against U), e.g. --tradeoff "
+     "0.5,0.75,1",
      OptionRange::between(0, 10).open_low().e_g("0.5,0.75,1")},
 };
 
@@ -212,7 +214,7 @@ TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
 
 }  // namespace
 
-OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>) { return kRows; }
+OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>) { return kDesignRows; }
 
 DesignResult design(const Config& config, const DesignOptions& options) {
   check_options(options, option_table<DesignOptions>());

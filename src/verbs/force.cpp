@@ -9,16 +9,17 @@ namespace ccal::verbs {
 
 namespace {
 
-constexpr OptionSpec<ForceOptions> kRows[] = {
+constexpr OptionSpec<ForceOptions> kForceRows[] = {
     {"run", &ForceOptions::run, "J", "Run name or 1-based index"},
-    {"time", &ForceOptions::time, "T", "Time into the run [s], within [0, T] (the run's duration)", OptionRange::at_least(0)},
+    {"time", &ForceOptions::time, "T", "Time into the run [s], within [0, T] (the run's duration)",
+     OptionRange::at_least(0)},
     {"mode", enum_member<&ForceOptions::mode>(kModeNames), "MODE",
      "First-order model: exact (linearised exact chain) or paper (Wang & Ren Eq.14 form)"},
 };
 
 }  // namespace
 
-OptionTable<ForceOptions> options_of(std::type_identity<ForceOptions>) { return kRows; }
+OptionTable<ForceOptions> options_of(std::type_identity<ForceOptions>) { return kForceRows; }
 
 ForceResult force(const Config& config, const ForceOptions& options) {
   ForceResult r;

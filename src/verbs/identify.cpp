@@ -158,11 +158,14 @@ void warn_about_powers_of_means(const CsvTable& table, const TableFitSpec& spec,
           t.id, spec.input, parse_term(t.id)->power));
 }
 
-constexpr OptionSpec<IdentifyOptions> kRows[] = {
-    {"terms", &IdentifyOptions::terms, "TERMS",
+constexpr OptionSpec<IdentifyOptions> kIdentifyRows[] = {
+    {"terms",
+     &IdentifyOptions::terms,
+     "TERMS",
      "Free terms, comma-separated: Kn is the coefficient of input^n; <term>:<column> takes the column as the "
      "term's regressor (needed for K_p ... K_w). Default: the file's '# ccal observations' line",
-     {}, true},
+     {},
+     true},
     {"fix", &IdentifyOptions::fix, "TERM=VALUE",
      "Terms held at known values, comma-separated <term>[:<column>]=<value>, the value in the file's output "
      "unit per input unit^n (or with a unit). Default: the file's fixed terms"},
@@ -200,7 +203,7 @@ void check_verb_options(const IdentifyOptions& o) {
 
 }  // namespace
 
-OptionTable<IdentifyOptions> options_of(std::type_identity<IdentifyOptions>) { return kRows; }
+OptionTable<IdentifyOptions> options_of(std::type_identity<IdentifyOptions>) { return kIdentifyRows; }
 
 void check_observations_configuration(const CsvTable& table, const Config& config, std::string_view field) {
   const std::optional<ObservationsHeader> header = observations_header(table);

@@ -10,17 +10,18 @@ namespace ccal::verbs {
 
 namespace {
 
-constexpr OptionSpec<MonteCarloOptions> kRows[] = {
+constexpr OptionSpec<MonteCarloOptions> kMonteCarloRows[] = {
     {"trials", &MonteCarloOptions::trials, "N",
      "Number of trials M (default 1000000); with digits, the stage size (default and least 10000)",
      rows::kTrials},
-    rows::seed<MonteCarloOptions>(&MonteCarloOptions::seed, "Seed of the random numbers (same seed, same results)"),
+    rows::seed<MonteCarloOptions>(&MonteCarloOptions::seed,
+                                  "Seed of the random numbers (same seed, same results)"),
     rows::threads<MonteCarloOptions>(&MonteCarloOptions::threads),
     {"digits", &MonteCarloOptions::digits, "n",
      "0: fixed M; n in 1..6: adaptive M (JCGM 101 §7.9) until n significant digits of u(y) are stable",
      OptionRange::between(1, 6).or_value(0, "fixed M")},
-    {"max_trials", &MonteCarloOptions::max_trials, "N", "Adaptive procedure: no stage beyond this many trials",
-     rows::kTrials},
+    {"max_trials", &MonteCarloOptions::max_trials, "N",
+     "Adaptive procedure: no stage beyond this many trials", rows::kTrials},
     rows::coverage_probability<MonteCarloOptions>(&MonteCarloOptions::coverage_probability,
                                                   "Coverage probability p of the intervals, in (0, 1)"),
     rows::mode<&MonteCarloOptions::mode>(),
@@ -37,7 +38,7 @@ void check_verb_options(const MonteCarloOptions& o) {
 
 }  // namespace
 
-OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>) { return kRows; }
+OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>) { return kMonteCarloRows; }
 
 MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
   check_verb_options(o);

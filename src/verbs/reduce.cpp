@@ -49,7 +49,7 @@ std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel)
 
 namespace {
 
-constexpr OptionSpec<ReduceOptions> kRows[] = {
+constexpr OptionSpec<ReduceOptions> kReduceRows[] = {
     {"angle_unit", enum_member<&ReduceOptions::angle_unit>(kAngleUnitNames), "UNIT",
      "Unit of the encoder columns: rad or deg"},
     {"pulse_weight", &ReduceOptions::pulse_weight, "W",
@@ -69,7 +69,7 @@ constexpr OptionSpec<ReduceOptions> kRows[] = {
 
 }  // namespace
 
-OptionTable<ReduceOptions> options_of(std::type_identity<ReduceOptions>) { return kRows; }
+OptionTable<ReduceOptions> options_of(std::type_identity<ReduceOptions>) { return kReduceRows; }
 
 RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   RunLogOptions lo;

@@ -15,7 +15,7 @@
 namespace ccal::verbs {
 namespace {
 
-constexpr OptionSpec<ReportOptions> kRows[] = {
+constexpr OptionSpec<ReportOptions> kReportRows[] = {
     rows::mode<&ReportOptions::mode>("Kinematics: exact or paper; default: the configuration's "
                                      "[identification] mode"),
     {"run", &ReportOptions::run, "J",
@@ -116,7 +116,7 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
 
 }  // namespace
 
-OptionTable<ReportOptions> options_of(std::type_identity<ReportOptions>) { return kRows; }
+OptionTable<ReportOptions> options_of(std::type_identity<ReportOptions>) { return kReportRows; }
 
 ReportResult report(const Config& config, const ReportOptions& o) {
   check_options(o, option_table<ReportOptions>());

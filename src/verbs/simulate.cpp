@@ -27,15 +27,16 @@ std::string regressor_unit(const std::string& id) {
 
 namespace {
 
-constexpr OptionSpec<SimulateOptions> kRows[] = {
-    rows::mode<&SimulateOptions::mode>("Model of the reduction: exact (full chain) or paper (Wang & Ren "
-                                       "first-order rules); default: the configuration's [identification] mode"),
+constexpr OptionSpec<SimulateOptions> kSimulateRows[] = {
+    rows::mode<&SimulateOptions::mode>(
+        "Model of the reduction: exact (full chain) or paper (Wang & Ren "
+        "first-order rules); default: the configuration's [identification] mode"),
     rows::seed(&SimulateOptions::seed, "Seed of the output noise (used only if the instrument has noise)"),
 };
 
 }  // namespace
 
-OptionTable<SimulateOptions> options_of(std::type_identity<SimulateOptions>) { return kRows; }
+OptionTable<SimulateOptions> options_of(std::type_identity<SimulateOptions>) { return kSimulateRows; }
 
 SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
   check_options(o, option_table<SimulateOptions>());

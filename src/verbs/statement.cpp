@@ -57,7 +57,7 @@ double unit_factor(const std::string& from, const std::string& to, const std::st
                                 term, to, from));
 }
 
-constexpr OptionSpec<StatementOptions> kRows[] = {
+constexpr OptionSpec<StatementOptions> kStatementRows[] = {
     rows::coverage_probability(&StatementOptions::coverage_probability,
                                "Coverage probability p of the statement's intervals, in (0, 1)"),
     rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
@@ -69,7 +69,7 @@ constexpr OptionSpec<StatementOptions> kRows[] = {
 
 }  // namespace
 
-OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>) { return kRows; }
+OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>) { return kStatementRows; }
 
 CalibrationStatement calibration_statement(const Config& config, const Identification& id,
                                            const StatementOptions& o, std::string_view field) {

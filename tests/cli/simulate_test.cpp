@@ -402,7 +402,8 @@ TEST_F(Cli, OutputFilesOnlyOnSuccess) {
 }
 
 TEST_F(Cli, SimulateNoiseIsSeeded) {
-  // White noise of 0.01 °/s/√Hz gives run means with σ = 0.01/√450 ≈ 4.7e-4 °/s (model.md §4.4's scale).
+  // White noise of 0.01 °/s/√Hz gives run means with σ = 0.01/√450 ≈ 4.7e-4 °/s (the scale of model.md §8's
+  // run means).
   std::string cfg = read(kExample);
   const std::string quiet = "noise_density = \"0 deg/s/rtHz\"";
   ASSERT_NE(cfg.find(quiet), std::string::npos);
@@ -420,7 +421,7 @@ TEST_F(Cli, SimulateNoiseIsSeeded) {
   // The noise is at the configured scale. The difference of two draws of a run mean has σ√2 ≈ 6.7e-4 °/s, so
   // 9.4e-3 °/s is 14 of those: never reached by correct noise, while a wrong unit (×57 for rad) or a missing
   // 1/√T (×21) would exceed it. K0 comes back within 10 of its σ (7.7e-5 °/s per 1e-4 °/s of run noise,
-  // model.md §4.4, so σ(K0) ≈ 3.6e-4 °/s here).
+  // model.md §8, so σ(K0) ≈ 3.6e-4 °/s here).
   for (std::size_t k = 0; k < 6; ++k)
     EXPECT_LT(std::abs(ja["runs"][k]["output"].get<double>() - jc["runs"][k]["output"].get<double>()),
               2 * 4.7e-3);
@@ -445,11 +446,11 @@ TEST_F(Cli, PaperModeAndCompensation) {
   ASSERT_EQ(q.code, 0) << q.err;
   EXPECT_EQ(nlohmann::json::parse(q.out).at("mode"), "paper");
 
-  // A main-axis levelling error of 1e-5 rad biases K3 by ≈ −1.45e-3 °/s/g³ (model.md §5.4,
-  // tests/reduction/observe_test.cpp); compensating recomputes the regressors with it and the bias is round-off: 1e-12
-  // °/s/g³ in the library test, and the 17-digit CSV and the rad/s → °/s conversion add a few ulp of the run
-  // means (≈ 1e-12 °/s, see SimulateThenIdentifyRecoversTheCoefficients), so 1e-10 keeps a margin of 100
-  // while being 1e-7 of the uncompensated bias.
+  // A main-axis levelling error of 1e-5 rad biases K3 by ≈ −1.45e-3 °/s/g³ (model.md §11,
+  // tests/reduction/observe_test.cpp); compensating recomputes the regressors with it and the bias is
+  // round-off: 1e-12 °/s/g³ in the library test, and the 17-digit CSV and the rad/s → °/s conversion add a
+  // few ulp of the run means (≈ 1e-12 °/s, see SimulateThenIdentifyRecoversTheCoefficients), so 1e-10 keeps a
+  // margin of 100 while being 1e-7 of the uncompensated bias.
   write("lev.toml", example_with("[errors]", "dthx1t = \"1e-5 rad\""));
   const Result raw = run("simulate lev.toml --format json");
   ASSERT_EQ(raw.code, 0) << raw.err;

@@ -35,7 +35,7 @@ TEST(Example, HasThePapersSetUp) {
     EXPECT_DOUBLE_EQ(r.arm_azimuth, 0.0);
     EXPECT_EQ(r.mounting, Mounting::ia_horizontal);
   }
-  // model.md §4.2 (g = 9.8): φ0 of the six runs.
+  // model.md §6.1 (g = 9.8): φ0 of the six runs.
   const double phi0[] = {3.6068, 5.7202, 4.3250, 4.0720, 3.1359, 1.0656};
   for (std::size_t k = 0; k < 6; ++k)
     EXPECT_NEAR(initial_phase(c.plan.runs[k], c.centrifuge.geometry, c.site), phi0[k], 1e-4) << k;

@@ -1,5 +1,5 @@
 // The exact chain: nominal values, scaling laws, the factored fast path, AD against finite differences, and
-// the angular-rate signs of model.md §2.4.
+// the angular-rate signs of model.md §2.2 and §5.1.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -129,7 +129,7 @@ TEST(ExactChain, ZeroErrorsGiveNominalValuesToRoundOff) {
 }
 
 TEST(AngularRate, TiltSensitivitiesHaveThePaperSigns) {
-  // model.md §2.4: ∂ω_IA/∂θx = +Ω sin γ and ∂ω_IA/∂θy = −Ω cos γ for the platform tilts (Δθx3t; Δθy2t,
+  // model.md §5.1: ∂ω_IA/∂θx = +Ω sin γ and ∂ω_IA/∂θy = −Ω cos γ for the platform tilts (Δθx3t; Δθy2t,
   // Δθy3t), and 0 for Δθy4, Δθy5, Δθx1t, Δθz5. Exact AD derivatives at zero errors: tolerance 1e-12 rad/s.
   const Geometry geo{2.5, 0.2, 0.05, 0.0};
   const ErrorLayout layout(1);

@@ -71,7 +71,7 @@ TEST(Identification, V4RadiusErrorIsAnExactAmplitudeScale) {
 
 TEST(Identification, NoiseGainsOfSection44) {
   // An independent 1e-4 °/s (1σ) error on each run mean gives σ(K0, K2, K3) = 7.7e-5 °/s, 3.8e-7 °/s/g²,
-  // 3.7e-5 °/s/g³ (model.md §4.4, 2 digits: relative 2e-2). From the weighted fit's covariance.
+  // 3.7e-5 °/s/g³ (reference value, 2 digits: relative 2e-2). From the weighted fit's covariance.
   const Experiment ex = paper_experiment();
   const IdentificationSpec spec = paper_spec();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
@@ -120,7 +120,7 @@ TEST(Identification, K2AndKppAliasOnACounterRotatingPlatform) {
 }
 
 TEST(Identification, CompensationRemovesTheBiasToRoundOff) {
-  // Main-axis levelling Δθx1t = 1e-5 biases K3 by ≈ −1.45e-3 °/s/g³ (model.md §5.4, exact). Recomputing the
+  // Main-axis levelling Δθx1t = 1e-5 biases K3 by ≈ −1.45e-3 °/s/g³ (model.md §11, exact). Recomputing the
   // regressors and the known rate term with the measured error (the paper's conclusion 3) removes it: the
   // remaining bias is round-off (1e-12 °/s/g³ on K3, see V2), a 1e-9 fraction of the uncompensated one.
   const Experiment ex = paper_experiment(true);

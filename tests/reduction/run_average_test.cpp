@@ -26,7 +26,7 @@ ccal::Run paper_run(double A) {
 }
 
 TEST(ClosedForms, InitialPhasesOfTable3) {
-  // model.md §4.2, φ0 = (π + ΩT) mod 2π, quoted to 4 decimals: tolerance 6e-5 rad (half a unit in the last
+  // model.md §6.1, φ0 = (π + ΩT) mod 2π, quoted to 4 decimals: tolerance 6e-5 rad (half a unit in the last
   // quoted digit plus margin).
   const Geometry geo{2.5, 0, 0, 0};
   Site site = paper_site();
@@ -40,9 +40,9 @@ TEST(ClosedForms, InitialPhasesOfTable3) {
   }
 }
 
-TEST(ClosedForms, ZTableOfSection44ToSevenDigits) {
-  // model.md §4.4 (g = 9.8): Z1 = ⟨a_i⟩, Z2 = ⟨a_i²⟩, Z3 = ⟨a_i³⟩ of a_i = −A cos γ, quoted to 7 significant
-  // digits: relative tolerance 5e-7 (half a unit in the 7th digit).
+TEST(ClosedForms, RegressorsOfThePaperRunsToSevenDigits) {
+  // Reference values (g = 9.8): Z1 = ⟨a_i⟩, Z2 = ⟨a_i²⟩, Z3 = ⟨a_i³⟩ of a_i = −A cos γ, quoted to 7
+  // significant digits: relative tolerance 5e-7 (half a unit in the 7th digit).
   const Geometry geo{2.5, 0, 0, 0};
   const Site site = paper_site();
   const double Z[6][3] = {{+1.125838e-3, 12.50252, +2.625802e-2}, {+1.894236e-3, 49.99199, +1.714393e-1},

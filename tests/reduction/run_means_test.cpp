@@ -134,7 +134,7 @@ TEST(RunMeanKernel, AWorkspaceCarriesNothingFromCallToCall) {
 
 TEST(RunMeanKernel, ErrorFreeMeansAreTheClosedForm) {
   // No errors, no Earth rate: a_i = −A cos γ exactly, so ⟨output⟩ = Σ K_n Z_n with Z_n the closed form of
-  // model.md §4.4 (nominal_power_mean); round-off of the swing only.
+  // model.md §8 (nominal_power_mean); round-off of the swing only.
   const Experiment ex = paper_experiment(false);
   const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument);
   const Eigen::VectorXd e = Eigen::VectorXd::Zero(ex.layout.size());

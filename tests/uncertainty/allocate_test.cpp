@@ -417,7 +417,7 @@ TEST_F(BundledAllocation, EveryTargetHoldsAndTheActiveOnesAreTight) {
     EXPECT_LE(s.scale, 10.0 * (1 + 1e-15));
     EXPECT_NEAR(s.allocated_bound, s.scale * s.bound, 1e-15 * s.bound * s.scale);
   }
-  // The main-axis levelling dominates K3 (model.md §5.4): it must be tightened most.
+  // The main-axis levelling dominates K3 (model.md §11): it must be tightened most.
   EXPECT_EQ(r.sources[0].id, "dthy1t");
   EXPECT_EQ(r.sources[1].id, "dthx1t");
   // Sources without first-order effect on K2 and K3 (e.g. the instrument's eccentricity) may be loosened 10×.

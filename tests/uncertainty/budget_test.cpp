@@ -1,5 +1,5 @@
-// The error budget: the paper-mode sensitivities of model.md §5.1–5.3 (Table 4, Eq.19, Table 5), the exact
-// effects the paper omits (§5.4), AD against finite differences and against nonlinear re-identification.
+// The error budget: the paper-mode sensitivities of model.md §5.1 (the paper's rows), the exact
+// effects the paper omits (§11), AD against finite differences and against nonlinear re-identification.
 #include <gtest/gtest.h>
 
 #include "ccal/io/config_file.hpp"
@@ -76,7 +76,7 @@ TEST(PaperBudget, Equation19MainAxisRateError) {
 }
 
 TEST(PaperBudget, Table5ThroughTheAngularRate) {
-  // model.md §5.3: pose errors through ω_IA = Ω(θx sin γ − θy cos γ), 1e-5 rad, 5 digits (2e-4), and the
+  // model.md §5.1: pose errors through ω_IA = Ω(θx sin γ − θy cos γ), 1e-5 rad, 5 digits (2e-4), and the
   // paper's additive −ΔΩ (ΔΩ = 0.5e-6 rad/s → ΔK0 = −2.8648e-5 °/s).
   const Experiment ex = paper_experiment(true);
   const std::vector<Row> rows = {
@@ -100,12 +100,13 @@ TEST(PaperBudget, OtherValueOfG) {
 
 TEST(ExactBudget, EffectsThePaperOmits) {
   // Main-axis levelling leaks a per-run constant c0_j = Δθx1t sin ψ_j − Δθy1t cos ψ_j (exact kinematics,
-  // Earth on, arm on x0 at t = 0, so ψ_j = φ0_j) that hits K3 through the tiny Z3. model.md §5.4 quotes
-  // (−2.98e-3, +5.67e-6, −1.45e-3) and (−1.56e-4, +9.94e-6, +1.71e-3): those are K1·c0 only. The exact
+  // Earth on, arm on x0 at t = 0, so ψ_j = φ0_j) that hits K3 through the tiny Z3. The paper's K1-only rows
+  // are (−2.98e-3, +5.67e-6, −1.45e-3) and (−1.56e-4, +9.94e-6, +1.71e-3): those are K1·c0 only. The exact
   // pipeline evaluates the whole instrument polynomial, so the run means also carry the cross terms
   // (2K2⟨a_i⟩ + 3K3⟨a_i²⟩)·c0_j; an independent least-squares evaluation of (K1 + 2K2 Z1 + 3K3 Z2)·c0 on the
-  // §4.4 Z table gives the numbers below (its inputs are rounded to 7 digits: relative tolerance 1e-3).
-  // Δθy1t's K0 moves by 4 % from the K1-only value; the other entries by less than 1 %.
+  // runs' Z_n (tests/reduction/run_average_test.cpp) gives the numbers below (its inputs are rounded to 7
+  // digits: relative tolerance 1e-3). Δθy1t's K0 moves by 4 % from the K1-only value; the other entries by
+  // less than 1 %.
   const Experiment ex = paper_experiment(true);
   const std::vector<Row> rows = {
       {{ch::dthx1t}, 1e-5, -2.98266e-3, +5.67175e-6, -1.45826e-3},
@@ -115,7 +116,7 @@ TEST(ExactBudget, EffectsThePaperOmits) {
 }
 
 TEST(ExactBudget, ArmStretchWithCrossTerms) {
-  // ΔR = c Ω² with 10 µm at 30 g (c = 1e-5/Ω30²): ΔK = (−2.12e-6, +1.41e-7, +7.0e-8) (model.md §5.4, 2–3
+  // ΔR = c Ω² with 10 µm at 30 g (c = 1e-5/Ω30²): ΔK = (−2.12e-6, +1.41e-7, +7.0e-8) (model.md §11, 2–3
   // digits: relative 2e-2).
   const Experiment ex = paper_experiment(true);
   const double w30 = rate_for(30.0, 2.5, 9.8);
@@ -237,7 +238,7 @@ namespace ccal::test {
 namespace {
 
 TEST(Budget, CompensationChoicesOfSection54) {
-  // model.md §5.4 (+ erratum E2): leaving the Earth rate out of the model: ΔK = (−1.72e-3, +3.27e-6,
+  // model.md §5.1: leaving the Earth rate out of the model: ΔK = (−1.72e-3, +3.27e-6,
   // −8.36e-4); the paper's constant Coriolis left out (paper mode): (−6.567e-2, −2.302e-4, −6.778e-3), 4
   // digits: 1e-3. The physical Coriolis term −C cos γ (C = 2 ω_e R0 Ω sin φ / g) left out: model.md gives the
   // K1-only
