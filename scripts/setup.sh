@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 # The library and the program need the first list; the tests, benchmarks, Python module, the report's browser
 # check and the certificate's PDF check (Chromium prints it, poppler-utils reads it back) the second.
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
-          libfmt-dev libboost-math-dev libsqlite3-dev nodejs ccache)
+          libfmt-dev libboost-math-dev libsqlite3-dev libssl-dev nodejs ccache)
 case "${1:-all}" in
   all) targets=()
        parts=(-DCCAL_BUILD_TESTS=ON -DCCAL_BUILD_BENCH=ON -DCCAL_BUILD_PYTHON=ON)

@@ -1,9 +1,11 @@
 // SHA-256 (core/sha256.hpp) against the FIPS 180-2 examples, and the fingerprint a configuration carries.
+#include "ccal/core/sha256.hpp"
+
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 
-#include "ccal/core/sha256.hpp"
 #include "ccal/io/config_file.hpp"
 
 namespace ccal {
@@ -34,6 +36,15 @@ TEST(Sha256, PiecesGiveTheDigestOfTheWhole) {
     EXPECT_EQ(h.hex(), whole) << piece;
   }
   EXPECT_EQ(Sha256{}.hex(), sha256_hex(""));
+}
+
+TEST(Sha256, ASpentHasherIsRefused) {
+  // hex() finishes the digest: more bytes or a second hex() would hash a message nobody gave.
+  Sha256 h;
+  h.update("abc");
+  EXPECT_EQ(h.hex(), sha256_hex("abc"));
+  EXPECT_THROW(h.update("d"), std::logic_error);
+  EXPECT_THROW(h.hex(), std::logic_error);
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
 #pragma once
 // SHA-256 (FIPS 180-4, "Secure Hash Standard", 2015) of a byte string, as 64 lower-case hex digits: the
 // fingerprint of a configuration, a log or an observations file, so that a filed result can be matched to
-// its files (`sha256sum FILE` prints the same digits).
-#include <array>
-#include <cstdint>
+// its files (`sha256sum FILE` prints the same digits). Computed by OpenSSL's libcrypto, which uses the
+// processor's SHA instructions where it has them: a run log is hashed as it is read, and the hash would
+// otherwise cost more than the reduction (docs/model.md §12).
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -15,15 +16,17 @@ std::string sha256_hex(std::string_view bytes);
 // order, then hex() once. sha256_hex(a + b) == (Sha256{}.update(a), .update(b), .hex()).
 class Sha256 {
  public:
+  Sha256();
+  ~Sha256();
+  Sha256(Sha256&&) noexcept;
+  Sha256& operator=(Sha256&&) noexcept;
+
   Sha256& update(std::string_view bytes);
   std::string hex();  // the digest of everything given; the hasher is spent afterwards
 
  private:
-  std::array<std::uint32_t, 8> state_;
-  std::array<unsigned char, 64> block_{};  // the bytes of the block not yet full
-  std::size_t held_ = 0;                   // how many of block_ are given
-  std::uint64_t length_ = 0;               // bytes given in all
-  bool started_ = false;
+  struct Context;  // OpenSSL's digest context
+  std::unique_ptr<Context> context_;
 };
 
 }  // namespace ccal
