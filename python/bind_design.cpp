@@ -64,6 +64,8 @@ void bind_design(py::module_& m) {
       .def_readonly("targets", &verbs::DesignResult::targets,
                     "the objective's coefficients, list of DesignTarget [—]")
       .def_readonly("candidates", &verbs::DesignResult::candidates, "the number of candidate runs cached [—]")
+      .def_readonly("candidates_from_cache", &verbs::DesignResult::candidates_from_cache,
+                    "whether the candidate runs' rows were read from the cache file [—]")
       .def_readonly("configured_objective", &verbs::DesignResult::configured_objective,
                     "the objective of the configured plan, by the cached rows [—]")
       .def_readonly("designed_objective", &verbs::DesignResult::designed_objective,

@@ -443,4 +443,11 @@ std::string describe(Dimension dim) {
   return fmt::format("a quantity in {}", si_unit(dim));
 }
 
+std::string pulse_as_rad(std::string_view text) {
+  std::string out(text);
+  for (std::size_t pos = out.find("pulse"); pos != std::string::npos; pos = out.find("pulse", pos + 3))
+    out.replace(pos, 5, "rad");
+  return out;
+}
+
 }  // namespace ccal

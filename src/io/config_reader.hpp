@@ -117,16 +117,8 @@ struct OutputUnit {
   bool pulse = false;
 };
 
-// The instrument's output may be counted in pulses, which units.hpp does not know: "pulse" is read as "rad"
-// (a pulse is then one unit of an angle-like count), and a string given for a pulse-output instrument must
-// name pulses, so that "deg/s" cannot be silently taken for pulses.
-inline std::string pulse_as_rad(std::string_view text) {
-  std::string out(text);
-  for (std::size_t pos = out.find("pulse"); pos != std::string::npos; pos = out.find("pulse", pos + 3))
-    out.replace(pos, 5, "rad");
-  return out;
-}
-
+// A string given for a pulse-output instrument must name pulses, so that "deg/s" cannot be silently taken for
+// pulses; its pulses are read by core/units.hpp's pulse_as_rad.
 class Reader {
  public:
   explicit Reader(std::string source) : source_(std::move(source)) {}

@@ -5,9 +5,9 @@
 #include <memory>
 #include <system_error>
 
+#include "../core/text_trim.hpp"
 #include "ccal/core/sha256.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "text_trim.hpp"
 
 namespace ccal {
 

@@ -13,10 +13,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "../core/text_trim.hpp"
 #include "ccal/core/sha256.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/csv_stream.hpp"
-#include "text_trim.hpp"
 
 namespace ccal {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "../core/text_trim.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/model/instrument.hpp"
-#include "text_trim.hpp"
 
 namespace ccal {
 namespace {

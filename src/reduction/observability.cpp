@@ -14,7 +14,7 @@ namespace ccal {
 namespace {
 
 using Index = Eigen::Index;
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
 // The regressor of a term as written in messages, and its unit.
 std::string regressor_text(const TermSpec& t) {
@@ -121,7 +121,7 @@ Eigen::VectorXd resolutions(const ObservabilityProblem& p, const ObservabilityOp
       const double quantum = p.quantum / (r.duration * std::sqrt(12.0));
       var += noise * noise + quantum * quantum;
     }
-    const double rounding = o.rounding_ulps * kEps * r.output_magnitude;
+    const double rounding = o.rounding_ulps * kEpsilon * r.output_magnitude;
     var += rounding * rounding + r.extra_sigma * r.extra_sigma;
     sigma(j) = std::sqrt(var);
   }

@@ -31,11 +31,6 @@ nlohmann::ordered_json per_coefficient(const BudgetResult& r, const Eigen::Vecto
   return j;
 }
 
-// ν_i: null for ∞ (as the statement's JSON writes it).
-nlohmann::ordered_json dof_json(double dof) {
-  return std::isinf(dof) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(dof);
-}
-
 // The EA-4/02 fields of a line, after those it shares with the older fields: x_i, the divisor, the type, ν_i,
 // the unit of c_i and, per coefficient, whether the contribution is below the round-off floor.
 void add_gum_fields(nlohmann::ordered_json& o, const BudgetResult& r, const SourceView& view,

@@ -18,8 +18,6 @@ namespace ccal::render {
 
 namespace {
 
-constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
-
 std::string_view objective_name(DesignObjective o) { return design_objective_name(o); }
 
 std::string plan_table(const Config& config) {
@@ -30,8 +28,9 @@ std::string plan_table(const Config& config) {
   const double total = sheet.total_duration;
   for (const RunSheetLine& l : sheet.lines)
     t.add_row({l.run, number(l.g_level, 6), number(l.duration, 7), number(l.turns, 7),
-               number(l.start_phase * kDegreesPerRadian, 5), number(l.stop_phase * kDegreesPerRadian, 5),
-               number(l.arm_azimuth * kDegreesPerRadian, 5), std::string(mounting_name(l.mounting)),
+               number(l.start_phase * constants::degrees_per_rad, 5),
+               number(l.stop_phase * constants::degrees_per_rad, 5),
+               number(l.arm_azimuth * constants::degrees_per_rad, 5), std::string(mounting_name(l.mounting)),
                std::string(platform_mode_name(l.mode))});
   return t.render() + fmt::format("  total {} s\n", number(total, 7));
 }
@@ -94,9 +93,9 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
                      {"platform_speed_rpm", l.platform_rate / constants::rpm},
                      {"duration_s", l.duration},
                      {"turns", l.turns},
-                     {"arm_azimuth_deg", l.arm_azimuth * kDegreesPerRadian},
-                     {"start_phase_deg", l.start_phase * kDegreesPerRadian},
-                     {"stop_phase_deg", l.stop_phase * kDegreesPerRadian},
+                     {"arm_azimuth_deg", l.arm_azimuth * constants::degrees_per_rad},
+                     {"start_phase_deg", l.start_phase * constants::degrees_per_rad},
+                     {"stop_phase_deg", l.stop_phase * constants::degrees_per_rad},
                      {"sets", l.terminal_phase ? "stop_phase" : "start_phase"},
                      {"mounting", mounting_name(l.mounting)},
                      {"mounting_axes", mounting_axes(l.mounting)}});
@@ -105,14 +104,15 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
   for (std::size_t k = 0; k < b.coefficients.size(); ++k)
     expected[b.coefficients[k]] = {
         {"unit", b.units[k]}, {"expanded", b.expanded_uncertainty[Eigen::Index(k)] * b.display_scale[k]}};
-  return {
-      {"resolution",
-       {{"g_level_g", res.g}, {"duration_s", res.duration}, {"angle_deg", res.angle * kDegreesPerRadian}}},
-      {"runs", lines},
-      {"total_duration_s", r.sheet.total_duration},
-      {"coverage_factor", b.coverage.factor},
-      {"coverage_probability", b.coverage.probability},
-      {"expected_if_run_as_written", expected}};
+  return {{"resolution",
+           {{"g_level_g", res.g},
+            {"duration_s", res.duration},
+            {"angle_deg", res.angle * constants::degrees_per_rad}}},
+          {"runs", lines},
+          {"total_duration_s", r.sheet.total_duration},
+          {"coverage_factor", b.coverage.factor},
+          {"coverage_probability", b.coverage.probability},
+          {"expected_if_run_as_written", expected}};
 }
 
 // The designed plan's U if run as the sheet says (its full budget, the plan as rounded), beside the
@@ -149,9 +149,9 @@ std::string text(const verbs::DesignResult& r) {
                                     t.is_target ? "target" : "reference", number(t.reference * r.before.budget.display_scale[&t - r.targets.data()], 4)));
   out += fmt::format("Objective: {} of {}\n", objective_name(r.objective), fmt::join(counted, ", "));
   out += fmt::format(
-      "Search: {} candidate runs cached in {} s; {} plans scored, {} runs refined in {} s; best from start {}\n",
-      r.candidates, number(r.cache_seconds, 3), r.search.evaluations, r.search.row_evaluations,
-      number(r.search_seconds, 3), r.search.start + 1);
+      "Search: {} candidate runs {} in {} s; {} plans scored, {} runs refined in {} s; best from start {}\n",
+      r.candidates, r.candidates_from_cache ? "read from the cache" : "cached", number(r.cache_seconds, 3),
+      r.search.evaluations, r.search.row_evaluations, number(r.search_seconds, 3), r.search.start + 1);
   out += fmt::format("Objective: configured {}, designed {} (grid {})\n\n", number(r.configured_objective, 6),
                      number(r.designed_objective, 6), number(r.search.grid_objective, 6));
   out += "Configured plan\n" + plan_table(r.config) + "\nDesigned plan\n" + plan_table(r.designed);
@@ -210,12 +210,11 @@ std::string json(const verbs::DesignResult& r) {
   j["objective_value"] = {{"configured", r.configured_objective},
                           {"designed", r.designed_objective},
                           {"grid", r.search.grid_objective}};
-  j["search"] = {{"starts", r.search.start_objectives.size()},
-                 {"best_start", r.search.start + 1},
-                 {"plans_scored", r.search.evaluations},
-                 {"runs_refined", r.search.row_evaluations},
-                 {"cache_seconds", r.cache_seconds},
-                 {"search_seconds", r.search_seconds}};
+  j["search"] = {
+      {"starts", r.search.start_objectives.size()}, {"best_start", r.search.start + 1},
+      {"plans_scored", r.search.evaluations},       {"runs_refined", r.search.row_evaluations},
+      {"cache_seconds", r.cache_seconds},           {"candidates_from_cache", r.candidates_from_cache},
+      {"search_seconds", r.search_seconds}};
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
   for (const Run& run : r.designed.plan.runs) {
     nlohmann::ordered_json o;

@@ -153,4 +153,8 @@ namespace ccal::render {
 std::string text(const verbs::Identification& id) { return identification_text(id); }
 std::string json(const verbs::Identification& id) { return identification_json(id).dump(2); }
 
+nlohmann::ordered_json dof_json(double dof) {
+  return std::isfinite(dof) ? nlohmann::ordered_json(dof) : nlohmann::ordered_json(nullptr);
+}
+
 }  // namespace ccal::render

@@ -13,5 +13,7 @@ nlohmann::ordered_json observability_json(const verbs::ObservabilityReport& repo
 std::string observability_text(const verbs::ObservabilityReport& report);
 nlohmann::ordered_json identification_json(const verbs::Identification& id);
 std::string identification_text(const verbs::Identification& id);
+// A number of degrees of freedom as the outputs write it: null for ∞ (a value taken as exact).
+nlohmann::ordered_json dof_json(double dof);
 
 }  // namespace ccal::render

@@ -9,12 +9,11 @@
 #include <numbers>
 #include <numeric>
 
+#include "ccal/core/constants.hpp"
 #include "report_html.hpp"
 
 namespace ccal::render::report_html {
 namespace {
-
-constexpr double kDegPerRad = 180 / std::numbers::pi;
 
 std::string comparison_table(const Doc& doc) {
   std::string t =
@@ -111,8 +110,8 @@ std::string plan_table(const std::string& caption, const std::vector<PlanRow>& r
   for (const PlanRow& r : rows) {
     t += "<tr>" + text_cell(r.run()["name"].get<std::string>()) + num_cell(r.doc, r.at + "/g_level_g", 6) +
          num_cell(r.doc, r.at + "/duration_s", 7) +
-         num_cell(r.doc, r.at + "/initial_phase_rad", 5, kDegPerRad) +
-         num_cell(r.doc, r.at + "/arm_azimuth_rad", 5, kDegPerRad) +
+         num_cell(r.doc, r.at + "/initial_phase_rad", 5, constants::degrees_per_rad) +
+         num_cell(r.doc, r.at + "/arm_azimuth_rad", 5, constants::degrees_per_rad) +
          (same_mounting ? "" : text_cell(r.run()["mounting"].get<std::string>())) +
          (same_platform ? "" : text_cell(r.run()["platform"].get<std::string>())) + "</tr>\n";
   }

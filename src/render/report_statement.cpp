@@ -13,7 +13,7 @@ namespace ccal::render::report_html {
 namespace {
 
 // A number of degrees of freedom, or ∞ where the JSON has null (a part known exactly).
-std::string dof_cell(const Doc& doc, const std::string& pointer) {
+std::string statement_dof_cell(const Doc& doc, const std::string& pointer) {
   return doc.json.at(Json::json_pointer(pointer)).is_null() ? text_cell("∞") : num_cell(doc, pointer, 4);
 }
 
@@ -29,8 +29,8 @@ std::string statement_table(const Doc& doc) {
     t += "<tr>" + text_cell(id) + text_cell(c["unit"].get<std::string>()) +
          num_cell(doc, p + "/estimate", 8) + num_cell(doc, p + "/correction", 4) +
          num_cell(doc, p + "/corrected_estimate", 8) + num_cell(doc, p + "/type_a/u") +
-         dof_cell(doc, p + "/type_a/dof") + num_cell(doc, p + "/type_b/u") +
-         num_cell(doc, p + "/combined_standard_uncertainty") + dof_cell(doc, p + "/effective_dof") +
+         statement_dof_cell(doc, p + "/type_a/dof") + num_cell(doc, p + "/type_b/u") +
+         num_cell(doc, p + "/combined_standard_uncertainty") + statement_dof_cell(doc, p + "/effective_dof") +
          num_cell(doc, p + "/coverage_factor", 4) + num_cell(doc, p + "/expanded_uncertainty", 3) +
          num_cell(doc, p + "/interval/0", 6) + num_cell(doc, p + "/interval/1", 6) + "</tr>\n";
   }
@@ -100,10 +100,12 @@ std::string result_table(const Doc& doc) {
     const bool mc = c["interval_method"] == "monte_carlo";
     t += "<tr>" + text_cell(id) + text_num_cell(doc, p + "/rounded/estimate") +
          (mc ? text_cell("–") : text_num_cell(doc, p + "/rounded/expanded_uncertainty")) +
-         text_cell(c["unit"].get<std::string>()) + (mc ? text_cell("–") : num_cell(doc, p + "/coverage_factor", 4)) +
-         num_cell(doc, "/statement/coverage_probability", 4, 100) + dof_cell(doc, p + "/effective_dof") +
-         text_num_cell(doc, p + "/rounded/interval/0") + text_num_cell(doc, p + "/rounded/interval/1") +
-         text_cell(mc ? "Monte Carlo" : "Student t") + "</tr>\n";
+         text_cell(c["unit"].get<std::string>()) +
+         (mc ? text_cell("–") : num_cell(doc, p + "/coverage_factor", 4)) +
+         num_cell(doc, "/statement/coverage_probability", 4, 100) +
+         statement_dof_cell(doc, p + "/effective_dof") + text_num_cell(doc, p + "/rounded/interval/0") +
+         text_num_cell(doc, p + "/rounded/interval/1") + text_cell(mc ? "Monte Carlo" : "Student t") +
+         "</tr>\n";
     if (!c["significant"].get<bool>())
       notes += fmt::format(
           "<li><b>{0} is not resolved from zero</b>: its interval holds 0 (|{0}| ≤ U). A plan with higher or "
@@ -145,7 +147,7 @@ std::string modelled_output_table(const Doc& doc) {
     t += "<tr>" + text_cell(outputs[r]["run"].get<std::string>()) +
          (outputs[r]["g_level"].is_null() ? text_cell("–") : num_cell(doc, p + "/g_level", 6)) +
          num_cell(doc, p + "/corrected_estimate", 8) + num_cell(doc, p + "/combined_standard_uncertainty") +
-         dof_cell(doc, p + "/effective_dof") + num_cell(doc, p + "/coverage_factor", 4) +
+         statement_dof_cell(doc, p + "/effective_dof") + num_cell(doc, p + "/coverage_factor", 4) +
          num_cell(doc, p + "/expanded_uncertainty", 3) + "</tr>\n";
   }
   return t + "</table>\n";

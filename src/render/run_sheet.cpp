@@ -15,8 +15,6 @@ namespace ccal::render {
 
 namespace {
 
-constexpr double kDegPerRad = 180 / std::numbers::pi;
-
 std::string fixed(double value, int decimals) { return fmt::format("{:.{}f}", value, decimals); }
 
 }  // namespace
@@ -32,7 +30,7 @@ int decimals_of(double step) {
 std::string text(const RunSheet& sheet, const SettingResolution& resolution) {
   const int g_decimals = decimals_of(resolution.g);
   const int t_decimals = decimals_of(resolution.duration);
-  const int a_decimals = decimals_of(resolution.angle * kDegPerRad);
+  const int a_decimals = decimals_of(resolution.angle * constants::degrees_per_rad);
   // The speed moves by Ω·Δg/(2A) for a g step Δg: one more decimal than that step in rpm shows it.
   Table t({"#", "run", "g-level [g]", "speed [rpm]", "platform", "duration [s]", "turns", "arm az. [deg]",
            "phase start [deg]", "phase stop [deg]", "mounting"});
@@ -47,9 +45,9 @@ std::string text(const RunSheet& sheet, const SettingResolution& resolution) {
     // The phase the plan sets is marked "*"; the other follows from it, the speed and the duration.
     t.add_row({std::to_string(l.order), l.run, fixed(l.g_level, g_decimals), fixed(rpm, rpm_decimals),
                platform, fixed(l.duration, t_decimals), fixed(l.turns, 3),
-               fixed(l.arm_azimuth * kDegPerRad, a_decimals),
-               fixed(l.start_phase * kDegPerRad, a_decimals) + (l.terminal_phase ? " " : "*"),
-               fixed(l.stop_phase * kDegPerRad, a_decimals) + (l.terminal_phase ? "*" : " "),
+               fixed(l.arm_azimuth * constants::degrees_per_rad, a_decimals),
+               fixed(l.start_phase * constants::degrees_per_rad, a_decimals) + (l.terminal_phase ? " " : "*"),
+               fixed(l.stop_phase * constants::degrees_per_rad, a_decimals) + (l.terminal_phase ? "*" : " "),
                std::string(mounting_name(l.mounting))});
     (l.terminal_phase ? any_terminal : any_initial) = true;
     const std::string m = fmt::format("{} ({})", mounting_name(l.mounting), mounting_axes(l.mounting));

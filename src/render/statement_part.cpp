@@ -5,21 +5,20 @@
 
 #include <cmath>
 
+#include "budget_parts.hpp"
 #include "ccal/render/statement.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
-#include "budget_parts.hpp"
+#include "parts.hpp"
 
 namespace ccal::render {
 namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json dof_json(double dof) { return std::isfinite(dof) ? Json(dof) : Json(nullptr); }
-
 std::string dof_text(double dof, int digits = 3) { return std::isfinite(dof) ? number(dof, digits) : "inf"; }
 
-std::string percent(double p) { return fmt::format("{:g} %", 100 * p); }
+std::string percent_g(double p) { return fmt::format("{:g} %", 100 * p); }
 
 // The statement's line: the figures rounded per JCGM 100 §7.2.6 (statement.hpp, round_figures); the Monte
 // Carlo's interval, not centred on the estimate, with its ends only.
@@ -204,7 +203,7 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
 }
 
 std::string statement_text(const verbs::CalibrationStatement& st, std::size_t width) {
-  const std::string pct = percent(st.coverage_probability);
+  const std::string pct = percent_g(st.coverage_probability);
   std::string out = wrap_words(
       fmt::format(
           "Calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of {} "

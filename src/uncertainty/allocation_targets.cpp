@@ -10,6 +10,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "../core/text_trim.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
@@ -19,20 +20,7 @@
 namespace ccal {
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
-// The output unit may be counted in pulses, which units.hpp does not know; as in the configuration, a pulse
-// is read as one unit of an angle-like count.
-std::string pulse_as_rad(std::string_view text) {
-  std::string out(text);
-  for (std::size_t pos = out.find("pulse"); pos != std::string::npos; pos = out.find("pulse", pos + 3))
-    out.replace(pos, 5, "rad");
-  return out;
-}
+using detail::trim_blanks;
 
 bool is_bare_number(std::string_view s, double& value) {
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
@@ -45,10 +33,11 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
                                          const std::vector<std::string>& units, std::string_view field) {
   const std::string option(field);
   const auto eq = text.find('=');
-  const std::string_view name = trim(text.substr(0, eq));
-  std::string_view value = eq == std::string_view::npos ? std::string_view() : trim(text.substr(eq + 1));
+  const std::string_view name = trim_blanks(text.substr(0, eq));
+  std::string_view value =
+      eq == std::string_view::npos ? std::string_view() : trim_blanks(text.substr(eq + 1));
   if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
-    value = trim(value.substr(1, value.size() - 2));
+    value = trim_blanks(value.substr(1, value.size() - 2));
   if (eq == std::string_view::npos || name.empty() || value.empty())
     throw OptionError(option, fmt::format("'{}'", text),
                       "is not COEFFICIENT=VALUE; accepted: e.g. K3=1e-6 (in the coefficient's unit) or "

@@ -158,7 +158,7 @@ std::string pair_text(const Tolerance& a, const Tolerance& b, double r) {
   return fmt::format("between = [\"{}\", \"{}\"], r = {}", a.id, b.id, r);
 }
 
-std::size_t index_of(const std::vector<Tolerance>& sources, const std::string& id) {
+std::size_t source_index(const std::vector<Tolerance>& sources, const std::string& id) {
   for (std::size_t s = 0; s < sources.size(); ++s)
     if (sources[s].id == id) return s;
   throw std::invalid_argument("correlation of '" + id + "', which names no source");
@@ -229,7 +229,7 @@ GaussianCopula gaussian_copula(const std::vector<Tolerance>& sources,
   c.score_correlation = Eigen::MatrixXd::Identity(m, m);
   std::map<std::tuple<Distribution, Distribution, double>, double> solved;  // a dense R repeats its r
   for (const Correlation& pair : correlations) {
-    const std::size_t a = index_of(sources, pair.first), b = index_of(sources, pair.second);
+    const std::size_t a = source_index(sources, pair.first), b = source_index(sources, pair.second);
     const Tolerance &ta = sources[a], &tb = sources[b];
     double rho = 0;
     try {

@@ -42,6 +42,9 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
      "Factors of the total test time for a trade-off curve (total time against U), e.g. --tradeoff "
      "0.5,0.75,1",
      OptionRange::between(0, 10).open_low().e_g("0.5,0.75,1")},
+    {"fresh_candidates", &DesignOptions::fresh_candidates, "",
+     "Compute the candidate runs' rows anew instead of reading them from the cache ($XDG_CACHE_HOME/ccal, "
+     "else ~/.cache/ccal), which keeps them per configuration file and build of ccal"},
 };
 
 // The objective's weights and references (references of the configured plan filled in later).
@@ -136,8 +139,9 @@ BudgetResult rescore(const Config& designed, const DesignOptions& options) {
 // The design problem's candidates: every run of the design space, then the configured runs when they all lie
 // in it (their plan is then the search's initial plan, so that the design can only improve on it), with the
 // rows of every candidate computed once.
-DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace& space, int threads,
-                                progress_bar::Progress& progress) {
+DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace& space,
+                                const DesignOptions& options, progress_bar::Progress& progress,
+                                bool& from_cache) {
   std::vector<DesignRun> candidates = candidate_runs(space, config);
   std::vector<std::vector<int>> initial;
   if (configured_in_space(config, space)) {
@@ -153,8 +157,20 @@ DesignProblem candidate_problem(const Config& config, const ResolvedDesignSpace&
   problem.min_g_levels = space.min_g_levels;
   problem.g_resolution = setting_resolution(config.design).g;
   problem.total_time = space.total_time;
-  progress.restart(candidates.size(), "design: candidate runs ", "runs");
-  problem.rows = candidate_rows(config, candidates, threads, [&progress] { progress.tick(); });
+  // The rows from the cache file of this configuration and these candidates, else computed and stored there.
+  const std::string key = candidate_cache_key(config, candidates);
+  const auto terms = Eigen::Index(config.identification.free_terms.size());
+  std::optional<CandidateRows> cached;
+  if (!options.fresh_candidates)
+    cached = read_candidate_cache(options.cache_folder, key, Eigen::Index(candidates.size()), terms);
+  from_cache = cached.has_value();
+  if (cached) {
+    problem.rows = std::move(*cached);
+  } else {
+    progress.restart(candidates.size(), "design: candidate runs ", "runs");
+    problem.rows = candidate_rows(config, candidates, options.threads, [&progress] { progress.tick(); });
+    write_candidate_cache(options.cache_folder, key, problem.rows);
+  }
   problem.candidates = std::move(candidates);
   problem.initial_plans = initial;
   return problem;
@@ -230,7 +246,7 @@ DesignResult design(const Config& config, const DesignOptions& options) {
 
   const auto t0 = std::chrono::steady_clock::now();
   progress_bar::Progress progress(options.progress);
-  DesignProblem problem = candidate_problem(config, r.space, options.threads, progress);
+  DesignProblem problem = candidate_problem(config, r.space, options, progress, r.candidates_from_cache);
   r.candidates = problem.candidates.size();
   r.cache_seconds = seconds_since(t0);
   set_criterion(config, r, problem);

@@ -137,7 +137,7 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   mo.threads = o.threads;
   mo.coverage_probability = o.coverage_probability;
   const bool student = std::isfinite(shared->type_a_dof);
-  const MonteCarloResult mc =
+  const ccal::MonteCarloResult mc =
       run_monte_carlo(statement_sources(config, id, student), config.correlations, int(names.size()), names,
                       StatementTrial(shared, std::move(tolerances), int(model_names.size())), mo);
   st.monte_carlo_trials = mc.trials;

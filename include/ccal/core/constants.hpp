@@ -8,6 +8,7 @@ namespace ccal::constants {
 
 inline constexpr double pi = std::numbers::pi;
 inline constexpr double deg = pi / 180.0;            // rad per degree
+inline constexpr double degrees_per_rad = 180.0 / pi;  // deg per rad, for output in degrees
 inline constexpr double arcmin = pi / 10800.0;       // rad per arc minute
 inline constexpr double arcsec = pi / 648000.0;      // rad per arc second
 inline constexpr double rpm = pi / 30.0;             // rad/s per revolution per minute (2π rad / 60 s)

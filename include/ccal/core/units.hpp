@@ -93,4 +93,8 @@ std::string si_unit(Dimension dim);
 // Noun phrase for messages: "an angle", "an angular rate", or "a quantity in rad/s/g^3".
 std::string describe(Dimension dim);
 
+// The instrument's output may be counted in pulses, which the units above do not know: "pulse" read as "rad"
+// (a pulse is then one unit of an angle-like count), e.g. "pulse/s/g" → "rad/s/g".
+std::string pulse_as_rad(std::string_view text);
+
 }  // namespace ccal

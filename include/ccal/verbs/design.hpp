@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ccal/io/candidate_cache.hpp"
 #include "ccal/model/run_sheet.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
@@ -33,6 +34,11 @@ struct DesignOptions {
   // A progress line on standard error, only when it is a terminal: the candidate runs cached, the search's
   // starts, the refinement, each with its estimate of the time left.
   bool progress = false;
+  // The candidate runs' rows are read from the cache when it holds them for this configuration, and written
+  // to it otherwise (io/candidate_cache.hpp, in cache_folder); true: computed anew (and written all the
+  // same).
+  bool fresh_candidates = false;
+  std::filesystem::path cache_folder = default_cache_folder();  // empty: no cache
 };
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
@@ -72,6 +78,7 @@ struct DesignResult {
   std::optional<MonteCarloResult> verification;
   std::vector<TradeoffPoint> tradeoff;
   double cache_seconds = 0, search_seconds = 0;
+  bool candidates_from_cache = false;  // the candidate runs' rows were read from the cache file
 };
 
 // Throws InputError for an empty or contradictory design space, one with no plan that fits and identifies the

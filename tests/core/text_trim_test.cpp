@@ -1,8 +1,8 @@
 // The readers' trimming: blanks (spaces, tabs) around a text; for CSV fields and lines also the carriage
 // returns among the trailing blanks (a CRLF line end), never other characters or inner blanks.
-#include <gtest/gtest.h>
+#include "../src/core/text_trim.hpp"
 
-#include "../src/io/text_trim.hpp"
+#include <gtest/gtest.h>
 
 namespace ccal::detail {
 namespace {

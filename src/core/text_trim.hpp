@@ -1,6 +1,6 @@
 #pragma once
-// Trimming of the readers' text (private to the library): the CSV readers' fields and lines
-// (observation_csv.cpp, csv_stream.cpp) and a term's value (split_term_assignment).
+// Trimming of text read from files and options (private to the library): the CSV readers' fields and lines
+// (observation_csv.cpp, csv_stream.cpp), a term's value (split_term_assignment) and an allocation target.
 #include <string_view>
 
 namespace ccal::detail {
