@@ -203,6 +203,21 @@ TEST_F(History, ReadingWritesNothing) {
   EXPECT_FALSE(fs::exists(path("h.sqlite-journal")));
 }
 
+// The calibrations a store holds now (−1 while a writer holds it locked).
+std::int64_t count_calibrations(const std::string& file) {
+  sqlite3* db = nullptr;
+  std::int64_t count = -1;
+  if (sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+    sqlite3_stmt* query = nullptr;
+    if (sqlite3_prepare_v2(db, "SELECT count(*) FROM calibration", -1, &query, nullptr) == SQLITE_OK &&
+        sqlite3_step(query) == SQLITE_ROW)
+      count = sqlite3_column_int64(query, 0);
+    sqlite3_finalize(query);
+  }
+  sqlite3_close(db);
+  return count;
+}
+
 TEST_F(History, AWriterKilledMidAddLeavesTheStoreWhole) {
   // A child process adds statements as fast as it can and is killed (SIGKILL) at a random moment; every
   // calibration left has all its coefficients, and the store passes SQLite's integrity check.
@@ -215,7 +230,11 @@ TEST_F(History, AWriterKilledMidAddLeavesTheStoreWhole) {
       for (int i = 0;; ++i)
         store.add(history_entry(statement(round + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
     }
-    ::usleep(useconds_t(20000 + 17000 * round));
+    // Killed once it has written more than the rounds before (so that every round kills a writer at work,
+    // however slow the build, e.g. under the sanitizers), then a little later, at a varying moment of an add.
+    const std::int64_t start = count_calibrations(path("h.sqlite"));
+    for (int wait = 0; wait < 3000 && count_calibrations(path("h.sqlite")) <= start; ++wait) ::usleep(10000);
+    ::usleep(useconds_t(3000 + 7000 * round));
     ::kill(child, SIGKILL);
     int status = 0;
     ::waitpid(child, &status, 0);
