@@ -288,6 +288,8 @@ std::vector<BadInput> catalogue() {
        {},
        "report --trials 100 --design-target 'K3=1e-4 kg' -o r.html",
        {"--design-target", "kg"}},
+      // A flag takes no value but true or false.
+      {"DesignFreshCandidatesValue", {}, "design --fresh-candidates=maybe", {"--fresh-candidates", "maybe"}},
       // The statement's observations: a file that cannot be read, and one whose terms are not the
       // configuration's (K0, K1 against the bundled example's K0, K2, K3).
       {"ReportObservationsMissing",

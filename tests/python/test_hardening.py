@@ -67,6 +67,12 @@ class BadArgumentCatalogueTest(unittest.TestCase):
 class NonFiniteResultTest(unittest.TestCase):
     """Results that cannot be finite are refused with what to change, not returned as nan or inf."""
 
+    def test_a_flag_takes_only_true_or_false(self):
+        with self.assertRaises(TypeError) as caught:
+            ccal.design(ccal.bundled_example(), fresh_candidates="maybe")
+        self.assertIn("fresh_candidates", str(caught.exception))
+        self.assertIn("maybe", str(caught.exception))
+
     def test_a_fit_that_overflows_is_refused(self):
         # Finite data near 1e308 overflow in the solution: fit() returned [nan, nan] without an error.
         import numpy as np
