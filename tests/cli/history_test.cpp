@@ -20,7 +20,6 @@ namespace {
 
 using namespace ccal::test;
 
-const std::string kLab = CCAL_SOURCE_DIR + "/examples/lab.toml";
 const std::string kTruth = CCAL_SOURCE_DIR + "/examples/lab_truth.toml";
 constexpr double kDrift = 2e-4;  // deg/s/g² per year
 

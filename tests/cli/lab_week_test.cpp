@@ -22,9 +22,6 @@ namespace {
 using namespace ccal::test;
 namespace fs = std::filesystem;
 
-const std::string kLab = CCAL_SOURCE_DIR + "/examples/lab.toml";
-const std::string kLabTruth = CCAL_SOURCE_DIR + "/examples/lab_truth.toml";
-
 TEST_F(Cli, TheMachineHasTheTruthAndTheStatementCorrectsOnlyWhatTheLabMeasured) {
   const Result sim = run("simulate " + kLab + " --truth " + kLabTruth + " --observations-out obs.csv --format json");
   ASSERT_EQ(sim.code, 0) << sim.err;

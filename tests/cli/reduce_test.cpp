@@ -13,11 +13,12 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/reduction/run_average.hpp"
 #include "cli_support.hpp"
+#include "test_constants.hpp"
 
 namespace {
 
 using namespace ccal::test;
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 // The bundled example with centrifuge errors, known and compensated: the model of the runs then equals their
 // truth, and the identification recovers the instrument.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
@@ -39,7 +40,7 @@ class Statement : public Cli {
 };
 
 // Φ⁻¹(0.975) to 16 digits.
-constexpr double kZ975 = 1.959963984540054;
+using ccal::test::kZ975;
 
 TEST_F(Statement, ObservationsOfAnotherConfigurationAreRefusedNamingBothFingerprints) {
   // The observations file carries the SHA-256 of the configuration it was simulated with; a statement with

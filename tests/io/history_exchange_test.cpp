@@ -16,7 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string statement(double k2) {
+std::string exchanged_statement(double k2) {
   return fmt::format(R"({{"coverage_probability": 0.95, "coefficients": {{"K2": {{"unit": "deg/s/g^2",
       "corrected_estimate": {}, "expanded_uncertainty": 3.2e-4, "coverage_factor": 1.96, "effective_dof": 44.5}}}}}})",
                      k2);
@@ -26,14 +26,14 @@ TEST(HistoryExchange, ExportedAndImportedTheSame) {
   const fs::path folder = fs::temp_directory_path() / fmt::format("ccal_history_exchange_{}", ::getpid());
   fs::remove_all(folder);
   HistoryStore from = HistoryStore::open((folder / "from.sqlite").string(), HistoryStore::Access::create);
-  from.add(history_entry(statement(0.0200001), "a", "SN 1", "2024-11-30"));  // ids 1, 2, 3 here
-  const std::int64_t second = from.add(history_entry(statement(0.0202), "b", "SN 1", "2025-11-30"));
-  const std::int64_t third = from.add(history_entry(statement(0.0204), "c", "SN 1", "2026-11-30"));
+  from.add(history_entry(exchanged_statement(0.0200001), "a", "SN 1", "2024-11-30"));  // ids 1, 2, 3 here
+  const std::int64_t second = from.add(history_entry(exchanged_statement(0.0202), "b", "SN 1", "2025-11-30"));
+  const std::int64_t third = from.add(history_entry(exchanged_statement(0.0204), "c", "SN 1", "2026-11-30"));
   from.supersede(second, third, "repeated");
   const std::string text = export_history(from, "SN 1");
 
   HistoryStore to = HistoryStore::open((folder / "to.sqlite").string(), HistoryStore::Access::create);
-  to.add(history_entry(statement(9.0), "z", "SN 9", "2020-01-01"));  // so that the new ids differ
+  to.add(history_entry(exchanged_statement(9.0), "z", "SN 9", "2020-01-01"));  // so that the new ids differ
   const HistoryImport first = import_history(to, text, "sn1.json");
   EXPECT_EQ(first.added, 3u);
   EXPECT_EQ(first.superseded, 1u);
@@ -59,9 +59,9 @@ TEST(HistoryExchange, ExportedAndImportedTheSame) {
   const std::string bad =
       R"({"format": "ccal calibration history", "schema": 1, "serial": "SN 5", "calibrations": [
       {"id": 1, "date": "2026-01-01", "statement": )" +
-      statement(0.01) + R"(},
+      exchanged_statement(0.01) + R"(},
       {"id": 2, "date": "2026-13-01", "statement": )" +
-      statement(0.02) + "}]}";
+      exchanged_statement(0.02) + "}]}";
   EXPECT_THROW(import_history(to, bad, "bad.json"), InputError);
   EXPECT_TRUE(to.records("SN 5").empty());
   EXPECT_THROW(export_history(to, "SN 404"), InputError);

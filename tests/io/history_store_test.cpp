@@ -37,7 +37,7 @@ class History : public ::testing::Test {
 };
 
 // A statement as `ccal reduce --statement-out` writes it (the keys history_entry reads), K2 = value.
-std::string statement(double k2, double u2 = 1e-4, const std::string& certificate = "") {
+std::string stored_statement(double k2, double u2 = 1e-4, const std::string& certificate = "") {
   return fmt::format(
       R"({{"budget_config": "lab.toml", "coverage_probability": 0.95, {}"coefficients": {{
       "K0": {{"unit": "deg/s", "corrected_estimate": 0.06, "expanded_uncertainty": 0.036,
@@ -55,7 +55,7 @@ std::string bytes_of(const std::string& file) {
 }
 
 TEST_F(History, AStatementIsRecordedAndReadBack) {
-  const HistoryEntry e = history_entry(statement(0.02), "s.json", "SN 0815", "2025-11-30");
+  const HistoryEntry e = history_entry(stored_statement(0.02), "s.json", "SN 0815", "2025-11-30");
   ASSERT_EQ(e.coefficients.size(), 2u);
   EXPECT_EQ(e.coefficients[1].name, "K2");
   EXPECT_EQ(e.coefficients[1].value, 0.02);
@@ -64,8 +64,8 @@ TEST_F(History, AStatementIsRecordedAndReadBack) {
   HistoryStore store =
       HistoryStore::open(path("sub/h.sqlite"), HistoryStore::Access::create);  // the folder is made
   const std::int64_t first = store.add(e);
-  store.add(history_entry(statement(0.021), "t.json", "SN 0815", "2024-11-30"));
-  store.add(history_entry(statement(0.5), "u.json", "SN 9", "2024-01-01"));
+  store.add(history_entry(stored_statement(0.021), "t.json", "SN 0815", "2024-11-30"));
+  store.add(history_entry(stored_statement(0.5), "u.json", "SN 9", "2024-01-01"));
   const std::vector<HistoryRecord> r = store.records("SN 0815");
   ASSERT_EQ(r.size(), 2u);
   EXPECT_EQ(r[0].date, "2024-11-30");  // by date
@@ -93,11 +93,11 @@ TEST_F(History, SerialAndDateComeFromTheCertificateOrAreAskedFor) {
   const std::string cert =
       R"("certificate": {"serial_number": "SN 7", "date_of_calibration": "2026-11-30", "instrument": "PIGA"}, )";
   const HistoryEntry e =
-      history_entry(R"({"statement": )" + statement(0.02, 1e-4, cert) + "}", "r.json", "", "");
+      history_entry(R"({"statement": )" + stored_statement(0.02, 1e-4, cert) + "}", "r.json", "", "");
   EXPECT_EQ(e.serial, "SN 7");
   EXPECT_EQ(e.date, "2026-11-30");
   EXPECT_EQ(e.instrument, "PIGA");
-  EXPECT_EQ(history_entry(statement(0.02, 1e-4, cert), "r.json", "SN 8", "").serial, "SN 8");
+  EXPECT_EQ(history_entry(stored_statement(0.02, 1e-4, cert), "r.json", "SN 8", "").serial, "SN 8");
   const auto refused = [](const std::string& text, const std::string& serial, const std::string& date,
                           const std::string& says) {
     try {
@@ -108,11 +108,11 @@ TEST_F(History, SerialAndDateComeFromTheCertificateOrAreAskedFor) {
     }
   };
   // Options of the call (OptionError of the field, which each front end names with its own flag).
-  refused(statement(0.02), "", "2026-01-01",
+  refused(stored_statement(0.02), "", "2026-01-01",
           "serial: s.json names no serial number ([certificate] serial_number); accepted: the instrument's "
           "serial number");
-  refused(statement(0.02), "SN 1", "", "date: s.json names no date of calibration");
-  refused(statement(0.02), "SN 1", "2026-13-01", "date of calibration '2026-13-01' is not a date");
+  refused(stored_statement(0.02), "SN 1", "", "date: s.json names no date of calibration");
+  refused(stored_statement(0.02), "SN 1", "2026-13-01", "date of calibration '2026-13-01' is not a date");
   refused("{", "SN 1", "2026-01-01", "s.json: not JSON");
   refused(R"({"command": "budget"})", "SN 1", "2026-01-01",
           "not a calibration statement: no \"coefficients\"");
@@ -120,7 +120,7 @@ TEST_F(History, SerialAndDateComeFromTheCertificateOrAreAskedFor) {
 
 TEST_F(History, RecordsAreNeverChanged) {
   HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
-  store.add(history_entry(statement(0.02), "s.json", "SN 1", "2026-01-01"));
+  store.add(history_entry(stored_statement(0.02), "s.json", "SN 1", "2026-01-01"));
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &db), SQLITE_OK);
   EXPECT_NE(sqlite3_exec(db, "UPDATE coefficient SET value = 1", nullptr, nullptr, nullptr), SQLITE_OK);
@@ -131,9 +131,9 @@ TEST_F(History, RecordsAreNeverChanged) {
 
 TEST_F(History, ARecordIsSupersededOnceWithAReason) {
   HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
-  const std::int64_t a = store.add(history_entry(statement(0.02), "a.json", "SN 1", "2026-01-01"));
-  const std::int64_t b = store.add(history_entry(statement(0.03), "b.json", "SN 1", "2026-01-02"));
-  const std::int64_t other = store.add(history_entry(statement(0.04), "c.json", "SN 2", "2026-01-03"));
+  const std::int64_t a = store.add(history_entry(stored_statement(0.02), "a.json", "SN 1", "2026-01-01"));
+  const std::int64_t b = store.add(history_entry(stored_statement(0.03), "b.json", "SN 1", "2026-01-02"));
+  const std::int64_t other = store.add(history_entry(stored_statement(0.04), "c.json", "SN 2", "2026-01-03"));
   const auto refused = [&](std::int64_t id, std::optional<std::int64_t> by, const std::string& reason,
                            const std::string& says) {
     try {
@@ -162,7 +162,8 @@ TEST_F(History, TwoWritersAtOnceLoseNothing) {
     HistoryStore store = HistoryStore::open(
         file, HistoryStore::Access::create);  // both may create it: one makes it, one finds it
     for (int i = 0; i < 100; ++i)
-      store.add(history_entry(statement(0.02 + 1e-6 * (100 * who + i)), "s.json", "SN 1", "2026-01-01"));
+      store.add(
+          history_entry(stored_statement(0.02 + 1e-6 * (100 * who + i)), "s.json", "SN 1", "2026-01-01"));
   };
   std::thread a(writer, 0), b(writer, 1);
   a.join();
@@ -172,13 +173,13 @@ TEST_F(History, TwoWritersAtOnceLoseNothing) {
 
 TEST_F(History, ALockedStoreIsRefusedAfterWaiting) {
   HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
-  store.add(history_entry(statement(0.02), "s.json", "SN 1", "2026-01-01"));
+  store.add(history_entry(stored_statement(0.02), "s.json", "SN 1", "2026-01-01"));
   sqlite3* other = nullptr;  // another process's connection, holding the store's write lock
   ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &other), SQLITE_OK);
   ASSERT_EQ(sqlite3_exec(other, "BEGIN EXCLUSIVE", nullptr, nullptr, nullptr), SQLITE_OK);
   try {
     HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create, 100)
-        .add(history_entry(statement(0.03), "t.json", "SN 1", "2026-01-02"));
+        .add(history_entry(stored_statement(0.03), "t.json", "SN 1", "2026-01-02"));
     ADD_FAILURE() << "not refused";
   } catch (const InputError& x) {
     EXPECT_NE(std::string(x.what()).find("another process holds it for more than"), std::string::npos)
@@ -192,7 +193,7 @@ TEST_F(History, ALockedStoreIsRefusedAfterWaiting) {
 TEST_F(History, ReadingWritesNothing) {
   {
     HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
-    store.add(history_entry(statement(0.02), "s.json", "SN 1", "2026-01-01"));
+    store.add(history_entry(stored_statement(0.02), "s.json", "SN 1", "2026-01-01"));
   }
   const std::string before = bytes_of(path("h.sqlite"));
   const auto modified = fs::last_write_time(path("h.sqlite"));
@@ -228,7 +229,7 @@ TEST_F(History, AWriterKilledMidAddLeavesTheStoreWhole) {
     if (child == 0) {
       HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
       for (int i = 0;; ++i)
-        store.add(history_entry(statement(round + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
+        store.add(history_entry(stored_statement(round + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
     }
     // Killed once it has written more than the rounds before (so that every round kills a writer at work,
     // however slow the build, e.g. under the sanitizers), then a little later, at a varying moment of an add.
@@ -281,7 +282,7 @@ TEST_F(History, BadFilesAreRefusedAndLeftAsTheyWere) {
   {
     HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
     for (int i = 0; i < 30; ++i)
-      store.add(history_entry(statement(0.02 + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
+      store.add(history_entry(stored_statement(0.02 + 1e-6 * i), "s.json", "SN 1", "2026-01-01"));
   }
   const std::string whole = bytes_of(path("h.sqlite"));
   std::ofstream(path("cut.sqlite"), std::ios::binary) << whole.substr(0, whole.size() / 2);

@@ -28,7 +28,7 @@ counts_per_revolution = 16777216
 3 = "sub/run3.csv"
 )";
 
-std::string refusal(const std::string& text) {
+std::string manifest_refusal(const std::string& text) {
   try {
     parse_log_manifest(text, "logs/manifest.toml", "logs");
   } catch (const ConfigError& e) {
@@ -99,23 +99,31 @@ TEST(LogManifest, LogsInADaqLayoutReduceAsCcalsOwnDo) {
 }
 
 TEST(LogManifest, RefusalsAreLocatedWithWhatIsAccepted) {
-  EXPECT_EQ(refusal("[runs]\n"), "logs/manifest.toml:1:1: runs: no run; accepted: run = \"file\" lines, one per run");
-  EXPECT_EQ(refusal("[columns]\n"),
-            "logs/manifest.toml:1:1: runs: missing table; accepted: run = \"file\" lines, one per logged run");
-  EXPECT_EQ(refusal("[runs]\n5g = \"../elsewhere.csv\"\n"),
-            "logs/manifest.toml:2:6: runs.5g: '../elsewhere.csv' is not a file inside the folder; accepted: a path "
-            "relative to logs");
-  EXPECT_EQ(refusal("[columns]\nangle_unit = \"counts\"\n[runs]\n1 = \"a.csv\"\n"),
-            "logs/manifest.toml:2:14: columns.angle_unit: counts need the encoders' resolution; accepted: with "
-            "counts_per_revolution = N (e.g. 16777216)");
-  EXPECT_EQ(refusal("[columns]\ncounts_per_revolution = 4096\n[runs]\n1 = \"a.csv\"\n"),
-            "logs/manifest.toml:2:25: columns.counts_per_revolution: is read only for encoders in counts; accepted: "
+  EXPECT_EQ(manifest_refusal("[runs]\n"),
+            "logs/manifest.toml:1:1: runs: no run; accepted: run = \"file\" lines, one per run");
+  EXPECT_EQ(
+      manifest_refusal("[columns]\n"),
+      "logs/manifest.toml:1:1: runs: missing table; accepted: run = \"file\" lines, one per logged run");
+  EXPECT_EQ(
+      manifest_refusal("[runs]\n5g = \"../elsewhere.csv\"\n"),
+      "logs/manifest.toml:2:6: runs.5g: '../elsewhere.csv' is not a file inside the folder; accepted: a path "
+      "relative to logs");
+  EXPECT_EQ(
+      manifest_refusal("[columns]\nangle_unit = \"counts\"\n[runs]\n1 = \"a.csv\"\n"),
+      "logs/manifest.toml:2:14: columns.angle_unit: counts need the encoders' resolution; accepted: with "
+      "counts_per_revolution = N (e.g. 16777216)");
+  EXPECT_EQ(manifest_refusal("[columns]\ncounts_per_revolution = 4096\n[runs]\n1 = \"a.csv\"\n"),
+            "logs/manifest.toml:2:25: columns.counts_per_revolution: is read only for encoders in counts; "
+            "accepted: "
             "with angle_unit = \"counts\"");
-  EXPECT_EQ(refusal("[columns]\ntime_unit = \"m\"\n[runs]\n1 = \"a.csv\"\n"),
-            "logs/manifest.toml:2:13: columns.time_unit: 'm' is not a time unit; accepted: s, ms, us, min, …");
-  EXPECT_EQ(refusal("[columns]\ntheta1 = \"time\"\n[runs]\n1 = \"a.csv\"\n"),
-            "logs/manifest.toml:2:10: columns.theta1: 'time' names two columns; accepted: one name per column");
-  EXPECT_EQ(refusal("[colums]\n").rfind("logs/manifest.toml:1:2: colums: unknown key; did you mean 'columns'?", 0),
+  EXPECT_EQ(
+      manifest_refusal("[columns]\ntime_unit = \"m\"\n[runs]\n1 = \"a.csv\"\n"),
+      "logs/manifest.toml:2:13: columns.time_unit: 'm' is not a time unit; accepted: s, ms, us, min, …");
+  EXPECT_EQ(
+      manifest_refusal("[columns]\ntheta1 = \"time\"\n[runs]\n1 = \"a.csv\"\n"),
+      "logs/manifest.toml:2:10: columns.theta1: 'time' names two columns; accepted: one name per column");
+  EXPECT_EQ(manifest_refusal("[colums]\n")
+                .rfind("logs/manifest.toml:1:2: colums: unknown key; did you mean 'columns'?", 0),
             0u);
   try {
     read_log_manifest("no/such/folder");

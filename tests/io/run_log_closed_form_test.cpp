@@ -19,12 +19,13 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/run_log.hpp"
 #include "ccal/reduction/observe.hpp"
+#include "test_constants.hpp"
 
 namespace ccal {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using ccal::test::kDeg;
+using ccal::test::kPi;
 
 struct Motion {
   double rate, phi0, theta1_0;

@@ -16,12 +16,13 @@
 
 #include "ccal/io/csv_stream.hpp"
 #include "ccal/io/run_log.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 double wrap(double a) { return std::fmod(std::fmod(a, 2 * kPi) + 2 * kPi, 2 * kPi); }
 
@@ -142,7 +143,7 @@ TEST(RunLogStream, PlainDecimalsReadAsStdFromCharsReadsThem) {
 }
 
 // The message of reducing `text` from a file and from a table (the same, or the test fails).
-std::string refusal(const std::string& text) {
+std::string log_refusal(const std::string& text) {
   const fs::path path = temp_file("bad.csv", text);
   RunLogOptions o;
   o.pulse_weight = 1e-5;
@@ -166,20 +167,23 @@ TEST(RunLogStream, ProblemsAreReportedInTheOrderOfTheWholeTableReduction) {
   // Each log has two problems; the one the whole-table reduction reported first wins: a CSV problem before
   // any reduction, the time column before the output, the output before the encoders, an encoder's cells
   // before its sample spacing.
-  EXPECT_NE(refusal("time,pulses\n0,1\n0,x\n1,2,3\n").find(":4:3"), std::string::npos);        // ragged
-  EXPECT_NE(refusal("time,pulses\n0,x\n1,2\nbad,3\n").find(":4:1: time"), std::string::npos);  // time cell
-  EXPECT_NE(refusal("time,pulses\n0,x\n2,2\n1,3\n").find(":4:1: time"), std::string::npos);    // order
-  EXPECT_NE(refusal("time,pulses,theta1\n0,1,y\n1,z,0\n").find(":3:2: pulses"), std::string::npos);
-  EXPECT_NE(refusal("time,count,theta1\n0,1,y\n1,2,0\n").find("no output column"), std::string::npos);
+  EXPECT_NE(log_refusal("time,pulses\n0,1\n0,x\n1,2,3\n").find(":4:3"), std::string::npos);  // ragged
+  EXPECT_NE(log_refusal("time,pulses\n0,x\n1,2\nbad,3\n").find(":4:1: time"),
+            std::string::npos);                                                                  // time cell
+  EXPECT_NE(log_refusal("time,pulses\n0,x\n2,2\n1,3\n").find(":4:1: time"), std::string::npos);  // order
+  EXPECT_NE(log_refusal("time,pulses,theta1\n0,1,y\n1,z,0\n").find(":3:2: pulses"), std::string::npos);
+  EXPECT_NE(log_refusal("time,count,theta1\n0,1,y\n1,2,0\n").find("no output column"), std::string::npos);
   // 1 s apart at 8.8 rad/s is too far for the unwrapping, but the bad cell further down is reported first
-  EXPECT_NE(refusal("time,pulses,theta1\n0,1,0\n1,2,0\n1.1,3,x\n").find(":4:3: theta1"), std::string::npos);
-  EXPECT_NE(refusal("time,pulses,theta1\n0,1,0\n1,2,0\n1.1,3,0\n").find(":3:3: theta1"), std::string::npos);
-  EXPECT_NE(refusal("temperature\n1\n").find("no such column"), std::string::npos);
-  EXPECT_NE(refusal("# only a comment\n").find("no header"), std::string::npos);
-  EXPECT_NE(refusal("time,pulses\n0,1\n").find("at least two"), std::string::npos);
+  EXPECT_NE(log_refusal("time,pulses,theta1\n0,1,0\n1,2,0\n1.1,3,x\n").find(":4:3: theta1"),
+            std::string::npos);
+  EXPECT_NE(log_refusal("time,pulses,theta1\n0,1,0\n1,2,0\n1.1,3,0\n").find(":3:3: theta1"),
+            std::string::npos);
+  EXPECT_NE(log_refusal("temperature\n1\n").find("no such column"), std::string::npos);
+  EXPECT_NE(log_refusal("# only a comment\n").find("no header"), std::string::npos);
+  EXPECT_NE(log_refusal("time,pulses\n0,1\n").find("at least two"), std::string::npos);
   // quoted fields go through parse_csv's splitter: a quoted number is a number, an open quote a CSV error
-  EXPECT_NE(refusal("time,pulses\n\"0\",1\n1,\"x\"\n2,\"3\n").find(":4:2"), std::string::npos);
-  EXPECT_NE(refusal("time,pulses\n\"0\",1\n1,\"x\"\n").find(":3:2: pulses: 'x' is not a number"),
+  EXPECT_NE(log_refusal("time,pulses\n\"0\",1\n1,\"x\"\n2,\"3\n").find(":4:2"), std::string::npos);
+  EXPECT_NE(log_refusal("time,pulses\n\"0\",1\n1,\"x\"\n").find(":3:2: pulses: 'x' is not a number"),
             std::string::npos);
 }
 

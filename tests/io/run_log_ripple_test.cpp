@@ -16,11 +16,12 @@
 #include "ccal/io/run_log.hpp"
 #include "ccal/reduction/run_average.hpp"
 #include "cli_support.hpp"
+#include "test_constants.hpp"
 
 namespace {
 
 using namespace ccal::test;
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 // The angle error of a relative rate ripple c1, s1, …, cN, sN (model.md §3.1), written out here.
 double angle_error(const std::vector<double>& ripple, double q) {

@@ -1,5 +1,7 @@
 // Reduction of recorded run logs: the mean output of pulse counts and of sampled outputs against closed
 // forms, the encoder line fits through wrapped angles, the measured run, and the refusals of bad logs.
+#include "ccal/io/run_log.hpp"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -7,12 +9,12 @@
 #include <numbers>
 #include <string>
 
-#include "ccal/io/run_log.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 // A log's CSV text from a header and a row generator over n samples.
 template <class Row>

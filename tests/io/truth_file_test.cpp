@@ -14,7 +14,7 @@
 namespace ccal {
 namespace {
 
-std::string refusal(const std::string& text) {
+std::string truth_refusal(const std::string& text) {
   try {
     parse_truth(text, "truth.toml", bundled_example());
   } catch (const ConfigError& e) {
@@ -40,17 +40,19 @@ TEST(TruthFile, ItsErrorsAreInSiByTheConfigurationsLayoutAndTheRestZero) {
 }
 
 TEST(TruthFile, AnythingButTheMachinesErrorsIsRefusedWithItsPlace) {
-  EXPECT_EQ(refusal("[centrifuge]\nradius = \"2 m\"\n"),
-            "truth.toml:1:2: centrifuge: a configuration's table, not a truth's; accepted: [errors] only, the "
-            "values the simulated machine has (the rest of the set-up is the configuration's)");
-  EXPECT_EQ(refusal("[eror]\n").rfind("truth.toml:1:2: eror: unknown key; did you mean 'errors'?", 0), 0u)
-      << refusal("[eror]\n");
-  const std::string unknown = refusal("[errors]\ndthz6 = \"2 arcsec\"\n");
+  EXPECT_EQ(
+      truth_refusal("[centrifuge]\nradius = \"2 m\"\n"),
+      "truth.toml:1:2: centrifuge: a configuration's table, not a truth's; accepted: [errors] only, the "
+      "values the simulated machine has (the rest of the set-up is the configuration's)");
+  EXPECT_EQ(truth_refusal("[eror]\n").rfind("truth.toml:1:2: eror: unknown key; did you mean 'errors'?", 0),
+            0u)
+      << truth_refusal("[eror]\n");
+  const std::string unknown = truth_refusal("[errors]\ndthz6 = \"2 arcsec\"\n");
   EXPECT_EQ(unknown.rfind("truth.toml:2:1: errors.dthz6: unknown error parameter; did you mean 'dthz5'?", 0), 0u)
       << unknown;
-  const std::string unit = refusal("[errors]\ndthz5 = \"2 um\"\n");
+  const std::string unit = truth_refusal("[errors]\ndthz5 = \"2 um\"\n");
   EXPECT_EQ(unit.rfind("truth.toml:2:9: errors.dthz5: ", 0), 0u) << unit;
-  EXPECT_NE(refusal("[errors\n").find("TOML syntax error"), std::string::npos);
+  EXPECT_NE(truth_refusal("[errors\n").find("TOML syntax error"), std::string::npos);
 }
 
 TEST(TruthFile, AFileThatCannotBeReadIsRefusedNamingIt) {

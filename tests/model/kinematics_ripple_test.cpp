@@ -15,11 +15,12 @@
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 // The paper's geometry with the instrument on the platform axis (L = l = 0, β = 0), Earth rotation off, so
 // that the instrument's specific force is the arm tip's acceleration plus gravity.

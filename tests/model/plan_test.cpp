@@ -3,19 +3,21 @@
 // is f/g = −A x̂1 + ẑ0 (the arm pulls the instrument towards the main axis; at rest f = +g z0), and frame 5
 // is the arm frame turned by γ about z, so its components are (−A cos γ, +A sin γ, 1). Each mounting takes
 // its IA, PA, OA from ±x5, ±y5, ±z5 (model/plan.hpp), so every sign and every permutation is fixed here.
+#include "ccal/model/plan.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "ccal/model/plan.hpp"
 #include "ccal/model/sensed_input.hpp"
 #include "kinematics_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 struct Axes {
   Mounting mounting;

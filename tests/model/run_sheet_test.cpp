@@ -13,11 +13,12 @@
 
 #include "ccal/model/sensed_input.hpp"
 #include "kinematics_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 Run run(std::string name, double A, double T, PlatformMode mode) {
   Run r;

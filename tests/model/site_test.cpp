@@ -1,16 +1,18 @@
 // The site: normal gravity against the published WGS-84 values and the Earth rate's ENU components from
 // their closed form, at stated latitudes (model.md §1). Nothing here is computed by the code under test.
+#include "ccal/model/site.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "ccal/model/site.hpp"
+#include "test_constants.hpp"
 
 namespace ccal {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ccal::test::kDeg;
 
 TEST(NormalGravity, PublishedWgs84Values) {
   // WGS-84 (NIMA TR8350.2, Table 3.4 and Eq. 4-1): normal gravity on the ellipsoid at the equator

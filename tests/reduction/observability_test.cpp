@@ -1,19 +1,21 @@
 // Observability of each term (ccal/reduction/observability.hpp, docs/model.md §14): the whole-revolution plan
 // that hides K3, the paper's plan that does not, the measure against closed forms of ⟨a_iⁿ⟩, and its scaling
 // with noise and duration.
+#include "ccal/reduction/observability.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
-#include "ccal/reduction/observability.hpp"
 #include "experiment_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 IdentificationSpec k0_k2_k3() { return paper_spec(); }
 

@@ -12,11 +12,12 @@
 
 #include "ccal/uncertainty/budget.hpp"
 #include "experiment_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 // One run of a plan in the closed forms: A [g], Ω [rad/s], γ = φ0 − sweep·s, s ∈ [0, 1].
 struct RunPhase {

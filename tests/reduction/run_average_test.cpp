@@ -1,19 +1,21 @@
 // Run reduction: closed forms of model.md §4.1/§4.4, the spectral rule against two independent quadratures,
 // and its derivatives.
+#include "ccal/reduction/run_average.hpp"
+
 #include <gtest/gtest.h>
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <random>
 
 #include "ccal/io/config_file.hpp"
-#include "ccal/reduction/run_average.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 ccal::Run paper_run(double A) {
   ccal::Run r;

@@ -19,6 +19,9 @@ namespace fs = std::filesystem;
 
 const std::string kProgram = CCAL_BINARY_DIR + "/ccal";
 const std::string kExample = CCAL_SOURCE_DIR + "/examples/wang_ren_2014.toml";
+// The bundled lab example: its configuration and the truth its simulated logs are made from.
+const std::string kLab = CCAL_SOURCE_DIR + "/examples/lab.toml";
+const std::string kLabTruth = CCAL_SOURCE_DIR + "/examples/lab_truth.toml";
 // The paper's set-up as published: the bundled example without the drives' rate ripple and rate noise.
 const std::string kPaperExample = CCAL_SOURCE_DIR + "/tests/data/wang_ren_2014_paper.toml";
 

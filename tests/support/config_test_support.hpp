@@ -13,10 +13,11 @@
 
 #include "ccal/core/constants.hpp"
 #include "ccal/io/config_file.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::config_test {
 
-inline constexpr double kDeg = std::numbers::pi / 180.0;
+using ccal::test::kDeg;
 
 // A minimal valid configuration. Tables are ordered so that the last one is [centrifuge]: a line appended
 // to this text lands in [centrifuge], and a test that appends a new table puts the bad line last.

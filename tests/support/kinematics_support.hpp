@@ -10,11 +10,11 @@
 #include "ccal/model/centrifuge.hpp"
 #include "ccal/model/kinematics.hpp"
 #include "ccal/model/site.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 
 using AD = Dual;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 inline Site paper_site(bool earth = false) {
   Site s;

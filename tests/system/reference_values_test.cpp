@@ -25,6 +25,7 @@
 #include "ccal/reduction/observe.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "test_constants.hpp"
 
 namespace ccal {
 namespace {
@@ -61,7 +62,7 @@ constexpr double kRelativeTolerance = 1e-9;
 constexpr std::uint64_t kMonteCarloSeed = 1, kMonteCarloTrials = 20000;
 // ------------------------------------------------------------------------------------------------------------
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ccal::test::kDeg;
 
 void expect_pin(const std::string& name, double got_display) {
   for (const Pin& p : kPins)

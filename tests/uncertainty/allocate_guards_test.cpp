@@ -13,11 +13,12 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/allocate.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
+using ccal::test::kDeg;
 
 // a_s = (k_p J_s u_s / T)² of a one-row problem of independent sources.
 Eigen::VectorXd row_weights(const AllocationProblem& p) {

@@ -1,6 +1,8 @@
 // Tolerance allocation: the optimality (KKT) conditions of the solution on small and random problems, the
 // closed form of one constraint with equal costs, correlation groups, the bounds, the target parser, and the
 // bundled example with targets on K2 and K3 checked against an independent budget and by Monte Carlo.
+#include "ccal/uncertainty/allocate.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,15 +13,15 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/uncertainty/allocate.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "independent_lpu.hpp"
+#include "test_constants.hpp"
 #include "test_paths.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
+using ccal::test::kDeg;
 
 // The problem merged into its groups, computed here independently of the library.
 struct Merged {

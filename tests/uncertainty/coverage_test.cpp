@@ -1,20 +1,22 @@
 // The coverage convention (uncertainty/coverage.hpp): k from p for a normal quantity and back, Student's t at
 // ν = ∞ the same k bit for bit (so a statement without Type A equals the budget's U), a stated k, and the
 // words beside every U.
+#include "ccal/uncertainty/coverage.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 
 #include "ccal/core/errors.hpp"
-#include "ccal/uncertainty/coverage.hpp"
+#include "test_constants.hpp"
 
 namespace ccal {
 namespace {
 
 // Φ⁻¹(0.975) and erf(√2) = 2Φ(2) − 1 to 16 digits (any table of the normal distribution); the functions
 // are erf⁻¹ and erf of double precision: a few ulp.
-constexpr double kZ975 = 1.959963984540054;
+using ccal::test::kZ975;
 constexpr double kP2 = 0.9544997361036416;
 constexpr double kUlps = 4e-16;
 

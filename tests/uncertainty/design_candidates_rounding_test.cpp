@@ -9,11 +9,12 @@
 #include "ccal/core/units.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
+#include "test_constants.hpp"
 
 namespace ccal {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
+using ccal::test::kDeg;
 
 TEST(DesignRounding, EachSettingGoesToTheMachinesStep) {
   ccal::Run run;

@@ -12,6 +12,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "monte_carlo_support.hpp"
 
 namespace ccal {
 namespace {
@@ -25,7 +26,7 @@ Tolerance source(std::string id, double bound, Distribution d, std::string group
   return t;
 }
 
-void identity(std::span<const double> x, std::span<double> y) { std::copy(x.begin(), x.end(), y.begin()); }
+using ccal::test::identity;
 
 MonteCarloOptions kept(std::uint64_t trials, int threads = 0) {
   MonteCarloOptions o;
@@ -45,12 +46,13 @@ const std::vector<Tolerance> kSources = {
     source("t", 1.5, Distribution::triangular),    source("a", 0.5, Distribution::arcsine),
     source("g1", 1.0, Distribution::uniform, "g"), source("g2", 0.4, Distribution::normal, "g")};
 // Every pairing of distributions, one negative; the last names a grouped source: it applies to the group.
-const std::vector<Correlation> kPairs = {
+const std::vector<Correlation> kCorrelatedPairs = {
     {"n", "u", 0.6}, {"u", "t", -0.4}, {"t", "a", 0.3}, {"n", "g1", 0.5}};
 
 TEST(MonteCarloCorrelations, TheSampleHasTheConfiguredCorrelationsAndMarginals) {
   const double M = 1e6;
-  const MonteCarloResult r = run_monte_carlo(kSources, kPairs, 6, {}, identity, kept(std::uint64_t(M)));
+  const MonteCarloResult r =
+      run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(std::uint64_t(M)));
   // The configured pairs. n–g2 (normal–normal) takes g1's score correlation: c_NN(ρ) = ρ with ρ from the
   // normal–uniform pair, and g1–g2 are one draw: the largest normal–uniform correlation (as for any group).
   const double rho_ng = copula_score_correlation(Distribution::normal, Distribution::uniform, 0.5);
@@ -102,13 +104,13 @@ TEST(MonteCarloCorrelations, ALinearModelAgreesWithTheCorrelatedLpu) {
   set(4, 5, 1.0);
   const Eigen::Map<const Eigen::VectorXd> effects(e, 6);
   const double u1 = std::sqrt(effects.dot(R * effects));
-  const LinearPropagation lp = propagate_linear(kSources, kPairs, 2, linear);
+  const LinearPropagation lp = propagate_linear(kSources, kCorrelatedPairs, 2, linear);
   EXPECT_NEAR(lp.std_uncertainty[0], u1, 1e-12 * u1);  // central differences of a linear model: exact
   // The MC: u(y1) within 5/√(2M) relatively (y1 is near normal); its interval is not compared with the LPU's
   // (the inputs are far from normal and so, slightly, is y1) except through u.
   const double M = 1e6;
   const MonteCarloResult r =
-      run_monte_carlo(kSources, kPairs, 2, {}, linear, kept(std::uint64_t(M)), &lp.std_uncertainty);
+      run_monte_carlo(kSources, kCorrelatedPairs, 2, {}, linear, kept(std::uint64_t(M)), &lp.std_uncertainty);
   EXPECT_NEAR(r.outputs[0].std_dev, u1, 5 * u1 / std::sqrt(2 * M));
   EXPECT_NEAR(r.covariance(0, 1), lp.covariance(0, 1),
               5 * std::sqrt((u1 * u1 * lp.covariance(1, 1) + lp.covariance(0, 1) * lp.covariance(0, 1)) / M));
@@ -143,8 +145,8 @@ TEST(MonteCarloCorrelations, FullCorrelationDrawsAsAGroupDoes) {
 }
 
 TEST(MonteCarloCorrelations, TheThreadsDoNotChangeTheDraws) {
-  const MonteCarloResult one = run_monte_carlo(kSources, kPairs, 6, {}, identity, kept(20000, 1));
-  const MonteCarloResult two = run_monte_carlo(kSources, kPairs, 6, {}, identity, kept(20000, 2));
+  const MonteCarloResult one = run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(20000, 1));
+  const MonteCarloResult two = run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(20000, 2));
   EXPECT_EQ(one.samples, two.samples);
   // and a copula that cannot be drawn is refused before any trial
   EXPECT_THROW(run_monte_carlo(kSources, {{"n", "u", 0.99}}, 6, {}, identity, kept(100)), InputError);

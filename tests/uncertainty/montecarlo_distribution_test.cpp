@@ -8,6 +8,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "monte_carlo_support.hpp"
 
 namespace ccal::test {
 namespace {
@@ -20,7 +21,7 @@ Tolerance normal_source(double sigma) {
   return t;
 }
 
-void identity(std::span<const double> x, std::span<double> y) { std::copy(x.begin(), x.end(), y.begin()); }
+using ccal::test::identity;
 
 TEST(MonteCarloDistribution, SamplesHistogramAndEndErrorOfANormalOutput) {
   const double sigma = 2.0, M = 200000;

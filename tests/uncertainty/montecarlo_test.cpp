@@ -5,6 +5,8 @@
 // Every tolerance below is derived from the sampling error of the estimator at the number of trials used
 // (5 standard deviations unless said otherwise). The runs are seeded, so the outcome is the same every time;
 // the tolerances say that the seed was not chosen to make them pass.
+#include "ccal/uncertainty/montecarlo.hpp"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -17,9 +19,9 @@
 
 #include "../src/uncertainty/calibration_cache.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
 #include "independent_lpu.hpp"
+#include "monte_carlo_support.hpp"
 
 namespace ccal::test {
 namespace {
@@ -34,7 +36,7 @@ Tolerance source(std::string id, double bound, Distribution d, std::string group
 }
 
 // The model y = x (every source is an output).
-void identity(std::span<const double> x, std::span<double> y) { std::copy(x.begin(), x.end(), y.begin()); }
+using ccal::test::identity;
 
 MonteCarloOptions fixed(std::uint64_t trials, std::uint64_t seed = 1) {
   MonteCarloOptions o;

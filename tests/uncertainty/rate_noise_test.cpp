@@ -1,5 +1,7 @@
 // The drives' random rate noise (docs/model.md §3.2): the closed forms of a run mean's scatter, a time-domain
 // simulation of the noise through the exact chain, and the budget's and the Monte Carlo's Type A component.
+#include "ccal/uncertainty/rate_noise.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,13 +11,13 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
-#include "ccal/uncertainty/rate_noise.hpp"
 #include "experiment_support.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 // One run on the platform axis (L = l = 0), Earth rotation off, an instrument with K1 = 1 per g only: its
 // output is a_i, so the closed forms below are those of the IA input.

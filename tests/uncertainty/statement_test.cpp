@@ -1,11 +1,13 @@
 // The calibration statement (JCGM 100 §7, Annex G; docs/model.md §10.5): Welch–Satterthwaite, the coverage
 // factor from Student's t, and the statement of a coefficient, against closed forms and published t tables.
+#include "ccal/uncertainty/statement.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "ccal/uncertainty/statement.hpp"
+#include "test_constants.hpp"
 
 namespace ccal {
 namespace {
@@ -16,7 +18,7 @@ namespace {
 constexpr double kTable = 5e-5;
 constexpr double kT975_3 = 3.1824, kT975_5 = 2.5706, kT975_10 = 2.2281, kT975_30 = 2.0423, kT975_31 = 2.0395;
 // Φ⁻¹(0.975), the normal quantile, to 16 digits.
-constexpr double kZ975 = 1.959963984540054;
+using ccal::test::kZ975;
 
 TEST(Statement, PureTypeBIsNormal) {
   // Only a Type B part (ν = ∞): ν_eff = ∞ and k = 1.96 at 95 %, relative 1e-12 (the quantile is computed to

@@ -15,12 +15,13 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/verbs/allocate.hpp"
 #include "ccal/verbs/budget.hpp"
+#include "test_constants.hpp"
 #include "verbs_support.hpp"
 
 namespace ccal::test {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
+using ccal::test::kDeg;
 
 verbs::AllocateOptions k2_k3_targets() {
   verbs::AllocateOptions o;

@@ -11,11 +11,12 @@
 
 #include "ccal/io/config_file.hpp"
 #include "ccal/verbs/budget.hpp"
+#include "test_constants.hpp"
 
 namespace ccal::verbs {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ccal::test::kPi;
 
 Config bundled() { return parse_config(bundled_example_text(), "mechanism_test.toml"); }
 
