@@ -27,7 +27,10 @@ fi
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 export CCACHE_BASEDIR="$PWD"
-CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" -DCCAL_BUILD_FUZZ=ON \
+# -O1, as fuzzing services build: a cold build takes 400 s instead of 450-670 s at -O3 on 2 cores, and for a short
+# run the coverage found matters more than executions per second.
+CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
+  "${launcher[@]}" -DCCAL_BUILD_FUZZ=ON \
   -DCCAL_SANITIZE=fuzzer-no-link,address,undefined -DCCAL_BUILD_TESTS=OFF -DCCAL_BUILD_BENCH=OFF \
   -DCCAL_BUILD_PYTHON=OFF >/dev/null
 targets=(fuzz_units fuzz_config fuzz_csv fuzz_run_log)
