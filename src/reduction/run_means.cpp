@@ -118,6 +118,10 @@ struct RunTables {
   std::vector<double> cos_theta, sin_theta;  // θ1(0) + θ_j
   std::vector<double> cos_gamma, sin_gamma;  // φ0 − θ_j (counter-rotating) or φ0
   std::vector<double> cos_half, sin_half;    // mΩT/2, m = 0..M/2
+  // The DFT of the weights (spectral_weights.hpp's dft_weights) as c_m cos(mθ_j), c_m sin(mθ_j) at
+  // [(m − 1)M + j], m = 1..M/2, with c_m = 2 (1 at the Nyquist term): contiguous in j, so that the sums of
+  // all nodes run side by side. Scaling by 2 is exact, so each weight is the same double as dft_weights'.
+  std::vector<double> dft_cos, dft_sin;
   Matrix3d mount;
 };
 
@@ -203,6 +207,12 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
       throw std::invalid_argument(
           fmt::format("RunMeanKernel: {} fast nodes; an even number ≥ 2 is needed", t.M));
     t.table = detail::FastPhaseTable(t.M);
+    for (int m = 1; m <= t.M / 2; ++m)
+      for (int j = 0; j < t.M; ++j) {
+        const double c_m = m == t.M / 2 ? 1.0 : 2.0;
+        t.dft_cos.push_back(c_m * t.table.cos_k[std::size_t(m * j % t.M)]);
+        t.dft_sin.push_back(c_m * t.table.sin_k[std::size_t(m * j % t.M)]);
+      }
     const double phi0 = initial_phase(run, geometry, site);
     for (int j = 0; j < t.M; ++j) {
       const double theta = t.table.phase(j);
@@ -316,7 +326,19 @@ void quadrature_weights(const RunTables& t, double domega, double theta1_rate, i
                                           &scratch.nu_re[std::size_t(m * Q)],
                                           &scratch.nu_im[std::size_t(m * Q)]);
   }
-  detail::dft_weights<double>(t.table, Q, scratch.nu_re.data(), scratch.nu_im.data(), scratch.weights.data());
+  // w_jq = (ν_0q + Σ_m c_m (cos(mθ_j) Re ν_mq + sin(mθ_j) Im ν_mq)) / M, summed over m in dft_weights' order.
+  const int M = t.M;
+  for (int q = 0; q < Q; ++q) {
+    double* w = &scratch.weights[std::size_t(q * M)];
+    for (int j = 0; j < M; ++j) w[j] = scratch.nu_re[std::size_t(q)];
+    for (int m = 1; m <= M / 2; ++m) {
+      const double re = scratch.nu_re[std::size_t(m * Q + q)], im = scratch.nu_im[std::size_t(m * Q + q)];
+      const double* c = &t.dft_cos[std::size_t((m - 1) * M)];
+      const double* s = &t.dft_sin[std::size_t((m - 1) * M)];
+      for (int j = 0; j < M; ++j) w[j] += c[j] * re + s[j] * im;
+    }
+    for (int j = 0; j < M; ++j) w[j] /= double(M);
+  }
 }
 
 // The main-axis half at each fast node, carried into frame-3t coordinates; B's arm stretch c·θ̇1² added.
