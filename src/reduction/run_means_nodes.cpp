@@ -279,7 +279,10 @@ template <int kOrder, bool kRipple, class T>
 template <int kOrder, bool kRipple, class T>
 [[gnu::always_inline]] inline JointLink<T> platform_link(const PlatformInputs& in,
                                                          const JointCoefficients<kOrder>& coefficients,
-                                                         const MainAxisNodes& main, int j, T cg, T sg) {
+                                                         const MainAxisNodes& main, int j,
+                                                         const T& cg_nominal, const T& sg_nominal) {
+  // By reference: a 32-byte vector passed by value draws GCC's ABI note in baseline code.
+  T cg = cg_nominal, sg = sg_nominal;
   if constexpr (!kRipple) {
     return joint_link(coefficients, cg, sg, in.rate);
   } else {
