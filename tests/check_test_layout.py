@@ -24,7 +24,6 @@ TESTED_ELSEWHERE = {
     "io/config_sections_plan.cpp": "the [plan] and [identification] keys: tests/io/config_file*_test.cpp",
     "io/csv_stream.cpp": "the CSV reader: tests/io/observation_csv*_test.cpp, run_log_reducer_test.cpp",
     "io/observations_header.cpp": "the header and log lines: tests/io/observation_csv_test.cpp",
-    "io/encoder_fit.cpp": "the encoders' line fit: tests/io/run_log_reducer_test.cpp, run_log_ripple_test.cpp",
     "io/run_log_writer.cpp": "logs from the model: tests/verbs/reduce_test.cpp",
     "uncertainty/linear_propagation.cpp": "propagate_linear: tests/uncertainty/montecarlo_test.cpp, "
     "montecarlo_correlations_test.cpp",

@@ -8,9 +8,10 @@
 
 namespace ccal {
 
-EncoderFit::EncoderFit(int harmonic_order)
+EncoderFit::EncoderFit(int harmonic_order, int anchor_interval)
     : order_(std::max(harmonic_order, 0)),
       p_(std::size_t(2 + 2 * order_)),
+      first_harmonic_(anchor_interval),
       normal_(p_ * p_, 0.0),
       rhs_(p_, 0.0),
       x_(p_, 0.0) {
@@ -51,15 +52,17 @@ void EncoderFit::set_reference() {
   buffer_.shrink_to_fit();
 }
 
-// Regressors 1, τ, cos kα, sin kα (k = 1..N, from the reading; the multiples by the angle-addition
-// recurrence) and the angle less the reference line; the upper triangle of XᵀX, Xᵀd and Σd².
+// Regressors 1, τ, cos kα, sin kα (k = 1..N, from the reading: k = 1 turned on from the previous reading,
+// sincos_track.hpp; the multiples by the angle-addition recurrence) and the angle less the reference line;
+// the upper triangle of XᵀX, Xᵀd and Σd².
 void EncoderFit::accumulate(double tau, double angle, double reading) {
   const double d = angle - (ref_start_ + ref_slope_ * tau);
   double* x = x_.data();
   x[0] = 1.0;
   x[1] = tau;
   if (order_ > 0) {
-    const double c1 = std::cos(reading), s1 = std::sin(reading);
+    const SinCos first = first_harmonic_.next(reading);
+    const double c1 = first.cos, s1 = first.sin;
     double c = c1, s = s1;
     for (int k = 1; k <= order_; ++k) {
       x[2 * k] = c;

@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "ccal/core/sincos_track.hpp"
+
 namespace ccal {
 
 struct EncoderFitResult {
@@ -28,7 +30,9 @@ struct EncoderFitResult {
 class EncoderFit {
  public:
   static constexpr std::size_t kReferenceSamples = 4096;
-  explicit EncoderFit(int harmonic_order);
+  // The harmonics' cos α, sin α come from a SinCosTrack anchored every `anchor_interval` samples (0: from
+  // std::cos and std::sin at every sample).
+  explicit EncoderFit(int harmonic_order, int anchor_interval = SinCosTrack::kAnchorInterval);
   // One sample: τ [s], the unwrapped angle [rad] and the reading it came from (the same angle up to whole
   // turns; the argument of the harmonics), τ increasing.
   void add(double tau, double angle, double reading);
@@ -43,6 +47,7 @@ class EncoderFit {
 
   int order_;
   std::size_t p_;               // unknowns: 2 + 2N
+  SinCosTrack first_harmonic_;  // cos α, sin α of the readings, in their order
   std::vector<double> buffer_;  // τ, α, reading until the reference line is set
   bool referenced_ = false;
   double ref_start_ = 0, ref_slope_ = 0;
