@@ -8,10 +8,10 @@
 
 namespace ccal {
 
-EncoderFit::EncoderFit(int harmonic_order, int anchor_interval)
+EncoderFit::EncoderFit(int harmonic_order, double max_turn)
     : order_(std::max(harmonic_order, 0)),
       p_(std::size_t(2 + 2 * order_)),
-      first_harmonic_(anchor_interval),
+      first_harmonic_(max_turn),
       normal_(p_ * p_, 0.0),
       rhs_(p_, 0.0),
       x_(p_, 0.0) {
@@ -52,7 +52,7 @@ void EncoderFit::set_reference() {
   buffer_.shrink_to_fit();
 }
 
-// Regressors 1, τ, cos kα, sin kα (k = 1..N, from the reading: k = 1 turned on from the previous reading,
+// Regressors 1, τ, cos kα, sin kα (k = 1..N, from the reading: k = 1 turned from an earlier reading,
 // sincos_track.hpp; the multiples by the angle-addition recurrence) and the angle less the reference line;
 // the upper triangle of XᵀX, Xᵀd and Σd².
 void EncoderFit::accumulate(double tau, double angle, double reading) {

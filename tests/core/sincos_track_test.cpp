@@ -1,6 +1,6 @@
 // cos and sin of a slowly moving angle by angle addition (core/sincos_track.hpp) against long double sinl,
-// cosl (64-bit mantissa: 2048 times finer than a double's ulp): the Taylor turn to its rounding, the tracked
-// pair within kErrorBound over millions of samples, the anchors where the header puts them.
+// cosl (64-bit mantissa: 2048 times finer than a double's ulp): the Taylor turn to its rounding, the turned
+// pairs within kErrorBound over millions of angles, the anchors where the header puts them.
 #include "ccal/core/sincos_track.hpp"
 
 #include <fmt/format.h>
@@ -29,27 +29,22 @@ struct Uniform {
 };
 
 TEST(SinCosTrack, SmallTurnIsRoundedOnce) {
-  // sin h to ε|h| (the truncated series' rest and the correction's own roundings far below), q = 1 − cos h
-  // to 3ε·q, over the whole range of steps, both signs, down to tiny ones. The reference q is 2 sin²(h/2),
-  // free of the cancellation in 1 − cos h.
+  // sin H to ε|H| (the truncated series' rest and the correction's own roundings far below), q = 1 − cos H
+  // to 4ε·q, over the whole range of turns, both signs, down to tiny ones. The reference q is 2 sin²(H/2),
+  // free of the cancellation in 1 − cos H.
   Uniform u{7};
   double worst_sin = 0, worst_q = 0;
-  for (int k = 0; k < 200000; ++k) {
-    const double h = (2 * u() - 1) * SinCosTrack::kMaxStep * (k % 10 == 0 ? 1e-4 : 1.0);
+  auto check = [&](double h) {
     const SmallTurn t = small_turn(h);
     const long double half = std::sin(0.5L * h), q = 2 * half * half;
     worst_sin = std::max(worst_sin, double(std::abs(t.sin - std::sin((long double)h)) / std::abs(h)));
     worst_q = std::max(worst_q, double(std::abs(t.one_minus_cos - q) / q));
-  }
-  for (const double h :
-       {SinCosTrack::kMaxStep, -SinCosTrack::kMaxStep}) {  // the ends, where the rest is largest
-    const SmallTurn t = small_turn(h);
-    const long double half = std::sin(0.5L * h);
-    worst_sin = std::max(worst_sin, double(std::abs(t.sin - std::sin((long double)h)) / std::abs(h)));
-    worst_q = std::max(worst_q, double(std::abs(t.one_minus_cos - 2 * half * half) / (2 * half * half)));
-  }
-  EXPECT_LE(worst_sin, 1.01 * kEps);
-  EXPECT_LE(worst_q, 3 * kEps);
+  };
+  for (int k = 0; k < 200000; ++k) check((2 * u() - 1) * SinCosTrack::kMaxTurn * (k % 10 == 0 ? 1e-4 : 1.0));
+  check(std::nextafter(SinCosTrack::kMaxTurn, 0.0));  // the ends, where the series' rest is largest
+  check(-std::nextafter(SinCosTrack::kMaxTurn, 0.0));
+  EXPECT_LE(worst_sin, 1.05 * kEps);
+  EXPECT_LE(worst_q, 4 * kEps);
 }
 
 // The largest error of either component of a SinCosTrack over `n` angles starting at `start`, each step
@@ -70,49 +65,53 @@ double worst_error(int n, double start, Step step) {
 }
 
 TEST(SinCosTrack, StaysWithinItsBound) {
-  // An encoder read at 2 kHz at 8.86 rad/s with a 10 ppm ripple and 1e-9 rad steps of its reading; steps
-  // drawn anywhere in [−kMaxStep, kMaxStep] (both directions, reversals); the largest steps of one sign
-  // (the largest correction every turn), two million samples in all: each component within kErrorBound of
-  // the true cos, sin.
+  // An encoder read at 2 kHz at 8.86 rad/s with a 10 ppm ripple and 1e-9 rad steps of its reading; a random
+  // walk of steps up to kMaxTurn/8 (turns of every size, both directions); steps of kMaxTurn/3 (the largest
+  // turns), two million angles in all: each component within kErrorBound of the true cos, sin.
   Uniform u{11};
   const double encoder = worst_error(1000000, 0.3, [](int k) {
     const double t = 5e-4 * k;
     return std::round((8.86 * 5e-4 + 1e-5 * 8.86 * 5e-4 * std::cos(8.86 * t)) * 1e9) / 1e9;
   });
-  const double random = worst_error(500000, 1.0, [&](int) { return (2 * u() - 1) * SinCosTrack::kMaxStep; });
-  const double largest = worst_error(500000, 2.0, [](int) { return -SinCosTrack::kMaxStep; });
+  const double walk =
+      worst_error(500000, 1.0, [&](int) { return (2 * u() - 1) * SinCosTrack::kMaxTurn / 8; });
+  const double largest = worst_error(500000, 2.0, [](int) { return -SinCosTrack::kMaxTurn / 3; });
   EXPECT_LE(encoder, SinCosTrack::kErrorBound);
-  EXPECT_LE(random, SinCosTrack::kErrorBound);
+  EXPECT_LE(walk, SinCosTrack::kErrorBound);
   EXPECT_LE(largest, SinCosTrack::kErrorBound);
-  // the bound adds up the worst case of every rounding; measured: 5-6e-16
-  RecordProperty("worst_error", fmt::format("{:.3g} {:.3g} {:.3g}", encoder, random, largest));
+  // the bound adds up the worst case of every rounding
+  RecordProperty("worst_error", fmt::format("{:.3g} {:.3g} {:.3g}", encoder, walk, largest));
 }
 
-TEST(SinCosTrack, AnchorsAtTheFirstAngleAfterJumpsAndEveryIntervalTurns) {
-  // The anchored pairs are std::cos, std::sin to the bit: the first angle, the angle after a step beyond
-  // kMaxStep (a wrap), every (kAnchorInterval + 1)-th angle of a slow sequence, every angle when anchored
-  // each sample (max_turns 0). The others are turned.
+TEST(SinCosTrack, AnchorsAtTheFirstAngleAndWhereTheTurnWouldReachKMaxTurn) {
+  // The anchored pairs are std::cos, std::sin to the bit: the first angle, each angle kMaxTurn or more from
+  // the anchor before it (a wrap, a jump, or the sequence having moved on), every angle when the largest turn
+  // is 0. The others are turned.
   auto same_bits = [](SinCos p, double a) {
     return std::bit_cast<std::uint64_t>(p.cos) == std::bit_cast<std::uint64_t>(std::cos(a)) &&
            std::bit_cast<std::uint64_t>(p.sin) == std::bit_cast<std::uint64_t>(std::sin(a));
   };
   SinCosTrack track, exact(0);
-  int turned_differ = 0;
-  for (int k = 0; k < 100 * (SinCosTrack::kAnchorInterval + 1); ++k) {
+  int anchors = 0, turned_differ = 0;
+  double anchor = 0;
+  for (int k = 0; k < 2000; ++k) {
     const double a = 0.1 + 0.0123456789 * k;
     const bool same = same_bits(track.next(a), a);
-    if (k % (SinCosTrack::kAnchorInterval + 1) == 0) {
+    if (k == 0 || std::abs(a - anchor) >= SinCosTrack::kMaxTurn) {
+      anchor = a;
+      ++anchors;
       EXPECT_TRUE(same) << k;
     }
     turned_differ += !same;  // a turned pair may round as std::cos, std::sin do, but not all of them
     EXPECT_TRUE(same_bits(exact.next(a), a)) << k;
   }
+  EXPECT_EQ(anchors, 96);  // every 21st angle: 20 steps of 0.0123 rad stay below 1/4 rad
   EXPECT_GT(turned_differ, 0);
-  for (const double jump : {6.2, -6.2, 1.5 * SinCosTrack::kMaxStep, 1.0}) {
+  for (const double jump : {6.2, -6.2, SinCosTrack::kMaxTurn, -SinCosTrack::kMaxTurn, 1.0}) {
     SinCosTrack t;
     t.next(0.5);
     t.next(0.51);
-    EXPECT_TRUE(same_bits(t.next(0.51 + jump), 0.51 + jump)) << jump;
+    EXPECT_TRUE(same_bits(t.next(0.5 + jump), 0.5 + jump)) << jump;
   }
 }
 

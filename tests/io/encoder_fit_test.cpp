@@ -1,6 +1,6 @@
 // The encoder fit (io/encoder_fit.hpp) with its harmonics' cos α, sin α turned from sample to sample
 // (core/sincos_track.hpp) against the same fit with std::cos, std::sin at every sample, as it was before:
-// the tracked pairs are within 2.7e-15 of the true ones, a millionth of what the readings' own 1e-9 rad
+// the turned pairs are within 6.7e-16 of the true ones, a millionth of what the readings' own 1e-9 rad
 // rounding puts into them, so the fits agree to far below 1e-12 of each result (1e-12 of the harmonics'
 // amplitude for the harmonics, which are noise-sized where the drive has no ripple).
 #include "ccal/io/encoder_fit.hpp"
@@ -17,9 +17,9 @@ namespace {
 
 // A 2 kHz encoder as the benchmark's log has it: 8.86 rad/s (or −8.86, the counter-rotating platform)
 // with a 10 ppm once-per-revolution ripple, read to 1e-9 rad and wrapped to [0, 2π), unwrapped as the
-// reducer does; fitted with harmonic order `order`, the pairs anchored every `anchor_interval` samples.
-EncoderFitResult fit_encoder(int order, int anchor_interval, double rate, int samples) {
-  EncoderFit fit(order, anchor_interval);
+// reducer does; fitted with harmonic order `order`, the pairs turned up to `max_turn` from their anchors.
+EncoderFitResult fit_encoder(int order, double max_turn, double rate, int samples) {
+  EncoderFit fit(order, max_turn);
   double unwrapped = 0, previous = 0;
   for (int k = 0; k < samples; ++k) {
     const double t = 5e-4 * k, angle = 0.3 + rate * t + 1e-5 * std::sin(rate * t);
@@ -40,7 +40,7 @@ double norm(const std::vector<double>& v) {
 TEST(EncoderFit, TurnedHarmonicsFitAsStdCosSinDo) {
   for (const double rate : {8.86, -8.86})
     for (const int order : {1, 2}) {
-      const EncoderFitResult turned = fit_encoder(order, SinCosTrack::kAnchorInterval, rate, 400000);
+      const EncoderFitResult turned = fit_encoder(order, SinCosTrack::kMaxTurn, rate, 400000);
       const EncoderFitResult exact = fit_encoder(order, 0, rate, 400000);
       for (auto [a, b] : {std::pair{turned.slope, exact.slope},
                           {turned.start, exact.start},

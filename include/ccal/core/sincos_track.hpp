@@ -1,22 +1,23 @@
 #pragma once
 // cos α and sin α of a sequence of angles that move by small steps (an encoder read many times per
-// revolution), mostly without calling cos and sin: each sample's pair is the previous one turned by the step
-// h = αₙ − αₙ₋₁ (angle addition),
-//     cos αₙ = cos αₙ₋₁ − (q cos αₙ₋₁ + sin h · sin αₙ₋₁),
-//     sin αₙ = sin αₙ₋₁ − (q sin αₙ₋₁ − sin h · cos αₙ₋₁),     q = 1 − cos h,
-// with sin h and q from their Taylor series (small_turn). Written as the pair less a correction of size |h|,
-// each turn rounds the pair once (ε) and the correction (~2|h|ε); the pair is anchored — taken from std::cos
-// and std::sin — at the first sample, after a step beyond kMaxStep (a wrap to the other end of [0, 2π), a
-// gap), and after kAnchorInterval turns, so that these roundings add up over at most kAnchorInterval turns.
+// revolution), mostly without calling cos and sin: each angle's pair is the pair of an earlier angle of the
+// sequence, the anchor α₀, turned by H = α − α₀ (angle addition),
+//     cos α = cos α₀ − (q cos α₀ + sin H · sin α₀),
+//     sin α = sin α₀ − (q sin α₀ − sin H · cos α₀),     q = 1 − cos H,
+// with sin H and q from their Taylor series (small_turn). The anchor's pair is std::cos and std::sin of it;
+// an angle kMaxTurn or more from the anchor (a wrap to the other end of [0, 2π), a gap, or the sequence
+// having moved on) becomes the next anchor. Each pair is one turn from an anchor: no error accumulates along
+// the sequence, and the turns of different angles do not wait for each other.
 //
-// Error bound (ε = 2⁻⁵³, |h| ≤ 1/16), for the error vector e = (cos, sin) computed − true: at an anchor
-// |e| ≤ 2√2 ε (std::cos, std::sin within one ulp, ≤ 2ε, of the true values). A turn is a rotation up to
-// O(ε), so it keeps |e|, and adds at most ε (the final roundings) + 2√2·0.065ε (the correction's products
-// and sum) + 2ε|h| (sin h rounded, and h = αₙ − αₙ₋₁ itself rounded) + 4ε·q (q rounded) < 1.35ε. So each
-// component is within kErrorBound = (3 + 1.35·kAnchorInterval)·ε ≈ 2.7e-15 of the true cos αₙ, sin αₙ, where
-// std::cos, std::sin give them to 2.2e-16. An encoder's angle is read to ~1e-9 rad (a 32-bit encoder's step):
-// its cos and sin are uncertain by 1e-9, six orders above this bound.
+// Error bound (ε = 2⁻⁵³, |H| < 1/4), for the error vector e = (cos, sin) computed − true: the anchor's pair
+// is within one ulp of the true one in each component, |e| ≤ √2·2ε; a turn, a rotation up to O(ε), keeps
+// |e| and adds at most ε (the final roundings) + √2·2ε·(1/32 + 1/4) (the correction's products and sum) +
+// 2ε|H| (sin H rounded, and H = α − α₀ itself rounded) + 4ε·q (q rounded) < 2.4ε. So each component is
+// within kErrorBound = 6ε ≈ 6.7e-16 of the true cos α, sin α, where std::cos, std::sin give them to
+// 1.1e-16. An encoder's angle is read to ~1e-9 rad (a 32-bit encoder's step): its cos and sin are uncertain
+// by 1e-9, six orders above this bound.
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace ccal {
@@ -26,55 +27,65 @@ struct SinCos {
   double sin = 0;
 };
 
-// sin h and q = 1 − cos h for |h| ≤ SinCosTrack::kMaxStep by their Taylor series, with z = h²:
-//   sin h = h − h³/3! + h⁵/5! − h⁷/7! + h⁹/9!   (the next term, h¹¹/11!, is below 2e-21 ≪ ε|h|),
-//   q     = z/2! − z²/4! + z³/6! − z⁴/8!        (the next term, h¹⁰/10!, is below 3e-19 ≪ ε).
-// sin h is h plus a correction below h³/6, rounded once (to ε|h|, and the correction's own roundings far
-// below); q is z times a sum near 1/2, three roundings (to 3ε·q).
+// Two doubles operated on together (GCC's and Clang's vector extension; SSE2 on x86-64): each lane is IEEE
+// arithmetic on its own, the same as the scalar operations.
+using DoublePair = double __attribute__((vector_size(2 * sizeof(double))));
+
+// sin H and q = 1 − cos H for |H| < SinCosTrack::kMaxTurn by their Taylor series, with z = H²:
+//   sin H = H + H·z·(−1/3! + z/5! − z²/7! + z³/9! − z⁴/11! + z⁵/13!)   (the rest, below H¹⁵/15!, is 1e-21),
+//   q     = z·(1/2! − z/4! + z²/6! − z³/8! + z⁴/10! − z⁵/12!)         (the rest, below H¹⁴/14!, is 5e-20),
+// the two polynomials in z evaluated together (Horner, a pair of coefficients at each step). sin H is H plus
+// a correction below H³/6, rounded once (to ε|H|, the correction's own roundings far below); q is z times a
+// sum near 1/2, a few roundings (to 4ε·q).
 struct SmallTurn {
   double sin = 0;
   double one_minus_cos = 0;
 };
 inline SmallTurn small_turn(double h) {
   const double z = h * h;
-  const double sin = h + h * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880))));
-  const double q = z * (0.5 + z * (-1.0 / 24 + z * (1.0 / 720 + z * (-1.0 / 40320))));
-  return {sin, q};
+  DoublePair p{1.0 / 6227020800, -1.0 / 479001600};  // 1/13!, −1/12!
+  p = p * z + DoublePair{-1.0 / 39916800, 1.0 / 3628800};
+  p = p * z + DoublePair{1.0 / 362880, -1.0 / 40320};
+  p = p * z + DoublePair{-1.0 / 5040, 1.0 / 720};
+  p = p * z + DoublePair{1.0 / 120, -1.0 / 24};
+  p = p * z + DoublePair{-1.0 / 6, 0.5};
+  return {h + h * z * p[0], z * p[1]};
 }
 
 class SinCosTrack {
  public:
-  static constexpr double kMaxStep = 0.0625;  // rad: 2 kHz logs of joints up to 125 rad/s
-  static constexpr int kAnchorInterval = 16;  // turns between anchors
-  static constexpr double kErrorBound =
-      (3 + 1.35 * kAnchorInterval) * std::numeric_limits<double>::epsilon() / 2;
+  static constexpr double kMaxTurn = 0.25;  // rad: 2 kHz logs anchor every 57 samples at 8.86 rad/s
+  static constexpr double kErrorBound = 6 * std::numeric_limits<double>::epsilon() / 2;
 
-  // max_turns: turns between anchors (0: every pair from std::cos and std::sin).
-  explicit SinCosTrack(int max_turns = kAnchorInterval) : max_turns_(max_turns) {}
+  // max_turn: the largest turn from an anchor (0: every pair from std::cos and std::sin).
+  explicit SinCosTrack(double max_turn = kMaxTurn) : max_turn_(max_turn) {}
 
   // cos and sin of the next angle of the sequence [rad].
   SinCos next(double angle) {
-    const double h = angle - angle_;
-    if (turns_ < max_turns_ && std::abs(h) <= kMaxStep) {  // false for the first angle: h is NaN
-      const SmallTurn t = small_turn(h);
-      const double c = pair_.cos, s = pair_.sin;
-      pair_.cos = c - (t.one_minus_cos * c + t.sin * s);
-      pair_.sin = s - (t.one_minus_cos * s - t.sin * c);
-      ++turns_;
-    } else {
-      pair_.cos = std::cos(angle);
-      pair_.sin = std::sin(angle);
-      turns_ = 0;
+    const double h = angle - anchor_;
+    if (!(std::abs(h) < max_turn_)) {  // also for the first angle: h is NaN
+      anchor_ = angle;
+      const double c = std::cos(angle), s = std::sin(angle);
+      pair_ = DoublePair{c, s};
+      rotated_ = DoublePair{s, -c};
+      return {c, s};
     }
-    angle_ = angle;
-    return pair_;
+    // (cos α, sin α) = P − (q·P + sin H·R) for P = (cos α₀, sin α₀), R = (sin α₀, −cos α₀)
+    const SmallTurn t = small_turn(h);
+    const DoublePair turned = pair_ - (t.one_minus_cos * pair_ + t.sin * rotated_);
+    return {turned[0], turned[1]};
+  }
+  // The pairs of n angles, as next() gives them one by one.
+  void next(const double* angles, SinCos* pairs, std::size_t n) {
+    SinCosTrack track = *this;  // the state in registers over the loop
+    for (std::size_t k = 0; k < n; ++k) pairs[k] = track.next(angles[k]);
+    *this = track;
   }
 
  private:
-  int max_turns_;
-  int turns_ = 0;  // since the last anchor
-  double angle_ = std::numeric_limits<double>::quiet_NaN();
-  SinCos pair_;
+  double max_turn_;
+  double anchor_ = std::numeric_limits<double>::quiet_NaN();
+  DoublePair pair_{1, 0}, rotated_{0, -1};  // the anchor's P and R
 };
 
 }  // namespace ccal

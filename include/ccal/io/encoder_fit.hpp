@@ -30,9 +30,9 @@ struct EncoderFitResult {
 class EncoderFit {
  public:
   static constexpr std::size_t kReferenceSamples = 4096;
-  // The harmonics' cos α, sin α come from a SinCosTrack anchored every `anchor_interval` samples (0: from
+  // The harmonics' cos α, sin α come from a SinCosTrack turning up to `max_turn` from its anchors (0: from
   // std::cos and std::sin at every sample).
-  explicit EncoderFit(int harmonic_order, int anchor_interval = SinCosTrack::kAnchorInterval);
+  explicit EncoderFit(int harmonic_order, double max_turn = SinCosTrack::kMaxTurn);
   // One sample: τ [s], the unwrapped angle [rad] and the reading it came from (the same angle up to whole
   // turns; the argument of the harmonics), τ increasing.
   void add(double tau, double angle, double reading);
