@@ -3,7 +3,8 @@
 # bundled example (trials/s on 2 threads), `ccal design` of the bundled example (s), the streamed reduction of a
 # run log (MB/s on one core), and the kernels behind them. Both are built in Release (through ccache): this
 # tree in ./build (scripts/setup.sh must have run), the release in ./build-bench/<ref> from a git worktree.
-#   bash scripts/bench.sh            against the newest release tag (v*)
+#   bash scripts/bench.sh            against the newest release tag (v*), or without tags the last commit of
+#                                    the day CHANGELOG.md dates its newest release
 #   bash scripts/bench.sh v0.1.0     against a given tag or commit
 # A figure the release has no benchmark for is shown as "-". Run it on a quiet machine: the figures are wall
 # times.
@@ -11,7 +12,18 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ref=${1:-$(git tag --list 'v*' --sort=-version:refname | head -n1)}
 if [ -z "$ref" ]; then
-  echo "bench: no release tag (v*) to compare with; accepted: a tag or commit as the argument" >&2
+  # A clone without tags: the newest release CHANGELOG.md dates ("## [0.1.0] - 2026-12-01"), as the last
+  # commit of that day (UTC).
+  release=$(grep -m1 -E '^## \[[0-9]+\.[0-9]+\.[0-9]+\] - [0-9]{4}-[0-9]{2}-[0-9]{2}' CHANGELOG.md || true)
+  if [ -n "$release" ]; then
+    day=${release##* - }
+    ref=$(git rev-list -1 --before="${day}T23:59:59Z" HEAD)
+    version=${release#*[}
+    echo "bench: no release tag; comparing with ${version%%]*}, the last commit of $day: $(git log -1 --format='%h' "$ref")"
+  fi
+fi
+if [ -z "$ref" ]; then
+  echo "bench: no release tag (v*) and no dated release in CHANGELOG.md to compare with; accepted: a tag or commit as the argument" >&2
   exit 2
 fi
 if ! git rev-parse --verify --quiet "$ref^{commit}" >/dev/null; then
