@@ -24,6 +24,8 @@ class LineReader {
   void line(std::string_view line) {
     ++line_no_;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    // A row the sink reads itself (one that is neither blank nor a comment, or the sink would not take it).
+    if (!header_.empty() && sink_.row_line(line, line_no_)) return;
     if (header_.empty()) check_csv_line_ends(line, source_, line_no_);  // rows: a CR is a bad cell there
     const std::string_view content = trim_csv(line);
     if (content.empty() || content.front() == '#') return;

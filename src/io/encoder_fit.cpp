@@ -20,7 +20,7 @@ EncoderFit::EncoderFit(int harmonic_order, double max_turn)
 
 void EncoderFit::add(double tau, double angle, double reading) {
   if (referenced_) {
-    accumulate(tau, angle, reading);
+    push(tau, angle, reading);
     return;
   }
   buffer_.insert(buffer_.end(), {tau, angle, reading});
@@ -47,7 +47,7 @@ void EncoderFit::set_reference() {
   ref_slope_ = stt > 0 ? sta / stt : 0.0;
   ref_start_ = am - ref_slope_ * tm;
   referenced_ = true;
-  for (std::size_t i = 0; i < m; ++i) accumulate(buffer_[3 * i], buffer_[3 * i + 1], buffer_[3 * i + 2]);
+  for (std::size_t i = 0; i < m; ++i) push(buffer_[3 * i], buffer_[3 * i + 1], buffer_[3 * i + 2]);
   buffer_.clear();
   buffer_.shrink_to_fit();
 }
@@ -55,51 +55,81 @@ void EncoderFit::set_reference() {
 // Regressors 1, τ, cos kα, sin kα (k = 1..N, from the reading: k = 1 turned from an earlier reading,
 // sincos_track.hpp; the multiples by the angle-addition recurrence) and the angle less the reference line;
 // the upper triangle of XᵀX, Xᵀd and Σd².
-void EncoderFit::accumulate(double tau, double angle, double reading) {
-  const double d = angle - (ref_start_ + ref_slope_ * tau);
-  double* x = x_.data();
-  x[0] = 1.0;
-  x[1] = tau;
-  if (order_ > 0) {
-    const SinCos first = first_harmonic_.next(reading);
-    const double c1 = first.cos, s1 = first.sin;
-    double c = c1, s = s1;
-    for (int k = 1; k <= order_; ++k) {
-      x[2 * k] = c;
-      x[2 * k + 1] = s;
-      const double next = c * c1 - s * s1;
-      s = s * c1 + c * s1;
-      c = next;
-    }
-  }
-  switch (p_) {  // the usual sizes unrolled; the same sums in the same order as the general loop
-    case 2:
-      accumulate_products<2>(x, d);
-      break;
-    case 4:
-      accumulate_products<4>(x, d);
-      break;
-    case 6:
-      accumulate_products<6>(x, d);
-      break;
-    default:
-      accumulate_products<0>(x, d);
-  }
-  dd_ += d * d;
-  last_tau_ = tau;
-  ++n_;
+void EncoderFit::accumulate_batch() {
+  const std::size_t n = batch_size_;
+  if (n == 0) return;
+  if (order_ > 0) first_harmonic_.next(batch_reading_, batch_pairs_, n);
+  if (order_ == 1)
+    accumulate_first_harmonic(n);
+  else
+    accumulate_products(n);
+  last_tau_ = batch_tau_[n - 1];
+  n_ += n;
+  batch_size_ = 0;
 }
 
-template <std::size_t P>
-void EncoderFit::accumulate_products(const double* x, double d) {
-  const std::size_t p = P == 0 ? p_ : P;
+// Any order: the sums in memory, the regressors of one sample at a time in x_.
+void EncoderFit::accumulate_products(std::size_t n) {
+  const std::size_t p = p_;
   double* a = normal_.data();
   double* b = rhs_.data();
-  for (std::size_t i = 0; i < p; ++i) {
-    const double xi = x[i];
-    for (std::size_t j = i; j < p; ++j) a[i * p + j] += xi * x[j];
-    b[i] += xi * d;
+  double* x = x_.data();
+  for (std::size_t k = 0; k < n; ++k) {
+    const double tau = batch_tau_[k];
+    const double d = batch_angle_[k] - (ref_start_ + ref_slope_ * tau);
+    x[0] = 1.0;
+    x[1] = tau;
+    if (order_ > 0) {
+      const double c1 = batch_pairs_[k].cos, s1 = batch_pairs_[k].sin;
+      double c = c1, s = s1;
+      for (int h = 1; h <= order_; ++h) {
+        x[2 * h] = c;
+        x[2 * h + 1] = s;
+        const double next = c * c1 - s * s1;
+        s = s * c1 + c * s1;
+        c = next;
+      }
+    }
+    for (std::size_t i = 0; i < p; ++i) {
+      const double xi = x[i];
+      for (std::size_t j = i; j < p; ++j) a[i * p + j] += xi * x[j];
+      b[i] += xi * d;
+    }
+    dd_ += d * d;
   }
+}
+
+// Order 1, the usual one: regressors 1, τ, c, s and the fifteen sums as named locals, which stay in
+// registers over the batch. The same sums as accumulate_products (1·v is v exactly).
+void EncoderFit::accumulate_first_harmonic(std::size_t n) {
+  double* a = normal_.data();  // 4×4 row-major
+  double s00 = a[0], s01 = a[1], s02 = a[2], s03 = a[3], s11 = a[5], s12 = a[6], s13 = a[7], s22 = a[10],
+         s23 = a[11], s33 = a[15];
+  double b0 = rhs_[0], b1 = rhs_[1], b2 = rhs_[2], b3 = rhs_[3], dd = dd_;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double tau = batch_tau_[k];
+    const double d = batch_angle_[k] - (ref_start_ + ref_slope_ * tau);
+    const double c = batch_pairs_[k].cos, s = batch_pairs_[k].sin;
+    s00 += 1.0;
+    s01 += tau;
+    s02 += c;
+    s03 += s;
+    s11 += tau * tau;
+    s12 += tau * c;
+    s13 += tau * s;
+    s22 += c * c;
+    s23 += c * s;
+    s33 += s * s;
+    b0 += d;
+    b1 += tau * d;
+    b2 += c * d;
+    b3 += s * d;
+    dd += d * d;
+  }
+  a[0] = s00, a[1] = s01, a[2] = s02, a[3] = s03, a[5] = s11, a[6] = s12, a[7] = s13, a[10] = s22,
+  a[11] = s23, a[15] = s33;
+  rhs_[0] = b0, rhs_[1] = b1, rhs_[2] = b2, rhs_[3] = b3;
+  dd_ = dd;
 }
 
 namespace {
@@ -130,6 +160,7 @@ Solution solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, Eigen::Index 
 
 EncoderFitResult EncoderFit::result() {
   if (!referenced_) set_reference();
+  accumulate_batch();
   const auto p = Eigen::Index(p_);
   Eigen::MatrixXd a(p, p);
   Eigen::VectorXd b(p);

@@ -39,6 +39,7 @@ CsvError LogReducer::cell_error(std::size_t column, int line, std::string proble
 void LogReducer::header(const std::vector<std::string>& names, int line) {
   header_ = names;
   header_line_ = line;
+  values_.assign(header_.size(), 0.0);
   auto find = [&](std::string_view name) -> std::optional<std::size_t> {
     for (std::size_t k = 0; k < header_.size(); ++k)
       if (header_[k] == name) return k;
@@ -93,9 +94,9 @@ std::optional<double> LogReducer::cell_general(const std::string_view* fields, s
 // One encoder sample: unwrapped (each step mapped to (−π, π]) and added to the fit. The samples must be less
 // than half a revolution apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping
 // would alias.
-void LogReducer::encoder_sample(Encoder& e, const std::string_view* fields, int line, bool time_ok,
-                                double t) {
-  const std::optional<double> raw = cell(fields, e.column, e.cell, line);
+template <class Cells>
+void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t) {
+  const std::optional<double> raw = cells(e.column, e.cell, line);
   if (time_ok && rows_ > 0 && have_previous_time_) {
     const double step_time = t - t_previous_;
     if (std::abs(planned_rate_) * step_time > 0.75 * std::numbers::pi)
@@ -123,9 +124,32 @@ void LogReducer::encoder_sample(Encoder& e, const std::string_view* fields, int 
 }
 
 void LogReducer::row(const std::string_view* fields, int line) {
+  reduce_row([&](std::size_t column, Problem kind, int at) { return cell(fields, column, kind, at); }, line);
+}
+
+bool LogReducer::row_line(std::string_view line, int line_no) {
+  const std::size_t n = values_.size();
+  const char* p = line.data();
+  const char* const end = p + line.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!scan_plain_decimal(p, end, values_[k])) return false;
+    if (k + 1 < n) {
+      if (p == end || *p != ',') return false;
+      ++p;
+    }
+  }
+  if (p != end) return false;
+  const double* values = values_.data();
+  reduce_row([values](std::size_t column, Problem, int) { return std::optional<double>(values[column]); },
+             line_no);
+  return true;
+}
+
+template <class Cells>
+void LogReducer::reduce_row(const Cells& cells, int line) {
   last_line_ = line;
   if (pending_kind_ == Problem::no_time) return;
-  std::optional<double> t = cell(fields, time_, Problem::time_cell, line);
+  std::optional<double> t = cells(time_, Problem::time_cell, line);
   if (t) *t *= options_.columns.time_scale;  // to s
   if (t && have_previous_time_ && !(*t > t_previous_))
     defer(Problem::time_order, cell_error(time_, line,
@@ -134,7 +158,7 @@ void LogReducer::row(const std::string_view* fields, int line) {
                                                       *t, t_previous_)));
   if (t && rows_ == 0) t_first_ = *t;
   if (output_) {
-    if (const std::optional<double> v = cell(fields, *output_, Problem::output_cell, line); v && t) {
+    if (const std::optional<double> v = cells(*output_, Problem::output_cell, line); v && t) {
       if (pulses_) {
         if (rows_ == 0) output_first_ = *v;
         output_previous_ = *v;
@@ -145,8 +169,8 @@ void LogReducer::row(const std::string_view* fields, int line) {
       }
     }
   }
-  if (theta1_) encoder_sample(*theta1_, fields, line, t.has_value(), t.value_or(0));
-  if (gamma_) encoder_sample(*gamma_, fields, line, t.has_value(), t.value_or(0));
+  if (theta1_) encoder_sample(*theta1_, cells, line, t.has_value(), t.value_or(0));
+  if (gamma_) encoder_sample(*gamma_, cells, line, t.has_value(), t.value_or(0));
   if (t) {
     t_previous_ = *t;
     have_previous_time_ = true;

@@ -23,6 +23,10 @@ class LogReducer final : public CsvRowSink {
   LogReducer(std::string source, const RunLogOptions& options, double planned_rate);
   void header(const std::vector<std::string>& names, int line) override;
   void row(const std::string_view* fields, int line) override;
+  // A row of plain decimals only ([-]digits[.digits] between commas, scan_plain_decimal, as many as the
+  // header has names), read in one pass over its bytes: the usual row of a log. Anything else is declined
+  // and comes split to row(); both give the same values, so the same reduction.
+  bool row_line(std::string_view line, int line_no) override;
   // The reduction of the rows seen; throws the log's first problem (CsvError).
   ReducedLog finish();
 
@@ -64,12 +68,18 @@ class LogReducer final : public CsvRowSink {
   }
   [[gnu::noinline]] std::optional<double> cell_general(const std::string_view* fields, std::size_t column,
                                                        Problem kind, int line);
-  void encoder_sample(Encoder& e, const std::string_view* fields, int line, bool time_ok, double t);
+  // The row's reduction, its cells read by `cells(column, kind, line)` (an optional<double>, empty for a
+  // refused cell): the split fields of row() or the values row_line() read.
+  template <class Cells>
+  void reduce_row(const Cells& cells, int line);
+  template <class Cells>
+  void encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t);
 
   std::string source_;
   RunLogOptions options_;
   double planned_rate_;
   std::vector<std::string> header_;
+  std::vector<double> values_;  // row_line's values, one per column
   int header_line_ = 0;
   std::size_t time_ = 0;
   std::optional<std::size_t> output_;  // the pulses or output column, when exactly one and usable

@@ -57,5 +57,31 @@ TEST(EncoderFit, TurnedHarmonicsFitAsStdCosSinDo) {
     }
 }
 
+// An angle that is exactly the fit's model, 0.3 + 8.8 τ + C cos α + S sin α with α the wrapped nominal angle
+// (the reading), over 10,001 samples: past the 4096 of the reference line and through the 256-sample batches,
+// the last one partial. Order 1 (its sums unrolled in registers) and order 2 (the general sums, in memory)
+// recover C, S to the angle's own rounding: 45 rad at ε, ~1e-14 rad per sample, so 1e-13 of headroom; the
+// second harmonic of order 2 is zero to the same; the line to the same over 5 s.
+TEST(EncoderFit, BothSumPathsRecoverAnAngleThatIsTheModel) {
+  constexpr double kC = 2e-5, kS = -3e-5;
+  for (const int order : {1, 2}) {
+    EncoderFit fit(order, 0);
+    for (int k = 0; k <= 10000; ++k) {
+      const double t = 5e-4 * k, nominal = 0.3 + 8.8 * t;
+      const double reading = std::fmod(nominal, 2 * kPi);
+      fit.add(t, nominal + kC * std::cos(reading) + kS * std::sin(reading), reading);
+    }
+    const EncoderFitResult r = fit.result();
+    ASSERT_EQ(r.harmonics.size(), std::size_t(2 * order)) << order;
+    EXPECT_NEAR(r.harmonics[0], kC, 1e-13) << order;
+    EXPECT_NEAR(r.harmonics[1], kS, 1e-13) << order;
+    for (std::size_t i = 2; i < r.harmonics.size(); ++i) EXPECT_NEAR(r.harmonics[i], 0, 1e-13) << order;
+    EXPECT_NEAR(r.slope, 8.8, 1e-13) << order;
+    EXPECT_NEAR(r.start, 0.3, 1e-13) << order;
+    EXPECT_LT(r.rms, 1e-13) << order;
+    EXPECT_EQ(r.samples, 10001u);
+  }
+}
+
 }  // namespace
 }  // namespace ccal::test

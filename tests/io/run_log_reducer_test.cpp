@@ -13,6 +13,7 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "ccal/io/csv_stream.hpp"
 #include "ccal/io/run_log.hpp"
@@ -140,6 +141,38 @@ TEST(RunLogStream, PlainDecimalsReadAsStdFromCharsReadsThem) {
         // 2^64 + 1 and 2^64 + 2^53 − 1 wrap to 1 and 2^53 − 1 in 64 bits: declined, not read as 1 or 2^53 − 1
         "18446744073709551617", "-18455751272964292607"})
     EXPECT_FALSE(parse_plain_decimal(declined, v)) << declined;
+}
+
+// scan_plain_decimal reads a row's cells in place: it stops at the character after each decimal (a comma,
+// the end) and, when it declines, leaves the cursor and the value as they were.
+TEST(RunLogStream, ScanStopsAfterEachDecimalAndDeclinesUntouched) {
+  const std::string row = "12.5,-3,0.000125,7";
+  const char* p = row.data();
+  const char* const end = p + row.size();
+  std::vector<double> values;
+  while (true) {
+    double v = 0;
+    ASSERT_TRUE(scan_plain_decimal(p, end, v)) << std::string(p, end);
+    values.push_back(v);
+    if (p == end) break;
+    ASSERT_EQ(*p, ',');
+    ++p;
+  }
+  EXPECT_EQ(values, (std::vector<double>{12.5, -3, 0.000125, 7}));
+  for (const std::string declined : {",1", "-,", "1.,", ".5,", "12345678901234567890,"}) {
+    const char* q = declined.data();
+    double v = 42;
+    EXPECT_FALSE(scan_plain_decimal(q, q + declined.size(), v)) << declined;
+    EXPECT_EQ(q, declined.data()) << declined;
+    EXPECT_EQ(v, 42) << declined;
+  }
+  // A decimal followed by anything else is read up to it (the caller decides what may follow).
+  const std::string exponent = "1.5e3";
+  const char* q = exponent.data();
+  double v = 0;
+  EXPECT_TRUE(scan_plain_decimal(q, q + exponent.size(), v));
+  EXPECT_EQ(v, 1.5);
+  EXPECT_EQ(*q, 'e');
 }
 
 // The message of reducing `text` from a file and from a table (the same, or the test fails).

@@ -41,9 +41,21 @@ class EncoderFit {
 
  private:
   void set_reference();
-  void accumulate(double tau, double angle, double reading);
-  template <std::size_t P>
-  void accumulate_products(const double* x, double d);
+  // A referenced sample to the batch; the batch accumulated when full.
+  void push(double tau, double angle, double reading) {
+    batch_tau_[batch_size_] = tau;
+    batch_angle_[batch_size_] = angle;
+    batch_reading_[batch_size_] = reading;
+    if (++batch_size_ == kBatch) accumulate_batch();
+  }
+  // The batch's samples into the sums, one after the other in their order (the same sums, bit for bit, as
+  // adding them one at a time): the harmonics' pairs for the whole batch first, then the products with the
+  // sums in registers.
+  void accumulate_batch();
+  void accumulate_products(std::size_t n);
+  void accumulate_first_harmonic(std::size_t n);
+
+  static constexpr std::size_t kBatch = 256;
 
   int order_;
   std::size_t p_;               // unknowns: 2 + 2N
@@ -54,6 +66,10 @@ class EncoderFit {
   std::vector<double> normal_;  // XᵀX, p×p row-major (upper triangle accumulated)
   std::vector<double> rhs_;     // Xᵀd
   std::vector<double> x_;       // regressors of one sample
+  // Referenced samples waiting to be accumulated, and their harmonics' first pairs.
+  std::size_t batch_size_ = 0;
+  double batch_tau_[kBatch], batch_angle_[kBatch], batch_reading_[kBatch];
+  SinCos batch_pairs_[kBatch];
   double dd_ = 0;               // Σd²
   double last_tau_ = 0;
   std::size_t n_ = 0;
