@@ -4,6 +4,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "../core/cloned_loops.hpp"
 #include "ccal/core/frames.hpp"
 
 namespace ccal::run_nodes {
@@ -347,15 +348,10 @@ bool always_small(const double* coefficients, int order) {
 
 // The loops for the harmonic order at hand, four nodes at a time when the wobbles are small (always, for
 // real centrifuges), compiled for each instruction set the machine may have (AVX-512, AVX2, baseline) and
-// chosen when the library is loaded.
-#if defined(__x86_64__) && defined(__ELF__) && defined(__GNUC__) && !defined(__clang__)
-#define CCAL_CLONED [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
-#else
-#define CCAL_CLONED
-#endif
+// chosen when the library is loaded (CCAL_CLONED, core/cloned_loops.hpp).
 namespace {
 // The loops for a harmonic order known at compile time (0, 1, 2) or not, with or without a drive's ripple,
-// four nodes at a time or one; inlined into the cloned entry points below.
+// four nodes at a time or one; inlined into the entry points below.
 template <bool kRipple, class T>
 [[gnu::always_inline]] inline void main_axis_dispatch(const MainAxisInputs& in, MainAxisNodes& out) {
   switch (in.order) {
@@ -383,20 +379,27 @@ template <bool kRipple, class T>
       return platform_loop<kRuntimeOrder, kRipple, T>(in, main, out, first);
   }
 }
+// One node at a time (wobbles beyond the small-angle series, never a real centrifuge's), in baseline code:
+// out of the clones, whose vectoriser would fuse its scalar rotations (core/cloned_loops.hpp).
+[[gnu::noinline]] void main_axis_one_by_one(const MainAxisInputs& in, MainAxisNodes& out) {
+  return in.ripple ? main_axis_dispatch<true, double>(in, out) : main_axis_dispatch<false, double>(in, out);
+}
+[[gnu::noinline]] void platform_one_by_one(const PlatformInputs& in, const MainAxisNodes& main,
+                                           InstrumentInputs& out, std::size_t first) {
+  return in.ripple || in.follows_main ? platform_dispatch<true, double>(in, main, out, first)
+                                      : platform_dispatch<false, double>(in, main, out, first);
+}
 }  // namespace
 
 CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out) {
-  if (in.ripple)
-    return small ? main_axis_dispatch<true, Pack>(in, out) : main_axis_dispatch<true, double>(in, out);
-  return small ? main_axis_dispatch<false, Pack>(in, out) : main_axis_dispatch<false, double>(in, out);
+  if (!small) return main_axis_one_by_one(in, out);
+  return in.ripple ? main_axis_dispatch<true, Pack>(in, out) : main_axis_dispatch<false, Pack>(in, out);
 }
 CCAL_CLONED void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main,
                                 InstrumentInputs& out, std::size_t first) {
-  if (in.ripple || in.follows_main)
-    return small ? platform_dispatch<true, Pack>(in, main, out, first)
-                 : platform_dispatch<true, double>(in, main, out, first);
-  return small ? platform_dispatch<false, Pack>(in, main, out, first)
-               : platform_dispatch<false, double>(in, main, out, first);
+  if (!small) return platform_one_by_one(in, main, out, first);
+  return in.ripple || in.follows_main ? platform_dispatch<true, Pack>(in, main, out, first)
+                                      : platform_dispatch<false, Pack>(in, main, out, first);
 }
 
 }  // namespace ccal::run_nodes

@@ -1,0 +1,17 @@
+#pragma once
+// CCAL_CLONED: a hot loop compiled for each instruction set the machine may have (AVX-512, AVX2, baseline
+// x86-64), the one to run chosen when the library is loaded (GCC's target_clones; ELF x86-64 only, else a
+// plain function).
+//
+// Every clone must compute baseline x86-64's bits. The project compiles without floating-point contraction
+// (-ffp-contract=off, CMakeLists.txt), but GCC 12's superword-level vectoriser still fuses a lane-alternating
+// pair of scalar expressions a·b − c, a·d + e (a rotation by cos and sin, a complex product) into one
+// vfmaddsub instruction. So a clone holds explicit SIMD (GCC's vector extensions, which it leaves alone) and
+// code in which the test build.no_contraction finds no fused multiply-add; scalar rotations run in baseline
+// code, outside the clones. (Turning the vectoriser off in the clones instead costs the bundled example's
+// design 25 %.)
+#if defined(__x86_64__) && defined(__ELF__) && defined(__GNUC__) && !defined(__clang__)
+#define CCAL_CLONED [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
+#else
+#define CCAL_CLONED
+#endif
