@@ -288,7 +288,8 @@ class StaticChain {
 // A (levelling), B (arm, horizontal axis at fixed β, azimuth sleeve) and C (base plane, instrument) are
 // composed once, so that an evaluation propagates the motion through ten elementary joints (the dynamic
 // errors of the main and azimuth axes and the two joint rotations) instead of thirty, and evaluates the
-// Fourier series of each joint once. Same result as exact_state to round-off (tests/model/kinematics_test.cpp).
+// Fourier series of each joint once; a channel with no error at all costs nothing. Same result as exact_state
+// to round-off (tests/model/kinematics_test.cpp).
 template <class S>
 class DynamicChain {
  public:
@@ -304,8 +305,11 @@ class DynamicChain {
     for (int k = 0; k < 10; ++k) {
       const int ch = kChannelsOrder[k];
       coefficients_[k].resize(2 * order + 1);
-      for (int i = 0; i < 2 * order + 1; ++i)
+      zero_[k] = true;
+      for (int i = 0; i < 2 * order + 1; ++i) {
         coefficients_[k][i] = S(e[layout.harmonic_index(ch, 0, false) + i]);
+        zero_[k] = zero_[k] && is_exactly_zero(coefficients_[k][i]);
+      }
     }
   }
 
@@ -324,8 +328,8 @@ class DynamicChain {
     m.p = Vec3<S>(main[0].value, main[1].value, main[2].value);
     m.v = Vec3<S>(main[0].rate, main[1].rate, main[2].rate);
     m.a = Vec3<S>(main[0].acc, main[1].acc, main[2].acc);
-    m.rotate(Y, main[4].value, main[4].rate, main[4].acc);
-    m.rotate(X, main[3].value, main[3].rate, main[3].acc);
+    if (!zero_[4]) m.rotate(Y, main[4].value, main[4].rate, main[4].acc);
+    if (!zero_[3]) m.rotate(X, main[3].value, main[3].rate, main[3].acc);
     m.rotate_cs(Z, c1, s1, j.theta1_rate, j.theta1_acc);
     m.transform(b_.RB, b_.pB);
     return m;
@@ -339,11 +343,12 @@ class DynamicChain {
     S cg, sg;
     cos_sin(j.gamma, cg, sg);
     series(cg, sg, gamma_rate, gamma_acc, 5, platform);
-    m.translate(Vec3<S>(platform[0].value, platform[1].value, platform[2].value),
-                Vec3<S>(platform[0].rate, platform[1].rate, platform[2].rate),
-                Vec3<S>(platform[0].acc, platform[1].acc, platform[2].acc));
-    m.rotate(Y, platform[4].value, platform[4].rate, platform[4].acc);
-    m.rotate(X, platform[3].value, platform[3].rate, platform[3].acc);
+    if (!(zero_[5] && zero_[6] && zero_[7]))
+      m.translate(Vec3<S>(platform[0].value, platform[1].value, platform[2].value),
+                  Vec3<S>(platform[0].rate, platform[1].rate, platform[2].rate),
+                  Vec3<S>(platform[0].acc, platform[1].acc, platform[2].acc));
+    if (!zero_[9]) m.rotate(Y, platform[4].value, platform[4].rate, platform[4].acc);
+    if (!zero_[8]) m.rotate(X, platform[3].value, platform[3].rate, platform[3].acc);
     const Vec3<S> azimuth_axis = m.R.col(Z);
     m.rotate_cs(Z, cg, sg, gamma_rate, gamma_acc);
     m.transform(b_.RC, b_.pC);
@@ -374,6 +379,10 @@ class DynamicChain {
       }
     }
     for (int c = 0; c < 5; ++c) {
+      if (zero_[first + c]) {
+        out[c] = {S(0), S(0), S(0)};
+        continue;
+      }
       const std::vector<S>& a = coefficients_[first + c];
       S v = a[0], d1{0}, d2{0};
       for (int k = 1; k <= order; ++k) {
@@ -391,6 +400,9 @@ class DynamicChain {
   bool frozen_;
   ChainBlocks<S> b_;
   std::vector<S> coefficients_[10];
+  // A channel whose coefficients are all exactly zero (with no derivative): its values are zero, and its
+  // rotation or translation, the identity, is skipped (the same values: R·1 + 0, p + 0).
+  bool zero_[10] = {};
 };
 
 // A drive's rate ripple at its nominal angle q turning at the nominal rate q̇ (docs/model.md §3.1): the
