@@ -1,5 +1,6 @@
 #include "ccal/io/csv_stream.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -114,9 +115,12 @@ std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink)
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(name.c_str(), "rb"));
   if (!file) throw unreadable;
   LineReader reader{name, sink};
-  // Blocks of 4 MiB; the incomplete line at a block's end moves to the front of the next.
+  // Blocks of 4 MiB; the incomplete line at a block's end moves to the front of the next. A smaller file (its
+  // size known) gets a buffer of its size and one byte, to see its end in the same read.
   constexpr std::size_t kBlock = std::size_t(1) << 22;
-  std::vector<char> buffer(kBlock);
+  std::error_code size_error;
+  const std::uintmax_t size = std::filesystem::file_size(path, size_error);
+  std::vector<char> buffer(size_error ? kBlock : std::size_t(std::min<std::uintmax_t>(kBlock, size + 1)));
   std::size_t held = 0;
   bool first = true;
   Sha256 fingerprint;
@@ -131,8 +135,10 @@ std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink)
       if (text.starts_with(kBom)) skip = kBom.size();
       first = false;
     }
-    if (got == 0) {  // end of file: the last line, if it has no newline
-      if (!first && skip < text.size()) reader.line(text.substr(skip));
+    if (got == 0) {  // end of file: the lines held (a file of less than three bytes, "\nx", has not been
+                     // split yet), then the last line, if it has no newline
+      const std::size_t rest = skip + feed_lines(text.substr(skip), reader);
+      if (rest < text.size()) reader.line(text.substr(rest));
       break;
     }
     if (first) {  // fewer than three bytes so far: the mark cannot be told yet

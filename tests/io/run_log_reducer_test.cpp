@@ -213,6 +213,9 @@ TEST(RunLogStream, ProblemsAreReportedInTheOrderOfTheWholeTableReduction) {
             std::string::npos);
   EXPECT_NE(log_refusal("temperature\n1\n").find("no such column"), std::string::npos);
   EXPECT_NE(log_refusal("# only a comment\n").find("no header"), std::string::npos);
+  // A file of less than three bytes (too short to tell a byte-order mark) is split into its lines too: the
+  // header "x" is on line 2 (found by fuzz_run_log).
+  EXPECT_NE(log_refusal("\nx").find(":2: time: no such column"), std::string::npos);
   EXPECT_NE(log_refusal("time,pulses\n0,1\n").find("at least two"), std::string::npos);
   // quoted fields go through parse_csv's splitter: a quoted number is a number, an open quote a CSV error
   EXPECT_NE(log_refusal("time,pulses\n\"0\",1\n1,\"x\"\n2,\"3\n").find(":4:2"), std::string::npos);
