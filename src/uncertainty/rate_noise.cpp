@@ -127,14 +127,14 @@ struct NodeDerivatives {
 };
 
 // Most of a design's candidate rows' time: the whole chain in dual numbers at every node, inlined into one
-// loop (flatten) and compiled for each instruction set (an 8-wide dual is one AVX-512 register): 3.6 s → 1.0
-// s of the bundled example's 9,990 candidates on one core, the same bits on every instruction set.
-CCAL_CLONED [[gnu::flatten]] NodeDerivatives node_derivatives(const DynamicChain<Dual>& chain,
-                                                              const RunMotion<double>& motion,
-                                                              const InstrumentModel& instrument,
-                                                              const std::vector<TermSpec>& terms,
-                                                              const Eigen::Matrix3d& mount,
-                                                              double follow_sign, double fast_rate, int M) {
+// loop (CCAL_FLATTEN) and compiled for each instruction set (an 8-wide dual is one AVX-512 register): 3.6 s
+// → 1.0 s of the bundled example's 9,990 candidates on one core, the same bits on every instruction set.
+CCAL_CLONED CCAL_FLATTEN NodeDerivatives node_derivatives(const DynamicChain<Dual>& chain,
+                                                          const RunMotion<double>& motion,
+                                                          const InstrumentModel& instrument,
+                                                          const std::vector<TermSpec>& terms,
+                                                          const Eigen::Matrix3d& mount, double follow_sign,
+                                                          double fast_rate, int M) {
   const auto nodes = std::size_t(M);
   NodeDerivatives out;
   for (auto* v : {&out.Ga1, &out.Gr1, &out.Gc1, &out.Ga3, &out.Gr3, &out.Gc3}) v->resize(nodes);
