@@ -44,19 +44,24 @@ if [ ! -d "$ref_dir/src" ]; then
 fi
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-cmake -S "$ref_dir/src" -B "$ref_dir/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCCAL_BUILD_TESTS=OFF \
-      -DCCAL_BUILD_PYTHON=OFF -DCCAL_BUILD_BENCH=ON "${launcher[@]}" >/dev/null
+# (Its configure log is kept, and shown only if it fails: the release's own warnings are not this run's.)
+if ! cmake -S "$ref_dir/src" -B "$ref_dir/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCCAL_BUILD_TESTS=OFF \
+      -DCCAL_BUILD_PYTHON=OFF -DCCAL_BUILD_BENCH=ON "${launcher[@]}" >"$ref_dir/configure.log" 2>&1; then
+  cat "$ref_dir/configure.log" >&2
+  exit 1
+fi
 ref_targets=()
 for t in "${targets[@]}"; do
   [ -f "$ref_dir/src/bench/$t.cpp" ] && ref_targets+=("$t")
 done
 CCACHE_BASEDIR="$PWD/$ref_dir/src" cmake --build "$ref_dir/build" --target "${ref_targets[@]}" >/dev/null
 
-# Each benchmark program of both builds, once, as JSON (the log reduction on a 512 MB log).
+# Each benchmark program of both builds as JSON, each figure the median of three repetitions (the log
+# reduction on a 512 MB log).
 run() {  # run <build folder> <program> <json out>
   if [ -x "$1/bench/$2" ]; then
     CCAL_BENCH_LOG_MB=512 "$1/bench/$2" --benchmark_filter="$filter" --benchmark_format=json \
-      --benchmark_min_time=1 >"$3" 2>/dev/null || echo '{"benchmarks": []}' >"$3"
+      --benchmark_min_time=1 --benchmark_repetitions=3 --benchmark_report_aggregates_only=true >"$3" 2>/dev/null || echo '{"benchmarks": []}' >"$3"
   else
     echo '{"benchmarks": []}' >"$3"
   fi
@@ -72,9 +77,15 @@ import json, re, sys
 ref, out, targets = sys.argv[1], sys.argv[2], sys.argv[3:]
 
 def load(prefix):
+    """The medians of the repetitions, under the benchmark's own name."""
     rows = []
     for t in targets:
-        rows += json.load(open(f"{out}/{prefix}_{t}.json")).get("benchmarks", [])
+        for b in json.load(open(f"{out}/{prefix}_{t}.json")).get("benchmarks", []):
+            if b.get("run_type") == "aggregate":
+                if b.get("aggregate_name") != "median":
+                    continue
+                b = dict(b, name=b["name"].removesuffix("_median"))
+            rows.append(b)
     return rows
 
 # (label, name pattern, value, unit): the value of the first benchmark whose name matches.
@@ -82,7 +93,8 @@ figures = [
     ("Monte Carlo, bundled example, 1 thread", r"^Pipeline/1(/0)?/real_time$", "items_per_second", "trials/s"),
     ("Monte Carlo, bundled example, 2 threads", r"^Pipeline/2(/0)?/real_time$", "items_per_second", "trials/s"),
     ("run means of one trial (kernel)", r"^RunMeansKernel$", "real_time", "us"),
-    ("design, bundled example (whole)", r"^WholeDesign", "real_time", "s"),
+    ("design, bundled example (whole, first time)", r"^WholeDesign(/0)?/", "real_time", "s"),
+    ("design, again from the cache", r"^WholeDesign/1/", "real_time", "s"),
     ("design, candidate rows", r"^CandidateCache", "real_time", "s"),
     ("run log reduction, one core", r"^StreamedLog", "bytes_per_second", "MB/s"),
 ]
@@ -107,10 +119,11 @@ def shown(v, unit):
     return f"{v:.4g}"
 
 now, before = load("now"), load("ref")
-print(f"{'figure':42} {'unit':9} {ref:>12} {'now':>12} {'speed-up':>12}")
+label = ref if len(ref) < 13 else ref[:7]
+print(f"{'figure':44} {'unit':9} {label:>12} {'now':>12} {'speed-up':>12}")
 for label, pattern, key, unit in figures:
     a, b = value(before, pattern, key), value(now, pattern, key)
     # A ratio above 1 is faster: rates divide now by before, times before by now.
     ratio = "-" if a is None or b is None else f"{(b / a if key != 'real_time' else a / b):.2f}x"
-    print(f"{label:42} {unit:9} {shown(a, unit):>12} {shown(b, unit):>12} {ratio:>12}")
+    print(f"{label:44} {unit:9} {shown(a, unit):>12} {shown(b, unit):>12} {ratio:>12}")
 EOF
