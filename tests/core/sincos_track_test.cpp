@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "portable_uniform.hpp"
 #include "test_constants.hpp"
 
 namespace ccal::test {
@@ -19,20 +20,11 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;  // ε = 2⁻⁵³, the unit round-off
 
-// Uniform in [0, 1) from a 64-bit linear congruential generator: the same numbers on every platform.
-struct Uniform {
-  std::uint64_t state;
-  double operator()() {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return double(state >> 11) / double(1ull << 53);
-  }
-};
-
 TEST(SinCosTrack, SmallTurnIsRoundedOnce) {
   // sin H to ε|H| (the truncated series' rest and the correction's own roundings far below), q = 1 − cos H
   // to 4ε·q, over the whole range of turns, both signs, down to tiny ones. The reference q is 2 sin²(H/2),
   // free of the cancellation in 1 − cos H.
-  Uniform u{7};
+  PortableUniform u{7};
   double worst_sin = 0, worst_q = 0;
   auto check = [&](double h) {
     const SmallTurn t = small_turn(h);
@@ -68,7 +60,7 @@ TEST(SinCosTrack, StaysWithinItsBound) {
   // An encoder read at 2 kHz at 8.86 rad/s with a 10 ppm ripple and 1e-9 rad steps of its reading; a random
   // walk of steps up to kMaxTurn/8 (turns of every size, both directions); steps of kMaxTurn/3 (the largest
   // turns), two million angles in all: each component within kErrorBound of the true cos, sin.
-  Uniform u{11};
+  PortableUniform u{11};
   const double encoder = worst_error(1000000, 0.3, [](int k) {
     const double t = 5e-4 * k;
     return std::round((8.86 * 5e-4 + 1e-5 * 8.86 * 5e-4 * std::cos(8.86 * t)) * 1e9) / 1e9;
