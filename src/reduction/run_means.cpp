@@ -254,7 +254,7 @@ namespace {
 
 // What a trial's errors give every run alike: the chain's blocks A, B (without the arm stretch, which
 // depends on the run's rate) and C, the dynamic channels of the two halves, the drives' rate ripple, and
-// whether the four-lane small-angle loops apply to each half.
+// whether the SIMD small-angle loops apply to each half.
 struct TrialTerms {
   ChainBlocks<double> blocks;
   const double* main_coefficients;      // dx1 … dthy1

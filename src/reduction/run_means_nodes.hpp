@@ -1,7 +1,7 @@
 #pragma once
 // The node loops of the run-mean kernel (run_means.hpp), internal to the library: the main-axis half of the
 // chain at the fast nodes and the platform half at the nodes of one slow node, over structure-of-arrays node
-// data, four nodes per SIMD vector where the wobble angles allow (run_means_nodes.cpp).
+// data, kPackLanes nodes per SIMD vector where the wobble angles allow (run_means_nodes.cpp).
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -9,7 +9,7 @@
 namespace ccal::run_nodes {
 
 // Nodes are stored padded to whole packs of this many lanes.
-inline constexpr int kPackLanes = 4;
+inline constexpr int kPackLanes = 8;  // one AVX-512 register of doubles
 inline int padded(int n) { return (n + kPackLanes - 1) / kPackLanes * kPackLanes; }
 
 template <class T>
@@ -74,7 +74,7 @@ struct PlatformInputs {
   Eigen::Matrix3d P;
 };
 // Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
-// the four-lane loops (small-angle series for the wobbles) apply.
+// the SIMD loops (small-angle series for the wobbles) apply.
 bool always_small(const double* coefficients, int order);
 // Σ (|ck| + |sk|)/k: a bound of a rate ripple's angle error δ (c1, s1, … at `coefficients`; 0 for nullptr).
 double ripple_angle_bound(const double* coefficients, int order);
