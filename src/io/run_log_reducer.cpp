@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "ccal/io/plain_decimal_row.hpp"
+
 namespace ccal::detail {
 
 namespace {
@@ -128,17 +130,7 @@ void LogReducer::row(const std::string_view* fields, int line) {
 }
 
 bool LogReducer::row_line(std::string_view line, int line_no) {
-  const std::size_t n = values_.size();
-  const char* p = line.data();
-  const char* const end = p + line.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!scan_plain_decimal(p, end, values_[k])) return false;
-    if (k + 1 < n) {
-      if (p == end || *p != ',') return false;
-      ++p;
-    }
-  }
-  if (p != end) return false;
+  if (!scan_plain_decimal_row(line, values_)) return false;
   const double* values = values_.data();
   reduce_row([values](std::size_t column, Problem, int) { return std::optional<double>(values[column]); },
              line_no);

@@ -33,9 +33,11 @@ class CsvRowSink {
 // fraction digits, a mantissa of 2^53 or more). parse_plain_decimal is true when the whole of `text` is one;
 // false for anything else (exponents, a '+', blanks), which the caller reads the general way. (A byte at a
 // time: eight-digit SWAR words measured slower on a log's short, point-split fields.)
+// 10^0 … 10^22: the powers of ten that are exact doubles (5^22 < 2^53).
+inline constexpr double kExactPowersOf10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                              1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                              1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 inline bool scan_plain_decimal(const char*& cursor, const char* end, double& value) {
-  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
   constexpr std::uint64_t kExact = std::uint64_t(1) << 53;
   const char* p = cursor;
   const bool negative = p != end && *p == '-';
@@ -60,7 +62,7 @@ inline bool scan_plain_decimal(const char*& cursor, const char* end, double& val
   if (length - (dot != nullptr) > 19 || m >= kExact) return false;
   const std::ptrdiff_t fraction = dot == nullptr ? 0 : p - dot - 1;
   if (fraction > 22) return false;
-  const double magnitude = double(m) / kPow10[fraction];
+  const double magnitude = double(m) / kExactPowersOf10[fraction];
   value = negative ? -magnitude : magnitude;
   cursor = p;
   return true;

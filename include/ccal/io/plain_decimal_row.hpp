@@ -1,0 +1,27 @@
+#pragma once
+// A row of a run log as loggers write it, plain decimals between commas, read in one pass over its bytes: the
+// row reading of `ccal reduce` (run_log_reducer.cpp), most of the reduction's parsing time.
+#include <span>
+#include <string_view>
+
+namespace ccal {
+
+// True, with values[k] the k-th cell, when `line` (without its line end) is exactly values.size() plain
+// decimals, [-]digits[.digits] as scan_plain_decimal (csv_stream.hpp) reads them, separated by single commas;
+// false for anything else, values then unspecified (the caller splits the line and reads it the general way).
+// Each cell is the double scan_plain_decimal gives, which is std::from_chars'. On an x86-64 processor with
+// SSE4.1 and POPCNT a line of 16 to 63 bytes is classified in 16-byte vectors first (digits, points, commas,
+// minus signs: where every cell begins and ends), then each cell of at most 15 digits is read without a loop
+// over its characters: its digits gathered right-aligned by one byte shuffle and combined pairwise (2, 4, 8
+// digits, two halves). Other lines go cell by cell through scan_plain_decimal.
+bool scan_plain_decimal_row(std::string_view line, std::span<double> values);
+
+namespace detail {
+// The two ways, for the tests that compare them: cell by cell with scan_plain_decimal, and the vector way
+// (which must not be called unless vector_row_scan_available()).
+bool scan_plain_decimal_row_portable(std::string_view line, std::span<double> values);
+bool scan_plain_decimal_row_vector(std::string_view line, std::span<double> values);
+bool vector_row_scan_available();
+}  // namespace detail
+
+}  // namespace ccal
