@@ -58,7 +58,7 @@ void EncoderFit::set_reference() {
 void EncoderFit::accumulate_batch() {
   const std::size_t n = batch_size_;
   if (n == 0) return;
-  if (order_ > 0) first_harmonic_.next(batch_reading_, batch_pairs_, n);
+  if (order_ > 0) first_harmonic_.next(batch_reading_, batch_cos_, batch_sin_, n);
   if (order_ == 1)
     accumulate_first_harmonic(n);
   else
@@ -80,7 +80,7 @@ void EncoderFit::accumulate_products(std::size_t n) {
     x[0] = 1.0;
     x[1] = tau;
     if (order_ > 0) {
-      const double c1 = batch_pairs_[k].cos, s1 = batch_pairs_[k].sin;
+      const double c1 = batch_cos_[k], s1 = batch_sin_[k];
       double c = c1, s = s1;
       for (int h = 1; h <= order_; ++h) {
         x[2 * h] = c;
@@ -109,7 +109,7 @@ void EncoderFit::accumulate_first_harmonic(std::size_t n) {
   for (std::size_t k = 0; k < n; ++k) {
     const double tau = batch_tau_[k];
     const double d = batch_angle_[k] - (ref_start_ + ref_slope_ * tau);
-    const double c = batch_pairs_[k].cos, s = batch_pairs_[k].sin;
+    const double c = batch_cos_[k], s = batch_sin_[k];
     s00 += 1.0;
     s01 += tau;
     s02 += c;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "portable_uniform.hpp"
 #include "test_constants.hpp"
@@ -104,6 +105,38 @@ TEST(SinCosTrack, AnchorsAtTheFirstAngleAndWhereTheTurnWouldReachKMaxTurn) {
     t.next(0.5);
     t.next(0.51);
     EXPECT_TRUE(same_bits(t.next(0.5 + jump), 0.5 + jump)) << jump;
+  }
+}
+
+TEST(SinCosTrack, BatchGivesTheOneByOneBits) {
+  // The batch's anchors found first and its turns in SIMD lanes: the same pairs, bit for bit, as next(angle)
+  // one at a time, and the same state after it. Angles as an encoder reads them (small steps, wraps), jumps
+  // beyond the largest turn, repeats, a NaN (a new anchor, its pair NaN), batches of every length around the
+  // eight lanes and the 256-sample chunks, and a track that anchors at every angle (max_turn 0).
+  PortableUniform u{99};
+  for (const double max_turn : {SinCosTrack::kMaxTurn, 0.0}) {
+    SinCosTrack one(max_turn), batch(max_turn);
+    double angle = 1.0;
+    for (int round = 0; round < 300; ++round) {
+      const auto n = std::size_t(u() * 600);
+      std::vector<double> angles(n), c(n), s(n);
+      for (double& a : angles) {
+        const double r = u();
+        angle += r < 0.02 ? 2.0 : r < 0.05 ? 0.0 : 0.005 * (u() - 0.3);
+        if (angle >= 2 * kPi) angle -= 2 * kPi;
+        a = r > 0.9995 ? std::numeric_limits<double>::quiet_NaN() : angle;
+      }
+      batch.next(angles.data(), c.data(), s.data(), n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const SinCos p = one.next(angles[k]);
+        if (std::isnan(angles[k])) {
+          ASSERT_TRUE(std::isnan(c[k]) && std::isnan(s[k]));
+          continue;
+        }
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(c[k]), std::bit_cast<std::uint64_t>(p.cos)) << angles[k];
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(s[k]), std::bit_cast<std::uint64_t>(p.sin)) << angles[k];
+      }
+    }
   }
 }
 

@@ -75,12 +75,10 @@ class SinCosTrack {
     const DoublePair turned = pair_ - (t.one_minus_cos * pair_ + t.sin * rotated_);
     return {turned[0], turned[1]};
   }
-  // The pairs of n angles, as next() gives them one by one.
-  void next(const double* angles, SinCos* pairs, std::size_t n) {
-    SinCosTrack track = *this;  // the state in registers over the loop
-    for (std::size_t k = 0; k < n; ++k) pairs[k] = track.next(angles[k]);
-    *this = track;
-  }
+  // The pairs of n angles, the same bits as next() gives them one by one, into cos_out[k], sin_out[k]: the
+  // anchors found first in order (a comparison per angle), then the turns eight at a time in SIMD lanes
+  // (sincos_track.cpp).
+  void next(const double* angles, double* cos_out, double* sin_out, std::size_t n);
 
  private:
   double max_turn_;

@@ -66,10 +66,10 @@ class EncoderFit {
   std::vector<double> normal_;  // XᵀX, p×p row-major (upper triangle accumulated)
   std::vector<double> rhs_;     // Xᵀd
   std::vector<double> x_;       // regressors of one sample
-  // Referenced samples waiting to be accumulated, and their harmonics' first pairs.
+  // Referenced samples waiting to be accumulated, and cos α, sin α of their readings.
   std::size_t batch_size_ = 0;
   double batch_tau_[kBatch], batch_angle_[kBatch], batch_reading_[kBatch];
-  SinCos batch_pairs_[kBatch];
+  double batch_cos_[kBatch], batch_sin_[kBatch];
   double dd_ = 0;               // Σd²
   double last_tau_ = 0;
   std::size_t n_ = 0;
