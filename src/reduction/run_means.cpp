@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -116,7 +117,8 @@ struct RunTables {
   int M = 0;
   detail::FastPhaseTable table{2};
   std::vector<double> cos_theta, sin_theta;  // θ1(0) + θ_j
-  std::vector<double> cos_gamma, sin_gamma;  // φ0 − θ_j (counter-rotating) or φ0
+  // φ0 − θ_j (counter-rotating) or φ0 at node n = q·M + j, repeated for the most slow nodes a trial may take
+  std::vector<double> cos_gamma, sin_gamma;
   std::vector<double> cos_half, sin_half;    // mΩT/2, m = 0..M/2
   // The DFT of the weights (spectral_weights.hpp's dft_weights) as c_m cos(mθ_j), c_m sin(mθ_j) at
   // [(m − 1)M + j], m = 1..M/2, with c_m = 2 (1 at the Nyquist term): contiguous in j, so that the sums of
@@ -152,25 +154,28 @@ struct RunMeanKernel::Data : run_nodes::KernelTables {
 namespace run_nodes {
 
 // Scratch space of one thread, grown when a larger rule is met and then reused (RunMeanKernel::Workspace).
+// Nodes n = q·M + j follow each other without padding between slow nodes, so that the platform's loop
+// fills whole SIMD vectors across them; the main-axis half is repeated for every slow node.
 struct Scratch {
   std::vector<double> nu_re, nu_im, weights;
+  std::vector<double> cos_offset, sin_offset;  // slow node q's drift at node n
   MainAxisNodes main;
   InstrumentInputs inputs;
-  std::size_t fast = 0, nodes = 0;
+  std::size_t nodes = 0;
   void reserve(int M, int Q) {
-    const auto n = std::size_t(padded(M) * Q), harmonics = std::size_t((M / 2 + 1) * Q);
+    // The main-axis loop writes padded(M) nodes before they are repeated.
+    const auto n = std::size_t(std::max(padded(M * Q), padded(M))), harmonics = std::size_t((M / 2 + 1) * Q);
     if (nodes < n) {
       weights.resize(n);
       inputs.resize(n);
+      main.resize(n);
+      cos_offset.resize(n);
+      sin_offset.resize(n);
       nodes = n;
     }
     if (nu_re.size() < harmonics) {
       nu_re.resize(harmonics);
       nu_im.resize(harmonics);
-    }
-    if (fast < std::size_t(padded(M))) {
-      main.resize(std::size_t(padded(M)));
-      fast = std::size_t(padded(M));
     }
   }
 };
@@ -224,11 +229,14 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
       t.cos_gamma.push_back(std::cos(gamma));
       t.sin_gamma.push_back(std::sin(gamma));
     }
+    const int repeated = t.M * detail::kMaxSlowNodes;
+    for (int n = t.M; n < repeated; ++n) {
+      t.cos_gamma.push_back(t.cos_gamma[std::size_t(n - t.M)]);
+      t.sin_gamma.push_back(t.sin_gamma[std::size_t(n - t.M)]);
+    }
     // Padding up to whole packs: harmless angle 0, never summed.
-    for (int j = t.M; j < padded(t.M); ++j)
-      for (auto* v : {&t.cos_theta, &t.cos_gamma}) v->push_back(1.0);
-    for (int j = t.M; j < padded(t.M); ++j)
-      for (auto* v : {&t.sin_theta, &t.sin_gamma}) v->push_back(0.0);
+    for (int j = t.M; j < padded(t.M); ++j) t.cos_theta.push_back(1.0), t.sin_theta.push_back(0.0);
+    for (int n = repeated; n < padded(repeated); ++n) t.cos_gamma.push_back(1.0), t.sin_gamma.push_back(0.0);
     for (int m = 0; m <= t.M / 2; ++m) {
       const double half_kappa = t.rate * t.duration * double(m) / 2.0;
       t.cos_half.push_back(std::cos(half_kappa));
@@ -362,42 +370,53 @@ void main_axis_half(const RunTables& t, const TrialTerms& trial, double arm_stre
   main_axis_nodes(main, trial.main_small, scratch.main);
 }
 
-// The platform half at every node, slow-major like the weights; slow node q drifts by −ΔΩ t_q,
+// The main-axis half's M nodes repeated for slow nodes 1 … Q − 1 (node n = q·M + j reads fast node j).
+void repeat_main_axis_half(int M, int Q, Scratch& scratch) {
+  MainAxisNodes& m = scratch.main;
+  for (std::vector<double>* v : {&m.F0.x, &m.F0.y, &m.F0.z, &m.W.x, &m.W.y, &m.W.z, &m.dW.x, &m.dW.y, &m.dW.z,
+                                 &m.coriolis.x, &m.coriolis.y, &m.coriolis.z, &m.W_total.x, &m.W_total.y,
+                                 &m.W_total.z, &m.ripple_angle, &m.ripple_rate, &m.ripple_acc})
+    for (int q = 1; q < Q; ++q) std::copy_n(v->begin(), M, v->begin() + q * M);
+}
+
+// The platform half at every node n = q·M + j, slow-major like the weights; slow node q drifts by −ΔΩ t_q,
 // t_q = (1 + x_q) T/2. A fixed platform does not turn: no ripple of its own, nothing to follow
 // (kinematics.hpp, run_motion).
 void platform_half(const RunTables& t, const TrialTerms& trial, double dOmega, double gamma_rate,
                    const std::vector<double>& x_nodes, int Q, Scratch& scratch) {
-  PlatformInputs platform{trial.platform_coefficients,
-                          trial.order,
-                          t.counter ? trial.platform_ripple : nullptr,
-                          t.counter && trial.phase_locked && trial.main_ripple != nullptr,
-                          t.cos_gamma.data(),
-                          t.sin_gamma.data(),
-                          1.0,
-                          0.0,
-                          t.M,
-                          gamma_rate,
-                          1.0 / trial.g,
-                          to_v3(trial.blocks.pC),
-                          trial.blocks.RC * t.mount};
+  const int nodes = Q * t.M;
   for (int q = 0; q < Q; ++q) {
     const double slow_offset =
         t.counter ? -dOmega * (0.5 * (1.0 + x_nodes[std::size_t(q)]) * t.duration) : 0.0;
-    cos_sin(slow_offset, platform.cos_offset, platform.sin_offset);
-    platform_nodes(platform, trial.platform_small, scratch.main, scratch.inputs,
-                   std::size_t(q * padded(t.M)));
+    double c, s;
+    cos_sin(slow_offset, c, s);
+    std::fill_n(scratch.cos_offset.begin() + q * t.M, t.M, c);
+    std::fill_n(scratch.sin_offset.begin() + q * t.M, t.M, s);
   }
+  std::fill(scratch.cos_offset.begin() + nodes, scratch.cos_offset.begin() + padded(nodes), 1.0);
+  std::fill(scratch.sin_offset.begin() + nodes, scratch.sin_offset.begin() + padded(nodes), 0.0);
+  const PlatformInputs platform{trial.platform_coefficients,
+                                trial.order,
+                                t.counter ? trial.platform_ripple : nullptr,
+                                t.counter && trial.phase_locked && trial.main_ripple != nullptr,
+                                t.cos_gamma.data(),
+                                t.sin_gamma.data(),
+                                scratch.cos_offset.data(),
+                                scratch.sin_offset.data(),
+                                nodes,
+                                gamma_rate,
+                                1.0 / trial.g,
+                                to_v3(trial.blocks.pC),
+                                trial.blocks.RC * t.mount};
+  platform_nodes(platform, trial.platform_small, scratch.main, scratch.inputs);
 }
 
 // ⟨output⟩ = Σ_q Σ_j w_qj y(a_i, a_p, a_o, ω_IA at node qj), the padding skipped.
 double weighted_output(const OutputPolynomial& output, const Scratch& scratch, int M, int Q) {
   double mean = 0;
-  for (int q = 0; q < Q; ++q)
-    for (int j = 0; j < M; ++j) {
-      const auto n = std::size_t(q * padded(M) + j);
-      mean += scratch.weights[std::size_t(q * M + j)] * output(scratch.inputs.a_i[n], scratch.inputs.a_p[n],
-                                                               scratch.inputs.a_o[n], scratch.inputs.w_ia[n]);
-    }
+  for (std::size_t n = 0; n < std::size_t(Q * M); ++n)
+    mean += scratch.weights[n] * output(scratch.inputs.a_i[n], scratch.inputs.a_p[n], scratch.inputs.a_o[n],
+                                        scratch.inputs.w_ia[n]);
   return mean;
 }
 
@@ -411,6 +430,7 @@ double run_mean(const KernelTables& d, const RunTables& t, const TrialTerms& tri
   scratch.reserve(t.M, Q);
   quadrature_weights(t, e[ch::domega], theta1_rate, Q, d.lagrange[std::size_t(Q)], scratch);
   main_axis_half(t, trial, e[ch::arm_stretch], theta1_rate, scratch);
+  repeat_main_axis_half(t.M, Q, scratch);
   platform_half(t, trial, e[ch::dOmega], gamma_rate, d.slow_nodes[std::size_t(Q)], Q, scratch);
   return weighted_output(d.output, scratch, t.M, Q);
 }

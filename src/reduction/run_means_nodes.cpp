@@ -308,14 +308,15 @@ template <int kOrder, bool kRipple, class T>
 
 template <int kOrder, bool kRipple, class T>
 [[gnu::always_inline]] inline void platform_loop(const PlatformInputs& in, const MainAxisNodes& main,
-                                                 InstrumentInputs& out, std::size_t first) {
+                                                 InstrumentInputs& out) {
   const JointCoefficients<kOrder> coefficients{in.coefficients, in.order};
   const Columns P(in.P);
-  for (int j = 0; j < in.M; j += kLanes<T>) {
+  for (int j = 0; j < in.nodes; j += kLanes<T>) {
     const auto J = std::size_t(j);
     const T cos_gamma = load<T>(in.cos_gamma + j), sin_gamma = load<T>(in.sin_gamma + j);
-    const T cg = cos_gamma * in.cos_offset - sin_gamma * in.sin_offset;
-    const T sg = sin_gamma * in.cos_offset + cos_gamma * in.sin_offset;
+    const T cos_offset = load<T>(in.cos_offset + j), sin_offset = load<T>(in.sin_offset + j);
+    const T cg = cos_gamma * cos_offset - sin_gamma * sin_offset;
+    const T sg = sin_gamma * cos_offset + cos_gamma * sin_offset;
     const JointLink<T> platform = platform_link<kOrder, kRipple, T>(in, coefficients, main, j, cg, sg);
     const PointMotion<T> o5 = point_motion(platform, in.pC);
     const V3<T> W = get<T>(main.W, J);
@@ -324,10 +325,10 @@ template <int kOrder, bool kRipple, class T>
                     2.0 * cross(W, o5.v) + o5.a + 2.0 * cross(get<T>(main.coriolis, J), Wr + o5.v);
     const V3<T> w = get<T>(main.W_total, J) + platform.w;
     const V3<T> f5 = to_local(platform, f), w5 = to_local(platform, w);
-    store(&out.a_i[first + J], in.inverse_g * dot(f5, P.c0));
-    store(&out.a_p[first + J], in.inverse_g * dot(f5, P.c1));
-    store(&out.a_o[first + J], in.inverse_g * dot(f5, P.c2));
-    store(&out.w_ia[first + J], dot(w5, P.c0));
+    store(&out.a_i[J], in.inverse_g * dot(f5, P.c0));
+    store(&out.a_p[J], in.inverse_g * dot(f5, P.c1));
+    store(&out.a_o[J], in.inverse_g * dot(f5, P.c2));
+    store(&out.w_ia[J], dot(w5, P.c0));
   }
 }
 
@@ -368,16 +369,16 @@ template <bool kRipple, class T>
 }
 template <bool kRipple, class T>
 [[gnu::always_inline]] inline void platform_dispatch(const PlatformInputs& in, const MainAxisNodes& main,
-                                                     InstrumentInputs& out, std::size_t first) {
+                                                     InstrumentInputs& out) {
   switch (in.order) {
     case 0:
-      return platform_loop<0, kRipple, T>(in, main, out, first);
+      return platform_loop<0, kRipple, T>(in, main, out);
     case 1:
-      return platform_loop<1, kRipple, T>(in, main, out, first);
+      return platform_loop<1, kRipple, T>(in, main, out);
     case 2:
-      return platform_loop<2, kRipple, T>(in, main, out, first);
+      return platform_loop<2, kRipple, T>(in, main, out);
     default:
-      return platform_loop<kRuntimeOrder, kRipple, T>(in, main, out, first);
+      return platform_loop<kRuntimeOrder, kRipple, T>(in, main, out);
   }
 }
 // One node at a time (wobbles beyond the small-angle series, never a real centrifuge's), in baseline code:
@@ -386,9 +387,9 @@ template <bool kRipple, class T>
   return in.ripple ? main_axis_dispatch<true, double>(in, out) : main_axis_dispatch<false, double>(in, out);
 }
 [[gnu::noinline]] void platform_one_by_one(const PlatformInputs& in, const MainAxisNodes& main,
-                                           InstrumentInputs& out, std::size_t first) {
-  return in.ripple || in.follows_main ? platform_dispatch<true, double>(in, main, out, first)
-                                      : platform_dispatch<false, double>(in, main, out, first);
+                                           InstrumentInputs& out) {
+  return in.ripple || in.follows_main ? platform_dispatch<true, double>(in, main, out)
+                                      : platform_dispatch<false, double>(in, main, out);
 }
 }  // namespace
 
@@ -397,10 +398,10 @@ CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisN
   return in.ripple ? main_axis_dispatch<true, Pack>(in, out) : main_axis_dispatch<false, Pack>(in, out);
 }
 CCAL_CLONED void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main,
-                                InstrumentInputs& out, std::size_t first) {
-  if (!small) return platform_one_by_one(in, main, out, first);
-  return in.ripple || in.follows_main ? platform_dispatch<true, Pack>(in, main, out, first)
-                                      : platform_dispatch<false, Pack>(in, main, out, first);
+                                InstrumentInputs& out) {
+  if (!small) return platform_one_by_one(in, main, out);
+  return in.ripple || in.follows_main ? platform_dispatch<true, Pack>(in, main, out)
+                                      : platform_dispatch<false, Pack>(in, main, out);
 }
 
 }  // namespace ccal::run_nodes

@@ -58,17 +58,18 @@ struct MainAxisInputs {
   V3<double> pB, coriolis_1t, gravity_1t, earth_1t;
   Eigen::Matrix3d RB;
 };
-// Inputs of the platform half at the nodes of one slow node: frame 5 relative to frame 3t, composed with the
-// main-axis half of the same fast node, then the instrument's axes through P = R_C·mounting (a_i, a_p, a_o
-// [g] and ω_IA).
+// Inputs of the platform half at all nodes of a run, node n = q·M + j (slow node q, fast node j) one after
+// the other without padding between slow nodes: frame 5 relative to frame 3t, composed with the main-axis
+// half of the same fast node, then the instrument's axes through P = R_C·mounting (a_i, a_p, a_o [g] and
+// ω_IA). The main-axis half (MainAxisNodes) is read at n too: its M nodes repeated for every slow node.
 struct PlatformInputs {
   const double* coefficients;  // dx3 … dthy3
   int order;
   const double* ripple;  // c1, s1, …, cN, sN of the platform drive's rate ripple, or nullptr for none
   bool follows_main;     // phase-locked: γ also moves by −δ1 of the same fast node (MainAxisNodes)
-  const double *cos_gamma, *sin_gamma;  // nominal platform angle at the fast nodes, padded
-  double cos_offset, sin_offset;        // the slow node's drift
-  int M;
+  const double *cos_gamma, *sin_gamma;    // nominal platform angle at fast node j of node n, padded
+  const double *cos_offset, *sin_offset;  // slow node q's drift at node n, padded
+  int nodes;                              // Q·M
   double rate, inverse_g;
   V3<double> pC;
   Eigen::Matrix3d P;
@@ -80,8 +81,7 @@ bool always_small(const double* coefficients, int order);
 double ripple_angle_bound(const double* coefficients, int order);
 // The main-axis half at the fast nodes 0 … M − 1 (and the padding).
 void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out);
-// The platform half at nodes first … first + M − 1 (and the padding) of `out`.
-void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main, InstrumentInputs& out,
-                    std::size_t first);
+// The platform half at nodes 0 … Q·M − 1 (and the padding) of `out`.
+void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main, InstrumentInputs& out);
 
 }  // namespace ccal::run_nodes
