@@ -117,14 +117,23 @@ struct RunTables {
   int M = 0;
   detail::FastPhaseTable table{2};
   std::vector<double> cos_theta, sin_theta;  // θ1(0) + θ_j
-  // φ0 − θ_j (counter-rotating) or φ0 at node n = q·M + j, repeated for the most slow nodes a trial may take
-  std::vector<double> cos_gamma, sin_gamma;
+  std::vector<double> cos_gamma, sin_gamma;  // φ0 − θ_j (counter-rotating) or φ0
   std::vector<double> cos_half, sin_half;    // mΩT/2, m = 0..M/2
   // The DFT of the weights (spectral_weights.hpp's dft_weights) as c_m cos(mθ_j), c_m sin(mθ_j) at
   // [(m − 1)M + j], m = 1..M/2, with c_m = 2 (1 at the Nyquist term): contiguous in j, so that the sums of
   // all nodes run side by side. Scaling by 2 is exact, so each weight is the same double as dft_weights'.
   std::vector<double> dft_cos, dft_sin;
   Matrix3d mount;
+};
+
+// Runs that share their fast and slow nodes (the same M, platform mode, duration and mounting, so that a
+// trial gives them the same number of slow nodes and the same drift at each): their nodes side by side in
+// the same SIMD loops, numbered as run_means_nodes.hpp says (run g of G at g·M + j).
+struct RunGroup {
+  std::vector<std::size_t> runs;  // indices into KernelTables::runs, in the plan's order
+  int M = 0;
+  std::vector<double> cos_theta, sin_theta;  // node g·M + j, padded
+  std::vector<double> cos_gamma, sin_gamma;  // node q·G·M + g·M + j for every q < kMaxSlowNodes, padded
 };
 
 // The kernel's tables. RunMeanKernel::Data is private to the class; its content is defined here so that the
@@ -136,6 +145,7 @@ struct KernelTables {
   OutputPolynomial output;
   QuadratureOptions quadrature;
   std::vector<RunTables> runs;
+  std::vector<RunGroup> groups;
   // Slow-time nodes and their Lagrange monomials for Q = 1..kMaxSlowNodes.
   std::vector<std::vector<double>> slow_nodes;
   std::vector<Eigen::MatrixXd> lagrange;
@@ -154,23 +164,23 @@ struct RunMeanKernel::Data : run_nodes::KernelTables {
 namespace run_nodes {
 
 // Scratch space of one thread, grown when a larger rule is met and then reused (RunMeanKernel::Workspace).
-// Nodes n = q·M + j follow each other without padding between slow nodes, so that the platform's loop
-// fills whole SIMD vectors across them; the main-axis half is repeated for every slow node.
+// A group's nodes n = q·G·M + g·M + j follow each other without padding, so that the loops fill whole SIMD
+// vectors across runs and slow nodes; the main-axis half is repeated for every slow node.
 struct Scratch {
   std::vector<double> nu_re, nu_im, weights;
-  std::vector<double> cos_offset, sin_offset;  // slow node q's drift at node n
+  std::vector<double> main_rate, arm_x, platform_rate;  // θ̇1, B's offset x and γ̇ of the node's run
+  std::vector<double> cos_offset, sin_offset;           // slow node q's drift at node n
   MainAxisNodes main;
   InstrumentInputs inputs;
   std::size_t nodes = 0;
-  void reserve(int M, int Q) {
-    // The main-axis loop writes padded(M) nodes before they are repeated.
-    const auto n = std::size_t(std::max(padded(M * Q), padded(M))), harmonics = std::size_t((M / 2 + 1) * Q);
+  void reserve(int M, int G, int Q) {
+    // The main-axis loop writes padded(G·M) nodes before they are repeated.
+    const auto n = std::size_t(std::max(padded(Q * G * M), padded(G * M)));
+    const auto harmonics = std::size_t((M / 2 + 1) * Q);
     if (nodes < n) {
-      weights.resize(n);
+      for (auto* v : {&weights, &main_rate, &arm_x, &platform_rate, &cos_offset, &sin_offset}) v->resize(n);
       inputs.resize(n);
       main.resize(n);
-      cos_offset.resize(n);
-      sin_offset.resize(n);
       nodes = n;
     }
     if (nu_re.size() < harmonics) {
@@ -186,8 +196,41 @@ namespace {
 
 using run_nodes::KernelTables;
 using run_nodes::OutputPolynomial;
+using run_nodes::RunGroup;
 using run_nodes::RunTables;
 using run_nodes::Scratch;
+
+// The runs in groups of the same nodes (RunGroup), in order of first appearance, and each group's tables of
+// its nodes' angles; padding lanes hold the harmless angle 0 and are never summed.
+void group_runs(KernelTables& d) {
+  for (std::size_t r = 0; r < d.runs.size(); ++r) {
+    const RunTables& t = d.runs[r];
+    auto group = std::find_if(d.groups.begin(), d.groups.end(), [&](const RunGroup& g) {
+      const RunTables& u = d.runs[g.runs.front()];
+      return u.M == t.M && u.counter == t.counter && u.duration == t.duration && u.mount == t.mount;
+    });
+    if (group == d.groups.end()) group = d.groups.insert(d.groups.end(), RunGroup{{}, t.M, {}, {}, {}, {}});
+    group->runs.push_back(r);
+  }
+  for (RunGroup& g : d.groups) {
+    for (const std::size_t r : g.runs) {
+      const RunTables& t = d.runs[r];
+      g.cos_theta.insert(g.cos_theta.end(), t.cos_theta.begin(), t.cos_theta.end());
+      g.sin_theta.insert(g.sin_theta.end(), t.sin_theta.begin(), t.sin_theta.end());
+    }
+    for (int q = 0; q < detail::kMaxSlowNodes; ++q)
+      for (const std::size_t r : g.runs) {
+        const RunTables& t = d.runs[r];
+        g.cos_gamma.insert(g.cos_gamma.end(), t.cos_gamma.begin(), t.cos_gamma.end());
+        g.sin_gamma.insert(g.sin_gamma.end(), t.sin_gamma.begin(), t.sin_gamma.end());
+      }
+    for (auto [c, s] : {std::pair{&g.cos_theta, &g.sin_theta}, std::pair{&g.cos_gamma, &g.sin_gamma}}) {
+      const auto n = std::size_t(padded(int(c->size())));
+      c->resize(n, 1.0);
+      s->resize(n, 0.0);
+    }
+  }
+}
 
 }  // namespace
 
@@ -229,14 +272,6 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
       t.cos_gamma.push_back(std::cos(gamma));
       t.sin_gamma.push_back(std::sin(gamma));
     }
-    const int repeated = t.M * detail::kMaxSlowNodes;
-    for (int n = t.M; n < repeated; ++n) {
-      t.cos_gamma.push_back(t.cos_gamma[std::size_t(n - t.M)]);
-      t.sin_gamma.push_back(t.sin_gamma[std::size_t(n - t.M)]);
-    }
-    // Padding up to whole packs: harmless angle 0, never summed.
-    for (int j = t.M; j < padded(t.M); ++j) t.cos_theta.push_back(1.0), t.sin_theta.push_back(0.0);
-    for (int n = repeated; n < padded(repeated); ++n) t.cos_gamma.push_back(1.0), t.sin_gamma.push_back(0.0);
     for (int m = 0; m <= t.M / 2; ++m) {
       const double half_kappa = t.rate * t.duration * double(m) / 2.0;
       t.cos_half.push_back(std::cos(half_kappa));
@@ -245,6 +280,7 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
     t.mount = mounting_matrix(run.mounting);
     data->runs.push_back(std::move(t));
   }
+  group_runs(*data);
   data->slow_nodes.resize(detail::kMaxSlowNodes + 1);
   data->lagrange.resize(detail::kMaxSlowNodes + 1);
   for (int Q = 1; Q <= detail::kMaxSlowNodes; ++Q) {
@@ -323,9 +359,9 @@ int slow_node_count(const RunTables& t, const QuadratureOptions& quadrature, dou
 }
 
 // The quadrature weights (quadrature.hpp): κ/2 = m(Ω + Δω)T/2, its cosine and sine turned from the nominal
-// mΩT/2 by mΔωT/2.
+// mΩT/2 by mΔωT/2; slow node q's at weights + q·stride.
 void quadrature_weights(const RunTables& t, double domega, double theta1_rate, int Q,
-                        const Eigen::MatrixXd& a, Scratch& scratch) {
+                        const Eigen::MatrixXd& a, Scratch& scratch, double* weights, int stride) {
   const double omega_T = theta1_rate * t.duration;
   for (int m = 0; m <= t.M / 2; ++m) {
     double c, s;
@@ -337,7 +373,7 @@ void quadrature_weights(const RunTables& t, double domega, double theta1_rate, i
   // w_jq = (ν_0q + Σ_m c_m (cos(mθ_j) Re ν_mq + sin(mθ_j) Im ν_mq)) / M, summed over m in dft_weights' order.
   const int M = t.M;
   for (int q = 0; q < Q; ++q) {
-    double* w = &scratch.weights[std::size_t(q * M)];
+    double* w = weights + q * stride;
     for (int j = 0; j < M; ++j) w[j] = scratch.nu_re[std::size_t(q)];
     for (int m = 1; m <= M / 2; ++m) {
       const double re = scratch.nu_re[std::size_t(m * Q + q)], im = scratch.nu_im[std::size_t(m * Q + q)];
@@ -349,90 +385,125 @@ void quadrature_weights(const RunTables& t, double domega, double theta1_rate, i
   }
 }
 
-// The main-axis half at each fast node, carried into frame-3t coordinates; B's arm stretch c·θ̇1² added.
-void main_axis_half(const RunTables& t, const TrialTerms& trial, double arm_stretch_error, double theta1_rate,
+// A group's nodes as the loops number them: the main-axis half at n < G·M, the platform half at
+// n = q·G·M + g·M + j < Q·G·M.
+struct GroupNodes {
+  int M, G, Q;
+  int fast() const { return G * M; }
+  int all() const { return Q * G * M; }
+};
+
+// Each run's rates at its nodes and weights: θ̇1 = Ω + Δω with B's arm stretch c·θ̇1² for the main-axis half,
+// γ̇ = −(θ̇1 + ΔΩ) (counter-rotating) or 0 for the platform half.
+void run_rates_and_weights(const KernelTables& d, const RunGroup& group, const GroupNodes& nodes,
+                           const TrialTerms& trial, const Eigen::Map<const Eigen::VectorXd>& e,
+                           Scratch& scratch) {
+  const int M = nodes.M;
+  for (int g = 0; g < nodes.G; ++g) {
+    const RunTables& t = d.runs[group.runs[std::size_t(g)]];
+    const double theta1_rate = t.rate + e[ch::domega];
+    const double gamma_rate = t.counter ? -(theta1_rate + e[ch::dOmega]) : 0.0;
+    quadrature_weights(t, e[ch::domega], theta1_rate, nodes.Q, d.lagrange[std::size_t(nodes.Q)], scratch,
+                       scratch.weights.data() + g * M, nodes.fast());
+    double arm_x = trial.blocks.pB[0];
+    arm_x += e[ch::arm_stretch] * theta1_rate * theta1_rate;
+    std::fill_n(scratch.main_rate.begin() + g * M, M, theta1_rate);
+    std::fill_n(scratch.arm_x.begin() + g * M, M, arm_x);
+    for (int q = 0; q < nodes.Q; ++q)
+      std::fill_n(scratch.platform_rate.begin() + q * nodes.fast() + g * M, M, gamma_rate);
+  }
+}
+
+// The main-axis half at each fast node of the group's runs, carried into frame-3t coordinates.
+void main_axis_half(const RunGroup& group, const GroupNodes& nodes, const TrialTerms& trial,
                     Scratch& scratch) {
   const ChainBlocks<double>& blocks = trial.blocks;
-  MainAxisInputs main{trial.main_coefficients,
-                      trial.order,
-                      trial.main_ripple,
-                      t.cos_theta.data(),
-                      t.sin_theta.data(),
-                      t.M,
-                      theta1_rate,
-                      trial.g,
-                      to_v3(blocks.pB),
-                      to_v3(blocks.coriolis_1t),
-                      to_v3(blocks.gravity_1t),
-                      to_v3(blocks.earth_1t),
-                      blocks.RB};
-  main.pB.x += arm_stretch_error * theta1_rate * theta1_rate;
+  const MainAxisInputs main{trial.main_coefficients,
+                            trial.order,
+                            trial.main_ripple,
+                            group.cos_theta.data(),
+                            group.sin_theta.data(),
+                            scratch.main_rate.data(),
+                            scratch.arm_x.data(),
+                            nodes.fast(),
+                            trial.g,
+                            to_v3(blocks.pB),
+                            to_v3(blocks.coriolis_1t),
+                            to_v3(blocks.gravity_1t),
+                            to_v3(blocks.earth_1t),
+                            blocks.RB};
   main_axis_nodes(main, trial.main_small, scratch.main);
 }
 
-// The main-axis half's M nodes repeated for slow nodes 1 … Q − 1 (node n = q·M + j reads fast node j).
-void repeat_main_axis_half(int M, int Q, Scratch& scratch) {
+// The main-axis half's G·M nodes repeated for slow nodes 1 … Q − 1 (node n reads fast node n mod G·M).
+void repeat_main_axis_half(const GroupNodes& nodes, Scratch& scratch) {
   MainAxisNodes& m = scratch.main;
+  const int n = nodes.fast();
   for (std::vector<double>* v : {&m.F0.x, &m.F0.y, &m.F0.z, &m.W.x, &m.W.y, &m.W.z, &m.dW.x, &m.dW.y, &m.dW.z,
                                  &m.coriolis.x, &m.coriolis.y, &m.coriolis.z, &m.W_total.x, &m.W_total.y,
                                  &m.W_total.z, &m.ripple_angle, &m.ripple_rate, &m.ripple_acc})
-    for (int q = 1; q < Q; ++q) std::copy_n(v->begin(), M, v->begin() + q * M);
+    for (int q = 1; q < nodes.Q; ++q) std::copy_n(v->begin(), n, v->begin() + q * n);
 }
 
-// The platform half at every node n = q·M + j, slow-major like the weights; slow node q drifts by −ΔΩ t_q,
-// t_q = (1 + x_q) T/2. A fixed platform does not turn: no ripple of its own, nothing to follow
-// (kinematics.hpp, run_motion).
-void platform_half(const RunTables& t, const TrialTerms& trial, double dOmega, double gamma_rate,
-                   const std::vector<double>& x_nodes, int Q, Scratch& scratch) {
-  const int nodes = Q * t.M;
-  for (int q = 0; q < Q; ++q) {
+// The platform half at every node; slow node q drifts by −ΔΩ t_q, t_q = (1 + x_q) T/2, alike for the runs of
+// a group. A fixed platform does not turn: no ripple of its own, nothing to follow (kinematics.hpp,
+// run_motion).
+void platform_half(const RunTables& t, const RunGroup& group, const GroupNodes& nodes,
+                   const TrialTerms& trial, double dOmega, const std::vector<double>& x_nodes,
+                   Scratch& scratch) {
+  for (int q = 0; q < nodes.Q; ++q) {
     const double slow_offset =
         t.counter ? -dOmega * (0.5 * (1.0 + x_nodes[std::size_t(q)]) * t.duration) : 0.0;
     double c, s;
     cos_sin(slow_offset, c, s);
-    std::fill_n(scratch.cos_offset.begin() + q * t.M, t.M, c);
-    std::fill_n(scratch.sin_offset.begin() + q * t.M, t.M, s);
+    std::fill_n(scratch.cos_offset.begin() + q * nodes.fast(), nodes.fast(), c);
+    std::fill_n(scratch.sin_offset.begin() + q * nodes.fast(), nodes.fast(), s);
   }
-  std::fill(scratch.cos_offset.begin() + nodes, scratch.cos_offset.begin() + padded(nodes), 1.0);
-  std::fill(scratch.sin_offset.begin() + nodes, scratch.sin_offset.begin() + padded(nodes), 0.0);
+  const int all = nodes.all();
+  std::fill(scratch.cos_offset.begin() + all, scratch.cos_offset.begin() + padded(all), 1.0);
+  std::fill(scratch.sin_offset.begin() + all, scratch.sin_offset.begin() + padded(all), 0.0);
   const PlatformInputs platform{trial.platform_coefficients,
                                 trial.order,
                                 t.counter ? trial.platform_ripple : nullptr,
                                 t.counter && trial.phase_locked && trial.main_ripple != nullptr,
-                                t.cos_gamma.data(),
-                                t.sin_gamma.data(),
+                                group.cos_gamma.data(),
+                                group.sin_gamma.data(),
                                 scratch.cos_offset.data(),
                                 scratch.sin_offset.data(),
-                                nodes,
-                                gamma_rate,
+                                scratch.platform_rate.data(),
+                                all,
                                 1.0 / trial.g,
                                 to_v3(trial.blocks.pC),
                                 trial.blocks.RC * t.mount};
   platform_nodes(platform, trial.platform_small, scratch.main, scratch.inputs);
 }
 
-// ⟨output⟩ = Σ_q Σ_j w_qj y(a_i, a_p, a_o, ω_IA at node qj), the padding skipped.
-double weighted_output(const OutputPolynomial& output, const Scratch& scratch, int M, int Q) {
+// ⟨output⟩ of run g = Σ_q Σ_j w_qj y(a_i, a_p, a_o, ω_IA at its node qj), the padding skipped.
+double weighted_output(const OutputPolynomial& output, const Scratch& scratch, const GroupNodes& nodes,
+                       int g) {
   double mean = 0;
-  for (std::size_t n = 0; n < std::size_t(Q * M); ++n)
-    mean += scratch.weights[n] * output(scratch.inputs.a_i[n], scratch.inputs.a_p[n], scratch.inputs.a_o[n],
-                                        scratch.inputs.w_ia[n]);
+  for (int q = 0; q < nodes.Q; ++q)
+    for (int j = 0; j < nodes.M; ++j) {
+      const auto n = std::size_t(q * nodes.fast() + g * nodes.M + j);
+      mean += scratch.weights[n] * output(scratch.inputs.a_i[n], scratch.inputs.a_p[n], scratch.inputs.a_o[n],
+                                          scratch.inputs.w_ia[n]);
+    }
   return mean;
 }
 
-// One run's mean output for the trial's errors: the drives' rates θ̇1 = Ω + Δω and γ̇ = −(θ̇1 + ΔΩ)
-// (counter-rotating) or 0, the weights, the two halves of the chain at the nodes, the weighted sum.
-double run_mean(const KernelTables& d, const RunTables& t, const TrialTerms& trial,
-                const Eigen::Map<const Eigen::VectorXd>& e, Scratch& scratch) {
-  const double theta1_rate = t.rate + e[ch::domega];
-  const double gamma_rate = t.counter ? -(theta1_rate + e[ch::dOmega]) : 0.0;
-  const int Q = slow_node_count(t, d.quadrature, e[ch::dOmega]);
-  scratch.reserve(t.M, Q);
-  quadrature_weights(t, e[ch::domega], theta1_rate, Q, d.lagrange[std::size_t(Q)], scratch);
-  main_axis_half(t, trial, e[ch::arm_stretch], theta1_rate, scratch);
-  repeat_main_axis_half(t.M, Q, scratch);
-  platform_half(t, trial, e[ch::dOmega], gamma_rate, d.slow_nodes[std::size_t(Q)], Q, scratch);
-  return weighted_output(d.output, scratch, t.M, Q);
+// The mean output of each run of a group for the trial's errors: the rates and weights, the two halves of
+// the chain at all the group's nodes, the weighted sums.
+void group_means(const KernelTables& d, const RunGroup& group, const TrialTerms& trial,
+                 const Eigen::Map<const Eigen::VectorXd>& e, Scratch& scratch, std::span<double> out) {
+  const RunTables& t = d.runs[group.runs.front()];  // the group's nodes are each run's
+  const GroupNodes nodes{group.M, int(group.runs.size()), slow_node_count(t, d.quadrature, e[ch::dOmega])};
+  scratch.reserve(nodes.M, nodes.G, nodes.Q);
+  run_rates_and_weights(d, group, nodes, trial, e, scratch);
+  main_axis_half(group, nodes, trial, scratch);
+  repeat_main_axis_half(nodes, scratch);
+  platform_half(t, group, nodes, trial, e[ch::dOmega], d.slow_nodes[std::size_t(nodes.Q)], scratch);
+  for (int g = 0; g < nodes.G; ++g)
+    out[group.runs[std::size_t(g)]] = weighted_output(d.output, scratch, nodes, g);
 }
 
 }  // namespace
@@ -456,7 +527,7 @@ void RunMeanKernel::means(std::span<const double> errors, std::span<double> out,
   Scratch& scratch = *workspace.buffers_;
   const Eigen::Map<const Eigen::VectorXd> e(errors.data(), Eigen::Index(errors.size()));
   const TrialTerms trial = trial_terms(d, e);
-  for (std::size_t r = 0; r < d.runs.size(); ++r) out[r] = run_mean(d, d.runs[r], trial, e, scratch);
+  for (const RunGroup& group : d.groups) group_means(d, group, trial, e, scratch, out);
 }
 
 void RunMeanKernel::means(std::span<const double> errors, std::span<double> out) const {

@@ -205,8 +205,8 @@ template <class T>
   const T x1 = dot(j.e1, x), x2 = dot(j.e2, x);
   return {j.c * x1 + j.s * x2, j.c * x2 - j.s * x1, dot(j.e3, x)};
 }
-template <class T>
-[[gnu::always_inline]] inline V3<T> from_local(const JointLink<T>& j, const V3<double>& x) {
+template <class T, class U>
+[[gnu::always_inline]] inline V3<T> from_local(const JointLink<T>& j, const V3<U>& x) {
   return (j.c * x.x - j.s * x.y) * j.e1 + (j.s * x.x + j.c * x.y) * j.e2 + x.z * j.e3;
 }
 // Position, velocity and acceleration of the point at `offset` (coordinates after the joint) in the joint's
@@ -215,8 +215,8 @@ template <class T>
 struct PointMotion {
   V3<T> r, v, a;
 };
-template <class T>
-[[gnu::always_inline]] inline PointMotion<T> point_motion(const JointLink<T>& j, const V3<double>& offset) {
+template <class T, class U>
+[[gnu::always_inline]] inline PointMotion<T> point_motion(const JointLink<T>& j, const V3<U>& offset) {
   const V3<T> q = from_local(j, offset);
   const V3<T> wq = cross(j.w, q);
   return {j.d + q, j.d_rate + wq, j.d_acc + cross(j.dw, q) + cross(j.w, wq)};
@@ -240,17 +240,18 @@ template <int kOrder, bool kRipple, class T>
                                                      const JointCoefficients<kOrder>& coefficients, int j,
                                                      MainAxisNodes& out) {
   T c = load<T>(in.cos_theta + j), s = load<T>(in.sin_theta + j);
+  const T nominal_rate = load<T>(in.rate + j);
   if constexpr (!kRipple) {
-    return joint_link(coefficients, c, s, in.rate);
+    return joint_link<kOrder, T, T>(coefficients, c, s, nominal_rate);
   } else {
     const RippleSeries<T> r = ripple_series<kOrder>(in.ripple, in.order, c, s);
-    const T rate_ripple = in.rate * r.relative, acc = (in.rate * in.rate) * r.slope;
+    const T rate_ripple = nominal_rate * r.relative, acc = (nominal_rate * nominal_rate) * r.slope;
     const auto J = std::size_t(j);
     store(&out.ripple_angle[J], r.angle);
     store(&out.ripple_rate[J], rate_ripple);
     store(&out.ripple_acc[J], acc);
     turn_by(c, s, r.angle);
-    const T rate = in.rate + rate_ripple;
+    const T rate = nominal_rate + rate_ripple;
     return joint_link<kOrder, T, T>(coefficients, c, s, rate, &acc);
   }
 }
@@ -261,9 +262,9 @@ template <int kOrder, bool kRipple, class T>
   const Columns B(in.RB);
   const V3<T> coriolis_1t = broadcast<T>(in.coriolis_1t), gravity_1t = broadcast<T>(in.gravity_1t),
               earth_1t = broadcast<T>(in.earth_1t);
-  for (int j = 0; j < in.M; j += kLanes<T>) {
+  for (int j = 0; j < in.nodes; j += kLanes<T>) {
     const JointLink<T> main = main_link<kOrder, kRipple, T>(in, coefficients, j, out);
-    const PointMotion<T> o3t = point_motion(main, in.pB);
+    const PointMotion<T> o3t = point_motion(main, V3<T>{load<T>(in.arm_x + j), T{} + in.pB.y, T{} + in.pB.z});
     const V3<T> F0 = o3t.a + 2.0 * cross(coriolis_1t, o3t.v) + in.g * gravity_1t;
     // x in frame-3t coordinates: R_Bᵀ (R_jointᵀ x).
     const auto J = std::size_t(j);
@@ -285,15 +286,16 @@ template <int kOrder, bool kRipple, class T>
                                                          const T& cg_nominal, const T& sg_nominal) {
   // By reference: a 64-byte vector passed by value draws GCC's ABI note in baseline code.
   T cg = cg_nominal, sg = sg_nominal;
+  const T nominal_rate = load<T>(in.rate + j);
   if constexpr (!kRipple) {
-    return joint_link(coefficients, cg, sg, in.rate);
+    return joint_link<kOrder, T, T>(coefficients, cg, sg, nominal_rate);
   } else {
-    T delta{}, rate = T{} + in.rate, acc{};
+    T delta{}, rate = nominal_rate, acc{};
     if (in.ripple) {
       const RippleSeries<T> r = ripple_series<kOrder>(in.ripple, in.order, cg, sg);
       delta = r.angle;
-      rate += in.rate * r.relative;
-      acc = (in.rate * in.rate) * r.slope;
+      rate += nominal_rate * r.relative;
+      acc = (nominal_rate * nominal_rate) * r.slope;
     }
     if (in.follows_main) {
       const auto J = std::size_t(j);

@@ -47,21 +47,25 @@ struct InstrumentInputs {
   }
 };
 
-// Inputs of the main-axis half (frame 3t, a function of θ1 alone), evaluated in frame-3t coordinates.
+// Inputs of the main-axis half (frame 3t, a function of θ1 alone), evaluated in frame-3t coordinates, at the
+// fast nodes of one or more runs side by side (node i: run i / M's node i mod M).
 struct MainAxisInputs {
   const double* coefficients;  // dx1 … dthy1
   int order;
   const double* ripple;  // c1, s1, …, cN, sN of the main drive's rate ripple, or nullptr for none
   const double *cos_theta, *sin_theta;  // padded
-  int M;
-  double rate, g;
-  V3<double> pB, coriolis_1t, gravity_1t, earth_1t;
+  const double* rate;                   // θ̇1 of the node's run, padded
+  const double* arm_x;                  // x of B's offset with the run's arm stretch, padded
+  int nodes;
+  double g;
+  V3<double> pB, coriolis_1t, gravity_1t, earth_1t;  // pB's x at arm_x
   Eigen::Matrix3d RB;
 };
-// Inputs of the platform half at all nodes of a run, node n = q·M + j (slow node q, fast node j) one after
-// the other without padding between slow nodes: frame 5 relative to frame 3t, composed with the main-axis
-// half of the same fast node, then the instrument's axes through P = R_C·mounting (a_i, a_p, a_o [g] and
-// ω_IA). The main-axis half (MainAxisNodes) is read at n too: its M nodes repeated for every slow node.
+// Inputs of the platform half at all nodes of runs that share their fast and slow nodes, one after the other
+// without padding (run_means.cpp: node n = q·G·M + g·M + j, slow node q, run g of G, fast node j): frame 5
+// relative to frame 3t, composed with the main-axis half of the same fast node, then the instrument's axes
+// through P = R_C·mounting (a_i, a_p, a_o [g] and ω_IA). The main-axis half (MainAxisNodes) is read at n
+// too: its G·M nodes repeated for every slow node.
 struct PlatformInputs {
   const double* coefficients;  // dx3 … dthy3
   int order;
@@ -69,8 +73,9 @@ struct PlatformInputs {
   bool follows_main;     // phase-locked: γ also moves by −δ1 of the same fast node (MainAxisNodes)
   const double *cos_gamma, *sin_gamma;    // nominal platform angle at fast node j of node n, padded
   const double *cos_offset, *sin_offset;  // slow node q's drift at node n, padded
-  int nodes;                              // Q·M
-  double rate, inverse_g;
+  const double* rate;                     // γ̇ of the node's run, padded
+  int nodes;
+  double inverse_g;
   V3<double> pC;
   Eigen::Matrix3d P;
 };
@@ -79,9 +84,9 @@ struct PlatformInputs {
 bool always_small(const double* coefficients, int order);
 // Σ (|ck| + |sk|)/k: a bound of a rate ripple's angle error δ (c1, s1, … at `coefficients`; 0 for nullptr).
 double ripple_angle_bound(const double* coefficients, int order);
-// The main-axis half at the fast nodes 0 … M − 1 (and the padding).
+// The main-axis half at nodes 0 … nodes − 1 (and the padding).
 void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out);
-// The platform half at nodes 0 … Q·M − 1 (and the padding) of `out`.
+// The platform half at nodes 0 … nodes − 1 (and the padding) of `out`.
 void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main, InstrumentInputs& out);
 
 }  // namespace ccal::run_nodes
