@@ -32,9 +32,10 @@ inline constexpr double kSmallAngle = 1e-3;
 // The nested form multiplies by the reciprocals 1/6, 1/20, … rather than dividing: a division costs the SIMD
 // node loops of the Monte Carlo (run_means_nodes.cpp) about half their time. The rounding of 1/n (half an
 // ulp) reaches s and c only through terms below 2e-7 of them, so it moves them by at most ~1e-23 relative
-// before their own rounding (docs/model.md §12).
+// before their own rounding (docs/model.md §12). Always inlined: an out-of-line copy is baseline code, which
+// the node loops' AVX-512 clones would call with their vectors passed through memory.
 template <class S>
-inline void small_angle_cos_sin(const S& q, S& c, S& s) {
+[[gnu::always_inline]] inline void small_angle_cos_sin(const S& q, S& c, S& s) {
   // Written with double literals so that S may also be a SIMD vector of doubles.
   constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0, k72 = 1.0 / 72.0;
   constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0;
