@@ -20,6 +20,7 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using run_nodes::always_small;
+using run_nodes::harmonic_moments_lanes;
 using run_nodes::InstrumentInputs;
 using run_nodes::MainAxisInputs;
 using run_nodes::MainAxisNodes;
@@ -168,6 +169,8 @@ namespace run_nodes {
 // vectors across runs and slow nodes; the main-axis half is repeated for every slow node.
 struct Scratch {
   std::vector<double> nu_re, nu_im, weights;
+  // The harmonics m ≥ 1 of the group's runs side by side for harmonic_moments_lanes: κ/2, cos, sin, and ν.
+  std::vector<double> lane_kappa, lane_cos, lane_sin, lane_re, lane_im;
   std::vector<double> main_rate, arm_x, platform_rate;  // θ̇1, B's offset x and γ̇ of the node's run
   std::vector<double> cos_offset, sin_offset;           // slow node q's drift at node n
   MainAxisNodes main;
@@ -176,7 +179,7 @@ struct Scratch {
   void reserve(int M, int G, int Q) {
     // The main-axis loop writes padded(G·M) nodes before they are repeated.
     const auto n = std::size_t(std::max(padded(Q * G * M), padded(G * M)));
-    const auto harmonics = std::size_t((M / 2 + 1) * Q);
+    const auto harmonics = std::size_t(G * (M / 2 + 1) * Q), lanes = std::size_t(padded(G * (M / 2)));
     if (nodes < n) {
       for (auto* v : {&weights, &main_rate, &arm_x, &platform_rate, &cos_offset, &sin_offset}) v->resize(n);
       inputs.resize(n);
@@ -186,6 +189,11 @@ struct Scratch {
     if (nu_re.size() < harmonics) {
       nu_re.resize(harmonics);
       nu_im.resize(harmonics);
+    }
+    if (lane_re.size() < lanes * std::size_t(Q)) {
+      for (auto* v : {&lane_kappa, &lane_cos, &lane_sin}) v->resize(lanes);
+      lane_re.resize(lanes * std::size_t(Q));
+      lane_im.resize(lanes * std::size_t(Q));
     }
   }
 };
@@ -358,25 +366,25 @@ int slow_node_count(const RunTables& t, const QuadratureOptions& quadrature, dou
   return Q;
 }
 
-// The quadrature weights (quadrature.hpp): κ/2 = m(Ω + Δω)T/2, its cosine and sine turned from the nominal
-// mΩT/2 by mΔωT/2; slow node q's at weights + q·stride.
-void quadrature_weights(const RunTables& t, double domega, double theta1_rate, int Q,
-                        const Eigen::MatrixXd& a, Scratch& scratch, double* weights, int stride) {
-  const double omega_T = theta1_rate * t.duration;
-  for (int m = 0; m <= t.M / 2; ++m) {
-    double c, s;
-    turn(t.cos_half[std::size_t(m)], t.sin_half[std::size_t(m)], double(m) * domega * t.duration / 2.0, c, s);
-    detail::harmonic_slow_moments<double>(omega_T * double(m) / 2.0, c, s, a,
-                                          &scratch.nu_re[std::size_t(m * Q)],
-                                          &scratch.nu_im[std::size_t(m * Q)]);
-  }
+// A group's nodes as the loops number them: the main-axis half at n < G·M, the platform half at
+// n = q·G·M + g·M + j < Q·G·M.
+struct GroupNodes {
+  int M, G, Q;
+  int fast() const { return G * M; }
+  int all() const { return Q * G * M; }
+};
+
+// The quadrature weights (quadrature.hpp) of a run from its ν (slow_moments); slow node q's at
+// weights + q·stride.
+void quadrature_weights(const RunTables& t, int Q, const double* nu_re, const double* nu_im, double* weights,
+                        int stride) {
   // w_jq = (ν_0q + Σ_m c_m (cos(mθ_j) Re ν_mq + sin(mθ_j) Im ν_mq)) / M, summed over m in dft_weights' order.
   const int M = t.M;
   for (int q = 0; q < Q; ++q) {
     double* w = weights + q * stride;
-    for (int j = 0; j < M; ++j) w[j] = scratch.nu_re[std::size_t(q)];
+    for (int j = 0; j < M; ++j) w[j] = nu_re[q];
     for (int m = 1; m <= M / 2; ++m) {
-      const double re = scratch.nu_re[std::size_t(m * Q + q)], im = scratch.nu_im[std::size_t(m * Q + q)];
+      const double re = nu_re[m * Q + q], im = nu_im[m * Q + q];
       const double* c = &t.dft_cos[std::size_t((m - 1) * M)];
       const double* s = &t.dft_sin[std::size_t((m - 1) * M)];
       for (int j = 0; j < M; ++j) w[j] += c[j] * re + s[j] * im;
@@ -385,13 +393,60 @@ void quadrature_weights(const RunTables& t, double domega, double theta1_rate, i
   }
 }
 
-// A group's nodes as the loops number them: the main-axis half at n < G·M, the platform half at
-// n = q·G·M + g·M + j < Q·G·M.
-struct GroupNodes {
-  int M, G, Q;
-  int fast() const { return G * M; }
-  int all() const { return Q * G * M; }
-};
+// ν_mq of every harmonic m = 0 … M/2 of every run g of the group (spectral_weights.hpp's
+// harmonic_slow_moments) at nu[(g·(M/2 + 1) + m)·Q + q]: κ/2 = m(Ω + Δω)T/2, its cosine and sine turned from
+// the nominal mΩT/2 by mΔωT/2. The harmonics m ≥ 1 of all the runs go through harmonic_moments_lanes, the
+// same operations eight at a time, when each of them takes J_p's recursion (|κ/2| ≥ 4 + Q: always but for
+// runs of a few revolutions); m = 0, κ = 0, takes the series.
+void slow_moments(const KernelTables& d, const RunGroup& group, const GroupNodes& nodes, double domega,
+                  Scratch& scratch) {
+  const int H = nodes.M / 2 + 1, Q = nodes.Q;
+  const Eigen::MatrixXd& a = d.lagrange[std::size_t(Q)];
+  int count = 0;
+  bool recursion = true;
+  for (int g = 0; g < nodes.G; ++g) {
+    const RunTables& t = d.runs[group.runs[std::size_t(g)]];
+    const double omega_T = (t.rate + domega) * t.duration;
+    for (int m = 0; m < H; ++m) {
+      double c, s;
+      turn(t.cos_half[std::size_t(m)], t.sin_half[std::size_t(m)], double(m) * domega * t.duration / 2.0, c,
+           s);
+      const double half_kappa = omega_T * double(m) / 2.0;
+      if (m == 0) {
+        const auto at = std::size_t(g * H * Q);
+        detail::harmonic_slow_moments<double>(half_kappa, c, s, a, &scratch.nu_re[at], &scratch.nu_im[at]);
+        continue;
+      }
+      scratch.lane_kappa[std::size_t(count)] = half_kappa;
+      scratch.lane_cos[std::size_t(count)] = c;
+      scratch.lane_sin[std::size_t(count)] = s;
+      recursion = recursion && !(std::abs(half_kappa) < 4.0 + Q);
+      ++count;
+    }
+  }
+  const int lanes = padded(count);
+  for (int i = count; i < lanes; ++i)  // padding: any κ ≠ 0, never read
+    scratch.lane_kappa[std::size_t(i)] = 1.0, scratch.lane_cos[std::size_t(i)] = 1.0,
+    scratch.lane_sin[std::size_t(i)] = 0.0;
+  if (recursion)
+    harmonic_moments_lanes(scratch.lane_kappa.data(), scratch.lane_cos.data(), scratch.lane_sin.data(), lanes,
+                           a.data(), Q, scratch.lane_re.data(), scratch.lane_im.data());
+  int i = 0;
+  for (int g = 0; g < nodes.G; ++g)
+    for (int m = 1; m < H; ++m, ++i) {
+      const auto at = std::size_t((g * H + m) * Q);
+      if (!recursion) {
+        detail::harmonic_slow_moments<double>(
+            scratch.lane_kappa[std::size_t(i)], scratch.lane_cos[std::size_t(i)],
+            scratch.lane_sin[std::size_t(i)], a, &scratch.nu_re[at], &scratch.nu_im[at]);
+        continue;
+      }
+      for (int q = 0; q < Q; ++q) {
+        scratch.nu_re[at + std::size_t(q)] = scratch.lane_re[std::size_t(q * lanes + i)];
+        scratch.nu_im[at + std::size_t(q)] = scratch.lane_im[std::size_t(q * lanes + i)];
+      }
+    }
+}
 
 // Each run's rates at its nodes and weights: θ̇1 = Ω + Δω with B's arm stretch c·θ̇1² for the main-axis half,
 // γ̇ = −(θ̇1 + ΔΩ) (counter-rotating) or 0 for the platform half.
@@ -403,8 +458,9 @@ void run_rates_and_weights(const KernelTables& d, const RunGroup& group, const G
     const RunTables& t = d.runs[group.runs[std::size_t(g)]];
     const double theta1_rate = t.rate + e[ch::domega];
     const double gamma_rate = t.counter ? -(theta1_rate + e[ch::dOmega]) : 0.0;
-    quadrature_weights(t, e[ch::domega], theta1_rate, nodes.Q, d.lagrange[std::size_t(nodes.Q)], scratch,
-                       scratch.weights.data() + g * M, nodes.fast());
+    const auto nu = std::size_t(g * (M / 2 + 1) * nodes.Q);
+    quadrature_weights(t, nodes.Q, &scratch.nu_re[nu], &scratch.nu_im[nu], scratch.weights.data() + g * M,
+                       nodes.fast());
     double arm_x = trial.blocks.pB[0];
     arm_x += e[ch::arm_stretch] * theta1_rate * theta1_rate;
     std::fill_n(scratch.main_rate.begin() + g * M, M, theta1_rate);
@@ -498,6 +554,7 @@ void group_means(const KernelTables& d, const RunGroup& group, const TrialTerms&
   const RunTables& t = d.runs[group.runs.front()];  // the group's nodes are each run's
   const GroupNodes nodes{group.M, int(group.runs.size()), slow_node_count(t, d.quadrature, e[ch::dOmega])};
   scratch.reserve(nodes.M, nodes.G, nodes.Q);
+  slow_moments(d, group, nodes, e[ch::domega], scratch);
   run_rates_and_weights(d, group, nodes, trial, e, scratch);
   main_axis_half(group, nodes, trial, scratch);
   repeat_main_axis_half(nodes, scratch);

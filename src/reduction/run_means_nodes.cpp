@@ -6,6 +6,7 @@
 
 #include "../core/cloned_loops.hpp"
 #include "ccal/core/frames.hpp"
+#include "ccal/reduction/detail/spectral_weights.hpp"
 
 namespace ccal::run_nodes {
 
@@ -394,6 +395,36 @@ template <bool kRipple, class T>
                                       : platform_dispatch<false, double>(in, main, out);
 }
 }  // namespace
+
+CCAL_CLONED void harmonic_moments_lanes(const double* half_kappa, const double* cos_half_kappa,
+                                        const double* sin_half_kappa, int count, const double* a, int Q,
+                                        double* nu_re, double* nu_im) {
+  for (int i = 0; i < count; i += kPackLanes) {
+    const Pack k = load<Pack>(half_kappa + i), c = load<Pack>(cos_half_kappa + i),
+               s = load<Pack>(sin_half_kappa + i);
+    // J_p by oscillatory_moments' recursion: (e^{iκ} − (−1)^p e^{−iκ})/2 less p·J_{p−1}, divided by iκ.
+    Pack re[detail::kMaxSlowNodes], im[detail::kMaxSlowNodes];
+    for (int p = 0; p < Q; ++p) {
+      Pack xr = p % 2 == 0 ? Pack{} : c;
+      Pack xi = p % 2 == 0 ? s : Pack{};
+      if (p > 0) {
+        xr -= double(p) * re[p - 1];
+        xi -= double(p) * im[p - 1];
+      }
+      re[p] = xi / k;
+      im[p] = -xr / k;
+    }
+    for (int q = 0; q < Q; ++q) {
+      Pack sr{}, si{};
+      for (int p = 0; p < Q; ++p) {
+        sr += a[q + p * Q] * re[p];
+        si += a[q + p * Q] * im[p];
+      }
+      store(nu_re + q * count + i, c * sr - s * si);
+      store(nu_im + q * count + i, s * sr + c * si);
+    }
+  }
+}
 
 CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out) {
   if (!small) return main_axis_one_by_one(in, out);

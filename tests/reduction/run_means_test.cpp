@@ -1,12 +1,15 @@
 // The Monte Carlo's run-mean kernel against the general reduction (average_run over the DynamicChain, itself
 // tested against the link-by-link chain) and against the closed form of the error-free means.
+#include "ccal/reduction/run_means.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "../src/reduction/run_means_nodes.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/reduction/detail/spectral_weights.hpp"
 #include "ccal/reduction/run_average.hpp"
-#include "ccal/reduction/run_means.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "experiment_support.hpp"
 
@@ -86,6 +89,52 @@ TEST_P(GeneralCentrifuge, EqualsTheGeneralReduction) {
 }
 INSTANTIATE_TEST_SUITE_P(RunMeanKernel, GeneralCentrifuge,
                          ::testing::Combine(::testing::Values(0, 2, 3), ::testing::Bool()));
+
+TEST(RunMeanKernel, SlowMomentsInLanesAreTheScalarOnesBitForBit) {
+  // The kernel computes ν of all runs' harmonics m ≥ 1 eight at a time (run_nodes::harmonic_moments_lanes)
+  // where each takes J_p's recursion; it must give harmonic_slow_moments' bits, lane by lane, for every
+  // number of slow nodes. κ/2 from 4 + Q (the recursion's lower end) to 1e5 rad, both signs.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int Q = 1; Q <= detail::kMaxSlowNodes; ++Q) {
+    const Eigen::MatrixXd& a = detail::slow_lagrange_monomials(Q);
+    constexpr int kCount = 4 * run_nodes::kPackLanes;
+    std::vector<double> kappa(kCount), c(kCount), s(kCount), re(std::size_t(kCount * Q)), im(re.size());
+    for (int i = 0; i < kCount; ++i) {
+      const double k = (4.0 + Q) * std::pow(1e5 / (4.0 + Q), unit(rng)) * (i % 3 == 0 ? -1 : 1);
+      kappa[std::size_t(i)] = k;
+      c[std::size_t(i)] = std::cos(k);
+      s[std::size_t(i)] = std::sin(k);
+    }
+    run_nodes::harmonic_moments_lanes(kappa.data(), c.data(), s.data(), kCount, a.data(), Q, re.data(),
+                                      im.data());
+    for (int i = 0; i < kCount; ++i) {
+      std::vector<double> want_re(static_cast<std::size_t>(Q)), want_im(static_cast<std::size_t>(Q));
+      detail::harmonic_slow_moments<double>(kappa[std::size_t(i)], c[std::size_t(i)], s[std::size_t(i)], a,
+                                            want_re.data(), want_im.data());
+      for (int q = 0; q < Q; ++q) {
+        ASSERT_EQ(re[std::size_t(q * kCount + i)], want_re[std::size_t(q)])
+            << "Q " << Q << " κ/2 " << kappa[std::size_t(i)];
+        ASSERT_EQ(im[std::size_t(q * kCount + i)], want_im[std::size_t(q)])
+            << "Q " << Q << " κ/2 " << kappa[std::size_t(i)];
+      }
+    }
+  }
+}
+
+TEST(RunMeanKernel, ShortRunsTakeTheSeriesOfTheirSlowMoments) {
+  // Runs of a few radians of the arm (|κ/2| < 4 + Q for the first harmonics) leave the lanes to
+  // harmonic_slow_moments' series: still average_run's means (1e-14 of the swing, as above), beside long runs
+  // of another group.
+  Experiment ex = bundled_example().experiment();
+  for (std::size_t r = 0; r < ex.plan.runs.size(); ++r) ex.plan.runs[r].duration = r % 2 == 0 ? 0.7 : 450.0;
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(ex.layout.size());
+  e[ch::dOmega] = 2e-4;  // two slow nodes or more
+  e[ch::domega] = 1e-6;
+  ReductionOptions options;
+  options.quadrature.fast_nodes = 10;
+  expect_same_means(ex, e, options, 1e-14, "short and long runs");
+}
 
 TEST(RunMeanKernel, FollowsTheSlowNodesALargeMismatchNeeds) {
   // ΔΩ = 2e-5 rad/s over 450 s: a drift that needs Q = 6 slow nodes at the trial tolerance and 10 at the
