@@ -22,3 +22,30 @@
 #define CCAL_CLONED
 #define CCAL_FLATTEN
 #endif
+
+#include <cstring>
+
+namespace ccal::lanes {
+
+// Eight doubles in GCC's and Clang's vector extension (one AVX-512 register, two AVX2 ones), each lane IEEE
+// arithmetic on its own: the SIMD lanes of the cloned loops. They pass between functions of one file, inlined
+// into the clones, so the ABI note GCC gives for 64-byte vectors in baseline code is moot there.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+inline constexpr int kWidth = 8;
+using Doubles = double __attribute__((vector_size(kWidth * sizeof(double))));
+
+// A T (double or Doubles) from consecutive doubles, and back.
+template <class T>
+[[gnu::always_inline]] inline T load(const double* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class T>
+[[gnu::always_inline]] inline void store(double* p, const T& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+}  // namespace ccal::lanes

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 
 #include "cloned_loops.hpp"
 
@@ -9,20 +10,10 @@ namespace ccal {
 
 namespace {
 
-// Eight doubles in GCC's and Clang's vector extension (one AVX-512 register, two AVX2 ones): each lane is
-// IEEE arithmetic on its own, the scalar operations of next(double) in the same order.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wpsabi"  // the vectors pass between functions of this file only, inlined
-#endif
-constexpr std::size_t kLanes = 8;
-using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
-
-[[gnu::always_inline]] inline Lanes load(const double* p) {
-  Lanes v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline void store(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
+constexpr std::size_t kLanes = lanes::kWidth;
+using Lanes = lanes::Doubles;
+using lanes::load;
+using lanes::store;
 
 // Pairs of whole lanes: angle k turned by h[k] from its anchor's cos c0[k] and sin s0[k], as small_turn and
 // next(double) compute it lane by lane (the two polynomials of small_turn side by side, then
@@ -30,14 +21,13 @@ using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
 CCAL_CLONED void turn_lanes(const double* h, const double* c0, const double* s0, double* cos_out,
                             double* sin_out, std::size_t n) {
   for (std::size_t k = 0; k < n; k += kLanes) {
-    const Lanes hv = load(h + k), c = load(c0 + k), s = load(s0 + k);
+    const Lanes hv = load<Lanes>(h + k), c = load<Lanes>(c0 + k), s = load<Lanes>(s0 + k);
     const Lanes z = hv * hv;
-    Lanes ps = Lanes{} + 1.0 / 6227020800, pq = Lanes{} + -1.0 / 479001600;  // 1/13!, −1/12!
-    ps = ps * z + -1.0 / 39916800, pq = pq * z + 1.0 / 3628800;
-    ps = ps * z + 1.0 / 362880, pq = pq * z + -1.0 / 40320;
-    ps = ps * z + -1.0 / 5040, pq = pq * z + 1.0 / 720;
-    ps = ps * z + 1.0 / 120, pq = pq * z + -1.0 / 24;
-    ps = ps * z + -1.0 / 6, pq = pq * z + 0.5;
+    Lanes ps = Lanes{} + kTurnSin[0], pq = Lanes{} + kTurnOneMinusCos[0];
+    for (std::size_t i = 1; i < std::size(kTurnSin); ++i) {
+      ps = ps * z + kTurnSin[i];
+      pq = pq * z + kTurnOneMinusCos[i];
+    }
     const Lanes sin_h = hv + hv * z * ps, q = z * pq;
     const Lanes minus_c = -c;
     store(cos_out + k, c - (q * c + sin_h * s));

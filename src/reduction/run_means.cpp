@@ -430,7 +430,7 @@ void slow_moments(const KernelTables& d, const RunGroup& group, const GroupNodes
     scratch.lane_sin[std::size_t(i)] = 0.0;
   if (recursion)
     harmonic_moments_lanes(scratch.lane_kappa.data(), scratch.lane_cos.data(), scratch.lane_sin.data(), lanes,
-                           a.data(), Q, scratch.lane_re.data(), scratch.lane_im.data());
+                           a, scratch.lane_re.data(), scratch.lane_im.data());
   int i = 0;
   for (int g = 0; g < nodes.G; ++g)
     for (int m = 1; m < H; ++m, ++i) {

@@ -19,24 +19,12 @@ using Eigen::Matrix3d;
 // small-angle series, eight lanes run the bundled example's kernel 14 % faster than four). Node data is stored as structure of arrays padded to whole packs;
 // there are no branches in the loop bodies, and floating-point contraction stays off, so that both lane
 // types and every instruction set give the same bits.
-// Pack values pass between functions of this file only, all inlined into the cloned loops, so the ABI note
-// GCC gives for 64-byte vectors in baseline code is moot here.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-using Pack = double __attribute__((vector_size(kPackLanes * sizeof(double))));
+using Pack = lanes::Doubles;
+static_assert(sizeof(Pack) == kPackLanes * sizeof(double));
 template <class T>
 inline constexpr int kLanes = std::is_same_v<T, Pack> ? kPackLanes : 1;
-template <class T>
-[[gnu::always_inline]] inline T load(const double* p) {
-  T v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-template <class T>
-[[gnu::always_inline]] inline void store(double* p, const T& v) {
-  std::memcpy(p, &v, sizeof v);
-}
+using lanes::load;
+using lanes::store;
 template <class T>
 [[gnu::always_inline]] inline V3<T> operator+(const V3<T>& a, const V3<T>& b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};
@@ -396,32 +384,20 @@ template <bool kRipple, class T>
 }
 }  // namespace
 
-CCAL_CLONED void harmonic_moments_lanes(const double* half_kappa, const double* cos_half_kappa,
-                                        const double* sin_half_kappa, int count, const double* a, int Q,
-                                        double* nu_re, double* nu_im) {
+CCAL_CLONED CCAL_FLATTEN void harmonic_moments_lanes(const double* half_kappa, const double* cos_half_kappa,
+                                                     const double* sin_half_kappa, int count,
+                                                     const Eigen::MatrixXd& a, double* nu_re, double* nu_im) {
+  const int Q = int(a.rows());
   for (int i = 0; i < count; i += kPackLanes) {
     const Pack k = load<Pack>(half_kappa + i), c = load<Pack>(cos_half_kappa + i),
                s = load<Pack>(sin_half_kappa + i);
-    // J_p by oscillatory_moments' recursion: (e^{iκ} − (−1)^p e^{−iκ})/2 less p·J_{p−1}, divided by iκ.
-    Pack re[detail::kMaxSlowNodes], im[detail::kMaxSlowNodes];
-    for (int p = 0; p < Q; ++p) {
-      Pack xr = p % 2 == 0 ? Pack{} : c;
-      Pack xi = p % 2 == 0 ? s : Pack{};
-      if (p > 0) {
-        xr -= double(p) * re[p - 1];
-        xi -= double(p) * im[p - 1];
-      }
-      re[p] = xi / k;
-      im[p] = -xr / k;
-    }
+    Pack mu_re[detail::kMaxSlowNodes], mu_im[detail::kMaxSlowNodes], nu_re_q[detail::kMaxSlowNodes],
+        nu_im_q[detail::kMaxSlowNodes];
+    detail::oscillatory_recursion(k, c, s, Q, mu_re, mu_im);
+    detail::slow_moments_of(c, s, a, mu_re, mu_im, nu_re_q, nu_im_q);
     for (int q = 0; q < Q; ++q) {
-      Pack sr{}, si{};
-      for (int p = 0; p < Q; ++p) {
-        sr += a[q + p * Q] * re[p];
-        si += a[q + p * Q] * im[p];
-      }
-      store(nu_re + q * count + i, c * sr - s * si);
-      store(nu_im + q * count + i, s * sr + c * si);
+      store(nu_re + q * count + i, nu_re_q[q]);
+      store(nu_im + q * count + i, nu_im_q[q]);
     }
   }
 }

@@ -82,10 +82,10 @@ struct PlatformInputs {
 // ν = e^{iκ/2} Σ_p a_qp J_p(κ/2) of spectral_weights.hpp's harmonic_slow_moments for `count` harmonics at
 // once (a multiple of kPackLanes), each given κ/2, its cosine and sine, with the same operations in each lane
 // as that function when it takes J_p's forward recursion, which the caller has checked it does for all
-// (!(|κ/2| < 4 + Q)). a: the Q × Q Lagrange monomials, column-major (Eigen's). Into nu_re, nu_im at
-// [q·count + i].
+// (!(|κ/2| < 4 + Q)): spectral_weights.hpp's oscillatory_recursion and slow_moments_of on SIMD vectors.
+// a: the Q × Q Lagrange monomials. Into nu_re, nu_im at [q·count + i].
 void harmonic_moments_lanes(const double* half_kappa, const double* cos_half_kappa,
-                            const double* sin_half_kappa, int count, const double* a, int Q, double* nu_re,
+                            const double* sin_half_kappa, int count, const Eigen::MatrixXd& a, double* nu_re,
                             double* nu_im);
 // Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
 // the SIMD loops (small-angle series for the wobbles) apply.

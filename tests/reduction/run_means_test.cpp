@@ -106,8 +106,7 @@ TEST(RunMeanKernel, SlowMomentsInLanesAreTheScalarOnesBitForBit) {
       c[std::size_t(i)] = std::cos(k);
       s[std::size_t(i)] = std::sin(k);
     }
-    run_nodes::harmonic_moments_lanes(kappa.data(), c.data(), s.data(), kCount, a.data(), Q, re.data(),
-                                      im.data());
+    run_nodes::harmonic_moments_lanes(kappa.data(), c.data(), s.data(), kCount, a, re.data(), im.data());
     for (int i = 0; i < kCount; ++i) {
       std::vector<double> want_re(static_cast<std::size_t>(Q)), want_im(static_cast<std::size_t>(Q));
       detail::harmonic_slow_moments<double>(kappa[std::size_t(i)], c[std::size_t(i)], s[std::size_t(i)], a,

@@ -18,6 +18,7 @@
 // by 1e-9, six orders above this bound.
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <limits>
 
 namespace ccal {
@@ -41,14 +42,16 @@ struct SmallTurn {
   double sin = 0;
   double one_minus_cos = 0;
 };
+// The two polynomials' coefficients, the highest first (also turned eight at a time, sincos_track.cpp).
+inline constexpr double kTurnSin[] = {1.0 / 6227020800, -1.0 / 39916800, 1.0 / 362880,
+                                      -1.0 / 5040,      1.0 / 120,       -1.0 / 6};
+inline constexpr double kTurnOneMinusCos[] = {-1.0 / 479001600, 1.0 / 3628800, -1.0 / 40320,
+                                              1.0 / 720,        -1.0 / 24,     0.5};
 inline SmallTurn small_turn(double h) {
   const double z = h * h;
-  DoublePair p{1.0 / 6227020800, -1.0 / 479001600};  // 1/13!, −1/12!
-  p = p * z + DoublePair{-1.0 / 39916800, 1.0 / 3628800};
-  p = p * z + DoublePair{1.0 / 362880, -1.0 / 40320};
-  p = p * z + DoublePair{-1.0 / 5040, 1.0 / 720};
-  p = p * z + DoublePair{1.0 / 120, -1.0 / 24};
-  p = p * z + DoublePair{-1.0 / 6, 0.5};
+  DoublePair p{kTurnSin[0], kTurnOneMinusCos[0]};
+  for (std::size_t i = 1; i < std::size(kTurnSin); ++i)
+    p = p * z + DoublePair{kTurnSin[i], kTurnOneMinusCos[i]};
   return {h + h * z * p[0], z * p[1]};
 }
 

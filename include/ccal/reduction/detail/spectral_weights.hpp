@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 #include <vector>
 
 #include "ccal/core/value_of.hpp"
@@ -14,10 +15,35 @@ namespace ccal {
 
 namespace detail {
 inline constexpr int kMaxSlowNodes = 16;
+// J_p for p = 0..P−1 by the forward recursion J_p = (e^{iκ} − (−1)^p e^{−iκ}) / (2iκ) − p J_{p−1} / (iκ),
+// stable while p < |κ| (oscillatory_moments' branch for |κ| ≥ 4 + P). S may also be a SIMD vector of doubles
+// (run_means_nodes.cpp: eight harmonics at once, each lane this function's operations).
+// Zero of S: S(0.0), or every lane 0 for a SIMD vector (which no scalar converts to).
+template <class S>
+S zero_of() {
+  if constexpr (std::is_constructible_v<S, double>)
+    return S(0.0);
+  else
+    return S{};
+}
+template <class S>
+void oscillatory_recursion(const S& kappa, const S& cos_kappa, const S& sin_kappa, int P, S* re, S* im) {
+  for (int p = 0; p < P; ++p) {
+    // (e^{iκ} − (−1)^p e^{−iκ}) / 2 is i·sin κ for even p and cos κ for odd p.
+    S xr = p % 2 == 0 ? zero_of<S>() : cos_kappa;
+    S xi = p % 2 == 0 ? sin_kappa : zero_of<S>();
+    if (p > 0) {
+      xr -= double(p) * re[p - 1];
+      xi -= double(p) * im[p - 1];
+    }
+    // dividing by iκ maps (x + iy) to (y − ix)/κ
+    re[p] = xi / kappa;
+    im[p] = -xr / kappa;
+  }
+}
 // J_p(κ) = ½ ∫₋₁¹ x^p e^{iκx} dx for p = 0..P−1 (real and imaginary parts, into re[0..P) and im[0..P)),
 // given cos κ and sin κ: the Taylor series
-// Σ_n (iκ)^n/n! · (1 + (−1)^{n+p}) / (2(n+p+1)) for |κ| < 4, otherwise the forward recursion
-// J_p = (e^{iκ} − (−1)^p e^{−iκ}) / (2iκ) − p J_{p−1} / (iκ), stable while p < |κ|.
+// Σ_n (iκ)^n/n! · (1 + (−1)^{n+p}) / (2(n+p+1)) for |κ| < 4 + P, otherwise oscillatory_recursion.
 template <class S>
 void oscillatory_moments(const S& kappa, const S& cos_kappa, const S& sin_kappa, int P, S* re, S* im) {
   using std::abs;
@@ -42,18 +68,7 @@ void oscillatory_moments(const S& kappa, const S& cos_kappa, const S& sin_kappa,
     }
     return;
   }
-  for (int p = 0; p < P; ++p) {
-    // (e^{iκ} − (−1)^p e^{−iκ}) / 2 is i·sin κ for even p and cos κ for odd p.
-    S xr = p % 2 == 0 ? S(0) : cos_kappa;
-    S xi = p % 2 == 0 ? sin_kappa : S(0);
-    if (p > 0) {
-      xr -= double(p) * re[p - 1];
-      xi -= double(p) * im[p - 1];
-    }
-    // dividing by iκ maps (x + iy) to (y − ix)/κ
-    re[p] = xi / kappa;
-    im[p] = -xr / kappa;
-  }
+  oscillatory_recursion(kappa, cos_kappa, sin_kappa, P, re, im);
 }
 // Monomial coefficients a_qp of the Lagrange basis on the Q nodes slow_time_nodes(Q): L_q(x) = Σ_p a_qp x^p,
 // for Q = 1 … kMaxSlowNodes, solved once for the process (a table of kMaxSlowNodes entries, built on first
@@ -68,14 +83,12 @@ struct FastPhaseTable {
   int M;
   std::vector<double> cos_k, sin_k;  // cos(2πk/M), sin(2πk/M), k = 0..M−1
 };
-// ν_mq = e^{iκ/2} Σ_p a_qp J_p(κ/2) (q = 0..Q−1, into nu_re[q], nu_im[q]) for one harmonic m, given κ/2 =
-// mΩT/2 and its cosine and sine, and the Lagrange monomials a (Q × Q).
+// ν_q = e^{iκ/2} Σ_p a_qp J_p (q = 0..Q−1, into nu_re[q], nu_im[q]) from J_p(κ/2), cos κ/2 and sin κ/2 (c, s)
+// and the Lagrange monomials a (Q × Q). S may also be a SIMD vector of doubles, as in oscillatory_recursion.
 template <class S>
-void harmonic_slow_moments(const S& half_kappa, const S& c, const S& s, const Eigen::MatrixXd& a, S* nu_re,
-                           S* nu_im) {
+void slow_moments_of(const S& c, const S& s, const Eigen::MatrixXd& a, const S* mu_re, const S* mu_im,
+                     S* nu_re, S* nu_im) {
   const int Q = int(a.rows());
-  S mu_re[kMaxSlowNodes], mu_im[kMaxSlowNodes];
-  oscillatory_moments<S>(half_kappa, c, s, Q, mu_re, mu_im);
   for (int q = 0; q < Q; ++q) {
     S sr{0}, si{0};
     for (int p = 0; p < Q; ++p) {
@@ -85,6 +98,15 @@ void harmonic_slow_moments(const S& half_kappa, const S& c, const S& s, const Ei
     nu_re[q] = c * sr - s * si;
     nu_im[q] = s * sr + c * si;
   }
+}
+// ν_mq = e^{iκ/2} Σ_p a_qp J_p(κ/2) (q = 0..Q−1, into nu_re[q], nu_im[q]) for one harmonic m, given κ/2 =
+// mΩT/2 and its cosine and sine, and the Lagrange monomials a (Q × Q).
+template <class S>
+void harmonic_slow_moments(const S& half_kappa, const S& c, const S& s, const Eigen::MatrixXd& a, S* nu_re,
+                           S* nu_im) {
+  S mu_re[kMaxSlowNodes], mu_im[kMaxSlowNodes];
+  oscillatory_moments<S>(half_kappa, c, s, int(a.rows()), mu_re, mu_im);
+  slow_moments_of(c, s, a, mu_re, mu_im, nu_re, nu_im);
 }
 // The weights w[q·M + j] of the rule from ν (stored [m·Q + q], m = 0..M/2):
 //     w_jq = (1/M) Σ_{m=−M/2+1}^{M/2} e^{−imθ_j} ν_mq,
