@@ -142,7 +142,8 @@ void InMemoryLog(benchmark::State& state) {
 BENCHMARK(InMemoryLog)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The rows' numbers alone: 10⁵ rows of the log above (16 MB of lines held in memory), read cell by cell
-// (Arg 0) or by the vector reading (Arg 1, where the processor has SSE4.1).
+// (Arg 0), by the vector reading (Arg 1, where the processor has SSE4.1), or by a log's reader, which reads
+// rows laid out alike by their layout (Arg 2, where the processor has AVX-512 VBMI).
 void RowScan(benchmark::State& state) {
   std::vector<std::string> lines;
   std::size_t bytes = 0;
@@ -153,19 +154,22 @@ void RowScan(benchmark::State& state) {
                                 std::fmod(theta, 2 * kPi), std::fmod(gamma, 2 * kPi) + 2 * kPi));
     bytes += lines.back().size() + 1;
   }
-  const bool vector = state.range(0) == 1;
-  if (vector && !ccal::detail::vector_row_scan_available()) state.SkipWithError("no SSE4.1");
+  const auto way = state.range(0);
+  if (way == 1 && !ccal::detail::vector_row_scan_available()) state.SkipWithError("no SSE4.1");
+  if (way == 2 && !ccal::detail::row_layout_reading_available()) state.SkipWithError("no AVX-512 VBMI");
   std::vector<double> values(4);
+  ccal::PlainDecimalRowReader reader;
   for (auto _ : state)
     for (const std::string& line : lines) {
-      const bool ok = vector ? ccal::detail::scan_plain_decimal_row_vector(line, values)
-                             : ccal::detail::scan_plain_decimal_row_portable(line, values);
+      const bool ok = way == 2   ? reader.read(line, values)
+                      : way == 1 ? ccal::detail::scan_plain_decimal_row_vector(line, values)
+                                 : ccal::detail::scan_plain_decimal_row_portable(line, values);
       benchmark::DoNotOptimize(ok);
       benchmark::DoNotOptimize(values.data());
     }
   state.SetBytesProcessed(std::int64_t(state.iterations()) * std::int64_t(bytes));
-  state.SetLabel(vector ? "vector" : "cell by cell");
+  state.SetLabel(way == 2 ? "by layout" : way == 1 ? "vector" : "cell by cell");
 }
-BENCHMARK(RowScan)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(RowScan)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace

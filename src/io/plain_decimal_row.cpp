@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <memory>
 
 #include "ccal/io/csv_stream.hpp"
 
@@ -14,6 +15,31 @@
 namespace ccal {
 
 namespace detail {
+
+// Where a line's digits, points, commas and minus signs are (bit i: byte i of the line).
+struct LineClasses {
+  std::uint64_t digit = 0, point = 0, comma = 0, minus = 0;
+  bool operator==(const LineClasses&) const = default;
+};
+
+// The layout PlainDecimalRowReader keeps: that of the last two rows when they were laid out alike.
+struct RowLayout {
+  // Four cells of the layout: the byte permutation that gathers each cell's digits right-aligned into its
+  // 16-byte lane (vpermb indices, the bytes not kept zero), the cells' divisors 10^fraction and sign bits.
+  struct Group {
+    std::uint8_t index[64] = {};
+    std::uint64_t keep = 0;
+    double scale[4] = {1, 1, 1, 1};
+    std::uint64_t sign[4] = {};
+  };
+  static constexpr std::size_t kMaxCells = 32;  // one-digit cells and their commas fill 63 bytes
+
+  std::size_t length = 0, cells = 0;  // the layout kept (length 0: none)
+  LineClasses classes;
+  std::size_t previous_length = 0;  // the last row read
+  LineClasses previous;
+  Group groups[kMaxCells / 4];
+};
 
 bool scan_plain_decimal_row_portable(std::string_view line, std::span<double> values) {
   const char* p = line.data();
@@ -86,34 +112,47 @@ struct ByteClasses {
   return double(high * 100000000u + low) / kExactPowersOf10[fraction];
 }
 
-// A line of 16 to 63 bytes: the positions of its digits, points, commas and minus signs found first, for the
-// whole line at once (16-byte chunks, the last one ending at the line's end), so that the cells are then read
-// independently of each other (reading each from where the previous one ended chains every cell's latency
-// into the next). Any other line, and one that is not n cells of at most 15 digits each, goes to the
-// cell-by-cell reading, which decides it.
-[[gnu::target("sse4.1,popcnt")]] bool vector_row(std::string_view line, std::span<double> values) {
-  const std::size_t length = line.size(), n = values.size();
-  if (length < 16 || length > 63 || n == 0) return detail::scan_plain_decimal_row_portable(line, values);
-  const char* const text = line.data();
-  std::uint64_t digit = 0, point = 0, comma = 0, minus = 0;
+// A line of 16 to 63 bytes classified in 16-byte chunks, the last one ending at the line's end.
+[[gnu::target("sse4.1,popcnt")]] inline detail::LineClasses classify_line(const char* text,
+                                                                          std::size_t length) {
+  detail::LineClasses line;
   for (std::size_t at = 0; at < length; at += 16) {
     const std::size_t chunk = std::min(at, length - 16);
     const ByteClasses c = classify(text + chunk);
-    digit |= std::uint64_t(c.digit) << chunk;
-    point |= std::uint64_t(c.point) << chunk;
-    comma |= std::uint64_t(c.comma) << chunk;
-    minus |= std::uint64_t(c.minus) << chunk;
+    line.digit |= std::uint64_t(c.digit) << chunk;
+    line.point |= std::uint64_t(c.point) << chunk;
+    line.comma |= std::uint64_t(c.comma) << chunk;
+    line.minus |= std::uint64_t(c.minus) << chunk;
   }
+  return line;
+}
+
+// A cell as read: its first digit's byte, its digits before and after the point, its sign.
+struct CellShape {
+  unsigned first = 0, whole = 0, fraction = 0;
+  bool negative = false;
+};
+
+// The n cells of a classified line of 16 to 63 bytes, each cell's shape to `shapes` when not null; false when
+// the line is not n cells of at most 15 digits each (values then unspecified). The cells are read
+// independently of each other (reading each from where the previous one ended would chain every cell's
+// latency into the next).
+[[gnu::target("sse4.1,popcnt"), gnu::always_inline]] inline bool read_cells(const char* text,
+                                                                            std::size_t length,
+                                                                            const detail::LineClasses& c,
+                                                                            std::span<double> values,
+                                                                            CellShape* shapes) {
+  const std::size_t n = values.size();
   const std::uint64_t in_line = (std::uint64_t(1) << length) - 1;
-  if ((digit | point | comma | minus) != in_line || std::popcount(comma) != int(n) - 1)
-    return detail::scan_plain_decimal_row_portable(line, values);
-  std::uint64_t stops = comma | (std::uint64_t(1) << length);  // the end of each cell
+  if ((c.digit | c.point | c.comma | c.minus) != in_line || std::popcount(c.comma) != int(n) - 1)
+    return false;
+  std::uint64_t stops = c.comma | (std::uint64_t(1) << length);  // the end of each cell
   unsigned start = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const auto stop = unsigned(std::countr_zero(stops));
     stops &= stops - 1;
     const std::uint64_t cell = ((std::uint64_t(1) << stop) - 1) & ~((std::uint64_t(1) << start) - 1);
-    const std::uint64_t sign = minus & cell, points = point & cell;
+    const std::uint64_t sign = c.minus & cell, points = c.point & cell;
     const unsigned first = start + unsigned(sign != 0);  // the first digit
     unsigned whole = stop - first, fraction = 0;
     if (points != 0) {
@@ -123,12 +162,118 @@ struct ByteClasses {
     }
     if ((sign & ~(std::uint64_t(1) << start)) != 0 || (points & (points - 1)) != 0 || whole == 0 ||
         (points != 0 && fraction == 0) || whole + fraction > 15)
-      return detail::scan_plain_decimal_row_portable(line, values);
+      return false;
     const std::size_t chunk = std::min<std::size_t>(first, length - 16);  // 16 bytes within the line
     const double magnitude = cell_value(text + chunk, unsigned(first - chunk), whole, fraction);
     values[k] = sign != 0 ? -magnitude : magnitude;
+    if (shapes != nullptr) shapes[k] = {first, whole, fraction, sign != 0};
     start = stop + 1;
   }
+  return true;
+}
+
+// A line of 16 to 63 bytes classified and read; any other line, and one that is not n cells of at most 15
+// digits each, goes to the cell-by-cell reading, which decides it.
+[[gnu::target("sse4.1,popcnt")]] bool vector_row(std::string_view line, std::span<double> values) {
+  const std::size_t length = line.size();
+  if (length < 16 || length > 63 || values.empty() ||
+      !read_cells(line.data(), length, classify_line(line.data(), length), values, nullptr))
+    return detail::scan_plain_decimal_row_portable(line, values);
+  return true;
+}
+
+// Rows laid out alike, on a processor with AVX-512 VBMI.
+#define CCAL_LAYOUT_TARGET "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi,popcnt"
+
+// The layout of a row of n cells of the given shapes, kept for the rows that follow: cell 4g + j's digit k
+// (most significant first, of d = whole + fraction) goes to byte 16j + 16 − d + k of group g, as
+// cell_value's shuffle puts it.
+void keep_layout(detail::RowLayout& layout, std::size_t length, const detail::LineClasses& classes,
+                 const CellShape* shapes, std::size_t n) {
+  layout.length = length;
+  layout.cells = n;
+  layout.classes = classes;
+  for (std::size_t g = 0; 4 * g < n; ++g) {
+    detail::RowLayout::Group& group = layout.groups[g];
+    group = {};
+    for (std::size_t j = 0; j < 4 && 4 * g + j < n; ++j) {
+      const CellShape& cell = shapes[4 * g + j];
+      const unsigned digits = cell.whole + cell.fraction;
+      for (unsigned k = 0; k < digits; ++k) {
+        const std::size_t byte = 16 * j + 16 - digits + k;
+        group.index[byte] = std::uint8_t(cell.first + (k < cell.whole ? k : k + 1));
+        group.keep |= std::uint64_t(1) << byte;
+      }
+      group.scale[j] = kExactPowersOf10[cell.fraction];
+      group.sign[j] = cell.negative ? std::uint64_t(1) << 63 : 0;
+    }
+  }
+}
+
+// A line of at most 63 bytes classified in one 64-byte vector (a masked load: no byte past the line is read).
+[[gnu::target(CCAL_LAYOUT_TARGET)]] inline detail::LineClasses classify_line_at_once(const char* text,
+                                                                                     std::size_t length) {
+  const __mmask64 in_line = _cvtu64_mask64((std::uint64_t(1) << length) - 1);
+  const __m512i bytes = _mm512_maskz_loadu_epi8(in_line, text);
+  const __m512i digits = _mm512_sub_epi8(bytes, _mm512_set1_epi8('0'));
+  return {_cvtmask64_u64(_mm512_mask_cmple_epu8_mask(in_line, digits, _mm512_set1_epi8(9))),
+          _cvtmask64_u64(_mm512_mask_cmpeq_epi8_mask(in_line, bytes, _mm512_set1_epi8('.'))),
+          _cvtmask64_u64(_mm512_mask_cmpeq_epi8_mask(in_line, bytes, _mm512_set1_epi8(','))),
+          _cvtmask64_u64(_mm512_mask_cmpeq_epi8_mask(in_line, bytes, _mm512_set1_epi8('-')))};
+}
+
+// The cells of a row laid out as `layout`, four at a time: gathered into lanes by one permutation, combined
+// as cell_value combines them (the lane's first 32-bit word the high eight digits, the second the low
+// eight), the mantissas < 10^15 converted exactly and divided by 10^fraction (the division scan_plain_decimal
+// makes, so the same double), the signs set.
+[[gnu::target(CCAL_LAYOUT_TARGET)]] inline void read_laid_out(const detail::RowLayout& layout,
+                                                              const char* text, std::size_t length,
+                                                              std::span<double> values) {
+  const __mmask64 in_line = _cvtu64_mask64((std::uint64_t(1) << length) - 1);
+  const __m512i digits = _mm512_sub_epi8(_mm512_maskz_loadu_epi8(in_line, text), _mm512_set1_epi8('0'));
+  const std::size_t n = values.size();
+  for (std::size_t g = 0; 4 * g < n; ++g) {
+    const detail::RowLayout::Group& group = layout.groups[g];
+    const __m512i gathered =
+        _mm512_maskz_permutexvar_epi8(_cvtu64_mask64(group.keep), _mm512_loadu_si512(group.index), digits);
+    const __m512i pairs = _mm512_maddubs_epi16(gathered, _mm512_set1_epi16(0x010A));
+    const __m512i quads = _mm512_madd_epi16(pairs, _mm512_set1_epi32(0x00010064));
+    const __m512i packed = _mm512_packus_epi32(quads, quads);
+    const __m512i eights = _mm512_madd_epi16(packed, _mm512_set1_epi32(0x00012710));
+    // (The maskz forms: GCC 12 warns of the undefined source of the plain ones when inlined.)
+    const __m512i mantissas =
+        _mm512_add_epi64(_mm512_maskz_mul_epu32(0xFF, eights, _mm512_set1_epi64(100000000)),
+                         _mm512_maskz_srli_epi64(0xFF, eights, 32));
+    const __mmask8 four = 0x0F;
+    const __m512d magnitudes = _mm512_maskz_div_pd(
+        four, _mm512_maskz_cvtepu64_pd(four, _mm512_maskz_compress_epi64(0x55, mantissas)),
+        _mm512_maskz_loadu_pd(four, group.scale));
+    const __m512d signed_values =
+        _mm512_xor_pd(magnitudes, _mm512_castsi512_pd(_mm512_maskz_loadu_epi64(four, group.sign)));
+    const auto count = unsigned(std::min<std::size_t>(4, n - 4 * g));
+    _mm512_mask_storeu_pd(values.data() + 4 * g, __mmask8((1u << count) - 1), signed_values);
+  }
+}
+
+// A row read by its layout when it has the one kept, else cell by cell (a layout met in two consecutive rows
+// is kept: rows of varying layout only pay the comparison).
+[[gnu::target(CCAL_LAYOUT_TARGET)]] bool read_row_by_layout(detail::RowLayout& layout, std::string_view line,
+                                                            std::span<double> values) {
+  const std::size_t length = line.size(), n = values.size();
+  if (length < 16 || length > 63 || n == 0 || n > detail::RowLayout::kMaxCells)
+    return detail::scan_plain_decimal_row_portable(line, values);
+  const detail::LineClasses classes = classify_line_at_once(line.data(), length);
+  if (length == layout.length && n == layout.cells && classes == layout.classes) {
+    read_laid_out(layout, line.data(), length, values);
+    return true;
+  }
+  CellShape shapes[detail::RowLayout::kMaxCells];
+  if (!read_cells(line.data(), length, classes, values, shapes))
+    return detail::scan_plain_decimal_row_portable(line, values);
+  if (length == layout.previous_length && classes == layout.previous)
+    keep_layout(layout, length, classes, shapes, n);
+  layout.previous_length = length;
+  layout.previous = classes;
   return true;
 }
 
@@ -155,6 +300,29 @@ bool scan_plain_decimal_row_vector(std::string_view line, std::span<double> valu
 }
 
 }  // namespace detail
+
+bool detail::row_layout_reading_available() {
+#ifdef CCAL_VECTOR_ROW_SCAN
+  static const bool available = vector_row_scan_available() && __builtin_cpu_supports("avx512f") &&
+                                __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+                                __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi");
+  return available;
+#else
+  return false;
+#endif
+}
+
+PlainDecimalRowReader::PlainDecimalRowReader() : layout_(std::make_unique<detail::RowLayout>()) {}
+PlainDecimalRowReader::~PlainDecimalRowReader() = default;
+PlainDecimalRowReader::PlainDecimalRowReader(PlainDecimalRowReader&&) noexcept = default;
+PlainDecimalRowReader& PlainDecimalRowReader::operator=(PlainDecimalRowReader&&) noexcept = default;
+
+bool PlainDecimalRowReader::read(std::string_view line, std::span<double> values) {
+#ifdef CCAL_VECTOR_ROW_SCAN
+  if (detail::row_layout_reading_available()) return read_row_by_layout(*layout_, line, values);
+#endif
+  return scan_plain_decimal_row(line, values);
+}
 
 bool scan_plain_decimal_row(std::string_view line, std::span<double> values) {
   return detail::vector_row_scan_available() ? detail::scan_plain_decimal_row_vector(line, values)

@@ -130,7 +130,7 @@ void LogReducer::row(const std::string_view* fields, int line) {
 }
 
 bool LogReducer::row_line(std::string_view line, int line_no) {
-  if (!scan_plain_decimal_row(line, values_)) return false;
+  if (!row_reader_.read(line, values_)) return false;
   const double* values = values_.data();
   reduce_row([values](std::size_t column, Problem, int) { return std::optional<double>(values[column]); },
              line_no);

@@ -14,6 +14,7 @@
 #include "ccal/io/csv_stream.hpp"
 #include "ccal/io/encoder_fit.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/io/plain_decimal_row.hpp"
 #include "ccal/io/run_log.hpp"
 
 namespace ccal::detail {
@@ -79,6 +80,7 @@ class LogReducer final : public CsvRowSink {
   RunLogOptions options_;
   double planned_rate_;
   std::vector<std::string> header_;
+  PlainDecimalRowReader row_reader_;
   std::vector<double> values_;  // row_line's values, one per column
   int header_line_ = 0;
   std::size_t time_ = 0;

@@ -1,7 +1,8 @@
 // A log's row of plain decimals (io/plain_decimal_row.hpp): the vector reading and the cell-by-cell one give
 // the same verdict and the same doubles, bit for bit, on rows as loggers write them, on every cell length
 // and position around the 16-byte chunks (and lines too short or too long for them), and on rows that must
-// be declined.
+// be declined; and a log's reader, which reads rows laid out alike by their layout, gives what each row read
+// alone gives.
 #include "ccal/io/plain_decimal_row.hpp"
 
 #include <fmt/format.h>
@@ -86,6 +87,72 @@ TEST(PlainDecimalRow, DeclinesWhatIsNotARowOfPlainDecimals) {
        {"123456789012345,1", "1234567890123456,12345678.9012345", "-0.000000000000001,-0", "1,2",
         "99999999999999.9,1.000000000000001", "1234567,0.1234567890123456"})
     EXPECT_TRUE(same_reading(line, 2)) << line;
+}
+
+// A row of the given shape (cells of `whole` and `fraction` digits, negative where `negative`), random
+// digits.
+struct Shape {
+  int whole, fraction;
+  bool negative;
+};
+std::string row_of(const std::vector<Shape>& shapes, PortableUniform& u) {
+  std::string line;
+  for (std::size_t c = 0; c < shapes.size(); ++c) {
+    if (c) line += ',';
+    if (shapes[c].negative) line += '-';
+    for (int k = 0; k < shapes[c].whole; ++k) line += char('0' + int(u() * 10));
+    if (shapes[c].fraction > 0) line += '.';
+    for (int k = 0; k < shapes[c].fraction; ++k) line += char('0' + int(u() * 10));
+  }
+  return line;
+}
+
+// The reader's reading of `line` is the cell-by-cell one: the same verdict and, when accepted, the same bits.
+void expect_read_alone(PlainDecimalRowReader& reader, const std::string& line, std::size_t n) {
+  std::vector<double> alone(n), read(n);
+  const bool a = detail::scan_plain_decimal_row_portable(line, alone);
+  const bool b = reader.read(line, read);
+  ASSERT_EQ(a, b) << "'" << line << "' as " << n << " cells";
+  if (a) {
+    for (std::size_t k = 0; k < n; ++k)
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(alone[k]), std::bit_cast<std::uint64_t>(read[k]))
+          << "'" << line << "' cell " << k;
+  }
+}
+
+TEST(PlainDecimalRow, ReaderReadsRowsLaidOutAlikeAsEachAlone) {
+  PortableUniform u{1969};
+  PlainDecimalRowReader reader;
+  for (int layout = 0; layout < 3000; ++layout) {
+    // A layout of 1 to 12 cells of 1 to 15 digits (the lines 16 to 63 bytes long are the ones read by layout;
+    // the others go cell by cell), then rows of it with random digits (all-zero cells, leading zeros and
+    // negative zeros among them), some interrupted by a row of another kind: damaged in one byte (the same
+    // length), read as another number of cells, or of another layout.
+    std::vector<Shape> shapes(1 + std::size_t(u() * 12));
+    for (Shape& s : shapes) {
+      const int digits = 1 + int(u() * 15);
+      s.fraction = u() < 0.25 ? 0 : int(u() * double(digits));
+      s.whole = digits - s.fraction;
+      s.negative = u() < 0.3;
+    }
+    const std::size_t n = shapes.size();
+    const int rows = 1 + int(u() * 8);
+    for (int r = 0; r < rows; ++r) {
+      std::string line = row_of(shapes, u);
+      if (u() < 0.1)
+        for (char& c : line)
+          if (c >= '1' && c <= '9') c = '0';
+      const double kind = u();
+      if (kind < 0.05) line[std::size_t(u() * double(line.size()))] = "x.,-e+ 7"[int(u() * 8)];
+      ASSERT_NO_FATAL_FAILURE(expect_read_alone(reader, line, kind > 0.05 && kind < 0.08 ? n + 1 : n));
+    }
+  }
+  // The widest layouts: 31 and 32 one-digit cells (61 and 63 bytes), eight groups of four, the last one full
+  // or not.
+  for (const int cells : {31, 32})
+    for (int r = 0; r < 5; ++r)
+      ASSERT_NO_FATAL_FAILURE(expect_read_alone(
+          reader, row_of(std::vector<Shape>(std::size_t(cells), {1, 0, false}), u), std::size_t(cells)));
 }
 
 }  // namespace
