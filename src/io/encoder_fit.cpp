@@ -18,11 +18,7 @@ EncoderFit::EncoderFit(int harmonic_order, double max_turn)
   buffer_.reserve(3 * kReferenceSamples);
 }
 
-void EncoderFit::add(double tau, double angle, double reading) {
-  if (referenced_) {
-    push(tau, angle, reading);
-    return;
-  }
+void EncoderFit::buffer(double tau, double angle, double reading) {
   buffer_.insert(buffer_.end(), {tau, angle, reading});
   if (buffer_.size() == 3 * kReferenceSamples) set_reference();
 }

@@ -93,6 +93,21 @@ std::optional<double> LogReducer::cell_general(const std::string_view* fields, s
   return std::nullopt;
 }
 
+void LogReducer::defer_time_order(int line, double t) {
+  defer(Problem::time_order,
+        cell_error(time_, line,
+                   fmt::format("time {} s does not follow {} s; accepted: strictly increasing times", t,
+                               t_previous_)));
+}
+
+void LogReducer::defer_spacing(const Encoder& e, int line, double step_time) {
+  defer(e.spacing,
+        cell_error(e.column, line,
+                   fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the planned "
+                               "rate; accepted: less than 0.75π rad between encoder samples",
+                               step_time, std::abs(planned_rate_) * step_time)));
+}
+
 // One encoder sample: unwrapped (each step mapped to (−π, π]) and added to the fit. The samples must be less
 // than half a revolution apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping
 // would alias.
@@ -101,12 +116,7 @@ void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool t
   const std::optional<double> raw = cells(e.column, e.cell, line);
   if (time_ok && rows_ > 0 && have_previous_time_) {
     const double step_time = t - t_previous_;
-    if (std::abs(planned_rate_) * step_time > 0.75 * std::numbers::pi)
-      defer(e.spacing, cell_error(e.column, line,
-                                  fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the "
-                                              "planned rate; accepted: less than 0.75π rad between encoder "
-                                              "samples",
-                                              step_time, std::abs(planned_rate_) * step_time)));
+    if (std::abs(planned_rate_) * step_time > 0.75 * std::numbers::pi) defer_spacing(e, line, step_time);
   }
   if (!raw || !time_ok || pending_kind_) return;  // the log will be refused: nothing more to fit
   const double a = *raw * options_.angle_scale;
@@ -143,11 +153,7 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
   if (pending_kind_ == Problem::no_time) return;
   std::optional<double> t = cells(time_, Problem::time_cell, line);
   if (t) *t *= options_.columns.time_scale;  // to s
-  if (t && have_previous_time_ && !(*t > t_previous_))
-    defer(Problem::time_order, cell_error(time_, line,
-                                          fmt::format("time {} s does not follow {} s; accepted: strictly "
-                                                      "increasing times",
-                                                      *t, t_previous_)));
+  if (t && have_previous_time_ && !(*t > t_previous_)) defer_time_order(line, *t);
   if (t && rows_ == 0) t_first_ = *t;
   if (output_) {
     if (const std::optional<double> v = cells(*output_, Problem::output_cell, line); v && t) {

@@ -71,6 +71,9 @@ class LogReducer final : public CsvRowSink {
                                                        Problem kind, int line);
   // The row's reduction, its cells read by `cells(column, kind, line)` (an optional<double>, empty for a
   // refused cell): the split fields of row() or the values row_line() read.
+  // The problems a row can show, written out off the rows' path (cold: the usual row has none).
+  [[gnu::cold, gnu::noinline]] void defer_time_order(int line, double t);
+  [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
   template <class Cells>
   void reduce_row(const Cells& cells, int line);
   template <class Cells>

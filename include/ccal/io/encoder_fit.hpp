@@ -35,12 +35,19 @@ class EncoderFit {
   explicit EncoderFit(int harmonic_order, double max_turn = SinCosTrack::kMaxTurn);
   // One sample: τ [s], the unwrapped angle [rad] and the reading it came from (the same angle up to whole
   // turns; the argument of the harmonics), τ increasing.
-  void add(double tau, double angle, double reading);
+  void add(double tau, double angle, double reading) {
+    if (referenced_)
+      push(tau, angle, reading);
+    else
+      buffer(tau, angle, reading);
+  }
   // The fit of all samples added (at least two).
   EncoderFitResult result();
 
  private:
   void set_reference();
+  // A sample before the reference line is set.
+  void buffer(double tau, double angle, double reading);
   // A referenced sample to the batch; the batch accumulated when full.
   void push(double tau, double angle, double reading) {
     batch_tau_[batch_size_] = tau;
@@ -70,7 +77,7 @@ class EncoderFit {
   std::size_t batch_size_ = 0;
   double batch_tau_[kBatch], batch_angle_[kBatch], batch_reading_[kBatch];
   double batch_cos_[kBatch], batch_sin_[kBatch];
-  double dd_ = 0;               // Σd²
+  double dd_ = 0;  // Σd²
   double last_tau_ = 0;
   std::size_t n_ = 0;
 };
