@@ -244,14 +244,17 @@ void keep_layout(detail::RowLayout& layout, std::size_t length, const detail::Li
     const __m512i mantissas =
         _mm512_add_epi64(_mm512_maskz_mul_epu32(0xFF, eights, _mm512_set1_epi64(100000000)),
                          _mm512_maskz_srli_epi64(0xFF, eights, 32));
-    const __mmask8 four = 0x0F;
-    const __m512d magnitudes = _mm512_maskz_div_pd(
-        four, _mm512_maskz_cvtepu64_pd(four, _mm512_maskz_compress_epi64(0x55, mantissas)),
-        _mm512_maskz_loadu_pd(four, group.scale));
-    const __m512d signed_values =
-        _mm512_xor_pd(magnitudes, _mm512_castsi512_pd(_mm512_maskz_loadu_epi64(four, group.sign)));
-    const auto count = unsigned(std::min<std::size_t>(4, n - 4 * g));
-    _mm512_mask_storeu_pd(values.data() + 4 * g, __mmask8((1u << count) - 1), signed_values);
+    const __m256i four =
+        _mm512_maskz_extracti64x4_epi64(0x0F, _mm512_maskz_compress_epi64(0x55, mantissas), 0);
+    const __m256d magnitudes = _mm256_div_pd(_mm256_cvtepu64_pd(four), _mm256_loadu_pd(group.scale));
+    const __m256d signed_values = _mm256_xor_pd(
+        magnitudes, _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(group.sign))));
+    // A whole group by a plain store: the reducer loads the values at once, and a masked store does not
+    // forward to those loads (they would wait for it to reach the cache).
+    if (const std::size_t count = n - 4 * g; count >= 4)
+      _mm256_storeu_pd(values.data() + 4 * g, signed_values);
+    else
+      _mm256_mask_storeu_pd(values.data() + 4 * g, __mmask8((1u << count) - 1), signed_values);
   }
 }
 
