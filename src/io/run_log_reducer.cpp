@@ -41,7 +41,7 @@ CsvError LogReducer::cell_error(std::size_t column, int line, std::string proble
 void LogReducer::header(const std::vector<std::string>& names, int line) {
   header_ = names;
   header_line_ = line;
-  values_.assign(header_.size(), 0.0);
+  batch_values_.assign(kRowBatch * header_.size(), 0.0);
   auto find = [&](std::string_view name) -> std::optional<std::size_t> {
     for (std::size_t k = 0; k < header_.size(); ++k)
       if (header_[k] == name) return k;
@@ -136,15 +136,26 @@ void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool t
 }
 
 void LogReducer::row(const std::string_view* fields, int line) {
+  reduce_batch();  // the rows before it first
   reduce_row([&](std::size_t column, Problem kind, int at) { return cell(fields, column, kind, at); }, line);
 }
 
 bool LogReducer::row_line(std::string_view line, int line_no) {
-  if (!row_reader_.read(line, values_)) return false;
-  const double* values = values_.data();
-  reduce_row([values](std::size_t column, Problem, int) { return std::optional<double>(values[column]); },
-             line_no);
+  const std::size_t columns = header_.size();
+  if (!row_reader_.read(line, std::span(batch_values_.data() + batch_rows_ * columns, columns))) return false;
+  batch_lines_[batch_rows_] = line_no;
+  if (++batch_rows_ == kRowBatch) reduce_batch();
   return true;
+}
+
+void LogReducer::reduce_batch() {
+  const std::size_t columns = header_.size();
+  for (std::size_t k = 0; k < batch_rows_; ++k) {
+    const double* values = batch_values_.data() + k * columns;
+    reduce_row([values](std::size_t column, Problem, int) { return std::optional<double>(values[column]); },
+               batch_lines_[k]);
+  }
+  batch_rows_ = 0;
 }
 
 template <class Cells>
@@ -179,6 +190,7 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
 }
 
 ReducedLog LogReducer::finish() {
+  reduce_batch();
   ReducedLog r;
   r.source = source_;
   r.samples = rows_;

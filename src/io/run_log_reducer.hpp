@@ -26,7 +26,9 @@ class LogReducer final : public CsvRowSink {
   void row(const std::string_view* fields, int line) override;
   // A row of plain decimals only ([-]digits[.digits] between commas, scan_plain_decimal, as many as the
   // header has names), read in one pass over its bytes: the usual row of a log. Anything else is declined
-  // and comes split to row(); both give the same values, so the same reduction.
+  // and comes split to row(); both give the same values, so the same reduction. The rows read are reduced
+  // kRowBatch at a time, in their order (before any row that comes to row(), and at the end): reading a row
+  // does not wait for the reduction of the one before.
   bool row_line(std::string_view line, int line_no) override;
   // The reduction of the rows seen; throws the log's first problem (CsvError).
   ReducedLog finish();
@@ -74,6 +76,7 @@ class LogReducer final : public CsvRowSink {
   // The problems a row can show, written out off the rows' path (cold: the usual row has none).
   [[gnu::cold, gnu::noinline]] void defer_time_order(int line, double t);
   [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
+  void reduce_batch();
   template <class Cells>
   void reduce_row(const Cells& cells, int line);
   template <class Cells>
@@ -84,7 +87,11 @@ class LogReducer final : public CsvRowSink {
   double planned_rate_;
   std::vector<std::string> header_;
   PlainDecimalRowReader row_reader_;
-  std::vector<double> values_;  // row_line's values, one per column
+  // Rows read by row_line and not yet reduced: their values (one per column) and lines.
+  static constexpr std::size_t kRowBatch = 64;
+  std::vector<double> batch_values_;
+  int batch_lines_[kRowBatch] = {};
+  std::size_t batch_rows_ = 0;
   int header_line_ = 0;
   std::size_t time_ = 0;
   std::optional<std::size_t> output_;  // the pulses or output column, when exactly one and usable
