@@ -1,7 +1,9 @@
 // Fuzz target: a run log (src/io/run_log.cpp) as CSV text, reduced as the log of the bundled example's first
 // run (its planned rate bounds the encoder sampling), in radians and degrees, and that run as measured. The
-// same text streamed from a file (csv_stream.hpp: its rows of plain decimals read in place) must reduce to
-// the same bits, or be refused in the same words, as the table read whole; a difference aborts.
+// same text streamed from a file (csv_stream.hpp: its rows of plain decimals read in place, those laid out
+// alike by their layout, plain_decimal_row.hpp) must reduce to the same bits, or be refused in the same words,
+// as the table read whole; a difference aborts. (corpus/fuzz_run_log/seed_logger_rows.csv: rows as loggers
+// write them, one of another layout among them.)
 #include <unistd.h>
 
 #include <bit>
