@@ -315,14 +315,17 @@ bool detail::row_layout_reading_available() {
 #endif
 }
 
-PlainDecimalRowReader::PlainDecimalRowReader() : layout_(std::make_unique<detail::RowLayout>()) {}
+PlainDecimalRowReader::PlainDecimalRowReader() = default;
 PlainDecimalRowReader::~PlainDecimalRowReader() = default;
 PlainDecimalRowReader::PlainDecimalRowReader(PlainDecimalRowReader&&) noexcept = default;
 PlainDecimalRowReader& PlainDecimalRowReader::operator=(PlainDecimalRowReader&&) noexcept = default;
 
 bool PlainDecimalRowReader::read(std::string_view line, std::span<double> values) {
 #ifdef CCAL_VECTOR_ROW_SCAN
-  if (detail::row_layout_reading_available()) return read_row_by_layout(*layout_, line, values);
+  if (detail::row_layout_reading_available()) {
+    if (!layout_) layout_ = std::make_unique<detail::RowLayout>();  // on first use (also after a move)
+    return read_row_by_layout(*layout_, line, values);
+  }
 #endif
   return scan_plain_decimal_row(line, values);
 }

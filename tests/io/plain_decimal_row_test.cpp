@@ -147,6 +147,13 @@ TEST(PlainDecimalRow, ReaderReadsRowsLaidOutAlikeAsEachAlone) {
       ASSERT_NO_FATAL_FAILURE(expect_read_alone(reader, line, kind > 0.05 && kind < 0.08 ? n + 1 : n));
     }
   }
+  // A reader moved from reads on, from no layout.
+  PlainDecimalRowReader moved = std::move(reader);
+  for (int r = 0; r < 3; ++r) {
+    const std::string line = row_of({{4, 7, false}, {9, 0, true}, {1, 9, false}, {1, 9, true}}, u);
+    ASSERT_NO_FATAL_FAILURE(expect_read_alone(moved, line, 4));
+    ASSERT_NO_FATAL_FAILURE(expect_read_alone(reader, line, 4));  // NOLINT(bugprone-use-after-move)
+  }
   // The widest layouts: 31 and 32 one-digit cells (61 and 63 bytes), eight groups of four, the last one full
   // or not.
   for (const int cells : {31, 32})
