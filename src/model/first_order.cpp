@@ -51,16 +51,41 @@ NominalChain nominal_chain(const Geometry& geo, const JointState<double>& j) {
 
 // Unit-amplitude time function of a parameter: 1 for a static error, cos kq or sin kq for a harmonic
 // coefficient of a dynamic one, with its time derivatives.
-ChannelValue<double> basis(const ErrorLayout& layout, int index, const JointState<double>& j) {
+// cos kq and sin kq of the joints' angles q at one node, each pair computed once (a channel's cos and sin
+// coefficients, and every channel on the same joint, share them; the same calls as before, so the same bits).
+class JointTrig {
+ public:
+  explicit JointTrig(const JointState<double>& j) : j_(j) {}
+  void of(Joint joint, int k, double& c, double& s) {
+    Entry& e = memo_[std::size_t(joint)][std::size_t(k)];
+    if (!e.set) {
+      const double q = joint == Joint::main ? j_.theta1 : joint == Joint::horizontal ? j_.beta : j_.gamma;
+      e = {std::cos(k * q), std::sin(k * q), true};
+    }
+    c = e.c;
+    s = e.s;
+  }
+
+ private:
+  struct Entry {
+    double c = 0, s = 0;
+    bool set = false;
+  };
+  const JointState<double>& j_;
+  std::array<std::array<Entry, kMaxHarmonicOrder + 1>, 4> memo_{};  // [joint][k]
+};
+
+ChannelValue<double> basis(const ErrorLayout& layout, int index, const JointState<double>& j,
+                           JointTrig& trig) {
   const Channel& ch = channels()[layout.parameter_channel(index)];
   if (ch.joint == Joint::none) return {1.0, 0.0, 0.0};
-  const double q = ch.joint == Joint::main ? j.theta1 : ch.joint == Joint::horizontal ? j.beta : j.gamma;
   const double qd = ch.joint == Joint::main         ? j.theta1_rate
                     : ch.joint == Joint::horizontal ? j.beta_rate
                                                     : j.gamma_rate;
   const int k = layout.parameter_harmonic(index);
   const bool sine = layout.parameter_is_sine(index);
-  const double c = std::cos(k * q), s = std::sin(k * q);
+  double c, s;
+  trig.of(ch.joint, k, c, s);
   const double value = sine ? s : c;
   const double slope = sine ? k * c : -k * s;
   return {value, qd * slope, -qd * qd * k * k * value};
@@ -150,26 +175,29 @@ DriveDerivatives drive_derivatives(const Geometry& geo, const JointState<double>
                                    const NominalInstrument& nom) {
   auto e = [](double a) { return V3(std::cos(a), std::sin(a), 0.0); };
   const double R0 = geo.R0, wr = j.theta1_rate, psi = j.theta1 + j.gamma, g = nom.g;
+  // The four directions, each evaluated once (the cos and sin calls are most of this function's time).
+  const V3 e_theta1 = e(j.theta1), e_theta1_normal = e(j.theta1 + kHalfPi), e_psi = e(psi),
+           e_psi_normal = e(psi + kHalfPi);
   const V3& earth = nom.earth;
   const V3 ez(0, 0, 1);
-  auto outputs = [&](const V3& force, const V3& rate, double p) {
+  auto outputs = [&](const V3& force, const V3& rate) {
     Column y;
-    y << e(p).dot(force) / g, e(p + kHalfPi).dot(force) / g, force.z() / g, e(p).dot(rate),
-        e(p + kHalfPi).dot(rate), rate.z();
+    y << e_psi.dot(force) / g, e_psi_normal.dot(force) / g, force.z() / g, e_psi.dot(rate),
+        e_psi_normal.dot(rate), rate.z();
     return y;
   };
-  const V3 a = -wr * wr * R0 * e(j.theta1), v = wr * R0 * e(j.theta1 + kHalfPi);
+  const V3 a = -wr * wr * R0 * e_theta1, v = wr * R0 * e_theta1_normal;
   const V3 force = a + 2.0 * earth.cross(v) + g * ez;
-  const V3 force_theta1 = -wr * wr * R0 * e(j.theta1 + kHalfPi) + 2.0 * earth.cross(-wr * R0 * e(j.theta1));
-  const V3 force_rate = -2.0 * wr * R0 * e(j.theta1) + 2.0 * earth.cross(R0 * e(j.theta1 + kHalfPi));
+  const V3 force_theta1 = -wr * wr * R0 * e_theta1_normal + 2.0 * earth.cross(-wr * R0 * e_theta1);
+  const V3 force_rate = -2.0 * wr * R0 * e_theta1 + 2.0 * earth.cross(R0 * e_theta1_normal);
   const V3 rate = nom.five.w + nom.sensed;
   DriveDerivatives D;
-  D.d_psi << e(psi + kHalfPi).dot(force) / g, -e(psi).dot(force) / g, 0.0, e(psi + kHalfPi).dot(rate),
-      -e(psi).dot(rate), 0.0;
-  D.d_theta1 = outputs(force_theta1, V3::Zero(), psi);
-  D.d_theta1_rate = outputs(force_rate, ez, psi);
+  D.d_psi << e_psi_normal.dot(force) / g, -e_psi.dot(force) / g, 0.0, e_psi_normal.dot(rate),
+      -e_psi.dot(rate), 0.0;
+  D.d_theta1 = outputs(force_theta1, V3::Zero());
+  D.d_theta1_rate = outputs(force_rate, ez);
   D.d_gamma_rate << 0, 0, 0, 0, 0, 1;
-  D.d_theta1_acc = outputs(R0 * e(j.theta1 + kHalfPi), V3::Zero(), psi);
+  D.d_theta1_acc = outputs(R0 * e_theta1_normal, V3::Zero());
   return D;
 }
 
@@ -265,10 +293,11 @@ FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layou
   FirstOrderResult out;
   out.nominal << nom.RT * nom.f / nom.g, nom.RT * nom.w_inertial;
   out.sensitivity = SensitivityMatrix::Zero(6, layout.size());
+  JointTrig trig(j);
   for (int index = 0; index < layout.size(); ++index) {
     const Channel& ch = channels()[layout.parameter_channel(index)];
     if (ch.link == Link::drive) continue;  // below
-    ChannelValue<double> b = basis(layout, index, j);
+    ChannelValue<double> b = basis(layout, index, j, trig);
     if (ch.kind == ErrorKind::arm_stretch) b = {j.theta1_rate * j.theta1_rate, 0.0, 0.0};
     out.sensitivity.col(index) = link_error_column(chain.links[static_cast<int>(ch.link)], nom, ch.kind, b);
   }
@@ -299,9 +328,10 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
   out.nominal[0] = -A * cg - coriolis * (options.constant_coriolis ? 1.0 : cg);
   out.nominal[3] = std::cos(psi) * earth.x() + std::sin(psi) * earth.y();
 
+  JointTrig trig(j);
   for (int index = 0; index < layout.size(); ++index) {
     const int channel = layout.parameter_channel(index);
-    const ChannelValue<double> b = basis(layout, index, j);
+    const ChannelValue<double> b = basis(layout, index, j, trig);
     const double v = b.value;
     double dai = 0.0, dwi = 0.0;
     switch (channel) {
