@@ -279,6 +279,7 @@ void keep_layout(detail::RowLayout& layout, std::size_t length, const detail::Li
   layout.previous = classes;
   return true;
 }
+#undef CCAL_LAYOUT_TARGET
 
 }  // namespace
 #endif
