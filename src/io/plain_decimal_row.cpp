@@ -91,6 +91,13 @@ struct ByteClasses {
           mask(_mm_cmpeq_epi8(bytes, _mm_set1_epi8('-')))};
 }
 
+// The weights that combine right-aligned digits, most significant first: byte pairs 10·a + b, word pairs
+// 100·ab + cd, word pairs 10⁴·abcd + efgh, and the two eights 10⁸·high + low (cell_value, read_laid_out).
+constexpr short kPairWeights = 0x010A;     // bytes (10, 1)
+constexpr int kQuadWeights = 0x00010064;   // words (100, 1)
+constexpr int kEightWeights = 0x00012710;  // words (10000, 1)
+constexpr std::uint32_t kHighEight = 100000000;
+
 // The value of `whole` digits, a point when `fraction` > 0, and `fraction` digits at byte `offset` of the 16
 // at `chunk`, whole + fraction ≤ 15: the digits gathered right-aligned, then combined in pairs 10·a + b,
 // quads 100·ab + cd, eights 10⁴·abcd + efgh, and the two eights. m < 10^15 < 2^53 is an exact double, so
@@ -103,13 +110,13 @@ struct ByteClasses {
       _mm_add_epi8(_mm_load_si128(reinterpret_cast<const __m128i*>(kDigitGather.control[whole][fraction])),
                    _mm_set1_epi8(char(offset)));  // 0x80 + offset still selects a zero
   const __m128i gathered = _mm_shuffle_epi8(digits, control);
-  const __m128i pairs = _mm_maddubs_epi16(gathered, _mm_set1_epi16(0x010A));  // bytes (10, 1)
-  const __m128i quads = _mm_madd_epi16(pairs, _mm_set1_epi32(0x00010064));    // words (100, 1)
-  const __m128i packed = _mm_packus_epi32(quads, quads);                      // ≤ 9999 each
-  const __m128i eights = _mm_madd_epi16(packed, _mm_set1_epi32(0x00012710));  // words (10000, 1)
+  const __m128i pairs = _mm_maddubs_epi16(gathered, _mm_set1_epi16(kPairWeights));
+  const __m128i quads = _mm_madd_epi16(pairs, _mm_set1_epi32(kQuadWeights));
+  const __m128i packed = _mm_packus_epi32(quads, quads);  // ≤ 9999 each
+  const __m128i eights = _mm_madd_epi16(packed, _mm_set1_epi32(kEightWeights));
   const auto high = std::uint64_t(std::uint32_t(_mm_cvtsi128_si32(eights)));
   const auto low = std::uint64_t(std::uint32_t(_mm_extract_epi32(eights, 1)));
-  return double(high * 100000000u + low) / kExactPowersOf10[fraction];
+  return double(high * kHighEight + low) / kExactPowersOf10[fraction];
 }
 
 // A line of 16 to 63 bytes classified in 16-byte chunks, the last one ending at the line's end.
@@ -236,13 +243,13 @@ void keep_layout(detail::RowLayout& layout, std::size_t length, const detail::Li
     const detail::RowLayout::Group& group = layout.groups[g];
     const __m512i gathered =
         _mm512_maskz_permutexvar_epi8(_cvtu64_mask64(group.keep), _mm512_loadu_si512(group.index), digits);
-    const __m512i pairs = _mm512_maddubs_epi16(gathered, _mm512_set1_epi16(0x010A));
-    const __m512i quads = _mm512_madd_epi16(pairs, _mm512_set1_epi32(0x00010064));
+    const __m512i pairs = _mm512_maddubs_epi16(gathered, _mm512_set1_epi16(kPairWeights));
+    const __m512i quads = _mm512_madd_epi16(pairs, _mm512_set1_epi32(kQuadWeights));
     const __m512i packed = _mm512_packus_epi32(quads, quads);
-    const __m512i eights = _mm512_madd_epi16(packed, _mm512_set1_epi32(0x00012710));
+    const __m512i eights = _mm512_madd_epi16(packed, _mm512_set1_epi32(kEightWeights));
     // (The maskz forms: GCC 12 warns of the undefined source of the plain ones when inlined.)
     const __m512i mantissas =
-        _mm512_add_epi64(_mm512_maskz_mul_epu32(0xFF, eights, _mm512_set1_epi64(100000000)),
+        _mm512_add_epi64(_mm512_maskz_mul_epu32(0xFF, eights, _mm512_set1_epi64(kHighEight)),
                          _mm512_maskz_srli_epi64(0xFF, eights, 32));
     const __m256i four =
         _mm512_maskz_extracti64x4_epi64(0x0F, _mm512_maskz_compress_epi64(0x55, mantissas), 0);
