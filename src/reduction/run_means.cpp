@@ -375,22 +375,12 @@ struct GroupNodes {
 };
 
 // The quadrature weights (quadrature.hpp) of a run from its ν (slow_moments); slow node q's at
-// weights + q·stride.
+// weights + q·stride: w_jq = (ν_0q + Σ_m c_m (cos(mθ_j) Re ν_mq + sin(mθ_j) Im ν_mq)) / M, summed over m in
+// dft_weights' order (run_nodes::quadrature_weights_lanes).
 void quadrature_weights(const RunTables& t, int Q, const double* nu_re, const double* nu_im, double* weights,
                         int stride) {
-  // w_jq = (ν_0q + Σ_m c_m (cos(mθ_j) Re ν_mq + sin(mθ_j) Im ν_mq)) / M, summed over m in dft_weights' order.
-  const int M = t.M;
-  for (int q = 0; q < Q; ++q) {
-    double* w = weights + q * stride;
-    for (int j = 0; j < M; ++j) w[j] = nu_re[q];
-    for (int m = 1; m <= M / 2; ++m) {
-      const double re = nu_re[m * Q + q], im = nu_im[m * Q + q];
-      const double* c = &t.dft_cos[std::size_t((m - 1) * M)];
-      const double* s = &t.dft_sin[std::size_t((m - 1) * M)];
-      for (int j = 0; j < M; ++j) w[j] += c[j] * re + s[j] * im;
-    }
-    for (int j = 0; j < M; ++j) w[j] /= double(M);
-  }
+  run_nodes::quadrature_weights_lanes(t.dft_cos.data(), t.dft_sin.data(), t.M, Q, nu_re, nu_im, weights,
+                                      stride);
 }
 
 // ν_mq of every harmonic m = 0 … M/2 of every run g of the group (spectral_weights.hpp's

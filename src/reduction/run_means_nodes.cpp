@@ -16,9 +16,9 @@ using Eigen::Matrix3d;
 
 // The node loops are written once for a lane type T: double (one node at a time) or Pack, eight nodes at a
 // time in GCC's portable SIMD vectors (one AVX-512 register, two AVX2 ones: with the divisions gone from the
-// small-angle series, eight lanes run the bundled example's kernel 14 % faster than four). Node data is stored as structure of arrays padded to whole packs;
-// there are no branches in the loop bodies, and floating-point contraction stays off, so that both lane
-// types and every instruction set give the same bits.
+// small-angle series, eight lanes run the bundled example's kernel 14 % faster than four). Node data is
+// stored as structure of arrays padded to whole packs; there are no branches in the loop bodies, and
+// floating-point contraction stays off, so that both lane types and every instruction set give the same bits.
 using Pack = lanes::Doubles;
 static_assert(sizeof(Pack) == kPackLanes * sizeof(double));
 template <class T>
@@ -399,6 +399,35 @@ CCAL_CLONED CCAL_FLATTEN void harmonic_moments_lanes(const double* half_kappa, c
       store(nu_re + q * count + i, nu_re_q[q]);
       store(nu_im + q * count + i, nu_im_q[q]);
     }
+  }
+}
+
+// One lane type for the whole packs of nodes and the scalar one for the rest: the same operations, so the
+// same bits, node by node.
+namespace {
+template <class T>
+[[gnu::always_inline]] inline void quadrature_weights_of(const double* dft_cos, const double* dft_sin, int M,
+                                                         int j, double re0, const double* re,
+                                                         const double* im, int Q, double* w) {
+  T sum = re0 - T{};  // x − (+0) is x, −0 included
+  for (int m = 1; m <= M / 2; ++m) {
+    const auto at = std::size_t((m - 1) * M + j);
+    sum = sum + (load<T>(dft_cos + at) * re[m * Q] + load<T>(dft_sin + at) * im[m * Q]);
+  }
+  store(w + j, sum / double(M));
+}
+}  // namespace
+
+CCAL_CLONED void quadrature_weights_lanes(const double* dft_cos, const double* dft_sin, int M, int Q,
+                                          const double* nu_re, const double* nu_im, double* weights,
+                                          int stride) {
+  for (int q = 0; q < Q; ++q) {
+    double* w = weights + q * stride;
+    int j = 0;
+    for (; j + kPackLanes <= M; j += kPackLanes)
+      quadrature_weights_of<Pack>(dft_cos, dft_sin, M, j, nu_re[q], nu_re + q, nu_im + q, Q, w);
+    for (; j < M; ++j)
+      quadrature_weights_of<double>(dft_cos, dft_sin, M, j, nu_re[q], nu_re + q, nu_im + q, Q, w);
   }
 }
 

@@ -87,6 +87,13 @@ struct PlatformInputs {
 void harmonic_moments_lanes(const double* half_kappa, const double* cos_half_kappa,
                             const double* sin_half_kappa, int count, const Eigen::MatrixXd& a, double* nu_re,
                             double* nu_im);
+// The quadrature weights of one run at its M fast nodes for each of its Q slow nodes, from the DFT of the
+// weights (dft_cos, dft_sin: c_m cos(mθ_j), c_m sin(mθ_j) at (m − 1)M + j) and the slow moments ν_mq (nu_re,
+// nu_im at m·Q + q): w_qj = (ν_0q + Σ_{m=1}^{M/2} (dft_cos Re ν_mq + dft_sin Im ν_mq)) / M, summed over m in
+// order, eight nodes at a time, each lane with the operations of one node. Slow node q's at weights +
+// q·stride.
+void quadrature_weights_lanes(const double* dft_cos, const double* dft_sin, int M, int Q, const double* nu_re,
+                              const double* nu_im, double* weights, int stride);
 // Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
 // the SIMD loops (small-angle series for the wobbles) apply.
 bool always_small(const double* coefficients, int order);
