@@ -170,7 +170,7 @@ namespace run_nodes {
 struct Scratch {
   std::vector<double> nu_re, nu_im, weights;
   // The harmonics m ≥ 1 of the group's runs side by side for harmonic_moments_lanes: κ/2, cos, sin, and ν.
-  std::vector<double> lane_kappa, lane_cos, lane_sin, lane_re, lane_im;
+  std::vector<double> lane_kappa, lane_cos, lane_sin, lane_turn, lane_re, lane_im;
   std::vector<double> main_rate, arm_x, platform_rate;  // θ̇1, B's offset x and γ̇ of the node's run
   std::vector<double> cos_offset, sin_offset;           // slow node q's drift at node n
   MainAxisNodes main;
@@ -191,7 +191,7 @@ struct Scratch {
       nu_im.resize(harmonics);
     }
     if (lane_re.size() < lanes * std::size_t(Q)) {
-      for (auto* v : {&lane_kappa, &lane_cos, &lane_sin}) v->resize(lanes);
+      for (auto* v : {&lane_kappa, &lane_cos, &lane_sin, &lane_turn}) v->resize(lanes);
       lane_re.resize(lanes * std::size_t(Q));
       lane_im.resize(lanes * std::size_t(Q));
     }
@@ -393,31 +393,41 @@ void slow_moments(const KernelTables& d, const RunGroup& group, const GroupNodes
   const int H = nodes.M / 2 + 1, Q = nodes.Q;
   const Eigen::MatrixXd& a = d.lagrange[std::size_t(Q)];
   int count = 0;
-  bool recursion = true;
+  bool recursion = true, small_turns = true;
   for (int g = 0; g < nodes.G; ++g) {
     const RunTables& t = d.runs[group.runs[std::size_t(g)]];
     const double omega_T = (t.rate + domega) * t.duration;
-    for (int m = 0; m < H; ++m) {
+    {  // m = 0: κ = 0, the series
       double c, s;
-      turn(t.cos_half[std::size_t(m)], t.sin_half[std::size_t(m)], double(m) * domega * t.duration / 2.0, c,
-           s);
+      turn(t.cos_half[0], t.sin_half[0], 0.0 * domega * t.duration / 2.0, c, s);
+      const auto at = std::size_t(g * H * Q);
+      detail::harmonic_slow_moments<double>(omega_T * 0.0 / 2.0, c, s, a, &scratch.nu_re[at],
+                                            &scratch.nu_im[at]);
+    }
+    for (int m = 1; m < H; ++m, ++count) {
+      const double turn_angle = double(m) * domega * t.duration / 2.0;
       const double half_kappa = omega_T * double(m) / 2.0;
-      if (m == 0) {
-        const auto at = std::size_t(g * H * Q);
-        detail::harmonic_slow_moments<double>(half_kappa, c, s, a, &scratch.nu_re[at], &scratch.nu_im[at]);
-        continue;
-      }
       scratch.lane_kappa[std::size_t(count)] = half_kappa;
-      scratch.lane_cos[std::size_t(count)] = c;
-      scratch.lane_sin[std::size_t(count)] = s;
+      scratch.lane_cos[std::size_t(count)] = t.cos_half[std::size_t(m)];
+      scratch.lane_sin[std::size_t(count)] = t.sin_half[std::size_t(m)];
+      scratch.lane_turn[std::size_t(count)] = turn_angle;
+      small_turns = small_turns && std::abs(turn_angle) < kSmallAngle;
       recursion = recursion && !(std::abs(half_kappa) < 4.0 + Q);
-      ++count;
     }
   }
   const int lanes = padded(count);
   for (int i = count; i < lanes; ++i)  // padding: any κ ≠ 0, never read
     scratch.lane_kappa[std::size_t(i)] = 1.0, scratch.lane_cos[std::size_t(i)] = 1.0,
-    scratch.lane_sin[std::size_t(i)] = 0.0;
+    scratch.lane_sin[std::size_t(i)] = 0.0, scratch.lane_turn[std::size_t(i)] = 0.0;
+  // cos, sin of mΩT/2 turned by mΔωT/2 (turn): the small turns in lanes, with cos_sin's operations.
+  if (small_turns)
+    run_nodes::small_turns_lanes(scratch.lane_turn.data(), scratch.lane_cos.data(), scratch.lane_sin.data(),
+                                 lanes);
+  else
+    for (int i = 0; i < count; ++i)
+      turn(scratch.lane_cos[std::size_t(i)], scratch.lane_sin[std::size_t(i)],
+           scratch.lane_turn[std::size_t(i)], scratch.lane_cos[std::size_t(i)],
+           scratch.lane_sin[std::size_t(i)]);
   if (recursion)
     harmonic_moments_lanes(scratch.lane_kappa.data(), scratch.lane_cos.data(), scratch.lane_sin.data(), lanes,
                            a, scratch.lane_re.data(), scratch.lane_im.data());

@@ -431,6 +431,16 @@ CCAL_CLONED void quadrature_weights_lanes(const double* dft_cos, const double* d
   }
 }
 
+CCAL_CLONED void small_turns_lanes(const double* delta, double* c, double* s, int count) {
+  for (int i = 0; i < count; i += kPackLanes) {
+    Pack cd, sd;
+    small_angle_cos_sin(load<Pack>(delta + i), cd, sd);
+    const Pack c0 = load<Pack>(c + i), s0 = load<Pack>(s + i);
+    store(c + i, c0 * cd - s0 * sd);
+    store(s + i, s0 * cd + c0 * sd);
+  }
+}
+
 CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out) {
   if (!small) return main_axis_one_by_one(in, out);
   return in.ripple ? main_axis_dispatch<true, Pack>(in, out) : main_axis_dispatch<false, Pack>(in, out);

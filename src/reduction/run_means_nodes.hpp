@@ -94,6 +94,10 @@ void harmonic_moments_lanes(const double* half_kappa, const double* cos_half_kap
 // q·stride.
 void quadrature_weights_lanes(const double* dft_cos, const double* dft_sin, int M, int Q, const double* nu_re,
                               const double* nu_im, double* weights, int stride);
+// (c, s) ← the cosine and sine of (a + δ) from those of a, for `count` angles at once (a multiple of
+// kPackLanes), each δ below kSmallAngle as the caller has checked: frames.hpp's cos_sin of δ (its
+// small-angle series) and the rotation c·cos δ − s·sin δ, s·cos δ + c·sin δ, lane by lane.
+void small_turns_lanes(const double* delta, double* c, double* s, int count);
 // Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
 // the SIMD loops (small-angle series for the wobbles) apply.
 bool always_small(const double* coefficients, int order);
