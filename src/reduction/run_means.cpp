@@ -34,65 +34,46 @@ using run_nodes::to_v3;
 // Workspace::Buffers, declared in the header, derive from them.
 namespace run_nodes {
 
-// The instrument's output as a polynomial in a_i plus the other terms (instrument.hpp), for one pass per
-// node.
-struct OutputPolynomial {
-  std::array<double, kMaxPower + 1> power{};  // K_n of a_iⁿ
-  int degree = 0;
-  double abs_square = 0, p = 0, o = 0, ip = 0, io = 0, pp = 0, oo = 0, po = 0;
-  double rate = 0;  // s_ω + K_w
-  bool cross = false;
-
-  explicit OutputPolynomial(const InstrumentModel& model) : rate(model.rate_gain) {
-    const std::vector<TermSpec> terms = model.terms();
-    for (std::size_t k = 0; k < terms.size(); ++k) {
-      const double K = model.coefficients[Eigen::Index(k)];
-      switch (terms[k].kind) {
-        case TermKind::power:
-          power[std::size_t(terms[k].power)] += K;
-          degree = std::max(degree, terms[k].power);
-          break;
-        case TermKind::abs_square:
-          abs_square += K;
-          break;
-        case TermKind::p:
-          p += K;
-          break;
-        case TermKind::o:
-          o += K;
-          break;
-        case TermKind::ip:
-          ip += K;
-          break;
-        case TermKind::io:
-          io += K;
-          break;
-        case TermKind::pp:
-          pp += K;
-          break;
-        case TermKind::oo:
-          oo += K;
-          break;
-        case TermKind::po:
-          po += K;
-          break;
-        case TermKind::rate:
-          rate += K;
-          break;
-      }
+OutputPolynomial::OutputPolynomial(const InstrumentModel& model) : rate(model.rate_gain) {
+  const std::vector<TermSpec> terms = model.terms();
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    const double K = model.coefficients[Eigen::Index(k)];
+    switch (terms[k].kind) {
+      case TermKind::power:
+        power[std::size_t(terms[k].power)] += K;
+        degree = std::max(degree, terms[k].power);
+        break;
+      case TermKind::abs_square:
+        abs_square += K;
+        break;
+      case TermKind::p:
+        p += K;
+        break;
+      case TermKind::o:
+        o += K;
+        break;
+      case TermKind::ip:
+        ip += K;
+        break;
+      case TermKind::io:
+        io += K;
+        break;
+      case TermKind::pp:
+        pp += K;
+        break;
+      case TermKind::oo:
+        oo += K;
+        break;
+      case TermKind::po:
+        po += K;
+        break;
+      case TermKind::rate:
+        rate += K;
+        break;
     }
-    cross = p != 0 || o != 0 || ip != 0 || io != 0 || pp != 0 || oo != 0 || po != 0;
   }
-  double operator()(double a_i, double a_p, double a_o, double w_ia) const {
-    double out = power[std::size_t(degree)];
-    for (int n = degree - 1; n >= 0; --n) out = out * a_i + power[std::size_t(n)];
-    out += abs_square * std::abs(a_i) * a_i + rate * w_ia;
-    if (cross)
-      out += p * a_p + o * a_o + ip * a_i * a_p + io * a_i * a_o + pp * a_p * a_p + oo * a_o * a_o +
-             po * a_p * a_o;
-    return out;
-  }
-};
+  cross = p != 0 || o != 0 || ip != 0 || io != 0 || pp != 0 || oo != 0 || po != 0;
+}
 
 }  // namespace run_nodes
 
@@ -168,7 +149,7 @@ namespace run_nodes {
 // A group's nodes n = q·G·M + g·M + j follow each other without padding, so that the loops fill whole SIMD
 // vectors across runs and slow nodes; the main-axis half is repeated for every slow node.
 struct Scratch {
-  std::vector<double> nu_re, nu_im, weights;
+  std::vector<double> nu_re, nu_im, weights, products;  // products: w y at each node
   // The harmonics m ≥ 1 of the group's runs side by side for harmonic_moments_lanes: κ/2, cos, sin, and ν.
   std::vector<double> lane_kappa, lane_cos, lane_sin, lane_turn, lane_re, lane_im;
   std::vector<double> main_rate, arm_x, platform_rate;  // θ̇1, B's offset x and γ̇ of the node's run
@@ -181,7 +162,8 @@ struct Scratch {
     const auto n = std::size_t(std::max(padded(Q * G * M), padded(G * M)));
     const auto harmonics = std::size_t(G * (M / 2 + 1) * Q), lanes = std::size_t(padded(G * (M / 2)));
     if (nodes < n) {
-      for (auto* v : {&weights, &main_rate, &arm_x, &platform_rate, &cos_offset, &sin_offset}) v->resize(n);
+      for (auto* v : {&weights, &products, &main_rate, &arm_x, &platform_rate, &cos_offset, &sin_offset})
+        v->resize(n);
       inputs.resize(n);
       main.resize(n);
       nodes = n;
@@ -534,16 +516,13 @@ void platform_half(const RunTables& t, const RunGroup& group, const GroupNodes& 
   platform_nodes(platform, trial.platform_small, scratch.main, scratch.inputs);
 }
 
-// ⟨output⟩ of run g = Σ_q Σ_j w_qj y(a_i, a_p, a_o, ω_IA at its node qj), the padding skipped.
-double weighted_output(const OutputPolynomial& output, const Scratch& scratch, const GroupNodes& nodes,
-                       int g) {
+// ⟨output⟩ of run g = Σ_q Σ_j w_qj y(a_i, a_p, a_o, ω_IA at its node qj), the padding skipped: the products
+// w_qj y at every node (run_nodes::weighted_outputs_lanes), summed node by node in this order.
+double weighted_output(const Scratch& scratch, const GroupNodes& nodes, int g) {
   double mean = 0;
   for (int q = 0; q < nodes.Q; ++q)
-    for (int j = 0; j < nodes.M; ++j) {
-      const auto n = std::size_t(q * nodes.fast() + g * nodes.M + j);
-      mean += scratch.weights[n] * output(scratch.inputs.a_i[n], scratch.inputs.a_p[n], scratch.inputs.a_o[n],
-                                          scratch.inputs.w_ia[n]);
-    }
+    for (int j = 0; j < nodes.M; ++j)
+      mean += scratch.products[std::size_t(q * nodes.fast() + g * nodes.M + j)];
   return mean;
 }
 
@@ -559,8 +538,9 @@ void group_means(const KernelTables& d, const RunGroup& group, const TrialTerms&
   main_axis_half(group, nodes, trial, scratch);
   repeat_main_axis_half(nodes, scratch);
   platform_half(t, group, nodes, trial, e[ch::dOmega], d.slow_nodes[std::size_t(nodes.Q)], scratch);
-  for (int g = 0; g < nodes.G; ++g)
-    out[group.runs[std::size_t(g)]] = weighted_output(d.output, scratch, nodes, g);
+  run_nodes::weighted_outputs_lanes(d.output, scratch.weights.data(), scratch.inputs, padded(nodes.all()),
+                                    scratch.products.data());
+  for (int g = 0; g < nodes.G; ++g) out[group.runs[std::size_t(g)]] = weighted_output(scratch, nodes, g);
 }
 
 }  // namespace

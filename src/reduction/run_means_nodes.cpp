@@ -1,7 +1,9 @@
 #include "run_means_nodes.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include "../core/cloned_loops.hpp"
@@ -439,6 +441,35 @@ CCAL_CLONED void small_turns_lanes(const double* delta, double* c, double* s, in
     store(c + i, c0 * cd - s0 * sd);
     store(s + i, s0 * cd + c0 * sd);
   }
+}
+
+namespace {
+// |x| lane by lane: the sign bit cleared, as std::abs does it.
+[[gnu::always_inline]] inline double magnitude(double x) { return std::abs(x); }
+[[gnu::always_inline]] inline Pack magnitude(const Pack& x) {
+  using Bits = std::int64_t __attribute__((vector_size(sizeof(Pack))));
+  return Pack(Bits(x) & std::numeric_limits<std::int64_t>::max());
+}
+// y(a_i, a_p, a_o, ω_IA): Σ K_n a_iⁿ by Horner, then the |a_i|a_i and rate terms, then the cross terms.
+template <class T>
+[[gnu::always_inline]] inline T output_at(const OutputPolynomial& k, const T& a_i, const T& a_p, const T& a_o,
+                                          const T& w_ia) {
+  T out = k.power[std::size_t(k.degree)] - T{};  // x − (+0) is x, −0 included
+  for (int n = k.degree - 1; n >= 0; --n) out = out * a_i + k.power[std::size_t(n)];
+  out += k.abs_square * magnitude(a_i) * a_i + k.rate * w_ia;
+  if (k.cross)
+    out += k.p * a_p + k.o * a_o + k.ip * a_i * a_p + k.io * a_i * a_o + k.pp * a_p * a_p + k.oo * a_o * a_o +
+           k.po * a_p * a_o;
+  return out;
+}
+}  // namespace
+
+CCAL_CLONED void weighted_outputs_lanes(const OutputPolynomial& output, const double* weights,
+                                        const InstrumentInputs& in, int nodes, double* products) {
+  for (int n = 0; n < nodes; n += kPackLanes)
+    store(products + n, load<Pack>(weights + n) *
+                            output_at(output, load<Pack>(in.a_i.data() + n), load<Pack>(in.a_p.data() + n),
+                                      load<Pack>(in.a_o.data() + n), load<Pack>(in.w_ia.data() + n)));
 }
 
 CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out) {

@@ -3,8 +3,11 @@
 // chain at the fast nodes and the platform half at the nodes of one slow node, over structure-of-arrays node
 // data, kPackLanes nodes per SIMD vector where the wobble angles allow (run_means_nodes.cpp).
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <vector>
+
+#include "ccal/model/instrument.hpp"
 
 namespace ccal::run_nodes {
 
@@ -98,6 +101,23 @@ void quadrature_weights_lanes(const double* dft_cos, const double* dft_sin, int 
 // kPackLanes), each δ below kSmallAngle as the caller has checked: frames.hpp's cos_sin of δ (its
 // small-angle series) and the rotation c·cos δ − s·sin δ, s·cos δ + c·sin δ, lane by lane.
 void small_turns_lanes(const double* delta, double* c, double* s, int count);
+// The instrument's output as a polynomial in a_i plus the other terms (instrument.hpp), for one pass per
+// node.
+struct OutputPolynomial {
+  std::array<double, kMaxPower + 1> power{};  // K_n of a_iⁿ
+  int degree = 0;
+  double abs_square = 0, p = 0, o = 0, ip = 0, io = 0, pp = 0, oo = 0, po = 0;
+  double rate = 0;  // s_ω + K_w
+  bool cross = false;
+
+  explicit OutputPolynomial(const InstrumentModel& model);  // run_means.cpp
+};
+
+// products[n] = weights[n] · y(a_i, a_p, a_o, ω_IA at node n) for n < nodes (a multiple of kPackLanes), eight
+// nodes at a time, each lane with the operations of one node.
+void weighted_outputs_lanes(const OutputPolynomial& output, const double* weights, const InstrumentInputs& in,
+                            int nodes, double* products);
+
 // Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
 // the SIMD loops (small-angle series for the wobbles) apply.
 bool always_small(const double* coefficients, int order);
