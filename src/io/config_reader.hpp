@@ -275,6 +275,17 @@ class Reader {
          fmt::format("{} is implausible; accepted: {}", number_text(v), accepted));
   }
 
+  // The lower end of the same: a positive value below what any centrifuge test uses ("1e-300 m"), shown as
+  // written.
+  void require_at_least(const toml::table& t, std::string_view table_path, std::string_view key, double v,
+                        double least, std::string_view accepted) const {
+    if (v >= least) return;
+    const toml::node& n = *t.get(key);
+    fail(n, path(table_path, key),
+         fmt::format("{} is implausible; accepted: {}", n.value<std::string>().value_or(number_text(v)),
+                     accepted));
+  }
+
   const std::string& source() const { return source_; }
 
  private:
@@ -297,12 +308,32 @@ inline const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "p
 inline const Keys kRunKeys{"name",           "g_level",       "speed",       "duration", "platform",
                            "terminal_phase", "initial_phase", "arm_azimuth", "mounting"};
 
-inline const Keys kDesignKeys{"runs",         "total_time",     "max_g",        "g_levels",   "g_range",
-                              "g_step",       "durations",      "turn_fractions", "phase",    "phases",
-                              "phase_step",   "arm_azimuths",   "azimuth_step", "mountings",  "platforms",
-                              "refine",       "objective",      "coefficients", "targets",    "weights",
-                              "starts",       "seed",           "g_resolution", "duration_resolution",
-                              "angle_resolution", "min_g_levels"};
+inline const Keys kDesignKeys{"runs",
+                              "total_time",
+                              "max_g",
+                              "g_levels",
+                              "g_range",
+                              "g_step",
+                              "durations",
+                              "turn_fractions",
+                              "phase",
+                              "phases",
+                              "phase_step",
+                              "arm_azimuths",
+                              "azimuth_step",
+                              "mountings",
+                              "platforms",
+                              "refine",
+                              "objective",
+                              "coefficients",
+                              "targets",
+                              "weights",
+                              "starts",
+                              "seed",
+                              "g_resolution",
+                              "duration_resolution",
+                              "angle_resolution",
+                              "min_g_levels"};
 
 // The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
 Site read_site(const Reader& r, const toml::table& root);
@@ -343,8 +374,9 @@ inline toml::table parse_toml(const Reader& r, std::string_view text, std::strin
 }
 
 // A file's text; FileNotFound<ConfigError> with `missing` as the problem when it cannot be read.
-inline std::string read_file_text(const std::filesystem::path& path,
-                                  std::string_view missing = "cannot read the file; check the path and permissions") {
+inline std::string read_file_text(
+    const std::filesystem::path& path,
+    std::string_view missing = "cannot read the file; check the path and permissions") {
   std::ifstream in(path, std::ios::binary);
   std::error_code ec;
   if (!in || std::filesystem::is_directory(path, ec))

@@ -18,9 +18,23 @@ Site read_site(const Reader& r, const toml::table& root) {
         *t->get("latitude"), "site.latitude",
         fmt::format("{} deg is outside [-90 deg, 90 deg]", number_text(*latitude * 180 / std::numbers::pi)));
   site.latitude = *latitude;
+  // The site is on the Earth: heights from the deepest mines to the highest laboratories, where the normal
+  // gravity formula's free-air term holds; local gravity within the range of those (9.76 to 9.84 m/s² at the
+  // surface). Beyond: a unit or typing error.
   const double height = r.quantity(*t, "site", "height", kind::length).value_or(0.0);
+  if (!(height >= -5000 && height <= 10000))
+    r.fail(
+        *t->get("height"), "site.height",
+        fmt::format("{} is not a height on the Earth; accepted: -5000 m to 10000 m above sea level, such as "
+                    "\"150 m\", or the measured local gravity g",
+                    t->get("height")->value<std::string>().value_or(number_text(height))));
   if (const auto g = r.quantity(*t, "site", "g", kind::acceleration, nullptr, "9.8 m/s^2")) {
-    r.require_positive(*t, "site", "g", *g, "local gravity such as \"9.8 m/s^2\"");
+    if (!(*g >= 9.7 && *g <= 9.9))
+      r.fail(
+          *t->get("g"), "site.g",
+          fmt::format("{} is not the local gravity on the Earth; accepted: 9.7 m/s^2 to 9.9 m/s^2, such as "
+                      "\"9.8 m/s^2\"",
+                      t->get("g")->value<std::string>().value_or(number_text(*g))));
     site.g = *g;
   } else {
     site.g = normal_gravity(site.latitude, height);
@@ -67,6 +81,7 @@ CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root) {
   if (!radius) r.fail(where(t->source()), "centrifuge.radius", "missing value; give e.g. radius = \"2.5 m\"");
   r.require_positive(*t, p, "radius", *radius, "the arm radius R0, e.g. \"2.5 m\"");
   r.require_at_most(*t, p, "radius", *radius, 100.0, "an arm radius up to 100 m (SI), e.g. \"2.5 m\"");
+  r.require_at_least(*t, p, "radius", *radius, 0.01, "an arm radius of at least 0.01 m, e.g. \"2.5 m\"");
   geo.R0 = *radius;
   geo.L = r.quantity(*t, p, "base_plane_height", kind::length).value_or(0.0);
   r.require_non_negative(*t, p, "base_plane_height", geo.L, "a height >= 0 such as \"0.2 m\"");

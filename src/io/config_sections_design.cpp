@@ -14,7 +14,8 @@ const std::vector<std::pair<std::string_view, Mounting>> kMountingWords{
 const std::vector<std::pair<std::string_view, PlatformMode>> kPlatformWords{
     {"counter_rotating", PlatformMode::counter_rotating}, {"fixed", PlatformMode::fixed}};
 
-const toml::array* array_of(const Reader& r, const toml::table& t, std::string_view key, std::string_view what) {
+const toml::array* array_of(const Reader& r, const toml::table& t, std::string_view key,
+                            std::string_view what) {
   const toml::node* n = t.get(key);
   if (!n) return nullptr;
   const toml::array* a = n->as_array();
@@ -52,9 +53,11 @@ std::vector<E> words(const Reader& r, const toml::table& t, std::string_view key
     const toml::node& n = *a->get(i);
     const std::string p = fmt::format("design.{}[{}]", key, i + 1);
     const auto* s = n.as_string();
-    if (!s) r.fail(n, p, fmt::format("expected a string, got {}; accepted: {}", type_name(n), fmt::join(names, ", ")));
-    const auto it = std::find_if(accepted.begin(), accepted.end(),
-                                 [&](const auto& w) { return w.first == s->get(); });
+    if (!s)
+      r.fail(n, p,
+             fmt::format("expected a string, got {}; accepted: {}", type_name(n), fmt::join(names, ", ")));
+    const auto it =
+        std::find_if(accepted.begin(), accepted.end(), [&](const auto& w) { return w.first == s->get(); });
     if (it == accepted.end())
       r.fail(n, p, fmt::format("unknown value '{}'; accepted: {}", s->get(), fmt::join(names, ", ")));
     if (std::find(out.begin(), out.end(), it->second) == out.end()) out.push_back(it->second);
@@ -85,12 +88,13 @@ void check_free(const Reader& r, const toml::node& n, const std::string& p, cons
 
 void read_objective(const Reader& r, const toml::table& t, const InstrumentModel& instrument,
                     const IdentificationSpec& spec, DesignSpace& d) {
-  d.objective = r.word(t, "design", "objective",
-                       std::vector<std::pair<std::string_view, DesignObjective>>{
-                           {design_objective_name(DesignObjective::uncertainty), DesignObjective::uncertainty},
-                           {design_objective_name(DesignObjective::d_optimal), DesignObjective::d_optimal},
-                           {design_objective_name(DesignObjective::a_optimal), DesignObjective::a_optimal}})
-                    .value_or(DesignObjective::uncertainty);
+  d.objective =
+      r.word(t, "design", "objective",
+             std::vector<std::pair<std::string_view, DesignObjective>>{
+                 {design_objective_name(DesignObjective::uncertainty), DesignObjective::uncertainty},
+                 {design_objective_name(DesignObjective::d_optimal), DesignObjective::d_optimal},
+                 {design_objective_name(DesignObjective::a_optimal), DesignObjective::a_optimal}})
+          .value_or(DesignObjective::uncertainty);
   if (const toml::array* a = array_of(r, t, "coefficients", "[\"K2\", \"K3\"]")) {
     for (std::size_t i = 0; i < a->size(); ++i) {
       const toml::node& n = *a->get(i);
@@ -113,8 +117,9 @@ void read_objective(const Reader& r, const toml::table& t, const InstrumentModel
       else if (const auto v = number_of(node))
         value = fmt::format("{:.17g}", *v);
       else
-        r.fail(node, p, fmt::format("expected an expanded uncertainty such as \"1e-6 {}\", got {}",
-                                    coefficient_unit(instrument.output_unit, key.str()), type_name(node)));
+        r.fail(node, p,
+               fmt::format("expected an expanded uncertainty such as \"1e-6 {}\", got {}",
+                           coefficient_unit(instrument.output_unit, key.str()), type_name(node)));
       try {
         const AllocationTarget target =
             parse_allocation_target(fmt::format("{}={}", key.str(), value), spec.free_terms, units, p);
@@ -154,7 +159,8 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
   auto positive = [&](const toml::node& n, const std::string& path, double v) {
     // The value as the user wrote it ("-1 ms"), else the number.
     const std::optional<std::string> written = n.value<std::string>();
-    if (!(v > 0)) r.fail(n, path, fmt::format("must be positive, got {}", written ? *written : number_text(v)));
+    if (!(v > 0))
+      r.fail(n, path, fmt::format("must be positive, got {}", written ? *written : number_text(v)));
   };
   d.runs = count(r, *t, "runs", 1, 1000, "a number of runs from 1 to 1000");
   d.min_g_levels = count(r, *t, "min_g_levels", 1, 1000, "a number of distinct g-levels from 1 to 1000");
@@ -190,13 +196,26 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
   d.mountings = words(r, *t, "mountings", kMountingWords);
   d.platforms = words(r, *t, "platforms", kPlatformWords);
   d.refine = r.boolean(*t, p, "refine").value_or(true);
-  d.g_resolution = r.quantity(*t, p, "g_resolution", kind::acceleration_g, nullptr, "0.01 g");
-  if (d.g_resolution) positive(*t->get("g_resolution"), "design.g_resolution", *d.g_resolution);
-  d.duration_resolution = r.quantity(*t, p, "duration_resolution", kind::time, nullptr, "0.001 s");
-  if (d.duration_resolution)
-    positive(*t->get("duration_resolution"), "design.duration_resolution", *d.duration_resolution);
-  d.angle_resolution = r.quantity(*t, p, "angle_resolution", kind::angle, nullptr, "0.1 deg");
-  if (d.angle_resolution) positive(*t->get("angle_resolution"), "design.angle_resolution", *d.angle_resolution);
+  // A machine's setting steps: positive and no finer than 1e-6 of the unit (a finer step is a unit error, and
+  // the settings are counted in steps as 64-bit integers). Coarser than the design space allows:
+  // resolve_design_space.
+  auto resolution = [&](std::string_view key, Dimension dim, std::string_view example, double finest,
+                        std::string_view finest_text) {
+    const std::optional<double> v = r.quantity(*t, p, key, dim, nullptr, example);
+    if (!v) return v;
+    const toml::node& n = *t->get(key);
+    const std::string path = Reader::path(p, key);
+    positive(n, path, *v);
+    if (*v < finest * (1 - 1e-12))
+      r.fail(n, path,
+             fmt::format("{} is finer than any machine sets; accepted: at least {}, such as \"{}\"",
+                         n.value<std::string>().value_or(number_text(*v)), finest_text, example));
+    return v;
+  };
+  d.g_resolution = resolution("g_resolution", kind::acceleration_g, "0.01 g", 1e-6, "1e-6 g");
+  d.duration_resolution = resolution("duration_resolution", kind::time, "0.001 s", 1e-6, "1e-6 s");
+  d.angle_resolution =
+      resolution("angle_resolution", kind::angle, "0.1 deg", 1e-6 * std::numbers::pi / 180, "1e-6 deg");
   read_objective(r, *t, instrument, spec, d);
   return d;
 }

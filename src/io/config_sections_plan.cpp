@@ -174,8 +174,11 @@ RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_vie
     r.fail(*t.get("duration"), Reader::path(p, "duration"),
            fmt::format("must be positive, got {} s; a run duration such as \"450 s\"",
                        number_text(*f.duration)));
-  if (f.duration)
+  if (f.duration) {
     r.require_at_most(t, p, "duration", *f.duration, 1e6, "a run duration up to 1e6 s (11.6 days)");
+    r.require_at_least(t, p, "duration", *f.duration, 1e-3,
+                       "a run duration of at least 1 ms, such as \"450 s\"");
+  }
   f.platform =
       r.word(t, p, "platform",
              std::vector<std::pair<std::string_view, PlatformMode>>{
@@ -246,11 +249,13 @@ TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geo
     if (g_level) {
       r.require_positive(*rt, p, "g_level", *g_level, "the centripetal level such as \"5 g\"");
       r.require_at_most(*rt, p, "g_level", *g_level, 1000.0, "a centripetal level up to 1000 g");
+      r.require_at_least(*rt, p, "g_level", *g_level, 1e-3, "a centripetal level of at least 0.001 g");
       run.g_level = *g_level;
     } else {
       r.require_positive(*rt, p, "speed", *speed, "the main-axis speed such as \"120 rpm\"");
       run.g_level = *speed * *speed * geometry.R0 / site.g;
       r.require_at_most(*rt, p, "speed", run.g_level, 1000.0, "a speed giving at most 1000 g at the radius");
+      r.require_at_least(*rt, p, "speed", run.g_level, 1e-3, "a speed giving at least 0.001 g at the radius");
     }
 
     const RunFields own = read_run_fields(r, *rt, p);

@@ -132,6 +132,27 @@ void resolve_timing(const Config& config, ResolvedDesignSpace& s) {
   }
 }
 
+// What the machine sets ([design] g_resolution, duration_resolution) must be finer than the smallest g-level
+// and the shortest run the design may choose: the rounding keeps a setting at one step at least, so a coarser
+// step would raise every run to it (past max_g, past the total time).
+void resolve_resolutions(const Config& config, const ResolvedDesignSpace& s) {
+  const SettingResolution res = setting_resolution(config.design);
+  const double lowest_g = *std::min_element(s.g_levels.begin(), s.g_levels.end());
+  if (res.g > lowest_g * (1 + 1e-12))
+    throw InputError(
+        fmt::format("{}: design.g_resolution: {:g} g is coarser than the lowest g-level the design "
+                    "may choose ({:g} g); accepted: at most {:g} g, such as \"0.01 g\"",
+                    config.source, res.g, lowest_g, lowest_g));
+  const double shortest = s.turn_fractions > 0 ? s.refinement.duration_low
+                                               : *std::min_element(s.durations.begin(), s.durations.end());
+  if (res.duration > shortest * (1 + 1e-12))
+    throw InputError(
+        fmt::format("{}: design.duration_resolution: {:g} s is coarser than the shortest run the design may "
+                    "choose ({:g} s); "
+                    "accepted: at most {:g} s, such as \"1 ms\"",
+                    config.source, res.duration, shortest, shortest));
+}
+
 void resolve_angles(const Config& config, ResolvedDesignSpace& s) {
   const DesignSpace& d = config.design;
   const Run& first = config.plan.runs.front();
@@ -219,6 +240,7 @@ ResolvedDesignSpace resolve_design_space(const Config& config) {
                     config.source, s.runs, nfree, fmt::join(config.identification.free_terms, ", "), nfree));
   resolve_g_levels(config, s);
   resolve_timing(config, s);
+  resolve_resolutions(config, s);
   resolve_angles(config, s);
   resolve_min_g_levels(config, s);
   // Each refinement step evaluates up to 8 trial runs per run (the cache's cost per run): a few halvings

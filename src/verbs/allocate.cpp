@@ -23,7 +23,7 @@ constexpr OptionSpec<AllocateOptions> kAllocateRows[] = {
      {},
      true},
     rows::coverage_probability(&AllocateOptions::coverage_probability,
-                               "Coverage probability p of the targets, in (0, 1)"),
+                               "Coverage probability p of the targets, in [0.5, 1)"),
     rows::mode<&AllocateOptions::mode>(
         "Kinematics of the sensitivities and the verification: exact or paper; "
         "default: the configuration's [identification] mode"),

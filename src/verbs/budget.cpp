@@ -21,7 +21,7 @@ constexpr OptionSpec<BudgetOptions> kBudgetRows[] = {
         "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); "
         "default: the configuration's [identification] mode"),
     rows::coverage_probability(&BudgetOptions::coverage_probability,
-                               "Coverage probability p of the expanded uncertainty U = k u, in (0, 1): k = "
+                               "Coverage probability p of the expanded uncertainty U = k u, in [0.5, 1): k = "
                                "1.96 for 0.95, the normal LPU total's"),
     rows::coverage_factor(&BudgetOptions::coverage_factor),
     {"derivatives", enum_member<&BudgetOptions::derivatives>(kDerivativeNames), "METHOD",

@@ -33,7 +33,7 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
     {"seed", &DesignOptions::seed, "S", "Seed of the random starts; default: [design] seed"},
     rows::coverage_probability(&DesignOptions::coverage_probability,
                                "Coverage probability p of the expanded uncertainties (the targets, the "
-                               "budgets and the verification), in (0, 1)"),
+                               "budgets and the verification), in [0.5, 1)"),
     rows::coverage_factor(&DesignOptions::coverage_factor),
     rows::threads(&DesignOptions::threads, "Threads (0: the OpenMP default)"),
     rows::verify_trials(&DesignOptions::verify_trials,
@@ -98,8 +98,8 @@ bool configured_in_space(const Config& config, const ResolvedDesignSpace& s) {
 }
 
 // The designed plan as the operator runs it: each run rounded to what the machine can set, in g-level order,
-// named after its g-level ("29.47g"; "30g", "30g-2", … where several share one), so that a log's name says its
-// g-level.
+// named after its g-level ("29.47g"; "30g", "30g-2", … where several share one), so that a log's name says
+// its g-level.
 Config with_plan(const Config& config, const std::vector<DesignRun>& runs, const ResolvedDesignSpace& space) {
   std::vector<DesignRun> sorted = runs;
   std::stable_sort(sorted.begin(), sorted.end(),
@@ -116,6 +116,15 @@ Config with_plan(const Config& config, const std::vector<DesignRun>& runs, const
     planned.name = n == 1 ? level : fmt::format("{}-{}", level, n);
     c.plan.runs.push_back(planned);
   }
+  // Rounding lowers durations and keeps g-levels within max_g (resolve_design_space refuses steps coarser
+  // than the space), so the rounded plan stays in it; were it not, no plan is better than a wrong one.
+  double total = 0;
+  for (const Run& run : c.plan.runs) total += run.duration;
+  if (total > space.total_time * (1 + 1e-12))
+    throw InputError(
+        fmt::format("{}: the designed plan rounded to design.duration_resolution lasts {:g} s, more "
+                    "than total_time = {:g} s; accepted: a finer duration_resolution",
+                    config.source, total, space.total_time));
   return c;
 }
 

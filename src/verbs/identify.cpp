@@ -179,7 +179,7 @@ constexpr OptionSpec<IdentifyOptions> kIdentifyRows[] = {
      "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of the "
      "configuration given as config, the correction for its known [errors], u_c, nu_eff, k, U, interval"},
     rows::coverage_probability(&IdentifyOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in (0, 1)"),
+                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
     rows::mode<&IdentifyOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                        "configuration's [identification] mode"),
     rows::statement_trials(&IdentifyOptions::statement_trials),

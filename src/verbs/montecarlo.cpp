@@ -23,7 +23,7 @@ constexpr OptionSpec<MonteCarloOptions> kMonteCarloRows[] = {
     {"max_trials", &MonteCarloOptions::max_trials, "N",
      "Adaptive procedure: no stage beyond this many trials", rows::kTrials},
     rows::coverage_probability<MonteCarloOptions>(&MonteCarloOptions::coverage_probability,
-                                                  "Coverage probability p of the intervals, in (0, 1)"),
+                                                  "Coverage probability p of the intervals, in [0.5, 1)"),
     rows::mode<&MonteCarloOptions::mode>(),
 };
 

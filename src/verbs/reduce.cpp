@@ -61,7 +61,7 @@ constexpr OptionSpec<ReduceOptions> kReduceRows[] = {
      "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the configuration's "
      "tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval"},
     rows::coverage_probability(&ReduceOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in (0, 1)"),
+                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
     rows::statement_trials(&ReduceOptions::statement_trials),
     rows::seed(&ReduceOptions::seed, "Seed of the statement's Monte Carlo check"),
     rows::threads(&ReduceOptions::threads),

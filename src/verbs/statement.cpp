@@ -59,7 +59,7 @@ double unit_factor(const std::string& from, const std::string& to, const std::st
 
 constexpr OptionSpec<StatementOptions> kStatementRows[] = {
     rows::coverage_probability(&StatementOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in (0, 1)"),
+                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
     rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                         "configuration's [identification] mode"),
     rows::statement_trials(&StatementOptions::statement_trials),

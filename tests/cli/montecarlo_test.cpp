@@ -124,7 +124,10 @@ TEST_F(MonteCarloCli, BadOptionsAreExitCodeTwo) {
   expect_bad_input(run("montecarlo --threads -1"), {"--threads"});
   expect_bad_input(run("montecarlo --digits 7"), {"--digits", "0 (fixed M) or 1 to 6"});
   expect_bad_input(run("montecarlo --digits -1"), {"--digits"});
-  expect_bad_input(run("montecarlo --coverage-probability 0"), {"--coverage-probability", "(0, 1)"});
+  expect_bad_input(run("montecarlo --coverage-probability 0"), {"--coverage-probability", "[0.5, 1)"});
+  // Below ½ refused too: 1e-300 took q = 0 of the sorted values, a one-point "interval" said validated.
+  expect_bad_input(run("montecarlo --coverage-probability 1e-300"), {"--coverage-probability", "[0.5, 1)"});
+  expect_bad_input(run("montecarlo --coverage-probability 0.49"), {"--coverage-probability", "[0.5, 1)"});
   expect_bad_input(run("montecarlo --coverage-probability 1"), {"--coverage-probability"});
   expect_bad_input(run("montecarlo --coverage-probability 1.5"), {"--coverage-probability"});
   expect_bad_input(run("montecarlo --mode fast"), {"--mode"});

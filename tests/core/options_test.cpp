@@ -105,7 +105,7 @@ TEST(OptionParsers, RealsAndChoices) {
 TEST(OptionRange, WordsWhatItAccepts) {
   EXPECT_EQ(verbs::rows::kTrials.text(), "2 to 1000000000");
   EXPECT_EQ(verbs::rows::kVerifyTrials.text(), "0 (none) or 2 to 1000000000");
-  EXPECT_EQ(verbs::rows::kCoverageProbability.text(), "a number in (0, 1), e.g. 0.95");
+  EXPECT_EQ(verbs::rows::kCoverageProbability.text(), "a number in [0.5, 1), e.g. 0.95");
   EXPECT_EQ(OptionRange::at_least(0).open_low().text(), "a number > 0");
   EXPECT_TRUE(verbs::rows::kVerifyTrials.accepts(0));
   EXPECT_FALSE(verbs::rows::kVerifyTrials.accepts(1));
@@ -123,7 +123,7 @@ TEST(OptionTables, VerbsRefuseOutOfRangeFieldsByName) {
   mc = {};
   mc.coverage_probability = 1.0;
   EXPECT_EQ(refusal([&] { verbs::monte_carlo(bundled_example(), mc); }),
-            "coverage_probability: 1 is out of range; accepted: a number in (0, 1), e.g. 0.95");
+            "coverage_probability: 1 is out of range; accepted: a number in [0.5, 1), e.g. 0.95");
   verbs::AllocateOptions allocate;
   EXPECT_EQ(refusal([&] { verbs::allocate(bundled_example(), allocate); }),
             "targets: none given; accepted: at least one COEFF=U");

@@ -196,10 +196,14 @@ radius = "0 m")",
   expect_error(R"([site]
 latitude = "95 deg")",
                2, "site.latitude", {"outside [-90 deg, 90 deg]"});
-  expect_error(R"([site]
-latitude = "45 deg"
-g = "0 m/s^2")",
-               3, "site.g", {"must be positive"});
+  // The site is on the Earth: g = 0, a tiny or a huge g (a unit error) and heights beyond the normal
+  // gravity formula's range (a height of 5000 km gave NaN forces with exit 0) are refused, shown as written.
+  for (const char* g : {"0 m/s^2", "1e-300 m/s^2", "1e300 m/s^2", "98 m/s^2", "-9.8 m/s^2", "9.69 m/s^2"})
+    expect_error(std::string("[site]\nlatitude = \"45 deg\"\ng = \"") + g + "\"", 3, "site.g",
+                 {g, "not the local gravity on the Earth", "9.7 m/s^2 to 9.9 m/s^2"});
+  for (const char* h : {"5e6 m", "10.001 km", "-5001 m", "1e30 m"})
+    expect_error(std::string("[site]\nlatitude = \"45 deg\"\nheight = \"") + h + "\"", 3, "site.height",
+                 {h, "not a height on the Earth", "-5000 m to 10000 m"});
   const std::string runs = R"([site]
 latitude = "45 deg"
 [centrifuge]
@@ -215,6 +219,31 @@ duration = "1 s"
                {"must be positive", "\"450 s\""});
   expect_error(runs + "g_level = \"5 g\"\nduration = \"0 s\"", 10, "plan.runs[1].duration",
                {"must be positive"});
+}
+
+// Positive values beyond any centrifuge test are unit or typing errors: refused where written, shown as
+// written, with the accepted range (a radius, g-level, speed or duration of 1e-300 once gave messages about
+// revolutions or unobservable terms that named no key).
+TEST(ConfigErrors, ImplausiblySmallOrLargeValuesAreNamedAsWritten) {
+  const auto config = [](const std::string& radius, const std::string& duration, const std::string& run) {
+    return "[site]\nlatitude = \"45 deg\"\n[centrifuge]\nradius = \"" + radius +
+           "\"\n[plan]\nterminal_phase = \"0 deg\"\nduration = \"" + duration + "\"\n[[plan.runs]]\n" + run;
+  };
+  expect_error(config("1e-300 m", "1 s", "g_level = \"5 g\""), 4, "centrifuge.radius",
+               {"1e-300 m is implausible", "at least 0.01 m"});
+  expect_error(config("200 m", "1 s", "g_level = \"5 g\""), 4, "centrifuge.radius",
+               {"is implausible", "up to 100 m"});
+  expect_error(config("2.5 m", "1e-300 s", "g_level = \"5 g\""), 7, "plan.duration",
+               {"1e-300 s is implausible", "at least 1 ms"});
+  expect_error(config("2.5 m", "2e6 s", "g_level = \"5 g\""), 7, "plan.duration",
+               {"is implausible", "1e6 s"});
+  expect_error(config("2.5 m", "1 s", "g_level = \"1e-300 g\""), 9, "plan.runs[1].g_level",
+               {"1e-300 g is implausible", "at least 0.001 g"});
+  expect_error(config("2.5 m", "1 s", "g_level = \"2000 g\""), 9, "plan.runs[1].g_level",
+               {"is implausible", "up to 1000 g"});
+  expect_error(config("2.5 m", "1 s", "speed = \"1e-300 rpm\""), 9, "plan.runs[1].speed",
+               {"1e-300 rpm is implausible", "at least 0.001 g"});
+  EXPECT_NO_THROW(parse_config(config("0.01 m", "1 ms", "g_level = \"0.001 g\""), "edge.toml"));
 }
 
 TEST(ConfigErrors, NonFiniteNumbers) {
@@ -384,9 +413,11 @@ TEST(ConfigErrors, ToleranceFloor) {
                         "tolerances.dthz5.floor", {"rad"});
   expect_appended_error("[tolerances]\ndthz5 = { bound = \"10 arcsec\", flor = \"1 arcsec\" }",
                         "tolerances.dthz5.flor", {"did you mean 'floor'?"});
-  const Config c = parse_config(kBase + "\n[tolerances]\ndthz5 = { bound = \"10 arcsec\", floor = \"0.1 arcsec\" }\n"
-                                "dR_s = \"25 um\"\n",
-                                "case.toml");
+  const Config c =
+      parse_config(kBase +
+                       "\n[tolerances]\ndthz5 = { bound = \"10 arcsec\", floor = \"0.1 arcsec\" }\n"
+                       "dR_s = \"25 um\"\n",
+                   "case.toml");
   ASSERT_EQ(c.tolerances.size(), 2u);
   for (const Tolerance& t : c.tolerances) {
     if (t.id == "dthz5") {

@@ -26,7 +26,9 @@ namespace rows {
 inline constexpr OptionRange kTrials = OptionRange::between(2, double(kMaxMonteCarloTrials));
 inline constexpr OptionRange kVerifyTrials = kTrials.or_value(0, "none");
 inline constexpr OptionRange kThreads = OptionRange::between(1, kMaxThreads).or_value(0, "the OpenMP default");
-inline constexpr OptionRange kCoverageProbability = OptionRange::between(0, 1).open_low().open_high().e_g("0.95");
+// At least ½: an interval that more likely misses the value than holds it is no coverage interval (and p → 0
+// takes q = round(pM) = 0 of the M sorted values, an interval of one point).
+inline constexpr OptionRange kCoverageProbability = OptionRange::between(0.5, 1).open_high().e_g("0.95");
 
 // mode<&Options::mode>(): the kinematics (an optional ModelMode: unset, the configuration's).
 template <auto Member, class O = typename member_class<decltype(Member)>::type>
