@@ -37,9 +37,8 @@ double angle_error(const std::vector<double>& ripple, double q) {
   return d;
 }
 
-
-// An encoder reading in the layout's unit: in counts the whole count below the angle (a real encoder's), wrapped
-// to one revolution; in an angle unit the angle itself.
+// An encoder reading in the layout's unit: in counts the whole count below the angle (a real encoder's),
+// wrapped to one revolution; in an angle unit the angle itself.
 std::string encoder_text(double angle, const LogLayout& layout) {
   if (layout.angle_unit == "counts") {
     const auto n = static_cast<long long>(std::floor(angle / layout.angle_scale));
@@ -60,24 +59,37 @@ std::string run_log_file_name(const std::string& run) {
 double default_log_step(const Config& config) {
   double fastest = 0;
   const Experiment ex = config.experiment();
-  for (const Run& run : config.plan.runs) fastest = std::max(fastest, nominal_rate(run, ex.geometry, ex.site));
+  for (const Run& run : config.plan.runs)
+    fastest = std::max(fastest, nominal_rate(run, ex.geometry, ex.site));
   return std::min(0.1, kTwoPi / 8 / std::max(fastest, 1e-9));  // eight samples a revolution at least
 }
 
 std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::VectorXd& e,
-                                       const std::vector<double>& run_means, double step, const LogLayout& layout) {
+                                       const std::vector<double>& run_means, double step,
+                                       const LogLayout& layout) {
   const auto& runs = config.plan.runs;
   if (run_means.size() != runs.size())
-    throw InputError(fmt::format("run logs: {} run means for a plan of {} runs", run_means.size(), runs.size()));
+    throw InputError(
+        fmt::format("run logs: {} run means for a plan of {} runs", run_means.size(), runs.size()));
   if (e.size() != config.centrifuge.errors.size())
     throw InputError(fmt::format("run logs: {} machine errors for a layout of {}", e.size(),
                                  config.centrifuge.errors.size()));
   const Experiment ex = config.experiment();
-  const std::vector<double> main = ripple_of(config, e, ch::ripple1), platform = ripple_of(config, e, ch::ripple3);
+  const std::vector<double> main = ripple_of(config, e, ch::ripple1),
+                            platform = ripple_of(config, e, ch::ripple3);
   const bool locked = config.centrifuge.geometry.platform_control == PlatformControl::phase_locked;
   const double w = config.instrument.quantum;  // output SI × s per pulse
   // SI size of the output unit, for an instrument without a quantum (whose output is then not in pulses)
   const double unit = w > 0 ? 1.0 : parse_unit(config.instrument.output_unit).value_si;
+  // Two runs whose names differ only where a file name has '_' would write one file.
+  for (std::size_t a = 0; a < runs.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (run_log_file_name(runs[a].name) == run_log_file_name(runs[b].name))
+        throw InputError(
+            fmt::format("run logs: runs '{}' and '{}' would both be logged to {} (a file name keeps "
+                        "letters, digits, '.' and '-' and makes anything else '_'); accepted: run "
+                        "names that differ in those",
+                        runs[b].name, runs[a].name, run_log_file_name(runs[a].name)));
   std::vector<RunLogFile> out;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const Run& run = runs[r];
@@ -98,8 +110,8 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
       const double d1 = angle_error(main, theta_n);
       const double gamma = turning ? gamma_n + angle_error(platform, gamma_n) - (locked ? d1 : 0.0) : phi0;
       const double value = w > 0 ? std::floor(m * t / w) : m / unit;
-      text += fmt::format("{:.17g},{:.17g},{},{}\n", t / c.time_scale, value, encoder_text(wrapped(theta_n + d1), layout),
-                          encoder_text(wrapped(gamma), layout));
+      text += fmt::format("{:.17g},{:.17g},{},{}\n", t / c.time_scale, value,
+                          encoder_text(wrapped(theta_n + d1), layout), encoder_text(wrapped(gamma), layout));
     }
     out.push_back({run_log_file_name(run.name), std::move(text)});
   }

@@ -228,7 +228,20 @@ TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
   DesignOptions o = options;
   o.tradeoff.clear();
   o.verify_trials = 0;
-  const DesignResult d = design(scaled, o);
+  // The scaled design's refusal names [design] keys the user did not write: said of the factor instead.
+  const DesignResult d = [&] {
+    try {
+      return design(scaled, o);
+    } catch (const OptionError&) {
+      throw;
+    } catch (const InputError& e) {
+      throw OptionError(
+          "tradeoff", option_number_text(factor),
+          fmt::format("scales the total time to {:g} s, for which the design fails ({}); accepted: "
+                      "factors for which the design space still holds a plan",
+                      *scaled.design.total_time, e.what()));
+    }
+  }();
   TradeoffPoint point;
   point.total_time = d.space.total_time;
   point.used_time = d.search.rows.duration.sum();

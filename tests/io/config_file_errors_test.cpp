@@ -246,6 +246,29 @@ TEST(ConfigErrors, ImplausiblySmallOrLargeValuesAreNamedAsWritten) {
   EXPECT_NO_THROW(parse_config(config("0.01 m", "1 ms", "g_level = \"0.001 g\""), "edge.toml"));
 }
 
+// A run's name is a CSV cell, a log's file name and the NAME of --log NAME=FILE: a line end in it once gave
+// an observations file that `ccal identify` could not read back, with exit 0.
+TEST(ConfigErrors, RunNamesAreOneLineWithoutEqualsOrBlankEnds) {
+  const std::string runs = R"([site]
+latitude = "45 deg"
+[centrifuge]
+radius = "2.5 m"
+[plan]
+terminal_phase = "0 deg"
+duration = "1 s"
+[[plan.runs]]
+g_level = "5 g"
+)";
+  expect_error(runs + R"(name = "a\nb,c")", 10, "plan.runs[1].name",
+               {"run name \"a\\nb,c\" has a control character", "accepted: a name of printable characters"});
+  expect_error(runs + R"(name = "a\tb")", 10, "plan.runs[1].name", {"\"a\\tb\" has a control character"});
+  expect_error(runs + R"(name = "5g=x")", 10, "plan.runs[1].name", {"has '='"});
+  expect_error(runs + R"(name = " 5g")", 10, "plan.runs[1].name", {"has a blank at one end"});
+  expect_error(runs + R"(name = "5g ")", 10, "plan.runs[1].name", {"has a blank at one end"});
+  EXPECT_EQ(parse_config(runs + R"x(name = "5 g, IA up (é)")x", "ok.toml").plan.runs[0].name,
+            "5 g, IA up (é)");
+}
+
 TEST(ConfigErrors, NonFiniteNumbers) {
   expect_appended_error("base_plane_height = \"nan m\"", "centrifuge.base_plane_height",
                         {"not a finite number"});

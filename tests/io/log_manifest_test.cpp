@@ -10,6 +10,8 @@
 #include <numbers>
 #include <string>
 
+#include "ccal/core/errors.hpp"
+#include "ccal/io/config_file.hpp"
 #include "ccal/io/run_log_writer.hpp"
 
 namespace ccal {
@@ -53,7 +55,8 @@ TEST(LogManifest, ADaqLayoutIsReadAsWritten) {
   EXPECT_EQ(m.runs[1].run, "3");
   EXPECT_EQ(m.runs[1].file, std::filesystem::path("logs/sub/run3.csv"));
   // An angle unit: its size in rad.
-  const LogManifest deg = parse_log_manifest("[columns]\nangle_unit = \"deg\"\n[runs]\n1 = \"a.csv\"\n", "m", ".");
+  const LogManifest deg =
+      parse_log_manifest("[columns]\nangle_unit = \"deg\"\n[runs]\n1 = \"a.csv\"\n", "m", ".");
   EXPECT_DOUBLE_EQ(deg.layout.angle_scale, std::numbers::pi / 180);
 }
 
@@ -71,12 +74,31 @@ TEST(LogManifest, TheManifestCcalWritesReadsBackToTheSameLayoutAndRuns) {
   EXPECT_EQ(odd.runs[0].run, "run 1.5");
 }
 
+// Runs "a b" and "a_b" map to one log file: refused naming both runs and the file, before anything is written
+// (they once met as "it is also the --logs-out file", naming no run).
+TEST(LogManifest, RunsWhoseLogFilesWouldCoincideAreRefused) {
+  Config config = bundled_example();
+  config.plan.runs[1].name = "a b";
+  config.plan.runs[4].name = "a_b";
+  const std::vector<double> means(config.plan.runs.size(), 0.5);
+  try {
+    write_run_logs(config, config.centrifuge.errors, means, default_log_step(config));
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("runs 'a b' and 'a_b' would both be logged to a_b.csv"),
+              std::string::npos)
+        << e.what();
+  }
+  config.plan.runs[4].name = "a-b";  // another file name: accepted
+  EXPECT_EQ(write_run_logs(config, config.centrifuge.errors, means, default_log_step(config)).size(), 6u);
+}
+
 TEST(LogManifest, LogsInADaqLayoutReduceAsCcalsOwnDo) {
-  // The bundled example's 20 g run written twice from the same mean: in ccal's layout and in the DAQ's (time in
-  // ms, encoders as whole counts of 2^24 a revolution). Its instrument has no quantum: the output column holds
-  // the same numbers, so the mean output is the same to the rounding of the times' ms → s (1e-12 relative); the
-  // encoders' rates
-  // differ by their quantisation, 2π/2^24 = 3.7e-7 rad over a 450 s line fit of 4500 samples: 1e-9 rad/s.
+  // The bundled example's 20 g run written twice from the same mean: in ccal's layout and in the DAQ's (time
+  // in ms, encoders as whole counts of 2^24 a revolution). Its instrument has no quantum: the output column
+  // holds the same numbers, so the mean output is the same to the rounding of the times' ms → s (1e-12
+  // relative); the encoders' rates differ by their quantisation, 2π/2^24 = 3.7e-7 rad over a 450 s line fit
+  // of 4500 samples: 1e-9 rad/s.
   const Config config = bundled_example();
   const std::vector<double> means(config.plan.runs.size(), 0.5);
   const double step = default_log_step(config);
@@ -129,8 +151,9 @@ TEST(LogManifest, RefusalsAreLocatedWithWhatIsAccepted) {
     read_log_manifest("no/such/folder");
     FAIL() << "a folder without a manifest was read";
   } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("no/such/folder/manifest.toml: no manifest in the folder; accepted: ", 0),
-              0u)
+    EXPECT_EQ(
+        std::string(e.what()).rfind("no/such/folder/manifest.toml: no manifest in the folder; accepted: ", 0),
+        0u)
         << e.what();
   }
 }
