@@ -117,6 +117,7 @@ Command add_report(CLI::App& app) {
             const std::string_view scripts = required_report_scripts();  // before the long computation
             check_pdf(o->pdf, o->output);
             verbs::ReportOptions ro = o->options;
+            note_input(ro.history_db);       // the history store is read: never replaced by the page
             ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
             if (!o->allocate_targets.empty()) {
               ro.allocate = verbs::report_allocation(o->allocate_targets, ro);

@@ -347,7 +347,8 @@ HistoryStore& HistoryStore::operator=(HistoryStore&& other) noexcept {
 
 HistoryStore::~HistoryStore() { sqlite3_close_v2(db_); }
 
-std::int64_t HistoryStore::add(const HistoryEntry& entry) {
+std::int64_t HistoryStore::add(const HistoryEntry& entry,
+                               const std::function<void(std::int64_t id)>& before_commit) {
   const std::string sha = sha256_hex(entry.statement_json);
   execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
   try {
@@ -388,6 +389,7 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry) {
           .number(8, c.effective_dof)
           .step();
     }
+    if (before_commit) before_commit(id);
     execute(db_, path_, "COMMIT", "cannot write it");
     return id;
   } catch (...) {

@@ -156,6 +156,27 @@ TEST_F(History, ARecordIsSupersededOnceWithAReason) {
   EXPECT_EQ(r[0].coefficients.at(1).value, 0.02);  // kept as it was
 }
 
+// add's before_commit runs inside the transaction (the store already shows the record to it) and its failure
+// rolls the addition back: a command whose output cannot be written records nothing, so that the corrected
+// command is not refused as "already recorded".
+TEST_F(History, AFailureBeforeTheCommitRecordsNothing) {
+  HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
+  const HistoryEntry e = history_entry(stored_statement(0.02), "s.json", "SN 1", "2026-01-01");
+  std::size_t seen = 0;
+  EXPECT_THROW(store.add(e,
+                         [&](std::int64_t) {
+                           seen = store.records("SN 1").size();
+                           throw InputError("-o: cannot write");
+                         }),
+               InputError);
+  EXPECT_EQ(seen, 1u);
+  EXPECT_TRUE(store.records("SN 1").empty());
+  std::int64_t told = 0;
+  const std::int64_t id = store.add(e, [&](std::int64_t given) { told = given; });
+  EXPECT_EQ(told, id);
+  EXPECT_EQ(store.records("SN 1").size(), 1u);
+}
+
 TEST_F(History, TwoWritersAtOnceLoseNothing) {
   const std::string file = path("h.sqlite");
   const auto writer = [&](int who) {
