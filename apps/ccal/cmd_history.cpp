@@ -38,8 +38,10 @@ Command add_history(CLI::App& app) {
       "An instrument's calibration history: record calibration statements, show drift and agreement");
   cmd->require_subcommand(1);
   CLI::App* add = cmd->add_subcommand("add", "Record a calibration statement in the history store");
-  add->add_option("STATEMENT", o->statement,
-                  "Statement file (`ccal reduce --statement-out FILE`), or reduce's JSON (`--format json`)")
+  add->add_option(
+         "STATEMENT", o->statement,
+         "The calibration statement's JSON file (`ccal reduce --statement --statement-out FILE.json`; "
+         "not its CSV form), or reduce's JSON output (`--format json`)")
       ->required()
       ->type_name("FILE");
   add_option_flags(*add, o->add, option_table<verbs::HistoryAddOptions>());

@@ -293,4 +293,43 @@ TEST_F(Cli, AddRecordsNothingWhenItsOutputFails) {
   EXPECT_EQ(count(), 2u);
 }
 
+// What history refuses, each saying what is wrong and what is accepted: a serial that is blank or holds a
+// control character (looked up by its exact text, it could not be typed again); a blank reason (as an empty
+// one); a --by record itself superseded (every record would end superseded); an import whose "by" names no
+// calibration of the file (it was dropped); a folder or the statement's CSV form as STATEMENT.
+TEST_F(Cli, HistoryRefusesWhatItCouldNotKeepOrFindAgain) {
+  for (int i = 0; i < 3; ++i) write(fmt::format("s{}.json", i), small_statement(i));
+  expect_bad_input(
+      run("history add s0.json --db h.sqlite --serial '   ' --date 2026-01-01"),
+      {"--serial: '   ' is blank; accepted: the instrument's serial number, printable characters"});
+  expect_bad_input(run("history add s0.json --db h.sqlite --serial " + quote("a\nb") + " --date 2026-01-01"),
+                   {"--serial: 'a\\nb' holds a control character"});
+  EXPECT_FALSE(fs::exists(dir_ / "h.sqlite"));
+  for (int i = 0; i < 3; ++i)
+    ASSERT_EQ(
+        run(fmt::format("history add s{}.json --db h.sqlite --serial S1 --date 202{}-01-01", i, 4 + i)).code,
+        0);
+  expect_bad_input(run("history supersede 1 --reason '   ' --db h.sqlite"), {"--reason: '   ' is blank"});
+  ASSERT_EQ(run("history supersede 1 --by 2 --reason r --db h.sqlite").code, 0);
+  expect_bad_input(
+      run("history supersede 2 --by 1 --reason r --db h.sqlite"),
+      {"calibration 1 is itself superseded (r)", "accepted: a record of S1 that is not superseded"});
+  ASSERT_EQ(run("history export S1 --db h.sqlite -o e.json").code, 0);
+  auto exported = nlohmann::json::parse(read(dir_ / "e.json"));
+  exported["calibrations"][0]["superseded"]["by"] = 999;
+  write("e999.json", exported.dump());
+  expect_bad_input(run("history import e999.json --db other.sqlite"),
+                   {"is superseded by 999, which names no calibration in the file"});
+  fs::create_directory(dir_ / "adir");
+  expect_bad_input(run("history add adir --db h.sqlite"),
+                   {"adir: it is a folder; accepted: a calibration statement's JSON file"});
+  write("st.csv", "coefficient,unit,corrected_estimate,expanded_uncertainty\nK0,deg/s,1,0.5\n");
+  expect_bad_input(run("history add st.csv --db h.sqlite --serial S1 --date 2027-01-01"),
+                   {"st.csv: the statement's CSV form", "accepted: the statement as JSON"});
+  // The help names the JSON form, and what an empty --serial means.
+  const Result help = run("history add --help");
+  EXPECT_NE(help.out.find("The calibration statement's JSON file"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("also for an empty S"), std::string::npos) << help.out;
+}
+
 }  // namespace

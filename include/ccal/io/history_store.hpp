@@ -72,8 +72,8 @@ struct HistoryEntry {
 // Reads a statement from the JSON text of `ccal reduce --statement-out FILE` (or of a whole `ccal reduce` /
 // `ccal identify --statement` JSON output, whose "statement" is taken); `source` names it in messages.
 // serial, date: given (empty: from the statement's certificate fields, serial_number and
-// date_of_calibration). InputError for text that is no statement, a missing serial or date, or a date not
-// YYYY-MM-DD.
+// date_of_calibration). InputError for text that is no statement (the statement's CSV form said so), a
+// missing serial or date, a serial that is blank or holds control characters, or a date not YYYY-MM-DD.
 HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
                            const std::string& date);
 
