@@ -115,9 +115,14 @@ class Temporary {
   std::string path_;
 };
 
-// --- Inputs of the command: (device, inode) of each file read.
-std::vector<std::pair<dev_t, ino_t>>& inputs() {
-  static std::vector<std::pair<dev_t, ino_t>> files;
+// --- Inputs of the command: the path of each file read, with its (device, inode) when it existed then (a
+// store the command makes, e.g. the history's, is an input not there yet).
+struct InputFile {
+  std::string path;
+  std::optional<std::pair<dev_t, ino_t>> identity;
+};
+std::vector<InputFile>& inputs() {
+  static std::vector<InputFile> files;
   return files;
 }
 
@@ -128,7 +133,8 @@ std::vector<std::pair<dev_t, ino_t>>& inputs() {
 std::string errno_text() {
   const int e = errno;
   std::string text = std::strerror(e);
-  if (e == EFBIG) text += " (beyond the file-size limit, ulimit -f); accepted: a smaller output or a higher limit";
+  if (e == EFBIG)
+    text += " (beyond the file-size limit, ulimit -f); accepted: a smaller output or a higher limit";
   return text;
 }
 
@@ -165,6 +171,31 @@ FileKey file_key(const std::string& path) {
   return key;
 }
 
+bool same_key(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  if (a.empty() || b.empty() || a == "-" || b == "-") return false;
+  return file_key(a) == file_key(b);
+}
+
+// Whether the output f names one of the command's inputs: the same file now, or the same path.
+bool is_input(const FileToWrite& f, const std::optional<std::pair<dev_t, ino_t>>& identity) {
+  for (const InputFile& in : inputs())
+    if ((identity && in.identity == identity) || same_key(f.path, in.path)) return true;
+  return false;
+}
+
+// A new file's folder: InputError unless it exists and is a folder.
+void check_folder_of_new_file(const FileToWrite& f) {
+  const fs::path folder = fs::path(f.path).parent_path();
+  if (folder.empty()) return;
+  struct stat st {};
+  if (::stat(folder.c_str(), &st) != 0)
+    fail(f, fmt::format("its folder '{}' does not exist; accepted: a file in an existing folder",
+                        folder.string()));
+  if (!S_ISDIR(st.st_mode))
+    fail(f, fmt::format("'{}' is not a folder; accepted: a file in an existing folder", folder.string()));
+}
+
 bool write_all(int fd, std::string_view text) {
   while (!text.empty()) {
     const ssize_t n = ::write(fd, text.data(), text.size());
@@ -199,17 +230,20 @@ Plan plan_for(const FileToWrite& f) {
   }
   p.target = f.path;
   struct stat st {};
-  if (::stat(f.path.c_str(), &st) != 0) {  // follows symbolic links
-    if (errno != ENOENT) fail(f, errno_text());
+  const bool exists = ::stat(f.path.c_str(), &st) == 0;  // follows symbolic links
+  const int stat_error = errno;
+  if (exists) p.identity = std::make_pair(st.st_dev, st.st_ino);
+  if (is_input(f, p.identity))
+    fail(f, "it is also an input of the command; accepted: a file the command does not read");
+  if (!exists) {
+    errno = stat_error;
+    if (errno != ENOENT && errno != ENOTDIR) fail(f, errno_text());
     struct stat link {};
     if (::lstat(f.path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
       fail(f, "it is a symbolic link to nothing; accepted: a link to a file, or a file path");
+    check_folder_of_new_file(f);
     return p;  // a new regular file
   }
-  p.identity = std::make_pair(st.st_dev, st.st_ino);
-  for (const auto& in : inputs())
-    if (in == *p.identity)
-      fail(f, "it is also an input of the command; accepted: a file the command does not read");
   if (S_ISDIR(st.st_mode)) fail(f, "it is a folder; accepted: a file path");
   if (!S_ISREG(st.st_mode)) {
     p.kind =
@@ -292,8 +326,11 @@ void write_through(const FileToWrite& f, const Plan& p) {
 }  // namespace
 
 void note_input_file(const std::string& path) {
+  if (path.empty() || path == "-") return;
+  InputFile in{path, std::nullopt};
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) inputs().emplace_back(st.st_dev, st.st_ino);
+  if (::stat(path.c_str(), &st) == 0) in.identity = std::make_pair(st.st_dev, st.st_ino);
+  inputs().push_back(std::move(in));
 }
 
 void write_standard_output(const std::string& text) {
@@ -302,14 +339,12 @@ void write_standard_output(const std::string& text) {
     throw InputError("standard output: write failed: " + errno_text());
 }
 
-bool same_file(const std::string& a, const std::string& b) {
-  if (a == b) return true;
-  if (a.empty() || b.empty() || a == "-" || b == "-") return false;
-  return file_key(a) == file_key(b);
-}
+bool same_file(const std::string& a, const std::string& b) { return same_key(a, b); }
 
-void write_files(const std::vector<FileToWrite>& files) {
-  ignore_file_size_signal();
+namespace {
+
+// How each file will be written, after every check that needs no writing (InputError naming the option).
+std::vector<Plan> plans_for(const std::vector<FileToWrite>& files) {
   std::vector<Plan> plans;
   for (const auto& f : files) plans.push_back(plan_for(f));
   for (std::size_t a = 0; a < files.size(); ++a)
@@ -317,6 +352,16 @@ void write_files(const std::vector<FileToWrite>& files) {
       if (same_file(files[a].path, files[b].path))
         fail(files[a], fmt::format("it is also the {} file; accepted: two different files", files[b].option));
     }
+  return plans;
+}
+
+}  // namespace
+
+void check_files(const std::vector<FileToWrite>& files) { plans_for(files); }
+
+void write_files(const std::vector<FileToWrite>& files) {
+  ignore_file_size_signal();
+  const std::vector<Plan> plans = plans_for(files);
   std::vector<Temporary> temporaries(files.size());
   for (std::size_t k = 0; k < files.size(); ++k)
     if (plans[k].kind == Plan::Kind::replace) write_temporary(files[k], plans[k], temporaries[k]);

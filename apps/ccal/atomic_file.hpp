@@ -22,7 +22,8 @@ struct FileToWrite {
   ContentProducer produce = {};
 };
 
-// Records a file the command reads; write_files refuses to write over it.
+// Records a file the command reads (also one it makes, such as a new history store); write_files refuses to
+// write over it, by its path and, when it exists at the call, by its (device, inode).
 void note_input_file(const std::string& path);
 
 // Whether two paths name one file: the same spelling, the same (device, inode) for existing files, or the
@@ -35,6 +36,12 @@ bool same_file(const std::string& a, const std::string& b);
 // InputError naming the option and the file on any failure, with no temporary left behind (also past the
 // file-size limit: SIGXFSZ is ignored, so that the write fails with EFBIG).
 void write_files(const std::vector<FileToWrite>& files);
+
+// The checks of write_files that need no writing, for a command that must know before it changes anything
+// else (e.g. records a calibration) that its outputs can be written: an empty path, a file that is also an
+// input or another of the files, a folder, a symbolic link to nothing, a new file whose folder does not
+// exist. Throws InputError as write_files would; writes nothing.
+void check_files(const std::vector<FileToWrite>& files);
 
 // Writes text to standard output and flushes it; InputError if the stream reports a write error.
 void write_standard_output(const std::string& text);

@@ -38,8 +38,10 @@ Command add_history(CLI::App& app) {
       "An instrument's calibration history: record calibration statements, show drift and agreement");
   cmd->require_subcommand(1);
   CLI::App* add = cmd->add_subcommand("add", "Record a calibration statement in the history store");
-  add->add_option("STATEMENT", o->statement,
-                  "Statement file (`ccal reduce --statement-out FILE`), or reduce's JSON (`--format json`)")
+  add->add_option(
+         "STATEMENT", o->statement,
+         "The calibration statement's JSON file (`ccal reduce --statement --statement-out FILE.json`; "
+         "not its CSV form), or reduce's JSON output (`--format json`)")
       ->required()
       ->type_name("FILE");
   add_option_flags(*add, o->add, option_table<verbs::HistoryAddOptions>());
@@ -76,33 +78,40 @@ Command add_history(CLI::App& app) {
       "  ccal history export \"SN 0815\" -o sn0815.json; ccal history import sn0815.json --db "
       "other.sqlite\n");
 
-  return {cmd, [o, add, show, supersede, exported, imported] {
-            if (add->parsed()) {
-              note_input(o->statement);
-              const verbs::HistoryAddResult r = verbs::history_add(o->statement, o->add);
-              write_output(o->add_output, o->add_output.format == "json" ? render::json(r) : render::text(r));
-            } else if (show->parsed()) {
-              const verbs::HistoryShowResult r = verbs::history_show(o->serial, o->show);
-              const std::string& f = o->show_output.format;
-              write_output(o->show_output, f == "json"  ? render::json(r)
-                                           : f == "csv" ? render::csv(r)
-                                                        : render::text(r));
-            } else if (supersede->parsed()) {
-              verbs::history_supersede(o->id, o->supersede);
-              write_output(OutputOptions{}, fmt::format("Calibration {} superseded.\n", o->id));
-            } else if (exported->parsed()) {
-              write_output(o->export_output, verbs::history_export(o->export_serial, o->export_store));
-            } else if (imported->parsed()) {
-              note_input(o->import_file);
-              const HistoryImport r = verbs::history_import(o->import_file, o->import_store);
-              write_output(
-                  OutputOptions{},
-                  fmt::format("Imported the history of {}: {} calibration{} added, {} already there, {} "
-                              "supersession{} recorded.\n",
-                              r.serial, r.added, r.added == 1 ? "" : "s", r.present, r.superseded,
-                              r.superseded == 1 ? "" : "s"));
-            }
-          }};
+  return {
+      cmd, [o, add, show, supersede, exported, imported] {
+        if (add->parsed()) {
+          note_input(o->statement);
+          note_input(verbs::history_store_path(o->add.db));
+          // All or nothing: the output is checked before the store is touched, and written before the
+          // store's transaction commits, whose failure to write it leaves the calibration unrecorded.
+          check_outputs(o->add_output);
+          verbs::history_add(o->statement, o->add, [&](const verbs::HistoryAddResult& r) {
+            write_output(o->add_output, o->add_output.format == "json" ? render::json(r) : render::text(r));
+          });
+        } else if (show->parsed()) {
+          note_input(verbs::history_store_path(o->show.db));
+          const verbs::HistoryShowResult r = verbs::history_show(o->serial, o->show);
+          const std::string& f = o->show_output.format;
+          write_output(o->show_output, f == "json"  ? render::json(r)
+                                       : f == "csv" ? render::csv(r)
+                                                    : render::text(r));
+        } else if (supersede->parsed()) {
+          verbs::history_supersede(o->id, o->supersede);
+          write_output(OutputOptions{}, fmt::format("Calibration {} superseded.\n", o->id));
+        } else if (exported->parsed()) {
+          note_input(verbs::history_store_path(o->export_store.db));
+          write_output(o->export_output, verbs::history_export(o->export_serial, o->export_store));
+        } else if (imported->parsed()) {
+          note_input(o->import_file);
+          const HistoryImport r = verbs::history_import(o->import_file, o->import_store);
+          write_output(OutputOptions{},
+                       fmt::format("Imported the history of {}: {} calibration{} added, {} already there, {} "
+                                   "supersession{} recorded.\n",
+                                   r.serial, r.added, r.added == 1 ? "" : "s", r.present, r.superseded,
+                                   r.superseded == 1 ? "" : "s"));
+        }
+      }};
 }
 
 }  // namespace ccal::cli

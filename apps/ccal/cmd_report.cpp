@@ -94,8 +94,9 @@ Command add_report(CLI::App& app) {
                   "--statement --config CONFIG` with this report's --mode and --coverage-probability)")
       ->type_name("OBS.csv");
   o->output.format = "html";
-  cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
-      ->type_name("FILE.html");
+  refuse_empty_output(
+      *cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
+           ->type_name("FILE.html"));
   cmd->add_option("--pdf", o->pdf,
                   "Print the page to FILE as PDF (A4), through headless Chromium (Debian's chromium, or the "
                   "program named by CCAL_CHROMIUM); without -o only the PDF is written")
@@ -117,12 +118,14 @@ Command add_report(CLI::App& app) {
             const std::string_view scripts = required_report_scripts();  // before the long computation
             check_pdf(o->pdf, o->output);
             verbs::ReportOptions ro = o->options;
+            note_input(ro.history_db);       // the history store is read: never replaced by the page
             ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
             if (!o->allocate_targets.empty()) {
               ro.allocate = verbs::report_allocation(o->allocate_targets, ro);
               ro.allocate->progress = true;
             }
-            if (o->design || !o->design_targets.empty()) ro.design = verbs::report_design(o->design_targets, ro);
+            if (o->design || !o->design_targets.empty())
+              ro.design = verbs::report_design(o->design_targets, ro);
             if (!o->observations.empty()) ro.observations = read_observations(o->observations);
             const Config config = load_config_or_example(o->config);
             const verbs::ReportResult r = verbs::report(config, ro);

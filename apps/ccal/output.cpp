@@ -22,10 +22,21 @@ void add_output_options(CLI::App& command, OutputOptions& options, const std::ve
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember(formats))
       ->capture_default_str();
-  command
-      .add_option(long_output ? "-o,--output" : "-o", options.path,
-                  "Write the output to FILE instead of standard output")
-      ->type_name("FILE");
+  refuse_empty_output(
+      *command
+           .add_option(long_output ? "-o,--output" : "-o", options.path,
+                       "Write the output to FILE instead of standard output ('-': standard output)")
+           ->type_name("FILE"));
+}
+
+void refuse_empty_output(CLI::Option& option) {
+  // A parse error of its own rather than the validator's message: CLI11 would name the option by its long
+  // name, while every message of the output files names it -o.
+  option.each([](const std::string& path) {
+    if (path.empty())
+      throw CLI::ParseError("-o: the path is empty; accepted: a file path or '-' for standard output",
+                            CLI::ExitCodes::ValidationError);
+  });
 }
 
 void write_output(const OutputOptions& options, std::string_view text) { write_outputs(options, text, {}); }
@@ -45,25 +56,29 @@ void check_observations_out(const std::string& path, const OutputOptions& output
 
 void add_statement_out_option(CLI::App& command, std::string& path) {
   command
-      .add_option("--statement-out", path,
-                  "With --statement, also write the calibration statement alone to FILE: JSON for FILE.json, CSV "
-                  "(one row per coefficient with its covariance row) for FILE.csv")
+      .add_option(
+          "--statement-out", path,
+          "With --statement, also write the calibration statement alone to FILE: JSON for FILE.json, CSV "
+          "(one row per coefficient with its covariance row) for FILE.csv")
       ->type_name("FILE.json|FILE.csv");
 }
 
 void check_statement_out(const std::string& path, bool statement, const OutputOptions& output) {
   if (path.empty()) return;
   if (!statement)
-    throw InputError(fmt::format("--statement-out: '{}' asks for the statement's file without --statement; "
-                                 "accepted: --statement --statement-out FILE",
-                                 path));
+    throw InputError(
+        fmt::format("--statement-out: '{}' asks for the statement's file without --statement; "
+                    "accepted: --statement --statement-out FILE",
+                    path));
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext != ".json" && ext != ".csv")
-    throw InputError(fmt::format("--statement-out: '{}' has no .json or .csv extension, which sets the format; "
-                                 "accepted: FILE.json or FILE.csv",
-                                 path));
+    throw InputError(
+        fmt::format("--statement-out: '{}' has no .json or .csv extension, which sets the format; "
+                    "accepted: FILE.json or FILE.csv",
+                    path));
   if (same_file(path, output.path.empty() ? "-" : output.path))
-    throw InputError(fmt::format("--statement-out: '{}' is also the -o file; accepted: two different files", path));
+    throw InputError(
+        fmt::format("--statement-out: '{}' is also the -o file; accepted: two different files", path));
 }
 
 void add_statement_out_file(std::vector<ExtraFile>& extra, const std::string& path,
@@ -79,11 +94,24 @@ void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "ccal: warning: " << w << '\n';
 }
 
-void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra) {
+namespace {
+
+std::vector<FileToWrite> files_of(const OutputOptions& options, std::string_view text,
+                                  const std::vector<ExtraFile>& extra) {
   std::vector<FileToWrite> files;
   files.push_back({"-o", options.path.empty() ? "-" : options.path, std::string(text), {}});
   for (const auto& f : extra) files.push_back({f.option, f.path, f.text, f.produce});
-  write_files(files);
+  return files;
+}
+
+}  // namespace
+
+void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra) {
+  write_files(files_of(options, text, extra));
+}
+
+void check_outputs(const OutputOptions& options, const std::vector<ExtraFile>& extra) {
+  check_files(files_of(options, {}, extra));
 }
 
 Config load_config_or_example(const std::string& path) {

@@ -23,9 +23,14 @@ struct OutputOptions {
 };
 
 // Adds --format (one of `formats`, the first is the default) and -o/--output to a command (-o alone when
-// long_output is false, for a command whose --output means something else).
+// long_output is false, for a command whose --output means something else). An empty -o value is refused
+// (refuse_empty_output).
 void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats,
                         bool long_output = true);
+
+// Refuses an explicitly given empty path for an output option (-o ""), which would otherwise mean standard
+// output silently: a parse error "-o: the path is empty; accepted: a file path or '-' for standard output".
+void refuse_empty_output(CLI::Option& option);
 
 // Writes text to standard output (also for the path "-"), or to options.path. A regular file (or a new one)
 // is replaced atomically: the text goes to a temporary created exclusively (O_EXCL | O_NOFOLLOW, random
@@ -35,7 +40,8 @@ void add_output_options(CLI::App& command, OutputOptions& options, const std::ve
 // standard output reports a write error.
 void write_output(const OutputOptions& options, std::string_view text);
 
-// Records a file the command reads (configuration, CSV, log), so that no output replaces it.
+// Records a file the command reads (configuration, CSV, log, the history store, also one it is about to
+// make), so that no output replaces it.
 void note_input(const std::string& path);
 
 // A further file a command writes besides its output, e.g. --observations-out.
@@ -53,13 +59,18 @@ struct ExtraFile {
 // SIGTERM remove the temporaries before the process ends.
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra);
 
+// Checks, writing nothing, that write_outputs(options, …, extra) can write its files as far as can be known
+// beforehand (atomic_file.hpp check_files); InputError as write_outputs. For a command that changes something
+// besides its outputs (history add), before it does.
+void check_outputs(const OutputOptions& options, const std::vector<ExtraFile>& extra = {});
+
 // --observations-out FILE (the observations CSV, the input of `ccal identify`, besides the output), and the
 // check that it is not also the -o file (InputError).
 void add_observations_out_option(CLI::App& command, std::string& path);
 void check_observations_out(const std::string& path, const OutputOptions& output);
 
-// --statement-out FILE of `reduce` and `identify`: the calibration statement alone (render/statement.hpp), JSON
-// or CSV by the file's extension.
+// --statement-out FILE of `reduce` and `identify`: the calibration statement alone (render/statement.hpp),
+// JSON or CSV by the file's extension.
 void add_statement_out_option(CLI::App& command, std::string& path);
 // Before the work: refused without --statement, with another extension than .json or .csv, or naming the -o
 // file (InputError naming --statement-out).

@@ -2,15 +2,112 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 
 namespace ccal {
 
 namespace {
+
 constexpr const char* kFormat = "ccal calibration history";
+
+// A file that is no export: what is wrong, and what would be accepted.
+[[noreturn]] void refuse(const std::string& source, const std::string& what) {
+  throw InputError(
+      fmt::format("{}: not an exported calibration history: {}; accepted: a serial number's history as "
+                  "exported (\"format\": \"ccal calibration history\")",
+                  source, what));
+}
+
+// One calibration of the file, read.
+struct Item {
+  std::int64_t old_id = 0;
+  HistoryEntry entry;
+  const nlohmann::json* superseded = nullptr;  // its "superseded", if not absent or null
+};
+
+// Every entry, read before anything is recorded, so that a bad one adds nothing.
+std::vector<Item> read_items(const nlohmann::json& j, const std::string& serial, const std::string& source) {
+  std::vector<Item> items;
+  for (std::size_t i = 0; i < j["calibrations"].size(); ++i) {
+    const nlohmann::json& c = j["calibrations"][i];
+    const std::string where = fmt::format("{}: calibrations[{}]", source, i);
+    if (!c.is_object() || !c["id"].is_number_integer() || !c["date"].is_string() || !c.contains("statement"))
+      refuse(source, fmt::format("calibrations[{}] has no \"id\", \"date\" and \"statement\"", i));
+    Item item;
+    item.old_id = c["id"].get<std::int64_t>();
+    try {
+      item.entry = history_entry(c["statement"].dump(), where, serial, c["date"].get<std::string>());
+    } catch (const OptionError& e) {  // the file's "serial" stands for the option
+      refuse(source, fmt::format("\"serial\" {} {}", e.value(), e.problem()));
+    }
+    item.entry.instrument = c.value("instrument", item.entry.instrument);
+    item.entry.ccal_version = c.value("ccal_version", item.entry.ccal_version);
+    item.entry.config = c.value("config", item.entry.config);
+    if (c.contains("superseded") && !c["superseded"].is_null()) item.superseded = &c["superseded"];
+    items.push_back(std::move(item));
+  }
+  return items;
+}
+
+// The supersessions of the file: per superseded record (old id) its "by", and the order to record them in.
+struct Supersessions {
+  std::map<std::int64_t, std::optional<std::int64_t>> by_of;
+  std::vector<const Item*> order;
+};
+
+// Every "by" names a calibration of the file (not the superseded one itself). A record is superseded only by
+// one in force, so the supersessions are recorded in an order where none names a record superseded before
+// it (X by Y before Y's own), and refused when they go round in a circle.
+Supersessions supersessions_of(const std::vector<Item>& items, const std::string& source) {
+  Supersessions out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (!items[i].superseded) continue;
+    const nlohmann::json& sup = *items[i].superseded;
+    if (!sup.is_object() || (sup.contains("by") && !sup["by"].is_null() && !sup["by"].is_number_integer()))
+      refuse(source,
+             fmt::format("calibrations[{}]: \"superseded\" is not {{\"by\": id or null, \"reason\"}}", i));
+    std::optional<std::int64_t> by;
+    if (sup.contains("by") && sup["by"].is_number_integer()) {
+      by = sup["by"].get<std::int64_t>();
+      const bool known =
+          std::any_of(items.begin(), items.end(), [&](const Item& x) { return x.old_id == *by; });
+      if (!known || *by == items[i].old_id)
+        throw InputError(fmt::format(
+            "{}: calibrations[{}] (id {}) is superseded by {}, {}; accepted: the \"id\" of another "
+            "calibration in the file, or null",
+            source, i, items[i].old_id, *by, known ? "itself" : "which names no calibration in the file"));
+    }
+    out.by_of[items[i].old_id] = by;
+  }
+  std::map<std::int64_t, bool> placed;
+  while (out.order.size() < out.by_of.size()) {
+    const std::size_t before = out.order.size();
+    for (const Item& item : items) {
+      if (!item.superseded || placed[item.old_id]) continue;
+      // Ready when no supersession still to record names this record as its "by".
+      const bool named = std::any_of(out.by_of.begin(), out.by_of.end(), [&](const auto& kv) {
+        return !placed[kv.first] && kv.second == item.old_id;
+      });
+      if (named) continue;
+      out.order.push_back(&item);
+      placed[item.old_id] = true;
+    }
+    if (out.order.size() == before)
+      throw InputError(
+          fmt::format("{}: the supersessions go round in a circle (each record superseded by one superseded "
+                      "in turn); accepted: supersessions that end in a record in force",
+                      source));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string export_history(const HistoryStore& store, const std::string& serial) {
@@ -41,47 +138,23 @@ std::string export_history(const HistoryStore& store, const std::string& serial)
 }
 
 HistoryImport import_history(HistoryStore& store, const std::string& json_text, const std::string& source) {
-  const auto refuse = [&](const std::string& what) {
-    throw InputError(
-        fmt::format("{}: not an exported calibration history: {}; accepted: a serial number's history as "
-                    "exported (\"format\": \"ccal calibration history\")",
-                    source, what));
-  };
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::exception& e) {
-    refuse(fmt::format("not JSON ({})", e.what()));
+    refuse(source, fmt::format("not JSON ({})", e.what()));
   }
   if (!j.is_object() || j.value("format", std::string()) != kFormat)
-    refuse("no \"format\": \"ccal calibration history\"");
+    refuse(source, "no \"format\": \"ccal calibration history\"");
   if (!j["schema"].is_number_integer() || j["schema"].get<int>() > kHistorySchemaVersion)
-    refuse(
-        fmt::format("schema {} (this ccal reads {} and older)", j["schema"].dump(), kHistorySchemaVersion));
-  if (!j["serial"].is_string() || !j["calibrations"].is_array()) refuse("no \"serial\" and \"calibrations\"");
+    refuse(source, fmt::format("schema {} (this ccal reads {} and older)", j["schema"].dump(),
+                               kHistorySchemaVersion));
+  if (!j["serial"].is_string() || !j["calibrations"].is_array())
+    refuse(source, "no \"serial\" and \"calibrations\"");
   HistoryImport out;
   out.serial = j["serial"].get<std::string>();
-  // Every entry read first, so that a bad one adds nothing.
-  struct Item {
-    std::int64_t old_id = 0;
-    HistoryEntry entry;
-    const nlohmann::json* superseded = nullptr;
-  };
-  std::vector<Item> items;
-  for (std::size_t i = 0; i < j["calibrations"].size(); ++i) {
-    const nlohmann::json& c = j["calibrations"][i];
-    const std::string where = fmt::format("{}: calibrations[{}]", source, i);
-    if (!c.is_object() || !c["id"].is_number_integer() || !c["date"].is_string() || !c.contains("statement"))
-      refuse(fmt::format("calibrations[{}] has no \"id\", \"date\" and \"statement\"", i));
-    Item item;
-    item.old_id = c["id"].get<std::int64_t>();
-    item.entry = history_entry(c["statement"].dump(), where, out.serial, c["date"].get<std::string>());
-    item.entry.instrument = c.value("instrument", item.entry.instrument);
-    item.entry.ccal_version = c.value("ccal_version", item.entry.ccal_version);
-    item.entry.config = c.value("config", item.entry.config);
-    if (c.contains("superseded")) item.superseded = &c["superseded"];
-    items.push_back(std::move(item));
-  }
+  const std::vector<Item> items = read_items(j, out.serial, source);
+  const Supersessions supersessions = supersessions_of(items, source);
   std::map<std::int64_t, std::int64_t> new_id;
   std::map<std::int64_t, bool> was_present;
   for (const Item& item : items) {
@@ -90,14 +163,11 @@ HistoryImport import_history(HistoryStore& store, const std::string& json_text, 
     new_id[item.old_id] = known ? *known : store.add(item.entry);
     ++(known ? out.present : out.added);
   }
-  for (const Item& item : items) {
-    if (!item.superseded || was_present[item.old_id]) continue;  // a record present keeps its own state
-    std::optional<std::int64_t> by;
-    if ((*item.superseded)["by"].is_number_integer()) {
-      const auto found = new_id.find((*item.superseded)["by"].get<std::int64_t>());
-      if (found != new_id.end()) by = found->second;
-    }
-    store.supersede(new_id[item.old_id], by, item.superseded->value("reason", std::string("imported")));
+  for (const Item* item : supersessions.order) {
+    if (was_present[item->old_id]) continue;  // a record present keeps its own state
+    const std::optional<std::int64_t> by = supersessions.by_of.at(item->old_id);
+    store.supersede(new_id[item->old_id], by ? std::optional<std::int64_t>(new_id[*by]) : std::nullopt,
+                    item->superseded->value("reason", std::string("imported")));
     ++out.superseded;
   }
   return out;

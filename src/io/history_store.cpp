@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -173,6 +174,44 @@ int schema_version(sqlite3* db, const std::string& path) {
   return std::atoi(version.column_text(0).c_str());
 }
 
+// Text as a message shows it: in quotes, control characters escaped (\n, \t, \xNN).
+std::string shown(const std::string& text) {
+  std::string out = "'";
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (c < 0x20 || c == 0x7f)
+      out += fmt::format("\\x{:02x}", c);
+    else
+      out += ch;
+  }
+  return out + "'";
+}
+
+bool blank(const std::string& text) { return text.find_first_not_of(" \t\n\r\f\v") == std::string::npos; }
+
+// A serial number is looked up by its exact text: one that is blank or holds control characters (a line
+// break, a tab) could not be told apart or typed again. given: from the caller (the serial option), else
+// from the statement's certificate. Empty: checked by the caller (missing).
+void check_serial(const std::string& serial, bool given, const std::string& source) {
+  if (serial.empty()) return;
+  const char* problem = nullptr;
+  if (blank(serial))
+    problem = "is blank";
+  else if (std::any_of(serial.begin(), serial.end(),
+                       [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+    problem = "holds a control character (a line break, a tab)";
+  if (!problem) return;
+  const std::string accepted =
+      "accepted: the instrument's serial number, printable characters and not blank, e.g. SN 0815";
+  if (given) throw OptionError("serial", shown(serial), fmt::format("{}; {}", problem, accepted));
+  throw InputError(fmt::format("{}: serial number ([certificate] serial_number) {} {}; {}", source,
+                               shown(serial), problem, accepted));
+}
+
 }  // namespace
 
 std::optional<std::int64_t> calendar_day(std::string_view date) {
@@ -204,6 +243,11 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
   try {
     j = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::exception& e) {
+    if (json_text.starts_with("coefficient,unit,corrected_estimate,") || source.ends_with(".csv"))
+      throw InputError(
+          fmt::format("{}: the statement's CSV form; history keeps the statement's JSON form; accepted: the "
+                      "statement as JSON (`ccal reduce --statement --statement-out FILE.json`)",
+                      source));
     throw InputError(
         fmt::format("{}: not JSON ({}); accepted: a calibration statement's JSON (alone, or as the "
                     "\"statement\" of a reduction's or an identification's JSON)",
@@ -247,6 +291,7 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
   e.serial = !serial.empty() ? serial : certificate.value("serial_number", std::string());
   e.date = !date.empty() ? date : certificate.value("date_of_calibration", std::string());
   e.instrument = certificate.value("instrument", std::string());
+  check_serial(e.serial, !serial.empty(), source);
   // What the caller did not give and the statement does not name: an option of the call (OptionError, worded
   // by each front end).
   if (e.serial.empty())
@@ -347,7 +392,8 @@ HistoryStore& HistoryStore::operator=(HistoryStore&& other) noexcept {
 
 HistoryStore::~HistoryStore() { sqlite3_close_v2(db_); }
 
-std::int64_t HistoryStore::add(const HistoryEntry& entry) {
+std::int64_t HistoryStore::add(const HistoryEntry& entry,
+                               const std::function<void(std::int64_t id)>& before_commit) {
   const std::string sha = sha256_hex(entry.statement_json);
   execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
   try {
@@ -388,6 +434,7 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry) {
           .number(8, c.effective_dof)
           .step();
     }
+    if (before_commit) before_commit(id);
     execute(db_, path_, "COMMIT", "cannot write it");
     return id;
   } catch (...) {
@@ -401,6 +448,10 @@ void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, co
     throw OptionError(
         "reason", "",
         fmt::format("is needed to supersede calibration {} of {}; accepted: the reason, as text", id, path_));
+  if (blank(reason))
+    throw OptionError(
+        "reason", shown(reason),
+        fmt::format("is blank; accepted: the reason calibration {} of {} is superseded, as text", id, path_));
   execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
   try {
     const auto serial_of = [&](std::int64_t which) {
@@ -422,14 +473,21 @@ void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, co
                         "record of {}",
                         path_, *by, id, serial, serial));
     }
-    {
+    const auto supersession_of = [&](std::int64_t which) -> std::optional<std::string> {
       Statement done(db_, path_, "SELECT reason FROM supersession WHERE calibration = ?1");
-      done.integer(1, id);
-      if (done.step())
+      done.integer(1, which);
+      if (!done.step()) return std::nullopt;
+      return done.column_text(0);
+    };
+    if (const auto done = supersession_of(id))
+      throw InputError(fmt::format(
+          "{}: calibration {} is already superseded ({}); a record is superseded once", path_, id, *done));
+    if (by)
+      if (const auto done = supersession_of(*by))
         throw InputError(
-            fmt::format("{}: calibration {} is already superseded ({}); a record is superseded once", path_,
-                        id, done.column_text(0)));
-    }
+            fmt::format("{}: calibration {} is itself superseded ({}), so it replaces nothing; accepted: a "
+                        "record of {} that is not superseded",
+                        path_, *by, *done, serial));
     Statement insert(db_, path_,
                      "INSERT INTO supersession(calibration, by, reason, at) VALUES (?1, ?2, ?3, ?4)");
     insert.integer(1, id).text(3, reason).text(4, utc_now());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -21,7 +22,8 @@ constexpr std::string_view kStoreHelp =
 constexpr OptionSpec<HistoryAddOptions> kAddRows[] = {
     {"db", &HistoryAddOptions::db, "FILE", kStoreHelp},
     {"serial", &HistoryAddOptions::serial, "S",
-     "Serial number (default: the statement's [certificate] serial_number)"},
+     "Serial number: printable characters, not blank (default, also for an empty S: the statement's "
+     "[certificate] serial_number)"},
     {"date", &HistoryAddOptions::date, "YYYY-MM-DD",
      "Date of calibration (default: the statement's [certificate] date_of_calibration)"},
 };
@@ -43,9 +45,21 @@ constexpr OptionSpec<HistoryStoreOptions> kStoreRows[] = {
     {"db", &HistoryStoreOptions::db, "FILE", kStoreHelp},
 };
 
-std::string store_path(const std::string& db) { return db.empty() ? default_history_path() : db; }
+// A statement or history file to read: refused with what it is when it is a folder or cannot be read.
+std::string read_history_file(const std::string& file, std::string_view accepted) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(fmt::format("{}: it is a folder; accepted: {}", file, accepted));
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read it; accepted: {}", file, accepted));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 }  // namespace
+
+std::string history_store_path(const std::string& db) { return db.empty() ? default_history_path() : db; }
 
 OptionTable<HistoryAddOptions> options_of(std::type_identity<HistoryAddOptions>) { return kAddRows; }
 OptionTable<HistoryShowOptions> options_of(std::type_identity<HistoryShowOptions>) { return kShowRows; }
@@ -57,21 +71,18 @@ OptionTable<HistoryStoreOptions> options_of(std::type_identity<HistoryStoreOptio
 
 void history_supersede(std::int64_t id, const HistorySupersedeOptions& o) {
   check_options(o, option_table<HistorySupersedeOptions>());
-  HistoryStore store = HistoryStore::open(store_path(o.db), HistoryStore::Access::write);
+  HistoryStore store = HistoryStore::open(history_store_path(o.db), HistoryStore::Access::write);
   store.supersede(id, o.by > 0 ? std::optional<std::int64_t>(o.by) : std::nullopt, o.reason);
 }
 
 std::string history_export(const std::string& serial, const HistoryStoreOptions& o) {
-  return export_history(HistoryStore::open(store_path(o.db), HistoryStore::Access::read), serial);
+  return export_history(HistoryStore::open(history_store_path(o.db), HistoryStore::Access::read), serial);
 }
 
 HistoryImport history_import(const std::string& file, const HistoryStoreOptions& o) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read it; accepted: an exported history file", file));
-  std::stringstream text;
-  text << in.rdbuf();
-  HistoryStore store = HistoryStore::open(store_path(o.db), HistoryStore::Access::create);
-  return import_history(store, text.str(), file);
+  const std::string text = read_history_file(file, "an exported history file (`ccal history export`)");
+  HistoryStore store = HistoryStore::open(history_store_path(o.db), HistoryStore::Access::create);
+  return import_history(store, text, file);
 }
 
 std::int64_t history_day(const std::string& date, std::string_view field) {
@@ -79,26 +90,26 @@ std::int64_t history_day(const std::string& date, std::string_view field) {
   throw OptionError(std::string(field), date, "is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30");
 }
 
-HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& o) {
+HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& o,
+                             const std::function<void(const HistoryAddResult&)>& before_commit) {
   if (!o.date.empty()) history_day(o.date, "date");
-  std::ifstream in(statement_file, std::ios::binary);
-  if (!in)
-    throw InputError(
-        fmt::format("{}: cannot read it; accepted: a calibration statement's JSON file", statement_file));
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = read_history_file(
+      statement_file, "a calibration statement's JSON file (`ccal reduce --statement-out FILE.json`)");
   HistoryAddResult r;
-  r.entry = history_entry(text.str(), statement_file, o.serial, o.date);
-  r.db = store_path(o.db);
+  r.entry = history_entry(text, statement_file, o.serial, o.date);
+  r.db = history_store_path(o.db);
   HistoryStore store = HistoryStore::open(r.db, HistoryStore::Access::create);
-  r.id = store.add(r.entry);
-  r.calibrations = store.records(r.entry.serial).size();
+  store.add(r.entry, [&](std::int64_t id) {
+    r.id = id;
+    r.calibrations = store.records(r.entry.serial).size();  // this one included: the transaction sees it
+    if (before_commit) before_commit(r);
+  });
   return r;
 }
 
 HistoryShowResult history_show(const std::string& serial, const HistoryShowOptions& o) {
   HistoryShowResult r;
-  r.db = store_path(o.db);
+  r.db = history_store_path(o.db);
   r.serial = serial;
   r.at = o.at;
   const bool predicting = !o.at.empty();

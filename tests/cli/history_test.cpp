@@ -232,4 +232,104 @@ TEST_F(Cli, ADamagedStoreIsRefusedAndKept) {
   EXPECT_FALSE(fs::exists(dir_ / "r.html"));
 }
 
+// A small statement, K0 = value, for the history commands (serial and date given on the command line).
+std::string small_statement(int value) {
+  return fmt::format(R"({{"coverage_probability": 0.95, "coefficients": {{"K0": {{"unit": "deg/s",
+      "corrected_estimate": {}, "expanded_uncertainty": 0.5, "coverage_factor": 2}}}}}})",
+                     value);
+}
+
+// The history store is an input of every command that reads it: an -o naming it (by --db, by the default
+// path of $CCAL_HISTORY, or report's --history-db) is refused and the store kept byte for byte, also when add
+// would make it.
+TEST_F(Cli, TheHistoryStoreIsNeverReplacedByAnOutput) {
+  write("s.json", small_statement(1));
+  write("t.json", small_statement(2));
+  ASSERT_EQ(run("history add s.json --db h.sqlite --serial 'SN 0815' --date 2026-01-01").code, 0);
+  const std::string store = read(dir_ / "h.sqlite");
+  const std::string input = "it is also an input of the command; accepted: a file the command does not read";
+  expect_bad_input(run("history show 'SN 0815' --db h.sqlite -o h.sqlite"),
+                   {"-o: cannot write 'h.sqlite'", input});
+  expect_bad_input(run("history export 'SN 0815' --db h.sqlite -o ./h.sqlite"), {input});
+  expect_bad_input(run("history add t.json --db h.sqlite --serial 'SN 0815' --date 2026-02-01 -o h.sqlite"),
+                   {input});
+  const std::string lab = write("lab.toml", read(kLab));
+  expect_bad_input(run("report " + lab + " --trials 100 --history-db h.sqlite -o h.sqlite"), {input});
+  ::setenv("CCAL_HISTORY", "h.sqlite", 1);  // the default store, resolved as the commands resolve it
+  const Result by_default = run("history show 'SN 0815' -o h.sqlite");
+  ::unsetenv("CCAL_HISTORY");
+  expect_bad_input(by_default, {input});
+  EXPECT_EQ(read(dir_ / "h.sqlite"), store);
+  // A store add would make: not made, as the output is not written.
+  expect_bad_input(run("history add t.json --db new.sqlite --serial S2 --date 2026-02-01 -o new.sqlite"),
+                   {input});
+  EXPECT_FALSE(fs::exists(dir_ / "new.sqlite"));
+}
+
+// add records the calibration only when its output is written too: an -o refused before the store is touched
+// (a folder, the statement itself, a missing folder) or failing while written (/dev/full) leaves the store as
+// it was, so that the corrected command is not refused as "already recorded".
+TEST_F(Cli, AddRecordsNothingWhenItsOutputFails) {
+  write("s.json", small_statement(1));
+  write("t.json", small_statement(2));
+  ASSERT_EQ(run("history add s.json --db h.sqlite --serial S1 --date 2026-01-01").code, 0);
+  fs::create_directory(dir_ / "adir");
+  const std::string add = "history add t.json --db h.sqlite --serial S1 --date 2026-02-01 -o ";
+  expect_bad_input(run(add + "adir"), {"-o: cannot write 'adir': it is a folder"});
+  expect_bad_input(run(add + "t.json"), {"-o: cannot write 't.json': it is also an input"});
+  expect_bad_input(
+      run(add + "nodir/x.txt"),
+      {"-o: cannot write 'nodir/x.txt': its folder 'nodir' does not exist; accepted: a file in an "
+       "existing folder"});
+  if (fs::exists("/dev/full")) expect_bad_input(run(add + "/dev/full"), {"-o: cannot write '/dev/full'"});
+  const auto count = [&] {
+    return nlohmann::json::parse(run("history show S1 --db h.sqlite --format json").out)["calibrations"]
+        .size();
+  };
+  EXPECT_EQ(count(), 1u);
+  const Result corrected = run(add + "added.txt");
+  ASSERT_EQ(corrected.code, 0) << corrected.err;
+  EXPECT_NE(read(dir_ / "added.txt").find("Recorded calibration 2 of S1"), std::string::npos);
+  EXPECT_EQ(count(), 2u);
+}
+
+// What history refuses, each saying what is wrong and what is accepted: a serial that is blank or holds a
+// control character (looked up by its exact text, it could not be typed again); a blank reason (as an empty
+// one); a --by record itself superseded (every record would end superseded); an import whose "by" names no
+// calibration of the file (it was dropped); a folder or the statement's CSV form as STATEMENT.
+TEST_F(Cli, HistoryRefusesWhatItCouldNotKeepOrFindAgain) {
+  for (int i = 0; i < 3; ++i) write(fmt::format("s{}.json", i), small_statement(i));
+  expect_bad_input(
+      run("history add s0.json --db h.sqlite --serial '   ' --date 2026-01-01"),
+      {"--serial: '   ' is blank; accepted: the instrument's serial number, printable characters"});
+  expect_bad_input(run("history add s0.json --db h.sqlite --serial " + quote("a\nb") + " --date 2026-01-01"),
+                   {"--serial: 'a\\nb' holds a control character"});
+  EXPECT_FALSE(fs::exists(dir_ / "h.sqlite"));
+  for (int i = 0; i < 3; ++i)
+    ASSERT_EQ(
+        run(fmt::format("history add s{}.json --db h.sqlite --serial S1 --date 202{}-01-01", i, 4 + i)).code,
+        0);
+  expect_bad_input(run("history supersede 1 --reason '   ' --db h.sqlite"), {"--reason: '   ' is blank"});
+  ASSERT_EQ(run("history supersede 1 --by 2 --reason r --db h.sqlite").code, 0);
+  expect_bad_input(
+      run("history supersede 2 --by 1 --reason r --db h.sqlite"),
+      {"calibration 1 is itself superseded (r)", "accepted: a record of S1 that is not superseded"});
+  ASSERT_EQ(run("history export S1 --db h.sqlite -o e.json").code, 0);
+  auto exported = nlohmann::json::parse(read(dir_ / "e.json"));
+  exported["calibrations"][0]["superseded"]["by"] = 999;
+  write("e999.json", exported.dump());
+  expect_bad_input(run("history import e999.json --db other.sqlite"),
+                   {"is superseded by 999, which names no calibration in the file"});
+  fs::create_directory(dir_ / "adir");
+  expect_bad_input(run("history add adir --db h.sqlite"),
+                   {"adir: it is a folder; accepted: a calibration statement's JSON file"});
+  write("st.csv", "coefficient,unit,corrected_estimate,expanded_uncertainty\nK0,deg/s,1,0.5\n");
+  expect_bad_input(run("history add st.csv --db h.sqlite --serial S1 --date 2027-01-01"),
+                   {"st.csv: the statement's CSV form", "accepted: the statement as JSON"});
+  // The help names the JSON form, and what an empty --serial means.
+  const Result help = run("history add --help");
+  EXPECT_NE(help.out.find("The calibration statement's JSON file"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("also for an empty S"), std::string::npos) << help.out;
+}
+
 }  // namespace

@@ -38,7 +38,7 @@ TEST_F(OutputFiles, ARegularFileIsReplacedWithItsPermissionsKept) {
   EXPECT_NE(read(dir_ / "out.txt").find("K3"), std::string::npos);
   EXPECT_EQ(fs::status(dir_ / "out.txt").permissions() & fs::perms::all,
             fs::perms::owner_read | fs::perms::owner_write);  // 0600 stays 0600
-  EXPECT_EQ(listing(), (std::set<std::string>{"out.txt"}));  // no temporary left
+  EXPECT_EQ(listing(), (std::set<std::string>{"out.txt"}));   // no temporary left
 }
 
 TEST_F(OutputFiles, ASymbolicLinkIsFollowedAndKept) {
@@ -51,7 +51,8 @@ TEST_F(OutputFiles, ASymbolicLinkIsFollowedAndKept) {
 
 TEST_F(OutputFiles, AFifoIsWrittenThroughNotReplaced) {
   ASSERT_EQ(::mkfifo((dir_ / "pipe").c_str(), 0600), 0);
-  const int code = exit_code_of(in_dir("(cat pipe > got.txt 2>/dev/null &) ; " + quote(kProgram) + " budget -o pipe"));
+  const int code =
+      exit_code_of(in_dir("(cat pipe > got.txt 2>/dev/null &) ; " + quote(kProgram) + " budget -o pipe"));
   EXPECT_EQ(code, 0);
   EXPECT_TRUE(fs::is_fifo(dir_ / "pipe"));  // still the FIFO, not a regular file put in its place
   for (int k = 0; k < 100 && read(dir_ / "got.txt").find("K3") == std::string::npos; ++k)
@@ -94,9 +95,10 @@ TEST_F(OutputFiles, TemporariesAreRemovedOnSigterm) {
   ASSERT_EQ(::mkfifo((dir_ / "pipe").c_str(), 0600), 0);
   // With no reader, opening the FIFO blocks after the -o temporary is written; SIGTERM then ends the run.
   const std::string pid_file = (dir_ / "pid").string();
-  ASSERT_EQ(exit_code_of(in_dir(quote(kProgram) + " simulate -o out.txt --observations-out pipe & echo $! > " +
-                                quote(pid_file))),
-            0);
+  ASSERT_EQ(
+      exit_code_of(in_dir(quote(kProgram) + " simulate -o out.txt --observations-out pipe & echo $! > " +
+                          quote(pid_file))),
+      0);
   bool temporary_seen = false;
   for (int k = 0; k < 400 && !temporary_seen; ++k) {
     for (const auto& name : listing()) temporary_seen = temporary_seen || name.ends_with(".tmp");
@@ -124,7 +126,8 @@ TEST_F(OutputFiles, WriteErrorsFailTheCommand) {
 TEST_F(OutputFiles, TheFileSizeLimitFailsTheCommandAndLeavesNoTemporary) {
   write("out.txt", "old\n");
   const std::string err = (dir_ / "err.txt").string();
-  const int code = exit_code_of(in_dir("ulimit -f 1 && " + quote(kProgram) + " budget -o out.txt 2> err.txt"));
+  const int code =
+      exit_code_of(in_dir("ulimit -f 1 && " + quote(kProgram) + " budget -o out.txt 2> err.txt"));
   const std::string message = read(err);
   fs::remove(err);
   EXPECT_EQ(code, 2) << message;
@@ -140,7 +143,8 @@ TEST_F(OutputFiles, OneFileNamedTwiceIsRefusedWhateverTheSpelling) {
   const std::string through_parent = "../" + dir_.filename().string() + "/same.txt";
   for (const std::string& path : {std::string("same.txt"), std::string(".//same.txt"), through_parent}) {
     SCOPED_TRACE(path);
-    expect_bad_input(run("simulate -o ./same.txt --observations-out " + path), {"--observations-out", "-o file"});
+    expect_bad_input(run("simulate -o ./same.txt --observations-out " + path),
+                     {"--observations-out", "-o file"});
     EXPECT_TRUE(listing().empty());
   }
   ASSERT_EQ(run("simulate -o ./same.txt --observations-out obs.csv").code, 0);
@@ -151,6 +155,32 @@ TEST_F(OutputFiles, ALegalLongFileNameIsAccepted) {
   const std::string name(255, 'a');  // NAME_MAX on Linux file systems
   ASSERT_EQ(run("budget -o " + name).code, 0);
   EXPECT_NE(read(dir_ / name).find("K3"), std::string::npos);
+}
+
+// An empty -o would mean standard output silently (the internal meaning of no -o); given explicitly it is a
+// mistake (an unset shell variable), refused at parsing for every command with -o, before any work.
+TEST_F(OutputFiles, AnEmptyOutputPathIsRefused) {
+  for (const std::string& command :
+       {std::string("budget"), std::string("simulate --observations-out obs.csv"),
+        std::string("history show S1 --db none.sqlite"), std::string("report --trials 2000")}) {
+    SCOPED_TRACE(command);
+    expect_bad_input(run(command + " -o ''"),
+                     {"-o: the path is empty; accepted: a file path or '-' for standard output"});
+    EXPECT_TRUE(listing().empty());
+  }
+  ASSERT_EQ(run("budget -o -").code, 0);
+}
+
+// A new file in a folder that does not exist (or a file in place of the folder) is refused naming the folder,
+// before anything is written.
+TEST_F(OutputFiles, AMissingFolderIsNamed) {
+  expect_bad_input(
+      run("simulate --observations-out obs.csv -o nodir/out.txt"),
+      {"-o: cannot write 'nodir/out.txt': its folder 'nodir' does not exist; accepted: a file in an "
+       "existing folder"});
+  write("plain", "x\n");
+  expect_bad_input(run("budget -o plain/out.txt"), {"'plain' is not a folder"});
+  EXPECT_EQ(listing(), (std::set<std::string>{"plain"}));
 }
 
 }  // namespace

@@ -68,5 +68,47 @@ TEST(HistoryExchange, ExportedAndImportedTheSame) {
   fs::remove_all(folder);
 }
 
+// The supersessions of a file: a "by" that names no calibration of the file is refused (it would be dropped,
+// leaving the record superseded by nothing), as are supersessions in a circle; a chain (1 by 2, 2 by 3) is
+// recorded whatever the order of the file, since a record is superseded only by one in force.
+TEST(HistoryExchange, SupersessionsAreRecordedInOrderOrRefused) {
+  const fs::path folder = fs::temp_directory_path() / fmt::format("ccal_history_chain_{}", ::getpid());
+  fs::remove_all(folder);
+  const auto file = [](const std::string& sup1, const std::string& sup2) {
+    return R"({"format": "ccal calibration history", "schema": 1, "serial": "SN 3", "calibrations": [
+      {"id": 3, "date": "2026-01-03", "statement": )" +
+           exchanged_statement(0.03) + R"(},
+      {"id": 2, "date": "2026-01-02", "statement": )" +
+           exchanged_statement(0.02) + R"(, "superseded": )" + sup2 + R"(},
+      {"id": 1, "date": "2026-01-01", "statement": )" +
+           exchanged_statement(0.01) + R"(, "superseded": )" + sup1 + "}]}";
+  };
+  HistoryStore to = HistoryStore::open((folder / "to.sqlite").string(), HistoryStore::Access::create);
+  const auto refused = [&](const std::string& text, const std::string& says) {
+    try {
+      import_history(to, text, "sn3.json");
+      ADD_FAILURE() << "not refused: " << says;
+    } catch (const InputError& x) {
+      EXPECT_NE(std::string(x.what()).find(says), std::string::npos) << x.what();
+    }
+    EXPECT_TRUE(to.records("SN 3").empty());  // refused before anything is added
+  };
+  refused(file(R"({"by": 999, "reason": "r"})", R"({"by": 3, "reason": "r"})"),
+          "sn3.json: calibrations[2] (id 1) is superseded by 999, which names no calibration in the file; "
+          "accepted: the \"id\" of another calibration in the file, or null");
+  refused(file(R"({"by": 2, "reason": "r"})", R"({"by": 1, "reason": "r"})"), "go round in a circle");
+  refused(file(R"({"by": 1, "reason": "r"})", "null"), "is superseded by 1, itself");
+  // 2 by 3 comes first in the file; 1 by 2 must be recorded before it.
+  const HistoryImport r =
+      import_history(to, file(R"({"by": 2, "reason": "a"})", R"({"by": 3, "reason": "b"})"), "sn3.json");
+  EXPECT_EQ(r.superseded, 2u);
+  const std::vector<HistoryRecord> b = to.records("SN 3");
+  ASSERT_EQ(b.size(), 3u);
+  EXPECT_EQ(b[0].superseded_by, b[1].id);
+  EXPECT_EQ(b[1].superseded_by, b[2].id);
+  EXPECT_TRUE(b[2].superseded_reason.empty());
+  fs::remove_all(folder);
+}
+
 }  // namespace
 }  // namespace ccal

@@ -114,6 +114,21 @@ TEST_F(History, SerialAndDateComeFromTheCertificateOrAreAskedFor) {
   refused(stored_statement(0.02), "SN 1", "", "date: s.json names no date of calibration");
   refused(stored_statement(0.02), "SN 1", "2026-13-01", "date of calibration '2026-13-01' is not a date");
   refused("{", "SN 1", "2026-01-01", "s.json: not JSON");
+  // The statement's CSV form (`--statement-out FILE.csv`) is named as such: history keeps the JSON form.
+  refused(
+      "coefficient,unit,corrected_estimate,expanded_uncertainty\nK0,deg/s,1,2\n", "SN 1", "2026-01-01",
+      "s.json: the statement's CSV form; history keeps the statement's JSON form; accepted: the statement "
+      "as JSON");
+  // A serial number is looked up by its exact text, so one that is blank or holds a control character could
+  // not be typed again or told apart: refused, given or from the certificate, with the text escaped.
+  refused(
+      stored_statement(0.02), "   ", "2026-01-01",
+      "serial: '   ' is blank; accepted: the instrument's serial number, printable characters and not blank");
+  refused(stored_statement(0.02), "a\nb", "2026-01-01", "serial: 'a\\nb' holds a control character");
+  refused(stored_statement(0.02), "SN\t1", "2026-01-01", "serial: 'SN\\t1' holds a control character");
+  refused(stored_statement(0.02, 1e-4,
+                           R"("certificate": {"serial_number": " ", "date_of_calibration": "2026-11-30"}, )"),
+          "", "", "s.json: serial number ([certificate] serial_number) ' ' is blank");
   refused(R"({"command": "budget"})", "SN 1", "2026-01-01",
           "not a calibration statement: no \"coefficients\"");
 }
@@ -144,16 +159,41 @@ TEST_F(History, ARecordIsSupersededOnceWithAReason) {
     }
   };
   refused(a, b, "", "reason: is needed to supersede calibration 1 of");
+  refused(a, b, " \t ", "reason: ' \\t ' is blank; accepted: the reason calibration 1 of");  // as "" is
   refused(99, std::nullopt, "r", "no calibration 99 in the history store");
   refused(a, a, "r", "cannot supersede itself");
   refused(a, other, "r", "is of another serial number");
   store.supersede(a, b, "mounting screw loose");
   refused(a, std::nullopt, "again", "is already superseded (mounting screw loose)");
+  // A superseded record replaces nothing: b by a would leave both superseded and the serial with no record in
+  // force.
+  refused(b, a, "r", "calibration 1 is itself superseded (mounting screw loose), so it replaces nothing");
   const std::vector<HistoryRecord> r = store.records("SN 1");
   EXPECT_EQ(r[0].superseded_by, b);
   EXPECT_EQ(r[0].superseded_reason, "mounting screw loose");
   EXPECT_TRUE(r[1].superseded_reason.empty());
   EXPECT_EQ(r[0].coefficients.at(1).value, 0.02);  // kept as it was
+}
+
+// add's before_commit runs inside the transaction (the store already shows the record to it) and its failure
+// rolls the addition back: a command whose output cannot be written records nothing, so that the corrected
+// command is not refused as "already recorded".
+TEST_F(History, AFailureBeforeTheCommitRecordsNothing) {
+  HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
+  const HistoryEntry e = history_entry(stored_statement(0.02), "s.json", "SN 1", "2026-01-01");
+  std::size_t seen = 0;
+  EXPECT_THROW(store.add(e,
+                         [&](std::int64_t) {
+                           seen = store.records("SN 1").size();
+                           throw InputError("-o: cannot write");
+                         }),
+               InputError);
+  EXPECT_EQ(seen, 1u);
+  EXPECT_TRUE(store.records("SN 1").empty());
+  std::int64_t told = 0;
+  const std::int64_t id = store.add(e, [&](std::int64_t given) { told = given; });
+  EXPECT_EQ(told, id);
+  EXPECT_EQ(store.records("SN 1").size(), 1u);
 }
 
 TEST_F(History, TwoWritersAtOnceLoseNothing) {

@@ -20,6 +20,7 @@
 // add.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,8 +72,8 @@ struct HistoryEntry {
 // Reads a statement from the JSON text of `ccal reduce --statement-out FILE` (or of a whole `ccal reduce` /
 // `ccal identify --statement` JSON output, whose "statement" is taken); `source` names it in messages.
 // serial, date: given (empty: from the statement's certificate fields, serial_number and
-// date_of_calibration). InputError for text that is no statement, a missing serial or date, or a date not
-// YYYY-MM-DD.
+// date_of_calibration). InputError for text that is no statement (the statement's CSV form said so), a
+// missing serial or date, a serial that is blank or holds control characters, or a date not YYYY-MM-DD.
 HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
                            const std::string& date);
 
@@ -100,11 +101,13 @@ class HistoryStore {
   ~HistoryStore();
 
   // Records a calibration in one transaction; returns its id. InputError for a statement already recorded
-  // (the same SHA-256 of its text), naming the record.
-  std::int64_t add(const HistoryEntry& entry);
-  // Marks record `id` superseded, by record `by` of the same serial if given, for `reason` (not empty), in
+  // (the same SHA-256 of its text), naming the record. before_commit, when given, runs with the new id after
+  // the rows are written and before COMMIT (the store's reads on this connection already see them); an
+  // exception from it rolls the transaction back, so that nothing is recorded, and is passed on.
+  std::int64_t add(const HistoryEntry& entry, const std::function<void(std::int64_t id)>& before_commit = {});
+  // Marks record `id` superseded, by record `by` of the same serial if given, for `reason` (not blank), in
   // one transaction. InputError for an unknown id, a record already superseded, `by` unknown, of another
-  // serial or the record itself.
+  // serial, itself superseded, or the record itself.
   void supersede(std::int64_t id, std::optional<std::int64_t> by, const std::string& reason);
   // The id of the record of this statement text (history_entry's statement_json), if recorded.
   std::optional<std::int64_t> id_of_statement(const std::string& statement_json) const;

@@ -5,6 +5,7 @@
 // (uncertainty/history_trend.hpp).
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,8 +65,16 @@ struct HistoryShowResult {
   std::vector<CoefficientHistory> coefficients;
 };
 
-// Reads the statement file, records it; InputError for an unreadable or bad file, a bad option or store.
-HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& options = {});
+// The store a history command uses for its db option: db itself, or default_history_path() when empty. The
+// one resolution of the option, so that a front end can treat the store as one of the command's files.
+std::string history_store_path(const std::string& db);
+
+// Reads the statement file, records it; InputError for an unreadable or bad file (a folder, the statement's
+// CSV form), a bad option or store. before_commit, when given, runs with the result once the calibration is
+// written but before the store's transaction commits; an exception from it (e.g. the command's output could
+// not be written) rolls the addition back, so that the store records nothing, and is passed on.
+HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& options = {},
+                             const std::function<void(const HistoryAddResult&)>& before_commit = {});
 // InputError for a serial with no calibration in the store (naming those it has), a bad date or store.
 HistoryShowResult history_show(const std::string& serial, const HistoryShowOptions& options = {});
 
