@@ -19,10 +19,10 @@ namespace {
 
 struct IdentifyCli {
   std::string file;
-  verbs::IdentifyOptions options;  // its table's flags are bound to it
-  std::string config;              // --config: the statement's configuration
-  std::string statement_out;       // --statement-out FILE.json|FILE.csv
-  std::string old_budget;          // --budget, refused: it took a file here and was a flag in reduce
+  verbs::IdentifyOptions options;     // its table's flags are bound to it
+  std::string config;                 // --config: the statement's configuration
+  std::string statement_out;          // --statement-out FILE.json|FILE.csv
+  std::string old_budget;             // --budget, refused: it took a file here and was a flag in reduce
   std::string old_input, old_weight;  // --input, --weight: now --input-column, --weight-column
   OutputOptions output;
 };
@@ -42,9 +42,10 @@ Command add_identify(CLI::App& app) {
       ->required()
       ->type_name("FILE.csv");
   add_option_flags(*cmd, o->options, option_table<verbs::IdentifyOptions>());
-  cmd->add_option("--config", o->config,
-                  "CONFIG: with --statement, the configuration whose tolerances give the Type B part and whose "
-                  "known [errors] give the correction")
+  cmd->add_option(
+         "--config", o->config,
+         "CONFIG: with --statement, the configuration whose tolerances give the Type B part and whose "
+         "known [errors] give the correction")
       ->type_name("CONFIG");
   for (auto [flag, target] : {std::pair{"--budget", &o->old_budget}, std::pair{"--input", &o->old_input},
                               std::pair{"--weight", &o->old_weight}})
@@ -66,11 +67,13 @@ Command add_identify(CLI::App& app) {
             if (!o->old_budget.empty())
               throw InputError(
                   "--budget: no longer accepted, as it took a file here and was a flag in reduce; accepted: "
-                  "--statement --config " + o->old_budget + " for the calibration statement");
+                  "--statement --config " +
+                  o->old_budget + " for the calibration statement");
             if (!o->old_input.empty() || !o->old_weight.empty())
-              throw InputError(fmt::format("{0}: no longer accepted; accepted: {0}-column COL (the column of "
-                                           "the table), as -o/--output names the file written",
-                                           o->old_input.empty() ? "--weight" : "--input"));
+              throw InputError(
+                  fmt::format("{0}: no longer accepted; accepted: {0}-column COL (the column of "
+                              "the table), as -o/--output names the file written",
+                              o->old_input.empty() ? "--weight" : "--input"));
             check_statement_out(o->statement_out, o->options.statement, o->output);
             note_input(o->file);
             const CsvTable table = read_csv_file(o->file);
@@ -86,6 +89,7 @@ Command add_identify(CLI::App& app) {
               io.config = load_config_or_example(o->config);
             }
             const verbs::IdentifyResult r = verbs::identify(table, io);
+            print_warnings(r.identification.fit.warnings);  // also on standard error: the CSV has no place
             print_warnings(r.identification.observability.warnings);
             const std::string& f = o->output.format;
             std::vector<ExtraFile> extra;

@@ -20,6 +20,7 @@ struct ReduceCli {
   std::vector<std::string> logs;  // RUN=FILE
   std::string log_folder;         // DIR with a manifest (io/log_manifest.hpp)
   verbs::ReduceOptions options;   // its table's flags are bound to it
+  std::string pulse_weight;       // --pulse-weight as written: converted with the configuration's output unit
   bool old_budget = false;        // --budget, refused: a flag here, a file in identify; now --statement
   std::string observations_out;
   std::string statement_out;
@@ -46,7 +47,14 @@ Command add_reduce(CLI::App& app) {
                   "columns read (names, time unit, encoder unit or counts per revolution); `ccal simulate "
                   "--logs-out DIR` writes one")
       ->type_name("DIR");
-  add_option_flags(*cmd, o->options, option_table<verbs::ReduceOptions>());
+  add_option_flags(*cmd, o->options, option_table<verbs::ReduceOptions>(), {"pulse_weight"});
+  // --pulse-weight W or "W UNIT": its unit is the configuration's output unit × s, known after the parse.
+  for (const auto& row : option_table<verbs::ReduceOptions>())
+    if (row.field == "pulse_weight")
+      cmd->add_option(
+             "--pulse-weight", o->pulse_weight,
+             std::string(row.help) + "; a bare number, or a quantity with its unit (e.g. \"2.5e-5 deg\")")
+          ->type_name(std::string(row.value_name));
   cmd->add_flag("--budget", o->old_budget)->group("");  // refused with a message, not in --help
   add_observations_out_option(*cmd, o->observations_out);
   add_statement_out_option(*cmd, o->statement_out);
@@ -63,51 +71,54 @@ Command add_reduce(CLI::App& app) {
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement \\\n"
       "      --statement-out statement.csv    the statement also as CSV, with the covariance\n");
 
-  return {cmd, [o] {
-            const Config cfg = load_config_or_example(o->config);
-            check_observations_out(o->observations_out, o->output);
-            check_statement_out(o->statement_out, o->options.statement, o->output);
-            if (o->old_budget)
-              throw InputError(
-                  "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "
-                  "--statement for the calibration statement with this configuration's tolerances");
-            verbs::ReduceOptions ro = o->options;
-            if (o->logs.empty() == o->log_folder.empty())
-              throw InputError(o->logs.empty() ? "--log or --logs is required; accepted: --log RUN=FILE for each "
-                                                 "run, or --logs DIR for a folder with its manifest.toml"
-                                               : "--log and --logs: give one of them (the folder's manifest names "
-                                                 "its runs' files)");
-            if (!o->log_folder.empty()) {
-              note_input(o->log_folder + "/" + std::string(kLogManifestName));
-              const LogManifest manifest = read_log_manifest(o->log_folder);  // located errors name the file
-              ro.layout = manifest.layout;
-              for (const LogManifest::Entry& entry : manifest.runs) {
-                ro.logs.push_back({entry.run, entry.file.string()});
-                note_input(ro.logs.back().path);
-              }
-            }
-            for (const std::string& item : o->logs) {
-              const std::size_t eq = item.find('=');
-              if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
-                throw InputError(
-                    fmt::format("--log: '{}' is not RUN=FILE; accepted: a run name or 1-based index, '=', "
-                                "the log file, e.g. 20g=run20.csv",
-                                item));
-              ro.logs.push_back({item.substr(0, eq), item.substr(eq + 1)});
-              note_input(ro.logs.back().path);
-            }
-            const verbs::ReduceResult r = verbs::reduce(cfg, ro);
-            print_warnings(r.warnings);
-            const std::string& f = o->output.format;
-            const std::string text = f == "json"  ? render::json(r)
-                                     : f == "csv" ? render::csv(r)
-                                                  : render::text(r);
-            std::vector<ExtraFile> extra;
-            if (!o->observations_out.empty())
-              extra.push_back({"--observations-out", o->observations_out, r.identification.csv});
-            add_statement_out_file(extra, o->statement_out, r.statement);
-            write_outputs(o->output, text, extra);
-          }};
+  return {
+      cmd, [o] {
+        const Config cfg = load_config_or_example(o->config);
+        check_observations_out(o->observations_out, o->output);
+        check_statement_out(o->statement_out, o->options.statement, o->output);
+        if (o->old_budget)
+          throw InputError(
+              "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "
+              "--statement for the calibration statement with this configuration's tolerances");
+        verbs::ReduceOptions ro = o->options;
+        if (!o->pulse_weight.empty()) ro.pulse_weight = verbs::pulse_weight_from_text(cfg, o->pulse_weight);
+        if (o->logs.empty() == o->log_folder.empty())
+          throw InputError(o->logs.empty()
+                               ? "--log or --logs is required; accepted: --log RUN=FILE for each "
+                                 "run, or --logs DIR for a folder with its manifest.toml"
+                               : "--log and --logs: give one of them (the folder's manifest names "
+                                 "its runs' files)");
+        if (!o->log_folder.empty()) {
+          note_input(o->log_folder + "/" + std::string(kLogManifestName));
+          const LogManifest manifest = read_log_manifest(o->log_folder);  // located errors name the file
+          ro.layout = manifest.layout;
+          for (const LogManifest::Entry& entry : manifest.runs) {
+            ro.logs.push_back({entry.run, entry.file.string()});
+            note_input(ro.logs.back().path);
+          }
+        }
+        for (const std::string& item : o->logs) {
+          const std::size_t eq = item.find('=');
+          if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+            throw InputError(
+                fmt::format("--log: '{}' is not RUN=FILE; accepted: a run name or 1-based index, '=', "
+                            "the log file, e.g. 20g=run20.csv",
+                            item));
+          ro.logs.push_back({item.substr(0, eq), item.substr(eq + 1)});
+          note_input(ro.logs.back().path);
+        }
+        const verbs::ReduceResult r = verbs::reduce(cfg, ro);
+        print_warnings(r.warnings);
+        const std::string& f = o->output.format;
+        const std::string text = f == "json"  ? render::json(r)
+                                 : f == "csv" ? render::csv(r)
+                                              : render::text(r);
+        std::vector<ExtraFile> extra;
+        if (!o->observations_out.empty())
+          extra.push_back({"--observations-out", o->observations_out, r.identification.csv});
+        add_statement_out_file(extra, o->statement_out, r.statement);
+        write_outputs(o->output, text, extra);
+      }};
 }
 
 }  // namespace ccal::cli

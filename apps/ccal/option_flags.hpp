@@ -1,9 +1,9 @@
 #pragma once
 // The command line's flags of a verb, declared from the verb's options table (core/options.hpp): one flag per
 // row, named after the field (flag_name), bound to the verb's options struct, whose values are the defaults
-// the help shows. Numbers are read by the library's parsers, so that 1e5 is a whole number and an error echoes
-// what was typed; the range is checked by the verb itself, so the command line refuses what Python and the
-// library refuse, in the same words but for the option's name.
+// the help shows. Numbers are read by the library's parsers, so that 1e5 is a whole number and an error
+// echoes what was typed; the range is checked by the verb itself, so the command line refuses what Python and
+// the library refuse, in the same words but for the option's name.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -73,15 +73,25 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
                    ->delimiter(',')
                    ->allow_extra_args(false);
     } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
-      option = command
-                   .add_option_function<std::vector<std::string>>(
-                       flag,
-                       [&value, field](const std::vector<std::string>& texts) {
-                         value.clear();
-                         for (const std::string& t : texts) value.push_back(parse_real_option(field, t));
-                       },
-                       help)
-                   ->delimiter(',');
+      option = command.add_option_function<std::vector<std::string>>(
+          flag,
+          [&value, field](const std::vector<std::string>& texts) {
+            // Split here rather than by CLI11, which drops empty items: "1,,2" is a typing error.
+            value.clear();
+            for (const std::string& t : texts)
+              for (std::size_t begin = 0;;) {
+                const std::size_t end = std::min(t.find(',', begin), t.size());
+                const std::string item = t.substr(begin, end - begin);
+                if (item.empty())
+                  throw OptionError(field, t,
+                                    "has an empty item; accepted: numbers separated by single "
+                                    "commas, e.g. 0.5,0.75,1");
+                value.push_back(parse_real_option(field, item));
+                if (end == t.size()) break;
+                begin = end + 1;
+              }
+          },
+          help);
     } else {
       using Number = std::remove_cvref_t<decltype([] {
         if constexpr (requires { typename Field::value_type; })
@@ -89,22 +99,24 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
         else
           return Field{};
       }())>;
-      option = add_text_flag(command, flag, help, [&value, field, range = row.range](const std::string& text) {
-        if constexpr (std::is_floating_point_v<Number>)
-          value = parse_real_option(field, text);
-        else if constexpr (std::is_unsigned_v<Number>)
-          value = Number(parse_unsigned_option(field, text, range));
-        else
-          value = Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
-                                              std::numeric_limits<Number>::max()));
-      });
+      option =
+          add_text_flag(command, flag, help, [&value, field, range = row.range](const std::string& text) {
+            if constexpr (std::is_floating_point_v<Number>)
+              value = parse_real_option(field, text);
+            else if constexpr (std::is_unsigned_v<Number>)
+              value = Number(parse_unsigned_option(field, text, range));
+            else
+              value = Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
+                                                  std::numeric_limits<Number>::max(), range));
+          });
       if constexpr (requires { typename Field::value_type; }) {
         if (value) option->default_str(option_value_text(*value));
       } else {
         option->default_str(option_value_text(value));
       }
     }
-    if (!row.value_name.empty() && !std::is_same_v<Field, bool>) option->type_name(std::string(row.value_name));
+    if (!row.value_name.empty() && !std::is_same_v<Field, bool>)
+      option->type_name(std::string(row.value_name));
   }
   remember_flag(&command, row.field, flag);
 }

@@ -73,7 +73,8 @@ std::string OptionRange::text() const {
     range = fmt::format("a number {} {}", high_open ? "<" : "<=", option_number_text(high));
   else
     range = "a finite number";
-  std::string text = also ? fmt::format("{} ({}) or {}", option_number_text(*also), also_meaning, range) : range;
+  std::string text =
+      also ? fmt::format("{} ({}) or {}", option_number_text(*also), also_meaning, range) : range;
   if (!example.empty()) text += fmt::format(", e.g. {}", example);
   if (!note.empty()) text += fmt::format("; {}", note);
   return text;
@@ -123,8 +124,7 @@ std::optional<double> whole_number(std::string_view text, bool& integral) {
 std::int64_t parse_integer_option(std::string_view field, std::string_view text, std::int64_t low,
                                   std::int64_t high) {
   const std::string_view t = trimmed(text);
-  const std::string accepted =
-      fmt::format("accepted: a whole number from {} to {}", low, high);
+  const std::string accepted = fmt::format("accepted: a whole number from {} to {}", low, high);
   std::int64_t value = 0;
   if (!t.empty()) {
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
@@ -165,15 +165,39 @@ std::uint64_t parse_unsigned_option(std::string_view field, std::string_view tex
   return std::uint64_t(*x);
 }
 
+namespace {
+
+// A refusal of the integer parsers (problem "is …; accepted: a whole number from <type's limits>") said with
+// the option's own range: an out-of-range whole number as check_options says it, anything else (2.5, nan) as
+// "a whole number" of that range. A range left unbounded (a seed) keeps the type's words.
+OptionError in_range_words(const OptionError& e, const OptionRange& range) {
+  if (!(range.low > -1e308 || range.high < 1e308)) return e;
+  const std::string& problem = e.problem();
+  const std::string what = problem.substr(0, problem.find("; accepted: "));
+  if (what == "is out of range")
+    return OptionError(e.field(), e.value(), what + "; accepted: " + range.text());
+  const bool plain = !range.also && !range.low_open && !range.high_open && range.low > -1e308 &&
+                     range.high < 1e308 && range.example.empty() && range.note.empty();
+  return OptionError(e.field(), e.value(),
+                     what + "; accepted: a whole number" + (plain ? " from " : ", ") + range.text());
+}
+
+}  // namespace
+
 std::uint64_t parse_unsigned_option(std::string_view field, std::string_view text, const OptionRange& range) {
   try {
     return parse_unsigned_option(field, text);
   } catch (const OptionError& e) {
-    bool integral = false;
-    const std::optional<double> x = whole_number(trimmed(text), integral);
-    if (x && integral && !range.accepts(*x))
-      throw OptionError(e.field(), e.value(), "is out of range; accepted: " + range.text());
-    throw;
+    throw in_range_words(e, range);
+  }
+}
+
+std::int64_t parse_integer_option(std::string_view field, std::string_view text, std::int64_t low,
+                                  std::int64_t high, const OptionRange& range) {
+  try {
+    return parse_integer_option(field, text, low, high);
+  } catch (const OptionError& e) {
+    throw in_range_words(e, range);
   }
 }
 

@@ -3,10 +3,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "ccal/version.hpp"
 #include "budget_parts.hpp"
+#include "ccal/version.hpp"
 #include "parts.hpp"
 #include "statement_part.hpp"
 
@@ -46,7 +47,8 @@ std::string json(const verbs::IdentifyResult& r) {
 }
 
 // One row per free term: the estimate with its standard error, and with the statement its parts, U and the
-// interval (every number to 17 digits, so that the file reads back to the same doubles; ν = ∞ is "inf").
+// interval (every number to 17 digits, so that the file reads back to the same doubles; ν = ∞ is "inf"). An
+// undefined standard error (no degrees of freedom, unweighted) is an empty cell.
 std::string csv(const verbs::IdentifyResult& r) {
   const verbs::Identification& id = r.identification;
   std::string out = "coefficient,unit,value,std_error";
@@ -55,15 +57,16 @@ std::string csv(const verbs::IdentifyResult& r) {
   out += '\n';
   for (std::size_t k = 0; k < id.fit.names.size(); ++k) {
     const auto i = Eigen::Index(k);
-    out += fmt::format("{},{},{:.17g},{:.17g}", id.fit.names[k], budget_parts::csv_field(id.units[k]),
-                       id.fit.value[i], id.fit.std_error[i]);
+    const double se = id.fit.std_error[i];
+    out += fmt::format("{},{},{:.17g},{}", id.fit.names[k], budget_parts::csv_field(id.units[k]),
+                       id.fit.value[i], std::isnan(se) ? std::string() : fmt::format("{:.17g}", se));
     if (r.statement) {
       const CoefficientStatement& c = r.statement->coefficients[k];
-      out += fmt::format(",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
-                         "{:.17g},{:.17g}",
-                         c.input.correction, c.corrected, c.input.type_a.u, c.input.type_a.dof,
-                         c.input.type_b.u, c.combined, c.effective_dof, r.statement->coverage_probability,
-                         c.coverage_factor, c.expanded, c.low, c.high);
+      out += fmt::format(
+          ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
+          "{:.17g},{:.17g}",
+          c.input.correction, c.corrected, c.input.type_a.u, c.input.type_a.dof, c.input.type_b.u, c.combined,
+          c.effective_dof, r.statement->coverage_probability, c.coverage_factor, c.expanded, c.low, c.high);
     }
     out += '\n';
   }

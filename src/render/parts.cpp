@@ -59,6 +59,11 @@ std::string observability_text(const ObservabilityReport& report) {
   return out;
 }
 
+// A statistic of the fit that is undefined (NaN: no degrees of freedom): "n/a" in the text.
+namespace {
+std::string defined_number(double v, int digits) { return std::isnan(v) ? "n/a" : number(v, digits); }
+}  // namespace
+
 nlohmann::ordered_json identification_json(const Identification& id) {
   const FitResult& r = id.fit;
   nlohmann::ordered_json j;
@@ -102,7 +107,8 @@ std::string identification_text(const Identification& id) {
   Table coefficients({"coefficient", "value", "std error", "unit"});
   for (std::size_t k = 0; k < r.names.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
-    coefficients.add_row({r.names[k], number(r.value[i], 12), number(r.std_error[i], 3), id.units[k]});
+    coefficients.add_row(
+        {r.names[k], number(r.value[i], 12), defined_number(r.std_error[i], 3), id.units[k]});
   }
   for (const auto& f : id.fixed) coefficients.add_row({f.id + " (fixed)", number(f.value, 12), "", f.unit});
   out += coefficients.render();
@@ -116,9 +122,9 @@ std::string identification_text(const Identification& id) {
   Table stats({"fit", "value"});
   stats.add_row({id.weighted ? "residual std (normalised by sigma)"
                              : fmt::format("residual std [{}]", id.residual_unit),
-                 number(r.residual_std, 6)});
+                 defined_number(r.residual_std, 6)});
   stats.add_row({"degrees of freedom", std::to_string(r.dof)});
-  stats.add_row({"chi2/dof", number(r.chi2_per_dof, 6)});
+  stats.add_row({"chi2/dof", defined_number(r.chi2_per_dof, 6)});
   stats.add_row({"condition number (scaled design)", number(r.condition_number, 6)});
   out += stats.render() + "\n";
   out += observability_text(id.observability) + "\n";

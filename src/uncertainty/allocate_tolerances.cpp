@@ -26,8 +26,8 @@ namespace ccal {
 namespace {
 
 // The smallest accepted target, as a fraction of the coefficient's expanded uncertainty at the configured
-// tolerances.
-constexpr double kMinTargetFraction = 1e-6;
+// tolerances; the largest is the inverse multiple.
+constexpr double kMinTargetFraction = 1 / kAllocationScaleLimit;
 
 // Each target against its coefficient: one per free term, positive, and not beyond a million-fold
 // tightening of every source.
@@ -41,20 +41,26 @@ void attach_targets(const BudgetResult& b, const std::vector<AllocationTarget>& 
     const auto k = std::size_t(it - b.coefficients.begin());
     if (r.coefficients[k].has_target)
       throw InputError(fmt::format("two targets on {}; give one per coefficient", t.coefficient));
-    if (!(std::isfinite(t.expanded) && t.expanded > 0))
-      throw InputError(
-          fmt::format("target on {}: {} is not a positive expanded uncertainty", t.coefficient, t.expanded));
-    // Tolerances shrink in proportion to the target: beyond a million-fold tightening of every source the
-    // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0).
+    // Tolerances scale in proportion to the target: beyond a million-fold tightening of every source the
+    // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0);
+    // beyond a million-fold loosening no tolerance can follow (max_scale) and the squares overflow (1e308).
     const double configured = kp * b.standard_uncertainty[Eigen::Index(k)],
-                 least = kMinTargetFraction * configured;
+                 least = kMinTargetFraction * configured, most = configured / kMinTargetFraction;
+    const std::string given = t.text.empty() ? fmt::format("{}={:g}", t.coefficient, t.expanded) : t.text;
+    const std::string accepted = fmt::format(
+        "accepted: a target on {} from {:.4g} to {:.4g} {} ({:g} to {:g} × its configured U = "
+        "{:.4g} {})",
+        t.coefficient, least * b.display_scale[k], most * b.display_scale[k], b.units[k], kMinTargetFraction,
+        1 / kMinTargetFraction, configured * b.display_scale[k], b.units[k]);
+    if (!(std::isfinite(t.expanded) && t.expanded > 0))
+      throw OptionError(t.field, given, "is not a positive expanded uncertainty; " + accepted);
     if (t.expanded < least)
-      throw InputError(
-          fmt::format("target on {}: {:g} {} is below {:g} × its configured U = {:.4g} {}; accepted: at "
-                      "least {:.4g} {} (a "
-                      "tighter target cannot be met by any realistic tolerance)",
-                      t.coefficient, t.expanded * b.display_scale[k], b.units[k], kMinTargetFraction,
-                      configured * b.display_scale[k], b.units[k], least * b.display_scale[k], b.units[k]));
+      throw OptionError(t.field, given,
+                        "is tighter than a million-fold tightening of every tolerance can meet; " + accepted);
+    if (t.expanded > most)
+      throw OptionError(
+          t.field, given,
+          "is looser than a million-fold loosening of every tolerance would reach; " + accepted);
     r.coefficients[k].has_target = true;
     r.coefficients[k].target = t.expanded;
     r.targets.push_back(k);
@@ -103,10 +109,11 @@ void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vec
     P.group.push_back(t.group);
     P.min_scale[Eigen::Index(s)] = t.floor / t.bound;
     if (P.min_scale[Eigen::Index(s)] > o.max_scale)
-      throw OptionError("max_scale", fmt::format("{:g}", o.max_scale),
-                        fmt::format("is below the floor of {} ({:g} of its bound); accepted: a max scale of at "
-                                    "least {:g}, or a lower floor in [tolerances]",
-                                    t.id, P.min_scale[Eigen::Index(s)], P.min_scale[Eigen::Index(s)]));
+      throw OptionError(
+          "max_scale", fmt::format("{:g}", o.max_scale),
+          fmt::format("is below the floor of {} ({:g} of its bound); accepted: a max scale of at "
+                      "least {:g}, or a lower floor in [tolerances]",
+                      t.id, P.min_scale[Eigen::Index(s)], P.min_scale[Eigen::Index(s)]));
   }
   std::vector<std::size_t> rows = r.targets;
   std::vector<double> target = tolerance_target;
@@ -115,9 +122,10 @@ void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vec
     if (r.coefficients[k].has_target) continue;
     for (std::size_t s = 0; s < ns; ++s) J(0, Eigen::Index(s)) = b.sources[s].sensitivity[Eigen::Index(k)];
     const Eigen::RowVectorXd e = J.cwiseProduct(P.standard_uncertainty.transpose());
-    const double configured = kp * (P.correlation.size() > 0 ? std::sqrt(e.dot(e * P.correlation))
-                                                              : merge_groups(J, P.standard_uncertainty, P.cost,
-                                                                             P.group).effect.norm());
+    const double configured =
+        kp * (P.correlation.size() > 0
+                  ? std::sqrt(e.dot(e * P.correlation))
+                  : merge_groups(J, P.standard_uncertainty, P.cost, P.group).effect.norm());
     if (!(configured > 0)) continue;  // no tolerance reaches it: nothing to hold
     r.coefficients[k].held = true;
     rows.push_back(k);
@@ -250,8 +258,8 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   mo.progress = o.progress;
   mo.on_progress = o.on_progress;
   if (o.on_progress) o.on_progress(0, o.verify_trials);  // may throw Cancelled: stop before the verification
-  const MonteCarloResult mc = run_monte_carlo(scaled, cfg.correlations, model.n_outputs(), model.output_names(),
-                                              calibration_trial(model), mo, &u_alloc);
+  const MonteCarloResult mc = run_monte_carlo(scaled, cfg.correlations, model.n_outputs(),
+                                              model.output_names(), calibration_trial(model), mo, &u_alloc);
   AllocationVerification& v = r.verification;
   v.trials = mc.trials;
   v.seed = mc.seed;
@@ -290,10 +298,16 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   gaussian_copula(cfg);  // the verification's draws: a pair they cannot make is refused before any work
   if (targets.empty()) throw OptionError("targets", "", "none given; accepted: at least one, e.g. K3=1e-6");
   const double kp = normal_coverage_factor(o.coverage_probability);
-  if (!(std::isfinite(o.max_scale) && o.max_scale > 0))
-    throw OptionError("max_scale", option_number_text(o.max_scale), "is not a number > 0; accepted: e.g. 10");
+  check_option_value("max_scale", o.max_scale, option_number_text(o.max_scale), kMaxScaleRange);
   if (o.verify_trials == 1)
     throw OptionError("verify_trials", "1", "is too few; accepted: 0 (no verification) or 2 and more");
+  if (o.verify_trials > 0) check_coverage_interval(o.verify_trials, o.coverage_probability, "verify_trials");
+  for (const Tolerance& t : cfg.tolerances)
+    if (!kToleranceCostRange.accepts(t.cost))
+      throw InputError(
+          fmt::format("{}: tolerances.{}.cost: {} is out of range for the allocation; accepted: "
+                      "a relative cost weight from {}",
+                      cfg.source, t.id, option_number_text(t.cost), kToleranceCostRange.text()));
   check_thread_count(o.threads, "threads");
 
   BudgetOptions bo;

@@ -56,6 +56,8 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
   const std::string unit = pulse_as_rad(units[k]);
   AllocationTarget t;
   t.coefficient = std::string(name);
+  t.text = std::string(text);
+  t.field = option;
   double bare = 0;
   try {
     const Dimension dim = parse_unit(unit).dim;

@@ -27,8 +27,8 @@ constexpr OptionSpec<AllocateOptions> kAllocateRows[] = {
     rows::mode<&AllocateOptions::mode>(
         "Kinematics of the sensitivities and the verification: exact or paper; "
         "default: the configuration's [identification] mode"),
-    {"max_scale", &AllocateOptions::max_scale, "X", "No tolerance is loosened by more than this factor (> 0)",
-     OptionRange::at_least(0).open_low().e_g("10")},
+    {"max_scale", &AllocateOptions::max_scale, "X",
+     "No tolerance is loosened by more than this factor (1e-6 to 1e6)", kMaxScaleRange},
     {"let_others_grow", &AllocateOptions::let_others_grow, "",
      "Let the coefficients without a target grow beyond their configured expanded uncertainty (default: each "
      "is held at it)"},

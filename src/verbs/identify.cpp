@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "ccal/core/errors.hpp"
@@ -21,16 +23,19 @@ TableTerm parse_term_option(const std::string& text, std::string_view field) {
   if (colon != std::string::npos) {
     t.column = text.substr(colon + 1);
     if (t.column.empty())
-      throw OptionError(f, "'" + text + "'", "binds no column; accepted: <term> or <term>:<column>, e.g. K2:Z2");
+      throw OptionError(f, "'" + text + "'",
+                        "binds no column; accepted: <term> or <term>:<column>, e.g. K2:Z2");
   }
   const auto spec = parse_term(t.id);
   if (!spec)
-    throw OptionError(f, "'" + t.id + "'", fmt::format("is not a term id; accepted: {}", fmt::join(all_term_ids(), ", ")));
+    throw OptionError(f, "'" + t.id + "'",
+                      fmt::format("is not a term id; accepted: {}", fmt::join(all_term_ids(), ", ")));
   if (spec->kind != TermKind::power && t.column.empty())
-    throw OptionError(f, t.id,
-                      fmt::format("is not a power of the input, so it needs its column: bind it as {0}:<column>, "
-                                  "e.g. {0}:{0} (only K0 ... K10 are computed from the {1} column)",
-                                  t.id, OptionError::name("input_column")));
+    throw OptionError(
+        f, t.id,
+        fmt::format("is not a power of the input, so it needs its column: bind it as {0}:<column>, "
+                    "e.g. {0}:{0} (only K0 ... K10 are computed from the {1} column)",
+                    t.id, OptionError::name("input_column")));
   return t;
 }
 
@@ -73,15 +78,37 @@ TableFixed parse_fixed_option(const std::string& text, const ColumnUnits& units)
   f.value = *value;
   if (parts->unit.empty()) return f;
   if (units.output_unit.empty())
-    throw OptionError("fix", quoted,
-                      "has a unit, which needs the file's output_unit (an observations file of ccal simulate); "
-                      "accepted: the bare number in the file's units");
+    throw OptionError(
+        "fix", quoted,
+        "has a unit, which needs the file's output_unit (an observations file of ccal simulate); "
+        "accepted: the bare number in the file's units");
   try {
     f.value = convert_coefficient(f.value, parts->unit, term_unit(f.term, units));
   } catch (const UnitError& e) {
     throw OptionError("fix", quoted, std::string("has a unit that does not convert: ") + e.what());
   }
   return f;
+}
+
+// The known columns given as the option `known`: each once, none of them the output itself (y - y would
+// leave nothing to fit: every coefficient 0 with standard error 0), "none" only alone.
+void check_known_option(const std::vector<std::string>& known, const std::string& output_column) {
+  std::set<std::string> seen;
+  for (const auto& column : known) {
+    if (column == "none")
+      throw OptionError(
+          "known", "none",
+          "is listed with columns; accepted: 'none' alone (no column subtracted) or the columns "
+          "to subtract, each once");
+    if (column == output_column)
+      throw OptionError("known", column,
+                        fmt::format("is the output column ({}), which cannot be subtracted from itself; "
+                                    "accepted: the columns of known contributions to subtract from the "
+                                    "output, other than the output",
+                                    OptionError::name("output_column")));
+    if (!seen.insert(column).second)
+      throw OptionError("known", column, "is listed twice; accepted: each column once");
+  }
 }
 
 TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHeader>& header,
@@ -96,24 +123,26 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
   } else if (header) {
     for (const auto& t : header->terms) spec.terms.push_back({t.id, t.column});
   } else {
-    throw OptionError("terms", "",
-                      fmt::format("{}: no '# ccal observations' line to take the terms from; accepted: the terms "
-                                  "to fit, e.g. K0,K1,K2 with {} x and {} y for y = K0 + K1 x + K2 x^2",
-                                  table.source, OptionError::name("input_column"),
-                                  OptionError::name("output_column")));
+    throw OptionError(
+        "terms", "",
+        fmt::format("{}: no '# ccal observations' line to take the terms from; accepted: the terms "
+                    "to fit, e.g. K0,K1,K2 with {} x and {} y for y = K0 + K1 x + K2 x^2",
+                    table.source, OptionError::name("input_column"), OptionError::name("output_column")));
   }
   std::set<std::string> ids;
   for (const auto& t : spec.terms)
-    if (!ids.insert(t.id).second) throw OptionError("terms", t.id, "is listed twice; accepted: each term once");
+    if (!ids.insert(t.id).second)
+      throw OptionError("terms", t.id, "is listed twice; accepted: each term once");
 
   if (o.fix) {
     for (const auto& text : *o.fix) {
       TableFixed f = parse_fixed_option(text, units);
       if (!ids.insert(f.term.id).second)
-        throw OptionError("fix", f.term.id,
-                          fmt::format("is also a free term or fixed twice; accepted: a term is either free ({}) "
-                                      "or fixed ({})",
-                                      OptionError::name("terms"), OptionError::name("fix")));
+        throw OptionError(
+            "fix", f.term.id,
+            fmt::format("is also a free term or fixed twice; accepted: a term is either free ({}) "
+                        "or fixed ({})",
+                        OptionError::name("terms"), OptionError::name("fix")));
       spec.fixed.push_back(std::move(f));
     }
   } else if (header) {
@@ -136,6 +165,7 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
 
   if (o.known) {
     if (!(o.known->size() == 1 && o.known->front() == "none")) spec.known = *o.known;
+    check_known_option(spec.known, o.output_column);
   } else if (header) {
     spec.known = header->known;
   }
@@ -156,6 +186,32 @@ void warn_about_powers_of_means(const CsvTable& table, const TableFitSpec& spec,
           "as "
           "{0}:{0} to use that column",
           t.id, spec.input, parse_term(t.id)->power));
+}
+
+// No degrees of freedom (as many rows as free terms): the fit passes every row, so the residual scale is
+// 0 / 0, and without weights the standard errors (and the covariance) scaled by it too. They are reported as
+// undefined (NaN: "n/a" in the text, null in the JSON, an empty cell in the CSV), not as fit()'s zeros, which
+// would read as exact coefficients, and the fit's warning says so.
+void mark_undefined_scale(Identification& id) {
+  FitResult& fit = id.fit;
+  if (fit.dof != 0 || fit.names.empty()) return;
+  constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
+  fit.residual_std = undefined;
+  fit.chi2_per_dof = undefined;
+  if (!id.weighted) {
+    fit.std_error.setConstant(undefined);
+    fit.covariance.setConstant(undefined);
+  }
+  std::erase_if(fit.warnings, [](const std::string& w) { return w.starts_with("no degrees of freedom"); });
+  fit.warnings.insert(
+      fit.warnings.begin(),
+      fmt::format(
+          "no degrees of freedom ({0} rows, {0} free terms): the fit passes every row, so {1} undefined "
+          "(n/a in the text, null in the JSON, empty in the CSV); more rows than free terms{2}",
+          fit.names.size(),
+          id.weighted ? "the residual std and chi2/dof are (the standard errors come from the weights)"
+                      : "the standard errors, the residual std and chi2/dof are",
+          id.weighted ? " give them" : ", or a weight column, give standard errors"));
 }
 
 constexpr OptionSpec<IdentifyOptions> kIdentifyRows[] = {
@@ -210,12 +266,13 @@ void check_observations_configuration(const CsvTable& table, const Config& confi
   if (!header || header->config_sha256.empty() || config.text_sha256.empty() ||
       header->config_sha256 == config.text_sha256)
     return;
-  throw OptionError(std::string(field), "",
-                    fmt::format("{} was made with another configuration than {}: the file's SHA-256 (line {}) "
-                                "is {}, {}'s {}; accepted: the configuration the logs were reduced (or "
-                                "simulated) with",
-                                table.source, config.source, header->line, header->config_sha256, config.source,
-                                config.text_sha256));
+  throw OptionError(
+      std::string(field), "",
+      fmt::format("{} was made with another configuration than {}: the file's SHA-256 (line {}) "
+                  "is {}, {}'s {}; accepted: the configuration the logs were reduced (or "
+                  "simulated) with",
+                  table.source, config.source, header->line, header->config_sha256, config.source,
+                  config.text_sha256));
 }
 
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
@@ -227,11 +284,20 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   const ColumnUnits units = column_units(header, options);
   r.spec = fit_spec(table, header, options, units);
   r.identification = identify_table(table, r.spec, units, table.source);
+  mark_undefined_scale(r.identification);
   if (header) warn_about_powers_of_means(table, r.spec, r.identification);
   if (options.statement) {
+    if (r.identification.fit.dof == 0 && !r.identification.weighted)
+      throw OptionError(
+          "statement", "",
+          fmt::format("{}: {} rows for {} free terms leave no degrees of freedom, so the Type A "
+                      "part (the standard errors) is undefined; accepted: more rows than free "
+                      "terms, or the standard deviations of the output as {}",
+                      table.source, r.rows, r.identification.fit.names.size(),
+                      OptionError::name("weight_column")));
     check_observations_configuration(table, *options.config, "config");
-    r.statement = calibration_statement(*options.config, r.identification, statement_options(options, options.mode),
-                                        "statement");
+    r.statement = calibration_statement(*options.config, r.identification,
+                                        statement_options(options, options.mode), "statement");
   }
   return r;
 }

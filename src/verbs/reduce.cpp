@@ -10,6 +10,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/core/units.hpp"
 #include "ccal/io/observation_csv.hpp"
 
 namespace ccal::verbs {
@@ -71,6 +72,25 @@ constexpr OptionSpec<ReduceOptions> kReduceRows[] = {
 
 OptionTable<ReduceOptions> options_of(std::type_identity<ReduceOptions>) { return kReduceRows; }
 
+double pulse_weight_from_text(const Config& cfg, std::string_view text) {
+  const std::string& output = cfg.instrument.output_unit;
+  constexpr std::string_view kName = "the pulse weight";
+  const Dimension dim = parse_unit(pulse_as_rad(output)).dim * kind::time;
+  try {
+    return parse_real_option("pulse_weight", text);  // a bare number: in the output unit × s
+  } catch (const OptionError&) {
+  }
+  try {
+    return parse_as(pulse_as_rad(text), dim, kName) / output_unit_si(output);
+  } catch (const UnitError& e) {
+    // "the pulse weight: '1 m': unit 'm' is a length, expected an angle (accepted: rad, …, arcsec)"
+    std::string what = e.what();
+    if (what.starts_with(kName)) what.erase(0, kName.size() + 2);
+    throw OptionError("pulse_weight", "",
+                      fmt::format("{}; or a bare number in {}·s, e.g. 2.5e-5", what, output));
+  }
+}
+
 RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   RunLogOptions lo;
   lo.output_scale = output_unit_si(cfg.instrument.output_unit);
@@ -78,10 +98,11 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   lo.columns = o.layout.columns;
   if (!o.layout.angle_unit.empty()) {
     if (o.angle_unit != AngleUnit::rad)
-      throw OptionError("angle_unit", std::string(kAngleUnitNames[std::size_t(o.angle_unit)]),
-                        fmt::format("and the manifest's angle_unit '{}' are two answers for the encoders' unit; "
-                                    "accepted: one of them (the manifest's, leaving this option out)",
-                                    o.layout.angle_unit));
+      throw OptionError(
+          "angle_unit", std::string(kAngleUnitNames[std::size_t(o.angle_unit)]),
+          fmt::format("and the manifest's angle_unit '{}' are two answers for the encoders' unit; "
+                      "accepted: one of them (the manifest's, leaving this option out)",
+                      o.layout.angle_unit));
     lo.angle_scale = o.layout.angle_scale;
   }
   lo.pulse_weight = cfg.instrument.quantum;
@@ -129,9 +150,8 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   std::vector<ObservationsHeader::Log> fingerprints;
   for (std::size_t k = 0; k < r.logs.runs.size(); ++k)
     fingerprints.push_back({cfg.plan.runs[r.logs.runs[k].index].name, r.logs.runs[k].log.sha256, r.files[k]});
-  r.identification =
-      identify_observations(r.logs.observations, cfg.identification, cfg.instrument, cfg.source, &resolution,
-                            cfg.text_sha256, fingerprints);
+  r.identification = identify_observations(r.logs.observations, cfg.identification, cfg.instrument,
+                                           cfg.source, &resolution, cfg.text_sha256, fingerprints);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
   if (o.statement) {

@@ -197,5 +197,31 @@ TEST_F(AllocateCli, BadTargetsAndOptionsAreExitCodeTwo) {
   expect_bad_input(run("allocate --target K3=1e-6 missing.toml"), {"missing.toml"});
 }
 
+TEST_F(AllocateCli, ValuesThatWouldOverflowAreRefusedNamingTheOption) {
+  // Each of these passed the options' checks and failed deep inside with a message naming no option: a
+  // target of 1e308 squared to inf ("target 1 is inf"), a max scale of 1e308 or 1e-300 gave an infinite Monte
+  // Carlo bound or an allocated tolerance of 0, a cost of 1e308 an allocated tolerance of 0, and 2 trials of
+  // the verification were blamed on --trials. Each is now refused by the option's own range.
+  expect_bad_input(run("allocate --target K3=1e308 --verify-trials 0"),
+                   {"--target: K3=1e308 is looser than", "accepted: a target on K3 from ", " deg/s/g^3"});
+  expect_bad_input(run("allocate --target K3=1e-308 --verify-trials 0"),
+                   {"--target: K3=1e-308 is tighter than", "accepted: a target on K3 from "});
+  for (const std::string scale : {"1e308", "1e-300"})
+    expect_bad_input(run("allocate --target K3=0.01 --max-scale " + scale),
+                     {"--max-scale: ", " is out of range; accepted: 1e-06 to 1000000"});
+  expect_bad_input(run("allocate --target K3=0.01 --verify-trials 2"),
+                   {"with --verify-trials = 2", "accepted: --verify-trials at least 11"});
+  std::string text = read(kExample);
+  const auto at = text.find("\ndthx1t = \"1e-5 rad\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at + 1, std::string("dthx1t = \"1e-5 rad\"").size(),
+               "dthx1t = { bound = \"1e-5 rad\", cost = 1e308 }");
+  expect_bad_input(run("allocate " + write("cost.toml", text) + " --target K3=0.01"),
+                   {"cost.toml: tolerances.dthx1t.cost: 1e+308 is out of range", "1e-06 to 1000000"});
+  // The ends of the ranges still allocate.
+  EXPECT_EQ(run("allocate --target K3=0.01 --max-scale 1e6 --verify-trials 0").code, 0);
+  EXPECT_EQ(run("allocate --target K3=0.01 --max-scale 1e-6 --verify-trials 0").code, 0);
+}
+
 }  // namespace
 }  // namespace ccal::test

@@ -85,6 +85,8 @@ TEST_F(DesignCli, BadOptionsAreRefused) {
   expect_bad_input(run("design " + config + " --plan-out small.toml"), {"small.toml"});
   expect_bad_input(run("design " + config + " --target K9=1"), {"--target", "K9"});
   expect_bad_input(run("design " + config + " --tradeoff 0,1"), {"--tradeoff"});
+  // An empty item is a typing error, not nothing (CLI11's own splitting dropped it).
+  expect_bad_input(run("design " + config + " --tradeoff 1,,2"), {"--tradeoff: 1,,2 has an empty item"});
   // A factor whose scaled space holds no plan is said of the factor, not of [design] keys the user never wrote.
   expect_bad_input(run("design " + config + " --tradeoff 1e-300"),
                    {"--tradeoff: 1e-300 scales the total time to", "for which the design fails ("});

@@ -83,17 +83,20 @@ TEST_F(Hardening, NonFiniteBudgetIsRefused) {
 }
 
 TEST_F(Hardening, AnUnreachableTargetIsRefused) {
-  // K3 = 1e-300 deg/s/g^3 set every tolerance to 0 and reported "converged".
+  // K3 = 1e-300 deg/s/g^3 set every tolerance to 0 and reported "converged"; refused naming the option and
+  // the accepted range of the target.
   expect_bad_input(run("allocate --target K3=1e-300 --verify-trials 0"),
-                   {"K3", "1e-300", "accepted: at least"});
+                   {"--target: K3=1e-300", "accepted: a target on K3 from "});
 }
 
 TEST_F(Hardening, OverflowingFitsAreInputErrors) {
   // x^2 of 1e200 overflows (was an internal error, exit code 1); σ = 1e200 gives a weight that underflows.
   write("big.csv", "x,y\n1e200,1\n2e200,2\n3e200,3\n4e200,4\n");
-  expect_bad_input(run("identify big.csv --input-column x --output-column y --terms K0,K1,K2"), {"big.csv:2:1", "K2"});
+  expect_bad_input(run("identify big.csv --input-column x --output-column y --terms K0,K1,K2"),
+                   {"big.csv:2:1", "K2"});
   write("w.csv", "x,y,s\n1,1,1e200\n2,2,1e200\n3,3.1,1e200\n");
-  expect_bad_input(run("identify w.csv --input-column x --output-column y --terms K0,K1 --weight-column s"), {"w.csv:2:3"});
+  expect_bad_input(run("identify w.csv --input-column x --output-column y --terms K0,K1 --weight-column s"),
+                   {"w.csv:2:3"});
   // A memory request far beyond the machine: refused up front with the memory it needs (was bad_alloc).
   expect_bad_input(run("montecarlo --trials 1000000000"), {"1000000000 trials", "GiB", "accepted: at most"});
 }

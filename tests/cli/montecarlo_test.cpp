@@ -120,6 +120,11 @@ TEST_F(MonteCarloCli, BadOptionsAreExitCodeTwo) {
   expect_bad_input(run("montecarlo --trials -5"), {"--trials"});
   expect_bad_input(run("montecarlo --trials many"), {"--trials"});
   expect_bad_input(run("montecarlo --trials 2000000000"), {"--trials", "2 to 1000000000"});
+  // Not a whole number: the option's range, not the type's 0 to 18446744073709551615.
+  expect_bad_input(run("montecarlo --trials 2.5"),
+                   {"--trials: 2.5 is not a whole number; accepted: a whole number from 2 to 1000000000"});
+  expect_bad_input(run("montecarlo --trials nan"),
+                   {"--trials: 'nan' is not a number; accepted: a whole number from 2 to 1000000000"});
   expect_bad_input(run("montecarlo --digits 2 --max-trials 1000"), {"max_trials"});
   expect_bad_input(run("montecarlo --threads -1"), {"--threads"});
   expect_bad_input(run("montecarlo --digits 7"), {"--digits", "0 (fixed M) or 1 to 6"});

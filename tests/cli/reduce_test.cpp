@@ -179,4 +179,23 @@ TEST_F(Reduce, BadLogsAndOptionsAreRefused) {
   EXPECT_NE(none.err.find("--log"), std::string::npos) << none.err;
 }
 
+TEST_F(Reduce, PulseWeightTakesAUnitOfTheOutputTimesSeconds) {
+  // The output is in deg/s, so a pulse weighs an angle: "1e-3 deg" reduces the same logs to
+  // the same bytes as the bare 1e-3 (deg); a length is a wrong unit, said as such with the accepted units,
+  // where it was "'1 m' is not a finite number".
+  write("config.toml", config_text());
+  const ccal::Config cfg = ccal::load_config(dir_ / "config.toml");
+  const auto args = write_logs(cfg, dir_, 1e-3, false);
+  const Result bare = run("reduce config.toml --format json --pulse-weight 1e-3" + joined(args));
+  ASSERT_EQ(bare.code, 0) << bare.err;
+  const Result degrees = run("reduce config.toml --format json --pulse-weight '1e-3 deg'" + joined(args));
+  ASSERT_EQ(degrees.code, 0) << degrees.err;
+  EXPECT_EQ(degrees.out, bare.out);
+  expect_bad_input(run("reduce config.toml --pulse-weight '1 m'" + joined(args)),
+                   {"--pulse-weight: '1 m': unit 'm' is a length, expected an angle (accepted: rad, mrad",
+                    "deg", "or a bare number in deg/s·s"});
+  expect_bad_input(run("reduce config.toml --pulse-weight '0 deg'" + joined(args)),
+                   {"--pulse-weight: 0 is not a positive number"});
+}
+
 }  // namespace

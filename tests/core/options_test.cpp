@@ -1,6 +1,6 @@
-// The options' tables (core/options.hpp, verbs/*.hpp): the parsers of option text, the ranges and their words,
-// the verbs' checks, and that the command line refuses every out-of-range value exactly as the library does,
-// but for the option's name (the field's flag).
+// The options' tables (core/options.hpp, verbs/*.hpp): the parsers of option text, the ranges and their
+// words, the verbs' checks, and that the command line refuses every out-of-range value exactly as the library
+// does, but for the option's name (the field's flag).
 #include "ccal/core/options.hpp"
 
 #include <gtest/gtest.h>
@@ -9,8 +9,8 @@
 #include <functional>
 #include <limits>
 #include <optional>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "ccal/verbs/allocate.hpp"
@@ -48,10 +48,12 @@ TEST(OptionParsers, WholeNumbersInAnyNotation) {
   EXPECT_EQ(refusal([] { parse_integer_option("trials", "", 0, 1e9); }),
             "trials: '' is not a number; accepted: a whole number from 0 to 1000000000");
   // An over-long integer is echoed as typed, not as the nearest 64-bit value.
-  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min(), kMax = std::numeric_limits<std::int64_t>::max();
-  EXPECT_EQ(refusal([] { parse_integer_option("trials", "99999999999999999999", kMin, kMax); }),
-            "trials: 99999999999999999999 is out of range; accepted: a whole number from -9223372036854775808 "
-            "to 9223372036854775807");
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min(),
+                         kMax = std::numeric_limits<std::int64_t>::max();
+  EXPECT_EQ(
+      refusal([] { parse_integer_option("trials", "99999999999999999999", kMin, kMax); }),
+      "trials: 99999999999999999999 is out of range; accepted: a whole number from -9223372036854775808 "
+      "to 9223372036854775807");
   EXPECT_EQ(parse_integer_option("trials", "9223372036854775807", kMin, kMax), kMax);
   // 2^63 in float notation is one beyond int64: refused, not converted with undefined behaviour.
   EXPECT_NE(refusal([] { parse_integer_option("trials", "9.223372036854775808e18", kMin, kMax); }), "");
@@ -83,14 +85,38 @@ TEST(OptionParsers, UnsignedCountsOutOfTheirRangeAreRefusedInTheRangesWords) {
   EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "1e30", trials); }),
             "trials: 1e30 is out of range; accepted: 2 to 1000000000");
   EXPECT_EQ(parse_unsigned_option("trials", "1", trials), 1u);  // in the type: the table's check speaks
-  // Not a whole number, or not a number: the parser's own words.
+  // Not a whole number, or not a number: the option's range too, not the type's 0 to 2^64 − 1, which would
+  // tell the user that 0 or 1e19 trials are accepted.
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "2.5", trials); }),
+            "trials: 2.5 is not a whole number; accepted: a whole number from 2 to 1000000000");
   EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "-2.5", trials); }),
-            "trials: -2.5 is not a whole number; accepted: a whole number from 0 to 18446744073709551615");
+            "trials: -2.5 is not a whole number; accepted: a whole number from 2 to 1000000000");
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "nan", trials); }),
+            "trials: 'nan' is not a number; accepted: a whole number from 2 to 1000000000");
   EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "x", trials); }),
-            "trials: 'x' is not a number; accepted: a whole number from 0 to 18446744073709551615");
+            "trials: 'x' is not a number; accepted: a whole number from 2 to 1000000000");
+  // A range with another accepted value is said whole.
+  EXPECT_EQ(refusal([&] { parse_unsigned_option("trials", "2.5", trials.or_value(0, "none")); }),
+            "trials: 2.5 is not a whole number; accepted: a whole number, 0 (none) or 2 to 1000000000");
   // Without a range (a seed), the type's.
   EXPECT_EQ(refusal([] { parse_unsigned_option("seed", "-1", OptionRange{}); }),
             "seed: -1 is out of range; accepted: a whole number from 0 to 18446744073709551615");
+}
+
+TEST(OptionParsers, SignedCountsAreRefusedInTheirRangesWords) {
+  // verify_trials is a signed count: 2.5 or 1e30 of it is refused with its range (0: none, or 2 to 10^9), not
+  // with int64's limits; without a range, the limits given.
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min(),
+                         kMax = std::numeric_limits<std::int64_t>::max();
+  const OptionRange verify = OptionRange::between(2, 1e9).or_value(0, "none");
+  EXPECT_EQ(
+      refusal([&] { parse_integer_option("verify_trials", "2.5", kMin, kMax, verify); }),
+      "verify_trials: 2.5 is not a whole number; accepted: a whole number, 0 (none) or 2 to 1000000000");
+  EXPECT_EQ(refusal([&] { parse_integer_option("verify_trials", "1e30", kMin, kMax, verify); }),
+            "verify_trials: 1e30 is out of range; accepted: 0 (none) or 2 to 1000000000");
+  EXPECT_EQ(parse_integer_option("verify_trials", "1e4", kMin, kMax, verify), 10000);
+  EXPECT_EQ(refusal([&] { parse_integer_option("digits", "x", -5, 5, OptionRange{}); }),
+            "digits: 'x' is not a number; accepted: a whole number from -5 to 5");
 }
 
 TEST(OptionParsers, RealsAndChoices) {
@@ -175,7 +201,8 @@ std::string out_of_range_value(const OptionRange& r) {
 class SameRefusal : public test::Cli {
  protected:
   template <class Options>
-  void check_verb(const std::string& verb, const std::string& extra, const std::function<void(Options&)>& call) {
+  void check_verb(const std::string& verb, const std::string& extra,
+                  const std::function<void(Options&)>& call) {
     for (const OptionSpec<Options>& row : option_table<Options>()) {
       const bool numeric = std::visit(
           [](auto member) {
@@ -209,9 +236,8 @@ class SameRefusal : public test::Cli {
       } catch (const OptionError& e) {
         ASSERT_EQ(e.field(), row.field);
         // Every option the message names, worded as the command line spells it.
-        library = e.worded([&](std::string_view field) {
-          return cli_flag(OptionSpec<Options>(field, row.member, "", ""));
-        });
+        library = e.worded(
+            [&](std::string_view field) { return cli_flag(OptionSpec<Options>(field, row.member, "", "")); });
       }
       ASSERT_FALSE(library.empty()) << verb << " " << row.field << " = " << value << " was accepted";
       const test::Result r = run(verb + " " + extra + " " + cli_flag(row) + " " + value);
@@ -230,7 +256,8 @@ class SameRefusal : public test::Cli {
 };
 
 TEST_F(SameRefusal, MonteCarlo) {
-  check_verb<verbs::MonteCarloOptions>("montecarlo", "", [](auto& o) { verbs::monte_carlo(bundled_example(), o); });
+  check_verb<verbs::MonteCarloOptions>("montecarlo", "",
+                                       [](auto& o) { verbs::monte_carlo(bundled_example(), o); });
 }
 TEST_F(SameRefusal, Allocate) {
   check_verb<verbs::AllocateOptions>("allocate", "--target K3=1e-3", [](auto& o) {
@@ -263,15 +290,18 @@ TEST_F(SameRefusal, ParsersEchoWhatWasTyped) {
 }
 
 TEST_F(SameRefusal, UnknownCommandsGetTheNearestName) {
-  EXPECT_EQ(run("budgte").err,
-            "ccal: error: unknown command 'budgte'; did you mean 'budget'? accepted: budget, force, simulate, "
-            "identify, reduce, montecarlo, allocate, design, report, history\n");
-  EXPECT_EQ(run("mont").err,
-            "ccal: error: unknown command 'mont'; did you mean 'montecarlo'? accepted: budget, force, simulate, "
-            "identify, reduce, montecarlo, allocate, design, report, history\n");
-  EXPECT_EQ(run("xyz").err,
-            "ccal: error: unknown command 'xyz'; accepted: budget, force, simulate, identify, reduce, montecarlo, "
-            "allocate, design, report, history\n");
+  EXPECT_EQ(
+      run("budgte").err,
+      "ccal: error: unknown command 'budgte'; did you mean 'budget'? accepted: budget, force, simulate, "
+      "identify, reduce, montecarlo, allocate, design, report, history\n");
+  EXPECT_EQ(
+      run("mont").err,
+      "ccal: error: unknown command 'mont'; did you mean 'montecarlo'? accepted: budget, force, simulate, "
+      "identify, reduce, montecarlo, allocate, design, report, history\n");
+  EXPECT_EQ(
+      run("xyz").err,
+      "ccal: error: unknown command 'xyz'; accepted: budget, force, simulate, identify, reduce, montecarlo, "
+      "allocate, design, report, history\n");
 }
 
 TEST_F(SameRefusal, HintsNameTheVerbsOwnHelp) {

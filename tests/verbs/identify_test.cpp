@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -140,23 +141,99 @@ TEST(IdentifyVerb, BadOptionsNameTheField) {
   EXPECT_EQ(what.rfind("terms: 'Q7' is not a term id; accepted: K0, K1, K2,", 0), 0u) << what;
   verbs::IdentifyOptions fix = line_options({"K0"});
   fix.fix = std::vector<std::string>{"K1=two"};
-  EXPECT_EQ(refusal(fix).second, "fix: 'two' in 'K1=two' is not a finite number; accepted: <term>=<value>, e.g. "
-                                 "K1=505.2097");
+  EXPECT_EQ(refusal(fix).second,
+            "fix: 'two' in 'K1=two' is not a finite number; accepted: <term>=<value>, e.g. "
+            "K1=505.2097");
   verbs::IdentifyOptions bound = line_options({"K0", "K_pp"});
-  EXPECT_EQ(refusal(bound).second, "terms: K_pp is not a power of the input, so it needs its column: bind it as "
-                                   "K_pp:<column>, e.g. K_pp:K_pp (only K0 ... K10 are computed from the "
-                                   "input_column column)");
+  EXPECT_EQ(refusal(bound).second,
+            "terms: K_pp is not a power of the input, so it needs its column: bind it as "
+            "K_pp:<column>, e.g. K_pp:K_pp (only K0 ... K10 are computed from the "
+            "input_column column)");
   // An empty list of terms is refused by the table's row, as from every front end.
   EXPECT_EQ(refusal(line_options({})).second, "terms: none given; accepted: at least one TERMS");
   // The statement needs its configuration, and the configuration is read only for a statement.
   verbs::IdentifyOptions statement = line_options({"K0", "K1"});
   statement.statement = true;
-  EXPECT_EQ(refusal(statement).second, "statement: needs the configuration whose tolerances give its Type B "
-                                       "part; accepted: that configuration as config");
+  EXPECT_EQ(refusal(statement).second,
+            "statement: needs the configuration whose tolerances give its Type B "
+            "part; accepted: that configuration as config");
   verbs::IdentifyOptions config = line_options({"K0", "K1"});
   config.config = parse_config(read_text(kPaperConfigPath), "paper.toml");
-  EXPECT_EQ(refusal(config).second, "config: paper.toml is read only for the calibration statement; accepted: "
-                                    "with statement");
+  EXPECT_EQ(refusal(config).second,
+            "config: paper.toml is read only for the calibration statement; accepted: "
+            "with statement");
+}
+
+TEST(IdentifyVerb, NoDegreesOfFreedomLeavesTheStandardErrorsUndefined) {
+  // Two points, two free terms: the line passes both, RSS = 0 with dof = 0, so s² = RSS/dof is 0/0 and the
+  // unweighted standard errors s·√((HᵀH)⁻¹)ₖₖ are undefined. A 0 would read as an exact coefficient: they are
+  // NaN (n/a, null, an empty cell), as are the residual std and chi2/dof, and the warning says so.
+  const CsvTable two = parse_csv("x,y\n1,2\n2,3\n", "two.csv");
+  const verbs::IdentifyResult r = verbs::identify(two, line_options({"K0", "K1"}));
+  const FitResult& fit = r.identification.fit;
+  EXPECT_EQ(fit.dof, 0);
+  EXPECT_NEAR(fit.value[0], 1.0, 1e-14);
+  EXPECT_NEAR(fit.value[1], 1.0, 1e-14);
+  EXPECT_TRUE(std::isnan(fit.std_error[0]) && std::isnan(fit.std_error[1]));
+  EXPECT_TRUE(std::isnan(fit.residual_std) && std::isnan(fit.chi2_per_dof));
+  ASSERT_FALSE(fit.warnings.empty());
+  EXPECT_EQ(fit.warnings.front().rfind("no degrees of freedom (2 rows, 2 free terms): ", 0), 0u);
+  EXPECT_NE(fit.warnings.front().find("standard errors"), std::string::npos);
+  EXPECT_EQ(std::count_if(fit.warnings.begin(), fit.warnings.end(),
+                          [](const std::string& w) { return w.starts_with("no degrees of freedom"); }),
+            1);
+  // With weights the standard errors come from σ (1/√Σw for a weighted mean) and stay; only the residual
+  // scale is undefined.
+  const CsvTable one = parse_csv("x,y,s\n1,2,0.5\n", "one.csv");
+  verbs::IdentifyOptions weighted = line_options({"K0"});
+  weighted.weight_column = "s";
+  const FitResult& w = verbs::identify(one, weighted).identification.fit;
+  EXPECT_NEAR(w.std_error[0], 0.5, 1e-15);
+  EXPECT_TRUE(std::isnan(w.residual_std));
+}
+
+TEST(IdentifyVerb, KnownColumnsMustBeOtherThanTheOutputAndEachOnce) {
+  // Subtracting the output from itself leaves y = 0 and every coefficient 0 ± 0: refused, as is a column
+  // listed twice (subtracted twice) and 'none' among columns, naming the known option.
+  auto refusal = [](std::vector<std::string> known) -> std::pair<std::string, std::string> {
+    verbs::IdentifyOptions o = line_options({"K0", "K1"});
+    o.known = std::move(known);
+    try {
+      verbs::identify(line_table(), o);
+    } catch (const OptionError& e) {
+      return {e.field(), e.what()};
+    }
+    return {"no error", ""};
+  };
+  EXPECT_EQ(refusal({"y"}), (std::pair<std::string, std::string>{
+                                "known",
+                                "known: y is the output column (output_column), which cannot be "
+                                "subtracted from itself; accepted: the columns of known contributions "
+                                "to subtract from the output, other than the output"}));
+  EXPECT_EQ(refusal({"s", "s"}), (std::pair<std::string, std::string>{
+                                     "known", "known: s is listed twice; accepted: each column once"}));
+  EXPECT_EQ(refusal({"none", "s"}).first, "known");
+  EXPECT_EQ(refusal({"s"}).first, "no error");
+}
+
+TEST(IdentifyVerb, NoStatementWithoutDegreesOfFreedom) {
+  // Three of the paper's six runs for its three free terms: no degrees of freedom, so the Type A part of the
+  // statement (the standard errors) is undefined and a statement would be misleading; refused, naming it.
+  const Config config = parse_config(read_text(kPaperConfigPath), "paper.toml");
+  std::string csv = verbs::simulate(config).observations_csv;
+  for (int dropped = 0; dropped < 3; ++dropped) csv.erase(csv.rfind('\n', csv.size() - 2) + 1);
+  verbs::IdentifyOptions o;
+  o.statement = true;
+  o.config = config;
+  try {
+    verbs::identify(parse_csv(csv, "obs.csv"), o);
+    ADD_FAILURE() << "a statement without degrees of freedom was made";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "statement");
+    EXPECT_NE(std::string(e.what()).find("3 rows for 3 free terms leave no degrees of freedom"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

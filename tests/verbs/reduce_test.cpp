@@ -106,18 +106,40 @@ TEST_F(ReduceVerb, TooFewOrRepeatedLogsAreRefusedNamingTheOption) {
   few.logs = {options_.logs[0], options_.logs[1]};  // 2 logs for 3 free terms
   twice.logs[1].run = twice.logs[0].run;
   unknown.logs[0].run = "21g";
-  EXPECT_EQ(message(few), "logs: 2 logged run(s) cannot determine 3 free terms (K0, K2, K3); accepted: at least 3 "
-                          "logs, of runs at different g-levels");
-  EXPECT_EQ(message(twice), "logs: run '" + twice.logs[0].run + "' is logged twice; accepted: one log per run");
-  EXPECT_EQ(message(unknown).rfind("logs: '21g' is no run; accepted: a run name (", 0), 0u) << message(unknown);
+  EXPECT_EQ(message(few),
+            "logs: 2 logged run(s) cannot determine 3 free terms (K0, K2, K3); accepted: at least 3 "
+            "logs, of runs at different g-levels");
+  EXPECT_EQ(message(twice),
+            "logs: run '" + twice.logs[0].run + "' is logged twice; accepted: one log per run");
+  EXPECT_EQ(message(unknown).rfind("logs: '21g' is no run; accepted: a run name (", 0), 0u)
+      << message(unknown);
   // The pulse weight: positive, in the output unit × s.
   weight.pulse_weight = -1.0;
   try {
     verbs::reduce(config_, weight);
     ADD_FAILURE() << "a negative pulse weight was accepted";
   } catch (const OptionError& e) {
-    EXPECT_EQ(std::string(e.what()), "pulse_weight: -1 is not a positive number; accepted: the integrated output "
-                                     "per pulse in deg/s·s, e.g. 2.5e-5");
+    EXPECT_EQ(std::string(e.what()),
+              "pulse_weight: -1 is not a positive number; accepted: the integrated output "
+              "per pulse in deg/s·s, e.g. 2.5e-5");
+  }
+}
+
+TEST_F(ReduceVerb, PulseWeightFromTextTakesTheOutputUnitTimesSeconds) {
+  // The example's output is in deg/s: a bare number is in deg, a quantity is converted to deg (3.6 arcsec =
+  // 1e-3 deg, to rounding), and a unit of another dimension names the option, the unit and the accepted ones.
+  EXPECT_EQ(verbs::pulse_weight_from_text(config_, "2.5e-5"), 2.5e-5);
+  EXPECT_NEAR(verbs::pulse_weight_from_text(config_, "3.6 arcsec"), 1e-3, 1e-18);
+  try {
+    verbs::pulse_weight_from_text(config_, "1 m");
+    ADD_FAILURE() << "a length taken as a pulse weight";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "pulse_weight");
+    EXPECT_EQ(std::string(e.what()).rfind("pulse_weight: '1 m': unit 'm' is a length, expected an angle "
+                                          "(accepted: rad,",
+                                          0),
+              0u)
+        << e.what();
   }
 }
 

@@ -53,10 +53,10 @@ class OptionError : public InputError {
 struct OptionRange {
   double low = -1e308, high = 1e308;
   bool low_open = false, high_open = false;
-  std::optional<double> also;      // a value accepted besides the range
-  std::string_view also_meaning;   // what it means, e.g. "none"
-  std::string_view example;        // shown in the message, e.g. "0.95"
-  std::string_view note;           // a last word of the message, e.g. where a similar option is
+  std::optional<double> also;     // a value accepted besides the range
+  std::string_view also_meaning;  // what it means, e.g. "none"
+  std::string_view example;       // shown in the message, e.g. "0.95"
+  std::string_view note;          // a last word of the message, e.g. where a similar option is
 
   // [low, high]; then, by copies: open ends, one more accepted value, an example, a note.
   static constexpr OptionRange between(double low, double high) {
@@ -97,7 +97,6 @@ struct OptionRange {
   // "2 to 1000000000", "a number in (0, 1)", with the extra value, the example and the note: what a message
   // says is accepted.
   std::string text() const;
-
 };
 
 // A member of an enumeration type (or an optional one), set and read through the names of its values, which
@@ -151,9 +150,9 @@ using OptionMember =
     std::variant<bool Options::*, int Options::*, std::int64_t Options::*, std::uint64_t Options::*,
                  double Options::*, std::string Options::*, std::vector<std::string> Options::*,
                  std::vector<double> Options::*, std::optional<std::vector<std::string>> Options::*,
-                 std::optional<int> Options::*,
-                 std::optional<std::int64_t> Options::*, std::optional<std::uint64_t> Options::*,
-                 std::optional<double> Options::*, OptionEnum<Options>>;
+                 std::optional<int> Options::*, std::optional<std::int64_t> Options::*,
+                 std::optional<std::uint64_t> Options::*, std::optional<double> Options::*,
+                 OptionEnum<Options>>;
 
 // One option: the field's name (the front ends derive their spellings from it), the member, the accepted
 // values, the name of its value in a usage line (N, p, FILE) and a line of help.
@@ -196,9 +195,14 @@ void check_member(const Field& value, const OptionSpec<Options>& row);
 std::int64_t parse_integer_option(std::string_view field, std::string_view text, std::int64_t low,
                                   std::int64_t high);
 std::uint64_t parse_unsigned_option(std::string_view field, std::string_view text);
-// As above, but a whole number beyond the type that the option's range refuses as well (-5 trials) is refused
-// in the range's words, as the same value of a signed option is.
+// As above, but every refusal says the option's range (a bounded one) rather than the type's limits: a whole
+// number beyond the type that the range refuses as well (-5 trials), as check_options says it; anything else
+// (2.5, nan) as "a whole number from 2 to 1000000000".
 std::uint64_t parse_unsigned_option(std::string_view field, std::string_view text, const OptionRange& range);
+// As parse_integer_option, but every refusal (2.5, nan, 1e30) says the option's range rather than the type's
+// limits (as the unsigned overload with a range does), unless the range is unbounded.
+std::int64_t parse_integer_option(std::string_view field, std::string_view text, std::int64_t low,
+                                  std::int64_t high, const OptionRange& range);
 // A real option written as text (any float notation); OptionError unless it is a finite number.
 double parse_real_option(std::string_view field, std::string_view text);
 // The index of `text` among `names`; OptionError listing the names otherwise.

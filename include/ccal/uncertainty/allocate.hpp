@@ -33,13 +33,13 @@
 // other rows keep the capacity 1 − Σ_{fixed g} a_kg x_g). Without floors every target can be met (λ → 0 is
 // allowed), so a solution always exists for targets > 0.
 //
-// Partly correlated sources (AllocationProblem::correlation): U_k(λ) = k_p √(λᵀ Q_k λ) with Q_k = Gᵀ diag(E_k)
-// R diag(E_k) G (E_k = J_k u_0 per source, G the group indicator). The cross terms make the rows nonlinear
-// in x = λ², but each is a convex quadratic in λ (Q_k is positive semi-definite) and Σ_g C_g/λ_g is convex, so
-// the problem is convex in λ: solved by the barrier method in λ (src/uncertainty/allocate_correlated.cpp,
-// AllocationSolution::method "barrier (partly correlated sources)", duality gap below 1e-11 of the
-// objective). A row is judged at the least scales as above: loosening a source whose error cancels another's
-// is not sought to meet a target the floors otherwise prevent.
+// Partly correlated sources (AllocationProblem::correlation): U_k(λ) = k_p √(λᵀ Q_k λ) with Q_k = Gᵀ
+// diag(E_k) R diag(E_k) G (E_k = J_k u_0 per source, G the group indicator). The cross terms make the rows
+// nonlinear in x = λ², but each is a convex quadratic in λ (Q_k is positive semi-definite) and Σ_g C_g/λ_g is
+// convex, so the problem is convex in λ: solved by the barrier method in λ
+// (src/uncertainty/allocate_correlated.cpp, AllocationSolution::method "barrier (partly correlated sources)",
+// duality gap below 1e-11 of the objective). A row is judged at the least scales as above: loosening a source
+// whose error cancels another's is not sought to meet a target the floors otherwise prevent.
 //
 // The simple alternative is one common scale for every source, λ = min(λ_max, min_k T_k / U_k(1)).
 //
@@ -56,6 +56,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ccal/core/options.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/coverage.hpp"
@@ -65,16 +66,16 @@ namespace ccal {
 
 // The allocation as a mathematical problem, in SI.
 struct AllocationProblem {
-  Eigen::MatrixXd sensitivity;                 // n_targets × n_sources: ∂K_k/∂e_s
-  Eigen::VectorXd target;                      // T_k, allowed expanded uncertainty per row, > 0
-  Eigen::VectorXd standard_uncertainty;        // u_s0 per source, ≥ 0
-  Eigen::VectorXd cost;                        // per source, > 0
-  std::vector<std::string> group;              // per source; "" = independent (empty vector: all independent)
+  Eigen::MatrixXd sensitivity;           // n_targets × n_sources: ∂K_k/∂e_s
+  Eigen::VectorXd target;                // T_k, allowed expanded uncertainty per row, > 0
+  Eigen::VectorXd standard_uncertainty;  // u_s0 per source, ≥ 0
+  Eigen::VectorXd cost;                  // per source, > 0
+  std::vector<std::string> group;        // per source; "" = independent (empty vector: all independent)
   double coverage_factor = kDefaultCoverageFactor;  // k_p
-  double max_scale = 10.0;                     // λ_max > 0
+  double max_scale = 10.0;                          // λ_max > 0
   Eigen::VectorXd min_scale;  // λ_min,s per source, 0 ≤ λ_min,s ≤ λ_max (floor_s / bound_s); empty: all 0
-  // R of the sources (sources × sources, input_correlation.hpp: 1 within a group, [[correlations]]' r); empty:
-  // the groups alone. With it the rows are λᵀQ_kλ ≤ 1, solved by a barrier method in λ (see below).
+  // R of the sources (sources × sources, input_correlation.hpp: 1 within a group, [[correlations]]' r);
+  // empty: the groups alone. With it the rows are λᵀQ_kλ ≤ 1, solved by a barrier method in λ (see below).
   Eigen::MatrixXd correlation;
 };
 
@@ -110,7 +111,21 @@ AllocationSolution solve_allocation(const AllocationProblem& problem);
 struct AllocationTarget {
   std::string coefficient;
   double expanded = 0;
+  std::string text = "";          // as given, e.g. "K3=1e-6", for messages
+  std::string field = "targets";  // the option it was given in, for messages
 };
+
+// The factor by which the allocation may loosen (max_scale) or tighten (a target's fraction of its
+// configured U) the tolerances, at most: a million-fold either way keeps every scaled bound, variance and
+// cost/scale term of the solver and the verification finite and normal for the bounds of a real centrifuge
+// (1e308 squared overflows, 1e-300 squared underflows to an allocated tolerance of 0).
+inline constexpr double kAllocationScaleLimit = 1e6;
+// The accepted max_scale, one home for the verb's option table and allocate_tolerances.
+inline constexpr OptionRange kMaxScaleRange =
+    OptionRange::between(1 / kAllocationScaleLimit, kAllocationScaleLimit).e_g("10");
+// The accepted relative cost weight of a tolerance ([tolerances] cost) in an allocation: the objective
+// Σ cost_s / λ_s stays finite and its ratios meaningful.
+inline constexpr OptionRange kToleranceCostRange = OptionRange::between(1e-6, 1e6).e_g("1.0");
 
 // Parses "K3=1e-6" (a number in the coefficient's display unit, e.g. deg/s/g^3) or "K3=1e-6 deg/s/g^3" (a
 // quantity whose unit must have the coefficient's dimension) into SI. coefficients and units: the free terms
@@ -118,12 +133,13 @@ struct AllocationTarget {
 // the text was given in) for bad syntax, an unknown or non-free coefficient (listing the free terms), a wrong
 // unit or a value ≤ 0.
 AllocationTarget parse_allocation_target(std::string_view text, const std::vector<std::string>& coefficients,
-                                         const std::vector<std::string>& units, std::string_view field = "targets");
+                                         const std::vector<std::string>& units,
+                                         std::string_view field = "targets");
 
 struct AllocateOptions {
-  ModelMode mode = ModelMode::exact;  // of the sensitivities and the verification (verbs: the config's)
+  ModelMode mode = ModelMode::exact;   // of the sensitivities and the verification (verbs: the config's)
   double coverage_probability = 0.95;  // p
-  double max_scale = 10.0;            // λ_max
+  double max_scale = 10.0;             // λ_max
   // false: every free coefficient without a target is held at its configured U (U_k(λ) ≤ U_k(1)); true:
   // only the targets constrain the allocation, and the others may grow.
   bool let_others_grow = false;

@@ -32,17 +32,17 @@ struct ReduceOptions {
   // At least as many as the identification has free terms. Not a row of the table: each front end reads
   // them (the command line: --log RUN=FILE, repeated; Python: a dict of run → file).
   std::vector<LogFile> logs;
-  // How the logs' columns read (a log folder's manifest, io/log_manifest.hpp); default: ccal's own layout. Not
-  // a row either: the front ends read it with the logs (the command line: --logs DIR).
+  // How the logs' columns read (a log folder's manifest, io/log_manifest.hpp); default: ccal's own layout.
+  // Not a row either: the front ends read it with the logs (the command line: --logs DIR).
   LogLayout layout;
   AngleUnit angle_unit = AngleUnit::rad;  // of the encoder columns, unless the layout states their unit
-  std::optional<double> pulse_weight;     // integrated output per pulse [output unit × s]; unset: the quantum
-  std::optional<ModelMode> mode;          // model of the regressors; unset: the configuration's
-  bool statement = false;                 // also the calibration statement with the configuration's budget
-  double coverage_probability = 0.95;     // p of the statement's intervals
+  std::optional<double> pulse_weight;  // integrated output per pulse [output unit × s]; unset: the quantum
+  std::optional<ModelMode> mode;       // model of the regressors; unset: the configuration's
+  bool statement = false;              // also the calibration statement with the configuration's budget
+  double coverage_probability = 0.95;  // p of the statement's intervals
   std::int64_t statement_trials = kDefaultStatementTrials;  // the statement's Monte Carlo check; 0: none
-  std::uint64_t seed = 1;                 // of that check
-  int threads = 0;                        // of that check; 0: the OpenMP default
+  std::uint64_t seed = 1;                                   // of that check
+  int threads = 0;                                          // of that check; 0: the OpenMP default
 };
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
@@ -61,9 +61,14 @@ struct ReduceResult {
   std::optional<CalibrationStatement> statement;  // with `statement`
 };
 
-// Throws OptionError naming the field (logs, pulse_weight, statement, coverage_probability) or CsvError naming
-// the log's place.
+// Throws OptionError naming the field (logs, pulse_weight, statement, coverage_probability) or CsvError
+// naming the log's place.
 ReduceResult reduce(const Config& config, const ReduceOptions& options);
+
+// The pulse weight as written on the command line: a bare number in the output unit × s, or a quantity whose
+// unit has that dimension ("2.5e-5 deg" for an output in deg/s), as a value of ReduceOptions::pulse_weight.
+// Throws OptionError naming pulse_weight for a wrong unit (saying which units are accepted) or a non-number.
+double pulse_weight_from_text(const Config& config, std::string_view text);
 
 // How the logs are read (RunLogOptions: SI scales of the output and the angles, the pulse weight) for these
 // options. Throws OptionError naming pulse_weight when it is not a positive number.
