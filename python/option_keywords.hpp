@@ -1,8 +1,8 @@
 #pragma once
 // A verb's options as Python keywords, from the verb's options table (core/options.hpp): the keyword is the
 // field's name, its default the options struct's, its value read by the library's parsers (integers as the
-// command line reads them, so that 1e5 is a whole number and -5 is refused with the same words), and the range
-// checked by the verb itself. So Python refuses what the command line refuses, worded with the keyword.
+// command line reads them, so that 1e5 is a whole number and -5 is refused with the same words), and the
+// range checked by the verb itself. So Python refuses what the command line refuses, worded with the keyword.
 //
 // A verb binds its keywords in one line each way:
 //   m.def("monte_carlo", [](const Config& cfg, const py::object& progress, const py::kwargs& keywords) {
@@ -56,7 +56,8 @@ struct is_optional<std::optional<T>> : std::true_type {};
 // A number of type Number from a Python value, by the library's parsers.
 template <class Number>
 Number number(std::string_view field, py::handle value, const OptionRange& range = {}) {
-  if (!is_number(value)) wrong_type(field, std::is_floating_point_v<Number> ? "a number" : "an integer", value);
+  if (!is_number(value))
+    wrong_type(field, std::is_floating_point_v<Number> ? "a number" : "an integer", value);
   const std::string text = number_text(value);
   if constexpr (std::is_floating_point_v<Number>)
     return Number(parse_real_option(field, text));
@@ -64,7 +65,7 @@ Number number(std::string_view field, py::handle value, const OptionRange& range
     return Number(parse_unsigned_option(field, text, range));
   else
     return Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
-                                       std::numeric_limits<Number>::max()));
+                                       std::numeric_limits<Number>::max(), range));
 }
 
 // Sets `field` (the member's value) from a Python value.
@@ -184,14 +185,16 @@ Options options_from_keywords(const py::kwargs& given, std::string_view function
 
 // Records the keywords of `function` (its rows but `skip`) with the defaults of Options{} for its signature.
 template <class Options>
-void record_keywords(py::module_& m, std::string_view function, std::initializer_list<std::string_view> skip = {}) {
+void record_keywords(py::module_& m, std::string_view function,
+                     std::initializer_list<std::string_view> skip = {}) {
   const Options defaults{};
   for (const OptionSpec<Options>& row : option_table<Options>()) {
     if (keywords::skipped(row.field, skip)) continue;
     std::visit(
         [&](auto member) {
           std::string accepted = keywords::accepted_text(row, member);
-          const std::string help = std::string(row.help) + (accepted.empty() ? "" : "; accepted: " + accepted);
+          const std::string help =
+              std::string(row.help) + (accepted.empty() ? "" : "; accepted: " + accepted);
           if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
             const auto index = member.get(defaults);
             keywords::record(m, function, row.field,

@@ -265,6 +265,12 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
       tol.group = r.string(*entry, p, "group").value_or("");
       if (const auto cost = r.number(*entry, p, "cost")) {
         r.require_positive(*entry, p, "cost", *cost, "a relative cost weight such as 1.0");
+        if (!kToleranceCostRange.accepts(*cost))
+          r.fail(*entry->get("cost"), Reader::path(p, "cost"),
+                 fmt::format(
+                     "{} is out of range; accepted: {} (the allocation's objective Σ cost/λ stays finite "
+                     "and its ratios meaningful)",
+                     number_text(*cost), kToleranceCostRange.text()));
         tol.cost = *cost;
       }
       // The machine's best achievable value: the allocation never tightens the bound below it.

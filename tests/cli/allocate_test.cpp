@@ -217,7 +217,7 @@ TEST_F(AllocateCli, ValuesThatWouldOverflowAreRefusedNamingTheOption) {
   text.replace(at + 1, std::string("dthx1t = \"1e-5 rad\"").size(),
                "dthx1t = { bound = \"1e-5 rad\", cost = 1e308 }");
   expect_bad_input(run("allocate " + write("cost.toml", text) + " --target K3=0.01"),
-                   {"cost.toml: tolerances.dthx1t.cost: 1e+308 is out of range", "1e-06 to 1000000"});
+                   {"cost.toml:53:39: tolerances.dthx1t.cost: 1e+308 is out of range; accepted: 1e-06 to 1000000", "1e-06 to 1000000"});
   // The ends of the ranges still allocate.
   EXPECT_EQ(run("allocate --target K3=0.01 --max-scale 1e6 --verify-trials 0").code, 0);
   EXPECT_EQ(run("allocate --target K3=0.01 --max-scale 1e-6 --verify-trials 0").code, 0);

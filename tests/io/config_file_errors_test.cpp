@@ -192,6 +192,9 @@ radius = "0 m")",
                         {"must be positive"});
   expect_appended_error("[tolerances]\ndthz5 = { bound = \"1 rad\", cost = 0 }", "tolerances.dthz5.cost",
                         {"must be positive"});
+  // A cost the allocation cannot weigh (1e308 overflowed its objective) is refused where written.
+  expect_appended_error("[tolerances]\ndthz5 = { bound = \"1 rad\", cost = 1e308 }", "tolerances.dthz5.cost",
+                        {"1e+308 is out of range; accepted: 1e-06 to 1000000"});
   expect_appended_error("[site.x]", "site.x", {"unknown key"});
   expect_error(R"([site]
 latitude = "95 deg")",

@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ccal/core/options.hpp"
+
 namespace ccal {
 
 // How the tolerance of an error source is distributed (GUM terms).
@@ -48,6 +50,10 @@ CorrelationGroups correlation_groups(const std::vector<Source>& sources) {
 // interval of probability p is normal_erf_quantile(p).
 double normal_erf_quantile(double x);
 
+// The accepted relative cost weight of a tolerance ([tolerances] cost, Tolerance::cost): in an allocation the
+// objective Σ cost_s / λ_s stays finite and its ratios meaningful.
+inline constexpr OptionRange kToleranceCostRange = OptionRange::between(1e-6, 1e6).e_g("1.0");
+
 // Tolerance of one error parameter, for the error budget.
 struct Tolerance {
   int parameter = 0;  // index in the centrifuge's ErrorLayout
@@ -55,7 +61,7 @@ struct Tolerance {
   double bound = 0;   // SI unit of the parameter (rad, m, rad/s, m/(rad/s)²); meaning set by distribution
   Distribution distribution = Distribution::normal;
   std::string group;  // sources with the same non-empty group are fully correlated (same draw, same sign)
-  double cost = 1.0;  // relative cost weight (> 0) for tolerance allocation
+  double cost = 1.0;  // relative cost weight for tolerance allocation, in kToleranceCostRange
   double floor = 0;   // the machine's best achievable bound, SI, 0 < floor ≤ bound; 0: none. The allocation
                       // never tightens the bound below it (scale ≥ floor/bound).
   std::string unit;   // the unit the bound was written in ("um", "arcsec"), for display only; "": SI

@@ -123,9 +123,6 @@ inline constexpr double kAllocationScaleLimit = 1e6;
 // The accepted max_scale, one home for the verb's option table and allocate_tolerances.
 inline constexpr OptionRange kMaxScaleRange =
     OptionRange::between(1 / kAllocationScaleLimit, kAllocationScaleLimit).e_g("10");
-// The accepted relative cost weight of a tolerance ([tolerances] cost) in an allocation: the objective
-// Σ cost_s / λ_s stays finite and its ratios meaningful.
-inline constexpr OptionRange kToleranceCostRange = OptionRange::between(1e-6, 1e6).e_g("1.0");
 
 // Parses "K3=1e-6" (a number in the coefficient's display unit, e.g. deg/s/g^3) or "K3=1e-6 deg/s/g^3" (a
 // quantity whose unit must have the coefficient's dimension) into SI. coefficients and units: the free terms
