@@ -171,16 +171,10 @@ FileKey file_key(const std::string& path) {
   return key;
 }
 
-bool same_key(const std::string& a, const std::string& b) {
-  if (a == b) return true;
-  if (a.empty() || b.empty() || a == "-" || b == "-") return false;
-  return file_key(a) == file_key(b);
-}
-
 // Whether the output f names one of the command's inputs: the same file now, or the same path.
 bool is_input(const FileToWrite& f, const std::optional<std::pair<dev_t, ino_t>>& identity) {
   for (const InputFile& in : inputs())
-    if ((identity && in.identity == identity) || same_key(f.path, in.path)) return true;
+    if ((identity && in.identity == identity) || same_file(f.path, in.path)) return true;
   return false;
 }
 
@@ -339,7 +333,11 @@ void write_standard_output(const std::string& text) {
     throw InputError("standard output: write failed: " + errno_text());
 }
 
-bool same_file(const std::string& a, const std::string& b) { return same_key(a, b); }
+bool same_file(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  if (a.empty() || b.empty() || a == "-" || b == "-") return false;
+  return file_key(a) == file_key(b);
+}
 
 namespace {
 

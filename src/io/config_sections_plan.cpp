@@ -1,4 +1,5 @@
 // The configuration file's [instrument], [plan] and [identification] sections (docs/config.md).
+#include "../core/text_shown.hpp"
 #include "config_reader.hpp"
 
 namespace ccal::config_reading {
@@ -19,23 +20,6 @@ Dimension term_dimension(const TermSpec& term, Dimension output) {
 }
 
 namespace {
-
-// A name in double quotes on one line: control characters as \n, \t or \xNN.
-std::string shown_name(const std::string& name) {
-  std::string out = "\"";
-  for (const char c : name) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '\n')
-      out += "\\n";
-    else if (c == '\t')
-      out += "\\t";
-    else if (u < 0x20 || u == 0x7f)
-      out += fmt::format("\\x{:02x}", u);
-    else
-      out += c;
-  }
-  return out + "\"";
-}
 
 // [instrument] output_unit: an angular rate (rate-output PIGA), a g-level, an acceleration, or pulses per
 // second; the model's default when absent.
@@ -248,9 +232,7 @@ TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geo
     if (run.name.empty()) r.fail(*rt->get("name"), p + ".name", "empty run name; give a name such as \"5g\"");
     // A run's name is a cell of the observations CSV, a log's file name and the NAME of --log NAME=FILE: one
     // line, no '=', no blank at either end.
-    const bool control = std::any_of(run.name.begin(), run.name.end(), [](char c) {
-      return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-    });
+    const bool control = detail::has_control_character(run.name);
     if (control || run.name.find('=') != std::string::npos ||
         std::isspace(static_cast<unsigned char>(run.name.front())) ||
         std::isspace(static_cast<unsigned char>(run.name.back())))
@@ -258,10 +240,11 @@ TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geo
           *rt->get("name"), p + ".name",
           fmt::format("run name {} has {}; accepted: a name of printable characters without '=' or blanks at "
                       "either end, such as \"5g\"",
-                      shown_name(run.name),
-                      control                                   ? "a control character (a line end, a tab)"
-                      : run.name.find('=') != std::string::npos ? "'=' (which --log NAME=FILE splits at)"
-                                                                : "a blank at one end"));
+                      detail::shown_text(run.name, '"'),
+                      control ? "a control character (a line end, a tab)"
+                      : run.name.find('=') != std::string::npos
+                          ? "'=' (which separates a run's name from its log file where both are given)"
+                          : "a blank at one end"));
     const Location at = rt->get("name") ? where(rt->get("name")->source()) : where(rt->source());
     if (const auto it = names.find(run.name); it != names.end())
       r.fail(

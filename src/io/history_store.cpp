@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "../core/text_shown.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/core/sha256.hpp"
@@ -174,22 +175,8 @@ int schema_version(sqlite3* db, const std::string& path) {
   return std::atoi(version.column_text(0).c_str());
 }
 
-// Text as a message shows it: in quotes, control characters escaped (\n, \t, \xNN).
-std::string shown(const std::string& text) {
-  std::string out = "'";
-  for (const char ch : text) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '\n')
-      out += "\\n";
-    else if (c == '\t')
-      out += "\\t";
-    else if (c < 0x20 || c == 0x7f)
-      out += fmt::format("\\x{:02x}", c);
-    else
-      out += ch;
-  }
-  return out + "'";
-}
+// Text as a message shows it: in single quotes, on one line.
+std::string shown(const std::string& text) { return detail::shown_text(text, '\''); }
 
 bool blank(const std::string& text) { return text.find_first_not_of(" \t\n\r\f\v") == std::string::npos; }
 
@@ -201,8 +188,7 @@ void check_serial(const std::string& serial, bool given, const std::string& sour
   const char* problem = nullptr;
   if (blank(serial))
     problem = "is blank";
-  else if (std::any_of(serial.begin(), serial.end(),
-                       [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+  else if (detail::has_control_character(serial))
     problem = "holds a control character (a line break, a tab)";
   if (!problem) return;
   const std::string accepted =
@@ -246,7 +232,7 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
     if (json_text.starts_with("coefficient,unit,corrected_estimate,") || source.ends_with(".csv"))
       throw InputError(
           fmt::format("{}: the statement's CSV form; history keeps the statement's JSON form; accepted: the "
-                      "statement as JSON (`ccal reduce --statement --statement-out FILE.json`)",
+                      "statement as JSON (a .json statement file)",
                       source));
     throw InputError(
         fmt::format("{}: not JSON ({}); accepted: a calibration statement's JSON (alone, or as the "

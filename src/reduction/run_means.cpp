@@ -356,15 +356,6 @@ struct GroupNodes {
   int all() const { return Q * G * M; }
 };
 
-// The quadrature weights (quadrature.hpp) of a run from its ν (slow_moments); slow node q's at
-// weights + q·stride: w_jq = (ν_0q + Σ_m c_m (cos(mθ_j) Re ν_mq + sin(mθ_j) Im ν_mq)) / M, summed over m in
-// dft_weights' order (run_nodes::quadrature_weights_lanes).
-void quadrature_weights(const RunTables& t, int Q, const double* nu_re, const double* nu_im, double* weights,
-                        int stride) {
-  run_nodes::quadrature_weights_lanes(t.dft_cos.data(), t.dft_sin.data(), t.M, Q, nu_re, nu_im, weights,
-                                      stride);
-}
-
 // ν_mq of every harmonic m = 0 … M/2 of every run g of the group (spectral_weights.hpp's
 // harmonic_slow_moments) at nu[(g·(M/2 + 1) + m)·Q + q]: κ/2 = m(Ω + Δω)T/2, its cosine and sine turned from
 // the nominal mΩT/2 by mΔωT/2. The harmonics m ≥ 1 of all the runs go through harmonic_moments_lanes, the
@@ -441,8 +432,9 @@ void run_rates_and_weights(const KernelTables& d, const RunGroup& group, const G
     const double theta1_rate = t.rate + e[ch::domega];
     const double gamma_rate = t.counter ? -(theta1_rate + e[ch::dOmega]) : 0.0;
     const auto nu = std::size_t(g * (M / 2 + 1) * nodes.Q);
-    quadrature_weights(t, nodes.Q, &scratch.nu_re[nu], &scratch.nu_im[nu], scratch.weights.data() + g * M,
-                       nodes.fast());
+    // The quadrature weights (quadrature.hpp) from the run's ν (slow_moments), slow node q's at + q·fast().
+    run_nodes::quadrature_weights_lanes(t.dft_cos.data(), t.dft_sin.data(), t.M, nodes.Q, &scratch.nu_re[nu],
+                                        &scratch.nu_im[nu], scratch.weights.data() + g * M, nodes.fast());
     double arm_x = trial.blocks.pB[0];
     arm_x += e[ch::arm_stretch] * theta1_rate * theta1_rate;
     std::fill_n(scratch.main_rate.begin() + g * M, M, theta1_rate);

@@ -93,8 +93,7 @@ std::int64_t history_day(const std::string& date, std::string_view field) {
 HistoryAddResult history_add(const std::string& statement_file, const HistoryAddOptions& o,
                              const std::function<void(const HistoryAddResult&)>& before_commit) {
   if (!o.date.empty()) history_day(o.date, "date");
-  const std::string text = read_history_file(
-      statement_file, "a calibration statement's JSON file (`ccal reduce --statement-out FILE.json`)");
+  const std::string text = read_history_file(statement_file, "a calibration statement's JSON file");
   HistoryAddResult r;
   r.entry = history_entry(text, statement_file, o.serial, o.date);
   r.db = history_store_path(o.db);
