@@ -293,7 +293,8 @@ double output_unit_si(std::string_view output_unit) {
 ObservationsHeader observations_file_header(const IdentificationSpec& spec,
                                             const InstrumentModel& instrument,
                                             std::string_view config_sha256,
-                                            const std::vector<ObservationsHeader::Log>& logs) {
+                                            const std::vector<ObservationsHeader::Log>& logs,
+                                            const std::vector<MeasuredInput>& measured) {
   const double unit = output_unit_si(instrument.output_unit);
   ObservationsHeader h;
   for (const auto& id : spec.free_terms) h.terms.push_back({id, id});
@@ -304,14 +305,16 @@ ObservationsHeader observations_file_header(const IdentificationSpec& spec,
   h.output_unit = instrument.output_unit;
   h.config_sha256 = std::string(config_sha256);
   h.logs = logs;
+  h.measured = measured;
   return h;
 }
 
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
                              const InstrumentModel& instrument, std::string_view config_sha256,
-                             const std::vector<ObservationsHeader::Log>& logs) {
+                             const std::vector<ObservationsHeader::Log>& logs,
+                             const std::vector<MeasuredInput>& measured) {
   const double unit = output_unit_si(instrument.output_unit);
-  const ObservationsHeader h = observations_file_header(spec, instrument, config_sha256, logs);
+  const ObservationsHeader h = observations_file_header(spec, instrument, config_sha256, logs, measured);
 
   // Regressor columns in canonical term order.
   std::vector<std::size_t> order(obs.columns.size());

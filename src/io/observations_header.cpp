@@ -5,6 +5,8 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -20,6 +22,7 @@ using detail::trim_csv;
 
 constexpr std::string_view kHeaderKey = "ccal observations header";
 constexpr std::string_view kLogMark = "ccal log";  // a reduced log's line (ObservationsHeader::logs)
+constexpr std::string_view kMeasuredMark = "ccal measured";  // a measured input's (ObservationsHeader::measured)
 
 // The pieces of `text` between separators, each trimmed.
 std::vector<std::string> split(std::string_view text, char separator) {
@@ -54,8 +57,12 @@ std::string format_observations_header(const ObservationsHeader& h) {
     return text;
   };
   for (const ObservationsHeader::Log& log : h.logs)
-    out += fmt::format("\n# {} v1; run={}; sha256={}; file={}", kLogMark, one_line(log.run), log.sha256,
+    out += fmt::format("\n# {} v1; run={}; sha256={}{}; file={}", kLogMark, one_line(log.run), log.sha256,
+                       log.duration > 0 ? fmt::format("; duration={}", log.duration) : std::string(),
                        one_line(log.file));
+  for (const MeasuredInput& m : h.measured)
+    out += fmt::format("\n# {} v1; id={}; u={}; resolved={}; how={}", kMeasuredMark, m.id, m.standard_uncertainty,
+                       m.resolved, one_line(m.how));
   return out;
 }
 
@@ -70,7 +77,8 @@ ObservationsHeader::Log read_log_line(const CsvTable& table, const CsvTable::Com
   auto fail = [&](std::string problem) {
     return CsvError(table.source, comment.line, 0, std::string(kHeaderKey), std::move(problem));
   };
-  const std::string accepted = "accepted: # ccal log v1; run=<run>; sha256=<64 hex digits>; file=<file>";
+  const std::string accepted =
+      "accepted: # ccal log v1; run=<run>; sha256=<64 hex digits>[; duration=<s>]; file=<file>";
   std::string_view rest = std::string_view(comment.text).substr(kLogMark.size());
   constexpr std::string_view kVersion = " v1; ";
   if (!rest.starts_with(kVersion)) throw fail(fmt::format("unsupported log line; {}", accepted));
@@ -86,10 +94,58 @@ ObservationsHeader::Log read_log_line(const CsvTable& table, const CsvTable::Com
   if (file == std::string_view::npos) throw fail(fmt::format("bad log line; {}", accepted));
   log.sha256 = std::string(trim_csv(rest.substr(0, file)));
   log.file = std::string(rest.substr(file + kFile.size()));
+  constexpr std::string_view kDuration = "; duration=";  // optional, between the digest and the file
+  if (const std::size_t d = log.sha256.find(kDuration); d != std::string::npos) {
+    const std::string text = log.sha256.substr(d + kDuration.size());
+    log.sha256.resize(d);
+    const std::optional<double> value = parse_number(text);
+    if (!value || !(*value > 0) || !std::isfinite(*value))
+      throw fail(fmt::format("log duration '{}' is not a positive number of seconds; {}", text, accepted));
+    log.duration = *value;
+  }
   if (!is_sha256(log.sha256))
     throw fail(fmt::format("log sha256 '{}' is not a SHA-256; accepted: 64 lower-case hex digits", log.sha256));
   if (log.run.empty() || log.file.empty()) throw fail(fmt::format("a log line names no run or no file; {}", accepted));
   return log;
+}
+
+// A "# ccal measured v1; id=…; u=…; resolved=…; how=…" comment (the words are the rest of the line).
+MeasuredInput read_measured_line(const CsvTable& table, const CsvTable::Comment& comment) {
+  auto fail = [&](std::string problem) {
+    return CsvError(table.source, comment.line, 0, std::string(kHeaderKey), std::move(problem));
+  };
+  const std::string accepted =
+      "accepted: # ccal measured v1; id=<input id>; u=<standard uncertainty, SI>; resolved=true|false; how=<words>";
+  std::string_view rest = std::string_view(comment.text).substr(kMeasuredMark.size());
+  constexpr std::string_view kVersion = " v1; ", kHow = "; how=";
+  if (!rest.starts_with(kVersion)) throw fail(fmt::format("unsupported measured-input line; {}", accepted));
+  rest.remove_prefix(kVersion.size());
+  const std::size_t how = rest.find(kHow);
+  if (how == std::string_view::npos) throw fail(fmt::format("bad measured-input line; {}", accepted));
+  MeasuredInput m;
+  m.how = std::string(rest.substr(how + kHow.size()));
+  bool has_id = false, has_u = false, has_resolved = false;
+  for (const std::string& entry : split(rest.substr(0, how), ';')) {
+    const std::size_t eq = entry.find('=');
+    const std::string key = entry.substr(0, eq), value = eq == std::string::npos ? "" : entry.substr(eq + 1);
+    if (key == "id" && !value.empty()) {
+      m.id = value;
+      has_id = true;
+    } else if (key == "u") {
+      const std::optional<double> u = parse_number(value);
+      if (!u || !(*u > 0) || !std::isfinite(*u))
+        throw fail(fmt::format("measured u '{}' is not a positive number; {}", value, accepted));
+      m.standard_uncertainty = *u;
+      has_u = true;
+    } else if (key == "resolved" && (value == "true" || value == "false")) {
+      m.resolved = value == "true";
+      has_resolved = true;
+    } else {
+      throw fail(fmt::format("bad measured-input entry '{}'; {}", entry, accepted));
+    }
+  }
+  if (!has_id || !has_u || !has_resolved) throw fail(fmt::format("incomplete measured-input line; {}", accepted));
+  return m;
 }
 
 }  // namespace
@@ -181,7 +237,10 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
       if (parse_term(t.id)->kind != TermKind::power && t.column.empty())
         throw fail(fmt::format("term '{}' needs a column", t.id));
     for (const auto& c : table.comments)
-      if (c.text.starts_with(kLogMark)) h.logs.push_back(read_log_line(table, c));
+      if (c.text.starts_with(kLogMark))
+        h.logs.push_back(read_log_line(table, c));
+      else if (c.text.starts_with(kMeasuredMark))
+        h.measured.push_back(read_measured_line(table, c));
     return h;
   }
   return std::nullopt;

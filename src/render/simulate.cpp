@@ -16,6 +16,11 @@ std::string describe_errors(const Config& cfg, const verbs::SimulateResult& s) {
   const int known = int((cfg.centrifuge.errors.array() != 0.0).count());
   const std::string model = cfg.identification.compensate ? "compensated (regressors computed with them)"
                                                           : "uncompensated (regressors computed without them)";
+  if (!s.drawn.empty())
+    return fmt::format("machine: the [errors] plus one draw of the {} [tolerances] inputs (seed {}); known "
+                       "[errors]: {}{}",
+                       s.drawn.size(), s.seed, known == 0 ? "none" : fmt::format("{} non-zero, ", known),
+                       known == 0 ? "" : model);
   if (s.truth)
     return fmt::format("machine: {} non-zero errors of the truth {}; known [errors]: {}{}", s.error_count,
                        s.truth->source, known == 0 ? "none" : fmt::format("{} non-zero, ", known),
@@ -84,6 +89,11 @@ std::string json_of(const Config& cfg, const verbs::SimulateResult& s) {
   j["errors_nonzero"] = s.error_count;
   j["truth"] = s.truth ? nlohmann::ordered_json{{"file", s.truth->source}, {"sha256", s.truth->text_sha256}}
                        : nlohmann::ordered_json(nullptr);
+  if (!s.drawn.empty()) {  // the drawn inputs, SI, by id: what the coverage study compares against
+    nlohmann::ordered_json drawn;
+    for (std::size_t k = 0; k < s.drawn.size(); ++k) drawn[cfg.tolerances[k].id] = s.drawn[k];
+    j["drawn_errors_si"] = std::move(drawn);
+  }
   j["noise"] = {{"density", cfg.instrument.noise_density / s.output_unit_si},
                 {"quantum", cfg.instrument.quantum / s.output_unit_si},
                 {"applied", s.noisy},

@@ -186,6 +186,8 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
     names.push_back(c.input.coefficient);
   }
   j["coefficients"] = coefficients;
+  j["type_a"] = type_a_json(st);
+  j["inputs"] = inputs_json(st);
   j["covariance"] = {{"order", names},
                      {"type_a", matrix_json(st.covariance_a)},
                      {"type_b", matrix_json(st.covariance_b)},
@@ -206,7 +208,7 @@ std::string statement_text(const verbs::CalibrationStatement& st, std::size_t wi
   const std::string pct = percent_g(st.coverage_probability);
   std::string out = wrap_words(
       fmt::format(
-          "Calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of {} "
+          "Calibration statement (JCGM 100 §7): Type A from the noise, Type B from the inputs of {} "
           "({} mode), u_c² = u_A² + u_B², nu_eff by Welch-Satterthwaite, k from Student's t at "
           "p = {}; known [errors]: {}.",
           st.budget_config, mode_name(st.mode), pct,
@@ -220,13 +222,15 @@ std::string statement_text(const verbs::CalibrationStatement& st, std::size_t wi
     values.add_row({c.input.coefficient, number(c.input.estimate, 10), number(c.input.correction, 4),
                     number(c.corrected, 10), c.input.unit});
   out += values.render("  ", width);
-  Table parts({"coefficient", "u_A (fit)", "nu_A", "u_B (budget)", "u_c", "nu_eff", "k", "U"});
+  Table parts({"coefficient", "u_A", "nu_A", "u_B", "u_c", "nu_eff", "k", "U"});
   parts.gap(2);
   for (const CoefficientStatement& c : st.coefficients)
     parts.add_row({c.input.coefficient, number(c.input.type_a.u, 4), dof_text(c.input.type_a.dof),
                    number(c.input.type_b.u, 4), number(c.combined, 4), dof_text(c.effective_dof),
                    fmt::format("{:.3f}", c.coverage_factor), number(c.expanded, 3)});
   out += parts.render("  ", width);
+  out += type_a_text(st, width);
+  out += inputs_text(st, width);
   out += wrap_words("Correlation of the corrected estimates (Type A + Type B; the covariance is in the JSON and "
                     "CSV exports):",
                     width);

@@ -19,8 +19,11 @@ std::size_t select_run(const TestPlan& plan, std::string_view name_or_index, std
       index <= plan.runs.size())
     return index - 1;
   std::string names;
-  for (const Run& r : plan.runs) names += (names.empty() ? "" : ", ") + r.name;
-  throw OptionError(std::string(option_name), "'" + std::string(name_or_index) + "'",
+  for (const Run& r : plan.runs) {  // appended piecewise: GCC 12 misreads "…" + string here (-Wrestrict)
+    if (!names.empty()) names += ", ";
+    names += r.name;
+  }
+  throw OptionError(std::string(option_name), fmt::format("'{}'", name_or_index),
                     fmt::format("is no run; accepted: a run name ({}) or an index 1..{}", names, plan.runs.size()));
 }
 

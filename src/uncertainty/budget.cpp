@@ -333,15 +333,16 @@ void rank_by_share(BudgetResult& r) {
 }  // namespace
 
 Eigen::MatrixXd independent_effects(const BudgetResult& b) {
-  const auto nk = Eigen::Index(b.coefficients.size());
-  if (b.input_factor.size() > 0) {
-    Eigen::MatrixXd effects(nk, Eigen::Index(b.sources.size()));
-    for (std::size_t s = 0; s < b.sources.size(); ++s) effects.col(Eigen::Index(s)) = b.sources[s].effect;
-    return effects * b.input_factor;
-  }
+  Eigen::MatrixXd effects(Eigen::Index(b.coefficients.size()), Eigen::Index(b.sources.size()));
+  for (std::size_t s = 0; s < b.sources.size(); ++s) effects.col(Eigen::Index(s)) = b.sources[s].effect;
+  return independent_effects(b, effects);
+}
+
+Eigen::MatrixXd independent_effects(const BudgetResult& b, const Eigen::MatrixXd& effects) {
+  if (b.input_factor.size() > 0) return effects * b.input_factor;
   const CorrelationGroups groups = correlation_groups(b.sources);
-  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nk, groups.count);
-  for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += b.sources[s].effect;
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(effects.rows(), groups.count);
+  for (std::size_t s = 0; s < b.sources.size(); ++s) g.col(groups.of[s]) += effects.col(Eigen::Index(s));
   return g;
 }
 

@@ -144,6 +144,27 @@ struct Failure {
   }
 };
 
+// The draws of trial i (SI, one per source): its generator's uniforms through each source's quantile, or,
+// with a copula, its normals through L and each source's G_D. u, z, w are scratch of the right sizes.
+void draw_trial(const std::vector<Tolerance>& sources, const SlotPlan& plan, const GaussianCopula* copula,
+                std::uint64_t key, std::uint64_t i, boost::random::normal_distribution<double>& normal,
+                std::vector<double>& u, Eigen::VectorXd& z, Eigen::VectorXd& w, std::vector<double>& draws) {
+  TrialGenerator generator(key, i);
+  const std::size_t n_sources = sources.size();
+  if (copula) {  // y = Pᵀ L z (L lower triangular), x = bound · G_D(y_slot)
+    for (double& v : z) v = normal(generator);
+    w.noalias() = copula->factor.triangularView<Eigen::Lower>() * z;
+    for (std::size_t j = 0; j < n_sources; ++j) {
+      const auto row = copula->row_of_slot[std::size_t(plan.slot[j])];
+      draws[j] = sources[j].bound * standard_value_of_score(sources[j].distribution, w[row]);
+    }
+  } else {
+    for (double& v : u) v = generator.uniform();
+    for (std::size_t j = 0; j < n_sources; ++j)
+      draws[j] = sources[j].bound * standard_quantile(sources[j].distribution, u[std::size_t(plan.slot[j])]);
+  }
+}
+
 struct Engine {
   const std::vector<Tolerance>& sources;
   const SlotPlan& plan;
@@ -172,20 +193,7 @@ struct Engine {
       for (std::int64_t k = 0; k < count; ++k) {
         if (failure.failed.load(std::memory_order_relaxed)) continue;
         const std::uint64_t i = begin + std::uint64_t(k);
-        TrialGenerator generator(key, i);
-        if (copula) {  // y = Pᵀ L z (L lower triangular), x = bound · G_D(y_slot)
-          for (double& v : z) v = normal(generator);
-          w.noalias() = copula->factor.triangularView<Eigen::Lower>() * z;
-          for (std::size_t j = 0; j < n_sources; ++j) {
-            const auto row = copula->row_of_slot[std::size_t(plan.slot[j])];
-            draws[j] = sources[j].bound * standard_value_of_score(sources[j].distribution, w[row]);
-          }
-        } else {
-          for (double& v : u) v = generator.uniform();
-          for (std::size_t j = 0; j < n_sources; ++j)
-            draws[j] =
-                sources[j].bound * standard_quantile(sources[j].distribution, u[std::size_t(plan.slot[j])]);
-        }
+        draw_trial(sources, plan, copula, key, i, normal, u, z, w, draws);
         try {
           own_trial(draws, out);
           for (std::size_t o = 0; o < n_outputs; ++o) {
@@ -556,6 +564,20 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
 
   describe(sources, plan, copula_used, options, block, J, n_dig, k_p, lpu_std != nullptr, n_outputs, result);
   return result;
+}
+
+std::vector<double> draw_sources(const std::vector<Tolerance>& sources,
+                                 const std::vector<Correlation>& correlations, std::uint64_t seed,
+                                 std::uint64_t trial) {
+  check_source_bounds(sources);
+  const SlotPlan plan = plan_slots(sources);
+  std::optional<GaussianCopula> copula;
+  if (!correlations.empty()) copula = gaussian_copula(sources, correlations);
+  std::vector<double> u(std::size_t(plan.slots)), draws(sources.size());
+  Eigen::VectorXd z(copula ? copula->factor.cols() : 0), w(z.size());
+  boost::random::normal_distribution<double> normal;
+  draw_trial(sources, plan, copula ? &*copula : nullptr, mix64(seed), trial, normal, u, z, w, draws);
+  return draws;
 }
 
 }  // namespace ccal

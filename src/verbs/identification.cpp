@@ -140,7 +140,8 @@ Identification identify_table(const CsvTable& table, const TableFitSpec& spec, c
 FileIdentification identify_observations(const Observations<double>& obs, const IdentificationSpec& spec,
                                          const InstrumentModel& instrument, std::string_view source,
                                          const DataResolution* resolution, std::string_view config_sha256,
-                                         const std::vector<ObservationsHeader::Log>& logs) {
+                                         const std::vector<ObservationsHeader::Log>& logs,
+                                         const std::vector<MeasuredInput>& measured) {
   // A run mean that is not finite is named by its run, not at a line of the generated CSV (which the source
   // name would place in the configuration file).
   for (Eigen::Index j = 0; j < obs.output.size(); ++j) {
@@ -154,7 +155,7 @@ FileIdentification identify_observations(const Observations<double>& obs, const 
   }
   const double unit = output_unit_si(instrument.output_unit);
   FileIdentification f;
-  f.csv = observations_csv(obs, spec, instrument, config_sha256, logs);
+  f.csv = observations_csv(obs, spec, instrument, config_sha256, logs, measured);
   f.spec = observations_spec(observations_file_header(spec, instrument));
   ColumnUnits units;
   units.output_unit = instrument.output_unit;

@@ -296,8 +296,10 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
                       table.source, r.rows, r.identification.fit.names.size(),
                       OptionError::name("weight_column")));
     check_observations_configuration(table, *options.config, "config");
+    const TestEvidence evidence = test_evidence(header, r.identification);
     r.statement = calibration_statement(*options.config, r.identification,
-                                        statement_options(options, options.mode), "statement");
+                                        statement_options(options, options.mode), "statement", evidence.measured,
+                                        evidence.durations);
   }
   return r;
 }

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/io/measured_inputs.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/observation_csv.hpp"
@@ -147,15 +148,21 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   const DataResolution resolution =
       run_resolution(measured, rates, r.logs.observations, cfg.identification, cfg.instrument);
   // The logs' files and fingerprints go into the observations file's header, for the provenance of a result.
+  // So do the inputs the logs measured, which the calibration statement of that file charges (identify, report).
   std::vector<ObservationsHeader::Log> fingerprints;
   for (std::size_t k = 0; k < r.logs.runs.size(); ++k)
-    fingerprints.push_back({cfg.plan.runs[r.logs.runs[k].index].name, r.logs.runs[k].log.sha256, r.files[k]});
+    fingerprints.push_back({cfg.plan.runs[r.logs.runs[k].index].name, r.logs.runs[k].log.sha256, r.files[k],
+                            r.logs.runs[k].log.duration});
+  const std::vector<MeasuredInput> measured_by_logs = measured_inputs(cfg, r.logs);
   r.identification = identify_observations(r.logs.observations, cfg.identification, cfg.instrument,
-                                           cfg.source, &resolution, cfg.text_sha256, fingerprints);
+                                           cfg.source, &resolution, cfg.text_sha256, fingerprints, measured_by_logs);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
   if (o.statement) {
-    r.statement = calibration_statement(cfg, r.identification.id, statement_options(o, r.mode), "statement");
+    std::vector<double> durations;
+    for (const LoggedRun& lr : r.logs.runs) durations.push_back(lr.log.duration);
+    r.statement = calibration_statement(cfg, r.identification.id, statement_options(o, r.mode), "statement",
+                                        measured_by_logs, durations);
   }
   return r;
 }

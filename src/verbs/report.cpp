@@ -104,7 +104,9 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
                       o.observations->source));
     check_observations_configuration(*o.observations, config, "observations");
     IdentifyResult r = identify(*o.observations, {});
-    r.statement = calibration_statement(config, r.identification, so, "observations");
+    const TestEvidence evidence = test_evidence(observations_header(*o.observations), r.identification);
+    r.statement = calibration_statement(config, r.identification, so, "observations", evidence.measured,
+                                        evidence.durations);
     return r;
   } catch (const OptionError& e) {
     if (e.field() == "observations") throw;

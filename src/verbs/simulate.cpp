@@ -7,6 +7,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal::verbs {
 
@@ -31,7 +32,11 @@ constexpr OptionSpec<SimulateOptions> kSimulateRows[] = {
     rows::mode<&SimulateOptions::mode>(
         "Model of the reduction: exact (full chain) or paper (Wang & Ren "
         "first-order rules); default: the configuration's [identification] mode"),
-    rows::seed(&SimulateOptions::seed, "Seed of the output noise (used only if the instrument has noise)"),
+    rows::seed(&SimulateOptions::seed,
+               "Seed of the output noise (used only if the instrument has noise) and of the drawn truth"),
+    {"draw_truth", &SimulateOptions::draw_truth, "",
+     "The machine's errors: the configuration's [errors] plus one draw of every [tolerances] input from its "
+     "distribution (groups and [[correlations]] included), by the seed"},
 };
 
 }  // namespace
@@ -61,6 +66,15 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
                                  o.truth->source, cfg.source));
   s.truth = o.truth;
   s.machine_errors = o.truth ? o.truth->errors : cfg.centrifuge.errors;
+  if (o.draw_truth) {
+    if (o.truth)
+      throw OptionError("draw_truth", "",
+                        fmt::format("and the truth {} are two answers for the machine's errors; accepted: one of "
+                                    "them",
+                                    o.truth->source));
+    s.drawn = draw_sources(cfg.tolerances, cfg.correlations, o.seed);
+    for (std::size_t k = 0; k < s.drawn.size(); ++k) s.machine_errors[cfg.tolerances[k].parameter] += s.drawn[k];
+  }
   const Eigen::VectorXd& known = cfg.centrifuge.errors;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
   s.error_count = static_cast<int>((s.machine_errors.array() != 0.0).count());

@@ -11,6 +11,7 @@
 #include "ccal/core/units.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "statement_montecarlo.hpp"
+#include "statement_type_a.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -20,7 +21,8 @@ namespace {
 Eigen::MatrixXd type_b_groups(const ccal::BudgetResult& b) { return independent_effects(b); }
 
 // The modelled output of each run, stated from the coefficients' covariance parts (see CalibrationStatement).
-void state_outputs(const Config& config, const Identification& id, double p, CalibrationStatement& st) {
+void state_outputs(const Config& config, const Identification& id, const TypeAParts& a, double p,
+                   CalibrationStatement& st) {
   const std::vector<Run>& runs = config.plan.runs;
   const Eigen::Index nk = id.design.cols();
   Eigen::VectorXd correction(nk);
@@ -33,8 +35,8 @@ void state_outputs(const Config& config, const Identification& id, double p, Cal
     in.estimate = id.modelled[r];
     in.correction = h.dot(correction);
     // Quadratic forms of PSD matrices, ≥ 0 up to round-off: clamped so that the square root exists.
-    in.type_a = {std::sqrt(std::max(0.0, h.dot(st.covariance_a * h))),
-                 st.coefficients.empty() ? kInfiniteDof : st.coefficients.front().input.type_a.dof};
+    const double known = std::max(0.0, h.dot(a.known * h)), estimated = std::max(0.0, h.dot(a.estimated * h));
+    in.type_a = {std::sqrt(known + estimated), type_a_dof(known, estimated, a.dof)};
     in.type_b = {std::sqrt(std::max(0.0, h.dot(st.covariance_b * h))), kInfiniteDof};
     st.outputs.push_back(state_coefficient(in, p));
     const auto run = std::find_if(runs.begin(), runs.end(), [&](const Run& x) { return x.name == in.coefficient; });
@@ -71,8 +73,68 @@ constexpr OptionSpec<StatementOptions> kStatementRows[] = {
 
 OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>) { return kStatementRows; }
 
-CalibrationStatement calibration_statement(const Config& config, const Identification& id,
-                                           const StatementOptions& o, std::string_view field) {
+Config with_measured_inputs(const Config& config, const std::vector<MeasuredInput>& measured) {
+  Config c = config;
+  for (const MeasuredInput& m : measured) {
+    const auto t = std::find_if(c.tolerances.begin(), c.tolerances.end(),
+                                [&](const Tolerance& x) { return x.id == m.id; });
+    if (t == c.tolerances.end()) continue;  // an input without a tolerance was not charged before either
+    t->bound = m.standard_uncertainty;
+    t->distribution = Distribution::normal;
+    t->group.clear();
+    std::erase_if(c.correlations, [&](const Correlation& r) { return r.first == m.id || r.second == m.id; });
+  }
+  return c;
+}
+
+TestEvidence test_evidence(const std::optional<ObservationsHeader>& header, const Identification& id) {
+  TestEvidence e;
+  if (!header) return e;
+  e.measured = header->measured;
+  for (const std::string& row : id.row_labels) {
+    const auto log = std::find_if(header->logs.begin(), header->logs.end(),
+                                  [&](const ObservationsHeader::Log& l) { return l.run == row; });
+    if (log == header->logs.end() || !(log->duration > 0)) return {e.measured, {}};
+    e.durations.push_back(log->duration);
+  }
+  return e;
+}
+
+namespace {
+
+// The Type B part's table of inputs: each tolerance's u, how it was obtained, and its effect on each
+// coefficient in the fit's units.
+std::vector<StatementSource> statement_sources(const Config& config, const ccal::BudgetResult& b,
+                                               const std::vector<MeasuredInput>& measured,
+                                               const std::vector<std::size_t>& budget_row,
+                                               const std::vector<double>& to_fit) {
+  std::vector<StatementSource> out;
+  for (std::size_t s = 0; s < b.sources.size(); ++s) {
+    const SourceBudget& src = b.sources[s];
+    StatementSource line;
+    line.id = src.id;
+    line.unit = config.tolerances[s].unit;
+    line.standard_uncertainty = src.standard_uncertainty;
+    const auto m = std::find_if(measured.begin(), measured.end(), [&](const MeasuredInput& x) { return x.id == src.id; });
+    line.measured = m != measured.end();
+    if (line.measured)
+      line.basis = fmt::format("measured in this test ({}{})", m->how,
+                               m->resolved ? "" : "; not resolved, within the fit's resolution");
+    else
+      line.basis = fmt::format("from its tolerance ({})", distribution_name(src.distribution));
+    for (std::size_t k = 0; k < budget_row.size(); ++k)
+      line.effect.push_back(src.effect[Eigen::Index(budget_row[k])] * to_fit[k]);
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
+}  // namespace
+
+CalibrationStatement calibration_statement(const Config& original, const Identification& id,
+                                           const StatementOptions& o, std::string_view field,
+                                           const std::vector<MeasuredInput>& measured,
+                                           const std::vector<double>& durations) {
   check_options(o, option_table<StatementOptions>());
   if (o.statement_trials > 0) {
     check_thread_count(o.threads, "threads");
@@ -85,6 +147,8 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
                                   "its Type A uncertainty is undefined; accepted: at least one observation more "
                                   "than free terms",
                                   fit.residuals.size(), fit.names.size()));
+  // What the test measured is charged at its measurement's uncertainty, not at its tolerance.
+  const Config config = with_measured_inputs(original, measured);
   BudgetOptions bo;
   bo.mode = o.mode;
   bo.compare_with_paper = false;
@@ -113,12 +177,16 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
                       fmt::format("the fit's free terms ({}) are not those of {} ({}); accepted: a "
                                   "configuration whose [identification] terms are the fit's",
                                   fmt::join(fit.names, ", "), config.source, fmt::join(b.coefficients, ", ")));
+  const TypeAParts a = evaluate_type_a(config, id, b, durations);
+  st.type_a = a.evaluation;
   const auto nk = Eigen::Index(fit.names.size());
   Eigen::MatrixXd g_fit(nk, groups.cols());  // the groups' effects in the fit's order and units
   std::vector<double> to_fit_of(fit.names.size());
+  std::vector<std::size_t> budget_row(fit.names.size());
   for (std::size_t k = 0; k < fit.names.size(); ++k) {
     const auto found = std::find(b.coefficients.begin(), b.coefficients.end(), fit.names[k]);
     const auto j = std::size_t(found - b.coefficients.begin());
+    budget_row[k] = j;
     const auto i = Eigen::Index(k);
     // SI → the budget's display unit → the fit's unit.
     const double to_fit = b.display_scale[j] * unit_factor(b.units[j], id.units[k], fit.names[k], field);
@@ -128,12 +196,14 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
     in.unit = id.units[k];
     in.estimate = fit.value[i];
     in.correction = budget.known_error_bias.size() ? -budget.known_error_bias[Eigen::Index(j)] * to_fit : 0.0;
-    in.type_a = {fit.std_error[i], id.weighted ? kInfiniteDof : double(fit.dof)};
+    const double known = a.known(i, i), estimated = a.estimated(i, i);
+    in.type_a = {std::sqrt(known + estimated), type_a_dof(known, estimated, a.dof)};
     g_fit.row(i) = groups.row(Eigen::Index(j)) * to_fit;
     in.type_b = {g_fit.row(i).norm(), kInfiniteDof};
     st.coefficients.push_back(state_coefficient(in, o.coverage_probability));
   }
-  st.covariance_a = fit.covariance;
+  st.inputs = statement_sources(config, b, measured, budget_row, to_fit_of);
+  st.covariance_a = a.known + a.estimated;
   st.covariance_b = g_fit * g_fit.transpose();
   st.covariance = st.covariance_a + st.covariance_b;
   st.correlation = st.covariance;
@@ -142,8 +212,8 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
       const double scale = st.coefficients[std::size_t(r)].combined * st.coefficients[std::size_t(c)].combined;
       st.correlation(r, c) = scale > 0 ? st.covariance(r, c) / scale : (r == c ? 1.0 : 0.0);
     }
-  state_outputs(config, id, o.coverage_probability, st);
-  check_statement_by_monte_carlo(config, id, to_fit_of, o, st);
+  state_outputs(config, id, a, o.coverage_probability, st);
+  check_statement_by_monte_carlo(config, id, to_fit_of, a, o, st);
   return st;
 }
 

@@ -23,8 +23,9 @@ struct StatementTrialShared {
   Eigen::VectorXd corrected;              // K̂ + b
   Eigen::VectorXd estimate;               // K̂
   Eigen::VectorXd reference;              // the calibration model's outputs at zero draws (SI)
-  Eigen::MatrixXd type_a_root;            // L with L Lᵀ = C_A, the fit's covariance
-  double type_a_dof = kInfiniteDof;       // ν_A; ∞: the Type A part is normal
+  Eigen::MatrixXd known_root;             // L_N, L_N L_Nᵀ the noise model's Type A covariance (normal)
+  Eigen::MatrixXd estimated_root;         // L_E, L_E L_Eᵀ the Type A part estimated from the residuals
+  double type_a_dof = kInfiniteDof;       // its ν; ∞: normal too
   Eigen::MatrixXd design;                 // h of each run (rows), the fit's regressors of the free terms
   Eigen::VectorXd modelled;               // ŷ of each run, hᵀK̂ plus the fixed terms' part
 };
@@ -37,18 +38,19 @@ Eigen::MatrixXd covariance_root(const Eigen::MatrixXd& c) {
   return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
 }
 
-// The sources of the Monte Carlo: the configuration's tolerances (not the drives' rate noise: the fit's scatter
-// holds it), then one standard normal per coefficient and, for a finite ν_A, one uniform on (−1, 1) that gives
-// the multivariate t's χ²_ν by its quantile.
+// The sources of the Monte Carlo: the configuration's tolerances (not the drives' rate noise: the Type A part
+// holds it), then two standard normals per coefficient (the known and the estimated Type A parts) and, for a
+// finite ν, one uniform on (−1, 1) that gives the multivariate t's χ²_ν by its quantile.
 std::vector<Tolerance> statement_sources(const Config& config, const Identification& id, bool student) {
   std::vector<Tolerance> sources = config.tolerances;
-  for (const std::string& name : id.fit.names) {
-    Tolerance t;
-    t.id = "type_a_" + name;
-    t.bound = 1;
-    t.distribution = Distribution::normal;
-    sources.push_back(t);
-  }
+  for (const char* part : {"type_a_", "type_a_estimated_"})
+    for (const std::string& name : id.fit.names) {
+      Tolerance t;
+      t.id = part + name;
+      t.bound = 1;
+      t.distribution = Distribution::normal;
+      sources.push_back(t);
+    }
   if (student) {
     Tolerance t;
     t.id = "type_a_chi_squared";
@@ -70,13 +72,14 @@ class StatementTrial {
     const StatementTrialShared& s = *shared_;
     const auto nk = s.corrected.size();
     tolerances_(draws.first(s.n_tolerances), f_);
-    const Eigen::Map<const Eigen::VectorXd> z(draws.data() + s.n_tolerances, nk);
+    const Eigen::Map<const Eigen::VectorXd> z_known(draws.data() + s.n_tolerances, nk);
+    const Eigen::Map<const Eigen::VectorXd> z_estimated(draws.data() + s.n_tolerances + std::size_t(nk), nk);
     double scale = 1;
     if (std::isfinite(s.type_a_dof)) {
-      const double u = 0.5 * (draws[s.n_tolerances + std::size_t(nk)] + 1);  // in (0, 1): never an end
+      const double u = 0.5 * (draws[s.n_tolerances + 2 * std::size_t(nk)] + 1);  // in (0, 1): never an end
       scale = std::sqrt(s.type_a_dof / boost::math::quantile(chi_squared_, u));
     }
-    y_ = s.corrected + scale * (s.type_a_root * z);
+    y_ = s.corrected + s.known_root * z_known + scale * (s.estimated_root * z_estimated);
     for (Eigen::Index k = 0; k < nk; ++k) {
       const auto m = s.model_index[std::size_t(k)];
       y_[k] -= s.to_fit[k] * (f_[std::size_t(m)] - s.reference[m]);
@@ -100,7 +103,8 @@ class StatementTrial {
 }  // namespace
 
 void check_statement_by_monte_carlo(const Config& config, const Identification& id,
-                                    const std::vector<double>& to_fit, const StatementOptions& o,
+                                    const std::vector<double>& to_fit, const TypeAParts& type_a,
+                                    const StatementOptions& o,
                                     CalibrationStatement& st) {
   if (o.statement_trials <= 0 || config.tolerances.empty()) return;
   gaussian_copula(config);  // a pair the copula cannot draw, refused with its place in the file
@@ -124,8 +128,10 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   std::vector<double> reference(model_names.size());
   tolerances(std::vector<double>(config.tolerances.size(), 0.0), reference);
   shared->reference = Eigen::Map<const Eigen::VectorXd>(reference.data(), Eigen::Index(reference.size()));
-  shared->type_a_root = covariance_root(st.covariance_a);
-  shared->type_a_dof = st.coefficients.empty() ? kInfiniteDof : st.coefficients.front().input.type_a.dof;
+  shared->known_root = covariance_root(type_a.known);
+  shared->estimated_root = covariance_root(type_a.estimated);
+  const bool estimated = type_a.estimated.size() > 0 && type_a.estimated.cwiseAbs().maxCoeff() > 0;
+  shared->type_a_dof = estimated ? type_a.dof : kInfiniteDof;
   shared->design = id.design;
   shared->modelled = id.modelled;
 

@@ -51,10 +51,10 @@ class StatementObject(unittest.TestCase):
             else:
                 line = f"  {r['coefficient']} = ({r['value']} ± {r['U']}) {r['unit']}, k = {r['k']:.3f}"
             self.assertIn(line, self.text)
-        # K2 of the bundled lab: its Monte Carlo interval (the Student t's fails the JCGM 101 check), half-width
-        # to two significant digits.
-        self.assertEqual(rows[1]["interval_method"], "monte_carlo")
-        self.assertEqual(rows[1]["U"], "0.00031")
+        # K2 of the bundled lab: its Student-t interval, which the Monte Carlo check validates (every part has
+        # ν = ∞ and the inputs are many), U to two significant digits.
+        self.assertEqual(rows[1]["interval_method"], "student_t")
+        self.assertEqual(rows[1]["U"], "0.000023")
         self.assertEqual([r["interval_method"] for r in rows], self.statement.interval_methods)
         self.assertEqual(self.statement.monte_carlo_trials, 100000)
         self.assertEqual([tuple(r) for r in self.statement.intervals][1],

@@ -205,10 +205,13 @@ TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
     EXPECT_EQ(a.input.type_a.u, b.input.type_a.u);
     EXPECT_EQ(a.input.type_b.u, b.input.type_b.u);
     EXPECT_EQ(a.expanded, b.expanded);
-    // The statement's own relations (JCGM 100 §7, G.2b): 6 runs, 3 free terms, so ν_A = 3; u_c² = u_A² +
+    // The statement's own relations (JCGM 100 §7, G.2b): Type A from the noise model (the example's drives'
+    // rate noise), ν_A = ∞, its residual check with 6 runs − 3 free terms = 3 degrees of freedom; u_c² = u_A² +
     // u_B² and U = k u_c (to round-off, 1e-14 relative); k at least the normal quantile z_0.95 =
     // 1.6448536269514722 (Student's t is wider for a finite ν_eff).
-    EXPECT_EQ(a.input.type_a.dof, 3.0);
+    EXPECT_TRUE(x.type_a.from_noise_model);
+    EXPECT_EQ(x.type_a.dof, 3);
+    EXPECT_TRUE(std::isinf(a.input.type_a.dof));
     EXPECT_GT(a.input.type_a.u, 0.0);
     EXPECT_NEAR(a.combined, std::hypot(a.input.type_a.u, a.input.type_b.u), 1e-14 * a.combined);
     EXPECT_NEAR(a.expanded, a.coverage_factor * a.combined, 1e-14 * a.expanded);

@@ -133,13 +133,14 @@ def main(ccal, work, pdf):
         if line not in text:
             problems.append(f"the text has no line {line!r}")
 
-    # Every log by run, file and SHA-256: in the observations file's header and in the page's provenance.
+    # Every log by run, file, SHA-256 and logged span: in the observations file's header and in the page's
+    # provenance.
     with open("obs.csv", encoding="utf-8") as f:
         observations = f.read()
     for r in RUNS:
         with open(f"logs/{r}.csv", "rb") as f:
             digest = hashlib.sha256(f.read()).hexdigest()
-        line = f"# ccal log v1; run={r}; sha256={digest}; file=logs/{r}.csv"
+        line = f"# ccal log v1; run={r}; sha256={digest}; duration=450; file=logs/{r}.csv"
         if line not in observations:
             problems.append(f"obs.csv has no line {line!r}")
         if f'data-run="{r}">{r}: <code>logs/{r}.csv</code>, SHA-256 <code>{digest}</code>' not in page:

@@ -104,8 +104,10 @@ TEST(IdentifyVerb, WeightedConstantIsTheWeightedMean) {
 
 TEST(IdentifyVerb, TheBudgetGivesTheStatementOfEachCoefficient) {
   // Observations of the paper's set-up (no rate noise, so the budget's u is the Type B part) with a noisy
-  // instrument, identified with that configuration as budget: per coefficient the Type A part is the fit's
-  // standard error with ν = 6 runs − 3 terms, and u_c² = u_A² + u_B² (1e-12 relative: one sum of squares).
+  // instrument, identified with that configuration as budget: per coefficient the Type A part is the noise
+  // model's, σ = N/√T for every run (equal T), so C_A = σ² (HᵀH)⁻¹ while the fit's standard error is
+  // s √((HᵀH)⁻¹_kk): u_A = (σ/s)·std_error, ν = ∞ (1e-10 relative: the pseudo-inverse against the fit's QR);
+  // u_c² = u_A² + u_B² (1e-12 relative: one sum of squares).
   const Config config = parse_config(edited(read_text(kPaperConfigPath), "noise_density = \"0 deg/s/rtHz\"",
                                             "noise_density = \"0.05 deg/s/rtHz\""),
                                      "noisy-paper.toml");
@@ -116,11 +118,16 @@ TEST(IdentifyVerb, TheBudgetGivesTheStatementOfEachCoefficient) {
   const verbs::IdentifyResult r = verbs::identify(parse_csv(sim.observations_csv, "obs.csv"), o);
   ASSERT_TRUE(r.statement.has_value());
   ASSERT_EQ(r.statement->coefficients.size(), r.identification.fit.names.size());
+  ASSERT_TRUE(r.statement->type_a.from_noise_model);
+  ASSERT_FALSE(r.statement->type_a.excess) << "the noise the observations have is the noise the set-up states";
   for (std::size_t k = 0; k < r.statement->coefficients.size(); ++k) {
     const CoefficientStatement& c = r.statement->coefficients[k];
     EXPECT_EQ(c.input.coefficient, r.identification.fit.names[k]);
-    EXPECT_EQ(c.input.type_a.u, r.identification.fit.std_error[Eigen::Index(k)]);
-    EXPECT_EQ(c.input.type_a.dof, 3.0);
+    const double sigma = config.instrument.noise_density / std::sqrt(config.plan.runs.front().duration) /
+                         output_unit_si(config.instrument.output_unit);
+    const double u_a = sigma / r.identification.fit.residual_std * r.identification.fit.std_error[Eigen::Index(k)];
+    EXPECT_NEAR(c.input.type_a.u, u_a, 1e-10 * u_a);
+    EXPECT_TRUE(std::isinf(c.input.type_a.dof));
     EXPECT_GT(c.input.type_b.u, 0.0);
     EXPECT_NEAR(c.combined, std::hypot(c.input.type_a.u, c.input.type_b.u), 1e-12 * c.combined);
   }

@@ -17,6 +17,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/io/measured_inputs.hpp"
 #include "ccal/io/run_log_writer.hpp"
 #include "ccal/model/plan.hpp"
 #include "ccal/verbs/simulate.hpp"
@@ -83,8 +84,11 @@ TEST_F(ReduceVerb, StatementIsThatOfTheIdentificationWithTheBudget) {
   ASSERT_TRUE(r.statement.has_value());
   verbs::StatementOptions so;
   so.coverage_probability = 0.9;
-  const verbs::CalibrationStatement s =
-      verbs::calibration_statement(config_, r.identification.id, so, "statement");
+  // With what the logs measured (the encoders: the drives' rates and ripple) and the logged spans.
+  std::vector<double> durations;
+  for (const LoggedRun& lr : r.logs.runs) durations.push_back(lr.log.duration);
+  const verbs::CalibrationStatement s = verbs::calibration_statement(
+      config_, r.identification.id, so, "statement", measured_inputs(config_, r.logs), durations);
   ASSERT_EQ(r.statement->coefficients.size(), s.coefficients.size());
   for (std::size_t k = 0; k < s.coefficients.size(); ++k) {
     EXPECT_EQ(r.statement->coefficients[k].expanded, s.coefficients[k].expanded) << k;

@@ -1,6 +1,6 @@
 // verbs::calibration_statement in-process (JCGM 100 §7, docs/model.md §10.5): the statement of a simulated
 // identification against its parts computed by the other library functions — the fit's standard errors
-// (Type A, ν = runs − free terms), verbs::budget's u (Type B, of a configuration without rate noise), u_c² =
+// (Type A of a configuration that states no noise, ν = runs − free terms), verbs::budget's u (Type B, of a configuration without rate noise), u_c² =
 // u_A² + u_B², Welch–Satterthwaite, Student's k, U = k u_c; the correction for known errors the model leaves
 // out (minus known_error_shift); and its refusals naming the option.
 #include "ccal/uncertainty/statement.hpp"
@@ -30,6 +30,14 @@ Config noisy_paper(bool known_error) {
   return parse_config(text, "noisy-paper.toml");
 }
 
+// The same set-up stating no noise, for the statement of noisy_paper's observations: its Type A part is then
+// the fit's scatter (ν = n − p), the scheme these tests check (the noise model's: statement_type_a_test.cpp).
+Config scatter_only(bool known_error) {
+  std::string text = read_text(kPaperConfigPath);
+  if (known_error) text = edited(text, "[errors]\n", "[errors]\ndthz5 = \"2 arcsec\"\n");
+  return parse_config(text, "paper.toml");
+}
+
 // The statement without its Monte Carlo check: the Student-t intervals as they are (the check is
 // statement_montecarlo_test's).
 verbs::StatementOptions no_check() {
@@ -47,7 +55,8 @@ TEST(StatementVerb, EachPartIsWhatTheOtherVerbsGive) {
   o.coverage_probability = 0.9;
   o.statement_trials = 0;  // the Student-t interval as it is (the Monte Carlo check: statement_montecarlo_test)
   const verbs::CalibrationStatement s =
-      verbs::calibration_statement(config, sim.identification, o, "statement");
+      verbs::calibration_statement(scatter_only(false), sim.identification, o, "statement");
+  EXPECT_FALSE(s.type_a.from_noise_model);
   EXPECT_EQ(s.coverage_probability, 0.9);
   EXPECT_EQ(s.known_errors, 0);
   ASSERT_EQ(s.coefficients.size(), budget.budget.coefficients.size());
@@ -107,7 +116,8 @@ TEST(StatementVerb, TheCovarianceIsTheFitsPlusTheBudgetsAndItsDiagonalIsTheSquar
   const Config config = noisy_paper(true);
   const verbs::SimulateResult sim = verbs::simulate(config);
   const verbs::BudgetResult budget = verbs::budget(config);
-  const verbs::CalibrationStatement s = verbs::calibration_statement(config, sim.identification, no_check(), "statement");
+  const verbs::CalibrationStatement s =
+      verbs::calibration_statement(scatter_only(true), sim.identification, no_check(), "statement");
   const Eigen::Index n = Eigen::Index(s.coefficients.size());
   ASSERT_EQ(s.covariance.rows(), n);
   ASSERT_EQ(s.covariance.cols(), n);

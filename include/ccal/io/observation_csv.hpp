@@ -26,6 +26,7 @@
 #include "ccal/model/instrument.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/reduction/observe.hpp"
+#include "ccal/setup/tolerance.hpp"
 
 namespace ccal {
 
@@ -130,9 +131,14 @@ struct ObservationsHeader {
     std::string run;     // the plan's run name
     std::string sha256;  // of the log file's bytes, as read
     std::string file;    // as given to `ccal reduce`
+    double duration = 0;  // the logged span T [s] ("; duration=…" before the file); 0: not recorded
     bool operator==(const Log&) const = default;
   };
   std::vector<Log> logs;
+  // The inputs the logs measured (io/measured_inputs.hpp), each on a line "# ccal measured v1; id=domega;
+  // u=<SI, 17 digits>; resolved=true; how=<words>" after the logs: what the calibration statement of these
+  // observations charges in place of those inputs' tolerances.
+  std::vector<MeasuredInput> measured;
   int line = 0;                    // where the comment was read
 };
 
@@ -150,13 +156,15 @@ double output_unit_si(std::string_view output_unit);
 ObservationsHeader observations_file_header(const IdentificationSpec& spec,
                                             const InstrumentModel& instrument,
                                             std::string_view config_sha256 = {},
-                                            const std::vector<ObservationsHeader::Log>& logs = {});
+                                            const std::vector<ObservationsHeader::Log>& logs = {},
+                                            const std::vector<MeasuredInput>& measured = {});
 
 // The observations file of simulated observations: values in the instrument's output unit (regressors in gⁿ,
 // K_w's in rad/s), fixed values in coefficient units, regressor columns in canonical term order.
 std::string observations_csv(const Observations<double>& obs, const IdentificationSpec& spec,
                              const InstrumentModel& instrument, std::string_view config_sha256 = {},
-                             const std::vector<ObservationsHeader::Log>& logs = {});
+                             const std::vector<ObservationsHeader::Log>& logs = {},
+                             const std::vector<MeasuredInput>& measured = {});
 
 // What to fit from a table. Values are in the file's units (output column per column unit).
 struct TableTerm {

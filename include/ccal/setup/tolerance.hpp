@@ -75,4 +75,13 @@ struct Correlation {
   double r = 0;
 };
 
+// An input of the budget that a test measured (docs/model.md §10.5, §13.3): the calibration statement charges the
+// uncertainty of that measurement in place of the input's tolerance, and says so in its table of inputs.
+struct MeasuredInput {
+  std::string id;                   // its parameter id, a [tolerances] id: domega, dOmega, ripple1_c1, …
+  double standard_uncertainty = 0;  // u of the measurement, SI (> 0)
+  bool resolved = true;  // false: a ripple harmonic below the fit's resolution, charged as uniform within it
+  std::string how;       // what measured it, in words, e.g. "main-axis encoder: rate of each run"
+};
+
 }  // namespace ccal

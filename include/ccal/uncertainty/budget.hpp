@@ -140,6 +140,9 @@ struct BudgetResult {
 // tolerances' part of the covariance (E: the sources' signed effects c u). Groups only: one column per group,
 // its members' effects added with their signs; with [[correlations]]: E F.
 Eigen::MatrixXd independent_effects(const BudgetResult& budget);
+// The same for any signed effects of the budget's sources (rows × sources, a column per source in its order),
+// e.g. each run's output mean: E F, or per group the members' columns added.
+Eigen::MatrixXd independent_effects(const BudgetResult& budget, const Eigen::MatrixXd& effects);
 // The part of u_k² that correlations between the sources make (coefficients, SI): u_k² from the tolerances
 // less Σ_s (c_ks u_s)², negative when they cancel.
 Eigen::VectorXd correlation_variance(const BudgetResult& budget);

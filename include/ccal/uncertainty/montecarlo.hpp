@@ -237,6 +237,14 @@ inline MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, i
   return run_monte_carlo(sources, {}, n_outputs, std::move(output_names), trial, options, lpu_std);
 }
 
+// The draws of one trial (SI, one per source, in the sources' order) exactly as run_monte_carlo with this seed
+// draws its trial `trial` (0-based): one machine drawn from the stated knowledge, every source from its
+// distribution, groups as one draw and correlations through the copula (`ccal simulate --draw-truth`, the
+// coverage study). Throws as run_monte_carlo for sources or correlations it refuses.
+std::vector<double> draw_sources(const std::vector<Tolerance>& sources,
+                                 const std::vector<Correlation>& correlations, std::uint64_t seed,
+                                 std::uint64_t trial = 0);
+
 // The pieces of the statistics (§7.7.2, §7.9.2), for reports and checks:
 // q for M values and coverage probability p (at most M − 1);
 std::uint64_t coverage_points(std::uint64_t M, double p);

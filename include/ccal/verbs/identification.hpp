@@ -69,6 +69,7 @@ FileIdentification identify_observations(const Observations<double>& obs, const 
                                          const InstrumentModel& instrument, std::string_view source,
                                          const DataResolution* resolution = nullptr,
                                          std::string_view config_sha256 = {},
-                                         const std::vector<ObservationsHeader::Log>& logs = {});
+                                         const std::vector<ObservationsHeader::Log>& logs = {},
+                                         const std::vector<MeasuredInput>& measured = {});
 
 }  // namespace ccal::verbs

@@ -22,6 +22,10 @@ namespace ccal::verbs {
 struct SimulateOptions {
   std::optional<ModelMode> mode;  // reduction of a run; unset: the configuration's [identification] mode
   std::uint64_t seed = 1;         // of the output noise (used only if the instrument has noise)
+  // The machine's errors are the configuration's [errors] plus one draw of every [tolerances] input from its
+  // distribution (groups and [[correlations]] as the Monte Carlo draws them, uncertainty/montecarlo.hpp's
+  // draw_sources with `seed`): a machine drawn from the lab's stated knowledge (the coverage study).
+  bool draw_truth = false;
   // What the simulated machine really has (io/truth_file.hpp); unset: the configuration's [errors]. Not a row
   // of the table: each front end reads the file (the command line: --truth FILE).
   std::optional<SimulationTruth> truth;
@@ -40,6 +44,7 @@ struct SimulateResult {
   int error_count = 0;                // non-zero errors of the simulated machine (the truth's, or [errors])
   std::optional<SimulationTruth> truth;  // the truth file, when one was given
   Eigen::VectorXd machine_errors;        // the errors the simulated machine has (SI, by the layout)
+  std::vector<double> drawn;             // draw_truth: the draw of each [tolerances] input (SI, their order)
   std::vector<std::size_t> order;     // regressor columns in canonical term order, as in the file
   std::string observations_csv;       // the observations file (the input of `ccal identify`)
   Identification identification;      // of that file

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/verbs/option_rows.hpp"
 #include "ccal/uncertainty/statement.hpp"
@@ -43,6 +44,35 @@ StatementOptions statement_options(const VerbOptions& o, std::optional<ModelMode
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
 OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>);
 
+// One input of the statement's Type B part, as its table of inputs (the GUM table) lists it.
+struct StatementSource {
+  std::string id;                   // the [tolerances] id
+  std::string unit;                 // the unit its tolerance was written in ("" SI), for display
+  double standard_uncertainty = 0;  // u of the input, SI
+  bool measured = false;            // measured in this test (its tolerance replaced), else from its tolerance
+  std::string basis;                // how u was obtained, in words
+  std::vector<double> effect;       // u_i(K) = c u per coefficient, signed, in the fit's units
+};
+
+// How the Type A part was evaluated, and the residuals tested against it (docs/model.md §10.5).
+struct TypeAEvaluation {
+  // From the noise model: each run mean's σ_j from the instrument's noise density and quantum and the drives'
+  // rate noise, propagated through the fit (ν = ∞). Else (no noise stated, or runs the plan does not name):
+  // the fit's scatter, ν = n − p.
+  bool from_noise_model = false;
+  std::vector<double> run_sd;  // σ_j per row, in the residuals' unit (noise model only)
+  // The residuals against that prediction: S = Σ r_j²/σ_j², its expectation and p-value under the noise and
+  // the Type B inputs' between-run effects (a scaled χ² of the same mean and variance).
+  double statistic = 0, expected = 0, p_value = 1;
+  int dof = 0;  // n − p
+  // S beyond the prediction at kResidualCheckLevel: the excess τ² = (S − E)/tr(W M) per run mean (residuals'
+  // unit²), charged as a Type A part with ν = n − p.
+  bool excess = false;
+  double excess_variance = 0;
+};
+// The p-value below which the residuals' excess over the prediction is charged.
+inline constexpr double kResidualCheckLevel = 0.01;
+
 struct CalibrationStatement {
   std::string budget_config;  // the configuration whose tolerances give the Type B part
   std::string config_sha256;  // of its text (Config::text_sha256)
@@ -54,6 +84,8 @@ struct CalibrationStatement {
   bool compensated = false;  // the model computed the regressors with the known [errors]
   int known_errors = 0;      // non-zero [errors] parameters
   std::vector<CoefficientStatement> coefficients;  // in the fit's order, in the fit's units
+  std::vector<StatementSource> inputs;             // the Type B part's inputs, in tolerance order
+  TypeAEvaluation type_a;
   // Covariance of the corrected estimates, in the fit's units (row and column i: coefficients[i]): Type A the
   // fit's, Type B the tolerances' LPU, Σ_g e_g e_gᵀ over the correlation groups of §10.1 (a group's effects added
   // with their signs), and their sum, whose diagonal is u_c². The correlation is u(K_i, K_j) / (u_c,i u_c,j).
@@ -78,7 +110,25 @@ struct CalibrationStatement {
 // `field` (the option that asked for the statement: statement, observations) when a fitted term is not a free
 // term of the configuration, the units cannot be converted or the fit has no degrees of freedom, and naming
 // coverage_probability when p is not in (0, 1).
+// `measured`: inputs the test measured (io/measured_inputs.hpp), charged at their measurement's uncertainty in
+// place of their tolerances (a measured input leaves its group and its [[correlations]]); `durations`: T of
+// each row of the identification [s] (empty: its run's in the plan).
 CalibrationStatement calibration_statement(const Config& config, const Identification& identification,
-                                           const StatementOptions& options, std::string_view field);
+                                           const StatementOptions& options, std::string_view field,
+                                           const std::vector<MeasuredInput>& measured = {},
+                                           const std::vector<double>& durations = {});
+
+// What an observations file's header says of its test (`ccal reduce` writes it): the inputs the logs measured
+// and, per row of the identification, the logged span (empty unless the file records every row's), for
+// calibration_statement.
+struct TestEvidence {
+  std::vector<MeasuredInput> measured;
+  std::vector<double> durations;
+};
+TestEvidence test_evidence(const std::optional<ObservationsHeader>& header, const Identification& identification);
+
+// The configuration with the measured inputs' tolerances replaced by their measurements' (normal, u as bound,
+// no group, no correlation pairs): what the statement's Type B part and its Monte Carlo draw.
+Config with_measured_inputs(const Config& config, const std::vector<MeasuredInput>& measured);
 
 }  // namespace ccal::verbs

@@ -11,6 +11,14 @@
 
 #include "ccal/core/value_of.hpp"
 
+// GCC notes that passing a 64-byte vector changes the ABI in baseline code (-Wpsabi); S is such a vector only
+// within one file's inlined clones (run_means_nodes.cpp), so the note is moot (core/cloned_loops.hpp). Silenced
+// for this header's templates too, for a unity batch that instantiates them before including cloned_loops.hpp.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 namespace ccal {
 
 namespace detail {
@@ -26,6 +34,7 @@ S zero_of() {
   else
     return S{};
 }
+
 template <class S>
 void oscillatory_recursion(const S& kappa, const S& cos_kappa, const S& sin_kappa, int P, S* re, S* im) {
   for (int p = 0; p < P; ++p) {
@@ -133,3 +142,7 @@ void dft_weights(const FastPhaseTable& table, int Q, const S* nu_re, const S* nu
 }  // namespace detail
 
 }  // namespace ccal
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
