@@ -298,7 +298,7 @@ inline const Keys kCorrelationKeys{"between", "r"};
 inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
 inline const Keys kCentrifugeKeys{
     "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
-    "harmonic_order", "platform_control",  "main_rate_noise",   "platform_rate_noise"};
+    "harmonic_order", "platform_control",  "main_rate_noise",   "platform_rate_noise", "encoders"};
 inline const Keys kRateNoiseKeys{"allan_deviation", "tau"};
 inline const Keys kToleranceKeys{"bound", "distribution", "group", "cost", "floor"};
 inline const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density", "quantum", "terms"};

@@ -107,6 +107,24 @@ CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root) {
   CentrifugeModel model(geo, order);
   model.rate_noise = {read_rate_noise(r, *t, "main_rate_noise"),
                       read_rate_noise(r, *t, "platform_rate_noise")};
+  if (const toml::node* n = t->get("encoders")) {
+    const std::string accepted = "accepted: a list of \"main\" and \"platform\", e.g. encoders = [\"main\", \"platform\"]";
+    const auto* list = n->as_array();
+    if (!list) r.fail(*n, "centrifuge.encoders", fmt::format("expected a list, got {}; {}", type_name(*n), accepted));
+    for (const toml::node& item : *list) {
+      const auto* word = item.as_string();
+      bool* slot = !word                      ? nullptr
+                   : word->get() == "main"     ? &model.encoders.main
+                   : word->get() == "platform" ? &model.encoders.platform
+                                               : nullptr;
+      if (!slot)
+        r.fail(item, "centrifuge.encoders",
+               fmt::format("{} is not an encoder; {}",
+                           word ? fmt::format("'{}'", word->get()) : std::string(type_name(item)), accepted));
+      if (*slot) r.fail(item, "centrifuge.encoders", fmt::format("'{}' is listed twice; {}", word->get(), accepted));
+      *slot = true;
+    }
+  }
   return model;
 }
 

@@ -85,4 +85,32 @@ std::vector<MeasuredInput> measured_inputs(const Config& config, const LogReduct
   return out;
 }
 
+std::vector<MeasuredInput> expected_measured_inputs(const Config& config) {
+  std::vector<MeasuredInput> out;
+  const EncoderSet& e = config.centrifuge.encoders;
+  if (config.plan.runs.empty() || !(e.main || e.platform)) return out;
+  const ErrorLayout& layout = config.centrifuge.layout;
+  double shortest = config.plan.runs.front().duration;
+  bool counter = true;
+  for (const Run& run : config.plan.runs) {
+    shortest = std::min(shortest, run.duration);
+    counter = counter && run.mode == PlatformMode::counter_rotating;
+  }
+  const double rate = kRippleResolutionFloor / shortest;
+  const auto ripple = [&](int channel, const char* how) {
+    for (int k = 1; k <= layout.harmonic_order(); ++k)
+      for (bool sine : {false, true})
+        out.push_back({layout.parameter_id(layout.harmonic_index(channel, k, sine)),
+                       k * kRippleResolutionFloor / std::sqrt(3.0), false, how});
+  };
+  if (e.main)
+    out.push_back({layout.parameter_id(ch::domega), rate, true, "main-axis encoder (expected): the rate of each run"});
+  if (e.main && e.platform && counter)
+    out.push_back({layout.parameter_id(ch::dOmega), std::sqrt(2.0) * rate, true,
+                   "both encoders (expected): the platform's rate against the main axis's"});
+  if (e.main) ripple(ch::ripple1, "main-axis encoder (expected): the rate ripple's harmonic fit");
+  if (e.platform && counter) ripple(ch::ripple3, "platform encoder (expected): the rate ripple's harmonic fit");
+  return out;
+}
+
 }  // namespace ccal

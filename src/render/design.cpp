@@ -18,6 +18,21 @@ namespace ccal::render {
 
 namespace {
 
+// U of coefficient k of a plan if run as written, in the budget's display unit: its expected statement's (by the
+// budget's coefficient name), else the full budget's (a stated coverage factor).
+double expected_u(const std::optional<verbs::CalibrationStatement>& st, const ccal::BudgetResult& b, std::size_t k) {
+  if (st)
+    for (const CoefficientStatement& c : st->coefficients)
+      if (c.input.coefficient == b.coefficients[k]) return c.expanded;
+  return b.expanded_uncertainty[Eigen::Index(k)] * b.display_scale[k];
+}
+
+int credited_count(const verbs::CalibrationStatement& st) {
+  int n = 0;
+  for (const verbs::StatementSource& s : st.inputs) n += s.measured;
+  return n;
+}
+
 std::string_view objective_name(DesignObjective o) { return design_objective_name(o); }
 
 std::string plan_table(const Config& config) {
@@ -103,7 +118,7 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
   nlohmann::ordered_json expected = nlohmann::ordered_json::object();
   for (std::size_t k = 0; k < b.coefficients.size(); ++k)
     expected[b.coefficients[k]] = {
-        {"unit", b.units[k]}, {"expanded", b.expanded_uncertainty[Eigen::Index(k)] * b.display_scale[k]}};
+        {"unit", b.units[k]}, {"expanded", expected_u(r.expected_after, b, k)}};
   return {{"resolution",
            {{"g_level_g", res.g},
             {"duration_s", res.duration},
@@ -115,24 +130,28 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
           {"expected_if_run_as_written", expected}};
 }
 
-// The designed plan's U if run as the sheet says (its full budget, the plan as rounded), beside the
-// configured plan's.
+// The designed plan's U if run as the sheet says (the plan as rounded), beside the configured plan's.
 std::string expected_line(const verbs::DesignResult& r) {
   const ccal::BudgetResult& b0 = r.before.budget;
   const ccal::BudgetResult& b1 = r.after.budget;
   std::vector<std::string> designed, configured;
   for (std::size_t k = 0; k < b1.coefficients.size(); ++k) {
-    const auto kk = Eigen::Index(k);
-    designed.push_back(fmt::format("U({}) = {} {}", b1.coefficients[k],
-                                   number(b1.expanded_uncertainty[kk] * b1.display_scale[k], 3),
-                                   b1.units[k]));
-    configured.push_back(number(b0.expanded_uncertainty[kk] * b0.display_scale[k], 3));
+    designed.push_back(
+        fmt::format("U({}) = {} {}", b1.coefficients[k], number(expected_u(r.expected_after, b1, k), 3), b1.units[k]));
+    configured.push_back(number(expected_u(r.expected_before, b0, k), 3));
   }
-  return wrap_words(
-      fmt::format("Expected if run as written (full budget of the sheet's values, {}): {} "
-                  "(configured plan: {})",
-                  coverage_text(b1.coverage), fmt::join(designed, ", "), fmt::join(configured, ", ")),
-      110, "  ");
+  const std::string method =
+      r.expected_after
+          ? fmt::format("the calibration statement's method: Type A from the noise, Type B from {}, {}",
+                        credited_count(*r.expected_after) == 0
+                            ? std::string("the tolerances (no encoders declared)")
+                            : fmt::format("the inputs, {} of them measured by the declared encoders",
+                                          credited_count(*r.expected_after)),
+                        coverage_text(b1.coverage))
+                       : fmt::format("full budget of the sheet's values, {}", coverage_text(b1.coverage));
+  return wrap_words(fmt::format("Expected if run as written ({}): {} (configured plan: {})", method,
+                                fmt::join(designed, ", "), fmt::join(configured, ", ")),
+                    110, "  ");
 }
 
 }  // namespace

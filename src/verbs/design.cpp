@@ -304,6 +304,11 @@ DesignResult design(const Config& config, const DesignOptions& options) {
   r.tolerance_before = tolerance_expanded(r.before.budget);
   r.tolerance_after = tolerance_expanded(r.after.budget);
   r.mechanism = mechanism_text(r);
+  if (!options.coverage_factor) {
+    const double p = r.after.budget.coverage.probability;
+    r.expected_before = expected_statement(config, p);
+    r.expected_after = expected_statement(r.designed, p);
+  }
 
   for (double factor : options.tradeoff)
     r.tradeoff.push_back(tradeoff_point(config, options, r.space, factor));

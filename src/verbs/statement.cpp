@@ -9,7 +9,9 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/units.hpp"
+#include "ccal/io/measured_inputs.hpp"
 #include "ccal/verbs/budget.hpp"
+#include "ccal/verbs/simulate.hpp"
 #include "statement_montecarlo.hpp"
 #include "statement_type_a.hpp"
 
@@ -85,6 +87,20 @@ Config with_measured_inputs(const Config& config, const std::vector<MeasuredInpu
     std::erase_if(c.correlations, [&](const Correlation& r) { return r.first == m.id || r.second == m.id; });
   }
   return c;
+}
+
+CalibrationStatement expected_statement(const Config& config, double p, std::optional<ModelMode> mode) {
+  Config quiet = config;  // the noise is the Type A part's to state, not the observations' to carry
+  quiet.instrument.noise_density = 0;
+  quiet.instrument.quantum = 0;
+  SimulateOptions so;
+  so.mode = mode;
+  const SimulateResult sim = simulate(quiet, so);
+  StatementOptions o;
+  o.coverage_probability = p;
+  o.mode = mode;
+  o.statement_trials = 0;
+  return calibration_statement(config, sim.identification, o, "plan", expected_measured_inputs(config));
 }
 
 TestEvidence test_evidence(const std::optional<ObservationsHeader>& header, const Identification& id) {

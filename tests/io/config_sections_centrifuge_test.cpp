@@ -70,6 +70,21 @@ TEST(DriveKeys, WrongFormsAreRefusedWithTheirPlace) {
   expect_refused("[errors]\nripple1_c2 = \"10 ppm\"", "errors.ripple1_c2", {"harmonic_order"});
 }
 
+TEST(DriveKeys, EncodersAreAListOfTheJointsLogged) {
+  const Config both = parse_config(kBase + "\nencoders = [\"main\", \"platform\"]\n", "both.toml");
+  EXPECT_TRUE(both.centrifuge.encoders.main);
+  EXPECT_TRUE(both.centrifuge.encoders.platform);
+  const Config main = parse_config(kBase + "\nencoders = [\"main\"]\n", "main.toml");
+  EXPECT_TRUE(main.centrifuge.encoders.main);
+  EXPECT_FALSE(main.centrifuge.encoders.platform);
+  const Config none = parse_config(kBase, "none.toml");
+  EXPECT_FALSE(none.centrifuge.encoders.main || none.centrifuge.encoders.platform);
+  expect_refused("encoders = \"main\"", "centrifuge.encoders", {"expected a list", "\"platform\""});
+  expect_refused("encoders = [\"theta1\"]", "centrifuge.encoders", {"'theta1' is not an encoder", "\"main\""});
+  expect_refused("encoders = [1]", "centrifuge.encoders", {"is not an encoder"});
+  expect_refused("encoders = [\"main\", \"main\"]", "centrifuge.encoders", {"listed twice"});
+}
+
 using DriveKeysCli = Cli;
 
 TEST_F(DriveKeysCli, ExitCodeTwoWithTheKey) {

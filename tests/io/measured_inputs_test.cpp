@@ -80,5 +80,30 @@ TEST(MeasuredInputs, EveryRunMeasuresTheRatesAndTheRippleAtTheWorstRunsUncertain
   EXPECT_TRUE(measured_inputs(config, logs).empty());
 }
 
+TEST(MeasuredInputs, DeclaredEncodersAreExpectedToMeasureAtTheirFitsResolution) {
+  // [centrifuge] encoders: before a test, what its logs will measure, each at the resolution floor of its fit
+  // (rates 1e-10 rad over the shortest run, 450 s; ripple k·1e-10/√3, not resolved).
+  Config config = bundled_example();
+  EXPECT_TRUE(expected_measured_inputs(config).empty());
+  config.centrifuge.encoders.main = true;
+  std::vector<std::string> ids;
+  for (const MeasuredInput& m : expected_measured_inputs(config)) ids.push_back(m.id);
+  EXPECT_EQ(ids, (std::vector<std::string>{"domega", "ripple1_c1", "ripple1_s1"}));
+  config.centrifuge.encoders.platform = true;
+  const std::vector<MeasuredInput> both = expected_measured_inputs(config);
+  ASSERT_EQ(both.size(), 6u);
+  EXPECT_EQ(both[0].standard_uncertainty, kRippleResolutionFloor / 450);
+  EXPECT_EQ(both[1].id, "dOmega");
+  EXPECT_NEAR(both[1].standard_uncertainty, std::sqrt(2.0) * kRippleResolutionFloor / 450, 1e-27);
+  EXPECT_EQ(both[5].id, "ripple3_s1");
+  EXPECT_EQ(both[5].standard_uncertainty, kRippleResolutionFloor / std::sqrt(3.0));
+  EXPECT_FALSE(both[5].resolved);
+  // A fixed platform does not turn against the main axis: no mismatch, no platform ripple to measure.
+  for (ccal::Run& run : config.plan.runs) run.mode = PlatformMode::fixed;
+  ids.clear();
+  for (const MeasuredInput& m : expected_measured_inputs(config)) ids.push_back(m.id);
+  EXPECT_EQ(ids, (std::vector<std::string>{"domega", "ripple1_c1", "ripple1_s1"}));
+}
+
 }  // namespace
 }  // namespace ccal::test

@@ -28,4 +28,11 @@ double line_rate_standard_error(double rms, std::size_t samples, double duration
 //               quadrature when phase-locked, whose platform ripple is γ's less the main axis's).
 std::vector<MeasuredInput> measured_inputs(const Config& config, const LogReduction& logs);
 
+// What a test of the configuration's plan will measure with the encoders it declares ([centrifuge] encoders),
+// before any log is written: the inputs measured_inputs returns for such logs, each at the resolution its fit
+// reaches whatever the encoder's noise (a ripple harmonic k r/√3 with r = kRippleResolutionFloor, not resolved; a
+// rate kRippleResolutionFloor/T over the shortest run): the design's expected statement credits them. dOmega
+// and the platform's ripple need every run counter-rotating.
+std::vector<MeasuredInput> expected_measured_inputs(const Config& config);
+
 }  // namespace ccal

@@ -37,9 +37,17 @@ struct DriveNoise {
   bool any() const { return main > 0.0 || platform > 0.0; }
 };
 
+// The joint encoders a test of this machine logs (`[centrifuge] encoders`): what `ccal reduce` will measure
+// from them (docs/model.md §13.3), which the design's expected statement credits before the test.
+struct EncoderSet {
+  bool main = false;      // the main-axis encoder (θ1)
+  bool platform = false;  // the platform encoder (γ)
+};
+
 struct CentrifugeModel {
   Geometry geometry;
   DriveNoise rate_noise;
+  EncoderSet encoders;
   ErrorLayout layout{1};
   Eigen::VectorXd errors = Eigen::VectorXd::Zero(ErrorLayout{1}.size());  // SI, indexed by `layout`
 

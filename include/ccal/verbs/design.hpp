@@ -11,6 +11,7 @@
 
 #include "ccal/io/candidate_cache.hpp"
 #include "ccal/model/run_sheet.hpp"
+#include "ccal/verbs/statement.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
 #include "ccal/verbs/budget.hpp"
@@ -72,6 +73,10 @@ struct DesignResult {
   double configured_objective = 0;  // of the configured plan, by the cached rows
   double designed_objective = 0;
   BudgetResult before, after;  // the full budgets of the configured and the designed plan
+  // The calibration statement each plan is expected to give if run as written, by the statement's own method
+  // (expected_statement: the noise model's Type A part, the inputs the declared encoders will measure
+  // credited); unset with a stated coverage factor, which the statement does not take.
+  std::optional<CalibrationStatement> expected_before, expected_after;
   // Tolerances only (the LPU, without the drives' noise): U_k of every free term before and after (SI).
   Eigen::VectorXd tolerance_before, tolerance_after;
   std::string mechanism;  // in words: what changed, how much from a stronger signal, how much from cancelling

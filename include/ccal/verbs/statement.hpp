@@ -127,6 +127,14 @@ struct TestEvidence {
 };
 TestEvidence test_evidence(const std::optional<ObservationsHeader>& header, const Identification& identification);
 
+// The statement a test of the configuration's plan is expected to give, by the very method of
+// calibration_statement (its Type A part, ν, k and interval): the plan simulated without noise (the machine with
+// the [errors]), the inputs its declared encoders will measure credited (io/measured_inputs.hpp,
+// expected_measured_inputs), no Monte Carlo check. `ccal design`'s "Expected if run as written". Throws as
+// calibration_statement (a plan of no more runs than free terms has no Type A evaluation).
+CalibrationStatement expected_statement(const Config& config, double coverage_probability,
+                                        std::optional<ModelMode> mode = std::nullopt);
+
 // The configuration with the measured inputs' tolerances replaced by their measurements' (normal, u as bound,
 // no group, no correlation pairs): what the statement's Type B part and its Monte Carlo draw.
 Config with_measured_inputs(const Config& config, const std::vector<MeasuredInput>& measured);
