@@ -10,6 +10,7 @@
 
 #include "budget_parts.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/io/measured_inputs.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/table.hpp"
 #include "parts.hpp"
@@ -246,6 +247,16 @@ std::string text(const verbs::BudgetResult& v, const BudgetTextOptions& o) {
   for (const auto& w : v.observability.warnings)
     out += wrap_words("warning: " + w, o.wide ? 0 : o.width, "  ");
   if (o.wide) out += wide_sections(v);
+  // Before a test the tolerances stand; what the declared encoders will measure is said, with its consequence.
+  if (const std::vector<MeasuredInput> m = expected_measured_inputs(cfg); !m.empty()) {
+    std::vector<std::string> ids;
+    for (const MeasuredInput& x : m) ids.push_back(x.id);
+    out += wrap_words(fmt::format("A test with the declared encoders ([centrifuge] encoders) measures {}: its "
+                                  "calibration statement charges those measurements instead of the tolerances "
+                                  "above (docs/model.md §13.3), as `ccal design`'s expected U does.",
+                                  fmt::join(ids, ", ")),
+                      o.wide ? 0 : o.width);
+  }
   out += next_steps(cfg, r);
   return out;
 }

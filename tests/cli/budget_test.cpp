@@ -32,6 +32,19 @@ TEST_F(Budget, DefaultRunsTheBundledExample) {
   EXPECT_NE(w.out.find("  platform_rate_noise "), std::string::npos);
 }
 
+TEST_F(Budget, DeclaredEncodersAreSaidToReplaceTheirInputsTolerances) {
+  // Before a test the budget keeps every tolerance, and says which inputs a test with the lab's declared
+  // encoders measures; the bundled example declares none and says nothing of them.
+  const Result lab = run("budget " + kLab);
+  ASSERT_EQ(lab.code, 0) << lab.err;
+  EXPECT_NE(lab.out.find("A test with the declared encoders"), std::string::npos) << lab.out;
+  for (const std::string id : {"domega,", "dOmega,", "ripple1_c1,", "ripple3_s1:"})
+    EXPECT_NE(lab.out.find(id), std::string::npos) << id << "\n" << lab.out;
+  const Result bundled = run("budget");
+  ASSERT_EQ(bundled.code, 0) << bundled.err;
+  EXPECT_EQ(bundled.out.find("declared encoders"), std::string::npos) << bundled.out;
+}
+
 TEST_F(Budget, JsonCarriesUnitsAndMatchesTheText) {
   const Result r = run("budget --format json");
   ASSERT_EQ(r.code, 0) << r.err;
