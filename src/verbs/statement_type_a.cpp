@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "ccal/core/units.hpp"
+#include "ccal/reduction/observe.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -67,6 +68,23 @@ Eigen::MatrixXd run_effects(const Config& config, const ccal::BudgetResult& b, c
   return independent_effects(b, e);
 }
 
+// What the known [errors] the model leaves out do to each row's mean (residuals' unit): ȳ(truth with them,
+// model without) − ȳ(neither), of the plan's runs. Deterministic, so the residuals' check removes its share
+// M·Δy before comparing the scatter with the noise (0 when the model compensates them, or there are none).
+Eigen::VectorXd known_error_means(const Config& config, ModelMode mode, const std::vector<std::size_t>& rows,
+                                  double unit_si) {
+  Eigen::VectorXd shift = Eigen::VectorXd::Zero(Eigen::Index(rows.size()));
+  const Eigen::VectorXd& errors = config.centrifuge.errors;
+  if (config.identification.compensate || (errors.array() == 0.0).all()) return shift;
+  const Experiment ex = config.experiment();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(errors.size());
+  const Eigen::VectorXd with = observe<double>(ex, errors, zero, config.identification, mode).output;
+  const Eigen::VectorXd without = observe<double>(ex, zero, zero, config.identification, mode).output;
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    shift[Eigen::Index(j)] = (with[Eigen::Index(rows[j])] - without[Eigen::Index(rows[j])]) / unit_si;
+  return shift;
+}
+
 }  // namespace
 
 double type_a_dof(double known_variance, double estimated_variance, double dof) {
@@ -111,7 +129,8 @@ TypeAParts evaluate_type_a(const Config& config, const Identification& id, const
   const Eigen::MatrixXd sigma = Eigen::MatrixXd(sd.cwiseAbs2().asDiagonal()) + D * D.transpose();
   const Eigen::VectorXd w = sd.cwiseAbs2().cwiseInverse();
   const Eigen::MatrixXd WV = w.asDiagonal() * (M * sigma * M.transpose());
-  ev.statistic = fit.residuals.dot(w.asDiagonal() * fit.residuals);
+  const Eigen::VectorXd r = fit.residuals - M * known_error_means(config, b.mode, *rows, *unit_si);
+  ev.statistic = r.dot(w.asDiagonal() * r);
   ev.expected = WV.trace();
   const double variance = 2 * (WV * WV).trace();
   if (ev.expected > 0 && variance > 0) {
