@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "report_html.hpp"
@@ -21,8 +22,8 @@ std::string statement_table(const Doc& doc) {
   std::string t =
       "<table class=\"statement\"><caption>Calibration statement per identified coefficient (JCGM 100 "
       "§7)</caption>\n<tr><th>coefficient</th><th>unit</th><th>estimate</th><th>correction</th>"
-      "<th>corrected estimate</th><th>u<sub>A</sub> (fit)</th><th>ν<sub>A</sub></th>"
-      "<th>u<sub>B</sub> (budget)</th><th>u<sub>c</sub></th><th>ν<sub>eff</sub></th><th>k</th><th>U</th>"
+      "<th>corrected estimate</th><th>u<sub>A</sub> (noise)</th><th>ν<sub>A</sub></th>"
+      "<th>u<sub>B</sub> (inputs)</th><th>u<sub>c</sub></th><th>ν<sub>eff</sub></th><th>k</th><th>U</th>"
       "<th colspan=\"2\">interval</th></tr>\n";
   for (const auto& [id, c] : doc.json["statement"]["coefficients"].items()) {
     const std::string p = "/statement/coefficients/" + id;
@@ -44,8 +45,8 @@ Json split_spec(const Json& statement) {
     const double a = c["type_a"]["u"].get<double>(), b = c["type_b"]["u"].get<double>();
     const double total = a * a + b * b;
     if (!(total > 0)) continue;  // nothing to split
-    values.push_back({{"coefficient", id}, {"part", "Type A (fit)"}, {"share", 100 * a * a / total}});
-    values.push_back({{"coefficient", id}, {"part", "Type B (budget)"}, {"share", 100 * b * b / total}});
+    values.push_back({{"coefficient", id}, {"part", "Type A (noise)"}, {"share", 100 * a * a / total}});
+    values.push_back({{"coefficient", id}, {"part", "Type B (inputs)"}, {"share", 100 * b * b / total}});
   }
   const double rows = double(statement["coefficients"].size());
   return {{"title", "Type A and Type B shares of u_c²"},
@@ -65,7 +66,7 @@ Json split_spec(const Json& statement) {
              {{"field", "part"},
               {"type", "nominal"},
               {"title", nullptr},
-              {"scale", {{"domain", {"Type A (fit)", "Type B (budget)"}}, {"range", {"#f58518", "#4c78a8"}}}},
+              {"scale", {{"domain", {"Type A (noise)", "Type B (inputs)"}}, {"range", {"#f58518", "#4c78a8"}}}},
               {"legend", {{"orient", "bottom"}}}}},
             {"tooltip", Json::array({{{"field", "coefficient"}},
                                      {{"field", "part"}},
@@ -179,6 +180,56 @@ std::string monte_carlo_check_table(const Doc& doc) {
   return t + "</table>\n";
 }
 
+// What the residuals' check found, in words.
+std::string residual_check_text(const Json& st) {
+  const Json& a = st["type_a"];
+  if (!a["from_noise_model"].get<bool>())
+    return "no noise is stated for this set-up: Type A is the fit's standard error, from that scatter, with ν = "
+           "runs − free terms";
+  const Json& c = a["residual_check"];
+  return c["excess"].get<bool>()
+             ? fmt::format("here the scatter exceeds the prediction, p-value {:.2g}, and its excess is charged",
+                           c["p_value"].get<double>())
+             : fmt::format("here the prediction explains the scatter, p-value {:.2g}, and nothing more is charged",
+                           c["p_value"].get<double>());
+}
+
+// The Type B part's inputs (the GUM table): each input's standard uncertainty, whether this test measured it or
+// its tolerance bounds it, and its signed effect on each coefficient. Inputs that act on no coefficient (every
+// effect below 1e-12 of that coefficient's u_c) are counted, not listed.
+std::string inputs_table(const Doc& doc) {
+  const Json& st = doc.json["statement"];
+  if (!st.contains("inputs") || st["inputs"].empty()) return "";
+  std::vector<std::string> ids;
+  for (const auto& [id, c] : st["coefficients"].items()) ids.push_back(id);
+  std::string head = "<tr><th>input</th><th>u (SI)</th><th>from</th>";
+  for (const std::string& id : ids) head += "<th>u<sub>i</sub>(" + escape(id) + ")</th>";
+  std::string rows;
+  int silent = 0, measured = 0;
+  for (std::size_t i = 0; i < st["inputs"].size(); ++i) {
+    const Json& in = st["inputs"][i];
+    bool acts = false;
+    for (const std::string& id : ids)
+      acts = acts || std::abs(in["effect"][id].get<double>()) >=
+                         1e-12 * st["coefficients"][id]["combined_standard_uncertainty"].get<double>();
+    if (!acts) {
+      ++silent;
+      continue;
+    }
+    measured += in["measured"].get<bool>();
+    const std::string p = fmt::format("/statement/inputs/{}", i);
+    rows += "<tr>" + text_cell(in["id"].get<std::string>()) + num_cell(doc, p + "/u_si", 3) +
+            text_cell(in["measured"].get<bool>() ? "measured in this test" : "its tolerance");
+    for (const std::string& id : ids) rows += num_cell(doc, p + "/effect/" + id, 3);
+    rows += "</tr>\n";
+  }
+  return fmt::format("<table class=\"statement-inputs\"><caption>Type B inputs: u of each input, what it rests on, "
+                     "and its signed effect u<sub>i</sub> = c u on each coefficient ({} measured in this test, "
+                     "charged at the uncertainty of that measurement; {} more act on no coefficient)</caption>\n",
+                     measured, silent) +
+         head + "</tr>\n" + rows + "</table>\n";
+}
+
 }  // namespace
 
 std::string statement_section(const Doc& doc) {
@@ -186,27 +237,27 @@ std::string statement_section(const Doc& doc) {
   std::string out = fmt::format(
       "<section id=\"statement\"><h2>Calibration statement</h2>\n{}<p>The observations <code>{}</code> ({} "
       "runs) identified as <code>ccal identify</code> does, with the uncertainty the laboratory reports for "
-      "each coefficient (JCGM 100 §7 and Annex G, docs/model.md §10.5). <b>Type A</b> is evaluated from "
-      "these "
-      "data: the fit's standard error, from the scatter of the run means about the model, with ν<sub>A</sub> "
-      "= runs − free terms degrees of freedom (∞ for a weighted fit, whose σ are taken as known); the "
-      "drives' "
-      "rate noise is in that scatter. <b>Type B</b> is the propagation of the configuration's "
-      "<code>[tolerances]</code> ({} mode, the budget above without the rate noise, which would otherwise be "
-      "counted twice), known exactly (ν = ∞). They are independent, so u<sub>c</sub>² = u<sub>A</sub>² + "
-      "u<sub>B</sub>²; ν<sub>eff</sub> by Welch–Satterthwaite; k the Student's t quantile for "
-      "⌊ν<sub>eff</sub>⌋ at p = {}; U = k u<sub>c</sub>; the interval is the corrected estimate ∓ U. A Monte "
-      "Carlo of the same quantity (the tolerances drawn through the exact model, the Type A part as the fit's "
-      "multivariate t) checks each interval (JCGM 101 §8); where it does not hold, the Monte Carlo's "
-      "probabilistically symmetric interval is stated, and U is half its width. {} "
+      "each coefficient (JCGM 100 §7 and Annex G, docs/model.md §10.5). <b>Type A</b> is the random part: "
+      "the noise of the instrument (its noise density and output quantum) and of the drives' rates, the σ of "
+      "each run mean, propagated through the fit (ν = ∞); the scatter of the run means about the model is "
+      "tested against what that noise and the inputs' run-to-run effects predict, and an excess would be "
+      "charged with ν = runs − free terms ({}). <b>Type B</b> is the propagation of the inputs ({} mode): "
+      "those this test measured (the drives' rates and rate ripple, from the encoders) at the uncertainty of "
+      "that measurement, the others at their tolerances; it is known exactly (ν = ∞). They are independent, "
+      "so u<sub>c</sub>² = u<sub>A</sub>² + u<sub>B</sub>²; ν<sub>eff</sub> by Welch–Satterthwaite; k the "
+      "Student's t quantile for ⌊ν<sub>eff</sub>⌋ at p = {}; U = k u<sub>c</sub>; the interval is the "
+      "corrected estimate ∓ U. A Monte Carlo of the same quantity (the inputs drawn through the exact model, "
+      "the Type A part by its distribution) checks each interval (JCGM 101 §8); where it does not hold, the "
+      "Monte Carlo's probabilistically symmetric interval is stated, and U is half its width. {} "
       "Units: the coefficients' (the instrument's output unit per gⁿ).</p>\n",
       result_table(doc), escape(doc.json["file"].get<std::string>()), num_span(doc, "/rows", 6),
-      escape(st["mode"].get<std::string>()), num_span(doc, "/statement/coverage_probability", 4),
+      residual_check_text(st), escape(st["mode"].get<std::string>()),
+      num_span(doc, "/statement/coverage_probability", 4),
       known_errors_text(st));
   out +=
       "<div class=\"pair\">\n" + chart("statement-split", split_spec(st)) + statement_table(doc) + "</div>\n" +
       "<div class=\"pair\">\n" + correlation_table(doc) + modelled_output_table(doc) + "</div>\n" +
-      monte_carlo_check_table(doc);
+      inputs_table(doc) + monte_carlo_check_table(doc);
   return out + "</section>\n";
 }
 

@@ -148,6 +148,14 @@ def main(ccal, work, pdf):
     if f'<code id="observations-sha256">{hashlib.sha256(observations.encode()).hexdigest()}</code>' not in page:
         problems.append("the provenance does not name the observations' SHA-256")
 
+    # What the logs measured is in the observations file and credited on the page: the table of inputs names the
+    # six the encoders measured (the drives' rates, the mismatch, both ripples' first harmonics).
+    for i in ("domega", "dOmega", "ripple1_c1", "ripple1_s1", "ripple3_c1", "ripple3_s1"):
+        if f"# ccal measured v1; id={i};" not in observations:
+            problems.append(f"obs.csv does not record that the logs measured {i}")
+    if "6 measured in this test" not in page or 'class="statement-inputs"' not in page:
+        problems.append("the page's table of Type B inputs does not say that 6 were measured in this test")
+
     # One U per method: budget, allocate's configured U, the report's summary, Python.
     budget = json.loads(run(ccal, "budget", LAB, "--format", "json").stdout)
     allocate = json.loads(run(ccal, "allocate", LAB, "--target", "K3=0.04 deg/s/g^3", "--verify-trials", "0",
