@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <numeric>
+#include <random>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/uncertainty/rate_noise.hpp"
 
 namespace ccal::verbs {
 
@@ -27,6 +29,21 @@ std::string regressor_unit(const std::string& id) {
 }
 
 namespace {
+
+// A drawn machine's drives also have their stated rate noise (docs/model.md §3.2): each run mean moves by a
+// normal draw of its σ_j (σ_j = N √(∫h_j²)/T, the budget's own), from a stream of its own (the seed's, mixed),
+// so that the machine differs from the configured one in everything the lab states it does not know.
+void add_rate_noise_draws(Observations<double>& obs, const Experiment& ex, const Eigen::VectorXd& errors,
+                          std::uint64_t seed) {
+  if (!ex.rate_noise.any()) return;
+  const RateNoiseGains gains = rate_noise_gains(ex, errors, ex.rate_noise.main > 0, ex.rate_noise.platform > 0);
+  std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ULL);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (Eigen::Index j = 0; j < obs.output.size(); ++j) {
+    if (ex.rate_noise.main > 0) obs.output[j] += ex.rate_noise.main * gains.main[j] * normal(rng);
+    if (ex.rate_noise.platform > 0) obs.output[j] += ex.rate_noise.platform * gains.platform[j] * normal(rng);
+  }
+}
 
 constexpr OptionSpec<SimulateOptions> kSimulateRows[] = {
     rows::mode<&SimulateOptions::mode>(
@@ -81,6 +98,7 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
   s.observations = observe<double>(ex, s.machine_errors, spec.compensate ? known : zero, spec, s.mode);
   s.noisy = ex.instrument.noise_density > 0 || ex.instrument.quantum > 0;
   add_output_noise(s.observations, ex, o.seed);
+  if (o.draw_truth) add_rate_noise_draws(s.observations, ex, s.machine_errors, o.seed);
   s.output_unit_si = output_unit_si(ex.instrument.output_unit);
   s.order.resize(s.observations.columns.size());
   std::iota(s.order.begin(), s.order.end(), std::size_t{0});

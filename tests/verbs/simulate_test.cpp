@@ -13,6 +13,7 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/io/truth_file.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/uncertainty/statement.hpp"
 #include "ccal/verbs/identify.hpp"
 #include "verbs_support.hpp"
@@ -112,6 +113,33 @@ TEST(SimulateVerb, ATruthFileIsTheMachineAndTheConfigurationWhatTheLabKnows) {
       EXPECT_NE(with_truth.observations.regressors, as_machine.observations.regressors);
     }
   }
+}
+
+TEST(SimulateVerb, ADrawnTruthIsTheErrorsPlusOneDrawOfEveryTolerance) {
+  // --draw-truth: the machine's errors are [errors] + draw_sources(tolerances, correlations, seed), parameter by
+  // parameter, bit for bit; the regressors are the model's as without it. The example states no instrument
+  // noise, so its run means differ from a truth file with those errors only by the drives' drawn rate noise:
+  // with the rate noise removed they are that truth's, bit for bit. And it is one answer or the other.
+  Config config = bundled_example();
+  verbs::SimulateOptions o;
+  o.draw_truth = true;
+  o.seed = 11;
+  const verbs::SimulateResult drawn = verbs::simulate(config, o);
+  const std::vector<double> draws = draw_sources(config.tolerances, config.correlations, 11);
+  ASSERT_EQ(drawn.drawn, draws);
+  Eigen::VectorXd expected = config.centrifuge.errors;
+  for (std::size_t k = 0; k < draws.size(); ++k) expected[config.tolerances[k].parameter] += draws[k];
+  EXPECT_EQ(drawn.machine_errors, expected);
+  EXPECT_EQ(drawn.observations.regressors, verbs::simulate(config).observations.regressors);
+  config.centrifuge.rate_noise = {};
+  const verbs::SimulateResult quiet = verbs::simulate(config, o);
+  EXPECT_NE(quiet.observations.output, drawn.observations.output);
+  verbs::SimulateOptions t;
+  t.truth = SimulationTruth{};
+  t.truth->errors = expected;
+  EXPECT_EQ(quiet.observations.output, verbs::simulate(config, t).observations.output);
+  t.draw_truth = true;
+  EXPECT_THROW(verbs::simulate(config, t), OptionError);
 }
 
 TEST(SimulateVerb, IdentificationIsThatOfItsObservationsFile) {

@@ -24,7 +24,8 @@ struct SimulateOptions {
   std::uint64_t seed = 1;         // of the output noise (used only if the instrument has noise)
   // The machine's errors are the configuration's [errors] plus one draw of every [tolerances] input from its
   // distribution (groups and [[correlations]] as the Monte Carlo draws them, uncertainty/montecarlo.hpp's
-  // draw_sources with `seed`): a machine drawn from the lab's stated knowledge (the coverage study).
+  // draw_sources with `seed`): a machine drawn from the lab's stated knowledge (the coverage study). Its drives
+  // also have their stated rate noise: each run mean moves by a normal draw of the budget's σ_j.
   bool draw_truth = false;
   // What the simulated machine really has (io/truth_file.hpp); unset: the configuration's [errors]. Not a row
   // of the table: each front end reads the file (the command line: --truth FILE).
