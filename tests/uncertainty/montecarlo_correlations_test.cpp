@@ -17,14 +17,7 @@
 namespace ccal {
 namespace {
 
-Tolerance source(std::string id, double bound, Distribution d, std::string group = "") {
-  Tolerance t;
-  t.id = std::move(id);
-  t.bound = bound;
-  t.distribution = d;
-  t.group = std::move(group);
-  return t;
-}
+using ccal::test::source;
 
 using ccal::test::identity;
 

@@ -12,19 +12,12 @@
 namespace ccal {
 namespace {
 
-Tolerance input(std::string id, double bound, Distribution d, std::string group = "") {
-  Tolerance t;
-  t.id = std::move(id);
-  t.bound = bound;
-  t.distribution = d;
-  t.group = std::move(group);
-  return t;
-}
+using ccal::test::source;
 
 const std::vector<Tolerance> kInputs = {
-    input("n", 2.0, Distribution::normal), input("u", 3.0, Distribution::uniform),
-    input("t", 1.5, Distribution::triangular), input("a", 0.5, Distribution::arcsine),
-    input("g1", 1.0, Distribution::uniform, "g"), input("g2", 0.4, Distribution::normal, "g")};
+    source("n", 2.0, Distribution::normal), source("u", 3.0, Distribution::uniform),
+    source("t", 1.5, Distribution::triangular), source("a", 0.5, Distribution::arcsine),
+    source("g1", 1.0, Distribution::uniform, "g"), source("g2", 0.4, Distribution::normal, "g")};
 
 TEST(MonteCarloDraws, OneTrialsDrawsAreTheMonteCarlosOwn) {
   for (const std::vector<Correlation>& correlations :

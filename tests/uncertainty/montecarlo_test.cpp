@@ -26,15 +26,6 @@
 namespace ccal::test {
 namespace {
 
-Tolerance source(std::string id, double bound, Distribution d, std::string group = "") {
-  Tolerance t;
-  t.id = std::move(id);
-  t.bound = bound;
-  t.distribution = d;
-  t.group = std::move(group);
-  return t;
-}
-
 // The model y = x (every source is an output).
 using ccal::test::identity;
 
