@@ -96,6 +96,47 @@ TEST(ObservationCsv, HeaderCarriesEachLogsFileAndFingerprint) {
   }
 }
 
+TEST(ObservationCsv, HeaderCarriesTheLogsSpansAndWhatTheyMeasured) {
+  // `duration=` on a log line and a "# ccal measured v1" line per measured input, read back exactly (u with 17
+  // digits); the words last, so that they may hold ';'. A malformed line is refused at its own line.
+  ObservationsHeader h;
+  h.terms = {{"K0", "K0"}};
+  h.output_unit = "deg/s";
+  h.logs = {{"5g", std::string(64, 'b'), "logs/5g.csv", 449.875}};
+  h.measured = {{"domega", 1.0844353669380768e-15, true, "main-axis encoder; its line fit"},
+                {"ripple1_c1", 5.773502691896258e-11, false, "the ripple's fit"}};
+  const std::string text = format_observations_header(h);
+  EXPECT_NE(text.find("; duration=449.875; file=logs/5g.csv\n"), std::string::npos) << text;
+  const auto back = observations_header(parse_csv(text + "\nrun,output\na,1\n", "h.csv"));
+  ASSERT_TRUE(back.has_value());
+  ASSERT_EQ(back->logs.size(), 1u);
+  EXPECT_EQ(back->logs[0], h.logs[0]);
+  ASSERT_EQ(back->measured.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(back->measured[k].id, h.measured[k].id);
+    EXPECT_EQ(back->measured[k].standard_uncertainty, h.measured[k].standard_uncertainty);
+    EXPECT_EQ(back->measured[k].resolved, h.measured[k].resolved);
+    EXPECT_EQ(back->measured[k].how, h.measured[k].how);
+  }
+  const std::string log = "# ccal log v1; run=5g; sha256=" + std::string(64, 'b');
+  for (const auto& [line, hint] :
+       {std::pair{log + "; duration=-3; file=a.csv", "not a positive number of seconds"},
+        std::pair{std::string("# ccal measured v1; id=domega; u=0; resolved=true; how=x"), "not a positive number"},
+        std::pair{std::string("# ccal measured v1; id=domega; u=1e-9; resolved=maybe; how=x"),
+                  "bad measured-input entry"},
+        std::pair{std::string("# ccal measured v1; id=domega; u=1e-9; how=x"), "incomplete measured-input line"},
+        std::pair{std::string("# ccal measured v1; id=domega; u=1e-9; resolved=true"), "bad measured-input line"},
+        std::pair{std::string("# ccal measured v2; id=domega"), "unsupported measured-input line"}}) {
+    try {
+      observations_header(parse_csv("# ccal observations v1; terms=K0\n" + line + "\nx\n1\n", "d.csv"));
+      ADD_FAILURE() << line;
+    } catch (const CsvError& e) {
+      EXPECT_EQ(e.line(), 2);
+      EXPECT_NE(std::string(e.what()).find(hint), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(ObservationCsv, CellsAndPlaces) {
   const CsvTable t =
       parse_csv("# c\r\n run , x ,y\r\n\r\n\"a, b\", +1.5 ,-2e-3\r\n\"say \"\"hi\"\"\",0,1\r\n", "t.csv");
