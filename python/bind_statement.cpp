@@ -143,7 +143,45 @@ void bind_statement(py::module_& m) {
           },
           "the modelled output of each run, ŷ = hᵀ(K̂ + b) with u from the covariance: per run a dict of run, "
           "g_level [g] (nan: no run of the plan), unit, value, standard_uncertainty, effective_dof, "
-          "coverage_factor, expanded_uncertainty, interval (low, high), interval_method [the output's unit]");
+          "coverage_factor, expanded_uncertainty, interval (low, high), interval_method [the output's unit]")
+      .def_property_readonly(
+          "inputs",
+          [](const Statement& s) {
+            py::list out;
+            for (const verbs::StatementSource& in : s.inputs) {
+              py::dict d;
+              d["id"] = in.id;
+              d["standard_uncertainty"] = in.standard_uncertainty;
+              d["measured"] = in.measured;
+              d["basis"] = in.basis;
+              py::dict effect;
+              for (std::size_t k = 0; k < in.effect.size() && k < s.coefficients.size(); ++k)
+                effect[py::str(s.coefficients[k].input.coefficient)] = in.effect[k];
+              d["effect"] = effect;
+              out.append(d);
+            }
+            return out;
+          },
+          "the Type B part's inputs (the GUM table): per input a dict of id, standard_uncertainty [SI], measured "
+          "(in this test, charged at the measurement's u; else its tolerance), basis (in words), effect (per "
+          "coefficient, c u signed) [the coefficients' units]")
+      .def_property_readonly(
+          "type_a_from_noise_model", [](const Statement& s) { return s.type_a.from_noise_model; },
+          "whether the Type A part is the stated noise's (else the fit's scatter) [—]")
+      .def_property_readonly(
+          "residual_check",
+          [](const Statement& s) {
+            py::dict d;
+            d["statistic"] = s.type_a.statistic;
+            d["expected"] = s.type_a.expected;
+            d["p_value"] = s.type_a.p_value;
+            d["dof"] = s.type_a.dof;
+            d["excess"] = s.type_a.excess;
+            d["excess_variance"] = s.type_a.excess_variance;
+            return d;
+          },
+          "the residuals tested against the noise and the inputs' run-to-run effects: statistic S, expected, "
+          "p_value, dof, excess (charged), excess_variance [output unit²] (meaningful with a noise model)");
 }
 
 }  // namespace ccal::python

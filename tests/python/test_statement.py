@@ -61,6 +61,19 @@ class StatementObject(unittest.TestCase):
                          tuple(self.statement.to_dict()["coefficients"]["K2"]["interval"]))
         self.assertEqual([r["significant"] for r in rows], self.statement.significant)
 
+    def test_the_inputs_and_the_type_a_evaluation_are_the_jsons(self):
+        # The lab's encoders measured six inputs; every input's effects are the JSON's, and so is the check.
+        d = self.statement.to_dict()
+        self.assertEqual([i["id"] for i in self.statement.inputs], [i["id"] for i in d["inputs"]])
+        self.assertEqual(sum(i["measured"] for i in self.statement.inputs), 6)
+        for mine, theirs in zip(self.statement.inputs, d["inputs"]):
+            self.assertEqual(mine["effect"], theirs["effect"])
+            self.assertEqual(mine["standard_uncertainty"], theirs["u_si"])
+        self.assertTrue(self.statement.type_a_from_noise_model)
+        check = self.statement.residual_check
+        self.assertEqual(check["statistic"], d["type_a"]["residual_check"]["statistic"])
+        self.assertFalse(check["excess"])
+
     def test_covariance_is_symmetric_psd_with_the_squared_uncertainties_on_its_diagonal(self):
         c = np.asarray(self.statement.covariance)
         u = np.asarray(self.statement.standard_uncertainties)
