@@ -116,6 +116,15 @@ std::string candidate_cache_key(const Config& config, const std::vector<DesignRu
   Sha256 key;
   key.update(kMagic).update(version()).update("\n").update(build_fingerprint()).update("\n");
   key.update(config.text_sha256);
+  // The rows are scaled by the tolerances as the Config holds them, which need not be the text's (the design
+  // credits what declared encoders will measure): their bounds, laws and groups are part of the key.
+  for (const Tolerance& t : config.tolerances) {
+    key.update(t.id).update("\n").update(t.group).update("\n");
+    const int law = int(t.distribution);
+    key.update(bytes_of(&t.bound, sizeof t.bound)).update(bytes_of(&law, sizeof law));
+  }
+  for (const Correlation& c : config.correlations)
+    key.update(c.first).update("\n").update(c.second).update("\n").update(bytes_of(&c.r, sizeof c.r));
   for (const DesignRun& r : runs) {
     for (double v : {r.g_level, r.duration, r.phase, r.arm_azimuth}) key.update(bytes_of(&v, sizeof v));
     for (int v : {int(r.phase_kind), int(r.mounting), int(r.platform)}) key.update(bytes_of(&v, sizeof v));

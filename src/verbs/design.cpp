@@ -9,6 +9,7 @@
 
 #include "../uncertainty/progress_bar.hpp"
 #include "ccal/core/errors.hpp"
+#include "ccal/io/measured_inputs.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "design_mechanism.hpp"
 
@@ -254,13 +255,16 @@ TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
 
 OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>) { return kDesignRows; }
 
-DesignResult design(const Config& config, const DesignOptions& options) {
+DesignResult design(const Config& configured, const DesignOptions& options) {
   check_options(options, option_table<DesignOptions>());
+  // The plan is designed for what its statement will charge: the inputs the declared encoders will measure at
+  // that measurement's uncertainty (docs/model.md §13.3), the others at their tolerances.
+  const Config config = with_measured_inputs(configured, expected_measured_inputs(configured));
   rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
   DesignResult r;
-  r.config = config;
+  r.config = configured;
   r.space = resolve_design_space(config);
   r.objective = options.objective.value_or(config.design.objective);
   r.before = budget(config, budget_options(options));
