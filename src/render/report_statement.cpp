@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "ccal/uncertainty/budget.hpp"
 #include "report_html.hpp"
 
 namespace ccal::render::report_html {
@@ -211,7 +212,7 @@ std::string inputs_table(const Doc& doc) {
     bool acts = false;
     for (const std::string& id : ids)
       acts = acts || std::abs(in["effect"][id].get<double>()) >=
-                         1e-12 * st["coefficients"][id]["combined_standard_uncertainty"].get<double>();
+                         kRoundOffFloor * st["coefficients"][id]["combined_standard_uncertainty"].get<double>();
     if (!acts) {
       ++silent;
       continue;

@@ -6,6 +6,7 @@
 
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
+#include "ccal/uncertainty/budget.hpp"
 #include "parts.hpp"
 #include "statement_part.hpp"
 
@@ -54,8 +55,15 @@ std::string inputs_text(const verbs::CalibrationStatement& st, std::size_t width
   for (const CoefficientStatement& c : st.coefficients) header.push_back("u_i(" + c.input.coefficient + ")");
   Table t(header);
   t.gap(2);
-  int measured = 0;
+  int measured = 0, silent = 0;
   for (const verbs::StatementSource& s : st.inputs) {
+    bool acts = false;  // on some coefficient beyond the derivatives' round-off (kRoundOffFloor of its u_c)
+    for (std::size_t k = 0; k < s.effect.size() && k < st.coefficients.size(); ++k)
+      acts = acts || std::abs(s.effect[k]) >= kRoundOffFloor * st.coefficients[k].combined;
+    if (!acts) {
+      ++silent;
+      continue;
+    }
     const auto [u, unit] = shown_uncertainty(s);
     std::vector<std::string> row{s.id, number(u, 3), unit, s.measured ? "measured" : "tolerance"};
     for (double e : s.effect) row.push_back(number(e, 3));
@@ -64,8 +72,10 @@ std::string inputs_text(const verbs::CalibrationStatement& st, std::size_t width
   }
   return wrap_words(fmt::format("Type B inputs (u_i: signed effect c u in each coefficient's unit; {} measured in "
                                 "this test, charged at the measurement's uncertainty, the rest from their "
-                                "tolerances):",
-                                measured),
+                                "tolerances{}):",
+                                measured,
+                                silent ? fmt::format("; {} more act on no coefficient, listed in the JSON", silent)
+                                       : std::string()),
                     width) +
          t.render("  ", width);
 }
