@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "ccal/core/units.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "ccal/reduction/observe.hpp"
 
 namespace ccal::verbs {
@@ -15,7 +16,7 @@ namespace {
 // SI size of one unit of the residuals, if they are in a unit (a plain table's column name is none).
 std::optional<double> residual_unit_si(const Identification& id) {
   try {
-    return parse_unit(id.residual_unit).value_si;
+    return output_unit_si(id.residual_unit);
   } catch (const UnitError&) {
     return std::nullopt;
   }

@@ -117,6 +117,17 @@ TEST_F(Cli, ObservationsCsvContract) {
   EXPECT_EQ(csv.out, read(dir_ / "obs.csv"));
 }
 
+TEST_F(Cli, ADrawnTruthAndATruthFileAreRefusedTogether) {
+  // Two answers for the machine's errors: exit code 2, both named, nothing written. Alone, --draw-truth runs
+  // and its JSON has the draws.
+  expect_bad_input(run("simulate " + kLab + " --draw-truth --truth " + kLabTruth + " --observations-out obs.csv"),
+                   {"--draw-truth", "lab_truth.toml", "two answers for the machine's errors"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "obs.csv"));
+  const Result drawn = run("simulate " + kLab + " --draw-truth --seed 4 --format json");
+  ASSERT_EQ(drawn.code, 0) << drawn.err;
+  EXPECT_NE(drawn.out.find("\"drawn_errors_si\""), std::string::npos);
+}
+
 TEST_F(Cli, SimulateThenIdentifyRecoversTheCoefficients) {
   // The example has no [errors]: truth and model are the same chain, so the fit is exact up to round-off. The
   // run means are differences of outputs swinging by K1·A ≈ 15 000 °/s, each good to ≈ 1e-16 · 15 000

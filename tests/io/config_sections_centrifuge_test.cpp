@@ -94,6 +94,10 @@ TEST_F(DriveKeysCli, ExitCodeTwoWithTheKey) {
   text.replace(at, std::string("platform_control = \"speed\"").size(), "platform_control = \"sped\"");
   const std::string bad = write("bad.toml", text);
   expect_bad_input(run("budget " + bad), {"centrifuge.platform_control", "speed"});
+  text.replace(text.find("platform_control = \"sped\""), std::string("platform_control = \"sped\"").size(),
+               "encoders = [\"main\", \"gamma\"]");
+  expect_bad_input(run("design " + write("encoders.toml", text)),
+                   {"centrifuge.encoders", "'gamma' is not an encoder", "\"platform\""});
 }
 
 }  // namespace
