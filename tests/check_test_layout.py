@@ -59,6 +59,9 @@ TESTED_ELSEWHERE = {
     "render/table.cpp": "the text tables: tests/render/budget_test.cpp (Table)",
     "setup/certificate.cpp": "the dates: tests/io/config_sections_certificate_test.cpp (CertificateDates)",
     "setup/config.cpp": "Config::experiment: tests/io/config_file_test.cpp",
+    "setup/input_description.cpp": "each input's units: tests/io/config_sections_inputs_test.cpp",
+    "io/config_sections_tolerances.cpp": "[tolerances]: tests/io/config_file_test.cpp, "
+    "tests/io/config_sections_inputs_test.cpp",
     "setup/tolerance.cpp": "σ and divisor of each distribution: tests/io/config_file_test.cpp, "
     "tests/uncertainty/budget_groups_test.cpp, montecarlo_test.cpp",
     "uncertainty/allocate_tolerances.cpp": "a part of the allocation: tests/uncertainty/allocate_test.cpp",

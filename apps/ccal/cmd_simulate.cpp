@@ -107,7 +107,7 @@ Command add_simulate(CLI::App& app) {
             throw InputError("--logs-out: cannot create the folder '" + o->logs_out + "': " + ec.message());
           const Eigen::VectorXd& means = s.observations.output;
           std::vector<std::pair<std::string, std::string>> runs;
-          const auto logs = write_run_logs(cfg, s.machine_errors, {means.data(), means.data() + means.size()},
+          const auto logs = write_run_logs(s.config, s.machine_errors, {means.data(), means.data() + means.size()},
                                            default_log_step(cfg), layout);
           for (std::size_t r = 0; r < logs.size(); ++r) {
             extra.push_back(

@@ -83,12 +83,14 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   cfg.text_sha256 = sha256_hex(text);
   cfg.site = read_site(r, root);
   cfg.centrifuge = read_centrifuge(r, root);
-  read_errors(r, root, cfg.centrifuge);
-  cfg.tolerances = read_tolerances(r, root, cfg.centrifuge.layout);
-  cfg.correlations = read_correlations(r, root, cfg.tolerances);
   cfg.instrument = read_instrument(r, root);
   cfg.plan = read_plan(r, root, cfg.centrifuge.geometry, cfg.site);
   read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);
+  // The chain's inputs name the fixed terms and the declared inputs: read after them.
+  read_declared_inputs(r, root, cfg);
+  read_errors(r, root, cfg, cfg.centrifuge, nullptr);
+  cfg.tolerances = read_tolerances(r, root, cfg);
+  cfg.correlations = read_correlations(r, root, cfg.tolerances);
   cfg.design = read_design(r, root, cfg.instrument, cfg.identification);
   cfg.certificate = read_certificate(r, root);
   return cfg;

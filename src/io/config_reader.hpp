@@ -293,7 +293,10 @@ class Reader {
 };
 
 inline const Keys kRootKeys{"site",       "centrifuge", "errors",         "tolerances", "correlations",
-                            "instrument", "plan",       "identification", "design",     "certificate"};
+                            "instrument", "plan",       "identification", "design",     "certificate",
+                            "inputs"};
+inline const Keys kInputKeys{"id", "description", "unit", "bound", "distribution", "group", "cost", "floor",
+                             "sensitivity"};
 inline const Keys kCorrelationKeys{"between", "r"};
 inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
 inline const Keys kCentrifugeKeys{
@@ -338,8 +341,31 @@ inline const Keys kDesignKeys{"runs",
 // The sections, in file order (config_sections_centrifuge.cpp, config_sections_plan.cpp).
 Site read_site(const Reader& r, const toml::table& root);
 CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root);
-void read_errors(const Reader& r, const toml::table& root, CentrifugeModel& model);
-std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const ErrorLayout& layout);
+// [errors] of a configuration (chain_errors null: the chain's inputs are refused) or of a truth file (the
+// chain's errors into *chain_errors); `config` names the chain's inputs (its fixed terms, [[inputs]]).
+void read_errors(const Reader& r, const toml::table& root, const Config& config, CentrifugeModel& model,
+                 std::vector<std::pair<int, double>>* chain_errors);
+// The code of a key of [errors] or [tolerances] (config_sections_centrifuge.cpp): a layout parameter, or with
+// `chain` an input of its measuring chain; fails with the accepted ids otherwise.
+int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key& key, std::string_view table,
+                    const Config* chain = nullptr);
+std::vector<std::string> fixed_term_ids(const Config& config);
+std::string fixed_term_list(const Config& config);
+std::vector<std::string> chain_ids_for_hint(const Config& config);
+std::string lab_value_place(const Config& config, int code);
+// A value of a chain input in SI (a declared input's in its own unit; a fixed term's also relative to it).
+double chain_quantity(const Reader& r, const toml::node& node, const std::string& p, const Config& config,
+                      int code);
+// The unit a quantity string was written in, if of the dimension (config_sections_tolerances.cpp).
+std::string written_unit(const toml::node* node, Dimension dim);
+// [tolerances] and the bounds of [[inputs]], after the instrument, the identification and [[inputs]].
+std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const Config& config);
+void read_tolerance_entry(const Reader& r, const toml::table& entry, const toml::node& node, const std::string& p,
+                          const Config& config, Tolerance& tol);
+// [[inputs]] (config_sections_inputs.cpp): the declared inputs into config.chain, then their tolerances.
+void read_declared_inputs(const Reader& r, const toml::table& root, Config& config);
+void read_declared_tolerances(const Reader& r, const toml::table& root, const Config& config,
+                              std::vector<Tolerance>& out);
 // [[correlations]] (config_sections_correlations.cpp), after the tolerances it refers to.
 std::vector<Correlation> read_correlations(const Reader& r, const toml::table& root,
                                            const std::vector<Tolerance>& tolerances);

@@ -1,7 +1,11 @@
 // The configuration file's [site], [centrifuge], [errors] and [tolerances] sections (docs/config.md).
 #include <cstdlib>
 
+#include <algorithm>
+#include <cmath>
+
 #include "ccal/model/error_sources.hpp"
+#include "ccal/setup/input_description.hpp"
 #include "config_reader.hpp"
 
 namespace ccal::config_reading {
@@ -128,42 +132,14 @@ CentrifugeModel read_centrifuge(const Reader& r, const toml::table& root) {
   return model;
 }
 
-Dimension parameter_dimension(SourceUnit u) {
-  switch (u) {
-    case SourceUnit::rad:
-      return kind::angle;
-    case SourceUnit::m:
-      return kind::length;
-    case SourceUnit::rad_per_s:
-      return kind::angular_rate;
-    case SourceUnit::m_per_rad_per_s_squared:
-      return kind::length / pow(kind::angular_rate, 2);
-    case SourceUnit::relative:
-      return kind::dimensionless;
-  }
-  return kind::dimensionless;
-}
-
-std::string parameter_example(SourceUnit u) {
-  switch (u) {
-    case SourceUnit::rad:
-      return "1e-5 rad";
-    case SourceUnit::m:
-      return "25 um";
-    case SourceUnit::rad_per_s:
-      return "0.5e-6 rad/s";
-    case SourceUnit::m_per_rad_per_s_squared:
-      return "8.5e-8 m/(rad/s)^2";
-    case SourceUnit::relative:
-      return "10 ppm";
-  }
-  return "1";
-}
-
-// Index of an error parameter named by a key of [errors] or [tolerances]; fails with the closest id.
-int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key& key,
-                    std::string_view table) {
+// Index of an error parameter named by a key of [errors] or [tolerances], or with a configuration the code
+// of an input of its measuring chain; fails with the closest id.
+int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key& key, std::string_view table,
+                    const Config* chain) {
   const std::string p = Reader::path(table, key.str());
+  if (chain != nullptr)
+    if (auto code = find_chain_input(key.str(), chain->chain, fixed_term_ids(*chain), layout.harmonic_order()))
+      return *code;
   if (auto i = layout.find_parameter(key.str())) {
     const Channel& c = channels()[layout.parameter_channel(*i)];
     const bool ripple = c.kind == ErrorKind::main_ripple || c.kind == ErrorKind::platform_ripple;
@@ -186,7 +162,23 @@ int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key&
         fmt::format("'{0}' is a dynamic channel, whose parameters are its Fourier coefficients; did you mean "
                     "'{0}_c0'? accepted: {0}_c0 (constant), {0}_c<k>, {0}_s<k> with k <= harmonic_order",
                     key.str()));
+  if (chain != nullptr) {
+    if (key.str().starts_with("encoder1_") || key.str().starts_with("encoder3_"))
+      r.fail(where(key.source()), p,
+             fmt::format("an encoder's angle error is encoder1_c<k>, encoder1_s<k>, encoder3_c<k> or "
+                         "encoder3_s<k> with 1 <= k <= harmonic_order = {}",
+                         layout.harmonic_order()));
+    if (std::find(chain->instrument.term_ids.begin(), chain->instrument.term_ids.end(), key.str()) !=
+        chain->instrument.term_ids.end())
+      r.fail(where(key.source()), p,
+             fmt::format("{0} is a free term, which the test identifies; only a fixed term has a tolerance "
+                         "(its value from another calibration); accepted: a fixed term ({1}) or fix {0} in "
+                         "[identification] fixed",
+                         key.str(), fixed_term_list(*chain)));
+  }
   std::vector<std::string> ids = layout.parameter_ids();
+  if (chain != nullptr)
+    for (const std::string& id : chain_ids_for_hint(*chain)) ids.push_back(id);
   std::string hint;
   if (auto best = closest(key.str(), ids)) hint = fmt::format("did you mean '{}'? ", *best);
   std::string statics, dynamics;
@@ -194,129 +186,100 @@ int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key&
     std::string& list = c.joint == Joint::none ? statics : dynamics;
     list += (list.empty() ? "" : ", ") + std::string(c.id);
   }
+  const std::string chain_ids =
+      chain == nullptr ? ""
+                       : fmt::format(", or an input of the measuring chain ({})",
+                                     chain_input_ids_text(chain->chain, fixed_term_ids(*chain)));
   r.fail(where(key.source()), p,
          fmt::format("unknown error parameter; {}accepted: a static id ({}) or a dynamic channel ({}) "
-                     "with _c<k> or _s<k>, k <= harmonic_order (e.g. dx3_c1)",
-                     hint, statics, dynamics));
+                     "with _c<k> or _s<k>, k <= harmonic_order (e.g. dx3_c1){}",
+                     hint, statics, dynamics, chain_ids));
 }
 
-void read_errors(const Reader& r, const toml::table& root, CentrifugeModel& model) {
+std::vector<std::string> fixed_term_ids(const Config& config) {
+  std::vector<std::string> out;
+  for (const auto& [id, value] : config.identification.fixed_terms) out.push_back(id);
+  return out;
+}
+
+std::string fixed_term_list(const Config& config) {
+  std::string out;
+  for (const std::string& id : fixed_term_ids(config)) out += (out.empty() ? "" : ", ") + id;
+  return out.empty() ? "none is fixed" : out;
+}
+
+std::vector<std::string> chain_ids_for_hint(const Config& config) {
+  std::vector<std::string> out{"g", "time_base", "output_gain", "output_offset"};
+  for (const std::string& id : fixed_term_ids(config)) out.push_back(id);
+  for (const DeclaredInput& d : config.chain.declared) out.push_back(d.id);
+  return out;
+}
+
+double chain_quantity(const Reader& r, const toml::node& node, const std::string& p, const Config& config,
+                      int code) {
+  const InputDescription d = describe_input(config, code);
+  const ChainInput in = chain_input(code);
+  if (in.kind == ChainKind::declared) {
+    const auto v = node.value<double>();
+    if (!v || !std::isfinite(*v))
+      r.fail(node, p, fmt::format("is not a number; accepted: a number in the input's own unit ({}), e.g. 0.05",
+                                  d.display_unit));
+    return *v;
+  }
+  if (in.kind == ChainKind::fixed_term) {
+    // Relative to the term's value ("0.5 ppm"), or in its unit.
+    const auto* text = node.as_string();
+    if (text != nullptr) {
+      const std::string unit = written_unit(&node, kind::dimensionless);
+      Quantity q{};
+      bool parsed = true;
+      try {
+        q = parse_quantity(text->get());
+      } catch (const UnitError&) {
+        parsed = false;
+      }
+      if (parsed && q.dim == kind::dimensionless && !unit.empty()) {
+        const double value = config.identification.fixed_terms.at(d.id);
+        return q.value_si * std::abs(value);
+      }
+    }
+  }
+  return r.quantity_node(node, p, d.dim, nullptr, d.example);
+}
+
+void read_errors(const Reader& r, const toml::table& root, const Config& config, CentrifugeModel& model,
+                 std::vector<std::pair<int, double>>* chain_errors) {
   const toml::table* t = r.table(root, "", "errors", false);
   if (!t) return;
   for (const auto& [key, node] : *t) {
-    const int index = parameter_index(r, model.layout, key, "errors");
-    const SourceUnit u = model.layout.parameter_unit(index);
-    model.errors[index] = r.quantity_node(node, Reader::path("errors", key.str()), parameter_dimension(u),
-                                          nullptr, parameter_example(u));
-  }
-}
-
-// The unit a quantity string was written in ("25 um" gives "um"), kept for display; "" when the node is no
-// string or its unit is not one of the dimension (a value already accepted always has one).
-std::string written_unit(const toml::node* node, Dimension dim) {
-  const auto* s = node ? node->as_string() : nullptr;
-  if (!s) return "";
-  const std::string& text = s->get();
-  char* end = nullptr;
-  std::strtod(text.c_str(), &end);
-  std::string unit(end ? end : "");
-  unit.erase(0, unit.find_first_not_of(" \t"));
-  unit.erase(unit.find_last_not_of(" \t") + 1);
-  try {
-    if (!unit.empty() && parse_unit(unit).dim == dim) return unit;
-  } catch (const UnitError&) {
-  }
-  return "";
-}
-
-// The largest tolerance bound accepted, in SI units (m, rad, rad/s, 1, m/(rad/s)²). Budgets, allocations and
-// the LPU sum squares of sensitivity × bound in double precision (at most about 1.8e308): 1e100 keeps the
-// square at 1e200, leaving 10¹⁰⁸ for the sensitivities and the sums, and is beyond any physical size by far
-// (the observable universe is 9e26 m across). A larger bound is a typing or unit error, refused here with its
-// place rather than as an infinite U far from the file.
-constexpr double kMaxToleranceBound = 1e100;
-
-void check_bound_size(const Reader& r, const toml::node& at, const std::string& key, double bound,
-                      SourceUnit u) {
-  if (bound <= kMaxToleranceBound) return;
-  const std::string unit = u == SourceUnit::relative ? "relative units" : std::string(unit_symbol(u));
-  r.fail(at, key,
-         fmt::format("{} {} is too large: beyond 1e100 in SI units the budget's sums of squares are not a "
-                     "finite number; accepted: a bound above 0 and up to 1e100 {}, e.g. \"{}\"",
-                     number_text(bound), unit, unit, parameter_example(u)));
-}
-
-// A quantity as the file wrote it ("0.1 arcsec"), or its number.
-std::string as_written(const toml::node* node) {
-  if (const auto* s = node->as_string()) return fmt::format("\"{}\"", s->get());
-  return number_text(node->value<double>().value_or(0));
-}
-
-std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root, const ErrorLayout& layout) {
-  std::vector<Tolerance> out;
-  const toml::table* t = r.table(root, "", "tolerances", false);
-  if (!t) return out;
-  const std::vector<std::pair<std::string_view, Distribution>> distributions{
-      {"normal", Distribution::normal},
-      {"uniform", Distribution::uniform},
-      {"triangular", Distribution::triangular},
-      {"arcsine", Distribution::arcsine}};
-  for (const auto& [key, node] : *t) {
-    Tolerance tol;
-    tol.parameter = parameter_index(r, layout, key, "tolerances");
-    tol.id = layout.parameter_id(tol.parameter);
-    const SourceUnit u = layout.parameter_unit(tol.parameter);
-    const Dimension dim = parameter_dimension(u);
-    const std::string p = Reader::path("tolerances", key.str());
-    if (const auto* entry = node.as_table()) {
-      r.check_keys(*entry, p, kToleranceKeys);
-      const auto bound = r.quantity(*entry, p, "bound", dim, nullptr, parameter_example(u));
-      if (!bound)
-        r.fail(node, p + ".bound",
-               fmt::format("missing value; give e.g. {{ bound = \"{}\" }}", parameter_example(u)));
-      r.require_positive(*entry, p, "bound", *bound,
-                         "the tolerance bound, e.g. \"" + parameter_example(u) + "\"");
-      check_bound_size(r, *entry->get("bound"), p + ".bound", *bound, u);
-      tol.bound = *bound;
-      tol.unit = written_unit(entry->get("bound"), dim);
-      tol.distribution = r.word(*entry, p, "distribution", distributions).value_or(Distribution::normal);
-      tol.group = r.string(*entry, p, "group").value_or("");
-      if (const auto cost = r.number(*entry, p, "cost")) {
-        r.require_positive(*entry, p, "cost", *cost, "a relative cost weight such as 1.0");
-        if (!kToleranceCostRange.accepts(*cost))
-          r.fail(*entry->get("cost"), Reader::path(p, "cost"),
-                 fmt::format(
-                     "{} is out of range; accepted: {} (the allocation's objective Σ cost/λ stays finite "
-                     "and its ratios meaningful)",
-                     number_text(*cost), kToleranceCostRange.text()));
-        tol.cost = *cost;
-      }
-      // The machine's best achievable value: the allocation never tightens the bound below it.
-      if (const auto floor = r.quantity(*entry, p, "floor", dim, nullptr, parameter_example(u))) {
-        r.require_positive(*entry, p, "floor", *floor,
-                           "the best value the machine achieves, in the bound's units, at most the bound");
-        if (*floor > tol.bound)
-          r.fail(
-              *entry->get("floor"), p + ".floor",
-              fmt::format("{} is above the bound {}; accepted: a floor > 0 and at most the bound (the best "
-                          "value the machine achieves)",
-                          as_written(entry->get("floor")), as_written(entry->get("bound"))));
-        tol.floor = *floor;
-      }
-    } else {
-      tol.bound = r.quantity_node(node, p, dim, nullptr, parameter_example(u));
-      tol.unit = written_unit(&node, dim);
-      if (!(tol.bound > 0))
-        r.fail(node, p,
-               fmt::format("must be positive, got {}; the standard uncertainty, e.g. \"{}\"",
-                           number_text(tol.bound), parameter_example(u)));
-      check_bound_size(r, node, p, tol.bound, u);
+    const std::string p = Reader::path("errors", key.str());
+    const int index = parameter_index(r, model.layout, key, "errors", &config);
+    if (is_chain_parameter(index)) {
+      if (chain_errors == nullptr)
+        r.fail(where(key.source()), p,
+               fmt::format("'{}' is an input of the measuring chain, whose value the configuration states "
+                           "({}); [errors] holds the centrifuge's measured errors; accepted: a tolerance in "
+                           "[tolerances], or an error of a simulated machine in a truth file",
+                           key.str(), lab_value_place(config, index)));
+      chain_errors->emplace_back(index, chain_quantity(r, node, p, config, index));
+      continue;
     }
-    out.push_back(std::move(tol));
+    const InputDescription d = describe_layout_parameter(model.layout, index);
+    model.errors[index] = r.quantity_node(node, p, d.dim, nullptr, d.example);
   }
-  std::sort(out.begin(), out.end(),
-            [](const Tolerance& a, const Tolerance& b) { return a.parameter < b.parameter; });
-  return out;
+}
+
+std::string lab_value_place(const Config& config, int code) {
+  switch (chain_input(code).kind) {
+    case ChainKind::gravity:
+      return "[site] g";
+    case ChainKind::fixed_term:
+      return "[instrument.terms]";
+    case ChainKind::declared:
+      return "[[inputs]]";
+    default:
+      return fmt::format("{}: nominally zero", chain_input_id(code, config.chain));
+  }
 }
 
 }  // namespace ccal::config_reading

@@ -47,6 +47,17 @@ std::string encoder_text(double angle, const LogLayout& layout) {
   return fmt::format("{:.17g}", angle / layout.angle_scale);
 }
 
+// An encoder's angle error at its joint's angle q: Σ c_k cos kq + s_k sin kq (c1, s1, c2, …).
+double encoder_error(const std::vector<double>& terms, double q) {
+  double e = 0;
+  for (std::size_t i = 0; i + 1 < terms.size(); i += 2) {
+    if (terms[i] == 0 && terms[i + 1] == 0) continue;
+    const double k = double(i / 2 + 1);
+    e += terms[i] * std::cos(k * q) + terms[i + 1] * std::sin(k * q);
+  }
+  return e;
+}
+
 }  // namespace
 
 std::string run_log_file_name(const std::string& run) {
@@ -90,6 +101,21 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
                         "letters, digits, '.' and '-' and makes anything else '_'); accepted: run "
                         "names that differ in those",
                         runs[b].name, runs[a].name, run_log_file_name(runs[a].name)));
+  // The measuring chain of a simulated machine (config.chain.errors): a clock fast by τ stamps t (1 + τ), so the
+  // run means (the rate the lab reads, already / (1 + τ)) accumulate their counts at m (1 + τ) in true time; an
+  // encoder reads its joint with its angle error e(q) = Σ c_k cos kq + s_k sin kq.
+  double tau = 0;
+  std::vector<double> encoder1(std::size_t(2 * config.centrifuge.layout.harmonic_order()), 0.0), encoder3 = encoder1;
+  for (const auto& [code, value] : config.chain.errors) {
+    const ChainInput in = chain_input(code);
+    if (in.kind == ChainKind::time_base) tau = value;
+    if (in.kind != ChainKind::encoder) continue;
+    const EncoderTerm t = encoder_term(in.index);
+    std::vector<double>& terms = t.drive == 1 ? encoder1 : encoder3;
+    const auto at = std::size_t(2 * (t.harmonic - 1) + (t.is_sine ? 1 : 0));
+    if (at < terms.size()) terms[at] = value;
+  }
+  const double counted = w > 0 ? 1 + tau : 1.0;  // a count of quanta is read as a rate against the clock
   std::vector<RunLogFile> out;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const Run& run = runs[r];
@@ -104,14 +130,17 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
     const LogColumns& c = layout.columns;
     std::string text = fmt::format("{},{},{},{}\n", c.time, w > 0 ? c.pulses : c.output, c.theta1, c.gamma);
     const auto n = std::int64_t(std::ceil(run.duration / step - 1e-9));
+    const double duration = run.duration / (1 + tau);  // the machine's, which the clock reads as the plan's
     for (std::int64_t k = 0; k <= n; ++k) {
-      const double t = run.duration * double(k) / double(n);
+      const double t = duration * double(k) / double(n);
       const double theta_n = run.arm_azimuth + rate * t, gamma_n = phi0 + gamma_rate * t;
       const double d1 = angle_error(main, theta_n);
       const double gamma = turning ? gamma_n + angle_error(platform, gamma_n) - (locked ? d1 : 0.0) : phi0;
-      const double value = w > 0 ? std::floor(m * t / w) : m / unit;
-      text += fmt::format("{:.17g},{:.17g},{},{}\n", t / c.time_scale, value,
-                          encoder_text(wrapped(theta_n + d1), layout), encoder_text(wrapped(gamma), layout));
+      const double value = w > 0 ? std::floor(m * counted * t / w) : m / unit;
+      const double theta1 = wrapped(theta_n + d1), gamma_true = wrapped(gamma);
+      text += fmt::format("{:.17g},{:.17g},{},{}\n", t * (1 + tau) / c.time_scale, value,
+                          encoder_text(wrapped(theta1 + encoder_error(encoder1, theta1)), layout),
+                          encoder_text(wrapped(gamma_true + encoder_error(encoder3, gamma_true)), layout));
     }
     out.push_back({run_log_file_name(run.name), std::move(text)});
   }

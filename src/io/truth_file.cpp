@@ -26,8 +26,9 @@ SimulationTruth parse_truth(std::string_view text, std::string_view source_name,
   r.check_keys(root, "", Keys{"errors"});
   CentrifugeModel machine = config.centrifuge;
   machine.errors.setZero();
-  read_errors(r, root, machine);
-  return {std::string(source_name), sha256_hex(text), machine.errors};
+  std::vector<std::pair<int, double>> chain_errors;
+  read_errors(r, root, config, machine, &chain_errors);
+  return {std::string(source_name), sha256_hex(text), machine.errors, std::move(chain_errors)};
 }
 
 SimulationTruth load_truth(const std::filesystem::path& path, const Config& config) {

@@ -9,6 +9,7 @@
 #include "budget_parts.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
+#include "ccal/setup/input_description.hpp"
 #include "ccal/version.hpp"
 #include "text_lines.hpp"
 
@@ -17,22 +18,6 @@ namespace {
 
 using budget_parts::source_label;
 
-// The unit a tolerance is written in, as in the bundled example: angles in rad, lengths in µm.
-std::string_view config_unit(SourceUnit u) {
-  switch (u) {
-    case SourceUnit::rad:
-      return "rad";
-    case SourceUnit::m:
-      return "um";
-    case SourceUnit::rad_per_s:
-      return "rad/s";
-    case SourceUnit::m_per_rad_per_s_squared:
-      return "m/(rad/s)^2";
-    case SourceUnit::relative:
-      return "ppm";
-  }
-  return "";
-}
 
 // v rounded down to 4 significant digits, so that a pasted tolerance is never looser than the allocated one.
 double round_down(double v) {
@@ -42,13 +27,13 @@ double round_down(double v) {
   return r > v ? v : r;
 }
 
-std::string quantity_text(double si, const std::string& unit) {
-  return format_quantity(round_down(si), parse_unit(unit).dim, unit, 4);
+std::string quantity_text(const Config& cfg, int parameter, double si, const std::string& unit) {
+  return input_quantity_text(describe_input(cfg, parameter), round_down(si), unit);
 }
 
 // One [tolerances] entry for the allocated tolerance (defaults left out), in the unit it was written in.
 std::string toml_entry(const AllocatedSource& s, const Config& cfg) {
-  const std::string bound = quantity_text(s.allocated_bound, tolerance_display_unit(cfg, s.parameter));
+  const std::string bound = quantity_text(cfg, s.parameter, s.allocated_bound, tolerance_display_unit(cfg, s.parameter));
   if (s.distribution == Distribution::normal && s.group.empty() && s.cost == 1.0 && s.floor == 0)
     return fmt::format("{} = \"{}\"", s.id, bound);
   std::string e = fmt::format("{} = {{ bound = \"{}\"", s.id, bound);
@@ -57,7 +42,7 @@ std::string toml_entry(const AllocatedSource& s, const Config& cfg) {
   if (!s.group.empty()) e += fmt::format(", group = \"{}\"", s.group);
   if (s.cost != 1.0) e += fmt::format(", cost = {}", s.cost);
   if (s.floor > 0)
-    e += fmt::format(", floor = \"{}\"", quantity_text(s.floor, tolerance_display_unit(cfg, s.parameter)));
+    e += fmt::format(", floor = \"{}\"", quantity_text(cfg, s.parameter, s.floor, tolerance_display_unit(cfg, s.parameter)));
   return e + " }";
 }
 
@@ -124,10 +109,10 @@ std::string sources_table(const Config& cfg, const AllocationResult& r, const Al
   for (const AllocatedSource& a : r.sources) {
     const std::string unit = tolerance_display_unit(cfg, a.parameter);
     std::vector<std::string> row = {source_label(a.id, a.group),
-                                    cfg.centrifuge.layout.parameter_name(a.parameter),
+                                    describe_input(cfg, a.parameter).name,
                                     std::string(distribution_name(a.distribution))};
     if (costs || o.wide) row.push_back(number(a.cost, 4));
-    const double unit_si = parse_unit(unit).value_si;
+    const double unit_si = unit_in_si(describe_input(cfg, a.parameter), unit);
     row.push_back(unit);
     row.push_back(number(a.bound / unit_si, 4));
     row.push_back(number(round_down(a.allocated_bound / unit_si), 4));  // as pasted below
@@ -209,7 +194,6 @@ std::string text_of(const Config& cfg, const AllocationResult& r, const Allocate
 }
 
 std::string json_of(const Config& cfg, const AllocationResult& r) {
-  const ErrorLayout& layout = cfg.centrifuge.layout;
   nlohmann::ordered_json j;
   j["command"] = "allocate";
   j["ccal_version"] = version();
@@ -273,7 +257,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
     nlohmann::ordered_json o;
     o["id"] = a.id;
     o["rank"] = s + 1;
-    o["unit_si"] = unit_symbol(layout.parameter_unit(a.parameter));
+    o["unit_si"] = describe_input(cfg, a.parameter).si_unit;
     o["distribution"] = distribution_name(a.distribution);
     o["group"] = a.group;
     o["cost"] = a.cost;
@@ -323,7 +307,7 @@ std::string csv_of(const Config& cfg, const AllocationResult& r) {
     const AllocatedSource& a = r.sources[s];
     out += fmt::format("{},{},{},{},{:.17g},{},{:.17g},{:.17g},{:.17g}", s + 1, a.id, a.group,
                        distribution_name(a.distribution), a.cost,
-                       unit_symbol(cfg.centrifuge.layout.parameter_unit(a.parameter)), a.bound,
+                       describe_input(cfg, a.parameter).si_unit, a.bound,
                        a.allocated_bound, a.scale);
     out += fmt::format(",{:.17g}", a.floor);
     for (Eigen::Index i = 0; i < a.share.size(); ++i) out += fmt::format(",{:.17g}", a.share[i]);
@@ -337,7 +321,7 @@ std::string csv_of(const Config& cfg, const AllocationResult& r) {
 std::string tolerance_display_unit(const Config& cfg, int parameter) {
   for (const Tolerance& t : cfg.tolerances)
     if (t.parameter == parameter && !t.unit.empty()) return t.unit;
-  return std::string(config_unit(cfg.centrifuge.layout.parameter_unit(parameter)));
+  return describe_input(cfg, parameter).display_unit;
 }
 
 std::string text(const verbs::AllocateResult& r, const AllocateTextOptions& o) {

@@ -10,6 +10,7 @@
 #include "budget_parts.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
+#include "ccal/setup/input_description.hpp"
 #include "ccal/version.hpp"
 #include "parts.hpp"
 
@@ -57,7 +58,7 @@ nlohmann::ordered_json source_json(const Config& cfg, const BudgetResult& r, con
   o["id"] = b.id;
   o["name"] = view.name;
   o["rank"] = b.rank;
-  o["unit_si"] = unit_symbol(cfg.centrifuge.layout.parameter_unit(b.parameter));
+  o["unit_si"] = describe_input(cfg, b.parameter).si_unit;
   o["bound_si"] = b.bound;
   o["distribution"] = distribution_name(b.distribution);
   o["group"] = b.group;
@@ -211,7 +212,7 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
     const SourceView view = source_view(cfg, b);
     out += fmt::format(
         "{},{},{},{},{:.17g},{},{:.17g}", b.rank, b.id, csv_field(b.group), distribution_name(b.distribution),
-        b.bound, unit_symbol(cfg.centrifuge.layout.parameter_unit(b.parameter)), b.standard_uncertainty);
+        b.bound, describe_input(cfg, b.parameter).si_unit, b.standard_uncertainty);
     for (std::size_t k = 0; k < nk; ++k) {
       const auto i = Eigen::Index(k);
       out += fmt::format(",{:.17g},{:.17g},{:.17g},{:.17g}", b.effect[i] * r.display_scale[k],

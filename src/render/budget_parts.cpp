@@ -6,18 +6,20 @@
 #include <cmath>
 
 #include "ccal/core/units.hpp"
+#include "ccal/setup/input_description.hpp"
 
 namespace ccal::render::budget_parts {
 
 SourceView source_view(const Config& cfg, const SourceBudget& s) {
   SourceView v;
-  const ErrorLayout& layout = cfg.centrifuge.layout;
-  v.name = layout.parameter_name(s.parameter);
+  const InputDescription d = describe_input(cfg, s.parameter);
+  v.name = d.name;
   v.unit = s.unit;
-  const SourceUnit si = layout.parameter_unit(s.parameter);
-  if (v.unit.empty()) v.unit = si == SourceUnit::relative ? "ppm" : std::string(unit_symbol(si));
-  v.unit_si = parse_unit(v.unit).value_si;
-  v.estimate_si = cfg.centrifuge.errors[s.parameter];
+  if (v.unit.empty())
+    v.unit = d.si_unit == "1" || d.display_unit == "ppm" || is_chain_parameter(s.parameter) ? d.display_unit
+                                                                                              : d.si_unit;
+  v.unit_si = unit_in_si(d, v.unit);
+  v.estimate_si = d.estimate_si;
   v.estimate = v.estimate_si / v.unit_si;
   v.bound = s.bound / v.unit_si;
   v.divisor = divisor(s.distribution);

@@ -35,6 +35,7 @@ Experiment Config::experiment() const {
   ex.plan = plan;
   ex.instrument = instrument;
   ex.rate_noise = centrifuge.rate_noise;
+  ex.chain = chain;
   return ex;
 }
 

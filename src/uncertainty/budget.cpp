@@ -10,6 +10,7 @@
 #include "ccal/core/units.hpp"
 #include "ccal/model/first_order.hpp"
 #include "ccal/setup/input_correlation.hpp"
+#include "ccal/uncertainty/chain_inputs.hpp"
 
 namespace ccal {
 
@@ -149,6 +150,37 @@ void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& 
 OutputJacobian output_jacobian(const Experiment& ex, const IdentificationSpec& spec,
                                const std::vector<int>& parameters, const Eigen::VectorXd& at, ModelMode mode,
                                const ReductionOptions& reduction, DerivativeMethod method, bool split) {
+  // The measuring chain's inputs have columns of their own (chain_inputs.hpp), shown in the force path: they
+  // are no path of the centrifuge's motion.
+  if (std::any_of(parameters.begin(), parameters.end(), is_chain_parameter)) {
+    std::vector<int> layout_parameters, chain_parameters;
+    for (int p : parameters) (is_chain_parameter(p) ? chain_parameters : layout_parameters).push_back(p);
+    const OutputJacobian motion =
+        output_jacobian(ex, spec, layout_parameters, at, mode, reduction, method, split);
+    const Eigen::MatrixXd chain = chain_output_columns(ex, spec, chain_parameters, at, mode, reduction);
+    const auto runs = Eigen::Index(ex.plan.runs.size());
+    OutputJacobian j;
+    j.method = motion.method;
+    j.total.resize(runs, Eigen::Index(parameters.size()));
+    if (split) j.force_path = j.rate_path = Eigen::MatrixXd::Zero(runs, Eigen::Index(parameters.size()));
+    Eigen::Index next_motion = 0, next_chain = 0;
+    for (std::size_t c = 0; c < parameters.size(); ++c) {
+      const auto col = Eigen::Index(c);
+      if (is_chain_parameter(parameters[c])) {
+        j.total.col(col) = chain.col(next_chain);
+        if (split) j.force_path.col(col) = chain.col(next_chain);
+        ++next_chain;
+      } else {
+        j.total.col(col) = motion.total.col(next_motion);
+        if (split) {
+          j.force_path.col(col) = motion.force_path.col(next_motion);
+          j.rate_path.col(col) = motion.rate_path.col(next_motion);
+        }
+        ++next_motion;
+      }
+    }
+    return j;
+  }
   OutputJacobian j;
   const bool linearised =
       method == DerivativeMethod::linearised && mode == ModelMode::exact && at.isZero(0.0);
@@ -238,8 +270,12 @@ void add_tolerance_sources(const Config& config, const SensitivityTable& table, 
     b.effect_force = table.force_path.col(Eigen::Index(s)) * b.standard_uncertainty;
     b.effect_rate = table.rate_path.col(Eigen::Index(s)) * b.standard_uncertainty;
     if (paper != nullptr) b.paper_effect = paper->total.col(Eigen::Index(s)) * b.standard_uncertainty;
-    const ErrorKind kind = channels()[config.centrifuge.layout.parameter_channel(t.parameter)].kind;
-    b.paper_counterpart = kind != ErrorKind::main_ripple && kind != ErrorKind::platform_ripple;
+    if (is_chain_parameter(t.parameter)) {
+      b.paper_counterpart = false;  // the paper's rules have no measuring chain
+    } else {
+      const ErrorKind kind = channels()[config.centrifuge.layout.parameter_channel(t.parameter)].kind;
+      b.paper_counterpart = kind != ErrorKind::main_ripple && kind != ErrorKind::platform_ripple;
+    }
     group_effect.col(groups.of[s]) += b.effect;
     r.sources.push_back(std::move(b));
   }

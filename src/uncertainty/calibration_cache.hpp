@@ -24,6 +24,10 @@ struct CalibrationTrialCache {
   std::shared_ptr<const RunMeanKernel> run_means;
   // In paper mode: the error-independent part of each run's paper reduction.
   std::vector<detail::PaperRunNodes> paper_nodes;
+  // The measuring chain's inputs among the sources: each its column ∂ȳ/∂x at the actual errors
+  // (chain_inputs.hpp), runs × sources, zero for every other source.
+  Eigen::MatrixXd chain_columns;
+  bool any_chain = false;
 };
 
 }  // namespace ccal

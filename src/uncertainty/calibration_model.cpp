@@ -6,6 +6,7 @@
 
 #include "calibration_cache.hpp"
 #include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/chain_inputs.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal {
@@ -55,8 +56,8 @@ void identified_terms(const CalibrationModel& m, const Eigen::VectorXd& actual_e
   truth = actual_errors;
   bool noise = false;
   for (std::size_t j = 0; j < draws.size(); ++j) {
-    if (parameters[j] < 0)
-      noise = true;
+    if (parameters[j] < 0 || is_chain_parameter(parameters[j]))
+      noise = noise || parameters[j] < 0;
     else
       truth[parameters[j]] += draws[j];
   }
@@ -78,6 +79,12 @@ void identified_terms(const CalibrationModel& m, const Eigen::VectorXd& actual_e
   if (noise)
     for (std::size_t j = 0; j < draws.size(); ++j)
       if (parameters[j] < 0) y[rate_noise_run(parameters[j])] += draws[j];
+  // The measuring chain's inputs through their columns: linear in the input, exactly so for the offset, the
+  // fixed terms and the declared inputs; the gain's, the time base's and g's second-order terms are below
+  // 1e-8 of a run mean's change at any plausible bound (1e-4).
+  if (cache.any_chain)
+    for (std::size_t j = 0; j < draws.size(); ++j)
+      if (is_chain_parameter(parameters[j])) y += cache.chain_columns.col(Eigen::Index(j)) * draws[j];
   // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
   y -= cache.known_part;
   for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] = cache.design_pinv.row(Eigen::Index(o)).dot(y);
@@ -102,7 +109,8 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
   for (const Tolerance& t : sources) {
     // A negative parameter is a run's rate noise (rate_noise.hpp), added to that run's mean.
     const bool noise = t.parameter < 0 && rate_noise_run(t.parameter) < runs;
-    if (!noise && (t.parameter < 0 || t.parameter >= size))
+    const bool chain = is_chain_parameter(t.parameter);
+    if (!noise && !chain && (t.parameter < 0 || t.parameter >= size))
       throw InputError(
           fmt::format("calibration model: source '{}' has parameter index {}, outside the layout "
                       "(0…{})",
@@ -131,6 +139,17 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
   if (mode == ModelMode::paper)
     for (const Run& run : experiment.plan.runs)
       cache.paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
+  std::vector<int> chain_parameters;
+  for (int p : m.parameters)
+    if (is_chain_parameter(p)) chain_parameters.push_back(p);
+  if (!chain_parameters.empty()) {
+    const Eigen::MatrixXd columns =
+        chain_output_columns(experiment, spec, chain_parameters, actual_errors, mode, m.reduction);
+    cache.chain_columns = Eigen::MatrixXd::Zero(runs, Eigen::Index(m.parameters.size()));
+    for (std::size_t s = 0, c = 0; s < m.parameters.size(); ++s)
+      if (is_chain_parameter(m.parameters[s])) cache.chain_columns.col(Eigen::Index(s)) = columns.col(Eigen::Index(c++));
+    cache.any_chain = true;
+  }
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
   const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
   const auto nfree = Eigen::Index(spec.free_terms.size());

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "ccal/setup/input_description.hpp"
+
 namespace ccal::verbs {
 
 Eigen::VectorXd tolerance_expanded(const ccal::BudgetResult& b) {
@@ -61,7 +63,7 @@ std::string coefficient_paragraph(const DesignResult& r, std::size_t k) {
   for (std::size_t i = 0; i < std::min<std::size_t>(4, order.size()); ++i) {
     const SourceBudget& s0 = b0.sources[order[i]];
     leading.push_back(
-        fmt::format("{} ({}) {:.2g} -> {:.2g}", r.config.centrifuge.layout.parameter_name(s0.parameter),
+        fmt::format("{} ({}) {:.2g} -> {:.2g}", describe_input(r.config, s0.parameter).name,
                     s0.id, std::abs(s0.effect[kk]) * f, std::abs(b1.sources[order[i]].effect[kk]) * f));
   }
   const double rest = (u1 / u0) * signal;

@@ -8,6 +8,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "ccal/uncertainty/chain_inputs.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/uncertainty/rate_noise.hpp"
 
@@ -83,6 +84,7 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
                                  o.truth->source, cfg.source));
   s.truth = o.truth;
   s.machine_errors = o.truth ? o.truth->errors : cfg.centrifuge.errors;
+  std::vector<std::pair<int, double>> chain_errors = o.truth ? o.truth->chain_errors : cfg.chain.errors;
   if (o.draw_truth) {
     if (o.truth)
       throw OptionError("draw_truth", "",
@@ -90,12 +92,24 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
                                     "them",
                                     o.truth->source));
     s.drawn = draw_sources(cfg.tolerances, cfg.correlations, o.seed);
-    for (std::size_t k = 0; k < s.drawn.size(); ++k) s.machine_errors[cfg.tolerances[k].parameter] += s.drawn[k];
+    for (std::size_t k = 0; k < s.drawn.size(); ++k) {
+      const int p = cfg.tolerances[k].parameter;
+      if (is_chain_parameter(p))
+        chain_errors.emplace_back(p, s.drawn[k]);
+      else
+        s.machine_errors[p] += s.drawn[k];
+    }
   }
+  // The measuring chain's errors: the machine's gravity and terms, the reading of its output (and, in its logs,
+  // the time base's clock and the encoders' readings, io/run_log_writer.hpp).
+  s.config.chain.errors = chain_errors;
+  const Experiment machine = with_chain_errors(ex, chain_errors);
   const Eigen::VectorXd& known = cfg.centrifuge.errors;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
   s.error_count = static_cast<int>((s.machine_errors.array() != 0.0).count());
-  s.observations = observe<double>(ex, s.machine_errors, spec.compensate ? known : zero, spec, s.mode);
+  for (const auto& [code, value] : chain_errors) s.error_count += value != 0.0 ? 1 : 0;
+  s.observations = observe<double>(machine, ex, s.machine_errors, spec.compensate ? known : zero, spec, s.mode);
+  read_through_chain(s.observations.output, ex.instrument, chain_errors);
   s.noisy = ex.instrument.noise_density > 0 || ex.instrument.quantum > 0;
   add_output_noise(s.observations, ex, o.seed);
   if (o.draw_truth) add_rate_noise_draws(s.observations, ex, s.machine_errors, o.seed);

@@ -86,6 +86,13 @@ Config with_measured_inputs(const Config& config, const std::vector<MeasuredInpu
     t->group.clear();
     std::erase_if(c.correlations, [&](const Correlation& r) { return r.first == m.id || r.second == m.id; });
   }
+  // What the encoders measured: the time base then acts on that rate, an encoder's error on that ripple.
+  for (const MeasuredInput& m : measured) {
+    c.chain.main_rate_measured = c.chain.main_rate_measured || m.id == "domega";
+    c.chain.platform_rate_measured = c.chain.platform_rate_measured || m.id == "dOmega";
+    c.chain.main_ripple_measured = c.chain.main_ripple_measured || m.id.starts_with("ripple1_");
+    c.chain.platform_ripple_measured = c.chain.platform_ripple_measured || m.id.starts_with("ripple3_");
+  }
   return c;
 }
 

@@ -24,6 +24,9 @@ struct SimulationTruth {
   std::string source;       // the file's name, as in messages
   std::string text_sha256;  // of the file's text
   Eigen::VectorXd errors;   // per parameter of the configuration's layout (SI); every one not listed is 0
+  // The measuring chain's errors (truth minus the lab's value: g, time_base, output_gain, a fixed term, an
+  // encoder's, a declared input's), by parameter code (setup/measuring_chain.hpp), SI.
+  std::vector<std::pair<int, double>> chain_errors;
 };
 
 // Reads a truth file against the configuration whose layout (harmonic order) names its parameters. Throws

@@ -32,6 +32,8 @@ struct Config {
   TestPlan plan;
   std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order
   std::vector<Correlation> correlations;  // pairs of tolerances partly correlated ([[correlations]])
+  // The measuring chain: [[inputs]] declared by the lab, and (set by a test's reduction) what it measured.
+  MeasuringChain chain;
   // What is identified ([identification]; default: K0, K2, K3 free and K1 held at the instrument's value, as
   // in the paper). Fixed terms hold the instrument's configured coefficients (SI).
   IdentificationSpec identification;

@@ -13,6 +13,7 @@
 #include "ccal/model/instrument.hpp"
 #include "ccal/model/plan.hpp"
 #include "ccal/model/site.hpp"
+#include "ccal/setup/measuring_chain.hpp"
 
 namespace ccal {
 
@@ -23,6 +24,7 @@ struct Experiment {
   TestPlan plan;
   InstrumentModel instrument;
   DriveNoise rate_noise;  // the drives' random rate noise (Type A scatter of the run means)
+  MeasuringChain chain;   // the measuring chain's declared inputs, what a test measured, a truth's errors
 };
 
 // What is identified: the free terms, the terms held at known values, and the columns the observation file

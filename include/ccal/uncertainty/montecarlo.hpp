@@ -314,7 +314,8 @@ class CalibrationModel {
   const State& state() const;
   std::shared_ptr<const State> state_;  // shared by copies and by the trial functions: never changed
 };
-// Checks that every source names a parameter of the layout (InputError otherwise) and identifies the
+// Checks that every source names a parameter of the layout, a run's rate noise or an input of the measuring
+// chain (InputError otherwise) and identifies the
 // reference.
 CalibrationModel calibration_model(const Experiment& experiment, const IdentificationSpec& spec,
                                    const std::vector<Tolerance>& sources,
