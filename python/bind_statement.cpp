@@ -152,6 +152,8 @@ void bind_statement(py::module_& m) {
               py::dict d;
               d["id"] = in.id;
               d["standard_uncertainty"] = in.standard_uncertainty;
+              d["u"] = in.standard_uncertainty / in.unit_si;
+              d["unit"] = in.unit;
               d["measured"] = in.measured;
               d["basis"] = in.basis;
               py::dict effect;
@@ -162,7 +164,8 @@ void bind_statement(py::module_& m) {
             }
             return out;
           },
-          "the Type B part's inputs (the GUM table): per input a dict of id, standard_uncertainty [SI], measured "
+          "the Type B part's inputs (the GUM table): per input a dict of id, standard_uncertainty [SI], u and unit "
+          "(u in the unit it is shown in: as its tolerance was written, else its own), measured "
           "(in this test, charged at the measurement's u; else its tolerance), basis (in words), effect (per "
           "coefficient, c u signed) [the coefficients' units]")
       .def_property_readonly(

@@ -25,5 +25,5 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # the sanitized suite's wall time), whose simulate, reduce and statement run sanitized in their own tests.
 heavy="^(SamplesCli\.TheDefaultMDecidesTheValidation|Cli\.TheWholeWeekFromTheDesignedRunSheetToTheStatement"
 heavy+="|OneCoverage\.EveryVerbStatesTheSameUForTheSameMethod)$"
-ctest --test-dir build-asan --output-on-failure -j2 -E "Golden|^report\.|^docs\.commands$|^statement\.coverage$|$heavy"
+ctest --test-dir build-asan --output-on-failure -j2 -E "Golden|^report\.|^docs\.commands$|^statement\.coverage|$heavy"
 echo "sanitize: build $((built - start)) s, tests $(($(date +%s) - built)) s" >&2

@@ -44,6 +44,9 @@ constexpr BaseUnit kBaseUnits[] = {
     {"g", 1.0, kind::acceleration_g, Prefixes::small},
     {"ppm", 1e-6, kind::dimensionless, Prefixes::none},
     {"%", 1e-2, kind::dimensionless, Prefixes::none},
+    {"A", 1.0, kind::current, Prefixes::all},
+    {"V", 1.0, kind::voltage, Prefixes::all},
+    {"ohm", 1.0, kind::resistance, Prefixes::all},
 };
 
 struct Prefix {
@@ -124,7 +127,7 @@ std::string known_units() {
 
 // Symbols used to spell a dimension; unit_list tries a few of these systems.
 struct UnitSystem {
-  std::string_view length, time, angle, g_level;
+  std::string_view length, time, angle, g_level, current = "A", voltage = "V";
 };
 constexpr UnitSystem kSi{"m", "s", "rad", "g"};
 
@@ -135,9 +138,9 @@ std::string spell(Dimension d, const UnitSystem& sys) {
     std::string_view symbol;
     int exponent;
   };
-  // Order: length, angle, time, g-level, which reads naturally for rates and coefficients.
-  const Factor factors[] = {
-      {sys.length, d.length}, {sys.angle, d.angle}, {sys.time, d.time}, {sys.g_level, d.g_level}};
+  // Order: voltage, current, length, angle, time, g-level, which reads naturally for rates and coefficients.
+  const Factor factors[] = {{sys.voltage, d.voltage}, {sys.current, d.current}, {sys.length, d.length},
+                            {sys.angle, d.angle},     {sys.time, d.time},       {sys.g_level, d.g_level}};
   auto term = [](std::string_view symbol, int n) {
     return n == 1 ? std::string(symbol) : fmt::format("{}^{}", symbol, n);
   };
@@ -416,6 +419,9 @@ std::string unit_list(Dimension dim) {
   if (dim == kind::acceleration_g) return "g, mg, ug, µg";
   if (dim == kind::acceleration) return "m/s^2, mm/s^2, um/s^2";
   if (dim == kind::dimensionless) return "ppm, %";
+  if (dim == kind::current) return "A, mA, uA, µA";
+  if (dim == kind::voltage) return "V, mV, uV, µV";
+  if (dim == kind::resistance) return "ohm, kohm";
 
   // Anything else (coefficients per g^n, m/(rad/s)^2, ...) is spelled in SI and in the common variants
   // of the base units that appear in it; each variant is added only if it changes a symbol that occurs,
@@ -440,6 +446,8 @@ std::string describe(Dimension dim) {
   if (dim == kind::acceleration_g) return "a g-level";
   if (dim == kind::acceleration) return "an acceleration";
   if (dim == kind::dimensionless) return "dimensionless";
+  if (dim == kind::current) return "a current";
+  if (dim == kind::voltage) return "a voltage";
   return fmt::format("a quantity in {}", si_unit(dim));
 }
 

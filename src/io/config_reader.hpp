@@ -304,7 +304,8 @@ inline const Keys kCentrifugeKeys{
     "harmonic_order", "platform_control",  "main_rate_noise",   "platform_rate_noise", "encoders"};
 inline const Keys kRateNoiseKeys{"allan_deviation", "tau"};
 inline const Keys kToleranceKeys{"bound", "distribution", "group", "cost", "floor"};
-inline const Keys kInstrumentKeys{"model", "output_unit", "rate_gain", "noise_density", "quantum", "terms"};
+inline const Keys kInstrumentKeys{"model",   "output_unit", "rate_gain",         "noise_density",
+                                  "quantum", "terms",       "sampling_resistor"};
 inline const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
                             "mounting", "runs"};
 inline const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "paper_cross_terms"};

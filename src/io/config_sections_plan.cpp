@@ -30,14 +30,15 @@ OutputUnit read_output_unit(const Reader& r, const toml::table& t, InstrumentMod
     out.text = *text;
     const std::string accepted =
         "accepted: an angular rate (deg/s, rad/s, deg/h), a g-level (g, mg, ug), "
-        "an acceleration (m/s^2) or pulse/s";
+        "an acceleration (m/s^2), a current (mA, uA), a voltage (V, mV) or pulse/s";
     if (*text == "pulse/s") {
       out.pulse = true;
       out.dim = kind::angular_rate;
     } else {
       try {
         const Quantity q = parse_unit(*text);
-        if (q.dim != kind::angular_rate && q.dim != kind::acceleration_g && q.dim != kind::acceleration)
+        if (q.dim != kind::angular_rate && q.dim != kind::acceleration_g && q.dim != kind::acceleration &&
+            q.dim != kind::current && q.dim != kind::voltage)
           r.fail(*t.get("output_unit"), "instrument.output_unit",
                  fmt::format("'{}' is {}; {}", *text, describe(q.dim), accepted));
         out.dim = q.dim;
@@ -127,6 +128,18 @@ void read_noise(const Reader& r, const toml::table& t, const OutputUnit& out, In
     const double v = r.quantity_node(*n, "instrument.quantum", dim, &out, "0 " + si_unit(dim));
     if (v < 0) r.fail(*n, "instrument.quantum", "must not be negative; a quantisation step >= 0");
     m.quantum = v;
+  }
+  // A current output read as the voltage across a sampling resistor: the logs' output column is in volts.
+  if (const toml::node* n = t.get("sampling_resistor")) {
+    if (out.dim != kind::current)
+      r.fail(*n, "instrument.sampling_resistor",
+             fmt::format("a sampling resistor converts a current output; this output is in '{}'; accepted: "
+                         "output_unit = \"mA\" (or another current) with it, or no sampling_resistor",
+                         out.text));
+    const double v = r.quantity_node(*n, "instrument.sampling_resistor", kind::resistance, nullptr, "100 ohm");
+    if (!(v > 0))
+      r.fail(*n, "instrument.sampling_resistor", "must be positive; the resistance, e.g. \"100 ohm\"");
+    m.sampling_resistor = v;
   }
 }
 

@@ -84,6 +84,7 @@ void read_tolerance_entry(const Reader& r, const toml::table& entry, const toml:
   check_bound_size(r, *entry.get("bound"), p + ".bound", *bound, d);
   tol.bound = *bound;
   tol.unit = written_unit(entry.get("bound"), d.dim);
+  if (tol.unit.empty() && d.relative_to > 0) tol.unit = written_unit(entry.get("bound"), kind::dimensionless);
   tol.distribution = r.word(entry, p, "distribution", distribution_words()).value_or(Distribution::normal);
   tol.group = r.string(entry, p, "group").value_or("");
   if (const auto cost = r.number(entry, p, "cost")) {
@@ -130,6 +131,7 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
       tol.bound = is_chain_parameter(tol.parameter) ? chain_quantity(r, node, p, config, tol.parameter)
                                                     : r.quantity_node(node, p, d.dim, nullptr, d.example);
       tol.unit = written_unit(&node, d.dim);
+      if (tol.unit.empty() && d.relative_to > 0) tol.unit = written_unit(&node, kind::dimensionless);  // "2 ppm" of K1
       if (!(tol.bound > 0))
         r.fail(node, p,
                fmt::format("must be positive, got {}; the standard uncertainty, e.g. \"{}\"",

@@ -91,7 +91,10 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
   const bool locked = config.centrifuge.geometry.platform_control == PlatformControl::phase_locked;
   const double w = config.instrument.quantum;  // output SI × s per pulse
   // SI size of the output unit, for an instrument without a quantum (whose output is then not in pulses)
-  const double unit = w > 0 ? 1.0 : parse_unit(config.instrument.output_unit).value_si;
+  // (a current read across a sampling resistor is written in volts: SI per V = 1/R)
+  const double unit = w > 0                                     ? 1.0
+                      : config.instrument.sampling_resistor > 0 ? 1.0 / config.instrument.sampling_resistor
+                                                                : parse_unit(config.instrument.output_unit).value_si;
   // Two runs whose names differ only where a file name has '_' would write one file.
   for (std::size_t a = 0; a < runs.size(); ++a)
     for (std::size_t b = 0; b < a; ++b)

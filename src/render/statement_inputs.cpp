@@ -13,13 +13,9 @@
 namespace ccal::render {
 namespace {
 
-// u in the unit the tolerance was written in, else SI.
+// u in the unit the input is shown in (as written, else its own).
 std::pair<double, std::string> shown_uncertainty(const verbs::StatementSource& s) {
-  if (!s.unit.empty()) try {
-      const Quantity q = parse_unit(s.unit);
-      if (q.value_si > 0) return {s.standard_uncertainty / q.value_si, s.unit};
-    } catch (const UnitError&) {
-    }
+  if (!s.unit.empty() && s.unit_si > 0) return {s.standard_uncertainty / s.unit_si, s.unit};
   return {s.standard_uncertainty, "SI"};
 }
 
@@ -103,6 +99,7 @@ nlohmann::ordered_json inputs_json(const verbs::CalibrationStatement& st) {
       effect[st.coefficients[k].input.coefficient] = s.effect[k];
     inputs.push_back({{"id", s.id},
                       {"u_si", s.standard_uncertainty},
+                      {"u", s.standard_uncertainty / s.unit_si},
                       {"unit", s.unit},
                       {"measured", s.measured},
                       {"basis", s.basis},

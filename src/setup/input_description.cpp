@@ -84,6 +84,8 @@ InputDescription describe_input(const Config& config, int parameter) {
       d.example = fmt::format("1e-4 {}", output);
       break;
     case ChainKind::fixed_term: {
+      if (const auto it = config.identification.fixed_terms.find(d.id); it != config.identification.fixed_terms.end())
+        d.relative_to = std::abs(it->second);
       d.display_unit = coefficient_unit(output, d.id);
       d.dim = parse_unit(pulse_as_rad(d.display_unit)).dim;
       d.example = fmt::format("1e-4 {}", d.display_unit);
@@ -110,7 +112,10 @@ InputDescription describe_input(const Config& config, int parameter) {
 
 double unit_in_si(const InputDescription& d, const std::string& unit) {
   if (d.own_unit) return 1.0;
-  return parse_unit(pulse_as_rad(unit)).value_si;
+  const Quantity q = parse_unit(pulse_as_rad(unit));
+  if (d.relative_to > 0 && q.dim == kind::dimensionless && !(d.dim == kind::dimensionless))
+    return q.value_si * d.relative_to;
+  return q.value_si;
 }
 
 std::string input_quantity_text(const InputDescription& d, double si, const std::string& unit) {

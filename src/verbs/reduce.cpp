@@ -94,7 +94,9 @@ double pulse_weight_from_text(const Config& cfg, std::string_view text) {
 
 RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   RunLogOptions lo;
-  lo.output_scale = output_unit_si(cfg.instrument.output_unit);
+  // The output column in the output unit, or the volts across a sampling resistor (A per V = 1/R).
+  lo.output_scale = cfg.instrument.sampling_resistor > 0 ? 1.0 / cfg.instrument.sampling_resistor
+                                                          : output_unit_si(cfg.instrument.output_unit);
   lo.angle_scale = o.angle_unit == AngleUnit::deg ? std::numbers::pi / 180 : 1.0;
   lo.columns = o.layout.columns;
   if (!o.layout.angle_unit.empty()) {
@@ -113,7 +115,7 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
                         fmt::format("is not a positive number; accepted: the integrated output per pulse in "
                                     "{}·s, e.g. 2.5e-5",
                                     cfg.instrument.output_unit));
-    lo.pulse_weight = *o.pulse_weight * lo.output_scale;
+    lo.pulse_weight = *o.pulse_weight * output_unit_si(cfg.instrument.output_unit);
   }
   return lo;
 }

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/setup/input_description.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/measured_inputs.hpp"
 #include "ccal/verbs/budget.hpp"
@@ -136,7 +137,10 @@ std::vector<StatementSource> statement_sources(const Config& config, const ccal:
     const SourceBudget& src = b.sources[s];
     StatementSource line;
     line.id = src.id;
-    line.unit = config.tolerances[s].unit;
+    // Shown in the unit its tolerance was written in, else the input's own display unit (rad, um, ppm, K).
+    const InputDescription d = describe_input(config, src.parameter);
+    line.unit = config.tolerances[s].unit.empty() ? d.display_unit : config.tolerances[s].unit;
+    line.unit_si = unit_in_si(d, line.unit);
     line.standard_uncertainty = src.standard_uncertainty;
     const auto m = std::find_if(measured.begin(), measured.end(), [&](const MeasuredInput& x) { return x.id == src.id; });
     line.measured = m != measured.end();

@@ -51,10 +51,12 @@ class StatementObject(unittest.TestCase):
             else:
                 line = f"  {r['coefficient']} = ({r['value']} ± {r['U']}) {r['unit']}, k = {r['k']:.3f}"
             self.assertIn(line, self.text)
-        # K2 of the bundled lab: its Student-t interval, which the Monte Carlo check validates (every part has
-        # ν = ∞ and the inputs are many), U to two significant digits.
-        self.assertEqual(rows[1]["interval_method"], "student_t")
-        self.assertEqual(rows[1]["U"], "0.000023")
+        # K0 of the bundled lab: its Student-t interval, which the Monte Carlo check validates (every part has
+        # ν = ∞ and the inputs are many), U to two significant digits; K2's is the Monte Carlo's, the encoders'
+        # cyclic error (an arcsine input read as the drives' ripple) making most of it.
+        self.assertEqual(rows[0]["interval_method"], "student_t")
+        self.assertEqual(rows[0]["U"], "0.018")
+        self.assertEqual(rows[1]["interval_method"], "monte_carlo")
         self.assertEqual([r["interval_method"] for r in rows], self.statement.interval_methods)
         self.assertEqual(self.statement.monte_carlo_trials, 100000)
         self.assertEqual([tuple(r) for r in self.statement.intervals][1],
@@ -69,6 +71,11 @@ class StatementObject(unittest.TestCase):
         for mine, theirs in zip(self.statement.inputs, d["inputs"]):
             self.assertEqual(mine["effect"], theirs["effect"])
             self.assertEqual(mine["standard_uncertainty"], theirs["u_si"])
+            self.assertEqual((mine["u"], mine["unit"]), (theirs["u"], theirs["unit"]))
+        # The measuring chain's inputs in the units the configuration wrote: K1 relative to its value.
+        k1 = next(i for i in self.statement.inputs if i["id"] == "K1")
+        self.assertEqual(k1["unit"], "ppm")
+        self.assertAlmostEqual(k1["u"], 2.0, places=12)
         self.assertTrue(self.statement.type_a_from_noise_model)
         check = self.statement.residual_check
         self.assertEqual(check["statistic"], d["type_a"]["residual_check"]["statistic"])

@@ -9,8 +9,8 @@
 //   term       := (symbol | '(' expression ')') ('^' integer | '²' | '³')?
 // Parentheses nest one level only, as in m/(rad/s)^2. Symbols are case-sensitive:
 //   length  m;  time  s, min, h;  angle  rad, deg, °, arcmin, arcsec;  rate  rpm;
-//   g-level g;  dimensionless  ppm, %.
-// Prefixes n, u, µ (U+00B5), μ (U+03BC), m, k apply to m, s and rad (mm, µm, mrad, urad, ms, ...);
+//   g-level g;  dimensionless  ppm, %;  current A;  voltage V;  resistance ohm.
+// Prefixes n, u, µ (U+00B5), μ (U+03BC), m, k apply to m, s, rad, A, V and ohm (mm, µm, mrad, ms, mA, kohm);
 // m, u, µ, μ apply to g (mg, µg), the usual units of accelerometer bias.
 #include <string>
 #include <string_view>
@@ -23,22 +23,31 @@ namespace ccal {
 // distinct, and so that an angle given where a dimensionless ratio is expected is caught. The g-level is
 // one too: an accelerometer's input is specified as a multiple of g, and its coefficients K_n are in
 // output-unit per g^n, which must not be confused with output-unit per (m/s²)^n.
+// Current and voltage are base dimensions too, for an instrument whose output is a current (a quartz
+// accelerometer's, in mA) read as a voltage across a sampling resistor (ohm = V/A): ccal never needs them in
+// kg, m and s.
 struct Dimension {
   int length = 0;
   int time = 0;
   int angle = 0;
   int g_level = 0;
+  int current = 0;
+  int voltage = 0;
 
   friend constexpr bool operator==(const Dimension&, const Dimension&) = default;
 };
 
 constexpr Dimension operator*(Dimension a, Dimension b) {
-  return {a.length + b.length, a.time + b.time, a.angle + b.angle, a.g_level + b.g_level};
+  return {a.length + b.length,   a.time + b.time,       a.angle + b.angle,
+          a.g_level + b.g_level, a.current + b.current, a.voltage + b.voltage};
 }
 constexpr Dimension operator/(Dimension a, Dimension b) {
-  return {a.length - b.length, a.time - b.time, a.angle - b.angle, a.g_level - b.g_level};
+  return {a.length - b.length,   a.time - b.time,       a.angle - b.angle,
+          a.g_level - b.g_level, a.current - b.current, a.voltage - b.voltage};
 }
-constexpr Dimension pow(Dimension a, int n) { return {a.length * n, a.time * n, a.angle * n, a.g_level * n}; }
+constexpr Dimension pow(Dimension a, int n) {
+  return {a.length * n, a.time * n, a.angle * n, a.g_level * n, a.current * n, a.voltage * n};
+}
 
 // The dimensions of the quantities ccal handles, with their SI unit.
 namespace kind {
@@ -49,6 +58,9 @@ inline constexpr Dimension angle{.angle = 1};                     // rad
 inline constexpr Dimension acceleration_g{.g_level = 1};          // g (input of the accelerometer)
 inline constexpr Dimension angular_rate = angle / time;           // rad/s
 inline constexpr Dimension acceleration = length / pow(time, 2);  // m/s²
+inline constexpr Dimension current{.current = 1};                 // A
+inline constexpr Dimension voltage{.voltage = 1};                 // V
+inline constexpr Dimension resistance = voltage / current;        // ohm
 
 // Unit of an instrument coefficient of the given order: output per g^order, e.g. K_3 of an instrument
 // whose output is an angular rate is in rad/s/g^3.

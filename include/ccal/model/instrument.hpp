@@ -88,6 +88,9 @@ struct InstrumentModel {
   // output [output SI·s] (e.g. a PIGA pulse weight); both 0 = noise-free.
   double noise_density = 0.0;
   double quantum = 0.0;
+  // A current output read as the voltage across this resistor [ohm] (a DVM on a sampling resistor): the logs'
+  // output column is then in volts, I = V/R; 0: the logs hold the output itself.
+  double sampling_resistor = 0.0;
 
   std::vector<TermSpec> terms() const;
   std::optional<double> coefficient(std::string_view id) const;

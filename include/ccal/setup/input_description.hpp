@@ -19,9 +19,11 @@ struct InputDescription {
   std::string example;       // a bound as a user writes it, e.g. "25 um"
   double estimate_si = 0;    // the lab's estimate of its error ([errors]); 0 for the chain's inputs
   bool own_unit = false;     // a declared input: its values are in its own unit, which ccal does not parse
+  double relative_to = 0;    // a fixed term: |its value| (SI), what a relative unit ("ppm") is a fraction of
 };
 
-// The size of one `unit` in the input's SI unit (1 for a declared input's own unit); pulses count as rad.
+// The size of one `unit` in the input's SI unit (1 for a declared input's own unit; a relative unit of a fixed
+// term is that fraction of its value); pulses count as rad.
 double unit_in_si(const InputDescription& d, const std::string& unit);
 // A value in SI as text in `unit` with 4 significant digits, e.g. "0.5 arcsec" or "0.05 K".
 std::string input_quantity_text(const InputDescription& d, double si, const std::string& unit);

@@ -47,7 +47,8 @@ OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>);
 // One input of the statement's Type B part, as its table of inputs (the GUM table) lists it.
 struct StatementSource {
   std::string id;                   // the [tolerances] id
-  std::string unit;                 // the unit its tolerance was written in ("" SI), for display
+  std::string unit;                 // the unit it is shown in: as its tolerance was written, else its own
+  double unit_si = 1;               // SI size of one `unit`
   double standard_uncertainty = 0;  // u of the input, SI
   bool measured = false;            // measured in this test (its tolerance replaced), else from its tolerance
   std::string basis;                // how u was obtained, in words
