@@ -42,6 +42,7 @@ constexpr BaseUnit kBaseUnits[] = {
     {"arcsec", constants::arcsec, kind::angle, Prefixes::none},
     {"rpm", constants::rpm, kind::angular_rate, Prefixes::none},
     {"g", 1.0, kind::acceleration_g, Prefixes::small},
+    {"gn", 1.0, kind::acceleration_g, Prefixes::none},  // standard gravity as the g of a g-level
     {"ppm", 1e-6, kind::dimensionless, Prefixes::none},
     {"%", 1e-2, kind::dimensionless, Prefixes::none},
     {"A", 1.0, kind::current, Prefixes::all},

@@ -298,7 +298,7 @@ inline const Keys kRootKeys{"site",       "centrifuge", "errors",         "toler
 inline const Keys kInputKeys{"id", "description", "unit", "bound", "distribution", "group", "cost", "floor",
                              "sensitivity"};
 inline const Keys kCorrelationKeys{"between", "r"};
-inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation"};
+inline const Keys kSiteKeys{"latitude", "g", "height", "earth_rotation", "g_unit"};
 inline const Keys kCentrifugeKeys{
     "radius",         "base_plane_height", "instrument_height", "horizontal_axis_angle",
     "harmonic_order", "platform_control",  "main_rate_noise",   "platform_rate_noise", "encoders"};

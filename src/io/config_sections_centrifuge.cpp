@@ -43,6 +43,12 @@ Site read_site(const Reader& r, const toml::table& root) {
   } else {
     site.g = normal_gravity(site.latitude, height);
   }
+  // The g of the g-levels and of the instrument's coefficients: the site's (the default) or standard gravity.
+  enum class GUnit { local, standard };
+  const std::vector<std::pair<std::string_view, GUnit>> g_units{{"local", GUnit::local},
+                                                                 {"standard", GUnit::standard}};
+  if (r.word(*t, "site", "g_unit", g_units).value_or(GUnit::local) == GUnit::standard)
+    site.unit_g = kStandardGravity;
   site.earth_rotation = r.boolean(*t, "site", "earth_rotation").value_or(true);
   return site;
 }

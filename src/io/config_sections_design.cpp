@@ -106,7 +106,7 @@ void read_objective(const Reader& r, const toml::table& t, const InstrumentModel
     }
   }
   std::vector<std::string> units;
-  for (const auto& id : spec.free_terms) units.push_back(coefficient_unit(instrument.output_unit, id));
+  for (const auto& id : spec.free_terms) units.push_back(coefficient_unit(instrument.output_unit, id, instrument.g_symbol));
   if (const toml::table* targets = r.table(t, "design", "targets", false)) {
     for (const auto& [key, node] : *targets) {
       const std::string p = Reader::path("design.targets", key.str());
@@ -119,7 +119,7 @@ void read_objective(const Reader& r, const toml::table& t, const InstrumentModel
       else
         r.fail(node, p,
                fmt::format("expected an expanded uncertainty such as \"1e-6 {}\", got {}",
-                           coefficient_unit(instrument.output_unit, key.str()), type_name(node)));
+                           coefficient_unit(instrument.output_unit, key.str(), instrument.g_symbol), type_name(node)));
       try {
         const AllocationTarget target =
             parse_allocation_target(fmt::format("{}={}", key.str(), value), spec.free_terms, units, p);

@@ -85,7 +85,7 @@ void read_declared_inputs(const Reader& r, const toml::table& root, Config& conf
         r.fail(where(term.source()), Reader::path(sp, term.str()),
                fmt::format("no term of the instrument; accepted: {}", list));
       }
-      const std::string unit_text = coefficient_unit(config.instrument.output_unit, term.str());
+      const std::string unit_text = coefficient_unit(config.instrument.output_unit, term.str(), config.instrument.g_symbol);
       const Dimension dim = parse_unit(pulse_as_rad(unit_text)).dim;
       in.sensitivity.emplace_back(
           term.str(), r.quantity_node(value, Reader::path(sp, term.str()), dim, nullptr,

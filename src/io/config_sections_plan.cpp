@@ -282,7 +282,7 @@ TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geo
       run.g_level = *g_level;
     } else {
       r.require_positive(*rt, p, "speed", *speed, "the main-axis speed such as \"120 rpm\"");
-      run.g_level = *speed * *speed * geometry.R0 / site.g;
+      run.g_level = *speed * *speed * geometry.R0 / site.g_unit();
       r.require_at_most(*rt, p, "speed", run.g_level, 1000.0, "a speed giving at most 1000 g at the radius");
       r.require_at_least(*rt, p, "speed", run.g_level, 1e-3, "a speed giving at least 0.001 g at the radius");
     }

@@ -300,7 +300,7 @@ ObservationsHeader observations_file_header(const IdentificationSpec& spec,
   for (const auto& id : spec.free_terms) h.terms.push_back({id, id});
   for (const auto& [id, value] : spec.fixed_terms)
     h.fixed.push_back(
-        {{id, id}, value / unit, coefficient_unit(instrument.output_unit, parse_term(id).value())});
+        {{id, id}, value / unit, coefficient_unit(instrument.output_unit, parse_term(id).value(), instrument.g_symbol)});
   h.known = {"rate"};
   h.output_unit = instrument.output_unit;
   h.config_sha256 = std::string(config_sha256);

@@ -58,7 +58,7 @@ Run measured_run(const Run& planned, const ReducedLog& log, const Geometry& geom
   Run run = planned;
   run.duration = log.duration;
   if (log.has_theta1) {
-    run.g_level = log.theta1_rate * log.theta1_rate * geometry.R0 / site.g;
+    run.g_level = log.theta1_rate * log.theta1_rate * geometry.R0 / site.g_unit();
     run.arm_azimuth = log.theta1_start;
   }
   if (log.has_gamma) {

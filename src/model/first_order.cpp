@@ -117,7 +117,8 @@ struct NominalInstrument {
   const FrameMotion<double>& five;
   V3 earth;   // in the Coriolis force
   V3 sensed;  // in the instrument's rate
-  double g;
+  double g;     // gravity [m/s²]
+  double unit;  // the g of the g-levels [m/s²]
   V3 f;
   V3 w_inertial;
   Eigen::Matrix3d RT;
@@ -129,7 +130,7 @@ NominalInstrument nominal_instrument(const FrameMotion<double>& five, const Site
   const double g = site.g;
   const V3 f = five.a + 2.0 * earth.cross(five.v) + V3(0, 0, g);
   const V3 w_inertial = five.w + sensed;
-  return {five, earth, sensed, g, f, w_inertial, five.R.transpose()};
+  return {five, earth, sensed, g, site.g_unit(), f, w_inertial, five.R.transpose()};
 }
 
 // The column of one link error (not a drive) by small-twist perturbation (first_order.hpp, model.md §5.2):
@@ -158,7 +159,7 @@ Column link_error_column(const LinkFrames& lf, const NominalInstrument& nom, Err
     dw = V3::Zero();
   }
   Column column;
-  column << nom.RT * df / nom.g, nom.RT * dw;
+  column << nom.RT * df / nom.unit, nom.RT * dw;
   return column;
 }
 
@@ -174,7 +175,7 @@ struct DriveDerivatives {
 DriveDerivatives drive_derivatives(const Geometry& geo, const JointState<double>& j,
                                    const NominalInstrument& nom) {
   auto e = [](double a) { return V3(std::cos(a), std::sin(a), 0.0); };
-  const double R0 = geo.R0, wr = j.theta1_rate, psi = j.theta1 + j.gamma, g = nom.g;
+  const double R0 = geo.R0, wr = j.theta1_rate, psi = j.theta1 + j.gamma, g = nom.g, unit = nom.unit;
   // The four directions, each evaluated once (the cos and sin calls are most of this function's time).
   const V3 e_theta1 = e(j.theta1), e_theta1_normal = e(j.theta1 + kHalfPi), e_psi = e(psi),
            e_psi_normal = e(psi + kHalfPi);
@@ -182,7 +183,7 @@ DriveDerivatives drive_derivatives(const Geometry& geo, const JointState<double>
   const V3 ez(0, 0, 1);
   auto outputs = [&](const V3& force, const V3& rate) {
     Column y;
-    y << e_psi.dot(force) / g, e_psi_normal.dot(force) / g, force.z() / g, e_psi.dot(rate),
+    y << e_psi.dot(force) / unit, e_psi_normal.dot(force) / unit, force.z() / unit, e_psi.dot(rate),
         e_psi_normal.dot(rate), rate.z();
     return y;
   };
@@ -192,7 +193,7 @@ DriveDerivatives drive_derivatives(const Geometry& geo, const JointState<double>
   const V3 force_rate = -2.0 * wr * R0 * e_theta1 + 2.0 * earth.cross(R0 * e_theta1_normal);
   const V3 rate = nom.five.w + nom.sensed;
   DriveDerivatives D;
-  D.d_psi << e_psi_normal.dot(force) / g, -e_psi.dot(force) / g, 0.0, e_psi_normal.dot(rate),
+  D.d_psi << e_psi_normal.dot(force) / unit, -e_psi.dot(force) / unit, 0.0, e_psi_normal.dot(rate),
       -e_psi.dot(rate), 0.0;
   D.d_theta1 = outputs(force_theta1, V3::Zero());
   D.d_theta1_rate = outputs(force_rate, ez);
@@ -291,7 +292,7 @@ FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layou
   const NominalInstrument nom = nominal_instrument(chain.instrument, site);
 
   FirstOrderResult out;
-  out.nominal << nom.RT * nom.f / nom.g, nom.RT * nom.w_inertial;
+  out.nominal << nom.RT * nom.f / nom.unit, nom.RT * nom.w_inertial;
   out.sensitivity = SensitivityMatrix::Zero(6, layout.size());
   JointTrig trig(j);
   for (int index = 0; index < layout.size(); ++index) {

@@ -84,26 +84,26 @@ InstrumentModel paper_piga() {
   return m;
 }
 
-std::string coefficient_unit(std::string_view output_unit, const TermSpec& term) {
+std::string coefficient_unit(std::string_view output_unit, const TermSpec& term, std::string_view g) {
   if (output_unit.empty()) return "";
   const std::string out(output_unit);
   switch (term.kind) {
     case TermKind::power:
       if (term.power == 0) return out;
-      if (term.power == 1) return out + "/g";
-      return fmt::format("{}/g^{}", out, term.power);
+      if (term.power == 1) return fmt::format("{}/{}", out, g);
+      return fmt::format("{}/{}^{}", out, g, term.power);
     case TermKind::p:
     case TermKind::o:
-      return out + "/g";
+      return fmt::format("{}/{}", out, g);
     case TermKind::rate:
       return out + "/(rad/s)";
     default:
-      return out + "/g^2";
+      return fmt::format("{}/{}^2", out, g);
   }
 }
 
-std::string coefficient_unit(std::string_view output_unit, std::string_view term_id) {
-  return coefficient_unit(output_unit, parse_term(term_id).value());
+std::string coefficient_unit(std::string_view output_unit, std::string_view term_id, std::string_view g) {
+  return coefficient_unit(output_unit, parse_term(term_id).value(), g);
 }
 
 }  // namespace ccal

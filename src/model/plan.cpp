@@ -26,7 +26,7 @@ Eigen::Matrix3d mounting_matrix(Mounting mounting) {
 }
 
 double nominal_rate(const Run& run, const Geometry& geometry, const Site& site) {
-  return std::sqrt(run.g_level * site.g / geometry.R0);
+  return std::sqrt(run.g_level * site.g_unit() / geometry.R0);
 }
 
 double nominal_platform_rate(const Run& run, const Geometry& geometry, const Site& site) {

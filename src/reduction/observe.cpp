@@ -38,7 +38,7 @@ PaperRunNodes paper_run_nodes(const Experiment& ex, const ccal::Run& run,
     n.weight.push_back(quad.weights[k]);
     n.cos_gamma.push_back(std::cos(j.gamma));
     n.sin_gamma.push_back(std::sin(j.gamma));
-    n.coriolis.push_back(-fo.nominal[0] - (n.rate * n.rate * geo.R0 / ex.site.g) * std::cos(j.gamma));
+    n.coriolis.push_back(-fo.nominal[0] - (n.rate * n.rate * geo.R0 / ex.site.g_unit()) * std::cos(j.gamma));
     n.nominal_rate_ia.push_back(fo.nominal[3]);
     std::vector<std::pair<int, double>> force, rate;
     for (int i = 0; i < ex.layout.size(); ++i) {
@@ -57,7 +57,7 @@ RunAverage<S> paper_average(const Experiment& ex, const PaperRunNodes& nodes, co
                             const InstrumentModel* instrument, const std::vector<TermSpec>& terms,
                             bool cross_terms) {
   const S omega = S(nodes.rate) + e[ch::domega];
-  const S A = S(ex.geometry.R0) * omega * omega / S(ex.site.g);
+  const S A = S(ex.geometry.R0) * omega * omega / S(ex.site.g_unit());
   std::vector<TermSpec> truth_terms;
   double k1 = 0.0;
   if (instrument) {

@@ -296,7 +296,8 @@ struct TrialTerms {
   const double* main_ripple;            // c1, s1, … of the main drive's rate ripple, nullptr when zero
   const double* platform_ripple;        // the same of the platform drive
   int order;
-  double g;
+  double g;     // gravity [m/s²]
+  double unit;  // the g of the g-levels [m/s²]
   bool phase_locked, main_small, platform_small;
 };
 
@@ -321,6 +322,7 @@ TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eigen::Vect
                    nonzero_ripple(errors, d.layout, ch::ripple3, order),
                    order,
                    d.site.g,
+                   d.site.g_unit(),
                    d.geometry.platform_control == PlatformControl::phase_locked,
                    false,
                    false};
@@ -502,7 +504,7 @@ void platform_half(const RunTables& t, const RunGroup& group, const GroupNodes& 
                                 scratch.sin_offset.data(),
                                 scratch.platform_rate.data(),
                                 all,
-                                1.0 / trial.g,
+                                1.0 / trial.unit,
                                 to_v3(trial.blocks.pC),
                                 trial.blocks.RC * t.mount};
   platform_nodes(platform, trial.platform_small, scratch.main, scratch.inputs);

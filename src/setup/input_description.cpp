@@ -86,7 +86,7 @@ InputDescription describe_input(const Config& config, int parameter) {
     case ChainKind::fixed_term: {
       if (const auto it = config.identification.fixed_terms.find(d.id); it != config.identification.fixed_terms.end())
         d.relative_to = std::abs(it->second);
-      d.display_unit = coefficient_unit(output, d.id);
+      d.display_unit = coefficient_unit(output, d.id, config.instrument.g_symbol);
       d.dim = parse_unit(pulse_as_rad(d.display_unit)).dim;
       d.example = fmt::format("1e-4 {}", d.display_unit);
       break;

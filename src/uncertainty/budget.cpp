@@ -409,7 +409,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   r.coefficients = spec.free_terms;
   r.coverage = normal_coverage(options.coverage_probability, options.coverage_factor);
   for (const auto& id : r.coefficients) {
-    r.units.push_back(coefficient_unit(config.instrument.output_unit, id));
+    r.units.push_back(coefficient_unit(config.instrument.output_unit, id, config.instrument.g_symbol));
     r.display_scale.push_back(to_unit(1.0, config.instrument.output_unit));
   }
   add_tolerance_sources(config, table, compare ? &paper : nullptr, r);

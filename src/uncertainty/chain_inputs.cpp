@@ -78,7 +78,9 @@ Experiment with_gravity_error(const Experiment& ex, double dg) {
   Experiment out = ex;
   const double scale = ex.site.g / (ex.site.g + dg);
   out.site.g = ex.site.g + dg;
-  for (Run& run : out.plan.runs) run.g_level *= scale;
+  // The g-levels are in the local g unless the coefficients are per standard gravity, which g does not move.
+  if (!(ex.site.unit_g > 0))
+    for (Run& run : out.plan.runs) run.g_level *= scale;
   return out;
 }
 

@@ -49,7 +49,7 @@ AllocateResult allocate(const Config& config, const AllocateOptions& o) {
   // The free terms and their units, for the targets.
   std::vector<std::string> units;
   for (const auto& id : config.identification.free_terms)
-    units.push_back(coefficient_unit(config.instrument.output_unit, id));
+    units.push_back(coefficient_unit(config.instrument.output_unit, id, config.instrument.g_symbol));
   std::vector<AllocationTarget> targets;
   for (const auto& t : o.targets)
     targets.push_back(parse_allocation_target(t, config.identification.free_terms, units));

@@ -21,10 +21,10 @@ std::string term_unit(const TableTerm& term, const ColumnUnits& units) {
   const TermSpec spec = parse_term(term.id).value();
   const bool known = !units.output_unit.empty();
   if (!term.column.empty())
-    return known ? coefficient_unit(units.output_unit, spec)
+    return known ? coefficient_unit(units.output_unit, spec, units.g_symbol)
                  : fmt::format("{}/{}", units.output_column, term.column);
   if (spec.power == 0) return known ? units.output_unit : units.output_column;
-  if (known && units.input_in_g) return coefficient_unit(units.output_unit, spec);
+  if (known && units.input_in_g) return coefficient_unit(units.output_unit, spec, units.g_symbol);
   return fmt::format("{}/{}{}", known ? units.output_unit : units.output_column, units.input_column,
                      power_suffix(spec.power));
 }
@@ -160,6 +160,7 @@ FileIdentification identify_observations(const Observations<double>& obs, const 
   ColumnUnits units;
   units.output_unit = instrument.output_unit;
   units.input_in_g = true;
+  units.g_symbol = instrument.g_symbol;
   // The file's rows start on line 3, after its header comment and column names.
   std::vector<int> row_lines(obs.runs.size());
   for (std::size_t r = 0; r < row_lines.size(); ++r) row_lines[r] = int(r) + 3;

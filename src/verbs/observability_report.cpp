@@ -133,7 +133,7 @@ ObservabilityReport assess_plan(const Config& config, ModelMode mode) {
         config.instrument.coefficient(spec.free_terms[static_cast<std::size_t>(k)]).value_or(0.0) / unit;
   ObservabilityReport report;
   for (const auto& id : spec.free_terms)
-    report.units.push_back(coefficient_unit(config.instrument.output_unit, id));
+    report.units.push_back(coefficient_unit(config.instrument.output_unit, id, config.instrument.g_symbol));
   report.basis = "instrument noise and quantum over each run's duration, floating point";
   report.result = assess_observability(p);
   judge(report, config.source);

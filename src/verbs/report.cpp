@@ -71,7 +71,7 @@ SensedInputSeries sensed_input(const Config& config, const ReportOptions& o) {
 void check_targets(const Config& config, const ReportOptions& o) {
   std::vector<std::string> units;
   for (const auto& id : config.identification.free_terms)
-    units.push_back(coefficient_unit(config.instrument.output_unit, id));
+    units.push_back(coefficient_unit(config.instrument.output_unit, id, config.instrument.g_symbol));
   if (o.allocate) {
     if (o.allocate->targets.empty())
       throw OptionError("allocate_targets", "", "none given; the allocation needs at least one target, e.g. K3=2e-3");

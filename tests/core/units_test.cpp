@@ -344,11 +344,28 @@ TEST(UnitErrors, UnknownUnitListsAcceptedOnes) {
   // Without an expected dimension every symbol and prefix is listed.
   const std::string any = ErrorOf([] { ccal::parse_quantity("3 furlong"); });
   ExpectContains(any, "unknown unit 'furlong'");
-  ExpectContains(any, "known units: m, s, min, h, rad, deg, °, arcmin, arcsec, rpm, g, ppm, %");
+  ExpectContains(any, "known units: m, s, min, h, rad, deg, °, arcmin, arcsec, rpm, g, gn, ppm, %, A, V, ohm");
   // Prefixes only where they are defined.
   ExpectContains(ErrorOf([] { ccal::parse_quantity("2 kg"); }), "unknown unit 'kg'");
   ExpectContains(ErrorOf([] { ccal::parse_quantity("2 mdeg"); }), "unknown unit 'mdeg'");
   ExpectContains(ErrorOf([] { ccal::parse_quantity("2 M"); }), "unknown unit 'M'");  // case-sensitive
+}
+
+TEST(Units, CurrentVoltageAndResistanceForAnOutputReadAcrossAResistor) {
+  // A quartz accelerometer's output in mA read as volts across a resistor: V = I R, each a dimension of its own.
+  const ccal::Quantity i = ccal::parse_quantity("2.5 mA");
+  EXPECT_EQ(i.dim, kind::current);
+  EXPECT_DOUBLE_EQ(i.value_si, 2.5e-3);
+  EXPECT_EQ(ccal::parse_quantity("250 ohm").dim, kind::resistance);
+  EXPECT_DOUBLE_EQ(ccal::parse_quantity("1.5 kohm").value_si, 1500.0);
+  EXPECT_EQ(ccal::parse_quantity("3 mV").dim * ccal::parse_quantity("1 A").dim / kind::voltage, kind::current);
+  EXPECT_EQ(ccal::parse_quantity("1.3 mA/g").dim, kind::coefficient(kind::current, 1));
+  EXPECT_EQ(ccal::si_unit(kind::coefficient(kind::current, 2)), "A/g^2");
+  EXPECT_EQ(ccal::describe(kind::current), "a current");
+  // gn, standard gravity as the g of a g-level: the same dimension as g, for coefficients per g_n.
+  EXPECT_EQ(ccal::parse_quantity("0.02 deg/s/gn^2").dim, ccal::parse_quantity("0.02 deg/s/g^2").dim);
+  EXPECT_NE(ErrorOf([] { ccal::parse_quantity("2 A"); ccal::parse_as("2 mA", kind::voltage, "x"); }).find("x"),
+            std::string::npos);
 }
 
 TEST(UnitErrors, BareNumberNeedsUnitUnlessAllowed) {

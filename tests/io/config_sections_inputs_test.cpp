@@ -93,6 +93,20 @@ TEST(ChainInputsTable, MisusesAreRefusedWithWhatIsAccepted) {
                         "inputs[1].sensitivity.K9", {"no term of the instrument"});
 }
 
+TEST(ChainInputsTable, StandardGravityIsTheGOfTheCoefficientsWhereTheSiteSaysSo) {
+  std::string text = kBase;
+  const std::string g = "g = \"9.8 m/s^2\"";
+  text.replace(text.find(g), g.size(), g + "\ng_unit = \"standard\"");
+  const Config c = parse_config(text, "case.toml");
+  EXPECT_EQ(c.site.unit_g, kStandardGravity);
+  EXPECT_EQ(c.site.g_unit(), 9.80665);
+  EXPECT_EQ(c.instrument.g_symbol, "gn");
+  EXPECT_EQ(coefficient_unit(c.instrument.output_unit, "K2", c.instrument.g_symbol), "deg/s/gn^2");
+  EXPECT_EQ(parse_config(kBase, "case.toml").site.g_unit(), 9.8);  // the local g by default
+  text.replace(text.find("\"standard\""), 10, "\"normal\"");
+  expect_error(text, line_holding(text, "g_unit"), "site.g_unit", {"local", "standard"});
+}
+
 TEST(ChainInputsTable, ATruthFileSetsTheChainsErrors) {
   const Config c = parse_config(kBase + kChain, "case.toml");
   const SimulationTruth t =

@@ -45,6 +45,42 @@ TEST(ChainInputs, GravityActsAsMinusTheRadius) {
   }
 }
 
+TEST(ChainInputs, CoefficientsPerStandardGravityAreTheSameInstrument) {
+  // [site] g_unit = "standard": the g-levels and the coefficients are per g_n. The same machine and runs (the
+  // g-levels scaled by g/g_n to keep the speeds) and the same instrument (K_n scaled by (g_n/g)^n) give the
+  // same run means, and the fit gives the coefficients so scaled: 1e-12 relative (round-off of the chain).
+  const Config local = bundled_example();
+  Config standard = local;
+  standard.site.unit_g = kStandardGravity;
+  standard.instrument.g_symbol = "gn";
+  const double ratio = kStandardGravity / local.site.g;
+  for (ccal::Run& run : standard.plan.runs) run.g_level /= ratio;
+  for (std::size_t k = 0; k < standard.instrument.term_ids.size(); ++k) {
+    const int n = parse_term(standard.instrument.term_ids[k]).value().power;
+    standard.instrument.coefficients[Eigen::Index(k)] *= std::pow(ratio, n);
+  }
+  for (auto& [id, value] : standard.identification.fixed_terms) value *= std::pow(ratio, parse_term(id).value().power);
+  const Experiment a = local.experiment(), b = standard.experiment();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(a.layout.size());
+  const Observations<double> oa = observe<double>(a, zero, zero, local.identification);
+  const Observations<double> ob = observe<double>(b, zero, zero, standard.identification);
+  for (Eigen::Index j = 0; j < oa.output.size(); ++j)
+    EXPECT_NEAR(ob.output[j], oa.output[j], 1e-12 * std::abs(oa.output[j]) + 1e-15) << j;
+  const Eigen::VectorXd ka = fitted(oa, local.identification), kb = fitted(ob, standard.identification);
+  for (std::size_t k = 0; k < local.identification.free_terms.size(); ++k) {
+    const int n = parse_term(local.identification.free_terms[k]).value().power;
+    EXPECT_NEAR(kb[Eigen::Index(k)], ka[Eigen::Index(k)] * std::pow(ratio, n),
+                1e-10 * std::abs(ka[Eigen::Index(k)] * std::pow(ratio, n)))
+        << local.identification.free_terms[k];
+  }
+  // Per g_n, the local g acts through gravity alone, which the example's horizontal input axis does not sense:
+  // g's column is zero but for the difference's round-off (1e-13 of a run mean per 1e-3 g).
+  const Eigen::MatrixXd s = chain_sensitivity(b, standard.identification, {chain_code(ChainKind::gravity)});
+  const Eigen::MatrixXd by_radius = chain_sensitivity(b, standard.identification, {ch::dR_s});
+  for (Eigen::Index k = 0; k < s.rows(); ++k)
+    EXPECT_LT(std::abs(s(k, 0) * 1e-4 * b.site.g), 1e-9 * std::abs(by_radius(k, 0) * 1e-4 * b.geometry.R0)) << k;
+}
+
 TEST(ChainInputs, GainAndOffsetAreARefitOfTheReadOutput) {
   // The reading (1 + ε) ȳ + b re-fitted: K̂ moves by H⁺ ȳ ε and H⁺ 1 b, which the columns state (linear
   // least squares: exact but for the round-off of the fit, 1e-15 of K̂ over ε = 1e-6; tolerance 1e-8).

@@ -29,10 +29,11 @@ struct TermSpec {
 // Parses a term id; nullopt if it is not one (see the list above).
 // The unit of a term's coefficient for an instrument read in `output_unit`: the output unit per gⁿ for a
 // term of order n in the specific force (e.g. "deg/s/g^3" for K3 of a PIGA read in deg/s), per (rad/s) for
-// K_w; "" when the output unit is not known.
-std::string coefficient_unit(std::string_view output_unit, const TermSpec& term);
+// K_w; "" when the output unit is not known. g: the symbol of the g the coefficients are per, "g" for the local
+// g, "gn" for standard gravity (InstrumentModel::g_symbol).
+std::string coefficient_unit(std::string_view output_unit, const TermSpec& term, std::string_view g = "g");
 // The same for a term id, which must be valid.
-std::string coefficient_unit(std::string_view output_unit, std::string_view term_id);
+std::string coefficient_unit(std::string_view output_unit, std::string_view term_id, std::string_view g = "g");
 
 std::optional<TermSpec> parse_term(std::string_view id);
 std::string term_id(const TermSpec& term);
@@ -91,6 +92,9 @@ struct InstrumentModel {
   // A current output read as the voltage across this resistor [ohm] (a DVM on a sampling resistor): the logs'
   // output column is then in volts, I = V/R; 0: the logs hold the output itself.
   double sampling_resistor = 0.0;
+  // The g its coefficients are per, as a unit symbol: "g" the site's local g, "gn" standard gravity
+  // ([site] g_unit; Site::unit_g).
+  std::string g_symbol = "g";
 
   std::vector<TermSpec> terms() const;
   std::optional<double> coefficient(std::string_view id) const;

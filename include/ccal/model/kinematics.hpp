@@ -159,7 +159,7 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   out.velocity = m.v;
   out.acceleration = m.a;
   out.orientation = m.R;
-  out.specific_force = m.R.transpose() * f / S(site.g);
+  out.specific_force = m.R.transpose() * f / S(site.g_unit());
   out.angular_rate = m.R.transpose() * (m.w + earth);
   return out;
 }
@@ -239,6 +239,7 @@ class StaticChain {
   StaticChain(const Geometry& geo, const ErrorLayout& layout, const Errors& e, const Site& site,
               const S& theta1_rate, const S& beta, const ChainOptions& options = {})
       : g_(site.g),
+        unit_(site.g_unit()),
         frozen_(options.frozen_platform),
         b_(chain_blocks<S>(geo, layout, e, site, theta1_rate, beta)) {}
 
@@ -275,11 +276,12 @@ class StaticChain {
       const Vec3<S> x3(cg * x3t[0] + sg * x3t[1], cg * x3t[1] - sg * x3t[0], x3t[2]);
       return Vec3<S>(b_.RC.transpose() * x3);
     };
-    return {to_frame5(f1) / S(g_), to_frame5(w1)};
+    return {to_frame5(f1) / S(unit_), to_frame5(w1)};
   }
 
  private:
-  double g_;
+  double g_;     // gravity [m/s²]
+  double unit_;  // the g of the g-levels [m/s²]
   bool frozen_;
   ChainBlocks<S> b_;
 };
@@ -298,6 +300,7 @@ class DynamicChain {
                const S& theta1_rate, const S& beta, const ChainOptions& options = {})
       : layout_(layout),
         g_(site.g),
+        unit_(site.g_unit()),
         frozen_(options.frozen_platform),
         b_(chain_blocks<S>(geo, layout, e, site, theta1_rate, beta)) {
     // Fourier coefficients of the ten dynamic channels, [channel][c0, c1, s1, …].
@@ -354,7 +357,7 @@ class DynamicChain {
     m.transform(b_.RC, b_.pC);
     if (frozen_) m.w += azimuth_axis * j.gamma_rate;
     const Vec3<S> f = m.a + S(2) * b_.coriolis_1t.cross(m.v) + S(g_) * b_.gravity_1t;
-    return {m.R.transpose() * f / S(g_), m.R.transpose() * (m.w + b_.earth_1t)};
+    return {m.R.transpose() * f / S(unit_), m.R.transpose() * (m.w + b_.earth_1t)};
   }
 
  private:
@@ -396,7 +399,8 @@ class DynamicChain {
   }
 
   ErrorLayout layout_;
-  double g_;
+  double g_;     // gravity [m/s²]
+  double unit_;  // the g of the g-levels [m/s²]
   bool frozen_;
   ChainBlocks<S> b_;
   std::vector<S> coefficients_[10];

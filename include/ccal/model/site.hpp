@@ -8,6 +8,10 @@ namespace ccal {
 struct Site {
   double latitude = 0.798488132;     // rad; 45.75° N (Harbin), the paper's site as reconstructed
   double g = 9.8;                    // local gravity magnitude [m/s²]; the paper's value (model.md A2)
+  // The g the g-levels and the instrument's coefficients are in [m/s²]: 0 for the local g (the default, as the
+  // paper has it), kStandardGravity for standard gravity g_n ([site] g_unit = "standard").
+  double unit_g = 0;
+  double g_unit() const { return unit_g > 0 ? unit_g : g; }
   bool earth_rotation = true;        // Coriolis force and Earth rate on the instrument
   double earth_rate = 7.2921150e-5;  // WGS-84 [rad/s]
   // With earth_rotation on, its two effects can be switched off one at a time: this is how an analyst's
@@ -25,6 +29,9 @@ struct Site {
     return sense_earth_rate ? earth_rate_enu() : Eigen::Vector3d::Zero();
   }
 };
+
+// Standard gravity g_n (CGPM 1901), m/s².
+inline constexpr double kStandardGravity = 9.80665;
 
 // Normal gravity on the WGS-84 ellipsoid (Somigliana's closed form) with the free-air gradient
 // −3.086e-6 s⁻² per metre of height; the default for a site whose g is not measured.

@@ -21,6 +21,7 @@ struct ColumnUnits {
   std::string output_column = "output";
   std::string input_column = "a_i";
   bool input_in_g = false;  // the input column is a ccal file's a_i (in g)
+  std::string g_symbol = "g";  // the g of a_i: "g" local, "gn" standard gravity (InstrumentModel::g_symbol)
 };
 
 struct Identification {
