@@ -43,12 +43,14 @@ inline Eigen::Vector3d identified_deg(const Experiment& ex, const Eigen::VectorX
   return identify_coefficients<double>(obs, spec) / kDeg;
 }
 
-// The configured errors plus every tolerance at ±k times its bound, signs at random: a corner of the
-// tolerance box (k = 3 is a 3σ draw of every normal source).
+// The configured errors plus every centrifuge tolerance at ±k times its bound, signs at random: a corner of the
+// tolerance box (k = 3 is a 3σ draw of every normal source). The measuring chain's inputs are no errors of the
+// layout and stay at the lab's values.
 inline Eigen::VectorXd corner_draw(const Config& cfg, double k, std::mt19937& rng) {
   std::uniform_int_distribution<int> sign(0, 1);
   Eigen::VectorXd e = cfg.centrifuge.errors;
-  for (const Tolerance& t : cfg.tolerances) e[t.parameter] += (sign(rng) ? k : -k) * t.bound;
+  for (const Tolerance& t : cfg.tolerances)
+    if (!is_chain_parameter(t.parameter)) e[t.parameter] += (sign(rng) ? k : -k) * t.bound;
   return e;
 }
 

@@ -15,6 +15,7 @@
 #include "ccal/io/truth_file.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/uncertainty/statement.hpp"
+#include "test_constants.hpp"
 #include "ccal/verbs/identify.hpp"
 #include "verbs_support.hpp"
 
@@ -121,6 +122,11 @@ TEST(SimulateVerb, ADrawnTruthIsTheErrorsPlusOneDrawOfEveryTolerance) {
   // noise, so its run means differ from a truth file with those errors only by the drives' drawn rate noise:
   // with the rate noise removed they are that truth's, bit for bit. And it is one answer or the other.
   Config config = bundled_example();
+  Tolerance gravity;  // and an input of the measuring chain, drawn as an error of the machine's chain
+  gravity.parameter = chain_parameter({ChainKind::gravity, 0});
+  gravity.id = "g";
+  gravity.bound = 1e-3;
+  config.tolerances.push_back(gravity);
   verbs::SimulateOptions o;
   o.draw_truth = true;
   o.seed = 11;
@@ -128,8 +134,17 @@ TEST(SimulateVerb, ADrawnTruthIsTheErrorsPlusOneDrawOfEveryTolerance) {
   const std::vector<double> draws = draw_sources(config.tolerances, config.correlations, 11);
   ASSERT_EQ(drawn.drawn, draws);
   Eigen::VectorXd expected = config.centrifuge.errors;
-  for (std::size_t k = 0; k < draws.size(); ++k) expected[config.tolerances[k].parameter] += draws[k];
+  std::vector<std::pair<int, double>> chain;  // the measuring chain's draws: errors of the machine's chain
+  for (std::size_t k = 0; k < draws.size(); ++k) {
+    const int p = config.tolerances[k].parameter;
+    if (is_chain_parameter(p))
+      chain.emplace_back(p, draws[k]);
+    else
+      expected[p] += draws[k];
+  }
   EXPECT_EQ(drawn.machine_errors, expected);
+  EXPECT_EQ(drawn.config.chain.errors, chain);
+  EXPECT_FALSE(chain.empty());
   EXPECT_EQ(drawn.observations.regressors, verbs::simulate(config).observations.regressors);
   config.centrifuge.rate_noise = {};
   const verbs::SimulateResult quiet = verbs::simulate(config, o);
@@ -137,9 +152,31 @@ TEST(SimulateVerb, ADrawnTruthIsTheErrorsPlusOneDrawOfEveryTolerance) {
   verbs::SimulateOptions t;
   t.truth = SimulationTruth{};
   t.truth->errors = expected;
+  t.truth->chain_errors = chain;
   EXPECT_EQ(quiet.observations.output, verbs::simulate(config, t).observations.output);
   t.draw_truth = true;
   EXPECT_THROW(verbs::simulate(config, t), OptionError);
+}
+
+TEST(SimulateVerb, ATruthsMeasuringChainIsTheMachinesReadingAndTerms) {
+  // A truth's output_gain and output_offset are the reading's: (1 + gain) ȳ + offset of the machine without them,
+  // to round-off; its K1 moves the machine's instrument, as a configuration with that K1 (bit for bit).
+  Config config = bundled_example();
+  config.instrument.noise_density = config.instrument.quantum = 0;
+  const verbs::SimulateResult plain = verbs::simulate(config);
+  verbs::SimulateOptions o;
+  o.truth = parse_truth("[errors]\noutput_gain = \"50 ppm\"\noutput_offset = \"0.001 deg/s\"\n", "t.toml", config);
+  const verbs::SimulateResult read = verbs::simulate(config, o);
+  const Eigen::VectorXd expected = plain.observations.output * (1 + 50e-6) + Eigen::VectorXd::Constant(
+                                       plain.observations.output.size(), 0.001 * kDeg);
+  for (Eigen::Index j = 0; j < expected.size(); ++j)
+    EXPECT_NEAR(read.observations.output[j], expected[j], 1e-15 * std::abs(expected[j]) + 1e-18) << j;
+  EXPECT_EQ(read.error_count, plain.error_count + 2);
+  o.truth = parse_truth("[errors]\nK1 = \"0.01 deg/s/g\"\n", "t.toml", config);
+  Config moved = config;
+  moved.instrument.coefficients[1] += 0.01 * kDeg;
+  ASSERT_EQ(moved.instrument.term_ids[1], "K1");
+  EXPECT_EQ(verbs::simulate(config, o).observations.output, verbs::simulate(moved).observations.output);
 }
 
 TEST(SimulateVerb, IdentificationIsThatOfItsObservationsFile) {

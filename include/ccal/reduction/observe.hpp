@@ -35,7 +35,8 @@ RunAverage<S> paper_average(const Experiment& ex, const VecX<S>& e, const ccal::
 
 // Observations of every run, with the truth reduced through `ex` and the analyst's model through `model`
 // (the same experiment, except perhaps for what the model compensates, e.g. its Site's Earth-rotation
-// switches). `truth` and `known` are error vectors indexed by ex.layout (SI).
+// switches, or for what the simulated machine's measuring chain changes: its gravity, its runs' g-levels and
+// durations, chain_inputs.hpp); run j of each is its own plan's run j. `truth` and `known` are error vectors indexed by ex.layout (SI).
 template <class S>
 Observations<S> observe(const Experiment& ex, const Experiment& model, const VecX<S>& truth,
                         const VecX<S>& known, const IdentificationSpec& spec,
@@ -51,15 +52,16 @@ Observations<S> observe(const Experiment& ex, const Experiment& model, const Vec
   obs.input.resize(n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const ccal::Run& run = ex.plan.runs[std::size_t(j)];
+    const ccal::Run& model_run = model.plan.runs[std::size_t(j)];  // as the lab planned it (a truth's may differ)
     obs.runs.push_back(run.name);
     RunAverage<S> truth_avg, model_avg;
     if (mode == ModelMode::exact) {
       truth_avg = average_run<S>(ex.geometry, ex.layout, truth, ex.site, run, &ex.instrument, {}, options);
-      model_avg =
-          average_run<S>(model.geometry, model.layout, known, model.site, run, nullptr, terms, options);
+      model_avg = average_run<S>(model.geometry, model.layout, known, model.site, model_run, nullptr, terms,
+                                 options);
     } else {
       truth_avg = paper_average<S>(ex, truth, run, &ex.instrument, {}, spec.paper_cross_terms);
-      model_avg = paper_average<S>(model, known, run, nullptr, terms, spec.paper_cross_terms);
+      model_avg = paper_average<S>(model, known, model_run, nullptr, terms, spec.paper_cross_terms);
     }
     obs.output[j] = truth_avg.output;
     obs.regressors.row(j) = model_avg.regressors.transpose();
