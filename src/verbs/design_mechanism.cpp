@@ -87,7 +87,7 @@ std::string coefficient_paragraph(const DesignResult& r, std::size_t k) {
                 id, signal >= 1 ? signal : 1 / signal, signal >= 1 ? "larger" : "smaller",
                 signal >= 1 ? "divides" : "multiplies", cancel);
   return fmt::format(
-      "{0}: the centrifuge's tolerances cost U = {1:.3g} {3} with the configured plan and {2:.3g} {3} with "
+      "{0}: the inputs' tolerances cost U = {1:.3g} {3} with the configured plan and {2:.3g} {3} with "
       "the "
       "designed one (x{4:.2g}). {5} Largest contributors (1-sigma effect on {0}, configured -> designed): "
       "{6}.\n",

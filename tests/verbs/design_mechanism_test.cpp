@@ -88,7 +88,7 @@ DesignResult result_of(const Config& configured, const Config& designed) {
 TEST(DesignMechanism, APlanAgainstItselfChangesNothingInWords) {
   const std::string text = mechanism_text(result_of(bundled(), bundled()));
   for (const char* id : {"K0", "K2", "K3"}) {
-    EXPECT_NE(text.find(std::string(id) + ": the centrifuge's tolerances cost U = "), std::string::npos)
+    EXPECT_NE(text.find(std::string(id) + ": the inputs' tolerances cost U = "), std::string::npos)
         << text;
     EXPECT_NE(text.find("(x1)."), std::string::npos) << text;
     EXPECT_NE(
