@@ -61,6 +61,11 @@ ColumnUnits column_units(const std::optional<ObservationsHeader>& header, const 
   u.input_column = o.input_column;
   if (header && o.output_column == "output") u.output_unit = header->output_unit;
   u.input_in_g = header.has_value() && o.input_column == "a_i";
+  // Per standard gravity where the configuration says so, or where the file's fixed terms were written per gn.
+  if (o.config) u.g_symbol = o.config->instrument.g_symbol;
+  if (header)
+    for (const ObservationsHeader::Fixed& f : header->fixed)
+      if (f.unit.find("/gn") != std::string::npos) u.g_symbol = "gn";
   return u;
 }
 

@@ -243,5 +243,23 @@ TEST(IdentifyVerb, NoStatementWithoutDegreesOfFreedom) {
   }
 }
 
+TEST(IdentifyVerb, CoefficientsPerStandardGravitySayGn) {
+  // A configuration whose coefficients are per g_n ([site] g_unit = "standard") writes its fixed terms per gn;
+  // identifying the file gives every unit per gn too, with or without the configuration.
+  std::string text(bundled_example_text());
+  const std::string g = "g = \"9.8 m/s^2\"";
+  ASSERT_NE(text.find(g), std::string::npos);
+  text.replace(text.find(g), g.size(), g + "\ng_unit = \"standard\"");
+  const Config config = parse_config(text, "standard.toml");
+  const verbs::SimulateResult s = verbs::simulate(config);
+  EXPECT_NE(s.observations_csv.find("/gn"), std::string::npos);
+  const verbs::IdentifyResult r = verbs::identify(parse_csv(s.observations_csv, "obs.csv"));
+  for (const std::string& unit : r.identification.units)
+    if (unit != r.identification.units.front()) {
+      EXPECT_NE(unit.find("/gn"), std::string::npos) << unit;
+    }
+  EXPECT_EQ(r.identification.units.back(), "deg/s/gn^3");
+}
+
 }  // namespace
 }  // namespace ccal::test
