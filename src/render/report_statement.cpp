@@ -203,7 +203,7 @@ std::string inputs_table(const Doc& doc) {
   if (!st.contains("inputs") || st["inputs"].empty()) return "";
   std::vector<std::string> ids;
   for (const auto& [id, c] : st["coefficients"].items()) ids.push_back(id);
-  std::string head = "<tr><th>input</th><th>u (SI)</th><th>from</th>";
+  std::string head = "<tr><th>input</th><th>u</th><th>unit</th><th>from</th>";
   for (const std::string& id : ids) head += "<th>u<sub>i</sub>(" + escape(id) + ")</th>";
   std::string rows;
   int silent = 0, measured = 0;
@@ -219,7 +219,9 @@ std::string inputs_table(const Doc& doc) {
     }
     measured += in["measured"].get<bool>();
     const std::string p = fmt::format("/statement/inputs/{}", i);
-    rows += "<tr>" + text_cell(in["id"].get<std::string>()) + num_cell(doc, p + "/u_si", 3) +
+    // u in the unit its tolerance was written in (else its own: rad, um, ppm, a declared input's unit)
+    rows += "<tr>" + text_cell(in["id"].get<std::string>()) + num_cell(doc, p + "/u", 3) +
+            text_cell(in["unit"].get<std::string>()) +
             text_cell(in["measured"].get<bool>() ? "measured in this test" : "its tolerance");
     for (const std::string& id : ids) rows += num_cell(doc, p + "/effect/" + id, 3);
     rows += "</tr>\n";
