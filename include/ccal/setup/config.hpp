@@ -30,7 +30,7 @@ struct Config {
   CentrifugeModel centrifuge;  // geometry and the known/actual values of the [errors] section
   InstrumentModel instrument;
   TestPlan plan;
-  std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order
+  std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order, then the measuring chain's inputs
   std::vector<Correlation> correlations;  // pairs of tolerances partly correlated ([[correlations]])
   // The measuring chain: [[inputs]] declared by the lab, and (set by a test's reduction) what it measured.
   MeasuringChain chain;
