@@ -87,10 +87,6 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   cfg.instrument.g_symbol = cfg.site.unit_g > 0 ? "gn" : "g";
   cfg.plan = read_plan(r, root, cfg.centrifuge.geometry, cfg.site);
   read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);
-  if (cfg.mode == ModelMode::paper && cfg.site.unit_g > 0)
-    r.fail(*root.get("site")->as_table()->get("g_unit"), "site.g_unit",
-           "the paper's first-order rules are in the local g; accepted: g_unit = \"local\" with mode = "
-           "\"paper\", or mode = \"exact\"");
   // The chain's inputs name the fixed terms and the declared inputs: read after them.
   read_declared_inputs(r, root, cfg);
   read_errors(r, root, cfg, cfg.centrifuge, nullptr);

@@ -312,13 +312,15 @@ FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layou
 
 FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layout, const Site& site,
                                    const JointState<double>& j, const PaperFormOptions& options) {
-  const double R0 = geo.R0, A = R0 * j.theta1_rate * j.theta1_rate / site.g;
+  // Forces in the g of the g-levels (Site::g_unit); gravity is g/g_unit of it (1 per the local g).
+  const double R0 = geo.R0, A = R0 * j.theta1_rate * j.theta1_rate / site.g_unit();
+  const double gravity = site.g / site.g_unit();
   const double cg = std::cos(j.gamma), sg = std::sin(j.gamma);
   const double h = options.lever_arms ? geo.L + geo.l : 0.0;
   const double l = options.lever_arms ? geo.l : 0.0;
   const double Omega = j.theta1_rate;
   const double coriolis = 2.0 * site.earth_rate * (site.earth_rotation && site.apply_coriolis ? 1.0 : 0.0) *
-                          R0 * Omega * std::sin(site.latitude) / site.g;
+                          R0 * Omega * std::sin(site.latitude) / site.g_unit();
 
   FirstOrderResult out;
   out.sensitivity = SensitivityMatrix::Zero(6, layout.size());
@@ -339,7 +341,7 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
       // θx group: a_i ∋ +(1 + A(L+l)/R0) θx sin γ;  ω_IA ∋ +Ω θx sin γ.
       case ch::dthx3t:
       case ch::dthx3:
-        dai = (1.0 + A * h / R0) * sg * v;
+        dai = (gravity + A * h / R0) * sg * v;
         dwi = Omega * sg * v;
         break;
       // θy group: a_i ∋ −(1 + A(L+l)/R0) θy cos γ;  ω_IA ∋ −Ω θy cos γ.
@@ -347,7 +349,7 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
       case ch::dthy2:
       case ch::dthy3t:
       case ch::dthy3:
-        dai = -(1.0 + A * h / R0) * cg * v;
+        dai = -(gravity + A * h / R0) * cg * v;
         dwi = -Omega * cg * v;
         break;
       case ch::dy2t:
@@ -372,10 +374,10 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
         dai = -A / R0;
         break;
       case ch::dthy4:
-        dai = -1.0 - A * l / R0;
+        dai = -gravity - A * l / R0;
         break;
       case ch::dthy5:
-        dai = -1.0;
+        dai = -gravity;
         break;
       case ch::domega:
         dai = -2.0 * A / Omega * cg;
