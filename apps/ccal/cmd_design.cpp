@@ -34,9 +34,10 @@ Command add_design(CLI::App& app) {
   add_config_argument(*cmd, o->config);
   add_option_flags(*cmd, o->options, option_table<verbs::DesignOptions>());
   add_renamed_option(*cmd, "--verify", "renamed: give the trials of the check as --verify-trials N (e.g. 2000)");
-  cmd->add_option("--plan-out", o->plan_out,
-                  "Write the whole configuration with the designed [plan] to this TOML file (atomically; "
-                  "never over an input)")
+  refuse_empty_path(cmd->add_option("--plan-out", o->plan_out,
+                                    "Write the whole configuration with the designed [plan] to this TOML file "
+                                    "(atomically; never over an input)"),
+                    "--plan-out", "a file path, e.g. designed.toml")
       ->type_name("FILE.toml");
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(

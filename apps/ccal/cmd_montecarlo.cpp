@@ -47,8 +47,10 @@ Command add_montecarlo(CLI::App& app) {
   add_config_argument(*cmd, o->config);
   add_option_flags(*cmd, o->options, option_table<verbs::MonteCarloOptions>());
   cmd->add_option("--coverage", o->old_coverage)->group("");  // refused with a message, not in --help
-  cmd->add_option("--samples-out", o->samples_out,
-                  "Also write every trial's coefficients to FILE: CSV, or NumPy .npy by the extension")
+  refuse_empty_path(cmd->add_option("--samples-out", o->samples_out,
+                                    "Also write every trial's coefficients to FILE: CSV, or NumPy .npy by the "
+                                    "extension"),
+                    "--samples-out", "a file path, FILE.csv or FILE.npy")
       ->type_name("FILE");
   add_output_options(*cmd, o->output, {"text", "json", "csv"});
   cmd->footer(

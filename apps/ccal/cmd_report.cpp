@@ -97,9 +97,11 @@ Command add_report(CLI::App& app) {
   refuse_empty_output(
       *cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
            ->type_name("FILE.html"));
-  cmd->add_option("--pdf", o->pdf,
-                  "Print the page to FILE as PDF (A4), through headless Chromium (Debian's chromium, or the "
-                  "program named by CCAL_CHROMIUM); without -o only the PDF is written")
+  refuse_empty_path(cmd->add_option("--pdf", o->pdf,
+                                    "Print the page to FILE as PDF (A4), through headless Chromium (Debian's "
+                                    "chromium, or the program named by CCAL_CHROMIUM); without -o only the PDF "
+                                    "is written"),
+                    "--pdf", "a file path, e.g. certificate.pdf")
       ->type_name("FILE.pdf");
   cmd->footer(
       "Examples:\n"

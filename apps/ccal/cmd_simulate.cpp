@@ -48,9 +48,11 @@ Command add_simulate(CLI::App& app) {
                   "the machine has the configured [errors])")
       ->type_name("FILE");
   add_observations_out_option(*cmd, o->observations_out);
-  cmd->add_option("--logs-out", o->logs_out,
-                  "Also write one run log per run into folder DIR (created if missing), named after the run: "
-                  "time, pulses (or output), theta1, gamma, as `ccal reduce` reads them")
+  refuse_empty_path(cmd->add_option("--logs-out", o->logs_out,
+                                    "Also write one run log per run into folder DIR (created if missing), named "
+                                    "after the run: time, pulses (or output), theta1, gamma, as `ccal reduce` "
+                                    "reads them"),
+                    "--logs-out", "a folder path, e.g. logs")
       ->type_name("DIR");
   cmd->add_option("--log-layout", o->log_layout,
                   "With --logs-out: write the logs in this layout, a TOML file with a manifest's [columns] table "

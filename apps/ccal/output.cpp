@@ -39,12 +39,21 @@ void refuse_empty_output(CLI::Option& option) {
   });
 }
 
+CLI::Option* refuse_empty_path(CLI::Option* option, const std::string& name, const std::string& accepted) {
+  option->each([name, accepted](const std::string& path) {
+    if (path.empty())
+      throw CLI::ParseError(fmt::format("{}: the path is empty; accepted: {}", name, accepted),
+                            CLI::ExitCodes::ValidationError);
+  });
+  return option;
+}
+
 void write_output(const OutputOptions& options, std::string_view text) { write_outputs(options, text, {}); }
 
 void add_observations_out_option(CLI::App& command, std::string& path) {
-  command
-      .add_option("--observations-out", path,
-                  "Also write the observations CSV (the input of 'ccal identify') to FILE")
+  refuse_empty_path(command.add_option("--observations-out", path,
+                                       "Also write the observations CSV (the input of 'ccal identify') to FILE"),
+                    "--observations-out", "a file path, e.g. obs.csv")
       ->type_name("FILE.csv");
 }
 
@@ -55,11 +64,12 @@ void check_observations_out(const std::string& path, const OutputOptions& output
 }
 
 void add_statement_out_option(CLI::App& command, std::string& path) {
-  command
-      .add_option(
+  refuse_empty_path(
+      command.add_option(
           "--statement-out", path,
           "With --statement, also write the calibration statement alone to FILE: JSON for FILE.json, CSV "
-          "(one row per coefficient with its covariance row) for FILE.csv")
+          "(one row per coefficient with its covariance row) for FILE.csv"),
+      "--statement-out", "a file path, FILE.json or FILE.csv")
       ->type_name("FILE.json|FILE.csv");
 }
 

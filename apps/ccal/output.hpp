@@ -31,6 +31,9 @@ void add_output_options(CLI::App& command, OutputOptions& options, const std::ve
 // Refuses an explicitly given empty path for an output option (-o ""), which would otherwise mean standard
 // output silently: a parse error "-o: the path is empty; accepted: a file path or '-' for standard output".
 void refuse_empty_output(CLI::Option& option);
+// The same for a further output option (--pdf, --statement-out, --plan-out, --samples-out, --logs-out,
+// --observations-out), named in the message; it has no standard output: "accepted: a file path".
+CLI::Option* refuse_empty_path(CLI::Option* option, const std::string& name, const std::string& accepted);
 
 // Writes text to standard output (also for the path "-"), or to options.path. A regular file (or a new one)
 // is replaced atomically: the text goes to a temporary created exclusively (O_EXCL | O_NOFOLLOW, random

@@ -169,6 +169,19 @@ TEST_F(OutputFiles, AnEmptyOutputPathIsRefused) {
     EXPECT_TRUE(listing().empty());
   }
   ASSERT_EQ(run("budget -o -").code, 0);
+  // The further outputs have no standard output: an empty path was "write nothing" with exit 0. Each is
+  // refused naming its option.
+  for (const auto& [command, option] :
+       {std::pair<std::string, std::string>{"report --trials 2000 --pdf ''", "--pdf"},
+        {"design --plan-out ''", "--plan-out"},
+        {"montecarlo --trials 2000 --samples-out ''", "--samples-out"},
+        {"simulate --logs-out ''", "--logs-out"},
+        {"simulate --observations-out ''", "--observations-out"},
+        {"identify obs.csv --statement-out ''", "--statement-out"}}) {
+    SCOPED_TRACE(command);
+    expect_bad_input(run(command), {option + ": the path is empty; accepted: a"});
+    EXPECT_TRUE(listing().empty());
+  }
 }
 
 // A new file in a folder that does not exist (or a file in place of the folder) is refused naming the folder,
