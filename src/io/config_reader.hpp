@@ -88,7 +88,9 @@ inline std::optional<double> number_of(const toml::node& n) {
   return std::nullopt;
 }
 
-inline std::string number_text(double v) { return fmt::format("{:g}", v); }
+// The shortest text that reads back as the same double: a message shows what was typed, not a rounding of it
+// (r = 1.0000001 is not "1").
+inline std::string number_text(double v) { return fmt::format("{}", v); }
 
 // The unit a user most likely means for a dimension, for "such as" examples.
 inline std::string example_unit(Dimension d) {

@@ -53,6 +53,10 @@ TEST(CorrelationsTable, EachBadEntryIsRefusedOnItsLine) {
   const std::string big = with(pair("dthy4", "dthy5", "1.5"));
   expect_error(big, line_of(big, "r = 1.5"), "correlations[1].r",
                {"1.5 is not a correlation coefficient; accepted: a number from -1 to 1"});
+  // The value as typed, not rounded to "1" (which would be accepted).
+  const std::string barely = with(pair("dthy4", "dthy5", "1.0000001"));
+  expect_error(barely, line_of(barely, "r = 1.0000001"), "correlations[1].r",
+               {"1.0000001 is not a correlation coefficient"});
   const std::string twice = with(pair("dthy4", "dthy5", "0.5") + pair("dthy5", "dthy4", "0.4"));
   expect_error(twice, line_of(twice, "between", 2), "correlations[2].between",
                {"the pair dthy5, dthy4 is given twice (first at line " +
