@@ -354,7 +354,6 @@ int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key&
                     const Config* chain = nullptr);
 std::vector<std::string> fixed_term_ids(const Config& config);
 std::string fixed_term_list(const Config& config);
-std::vector<std::string> chain_ids_for_hint(const Config& config);
 std::string lab_value_place(const Config& config, int code);
 // A value of a chain input in SI (a declared input's in its own unit; a fixed term's also relative to it).
 double chain_quantity(const Reader& r, const toml::node& node, const std::string& p, const Config& config,

@@ -184,7 +184,7 @@ int parameter_index(const Reader& r, const ErrorLayout& layout, const toml::key&
   }
   std::vector<std::string> ids = layout.parameter_ids();
   if (chain != nullptr)
-    for (const std::string& id : chain_ids_for_hint(*chain)) ids.push_back(id);
+    for (const std::string& id : chain_input_ids(chain->chain, fixed_term_ids(*chain))) ids.push_back(id);
   std::string hint;
   if (auto best = closest(key.str(), ids)) hint = fmt::format("did you mean '{}'? ", *best);
   std::string statics, dynamics;
@@ -214,12 +214,6 @@ std::string fixed_term_list(const Config& config) {
   return out.empty() ? "none is fixed" : out;
 }
 
-std::vector<std::string> chain_ids_for_hint(const Config& config) {
-  std::vector<std::string> out{"g", "time_base", "output_gain", "output_offset"};
-  for (const std::string& id : fixed_term_ids(config)) out.push_back(id);
-  for (const DeclaredInput& d : config.chain.declared) out.push_back(d.id);
-  return out;
-}
 
 double chain_quantity(const Reader& r, const toml::node& node, const std::string& p, const Config& config,
                       int code) {

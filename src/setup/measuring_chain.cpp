@@ -121,12 +121,18 @@ std::optional<int> find_chain_input(std::string_view id, const MeasuringChain& c
   return std::nullopt;
 }
 
-std::string chain_input_ids_text(const MeasuringChain& chain, const std::vector<std::string>& fixed_terms) {
-  std::string out = "g, time_base, output_gain, output_offset";
-  for (const std::string& t : fixed_terms) out += ", " + t;
-  out += ", encoder1_c<k>, encoder1_s<k>, encoder3_c<k>, encoder3_s<k>";
-  for (const DeclaredInput& d : chain.declared) out += ", " + d.id;
+std::vector<std::string> chain_input_ids(const MeasuringChain& chain, const std::vector<std::string>& fixed_terms) {
+  std::vector<std::string> out;
+  for (const NamedInput& n : kNamedInputs) out.emplace_back(n.id);
+  out.insert(out.end(), fixed_terms.begin(), fixed_terms.end());
+  for (const DeclaredInput& d : chain.declared) out.push_back(d.id);
   return out;
+}
+
+std::string chain_input_ids_text(const MeasuringChain& chain, const std::vector<std::string>& fixed_terms) {
+  std::string out;
+  for (const std::string& id : chain_input_ids(chain, fixed_terms)) out += (out.empty() ? "" : ", ") + id;
+  return out + ", encoder1_c<k>, encoder1_s<k>, encoder3_c<k>, encoder3_s<k>";
 }
 
 }  // namespace ccal

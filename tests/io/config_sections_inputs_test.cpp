@@ -107,6 +107,22 @@ TEST(ChainInputsTable, StandardGravityIsTheGOfTheCoefficientsWhereTheSiteSaysSo)
   expect_error(text, line_holding(text, "g_unit"), "site.g_unit", {"local", "standard"});
 }
 
+TEST(ChainInputsTable, ASamplingResistorConvertsACurrentOutputOnly) {
+  // [instrument] comes last in these texts, so the offending key is on the last line.
+  const Config c = parse_config(kBase + "\n[instrument]\nmodel = \"ieee\"\noutput_unit = \"mA\"\n"
+                                         "sampling_resistor = \"250 ohm\"\n[instrument.terms]\nK1 = \"1.3 mA/g\"",
+                                "case.toml");
+  EXPECT_EQ(c.instrument.sampling_resistor, 250.0);
+  expect_appended_error("[instrument]\noutput_unit = \"deg/s\"\nsampling_resistor = \"250 ohm\"",
+                        "instrument.sampling_resistor", {"converts a current output", "output_unit = \"mA\""});
+  const std::string quartz = "[instrument]\nmodel = \"ieee\"\nterms = { K1 = \"1.3 mA/g\" }\noutput_unit = \"mA\"\n";
+  expect_appended_error(quartz + "sampling_resistor = \"250 V\"",
+                        "instrument.sampling_resistor", {"ohm"});
+  expect_appended_error(quartz + "sampling_resistor = \"-1 ohm\"",
+                        "instrument.sampling_resistor", {"must be positive"});
+  expect_appended_error("[instrument]\noutput_unit = \"kg\"", "instrument.output_unit", {"a current (mA, uA)"});
+}
+
 TEST(ChainInputsTable, ATruthFileSetsTheChainsErrors) {
   const Config c = parse_config(kBase + kChain, "case.toml");
   const SimulationTruth t =

@@ -76,6 +76,9 @@ std::string chain_input_name(int parameter, const MeasuringChain& chain);
 // most `harmonic_order`; nullopt for an id that is no chain input at all.
 std::optional<int> find_chain_input(std::string_view id, const MeasuringChain& chain,
                                     const std::vector<std::string>& fixed_terms, int harmonic_order);
+// The ids of the chain's inputs with a name of their own (g, time_base, output_gain, output_offset), the fixed
+// terms and the declared inputs: for the nearest-id hint of a message.
+std::vector<std::string> chain_input_ids(const MeasuringChain& chain, const std::vector<std::string>& fixed_terms);
 // The ids a configuration accepts, for messages.
 std::string chain_input_ids_text(const MeasuringChain& chain, const std::vector<std::string>& fixed_terms);
 
