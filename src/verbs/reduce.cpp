@@ -40,6 +40,42 @@ void warn_about_control(const Config& cfg, ReduceResult& r) {
   }
 }
 
+// Two runs whose logs have the same bytes (one SHA-256) are one log given twice, a slip of the copy or of the
+// manifest: its mean read at two g-levels would fit a curvature that is not there (K3 = 10.6 for 0.003).
+// Checked twice: by path before reading (one file named for two runs), by the bytes' SHA-256 after (a copy).
+[[noreturn]] void throw_repeated_log(const Config& cfg, std::size_t run, std::size_t earlier_run,
+                                     const std::string& file, const std::string& earlier_file,
+                                     std::string_view how) {
+  throw OptionError("logs", fmt::format("run '{}'", cfg.plan.runs[run].name),
+                    fmt::format("has the same log as run '{}' ({}); accepted: each run's own log",
+                                cfg.plan.runs[earlier_run].name,
+                                file == earlier_file ? fmt::format("{} {}", file, how)
+                                                     : fmt::format("{} and {} {}", earlier_file, file, how)));
+}
+
+void refuse_repeated_paths(const Config& cfg, const std::vector<std::pair<std::size_t, std::filesystem::path>>& logs) {
+  for (std::size_t k = 1; k < logs.size(); ++k)
+    for (std::size_t j = 0; j < k; ++j) {
+      std::error_code ec;
+      if (!std::filesystem::equivalent(logs[j].second, logs[k].second, ec)) continue;
+      const auto& [first, second] = logs[j].first < logs[k].first ? std::pair(logs[j], logs[k])
+                                                                   : std::pair(logs[k], logs[j]);  // plan order
+      throw_repeated_log(cfg, second.first, first.first, second.second.string(), first.second.string(),
+                         "is named for both");
+    }
+}
+
+void refuse_repeated_logs(const Config& cfg, const ReduceResult& r) {
+  std::map<std::string, std::size_t> first_of;  // SHA-256 → position in r.logs.runs
+  for (std::size_t k = 0; k < r.logs.runs.size(); ++k) {
+    const auto [it, fresh] = first_of.emplace(r.logs.runs[k].log.sha256, k);
+    if (fresh || r.logs.runs[k].log.sha256.empty()) continue;
+    const std::size_t j = it->second;
+    throw_repeated_log(cfg, r.logs.runs[k].index, r.logs.runs[j].index, r.files[k], r.files[j],
+                       fmt::format("hold the same bytes, SHA-256 {}…", r.logs.runs[k].log.sha256.substr(0, 12)));
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel) {
@@ -139,8 +175,10 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
     logs.emplace_back(index, log.path);
   }
   check_log_count(cfg.identification, logs.size(), "logs");
+  refuse_repeated_paths(cfg, logs);
   r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
+  refuse_repeated_logs(cfg, r);
   std::vector<Run> measured;
   std::vector<double> rates;
   for (const LoggedRun& lr : r.logs.runs) {

@@ -148,12 +148,18 @@ TEST_F(Reduce, EncoderLogsMeasureTheDriveErrors) {
 TEST_F(Reduce, BadLogsAndOptionsAreRefused) {
   write("config.toml", config_text());
   write("good.csv", "time,pulses\n0,0\n450,1000\n");
+  write("good2.csv", "time,pulses\n0,0\n450,2000\n");  // each run its own log (one log for two is refused)
+  write("good3.csv", "time,pulses\n0,0\n450,3000\n");
   write("bad.csv", "time,pulses\n0,0\n450,x\n");
   const std::string base = "reduce config.toml --pulse-weight 1e-3 ";
-  expect_bad_input(run(base + "--log 20g=bad.csv --log 25g=good.csv --log 30g=good.csv"),
+  expect_bad_input(run(base + "--log 20g=bad.csv --log 25g=good2.csv --log 30g=good3.csv"),
                    {"bad.csv:3:2", "pulses", "not a number"});
   expect_bad_input(run(base + "--log 21g=good.csv"), {"--log", "21g", "20g"});
   expect_bad_input(run(base + "--log 20g=good.csv --log 4=good.csv"), {"logged twice"});
+  // The same file for two runs: refused by its bytes, whatever the names (a copy made under another name).
+  write("copy.csv", read(dir_ / "good.csv"));
+  expect_bad_input(run(base + "--log 20g=good.csv --log 25g=copy.csv --log 30g=good3.csv"),
+                   {"run '25g' has the same log as run '20g'", "good.csv", "copy.csv"});
   expect_bad_input(run(base + "--log 20g"), {"RUN=FILE"});
   expect_bad_input(run(base + "--log 20g=missing.csv"), {"missing.csv"});
   expect_bad_input(run("reduce config.toml --pulse-weight -1 --log 20g=good.csv"), {"--pulse-weight"});
@@ -166,13 +172,13 @@ TEST_F(Reduce, BadLogsAndOptionsAreRefused) {
   const Result mode = run(base + "--mode approximate --log 20g=good.csv");
   EXPECT_EQ(mode.code, 2) << mode.err;
   EXPECT_NE(mode.err.find("--mode"), std::string::npos) << mode.err;
-  expect_bad_input(run(base + "--log 20g=good.csv --log 25g=good.csv --log 30g=good.csv -o same.csv "
+  expect_bad_input(run(base + "--log 20g=good.csv --log 25g=good2.csv --log 30g=good3.csv -o same.csv "
                               "--observations-out same.csv"),
                    {"--observations-out", "same.csv", "two different files"});
   EXPECT_FALSE(fs::exists(dir_ / "same.csv"));
   // platform encoder samples too far apart for the unwrapping
   write("coarse.csv", "time,pulses,gamma\n0,0,0\n1,1,1\n");
-  expect_bad_input(run(base + "--log 20g=coarse.csv --log 25g=good.csv --log 30g=good.csv"),
+  expect_bad_input(run(base + "--log 20g=coarse.csv --log 25g=good2.csv --log 30g=good3.csv"),
                    {"coarse.csv:3", "gamma", "0.75π"});
   const Result none = run("reduce config.toml");
   EXPECT_EQ(none.code, 2) << none.err;

@@ -322,6 +322,18 @@ class RunLogs(unittest.TestCase):
             by_folder = ccal.reduce(lab, pathlib.Path(folder))
         self.assertEqual(list(by_dict.coefficients), list(by_folder.coefficients))
 
+    def test_one_log_for_two_runs_is_refused(self):
+        # The same file (by path, or a copy by its bytes) for two runs: one mean read at two g-levels.
+        lab = ccal.load_config(os.path.join(EXAMPLES, "lab.toml"))
+        with tempfile.TemporaryDirectory() as folder:
+            logs = ccal.simulate(lab).write_logs(folder)
+            runs = list(logs)
+            same = dict(logs)
+            same[runs[1]] = logs[runs[0]]
+            with self.assertRaisesRegex(ccal.InputError,
+                                        f"run '{runs[1]}' has the same log as run '{runs[0]}'.*is named for both"):
+                ccal.reduce(lab, same)
+
     def test_a_bad_truth_file_is_refused_with_its_place(self):
         with tempfile.TemporaryDirectory() as folder:
             path = os.path.join(folder, "truth.toml")

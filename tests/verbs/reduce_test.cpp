@@ -117,6 +117,17 @@ TEST_F(ReduceVerb, TooFewOrRepeatedLogsAreRefusedNamingTheOption) {
             "logs: run '" + twice.logs[0].run + "' is logged twice; accepted: one log per run");
   EXPECT_EQ(message(unknown).rfind("logs: '21g' is no run; accepted: a run name (", 0), 0u)
       << message(unknown);
+  // One file given for two runs (the same bytes): one mean at two g-levels would make a curvature (K3 = 10.6
+  // for 0.003 on examples/lab.toml), so it is refused, naming both runs and both files.
+  verbs::ReduceOptions same = options_;
+  same.logs[1].path = same.logs[0].path;
+  const std::string repeated = message(same);
+  EXPECT_EQ(repeated.rfind("logs: run '" + same.logs[1].run + "' has the same log as run '" + same.logs[0].run +
+                               "' (",
+                           0),
+            0u)
+      << repeated;
+  EXPECT_NE(repeated.find("accepted: each run's own log"), std::string::npos) << repeated;
   // The pulse weight: positive, in the output unit × s.
   weight.pulse_weight = -1.0;
   try {
