@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -75,9 +76,9 @@ void LogReducer::header(const std::vector<std::string>& names, int line) {
   }
   const int order = options_.harmonic_order;
   if (const auto k = find(c.theta1))
-    theta1_.emplace(Encoder{*k, Problem::theta1_cell, Problem::theta1_spacing, EncoderFit(order)});
+    theta1_.emplace(*k, Problem::theta1_cell, Problem::theta1_spacing, order);
   if (const auto k = find(c.gamma))
-    gamma_.emplace(Encoder{*k, Problem::gamma_cell, Problem::gamma_spacing, EncoderFit(order)});
+    gamma_.emplace(*k, Problem::gamma_cell, Problem::gamma_spacing, order);
 }
 
 std::optional<double> LogReducer::cell_general(const std::string_view* fields, std::size_t column,
@@ -108,6 +109,27 @@ void LogReducer::defer_spacing(const Encoder& e, int line, double step_time) {
                                step_time, std::abs(planned_rate_) * step_time)));
 }
 
+void LogReducer::note_wild(Encoder& e, int line, double departure, double limit) {
+  if (e.wild++ > 0) return;
+  e.first_wild.emplace(cell_error(
+      e.column, line,
+      fmt::format("the reading departs by {:.3g} rad from the line through the two readings before it; "
+                  "accepted: within {:.3g} rad of it (a wild reading: a glitch, a lost digit, a cell edited by hand)",
+                  departure, limit)));
+}
+
+// One wild reading is refused where it is; many are no turning joint read in the unit the log is taken in.
+void LogReducer::throw_wild(const Encoder& e) const {
+  if (e.wild == 0) return;
+  if (e.wild <= std::max<std::size_t>(3, rows_ / 100)) throw *e.first_wild;
+  throw CsvError(source_, header_line_, int(e.column + 1), header_[e.column],
+                 fmt::format("{} of {} readings depart from the line through the two before them by more than "
+                             "{:.3g} rad: no joint turning steadily in the unit read; likely cause: angles in "
+                             "degrees read as radians (--angle-unit deg, or the manifest's angle_unit), or counts "
+                             "without their counts_per_revolution",
+                             e.wild, rows_, std::max(kEncoderJumpLimit, 4 * options_.angle_quantum)));
+}
+
 // One encoder sample: unwrapped (each step mapped to (−π, π]) and added to the fit. The samples must be less
 // than half a revolution apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping
 // would alias.
@@ -120,19 +142,37 @@ void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool t
   }
   if (!raw || !time_ok || pending_kind_) return;  // the log will be refused: nothing more to fit
   const double a = *raw * options_.angle_scale;
-  if (!e.started) {
+  const double tau = t - t_first_;
+  if (e.seen == 0) {
     e.unwrapped = a;
-    e.started = true;
   } else {
     // The step from the previous reading, mapped to (−π, π] (remainder(x, 2π) is x itself for |x| < π, so
     // the usual step needs no division); taken between raw readings, it keeps their digits.
     double step = a - e.raw;
     if (!(step > -std::numbers::pi && step <= std::numbers::pi)) step = std::remainder(step, kTwoPi);
     if (step == -std::numbers::pi) step = std::numbers::pi;
-    e.unwrapped += step;
+    const double angle = e.unwrapped + step;
+    // A wild reading: the joint's angle departs from the straight line through the two samples before it by
+    // more than kEncoderJumpLimit (or four counts of a coarse encoder), which a drive's rate ripple or an
+    // encoder's cyclic error never comes near (1e-5 rad) and a glitch always passes (up to π once unwrapped).
+    // Compared without a division: |α − α1|·(τ1 − τ0) against |α1 − α0|·(τ − τ1) at the limit × (τ1 − τ0).
+    if (e.seen >= 2) {
+      const double span = e.tau - e.earlier_tau;
+      const double departure = (angle - e.unwrapped) * span - (e.unwrapped - e.earlier_unwrapped) * (tau - e.tau);
+      const double limit = std::max(kEncoderJumpLimit, 4 * options_.angle_quantum);
+      if (!(std::abs(departure) <= limit * span)) {
+        note_wild(e, line, std::abs(departure) / span, limit);
+        return;  // left out: the next reading is unwrapped and checked against the line before it
+      }
+    }
+    e.earlier_unwrapped = e.unwrapped;
+    e.earlier_tau = e.tau;
+    e.unwrapped = angle;
   }
+  e.seen = std::min(e.seen + 1, 2);
   e.raw = a;
-  e.fit.add(t - t_first_, e.unwrapped, a);
+  e.tau = tau;
+  e.fit.add(tau, e.unwrapped, a);
 }
 
 void LogReducer::row(const std::string_view* fields, int line) {
@@ -216,6 +256,8 @@ ReducedLog LogReducer::finish() {
                                "instrument's output in its output unit, or a pulse count, below 1e150",
                                r.mean_output));
   throw_pending_before(Problem::gamma_spacing);
+  if (theta1_) throw_wild(*theta1_);
+  if (gamma_) throw_wild(*gamma_);
   if (theta1_) {
     const EncoderFitResult f = theta1_->fit.result();
     r.has_theta1 = true;

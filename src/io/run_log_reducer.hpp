@@ -51,12 +51,20 @@ class LogReducer final : public CsvRowSink {
     gamma_spacing,
   };
   struct Encoder {
+    Encoder(std::size_t column_index, Problem cell_problem, Problem spacing_problem, int harmonic_order)
+        : column(column_index), cell(cell_problem), spacing(spacing_problem), fit(harmonic_order) {}
     std::size_t column = 0;
     Problem cell, spacing;
     EncoderFit fit;
     double unwrapped = 0;  // the last sample's unwrapped angle [rad]
     double raw = 0;        // and its reading [rad]
-    bool started = false;
+    double tau = 0;        // and its time from the first sample [s]
+    // The sample before it (for the wild-reading check), and how many samples were added (0, 1, 2 or more).
+    double earlier_unwrapped = 0, earlier_tau = 0;
+    int seen = 0;
+    // Wild readings (left out of the fit): how many, and the first's error.
+    std::size_t wild = 0;
+    std::optional<CsvError> first_wild;
   };
 
   void defer(Problem kind, CsvError error);
@@ -76,6 +84,8 @@ class LogReducer final : public CsvRowSink {
   // The problems a row can show, written out off the rows' path (cold: the usual row has none).
   [[gnu::cold, gnu::noinline]] void defer_time_order(int line, double t);
   [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
+  [[gnu::cold, gnu::noinline]] void note_wild(Encoder& e, int line, double departure, double limit);
+  void throw_wild(const Encoder& e) const;
   void reduce_batch();
   template <class Cells>
   void reduce_row(const Cells& cells, int line);

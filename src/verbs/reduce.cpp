@@ -143,6 +143,7 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
                       "accepted: one of them (the manifest's, leaving this option out)",
                       o.layout.angle_unit));
     lo.angle_scale = o.layout.angle_scale;
+    if (o.layout.counts_per_revolution > 0) lo.angle_quantum = o.layout.angle_scale;
   }
   lo.pulse_weight = cfg.instrument.quantum;
   if (o.pulse_weight) {

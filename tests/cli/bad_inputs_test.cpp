@@ -227,7 +227,7 @@ std::vector<BadInput> catalogue() {
       {"LogEncoderInDegrees",
        logs_with(log_text(5, 1.0, 180 / std::numbers::pi)),
        reduce,
-       {"a.csv", "5g", "--angle-unit deg"}},
+       {"a.csv", "theta1", "372 of 401 readings depart", "--angle-unit deg"}},
       {"LogEncoderReversed", logs_with(log_text(5, -1.0)), reduce, {"a.csv", "5g", "reversed"}},
       {"LogEncoderOtherRun", logs_with(log_text(10)), reduce, {"a.csv", "5g", "another run"}},
       {"LogAngleUnit", logs, reduce + " --angle-unit grad", {"--angle-unit", "grad"}},

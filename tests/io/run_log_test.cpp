@@ -133,5 +133,45 @@ TEST(RunLog, RefusesBadLogsWithTheirPlace) {
   }
 }
 
+TEST(RunLog, AWildEncoderReadingIsRefusedWithItsLine) {
+  // θ1 = 8.8 t + 1e-3 sin 3θ (a ripple a hundred times any machine's), every 0.1 s, wrapped to [0, 2π): a
+  // reading departs from the line through the two before it by at most 4·1e-3 (the second difference of the
+  // ripple), under the 0.01 rad limit, so the log is accepted. One reading moved by d (line 3 + k of the file:
+  // after the comment and the header) departs by d plus that curvature: 0.02 rad is refused at its line, the
+  // message giving the departure to 3 digits; 1e300 (a lost decimal point, the case) likewise.
+  auto text = [](int moved, const std::string& cell) {
+    return log_text("time,pulses,theta1", 2001, [&](int k) {
+      const double t = 0.1 * k, nominal = 8.8 * t;
+      const double angle = std::fmod(nominal + 1e-3 * std::sin(3 * nominal), 2 * kPi);
+      return k == moved && !cell.empty() ? fmt::format("{:.17g},{},{}", t, k, cell)
+                                         : fmt::format("{:.17g},{},{:.17g}", t, k, angle);
+    });
+  };
+  RunLogOptions o;
+  o.pulse_weight = 1e-5;
+  EXPECT_NEAR(reduce_run_log(parse_csv(text(-1, ""), "log.csv"), o, 8.8).theta1_rate, 8.8, 1e-6);
+  const double t = 0.1 * 700, nominal = 8.8 * t;
+  const double moved = std::fmod(nominal + 1e-3 * std::sin(3 * nominal) + 0.02, 2 * kPi);
+  for (const std::string& cell : {fmt::format("{:.17g}", moved), std::string("1e300")}) {
+    const CsvError e = reduction_error(text(700, cell), o);
+    EXPECT_EQ(e.line(), 703) << cell;
+    EXPECT_EQ(e.item(), "theta1");
+    EXPECT_NE(e.problem().find("from the line through the two readings before it; accepted: within 0.01 rad"),
+              std::string::npos)
+        << e.problem();
+  }
+  EXPECT_NE(reduction_error(text(700, fmt::format("{:.17g}", moved)), o).problem().find("departs by 0.02"),
+            std::string::npos);
+  // An encoder of 1000 counts per revolution: readings floored to counts depart from the line by up to two
+  // counts (1.3e-2 rad), above 0.01 rad: the limit is then four counts, and the log is accepted.
+  RunLogOptions counts = o;
+  counts.angle_scale = counts.angle_quantum = 2 * kPi / 1000;
+  const std::string coarse = log_text("time,pulses,theta1", 2001, [](int k) {
+    const double t = 0.1 * k;
+    return fmt::format("{:.17g},{},{}", t, k, std::floor(std::fmod(8.8 * t, 2 * kPi) / (2 * kPi / 1000)));
+  });
+  EXPECT_NEAR(reduce_run_log(parse_csv(coarse, "log.csv"), counts, 8.8).theta1_rate, 8.8, 1e-4);
+}
+
 }  // namespace
 }  // namespace ccal::test

@@ -46,10 +46,15 @@ struct LogColumns {
   double time_scale = 1;  // s per unit of the time column
 };
 
+// A wild encoder reading: one that departs from the line through the two samples before it by more than this
+// [rad] (or four counts of a coarse encoder) is refused with its file and line (docs/cli.md, `ccal reduce`).
+inline constexpr double kEncoderJumpLimit = 0.01;
+
 struct RunLogOptions {
   double pulse_weight = 0;  // integrated output per pulse [output SI · s]; needed for a `pulses` log
   double output_scale = 1;  // SI per unit of the `output` column
   double angle_scale = 1;   // rad per unit of the encoder columns
+  double angle_quantum = 0;  // one count of the encoder columns [rad] when they hold counts, else 0
   int harmonic_order = 0;   // N: harmonics of the encoder fits (0: straight lines only)
   LogColumns columns;       // the columns' names and the time unit
 };
