@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "ccal/core/errors.hpp"
@@ -60,6 +61,32 @@ std::string ill_posed_hint(const std::vector<std::string>& terms) {
 
 namespace {
 
+// No degrees of freedom (as many rows as free terms): the fit passes every row, so the residual scale is
+// 0 / 0, and without weights the standard errors (and the covariance) scaled by it too. They are reported as
+// undefined (NaN: "n/a" in the text, null in the JSON, an empty cell in the CSV), not as fit()'s zeros, which
+// would read as exact coefficients, and the fit's warning says so.
+void mark_undefined_scale(Identification& id) {
+  FitResult& fit = id.fit;
+  if (fit.dof != 0 || fit.names.empty()) return;
+  constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
+  fit.residual_std = undefined;
+  fit.chi2_per_dof = undefined;
+  if (!id.weighted) {
+    fit.std_error.setConstant(undefined);
+    fit.covariance.setConstant(undefined);
+  }
+  std::erase_if(fit.warnings, [](const std::string& w) { return w.starts_with("no degrees of freedom"); });
+  fit.warnings.insert(
+      fit.warnings.begin(),
+      fmt::format(
+          "no degrees of freedom ({0} rows, {0} free terms): the fit passes every row, so {1} undefined "
+          "(n/a in the text, null in the JSON, empty in the CSV); more rows than free terms{2}",
+          fit.names.size(),
+          id.weighted ? "the residual std and chi2/dof are (the standard errors come from the weights)"
+                      : "the standard errors, the residual std and chi2/dof are",
+          id.weighted ? " give them" : ", or a weight column, give standard errors"));
+}
+
 // The fit of a table's problem (the rows' line numbers label repeated run names).
 Identification identify_problem(const FitProblem& problem, const TableFitSpec& spec, const ColumnUnits& units,
                                 std::string_view source, const DataResolution* resolution,
@@ -95,6 +122,7 @@ Identification identify_problem(const FitProblem& problem, const TableFitSpec& s
   if (distinct.size() != id.row_labels.size())
     for (std::size_t r = 0; r < id.row_labels.size(); ++r)
       id.row_labels[r] = fmt::format("line {}", row_lines[r]);
+  mark_undefined_scale(id);  // identify, reduce and simulate alike
   return id;
 }
 

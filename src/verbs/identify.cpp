@@ -193,32 +193,6 @@ void warn_about_powers_of_means(const CsvTable& table, const TableFitSpec& spec,
           t.id, spec.input, parse_term(t.id)->power));
 }
 
-// No degrees of freedom (as many rows as free terms): the fit passes every row, so the residual scale is
-// 0 / 0, and without weights the standard errors (and the covariance) scaled by it too. They are reported as
-// undefined (NaN: "n/a" in the text, null in the JSON, an empty cell in the CSV), not as fit()'s zeros, which
-// would read as exact coefficients, and the fit's warning says so.
-void mark_undefined_scale(Identification& id) {
-  FitResult& fit = id.fit;
-  if (fit.dof != 0 || fit.names.empty()) return;
-  constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
-  fit.residual_std = undefined;
-  fit.chi2_per_dof = undefined;
-  if (!id.weighted) {
-    fit.std_error.setConstant(undefined);
-    fit.covariance.setConstant(undefined);
-  }
-  std::erase_if(fit.warnings, [](const std::string& w) { return w.starts_with("no degrees of freedom"); });
-  fit.warnings.insert(
-      fit.warnings.begin(),
-      fmt::format(
-          "no degrees of freedom ({0} rows, {0} free terms): the fit passes every row, so {1} undefined "
-          "(n/a in the text, null in the JSON, empty in the CSV); more rows than free terms{2}",
-          fit.names.size(),
-          id.weighted ? "the residual std and chi2/dof are (the standard errors come from the weights)"
-                      : "the standard errors, the residual std and chi2/dof are",
-          id.weighted ? " give them" : ", or a weight column, give standard errors"));
-}
-
 constexpr OptionSpec<IdentifyOptions> kIdentifyRows[] = {
     {"terms",
      &IdentifyOptions::terms,
@@ -289,7 +263,6 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   const ColumnUnits units = column_units(header, options);
   r.spec = fit_spec(table, header, options, units);
   r.identification = identify_table(table, r.spec, units, table.source);
-  mark_undefined_scale(r.identification);
   if (header) warn_about_powers_of_means(table, r.spec, r.identification);
   if (options.statement) {
     if (r.identification.fit.dof == 0 && !r.identification.weighted)

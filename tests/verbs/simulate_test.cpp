@@ -51,6 +51,21 @@ TEST(SimulateVerb, ErrorFreeRunsIdentifyTheConfiguredCoefficients) {
   }
 }
 
+TEST(SimulateVerb, NoDegreesOfFreedomLeavesTheStandardErrorsUndefinedAsIdentifyDoes) {
+  // Three runs for three free terms: the fit passes every run mean, s² = 0/0, and the standard errors are
+  // undefined (NaN: n/a in the text), not 0, which would read as exact coefficients; `reduce` shares the path
+  // (verbs::identify_observations).
+  Config config = bundled_example();
+  config.plan.runs.resize(3);
+  const verbs::SimulateResult r = verbs::simulate(config);
+  const FitResult& fit = r.identification.fit;
+  EXPECT_EQ(fit.dof, 0);
+  EXPECT_TRUE(fit.std_error.array().isNaN().all()) << fit.std_error.transpose();
+  EXPECT_TRUE(std::isnan(fit.residual_std) && std::isnan(fit.chi2_per_dof));
+  ASSERT_FALSE(fit.warnings.empty());
+  EXPECT_EQ(fit.warnings.front().rfind("no degrees of freedom (3 rows, 3 free terms): ", 0), 0u);
+}
+
 TEST(SimulateVerb, UncompensatedKnownErrorsShiftTheCoefficientsByTheirFirstOrderShift) {
   // With the regressors computed without the known [errors], the identified coefficients are off by the
   // shift the budget's sensitivities give (uncertainty/statement.hpp known_error_shift, SI): the same
