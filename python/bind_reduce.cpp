@@ -30,6 +30,26 @@ std::vector<verbs::LogFile> log_files(const Config& cfg, const LogMap& logs) {
   return files;
 }
 
+// pulse_weight as --pulse-weight takes it: a number (in the output unit × s) stays a keyword; text, a bare
+// number or a quantity with its unit ("2.5e-5 deg"), is converted with the configuration's output unit
+// (verbs::pulse_weight_from_text) and set after the other keywords.
+constexpr std::pair<std::string_view, std::string_view> kPulseWeightType{"pulse_weight",
+                                                                          "Union[float, str, None]"};
+template <class Read>
+verbs::ReduceOptions with_pulse_weight(const Config& cfg, const py::kwargs& keywords, Read read) {
+  py::kwargs rest;
+  std::optional<double> weight;
+  for (const auto& [key, value] : keywords) {
+    if (py::isinstance<py::str>(value) && py::cast<std::string>(py::str(key)) == "pulse_weight")
+      weight = verbs::pulse_weight_from_text(cfg, py::cast<std::string>(value));
+    else
+      rest[key] = value;
+  }
+  verbs::ReduceOptions o = read(rest);
+  if (weight) o.pulse_weight = weight;
+  return o;
+}
+
 // The results of reducing recorded run logs: ReducedLog, ControlEvidence, LoggedRun and LogReduction.
 void bind_log_reduction_results(py::module_& m) {
   py::class_<ReducedLog>(m, "ReducedLog", "One recorded run log, reduced (SI).")
@@ -114,7 +134,9 @@ void bind_log_reduction(py::module_& m) {
   m.def(
       "reduce",
       [](const Config& cfg, const py::object& logs, const py::kwargs& keywords) {
-        auto o = options_from_keywords<verbs::ReduceOptions>(keywords, "reduce", {}, {}, {"config", "logs"});
+        auto o = with_pulse_weight(cfg, keywords, [](const py::kwargs& k) {
+          return options_from_keywords<verbs::ReduceOptions>(k, "reduce", {}, {}, {"config", "logs"});
+        });
         if (py::isinstance<py::dict>(logs)) {
           o.logs = log_files(cfg, logs.cast<LogMap>());
         } else {  // a folder with its manifest, as `ccal reduce --logs DIR`
@@ -131,15 +153,17 @@ void bind_log_reduction(py::module_& m) {
       "manifest.toml, as `--logs DIR`) to run means, the model of "
       "the runs as measured and the identification, as the CLI gives them; with statement=True also the "
       "calibration statement with the configuration's tolerances as its Type B part.");
-  record_keywords<verbs::ReduceOptions>(m, "reduce");
+  record_keywords<verbs::ReduceOptions>(m, "reduce", {}, {kPulseWeightType});
 
   // The logs alone, without the identification (so without the statement's options).
   m.def(
       "reduce_logs",
       [](const Config& cfg, const LogMap& logs, const py::kwargs& keywords) {
-        const auto o = options_from_keywords<verbs::ReduceOptions>(
-            keywords, "reduce_logs", {},
-            {"statement", "coverage_probability", "statement_trials", "seed", "threads"}, {"config", "logs"});
+        const auto o = with_pulse_weight(cfg, keywords, [](const py::kwargs& k) {
+          return options_from_keywords<verbs::ReduceOptions>(
+              k, "reduce_logs", {}, {"statement", "coverage_probability", "statement_trials", "seed", "threads"},
+              {"config", "logs"});
+        });
         const RunLogOptions lo = verbs::run_log_options(cfg, o);
         std::vector<std::pair<std::size_t, CsvTable>> tables;
         for (const auto& [run, path] : logs) tables.emplace_back(run_index(cfg, run), read_csv_file(path));
@@ -150,7 +174,8 @@ void bind_log_reduction(py::module_& m) {
       "(`ccal reduce` without the identification). Identify them with identify(reduction.observations, "
       "config).");
   record_keywords<verbs::ReduceOptions>(
-      m, "reduce_logs", {"statement", "coverage_probability", "statement_trials", "seed", "threads"});
+      m, "reduce_logs", {"statement", "coverage_probability", "statement_trials", "seed", "threads"},
+      {kPulseWeightType});
 }
 
 }  // namespace

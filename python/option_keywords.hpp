@@ -183,10 +183,12 @@ Options options_from_keywords(const py::kwargs& given, std::string_view function
   return options;
 }
 
-// Records the keywords of `function` (its rows but `skip`) with the defaults of Options{} for its signature.
+// Records the keywords of `function` (its rows but `skip`) with the defaults of Options{} for its signature;
+// `types`: a keyword the binding converts itself, with the Python type it takes (e.g. a number or a str).
 template <class Options>
 void record_keywords(py::module_& m, std::string_view function,
-                     std::initializer_list<std::string_view> skip = {}) {
+                     std::initializer_list<std::string_view> skip = {},
+                     std::initializer_list<std::pair<std::string_view, std::string_view>> types = {}) {
   const Options defaults{};
   for (const OptionSpec<Options>& row : option_table<Options>()) {
     if (keywords::skipped(row.field, skip)) continue;
@@ -202,8 +204,10 @@ void record_keywords(py::module_& m, std::string_view function,
                              index ? "str" : "Optional[str]", help);
           } else {
             using Field = std::remove_cvref_t<decltype(defaults.*member)>;
-            keywords::record(m, function, row.field, keywords::python_value(defaults.*member),
-                             keywords::type_name<Field>(), help);
+            std::string type = keywords::type_name<Field>();
+            for (const auto& [field, given] : types)
+              if (field == row.field) type = given;
+            keywords::record(m, function, row.field, keywords::python_value(defaults.*member), type, help);
           }
         },
         row.member);

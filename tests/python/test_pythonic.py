@@ -334,6 +334,20 @@ class RunLogs(unittest.TestCase):
                                         f"run '{runs[1]}' has the same log as run '{runs[0]}'.*is named for both"):
                 ccal.reduce(lab, same)
 
+    def test_pulse_weight_takes_a_quantity_as_the_command_line_does(self):
+        # "1e-4 deg" is the bare 1e-4 in the output unit (deg/s) × s: the same reduction, bit for bit (as
+        # `ccal reduce --pulse-weight`); a unit of another dimension names the keyword and the accepted units.
+        lab = ccal.load_config(os.path.join(EXAMPLES, "lab.toml"))
+        with tempfile.TemporaryDirectory() as folder:
+            logs = ccal.simulate(lab).write_logs(folder)
+            bare = ccal.reduce(lab, logs, pulse_weight=1e-4)
+            quantity = ccal.reduce(lab, logs, pulse_weight="1e-4 deg")
+            self.assertEqual(list(bare.coefficients), list(quantity.coefficients))
+            self.assertEqual(list(ccal.reduce_logs(lab, logs, pulse_weight="1e-4 deg").observations.output),
+                             list(bare.observations.output))
+            with self.assertRaisesRegex(ccal.InputError, "pulse_weight: '1 m': unit 'm' is a length"):
+                ccal.reduce(lab, logs, pulse_weight="1 m")
+
     def test_a_bad_truth_file_is_refused_with_its_place(self):
         with tempfile.TemporaryDirectory() as folder:
             path = os.path.join(folder, "truth.toml")
