@@ -40,6 +40,21 @@ void warn_about_control(const Config& cfg, ReduceResult& r) {
   }
 }
 
+// A log that spans less than kMinimumLogShare of its run's planned duration: the mean is over what was logged
+// (and the statement's Type A part uses that span), but a log cut short, or the log of a shorter run, should not
+// pass unseen.
+constexpr double kMinimumLogShare = 0.9;
+void warn_about_short_logs(const Config& cfg, ReduceResult& r) {
+  for (const LoggedRun& lr : r.logs.runs) {
+    const double planned = cfg.plan.runs[lr.index].duration;
+    if (!(planned > 0) || lr.log.duration >= kMinimumLogShare * planned) continue;
+    r.warnings.push_back(fmt::format(
+        "run '{}': the log spans {:.6g} s of the planned {:.6g} s ({:.3g} %, below {:g} %); the run's mean is that "
+        "of the span logged: check that the log is whole and of this run",
+        lr.measured.name, lr.log.duration, planned, 100 * lr.log.duration / planned, 100 * kMinimumLogShare));
+  }
+}
+
 // Two runs whose logs have the same bytes (one SHA-256) are one log given twice, a slip of the copy or of the
 // manifest: its mean read at two g-levels would fit a curvature that is not there (K3 = 10.6 for 0.003).
 // Checked twice: by path before reading (one file named for two runs), by the bytes' SHA-256 after (a copy).
@@ -199,6 +214,7 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
                                            cfg.source, &resolution, cfg.text_sha256, fingerprints, measured_by_logs);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
+  warn_about_short_logs(cfg, r);
   if (o.statement) {
     std::vector<double> durations;
     for (const LoggedRun& lr : r.logs.runs) durations.push_back(lr.log.duration);

@@ -57,10 +57,12 @@ std::vector<BadInput> catalogue() {
   auto config = [](const std::string& from, const std::string& to) {
     return F{{"c.toml", example_with(from, to)}};
   };
+  // The logs span 20 s: so does the plan of their configuration (a shorter log is reported, on its own line).
+  const std::string logged = example_with("duration = \"450 s\"", "duration = \"20 s\"");
   const F logs = {
-      {"c.toml", example()}, {"a.csv", log_text(5)}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
+      {"c.toml", logged}, {"a.csv", log_text(5)}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
   auto logs_with = [&](const std::string& a) {
-    return F{{"c.toml", example()}, {"a.csv", a}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
+    return F{{"c.toml", logged}, {"a.csv", a}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
   };
   const std::string reduce = "reduce c.toml --log 5g=a.csv --log 10g=b.csv --log 15g=d.csv";
   const F obs = {{kObs, observations()}};

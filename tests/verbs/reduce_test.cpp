@@ -6,9 +6,12 @@
 // refused naming their field.
 #include "ccal/verbs/reduce.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -138,6 +141,33 @@ TEST_F(ReduceVerb, TooFewOrRepeatedLogsAreRefusedNamingTheOption) {
               "pulse_weight: -1 is not a positive number; accepted: the integrated output "
               "per pulse in deg/s·s, e.g. 2.5e-5");
   }
+}
+
+TEST_F(ReduceVerb, ALogShorterThanItsRunIsReported) {
+  // The first run's log cut after its first half (rows by time): reduced over the span logged, and reported,
+  // with the span and the planned duration; the whole logs give no such warning.
+  auto short_warnings = [](const verbs::ReduceResult& r) {
+    return std::count_if(r.warnings.begin(), r.warnings.end(),
+                         [](const std::string& w) { return w.find("of the planned") != std::string::npos; });
+  };
+  EXPECT_EQ(short_warnings(verbs::reduce(config_, options_)), 0);
+  std::ifstream in(options_.logs[0].path);
+  std::string line, kept;
+  const double planned = config_.plan.runs[0].duration;
+  while (std::getline(in, line)) {
+    const bool data = !line.empty() && (std::isdigit(static_cast<unsigned char>(line[0])) != 0);
+    if (data && std::stod(line.substr(0, line.find(','))) > planned / 2) break;
+    kept += line + "\n";
+  }
+  in.close();
+  std::ofstream(options_.logs[0].path) << kept;
+  const verbs::ReduceResult r = verbs::reduce(config_, options_);
+  ASSERT_EQ(short_warnings(r), 1);
+  const std::string expected = fmt::format("run '{}': the log spans ", config_.plan.runs[0].name);
+  const auto w = std::find_if(r.warnings.begin(), r.warnings.end(),
+                              [](const std::string& x) { return x.find("of the planned") != std::string::npos; });
+  EXPECT_EQ(w->rfind(expected, 0), 0u) << *w;
+  EXPECT_NE(w->find(fmt::format("of the planned {:.6g} s", planned)), std::string::npos) << *w;
 }
 
 TEST_F(ReduceVerb, PulseWeightFromTextTakesTheOutputUnitTimesSeconds) {
