@@ -143,7 +143,7 @@ void bind_log_reduction(py::module_& m) {
           const LogManifest manifest =
               read_log_manifest(py::module_::import("os").attr("fspath")(logs).cast<std::string>());
           o.layout = manifest.layout;
-          for (const LogManifest::Entry& entry : manifest.runs) o.logs.push_back({entry.run, entry.file.string()});
+          o.logs = verbs::manifest_logs(manifest);
         }
         py::gil_scoped_release release;
         return verbs::reduce(cfg, o);

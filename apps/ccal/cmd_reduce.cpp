@@ -92,10 +92,8 @@ Command add_reduce(CLI::App& app) {
           note_input(o->log_folder + "/" + std::string(kLogManifestName));
           const LogManifest manifest = read_log_manifest(o->log_folder);  // located errors name the file
           ro.layout = manifest.layout;
-          for (const LogManifest::Entry& entry : manifest.runs) {
-            ro.logs.push_back({entry.run, entry.file.string()});
-            note_input(ro.logs.back().path);
-          }
+          ro.logs = verbs::manifest_logs(manifest);
+          for (const verbs::LogFile& log : ro.logs) note_input(log.path);
         }
         for (const std::string& item : o->logs) {
           const std::size_t eq = item.find('=');

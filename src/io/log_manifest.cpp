@@ -89,7 +89,8 @@ void read_runs(const Reader& r, const toml::table& root, const std::filesystem::
     if (outside)
       r.fail(node, p, fmt::format("'{}' is not a file inside the folder; accepted: a path relative to {}",
                                   s->get(), folder.string()));
-    m.runs.push_back({std::string(key.str()), folder / file});
+    const Location at = where(key.source());
+    m.runs.push_back({std::string(key.str()), folder / file, at.line, at.column});
   }
   if (m.runs.empty()) r.fail(where(t->source()), "runs", "no run; accepted: run = \"file\" lines, one per run");
   // A TOML table's keys come sorted: back to the order the manifest wrote them in.

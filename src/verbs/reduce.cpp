@@ -57,36 +57,42 @@ void warn_about_short_logs(const Config& cfg, ReduceResult& r) {
 
 // Two runs whose logs have the same bytes (one SHA-256) are one log given twice, a slip of the copy or of the
 // manifest: its mean read at two g-levels would fit a curvature that is not there (K3 = 10.6 for 0.003).
-// Checked twice: by path before reading (one file named for two runs), by the bytes' SHA-256 after (a copy).
-[[noreturn]] void throw_repeated_log(const Config& cfg, std::size_t run, std::size_t earlier_run,
-                                     const std::string& file, const std::string& earlier_file,
-                                     std::string_view how) {
-  throw OptionError("logs", fmt::format("run '{}'", cfg.plan.runs[run].name),
-                    fmt::format("has the same log as run '{}' ({}); accepted: each run's own log",
-                                cfg.plan.runs[earlier_run].name,
-                                file == earlier_file ? fmt::format("{} {}", file, how)
-                                                     : fmt::format("{} and {} {}", earlier_file, file, how)));
+// A problem of one log, where it was named: at its manifest's line (the key of its run), else as the option's.
+[[noreturn]] void refuse_log(const LogFile& log, std::string item, std::string problem) {
+  if (log.manifest.empty()) throw OptionError("logs", std::move(item), std::move(problem));
+  const std::string key = "runs." + log.run;
+  throw LocatedInputError(
+      fmt::format("{}:{}:{}: {}: {} {}", log.manifest, log.line, log.column, key, item, problem), log.manifest,
+      log.line, log.column, key, item + " " + problem);
 }
 
-void refuse_repeated_paths(const Config& cfg, const std::vector<std::pair<std::size_t, std::filesystem::path>>& logs) {
-  for (std::size_t k = 1; k < logs.size(); ++k)
-    for (std::size_t j = 0; j < k; ++j) {
+// Checked twice: by path before reading (one file named for two runs), by the bytes' SHA-256 after (a copy).
+// `named`: each run's LogFile by its index in the plan.
+[[noreturn]] void throw_repeated_log(const Config& cfg, const std::map<std::size_t, LogFile>& named,
+                                     std::size_t run, std::size_t earlier_run, std::string_view how) {
+  const std::string &file = named.at(run).path, &earlier_file = named.at(earlier_run).path;
+  refuse_log(named.at(run), fmt::format("run '{}'", cfg.plan.runs[run].name),
+             fmt::format("has the same log as run '{}' ({}); accepted: each run's own log",
+                         cfg.plan.runs[earlier_run].name,
+                         file == earlier_file ? fmt::format("{} {}", file, how)
+                                              : fmt::format("{} and {} {}", earlier_file, file, how)));
+}
+
+void refuse_repeated_paths(const Config& cfg, const std::map<std::size_t, LogFile>& named) {
+  for (auto k = named.begin(); k != named.end(); ++k)
+    for (auto j = named.begin(); j != k; ++j) {  // j before k in the plan
       std::error_code ec;
-      if (!std::filesystem::equivalent(logs[j].second, logs[k].second, ec)) continue;
-      const auto& [first, second] = logs[j].first < logs[k].first ? std::pair(logs[j], logs[k])
-                                                                   : std::pair(logs[k], logs[j]);  // plan order
-      throw_repeated_log(cfg, second.first, first.first, second.second.string(), first.second.string(),
-                         "is named for both");
+      if (std::filesystem::equivalent(j->second.path, k->second.path, ec))
+        throw_repeated_log(cfg, named, k->first, j->first, "is named for both");
     }
 }
 
-void refuse_repeated_logs(const Config& cfg, const ReduceResult& r) {
+void refuse_repeated_logs(const Config& cfg, const std::map<std::size_t, LogFile>& named, const ReduceResult& r) {
   std::map<std::string, std::size_t> first_of;  // SHA-256 → position in r.logs.runs
   for (std::size_t k = 0; k < r.logs.runs.size(); ++k) {
     const auto [it, fresh] = first_of.emplace(r.logs.runs[k].log.sha256, k);
     if (fresh || r.logs.runs[k].log.sha256.empty()) continue;
-    const std::size_t j = it->second;
-    throw_repeated_log(cfg, r.logs.runs[k].index, r.logs.runs[j].index, r.files[k], r.files[j],
+    throw_repeated_log(cfg, named, r.logs.runs[k].index, r.logs.runs[it->second].index,
                        fmt::format("hold the same bytes, SHA-256 {}…", r.logs.runs[k].log.sha256.substr(0, 12)));
   }
 }
@@ -172,6 +178,13 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   return lo;
 }
 
+std::vector<LogFile> manifest_logs(const LogManifest& manifest) {
+  std::vector<LogFile> logs;
+  for (const LogManifest::Entry& entry : manifest.runs)
+    logs.push_back({entry.run, entry.file.string(), manifest.source, entry.line, entry.column});
+  return logs;
+}
+
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   check_options(o, option_table<ReduceOptions>());
   ReduceResult r;
@@ -180,21 +193,27 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   r.output_unit_si = output_unit_si(cfg.instrument.output_unit);
   const RunLogOptions lo = run_log_options(cfg, o);
   std::vector<std::pair<std::size_t, std::filesystem::path>> logs;
-  std::map<std::size_t, std::string> files;
+  std::map<std::size_t, LogFile> named;  // by the run's index in the plan
   for (const LogFile& log : o.logs) {
-    const std::size_t index = select_run(cfg.plan, log.run, "logs");
-    if (files.count(index))
-      throw OptionError("logs", fmt::format("run '{}'", cfg.plan.runs[index].name),
-                        "is logged twice; accepted: one log per run");
-    files[index] = log.path;
+    std::size_t index = 0;
+    try {
+      index = select_run(cfg.plan, log.run, "logs");
+    } catch (const OptionError& e) {
+      if (log.manifest.empty()) throw;
+      refuse_log(log, fmt::format("'{}'", log.run), std::string(e.problem()));
+    }
+    if (named.count(index))
+      refuse_log(log, fmt::format("run '{}'", cfg.plan.runs[index].name),
+                 "is logged twice; accepted: one log per run");
+    named[index] = log;
     check_readable(log.path);  // a missing file before the count of logs, as when logs were read whole
     logs.emplace_back(index, log.path);
   }
   check_log_count(cfg.identification, logs.size(), "logs");
-  refuse_repeated_paths(cfg, logs);
+  refuse_repeated_paths(cfg, named);
   r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
-  for (const LoggedRun& lr : r.logs.runs) r.files.push_back(files[lr.index]);
-  refuse_repeated_logs(cfg, r);
+  for (const LoggedRun& lr : r.logs.runs) r.files.push_back(named[lr.index].path);
+  refuse_repeated_logs(cfg, named, r);
   std::vector<Run> measured;
   std::vector<double> rates;
   for (const LoggedRun& lr : r.logs.runs) {

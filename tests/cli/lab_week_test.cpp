@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -92,6 +93,24 @@ TEST_F(Cli, ADaqFolderIsReducedByItsManifestAsCcalsOwnLogsAre) {
   const Result both = run("reduce " + kLab + " --logs own --log 5g=own/5g.csv");
   EXPECT_EQ(both.code, 2);
   EXPECT_NE(both.err.find("--log and --logs: give one of them"), std::string::npos) << both.err;
+  // A run the manifest names wrongly is refused at the manifest's line (its [runs] key), not as an option the
+  // user did not give: an unknown run, and one file for two runs.
+  std::string manifest = read(dir_ / "own" / "manifest.toml");
+  const std::size_t at = manifest.find("10g = '10g.csv'");
+  ASSERT_NE(at, std::string::npos) << manifest;
+  const int line = int(std::count(manifest.begin(), manifest.begin() + std::ptrdiff_t(at), '\n')) + 1;
+  auto refused = [&](const std::string& entry) {
+    std::ofstream(dir_ / "own" / "manifest.toml") << std::string(manifest).replace(at, 15, entry);
+    const Result r = run("reduce " + kLab + " --logs own -o /dev/null");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err.find("--log"), std::string::npos) << r.err;
+    return r.err;
+  };
+  EXPECT_NE(refused("10G = '10g.csv'").find(fmt::format("own/manifest.toml:{}:1: runs.10G: '10G' is no run; ", line)),
+            std::string::npos);
+  EXPECT_NE(refused("10g = '5g.csv'")
+                .find(fmt::format("own/manifest.toml:{}:1: runs.10g: run '10g' has the same log as run '5g'", line)),
+            std::string::npos);
 }
 
 // The whole week: the designed plan's run sheet, its logs simulated from the separate truth into a DAQ-layout

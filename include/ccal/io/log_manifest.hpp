@@ -43,6 +43,7 @@ struct LogManifest {
   struct Entry {
     std::string run;                // as written: a run's name or its 1-based index
     std::filesystem::path file;     // the folder joined with the file as written
+    int line = 0, column = 0;       // where the manifest names it (its key), for messages about the log
   };
   std::vector<Entry> runs;  // in the manifest's order
 };

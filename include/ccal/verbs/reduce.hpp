@@ -22,7 +22,13 @@ namespace ccal::verbs {
 struct LogFile {
   std::string run;   // the run's name, or its 1-based index as text
   std::string path;  // CSV: time; pulses or output; optionally theta1, gamma
+  // The manifest that names it, and where (its key's line and column): a problem of this log (an unknown run, a
+  // run logged twice, one log for two runs) is then located there; empty: an option named it (`logs`).
+  std::string manifest = {};
+  int line = 0, column = 0;
 };
+// The logs a folder's manifest names, each located in it.
+std::vector<LogFile> manifest_logs(const LogManifest& manifest);
 
 // The unit of the logs' encoder columns.
 enum class AngleUnit { rad, deg };
