@@ -20,7 +20,7 @@ namespace {
 
 const Keys kManifestKeys{"columns", "runs"};
 const Keys kColumnKeys{"time", "time_unit", "pulses", "output", "theta1", "gamma", "angle_unit",
-                       "counts_per_revolution"};
+                       "counts_per_revolution", "counter_bits"};
 
 // A unit of the given dimension, its SI size; the message names what was expected.
 double unit_size(const Reader& r, const toml::table& t, std::string_view key, const std::string& text, Dimension dim,
@@ -53,6 +53,14 @@ void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
   if (const auto u = r.string(*t, "columns", "time_unit")) {
     c.time_scale = unit_size(r, *t, "time_unit", *u, kind::time, "a time unit; accepted: s, ms, us, min, …");
     layout.time_unit = *u;
+  }
+  if (const auto bits = r.number(*t, "columns", "counter_bits")) {
+    if (!(*bits >= 8 && *bits <= 52 && *bits == std::floor(*bits)))
+      r.fail(*t->get("counter_bits"), "columns.counter_bits",
+             fmt::format("{} is not a counter's width; accepted: a whole number of bits from 8 to 52 (e.g. 16, 24, "
+                         "32)",
+                         number_text(*bits)));
+    c.counter_bits = int(*bits);
   }
   const auto counts = r.number(*t, "columns", "counts_per_revolution");
   if (const auto u = r.string(*t, "columns", "angle_unit")) {
@@ -153,6 +161,7 @@ std::string log_manifest_text(const LogLayout& layout, const std::vector<std::pa
       << "gamma = " << quoted(c.gamma) << "\n";
   if (!layout.angle_unit.empty()) out << "angle_unit = " << quoted(layout.angle_unit) << "\n";
   if (layout.angle_unit == "counts") out << "counts_per_revolution = " << layout.counts_per_revolution << "\n";
+  if (c.counter_bits > 0) out << "counter_bits = " << c.counter_bits << "\n";
   out << "\n[runs]\n";
   for (const auto& [run, file] : runs) {
     toml::table line;

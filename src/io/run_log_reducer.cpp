@@ -101,6 +101,45 @@ void LogReducer::defer_time_order(int line, double t) {
                                t_previous_)));
 }
 
+void LogReducer::defer_count(int line, double value, std::string problem) {
+  defer(Problem::counter_wrap, cell_error(*output_, line, fmt::format("{} {}", value, problem)));
+}
+
+// A counter of `bits` wraps at 2^bits: each step is taken modulo 2^bits into [−2^(bits−1), 2^(bits−1)), so
+// that it may count down too. Without a declared width, a step against the count's direction over the log and
+// more than ten times its mean step is no pulse count (a PIGA's count per sample is steady to a few per cent):
+// a counter that wraps, refused where it does.
+void LogReducer::count_sample(double value, int line) {
+  const int bits = options_.columns.counter_bits;
+  if (bits > 0 && !(value >= 0 && value < std::ldexp(1.0, bits) && value == std::floor(value))) {
+    defer_count(line, value, fmt::format("is not a count of a {}-bit counter; accepted: a whole number from 0 to "
+                                         "2^{} − 1 (columns.counter_bits of the manifest)",
+                                         bits, bits));
+    return;
+  }
+  if (rows_ == 0) {
+    output_first_ = output_previous_ = count_raw_ = value;
+    return;
+  }
+  double step = value - count_raw_;
+  count_raw_ = value;
+  if (bits > 0) {
+    const double range = std::ldexp(1.0, bits), half = std::ldexp(1.0, bits - 1);
+    step -= range * std::floor((step + half) / range);
+  } else if (count_steps_ >= 10) {
+    const double travel = output_previous_ - output_first_;
+    if (step * travel < 0 && std::abs(step) > 10 * count_travel_ / double(count_steps_))
+      defer_count(line, value,
+                  fmt::format("follows {} against the count's direction, by {:.3g} times its mean step: a counter "
+                              "that wraps; accepted: its width declared (the manifest's columns.counter_bits, e.g. "
+                              "16), or a count that does not wrap",
+                              value - step, std::abs(step) * double(count_steps_) / count_travel_));
+  }
+  count_travel_ += std::abs(step);
+  ++count_steps_;
+  output_previous_ += step;
+}
+
 void LogReducer::defer_spacing(const Encoder& e, int line, double step_time) {
   defer(e.spacing,
         cell_error(e.column, line,
@@ -209,8 +248,7 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
   if (output_) {
     if (const std::optional<double> v = cells(*output_, Problem::output_cell, line); v && t) {
       if (pulses_) {
-        if (rows_ == 0) output_first_ = *v;
-        output_previous_ = *v;
+        count_sample(*v, line);
       } else {
         const double y = *v * options_.output_scale;
         if (rows_ > 0) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);

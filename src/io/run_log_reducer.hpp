@@ -44,6 +44,7 @@ class LogReducer final : public CsvRowSink {
     output_columns,
     pulse_weight,
     output_cell,
+    counter_wrap,
     mean_overflow,
     theta1_cell,
     theta1_spacing,
@@ -83,6 +84,9 @@ class LogReducer final : public CsvRowSink {
   // refused cell): the split fields of row() or the values row_line() read.
   // The problems a row can show, written out off the rows' path (cold: the usual row has none).
   [[gnu::cold, gnu::noinline]] void defer_time_order(int line, double t);
+  [[gnu::cold, gnu::noinline]] void defer_count(int line, double value, std::string problem);
+  // The count of a pulses column, unwrapped (counter_bits) or checked for a wrap that was not declared.
+  void count_sample(double value, int line);
   [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
   [[gnu::cold, gnu::noinline]] void note_wild(Encoder& e, int line, double departure, double limit);
   void throw_wild(const Encoder& e) const;
@@ -115,6 +119,9 @@ class LogReducer final : public CsvRowSink {
   bool have_previous_time_ = false;
   double t_first_ = 0, t_previous_ = 0;
   double output_first_ = 0, output_previous_ = 0, integral_ = 0;
+  double count_raw_ = 0;         // the last count as read (before unwrapping)
+  double count_travel_ = 0;      // Σ |step| of the count
+  std::size_t count_steps_ = 0;  // steps summed
 };
 
 }  // namespace ccal::detail

@@ -139,7 +139,8 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
       const double theta_n = run.arm_azimuth + rate * t, gamma_n = phi0 + gamma_rate * t;
       const double d1 = angle_error(main, theta_n);
       const double gamma = turning ? gamma_n + angle_error(platform, gamma_n) - (locked ? d1 : 0.0) : phi0;
-      const double value = w > 0 ? std::floor(m * counted * t / w) : m / unit;
+      double value = w > 0 ? std::floor(m * counted * t / w) : m / unit;
+      if (w > 0 && c.counter_bits > 0) value -= std::ldexp(std::floor(std::ldexp(value, -c.counter_bits)), c.counter_bits);
       const double theta1 = wrapped(theta_n + d1), gamma_true = wrapped(gamma);
       text += fmt::format("{:.17g},{:.17g},{},{}\n", t * (1 + tau) / c.time_scale, value,
                           encoder_text(wrapped(theta1 + encoder_error(encoder1, theta1)), layout),

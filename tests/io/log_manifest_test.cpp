@@ -69,6 +69,12 @@ TEST(LogManifest, TheManifestCcalWritesReadsBackToTheSameLayoutAndRuns) {
   EXPECT_EQ(back.layout.angle_scale, m.layout.angle_scale);
   ASSERT_EQ(back.runs.size(), 2u);
   EXPECT_EQ(back.runs[1].file, m.runs[1].file);
+  // A counter's width is written back (and a pulse log written in that layout wraps: the round trip of
+  // tests/io/run_log_test.cpp's unwrapping).
+  LogLayout counter = m.layout;
+  counter.columns.counter_bits = 16;
+  EXPECT_EQ(parse_log_manifest(log_manifest_text(counter, {{"1", "a.csv"}}), "m", ".").layout.columns.counter_bits,
+            16);
   // A run name TOML must quote (a dot, a space) is written quoted.
   const LogManifest odd = parse_log_manifest(log_manifest_text({}, {{"run 1.5", "run_1.5.csv"}}), "m", ".");
   EXPECT_EQ(odd.runs[0].run, "run 1.5");
@@ -144,6 +150,9 @@ TEST(LogManifest, RefusalsAreLocatedWithWhatIsAccepted) {
   EXPECT_EQ(
       manifest_refusal("[columns]\ntheta1 = \"time\"\n[runs]\n1 = \"a.csv\"\n"),
       "logs/manifest.toml:2:10: columns.theta1: 'time' names two columns; accepted: one name per column");
+  EXPECT_EQ(manifest_refusal("[columns]\ncounter_bits = 12.5\n[runs]\n1 = \"a.csv\"\n"),
+            "logs/manifest.toml:2:16: columns.counter_bits: 12.5 is not a counter's width; accepted: a whole "
+            "number of bits from 8 to 52 (e.g. 16, 24, 32)");
   EXPECT_EQ(manifest_refusal("[colums]\n")
                 .rfind("logs/manifest.toml:1:2: colums: unknown key; did you mean 'columns'?", 0),
             0u);

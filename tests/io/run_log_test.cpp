@@ -173,5 +173,37 @@ TEST(RunLog, AWildEncoderReadingIsRefusedWithItsLine) {
   EXPECT_NEAR(reduce_run_log(parse_csv(coarse, "log.csv"), counts, 8.8).theta1_rate, 8.8, 1e-4);
 }
 
+TEST(RunLog, APulseCounterThatWrapsIsUnwrappedAtItsDeclaredWidth) {
+  // 1461.5 pulses per 0.1 s sample over 450 s (6.6e6 pulses): a 16-bit counter wraps about a hundred times. With
+  // counter_bits = 16 the steps are taken modulo 2^16 and the mean is that of the whole count, exactly (the
+  // counts are integers: the sums are exact); without it the first wrap is refused at its line; a value beyond
+  // 16 bits is no such count.
+  const int n = 4501;
+  auto count = [](int k) { return std::floor(1461.5 * k); };
+  const std::string whole = log_text("time,pulses", n, [&](int k) { return fmt::format("{:.17g},{}", 0.1 * k, count(k)); });
+  const std::string wrapped = log_text("time,pulses", n, [&](int k) {
+    return fmt::format("{:.17g},{}", 0.1 * k, std::fmod(count(k), 65536.0));
+  });
+  RunLogOptions o;
+  o.pulse_weight = 2e-5;
+  const double mean = reduce_run_log(parse_csv(whole, "log.csv"), o, 8.8).mean_output;
+  EXPECT_EQ(mean, count(n - 1) * 2e-5 / 450.0);
+  RunLogOptions declared = o;
+  declared.columns.counter_bits = 16;
+  EXPECT_EQ(reduce_run_log(parse_csv(wrapped, "log.csv"), declared, 8.8).mean_output, mean);
+  // The first wrap: the first k with count(k) ≥ 65536 (k = 45), on line 3 + k.
+  int first = 0;
+  while (count(first) < 65536) ++first;
+  const CsvError e = reduction_error(wrapped, o);
+  EXPECT_EQ(e.line(), 3 + first);
+  EXPECT_EQ(e.item(), "pulses");
+  EXPECT_NE(e.problem().find("a counter that wraps; accepted: its width declared"), std::string::npos)
+      << e.problem();
+  const CsvError beyond = reduction_error("time,pulses\n0,0\n1,65536\n", declared);
+  EXPECT_EQ(beyond.line(), 3);
+  EXPECT_NE(beyond.problem().find("65536 is not a count of a 16-bit counter"), std::string::npos)
+      << beyond.problem();
+}
+
 }  // namespace
 }  // namespace ccal::test

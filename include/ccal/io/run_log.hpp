@@ -44,6 +44,9 @@ struct LogColumns {
   std::string theta1 = "theta1";
   std::string gamma = "gamma";
   double time_scale = 1;  // s per unit of the time column
+  // The pulse counter's width: its count wraps at 2^counter_bits (0: a count that does not wrap). The reduction
+  // takes each step between samples modulo 2^bits into [−2^(bits−1), 2^(bits−1)).
+  int counter_bits = 0;
 };
 
 // A wild encoder reading: one that departs from the line through the two samples before it by more than this
