@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/io/pdf_info.hpp"
 
 extern char** environ;
 
@@ -185,7 +186,8 @@ std::string print_pdf(std::string_view html, const PdfPrintOptions& options) {
   if (*status != 0 || !bytes.starts_with("%PDF-"))
     throw InputError(fmt::format("the browser {} wrote no PDF (exit status {}); it said: {}", browser, *status,
                                  said));
-  return bytes;
+  // The browser sets the title only: the page's author, subject, generator and date are set after it.
+  return with_pdf_info(std::move(bytes), pdf_info_of_page(html));
 }
 
 }  // namespace ccal

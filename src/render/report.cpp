@@ -20,6 +20,8 @@
 #include "ccal/render/identify.hpp"
 #include "ccal/render/montecarlo.hpp"
 #include "ccal/version.hpp"
+#include "certificate_page.hpp"
+#include "certificate_parts.hpp"
 #include "report_html.hpp"
 
 namespace ccal::render {
@@ -102,6 +104,34 @@ std::string shell_word(const std::string& a) {
   return out + "'";
 }
 
+// A file as the report names it: its name without the folders of the machine it was made on.
+std::string shown_file(std::string_view path) { return certificate_parts::base_name(path); }
+
+// The command line as typed, every absolute path in it (a word, or an option's value after '=') written as its
+// file name: no folder of the machine stands in the report.
+std::string without_folders(std::string_view line) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    const std::size_t end = std::min(line.find(' ', i), line.size());
+    std::string word(line.substr(i, end - i));
+    const std::size_t eq = word.rfind('=', word.find('/'));
+    const std::size_t from = word.starts_with("/") || word.starts_with("'/") ? 0
+                             : eq != std::string::npos && word.find('/') == eq + 1 ? eq + 1
+                                                                                    : std::string::npos;
+    if (from != std::string::npos) {
+      const bool quoted = word[from] == '\'';
+      std::string path = word.substr(from + (quoted ? 1 : 0));
+      if (quoted && path.ends_with("'")) path.pop_back();
+      word = word.substr(0, from) + (quoted ? "'" : "") + shown_file(path) + (quoted ? "'" : "");
+    }
+    out += word;
+    if (end < line.size()) out += ' ';
+    i = end + 1;
+  }
+  return out;
+}
+
 // The command line of a verb: its name, the configuration (none for the bundled example), its options;
 // `config` replaces the configuration's path when it is given.
 std::string command_text(const std::vector<std::string>& args, const Config& config,
@@ -113,7 +143,7 @@ std::string command_text(const std::vector<std::string>& args, const Config& con
     if (!config_path.empty())
       words.push_back(shell_word(config_path));
     else if (config.source.rfind("bundled:", 0) != 0)
-      words.push_back(shell_word(config.source));
+      words.push_back(shell_word(shown_file(config.source)));
   }
   std::string out;
   for (const auto& w : words) out.append(out.empty() ? "" : " ").append(w);
@@ -128,7 +158,7 @@ std::string identify_command_text(const std::vector<std::string>& args, const Co
   std::vector<std::string> words = args;
   const bool bundled = config.source.rfind("bundled:", 0) == 0;
   words.insert(words.begin() + std::min<std::ptrdiff_t>(3, std::ptrdiff_t(words.size())),
-               {"--config", bundled ? "examples/" + config.source.substr(8) : config.source});
+               {"--config", bundled ? "examples/" + config.source.substr(8) : shown_file(config.source)});
   std::string out = "ccal";
   for (const auto& w : words) out.append(" ").append(shell_word(w));
   return out.append(" --format json");
@@ -183,7 +213,8 @@ std::string log_rows(const std::vector<ObservationsHeader::Log>& logs) {
   std::string cells;
   for (const ObservationsHeader::Log& log : logs)
     cells += fmt::format("{}<span class=\"log\" data-run=\"{}\">{}: <code>{}</code>, SHA-256 <code>{}</code></span>",
-                         cells.empty() ? "" : "<br>", escape(log.run), escape(log.run), escape(log.file),
+                         cells.empty() ? "" : "<br>", escape(log.run), escape(log.run),
+                         escape(log.file.starts_with("/") ? shown_file(log.file) : log.file),
                          escape(log.sha256));
   return fmt::format("<tr><th>run logs ({})</th><td>{}</td></tr>\n", logs.size(), cells);
 }
@@ -194,7 +225,7 @@ std::string observations_rows(const verbs::ReportResult& r, const ReportProvenan
   return fmt::format(
       "<tr><th>observations</th><td><code>{}</code></td></tr>\n"
       "<tr><th>SHA-256 of the observations</th><td><code id=\"observations-sha256\">{}</code></td></tr>\n{}",
-      escape(r.observed->source), escape(p.observations_sha256), log_rows(p.observation_logs));
+      escape(shown_file(r.observed->source)), escape(p.observations_sha256), log_rows(p.observation_logs));
 }
 
 std::string provenance_section(const verbs::ReportResult& r, const ReportProvenance& p) {
@@ -207,7 +238,8 @@ std::string provenance_section(const verbs::ReportResult& r, const ReportProvena
       "id=\"cmd-montecarlo\">{}"
       "</code><br><code>ccal force … --run {} --time T</code> (the input table){}</td></tr>\n</table>\n"
       "<h3>The configuration ({} bytes)</h3>\n<pre id=\"config-text\">{}</pre>\n</section>\n",
-      escape(version_line()), escape(p.command_line), escape(p.date_utc), escape(r.config.source),
+      escape(version_line()), escape(without_folders(p.command_line)), escape(p.date_utc),
+      escape(shown_file(r.config.source)),
       sha256_hex(p.config_text), observations_rows(r, p), escape(command_text(p.budget_command, r.config)),
       escape(command_text(p.montecarlo_command, r.config)), r.sensed_input.run_index + 1,
       section_commands(r, p), p.config_text.size(), escape(p.config_text));
@@ -279,17 +311,16 @@ std::string statement_first(const verbs::ReportResult& r, const ReportProvenance
   return statement_section(Doc{"identify", identify_json});
 }
 
-// The printed page: A4, its number and count at the foot beside the certificate's number (or the
-// configuration's name), and every collapsed block opened for print.
-std::string page_css(const verbs::ReportResult& r, bool certificate) {
+// The printed page: A4, its number and count at the foot beside the report's name.
+std::string page_css(const verbs::ReportResult& r) {
   const std::string left =
-      certificate && !r.config.certificate->number.empty()
-          ? css_string("Certificate " + r.config.certificate->number)
-          : css_string((certificate ? "Calibration certificate: " : "ccal report: ") + r.config.source);
+      r.config.certificate && !r.config.certificate->number.empty()
+          ? "Engineering report for certificate " + r.config.certificate->number
+          : "ccal report: " + shown_file(r.config.source);
   return fmt::format(
       "@page{{size:A4;margin:14mm 12mm 16mm;@bottom-left{{content:{};font-size:8pt;color:#555}}"
       "@bottom-right{{content:\"Page \" counter(page) \" of \" counter(pages);font-size:8pt;color:#555}}}}\n",
-      left);
+      css_string(left));
 }
 
 }  // namespace
@@ -329,9 +360,10 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
     add("--coverage-probability", fmt::format("{:.17g}", m.coverage_probability));
   if (o.allocate) allocate_command(*o.allocate, o.allocate->mode ? o.allocate->mode : o.mode, p);
   if (o.design) design_command(*o.design, p);
+  p.engineering = o.engineering;
   if (o.observations && r.observed) {
     // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
-    p.identify_command = {"identify", r.observed->source, "--statement"};
+    p.identify_command = {"identify", shown_file(r.observed->source), "--statement"};
     p.observations_sha256 = o.observations->text_sha256;
     if (const auto header = observations_header(*o.observations)) p.observation_logs = header->logs;
     if (o.mode)
@@ -357,6 +389,9 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   if (r.observed && p.identify_command.empty())
     throw std::logic_error(
         "report: the statement's command line is missing (report_commands with its options)");
+  // With observations and a [certificate] table the page is the certificate, unless the engineering report is
+  // asked for.
+  if (r.observed && r.config.certificate && !p.engineering) return certificate_page(r, p);
   const Json budget_json = Json::parse(json(r.budget)), mc_json = Json::parse(json(r.monte_carlo));
   std::vector<Json> instants;
   for (const auto& f : r.sensed_input.instants) instants.push_back(Json::parse(json(f)));
@@ -377,33 +412,26 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
                           {"no_config", true}};
     statement_html += history_section(Doc{"history", Json::parse(json(*r.history))});
   }
-  // With observations and a [certificate] table the page is a certificate: its fields, the statement, the
-  // method and the signature lines, then the rest of the report as its annex.
-  const bool certificate = r.observed && r.config.certificate;
   const std::string section_html = optional_sections(r, p, sources);
 
   std::vector<std::string> advice;
   for (const std::string& line : validation_advice_lines(r.monte_carlo)) advice.push_back(line);
 
+  const std::string name = r.config.certificate && !r.config.certificate->number.empty()
+                               ? "certificate " + r.config.certificate->number + " · " + shown_file(r.config.source)
+                               : shown_file(r.config.source);
+  const char* title = r.observed ? "Centrifuge calibration: engineering report"
+                                 : "Centrifuge calibration: uncertainty report";
   std::string page = fmt::format(
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{5}: "
-      "{0}</title>\n"
+      "{0}</title>\n<meta name=\"generator\" content=\"{4}\">\n<meta name=\"dcterms.created\" content=\"{3}\">\n"
       "<style>{1}{6}</style>\n</head>\n<body>\n<h1>{5}</h1>\n"
       "<p class=\"sub\">{0} · {2} mode · {3} · {4}</p>\n",
-      escape(r.config.source), kStyle, escape(budget_json["mode"].get<std::string>()), escape(p.date_utc),
-      escape(version_line()),
-      certificate ? "Calibration certificate" : "Centrifuge calibration: uncertainty report",
-      page_css(r, certificate));
+      escape(name), kStyle, escape(budget_json["mode"].get<std::string>()), escape(p.date_utc),
+      escape(version_line()), title, page_css(r));
   page += "<script type=\"application/json\" id=\"ccal-sources\">" + script_json(sources) + "</script>\n";
-  if (certificate) page += certificate_head(*r.config.certificate);
   page += statement_html;
-  if (certificate)
-    page += method_section(r.config, Doc{"identify", Json::parse(json(*r.observed))}) +
-            signature_section(*r.config.certificate) +
-            "<div class=\"annex\">\n<h2 id=\"annex\">Annex: the uncertainty analysis</h2>\n<p>The centrifuge's "
-            "error budget, its Monte Carlo check and the model's provenance, from which the Type B part of the "
-            "result above is computed.</p>\n";
   page += summary(budget, mc);
   page += setup_section(r.config, p.config_text);
   page += budget_section(budget, kTopSources);
@@ -415,7 +443,6 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   page += paper_section(budget, kTopSources);
   page += sensed_input_section(r.sensed_input, instants);
   page += provenance_section(r, p);
-  if (certificate) page += "</div>\n";
   page += "<script>" + script_text(scripts) + "</script>\n<script>" + kDraw + "</script>\n</body>\n</html>\n";
   return page;
 }

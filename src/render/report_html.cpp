@@ -110,4 +110,15 @@ std::string chart(const std::string& id, const Json& spec) {
       escape(id), script_json(spec));
 }
 
+std::string css_string(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\' || c == '<' || c == '>' || c == '\n' || c == '\r' || c == '&')
+      out += fmt::format("\\{:x} ", static_cast<unsigned char>(c));
+    else
+      out += c;
+  }
+  return out + "\"";
+}
+
 }  // namespace ccal::render::report_html

@@ -65,11 +65,6 @@ struct DesignDocs {
   const std::vector<Doc>& configured_runs;
 };
 std::string design_section(const DesignDocs& docs);
-// The certificate page (report_certificate.cpp), with the statement of the observations (doc "identify"): the
-// [certificate] fields as written, the method in a paragraph, the signature lines.
-std::string certificate_head(const Certificate& certificate);
-std::string method_section(const Config& config, const Doc& identify);
-std::string signature_section(const Certificate& certificate);
 // Text as a CSS string literal ("…", with " \ < > & and line breaks escaped), e.g. for @page content.
 std::string css_string(std::string_view text);
 // The calibration statement of the observations (`ccal identify OBS.csv --statement --config CONFIG`, doc "identify").

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "certificate_parts.hpp"
 #include "report_html.hpp"
 
 namespace ccal::render::report_html {
@@ -106,7 +107,7 @@ std::string setup_section(const Config& config, std::string_view config_text) {
       "<section id=\"setup\"><h2>Set-up</h2>\n<p>Configuration <code>{}</code>, every value as written in "
       "it (its units); the whole file is under <a href=\"#provenance\">Provenance</a>.</p>\n<div "
       "class=\"setup-grid\">\n",
-      escape(config.source));
+      escape(certificate_parts::base_name(config.source)));
   try {
     const toml::table root = toml::parse(config_text, config.source);
     for (const auto& [k, v] : root)

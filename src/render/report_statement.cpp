@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "ccal/uncertainty/budget.hpp"
+#include "certificate_parts.hpp"
 #include "report_html.hpp"
 
 namespace ccal::render::report_html {
@@ -253,7 +254,8 @@ std::string statement_section(const Doc& doc) {
       "the Type A part by its distribution) checks each interval (JCGM 101 §8); where it does not hold, the "
       "Monte Carlo's probabilistically symmetric interval is stated, and U is half its width. {} "
       "Units: the coefficients' (the instrument's output unit per gⁿ).</p>\n",
-      result_table(doc), escape(doc.json["file"].get<std::string>()), num_span(doc, "/rows", 6),
+      result_table(doc), escape(certificate_parts::base_name(doc.json["file"].get<std::string>())),
+      num_span(doc, "/rows", 6),
       residual_check_text(st), escape(st["mode"].get<std::string>()),
       num_span(doc, "/statement/coverage_probability", 4),
       known_errors_text(st));

@@ -168,11 +168,16 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
   j["budget_config"] = st.budget_config;
   j["config_sha256"] = st.config_sha256;
   j["ccal_version"] = version();
-  // What `ccal history add` records it under: the [certificate]'s instrument, serial number and date.
-  if (!st.serial_number.empty() || !st.date_of_calibration.empty() || !st.instrument.empty())
+  // What `ccal history add` records it under: the [certificate]'s instrument, serial number and date, and its
+  // number, revision and the certificate it replaces (each "" when not set).
+  if (!st.serial_number.empty() || !st.date_of_calibration.empty() || !st.instrument.empty() ||
+      !st.certificate_number.empty() || !st.revision.empty() || !st.replaces.empty())
     j["certificate"] = {{"instrument", st.instrument},
                         {"serial_number", st.serial_number},
-                        {"date_of_calibration", st.date_of_calibration}};
+                        {"date_of_calibration", st.date_of_calibration},
+                        {"number", st.certificate_number},
+                        {"revision", st.revision},
+                        {"replaces", st.replaces}};
   j["mode"] = mode_name(st.mode);
   j["coverage_probability"] = st.coverage_probability;
   j["known_errors"] = st.known_errors;

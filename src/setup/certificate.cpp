@@ -26,6 +26,12 @@ int digits_at(std::string_view text, std::size_t from, std::size_t n) {
 
 }  // namespace
 
+std::string_view traceability_label(std::string_view key) {
+  for (const TraceabilityKind& k : kTraceabilityKinds)
+    if (k.key == key) return k.label;
+  return key;
+}
+
 std::string calendar_date_problem(std::string_view text) {
   const std::string accepted = "accepted: a date YYYY-MM-DD such as 2026-12-03";
   if (text.size() != 10 || text[4] != '-' || text[7] != '-')

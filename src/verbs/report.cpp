@@ -26,6 +26,9 @@ constexpr OptionSpec<ReportOptions> kReportRows[] = {
     rows::statement_trials(&ReportOptions::statement_trials),
     {"history_db", &ReportOptions::history_db, "FILE",
      "History store: the calibrations of the [certificate]'s serial number in it, charted with their drift"},
+    {"engineering", &ReportOptions::engineering, "",
+     "The engineering report (budget, Monte Carlo, paper comparison, sensed input, provenance) instead of the "
+     "calibration certificate that observations with a [certificate] table give"},
 };
 
 std::size_t highest_g_run(const TestPlan& plan) {
@@ -126,7 +129,11 @@ ReportResult report(const Config& config, const ReportOptions& o) {
   check_targets(config, o);
   ReportResult r;
   r.config = config;
-  if (o.observations) r.observed = identify_observations(config, o);
+  if (o.observations) {
+    r.observed = identify_observations(config, o);
+    const Eigen::VectorXd means = o.observations->numbers(r.observed->spec.output, "the certificate's runs");
+    r.observed_means.assign(means.data(), means.data() + means.size());
+  }
   if (!o.history_db.empty()) {
     if (!config.certificate || config.certificate->serial_number.empty())
       throw OptionError(

@@ -190,6 +190,9 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
     st.instrument = config.certificate->instrument;
     st.serial_number = config.certificate->serial_number;
     st.date_of_calibration = config.certificate->date_of_calibration;
+    st.certificate_number = config.certificate->number;
+    st.revision = config.certificate->revision;
+    st.replaces = config.certificate->replaces;
   }
   st.mode = b.mode;
   st.coverage_probability = o.coverage_probability;

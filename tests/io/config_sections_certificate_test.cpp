@@ -59,6 +59,41 @@ TEST(CertificateTable, BadValuesAreRefusedOnTheirLine) {
   expect_error("certificate = \"CAL-1\"\n" + kBase, 1, "certificate", {"expected a table"});
 }
 
+TEST(CertificateTable, RevisionIsANumberOrAText) {
+  const Config n = parse_config(kBase + "\n[certificate]\nnumber = \"C-2\"\nrevision = 1\nreplaces = \"C-1\"", "case.toml");
+  EXPECT_EQ(n.certificate->revision, "1");
+  EXPECT_EQ(n.certificate->replaces, "C-1");
+  EXPECT_EQ(parse_config(kBase + "\n[certificate]\nrevision = \"A\"", "case.toml").certificate->revision, "A");
+}
+
+TEST(CertificateTable, AnAmendmentNamesItsRevisionAndAnotherCertificate) {
+  expect_appended_error("[certificate]\nreplaces = \"C-1\"", "certificate.replaces",
+                        {"without certificate.revision", "revision = 1"});
+  expect_appended_error("[certificate]\nnumber = \"C-1\"\nrevision = 1\nreplaces = \"C-1\"", "certificate.replaces",
+                        {"this certificate's own number"});
+  expect_appended_error("[certificate]\nrevision = -1", "certificate.revision", {"a revision number such as 1"});
+  expect_appended_error("[certificate]\ndate_of_calibration = 2026-12-03\ndate_of_receipt = 2026-12-04",
+                        "certificate.date_of_receipt", {"after the date of calibration 2026-12-03"});
+}
+
+TEST(CertificateTable, TraceabilityByKindOrInputIdInTheOrderWritten) {
+  const Config c = parse_config(kBase + "\n[tolerances]\ndR_s = \"25 um\"\n[certificate]\nradius_standard = \"LT-1\"\n"
+                                        "[certificate.traceability]\ntemperature = \"PT100, T-9\"\ng = \"gravimeter, "
+                                        "G-3\"\ndR_s = \"laser tracker, LT-1\"",
+                                "case.toml");
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"temperature", "PT100, T-9"}, {"g", "gravimeter, G-3"}, {"dR_s", "laser tracker, LT-1"}};
+  EXPECT_EQ(c.certificate->traceability, expected);
+  EXPECT_EQ(traceability_label("g"), "local gravity g");
+  EXPECT_EQ(traceability_label("dR_s"), "dR_s");  // an input: the budget names it
+  expect_appended_error("[certificate.traceability]\nradious = \"LT-1\"", "certificate.traceability.radious",
+                        {"names no quantity of the budget", "radius, rate, time_base, g, output, temperature"});
+  expect_appended_error("[certificate.traceability]\ng = 9.8", "certificate.traceability.g", {"expected a string"});
+  expect_appended_error("[certificate.traceability]\ng = \" \"", "certificate.traceability.g", {"is empty"});
+  expect_appended_error("[certificate]\nrate_standard = \"TB-1\"\n[certificate.traceability]\nrate = \"TB-2\"",
+                        "certificate.traceability.rate", {"certificate.rate_standard states it already"});
+}
+
 TEST(CertificateDates, OnlyRealDaysOfTheGregorianCalendar) {
   EXPECT_EQ(calendar_date_problem("2000-02-29"), "");  // divisible by 400: a leap year
   EXPECT_NE(calendar_date_problem("1900-02-29"), "");  // divisible by 100 only: not one

@@ -3,8 +3,9 @@
 its test simulated as run logs, the logs reduced with the calibration statement, the certificate written as
 HTML and PDF, and what a laboratory files checked:
 
-- the page is a certificate: its fields as the configuration writes them, then the calibration statement as the
-  first section, the method, the signature lines, then the annex;
+- the page is a certificate: its fields as the configuration writes them, then the result, the model, the method,
+  the traceability, the signature lines, then the annexes (the budget and the runs); the engineering report
+  (--engineering) of the same observations has the statement first, then the budget and the provenance;
 - the statement's rounded figures on the page are those of `ccal reduce --format json` and of the text's
   "K = (value ± U) unit" lines (or "K = value unit, p = 95 %: [low, high]" where the Monte Carlo's interval is
   stated), character for character;
@@ -90,17 +91,30 @@ def main(ccal, work, pdf):
 
     pages = ["-o", "certificate.html"] + (["--pdf", "certificate.pdf"] if pdf else [])
     run(ccal, "report", LAB, "--observations", "obs.csv", "--trials", "20000", *pages)
+    run(ccal, "report", LAB, "--observations", "obs.csv", "--trials", "20000", "--engineering", "-o",
+        "engineering.html")
     with open("certificate.html", encoding="utf-8") as f:
         page = f.read()
     outline = Outline()
     outline.feed(page)
+    with open("engineering.html", encoding="utf-8") as f:
+        engineering = f.read()
+    engineering_outline = Outline()
+    engineering_outline.feed(engineering)
 
-    # The certificate: its fields, then the statement first, the method, the signatures, the annex.
+    # The certificate: its fields, the result, the model, the method, the traceability, the signatures, the
+    # annexes; the engineering report: the statement first.
     if "<h1>Calibration certificate</h1>" not in page:
         problems.append("the page is not titled as a calibration certificate")
-    if outline.blocks[:4] != ["certificate", "statement", "method", "signatures"]:
-        problems.append(f"the page opens with {outline.blocks[:4]}, expected the certificate's fields, the "
-                        "statement, the method and the signatures")
+    expected_blocks = ["certificate", "result", "model", "method", "traceability", "signatures", "annex-budget",
+                       "annex-runs"]
+    if outline.blocks != expected_blocks:
+        problems.append(f"the certificate's parts are {outline.blocks}, expected {expected_blocks}")
+    if engineering_outline.blocks[:1] != ["statement"] or "provenance" not in engineering_outline.blocks:
+        problems.append(f"the engineering report's sections are {engineering_outline.blocks}, expected the "
+                        "statement first and the provenance")
+    if dict(engineering_outline.texts) != dict(outline.texts) | dict(engineering_outline.texts):
+        problems.append("the engineering report states another rounded result than the certificate")
     for key, value in {"number": "CAL-2026-0142", "serial_number": "SN 0815", "date_of_issue": "2026-12-03",
                        "conditions": "(20 ± 1) °C, instrument at its operating temperature (71 ± 0.05) °C"}.items():
         if outline.fields.get(key) != value:
@@ -143,9 +157,9 @@ def main(ccal, work, pdf):
         line = f"# ccal log v1; run={r}; sha256={digest}; duration=450; file=logs/{r}.csv"
         if line not in observations:
             problems.append(f"obs.csv has no line {line!r}")
-        if f'data-run="{r}">{r}: <code>logs/{r}.csv</code>, SHA-256 <code>{digest}</code>' not in page:
+        if f'data-run="{r}">{r}: <code>logs/{r}.csv</code>, SHA-256 <code>{digest}</code>' not in engineering:
             problems.append(f"the provenance does not name log {r} with its SHA-256 {digest}")
-    if f'<code id="observations-sha256">{hashlib.sha256(observations.encode()).hexdigest()}</code>' not in page:
+    if f'<code id="observations-sha256">{hashlib.sha256(observations.encode()).hexdigest()}</code>' not in engineering:
         problems.append("the provenance does not name the observations' SHA-256")
 
     # What the logs measured is in the observations file and credited on the page: the table of inputs names the
@@ -153,7 +167,7 @@ def main(ccal, work, pdf):
     for i in ("domega", "dOmega", "ripple1_c1", "ripple1_s1", "ripple3_c1", "ripple3_s1"):
         if f"# ccal measured v1; id={i};" not in observations:
             problems.append(f"obs.csv does not record that the logs measured {i}")
-    if "6 measured in this test" not in page or 'class="statement-inputs"' not in page:
+    if "6 measured in this test" not in engineering or 'class="statement-inputs"' not in engineering:
         problems.append("the page's table of Type B inputs does not say that 6 were measured in this test")
 
     # One U per method: budget, allocate's configured U, the report's summary, Python.
@@ -166,7 +180,7 @@ def main(ccal, work, pdf):
             problems.append(f"{name}: allocate's configured U {c['configured_expanded']} is not budget's "
                             f"{budget_u[name]}")
     for k, (name, u) in enumerate(budget_u.items()):
-        cell = re.search(rf'data-src="budget:/coefficients/{k}/expanded_uncertainty"[^>]*>([^<]*)<', page)
+        cell = re.search(rf'data-src="budget:/coefficients/{k}/expanded_uncertainty"[^>]*>([^<]*)<', engineering)
         if not cell or not math.isclose(float(cell.group(1)), u, rel_tol=5e-4):
             problems.append(f"{name}: the report's summary U {cell and cell.group(1)} is not budget's {u:.4g}")
     # Python: Debian's interpreter, which has numpy (the module's PYTHONPATH from ctest).

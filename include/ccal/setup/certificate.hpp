@@ -7,18 +7,25 @@
 
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 #include <string_view>
 
 namespace ccal {
 
 struct Certificate {
   std::string number;               // the certificate's identification, e.g. "CAL-2026-0142"
+  // ISO/IEC 17025 §7.8.8: an amended or reissued certificate carries its revision and the number of the
+  // certificate it replaces ("" for a first issue).
+  std::string revision;             // e.g. "1"
+  std::string replaces;             // the number of the certificate this one replaces
   std::string laboratory;           // name and address of the calibration laboratory
   std::string accreditation;        // accreditation body and number, if any
   std::string customer;             // name and address of the customer
   std::string instrument;           // the item calibrated: type or model, e.g. "PIGA 16"
   std::string manufacturer;         // its maker
   std::string serial_number;        // its serial number
+  std::string date_of_receipt;      // YYYY-MM-DD, when the item reached the laboratory
   std::string date_of_calibration;  // YYYY-MM-DD, the day of the test (of its last run)
   std::string date_of_issue;        // YYYY-MM-DD, not before the calibration
   std::string place;                // where it was calibrated, if not at the laboratory
@@ -26,9 +33,14 @@ struct Certificate {
   std::string procedure;            // the laboratory's written procedure, e.g. "CP-ACC-07 rev. 3"
   std::string radius_standard;      // traceability of the arm radius: the standard and its certificate
   std::string rate_standard;        // traceability of the rate (time base, encoders) and its certificate
+  std::string fixed_terms_source;   // where the fixed terms' values come from, e.g. "dividing head, CAL-2025-0077"
   std::string operator_name;        // key "operator": who performed the calibration (a signature line)
   std::string approved_by;          // who approves the certificate (a signature line)
   std::string remarks;              // anything else the certificate must say
+  // [certificate.traceability]: per quantity that enters the budget, the standard it is traceable to and its
+  // certificate, in the order written. The key is a kind of kTraceabilityKinds or an input id of [tolerances]
+  // or [[inputs]]; radius_standard and rate_standard are the kinds "radius" and "rate".
+  std::vector<std::pair<std::string, std::string>> traceability;
 
   bool operator==(const Certificate&) const = default;
 };
@@ -42,14 +54,17 @@ struct CertificateField {
   bool date = false;
 };
 
-inline const std::array<CertificateField, 17> kCertificateFields{{
+inline const std::array<CertificateField, 21> kCertificateFields{{
     {"number", "Certificate number", &Certificate::number},
+    {"revision", "Revision", &Certificate::revision},
+    {"replaces", "Replaces certificate", &Certificate::replaces},
     {"laboratory", "Calibration laboratory", &Certificate::laboratory},
     {"accreditation", "Accreditation", &Certificate::accreditation},
     {"customer", "Customer", &Certificate::customer},
     {"instrument", "Item calibrated", &Certificate::instrument},
     {"manufacturer", "Manufacturer", &Certificate::manufacturer},
     {"serial_number", "Serial number", &Certificate::serial_number},
+    {"date_of_receipt", "Date of receipt of the item", &Certificate::date_of_receipt, true},
     {"date_of_calibration", "Date of calibration", &Certificate::date_of_calibration, true},
     {"date_of_issue", "Date of issue", &Certificate::date_of_issue, true},
     {"place", "Place of calibration", &Certificate::place},
@@ -57,10 +72,29 @@ inline const std::array<CertificateField, 17> kCertificateFields{{
     {"procedure", "Calibration procedure", &Certificate::procedure},
     {"radius_standard", "Traceability of the radius", &Certificate::radius_standard},
     {"rate_standard", "Traceability of the rate", &Certificate::rate_standard},
+    {"fixed_terms_source", "Source of the fixed terms", &Certificate::fixed_terms_source},
     {"operator", "Calibrated by", &Certificate::operator_name},
     {"approved_by", "Approved by", &Certificate::approved_by},
     {"remarks", "Remarks", &Certificate::remarks},
 }};
+
+// The kinds of quantity a [certificate.traceability] key may name besides an input id: its key and what the
+// certificate calls it.
+struct TraceabilityKind {
+  std::string_view key;
+  std::string_view label;
+};
+inline constexpr std::array<TraceabilityKind, 6> kTraceabilityKinds{{
+    {"radius", "arm radius"},
+    {"rate", "rotation rate (encoders)"},
+    {"time_base", "time base"},
+    {"g", "local gravity g"},
+    {"output", "output measuring chain"},
+    {"temperature", "temperature"},
+}};
+// What the certificate calls a traceability key: its kind's label, else the key itself (an input id, whose
+// name the budget gives).
+std::string_view traceability_label(std::string_view key);
 
 // Why `text` is no calendar date YYYY-MM-DD (a real day of the Gregorian calendar, year 1900…9999), or empty
 // when it is one.

@@ -43,6 +43,10 @@ struct ReportOptions {
   // The history section: this store's calibrations of the [certificate]'s serial number (`ccal history
   // show`), when it has any; "": none.
   std::string history_db;
+  // With observations and a [certificate] table the page is the calibration certificate; this gives the
+  // engineering report instead (the statement first, then the budget, its Monte Carlo, the paper comparison,
+  // the sensed input and the provenance), which states the same result.
+  bool engineering = false;
 };
 
 // The options' table (core/options.hpp): the report's own fields (those of its sections are in their verbs'
@@ -76,6 +80,8 @@ struct ReportResult {
   // With observations: their identification with its calibration statement (verbs::identify with the
   // configuration as budget); `statement` is always set.
   std::optional<IdentifyResult> observed;
+  // With observations: each row's mean output as the file has it (its output column), in the output unit.
+  std::vector<double> observed_means;
   // With options.history_db: the serial's calibrations, when the store has any (verbs::history_show).
   std::optional<HistoryShowResult> history;
 };

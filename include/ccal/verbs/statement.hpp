@@ -80,6 +80,9 @@ struct CalibrationStatement {
   // The instrument and the date as its [certificate] names them ("" without it): what `ccal history add`
   // records the statement under.
   std::string instrument, serial_number, date_of_calibration;
+  // The certificate's number, revision and the number of the certificate it replaces ("" when not set): what
+  // ties an amended certificate to the one it supersedes.
+  std::string certificate_number, revision, replaces;
   ModelMode mode = ModelMode::exact;
   double coverage_probability = 0.95;
   bool compensated = false;  // the model computed the regressors with the known [errors]
