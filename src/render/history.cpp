@@ -69,7 +69,7 @@ std::string text(const verbs::HistoryShowResult& r) {
       const HistoryPoint& p = h.points[i];
       const NormalisedError* e = agreement_into(h, i);
       out += fmt::format("  {:<10} {:>14.7g} {:>12.3g} {:>6.3g} {:>8}{}\n", h.dates[i], p.value, p.expanded,
-                         p.coverage_factor, e ? fmt::format("{:+.2f}", e->value) : "",
+                         p.coverage_factor, !e ? "" : e->defined ? fmt::format("{:+.2f}", e->value) : "none",
                          e && e->disagree ? "  |E_n| > 1: disagrees with the calibration before" : "");
     }
     if (!h.drift.available) {
@@ -120,7 +120,7 @@ std::string json(const verbs::HistoryShowResult& r) {
     for (const NormalisedError& e : h.agreement)
       c["normalised_errors"].push_back({{"from", h.dates[e.from]},
                                         {"to", h.dates[e.to]},
-                                        {"en", number_or_null(e.value)},
+                                        {"en", e.defined ? Json(e.value) : Json(nullptr)},
                                         {"disagree", e.disagree}});
     if (h.drift.available) {
       c["drift"] = {{"slope_per_year", h.drift.slope},
@@ -150,7 +150,7 @@ std::string csv(const verbs::HistoryShowResult& r) {
       const NormalisedError* e = agreement_into(h, i);
       out += fmt::format("\"{}\",{},\"{}\",{},{:.17g},{:.17g},{:.17g},{}\n", r.serial, h.name, h.unit,
                          h.dates[i], h.points[i].value, h.points[i].expanded, h.points[i].coverage_factor,
-                         e ? fmt::format("{:.17g}", e->value) : "");
+                         e && e->defined ? fmt::format("{:.17g}", e->value) : "");
     }
   return out;
 }
