@@ -7,7 +7,8 @@ namespace ccal {
 namespace {
 
 const SharedInput* find_input(const SharedPart& part, const std::string& id) {
-  const auto it = std::find_if(part.inputs.begin(), part.inputs.end(), [&](const SharedInput& s) { return s.id == id; });
+  const auto it =
+      std::find_if(part.inputs.begin(), part.inputs.end(), [&](const SharedInput& s) { return s.id == id; });
   return it == part.inputs.end() ? nullptr : &*it;
 }
 

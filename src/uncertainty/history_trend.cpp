@@ -8,7 +8,9 @@ namespace ccal {
 
 namespace {
 
-double standard_uncertainty(const HistoryPoint& p) { return p.coverage_factor > 0 ? p.expanded / p.coverage_factor : 0.0; }
+double standard_uncertainty(const HistoryPoint& p) {
+  return p.coverage_factor > 0 ? p.expanded / p.coverage_factor : 0.0;
+}
 
 double shared_between(const Eigen::MatrixXd& shared, std::size_t i, std::size_t j) {
   return shared.rows() > Eigen::Index(std::max(i, j)) ? shared(Eigen::Index(i), Eigen::Index(j)) : 0.0;
@@ -76,7 +78,7 @@ DriftLine drift_line(const std::vector<HistoryPoint>& points, const Eigen::Matri
   }
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
   const Eigen::VectorXd v_ones = factor.solve(ones);  // V⁻¹ 1
-  const double sum_weights = ones.dot(v_ones);          // 1ᵀ V⁻¹ 1
+  const double sum_weights = ones.dot(v_ones);        // 1ᵀ V⁻¹ 1
   const double t_bar = t.dot(v_ones) / sum_weights;
   const Eigen::VectorXd dt = t.array() - t_bar;
   const Eigen::VectorXd v_dt = factor.solve(dt);  // V⁻¹ (t − t̄)

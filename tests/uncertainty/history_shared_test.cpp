@@ -1,6 +1,6 @@
-// What calibrations on one set-up share (uncertainty/history_shared.hpp): Cov(x_i, x_j) = Σ e_i R e_j over the
-// inputs both charged at their tolerance, against hand sums; nothing across set-ups, measured inputs or unknown
-// parts.
+// What calibrations on one set-up share (uncertainty/history_shared.hpp): Cov(x_i, x_j) = Σ e_i R e_j over
+// the inputs both charged at their tolerance, against hand sums; nothing across set-ups, measured inputs or
+// unknown parts.
 #include "ccal/uncertainty/history_shared.hpp"
 
 #include <gtest/gtest.h>
@@ -28,9 +28,9 @@ TEST(HistoryShared, TheInputsCorrelationWithinOneCalibration) {
 }
 
 TEST(HistoryShared, TheCovarianceOfTwoCalibrationsByHand) {
-  // e_i = (1, −0.4, 0.3)e-3, e_j = 2 e_i (its effects twice as large); R = [[1, 1, 0.5], [1, 1, 0], [0.5, 0, 1]]:
-  // e_iᵀ R e_j = 2 e_iᵀ R e_i = 2 (1 + 0.16 + 0.09 − 2·0.4 + 2·0.5·0.3) 1e-6 = 2 · 0.75e-6 = 1.5e-6 (exact to
-  // round-off of nine products: 1e-18).
+  // e_i = (1, −0.4, 0.3)e-3, e_j = 2 e_i (its effects twice as large); R = [[1, 1, 0.5], [1, 1, 0], [0.5, 0,
+  // 1]]: e_iᵀ R e_j = 2 e_iᵀ R e_i = 2 (1 + 0.16 + 0.09 − 2·0.4 + 2·0.5·0.3) 1e-6 = 2 · 0.75e-6 = 1.5e-6
+  // (exact to round-off of nine products: 1e-18).
   const std::optional<SharedPart> i = machine(1), j = machine(2);
   EXPECT_NEAR(shared_covariance(i, j, "K0"), 1.5e-6, 1e-18);
   EXPECT_NEAR(shared_covariance(j, i, "K0"), 1.5e-6, 1e-18);

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -75,8 +74,9 @@ TEST(HistoryTrend, NoLineWithoutThreeCalibrationsAtTwoTimes) {
 }
 
 TEST(HistoryTrend, NormalisedErrorWithASharedCovariance) {
-  // x = 10, 10.3 with U = 0.2, 0.3 at k = 2, 2.5 and C = 0.004 shared: E_n = 0.3/√(0.04 + 0.09 − 2·2·2.5·0.004)
-  // = 0.3/√0.09 = 1 + round-off (|E_n| > 1 is decided on the same number, so 1e-14 for the value only).
+  // x = 10, 10.3 with U = 0.2, 0.3 at k = 2, 2.5 and C = 0.004 shared: E_n = 0.3/√(0.04 + 0.09 −
+  // 2·2·2.5·0.004) = 0.3/√0.09 = 1 + round-off (|E_n| > 1 is decided on the same number, so 1e-14 for the
+  // value only).
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(2, 2);
   c(0, 1) = c(1, 0) = 0.004;
   c(0, 0) = c(1, 1) = 1e9;  // the diagonal is not read
@@ -86,7 +86,8 @@ TEST(HistoryTrend, NormalisedErrorWithASharedCovariance) {
   EXPECT_NEAR(e[0].value, 0.3 / std::sqrt(0.04 + 0.09 - 0.04), 1e-14);
   EXPECT_DOUBLE_EQ(e[0].shared_covariance, 0.004);
   // Without it, ISO 13528's 0.3/√0.13.
-  EXPECT_NEAR(normalised_errors({{0, 10.0, 0.2, 2}, {1, 10.3, 0.3, 2.5}})[0].value, 0.3 / std::sqrt(0.13), 1e-14);
+  EXPECT_NEAR(normalised_errors({{0, 10.0, 0.2, 2}, {1, 10.3, 0.3, 2.5}})[0].value, 0.3 / std::sqrt(0.13),
+              1e-14);
 }
 
 TEST(HistoryTrend, ADifferenceWithoutUncertaintyHasNoNormalisedError) {
@@ -104,8 +105,8 @@ TEST(HistoryTrend, ADifferenceWithoutUncertaintyHasNoNormalisedError) {
 }
 
 TEST(HistoryTrend, ADiagonalCovarianceIsTheWeightedLine) {
-  // An explicit zero covariance gives the weighted line's numbers of the test above (w_i = 1/u_i²) to a few ulp:
-  // V⁻¹ by a Cholesky factor of a diagonal divides where the weights multiply.
+  // An explicit zero covariance gives the weighted line's numbers of the test above (w_i = 1/u_i²) to a few
+  // ulp: V⁻¹ by a Cholesky factor of a diagonal divides where the weights multiply.
   const std::vector<HistoryPoint> p = {{0, 5.0, 0.2, 2}, {1, 5.3, 0.2, 2}, {3, 5.7, 0.4, 2}};
   const DriftLine zero = drift_line(p, Eigen::MatrixXd::Zero(3, 3)), none = drift_line(p);
   ASSERT_TRUE(zero.available);
@@ -119,17 +120,19 @@ TEST(HistoryTrend, ADiagonalCovarianceIsTheWeightedLine) {
     EXPECT_NEAR(line.value, a, 1e-14);
     EXPECT_NEAR(line.std_slope, 1 / std::sqrt(s), 1e-15);
     const double chi2 = std::pow((5.0 - a - b * (0 - t_bar)) / 0.1, 2) +
-                        std::pow((5.3 - a - b * (1 - t_bar)) / 0.1, 2) + std::pow((5.7 - a - b * (3 - t_bar)) / 0.2, 2);
+                        std::pow((5.3 - a - b * (1 - t_bar)) / 0.1, 2) +
+                        std::pow((5.7 - a - b * (3 - t_bar)) / 0.2, 2);
     EXPECT_NEAR(line.chi_squared, chi2, 1e-12 * chi2);
   }
 }
 
 TEST(HistoryTrend, AFullySharedTypeBLeavesTheSlopeToTheTypeAPart) {
-  // u_i² = u_A,i² + s² with all of s² shared (C_ij = s² for i ≠ j): V = D_A + s² 1 1ᵀ, and 1 is a column of X,
-  // so the slope and u(b) are those of the Type A part alone, a absorbs the offset: u(a)² = u_A(a)² + s². To
-  // round-off of the Cholesky solve of a matrix of condition ~ (s/u_A)² = 100: 1e-12 relative.
+  // u_i² = u_A,i² + s² with all of s² shared (C_ij = s² for i ≠ j): V = D_A + s² 1 1ᵀ, and 1 is a column of
+  // X, so the slope and u(b) are those of the Type A part alone, a absorbs the offset: u(a)² = u_A(a)² + s².
+  // To round-off of the Cholesky solve of a matrix of condition ~ (s/u_A)² = 100: 1e-12 relative.
   const double s = 0.05;
-  const std::vector<double> u_a = {0.005, 0.004, 0.006, 0.005}, t = {0, 1, 2, 3.5}, x = {1.0, 1.011, 1.019, 1.032};
+  const std::vector<double> u_a = {0.005, 0.004, 0.006, 0.005}, t = {0, 1, 2, 3.5},
+                            x = {1.0, 1.011, 1.019, 1.032};
   std::vector<HistoryPoint> with_b, only_a;
   for (std::size_t i = 0; i < t.size(); ++i) {
     with_b.push_back({t[i], x[i], 2 * std::hypot(u_a[i], s), 2});
@@ -151,7 +154,8 @@ TEST(HistoryTrend, TheGeneralisedLineIsTheTextbookOne) {
   // One pair correlated: b and its variance from (Xᵀ V⁻¹ X)⁻¹ Xᵀ V⁻¹ x with the uncentred X = [1, t], written
   // out with an explicit inverse; the centred fit must give the same slope and u(b) (1e-12 relative: two
   // routes through a well-conditioned 4 × 4).
-  const std::vector<HistoryPoint> p = {{0, 2.0, 0.02, 2}, {1, 2.03, 0.03, 2}, {2, 2.05, 0.02, 2}, {4, 2.1, 0.04, 2}};
+  const std::vector<HistoryPoint> p = {
+      {0, 2.0, 0.02, 2}, {1, 2.03, 0.03, 2}, {2, 2.05, 0.02, 2}, {4, 2.1, 0.04, 2}};
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(4, 4);
   c(1, 2) = c(2, 1) = 0.6 * 0.015 * 0.01;
   Eigen::Matrix4d v = c;  // fixed sizes: no heap temporaries in the textbook formula
@@ -183,8 +187,8 @@ TEST(HistoryTrend, TheGeneralisedLineIsTheTextbookOne) {
 
 TEST(HistoryTrend, ACovarianceThatIsNotPositiveDefiniteIsSaid) {
   // u = 0.1 each but 0.02 shared: more than either holds; no line, and why.
-  const DriftLine line = drift_line({{0, 1, 0.2, 2}, {1, 1.1, 0.2, 2}, {2, 1.2, 0.2, 2}},
-                                    Eigen::MatrixXd::Constant(3, 3, 0.02));
+  const DriftLine line =
+      drift_line({{0, 1, 0.2, 2}, {1, 1.1, 0.2, 2}, {2, 1.2, 0.2, 2}}, Eigen::MatrixXd::Constant(3, 3, 0.02));
   EXPECT_FALSE(line.available);
   EXPECT_NE(line.unavailable.find("not positive definite"), std::string::npos) << line.unavailable;
 }

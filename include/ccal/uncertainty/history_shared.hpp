@@ -1,15 +1,15 @@
 #pragma once
 // What calibrations on one set-up share (docs/model.md §16.1): the errors of the machine's inputs that both
-// charged at their tolerance. A calibration statement lists, per Type B input, whether the test measured it or
-// charged it at its tolerance, its signed effect e = c u on each coefficient (the sensitivity times the input's
-// standard uncertainty) and its correlation group; with the [[correlations]] among the inputs charged at their
-// tolerance, that is its whole Type B part: u_B(K)² = eᵀ R e (R: 1 within a group, the [[correlations]] ρ,
-// identity otherwise). Two calibrations i, j on the same set-up meet the same machine errors in those inputs,
-// so their coefficients' errors covary:
+// charged at their tolerance. A calibration statement lists, per Type B input, whether the test measured it
+// or charged it at its tolerance, its signed effect e = c u on each coefficient (the sensitivity times the
+// input's standard uncertainty) and its correlation group; with the [[correlations]] among the inputs charged
+// at their tolerance, that is its whole Type B part: u_B(K)² = eᵀ R e (R: 1 within a group, the
+// [[correlations]] ρ, identity otherwise). Two calibrations i, j on the same set-up meet the same machine
+// errors in those inputs, so their coefficients' errors covary:
 //     Cov(x_i, x_j) = Σ_{α,β ∈ S} e_{i,α} R_{αβ} e_{j,β},   S: the inputs charged at their tolerance in both,
-// R_{αβ} as both state it (1 for α = β; where their groups or [[correlations]] differ, 0). Different set-ups, an
-// input measured in either test, or a calibration whose shared part is not known (recorded before it was kept):
-// no shared part.
+// R_{αβ} as both state it (1 for α = β; where their groups or [[correlations]] differ, 0). Different set-ups,
+// an input measured in either test, or a calibration whose shared part is not known (recorded before it was
+// kept): no shared part.
 
 #include <Eigen/Core>
 #include <map>
@@ -21,9 +21,9 @@ namespace ccal {
 
 // One Type B input of a calibration statement (its "inputs" entry).
 struct SharedInput {
-  std::string id;                        // the [tolerances] id
-  bool measured = false;                 // measured in that test: charged at its measurement, shared with none
-  std::string group;                     // the tolerance's correlation group; "": none
+  std::string id;         // the [tolerances] id
+  bool measured = false;  // measured in that test: charged at its measurement, shared with none
+  std::string group;      // the tolerance's correlation group; "": none
   std::map<std::string, double> effect;  // signed u_i(K) = c u per coefficient, in the statement's units
 };
 

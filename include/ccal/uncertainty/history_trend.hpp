@@ -5,21 +5,22 @@
 // the machine inputs both charged at their tolerance: their covariance C_ij = Cov(x_i, x_j), i ≠ j
 // (uncertainty/history_shared.hpp), is the off-diagonal of the points' covariance V, V_ii = u_i².
 //
-// Agreement of successive calibrations (ISO 13528 §9.7, the normalised error, with the shared part taken out):
+// Agreement of successive calibrations (ISO 13528 §9.7, the normalised error, with the shared part taken
+// out):
 //     E_n = (x_{i+1} − x_i) / √(U_i² + U_{i+1}² − 2 k_i k_{i+1} C_{i,i+1}),   |E_n| > 1: the two do not agree
-//     within their uncertainties. The denominator is the standard deviation of k_i e_i − k_{i+1} e_{i+1} (e the
-//     calibrations' errors): each calibration expanded at its own k, as ISO 13528's √(U_i² + U_{i+1}²), which it
-//     is for C = 0; for k_i = k_{i+1} = k it is k u(x_{i+1} − x_i).
-// Drift, from three calibrations on: the straight line x = a + b (t − t̄) by generalised least squares with the
-// covariance V (X = [1, t − t̄]): (a, b) = (Xᵀ V⁻¹ X)⁻¹ Xᵀ V⁻¹ x, t̄ = 1ᵀV⁻¹t / 1ᵀV⁻¹1 (so that a and b are
+//     within their uncertainties. The denominator is the standard deviation of k_i e_i − k_{i+1} e_{i+1} (e
+//     the calibrations' errors): each calibration expanded at its own k, as ISO 13528's √(U_i² + U_{i+1}²),
+//     which it is for C = 0; for k_i = k_{i+1} = k it is k u(x_{i+1} − x_i).
+// Drift, from three calibrations on: the straight line x = a + b (t − t̄) by generalised least squares with
+// the covariance V (X = [1, t − t̄]): (a, b) = (Xᵀ V⁻¹ X)⁻¹ Xᵀ V⁻¹ x, t̄ = 1ᵀV⁻¹t / 1ᵀV⁻¹1 (so that a and b are
 // uncorrelated and Xᵀ V⁻¹ X is diagonal):
 //     b = (t − t̄)ᵀ V⁻¹ x / S,  S = (t − t̄)ᵀ V⁻¹ (t − t̄),  u(b) = 1/√S,  a = 1ᵀ V⁻¹ x / 1ᵀ V⁻¹ 1,
 //     u(a) = 1/√(1ᵀ V⁻¹ 1);
-// for a diagonal V the weighted line with w_i = 1/u_i². The stated uncertainties are taken as known (u(a), u(b)
-// do not depend on the scatter); the Birge ratio R_B = √(χ²/(n − 2)), χ² = rᵀ V⁻¹ r with r = x − a − b(t − t̄),
-// says whether the scatter about the line exceeds them (R_B > 1: the instrument varies beyond its stated
-// uncertainty, or drifts other than linearly). The prediction at a time t: a + b (t − t̄) with
-// u² = u(a)² + (t − t̄)² u(b)².
+// for a diagonal V the weighted line with w_i = 1/u_i². The stated uncertainties are taken as known (u(a),
+// u(b) do not depend on the scatter); the Birge ratio R_B = √(χ²/(n − 2)), χ² = rᵀ V⁻¹ r with r = x − a − b(t
+// − t̄), says whether the scatter about the line exceeds them (R_B > 1: the instrument varies beyond its
+// stated uncertainty, or drifts other than linearly). The prediction at a time t: a + b (t − t̄) with u² =
+// u(a)² + (t − t̄)² u(b)².
 
 #include <Eigen/Core>
 #include <cstddef>
