@@ -1,5 +1,6 @@
 // `ccal history` from Python: an instrument's calibrations read from the store (History, history()) and a
 // statement recorded (history_add()); display() and to_frame() are added in Python (python/ccal/_results.py).
+#include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <string>
@@ -11,7 +12,10 @@
 
 namespace ccal::python {
 
-void bind_history(py::module_& m) {
+namespace {
+
+// The store's records, its serial numbers and the set-up changes between records.
+void bind_history_records(py::module_& m) {
   py::class_<HistoryCoefficient>(m, "HistoryCoefficient", "One coefficient of a recorded calibration.")
       .def_readonly("name", &HistoryCoefficient::name, "the coefficient [—]")
       .def_readonly("unit", &HistoryCoefficient::unit, "its unit, as the statement wrote it [—]")
@@ -24,22 +28,60 @@ void bind_history(py::module_& m) {
       .def_readonly("id", &HistoryRecord::id, "its id in the store [—]")
       .def_readonly("serial", &HistoryRecord::serial, "serial number [—]")
       .def_readonly("date", &HistoryRecord::date, "date of calibration, YYYY-MM-DD [—]")
-      .def_readonly("instrument", &HistoryRecord::instrument, "the instrument as the certificate names it [—]")
+      .def_readonly("instrument", &HistoryRecord::instrument,
+                    "the instrument as the certificate names it [—]")
       .def_readonly("ccal_version", &HistoryRecord::ccal_version, "of the ccal that wrote the statement [—]")
       .def_readonly("config", &HistoryRecord::config, "the configuration the statement names [—]")
       .def_readonly("statement_sha256", &HistoryRecord::statement_sha256, "of the statement's text [—]")
       .def_readonly("added_at", &HistoryRecord::added_at, "when it was recorded, UTC [—]")
       .def_readonly("coefficients", &HistoryRecord::coefficients, "list of HistoryCoefficient [—]")
-      .def_readonly("superseded_by", &HistoryRecord::superseded_by, "the record that replaces it, or None [—]")
+      .def_readonly("superseded_by", &HistoryRecord::superseded_by,
+                    "the record that replaces it, or None [—]")
       .def_readonly("superseded_reason", &HistoryRecord::superseded_reason, "why; empty: not superseded [—]")
-      .def_readonly("statement_json", &HistoryRecord::statement_json, "the statement as recorded (JSON text) [—]");
+      .def_readonly("statement_json", &HistoryRecord::statement_json,
+                    "the statement as recorded (JSON text) [—]")
+      .def_readonly("certificate_number", &HistoryRecord::certificate_number,
+                    "the certificate's number; empty: none [—]")
+      .def_property_readonly(
+          "setup_sha256",
+          [](const HistoryRecord& r) -> std::optional<std::string> {
+            return r.shared ? std::optional<std::string>(r.shared->setup_sha256) : std::nullopt;
+          },
+          "the set-up's fingerprint, or None where the record does not know what it shares [—]");
+  py::class_<HistoryStore::SerialSummary>(m, "HistorySerial",
+                                          "A serial number of the store (`ccal history list`).")
+      .def_readonly("serial", &HistoryStore::SerialSummary::serial, "[—]")
+      .def_readonly("calibrations", &HistoryStore::SerialSummary::calibrations,
+                    "recorded, superseded ones too [—]")
+      .def_readonly("superseded", &HistoryStore::SerialSummary::superseded, "of them superseded [—]")
+      .def_readonly("last_date", &HistoryStore::SerialSummary::last_date, "YYYY-MM-DD of the latest [—]");
+  py::class_<verbs::SetupChange>(m, "SetupChange",
+                                 "Where the set-up or its tolerances change between calibrations.")
+      .def_readonly("from_id", &verbs::SetupChange::from, "the earlier record [—]")
+      .def_readonly("to_id", &verbs::SetupChange::to, "the later record [—]")
+      .def_readonly("from_date", &verbs::SetupChange::from_date, "[—]")
+      .def_readonly("to_date", &verbs::SetupChange::to_date, "[—]")
+      .def_readonly("setup", &verbs::SetupChange::setup, "another set-up: nothing shared across it [—]")
+      .def_readonly("tolerances", &verbs::SetupChange::tolerances, "the same set-up, other tolerances [—]")
+      .def_readonly("unknown", &verbs::SetupChange::unknown, "one of them does not know what it shares [—]");
+}
+
+// The trend of one coefficient: E_n, the drift line, its prediction.
+void bind_history_trend(py::module_& m) {
   py::class_<NormalisedError>(m, "NormalisedError", "E_n of a calibration against the one before.")
       .def_readonly("from_index", &NormalisedError::from, "index of the earlier calibration [—]")
       .def_readonly("to_index", &NormalisedError::to, "index of the later one [—]")
-      .def_readonly("value", &NormalisedError::value, "(x₂ − x₁)/√(U₁² + U₂²) [—]")
+      .def_readonly("value", &NormalisedError::value,
+                    "(x₂ − x₁)/√(U₁² + U₂² − 2 k₁ k₂ C₁₂); 0 where undefined [—]")
+      .def_readonly("defined", &NormalisedError::defined, "false: the difference has no uncertainty [—]")
+      .def_readonly("shared_covariance", &NormalisedError::shared_covariance,
+                    "C₁₂, shared by the two [unit²]")
       .def_readonly("disagree", &NormalisedError::disagree, "|E_n| > 1 [—]");
   py::class_<DriftLine>(m, "DriftLine", "The weighted straight line through a coefficient's calibrations.")
       .def_readonly("available", &DriftLine::available, "three calibrations at two dates at least [—]")
+      .def_readonly("unavailable", &DriftLine::unavailable, "why not, where not available [—]")
+      .def_readonly("correlated", &DriftLine::correlated,
+                    "calibrations sharing errors were fitted with them [—]")
       .def_readonly("reference_years", &DriftLine::reference_years, "t̄, years from the first calibration [a]")
       .def_readonly("value", &DriftLine::value, "the line at t̄ [unit]")
       .def_readonly("std_value", &DriftLine::std_value, "its standard uncertainty [unit]")
@@ -52,6 +94,13 @@ void bind_history(py::module_& m) {
       .def_readonly("years", &DriftPrediction::years, "years from the first calibration [a]")
       .def_readonly("value", &DriftPrediction::value, "[unit]")
       .def_readonly("std_uncertainty", &DriftPrediction::std_uncertainty, "[unit]");
+}
+
+}  // namespace
+
+void bind_history(py::module_& m) {
+  bind_history_records(m);
+  bind_history_trend(m);
   py::class_<verbs::CoefficientHistory>(m, "CoefficientHistory",
                                         "One coefficient over the calibrations that are not superseded.")
       .def_readonly("name", &verbs::CoefficientHistory::name, "[—]")
@@ -73,19 +122,35 @@ void bind_history(py::module_& m) {
             return v;
           },
           "U of each [unit]")
+      .def_readonly("ids", &verbs::CoefficientHistory::ids, "the record of each calibration [—]")
+      .def_readonly("shared", &verbs::CoefficientHistory::shared,
+                    "C_ij: what calibrations i and j share of the coefficient's error [unit²]")
       .def_readonly("normalised_errors", &verbs::CoefficientHistory::agreement, "list of NormalisedError [—]")
       .def_readonly("drift", &verbs::CoefficientHistory::drift, "DriftLine [—]")
-      .def_readonly("prediction", &verbs::CoefficientHistory::prediction, "DriftPrediction at `at`, or None [—]");
-  py::class_<verbs::HistoryShowResult>(m, "History",
-                                       "`ccal history show`: a serial number's calibrations; str() is the CLI's "
-                                       "text, to_json() its JSON.")
-      .def("to_json", [](const verbs::HistoryShowResult& r) { return render::json(r); },
-           "The report as the CLI's JSON (text).")
+      .def_readonly("prediction", &verbs::CoefficientHistory::prediction,
+                    "DriftPrediction at `at`, or None [—]");
+  py::class_<verbs::HistoryShowResult>(
+      m, "History",
+      "`ccal history show`: a serial number's calibrations; str() is the CLI's "
+      "text, to_json() its JSON.")
+      .def(
+          "to_json", [](const verbs::HistoryShowResult& r) { return render::json(r); },
+          "The report as the CLI's JSON (text).")
       .def("__str__", [](const verbs::HistoryShowResult& r) { return render::text(r); })
       .def_readonly("db", &verbs::HistoryShowResult::db, "the store [—]")
       .def_readonly("serial", &verbs::HistoryShowResult::serial, "[—]")
-      .def_readonly("records", &verbs::HistoryShowResult::records, "every calibration, list of HistoryRecord [—]")
-      .def_readonly("coefficients", &verbs::HistoryShowResult::coefficients, "list of CoefficientHistory [—]");
+      .def_readonly("records", &verbs::HistoryShowResult::records,
+                    "every calibration, list of HistoryRecord [—]")
+      .def_readonly("coefficients", &verbs::HistoryShowResult::coefficients, "list of CoefficientHistory [—]")
+      .def_property_readonly(
+          "setups",
+          [](const verbs::HistoryShowResult& r) {
+            std::vector<std::string> labels;
+            for (const int s : r.setup_of) labels.push_back(verbs::setup_label(s));
+            return labels;
+          },
+          "each record's set-up: S1, S2, … in order of first appearance, ? where not known [—]")
+      .def_readonly("setup_changes", &verbs::HistoryShowResult::changes, "list of SetupChange [—]");
 
   m.def(
       "history",
@@ -106,6 +171,15 @@ void bind_history(py::module_& m) {
       py::arg("statement"),
       "Records a calibration statement file in the history store (`ccal history add`); returns its id.");
   record_keywords<verbs::HistoryAddOptions>(m, "history_add");
+  m.def(
+      "history_list",
+      [](const py::kwargs& keywords) {
+        return verbs::history_list(
+                   options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_list"))
+            .serials;
+      },
+      "The store's serial numbers (`ccal history list`): a list of HistorySerial.");
+  record_keywords<verbs::HistoryStoreOptions>(m, "history_list");
 }
 
 }  // namespace ccal::python

@@ -93,6 +93,36 @@ void bind_coefficient_lists(py::class_<Statement>& cls) {
           "per coefficient: its interval excludes 0 [—]");
 }
 
+// The Type B part's inputs (the GUM table), one dict per input.
+py::list inputs_list(const Statement& s) {
+  py::list out;
+  for (const verbs::StatementSource& in : s.inputs) {
+    py::dict d;
+    d["id"] = in.id;
+    d["standard_uncertainty"] = in.standard_uncertainty;
+    d["u"] = in.standard_uncertainty / in.unit_si;
+    d["unit"] = in.unit;
+    d["measured"] = in.measured;
+    d["basis"] = in.basis;
+    py::dict effect;
+    for (std::size_t k = 0; k < in.effect.size() && k < s.coefficients.size(); ++k)
+      effect[py::str(s.coefficients[k].input.coefficient)] = in.effect[k];
+    d["effect"] = effect;
+    d["group"] = in.group;
+    out.append(d);
+  }
+  return out;
+}
+
+constexpr const char* kInputsHelp =
+    "the Type B part's inputs (the GUM table): per input a dict of id, standard_uncertainty [SI], u and unit "
+    "(u in "
+    "the unit it is shown in: as its tolerance was written, else its own), measured (in this test, charged "
+    "at the "
+    "measurement's u; else its tolerance), basis (in words), effect (per coefficient, c u signed), group "
+    "(its "
+    "tolerance's correlation group, '' for none) [the coefficients' units]";
+
 }  // namespace
 
 void bind_statement(py::module_& m) {
@@ -102,21 +132,36 @@ void bind_statement(py::module_& m) {
                         "g^n); the combined covariance. str() is the command line's text; to_json() and to_csv() "
                         "are the files of `--statement-out`.");
   c.def("__str__", [](const Statement& s) { return render::text(s); })
-      .def("to_json", [](const Statement& s) { return render::json(s); },
-           "The statement as `--statement-out FILE.json` writes it (text).")
-      .def("to_csv", [](const Statement& s) { return render::csv(s); },
-           "The statement as `--statement-out FILE.csv` writes it: one row per coefficient, with its row of the "
-           "covariance (text).")
+      .def(
+          "to_json", [](const Statement& s) { return render::json(s); },
+          "The statement as `--statement-out FILE.json` writes it (text).")
+      .def(
+          "to_csv", [](const Statement& s) { return render::csv(s); },
+          "The statement as `--statement-out FILE.csv` writes it: one row per coefficient, with its row of "
+          "the "
+          "covariance (text).")
       .def_readonly("budget_config", &Statement::budget_config,
                     "the configuration whose tolerances give the Type B part [path]")
+      .def_readonly("setup_sha256", &Statement::setup_sha256,
+                    "the machine set-up's fingerprint: calibrations with the same one share its errors [—]")
+      .def_property_readonly(
+          "input_correlations",
+          [](const Statement& s) {
+            py::list out;
+            for (const Correlation& c : s.input_correlations)
+              out.append(py::make_tuple(c.first, c.second, c.r));
+            return out;
+          },
+          "the [[correlations]] among the inputs charged at their tolerance: (id_a, id_b, rho) tuples [—]")
       .def_property_readonly(
           "mode", [](const Statement& s) { return std::string(mode_name(s.mode)); },
           "kinematics of the Type B budget: exact or paper [—]")
       .def_readonly("coverage_probability", &Statement::coverage_probability, "p of the intervals [—]");
   bind_coefficient_lists(c);
   c.def_readonly("covariance", &Statement::covariance,
-                    "combined covariance of the corrected estimates, Type A + Type B [units_i × units_j]")
-      .def_readonly("covariance_a", &Statement::covariance_a, "the fit's covariance (Type A) [units_i × units_j]")
+                 "combined covariance of the corrected estimates, Type A + Type B [units_i × units_j]")
+      .def_readonly("covariance_a", &Statement::covariance_a,
+                    "the fit's covariance (Type A) [units_i × units_j]")
       .def_readonly("covariance_b", &Statement::covariance_b,
                     "the tolerances' covariance (Type B) [units_i × units_j]")
       .def_readonly("correlation", &Statement::correlation, "correlation of the corrected estimates [—]")
@@ -144,30 +189,7 @@ void bind_statement(py::module_& m) {
           "the modelled output of each run, ŷ = hᵀ(K̂ + b) with u from the covariance: per run a dict of run, "
           "g_level [g] (nan: no run of the plan), unit, value, standard_uncertainty, effective_dof, "
           "coverage_factor, expanded_uncertainty, interval (low, high), interval_method [the output's unit]")
-      .def_property_readonly(
-          "inputs",
-          [](const Statement& s) {
-            py::list out;
-            for (const verbs::StatementSource& in : s.inputs) {
-              py::dict d;
-              d["id"] = in.id;
-              d["standard_uncertainty"] = in.standard_uncertainty;
-              d["u"] = in.standard_uncertainty / in.unit_si;
-              d["unit"] = in.unit;
-              d["measured"] = in.measured;
-              d["basis"] = in.basis;
-              py::dict effect;
-              for (std::size_t k = 0; k < in.effect.size() && k < s.coefficients.size(); ++k)
-                effect[py::str(s.coefficients[k].input.coefficient)] = in.effect[k];
-              d["effect"] = effect;
-              out.append(d);
-            }
-            return out;
-          },
-          "the Type B part's inputs (the GUM table): per input a dict of id, standard_uncertainty [SI], u and unit "
-          "(u in the unit it is shown in: as its tolerance was written, else its own), measured "
-          "(in this test, charged at the measurement's u; else its tolerance), basis (in words), effect (per "
-          "coefficient, c u signed) [the coefficients' units]")
+      .def_property_readonly("inputs", &inputs_list, kInputsHelp)
       .def_property_readonly(
           "type_a_from_noise_model", [](const Statement& s) { return s.type_a.from_noise_model; },
           "whether the Type A part is the stated noise's (else the fit's scatter) [—]")

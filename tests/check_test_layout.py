@@ -22,6 +22,7 @@ TESTED_ELSEWHERE = {
     "core/format.cpp": "number formatting: tests/render/budget_test.cpp and the pinned outputs",
     "io/config_sections_design.cpp": "the [design] table: tests/verbs/design_test.cpp (DesignConfig)",
     "io/config_sections_plan.cpp": "the [plan] and [identification] keys: tests/io/config_file*_test.cpp",
+    "io/history_entry.cpp": "history_entry: tests/io/history_store_test.cpp, history_store_schema_test.cpp",
     "io/csv_stream.cpp": "the CSV reader: tests/io/observation_csv*_test.cpp, run_log_reducer_test.cpp",
     "io/observations_header.cpp": "the header and log lines: tests/io/observation_csv_test.cpp",
     "io/run_log_writer.cpp": "logs from the model: tests/verbs/reduce_test.cpp",

@@ -1,5 +1,6 @@
 // ccal history: an instrument's calibration history (docs/cli.md): `add` records a calibration statement in
-// the store, `show` lists a serial number's calibrations with the agreement of successive ones and the drift.
+// the store, `show` lists a serial number's calibrations with the agreement of successive ones and the drift,
+// `list` the store's serial numbers.
 #include <fmt/format.h>
 
 #include <memory>
@@ -27,6 +28,8 @@ struct HistoryCli {
   OutputOptions export_output;
   std::string import_file;
   verbs::HistoryStoreOptions import_store;
+  verbs::HistoryStoreOptions list_store;
+  OutputOptions list_output;
 };
 
 }  // namespace
@@ -52,6 +55,10 @@ Command add_history(CLI::App& app) {
   show->add_option("SERIAL", o->serial, "Serial number, as recorded")->required()->type_name("S");
   add_option_flags(*show, o->show, option_table<verbs::HistoryShowOptions>());
   add_output_options(*show, o->show_output, {"text", "json", "csv"});
+  CLI::App* list = cmd->add_subcommand(
+      "list", "The store's serial numbers: each one's calibrations (superseded ones too) and last date");
+  add_option_flags(*list, o->list_store, option_table<verbs::HistoryStoreOptions>());
+  add_output_options(*list, o->list_output, {"text", "json", "csv"});
   CLI::App* supersede = cmd->add_subcommand(
       "supersede",
       "Mark a record superseded (a wrong statement, a repeated test): kept, left out of drift and E_n");
@@ -73,13 +80,14 @@ Command add_history(CLI::App& app) {
       "  ccal reduce lab.toml --log … --statement --statement-out statement.json\n"
       "  ccal history add statement.json                serial and date from the [certificate]\n"
       "  ccal history add old.json --serial \"SN 0815\" --date 2024-11-28\n"
+      "  ccal history list                              serial numbers, calibrations, last date\n"
       "  ccal history show \"SN 0815\" --at 2027-12-01     drift, E_n and the value predicted then\n"
       "  ccal history supersede 3 --by 4 --reason \"mounting screw loose; test repeated\"\n"
       "  ccal history export \"SN 0815\" -o sn0815.json; ccal history import sn0815.json --db "
       "other.sqlite\n");
 
   return {
-      cmd, [o, add, show, supersede, exported, imported] {
+      cmd, [o, add, show, list, supersede, exported, imported] {
         if (add->parsed()) {
           note_input(o->statement);
           note_input(verbs::history_store_path(o->add.db));
@@ -94,6 +102,13 @@ Command add_history(CLI::App& app) {
           const verbs::HistoryShowResult r = verbs::history_show(o->serial, o->show);
           const std::string& f = o->show_output.format;
           write_output(o->show_output, f == "json"  ? render::json(r)
+                                       : f == "csv" ? render::csv(r)
+                                                    : render::text(r));
+        } else if (list->parsed()) {
+          note_input(verbs::history_store_path(o->list_store.db));
+          const verbs::HistoryListResult r = verbs::history_list(o->list_store);
+          const std::string& f = o->list_output.format;
+          write_output(o->list_output, f == "json"  ? render::json(r)
                                        : f == "csv" ? render::csv(r)
                                                     : render::text(r));
         } else if (supersede->parsed()) {

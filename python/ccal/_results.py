@@ -127,7 +127,7 @@ def history_table(self, d) -> "Table":
     against the calibration before."""
     rows = []
     for h in self.coefficients:
-        en = {e.to_index: e.value for e in h.normalised_errors}
+        en = {e.to_index: e.value if e.defined else None for e in h.normalised_errors}
         for i, date in enumerate(h.dates):
             rows.append([h.name, date, h.values[i], h.expanded[i], h.unit, en.get(i)])
     return Table(f"calibration history of {d['serial']}", ["coefficient", "date", "value", "U", "unit", "E_n"], rows)

@@ -50,6 +50,7 @@ std::vector<Item> read_items(const nlohmann::json& j, const std::string& serial,
     item.entry.instrument = c.value("instrument", item.entry.instrument);
     item.entry.ccal_version = c.value("ccal_version", item.entry.ccal_version);
     item.entry.config = c.value("config", item.entry.config);
+    item.entry.replaces.clear();  // the file carries its supersessions, recorded below
     if (c.contains("superseded") && !c["superseded"].is_null()) item.superseded = &c["superseded"];
     items.push_back(std::move(item));
   }

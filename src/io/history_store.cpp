@@ -14,10 +14,11 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "../core/text_shown.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/core/sha256.hpp"
+#include "history_shared_json.hpp"
+#include "history_text.hpp"
 
 namespace ccal {
 
@@ -25,7 +26,8 @@ namespace {
 
 constexpr std::string_view kApplication = "ccal calibration history";
 
-// Schema 1. The triggers make every record immutable: a calibration is only ever superseded.
+// Schema 2 (schema 1 without the calibration's last three columns). The triggers make every record immutable:
+// a calibration is only ever superseded.
 constexpr const char* kSchema = R"sql(
 CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE calibration(
@@ -37,7 +39,10 @@ CREATE TABLE calibration(
   config TEXT NOT NULL,
   statement_sha256 TEXT NOT NULL UNIQUE,
   added_at TEXT NOT NULL,
-  statement TEXT NOT NULL);
+  statement TEXT NOT NULL,
+  setup_sha256 TEXT,
+  certificate_number TEXT,
+  shared TEXT);
 CREATE INDEX calibration_by_serial ON calibration(serial, date);
 CREATE TABLE coefficient(
   calibration INTEGER NOT NULL REFERENCES calibration(id),
@@ -66,6 +71,15 @@ CREATE TRIGGER coefficient_kept BEFORE UPDATE ON coefficient
   BEGIN SELECT RAISE(ABORT, 'a recorded coefficient is never changed'); END;
 CREATE TRIGGER coefficient_not_deleted BEFORE DELETE ON coefficient
   BEGIN SELECT RAISE(ABORT, 'a recorded coefficient is never deleted'); END;
+)sql";
+
+// Schema 1 → 2: what a calibration shares, NULL (not known) in the records already there; a schema change,
+// not an update, so the records' triggers stay silent and their rows as they were.
+constexpr const char* kMigrationTo2 = R"sql(
+ALTER TABLE calibration ADD COLUMN setup_sha256 TEXT;
+ALTER TABLE calibration ADD COLUMN certificate_number TEXT;
+ALTER TABLE calibration ADD COLUMN shared TEXT;
+UPDATE meta SET value = '2' WHERE key = 'schema_version';
 )sql";
 
 // A prepared statement, finalised on scope exit.
@@ -175,29 +189,6 @@ int schema_version(sqlite3* db, const std::string& path) {
   return std::atoi(version.column_text(0).c_str());
 }
 
-// Text as a message shows it: in single quotes, on one line.
-std::string shown(const std::string& text) { return detail::shown_text(text, '\''); }
-
-bool blank(const std::string& text) { return text.find_first_not_of(" \t\n\r\f\v") == std::string::npos; }
-
-// A serial number is looked up by its exact text: one that is blank or holds control characters (a line
-// break, a tab) could not be told apart or typed again. given: from the caller (the serial option), else
-// from the statement's certificate. Empty: checked by the caller (missing).
-void check_serial(const std::string& serial, bool given, const std::string& source) {
-  if (serial.empty()) return;
-  const char* problem = nullptr;
-  if (blank(serial))
-    problem = "is blank";
-  else if (detail::has_control_character(serial))
-    problem = "holds a control character (a line break, a tab)";
-  if (!problem) return;
-  const std::string accepted =
-      "accepted: the instrument's serial number, printable characters and not blank, e.g. SN 0815";
-  if (given) throw OptionError("serial", shown(serial), fmt::format("{}; {}", problem, accepted));
-  throw InputError(fmt::format("{}: serial number ([certificate] serial_number) {} {}; {}", source,
-                               shown(serial), problem, accepted));
-}
-
 }  // namespace
 
 std::optional<std::int64_t> calendar_day(std::string_view date) {
@@ -221,79 +212,6 @@ std::string default_history_path() {
   const char* home = std::getenv("HOME");
   return (std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "ccal" / "history.sqlite")
       .string();
-}
-
-HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
-                           const std::string& date) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::exception& e) {
-    if (json_text.starts_with("coefficient,unit,corrected_estimate,") || source.ends_with(".csv"))
-      throw InputError(
-          fmt::format("{}: the statement's CSV form; history keeps the statement's JSON form; accepted: the "
-                      "statement as JSON (a .json statement file)",
-                      source));
-    throw InputError(
-        fmt::format("{}: not JSON ({}); accepted: a calibration statement's JSON (alone, or as the "
-                    "\"statement\" of a reduction's or an identification's JSON)",
-                    source, e.what()));
-  }
-  const nlohmann::json& st = j.is_object() && j.contains("statement") ? j["statement"] : j;
-  const auto refuse = [&](const std::string& what) {
-    throw InputError(
-        fmt::format("{}: not a calibration statement: {}; accepted: a calibration statement's JSON (alone, "
-                    "or as the \"statement\" of a reduction's or an identification's JSON)",
-                    source, what));
-  };
-  if (!st.is_object() || !st.contains("coefficients") || !st["coefficients"].is_object() ||
-      st["coefficients"].empty())
-    refuse("no \"coefficients\"");
-  HistoryEntry e;
-  e.statement_json = st.dump();
-  e.ccal_version = j.value("ccal_version", st.value("ccal_version", std::string("unknown")));
-  e.config = st.value("budget_config", j.value("config", std::string()));
-  const double p = st.value("coverage_probability", 0.0);
-  for (const auto& [name, c] : st["coefficients"].items()) {
-    for (const char* key : {"corrected_estimate", "expanded_uncertainty", "coverage_factor"})
-      if (!c.contains(key) || !c[key].is_number())
-        refuse(fmt::format("coefficient {} has no number \"{}\"", name, key));
-    HistoryCoefficient h;
-    h.name = name;
-    h.unit = c.value("unit", std::string());
-    h.value = c["corrected_estimate"].get<double>();
-    h.expanded = c["expanded_uncertainty"].get<double>();
-    h.coverage_factor = c["coverage_factor"].get<double>();
-    h.coverage_probability = p;
-    h.effective_dof = c.contains("effective_dof") && c["effective_dof"].is_number()
-                          ? c["effective_dof"].get<double>()
-                          : std::numeric_limits<double>::infinity();
-    if (!(std::isfinite(h.value) && h.expanded >= 0 && h.coverage_factor > 0))
-      refuse(fmt::format("coefficient {} has no finite value, U ≥ 0 and k > 0", name));
-    e.coefficients.push_back(h);
-  }
-  const nlohmann::json certificate =
-      st.value("certificate", j.value("certificate", nlohmann::json::object()));
-  e.serial = !serial.empty() ? serial : certificate.value("serial_number", std::string());
-  e.date = !date.empty() ? date : certificate.value("date_of_calibration", std::string());
-  e.instrument = certificate.value("instrument", std::string());
-  check_serial(e.serial, !serial.empty(), source);
-  // What the caller did not give and the statement does not name: an option of the call (OptionError, worded
-  // by each front end).
-  if (e.serial.empty())
-    throw OptionError("serial", "",
-                      fmt::format("{} names no serial number ([certificate] serial_number); accepted: the "
-                                  "instrument's serial number",
-                                  source));
-  if (e.date.empty())
-    throw OptionError("date", "",
-                      fmt::format("{} names no date of calibration ([certificate] date_of_calibration); "
-                                  "accepted: the date, YYYY-MM-DD",
-                                  source));
-  if (!calendar_day(e.date))
-    throw InputError(fmt::format(
-        "{}: date of calibration '{}' is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30", source, e.date));
-  return e;
 }
 
 HistoryStore HistoryStore::open(const std::string& path, Access access, int busy_millis) {
@@ -343,7 +261,13 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
           fmt::format("{}: history store of schema {}, written by a newer ccal; this ccal reads "
                       "schema {} and older; accepted: the newer ccal",
                       path, version, kHistorySchemaVersion));
+    store.schema_ = version;
+    if (version == 1 && writing) {
+      execute(store.db_, path, kMigrationTo2, "cannot migrate it to schema 2");
+      store.schema_ = 2;
+    }
     if (version == 0) {
+      store.schema_ = kHistorySchemaVersion;
       if (!create)
         throw InputError(
             fmt::format("{}: an empty file, not a history store; accepted: a history store, or a first "
@@ -362,7 +286,8 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
   return store;
 }
 
-HistoryStore::HistoryStore(HistoryStore&& other) noexcept : db_(other.db_), path_(std::move(other.path_)) {
+HistoryStore::HistoryStore(HistoryStore&& other) noexcept
+    : db_(other.db_), path_(std::move(other.path_)), schema_(other.schema_) {
   other.db_ = nullptr;
 }
 
@@ -371,12 +296,53 @@ HistoryStore& HistoryStore::operator=(HistoryStore&& other) noexcept {
     sqlite3_close_v2(db_);
     db_ = other.db_;
     path_ = std::move(other.path_);
+    schema_ = other.schema_;
     other.db_ = nullptr;
   }
   return *this;
 }
 
 HistoryStore::~HistoryStore() { sqlite3_close_v2(db_); }
+
+void HistoryStore::check_units(const HistoryEntry& entry) const {
+  for (const HistoryCoefficient& c : entry.coefficients) {
+    Statement unit(
+        db_, path_,
+        "SELECT k.unit, c.date FROM coefficient k JOIN calibration c ON c.id = k.calibration WHERE "
+        "c.serial = ?1 AND k.name = ?2 ORDER BY c.date, c.id LIMIT 1");
+    unit.text(1, entry.serial).text(2, c.name);
+    if (unit.step() && unit.column_text(0) != c.unit)
+      throw InputError(
+          fmt::format("{}: {} of '{}' is in '{}' in this statement but in '{}' in its calibration of {}; the "
+                      "history compares "
+                      "values of one unit; accepted: a statement of the configuration's units ([instrument] "
+                      "output_unit as "
+                      "before)",
+                      path_, c.name, entry.serial, c.unit, unit.column_text(0), unit.column_text(1)));
+  }
+}
+
+std::vector<std::int64_t> HistoryStore::replaced_records(const HistoryEntry& entry) const {
+  std::vector<std::int64_t> out;
+  if (entry.replaces.empty()) return out;
+  Statement find(
+      db_, path_,
+      "SELECT c.id, s.calibration FROM calibration c LEFT JOIN supersession s ON s.calibration = c.id "
+      "WHERE c.serial = ?1 AND c.certificate_number = ?2 ORDER BY c.id");
+  find.text(1, entry.serial).text(2, entry.replaces);
+  std::vector<std::int64_t> superseded;
+  while (find.step()) (find.column_null(1) ? out : superseded).push_back(find.column_integer(0));
+  if (out.empty())
+    throw InputError(fmt::format(
+        "{}: the statement's certificate replaces certificate '{}', {} of '{}'; accepted: [certificate] "
+        "replaces "
+        "naming the number of a recorded calibration of {} in force (`ccal history show`), or no replaces",
+        path_, entry.replaces,
+        superseded.empty() ? std::string("which names no calibration")
+                           : fmt::format("whose calibration {} is already superseded", superseded.front()),
+        entry.serial, entry.serial));
+  return out;
+}
 
 std::int64_t HistoryStore::add(const HistoryEntry& entry,
                                const std::function<void(std::int64_t id)>& before_commit) {
@@ -392,10 +358,13 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry,
             "(SHA-256 {}); accepted: a statement not yet recorded",
             path_, known.column_integer(0), known.column_text(1), known.column_text(2), sha.substr(0, 12)));
     }
+    check_units(entry);
+    const std::vector<std::int64_t> replaced = replaced_records(entry);
     Statement insert(
         db_, path_,
         "INSERT INTO calibration(serial, date, instrument, ccal_version, config, statement_sha256, "
-        "added_at, statement) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+        "added_at, statement, setup_sha256, certificate_number, shared) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, "
+        "?8, ?9, ?10, ?11)");
     insert.text(1, entry.serial)
         .text(2, entry.date)
         .text(3, entry.instrument)
@@ -403,8 +372,11 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry,
         .text(5, entry.config)
         .text(6, sha)
         .text(7, utc_now())
-        .text(8, entry.statement_json)
-        .step();
+        .text(8, entry.statement_json);
+    if (entry.shared)
+      insert.text(9, entry.shared->setup_sha256).text(11, detail::shared_part_text(*entry.shared));
+    if (!entry.certificate_number.empty()) insert.text(10, entry.certificate_number);
+    insert.step();
     const std::int64_t id = sqlite3_last_insert_rowid(db_);
     for (const HistoryCoefficient& c : entry.coefficients) {
       Statement row(db_, path_,
@@ -418,6 +390,17 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry,
           .number(6, c.coverage_factor)
           .number(7, c.coverage_probability)
           .number(8, c.effective_dof)
+          .step();
+    }
+    for (const std::int64_t old : replaced) {
+      Statement supersession(db_, path_,
+                             "INSERT INTO supersession(calibration, by, reason, at) VALUES (?1, ?2, ?3, ?4)");
+      supersession.integer(1, old)
+          .integer(2, id)
+          .text(3, entry.certificate_number.empty()
+                       ? fmt::format("replaced by calibration {}", id)
+                       : fmt::format("replaced by certificate {}", entry.certificate_number))
+          .text(4, utc_now())
           .step();
     }
     if (before_commit) before_commit(id);
@@ -434,9 +417,9 @@ void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, co
     throw OptionError(
         "reason", "",
         fmt::format("is needed to supersede calibration {} of {}; accepted: the reason, as text", id, path_));
-  if (blank(reason))
+  if (detail::history_blank(reason))
     throw OptionError(
-        "reason", shown(reason),
+        "reason", detail::history_shown(reason),
         fmt::format("is blank; accepted: the reason calibration {} of {} is superseded, as text", id, path_));
   execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
   try {
@@ -495,11 +478,14 @@ std::optional<std::int64_t> HistoryStore::id_of_statement(const std::string& sta
 
 std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) const {
   std::vector<HistoryRecord> out;
-  Statement list(db_, path_,
-                 "SELECT c.id, c.serial, c.date, c.instrument, c.ccal_version, c.config, c.statement_sha256, "
-                 "c.added_at, s.by, s.reason, c.statement FROM calibration c LEFT JOIN supersession s ON "
-                 "s.calibration = c.id "
-                 "WHERE c.serial = ?1 ORDER BY c.date, c.id");
+  // A schema-1 file opened read-only has not the columns of schema 2: nothing known, as after migrating.
+  const std::string sql = fmt::format(
+      "SELECT c.id, c.serial, c.date, c.instrument, c.ccal_version, c.config, c.statement_sha256, "
+      "c.added_at, s.by, s.reason, c.statement, {} FROM calibration c LEFT JOIN supersession s ON "
+      "s.calibration = c.id "
+      "WHERE c.serial = ?1 ORDER BY c.date, c.id",
+      schema_ >= 2 ? "c.certificate_number, c.shared" : "NULL, NULL");
+  Statement list(db_, path_, sql.c_str());
   list.text(1, serial);
   while (list.step()) {
     HistoryRecord r;
@@ -512,6 +498,9 @@ std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) cons
     r.statement_sha256 = list.column_text(6);
     r.added_at = list.column_text(7);
     r.statement_json = list.column_text(10);
+    r.certificate_number = list.column_text(11);
+    if (!list.column_null(12))
+      r.shared = detail::shared_part_of(nlohmann::json::parse(list.column_text(12)), path_);
     if (!list.column_null(9)) {
       if (!list.column_null(8)) r.superseded_by = list.column_integer(8);
       r.superseded_reason = list.column_text(9);
@@ -528,6 +517,17 @@ std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) cons
                                 rows.column_number(3), rows.column_number(4), rows.column_number(5),
                                 rows.column_number(6)});
   }
+  return out;
+}
+
+std::vector<HistoryStore::SerialSummary> HistoryStore::summaries() const {
+  std::vector<SerialSummary> out;
+  Statement list(db_, path_,
+                 "SELECT c.serial, count(*), count(s.calibration), max(c.date) FROM calibration c LEFT JOIN "
+                 "supersession s ON s.calibration = c.id GROUP BY c.serial ORDER BY c.serial");
+  while (list.step())
+    out.push_back({list.column_text(0), std::size_t(list.column_integer(1)),
+                   std::size_t(list.column_integer(2)), list.column_text(3)});
   return out;
 }
 

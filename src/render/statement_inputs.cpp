@@ -103,7 +103,8 @@ nlohmann::ordered_json inputs_json(const verbs::CalibrationStatement& st) {
                       {"unit", s.unit},
                       {"measured", s.measured},
                       {"basis", s.basis},
-                      {"effect", effect}});
+                      {"effect", effect},
+                      {"group", s.group}});
   }
   return inputs;
 }

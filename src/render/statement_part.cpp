@@ -167,6 +167,7 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
   Json j;
   j["budget_config"] = st.budget_config;
   j["config_sha256"] = st.config_sha256;
+  j["setup_sha256"] = st.setup_sha256;
   j["ccal_version"] = version();
   // What `ccal history add` records it under: the [certificate]'s instrument, serial number and date, and its
   // number, revision and the certificate it replaces (each "" when not set).
@@ -193,6 +194,9 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
   j["coefficients"] = coefficients;
   j["type_a"] = type_a_json(st);
   j["inputs"] = inputs_json(st);
+  j["input_correlations"] = Json::array();
+  for (const Correlation& c : st.input_correlations)
+    j["input_correlations"].push_back({c.first, c.second, c.r});
   j["covariance"] = {{"order", names},
                      {"type_a", matrix_json(st.covariance_a)},
                      {"type_b", matrix_json(st.covariance_b)},

@@ -1,60 +1,100 @@
 #include "ccal/uncertainty/history_trend.hpp"
 
+#include <Eigen/Cholesky>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 
 namespace ccal {
 
-std::vector<NormalisedError> normalised_errors(const std::vector<HistoryPoint>& points) {
+namespace {
+
+double standard_uncertainty(const HistoryPoint& p) {
+  return p.coverage_factor > 0 ? p.expanded / p.coverage_factor : 0.0;
+}
+
+double shared_between(const Eigen::MatrixXd& shared, std::size_t i, std::size_t j) {
+  return shared.rows() > Eigen::Index(std::max(i, j)) ? shared(Eigen::Index(i), Eigen::Index(j)) : 0.0;
+}
+
+}  // namespace
+
+std::vector<NormalisedError> normalised_errors(const std::vector<HistoryPoint>& points,
+                                               const Eigen::MatrixXd& shared) {
   std::vector<NormalisedError> out;
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     const HistoryPoint &a = points[i], &b = points[i + 1];
-    const double difference = b.value - a.value, scale = std::hypot(a.expanded, b.expanded);
     NormalisedError e;
     e.from = i;
     e.to = i + 1;
-    e.value = scale > 0         ? difference / scale
-              : difference == 0 ? 0.0
-                                : std::copysign(std::numeric_limits<double>::infinity(), difference);
-    e.disagree = std::abs(e.value) > 1;
+    e.shared_covariance = shared_between(shared, i, i + 1);
+    const double difference = b.value - a.value;
+    // U_i² + U_j² − 2 k_i k_j C: ≥ (U_i − U_j)² for a C within Cauchy–Schwarz, so ≥ 0 but for round-off.
+    const double independent = a.expanded * a.expanded + b.expanded * b.expanded;
+    const double variance = independent - 2 * a.coverage_factor * b.coverage_factor * e.shared_covariance;
+    // A variance below 1e-12 of U_i² + U_j² is the round-off (~1e-16 of it) of a cancellation, not a value.
+    if (variance > 1e-12 * independent) {
+      e.value = difference / std::sqrt(variance);
+      e.disagree = std::abs(e.value) > 1;
+    } else {
+      e.defined = false;
+      e.disagree = difference != 0;
+    }
     out.push_back(e);
   }
   return out;
 }
 
-DriftLine drift_line(const std::vector<HistoryPoint>& points) {
+DriftLine drift_line(const std::vector<HistoryPoint>& points, const Eigen::MatrixXd& shared) {
   DriftLine line;
-  const std::size_t n = points.size();
-  if (n < 3) return line;
-  double sw = 0, swt = 0, swx = 0;
-  for (const HistoryPoint& p : points) {
-    const double u = p.coverage_factor > 0 ? p.expanded / p.coverage_factor : 0.0;
-    if (!(u > 0)) return line;
-    const double w = 1 / (u * u);
-    sw += w;
-    swt += w * p.years;
-    swx += w * p.value;
+  const auto n = Eigen::Index(points.size());
+  if (n < 3) {
+    line.unavailable = "needs three calibrations at two dates at least";
+    return line;
   }
-  const double t_bar = swt / sw, a = swx / sw;
-  double s = 0, sxy = 0;
-  for (const HistoryPoint& p : points) {
-    const double u = p.expanded / p.coverage_factor, w = 1 / (u * u), dt = p.years - t_bar;
-    s += w * dt * dt;
-    sxy += w * dt * p.value;
+  Eigen::MatrixXd v = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd t(n), x(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const HistoryPoint& p = points[std::size_t(i)];
+    const double u = standard_uncertainty(p);
+    if (!(u > 0)) {
+      line.unavailable = "a calibration states U = 0, so the points cannot be weighted";
+      return line;
+    }
+    v(i, i) = u * u;
+    t[i] = p.years;
+    x[i] = p.value;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (j != i && shared.rows() == n && shared(i, j) != 0) {
+        v(i, j) = shared(i, j);
+        line.correlated = true;
+      }
   }
-  if (!(s > 0)) return line;  // every calibration at one time: no slope
+  const Eigen::LLT<Eigen::MatrixXd> factor(v);
+  if (factor.info() != Eigen::Success) {
+    line.unavailable =
+        "the calibrations' covariance is not positive definite (they share more than their own "
+        "uncertainty holds)";
+    return line;
+  }
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
+  const Eigen::VectorXd v_ones = factor.solve(ones);  // V⁻¹ 1
+  const double sum_weights = ones.dot(v_ones);        // 1ᵀ V⁻¹ 1
+  const double t_bar = t.dot(v_ones) / sum_weights;
+  const Eigen::VectorXd dt = t.array() - t_bar;
+  const Eigen::VectorXd v_dt = factor.solve(dt);  // V⁻¹ (t − t̄)
+  const double s = dt.dot(v_dt);
+  if (!(s > 0) || !std::isfinite(s) || !(sum_weights > 0)) {
+    line.unavailable = "needs three calibrations at two dates at least";
+    return line;
+  }
   line.available = true;
   line.reference_years = t_bar;
-  line.value = a;
-  line.std_value = 1 / std::sqrt(sw);
-  line.slope = sxy / s;
+  line.value = x.dot(v_ones) / sum_weights;
+  line.std_value = 1 / std::sqrt(sum_weights);
+  line.slope = x.dot(v_dt) / s;
   line.std_slope = 1 / std::sqrt(s);
-  for (const HistoryPoint& p : points) {
-    const double u = p.expanded / p.coverage_factor;
-    const double r = (p.value - a - line.slope * (p.years - t_bar)) / u;
-    line.chi_squared += r * r;
-  }
+  const Eigen::VectorXd r = x - Eigen::VectorXd::Constant(n, line.value) - line.slope * dt;
+  line.chi_squared = std::max(0.0, r.dot(factor.solve(r)));
   line.dof = int(n) - 2;
   line.birge_ratio = std::sqrt(line.chi_squared / line.dof);
   return line;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -57,6 +59,59 @@ std::string read_history_file(const std::string& file, std::string_view accepted
   return text.str();
 }
 
+bool superseded(const HistoryRecord& r) { return r.superseded_by || !r.superseded_reason.empty(); }
+
+// The inputs a calibration charged at their tolerance, as far as sharing goes: ids, groups, correlations and
+// effects (to 1e-9 of the largest: the same configuration's budget gives them bit for bit).
+bool same_tolerances(const SharedPart& a, const SharedPart& b) {
+  const auto charged = [](const SharedPart& p) {
+    std::vector<const SharedInput*> out;
+    for (const SharedInput& s : p.inputs)
+      if (!s.measured) out.push_back(&s);
+    return out;
+  };
+  const auto x = charged(a), y = charged(b);
+  if (x.size() != y.size() || a.correlations.size() != b.correlations.size()) return false;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i]->id != y[i]->id || x[i]->group != y[i]->group || x[i]->effect.size() != y[i]->effect.size())
+      return false;
+    for (const auto& [k, e] : x[i]->effect) {
+      const auto other = y[i]->effect.find(k);
+      if (other == y[i]->effect.end() ||
+          std::abs(other->second - e) > 1e-9 * std::max(std::abs(e), std::abs(other->second)))
+        return false;
+    }
+  }
+  for (std::size_t i = 0; i < a.correlations.size(); ++i)
+    if (a.correlations[i].first != b.correlations[i].first ||
+        a.correlations[i].second != b.correlations[i].second || a.correlations[i].r != b.correlations[i].r)
+      return false;
+  return true;
+}
+
+// Which set-up each record is on, and where it changes between successive calibrations in force.
+void describe_setups(HistoryShowResult& r) {
+  const HistoryRecord* previous = nullptr;
+  for (const HistoryRecord& rec : r.records) {
+    int index = -1;
+    if (rec.shared) {
+      const auto it = std::find(r.setups.begin(), r.setups.end(), rec.shared->setup_sha256);
+      index = int(it - r.setups.begin());
+      if (it == r.setups.end()) r.setups.push_back(rec.shared->setup_sha256);
+    }
+    r.setup_of.push_back(index);
+    if (superseded(rec)) continue;
+    if (previous) {
+      SetupChange c{previous->id, rec.id, previous->date, rec.date, false, false, false};
+      c.unknown = !previous->shared || !rec.shared;
+      c.setup = !c.unknown && previous->shared->setup_sha256 != rec.shared->setup_sha256;
+      c.tolerances = !c.unknown && !c.setup && !same_tolerances(*previous->shared, *rec.shared);
+      if (c.unknown || c.setup || c.tolerances) r.changes.push_back(c);
+    }
+    previous = &rec;
+  }
+}
+
 }  // namespace
 
 std::string history_store_path(const std::string& db) { return db.empty() ? default_history_path() : db; }
@@ -100,9 +155,21 @@ HistoryAddResult history_add(const std::string& statement_file, const HistoryAdd
   HistoryStore store = HistoryStore::open(r.db, HistoryStore::Access::create);
   store.add(r.entry, [&](std::int64_t id) {
     r.id = id;
-    r.calibrations = store.records(r.entry.serial).size();  // this one included: the transaction sees it
+    const std::vector<HistoryRecord> records = store.records(r.entry.serial);  // the transaction sees it
+    r.calibrations = records.size();
+    for (const HistoryRecord& rec : records)
+      if (rec.superseded_by == id) r.replaced.push_back(rec.id);
     if (before_commit) before_commit(r);
   });
+  return r;
+}
+
+std::string setup_label(int index) { return index < 0 ? "?" : fmt::format("S{}", index + 1); }
+
+HistoryListResult history_list(const HistoryStoreOptions& o) {
+  HistoryListResult r;
+  r.db = history_store_path(o.db);
+  r.serials = HistoryStore::open(r.db, HistoryStore::Access::read).summaries();
   return r;
 }
 
@@ -121,15 +188,17 @@ HistoryShowResult history_show(const std::string& serial, const HistoryShowOptio
         "{}: no calibration of '{}' in the history store; accepted: {}", r.db, serial,
         known.empty() ? std::string("none recorded yet") : fmt::format("one of {}", fmt::join(known, ", "))));
   }
+  describe_setups(r);
   // Per coefficient, in the order of the first calibration that has it; time in years from the first date.
   const std::int64_t origin = history_day(r.records.front().date, "date");
   std::map<std::string, std::size_t> index;
+  std::map<std::string, std::vector<const std::optional<SharedPart>*>> shared_of;
   for (const HistoryRecord& rec : r.records) {
-    if (rec.superseded_by || !rec.superseded_reason.empty()) continue;
+    if (superseded(rec)) continue;
     const double years = double(history_day(rec.date, "date") - origin) / kDaysPerYear;
     for (const HistoryCoefficient& c : rec.coefficients) {
       auto [it, fresh] = index.try_emplace(c.name, r.coefficients.size());
-      if (fresh) r.coefficients.push_back({c.name, c.unit, {}, {}, {}, {}, {}});
+      if (fresh) r.coefficients.push_back({c.name, c.unit, {}, {}, {}, {}, {}, {}, {}});
       CoefficientHistory& h = r.coefficients[it->second];
       if (c.unit != h.unit)
         throw InputError(
@@ -137,12 +206,15 @@ HistoryShowResult history_show(const std::string& serial, const HistoryShowOptio
                         "of one unit; accepted: statements of one configuration's units",
                         r.db, c.name, serial, h.unit, h.dates.front(), c.unit, rec.date));
       h.dates.push_back(rec.date);
+      h.ids.push_back(rec.id);
       h.points.push_back({years, c.value, c.expanded, c.coverage_factor});
+      shared_of[c.name].push_back(&rec.shared);
     }
   }
   for (CoefficientHistory& h : r.coefficients) {
-    h.agreement = normalised_errors(h.points);
-    h.drift = drift_line(h.points);
+    h.shared = shared_covariance_matrix(shared_of[h.name], h.name);
+    h.agreement = normalised_errors(h.points, h.shared);
+    h.drift = drift_line(h.points, h.shared);
     if (predicting && h.drift.available)
       h.prediction = predict(h.drift, double(at_day - origin) / kDaysPerYear);
   }

@@ -151,6 +151,7 @@ std::vector<StatementSource> statement_sources(const Config& config, const ccal:
       line.basis = fmt::format("from its tolerance ({})", distribution_name(src.distribution));
     for (std::size_t k = 0; k < budget_row.size(); ++k)
       line.effect.push_back(src.effect[Eigen::Index(budget_row[k])] * to_fit[k]);
+    line.group = config.tolerances[s].group;  // cleared for a measured input (with_measured_inputs)
     out.push_back(std::move(line));
   }
   return out;
@@ -186,6 +187,7 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
   CalibrationStatement st;
   st.budget_config = config.source;
   st.config_sha256 = config.text_sha256;
+  st.setup_sha256 = config.text_sha256;
   if (config.certificate) {
     st.instrument = config.certificate->instrument;
     st.serial_number = config.certificate->serial_number;
@@ -233,6 +235,7 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
     st.coefficients.push_back(state_coefficient(in, o.coverage_probability));
   }
   st.inputs = statement_sources(config, b, measured, budget_row, to_fit_of);
+  st.input_correlations = config.correlations;  // a measured input's pairs removed (with_measured_inputs)
   st.covariance_a = a.known + a.estimated;
   st.covariance_b = g_fit * g_fit.transpose();
   st.covariance = st.covariance_a + st.covariance_b;

@@ -335,10 +335,10 @@ TEST_F(History, BadFilesAreRefusedAndLeftAsTheyWere) {
   refused(path("other.sqlite"), true, "an SQLite file that is not a ccal history store");
   // A store of a newer schema.
   ASSERT_EQ(sqlite3_open(path("h.sqlite").c_str(), &db), SQLITE_OK);
-  sqlite3_exec(db, "UPDATE meta SET value = '2' WHERE key = 'schema_version'", nullptr, nullptr, nullptr);
+  sqlite3_exec(db, "UPDATE meta SET value = '3' WHERE key = 'schema_version'", nullptr, nullptr, nullptr);
   sqlite3_close(db);
   refused(path("h.sqlite"), true,
-          "history store of schema 2, written by a newer ccal; this ccal reads schema 1");
+          "history store of schema 3, written by a newer ccal; this ccal reads schema 2");
   // A folder.
   refused(folder_.string(), true, "not a file");
 }

@@ -51,6 +51,14 @@ class HistoryTest(unittest.TestCase):
         self.assertAlmostEqual(rows[1]["E_n"], 0.25 / math.sqrt(0.08), places=14)
         self.assertIsNone(rows[0]["E_n"])
 
+    def test_the_serial_numbers_listed(self):
+        # The store of setUp: SN 1 with its three calibrations, none superseded, the last of 2027-06-01.
+        (serial,) = ccal.history_list(db=self.db)
+        self.assertEqual((serial.serial, serial.calibrations, serial.superseded, serial.last_date),
+                         ("SN 1", 3, 0, "2027-06-01"))
+        with self.assertRaises(TypeError):
+            ccal.history_list(db=self.db, serial="SN 1")
+
     def test_the_same_json_as_the_program(self):
         program = os.environ.get("CCAL_PROGRAM")
         if not program:

@@ -62,6 +62,15 @@ def main(program, lab, truth, folder):
             problems.append("no drift line stated for each coefficient")
         if s.count("history:/coefficients/K2/normalised_errors/") != 2:
             problems.append("E_n of K2 is not traced to `ccal history show` twice")
+        # Each year's configuration differs (its K2 and dates), so each is its own set-up, and the section says
+        # where it changes; the table names each calibration's set-up.
+        if "Set-ups: S1" not in s or s.count("another set-up, nothing shared across it") != 2:
+            problems.append("the set-ups and their two changes are not stated")
+        if s.count("<th>set-up</th>") != 3:
+            problems.append("no set-up column in each coefficient's table")
+    # The charts' date axis shows the year on every tick.
+    if page.count('"format":"%Y-%m-%d"') + page.count('"format": "%Y-%m-%d"') < 3:
+        problems.append("the history charts' date axis has no year in its format")
     for p in problems:
         print(p)
     return 1 if problems else 0

@@ -8,12 +8,21 @@
 // schema is refused, as is any file that is not a ccal history store or fails SQLite's quick_check. Tables:
 //     meta(key, value)                                   schema_version, application
 //     calibration(id, serial, date, instrument, ccal_version, config, statement_sha256 UNIQUE, added_at,
-//                 statement)                            the statement's JSON text, whole
+//                 statement,                            the statement's JSON text, whole
+//                 setup_sha256, certificate_number,     schema 2: the set-up's fingerprint, the certificate's
+//                 shared)                               number, what it shares with others on its set-up
+//                                                       (uncertainty/history_shared.hpp) as JSON: the
+//                                                       statement's setup_sha256, inputs[] {id, measured,
+//                                                       group, effect}, input_correlations and covariance
+//                                                       {order, type_b}. NULL: not known (a record of
+//                                                       schema 1, or a statement that did not state it),
+//                                                       treated as independent of every other
 //     coefficient(calibration, name, unit, value, expanded, coverage_factor, coverage_probability,
 //                 effective_dof)                        one row per coefficient: the corrected estimate, U,
 //                 k, p,
 //                                                       ν_eff (NULL: ∞), in the statement's units
 //     supersession(calibration, by, reason, at)         a record replaced, never changed
+// Schema 1 → 2 adds the three columns, NULL in every record already there (records stay as they were).
 // A record is never changed or deleted (triggers refuse it); one is only superseded, with a reason. Every
 // write is one transaction (BEGIN IMMEDIATE, waiting up to kHistoryBusyMillis for another writer), so two
 // processes adding at once lose nothing, and a process killed mid-add leaves the store as it was before the
@@ -26,11 +35,13 @@
 #include <string_view>
 #include <vector>
 
+#include "ccal/uncertainty/history_shared.hpp"
+
 struct sqlite3;  // the SQLite connection (sqlite3.h), kept out of this header
 
 namespace ccal {
 
-inline constexpr int kHistorySchemaVersion = 1;
+inline constexpr int kHistorySchemaVersion = 2;
 inline constexpr int kHistoryBusyMillis = 10000;
 
 // One coefficient of a recorded calibration, in the statement's units.
@@ -54,6 +65,8 @@ struct HistoryRecord {
   std::string config;        // the configuration the statement names
   std::string statement_sha256;
   std::string added_at;  // UTC, ISO 8601
+  std::string certificate_number;    // the statement's certificate number; "": none (or a schema-1 record)
+  std::optional<SharedPart> shared;  // what it shares with others on its set-up; none: not known
   std::vector<HistoryCoefficient> coefficients;
   std::optional<std::int64_t> superseded_by;  // the record that replaces it, if one does
   std::string superseded_reason;              // not empty: superseded (excluded from drift and E_n)
@@ -67,13 +80,18 @@ struct HistoryEntry {
   std::string
       statement_json;  // the statement itself (a reduce/identify output's "statement", or the file whole)
   std::vector<HistoryCoefficient> coefficients;
+  std::string certificate_number;    // the statement's certificate.number; "": none
+  std::string replaces;              // its certificate.replaces: the number of the certificate it replaces
+  std::optional<SharedPart> shared;  // none: the statement does not state it (no setup_sha256)
 };
 
 // Reads a statement from the JSON text of `ccal reduce --statement-out FILE` (or of a whole `ccal reduce` /
 // `ccal identify --statement` JSON output, whose "statement" is taken); `source` names it in messages.
 // serial, date: given (empty: from the statement's certificate fields, serial_number and
 // date_of_calibration). InputError for text that is no statement (the statement's CSV form said so), a
-// missing serial or date, a serial that is blank or holds control characters, or a date not YYYY-MM-DD.
+// missing serial or date, a serial that is blank or holds control characters, a date not YYYY-MM-DD, a
+// coverage probability not in (0, 1), or a shared part (setup_sha256 stated) whose inputs or correlations are
+// malformed. The certificate's number and replaces are read from its "certificate" object.
 HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
                            const std::string& date);
 
@@ -101,9 +119,13 @@ class HistoryStore {
   ~HistoryStore();
 
   // Records a calibration in one transaction; returns its id. InputError for a statement already recorded
-  // (the same SHA-256 of its text), naming the record. before_commit, when given, runs with the new id after
-  // the rows are written and before COMMIT (the store's reads on this connection already see them); an
-  // exception from it rolls the transaction back, so that nothing is recorded, and is passed on.
+  // (the same SHA-256 of its text), naming the record, and for a coefficient in another unit than the
+  // serial's records have it in. An entry that replaces a certificate number supersedes the serial's records
+  // of that number not yet superseded by the new record, in the same transaction (reason "replaced by
+  // certificate <number>"); InputError, nothing written, when no such record is in force. before_commit, when
+  // given, runs with the new id after the rows are written and before COMMIT (the store's reads on this
+  // connection already see them); an exception from it rolls the transaction back, so that nothing is
+  // recorded, and is passed on.
   std::int64_t add(const HistoryEntry& entry, const std::function<void(std::int64_t id)>& before_commit = {});
   // Marks record `id` superseded, by record `by` of the same serial if given, for `reason` (not blank), in
   // one transaction. InputError for an unknown id, a record already superseded, `by` unknown, of another
@@ -115,12 +137,24 @@ class HistoryStore {
   std::vector<HistoryRecord> records(const std::string& serial) const;
   // The serial numbers in the store, sorted.
   std::vector<std::string> serials() const;
+  // Per serial number (sorted): its calibrations, how many of them are superseded, and the last date.
+  struct SerialSummary {
+    std::string serial;
+    std::size_t calibrations = 0, superseded = 0;
+    std::string last_date;  // of the latest calibration, superseded ones included
+  };
+  std::vector<SerialSummary> summaries() const;
+  // The file's schema version (older files opened read-only are not migrated).
+  int schema() const { return schema_; }
   const std::string& path() const { return path_; }
 
  private:
   HistoryStore() = default;
+  void check_units(const HistoryEntry& entry) const;
+  std::vector<std::int64_t> replaced_records(const HistoryEntry& entry) const;
   ::sqlite3* db_ = nullptr;
   std::string path_;
+  int schema_ = kHistorySchemaVersion;
 };
 
 }  // namespace ccal

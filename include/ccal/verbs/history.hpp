@@ -47,22 +47,49 @@ struct HistoryAddResult {
   std::int64_t id = 0;
   HistoryEntry entry;
   std::size_t calibrations = 0;  // of the serial, this one included
+  std::vector<std::int64_t> replaced;  // records it superseded (its certificate replaces theirs)
 };
 
 // One coefficient over the calibrations (those not superseded), oldest first.
 struct CoefficientHistory {
   std::string name, unit;
   std::vector<std::string> dates;
+  std::vector<std::int64_t> ids;     // the record of each point
   std::vector<HistoryPoint> points;  // years from the first calibration's date
+  // C_ij: what calibrations i and j share of this coefficient's error (uncertainty/history_shared.hpp),
+  // points × points; the diagonal is each one's shared part with itself (its u_B² where nothing was
+  // measured).
+  Eigen::MatrixXd shared;
   std::vector<NormalisedError> agreement;
   DriftLine drift;
   std::optional<DriftPrediction> prediction;  // at options.at, when the line is available
 };
 
+// Where the set-up or its tolerances change between two successive calibrations in force.
+struct SetupChange {
+  std::int64_t from = 0, to = 0;  // the records
+  std::string from_date, to_date;
+  bool setup = false;       // another set-up fingerprint: nothing shared across it
+  bool tolerances = false;  // the same set-up, other inputs charged at their tolerance (ids, groups,
+                            // correlations or effects): only the inputs both charge are shared
+  bool unknown = false;     // either record does not know what it shares (schema 1): treated as independent
+};
+
 struct HistoryShowResult {
   std::string db, serial, at;
   std::vector<HistoryRecord> records;  // every calibration, superseded ones included
+  // The set-ups in order of first appearance (their fingerprints), and each record's: an index into setups,
+  // or -1 where the record does not know its set-up.
+  std::vector<std::string> setups;
+  std::vector<int> setup_of;
+  std::vector<SetupChange> changes;  // between successive calibrations in force
   std::vector<CoefficientHistory> coefficients;
+};
+
+// `ccal history list`: the serial numbers of a store.
+struct HistoryListResult {
+  std::string db;
+  std::vector<HistoryStore::SerialSummary> serials;
 };
 
 // The store a history command uses for its db option: db itself, or default_history_path() when empty. The
@@ -77,6 +104,10 @@ HistoryAddResult history_add(const std::string& statement_file, const HistoryAdd
                              const std::function<void(const HistoryAddResult&)>& before_commit = {});
 // InputError for a serial with no calibration in the store (naming those it has), a bad date or store.
 HistoryShowResult history_show(const std::string& serial, const HistoryShowOptions& options = {});
+// Every serial number of the store with its count of calibrations (and superseded ones) and the last date.
+HistoryListResult history_list(const HistoryStoreOptions& options = {});
+// The name `show` gives set-up `index` (0: "S1"), or "?" for -1 (not known).
+std::string setup_label(int index);
 
 // Marks a record superseded (never changed otherwise); InputError as HistoryStore::supersede.
 void history_supersede(std::int64_t id, const HistorySupersedeOptions& options);

@@ -53,6 +53,7 @@ struct StatementSource {
   bool measured = false;            // measured in this test (its tolerance replaced), else from its tolerance
   std::string basis;                // how u was obtained, in words
   std::vector<double> effect;       // u_i(K) = c u per coefficient, signed, in the fit's units
+  std::string group;                // its tolerance's correlation group; "": none (a measured input has none)
 };
 
 // How the Type A part was evaluated, and the residuals tested against it (docs/model.md §10.5).
@@ -77,6 +78,7 @@ inline constexpr double kResidualCheckLevel = 0.01;
 struct CalibrationStatement {
   std::string budget_config;  // the configuration whose tolerances give the Type B part
   std::string config_sha256;  // of its text (Config::text_sha256)
+  std::string setup_sha256;   // the machine set-up's fingerprint (calibrations with one share its errors)
   // The instrument and the date as its [certificate] names them ("" without it): what `ccal history add`
   // records the statement under.
   std::string instrument, serial_number, date_of_calibration;
@@ -89,6 +91,9 @@ struct CalibrationStatement {
   int known_errors = 0;      // non-zero [errors] parameters
   std::vector<CoefficientStatement> coefficients;  // in the fit's order, in the fit's units
   std::vector<StatementSource> inputs;             // the Type B part's inputs, in tolerance order
+  // The [[correlations]] pairs among the inputs charged at their tolerance (a measured input leaves its
+  // pairs).
+  std::vector<Correlation> input_correlations;
   TypeAEvaluation type_a;
   // Covariance of the corrected estimates, in the fit's units (row and column i: coefficients[i]): Type A the
   // fit's, Type B the tolerances' LPU, Σ_g e_g e_gᵀ over the correlation groups of §10.1 (a group's effects added
