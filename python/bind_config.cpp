@@ -48,7 +48,16 @@ void bind_config(py::module_& m) {
                      "A centrifuge, site, instrument, test plan, tolerances and identification.")
       .def_readonly("source", &Config::source, "the file name, or the name given to parse_config [—]")
       .def_readonly("text_sha256", &Config::text_sha256,
-                    "SHA-256 of the text it was read from; empty once changed by a with_… method [—]")
+                    "SHA-256 of the text it was read from (a job's own file); empty once changed by a with_… "
+                    "method [—]")
+      .def_readonly("numbers_sha256", &Config::numbers_sha256,
+                    "SHA-256 of every table but [certificate] and [design], job and set-up merged, in canonical "
+                    "form: the fingerprint observations files are bound to; empty once changed [—]")
+      .def_readonly("setup_sha256", &Config::setup_sha256,
+                    "SHA-256 of the machine's and lab's tables alone ([site], [centrifuge], [errors], "
+                    "[tolerances], [[correlations]], [[inputs]]); empty once changed [—]")
+      .def_readonly("setup_source", &Config::setup_source,
+                    "the set-up file a job names (setup = \"…\"), as read; \"\" for a file naming none [—]")
       .def_property_readonly(
           "runs", [](const Config& c) { return c.plan.runs; }, "the test plan's runs, list of Run [—]")
       .def_readonly("tolerances", &Config::tolerances,
