@@ -9,7 +9,10 @@
 
 namespace ccal::python {
 
-void bind_config(py::module_& m) {
+namespace {
+
+// A configuration's parts: the runs of its plan and its tolerances.
+void bind_runs_and_tolerances(py::module_& m) {
   py::class_<Run>(m, "Run", "One run of the test plan.")
       .def_readonly("name", &Run::name, "the run's name [—]")
       .def_readonly("g_level", &Run::g_level, "A = Ω² R0 / g, the centripetal level [g]")
@@ -43,6 +46,12 @@ void bind_config(py::module_& m) {
       .def_readonly("group", &Tolerance::group, "sources of one non-empty group are fully correlated [—]")
       .def_readonly("cost", &Tolerance::cost, "relative cost weight of tightening it, for allocate [—]")
       .def("__repr__", [](const Tolerance& t) { return "<ccal.Tolerance " + t.id + ">"; });
+}
+
+}  // namespace
+
+void bind_config(py::module_& m) {
+  bind_runs_and_tolerances(m);
 
   py::class_<Config>(m, "Config", py::dynamic_attr(),
                      "A centrifuge, site, instrument, test plan, tolerances and identification.")
