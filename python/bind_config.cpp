@@ -9,7 +9,10 @@
 
 namespace ccal::python {
 
-void bind_config(py::module_& m) {
+namespace {
+
+// A configuration's parts: the runs of its plan and its tolerances.
+void bind_runs_and_tolerances(py::module_& m) {
   py::class_<Run>(m, "Run", "One run of the test plan.")
       .def_readonly("name", &Run::name, "the run's name [—]")
       .def_readonly("g_level", &Run::g_level, "A = Ω² R0 / g, the centripetal level [g]")
@@ -43,12 +46,27 @@ void bind_config(py::module_& m) {
       .def_readonly("group", &Tolerance::group, "sources of one non-empty group are fully correlated [—]")
       .def_readonly("cost", &Tolerance::cost, "relative cost weight of tightening it, for allocate [—]")
       .def("__repr__", [](const Tolerance& t) { return "<ccal.Tolerance " + t.id + ">"; });
+}
+
+}  // namespace
+
+void bind_config(py::module_& m) {
+  bind_runs_and_tolerances(m);
 
   py::class_<Config>(m, "Config", py::dynamic_attr(),
                      "A centrifuge, site, instrument, test plan, tolerances and identification.")
       .def_readonly("source", &Config::source, "the file name, or the name given to parse_config [—]")
       .def_readonly("text_sha256", &Config::text_sha256,
-                    "SHA-256 of the text it was read from; empty once changed by a with_… method [—]")
+                    "SHA-256 of the text it was read from (a job's own file); empty once changed by a with_… "
+                    "method [—]")
+      .def_readonly("numbers_sha256", &Config::numbers_sha256,
+                    "SHA-256 of every table but [certificate] and [design], job and set-up merged, in canonical "
+                    "form: the fingerprint observations files are bound to; empty once changed [—]")
+      .def_readonly("setup_sha256", &Config::setup_sha256,
+                    "SHA-256 of the machine's and lab's tables alone ([site], [centrifuge], [errors], "
+                    "[tolerances], [[correlations]], [[inputs]]); empty once changed [—]")
+      .def_readonly("setup_source", &Config::setup_source,
+                    "the set-up file a job names (setup = \"…\"), as read; \"\" for a file naming none [—]")
       .def_property_readonly(
           "runs", [](const Config& c) { return c.plan.runs; }, "the test plan's runs, list of Run [—]")
       .def_readonly("tolerances", &Config::tolerances,

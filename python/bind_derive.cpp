@@ -102,7 +102,7 @@ std::string written_unit(const Value& bound, const std::optional<std::string>& u
 // A configuration changed in code describes no file: it carries no fingerprint (Config::text_sha256).
 Config derived_from(const Config& cfg) {
   Config out = cfg;
-  out.text_sha256.clear();
+  clear_fingerprints(out);
   return out;
 }
 

@@ -79,10 +79,17 @@ void bind_coefficient_lists(py::class_<Statement>& cls) {
               v.emplace_back(kIntervalMethodNames[std::size_t(c.method)]);
             return v;
           },
-          "per coefficient 'student_t' (y ∓ k u_c) or 'monte_carlo' (the Monte Carlo's interval, stated where "
-          "the JCGM 101 §8 check refused the Student-t one) [—]")
+          "per coefficient 'student_t' (y ∓ k u_c), 'monte_carlo' (the Monte Carlo's interval, stated where "
+          "the JCGM 101 §8 check refused the Student-t one) or 'coverage_factor' (y ∓ k u_c with the stated k) [—]")
+      .def_readonly("coverage_factor", &Statement::coverage_factor,
+                    "the k the user stated (coverage_factor=), else None [—]")
+      .def_readonly("setup_sha256", &Statement::setup_sha256,
+                    "fingerprint of the configuration's machine and lab tables (Config.setup_sha256) [—]")
       .def_readonly("monte_carlo_trials", &Statement::monte_carlo_trials,
-                    "M of the Monte Carlo check (0: none was run) [—]")
+                    "M of the Monte Carlo check (0: none was run); more than requested while a verdict was "
+                    "within the sampling error [—]")
+      .def_readonly("monte_carlo_requested_trials", &Statement::monte_carlo_requested_trials,
+                    "the M requested (statement_trials) [—]")
       .def_property_readonly(
           "significant",
           [](const Statement& s) {

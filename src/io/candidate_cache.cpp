@@ -112,10 +112,10 @@ fs::path default_cache_folder() {
 }
 
 std::string candidate_cache_key(const Config& config, const std::vector<DesignRun>& runs) {
-  if (config.text_sha256.empty() || build_fingerprint().empty()) return {};
+  if (config.numbers_sha256.empty() || build_fingerprint().empty()) return {};
   Sha256 key;
   key.update(kMagic).update(version()).update("\n").update(build_fingerprint()).update("\n");
-  key.update(config.text_sha256);
+  key.update(config.numbers_sha256);
   // The rows are scaled by the tolerances as the Config holds them, which need not be the text's (the design
   // credits what declared encoders will measure): their bounds, laws and groups are part of the key.
   for (const Tolerance& t : config.tolerances) {

@@ -76,11 +76,13 @@ using namespace config_reading;
 
 Config parse_config(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
-  const toml::table root = parse_toml(r, text, source_name);
-  r.check_keys(root, "", kRootKeys);
   Config cfg;
+  const toml::table root = with_setup(r, parse_toml(r, text, source_name), cfg.setup_source);
+  r.check_keys(root, "", kRootKeys);
   cfg.source = std::string(source_name);
   cfg.text_sha256 = sha256_hex(text);
+  cfg.numbers_sha256 = tables_sha256(root, kWordingKeys, KeySelection::exclude);
+  cfg.setup_sha256 = tables_sha256(root, kSetupKeys, KeySelection::include);
   cfg.site = read_site(r, root);
   cfg.centrifuge = read_centrifuge(r, root);
   cfg.instrument = read_instrument(r, root);

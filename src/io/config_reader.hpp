@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -103,13 +104,16 @@ inline std::string example_unit(Dimension d) {
   return si_unit(d);
 }
 
+// A place in a file: a job's keys and its set-up's come from two files (config_job.cpp), so a place names its
+// file (null: the reader's own).
 struct Location {
   int line = 0;
   int column = 0;
+  std::shared_ptr<const std::string> file;
 };
 
 inline Location where(const toml::source_region& r) {
-  return {static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+  return {static_cast<int>(r.begin.line), static_cast<int>(r.begin.column), r.path};
 }
 
 // A quantity's output dimension: how an instrument's output unit is written and what it is in SI.
@@ -126,7 +130,8 @@ class Reader {
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void fail(Location at, std::string_view key, std::string problem) const {
-    throw ConfigError(source_, at.line, at.column, std::string(key), std::move(problem));
+    throw ConfigError(at.file && !at.file->empty() ? *at.file : source_, at.line, at.column, std::string(key),
+                      std::move(problem));
   }
   [[noreturn]] void fail(const toml::node& n, std::string_view key, std::string problem) const {
     fail(where(n.source()), key, std::move(problem));
@@ -296,7 +301,21 @@ class Reader {
 
 inline const Keys kRootKeys{"site",       "centrifuge", "errors",         "tolerances", "correlations",
                             "instrument", "plan",       "identification", "design",     "certificate",
-                            "inputs"};
+                            "inputs",     "setup"};
+// The tables of the machine and the lab: a job's set-up holds them (config_job.cpp), Config::setup_sha256 is
+// theirs. Every other table but [certificate] and [design] is the job's and changes the numbers.
+inline const Keys kSetupKeys{"site", "centrifuge", "errors", "tolerances", "correlations", "inputs"};
+inline const Keys kWordingKeys{"certificate", "design"};
+
+// A job file's root merged with the set-up it names (`setup = "…toml"`, relative to the job's folder): the
+// set-up's tables, each table the job gives replacing the set-up's of that name whole. setup_source: the set-up's
+// path as read ("" for a file without `setup`). Every node keeps its own file and line for messages.
+toml::table with_setup(const Reader& job_reader, toml::table job, std::string& setup_source);
+
+// SHA-256 of the canonical TOML text (keys sorted, comments and layout dropped) of the root's tables named in
+// `keys` (include) or of all but those (exclude).
+enum class KeySelection { include, exclude };
+std::string tables_sha256(const toml::table& root, const Keys& keys, KeySelection selection);
 inline const Keys kInputKeys{"id", "description", "unit", "bound", "distribution", "group", "cost", "floor",
                              "sensitivity"};
 inline const Keys kCorrelationKeys{"between", "r"};

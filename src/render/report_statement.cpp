@@ -172,7 +172,8 @@ std::string monte_carlo_check_table(const Doc& doc) {
     t += "<tr>" + text_cell(id) + num_cell(doc, p + "/standard_uncertainty") +
          num_cell(doc, p + "/interval_symmetric/0", 6) + num_cell(doc, p + "/interval_symmetric/1", 6) +
          num_cell(doc, p + "/d_low", 2) + num_cell(doc, p + "/d_high", 2) + num_cell(doc, p + "/delta", 2) +
-         text_cell(c["interval_method"] == "monte_carlo" ? "Monte Carlo"
+         text_cell(c["interval_method"] == "monte_carlo"       ? "Monte Carlo"
+                   : c["interval_method"] == "coverage_factor" ? "stated k"
                    : c["monte_carlo"]["validated"].get<bool>()
                        ? "Student t"
                        : fmt::format("Student t (M too small to tell: {} trials would)",

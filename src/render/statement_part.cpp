@@ -27,6 +27,15 @@ std::string statement_line(const CoefficientStatement& c, const std::string& pct
   if (c.method == IntervalMethod::monte_carlo)
     return fmt::format("  {} = {} {}, p = {}: [{}, {}] (the Monte Carlo's interval, JCGM 101)", c.input.coefficient,
                        r.estimate, c.input.unit, pct, r.low, r.high);
+  if (c.stated)  // the p a stated k gives: a normal quantity's, and Student's t at ν_eff where that is finite
+    return fmt::format("  {} = ({} ± {}) {}, k = {:g} (stated), p = {:.4g} % for a normal quantity{}: [{}, {}]",
+                       c.input.coefficient, r.estimate, r.expanded, c.input.unit, c.coverage_factor,
+                       100 * c.stated->normal,
+                       std::isfinite(c.effective_dof)
+                           ? fmt::format(", {:.4g} % for Student's t at nu_eff = {}", 100 * c.stated->student_t,
+                                         dof_text(c.effective_dof))
+                           : std::string(),
+                       r.low, r.high);
   return fmt::format("  {} = ({} ± {}) {}, k = {:.3f}, p = {}: [{}, {}]", c.input.coefficient, r.estimate,
                      r.expanded, c.input.unit, c.coverage_factor, pct, r.low, r.high);
 }
@@ -75,6 +84,12 @@ Json quantity_json(const CoefficientStatement& c) {
   o["interval"] = {c.low, c.high};
   o["significant"] = c.significant;
   o["interval_method"] = std::string(kIntervalMethodNames[std::size_t(c.method)]);
+  // With a stated k: the coverage probability it gives a normal quantity, and Student's t at ν_eff (null
+  // for ν_eff = ∞, where it is the normal's).
+  if (c.stated)
+    o["stated_coverage_probability"] = {
+        {"normal", c.stated->normal},
+        {"student_t", std::isfinite(c.effective_dof) ? Json(c.stated->student_t) : Json(nullptr)}};
   o["monte_carlo"] = monte_carlo_json(c);
   o["rounded"] = {{"estimate", r.estimate},
                   {"expanded_uncertainty", r.expanded},
@@ -122,9 +137,20 @@ std::string outputs_text(const verbs::CalibrationStatement& st, std::size_t widt
          t.render("  ", width);
 }
 
+// How M came to be what it is, when it is not the requested: the check went on until every verdict was
+// settled, or stopped at its cap.
+std::string trials_note(const verbs::CalibrationStatement& st) {
+  if (st.monte_carlo_trials == st.monte_carlo_requested_trials) return "";
+  return fmt::format(" ({} requested; {})", st.monte_carlo_requested_trials,
+                     st.monte_carlo_settled ? "more until every verdict was beyond the sampling error"
+                                            : "more up to the cap, a verdict still within the sampling error");
+}
+
 // Which interval a checked statement states, and why.
 std::string stated_text(const CoefficientStatement& c) {
   if (c.method == IntervalMethod::monte_carlo) return "Monte Carlo";
+  if (c.method == IntervalMethod::coverage_factor)
+    return fmt::format("k = {:g} stated ({})", c.coverage_factor, c.monte_carlo->validated ? "holds" : "not validated");
   if (c.monte_carlo->validated) return "Student t";
   return fmt::format("Student t (M too small to tell: {} trials would)",
                      validation_diagnosis(*c.monte_carlo, c.monte_carlo_trials).trials_needed);
@@ -135,10 +161,12 @@ std::string monte_carlo_text(const verbs::CalibrationStatement& st, std::size_t 
   if (st.monte_carlo_trials == 0)
     return wrap_words("No Monte Carlo check of the intervals (statement trials 0, or no [tolerances]).", width);
   std::string out = wrap_words(
-      fmt::format("Monte Carlo check (JCGM 101 §8; M = {}, seed {}): the Student-t interval holds where both "
+      fmt::format("Monte Carlo check (JCGM 101 §8; M = {}{}, seed {}): the {} interval holds where both "
                   "its ends are within δ (u_c to two significant digits) of the Monte Carlo's probabilistically "
-                  "symmetric interval; where not, the Monte Carlo's interval is stated:",
-                  st.monte_carlo_trials, st.monte_carlo_seed),
+                  "symmetric interval; {}:",
+                  st.monte_carlo_trials, trials_note(st), st.monte_carlo_seed,
+                  st.coverage_factor ? "stated" : "Student-t",
+                  st.coverage_factor ? "the stated k is kept either way" : "where not, the Monte Carlo's interval is stated"),
       width);
   Table t({"coefficient", "u (MC)", "MC low", "MC high", "d_low", "d_high", "delta", "stated"});
   t.gap(2);
@@ -154,7 +182,9 @@ std::string monte_carlo_text(const verbs::CalibrationStatement& st, std::size_t 
   for (const CoefficientStatement& o : st.outputs)
     if (o.method == IntervalMethod::monte_carlo) runs.push_back(o.input.coefficient);
   if (!st.outputs.empty())
-    out += wrap_words(runs.empty() ? std::string("Modelled outputs: every Student-t interval holds.")
+    out += wrap_words(st.coverage_factor ? fmt::format("Modelled outputs: y ± k u_c with the stated k = {:g}.",
+                                                       *st.coverage_factor)
+                      : runs.empty()     ? std::string("Modelled outputs: every Student-t interval holds.")
                                    : fmt::format("Modelled outputs with the Monte Carlo's interval: {}.",
                                                  fmt::join(runs, ", ")),
                       width, "  ");
@@ -181,9 +211,14 @@ nlohmann::ordered_json statement_json(const verbs::CalibrationStatement& st) {
                         {"replaces", st.replaces}};
   j["mode"] = mode_name(st.mode);
   j["coverage_probability"] = st.coverage_probability;
+  // A k the user stated (a contract): every U is k u_c; null when k follows from the coverage probability.
+  j["coverage_factor"] = st.coverage_factor ? Json(*st.coverage_factor) : Json(nullptr);
   j["known_errors"] = st.known_errors;
   j["compensated"] = st.compensated;
-  j["monte_carlo"] = st.monte_carlo_trials > 0 ? Json{{"trials", st.monte_carlo_trials}, {"seed", st.monte_carlo_seed}}
+  j["monte_carlo"] = st.monte_carlo_trials > 0 ? Json{{"trials", st.monte_carlo_trials},
+                                                     {"requested_trials", st.monte_carlo_requested_trials},
+                                                     {"settled", st.monte_carlo_settled},
+                                                     {"seed", st.monte_carlo_seed}}
                                                : Json(nullptr);
   Json coefficients = Json::object();
   Json names = Json::array();
@@ -218,9 +253,10 @@ std::string statement_text(const verbs::CalibrationStatement& st, std::size_t wi
   std::string out = wrap_words(
       fmt::format(
           "Calibration statement (JCGM 100 §7): Type A from the noise, Type B from the inputs of {} "
-          "({} mode), u_c² = u_A² + u_B², nu_eff by Welch-Satterthwaite, k from Student's t at "
-          "p = {}; known [errors]: {}.",
-          st.budget_config, mode_name(st.mode), pct,
+          "({} mode), u_c² = u_A² + u_B², nu_eff by Welch-Satterthwaite, {}; known [errors]: {}.",
+          st.budget_config, mode_name(st.mode),
+          st.coverage_factor ? fmt::format("k = {:g} stated (p = {} for a normal quantity)", *st.coverage_factor, pct)
+                             : fmt::format("k from Student's t at p = {}", pct),
           st.known_errors == 0 ? "none"
           : st.compensated     ? "compensated in the model (no correction)"
                                : "not compensated, corrected here"),

@@ -9,6 +9,12 @@
 
 namespace ccal {
 
+void clear_fingerprints(Config& config) {
+  config.text_sha256.clear();
+  config.numbers_sha256.clear();
+  config.setup_sha256.clear();
+}
+
 std::size_t select_run(const TestPlan& plan, std::string_view name_or_index, std::string_view option_name) {
   for (std::size_t k = 0; k < plan.runs.size(); ++k)
     if (plan.runs[k].name == name_or_index) return k;

@@ -43,6 +43,14 @@ double student_coverage_factor(double p, double dof) {
   return boost::math::quantile(boost::math::students_t_distribution<double>(whole), (1 + p) / 2);
 }
 
+double student_coverage_probability(double k, double dof) {
+  if (!(k > 0 && std::isfinite(k))) throw std::invalid_argument("coverage factor not a finite k > 0");
+  if (!(dof >= 1)) throw std::invalid_argument("degrees of freedom below 1");
+  if (!std::isfinite(dof)) return normal_coverage_probability(k);
+  const double whole = std::floor(dof * (1 + 1e-12));  // as student_coverage_factor
+  return 2 * boost::math::cdf(boost::math::students_t_distribution<double>(whole), k) - 1;
+}
+
 Coverage normal_coverage(double p, std::optional<double> stated_factor) {
   Coverage c;
   if (stated_factor) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -22,7 +23,7 @@ double welch_satterthwaite(const std::vector<UncertaintyPart>& parts) {
   return variance * variance / denominator;
 }
 
-CoefficientStatement state_coefficient(const StatementInput& input, double p) {
+CoefficientStatement state_coefficient(const StatementInput& input, double p, std::optional<double> stated_factor) {
   CoefficientStatement s;
   s.input = input;
   s.corrected = input.estimate + input.correction;
@@ -30,6 +31,12 @@ CoefficientStatement state_coefficient(const StatementInput& input, double p) {
   s.effective_dof = welch_satterthwaite({input.type_a, input.type_b});
   s.dof_for_k = std::isfinite(s.effective_dof) ? std::floor(s.effective_dof * (1 + 1e-12)) : kInfiniteDof;
   s.coverage_factor = student_coverage_factor(p, s.effective_dof);
+  if (stated_factor) {
+    s.coverage_factor = *stated_factor;
+    s.method = IntervalMethod::coverage_factor;
+    s.stated = StatedCoverage{normal_coverage_probability(*stated_factor),
+                              student_coverage_probability(*stated_factor, s.effective_dof)};
+  }
   s.expanded = s.coverage_factor * s.combined;
   s.low = s.corrected - s.expanded;
   s.high = s.corrected + s.expanded;
@@ -116,7 +123,10 @@ RoundedFigures round_figures(const CoefficientStatement& s) {
                                                  : round_figures(s.corrected, s.expanded);
 }
 
-void check_by_monte_carlo(CoefficientStatement& s, OutputSummary mc, std::uint64_t trials) {
+namespace {
+
+// The §8 validation of the statement's interval y ∓ U against the Monte Carlo's of the same quantity.
+OutputSummary validated(const CoefficientStatement& s, OutputSummary mc) {
   mc.has_lpu = true;
   mc.lpu_std = s.combined;
   mc.lpu_expanded = s.expanded;
@@ -124,9 +134,23 @@ void check_by_monte_carlo(CoefficientStatement& s, OutputSummary mc, std::uint64
   mc.d_low = std::abs(s.corrected - s.expanded - mc.low_symmetric);
   mc.d_high = std::abs(s.corrected + s.expanded - mc.high_symmetric);
   mc.validated = mc.d_low <= mc.validation_delta && mc.d_high <= mc.validation_delta;
+  return mc;
+}
+
+}  // namespace
+
+std::uint64_t trials_to_settle(const CoefficientStatement& s, const OutputSummary& mc, std::uint64_t trials) {
+  if (s.method != IntervalMethod::student_t) return 0;
+  const ValidationDiagnosis d = validation_diagnosis(validated(s, mc), trials);
+  return d.explained_by_sampling ? std::max(d.trials_needed, trials + 1) : 0;
+}
+
+void check_by_monte_carlo(CoefficientStatement& s, OutputSummary summary, std::uint64_t trials) {
+  OutputSummary mc = validated(s, std::move(summary));
   s.monte_carlo_trials = trials;
   // A failure within three standard errors of the Monte Carlo's ends is M's, not the LPU's: no verdict.
-  if (!mc.validated && !validation_diagnosis(mc, trials).explained_by_sampling) {
+  if (s.method == IntervalMethod::student_t && !mc.validated &&
+      !validation_diagnosis(mc, trials).explained_by_sampling) {
     s.method = IntervalMethod::monte_carlo;
     s.low = mc.low_symmetric;
     s.high = mc.high_symmetric;

@@ -106,7 +106,7 @@ Config with_plan(const Config& config, const std::vector<DesignRun>& runs, const
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const DesignRun& a, const DesignRun& b) { return a.g_level < b.g_level; });
   Config c = config;
-  c.text_sha256.clear();  // another plan: no longer the file's configuration
+  clear_fingerprints(c);  // another plan: no longer the file's configuration
   c.plan.runs.clear();
   const SettingResolution resolution = setting_resolution(config.design);
   std::map<std::string, int> count;

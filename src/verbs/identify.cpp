@@ -215,6 +215,7 @@ constexpr OptionSpec<IdentifyOptions> kIdentifyRows[] = {
      "configuration given as config, the correction for its known [errors], u_c, nu_eff, k, U, interval"},
     rows::coverage_probability(&IdentifyOptions::coverage_probability,
                                "Coverage probability p of the statement's intervals, in [0.5, 1)"),
+    rows::coverage_factor(&IdentifyOptions::coverage_factor),
     rows::mode<&IdentifyOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                        "configuration's [identification] mode"),
     rows::statement_trials(&IdentifyOptions::statement_trials),
@@ -242,8 +243,9 @@ OptionTable<IdentifyOptions> options_of(std::type_identity<IdentifyOptions>) { r
 
 void check_observations_configuration(const CsvTable& table, const Config& config, std::string_view field) {
   const std::optional<ObservationsHeader> header = observations_header(table);
-  if (!header || header->config_sha256.empty() || config.text_sha256.empty() ||
-      header->config_sha256 == config.text_sha256)
+  // Files written before the fingerprint of the numbers carry the text's: either matches.
+  if (!header || header->config_sha256.empty() || config.numbers_sha256.empty() ||
+      header->config_sha256 == config.numbers_sha256 || header->config_sha256 == config.text_sha256)
     return;
   throw OptionError(
       std::string(field), "",
@@ -251,7 +253,7 @@ void check_observations_configuration(const CsvTable& table, const Config& confi
                   "is {}, {}'s {}; accepted: the configuration the logs were reduced (or "
                   "simulated) with",
                   table.source, config.source, header->line, header->config_sha256, config.source,
-                  config.text_sha256));
+                  config.numbers_sha256));
 }
 
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {

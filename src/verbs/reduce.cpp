@@ -121,6 +121,7 @@ constexpr OptionSpec<ReduceOptions> kReduceRows[] = {
      "tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval"},
     rows::coverage_probability(&ReduceOptions::coverage_probability,
                                "Coverage probability p of the statement's intervals, in [0.5, 1)"),
+    rows::coverage_factor(&ReduceOptions::coverage_factor),
     rows::statement_trials(&ReduceOptions::statement_trials),
     rows::seed(&ReduceOptions::seed, "Seed of the statement's Monte Carlo check"),
     rows::threads(&ReduceOptions::threads),
@@ -230,7 +231,7 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
                             r.logs.runs[k].log.duration});
   const std::vector<MeasuredInput> measured_by_logs = measured_inputs(cfg, r.logs);
   r.identification = identify_observations(r.logs.observations, cfg.identification, cfg.instrument,
-                                           cfg.source, &resolution, cfg.text_sha256, fingerprints, measured_by_logs);
+                                           cfg.source, &resolution, cfg.numbers_sha256, fingerprints, measured_by_logs);
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
   warn_about_short_logs(cfg, r);

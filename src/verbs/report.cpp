@@ -93,6 +93,7 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
   StatementOptions so;
   so.mode = o.mode;
   so.coverage_probability = o.monte_carlo.coverage_probability;
+  so.coverage_factor = o.coverage_factor;
   so.statement_trials = o.statement_trials;
   so.seed = o.monte_carlo.seed;
   so.threads = o.monte_carlo.threads;

@@ -125,7 +125,7 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
   for (const Run& run : ex.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));
   const DataResolution resolution = run_resolution(ex.plan.runs, rates, s.observations, spec, ex.instrument);
   FileIdentification f = identify_observations(s.observations, spec, ex.instrument, cfg.source, &resolution,
-                                                cfg.text_sha256);
+                                                cfg.numbers_sha256);
   s.observations_csv = std::move(f.csv);
   s.identification = std::move(f.id);
   return s;

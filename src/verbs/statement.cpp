@@ -25,7 +25,7 @@ Eigen::MatrixXd type_b_groups(const ccal::BudgetResult& b) { return independent_
 
 // The modelled output of each run, stated from the coefficients' covariance parts (see CalibrationStatement).
 void state_outputs(const Config& config, const Identification& id, const TypeAParts& a, double p,
-                   CalibrationStatement& st) {
+                   std::optional<double> k, CalibrationStatement& st) {
   const std::vector<Run>& runs = config.plan.runs;
   const Eigen::Index nk = id.design.cols();
   Eigen::VectorXd correction(nk);
@@ -41,7 +41,7 @@ void state_outputs(const Config& config, const Identification& id, const TypeAPa
     const double known = std::max(0.0, h.dot(a.known * h)), estimated = std::max(0.0, h.dot(a.estimated * h));
     in.type_a = {std::sqrt(known + estimated), type_a_dof(known, estimated, a.dof)};
     in.type_b = {std::sqrt(std::max(0.0, h.dot(st.covariance_b * h))), kInfiniteDof};
-    st.outputs.push_back(state_coefficient(in, p));
+    st.outputs.push_back(state_coefficient(in, p, k));
     const auto run = std::find_if(runs.begin(), runs.end(), [&](const Run& x) { return x.name == in.coefficient; });
     st.g_levels.push_back(run != runs.end() ? run->g_level : std::numeric_limits<double>::quiet_NaN());
   }
@@ -65,6 +65,7 @@ double unit_factor(const std::string& from, const std::string& to, const std::st
 constexpr OptionSpec<StatementOptions> kStatementRows[] = {
     rows::coverage_probability(&StatementOptions::coverage_probability,
                                "Coverage probability p of the statement's intervals, in [0.5, 1)"),
+    rows::coverage_factor(&StatementOptions::coverage_factor),
     rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                         "configuration's [identification] mode"),
     rows::statement_trials(&StatementOptions::statement_trials),
@@ -164,9 +165,12 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
                                            const std::vector<MeasuredInput>& measured,
                                            const std::vector<double>& durations) {
   check_options(o, option_table<StatementOptions>());
+  rows::check_coverage_choice(o.coverage_probability, o.coverage_factor);
+  // A stated k gives a normal quantity's p: the p the statement names and its Monte Carlo check reports at.
+  const double p = o.coverage_factor ? normal_coverage_probability(*o.coverage_factor) : o.coverage_probability;
   if (o.statement_trials > 0) {
     check_thread_count(o.threads, "threads");
-    check_coverage_interval(std::uint64_t(o.statement_trials), o.coverage_probability, "statement_trials");
+    check_coverage_interval(std::uint64_t(o.statement_trials), p, "statement_trials");
   }
   const FitResult& fit = id.fit;
   if (!id.weighted && fit.dof <= 0)
@@ -187,7 +191,7 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
   CalibrationStatement st;
   st.budget_config = config.source;
   st.config_sha256 = config.text_sha256;
-  st.setup_sha256 = config.text_sha256;
+  st.setup_sha256 = config.setup_sha256;
   if (config.certificate) {
     st.instrument = config.certificate->instrument;
     st.serial_number = config.certificate->serial_number;
@@ -197,7 +201,8 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
     st.replaces = config.certificate->replaces;
   }
   st.mode = b.mode;
-  st.coverage_probability = o.coverage_probability;
+  st.coverage_probability = p;
+  st.coverage_factor = o.coverage_factor;
   st.compensated = config.identification.compensate;
   st.known_errors = int((config.centrifuge.errors.array() != 0.0).count());
   // The budget's sensitivities hold for its own free terms: the fit must free the same ones.
@@ -232,7 +237,7 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
     in.type_a = {std::sqrt(known + estimated), type_a_dof(known, estimated, a.dof)};
     g_fit.row(i) = groups.row(Eigen::Index(j)) * to_fit;
     in.type_b = {g_fit.row(i).norm(), kInfiniteDof};
-    st.coefficients.push_back(state_coefficient(in, o.coverage_probability));
+    st.coefficients.push_back(state_coefficient(in, p, o.coverage_factor));
   }
   st.inputs = statement_sources(config, b, measured, budget_row, to_fit_of);
   st.input_correlations = config.correlations;  // a measured input's pairs removed (with_measured_inputs)
@@ -245,7 +250,7 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
       const double scale = st.coefficients[std::size_t(r)].combined * st.coefficients[std::size_t(c)].combined;
       st.correlation(r, c) = scale > 0 ? st.covariance(r, c) / scale : (r == c ? 1.0 : 0.0);
     }
-  state_outputs(config, id, a, o.coverage_probability, st);
+  state_outputs(config, id, a, p, o.coverage_factor, st);
   check_statement_by_monte_carlo(config, id, to_fit_of, a, o, st);
   return st;
 }

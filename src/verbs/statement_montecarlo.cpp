@@ -138,14 +138,37 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   std::vector<std::string> names = fit.names;
   for (const CoefficientStatement& out : st.outputs) names.push_back("run " + out.input.coefficient);
   ccal::MonteCarloOptions mo;
-  mo.trials = std::uint64_t(o.statement_trials);
   mo.seed = o.seed;
   mo.threads = o.threads;
-  mo.coverage_probability = o.coverage_probability;
+  mo.coverage_probability = st.coverage_probability;
   const bool student = std::isfinite(shared->type_a_dof);
-  const ccal::MonteCarloResult mc =
-      run_monte_carlo(statement_sources(config, id, student), config.correlations, int(names.size()), names,
-                      StatementTrial(shared, std::move(tolerances), int(model_names.size())), mo);
+  const std::vector<Tolerance> sources = statement_sources(config, id, student);
+  const TrialFunction trial = StatementTrial(shared, std::move(tolerances), int(model_names.size()));
+  // Adaptive in its verdict (JCGM 101 §7.9): while a quantity's check is within the sampling error of its ends
+  // and the M its diagnosis names is within kStatementTrialsCap times the requested, M grows to that M (at least
+  // doubled, at most the cap); a verdict that needs more than the cap stays unsettled without the cost. Trial
+  // i's draws depend only on (seed, i), so M' trials extend the M before them, bit for bit.
+  const auto requested = std::uint64_t(o.statement_trials);
+  const std::uint64_t cap = std::min(kStatementTrialsCap * requested, std::uint64_t(kMaxMonteCarloTrials));
+  ccal::MonteCarloResult mc;
+  for (std::uint64_t trials = requested;;) {
+    mo.trials = trials;
+    mc = run_monte_carlo(sources, config.correlations, int(names.size()), names, trial, mo);
+    std::uint64_t wanted = 0;  // the most trials a verdict needs, of those the cap allows
+    bool settled = true;
+    const auto need = [&](const CoefficientStatement& q, const OutputSummary& m) {
+      const std::uint64_t n = trials_to_settle(q, m, mc.trials);
+      settled = settled && n == 0;
+      if (n <= cap) wanted = std::max(wanted, n);
+    };
+    for (std::size_t k = 0; k < st.coefficients.size(); ++k) need(st.coefficients[k], mc.outputs[k]);
+    for (std::size_t r = 0; r < st.outputs.size(); ++r)
+      need(st.outputs[r], mc.outputs[st.coefficients.size() + r]);
+    st.monte_carlo_settled = settled;
+    if (wanted == 0 || trials >= cap) break;
+    trials = std::min(cap, std::max(2 * trials, wanted));
+  }
+  st.monte_carlo_requested_trials = requested;
   st.monte_carlo_trials = mc.trials;
   st.monte_carlo_seed = mc.seed;
   for (std::size_t k = 0; k < st.coefficients.size(); ++k)

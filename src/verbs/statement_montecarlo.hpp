@@ -20,6 +20,10 @@
 
 namespace ccal::verbs {
 
+// The most trials the check runs, as a multiple of the requested (statement_trials): beyond, an unsettled
+// verdict keeps the Student-t interval and says so.
+inline constexpr std::uint64_t kStatementTrialsCap = 10;
+
 // Runs the Monte Carlo of the options (nothing for statement_trials = 0 or a configuration without
 // tolerances) and checks every coefficient and modelled output of `statement`. to_fit: per coefficient of the
 // fit, SI → the fit's unit.

@@ -4,12 +4,14 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "ccal/core/sha256.hpp"
 #include "cli_support.hpp"
 #include "test_constants.hpp"
 
@@ -43,8 +45,9 @@ class Statement : public Cli {
 using ccal::test::kZ975;
 
 TEST_F(Statement, ObservationsOfAnotherConfigurationAreRefusedNamingBothFingerprints) {
-  // The observations file carries the SHA-256 of the configuration it was simulated with; a statement with
-  // another configuration's budget would be silently wrong. Before, it was made with exit code 0.
+  // The observations file carries the fingerprint of what changes the numbers of the configuration it was
+  // simulated with; a statement with another configuration's budget would be silently wrong. Before, it was
+  // made with exit code 0.
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
   const std::string sha_bundled = "config_sha256=";
   std::ifstream in(dir_ / "obs.csv");
@@ -54,14 +57,92 @@ TEST_F(Statement, ObservationsOfAnotherConfigurationAreRefusedNamingBothFingerpr
   ASSERT_NE(at, std::string::npos) << header;
   const std::string fingerprint = header.substr(at + sha_bundled.size(), 64);
   ASSERT_EQ(run("identify obs.csv --statement --config " + kExample).code, 0);  // the same text: accepted
+  // A comment and a [certificate] change the file, not its numbers: the observations stay valid.
+  write("worded.toml", read(kExample) + "\n# a comment\n[certificate]\noperator = \"A. Engineer\"\n");
+  ASSERT_EQ(run("identify obs.csv --statement --statement-trials 0 --config worded.toml").code, 0);
+  // A tolerance changes them.
   std::string other = read(kExample);
-  write("other.toml", other + "\n# a comment changes the file, so its fingerprint\n");
+  other.replace(other.find("dR_s = \"25 um\""), 14, "dR_s = \"26 um\"");
+  write("other.toml", other);
   const Result r = run("identify obs.csv --statement --config other.toml");
   expect_bad_input(r, {"--config: obs.csv was made with another configuration than other.toml", fingerprint,
                        "(line 1)"});
   const Result report = run("report other.toml --observations obs.csv --trials 1000 -o page.html");
   expect_bad_input(report, {"--observations", fingerprint});
   EXPECT_FALSE(fs::exists(dir_ / "page.html"));
+}
+
+TEST_F(Statement, ObservationsWrittenWithTheTextsFingerprintAreStillAccepted) {
+  // Files written before the fingerprint of the numbers hold the SHA-256 of the configuration's text: that
+  // matches still; once the text changes, neither does, and the file is refused.
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  std::string obs = read((dir_ / "obs.csv").string());
+  const std::string key = "config_sha256=";
+  const std::size_t at = obs.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::string text_sha = sha256_hex(read(kExample));
+  ASSERT_NE(obs.substr(at + key.size(), 64), text_sha);  // a new file holds the numbers' fingerprint
+  obs.replace(at + key.size(), 64, text_sha);
+  write("old.csv", obs);
+  EXPECT_EQ(run("identify old.csv --statement --statement-trials 0 --config " + kExample).code, 0);
+  write("commented.toml", read(kExample) + "\n# another text\n");
+  expect_bad_input(run("identify old.csv --statement --statement-trials 0 --config commented.toml"),
+                   {"--config: old.csv was made with another configuration than commented.toml", text_sha});
+}
+
+TEST_F(Statement, TheLabExamplesMethodsDoNotFlipWithTheTrials) {
+  // The same logs of examples/lab.toml at 2·10⁴ and 10⁵ requested trials: each coefficient and run output is
+  // stated by the same method. At a fixed M the 30 g run's output had the Student-t interval at 2·10⁴ (its
+  // check within the sampling error) and the Monte Carlo's at 10⁵; the check now goes on until it can tell.
+  ASSERT_EQ(run("simulate " + kLab + " --truth " + kLabTruth + " --logs-out logs -o /dev/null").code, 0);
+  std::map<std::string, std::string> methods[2];
+  const std::uint64_t requested[2] = {20000, 100000};
+  for (int i = 0; i < 2; ++i) {
+    const Result r = run(fmt::format("reduce {} --logs logs --statement --statement-trials {} --format json", kLab,
+                                     requested[i]));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto s = nlohmann::json::parse(r.out).at("statement");
+    EXPECT_EQ(s["monte_carlo"]["requested_trials"], requested[i]);
+    EXPECT_GE(s["monte_carlo"]["trials"].get<std::uint64_t>(), requested[i]);
+    EXPECT_LE(s["monte_carlo"]["trials"].get<std::uint64_t>(), 10 * requested[i]);
+    for (const auto& [id, c] : s["coefficients"].items()) methods[i][id] = c["interval_method"];
+    for (const auto& o : s["modelled_output"]) methods[i][o["run"]] = o["interval_method"];
+  }
+  EXPECT_EQ(methods[0].size(), 9u);  // K0, K2, K3 and six runs
+  EXPECT_EQ(methods[0], methods[1]);
+}
+
+TEST_F(Statement, AStatedCoverageFactorGivesUEqualToKTimesUcForEveryQuantity) {
+  ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
+  const Result r = run("identify obs.csv --statement --statement-trials 2000 --coverage-factor 2 --config " +
+                       kExample + " --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto s = nlohmann::json::parse(r.out).at("statement");
+  EXPECT_EQ(s["coverage_factor"], 2.0);
+  // 2Φ(2) − 1 = 0.9544997361036416 (erf(√2)); to 1e-15, the last digits of a double near 1.
+  EXPECT_NEAR(s["coverage_probability"].get<double>(), 0.9544997361036416, 1e-15);
+  int quantities = 0;
+  auto check = [&](const nlohmann::json& c) {
+    ++quantities;
+    EXPECT_EQ(c["interval_method"], "coverage_factor");
+    EXPECT_EQ(c["coverage_factor"], 2.0);
+    // U = k u_c exactly: one multiplication by 2 is exact in binary.
+    const double uc = c["combined_standard_uncertainty"], y = c["corrected_estimate"];
+    EXPECT_EQ(c["expanded_uncertainty"].get<double>(), 2 * uc);
+    EXPECT_EQ(c["interval"][0].get<double>(), y - 2 * uc);
+    EXPECT_EQ(c["interval"][1].get<double>(), y + 2 * uc);
+    EXPECT_NEAR(c["stated_coverage_probability"]["normal"].get<double>(), 0.9544997361036416, 1e-15);
+    EXPECT_FALSE(c["monte_carlo"].is_null());  // the check still runs and reports
+  };
+  for (const auto& [id, c] : s["coefficients"].items()) check(c);
+  for (const auto& o : s["modelled_output"]) check(o);
+  EXPECT_GE(quantities, 4);
+  // With a coverage probability too: two coverages, refused naming both.
+  expect_bad_input(run("identify obs.csv --statement --coverage-factor 2 --coverage-probability 0.99 --config " +
+                       kExample),
+                   {"--coverage-factor", "--coverage-probability", "two coverages"});
+  expect_bad_input(run("identify obs.csv --statement --coverage-factor 0.5 --config " + kExample),
+                   {"--coverage-factor"});
 }
 
 TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
@@ -125,12 +206,13 @@ TEST_F(Statement, IdentifyWithTheBudgetOfItsConfiguration) {
 }
 
 TEST_F(Statement, TheMonteCarloCheckStatesTheIntervalItGives) {
-  // On by default (10⁵ trials): every coefficient has its check; where the check refused the Student-t interval,
+  // On by default (here 2·10⁴ trials requested, which the check extends while a verdict is within its sampling
+  // error, to at most 10 times that): every coefficient has its check; where the check refused the Student-t interval,
   // the JSON's interval is the Monte Carlo's symmetric one, U half its width, and the text's line gives the
   // ends (`K = value unit, p = 95 %: [low, high] (the Monte Carlo's interval, JCGM 101)`); the same seed on 1
   // and 2 threads gives the same file.
   ASSERT_EQ(run("simulate --observations-out obs.csv -o /dev/null").code, 0);
-  const std::string command = "identify obs.csv --statement --config " + kExample;
+  const std::string command = "identify obs.csv --statement --statement-trials 20000 --config " + kExample;
   const Result one = run(command + " --threads 1 --format json");
   const Result two = run(command + " --threads 2 --format json");
   const Result text = run(command);
@@ -138,7 +220,10 @@ TEST_F(Statement, TheMonteCarloCheckStatesTheIntervalItGives) {
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_EQ(one.out, two.out);
   const auto s = nlohmann::json::parse(one.out).at("statement");
-  EXPECT_EQ(s["monte_carlo"]["trials"], 100000);
+  EXPECT_EQ(s["monte_carlo"]["requested_trials"], 20000);
+  const std::uint64_t trials = s["monte_carlo"]["trials"];
+  EXPECT_GE(trials, 20000u);
+  EXPECT_LE(trials, 200000u);
   EXPECT_EQ(s["monte_carlo"]["seed"], 1);
   int replaced = 0;
   for (const auto& [id, c] : s["coefficients"].items()) {
@@ -166,7 +251,8 @@ TEST_F(Statement, TheMonteCarloCheckStatesTheIntervalItGives) {
   }
   // The bundled example's tolerances are no normal sum: its K2 and K3 take the Monte Carlo's interval.
   EXPECT_GE(replaced, 1) << one.out;
-  EXPECT_NE(text.out.find("Monte Carlo check (JCGM 101 §8; M = 100000, seed 1)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find(fmt::format("Monte Carlo check (JCGM 101 §8; M = {}", trials)), std::string::npos)
+      << text.out;
 }
 
 TEST_F(Statement, KnownErrorsAreCorrected) {

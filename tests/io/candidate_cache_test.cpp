@@ -113,7 +113,7 @@ TEST_F(CandidateCache, EveryMismatchIsAMiss) {
 
 TEST_F(CandidateCache, KeysChangeWithEveryInput) {
   Config config = bundled_example();
-  ASSERT_FALSE(config.text_sha256.empty());
+  ASSERT_FALSE(config.numbers_sha256.empty());
   std::vector<DesignRun> runs(3);
   for (int k = 0; k < 3; ++k) runs[std::size_t(k)].g_level = 5.0 * (k + 1);
   const std::string key = candidate_cache_key(config, runs);
@@ -126,9 +126,15 @@ TEST_F(CandidateCache, KeysChangeWithEveryInput) {
   moved[2].platform = PlatformMode::fixed;
   EXPECT_NE(candidate_cache_key(config, moved), key);
   EXPECT_NE(candidate_cache_key(config, {runs[0], runs[1]}), key);
-  Config other = parse_config(std::string(bundled_example_text()) + "\n# another file\n", "other.toml");
+  // A comment or a [certificate] leaves the numbers, so the rows, as they are; the arm's radius does not.
+  const std::string text(bundled_example_text());
+  const Config worded = parse_config(text + "\n# another file\n[certificate]\noperator = \"A. Engineer\"\n", "w.toml");
+  EXPECT_EQ(candidate_cache_key(worded, runs), key);
+  std::string radius = text;
+  radius.replace(radius.find("radius = \"2.5 m\""), 16, "radius = \"2.6 m\"");
+  const Config other = parse_config(radius, "other.toml");
   EXPECT_NE(candidate_cache_key(other, runs), key);
-  config.text_sha256.clear();  // changed in code: describes no file, never cached
+  clear_fingerprints(config);  // changed in code: describes no file, never cached
   EXPECT_EQ(candidate_cache_key(config, runs), "");
 }
 

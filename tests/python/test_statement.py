@@ -58,10 +58,23 @@ class StatementObject(unittest.TestCase):
         self.assertEqual(rows[0]["U"], "0.018")
         self.assertEqual(rows[1]["interval_method"], "monte_carlo")
         self.assertEqual([r["interval_method"] for r in rows], self.statement.interval_methods)
-        self.assertEqual(self.statement.monte_carlo_trials, 100000)
+        self.assertEqual(self.statement.monte_carlo_requested_trials, 100000)
+        self.assertGreaterEqual(self.statement.monte_carlo_trials, 100000)  # more while a verdict is unsettled
         self.assertEqual([tuple(r) for r in self.statement.intervals][1],
                          tuple(self.statement.to_dict()["coefficients"]["K2"]["interval"]))
         self.assertEqual([r["significant"] for r in rows], self.statement.significant)
+
+    def test_a_stated_coverage_factor_gives_k_times_uc(self):
+        config = ccal.load_config(LAB)
+        s = ccal.reduce(config, self.logs, statement=True, coverage_factor=2, statement_trials=0).statement
+        self.assertEqual(s.coverage_factor, 2)
+        self.assertIsNone(self.statement.coverage_factor)
+        self.assertEqual(s.interval_methods, ["coverage_factor"] * len(s.names))
+        for U, u in zip(s.expanded_uncertainties, s.standard_uncertainties):
+            self.assertEqual(U, 2 * u)  # exactly: a product by 2 is exact in binary
+        self.assertEqual(s.setup_sha256, config.setup_sha256)
+        with self.assertRaisesRegex(ccal.InputError, "two coverages"):
+            ccal.reduce(config, self.logs, statement=True, coverage_factor=2, coverage_probability=0.9)
 
     def test_the_inputs_and_the_type_a_evaluation_are_the_jsons(self):
         # The lab's encoders measured six inputs; every input's effects are the JSON's, and so is the check.

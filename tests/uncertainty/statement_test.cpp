@@ -192,6 +192,67 @@ TEST(Statement, TheMonteCarloCheckKeepsAnIntervalWithinDeltaAndReplacesOneBeyond
   EXPECT_FALSE(near_zero.significant);
 }
 
+TEST(Statement, AStatedCoverageFactorGivesUEqualToKTimesUc) {
+  // u_A = 3 (ν_A = 4), u_B = 4: u_c = 5, ν_eff = 30.86 (MixedCaseByHand). k = 2 stated: U = 10 exactly (k u_c in
+  // one multiplication of exact doubles), whatever ν_eff; p = 2Φ(2) − 1 = 0.954499736103642 for a normal
+  // quantity and 2F_t(2; 30) − 1 = 0.94537496 for Student's t at ⌊ν_eff⌋ = 30 (the t density integrated
+  // over [−2, 2] by the midpoint rule in 2·10⁵ steps, error below 1e-10; tolerance 1e-8, the digits given).
+  StatementInput in;
+  in.estimate = 10;
+  in.correction = -0.5;
+  in.type_a = {3, 4};
+  in.type_b = {4, kInfiniteDof};
+  const CoefficientStatement s = state_coefficient(in, 0.95, 2.0);
+  EXPECT_EQ(s.method, IntervalMethod::coverage_factor);
+  EXPECT_EQ(s.coverage_factor, 2.0);
+  EXPECT_EQ(s.expanded, 10.0);
+  EXPECT_EQ(s.low, -0.5);
+  EXPECT_EQ(s.high, 19.5);
+  ASSERT_TRUE(s.stated);
+  EXPECT_NEAR(s.stated->normal, 0.954499736103642, 1e-14);
+  EXPECT_NEAR(s.stated->student_t, 0.94537496, 1e-8);
+  EXPECT_LT(s.stated->student_t, s.stated->normal);  // t's tails are wider: less coverage at one k
+  // ν_eff = ∞: Student's t is the normal, bit for bit.
+  StatementInput b;
+  b.type_b = {4, kInfiniteDof};
+  const CoefficientStatement n = state_coefficient(b, 0.95, 2.5);
+  EXPECT_EQ(n.expanded, 10.0);
+  EXPECT_EQ(n.stated->student_t, n.stated->normal);
+  // The Monte Carlo check reports, but the stated interval stays, however far its ends are.
+  OutputSummary mc;
+  mc.low_symmetric = s.low - 3;
+  mc.high_symmetric = s.high + 3;
+  CoefficientStatement checked = s;
+  check_by_monte_carlo(checked, mc, 100000);
+  EXPECT_FALSE(checked.monte_carlo->validated);
+  EXPECT_EQ(checked.method, IntervalMethod::coverage_factor);
+  EXPECT_EQ(checked.expanded, 10.0);
+  EXPECT_EQ(checked.low, -0.5);
+  EXPECT_EQ(trials_to_settle(s, mc, 100000), 0u);  // nothing to settle
+}
+
+TEST(Statement, AVerdictWithinTheSamplingErrorAsksForMoreTrials) {
+  // y = 1, u_c = 0.0235 (δ = 5e-4): ends 6e-4 off with a standard error of 1e-4 (excess 1 s_e): unsettled, and
+  // the M at which s_e = δ/3 is M (3·1e-4/5e-4)² = 0.36 M; never less than M + 1, so M grows. With s_e = 1e-5
+  // the excess is 10 s_e: settled (refused); ends within δ: settled (validated).
+  StatementInput in;
+  in.estimate = 1;
+  in.type_b = {0.0235, kInfiniteDof};
+  const CoefficientStatement t = state_coefficient(in, 0.95);
+  OutputSummary mc;
+  mc.low_symmetric = t.low + 6e-4;
+  mc.high_symmetric = t.high;
+  mc.interval_end_std_error = 1e-4;
+  EXPECT_EQ(trials_to_settle(t, mc, 100000), 100001u);
+  mc.interval_end_std_error = 3e-4;  // M (3·3e-4/5e-4)² = 3.24 M, rounded up to two digits
+  EXPECT_EQ(trials_to_settle(t, mc, 100000), 330000u);
+  mc.interval_end_std_error = 1e-5;
+  EXPECT_EQ(trials_to_settle(t, mc, 100000), 0u);
+  mc.low_symmetric = t.low + 4e-4;
+  mc.interval_end_std_error = 1e-3;
+  EXPECT_EQ(trials_to_settle(t, mc, 100000), 0u);
+}
+
 TEST(Statement, AnIntervalNotCentredIsRoundedAtItsHalfWidthsSecondDigit) {
   // [−0.04316, 0.04917] about 0.0030046: half-width 0.046165 → the place 10⁻³, each end on its own.
   const RoundedFigures r = round_interval(0.0030046263, -0.043158576, 0.049167828);

@@ -4,7 +4,8 @@
 // (docs/model.md §15.1).
 //
 // A file holds the rows of one set of candidate runs under one configuration and one build of ccal. Its name
-// is its key: the SHA-256 of the configuration's text (Config::text_sha256), of ccal's version, of the file
+// is its key: the SHA-256 of what changes the configuration's numbers (Config::numbers_sha256: not its
+// [certificate] or [design], which leave the rows as they are), of ccal's version, of the file
 // ccal's code was loaded from (the program or the Python module: any rebuild gets keys of its own) and of
 // every candidate run's variables, bit for bit. A configuration changed in code (no text fingerprint) has no
 // key and is never cached. A file is read back only when its header, key, sizes and the SHA-256 of its

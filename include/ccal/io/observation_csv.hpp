@@ -121,8 +121,9 @@ struct ObservationsHeader {
   std::vector<Fixed> fixed;
   std::vector<std::string> known;  // columns of known contributions, subtracted from the output
   std::string output_unit;         // unit of the output column ("" if not recorded)
-  // SHA-256 of the configuration whose test the file holds (Config::text_sha256; "" if not recorded): the
-  // calibration statement refuses a configuration of another fingerprint.
+  // SHA-256 of the configuration whose test the file holds (Config::numbers_sha256, what changes the numbers;
+  // Config::text_sha256 in files written before it; "" if not recorded): the calibration statement refuses a
+  // configuration of another fingerprint.
   std::string config_sha256;
   // The run logs the observations were reduced from (`ccal reduce`), each on a comment line of its own after
   // the header, "# ccal log v1; run=5g; sha256=<64 hex digits>; file=logs/5g.csv" (the file name last: it may

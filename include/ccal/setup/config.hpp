@@ -23,9 +23,17 @@ namespace ccal {
 
 struct Config {
   std::string source;  // file name (or the name given to parse_config), as used in messages
-  // SHA-256 of the text it was read from (parse_config), the fingerprint that observations files and reports
-  // carry; empty for a configuration built or changed in code (it then describes no file).
+  // A job file's machine set-up (`setup = "…toml"`), as read; "" for a file that names none.
+  std::string setup_source;
+  // Fingerprints (SHA-256), each empty for a configuration built or changed in code (it then describes no
+  // file; clear_fingerprints). text_sha256: of the file's own bytes (the job's, not its set-up's), for
+  // provenance. numbers_sha256: of the canonical text of every table but [certificate] and [design], the job
+  // and its set-up merged: what changes the numbers, the fingerprint that binds an observations file to its
+  // configuration. setup_sha256: of the machine's and the lab's tables alone ([site], [centrifuge], [errors],
+  // [tolerances], [[correlations]], [[inputs]]), the same for every job on one set-up (docs/config.md).
   std::string text_sha256;
+  std::string numbers_sha256;
+  std::string setup_sha256;
   Site site;
   CentrifugeModel centrifuge;  // geometry and the known/actual values of the [errors] section
   InstrumentModel instrument;
@@ -48,6 +56,9 @@ struct Config {
   // The experiment (geometry, layout, site, plan, instrument) of this configuration.
   Experiment experiment() const;
 };
+
+// The configuration no longer describes its file (changed in code): its fingerprints emptied.
+void clear_fingerprints(Config& config);
 
 // Index of a run chosen by the user: a run name, or else a 1-based index ("3"). Throws InputError listing the
 // runs if there is no such run; option_name (e.g. "--run") starts the message.

@@ -29,6 +29,9 @@ std::string_view coverage_method_name(CoverageMethod method);
 double normal_coverage_factor(double p);
 // 2Φ(k) − 1: the coverage probability of ±k u for a normal quantity, k > 0.
 double normal_coverage_probability(double k);
+// 2 F_t(k; ⌊ν⌋) − 1: the coverage probability of ±k u for a quantity of Student's t at ⌊ν⌋ degrees of freedom
+// (ν ≥ 1; the normal's for ν = ∞), k > 0. Throws std::invalid_argument otherwise.
+double student_coverage_probability(double k, double dof);
 // k for coverage probability p in (0, 1) at ν degrees of freedom: Student's t quantile at (1 + p)/2 for
 // ⌊ν⌋ (ν ≥ 1), normal_coverage_factor(p) for ν = ∞. Throws std::invalid_argument for p outside (0, 1) or
 // ν < 1.

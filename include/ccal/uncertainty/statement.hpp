@@ -46,10 +46,19 @@ struct StatementInput {
   UncertaintyPart type_b;  // from the centrifuge budget (tolerances): ν = ∞
 };
 
-// How a statement's interval was obtained: y ∓ U with k from Student's t at ν_eff (the LPU), or the Monte
-// Carlo's probabilistically symmetric interval (JCGM 101 §7.7.2) where the §8 validation refused the former.
-enum class IntervalMethod { student_t, monte_carlo };
-inline constexpr std::string_view kIntervalMethodNames[] = {"student_t", "monte_carlo"};  // enumeration order
+// How a statement's interval was obtained: y ∓ U with k from Student's t at ν_eff (the LPU), the Monte
+// Carlo's probabilistically symmetric interval (JCGM 101 §7.7.2) where the §8 validation refused the former,
+// or y ∓ k u_c with a coverage factor k the user stated (e.g. k = 2 by contract), whatever the check finds.
+enum class IntervalMethod { student_t, monte_carlo, coverage_factor };
+inline constexpr std::string_view kIntervalMethodNames[] = {"student_t", "monte_carlo",
+                                                            "coverage_factor"};  // enumeration order
+
+// The coverage probability a stated k gives: 2Φ(k) − 1 for a normal quantity, and 2 F_t(k; ⌊ν_eff⌋) − 1 for
+// Student's t at the quantity's ν_eff (the normal's for ν_eff = ∞).
+struct StatedCoverage {
+  double normal = 0;
+  double student_t = 0;
+};
 
 struct CoefficientStatement {
   StatementInput input;
@@ -64,6 +73,7 @@ struct CoefficientStatement {
   // not resolved by the test (|K̂ + b| ≤ U); a plan of more or higher g-levels lowers its U (`ccal design`).
   bool significant = false;
   IntervalMethod method = IntervalMethod::student_t;
+  std::optional<StatedCoverage> stated;  // with a stated k (method coverage_factor): the p it gives
   // The Monte Carlo of the same quantity, when one was run: its statistics and the §8 validation of the
   // Student-t interval (lpu_std = u_c, lpu_expanded = the Student-t U, validation_delta = δ of u_c with two
   // significant digits, d_low, d_high, validated); monte_carlo_trials its M.
@@ -71,8 +81,10 @@ struct CoefficientStatement {
   std::uint64_t monte_carlo_trials = 0;
 };
 
-// The statement of one coefficient for coverage probability p (throws as the functions above).
-CoefficientStatement state_coefficient(const StatementInput& input, double p);
+// The statement of one coefficient for coverage probability p (throws as the functions above); with a stated
+// coverage factor k, U = k u_c exactly and the probabilities k gives (method coverage_factor).
+CoefficientStatement state_coefficient(const StatementInput& input, double p,
+                                       std::optional<double> stated_factor = std::nullopt);
 
 // JCGM 101 §8 for a statement: its Student-t interval y ∓ U against the Monte Carlo's probabilistically
 // symmetric interval of the same quantity (M = trials values, summarised in `mc`), d_low = |y − U − y_low|,
@@ -80,8 +92,16 @@ CoefficientStatement state_coefficient(const StatementInput& input, double p);
 // significant digits (§7.9.2). Where it is not validated, and the excess over δ is beyond three standard
 // errors of the Monte Carlo's ends (validation_diagnosis: within them M, not the LPU, may explain it, and the
 // Student-t interval stays), the statement takes the Monte Carlo's interval: method = monte_carlo, [low, high]
-// its ends, U half its width, k = U/u_c, and significance from those ends.
+// its ends, U half its width, k = U/u_c, and significance from those ends. A statement of a stated k keeps its
+// interval y ∓ k u_c: the check is only reported.
 void check_by_monte_carlo(CoefficientStatement& statement, OutputSummary mc, std::uint64_t trials);
+
+// The M at which the check of this statement would have a verdict, or 0 when it has one at `trials`: the
+// Student-t interval validated, or refused by more than three standard errors of the Monte Carlo's ends. An
+// unsettled verdict gives validation_diagnosis's trials_needed (the M at which the sampling error is a third of
+// δ). A statement of a stated k needs none (its interval does not depend on the verdict).
+std::uint64_t trials_to_settle(const CoefficientStatement& statement, const OutputSummary& mc,
+                               std::uint64_t trials);
 
 // The figures of a statement as a certificate writes them (JCGM 100 §7.2.6): U to `digits` significant digits
 // (rounded to nearest; a U that rounds up to a power of ten keeps `digits` digits, 0.0996 → 0.10), the estimate

@@ -26,6 +26,7 @@ struct IdentifyOptions {
   std::string weight_column;             // column of the σ of y (weights 1/σ²); empty: unweighted
   bool statement = false;                // also the calibration statement, with `config`'s budget
   double coverage_probability = 0.95;    // p of the statement's intervals
+  std::optional<double> coverage_factor;  // a stated k of the statement instead (U = k u_c)
   std::optional<ModelMode> mode;         // kinematics of the statement's budget; unset: `config`'s
   std::int64_t statement_trials = kDefaultStatementTrials;  // the statement's Monte Carlo check; 0: none
   std::uint64_t seed = 1;                // of that check

@@ -22,7 +22,10 @@ namespace ccal::verbs {
 
 struct StatementOptions {
   double coverage_probability = 0.95;  // p of the intervals, in (0, 1)
-  std::optional<ModelMode> mode;       // of the budget; unset: the configuration's
+  // A stated k (e.g. 2 by contract): U = k u_c for every quantity, p that of a normal quantity; exclusive with a
+  // coverage_probability other than the default.
+  std::optional<double> coverage_factor;
+  std::optional<ModelMode> mode;  // of the budget; unset: the configuration's
   // M of the Monte Carlo check (src/verbs/statement_montecarlo.hpp); 0: none, the Student-t intervals stated.
   std::int64_t statement_trials = kDefaultStatementTrials;
   std::uint64_t seed = 1;  // of the Monte Carlo check
@@ -34,6 +37,7 @@ template <class VerbOptions>
 StatementOptions statement_options(const VerbOptions& o, std::optional<ModelMode> mode) {
   StatementOptions so;
   so.coverage_probability = o.coverage_probability;
+  so.coverage_factor = o.coverage_factor;
   so.mode = mode;
   so.statement_trials = o.statement_trials;
   so.seed = o.seed;
@@ -78,7 +82,7 @@ inline constexpr double kResidualCheckLevel = 0.01;
 struct CalibrationStatement {
   std::string budget_config;  // the configuration whose tolerances give the Type B part
   std::string config_sha256;  // of its text (Config::text_sha256)
-  std::string setup_sha256;   // the machine set-up's fingerprint (calibrations with one share its errors)
+  std::string setup_sha256;   // of its machine's and lab's tables (Config::setup_sha256): one set-up, shared errors
   // The instrument and the date as its [certificate] names them ("" without it): what `ccal history add`
   // records the statement under.
   std::string instrument, serial_number, date_of_calibration;
@@ -86,7 +90,8 @@ struct CalibrationStatement {
   // ties an amended certificate to the one it supersedes.
   std::string certificate_number, revision, replaces;
   ModelMode mode = ModelMode::exact;
-  double coverage_probability = 0.95;
+  double coverage_probability = 0.95;  // p; with a stated k, 2Φ(k) − 1
+  std::optional<double> coverage_factor;  // k when the user stated it (a contract), else unset
   bool compensated = false;  // the model computed the regressors with the known [errors]
   int known_errors = 0;      // non-zero [errors] parameters
   std::vector<CoefficientStatement> coefficients;  // in the fit's order, in the fit's units
@@ -107,7 +112,11 @@ struct CalibrationStatement {
   std::vector<double> g_levels;
   // The Monte Carlo check, when one was run (statement_trials > 0 and the configuration has tolerances): its M
   // and seed; each coefficient and output holds its statistics and verdict.
+  // M is the requested (statement_trials) or more: the check goes on while a verdict is within the sampling
+  // error (settled false: still so at the cap, kStatementTrialsCap × the requested M).
   std::uint64_t monte_carlo_trials = 0;
+  std::uint64_t monte_carlo_requested_trials = 0;
+  bool monte_carlo_settled = true;
   std::uint64_t monte_carlo_seed = 0;
 };
 
