@@ -70,15 +70,23 @@ TEST_F(Cli, ThreeCalibrationsGiveTheDriftAndTheAgreement) {
                u = k2["drift"]["std_slope"].get<double>();
   EXPECT_LT(std::abs(slope - kDrift), u) << slope << " ± " << u;
   EXPECT_GT(u, 0);
-  // E_n of successive calibrations by hand from the statements: (x₂ − x₁)/√(U₁² + U₂²); the store keeps the
-  // numbers bit for bit, so they agree to round-off of the same expression.
+  // E_n of successive calibrations by hand from the statements: (x₂ − x₁)/√(U₁² + U₂² − 2 k₁ k₂ C), C the
+  // covariance the two share (one set-up: the K2 of the instrument changed, not the machine; C itself is checked
+  // against its sum over the inputs in tests/cli/history_shared_test.cpp); the store keeps the numbers bit for
+  // bit, so they agree to round-off of the same expression. The shared Type B is most of U here: E_n is far
+  // beyond what the independent form gives.
+  EXPECT_EQ(j["calibrations"][0]["setup"], j["calibrations"][2]["setup"]);
   for (std::size_t i = 0; i < 2; ++i) {
     const auto& a = statements[i]["coefficients"]["K2"];
     const auto& b = statements[i + 1]["coefficients"]["K2"];
-    const double en =
-        (b["corrected_estimate"].get<double>() - a["corrected_estimate"].get<double>()) /
-        std::hypot(a["expanded_uncertainty"].get<double>(), b["expanded_uncertainty"].get<double>());
-    EXPECT_NEAR(k2["normalised_errors"][i]["en"].get<double>(), en, 1e-15 * std::abs(en) + 1e-300);
+    const double Ua = a["expanded_uncertainty"].get<double>(), Ub = b["expanded_uncertainty"].get<double>();
+    const double ka = a["coverage_factor"].get<double>(), kb = b["coverage_factor"].get<double>();
+    const double C = k2["normalised_errors"][i]["shared_covariance"].get<double>();
+    EXPECT_GT(C, 0);
+    const double difference = b["corrected_estimate"].get<double>() - a["corrected_estimate"].get<double>();
+    const double en = difference / std::sqrt(Ua * Ua + Ub * Ub - 2 * ka * kb * C);
+    EXPECT_NEAR(k2["normalised_errors"][i]["en"].get<double>(), en, 1e-12 * std::abs(en));
+    EXPECT_GT(std::abs(en), 3 * std::abs(difference / std::hypot(Ua, Ub)));
   }
   // The prediction a year after the last.
   EXPECT_EQ(k2["prediction"]["date"], "2027-11-30");
