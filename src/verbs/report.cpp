@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <utility>
 
@@ -143,8 +144,10 @@ ReportResult report(const Config& config, const ReportOptions& o) {
                       "with [certificate] serial_number ({} has none)",
                       config.source));
     const std::string& serial = config.certificate->serial_number;
-    if (!HistoryStore::open(o.history_db, HistoryStore::Access::read).records(serial).empty())
+    if (!HistoryStore::open(o.history_db, HistoryStore::Access::read).records(serial).empty()) {
       r.history = history_show(serial, {o.history_db, ""});
+      r.history->db = std::filesystem::path(o.history_db).filename().string();  // a report names no folder
+    }
   }
   BudgetOptions bo;
   bo.mode = o.mode;

@@ -69,6 +69,9 @@ def main(program, lab, truth, folder):
             problems.append("the one set-up of the three calibrations is not stated, or a change is")
         if s.count("<th>set-up</th>") != 3:
             problems.append("no set-up column in each coefficient's table")
+    # The store is named by its file name: no folder of the machine anywhere in the page.
+    if os.path.dirname(db) in page:
+        problems.append(f"the page names the folder {os.path.dirname(db)}")
     # The charts' date axis shows the year on every tick.
     if page.count('"format":"%Y-%m-%d"') + page.count('"format": "%Y-%m-%d"') < 3:
         problems.append("the history charts' date axis has no year in its format")
