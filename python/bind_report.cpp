@@ -74,8 +74,20 @@ void bind_report(py::module_& m) {
       .def_property_readonly(
           "budget", [](const Report& r) { return r.result.budget; }, "the budget section [Budget]")
       .def_property_readonly(
-          "monte_carlo", [](const Report& r) { return r.result.monte_carlo; },
-          "the Monte Carlo section [MonteCarlo]")
+          "monte_carlo",
+          [](const Report& r) -> std::optional<verbs::MonteCarloResult> {
+            if (r.result.certificate) return std::nullopt;
+            return r.result.monte_carlo;
+          },
+          "the Monte Carlo section, or None for a certificate, which shows none [MonteCarlo]")
+      .def_property_readonly(
+          "warnings", [](const Report& r) { return r.result.warnings; },
+          "what the laboratory should know (e.g. inputs of a certificate's budget traceable to no stated "
+          "standard) [list[str]]")
+      .def_property_readonly(
+          "certificate", [](const Report& r) { return r.result.certificate; },
+          "whether the page is the calibration certificate (observations, a [certificate] table, not "
+          "engineering=True): it shows the statement and its budget, not the tolerances' Monte Carlo [bool]")
       .def_property_readonly(
           "allocation", [](const Report& r) { return r.result.allocation; },
           "the allocation section, or None [Allocation]")

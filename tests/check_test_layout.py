@@ -60,7 +60,7 @@ TESTED_ELSEWHERE = {
     "render/statement_inputs.cpp": "the statement's Type A and inputs tables: tests/cli/statement_test.cpp",
     "render/statement_part.cpp": _OUTPUT,
     "render/table.cpp": "the text tables: tests/render/budget_test.cpp (Table)",
-    "setup/certificate.cpp": "the dates: tests/io/config_sections_certificate_test.cpp (CertificateDates)",
+    "setup/certificate.cpp": "the dates and the traceability: tests/io/config_sections_certificate_test.cpp (CertificateDates, CertificateTraceability)",
     "setup/config.cpp": "Config::experiment: tests/io/config_file_test.cpp",
     "setup/input_description.cpp": "each input's units: tests/io/config_sections_inputs_test.cpp",
     "io/config_sections_tolerances.cpp": "[tolerances]: tests/io/config_file_test.cpp, "

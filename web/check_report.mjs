@@ -2,7 +2,8 @@
 // (exit 1, one line per problem) on a console error, an uncaught page error, a failed or non-local request, a
 // chart that was not drawn, or a chart with fewer drawn marks (bars with an area) than expected. Saves a PNG
 // of the whole page. Then prints it as the PDF of `ccal report --pdf` would be printed (print media, the width of
-// an A4 page less its margins) and fails on anything wider than the paper.
+// an A4 page less its margins) and fails on anything wider than the paper, and shows it on screen in a window
+// 1200 px wide (CCAL_SCREEN_WIDTH) and fails on anything wider than the window.
 //   node web/check_report.mjs REPORT.html SCREENSHOT.png [CHROMIUM]
 // Exit 77 (the test is skipped) when no Chromium is installed.
 import { chromium } from 'playwright-core';
@@ -17,6 +18,16 @@ if (!report || !screenshot) {
 if (!existsSync(browserPath)) {
   console.log(`skipped: no Chromium at ${browserPath} (Debian package chromium; scripts/setup.sh installs it)`);
   process.exit(77);
+}
+
+// The outermost elements whose right edge passes `width` px (run in the page): each named by its section's id,
+// its tag and class, and where it ends.
+function outermostWider(width) {
+  return [...document.querySelectorAll('body *')]
+    .filter((e) => e.getBoundingClientRect().right > width + 1 && e.getClientRects().length)
+    .filter((e) => !e.parentElement || e.parentElement.getBoundingClientRect().right <= width + 1)
+    .map((e) => `${e.closest('[id]') ? e.closest('[id]').id + ' ' : ''}${e.tagName.toLowerCase()}${e.id ? '#' + e.id : ''}${e.className && typeof e.className === 'string'
+      ? '.' + e.className.split(' ')[0] : ''} (${Math.round(e.getBoundingClientRect().right)} px)`);
 }
 
 const problems = [];
@@ -38,8 +49,11 @@ try {
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   page.on('requestfailed', (r) => { if (r.url() !== url) problems.push(`failed request: ${r.url()}`); });
   await page.goto(url, { waitUntil: 'load' });
-  await page.waitForFunction(() => window.ccalReport !== undefined, null, { timeout: 20000 });
-  await page.evaluate(() => window.ccalReport);
+  // A page with charts (the report) draws them; a page without (the certificate) has nothing to wait for.
+  if (await page.evaluate(() => document.querySelector('div.chart') !== null)) {
+    await page.waitForFunction(() => window.ccalReport !== undefined, null, { timeout: 20000 });
+    await page.evaluate(() => window.ccalReport);
+  }
   // Drawn marks per chart: the children of Vega's mark groups (bars, line and rule paths, points), not the
   // axes or legends.
   const charts = await page.evaluate(() => [...document.querySelectorAll('div.chart')].map((d) => ({
@@ -76,15 +90,25 @@ try {
   if (expected && charts.length !== expected) problems.push(`${charts.length} charts, expected ${expected}`);
   await page.screenshot({ path: screenshot, fullPage: true });
   console.log(`screenshot: ${screenshot}`);
-  // A4 less the page's 12 mm side margins (report.cpp's @page): 186 mm = 703 CSS px at 96 px per inch.
-  const paper = Math.floor((186 / 25.4) * 96);
+  // On screen, a window 1200 px wide (a laptop's browser) shows every table without a horizontal scroll bar.
+  const screenWidth = Number(process.env.CCAL_SCREEN_WIDTH || 1200);
+  await page.setViewportSize({ width: screenWidth, height: 900 });
+  for (const w of (await page.evaluate(outermostWider, screenWidth)).slice(0, 10))
+    problems.push(`in a window ${screenWidth} px wide, wider than the window: ${w}`);
+  // A4's 210 mm less the side margins of the page's own @page rule (the report's 12 mm, the certificate's 14 mm),
+  // at 96 CSS px per inch.
+  const margins = await page.evaluate(() => {
+    const toMm = (v) => (v.endsWith('mm') ? parseFloat(v) : NaN);
+    for (const sheet of document.styleSheets)
+      for (const rule of sheet.cssRules)
+        if (rule instanceof CSSPageRule) return [toMm(rule.style.marginLeft), toMm(rule.style.marginRight)];
+    return [NaN, NaN];
+  });
+  if (!margins.every(Number.isFinite)) problems.push(`no @page rule with side margins in mm: ${margins}`);
+  const paper = Math.floor(((210 - margins[0] - margins[1]) / 25.4) * 96);
   await page.emulateMedia({ media: 'print' });
   await page.setViewportSize({ width: paper, height: 1000 });
-  const wide = await page.evaluate((width) => [...document.querySelectorAll('body *')]
-    .filter((e) => e.getBoundingClientRect().right > width + 1 && e.getClientRects().length)
-    .filter((e) => !e.parentElement || e.parentElement.getBoundingClientRect().right <= width + 1)
-    .map((e) => `${e.closest('[id]') ? e.closest('[id]').id + ' ' : ''}${e.tagName.toLowerCase()}${e.id ? '#' + e.id : ''}${e.className && typeof e.className === 'string'
-      ? '.' + e.className.split(' ')[0] : ''} (${Math.round(e.getBoundingClientRect().right)} px)`), paper);
+  const wide = await page.evaluate(outermostWider, paper);
   for (const w of wide.slice(0, 10)) problems.push(`printed on A4 (${paper} px wide), wider than the paper: ${w}`);
 } finally {
   await browser.close();

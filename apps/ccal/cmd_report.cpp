@@ -131,6 +131,7 @@ Command add_report(CLI::App& app) {
             if (!o->observations.empty()) ro.observations = read_observations(o->observations);
             const Config config = load_config_or_example(o->config);
             const verbs::ReportResult r = verbs::report(config, ro);
+            print_warnings(r.warnings);
             render::ReportProvenance p;
             p.config_text = config_file_text(o->config);
             p.command_line = command_line_text();

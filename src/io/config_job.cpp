@@ -9,6 +9,9 @@ namespace ccal::config_reading {
 
 namespace {
 
+// The keys of [certificate] that belong to the machine's set-up: the traceability of its standards.
+constexpr const char* kSetupTraceabilityKeys[] = {"radius_standard", "rate_standard", "traceability"};
+
 // The set-up's path: as written if absolute, else relative to the job file's folder.
 std::filesystem::path setup_path(const std::string& job_source, const std::string& written) {
   const std::filesystem::path path(written);
@@ -44,6 +47,14 @@ toml::table with_setup(const Reader& job_reader, toml::table job, std::string& s
     setup_reader.fail(*nested, "setup",
                       "a set-up cannot name another set-up; accepted: the machine's and the lab's tables "
                       "([site], [centrifuge], [errors], [tolerances], …), the job file names its set-up");
+  // The traceability of the machine's standards is the set-up's: a job's [certificate] that states none keeps
+  // the set-up's radius_standard, rate_standard and [certificate.traceability], each where it is written.
+  toml::table* job_certificate = job["certificate"].as_table();
+  // (moved, not copied: a copied node forgets where it was written)
+  if (toml::table* setup_certificate = setup["certificate"].as_table(); job_certificate && setup_certificate)
+    for (const char* key : kSetupTraceabilityKeys)
+      if (!job_certificate->contains(key))
+        if (toml::node* node = setup_certificate->get(key)) job_certificate->insert(key, std::move(*node));
   // A new root (it has no place of its own: a message about it names the job), its tables moved in with the
   // places they were written at.
   toml::table merged;

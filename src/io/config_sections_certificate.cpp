@@ -45,8 +45,13 @@ std::vector<std::pair<std::string, std::string>> read_traceability(const Reader&
     if (!s) r.fail(node, p, fmt::format("expected a string such as \"…\", got {}", type_name(node)));
     if (s->get().find_first_not_of(" \t\r\n") == std::string::npos)
       r.fail(node, p, "is empty; accepted: the standard and its certificate, or no key at all");
-    if ((k == "radius" && !c.radius_standard.empty()) || (k == "rate" && !c.rate_standard.empty()))
-      r.fail(node, p, fmt::format("certificate.{}_standard states it already; accepted: one of the two", k));
+    // The kinds [certificate] can state with a key of its own: one place each.
+    for (const auto& [kind, field, member] :
+         {std::tuple{"radius", "radius_standard", &Certificate::radius_standard},
+          {"rate", "rate_standard", &Certificate::rate_standard},
+          {"fixed_terms", "fixed_terms_source", &Certificate::fixed_terms_source}})
+      if (k == kind && !(c.*member).empty())
+        r.fail(node, p, fmt::format("certificate.{} states it already; accepted: one of the two", field));
     out.emplace_back(k, s->get());
   }
   // toml++ iterates a table by key: the certificate lists them in the order the file writes them.

@@ -123,6 +123,14 @@ std::string coverage_factor_text(double k) { return fmt::format("{:.2f}", k); }
 std::string method_html(const Json& coefficient) {
   if (coefficient["interval_method"] == "monte_carlo") return "Monte Carlo (JCGM 101)";
   const Json& dof = coefficient["effective_dof"];
+  if (coefficient["interval_method"] == "coverage_factor") {
+    // A stated k: the distribution it is read in, and at finite ν_eff the coverage it then gives (below the
+    // normal one the paragraph states).
+    if (dof.is_null()) return "stated k, normal (ν<sub>eff</sub> = ∞)";
+    const Json& p = coefficient["stated_coverage_probability"]["student_t"];
+    return "stated k, Student's t at ν<sub>eff</sub> = " + dof_text(dof) +
+           (p.is_number() ? ", coverage probability " + approximate_percent_text(p.get<double>()) : "");
+  }
   if (dof.is_null()) return "normal (ν<sub>eff</sub> = ∞)";
   return "Student's t at ν<sub>eff</sub> = " + dof_text(dof);
 }
@@ -134,6 +142,11 @@ std::string term_html(std::string_view id) {
 }
 
 std::string percent_text(double p) { return fmt::format("{:g} %", 100 * p); }
+
+// EA-4/02's "approximately 95 %" for k = 2: two significant digits, three from 99 % on (99.7 % for k = 3).
+std::string approximate_percent_text(double p) {
+  return fmt::format("{:.{}g} %", 100 * p, p < 0.99 ? 2 : 3);
+}
 
 std::string base_name(std::string_view path) {
   const std::size_t slash = path.find_last_of('/');

@@ -40,7 +40,8 @@ table.gum{font-size:8.5pt}table.gum th,table.gum td{padding:2px 4px}tr.total td{
 p.end{text-align:center;font-weight:600;margin-top:24px;letter-spacing:0.05em}
 table.gum{width:100%}table.gum td:first-child{min-width:12em}table.gum td:nth-child(2){min-width:9em}table.gum tr{break-inside:avoid}
 .keep{break-inside:avoid}tr{break-inside:avoid}
-@media print{body{max-width:none;margin:0;padding:0;font-size:9.5pt}}
+@media print{body{max-width:none;margin:0;padding:0;font-size:9.5pt}table.gum{font-size:7.5pt}
+table.gum td:first-child{min-width:9em}table.gum td:nth-child(2){min-width:7em}}
 )";
 
 // The certificate's fields: the administrative ones as written (those that sign, the traceability and the

@@ -35,6 +35,8 @@ std::string method_html(const Json& coefficient);
 std::string term_html(std::string_view id);
 // A coverage probability as a percentage ("95 %").
 std::string percent_text(double p);
+// A coverage probability a stated k gives, as a certificate rounds it ("95 %" for 0.9545).
+std::string approximate_percent_text(double p);
 // A file's name without its folder.
 std::string base_name(std::string_view path);
 

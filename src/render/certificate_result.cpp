@@ -88,7 +88,11 @@ std::string g_sentence(const Config& config) {
 
 std::string result_section(const Doc& doc) {
   const Json& st = doc.json["statement"];
-  const std::string p_text = percent_text(st["coverage_probability"].get<double>());
+  // A stated k gives its normal coverage probability, which the certificate rounds; a stated probability is
+  // shown as given.
+  const double probability = st["coverage_probability"].get<double>();
+  const std::string p_text =
+      st["coverage_factor"].is_number() ? approximate_percent_text(probability) : percent_text(probability);
   std::string rows, notes;
   bool monte_carlo = false;
   for (const auto& [id, c] : st["coefficients"].items()) {
@@ -249,23 +253,22 @@ std::string method_section(const verbs::ReportResult& r, const Doc& doc) {
 
 std::string traceability_section(const verbs::ReportResult& r, const Doc& budget) {
   if (!r.config.certificate) return "";
-  const Certificate& c = *r.config.certificate;
-  std::vector<std::pair<std::string, std::string>> rows;
-  if (!c.radius_standard.empty()) rows.emplace_back("radius", c.radius_standard);
-  if (!c.rate_standard.empty()) rows.emplace_back("rate", c.rate_standard);
-  rows.insert(rows.end(), c.traceability.begin(), c.traceability.end());
+  const std::vector<TraceabilityLine>& rows = r.traceability;
   if (rows.empty()) return "";
   std::string t =
       "<section id=\"traceability\" class=\"keep\"><h2>Traceability</h2>\n<p>The quantities of the "
       "uncertainty budget "
       "are traceable to national standards (SI) through these standards:</p>\n<table "
       "class=\"traceability\">\n<tr><th>quantity</th><th>standard and its certificate</th></tr>\n";
-  for (const auto& [key, standard] : rows) {
-    std::string label(traceability_label(key));
-    if (label == key)  // an input id: the budget's words for it
+  for (const TraceabilityLine& line : rows) {
+    std::string label(traceability_label(line.key));
+    if (label == line.key)  // an input id: the budget's words for it
       for (const Json& s : budget.json["sources"])
-        if (s["id"] == key) label = s["name"].get<std::string>();
-    t += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", words_html(label), escape(standard));
+        if (s["id"] == line.key) label = s["name"].get<std::string>();
+    // A quantity of the budget whose standard the laboratory did not state is shown as such, not left out.
+    t += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", words_html(label),
+                     line.standard.empty() ? std::string("<em class=\"unstated\">not stated</em>")
+                                           : escape(line.standard));
   }
   return t + "</table>\n</section>\n";
 }

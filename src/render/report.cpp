@@ -360,7 +360,6 @@ void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o
     add("--coverage-probability", fmt::format("{:.17g}", m.coverage_probability));
   if (o.allocate) allocate_command(*o.allocate, o.allocate->mode ? o.allocate->mode : o.mode, p);
   if (o.design) design_command(*o.design, p);
-  p.engineering = o.engineering;
   if (o.observations && r.observed) {
     // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
     p.identify_command = {"identify", shown_file(r.observed->source), "--statement"};
@@ -389,9 +388,9 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   if (r.observed && p.identify_command.empty())
     throw std::logic_error(
         "report: the statement's command line is missing (report_commands with its options)");
-  // With observations and a [certificate] table the page is the certificate, unless the engineering report is
-  // asked for.
-  if (r.observed && r.config.certificate && !p.engineering) return certificate_page(r, p);
+  // With observations and a [certificate] table the page is the certificate, unless the engineering report was
+  // asked for (verbs::gives_certificate).
+  if (r.certificate) return certificate_page(r, p);
   const Json budget_json = Json::parse(json(r.budget)), mc_json = Json::parse(json(r.monte_carlo));
   std::vector<Json> instants;
   for (const auto& f : r.sensed_input.instants) instants.push_back(Json::parse(json(f)));

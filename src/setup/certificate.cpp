@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
+#include <iterator>
 
 namespace ccal {
 namespace {
@@ -30,6 +32,47 @@ std::string_view traceability_label(std::string_view key) {
   for (const TraceabilityKind& k : kTraceabilityKinds)
     if (k.key == key) return k.label;
   return key;
+}
+
+std::vector<TraceabilityLine> traceability_lines(const Certificate& c, const std::vector<TracedInput>& inputs) {
+  std::vector<TraceabilityLine> lines;
+  const auto state = [&](const std::string& key, const std::string& standard) {
+    if (!standard.empty()) lines.push_back({key, standard, {}});
+  };
+  state("radius", c.radius_standard);
+  state("rate", c.rate_standard);
+  for (const auto& [key, standard] : c.traceability) state(key, standard);
+  if (std::ranges::none_of(lines, [](const TraceabilityLine& l) { return l.key == "fixed_terms"; }))
+    state("fixed_terms", c.fixed_terms_source);
+  const auto line_of = [&](const std::string& key) {
+    return std::ranges::find_if(lines, [&](const TraceabilityLine& l) { return l.key == key; });
+  };
+  for (const TracedInput& in : inputs) {
+    auto line = line_of(in.id);
+    if (line == lines.end()) line = line_of(in.kind);
+    if (line == lines.end()) {
+      lines.push_back({in.kind, "", {}});
+      line = std::prev(lines.end());
+    }
+    line->inputs.push_back(in.id);
+  }
+  return lines;
+}
+
+std::string traceability_gaps_text(const std::vector<TraceabilityLine>& lines) {
+  std::string kinds, keys;
+  for (const TraceabilityLine& l : lines) {
+    if (!l.standard.empty()) continue;
+    std::string inputs;
+    for (std::size_t i = 0; i < l.inputs.size() && i < 4; ++i) inputs += (i ? ", " : "") + l.inputs[i];
+    if (l.inputs.size() > 4) inputs += fmt::format(" and {} more", l.inputs.size() - 4);
+    kinds += fmt::format("{}{} ({})", kinds.empty() ? "" : "; ", traceability_label(l.key), inputs);
+    keys += fmt::format("{}{}", keys.empty() ? "" : ", ", l.key);
+  }
+  if (kinds.empty()) return "";
+  return fmt::format("the certificate states no traceability for {}; it shows them as not stated (state them "
+                     "in [certificate.traceability]: {})",
+                     kinds, keys);
 }
 
 std::string calendar_date_problem(std::string_view text) {

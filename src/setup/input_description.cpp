@@ -35,6 +35,26 @@ std::string si_symbol(Dimension dim) {
   return s.empty() ? "1" : s;
 }
 
+// The kind of standard a chain input is traceable to (kTraceabilityKinds).
+std::string chain_traceability(ChainKind kind) {
+  switch (kind) {
+    case ChainKind::gravity:
+      return "g";
+    case ChainKind::time_base:
+      return "time_base";
+    case ChainKind::output_gain:
+    case ChainKind::output_offset:
+      return "output";
+    case ChainKind::fixed_term:
+      return "fixed_terms";
+    case ChainKind::encoder:
+      return "rate";
+    case ChainKind::declared:
+      break;
+  }
+  return "";
+}
+
 }  // namespace
 
 Dimension output_dimension(const std::string& output_unit) {
@@ -52,6 +72,21 @@ InputDescription describe_layout_parameter(const ErrorLayout& layout, int parame
   d.si_unit = std::string(unit_symbol(layout.parameter_unit(parameter)));
   d.display_unit = std::string(f.display);
   d.example = std::string(f.example);
+  switch (layout.parameter_unit(parameter)) {
+    case SourceUnit::m:  // the radius's static error and its stretch, or a runout, float or offset
+      d.traceability = d.id.starts_with("dR") ? "radius" : "length";
+      break;
+    case SourceUnit::m_per_rad_per_s_squared:
+      d.traceability = "radius";
+      break;
+    case SourceUnit::rad:
+      d.traceability = "angle";
+      break;
+    case SourceUnit::rad_per_s:
+    case SourceUnit::relative:  // a rate ripple, relative to the rate
+      d.traceability = "rate";
+      break;
+  }
   return d;
 }
 
@@ -66,6 +101,7 @@ InputDescription describe_input(const Config& config, int parameter) {
   d.name = chain_input_name(parameter, config.chain);
   const ChainInput in = chain_input(parameter);
   const std::string& output = config.instrument.output_unit;
+  d.traceability = chain_traceability(in.kind);
   switch (in.kind) {
     case ChainKind::gravity:
       d.dim = kind::acceleration;
@@ -103,6 +139,7 @@ InputDescription describe_input(const Config& config, int parameter) {
       d.si_unit = in_decl.unit;
       d.example = fmt::format("0.05 (in {})", in_decl.unit);
       d.own_unit = true;
+      d.traceability = d.id;
       return d;
     }
   }

@@ -10,6 +10,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/model/instrument.hpp"
+#include "ccal/setup/input_description.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "ccal/verbs/force.hpp"
 
@@ -121,9 +122,23 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
   }
 }
 
+// The statement's inputs with the kind of standard each rests on.
+std::vector<TracedInput> traced_inputs(const Config& config, const CalibrationStatement& statement) {
+  std::vector<TracedInput> traced;
+  for (const StatementSource& s : statement.inputs) {
+    const auto t = std::ranges::find(config.tolerances, s.id, &Tolerance::id);
+    traced.push_back({s.id, t == config.tolerances.end() ? s.id : describe_input(config, t->parameter).traceability});
+  }
+  return traced;
+}
+
 }  // namespace
 
 OptionTable<ReportOptions> options_of(std::type_identity<ReportOptions>) { return kReportRows; }
+
+bool gives_certificate(const Config& config, const ReportOptions& o) {
+  return o.observations && config.certificate && !o.engineering;
+}
 
 ReportResult report(const Config& config, const ReportOptions& o) {
   check_options(o, option_table<ReportOptions>());
@@ -169,6 +184,13 @@ ReportResult report(const Config& config, const ReportOptions& o) {
       r.configured_runs.push_back(force(config, fo));
     }
   }
+  r.certificate = gives_certificate(config, o);
+  if (r.certificate) {
+    r.traceability = traceability_lines(*config.certificate, traced_inputs(config, *r.observed->statement));
+    if (std::string gaps = traceability_gaps_text(r.traceability); !gaps.empty())
+      r.warnings.push_back(std::move(gaps));
+    return r;
+  }  // the certificate shows neither the tolerances' Monte Carlo nor the sensed input
   MonteCarloOptions mo = o.monte_carlo;
   mo.mode = o.mode;
   mo.keep_samples = false;  // the report draws the histograms of the JSON, not the values

@@ -32,6 +32,7 @@ std::string lab_of_year(int year) {
     text.replace(at, from.size(), to);
   };
   replace("K2 = \"0.02 deg/s/g^2\"", "K2 = \"" + std::to_string(0.02 + kDrift * year) + " deg/s/g^2\"");
+  replace("date_of_receipt = 2026-11-23", "date_of_receipt = " + std::to_string(2024 + year) + "-11-23");
   replace("date_of_calibration = 2026-11-30",
           "date_of_calibration = " + std::to_string(2024 + year) + "-11-30");
   replace("date_of_issue = 2026-12-03", "date_of_issue = " + std::to_string(2024 + year) + "-12-03");

@@ -107,6 +107,37 @@ g_level = "10 g"
   EXPECT_EQ(load_config(job(setup, "")).plan.runs.size(), 2u);
 }
 
+TEST_F(JobFile, TheSetUpsTraceabilityHoldsForItsJobs) {
+  // The machine's standards are the set-up's: a job's [certificate] that states none keeps them; one that
+  // states its own has its own. The rest of the set-up's [certificate] is replaced whole, as any table.
+  const std::string setup = kSetup + R"([certificate]
+laboratory = "Lab"
+radius_standard = "laser tracker, LT-1"
+[certificate.traceability]
+g = "gravimeter, G-3"
+angle = "autocollimator, AC-2"
+)";
+  Config c = load_config(job(setup, kJobTables));
+  ASSERT_TRUE(c.certificate.has_value());
+  EXPECT_EQ(c.certificate->operator_name, "A. Engineer");
+  EXPECT_EQ(c.certificate->laboratory, "");  // the job's [certificate] says no laboratory
+  EXPECT_EQ(c.certificate->radius_standard, "laser tracker, LT-1");
+  const std::vector<std::pair<std::string, std::string>> machine{{"g", "gravimeter, G-3"},
+                                                                  {"angle", "autocollimator, AC-2"}};
+  EXPECT_EQ(c.certificate->traceability, machine);
+  c = load_config(job(setup, kJobTables + "radius_standard = \"CMM, C-9\"\n[certificate.traceability]\ng = "
+                                          "\"gravimeter, G-4\"\n"));
+  EXPECT_EQ(c.certificate->radius_standard, "CMM, C-9");
+  const std::vector<std::pair<std::string, std::string>> own{{"g", "gravimeter, G-4"}};
+  EXPECT_EQ(c.certificate->traceability, own);
+  // A bad line of the set-up's traceability is refused at the set-up's file and line.
+  std::string bad = setup;
+  bad.replace(bad.find("\"gravimeter, G-3\""), 17, "9.8");
+  const ConfigError e = error_of_job(bad, kJobTables);
+  EXPECT_EQ(fs::path(e.source()).filename(), "machine.toml") << e.what();
+  EXPECT_EQ(e.line(), 12) << e.what();
+}
+
 TEST_F(JobFile, MessagesPointAtTheFileAndLineOfTheirKey) {
   // In the set-up: its file and line (the tolerance is on line 7 of kSetup).
   std::string setup = kSetup;

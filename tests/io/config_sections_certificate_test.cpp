@@ -2,6 +2,10 @@
 // a real day, and every bad value refused on its line, naming the key and what is accepted.
 #include <fmt/format.h>
 
+#include <map>
+#include <tuple>
+
+#include "ccal/setup/input_description.hpp"
 #include "config_test_support.hpp"
 
 namespace ccal {
@@ -87,11 +91,68 @@ TEST(CertificateTable, TraceabilityByKindOrInputIdInTheOrderWritten) {
   EXPECT_EQ(traceability_label("g"), "local gravity g");
   EXPECT_EQ(traceability_label("dR_s"), "dR_s");  // an input: the budget names it
   expect_appended_error("[certificate.traceability]\nradious = \"LT-1\"", "certificate.traceability.radious",
-                        {"names no quantity of the budget", "radius, rate, time_base, g, output, temperature"});
+                        {"names no quantity of the budget",
+                         "radius, length, angle, rate, time_base, g, output, fixed_terms, temperature"});
   expect_appended_error("[certificate.traceability]\ng = 9.8", "certificate.traceability.g", {"expected a string"});
   expect_appended_error("[certificate.traceability]\ng = \" \"", "certificate.traceability.g", {"is empty"});
   expect_appended_error("[certificate]\nrate_standard = \"TB-1\"\n[certificate.traceability]\nrate = \"TB-2\"",
                         "certificate.traceability.rate", {"certificate.rate_standard states it already"});
+  expect_appended_error("[certificate]\nfixed_terms_source = \"CAL-1\"\n[certificate.traceability]\nfixed_terms = "
+                        "\"CAL-2\"",
+                        "certificate.traceability.fixed_terms", {"certificate.fixed_terms_source states it already"});
+}
+
+TEST(CertificateTraceability, EveryInputRestsOnItsOwnLineOrItsKindsOrOnANotStatedOne) {
+  Certificate c;
+  c.radius_standard = "laser tracker, LT-1";
+  c.fixed_terms_source = "dividing head, CAL-7";
+  c.traceability = {{"g", "gravimeter, G-3"}, {"dthz5", "autocollimator, AC-2"}, {"temperature", "PT100, T-9"}};
+  const std::vector<TracedInput> inputs{{"dR_s", "radius"},  {"dthz5", "angle"},       {"dthx4", "angle"},
+                                        {"dx5", "length"},   {"g", "g"},              {"K1", "fixed_terms"},
+                                        {"dthy5", "angle"},  {"time_base", "time_base"}};
+  const std::vector<TraceabilityLine> lines = traceability_lines(c, inputs);
+  // The stated lines in the order written (radius_standard first, fixed_terms_source after the table), then
+  // the kinds nobody stated, in the order the inputs first need them; dthz5 rests on its own line.
+  const std::vector<std::tuple<std::string, std::string, std::vector<std::string>>> expected{
+      {"radius", "laser tracker, LT-1", {"dR_s"}},
+      {"g", "gravimeter, G-3", {"g"}},
+      {"dthz5", "autocollimator, AC-2", {"dthz5"}},
+      {"temperature", "PT100, T-9", {}},
+      {"fixed_terms", "dividing head, CAL-7", {"K1"}},
+      {"angle", "", {"dthx4", "dthy5"}},
+      {"length", "", {"dx5"}},
+      {"time_base", "", {"time_base"}}};
+  ASSERT_EQ(lines.size(), expected.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_EQ(lines[i].key, std::get<0>(expected[i])) << i;
+    EXPECT_EQ(lines[i].standard, std::get<1>(expected[i])) << i;
+    EXPECT_EQ(lines[i].inputs, std::get<2>(expected[i])) << i;
+  }
+  EXPECT_EQ(traceability_gaps_text(lines),
+            "the certificate states no traceability for angles of the axes and of the mounting (dthx4, dthy5); "
+            "lengths of the machine (runouts, floats, offsets) (dx5); time base (time_base); it shows them as "
+            "not stated (state them in [certificate.traceability]: angle, length, time_base)");
+  c.traceability.emplace_back("angle", "electronic level, EL-1");
+  c.traceability.emplace_back("length", "probes, DP-4");
+  c.traceability.emplace_back("time_base", "rubidium, TB-1");
+  EXPECT_EQ(traceability_gaps_text(traceability_lines(c, inputs)), "");
+}
+
+TEST(CertificateTraceability, EachInputHasTheKindOfItsStandard) {
+  // The kind of every input comes from what it is (setup/input_description.cpp): the radius's error and the
+  // arm's stretch rest on the radius, runouts on lengths, tilts on angles, rates, ripples and encoders on the
+  // rate, and the measuring chain's inputs on their own standards.
+  const Config cfg = bundled_example();  // the paper's layout: every kind of error, ripples and stretch too
+  const ErrorLayout& layout = cfg.centrifuge.layout;
+  std::map<std::string, std::string> kinds;
+  for (int p = 0; p < layout.size(); ++p) kinds[layout.parameter_id(p)] = describe_layout_parameter(layout, p).traceability;
+  EXPECT_EQ(kinds.at("dR_s"), "radius");
+  EXPECT_EQ(kinds.at("arm_stretch"), "radius");
+  EXPECT_EQ(kinds.at("dx5"), "length");
+  EXPECT_EQ(kinds.at("dthz5"), "angle");
+  EXPECT_EQ(kinds.at("domega"), "rate");
+  EXPECT_EQ(kinds.at("ripple1_c1"), "rate");
+  for (const auto& [id, kind] : kinds) EXPECT_FALSE(kind.empty()) << id;
 }
 
 TEST(CertificateDates, OnlyRealDaysOfTheGregorianCalendar) {

@@ -96,6 +96,32 @@ class Report(unittest.TestCase):
         page = ccal.report(cfg.without_tolerance(first), trials=2000, input_points=5).to_html()
         self.assertIn(f"ccal.bundled_example().without_tolerance(&#39;{first}&#39;)", page)
 
+    def test_a_certificate_shows_no_tolerance_monte_carlo_and_warns_of_traceability_gaps(self):
+        lab = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "lab.toml")
+        with tempfile.TemporaryDirectory() as tmp:
+            cfg = ccal.load_config(lab)
+            obs = os.path.join(tmp, "obs.csv")
+            with open(obs, "w", encoding="utf-8") as f:
+                f.write(ccal.simulate(cfg).to_csv())
+            r = ccal.report(cfg, observations=obs, statement_trials=0)
+            self.assertTrue(r.certificate)
+            self.assertIsNone(r.monte_carlo)  # the certificate does not compute what it does not show
+            self.assertEqual(r.warnings, [])  # the lab example states every kind its budget needs
+            self.assertIn("End of certificate", r.to_html())
+            engineering = ccal.report(cfg, observations=obs, statement_trials=0, trials=2000, engineering=True)
+            self.assertFalse(engineering.certificate)
+            self.assertEqual(engineering.monte_carlo.trials, 2000)
+            # Without the angles' standard: shown as not stated, and a warning naming the key that states it.
+            text = open(lab, encoding="utf-8").read()
+            gap = os.path.join(tmp, "gap.toml")
+            with open(gap, "w", encoding="utf-8") as f:
+                f.write(text.replace('angle = "autocollimator', '# angle = "autocollimator'))
+            r = ccal.report(ccal.load_config(gap), observations=obs, statement_trials=0)
+            self.assertEqual(len(r.warnings), 1)
+            self.assertIn("angles of the axes and of the mounting", r.warnings[0])
+            self.assertIn("[certificate.traceability]: angle", r.warnings[0])
+            self.assertIn("not stated", r.to_html())
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -55,6 +55,15 @@ TEST(CertificateFormat, TheMethodIsNamedByHowTheIntervalIsObtained) {
             "Student's t at ν<sub>eff</sub> = 12");
   EXPECT_EQ(method_html(Json{{"interval_method", "monte_carlo"}, {"effective_dof", 12.6}}),
             "Monte Carlo (JCGM 101)");
+  // A stated k: read in the normal distribution, or in Student's t, whose coverage at k is then lower.
+  EXPECT_EQ(method_html(Json{{"interval_method", "coverage_factor"},
+                             {"effective_dof", nullptr},
+                             {"stated_coverage_probability", {{"normal", 0.9545}, {"student_t", nullptr}}}}),
+            "stated k, normal (ν<sub>eff</sub> = ∞)");
+  EXPECT_EQ(method_html(Json{{"interval_method", "coverage_factor"},
+                             {"effective_dof", 10.4},
+                             {"stated_coverage_probability", {{"normal", 0.9545}, {"student_t", 0.92661}}}}),
+            "stated k, Student's t at ν<sub>eff</sub> = 10, coverage probability 93 %");
 }
 
 TEST(CertificateFormat, TermsFilesAndPercentages) {
@@ -64,6 +73,9 @@ TEST(CertificateFormat, TermsFilesAndPercentages) {
   EXPECT_EQ(base_name("obs.csv"), "obs.csv");
   EXPECT_EQ(percent_text(0.95), "95 %");
   EXPECT_EQ(percent_text(0.9973), "99.73 %");
+  // what a stated k gives, rounded as EA-4/02 words it: "approximately 95 %" for k = 2
+  EXPECT_EQ(approximate_percent_text(0.9544997361036416), "95 %");
+  EXPECT_EQ(approximate_percent_text(0.9973002039367398), "99.7 %");
 }
 
 }  // namespace

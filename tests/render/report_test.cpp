@@ -237,6 +237,37 @@ TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
   EXPECT_THROW(render::html(r, {}, ""), std::logic_error);
 }
 
+TEST(ReportSections, ACertificateComputesNoMonteCarloOfTheTolerances) {
+  // The certificate shows the statement and its budget; the tolerance budget's Monte Carlo and the sensed input
+  // belong to the engineering report only, so the certificate does not spend their time.
+  Config cfg = bundled_example();
+  cfg.certificate = Certificate{};
+  cfg.certificate->number = "CAL-1";
+  verbs::ReportOptions o;
+  o.monte_carlo.trials = 200;
+  o.input_points = 3;
+  o.statement_trials = 0;
+  o.observations = observations();
+  ASSERT_TRUE(verbs::gives_certificate(cfg, o));
+  const verbs::ReportResult certificate = verbs::report(cfg, o);
+  EXPECT_TRUE(certificate.certificate);
+  EXPECT_EQ(certificate.monte_carlo.monte_carlo.trials, 0u);
+  EXPECT_TRUE(certificate.sensed_input.time.empty());
+  ASSERT_TRUE(certificate.observed.has_value());
+  o.engineering = true;
+  EXPECT_FALSE(verbs::gives_certificate(cfg, o));
+  const verbs::ReportResult engineering = verbs::report(cfg, o);
+  EXPECT_FALSE(engineering.certificate);
+  EXPECT_EQ(engineering.monte_carlo.monte_carlo.trials, 200u);
+  EXPECT_EQ(engineering.sensed_input.time.size(), 3u);
+  // Without observations or without a [certificate] table there is no certificate.
+  o.engineering = false;
+  o.observations.reset();
+  EXPECT_FALSE(verbs::gives_certificate(cfg, o));
+  o.observations = observations();
+  EXPECT_FALSE(verbs::gives_certificate(bundled_example(), o));
+}
+
 TEST(ReportSections, ObservationsOfOtherTermsAreRefusedNamingTheOption) {
   verbs::ReportOptions o;
   o.monte_carlo.trials = 200;

@@ -139,7 +139,8 @@ def main(ccal, work):
     with open(LAB, encoding="utf-8") as f:
         text = f.read()
     text = text.replace('number = "CAL-2026-0142"\n', 'number = "CAL-2026-0142A"\nrevision = 1\n'
-                        'replaces = "CAL-2026-0142"\ndate_of_receipt = 2026-11-25\n')
+                        'replaces = "CAL-2026-0142"\n').replace("date_of_receipt = 2026-11-23",
+                                                                 "date_of_receipt = 2026-11-25")
     config = os.path.join(folder, "lab.toml")
     with open(config, "w", encoding="utf-8") as f:
         f.write(text)
@@ -149,7 +150,8 @@ def main(ccal, work):
         os.devnull)
     env = dict(os.environ, SOURCE_DATE_EPOCH=EPOCH, TZ="UTC")
     made = {}
-    for name, extra in (("certificate", []), ("engineering", ["--engineering"])):
+    for name, extra in (("certificate", []), ("engineering", ["--engineering"]),
+                        ("certificate-k2", ["--coverage-factor", "2"])):
         html_file, pdf_file = os.path.join(folder, name + ".html"), os.path.join(folder, name + ".pdf")
         run(ccal, "report", config, "--observations", observations, "--trials", "20000", *extra, "-o", html_file,
             "--pdf", pdf_file, env=env)
@@ -242,6 +244,24 @@ def main(ccal, work):
         problems.append("the certificate shows no rounded figure of the statement")
 
     problems += layout_problems(cert_pdf, set(page.headings), "the certificate")
+
+    # A stated k = 2: every interval not from the Monte Carlo has k = 2.00, its method names the stated k in the
+    # result and in the annex alike, and the coverage is worded as EA-4/02 words it, approximately 95 %.
+    stated = page_of(made["certificate-k2"][0])
+    stated_html = open(made["certificate-k2"][0], encoding="utf-8").read()
+    k_cells = re.findall(r'<tr data-coefficient="[^"]+">(?:<td[^>]*>.*?</td>){4}<td class="num">([^<]*)</td>',
+                         stated_html)
+    if not k_cells or any(k not in ("2.00", "–") for k in k_cells):
+        problems.append(f"with a stated k = 2 the result's k column reads {k_cells}, expected 2.00")
+    stated_methods = {}
+    for coefficient, text in stated.methods:
+        stated_methods.setdefault(coefficient, []).append(text)
+    for coefficient, shown in stated_methods.items():
+        if len(shown) != 2 or shown[0] != shown[1] or not (shown[0].startswith("stated k, ")
+                                                            or shown[0].startswith("Monte Carlo")):
+            problems.append(f"{coefficient}: with a stated k the result and the annex read {shown}")
+    if "coverage probability of approximately 95 %" not in "".join(stated.text):
+        problems.append("with a stated k = 2 the certificate does not say 'approximately 95 %'")
 
     for p in problems:
         print(p, file=sys.stderr)

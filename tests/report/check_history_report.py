@@ -31,6 +31,7 @@ def main(program, lab, truth, folder):
         config = f"lab{year}.toml"
         with open(config, "w", encoding="utf-8") as f:
             f.write(text.replace('K2 = "0.02 deg/s/g^2"', f'K2 = "{0.02 + 2e-4 * year:.4f} deg/s/g^2"')
+                        .replace("date_of_receipt = 2026-11-23", f"date_of_receipt = {2024 + year}-11-23")
                         .replace("date_of_calibration = 2026-11-30", f"date_of_calibration = {2024 + year}-11-30")
                         .replace("date_of_issue = 2026-12-03", f"date_of_issue = {2024 + year}-12-03"))
         run(program, "simulate", config, "--truth", truth, "--logs-out", f"logs{year}", "-o", os.devnull)

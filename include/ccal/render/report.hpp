@@ -37,8 +37,6 @@ struct ReportProvenance {
   // The run logs the observations were reduced from, as their header records them (`ccal reduce`), filled by
   // report_commands: each log's run, file and SHA-256 in the provenance.
   std::vector<ObservationsHeader::Log> observation_logs;
-  // The engineering report even with a [certificate] table (ReportOptions::engineering), set by report_commands.
-  bool engineering = false;
 };
 
 // The provenance's date: now, or SOURCE_DATE_EPOCH (seconds since 1970, the reproducible-builds convention)
@@ -51,8 +49,8 @@ void report_commands(const verbs::ReportResult& result, const verbs::ReportOptio
                      ReportProvenance& provenance);
 
 // The page, with the allocation, the design and the statement sections when the result has them. scripts:
-// vega, vega-lite and vega-embed (their UMD builds, concatenated). With observations and a [certificate]
-// table, unless provenance.engineering, the page is the calibration certificate instead
+// vega, vega-lite and vega-embed (their UMD builds, concatenated). When the result is a certificate's
+// (verbs::gives_certificate), the page is the calibration certificate instead
 // (render/certificate_page.cpp): the result in the customer's words, its budget and runs as the annex.
 std::string html(const verbs::ReportResult& result, const ReportProvenance& provenance,
                  std::string_view scripts, const std::vector<ReportSection>& extra_sections = {});

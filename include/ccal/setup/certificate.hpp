@@ -84,17 +84,42 @@ struct TraceabilityKind {
   std::string_view key;
   std::string_view label;
 };
-inline constexpr std::array<TraceabilityKind, 6> kTraceabilityKinds{{
+inline constexpr std::array<TraceabilityKind, 9> kTraceabilityKinds{{
     {"radius", "arm radius"},
+    {"length", "lengths of the machine (runouts, floats, offsets)"},
+    {"angle", "angles of the axes and of the mounting"},
     {"rate", "rotation rate (encoders)"},
     {"time_base", "time base"},
     {"g", "local gravity g"},
     {"output", "output measuring chain"},
+    {"fixed_terms", "fixed terms of the model"},
     {"temperature", "temperature"},
 }};
 // What the certificate calls a traceability key: its kind's label, else the key itself (an input id, whose
 // name the budget gives).
 std::string_view traceability_label(std::string_view key);
+
+// An input of the budget and the kind of standard it is traceable to (InputDescription::traceability).
+struct TracedInput {
+  std::string id;
+  std::string kind;
+};
+// One line of the certificate's traceability: a key of [certificate.traceability] (a kind or an input id), the
+// standard stated for it ("" when none is), and the budget's inputs that rest on it.
+struct TraceabilityLine {
+  std::string key;
+  std::string standard;
+  std::vector<std::string> inputs;
+};
+// The traceability of a budget's inputs: the lines stated, in the order written (radius_standard and
+// rate_standard first, as the kinds radius and rate; fixed_terms_source as the kind fixed_terms), then a line
+// with no standard for each kind the inputs need that none states. An input rests on the line of its own id
+// when one is stated, else on its kind's.
+std::vector<TraceabilityLine> traceability_lines(const Certificate& certificate,
+                                                 const std::vector<TracedInput>& inputs);
+// The lines of traceability_lines without a standard, as a warning for the laboratory: the kinds and the
+// inputs that rest on them, and the keys that would state them; "" when every input is traceable.
+std::string traceability_gaps_text(const std::vector<TraceabilityLine>& lines);
 
 // Why `text` is no calendar date YYYY-MM-DD (a real day of the Gregorian calendar, year 1900…9999), or empty
 // when it is one.

@@ -20,6 +20,10 @@ struct InputDescription {
   double estimate_si = 0;    // the lab's estimate of its error ([errors]); 0 for the chain's inputs
   bool own_unit = false;     // a declared input: its values are in its own unit, which ccal does not parse
   double relative_to = 0;    // a fixed term: |its value| (SI), what a relative unit ("ppm") is a fraction of
+  // The kind of standard its value is traceable to (a key of kTraceabilityKinds, setup/certificate.hpp): the
+  // arm radius, other lengths, angles, rates and encoders, the time base, g, the output chain, the fixed
+  // terms' source; a declared input its own id.
+  std::string traceability;
 };
 
 // The size of one `unit` in the input's SI unit (1 for a declared input's own unit; a relative unit of a fixed

@@ -69,6 +69,10 @@ struct SensedInputSeries {
 
 struct ReportResult {
   Config config;
+  // The page is the calibration certificate (gives_certificate): it shows the statement and the budget, so the
+  // tolerance budget's Monte Carlo and the sensed input, which only the engineering report shows, are left
+  // empty.
+  bool certificate = false;
   BudgetResult budget;           // verbs::budget(config, {mode, coverage probability, coverage_factor})
   MonteCarloResult monte_carlo;  // verbs::monte_carlo(config, options.monte_carlo), samples kept
   SensedInputSeries sensed_input;
@@ -84,7 +88,15 @@ struct ReportResult {
   std::vector<double> observed_means;
   // With options.history_db: the serial's calibrations, when the store has any (verbs::history_show).
   std::optional<HistoryShowResult> history;
+  // A certificate's traceability: every input of the statement's budget on the standard it rests on
+  // (traceability_lines), and a warning for the laboratory when some rest on none.
+  std::vector<TraceabilityLine> traceability;
+  std::vector<std::string> warnings;
 };
+
+// Whether a report of these options is the calibration certificate: observations, a [certificate] table and not
+// the engineering report.
+bool gives_certificate(const Config& config, const ReportOptions& options);
 
 // Throws InputError as the verbs it calls do, for an unknown --run or input_points out of range, and for a
 // bad allocation or design target before anything is computed (naming --allocate-target or --design-target),
