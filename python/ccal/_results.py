@@ -157,8 +157,23 @@ def statement_methods(cls):
         return json.loads(self.to_json())
 
     def to_frame(self) -> "Any":
-        """display() as a pandas DataFrame (pandas is optional: ImportError without it)."""
-        return self.display().to_frame()
+        """One row per coefficient as a pandas DataFrame indexed by the coefficient, for computing: value (the
+        corrected estimate), U, low and high as numbers in the coefficient's unit, k, p, nu_eff (inf for a normal
+        part alone), significant and interval_method; then the certificate's rounded figures as text of their own
+        (value_rounded, U_rounded, low_rounded, high_rounded), so that 0.02000 keeps its digits. pandas is
+        optional: ImportError without it."""
+        d = json.loads(self.to_json())
+        rows = []
+        for name, c in d["coefficients"].items():
+            r = c["rounded"]
+            nu = c["effective_dof"]
+            rows.append([name, c["corrected_estimate"], c["expanded_uncertainty"], c["unit"], c["coverage_factor"],
+                         d["coverage_probability"], float("inf") if nu is None else nu, c["interval"][0],
+                         c["interval"][1], c["significant"], c["interval_method"], r["estimate"],
+                         r["expanded_uncertainty"], r["interval"][0], r["interval"][1]])
+        return Table("calibration statement", ["coefficient", "value", "U", "unit", "k", "p", "nu_eff", "low",
+                                               "high", "significant", "interval_method", "value_rounded",
+                                               "U_rounded", "low_rounded", "high_rounded"], rows).to_frame()
 
     def to_uncertainties(self) -> "Dict[str, Any]":
         """The corrected estimates as correlated numbers of the package uncertainties (optional: ImportError

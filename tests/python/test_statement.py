@@ -7,7 +7,9 @@ program in CCAL_PROGRAM."""
 import json
 import os
 import subprocess
+import sys
 import tempfile
+import types
 import unittest
 
 import numpy as np
@@ -63,6 +65,35 @@ class StatementObject(unittest.TestCase):
         self.assertEqual([tuple(r) for r in self.statement.intervals][1],
                          tuple(self.statement.to_dict()["coefficients"]["K2"]["interval"]))
         self.assertEqual([r["significant"] for r in rows], self.statement.significant)
+
+    def test_to_frame_has_numbers_and_the_rounded_figures_as_text(self):
+        # A stand-in for pandas records what to_frame gives it: value, U, low and high as numbers (the JSON's,
+        # unrounded), the certificate's rounded figures as text columns of their own (trailing zeros kept).
+        fake = types.ModuleType("pandas")
+        fake.DataFrame = lambda data, columns, index: (data, columns, index)
+        saved = sys.modules.get("pandas")
+        sys.modules["pandas"] = fake
+        try:
+            data, columns, index = self.statement.to_frame()
+        finally:
+            if saved is None:
+                del sys.modules["pandas"]
+            else:
+                sys.modules["pandas"] = saved
+        self.assertEqual(index, self.statement.names)
+        d = self.statement.to_dict()["coefficients"]
+        for row in data:
+            r = dict(zip(columns, row))
+            c = d[r["coefficient"]]
+            for column in ("value", "U", "low", "high", "k", "p", "nu_eff"):
+                self.assertIsInstance(r[column], float, column)
+            self.assertEqual(r["value"], c["corrected_estimate"])
+            self.assertEqual(r["U"], c["expanded_uncertainty"])
+            self.assertEqual([r["low"], r["high"]], c["interval"])
+            self.assertEqual(r["value_rounded"], c["rounded"]["estimate"])
+            self.assertEqual(r["U_rounded"], c["rounded"]["expanded_uncertainty"])
+            self.assertEqual([r["low_rounded"], r["high_rounded"]], c["rounded"]["interval"])
+            self.assertIsInstance(r["U_rounded"], str)
 
     def test_a_stated_coverage_factor_gives_k_times_uc(self):
         config = ccal.load_config(LAB)
