@@ -194,7 +194,7 @@ def main(ccal, work):
                 problems.append(f"the certificate's {where} has software words: {found.group(0)!r} in "
                                 f"'{content[max(0, found.start() - 40):found.end() + 40]}'")
     for needed in ("Calibration certificate", "No. CAL-2026-0142A, revision 1; replaces certificate CAL-2026-0142",
-                   "Date of receipt of the item", "2026-11-25", "Model and units", "Traceability",
+                   "Date of receipt", "2026-11-25", "Model and units", "Traceability",
                    "absolute gravimeter survey", "local acceleration due to gravity", "g = 9.8 m/s²",
                    "dividing-head calibration, certificate CAL-2026-0098", "Annex A: Uncertainty budget",
                    "Annex B: The runs", "End of certificate", "°/s/g²"):

@@ -64,7 +64,7 @@ inline const std::array<CertificateField, 21> kCertificateFields{{
     {"instrument", "Item calibrated", &Certificate::instrument},
     {"manufacturer", "Manufacturer", &Certificate::manufacturer},
     {"serial_number", "Serial number", &Certificate::serial_number},
-    {"date_of_receipt", "Date of receipt of the item", &Certificate::date_of_receipt, true},
+    {"date_of_receipt", "Date of receipt", &Certificate::date_of_receipt, true},
     {"date_of_calibration", "Date of calibration", &Certificate::date_of_calibration, true},
     {"date_of_issue", "Date of issue", &Certificate::date_of_issue, true},
     {"place", "Place of calibration", &Certificate::place},
