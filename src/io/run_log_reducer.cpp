@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "ccal/core/units.hpp"
+#include "ccal/io/iso_time.hpp"
 #include "ccal/io/plain_decimal_row.hpp"
 
 namespace ccal::detail {
@@ -90,8 +92,118 @@ std::optional<double> LogReducer::cell_general(const std::string_view* fields, s
   const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
   if (ec == std::errc{} && end == f.data() + f.size() && std::isfinite(value)) return value;
   if (const std::optional<double> v = parse_number(f)) return v;
+  // In a file of another delimiter a comma in a cell comes as that delimiter (csv_stream.hpp): shown as written.
+  const CsvFormat& format = options_.format;
+  if (format.delimiter != ',' && format.decimal == '.' &&
+      f.find(format.delimiter) != std::string_view::npos) {
+    std::string written(f);
+    std::replace(written.begin(), written.end(), format.delimiter, ',');
+    defer(kind, cell_error(column, line,
+                           fmt::format("'{}' is not a number: a decimal comma? accepted: decimal = \"comma\" in "
+                                       "the [format] table, or numbers with a decimal point",
+                                       written)));
+    return std::nullopt;
+  }
   defer(kind, cell_error(column, line, number_cell_problem(fields[column])));
   return std::nullopt;
+}
+
+std::optional<double> LogReducer::iso_time_cell(std::string_view field, int line) {
+  const std::optional<std::int64_t> ns = parse_iso8601_ns(field);
+  if (!ns) {
+    defer(Problem::time_cell, cell_error(time_, line, fmt::format("'{}' is not {}; accepted: {} (time_unit = "
+                                                                  "\"iso8601\")",
+                                                                  field, "a timestamp", kIso8601Accepted)));
+    return std::nullopt;
+  }
+  if (!iso_first_) iso_first_ = *ns;
+  return double(*ns - *iso_first_) * 1e-9;  // exact to the ns from the first sample: no epoch in the sum
+}
+
+void LogReducer::note_gap(double step, int line) {
+  ++gaps_;
+  gap_time_ += step;
+  longest_gap_ = std::max(longest_gap_, step);
+  if (options_.max_gap > 0 && step > options_.max_gap)
+    defer(Problem::gap,
+          cell_error(time_, line,
+                     fmt::format("a gap of {:.6g} s after the sample at {:.6g} s (from the log's first); accepted: "
+                                 "at most max_gap = {:.6g} s (the [format] table)",
+                                 step, t_previous_ - t_first_, options_.max_gap)));
+}
+
+namespace {
+
+bool pulse_unit(std::string_view u) {
+  for (const std::string_view ok : {"counts", "count", "cts", "pulses", "pulse", "1", "-"})
+    if (u == ok) return true;
+  return false;
+}
+
+// The SI size of a unit of the given dimension; nullopt for anything else.
+std::optional<double> unit_of(std::string_view text, Dimension dim) {
+  try {
+    const Quantity q = parse_unit(text);
+    if (q.dim == dim && q.value_si > 0) return q.value_si;
+  } catch (const UnitError&) {
+  }
+  return std::nullopt;
+}
+
+bool same_size(double a, double b) { return std::abs(a - b) <= 1e-12 * std::abs(b); }
+
+}  // namespace
+
+void LogReducer::units(const std::vector<std::string>& units, int line) {
+  const auto refuse = [&](std::size_t k, std::string problem) {
+    throw CsvError(source_, line, int(k + 1), header_[k], std::move(problem));
+  };
+  if (pending_kind_ != Problem::no_time && !units[time_].empty() && !options_.columns.iso_time) {
+    const std::optional<double> size = unit_of(units[time_], kind::time);
+    if (!size) refuse(time_, fmt::format("'{}' is not a time unit; accepted: s, ms, us, µs, min, …", units[time_]));
+    if (options_.time_unit_stated && !same_size(*size, options_.columns.time_scale))
+      refuse(time_, fmt::format("the units row says '{}', the layout's time_unit is {:g} s; accepted: one unit (the "
+                                "manifest's time_unit left out, the units row gives it)",
+                                units[time_], options_.columns.time_scale));
+    options_.columns.time_scale = *size;
+  }
+  for (const std::optional<Encoder>* e : {&theta1_, &gamma_}) {
+    if (!e->has_value()) continue;
+    const std::size_t k = (*e)->column;
+    const std::string& u = units[k];
+    if (u.empty()) continue;
+    if (u == "counts" || u == "count" || u == "cts") {
+      if (!(options_.angle_quantum > 0))
+        refuse(k, fmt::format("'{}': the layout gives no counts per revolution; accepted: angle_unit = \"counts\" "
+                              "with counts_per_revolution in the [columns] table",
+                              u));
+      continue;
+    }
+    const std::optional<double> size = unit_of(u, kind::angle);
+    if (!size) refuse(k, fmt::format("'{}' is not an angle unit; accepted: rad, deg, arcsec, … or counts", u));
+    if (options_.angle_quantum > 0 || (options_.angle_unit_stated && !same_size(*size, options_.angle_scale)))
+      refuse(k, fmt::format("the units row says '{}', the layout's angle_unit another ({}); accepted: one unit "
+                            "(the angle_unit left out, the units row gives it)",
+                            u, options_.angle_quantum > 0 ? "counts" : fmt::format("{:g} rad", options_.angle_scale)));
+    options_.angle_scale = *size;
+  }
+  if (output_ && !units[*output_].empty()) {
+    const std::string& u = units[*output_];
+    if (pulses_ && !pulse_unit(u))
+      refuse(*output_, fmt::format("'{}' is no count; accepted: counts, pulses, 1 or nothing", u));
+    if (!pulses_ && !options_.output_unit.empty() && u != options_.output_unit) {
+      bool same = false;
+      try {
+        const Quantity a = parse_unit(u), b = parse_unit(options_.output_unit);
+        same = a.dim == b.dim && same_size(a.value_si, b.value_si);
+      } catch (const UnitError&) {
+      }
+      if (!same)
+        refuse(*output_, fmt::format("the units row says '{}', the instrument's output is read in {}; accepted: "
+                                     "the output in {}",
+                                     u, options_.output_unit, options_.output_unit));
+    }
+  }
 }
 
 void LogReducer::defer_time_order(int line, double t) {
@@ -109,7 +221,7 @@ void LogReducer::defer_count(int line, double value, std::string problem) {
 // that it may count down too. Without a declared width, a step against the count's direction over the log and
 // more than ten times its mean step is no pulse count (a PIGA's count per sample is steady to a few per cent):
 // a counter that wraps, refused where it does.
-void LogReducer::count_sample(double value, int line) {
+void LogReducer::count_sample(double value, int line, double expected_step) {
   const int bits = options_.columns.counter_bits;
   if (bits > 0 && !(value >= 0 && value < std::ldexp(1.0, bits) && value == std::floor(value))) {
     defer_count(line, value, fmt::format("is not a count of a {}-bit counter; accepted: a whole number from 0 to "
@@ -125,7 +237,7 @@ void LogReducer::count_sample(double value, int line) {
   count_raw_ = value;
   if (bits > 0) {
     const double range = std::ldexp(1.0, bits), half = std::ldexp(1.0, bits - 1);
-    step -= range * std::floor((step + half) / range);
+    step -= range * std::floor((step - expected_step + half) / range);
   } else if (count_steps_ >= 10) {
     const double travel = output_previous_ - output_first_;
     if (step * travel < 0 && std::abs(step) > 10 * count_travel_ / double(count_steps_))
@@ -144,7 +256,8 @@ void LogReducer::defer_spacing(const Encoder& e, int line, double step_time) {
   defer(e.spacing,
         cell_error(e.column, line,
                    fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the planned "
-                               "rate; accepted: less than 0.75π rad between encoder samples",
+                               "rate; accepted: less than 0.75π rad between encoder samples, or a gap in the log "
+                               "declared by max_gap in the [format] table (bridged at the encoder's mean rate)",
                                step_time, std::abs(planned_rate_) * step_time)));
 }
 
@@ -173,17 +286,39 @@ void LogReducer::throw_wild(const Encoder& e) const {
 // than half a revolution apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping
 // would alias.
 template <class Cells>
-void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t) {
+void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t, bool bridge) {
   const std::optional<double> raw = cells(e.column, e.cell, line);
-  if (time_ok && rows_ > 0 && have_previous_time_) {
+  if (time_ok && rows_ > 0 && have_previous_time_ && !bridge) {
     const double step_time = t - t_previous_;
     if (std::abs(planned_rate_) * step_time > 0.75 * std::numbers::pi) defer_spacing(e, line, step_time);
   }
   if (!raw || !time_ok || pending_kind_) return;  // the log will be refused: nothing more to fit
-  const double a = *raw * options_.angle_scale;
+  const double a = *raw * options_.angle_scale + options_.angle_offset;
   const double tau = t - t_first_;
   if (e.seen == 0) {
-    e.unwrapped = a;
+    e.unwrapped = e.first_unwrapped = a;
+    e.first_tau = tau;
+  } else if (bridge) {
+    // A declared gap: the angle across it is the one nearest to where the joint's mean rate so far brings it
+    // (the step between raw readings, plus whole turns, keeps their digits).
+    if (e.seen < 2 || !(e.tau > e.first_tau)) {
+      defer(e.spacing, cell_error(e.column, line,
+                                  "a gap after the encoder's first reading: its rate is not known to bridge it; "
+                                  "accepted: at least two readings before a gap"));
+      return;
+    }
+    const double rate = (e.unwrapped - e.first_unwrapped) / (e.tau - e.first_tau);
+    const double predicted = e.unwrapped + rate * (tau - e.tau);
+    const double base = e.unwrapped + (a - e.raw);
+    const double angle = base + kTwoPi * std::nearbyint((predicted - base) / kTwoPi);
+    const double limit = std::max(kEncoderJumpLimit, 4 * options_.angle_quantum);
+    if (!(std::abs(angle - predicted) <= limit)) {
+      note_wild(e, line, std::abs(angle - predicted), limit);
+      return;
+    }
+    e.earlier_unwrapped = e.unwrapped;
+    e.earlier_tau = e.tau;
+    e.unwrapped = angle;
   } else {
     // The step from the previous reading, mapped to (−π, π] (remainder(x, 2π) is x itself for |x| < π, so
     // the usual step needs no division); taken between raw readings, it keeps their digits.
@@ -216,10 +351,19 @@ void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool t
 
 void LogReducer::row(const std::string_view* fields, int line) {
   reduce_batch();  // the rows before it first
+  if (options_.columns.iso_time) {
+    reduce_row(
+        [&](std::size_t column, Problem kind, int at) {
+          return kind == Problem::time_cell ? iso_time_cell(fields[column], at) : cell(fields, column, kind, at);
+        },
+        line);
+    return;
+  }
   reduce_row([&](std::size_t column, Problem kind, int at) { return cell(fields, column, kind, at); }, line);
 }
 
 bool LogReducer::row_line(std::string_view line, int line_no) {
+  if (options_.columns.iso_time) return false;  // the timestamps are read by row()
   const std::size_t columns = header_.size();
   if (!row_reader_.read(line, std::span(batch_values_.data() + batch_rows_ * columns, columns))) return false;
   batch_lines_[batch_rows_] = line_no;
@@ -245,19 +389,34 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
   if (t) *t *= options_.columns.time_scale;  // to s
   if (t && have_previous_time_ && !(*t > t_previous_)) defer_time_order(line, *t);
   if (t && rows_ == 0) t_first_ = *t;
+  // A gap: a step of more than 1.5 times the shortest before it (the first step is none); a declared one
+  // (max_gap) is bridged: the encoders across it at their mean rate, the sampled output not integrated over it.
+  bool bridge = false;
+  if (t && have_previous_time_) {
+    const double step = *t - t_previous_;
+    if (step > 1.5 * min_step_ || (options_.max_gap > 0 && step > options_.max_gap)) {
+      note_gap(step, line);
+      bridge = options_.max_gap > 0;
+    } else if (step > 0 && step < min_step_) {
+      min_step_ = step;
+    }
+  }
   if (output_) {
     if (const std::optional<double> v = cells(*output_, Problem::output_cell, line); v && t) {
       if (pulses_) {
-        count_sample(*v, line);
+        const bool across = bridge && options_.columns.counter_bits > 0 && count_steps_ > 0 && *t > t_first_;
+        count_sample(*v, line,
+                     across ? (output_previous_ - output_first_) / (t_previous_ - t_first_) * (*t - t_previous_)
+                            : 0.0);
       } else {
         const double y = *v * options_.output_scale;
-        if (rows_ > 0) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);
+        if (rows_ > 0 && !bridge) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);
         output_previous_ = y;
       }
     }
   }
-  if (theta1_) encoder_sample(*theta1_, cells, line, t.has_value(), t.value_or(0));
-  if (gamma_) encoder_sample(*gamma_, cells, line, t.has_value(), t.value_or(0));
+  if (theta1_) encoder_sample(*theta1_, cells, line, t.has_value(), t.value_or(0), bridge);
+  if (gamma_) encoder_sample(*gamma_, cells, line, t.has_value(), t.value_or(0), bridge);
   if (t) {
     t_previous_ = *t;
     have_previous_time_ = true;
@@ -276,16 +435,21 @@ ReducedLog LogReducer::finish() {
   if (rows_ < 2)
     throw CsvError(source_, header_line_, int(time_ + 1), options_.columns.time,
                    fmt::format("{} sample(s); accepted: at least two, the first and last of the run", rows_));
-  throw_pending_before(Problem::time_order);
+  throw_pending_before(Problem::gap);
   r.duration = t_previous_ - t_first_;
+  r.gaps = gaps_;
+  r.longest_gap = longest_gap_;
+  r.missing = gaps_ > 0 ? std::max(0.0, gap_time_ - double(gaps_) * min_step_) : 0.0;
   if (!std::isfinite(r.duration))
     throw CsvError(source_, last_line_, int(time_ + 1), options_.columns.time,
                    fmt::format("the span {} s to {} s overflows; accepted: times of a run, in s", t_first_,
                                t_previous_));
   throw_pending_before(Problem::output_cell);
   r.pulses = pulses_;
+  // A sampled output's mean is over the time its samples cover: declared gaps are not integrated over.
+  const double covered = options_.max_gap > 0 ? r.duration - gap_time_ : r.duration;
   r.mean_output = pulses_ ? (output_previous_ - output_first_) * options_.pulse_weight / r.duration
-                          : integral_ / r.duration;
+                          : integral_ / covered;
   // The fit squares the means: beyond 1e150 (SI) its sums overflow, and the failure would surface far from
   // the log.
   if (!(std::abs(r.mean_output) <= 1e150))

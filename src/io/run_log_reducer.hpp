@@ -6,6 +6,8 @@
 // checked the time column over all rows first, then the output column, then each encoder column. The first
 // problem of each kind is kept while the rows go by (a CSV error, found by the reader, still ends the read at
 // once, as parse_csv did before any reduction), and the earliest kind in that order is thrown at the end.
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +25,8 @@ class LogReducer final : public CsvRowSink {
  public:
   LogReducer(std::string source, const RunLogOptions& options, double planned_rate);
   void header(const std::vector<std::string>& names, int line) override;
+  // A units row: each stated unit checked against the one the layout states, or taken as the column's.
+  void units(const std::vector<std::string>& units, int line) override;
   void row(const std::string_view* fields, int line) override;
   // A row of plain decimals only ([-]digits[.digits] between commas, scan_plain_decimal, as many as the
   // header has names), read in one pass over its bytes: the usual row of a log. Anything else is declined
@@ -40,6 +44,7 @@ class LogReducer final : public CsvRowSink {
     time_cell,
     too_few,
     time_order,
+    gap,
     span,
     output_columns,
     pulse_weight,
@@ -60,6 +65,7 @@ class LogReducer final : public CsvRowSink {
     double unwrapped = 0;  // the last sample's unwrapped angle [rad]
     double raw = 0;        // and its reading [rad]
     double tau = 0;        // and its time from the first sample [s]
+    double first_unwrapped = 0, first_tau = 0;  // the first sample's (a gap is bridged at their mean rate)
     // The sample before it (for the wild-reading check), and how many samples were added (0, 1, 2 or more).
     double earlier_unwrapped = 0, earlier_tau = 0;
     int seen = 0;
@@ -80,13 +86,17 @@ class LogReducer final : public CsvRowSink {
   }
   [[gnu::noinline]] std::optional<double> cell_general(const std::string_view* fields, std::size_t column,
                                                        Problem kind, int line);
+  // A timestamp of the time column (columns.iso_time): seconds from the log's first.
+  std::optional<double> iso_time_cell(std::string_view field, int line);
+  [[gnu::cold, gnu::noinline]] void note_gap(double step, int line);
   // The row's reduction, its cells read by `cells(column, kind, line)` (an optional<double>, empty for a
   // refused cell): the split fields of row() or the values row_line() read.
   // The problems a row can show, written out off the rows' path (cold: the usual row has none).
   [[gnu::cold, gnu::noinline]] void defer_time_order(int line, double t);
   [[gnu::cold, gnu::noinline]] void defer_count(int line, double value, std::string problem);
   // The count of a pulses column, unwrapped (counter_bits) or checked for a wrap that was not declared.
-  void count_sample(double value, int line);
+  // expected_step: the count's step expected over a bridged gap (its mean rate), else 0.
+  void count_sample(double value, int line, double expected_step);
   [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
   [[gnu::cold, gnu::noinline]] void note_wild(Encoder& e, int line, double departure, double limit);
   void throw_wild(const Encoder& e) const;
@@ -94,7 +104,7 @@ class LogReducer final : public CsvRowSink {
   template <class Cells>
   void reduce_row(const Cells& cells, int line);
   template <class Cells>
-  void encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t);
+  void encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t, bool bridge);
 
   std::string source_;
   RunLogOptions options_;
@@ -122,6 +132,11 @@ class LogReducer final : public CsvRowSink {
   double count_raw_ = 0;         // the last count as read (before unwrapping)
   double count_travel_ = 0;      // Σ |step| of the count
   std::size_t count_steps_ = 0;  // steps summed
+  std::optional<std::int64_t> iso_first_;  // the first timestamp [ns]
+  // Gaps: the shortest step between samples so far, and the steps of more than 1.5 times it.
+  double min_step_ = std::numeric_limits<double>::infinity();
+  std::size_t gaps_ = 0;
+  double gap_time_ = 0, longest_gap_ = 0;
 };
 
 }  // namespace ccal::detail
