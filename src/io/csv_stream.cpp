@@ -79,7 +79,9 @@ class LineReader {
   void line(std::string_view line) {
     ++line_no_;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (!header_.empty() && !want_units_) {
+    if (rows_as_written_) {  // the usual row: ccal's own format, past the header (and units)
+      if (sink_.row_line(line, line_no_)) return;
+    } else if (!header_.empty() && !want_units_) {
       if (translate_) {  // blanks and comments as written; the rest as its comma-separated line
         const std::string_view content = trim_csv(line);
         if (content.empty() || comment(content)) return;
@@ -108,6 +110,7 @@ class LineReader {
                       line_no_);
         fields.resize(header_.size());
         want_units_ = false;
+        rows_as_written_ = !translate_;
         sink_.units(fields, line_no_);
         return;
       }
@@ -116,6 +119,7 @@ class LineReader {
       header_ = std::move(fields);
       views_.resize(header_.size());
       want_units_ = format_.units_row;
+      rows_as_written_ = !translate_ && !want_units_;
       sink_.header(header_, line_no_);
       return;
     }
@@ -167,6 +171,7 @@ class LineReader {
   const CsvFormat& format_;
   bool translate_;
   bool want_units_ = false;
+  bool rows_as_written_ = false;  // past the header and units, in a format read as written
   int line_no_ = 0;
   std::vector<std::string> header_;
   std::vector<std::string_view> views_;

@@ -25,7 +25,9 @@ double wrapped(double angle) {
 }  // namespace
 
 LogReducer::LogReducer(std::string source, const RunLogOptions& options, double planned_rate)
-    : source_(std::move(source)), options_(options), planned_rate_(planned_rate) {}
+    : source_(std::move(source)), options_(options), planned_rate_(planned_rate) {
+  if (options_.max_gap > 0) gap_threshold_ = options_.max_gap;  // the first step too
+}
 
 void LogReducer::defer(Problem kind, CsvError error) {
   if (pending_kind_ && *pending_kind_ <= kind) return;  // an earlier kind, or the first of this kind, stays
@@ -118,6 +120,18 @@ std::optional<double> LogReducer::iso_time_cell(std::string_view field, int line
   }
   if (!iso_first_) iso_first_ = *ns;
   return double(*ns - *iso_first_) * 1e-9;  // exact to the ns from the first sample: no epoch in the sum
+}
+
+bool LogReducer::unusual_step(double step, int line) {
+  if (step > gap_threshold_) {
+    note_gap(step, line);
+    return options_.max_gap > 0;
+  }
+  if (step > 0 && step < min_step_) {  // (a step ≤ 0 is refused as times not increasing)
+    min_step_ = step;
+    gap_threshold_ = options_.max_gap > 0 ? std::min(1.5 * step, options_.max_gap) : 1.5 * step;
+  }
+  return false;
 }
 
 void LogReducer::note_gap(double step, int line) {
@@ -221,7 +235,7 @@ void LogReducer::defer_count(int line, double value, std::string problem) {
 // that it may count down too. Without a declared width, a step against the count's direction over the log and
 // more than ten times its mean step is no pulse count (a PIGA's count per sample is steady to a few per cent):
 // a counter that wraps, refused where it does.
-void LogReducer::count_sample(double value, int line, double expected_step) {
+void LogReducer::count_sample(double value, int line) {
   const int bits = options_.columns.counter_bits;
   if (bits > 0 && !(value >= 0 && value < std::ldexp(1.0, bits) && value == std::floor(value))) {
     defer_count(line, value, fmt::format("is not a count of a {}-bit counter; accepted: a whole number from 0 to "
@@ -237,7 +251,7 @@ void LogReducer::count_sample(double value, int line, double expected_step) {
   count_raw_ = value;
   if (bits > 0) {
     const double range = std::ldexp(1.0, bits), half = std::ldexp(1.0, bits - 1);
-    step -= range * std::floor((step - expected_step + half) / range);
+    step -= range * std::floor((step - bridge_count_ + half) / range);
   } else if (count_steps_ >= 10) {
     const double travel = output_previous_ - output_first_;
     if (step * travel < 0 && std::abs(step) > 10 * count_travel_ / double(count_steps_))
@@ -282,43 +296,47 @@ void LogReducer::throw_wild(const Encoder& e) const {
                              e.wild, rows_, std::max(kEncoderJumpLimit, 4 * options_.angle_quantum)));
 }
 
+// A declared gap (max_gap): the angle across it is the one nearest to where the joint's mean rate so far brings
+// it (the step between raw readings, plus whole turns, keeps their digits). False when the reading is left out
+// (refused: a gap after the first reading, or a wild reading).
+bool LogReducer::bridge_gap(Encoder& e, double a, double tau, int line) {
+  if (e.seen < 2 || !(e.tau > e.first_tau)) {
+    defer(e.spacing, cell_error(e.column, line,
+                                "a gap after the encoder's first reading: its rate is not known to bridge it; "
+                                "accepted: at least two readings before a gap"));
+    return false;
+  }
+  const double rate = (e.unwrapped - e.first_unwrapped) / (e.tau - e.first_tau);
+  const double predicted = e.unwrapped + rate * (tau - e.tau);
+  const double base = e.unwrapped + (a - e.raw);
+  const double angle = base + kTwoPi * std::nearbyint((predicted - base) / kTwoPi);
+  const double limit = std::max(kEncoderJumpLimit, 4 * options_.angle_quantum);
+  if (!(std::abs(angle - predicted) <= limit)) {
+    note_wild(e, line, std::abs(angle - predicted), limit);
+    return false;
+  }
+  e.earlier_unwrapped = e.unwrapped;
+  e.earlier_tau = e.tau;
+  e.unwrapped = angle;
+  return true;
+}
+
 // One encoder sample: unwrapped (each step mapped to (−π, π]) and added to the fit. The samples must be less
 // than half a revolution apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping
 // would alias.
 template <class Cells>
-void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t, bool bridge) {
+void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t) {
   const std::optional<double> raw = cells(e.column, e.cell, line);
-  if (time_ok && rows_ > 0 && have_previous_time_ && !bridge) {
+  if (time_ok && rows_ > 0 && have_previous_time_) {
     const double step_time = t - t_previous_;
     if (std::abs(planned_rate_) * step_time > 0.75 * std::numbers::pi) defer_spacing(e, line, step_time);
   }
   if (!raw || !time_ok || pending_kind_) return;  // the log will be refused: nothing more to fit
-  const double a = *raw * options_.angle_scale + options_.angle_offset;
+  const double a = *raw * options_.angle_scale;
   const double tau = t - t_first_;
   if (e.seen == 0) {
     e.unwrapped = e.first_unwrapped = a;
     e.first_tau = tau;
-  } else if (bridge) {
-    // A declared gap: the angle across it is the one nearest to where the joint's mean rate so far brings it
-    // (the step between raw readings, plus whole turns, keeps their digits).
-    if (e.seen < 2 || !(e.tau > e.first_tau)) {
-      defer(e.spacing, cell_error(e.column, line,
-                                  "a gap after the encoder's first reading: its rate is not known to bridge it; "
-                                  "accepted: at least two readings before a gap"));
-      return;
-    }
-    const double rate = (e.unwrapped - e.first_unwrapped) / (e.tau - e.first_tau);
-    const double predicted = e.unwrapped + rate * (tau - e.tau);
-    const double base = e.unwrapped + (a - e.raw);
-    const double angle = base + kTwoPi * std::nearbyint((predicted - base) / kTwoPi);
-    const double limit = std::max(kEncoderJumpLimit, 4 * options_.angle_quantum);
-    if (!(std::abs(angle - predicted) <= limit)) {
-      note_wild(e, line, std::abs(angle - predicted), limit);
-      return;
-    }
-    e.earlier_unwrapped = e.unwrapped;
-    e.earlier_tau = e.tau;
-    e.unwrapped = angle;
   } else {
     // The step from the previous reading, mapped to (−π, π] (remainder(x, 2π) is x itself for |x| < π, so
     // the usual step needs no division); taken between raw readings, it keeps their digits.
@@ -349,6 +367,24 @@ void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool t
   e.fit.add(tau, e.unwrapped, a);
 }
 
+// The encoders' samples of the row after a declared gap (bridge_gap), off the rows' path.
+template <class Cells>
+void LogReducer::bridge_encoders(const Cells& cells, int line, double t) {
+  for (std::optional<Encoder>* slot : {&theta1_, &gamma_}) {
+    if (!slot->has_value()) continue;
+    Encoder& e = **slot;
+    const std::optional<double> raw = cells(e.column, e.cell, line);
+    if (!raw || pending_kind_) continue;
+    const double a = *raw * options_.angle_scale;
+    const double tau = t - t_first_;
+    if (!bridge_gap(e, a, tau, line)) continue;
+    e.seen = std::min(e.seen + 1, 2);
+    e.raw = a;
+    e.tau = tau;
+    e.fit.add(tau, e.unwrapped, a);
+  }
+}
+
 void LogReducer::row(const std::string_view* fields, int line) {
   reduce_batch();  // the rows before it first
   if (options_.columns.iso_time) {
@@ -363,7 +399,7 @@ void LogReducer::row(const std::string_view* fields, int line) {
 }
 
 bool LogReducer::row_line(std::string_view line, int line_no) {
-  if (options_.columns.iso_time) return false;  // the timestamps are read by row()
+  // (A row of timestamps is declined by the plain decimals' reader: "2026-11-30T…" is none; row() reads it.)
   const std::size_t columns = header_.size();
   if (!row_reader_.read(line, std::span(batch_values_.data() + batch_rows_ * columns, columns))) return false;
   batch_lines_[batch_rows_] = line_no;
@@ -391,23 +427,22 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
   if (t && rows_ == 0) t_first_ = *t;
   // A gap: a step of more than 1.5 times the shortest before it (the first step is none); a declared one
   // (max_gap) is bridged: the encoders across it at their mean rate, the sampled output not integrated over it.
+  // One comparison a row: gap_threshold_ is 1.5 times the shortest step so far, or max_gap if that is less.
   bool bridge = false;
   if (t && have_previous_time_) {
     const double step = *t - t_previous_;
-    if (step > 1.5 * min_step_ || (options_.max_gap > 0 && step > options_.max_gap)) {
-      note_gap(step, line);
-      bridge = options_.max_gap > 0;
-    } else if (step > 0 && step < min_step_) {
-      min_step_ = step;
-    }
+    if (!(step <= gap_threshold_ && step >= min_step_)) bridge = unusual_step(step, line);
   }
   if (output_) {
     if (const std::optional<double> v = cells(*output_, Problem::output_cell, line); v && t) {
       if (pulses_) {
-        const bool across = bridge && options_.columns.counter_bits > 0 && count_steps_ > 0 && *t > t_first_;
-        count_sample(*v, line,
-                     across ? (output_previous_ - output_first_) / (t_previous_ - t_first_) * (*t - t_previous_)
-                            : 0.0);
+        if (bridge && options_.columns.counter_bits > 0 && count_steps_ > 0 && *t > t_first_) {
+          bridge_count_ = (output_previous_ - output_first_) / (t_previous_ - t_first_) * (*t - t_previous_);
+          count_sample(*v, line);
+          bridge_count_ = 0;
+        } else {
+          count_sample(*v, line);
+        }
       } else {
         const double y = *v * options_.output_scale;
         if (rows_ > 0 && !bridge) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);
@@ -415,8 +450,12 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
       }
     }
   }
-  if (theta1_) encoder_sample(*theta1_, cells, line, t.has_value(), t.value_or(0), bridge);
-  if (gamma_) encoder_sample(*gamma_, cells, line, t.has_value(), t.value_or(0), bridge);
+  if (bridge) {
+    bridge_encoders(cells, line, *t);
+  } else {
+    if (theta1_) encoder_sample(*theta1_, cells, line, t.has_value(), t.value_or(0));
+    if (gamma_) encoder_sample(*gamma_, cells, line, t.has_value(), t.value_or(0));
+  }
   if (t) {
     t_previous_ = *t;
     have_previous_time_ = true;
@@ -464,7 +503,10 @@ ReducedLog LogReducer::finish() {
     const EncoderFitResult f = theta1_->fit.result();
     r.has_theta1 = true;
     r.theta1_rate = f.slope;
-    r.theta1_start = wrapped(f.start);
+    // A count latched down stands for the middle of its count (angle_offset): a constant added to every
+    // reading moves the line's phases by it, and its harmonics not at all (their phase by k·offset, below
+    // 1e-6 rad for half a count of any encoder of 2^22 counts or more), so it is added to the phases here.
+    r.theta1_start = wrapped(f.start + options_.angle_offset);
     r.theta1_rms = f.rms;
     r.theta1_harmonics = f.harmonics;
     r.theta1_harmonic_sigma = f.harmonic_sigma;
@@ -473,8 +515,8 @@ ReducedLog LogReducer::finish() {
     const EncoderFitResult f = gamma_->fit.result();
     r.has_gamma = true;
     r.gamma_rate = f.slope;
-    r.gamma_start = wrapped(f.start);
-    r.gamma_end = wrapped(f.end);
+    r.gamma_start = wrapped(f.start + options_.angle_offset);
+    r.gamma_end = wrapped(f.end + options_.angle_offset);
     r.gamma_rms = f.rms;
     r.gamma_harmonics = f.harmonics;
     r.gamma_harmonic_sigma = f.harmonic_sigma;

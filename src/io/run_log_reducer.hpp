@@ -89,14 +89,16 @@ class LogReducer final : public CsvRowSink {
   // A timestamp of the time column (columns.iso_time): seconds from the log's first.
   std::optional<double> iso_time_cell(std::string_view field, int line);
   [[gnu::cold, gnu::noinline]] void note_gap(double step, int line);
+  // A step longer than gap_threshold_ (a gap: true when bridged) or shorter than min_step_ (the new shortest).
+  [[gnu::cold, gnu::noinline]] bool unusual_step(double step, int line);
+  [[gnu::cold, gnu::noinline]] bool bridge_gap(Encoder& e, double a, double tau, int line);
   // The row's reduction, its cells read by `cells(column, kind, line)` (an optional<double>, empty for a
   // refused cell): the split fields of row() or the values row_line() read.
   // The problems a row can show, written out off the rows' path (cold: the usual row has none).
   [[gnu::cold, gnu::noinline]] void defer_time_order(int line, double t);
   [[gnu::cold, gnu::noinline]] void defer_count(int line, double value, std::string problem);
   // The count of a pulses column, unwrapped (counter_bits) or checked for a wrap that was not declared.
-  // expected_step: the count's step expected over a bridged gap (its mean rate), else 0.
-  void count_sample(double value, int line, double expected_step);
+  void count_sample(double value, int line);
   [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
   [[gnu::cold, gnu::noinline]] void note_wild(Encoder& e, int line, double departure, double limit);
   void throw_wild(const Encoder& e) const;
@@ -104,7 +106,9 @@ class LogReducer final : public CsvRowSink {
   template <class Cells>
   void reduce_row(const Cells& cells, int line);
   template <class Cells>
-  void encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t, bool bridge);
+  void encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t);
+  template <class Cells>
+  [[gnu::cold, gnu::noinline]] void bridge_encoders(const Cells& cells, int line, double t);
 
   std::string source_;
   RunLogOptions options_;
@@ -133,8 +137,10 @@ class LogReducer final : public CsvRowSink {
   double count_travel_ = 0;      // Σ |step| of the count
   std::size_t count_steps_ = 0;  // steps summed
   std::optional<std::int64_t> iso_first_;  // the first timestamp [ns]
+  double bridge_count_ = 0;  // the count's step expected over a bridged gap (at its mean rate), else 0
   // Gaps: the shortest step between samples so far, and the steps of more than 1.5 times it.
   double min_step_ = std::numeric_limits<double>::infinity();
+  double gap_threshold_ = std::numeric_limits<double>::infinity();  // a longer step is a gap
   std::size_t gaps_ = 0;
   double gap_time_ = 0, longest_gap_ = 0;
 };

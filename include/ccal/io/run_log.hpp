@@ -63,7 +63,8 @@ struct RunLogOptions {
   int harmonic_order = 0;   // N: harmonics of the encoder fits (0: straight lines only)
   LogColumns columns;       // the columns' names and the time unit
   CsvFormat format;         // how the files are written (delimiter, decimal separator, header, units row)
-  double angle_offset = 0;  // added to every encoder reading [rad]: half a count for counts rounded down
+  double angle_offset = 0;  // added to every encoder reading [rad]: half a count for counts rounded down (to
+                            // the fitted phases, the same for a line: run_log_reducer.cpp)
   // The longest gap between samples accepted [s] (0: none declared). A gap is a step between samples of more
   // than 1.5 times the shortest before it; a declared gap is bridged by the encoders (docs/cli.md).
   double max_gap = 0;
