@@ -55,6 +55,10 @@ void bind_log_reduction_results(py::module_& m) {
   py::class_<ReducedLog>(m, "ReducedLog", "One recorded run log, reduced (SI).")
       .def_readonly("source", &ReducedLog::source, "the log's file name [—]")
       .def_readonly("samples", &ReducedLog::samples, "number of rows [—]")
+      .def_readonly("gaps", &ReducedLog::gaps,
+                    "steps between samples of more than 1.5 times the shortest before them [—]")
+      .def_readonly("longest_gap", &ReducedLog::longest_gap, "the longest gap, between the samples either side [s]")
+      .def_readonly("missing", &ReducedLog::missing, "the time the gaps miss: each less one shortest step [s]")
       .def_readonly("pulses", &ReducedLog::pulses, "the output came as a pulse count [—]")
       .def_readonly("duration", &ReducedLog::duration, "T = t_last − t_first [s]")
       .def_readonly("mean_output", &ReducedLog::mean_output, "the mean output over the span [output SI]")
@@ -133,10 +137,15 @@ void bind_log_reduction(py::module_& m) {
 
   m.def(
       "reduce",
-      [](const Config& cfg, const py::object& logs, const py::kwargs& keywords) {
+      [](const Config& cfg, const py::object& logs, const py::object& log_layout, const py::kwargs& keywords) {
         auto o = with_pulse_weight(cfg, keywords, [](const py::kwargs& k) {
-          return options_from_keywords<verbs::ReduceOptions>(k, "reduce", {}, {}, {"config", "logs"});
+          return options_from_keywords<verbs::ReduceOptions>(k, "reduce", {}, {}, {"config", "logs", "log_layout"});
         });
+        if (!log_layout.is_none() && !py::isinstance<py::dict>(logs))
+          throw InputError("reduce: log_layout is for a dict of logs; a folder's manifest has the layout "
+                           "([format] and [columns] tables)");
+        if (!log_layout.is_none())
+          o.layout = read_log_layout(py::module_::import("os").attr("fspath")(log_layout).cast<std::string>());
         if (py::isinstance<py::dict>(logs)) {
           o.logs = log_files(cfg, logs.cast<LogMap>());
         } else {  // a folder with its manifest, as `ccal reduce --logs DIR`
@@ -148,9 +157,10 @@ void bind_log_reduction(py::module_& m) {
         py::gil_scoped_release release;
         return verbs::reduce(cfg, o);
       },
-      py::arg("config"), py::arg("logs"),
+      py::arg("config"), py::arg("logs"), py::arg("log_layout") = py::none(),
       "`ccal reduce`: recorded run logs (a dict of run name or 0-based index → CSV file, or a folder with its "
-      "manifest.toml, as `--logs DIR`) to run means, the model of "
+      "manifest.toml, as `--logs DIR`; log_layout: with a dict, a file with a manifest's [format] and [columns] "
+      "tables, as `--log-layout FILE`) to run means, the model of "
       "the runs as measured and the identification, as the CLI gives them; with statement=True also the "
       "calibration statement with the configuration's tolerances as its Type B part.");
   record_keywords<verbs::ReduceOptions>(m, "reduce", {}, {kPulseWeightType});

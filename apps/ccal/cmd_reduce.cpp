@@ -19,6 +19,7 @@ struct ReduceCli {
   std::string config;
   std::vector<std::string> logs;  // RUN=FILE
   std::string log_folder;         // DIR with a manifest (io/log_manifest.hpp)
+  std::string log_layout;         // with --log: the logs' format and columns (a manifest's [format], [columns])
   verbs::ReduceOptions options;   // its table's flags are bound to it
   std::string pulse_weight;       // --pulse-weight as written: converted with the configuration's output unit
   bool old_budget = false;        // --budget, refused: a flag here, a file in identify; now --statement
@@ -26,6 +27,41 @@ struct ReduceCli {
   std::string statement_out;
   OutputOptions output;
 };
+
+// The logs of --log RUN=FILE (with --log-layout) or of --logs DIR (by its manifest), into the options.
+void gather_logs(const ReduceCli& cli, verbs::ReduceOptions& ro) {
+  const ReduceCli* o = &cli;
+  if (o->logs.empty() == o->log_folder.empty())
+    throw InputError(o->logs.empty()
+                         ? "--log or --logs is required; accepted: --log RUN=FILE for each "
+                           "run, or --logs DIR for a folder with its manifest.toml"
+                         : "--log and --logs: give one of them (the folder's manifest names "
+                           "its runs' files)");
+  if (!o->log_layout.empty()) {
+    if (!o->log_folder.empty())
+      throw InputError("--log-layout: the folder's manifest has the layout; accepted: --log-layout with "
+                       "--log RUN=FILE, or the [format] and [columns] tables in the manifest of --logs");
+    note_input(o->log_layout);
+    ro.layout = read_log_layout(o->log_layout);
+  }
+  if (!o->log_folder.empty()) {
+    note_input(o->log_folder + "/" + std::string(kLogManifestName));
+    const LogManifest manifest = read_log_manifest(o->log_folder);  // located errors name the file
+    ro.layout = manifest.layout;
+    ro.logs = verbs::manifest_logs(manifest);
+    for (const verbs::LogFile& log : ro.logs) note_input(log.path);
+  }
+  for (const std::string& item : o->logs) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+      throw InputError(
+          fmt::format("--log: '{}' is not RUN=FILE; accepted: a run name or 1-based index, '=', "
+                      "the log file, e.g. 20g=run20.csv",
+                      item));
+    ro.logs.push_back({item.substr(0, eq), item.substr(eq + 1)});
+    note_input(ro.logs.back().path);
+  }
+}
 
 }  // namespace
 
@@ -47,6 +83,10 @@ Command add_reduce(CLI::App& app) {
                   "columns read (names, time unit, encoder unit or counts per revolution); `ccal simulate "
                   "--logs-out DIR` writes one")
       ->type_name("DIR");
+  cmd->add_option("--log-layout", o->log_layout,
+                  "FILE: with --log, how the logs are written, a TOML file with a manifest's [format] and "
+                  "[columns] tables (delimiter, decimal separator, header, units row, gaps, column names, units)")
+      ->type_name("FILE");
   add_option_flags(*cmd, o->options, option_table<verbs::ReduceOptions>(), {"pulse_weight"});
   // --pulse-weight W or "W UNIT": its unit is the configuration's output unit × s, known after the parse.
   for (const auto& row : option_table<verbs::ReduceOptions>())
@@ -66,6 +106,8 @@ Command add_reduce(CLI::App& app) {
       "  ccal reduce my.toml --logs logs --statement\n"
       "      the logs of a folder, by its manifest.toml (as ccal simulate --logs-out writes it)\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --angle-unit deg --format json\n"
+      "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log-layout daq.toml\n"
+      "      logs as a data acquisition system writes them (delimiter, units row, …: a manifest's tables)\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement\n"
       "      with the calibration statement: each coefficient with its U and interval\n"
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement \\\n"
@@ -82,29 +124,7 @@ Command add_reduce(CLI::App& app) {
               "--statement for the calibration statement with this configuration's tolerances");
         verbs::ReduceOptions ro = o->options;
         if (!o->pulse_weight.empty()) ro.pulse_weight = verbs::pulse_weight_from_text(cfg, o->pulse_weight);
-        if (o->logs.empty() == o->log_folder.empty())
-          throw InputError(o->logs.empty()
-                               ? "--log or --logs is required; accepted: --log RUN=FILE for each "
-                                 "run, or --logs DIR for a folder with its manifest.toml"
-                               : "--log and --logs: give one of them (the folder's manifest names "
-                                 "its runs' files)");
-        if (!o->log_folder.empty()) {
-          note_input(o->log_folder + "/" + std::string(kLogManifestName));
-          const LogManifest manifest = read_log_manifest(o->log_folder);  // located errors name the file
-          ro.layout = manifest.layout;
-          ro.logs = verbs::manifest_logs(manifest);
-          for (const verbs::LogFile& log : ro.logs) note_input(log.path);
-        }
-        for (const std::string& item : o->logs) {
-          const std::size_t eq = item.find('=');
-          if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
-            throw InputError(
-                fmt::format("--log: '{}' is not RUN=FILE; accepted: a run name or 1-based index, '=', "
-                            "the log file, e.g. 20g=run20.csv",
-                            item));
-          ro.logs.push_back({item.substr(0, eq), item.substr(eq + 1)});
-          note_input(ro.logs.back().path);
-        }
+        gather_logs(*o, ro);
         const verbs::ReduceResult r = verbs::reduce(cfg, ro);
         print_warnings(r.warnings);
         const std::string& f = o->output.format;

@@ -1,6 +1,9 @@
 #include "ccal/io/csv_stream.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <optional>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -16,26 +19,107 @@ namespace {
 
 using detail::trim_csv;
 
+// The comma-separated line a line of `format` stands for (CsvFormat): its delimiter as the comma, and a comma
+// as the delimiter (whitespace: a blank), or, in the rows of a file with decimal commas, as the point.
+void translate(std::string_view line, const CsvFormat& format, bool names, std::string& out) {
+  const char comma = format.decimal == ',' && !names ? '.' : format.delimiter == ' ' ? ' ' : format.delimiter;
+  out.clear();
+  if (format.delimiter == ' ') {  // runs of blanks between fields, none around them
+    bool gap = false;
+    for (const char c : line) {
+      if (detail::blank(c)) {
+        gap = !out.empty();
+        continue;
+      }
+      if (gap) out += ',';
+      gap = false;
+      out += c == ',' ? comma : c;
+    }
+    return;
+  }
+  out.resize(line.size());
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const char c = line[k];
+    out[k] = c == format.delimiter ? ',' : c == ',' ? comma : c;
+  }
+}
+
+// A header of one name that holds another format's delimiter: the file is probably written with that one.
+void refuse_other_delimiter(std::string_view line, const std::vector<std::string>& fields, const CsvFormat& format,
+                            const std::string& source, int line_no) {
+  if (fields.size() != 1) return;
+  std::optional<char> other;
+  for (const char c : {';', '\t', ','})
+    if (c != format.delimiter && line.find(c) != std::string_view::npos) {
+      other = c;
+      break;
+    }
+  if (!other && format.delimiter != ' ' && trim_csv(line).find_first_of(" \t") != std::string_view::npos)
+    other = ' ';
+  if (!other) return;
+  const std::string_view name = csv_delimiter_name(*other);
+  throw CsvError(source, line_no, 1, "",
+                 fmt::format("the header is one name, '{}', which holds {} between names: the delimiter is "
+                             "probably {} (the file is read with {}); accepted: delimiter = \"{}\" in the "
+                             "[format] table of the manifest (or of --log-layout FILE)",
+                             fields[0], *other == '\t' ? "tabs" : *other == ' ' ? "blanks"
+                                                               : fmt::format("'{}'", *other),
+                             *other == '\t' ? "a tab" : *other == ' ' ? "whitespace" : fmt::format("'{}'", *other),
+                             csv_delimiter_name(format.delimiter), name));
+}
+
 // Lines to rows, with parse_csv's line numbers and checks. Lines without a quote (all of a numeric log's)
-// are split in place into views; others through parse_csv's field splitter.
+// are split in place into views; others through parse_csv's field splitter. A file of another format
+// (CsvFormat) is read line by line as the comma-separated lines it stands for.
 class LineReader {
  public:
-  LineReader(std::string source, CsvRowSink& sink) : source_(std::move(source)), sink_(sink) {}
+  LineReader(std::string source, CsvRowSink& sink, const CsvFormat& format)
+      : source_(std::move(source)), sink_(sink), format_(format), translate_(format.delimiter != ',') {}
 
   void line(std::string_view line) {
     ++line_no_;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    // A row the sink reads itself (one that is neither blank nor a comment, or the sink would not take it).
-    if (!header_.empty() && sink_.row_line(line, line_no_)) return;
+    if (rows_as_written_) {  // the usual row: ccal's own format, past the header (and units)
+      if (sink_.row_line(line, line_no_)) return;
+    } else if (!header_.empty() && !want_units_) {
+      if (translate_) {  // blanks and comments as written; the rest as its comma-separated line
+        const std::string_view content = trim_csv(line);
+        if (content.empty() || comment(content)) return;
+        translate(line, format_, false, translated_);
+        line = translated_;
+      }
+      // A row the sink reads itself (one that is neither blank nor a comment, or the sink would not take it).
+      if (sink_.row_line(line, line_no_)) return;
+    }
     if (header_.empty()) check_csv_line_ends(line, source_, line_no_);  // rows: a CR is a bad cell there
+    if (header_.empty() && (line_no_ <= format_.skip_lines || line_no_ < format_.header_line)) return;
     const std::string_view content = trim_csv(line);
-    if (content.empty() || content.front() == '#') return;
-    if (header_.empty()) {
+    const bool the_header_line = header_.empty() && line_no_ == format_.header_line;
+    if (!the_header_line && (content.empty() || comment(content))) return;
+    if (header_.empty() || want_units_) {
       CsvFieldProblem bad;
-      std::vector<std::string> fields = split_csv_fields(line, bad);
+      std::vector<std::string> fields;
+      if (translate_) {
+        translate(line, format_, true, translated_);
+        fields = split_csv_fields(translated_, bad);
+      } else {
+        fields = split_csv_fields(line, bad);
+      }
+      if (want_units_) {
+        check_csv_row(fields.size() <= header_.size() ? header_.size() : fields.size(), bad, header_, source_,
+                      line_no_);
+        fields.resize(header_.size());
+        want_units_ = false;
+        rows_as_written_ = !translate_;
+        sink_.units(fields, line_no_);
+        return;
+      }
+      refuse_other_delimiter(line, fields, format_, source_, line_no_);
       check_csv_header(fields, bad, source_, line_no_);
       header_ = std::move(fields);
       views_.resize(header_.size());
+      want_units_ = format_.units_row;
+      rows_as_written_ = !translate_ && !want_units_;
       sink_.header(header_, line_no_);
       return;
     }
@@ -65,16 +149,34 @@ class LineReader {
   }
 
   void finish() const {
+    if (header_.empty() && format_.header_line > line_no_)
+      throw CsvError(source_, line_no_, 0, "",
+                     fmt::format("the file ends at line {}, before its header at line {}; accepted: the header's "
+                                 "line as header_line of the [format] table",
+                                 line_no_, format_.header_line));
     if (header_.empty()) throw no_csv_header(source_, line_no_);
+    if (want_units_)
+      throw CsvError(source_, line_no_, 0, "",
+                     "no units row after the header; accepted: a line of the columns' units under the header, or "
+                     "units_row = false in the [format] table");
   }
 
  private:
+  bool comment(std::string_view content) const {
+    return !format_.comment.empty() && content.starts_with(format_.comment);
+  }
+
   std::string source_;
   CsvRowSink& sink_;
+  const CsvFormat& format_;
+  bool translate_;
+  bool want_units_ = false;
+  bool rows_as_written_ = false;  // past the header and units, in a format read as written
   int line_no_ = 0;
   std::vector<std::string> header_;
   std::vector<std::string_view> views_;
   std::vector<std::string> quoted_;
+  std::string translated_;
 };
 
 constexpr std::string_view kBom = "\xEF\xBB\xBF";
@@ -107,14 +209,23 @@ void check_csv_line_ends(std::string_view line, const std::string& source, int l
                  "out.csv)");
 }
 
-std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink) {
+std::string_view csv_delimiter_name(char delimiter) {
+  switch (delimiter) {
+    case ',': return "comma";
+    case ';': return "semicolon";
+    case '\t': return "tab";
+    default: return "whitespace";
+  }
+}
+
+std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink, const CsvFormat& format) {
   const std::string name = path.string();
   const FileNotFound<CsvError> unreadable(name, 0, 0, "", "cannot read the file; check the path and permissions");
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw unreadable;
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(name.c_str(), "rb"));
   if (!file) throw unreadable;
-  LineReader reader{name, sink};
+  LineReader reader{name, sink, format};
   // Blocks of 4 MiB; the incomplete line at a block's end moves to the front of the next. A smaller file (its
   // size known) gets a buffer of its size and one byte, to see its end in the same read.
   constexpr std::size_t kBlock = std::size_t(1) << 22;

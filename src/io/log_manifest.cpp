@@ -4,6 +4,8 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <fstream>
 #include <utility>
 #include <numbers>
@@ -18,9 +20,65 @@ using namespace config_reading;
 
 namespace {
 
-const Keys kManifestKeys{"columns", "runs"};
+const Keys kManifestKeys{"format", "columns", "runs"};
+const Keys kFormatKeys{"delimiter", "decimal", "comment", "skip_lines", "header_line", "units_row", "max_gap"};
 const Keys kColumnKeys{"time", "time_unit", "pulses", "output", "theta1", "gamma", "angle_unit",
-                       "counts_per_revolution", "counter_bits"};
+                       "counts_per_revolution", "count_rounding", "counter_bits"};
+constexpr std::string_view kIsoTime = "iso8601";
+
+// A whole number of lines from 0 (or 1) to a million, or nothing.
+std::optional<int> line_count(const Reader& r, const toml::table& t, std::string_view key, int least) {
+  const auto v = r.number(t, "format", key);
+  if (!v) return std::nullopt;
+  if (!(*v >= least && *v <= 1e6 && *v == std::floor(*v)))
+    r.fail(*t.get(key), Reader::path("format", key),
+           fmt::format("{} is not a line {}; accepted: a whole number from {} to 1000000", number_text(*v),
+                       least == 0 ? "count" : "number", least));
+  return int(*v);
+}
+
+void read_format(const Reader& r, const toml::table& root, LogLayout& layout) {
+  const toml::table* t = r.table(root, "", "format", false);
+  if (!t) return;
+  r.check_keys(*t, "format", kFormatKeys);
+  CsvFormat& f = layout.format;
+  if (const auto d = r.word<char>(*t, "format", "delimiter",
+                                  {{"comma", ','}, {"semicolon", ';'}, {"tab", '\t'}, {"whitespace", ' '}}))
+    f.delimiter = *d;
+  if (const auto d = r.word<char>(*t, "format", "decimal", {{"point", '.'}, {"comma", ','}})) {
+    f.decimal = *d;
+    if (f.decimal == ',' && f.delimiter == ',')
+      r.fail(*t->get("decimal"), "format.decimal",
+             "a decimal comma cannot be told from the comma between cells; accepted: decimal = \"comma\" with "
+             "delimiter = \"semicolon\", \"tab\" or \"whitespace\"");
+  }
+  if (const auto c = r.string(*t, "format", "comment")) {
+    if (c->find_first_of(" \t\r\n") != std::string::npos)
+      r.fail(*t->get("comment"), "format.comment",
+             fmt::format("'{}' holds a blank; accepted: the prefix of a comment line without blanks (e.g. \"#\", "
+                         "\"//\", \"%\"), or \"\" for none",
+                         *c));
+    f.comment = *c;
+  }
+  if (const auto n = line_count(r, *t, "skip_lines", 0)) f.skip_lines = *n;
+  if (const auto n = line_count(r, *t, "header_line", 1)) {
+    if (*n <= f.skip_lines)
+      r.fail(*t->get("header_line"), "format.header_line",
+             fmt::format("line {} is among the {} skipped lines; accepted: a header_line after skip_lines, or "
+                         "one of the two",
+                         *n, f.skip_lines));
+    f.header_line = *n;
+  }
+  if (const auto b = r.boolean(*t, "format", "units_row")) f.units_row = *b;
+  if (const toml::node* n = t->get("max_gap")) {
+    const double gap = r.quantity_node(*n, "format.max_gap", kind::time, nullptr, "10 s");
+    if (!(gap > 0))
+      r.fail(*n, "format.max_gap",
+             fmt::format("{} s is no gap; accepted: a positive time, e.g. \"10 s\"", number_text(gap)));
+    layout.max_gap = gap;
+    layout.max_gap_text = n->as_string()->get();
+  }
+}
 
 // A unit of the given dimension, its SI size; the message names what was expected.
 double unit_size(const Reader& r, const toml::table& t, std::string_view key, const std::string& text, Dimension dim,
@@ -51,7 +109,11 @@ void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
              fmt::format("'{}' names two columns; accepted: one name per column", *name));
   }
   if (const auto u = r.string(*t, "columns", "time_unit")) {
-    c.time_scale = unit_size(r, *t, "time_unit", *u, kind::time, "a time unit; accepted: s, ms, us, min, …");
+    c.iso_time = *u == kIsoTime;
+    if (!c.iso_time)
+      c.time_scale = unit_size(r, *t, "time_unit", *u, kind::time,
+                               "a time unit; accepted: s, ms, us (or µs), min, …, or \"iso8601\" for timestamps "
+                               "(2026-11-30T10:15:02.125Z)");
     layout.time_unit = *u;
   }
   if (const auto bits = r.number(*t, "columns", "counter_bits")) {
@@ -82,6 +144,14 @@ void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
   if (counts && layout.angle_unit != "counts")
     r.fail(*t->get("counts_per_revolution"), "columns.counts_per_revolution",
            "is read only for encoders in counts; accepted: with angle_unit = \"counts\"");
+  if (const auto rounding = r.word<CountRounding>(*t, "columns", "count_rounding",
+                                                  {{"nearest", CountRounding::nearest},
+                                                   {"floor", CountRounding::floor}})) {
+    if (layout.angle_unit != "counts")
+      r.fail(*t->get("count_rounding"), "columns.count_rounding",
+             "is read only for encoders in counts; accepted: with angle_unit = \"counts\"");
+    layout.count_rounding = *rounding;
+  }
 }
 
 void read_runs(const Reader& r, const toml::table& root, const std::filesystem::path& folder, LogManifest& m) {
@@ -119,6 +189,7 @@ LogManifest parse_log_manifest(std::string_view text, std::string_view source_na
   r.check_keys(root, "", kManifestKeys);
   LogManifest m;
   m.source = std::string(source_name);
+  read_format(r, root, m.layout);
   read_columns(r, root, m.layout);
   read_runs(r, root, folder, m);
   return m;
@@ -137,8 +208,9 @@ LogLayout parse_log_layout(std::string_view text, std::string_view source_name) 
   const Reader r{std::string(source_name)};
   const toml::table root = parse_toml(r, text, source_name);
   // The runs of simulated logs are the plan's: a layout has the columns only.
-  r.check_keys(root, "", Keys{"columns"});
+  r.check_keys(root, "", Keys{"format", "columns"});
   LogLayout layout;
+  read_format(r, root, layout);
   read_columns(r, root, layout);
   return layout;
 }
@@ -151,16 +223,32 @@ std::string log_manifest_text(const LogLayout& layout, const std::vector<std::pa
   const auto quoted = [](const std::string& s) { return toml::value<std::string>(s); };
   std::ostringstream out;
   out << "# The run logs of this folder, as `ccal reduce CONFIG --logs DIR` reads them (docs/cli.md).\n";
+  const CsvFormat& f = layout.format;
+  if (!f.is_default() || layout.max_gap > 0) {
+    out << "[format]\n";
+    if (f.delimiter != ',') out << "delimiter = " << quoted(std::string(csv_delimiter_name(f.delimiter))) << "\n";
+    if (f.decimal != '.') out << "decimal = " << quoted("comma") << "\n";
+    if (f.comment != "#") out << "comment = " << quoted(f.comment) << "\n";
+    if (f.skip_lines > 0) out << "skip_lines = " << f.skip_lines << "\n";
+    if (f.header_line > 0) out << "header_line = " << f.header_line << "\n";
+    if (f.units_row) out << "units_row = true\n";
+    if (layout.max_gap > 0) out << "max_gap = " << quoted(layout.max_gap_text) << "\n";
+    out << "\n";
+  }
   const LogColumns& c = layout.columns;
   out << "[columns]\n"
       << "time = " << quoted(c.time) << "\n"
-      << "time_unit = " << quoted(layout.time_unit) << "\n"
+      << "time_unit = " << quoted(layout.time_unit.empty() ? std::string("s") : layout.time_unit) << "\n"
       << "pulses = " << quoted(c.pulses) << "\n"
       << "output = " << quoted(c.output) << "\n"
       << "theta1 = " << quoted(c.theta1) << "\n"
       << "gamma = " << quoted(c.gamma) << "\n";
   if (!layout.angle_unit.empty()) out << "angle_unit = " << quoted(layout.angle_unit) << "\n";
-  if (layout.angle_unit == "counts") out << "counts_per_revolution = " << layout.counts_per_revolution << "\n";
+  if (layout.angle_unit == "counts") {
+    out << "counts_per_revolution = " << layout.counts_per_revolution << "\n";
+    out << "count_rounding = " << quoted(std::string(kCountRoundingNames[std::size_t(layout.count_rounding)]))
+        << "\n";
+  }
   if (c.counter_bits > 0) out << "counter_bits = " << c.counter_bits << "\n";
   out << "\n[runs]\n";
   for (const auto& [run, file] : runs) {

@@ -48,7 +48,7 @@ ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, d
 ReducedLog reduce_run_log_file(const std::filesystem::path& path, const RunLogOptions& options,
                                double planned_rate) {
   detail::LogReducer reducer(path.string(), options, planned_rate);
-  const std::string sha256 = stream_csv_file(path, reducer);
+  const std::string sha256 = stream_csv_file(path, reducer, options.format);
   ReducedLog log = reducer.finish();
   log.sha256 = sha256;
   return log;

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "ccal/core/units.hpp"
+#include "ccal/io/iso_time.hpp"
 #include "ccal/io/plain_decimal_row.hpp"
 
 namespace ccal::detail {
@@ -23,7 +25,9 @@ double wrapped(double angle) {
 }  // namespace
 
 LogReducer::LogReducer(std::string source, const RunLogOptions& options, double planned_rate)
-    : source_(std::move(source)), options_(options), planned_rate_(planned_rate) {}
+    : source_(std::move(source)), options_(options), planned_rate_(planned_rate) {
+  if (options_.max_gap > 0) gap_threshold_ = options_.max_gap;  // the first step too
+}
 
 void LogReducer::defer(Problem kind, CsvError error) {
   if (pending_kind_ && *pending_kind_ <= kind) return;  // an earlier kind, or the first of this kind, stays
@@ -90,8 +94,130 @@ std::optional<double> LogReducer::cell_general(const std::string_view* fields, s
   const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
   if (ec == std::errc{} && end == f.data() + f.size() && std::isfinite(value)) return value;
   if (const std::optional<double> v = parse_number(f)) return v;
+  // In a file of another delimiter a comma in a cell comes as that delimiter (csv_stream.hpp): shown as written.
+  const CsvFormat& format = options_.format;
+  if (format.delimiter != ',' && format.decimal == '.' &&
+      f.find(format.delimiter) != std::string_view::npos) {
+    std::string written(f);
+    std::replace(written.begin(), written.end(), format.delimiter, ',');
+    defer(kind, cell_error(column, line,
+                           fmt::format("'{}' is not a number: a decimal comma? accepted: decimal = \"comma\" in "
+                                       "the [format] table, or numbers with a decimal point",
+                                       written)));
+    return std::nullopt;
+  }
   defer(kind, cell_error(column, line, number_cell_problem(fields[column])));
   return std::nullopt;
+}
+
+std::optional<double> LogReducer::iso_time_cell(std::string_view field, int line) {
+  const std::optional<std::int64_t> ns = parse_iso8601_ns(field);
+  if (!ns) {
+    defer(Problem::time_cell, cell_error(time_, line, fmt::format("'{}' is not {}; accepted: {} (time_unit = "
+                                                                  "\"iso8601\")",
+                                                                  field, "a timestamp", kIso8601Accepted)));
+    return std::nullopt;
+  }
+  if (!iso_first_) iso_first_ = *ns;
+  return double(*ns - *iso_first_) * 1e-9;  // exact to the ns from the first sample: no epoch in the sum
+}
+
+bool LogReducer::unusual_step(double step, int line) {
+  if (step > gap_threshold_) {
+    note_gap(step, line);
+    return options_.max_gap > 0;
+  }
+  if (step > 0 && step < min_step_) {  // (a step ≤ 0 is refused as times not increasing)
+    min_step_ = step;
+    gap_threshold_ = options_.max_gap > 0 ? std::min(1.5 * step, options_.max_gap) : 1.5 * step;
+  }
+  return false;
+}
+
+void LogReducer::note_gap(double step, int line) {
+  ++gaps_;
+  gap_time_ += step;
+  longest_gap_ = std::max(longest_gap_, step);
+  if (options_.max_gap > 0 && step > options_.max_gap)
+    defer(Problem::gap,
+          cell_error(time_, line,
+                     fmt::format("a gap of {:.6g} s after the sample at {:.6g} s (from the log's first); accepted: "
+                                 "at most max_gap = {:.6g} s (the [format] table)",
+                                 step, t_previous_ - t_first_, options_.max_gap)));
+}
+
+namespace {
+
+bool pulse_unit(std::string_view u) {
+  for (const std::string_view ok : {"counts", "count", "cts", "pulses", "pulse", "1", "-"})
+    if (u == ok) return true;
+  return false;
+}
+
+// The SI size of a unit of the given dimension; nullopt for anything else.
+std::optional<double> unit_of(std::string_view text, Dimension dim) {
+  try {
+    const Quantity q = parse_unit(text);
+    if (q.dim == dim && q.value_si > 0) return q.value_si;
+  } catch (const UnitError&) {
+  }
+  return std::nullopt;
+}
+
+bool same_size(double a, double b) { return std::abs(a - b) <= 1e-12 * std::abs(b); }
+
+}  // namespace
+
+void LogReducer::units(const std::vector<std::string>& units, int line) {
+  const auto refuse = [&](std::size_t k, std::string problem) {
+    throw CsvError(source_, line, int(k + 1), header_[k], std::move(problem));
+  };
+  if (pending_kind_ != Problem::no_time && !units[time_].empty() && !options_.columns.iso_time) {
+    const std::optional<double> size = unit_of(units[time_], kind::time);
+    if (!size) refuse(time_, fmt::format("'{}' is not a time unit; accepted: s, ms, us, µs, min, …", units[time_]));
+    if (options_.time_unit_stated && !same_size(*size, options_.columns.time_scale))
+      refuse(time_, fmt::format("the units row says '{}', the layout's time_unit is {:g} s; accepted: one unit (the "
+                                "manifest's time_unit left out, the units row gives it)",
+                                units[time_], options_.columns.time_scale));
+    options_.columns.time_scale = *size;
+  }
+  for (const std::optional<Encoder>* e : {&theta1_, &gamma_}) {
+    if (!e->has_value()) continue;
+    const std::size_t k = (*e)->column;
+    const std::string& u = units[k];
+    if (u.empty()) continue;
+    if (u == "counts" || u == "count" || u == "cts") {
+      if (!(options_.angle_quantum > 0))
+        refuse(k, fmt::format("'{}': the layout gives no counts per revolution; accepted: angle_unit = \"counts\" "
+                              "with counts_per_revolution in the [columns] table",
+                              u));
+      continue;
+    }
+    const std::optional<double> size = unit_of(u, kind::angle);
+    if (!size) refuse(k, fmt::format("'{}' is not an angle unit; accepted: rad, deg, arcsec, … or counts", u));
+    if (options_.angle_quantum > 0 || (options_.angle_unit_stated && !same_size(*size, options_.angle_scale)))
+      refuse(k, fmt::format("the units row says '{}', the layout's angle_unit another ({}); accepted: one unit "
+                            "(the angle_unit left out, the units row gives it)",
+                            u, options_.angle_quantum > 0 ? "counts" : fmt::format("{:g} rad", options_.angle_scale)));
+    options_.angle_scale = *size;
+  }
+  if (output_ && !units[*output_].empty()) {
+    const std::string& u = units[*output_];
+    if (pulses_ && !pulse_unit(u))
+      refuse(*output_, fmt::format("'{}' is no count; accepted: counts, pulses, 1 or nothing", u));
+    if (!pulses_ && !options_.output_unit.empty() && u != options_.output_unit) {
+      bool same = false;
+      try {
+        const Quantity a = parse_unit(u), b = parse_unit(options_.output_unit);
+        same = a.dim == b.dim && same_size(a.value_si, b.value_si);
+      } catch (const UnitError&) {
+      }
+      if (!same)
+        refuse(*output_, fmt::format("the units row says '{}', the instrument's output is read in {}; accepted: "
+                                     "the output in {}",
+                                     u, options_.output_unit, options_.output_unit));
+    }
+  }
 }
 
 void LogReducer::defer_time_order(int line, double t) {
@@ -125,7 +251,7 @@ void LogReducer::count_sample(double value, int line) {
   count_raw_ = value;
   if (bits > 0) {
     const double range = std::ldexp(1.0, bits), half = std::ldexp(1.0, bits - 1);
-    step -= range * std::floor((step + half) / range);
+    step -= range * std::floor((step - bridge_count_ + half) / range);
   } else if (count_steps_ >= 10) {
     const double travel = output_previous_ - output_first_;
     if (step * travel < 0 && std::abs(step) > 10 * count_travel_ / double(count_steps_))
@@ -144,7 +270,8 @@ void LogReducer::defer_spacing(const Encoder& e, int line, double step_time) {
   defer(e.spacing,
         cell_error(e.column, line,
                    fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the planned "
-                               "rate; accepted: less than 0.75π rad between encoder samples",
+                               "rate; accepted: less than 0.75π rad between encoder samples, or a gap in the log "
+                               "declared by max_gap in the [format] table (bridged at the encoder's mean rate)",
                                step_time, std::abs(planned_rate_) * step_time)));
 }
 
@@ -169,6 +296,31 @@ void LogReducer::throw_wild(const Encoder& e) const {
                              e.wild, rows_, std::max(kEncoderJumpLimit, 4 * options_.angle_quantum)));
 }
 
+// A declared gap (max_gap): the angle across it is the one nearest to where the joint's mean rate so far brings
+// it (the step between raw readings, plus whole turns, keeps their digits). False when the reading is left out
+// (refused: a gap after the first reading, or a wild reading).
+bool LogReducer::bridge_gap(Encoder& e, double a, double tau, int line) {
+  if (e.seen < 2 || !(e.tau > e.first_tau)) {
+    defer(e.spacing, cell_error(e.column, line,
+                                "a gap after the encoder's first reading: its rate is not known to bridge it; "
+                                "accepted: at least two readings before a gap"));
+    return false;
+  }
+  const double rate = (e.unwrapped - e.first_unwrapped) / (e.tau - e.first_tau);
+  const double predicted = e.unwrapped + rate * (tau - e.tau);
+  const double base = e.unwrapped + (a - e.raw);
+  const double angle = base + kTwoPi * std::nearbyint((predicted - base) / kTwoPi);
+  const double limit = std::max(kEncoderJumpLimit, 4 * options_.angle_quantum);
+  if (!(std::abs(angle - predicted) <= limit)) {
+    note_wild(e, line, std::abs(angle - predicted), limit);
+    return false;
+  }
+  e.earlier_unwrapped = e.unwrapped;
+  e.earlier_tau = e.tau;
+  e.unwrapped = angle;
+  return true;
+}
+
 // One encoder sample: unwrapped (each step mapped to (−π, π]) and added to the fit. The samples must be less
 // than half a revolution apart at the planned rate (with a 1/4 margin for a rate error), or the unwrapping
 // would alias.
@@ -183,7 +335,8 @@ void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool t
   const double a = *raw * options_.angle_scale;
   const double tau = t - t_first_;
   if (e.seen == 0) {
-    e.unwrapped = a;
+    e.unwrapped = e.first_unwrapped = a;
+    e.first_tau = tau;
   } else {
     // The step from the previous reading, mapped to (−π, π] (remainder(x, 2π) is x itself for |x| < π, so
     // the usual step needs no division); taken between raw readings, it keeps their digits.
@@ -214,12 +367,39 @@ void LogReducer::encoder_sample(Encoder& e, const Cells& cells, int line, bool t
   e.fit.add(tau, e.unwrapped, a);
 }
 
+// The encoders' samples of the row after a declared gap (bridge_gap), off the rows' path.
+template <class Cells>
+void LogReducer::bridge_encoders(const Cells& cells, int line, double t) {
+  for (std::optional<Encoder>* slot : {&theta1_, &gamma_}) {
+    if (!slot->has_value()) continue;
+    Encoder& e = **slot;
+    const std::optional<double> raw = cells(e.column, e.cell, line);
+    if (!raw || pending_kind_) continue;
+    const double a = *raw * options_.angle_scale;
+    const double tau = t - t_first_;
+    if (!bridge_gap(e, a, tau, line)) continue;
+    e.seen = std::min(e.seen + 1, 2);
+    e.raw = a;
+    e.tau = tau;
+    e.fit.add(tau, e.unwrapped, a);
+  }
+}
+
 void LogReducer::row(const std::string_view* fields, int line) {
   reduce_batch();  // the rows before it first
+  if (options_.columns.iso_time) {
+    reduce_row(
+        [&](std::size_t column, Problem kind, int at) {
+          return kind == Problem::time_cell ? iso_time_cell(fields[column], at) : cell(fields, column, kind, at);
+        },
+        line);
+    return;
+  }
   reduce_row([&](std::size_t column, Problem kind, int at) { return cell(fields, column, kind, at); }, line);
 }
 
 bool LogReducer::row_line(std::string_view line, int line_no) {
+  // (A row of timestamps is declined by the plain decimals' reader: "2026-11-30T…" is none; row() reads it.)
   const std::size_t columns = header_.size();
   if (!row_reader_.read(line, std::span(batch_values_.data() + batch_rows_ * columns, columns))) return false;
   batch_lines_[batch_rows_] = line_no;
@@ -245,19 +425,37 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
   if (t) *t *= options_.columns.time_scale;  // to s
   if (t && have_previous_time_ && !(*t > t_previous_)) defer_time_order(line, *t);
   if (t && rows_ == 0) t_first_ = *t;
+  // A gap: a step of more than 1.5 times the shortest before it (the first step is none); a declared one
+  // (max_gap) is bridged: the encoders across it at their mean rate, the sampled output not integrated over it.
+  // One comparison a row: gap_threshold_ is 1.5 times the shortest step so far, or max_gap if that is less.
+  bool bridge = false;
+  if (t && have_previous_time_) {
+    const double step = *t - t_previous_;
+    if (!(step <= gap_threshold_ && step >= min_step_)) bridge = unusual_step(step, line);
+  }
   if (output_) {
     if (const std::optional<double> v = cells(*output_, Problem::output_cell, line); v && t) {
       if (pulses_) {
-        count_sample(*v, line);
+        if (bridge && options_.columns.counter_bits > 0 && count_steps_ > 0 && *t > t_first_) {
+          bridge_count_ = (output_previous_ - output_first_) / (t_previous_ - t_first_) * (*t - t_previous_);
+          count_sample(*v, line);
+          bridge_count_ = 0;
+        } else {
+          count_sample(*v, line);
+        }
       } else {
         const double y = *v * options_.output_scale;
-        if (rows_ > 0) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);
+        if (rows_ > 0 && !bridge) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);
         output_previous_ = y;
       }
     }
   }
-  if (theta1_) encoder_sample(*theta1_, cells, line, t.has_value(), t.value_or(0));
-  if (gamma_) encoder_sample(*gamma_, cells, line, t.has_value(), t.value_or(0));
+  if (bridge) {
+    bridge_encoders(cells, line, *t);
+  } else {
+    if (theta1_) encoder_sample(*theta1_, cells, line, t.has_value(), t.value_or(0));
+    if (gamma_) encoder_sample(*gamma_, cells, line, t.has_value(), t.value_or(0));
+  }
   if (t) {
     t_previous_ = *t;
     have_previous_time_ = true;
@@ -276,16 +474,21 @@ ReducedLog LogReducer::finish() {
   if (rows_ < 2)
     throw CsvError(source_, header_line_, int(time_ + 1), options_.columns.time,
                    fmt::format("{} sample(s); accepted: at least two, the first and last of the run", rows_));
-  throw_pending_before(Problem::time_order);
+  throw_pending_before(Problem::gap);
   r.duration = t_previous_ - t_first_;
+  r.gaps = gaps_;
+  r.longest_gap = longest_gap_;
+  r.missing = gaps_ > 0 ? std::max(0.0, gap_time_ - double(gaps_) * min_step_) : 0.0;
   if (!std::isfinite(r.duration))
     throw CsvError(source_, last_line_, int(time_ + 1), options_.columns.time,
                    fmt::format("the span {} s to {} s overflows; accepted: times of a run, in s", t_first_,
                                t_previous_));
   throw_pending_before(Problem::output_cell);
   r.pulses = pulses_;
+  // A sampled output's mean is over the time its samples cover: declared gaps are not integrated over.
+  const double covered = options_.max_gap > 0 ? r.duration - gap_time_ : r.duration;
   r.mean_output = pulses_ ? (output_previous_ - output_first_) * options_.pulse_weight / r.duration
-                          : integral_ / r.duration;
+                          : integral_ / covered;
   // The fit squares the means: beyond 1e150 (SI) its sums overflow, and the failure would surface far from
   // the log.
   if (!(std::abs(r.mean_output) <= 1e150))
@@ -300,7 +503,10 @@ ReducedLog LogReducer::finish() {
     const EncoderFitResult f = theta1_->fit.result();
     r.has_theta1 = true;
     r.theta1_rate = f.slope;
-    r.theta1_start = wrapped(f.start);
+    // A count latched down stands for the middle of its count (angle_offset): a constant added to every
+    // reading moves the line's phases by it, and its harmonics not at all (their phase by k·offset, below
+    // 1e-6 rad for half a count of any encoder of 2^22 counts or more), so it is added to the phases here.
+    r.theta1_start = wrapped(f.start + options_.angle_offset);
     r.theta1_rms = f.rms;
     r.theta1_harmonics = f.harmonics;
     r.theta1_harmonic_sigma = f.harmonic_sigma;
@@ -309,8 +515,8 @@ ReducedLog LogReducer::finish() {
     const EncoderFitResult f = gamma_->fit.result();
     r.has_gamma = true;
     r.gamma_rate = f.slope;
-    r.gamma_start = wrapped(f.start);
-    r.gamma_end = wrapped(f.end);
+    r.gamma_start = wrapped(f.start + options_.angle_offset);
+    r.gamma_end = wrapped(f.end + options_.angle_offset);
     r.gamma_rms = f.rms;
     r.gamma_harmonics = f.harmonics;
     r.gamma_harmonic_sigma = f.harmonic_sigma;

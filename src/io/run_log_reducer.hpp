@@ -6,6 +6,8 @@
 // checked the time column over all rows first, then the output column, then each encoder column. The first
 // problem of each kind is kept while the rows go by (a CSV error, found by the reader, still ends the read at
 // once, as parse_csv did before any reduction), and the earliest kind in that order is thrown at the end.
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +25,8 @@ class LogReducer final : public CsvRowSink {
  public:
   LogReducer(std::string source, const RunLogOptions& options, double planned_rate);
   void header(const std::vector<std::string>& names, int line) override;
+  // A units row: each stated unit checked against the one the layout states, or taken as the column's.
+  void units(const std::vector<std::string>& units, int line) override;
   void row(const std::string_view* fields, int line) override;
   // A row of plain decimals only ([-]digits[.digits] between commas, scan_plain_decimal, as many as the
   // header has names), read in one pass over its bytes: the usual row of a log. Anything else is declined
@@ -40,6 +44,7 @@ class LogReducer final : public CsvRowSink {
     time_cell,
     too_few,
     time_order,
+    gap,
     span,
     output_columns,
     pulse_weight,
@@ -60,6 +65,7 @@ class LogReducer final : public CsvRowSink {
     double unwrapped = 0;  // the last sample's unwrapped angle [rad]
     double raw = 0;        // and its reading [rad]
     double tau = 0;        // and its time from the first sample [s]
+    double first_unwrapped = 0, first_tau = 0;  // the first sample's (a gap is bridged at their mean rate)
     // The sample before it (for the wild-reading check), and how many samples were added (0, 1, 2 or more).
     double earlier_unwrapped = 0, earlier_tau = 0;
     int seen = 0;
@@ -80,6 +86,12 @@ class LogReducer final : public CsvRowSink {
   }
   [[gnu::noinline]] std::optional<double> cell_general(const std::string_view* fields, std::size_t column,
                                                        Problem kind, int line);
+  // A timestamp of the time column (columns.iso_time): seconds from the log's first.
+  std::optional<double> iso_time_cell(std::string_view field, int line);
+  [[gnu::cold, gnu::noinline]] void note_gap(double step, int line);
+  // A step longer than gap_threshold_ (a gap: true when bridged) or shorter than min_step_ (the new shortest).
+  [[gnu::cold, gnu::noinline]] bool unusual_step(double step, int line);
+  [[gnu::cold, gnu::noinline]] bool bridge_gap(Encoder& e, double a, double tau, int line);
   // The row's reduction, its cells read by `cells(column, kind, line)` (an optional<double>, empty for a
   // refused cell): the split fields of row() or the values row_line() read.
   // The problems a row can show, written out off the rows' path (cold: the usual row has none).
@@ -95,6 +107,8 @@ class LogReducer final : public CsvRowSink {
   void reduce_row(const Cells& cells, int line);
   template <class Cells>
   void encoder_sample(Encoder& e, const Cells& cells, int line, bool time_ok, double t);
+  template <class Cells>
+  [[gnu::cold, gnu::noinline]] void bridge_encoders(const Cells& cells, int line, double t);
 
   std::string source_;
   RunLogOptions options_;
@@ -122,6 +136,13 @@ class LogReducer final : public CsvRowSink {
   double count_raw_ = 0;         // the last count as read (before unwrapping)
   double count_travel_ = 0;      // Σ |step| of the count
   std::size_t count_steps_ = 0;  // steps summed
+  std::optional<std::int64_t> iso_first_;  // the first timestamp [ns]
+  double bridge_count_ = 0;  // the count's step expected over a bridged gap (at its mean rate), else 0
+  // Gaps: the shortest step between samples so far, and the steps of more than 1.5 times it.
+  double min_step_ = std::numeric_limits<double>::infinity();
+  double gap_threshold_ = std::numeric_limits<double>::infinity();  // a longer step is a gap
+  std::size_t gaps_ = 0;
+  double gap_time_ = 0, longest_gap_ = 0;
 };
 
 }  // namespace ccal::detail

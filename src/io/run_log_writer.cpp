@@ -9,6 +9,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/units.hpp"
+#include "ccal/io/iso_time.hpp"
 
 namespace ccal {
 
@@ -37,15 +38,34 @@ double angle_error(const std::vector<double>& ripple, double q) {
   return d;
 }
 
-// An encoder reading in the layout's unit: in counts the whole count below the angle (a real encoder's),
-// wrapped to one revolution; in an angle unit the angle itself.
+// An encoder reading in the layout's unit: in counts the count of the angle, wrapped to one revolution, rounded
+// as the layout's count_rounding says (down, or to the nearest); in an angle unit the angle itself.
 std::string encoder_text(double angle, const LogLayout& layout) {
   if (layout.angle_unit == "counts") {
-    const auto n = static_cast<long long>(std::floor(angle / layout.angle_scale));
+    const double counts = angle / layout.angle_scale;
+    const auto n = static_cast<long long>(layout.count_rounding == CountRounding::floor ? std::floor(counts)
+                                                                                        : std::nearbyint(counts));
     return fmt::format("{}", n % layout.counts_per_revolution);
   }
   return fmt::format("{:.17g}", angle / layout.angle_scale);
 }
+
+// The cells of a row (or the header, or the units row) joined as the layout's format writes them: its
+// delimiter (one blank for whitespace), its decimal separator.
+void append_row(std::string& text, const std::vector<std::string>& cells, const CsvFormat& f, bool numbers) {
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    if (k > 0) text += f.delimiter;
+    if (numbers && f.decimal == ',') {
+      for (const char c : cells[k]) text += c == '.' ? ',' : c;
+    } else {
+      text += cells[k];
+    }
+  }
+  text += '\n';
+}
+
+// The origin of a log's timestamps (time_unit = "iso8601"): the reduction reads from the first sample, so any.
+constexpr std::int64_t kTimestampOrigin = 1796033700LL * 1000000000;  // 2026-11-30T10:15:00Z
 
 // An encoder's angle error at its joint's angle q: Σ c_k cos kq + s_k sin kq (c1, s1, c2, …).
 double encoder_error(const std::vector<double>& terms, double q) {
@@ -131,7 +151,20 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
     const double phi0 = initial_phase(run, ex.geometry, ex.site);
     const double m = run_means[r];
     const LogColumns& c = layout.columns;
-    std::string text = fmt::format("{},{},{},{}\n", c.time, w > 0 ? c.pulses : c.output, c.theta1, c.gamma);
+    const CsvFormat& f = layout.format;
+    std::string text;
+    // A preamble as a DAQ writes one, up to the header.
+    const int preamble = std::max(f.skip_lines, f.header_line - 1);
+    for (int k = 1; k <= preamble; ++k) text += fmt::format("ccal simulate, run {}: line {} of the preamble\n", run.name, k);
+    append_row(text, {c.time, w > 0 ? c.pulses : c.output, c.theta1, c.gamma}, f, false);
+    if (f.units_row) {
+      const std::string output_unit = w > 0                                     ? "counts"
+                                      : config.instrument.sampling_resistor > 0 ? "V"
+                                                                                : config.instrument.output_unit;
+      const std::string angle_unit = layout.angle_unit.empty() ? "rad" : layout.angle_unit;
+      append_row(text, {layout.time_unit.empty() ? "s" : layout.time_unit, output_unit, angle_unit, angle_unit}, f,
+                 false);
+    }
     const auto n = std::int64_t(std::ceil(run.duration / step - 1e-9));
     const double duration = run.duration / (1 + tau);  // the machine's, which the clock reads as the plan's
     for (std::int64_t k = 0; k <= n; ++k) {
@@ -142,9 +175,14 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
       double value = w > 0 ? std::floor(m * counted * t / w) : m / unit;
       if (w > 0 && c.counter_bits > 0) value -= std::ldexp(std::floor(std::ldexp(value, -c.counter_bits)), c.counter_bits);
       const double theta1 = wrapped(theta_n + d1), gamma_true = wrapped(gamma);
-      text += fmt::format("{:.17g},{:.17g},{},{}\n", t * (1 + tau) / c.time_scale, value,
-                          encoder_text(wrapped(theta1 + encoder_error(encoder1, theta1)), layout),
-                          encoder_text(wrapped(gamma_true + encoder_error(encoder3, gamma_true)), layout));
+      const double stamped = t * (1 + tau);  // [s], as the clock reads it
+      append_row(text,
+                 {c.iso_time ? iso8601_text(kTimestampOrigin + 1000 * std::llround(stamped * 1e6))  // to the nearest µs
+                             : fmt::format("{:.17g}", stamped / c.time_scale),
+                  fmt::format("{:.17g}", value),
+                  encoder_text(wrapped(theta1 + encoder_error(encoder1, theta1)), layout),
+                  encoder_text(wrapped(gamma_true + encoder_error(encoder3, gamma_true)), layout)},
+                 f, true);
     }
     out.push_back({run_log_file_name(run.name), std::move(text)});
   }

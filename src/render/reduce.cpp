@@ -68,6 +68,17 @@ std::string text_of(const Config& cfg, const verbs::ReduceResult& r) {
                   number(lr.log.mean_output / r.output_unit_si, 12)});
   }
   out += logs.render() + "\n";
+  for (const LoggedRun& lr : r.logs.runs)
+    if (lr.log.gaps > 0)
+      out += fmt::format("  run '{}': {} gap(s) in the log, the longest {} s between samples; {} s of its {} s "
+                         "missing\n",
+                         lr.measured.name, lr.log.gaps, number(lr.log.longest_gap), number(lr.log.missing),
+                         number(lr.log.duration));
+  for (const LoggedRun& lr : r.logs.runs)
+    if (lr.log.gaps > 0) {
+      out += '\n';
+      break;
+    }
   out +=
       "  (Omega log, psi: line fits of the encoder angles, '-' when not logged; phi0: the model's initial "
       "phase,\n"
@@ -99,6 +110,7 @@ std::string json_of(const Config& cfg, const verbs::ReduceResult& r) {
     x["log_sha256"] = lr.log.sha256;
     x["samples"] = lr.log.samples;
     x["duration_s"] = lr.log.duration;
+    x["gaps"] = {{"count", lr.log.gaps}, {"longest_s", lr.log.longest_gap}, {"missing_s", lr.log.missing}};
     x["output"] = lr.log.mean_output / r.output_unit_si;
     x["output_from"] = lr.log.pulses ? "pulses" : "output";
     x["planned_rate_rad_per_s"] = lr.planned_rate;

@@ -157,6 +157,11 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
                                                           : output_unit_si(cfg.instrument.output_unit);
   lo.angle_scale = o.angle_unit == AngleUnit::deg ? std::numbers::pi / 180 : 1.0;
   lo.columns = o.layout.columns;
+  lo.format = o.layout.format;
+  lo.max_gap = o.layout.max_gap;
+  lo.time_unit_stated = !o.layout.time_unit.empty();
+  lo.angle_unit_stated = !o.layout.angle_unit.empty() || o.angle_unit != AngleUnit::rad;
+  lo.output_unit = cfg.instrument.sampling_resistor > 0 ? "V" : cfg.instrument.output_unit;
   if (!o.layout.angle_unit.empty()) {
     if (o.angle_unit != AngleUnit::rad)
       throw OptionError(
@@ -165,7 +170,11 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
                       "accepted: one of them (the manifest's, leaving this option out)",
                       o.layout.angle_unit));
     lo.angle_scale = o.layout.angle_scale;
-    if (o.layout.counts_per_revolution > 0) lo.angle_quantum = o.layout.angle_scale;
+    if (o.layout.counts_per_revolution > 0) {
+      lo.angle_quantum = o.layout.angle_scale;
+      // A count rounded down stands for the middle of its count: (c + 1/2)·2π/cpr.
+      if (o.layout.count_rounding == CountRounding::floor) lo.angle_offset = 0.5 * o.layout.angle_scale;
+    }
   }
   lo.pulse_weight = cfg.instrument.quantum;
   if (o.pulse_weight) {

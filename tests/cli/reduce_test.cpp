@@ -205,3 +205,32 @@ TEST_F(Reduce, PulseWeightTakesAUnitOfTheOutputTimesSeconds) {
 }
 
 }  // namespace
+
+namespace {
+
+// The sample DAQ folders (examples/daq): the semicolon folder by its manifest, and its files one by one with
+// --log-layout, give the same coefficients; a layout with --logs and a delimiter left out of the layout are
+// refused with what to set.
+TEST_F(Reduce, DaqFoldersAndTheirFilesWithALogLayout) {
+  const std::string daq = CCAL_SOURCE_DIR + "/examples/daq";
+  const std::string config = daq + "/lab_short.toml";
+  const Result folder = run("reduce " + config + " --logs " + daq + "/semicolon --format json");
+  ASSERT_EQ(folder.code, 0) << folder.err;
+  std::string logs;
+  for (const char* r : {"5g", "10g", "20g", "30g"}) logs += fmt::format(" --log {}={}/semicolon/{}.csv", r, daq, r);
+  const Result files = run("reduce " + config + logs + " --log-layout " + daq + "/semicolon_layout.toml --format json");
+  ASSERT_EQ(files.code, 0) << files.err;
+  const auto a = nlohmann::json::parse(folder.out), b = nlohmann::json::parse(files.out);
+  EXPECT_EQ(a["identification"]["coefficients"], b["identification"]["coefficients"]);
+  EXPECT_EQ(a["runs"][2]["gaps"]["count"], 1);
+  EXPECT_NEAR(a["runs"][2]["gaps"]["missing_s"].get<double>(), 5.0, 0.08);  // 5 s to a step (72 ms)
+  expect_bad_input(run("reduce " + config + " --logs " + daq + "/semicolon --log-layout " + daq +
+                       "/semicolon_layout.toml"),
+                   {"--log-layout: the folder's manifest has the layout"});
+  write("no_preamble.toml", "[format]\nheader_line = 3\n[columns]\ntime = \"t_ms\"\n");
+  expect_bad_input(run("reduce " + config + logs + " --log-layout no_preamble.toml"),
+                   {"5g.csv:3:1: the header is one name, 't_ms;piga_count;enc_main;enc_platform'",
+                    "the delimiter is probably ';'", "delimiter = \"semicolon\""});
+}
+
+}  // namespace

@@ -146,7 +146,8 @@ TEST(LogManifest, RefusalsAreLocatedWithWhatIsAccepted) {
             "with angle_unit = \"counts\"");
   EXPECT_EQ(
       manifest_refusal("[columns]\ntime_unit = \"m\"\n[runs]\n1 = \"a.csv\"\n"),
-      "logs/manifest.toml:2:13: columns.time_unit: 'm' is not a time unit; accepted: s, ms, us, min, …");
+      "logs/manifest.toml:2:13: columns.time_unit: 'm' is not a time unit; accepted: s, ms, us (or µs), min, …, "
+      "or \"iso8601\" for timestamps (2026-11-30T10:15:02.125Z)");
   EXPECT_EQ(
       manifest_refusal("[columns]\ntheta1 = \"time\"\n[runs]\n1 = \"a.csv\"\n"),
       "logs/manifest.toml:2:10: columns.theta1: 'time' names two columns; accepted: one name per column");

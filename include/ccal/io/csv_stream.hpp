@@ -1,6 +1,8 @@
 #pragma once
 // A CSV file read in one pass, row by row, in blocks: memory independent of the file's length. The grammar,
-// the refusals and their places are parse_csv's (observation_csv.hpp); '#' comment lines are skipped.
+// the refusals and their places are parse_csv's (observation_csv.hpp); '#' comment lines are skipped. A
+// CsvFormat reads a file as a data acquisition system wrote it: another delimiter, a decimal comma, another
+// comment prefix, a preamble before the header, a units row under it.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -10,11 +12,36 @@
 
 namespace ccal {
 
+// How a file is written (a log folder's manifest, [format]: io/log_manifest.hpp). The default is parse_csv's
+// grammar. A line of another format is read as the comma-separated line it stands for: its delimiter becomes
+// the comma and a comma in it the delimiter (a comma in a cell is then no split, and a decimal comma not
+// declared is refused as no number), or, with decimal = ',', the point. So every format's rows go through
+// the one reading of comma-separated rows (its fast path included), and a default file is not translated.
+struct CsvFormat {
+  char delimiter = ',';       // ',', ';', '\t', or ' ' for whitespace: runs of blanks and tabs
+  char decimal = '.';         // '.' or ',' (',' only with another delimiter than ',')
+  std::string comment = "#";  // a line that begins with it (after blanks) is skipped; empty: none
+  int skip_lines = 0;         // lines at the top skipped whatever they hold (a preamble)
+  int header_line = 0;        // the header's 1-based line, lines before it skipped; 0: the first line after
+                              // skip_lines that is neither blank nor a comment
+  bool units_row = false;     // the first line after the header that is neither blank nor a comment holds
+                              // the columns' units (CsvRowSink::units)
+  bool is_default() const {
+    return delimiter == ',' && decimal == '.' && comment == "#" && skip_lines == 0 && header_line == 0 &&
+           !units_row;
+  }
+};
+// The delimiter's name in messages and manifests: "comma", "semicolon", "tab", "whitespace".
+std::string_view csv_delimiter_name(char delimiter);
+
 class CsvRowSink {
  public:
   virtual ~CsvRowSink() = default;
   // The header (once, before any row) and its 1-based line.
   virtual void header(const std::vector<std::string>& names, int line) = 0;
+  // With CsvFormat::units_row: the units row (once, after the header, before any row): one trimmed field per
+  // name of the header (missing ones empty), and its line.
+  virtual void units(const std::vector<std::string>& /*units*/, int /*line*/) {}
   // One row: exactly as many trimmed fields (quotes removed) as the header has names; valid until it returns.
   virtual void row(const std::string_view* fields, int line) = 0;
   // A sink's own reading of a row's line as it is (without its line end), offered before the line is split:
@@ -83,8 +110,9 @@ inline bool parse_plain_decimal(std::string_view text, double& value) {
 void check_csv_line_ends(std::string_view line, const std::string& source, int line_no);
 
 // Streams a file to `sink`; returns the SHA-256 of its bytes (core/sha256.hpp), the fingerprint of the file
-// as read, in the same pass. Throws CsvError (file unreadable, empty, no header, bad header, bad row) and
-// whatever the sink throws.
-std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink);
+// as read, in the same pass. Throws CsvError (file unreadable, empty, no header, bad header, bad row; a
+// header of one name that holds another format's delimiter, saying which delimiter it probably is; a file
+// that ends before its header_line or its units row) and whatever the sink throws.
+std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink, const CsvFormat& format = {});
 
 }  // namespace ccal

@@ -27,6 +27,7 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/io/csv_stream.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/model/centrifuge.hpp"
 #include "ccal/model/plan.hpp"
@@ -44,6 +45,7 @@ struct LogColumns {
   std::string theta1 = "theta1";
   std::string gamma = "gamma";
   double time_scale = 1;  // s per unit of the time column
+  bool iso_time = false;  // the time column holds ISO 8601 timestamps (io/iso_time.hpp), read from the first
   // The pulse counter's width: its count wraps at 2^counter_bits (0: a count that does not wrap). The reduction
   // takes each step between samples modulo 2^bits into [−2^(bits−1), 2^(bits−1)).
   int counter_bits = 0;
@@ -60,12 +62,26 @@ struct RunLogOptions {
   double angle_quantum = 0;  // one count of the encoder columns [rad] when they hold counts, else 0
   int harmonic_order = 0;   // N: harmonics of the encoder fits (0: straight lines only)
   LogColumns columns;       // the columns' names and the time unit
+  CsvFormat format;         // how the files are written (delimiter, decimal separator, header, units row)
+  double angle_offset = 0;  // added to every encoder reading [rad]: half a count for counts rounded down (to
+                            // the fitted phases, the same for a line: run_log_reducer.cpp)
+  // The longest gap between samples accepted [s] (0: none declared). A gap is a step between samples of more
+  // than 1.5 times the shortest before it; a declared gap is bridged by the encoders (docs/cli.md).
+  double max_gap = 0;
+  // Units the configuration or layout states (a units row is checked against them) or leaves to a units row.
+  bool time_unit_stated = false, angle_unit_stated = false;
+  std::string output_unit;  // the instrument's output unit as configured (for a units row), empty: not checked
 };
 
 struct ReducedLog {
   std::string source;
   std::string sha256;  // of the log's bytes as read (the file's; the table's text for a CsvTable)
   std::size_t samples = 0;
+  // Gaps: steps between samples of more than 1.5 times the shortest step before them; the time they miss is
+  // their length less one shortest step each.
+  std::size_t gaps = 0;
+  double longest_gap = 0;  // [s], the step between the samples either side
+  double missing = 0;      // [s]
   bool pulses = false;     // the output came as a pulse count
   double duration = 0;     // T = t_last − t_first [s]
   double mean_output = 0;  // ⟨output⟩ over the span [output SI]

@@ -30,8 +30,11 @@ struct RunLogFile {
 // layout: SimulateResult::machine_errors); run_means: the runs' mean outputs [output SI], in plan order. step:
 // at most a quarter revolution of the fastest run (the reduction unwraps less than 0.75π between samples);
 // throws InputError otherwise or for a mean count that does not match the plan.
-// layout: the columns' names, the time unit and the encoders' unit (io/log_manifest.hpp; default: ccal's own,
-// seconds and radians); in counts each reading is the whole count below the angle, wrapped to one revolution.
+// layout: the file's format (delimiter, decimal separator, a preamble up to header_line or skip_lines, a units
+// row), the columns' names, the time unit (or ISO 8601 timestamps from 2026-11-30T10:15:00Z, to the
+// nearest microsecond) and the encoders' unit (io/log_manifest.hpp; default: ccal's own, seconds and radians); in
+// counts each reading is the whole count of the angle by the layout's count_rounding (the count below it, or
+// the nearest), wrapped to one revolution.
 std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::VectorXd& machine_errors,
                                        const std::vector<double>& run_means, double step,
                                        const LogLayout& layout = {});
