@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "ccal/core/errors.hpp"
+#include "../io/history_text.hpp"
 
 namespace ccal::verbs {
 
@@ -172,6 +174,16 @@ void history_supersede(std::int64_t id, const HistorySupersedeOptions& o) {
   check_options(o, option_table<HistorySupersedeOptions>());
   HistoryStore store = HistoryStore::open(history_store_path(o.db), HistoryStore::Access::write);
   store.supersede(id, o.by > 0 ? std::optional<std::int64_t>(o.by) : std::nullopt, o.reason);
+}
+
+std::int64_t history_record_id(const std::string& text) {
+  std::int64_t id = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, id);
+  if (ec == std::errc() && ptr == end && id >= 1) return id;
+  throw InputError(fmt::format("ID: {} is not a calibration id; accepted: a whole number from 1, as `ccal "
+                               "history show SERIAL` lists them (#3 is 3)",
+                               detail::history_shown(text)));
 }
 
 std::string history_export(const std::string& serial, const HistoryStoreOptions& o) {
