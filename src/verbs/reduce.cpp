@@ -240,7 +240,12 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
     check_readable(log.path);  // a missing file before the count of logs, as when logs were read whole
     logs.emplace_back(index, log.path);
   }
-  check_log_count(cfg.identification, logs.size(), "logs");
+  try {
+    check_log_count(cfg.identification, logs.size(), "logs");
+  } catch (const OptionError& e) {  // logs a manifest named: its [runs] is short, not an option
+    if (o.logs.empty() || o.logs.front().manifest.empty()) throw;
+    throw InputError(fmt::format("{}: [runs]: {}", o.logs.front().manifest, e.problem()));
+  }
   refuse_repeated_paths(cfg, named);
   r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(named[lr.index].path);

@@ -70,4 +70,15 @@ TEST_F(Cli, HistoryWordsForAnIdAndAMistypedSubcommand) {
   expect_bad_input(run("bugdet"), {"unknown command 'bugdet'; did you mean 'budget'?"});
 }
 
+TEST_F(Cli, AManifestNamingTooFewRunsIsBlamedOnTheManifest) {
+  // Found by the careless round: the count of a manifest's runs was refused as "--log: 1 logged run(s) …",
+  // an option the user did not give.
+  ASSERT_EQ(run("simulate " + quote(kLab) + " --logs-out L -o /dev/null").code, 0);
+  write("L/manifest.toml", "[runs]\n5g = '5g.csv'\n");
+  expect_bad_input(run("reduce " + quote(kLab) + " --logs L"),
+                   {"L/manifest.toml: [runs]: 1 logged run(s) cannot determine 3 free terms"});
+  const Result r = run("reduce " + quote(kLab) + " --logs L");
+  EXPECT_EQ(r.err.find("--log"), std::string::npos) << r.err;
+}
+
 }  // namespace

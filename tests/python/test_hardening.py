@@ -83,6 +83,11 @@ class SwappedLogsTest(unittest.TestCase):
             self.assertEqual(sum("nominal instrument" in w for w in r.warnings), 2)
             with self.assertRaisesRegex(ccal.InputError, r"logs: run '5g' the log's mean .* so are runs '10g'"):
                 ccal.reduce(cfg, logs, strict_runs=True)
+            # reduce_logs does not identify, so has no statement and no run check: their keywords are refused,
+            # coverage_factor among them (it was accepted and ignored).
+            for keyword in ("strict_runs", "coverage_factor"):
+                with self.assertRaisesRegex(TypeError, keyword):
+                    ccal.reduce_logs(cfg, {"5g": logs["5g"]}, **{keyword: 2})
 
 
 class NonFiniteResultTest(unittest.TestCase):
