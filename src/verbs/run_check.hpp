@@ -1,6 +1,6 @@
 #pragma once
 // Each logged run's mean against what the configuration's instrument, with its nominal [instrument.terms],
-// would read at that run of the plan (docs/model.md §13.4): a log swapped with another run's, or given under
+// would read at that run of the plan (docs/cli.md, `ccal reduce`): a log swapped with another run's, or given under
 // the wrong run's name, reads far from it. Private to the library (verbs::reduce uses it).
 
 #include <cstddef>
