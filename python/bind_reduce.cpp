@@ -171,7 +171,7 @@ void bind_log_reduction(py::module_& m) {
       [](const Config& cfg, const LogMap& logs, const py::kwargs& keywords) {
         const auto o = with_pulse_weight(cfg, keywords, [](const py::kwargs& k) {
           return options_from_keywords<verbs::ReduceOptions>(
-              k, "reduce_logs", {}, {"statement", "coverage_probability", "statement_trials", "seed", "threads"},
+              k, "reduce_logs", {}, {"statement", "coverage_probability", "coverage_factor", "statement_trials", "seed", "threads", "strict_runs"},
               {"config", "logs"});
         });
         const RunLogOptions lo = verbs::run_log_options(cfg, o);
@@ -184,7 +184,7 @@ void bind_log_reduction(py::module_& m) {
       "(`ccal reduce` without the identification). Identify them with identify(reduction.observations, "
       "config).");
   record_keywords<verbs::ReduceOptions>(
-      m, "reduce_logs", {"statement", "coverage_probability", "statement_trials", "seed", "threads"},
+      m, "reduce_logs", {"statement", "coverage_probability", "coverage_factor", "statement_trials", "seed", "threads", "strict_runs"},
       {kPulseWeightType});
 }
 

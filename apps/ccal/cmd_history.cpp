@@ -21,7 +21,7 @@ struct HistoryCli {
   std::string serial;
   verbs::HistoryShowOptions show;
   OutputOptions show_output;
-  std::int64_t id = 0;
+  std::string id_text;  // ID as typed: read by verbs::history_record_id
   verbs::HistorySupersedeOptions supersede;
   std::string export_serial;
   verbs::HistoryStoreOptions export_store;
@@ -62,7 +62,7 @@ Command add_history(CLI::App& app) {
   CLI::App* supersede = cmd->add_subcommand(
       "supersede",
       "Mark a record superseded (a wrong statement, a repeated test): kept, left out of drift and E_n");
-  supersede->add_option("ID", o->id, "The record's id, as `ccal history show` lists it")
+  supersede->add_option("ID", o->id_text, "The record's id, as `ccal history show` lists it")
       ->required()
       ->type_name("ID");
   add_option_flags(*supersede, o->supersede, option_table<verbs::HistorySupersedeOptions>());
@@ -112,8 +112,9 @@ Command add_history(CLI::App& app) {
                                        : f == "csv" ? render::csv(r)
                                                     : render::text(r));
         } else if (supersede->parsed()) {
-          verbs::history_supersede(o->id, o->supersede);
-          write_output(OutputOptions{}, fmt::format("Calibration {} superseded.\n", o->id));
+          const std::int64_t id = verbs::history_record_id(o->id_text);
+          verbs::history_supersede(id, o->supersede);
+          write_output(OutputOptions{}, fmt::format("Calibration {} superseded.\n", id));
         } else if (exported->parsed()) {
           note_input(verbs::history_store_path(o->export_store.db));
           write_output(o->export_output, verbs::history_export(o->export_serial, o->export_store));

@@ -126,7 +126,6 @@ Command add_reduce(CLI::App& app) {
         if (!o->pulse_weight.empty()) ro.pulse_weight = verbs::pulse_weight_from_text(cfg, o->pulse_weight);
         gather_logs(*o, ro);
         const verbs::ReduceResult r = verbs::reduce(cfg, ro);
-        print_warnings(r.warnings);
         const std::string& f = o->output.format;
         const std::string text = f == "json"  ? render::json(r)
                                  : f == "csv" ? render::csv(r)
@@ -136,6 +135,7 @@ Command add_reduce(CLI::App& app) {
           extra.push_back({"--observations-out", o->observations_out, r.identification.csv});
         add_statement_out_file(extra, o->statement_out, r.statement);
         write_outputs(o->output, text, extra);
+        print_warnings(r.warnings);  // after the outputs: an output refused is the one line said
       }};
 }
 

@@ -76,6 +76,23 @@ void set_command_line(int argc, char** argv) {
 }
 
 std::string command_line_text() { return stored_command_line(); }
+// The same check for the command of a command that has them (ccal history show): its word, or its lack, as
+// the top-level command's; "" when there is no problem.
+std::string subcommand_problem(const std::vector<Command>& commands, int argc, char** argv) {
+  for (const Command& command : commands) {
+    if (argc < 2 || command.app->get_name() != argv[1] || command.app->get_require_subcommand_min() == 0) continue;
+    std::vector<std::string> names;
+    for (const CLI::App* sub : command.app->get_subcommands([](const CLI::App*) { return true; }))
+      names.push_back(sub->get_name());
+    const std::string_view next = argc > 2 ? argv[2] : "";
+    if (next == "-h" || next == "--help") return "";
+    if (next.empty() || next[0] == '-') return unknown_command_message("", names, argv[1]);
+    if (std::find(names.begin(), names.end(), next) == names.end())
+      return unknown_command_message(next, names, argv[1]);
+  }
+  return "";
+}
+
 }  // namespace ccal::cli
 
 int main(int argc, char** argv) {
@@ -135,6 +152,8 @@ int main(int argc, char** argv) {
     if (std::find(names.begin(), names.end(), argv[1]) == names.end())
       return report("error", ccal::cli::unknown_command_message(argv[1], names));
   }
+  if (const std::string problem = ccal::cli::subcommand_problem(commands, argc, argv); !problem.empty())
+    return report("error", problem);
 
   // The chosen command (for its --help in a hint and the flags of its options), once parsed.
   const CLI::App* chosen = nullptr;

@@ -41,12 +41,15 @@ std::string declared_flag(const CLI::App* command, std::string_view field) {
   return found != declared().end() ? found->second : flag_name(field);
 }
 
-std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names) {
+std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names,
+                                    std::string_view parent) {
   std::string accepted;
   for (const std::string& name : names) accepted += (accepted.empty() ? "" : ", ") + name;
+  const std::string prefix = parent.empty() ? "" : "ccal " + std::string(parent) + " ";
+  if (typed.empty()) return "'" + prefix + "…' needs a command; accepted: " + accepted;
   const std::optional<std::string> nearest = nearest_name(typed, names);
-  return "unknown command '" + std::string(typed) + "'" +
-         (nearest ? "; did you mean '" + *nearest + "'?" : ";") + " accepted: " + accepted;
+  return "unknown command '" + prefix + std::string(typed) + "'" +
+         (nearest ? "; did you mean '" + prefix + *nearest + "'?" : ";") + " accepted: " + accepted;
 }
 
 namespace detail {

@@ -27,8 +27,10 @@ std::string flag_name(std::string_view field, std::string_view prefix = "");
 std::string declared_flag(const CLI::App* command, std::string_view field);
 
 // "unknown command 'X'; accepted: a, b, c", with "did you mean 'b'?" when nearest_name (the library's
-// did-you-mean, io/config_file.hpp) finds one.
-std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names);
+// did-you-mean, io/config_file.hpp) finds one; of a command's subcommands (parent "history"): "unknown
+// command 'ccal history X'; …". typed empty: none was given.
+std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names,
+                                    std::string_view parent = {});
 
 // Declares a flag for every row of `table` on `command`, bound to `options` (which must outlive the parse),
 // except the fields named in `skip` (bound by hand by the command).

@@ -17,7 +17,8 @@ namespace ccal {
 namespace {
 
 // A serial number is looked up by its exact text: one that is blank or holds control characters (a line
-// break, a tab) could not be told apart or typed again. given: from the caller (the serial option), else
+// break, a tab) could not be told apart or typed again, and one that is not valid UTF-8 (Latin-1 bytes from
+// another system's shell) could not be written into an export's or a report's JSON. given: from the caller (the serial option), else
 // from the statement's certificate. Empty: checked by the caller (missing).
 void check_serial(const std::string& serial, bool given, const std::string& source) {
   if (serial.empty()) return;
@@ -26,6 +27,8 @@ void check_serial(const std::string& serial, bool given, const std::string& sour
     problem = "is blank";
   else if (detail::has_control_character(serial))
     problem = "holds a control character (a line break, a tab)";
+  else if (!detail::valid_utf8(serial))
+    problem = "is not valid UTF-8 text (a byte of another encoding; shown as \\xNN)";
   if (!problem) return;
   const std::string accepted =
       "accepted: the instrument's serial number, printable characters and not blank, e.g. SN 0815";
@@ -176,8 +179,11 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
     h.effective_dof = c.contains("effective_dof") && c["effective_dof"].is_number()
                           ? c["effective_dof"].get<double>()
                           : std::numeric_limits<double>::infinity();
-    if (!(std::isfinite(h.value) && h.expanded >= 0 && h.coverage_factor > 0))
-      refuse(fmt::format("coefficient {} has no finite value, U ≥ 0 and k > 0", name));
+    if (!(std::isfinite(h.value) && std::isfinite(h.expanded) && h.expanded >= 0 &&
+          std::isfinite(h.coverage_factor) && h.coverage_factor > 0))
+      refuse(fmt::format("coefficient {} has no finite value, finite U ≥ 0 and finite k > 0 (value {}, U {}, k {})",
+                         name, c["corrected_estimate"].dump(), c["expanded_uncertainty"].dump(),
+                         c["coverage_factor"].dump()));
     e.coefficients.push_back(h);
   }
   const nlohmann::json certificate =

@@ -42,6 +42,13 @@ std::vector<Item> read_items(const nlohmann::json& j, const std::string& serial,
       refuse(source, fmt::format("calibrations[{}] has no \"id\", \"date\" and \"statement\"", i));
     Item item;
     item.old_id = c["id"].get<std::int64_t>();
+    // Supersessions name calibrations by id: two entries of one id would attach one to the wrong calibration.
+    for (std::size_t k = 0; k < items.size(); ++k)
+      if (items[k].old_id == item.old_id)
+        throw InputError(fmt::format(
+            "{}: calibrations[{}] has the id {} of calibrations[{}]; accepted: each calibration's own id, as "
+            "`ccal history export` writes them",
+            source, i, item.old_id, k));
     try {
       item.entry = history_entry(c["statement"].dump(), where, serial, c["date"].get<std::string>());
     } catch (const OptionError& e) {  // the file's "serial" stands for the option
@@ -74,6 +81,12 @@ Supersessions supersessions_of(const std::vector<Item>& items, const std::string
     if (!sup.is_object() || (sup.contains("by") && !sup["by"].is_null() && !sup["by"].is_number_integer()))
       refuse(source,
              fmt::format("calibrations[{}]: \"superseded\" is not {{\"by\": id or null, \"reason\"}}", i));
+    if (sup.contains("reason") &&
+        !(sup["reason"].is_string() && sup["reason"].get<std::string>().find_first_not_of(" \t\n\r\f\v") !=
+                                           std::string::npos))
+      refuse(source, fmt::format("calibrations[{}]: \"superseded\" \"reason\" {} is not a reason (text, not "
+                                 "blank)",
+                                 i, sup["reason"].dump()));
     std::optional<std::int64_t> by;
     if (sup.contains("by") && sup["by"].is_number_integer()) {
       by = sup["by"].get<std::int64_t>();
@@ -158,19 +171,22 @@ HistoryImport import_history(HistoryStore& store, const std::string& json_text, 
   const Supersessions supersessions = supersessions_of(items, source);
   std::map<std::int64_t, std::int64_t> new_id;
   std::map<std::int64_t, bool> was_present;
-  for (const Item& item : items) {
-    const std::optional<std::int64_t> known = store.id_of_statement(item.entry.statement_json);
-    was_present[item.old_id] = known.has_value();
-    new_id[item.old_id] = known ? *known : store.add(item.entry);
-    ++(known ? out.present : out.added);
-  }
-  for (const Item* item : supersessions.order) {
-    if (was_present[item->old_id]) continue;  // a record present keeps its own state
-    const std::optional<std::int64_t> by = supersessions.by_of.at(item->old_id);
-    store.supersede(new_id[item->old_id], by ? std::optional<std::int64_t>(new_id[*by]) : std::nullopt,
-                    item->superseded->value("reason", std::string("imported")));
-    ++out.superseded;
-  }
+  // One transaction: a calibration the store refuses (another unit than the serial's records) adds nothing.
+  store.transaction([&] {
+    for (const Item& item : items) {
+      const std::optional<std::int64_t> known = store.id_of_statement(item.entry.statement_json);
+      was_present[item.old_id] = known.has_value();
+      new_id[item.old_id] = known ? *known : store.add(item.entry);
+      ++(known ? out.present : out.added);
+    }
+    for (const Item* item : supersessions.order) {
+      if (was_present[item->old_id]) continue;  // a record present keeps its own state
+      const std::optional<std::int64_t> by = supersessions.by_of.at(item->old_id);
+      store.supersede(new_id[item->old_id], by ? std::optional<std::int64_t>(new_id[*by]) : std::nullopt,
+                      item->superseded->value("reason", std::string("imported")));
+      ++out.superseded;
+    }
+  });
   return out;
 }
 

@@ -73,6 +73,16 @@ CREATE TRIGGER coefficient_not_deleted BEFORE DELETE ON coefficient
   BEGIN SELECT RAISE(ABORT, 'a recorded coefficient is never deleted'); END;
 )sql";
 
+// The meta table (application, schema version) is kept as the records are: made on every opening for writing,
+// after any migration (a future one drops these two first, as it updates schema_version), so that a store made
+// by an older ccal gets them too.
+constexpr const char* kMetaKept = R"sql(
+CREATE TRIGGER IF NOT EXISTS meta_kept BEFORE UPDATE ON meta
+  BEGIN SELECT RAISE(ABORT, 'the store''s meta data is never changed'); END;
+CREATE TRIGGER IF NOT EXISTS meta_not_deleted BEFORE DELETE ON meta
+  BEGIN SELECT RAISE(ABORT, 'the store''s meta data is never deleted'); END;
+)sql";
+
 // Schema 1 → 2: what a calibration shares, NULL (not known) in the records already there; a schema change,
 // not an update, so the records' triggers stay silent and their rows as they were.
 constexpr const char* kMigrationTo2 = R"sql(
@@ -214,7 +224,8 @@ std::string default_history_path() {
       .string();
 }
 
-HistoryStore HistoryStore::open(const std::string& path, Access access, int busy_millis) {
+HistoryStore HistoryStore::open(const std::string& path, Access access, int busy_millis,
+                                const std::string& shown) {
   const bool create = access == Access::create, writing = access != Access::read;
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -230,7 +241,7 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
     throw InputError(fmt::format("{}: not a file; accepted: a ccal history store (a file)", path));
   }
   HistoryStore store;
-  store.path_ = path;
+  store.path_ = shown.empty() ? path : shown;
   const int flags = create    ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
                     : writing ? SQLITE_OPEN_READWRITE
                               : SQLITE_OPEN_READONLY;
@@ -278,6 +289,7 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
                      "INSERT INTO meta(key, value) VALUES ('application', ?1), ('schema_version', ?2)");
       meta.text(1, std::string(kApplication)).text(2, std::to_string(kHistorySchemaVersion)).step();
     }
+    if (writing) execute(store.db_, path, kMetaKept, "cannot write its schema");
     execute(store.db_, path, "COMMIT", "cannot write its schema");
   } catch (...) {
     sqlite3_exec(store.db_, "ROLLBACK", nullptr, nullptr, nullptr);
@@ -287,7 +299,7 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
 }
 
 HistoryStore::HistoryStore(HistoryStore&& other) noexcept
-    : db_(other.db_), path_(std::move(other.path_)), schema_(other.schema_) {
+    : db_(other.db_), path_(std::move(other.path_)), schema_(other.schema_), depth_(other.depth_) {
   other.db_ = nullptr;
 }
 
@@ -297,6 +309,7 @@ HistoryStore& HistoryStore::operator=(HistoryStore&& other) noexcept {
     db_ = other.db_;
     path_ = std::move(other.path_);
     schema_ = other.schema_;
+    depth_ = other.depth_;
     other.db_ = nullptr;
   }
   return *this;
@@ -347,8 +360,8 @@ std::vector<std::int64_t> HistoryStore::replaced_records(const HistoryEntry& ent
 std::int64_t HistoryStore::add(const HistoryEntry& entry,
                                const std::function<void(std::int64_t id)>& before_commit) {
   const std::string sha = sha256_hex(entry.statement_json);
-  execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
-  try {
+  std::int64_t id = 0;
+  transaction([&] {
     {
       Statement known(db_, path_, "SELECT id, serial, date FROM calibration WHERE statement_sha256 = ?1");
       known.text(1, sha);
@@ -377,7 +390,7 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry,
       insert.text(9, entry.shared->setup_sha256).text(11, detail::shared_part_text(*entry.shared));
     if (!entry.certificate_number.empty()) insert.text(10, entry.certificate_number);
     insert.step();
-    const std::int64_t id = sqlite3_last_insert_rowid(db_);
+    id = sqlite3_last_insert_rowid(db_);
     for (const HistoryCoefficient& c : entry.coefficients) {
       Statement row(db_, path_,
                     "INSERT INTO coefficient(calibration, name, unit, value, expanded, coverage_factor, "
@@ -404,9 +417,23 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry,
           .step();
     }
     if (before_commit) before_commit(id);
+  });
+  return id;
+}
+
+void HistoryStore::transaction(const std::function<void()>& body) {
+  if (depth_ > 0) {  // within an outer transaction: its COMMIT or ROLLBACK is this one's
+    body();
+    return;
+  }
+  execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
+  depth_ = 1;
+  try {
+    body();
+    depth_ = 0;
     execute(db_, path_, "COMMIT", "cannot write it");
-    return id;
   } catch (...) {
+    depth_ = 0;
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
@@ -421,8 +448,7 @@ void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, co
     throw OptionError(
         "reason", detail::history_shown(reason),
         fmt::format("is blank; accepted: the reason calibration {} of {} is superseded, as text", id, path_));
-  execute(db_, path_, "BEGIN IMMEDIATE", "cannot lock it for writing");
-  try {
+  transaction([&] {
     const auto serial_of = [&](std::int64_t which) {
       Statement find(db_, path_, "SELECT serial FROM calibration WHERE id = ?1");
       find.integer(1, which);
@@ -462,11 +488,7 @@ void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, co
     insert.integer(1, id).text(3, reason).text(4, utc_now());
     if (by) insert.integer(2, *by);
     insert.step();
-    execute(db_, path_, "COMMIT", "cannot write it");
-  } catch (...) {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
+  });
 }
 
 std::optional<std::int64_t> HistoryStore::id_of_statement(const std::string& statement_json) const {
@@ -499,8 +521,16 @@ std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) cons
     r.added_at = list.column_text(7);
     r.statement_json = list.column_text(10);
     r.certificate_number = list.column_text(11);
-    if (!list.column_null(12))
-      r.shared = detail::shared_part_of(nlohmann::json::parse(list.column_text(12)), path_);
+    if (!calendar_day(r.date)) refuse_stored(r, fmt::format("its date {} is not YYYY-MM-DD", detail::history_shown(r.date)));
+    if (!list.column_null(12)) {
+      nlohmann::json shared;
+      try {
+        shared = nlohmann::json::parse(list.column_text(12));
+      } catch (const nlohmann::json::exception&) {
+        refuse_stored(r, "what it shares is not JSON");
+      }
+      r.shared = detail::shared_part_of(shared, fmt::format("{}: calibration {}", path_, r.id));
+    }
     if (!list.column_null(9)) {
       if (!list.column_null(8)) r.superseded_by = list.column_integer(8);
       r.superseded_reason = list.column_text(9);
@@ -512,12 +542,26 @@ std::vector<HistoryRecord> HistoryStore::records(const std::string& serial) cons
                    "SELECT name, unit, value, expanded, coverage_factor, coverage_probability, effective_dof "
                    "FROM coefficient WHERE calibration = ?1 ORDER BY rowid");
     rows.integer(1, r.id);
-    while (rows.step())
+    while (rows.step()) {
       r.coefficients.push_back({rows.column_text(0), rows.column_text(1), rows.column_number(2),
                                 rows.column_number(3), rows.column_number(4), rows.column_number(5),
                                 rows.column_number(6)});
+      const HistoryCoefficient& c = r.coefficients.back();
+      if (!(std::isfinite(c.value) && std::isfinite(c.expanded) && c.expanded >= 0 &&
+            std::isfinite(c.coverage_factor) && c.coverage_factor > 0 && c.coverage_probability >= 0 &&
+            c.coverage_probability < 1))
+        refuse_stored(r, fmt::format("its {} has no finite value, finite U ≥ 0, k > 0 and p in (0, 1) or not stated",
+                                     detail::history_shown(c.name)));
+    }
   }
   return out;
+}
+
+void HistoryStore::refuse_stored(const HistoryRecord& r, const std::string& what) const {
+  throw InputError(fmt::format(
+      "{}: history store: calibration {} as stored: {}; ccal writes no such record, so the store was changed "
+      "outside ccal; accepted: a store as ccal wrote it (restore it from a backup)",
+      path_, r.id, what));
 }
 
 std::vector<HistoryStore::SerialSummary> HistoryStore::summaries() const {

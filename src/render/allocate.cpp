@@ -122,7 +122,18 @@ std::string sources_table(const Config& cfg, const AllocationResult& r, const Al
       row.push_back(fmt::format("{:.1f} %", 100 * a.share[i]));
     sources.add_row(row);
   }
-  return sources.render("  ", o.wide ? 0 : o.width);
+  // The cross terms of correlated sources, as the budget's line of them, when they reach 0.05 % of a target's
+  // u² (shown as 0.1 %): the sources' shares and this line add to 100 % but for the rate noise.
+  bool crossed = false;
+  for (std::size_t t : r.targets) crossed = crossed || std::abs(r.coefficients[t].correlation_share) >= 5e-4;
+  std::string out = sources.render("  ", o.wide ? 0 : o.width);
+  if (crossed) {
+    out += fmt::format("  {} (their cross terms at the allocated tolerances):", budget_parts::kCrossTermsLabel);
+    for (std::size_t t : r.targets)
+      out += fmt::format(" share {} {:.1f} %", r.coefficients[t].id, 100 * r.coefficients[t].correlation_share);
+    out += "\n";
+  }
+  return out;
 }
 
 std::string verification_text(const AllocationResult& r, const std::string& pct, std::size_t width) {
@@ -224,6 +235,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
     o["allocated_expanded"] = c.allocated_expanded * f;
     o["common_scale_expanded"] = c.common_expanded * f;
     o["allocated_std_uncertainty"] = c.lpu_std * f;
+    o["correlation_share"] = c.correlation_share;  // the cross terms' share of u² at the allocated tolerances
     if (!c.has_target) {
       o["held"] = c.held;
       o["grew"] = c.grew;

@@ -109,7 +109,7 @@ std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t
       out.push_back({s.group.empty() ? s.id : s.group + " (" + s.id + ")",
                      variance > 0 ? s.effect[i] * s.effect[i] / variance : 0.0});
     out.push_back(
-        {"correlations between sources", variance > 0 ? correlation_variance(r)[i] / variance : 0.0});
+        {std::string(kCrossTermsLabel), variance > 0 ? correlation_variance(r)[i] / variance : 0.0});
     effect.clear();
   }
   for (std::size_t g = 0; g < effect.size(); ++g) {

@@ -64,6 +64,10 @@ struct BudgetLine {
 // Every source and rate noise, by share of coefficient k's variance, largest first.
 std::vector<BudgetLine> budget_lines(const Config& cfg, const ccal::BudgetResult& r, std::size_t k);
 
+// The label of the cross terms' line (Σ_{s≠t} of correlated sources' effects) in a table of shares of u²: the
+// budget's answer and the allocation's table of tolerances.
+inline constexpr std::string_view kCrossTermsLabel = "correlations between sources";
+
 // One addend of a coefficient's variance: a correlation group (its members' effects added with their signs;
 // an independent source is a group of one) or a drive's rate noise. Shares of one coefficient sum to 1.
 struct Contribution {

@@ -232,6 +232,14 @@ void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSo
     }
     r.sources.push_back(std::move(a));
   }
+  // The cross terms at the allocated tolerances, as the budget computes them (each effect J_ks u_s scaled by λ_s).
+  BudgetResult allocated = b;
+  for (std::size_t s = 0; s < ns; ++s) allocated.sources[s].effect *= sol.scale[Eigen::Index(s)];
+  const Eigen::VectorXd cross = correlation_variance(allocated);
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
+    const double var = u_alloc[Eigen::Index(k)] * u_alloc[Eigen::Index(k)];
+    r.coefficients[k].correlation_share = var > 0 ? cross[Eigen::Index(k)] / var : 0.0;
+  }
   std::stable_sort(r.sources.begin(), r.sources.end(),
                    [](const AllocatedSource& x, const AllocatedSource& y) { return x.scale < y.scale; });
 }

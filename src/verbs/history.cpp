@@ -4,13 +4,16 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 
 #include "ccal/core/errors.hpp"
+#include "../io/history_text.hpp"
 
 namespace ccal::verbs {
 
@@ -57,6 +60,49 @@ std::string read_history_file(const std::string& file, std::string_view accepted
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// Runs `write` on the store at `path`. A store that does not exist yet is built in a temporary file beside it
+// and linked into place (a hard link: it fails rather than replace a store another process made meanwhile)
+// only once `write` has succeeded, so that a refused first add or import leaves no file behind; when another
+// process made the store meanwhile, `write` runs again on that one.
+void write_store(const std::string& path, const std::function<void(HistoryStore&)>& write) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    HistoryStore store = HistoryStore::open(path, HistoryStore::Access::write);
+    write(store);
+    return;
+  }
+  const fs::path folder = fs::path(path).parent_path();
+  if (!folder.empty()) fs::create_directories(folder, ec);
+  const std::string temporary = fmt::format("{}.{:016x}.new", path, std::random_device()() * 0x9e3779b97f4a7c15ULL);
+  const auto remove_temporary = [&] {
+    for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(temporary + suffix, ec);
+  };
+  try {
+    HistoryStore store = HistoryStore::open(temporary, HistoryStore::Access::create, kHistoryBusyMillis, path);
+    write(store);
+  } catch (...) {
+    remove_temporary();
+    throw;
+  }
+  fs::create_hard_link(temporary, path, ec);
+  const bool placed = !ec;
+  if (ec && !fs::exists(path)) {  // a file system without hard links: renamed, as nothing is there to replace
+    fs::rename(temporary, path, ec);
+    if (ec) {
+      remove_temporary();
+      throw InputError(fmt::format("{}: cannot create the history store ({}); accepted: a file (and folder) "
+                                   "this user may write",
+                                   path, ec.message()));
+    }
+    return;
+  }
+  remove_temporary();
+  if (placed) return;
+  HistoryStore store = HistoryStore::open(path, HistoryStore::Access::write);  // made meanwhile by another
+  write(store);
 }
 
 bool superseded(const HistoryRecord& r) { return r.superseded_by || !r.superseded_reason.empty(); }
@@ -130,14 +176,25 @@ void history_supersede(std::int64_t id, const HistorySupersedeOptions& o) {
   store.supersede(id, o.by > 0 ? std::optional<std::int64_t>(o.by) : std::nullopt, o.reason);
 }
 
+std::int64_t history_record_id(const std::string& text) {
+  std::int64_t id = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, id);
+  if (ec == std::errc() && ptr == end && id >= 1) return id;
+  throw InputError(fmt::format("ID: {} is not a calibration id; accepted: a whole number from 1, as `ccal "
+                               "history show SERIAL` lists them (#3 is 3)",
+                               detail::history_shown(text)));
+}
+
 std::string history_export(const std::string& serial, const HistoryStoreOptions& o) {
   return export_history(HistoryStore::open(history_store_path(o.db), HistoryStore::Access::read), serial);
 }
 
 HistoryImport history_import(const std::string& file, const HistoryStoreOptions& o) {
   const std::string text = read_history_file(file, "an exported history file (`ccal history export`)");
-  HistoryStore store = HistoryStore::open(history_store_path(o.db), HistoryStore::Access::create);
-  return import_history(store, text, file);
+  HistoryImport out;
+  write_store(history_store_path(o.db), [&](HistoryStore& store) { out = import_history(store, text, file); });
+  return out;
 }
 
 std::int64_t history_day(const std::string& date, std::string_view field) {
@@ -152,14 +209,16 @@ HistoryAddResult history_add(const std::string& statement_file, const HistoryAdd
   HistoryAddResult r;
   r.entry = history_entry(text, statement_file, o.serial, o.date);
   r.db = history_store_path(o.db);
-  HistoryStore store = HistoryStore::open(r.db, HistoryStore::Access::create);
-  store.add(r.entry, [&](std::int64_t id) {
-    r.id = id;
-    const std::vector<HistoryRecord> records = store.records(r.entry.serial);  // the transaction sees it
-    r.calibrations = records.size();
-    for (const HistoryRecord& rec : records)
-      if (rec.superseded_by == id) r.replaced.push_back(rec.id);
-    if (before_commit) before_commit(r);
+  write_store(r.db, [&](HistoryStore& store) {
+    r.replaced.clear();
+    store.add(r.entry, [&](std::int64_t id) {
+      r.id = id;
+      const std::vector<HistoryRecord> records = store.records(r.entry.serial);  // the transaction sees it
+      r.calibrations = records.size();
+      for (const HistoryRecord& rec : records)
+        if (rec.superseded_by == id) r.replaced.push_back(rec.id);
+      if (before_commit) before_commit(r);
+    });
   });
   return r;
 }

@@ -13,6 +13,7 @@
 #include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "run_check.hpp"
 
 namespace ccal::verbs {
 
@@ -97,6 +98,30 @@ void refuse_repeated_logs(const Config& cfg, const std::map<std::size_t, LogFile
   }
 }
 
+// Each run's mean against the nominal instrument's reading there (run_check.hpp): a warning per run beyond
+// kRunCheckLimit u, or with strict_runs the refusal of the first, located where its log was named, naming the
+// others.
+void check_nominal_readings(const Config& cfg, const std::map<std::size_t, LogFile>& named, bool strict,
+                            ReduceResult& r) {
+  const std::vector<RunCheck> checks = check_runs(cfg, r.logs, r.mode);
+  std::vector<const RunCheck*> beyond;
+  for (const RunCheck& c : checks)
+    if (c.beyond) beyond.push_back(&c);
+  if (beyond.empty()) return;
+  if (!strict) {
+    for (const RunCheck* c : beyond) r.warnings.push_back(run_check_finding(cfg, checks, *c));
+    return;
+  }
+  std::string also;
+  for (std::size_t k = 1; k < beyond.size(); ++k)
+    also += fmt::format("{}'{}'", k == 1 ? "; so are runs " : ", ", cfg.plan.runs[beyond[k]->index].name);
+  const std::string finding = run_check_finding(cfg, checks, *beyond.front());
+  const std::string name = fmt::format("run '{}'", cfg.plan.runs[beyond.front()->index].name);
+  refuse_log(named.at(beyond.front()->index), name,
+             fmt::format("{}{}; accepted: each run's own log (or reduce without strict_runs to see the fit)",
+                         finding.substr(name.size() + 2), also));
+}
+
 }  // namespace
 
 std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel) {
@@ -108,12 +133,17 @@ std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel)
 
 namespace {
 
+static_assert(kRunCheckLimit == 10, "the strict_runs row's help states the limit");
 constexpr OptionSpec<ReduceOptions> kReduceRows[] = {
     {"angle_unit", enum_member<&ReduceOptions::angle_unit>(kAngleUnitNames), "UNIT",
      "Unit of the encoder columns: rad or deg"},
     {"pulse_weight", &ReduceOptions::pulse_weight, "W",
      "Integrated output per pulse, in the output unit × s (e.g. deg for deg/s); default: the instrument's "
      "quantum"},
+    // The help's "10" is kRunCheckLimit, held to it by the static_assert below.
+    {"strict_runs", &ReduceOptions::strict_runs, "",
+     "Refuse a run whose log's mean is more than 10 standard uncertainties from what the nominal instrument "
+     "reads at that run (a swapped or mislabelled log), instead of warning"},
     rows::mode<&ReduceOptions::mode>("Model of the regressors: exact (full chain) or paper; default: "
                                      "[identification] mode of the configuration"),
     {"statement", &ReduceOptions::statement, "",
@@ -219,7 +249,12 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
     check_readable(log.path);  // a missing file before the count of logs, as when logs were read whole
     logs.emplace_back(index, log.path);
   }
-  check_log_count(cfg.identification, logs.size(), "logs");
+  try {
+    check_log_count(cfg.identification, logs.size(), "logs");
+  } catch (const OptionError& e) {  // logs a manifest named: its [runs] is short, not an option
+    if (o.logs.empty() || o.logs.front().manifest.empty()) throw;
+    throw InputError(fmt::format("{}: [runs]: {}", o.logs.front().manifest, e.problem()));
+  }
   refuse_repeated_paths(cfg, named);
   r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(named[lr.index].path);
@@ -244,6 +279,7 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   r.warnings = r.identification.id.observability.warnings;
   warn_about_control(cfg, r);
   warn_about_short_logs(cfg, r);
+  check_nominal_readings(cfg, named, o.strict_runs, r);
   if (o.statement) {
     std::vector<double> durations;
     for (const LoggedRun& lr : r.logs.runs) durations.push_back(lr.log.duration);

@@ -35,6 +35,25 @@ std::optional<std::vector<std::size_t>> plan_rows(const Config& config, const Id
   return rows;
 }
 
+// What the known [errors] the model leaves out do to each row's mean (residuals' unit): ȳ(truth with them,
+// model without) − ȳ(neither), of the plan's runs. Deterministic, so the residuals' check removes its share
+// M·Δy before comparing the scatter with the noise (0 when the model compensates them, or there are none).
+Eigen::VectorXd known_error_means(const Config& config, ModelMode mode, const std::vector<std::size_t>& rows,
+                                  double unit_si) {
+  Eigen::VectorXd shift = Eigen::VectorXd::Zero(Eigen::Index(rows.size()));
+  const Eigen::VectorXd& errors = config.centrifuge.errors;
+  if (config.identification.compensate || (errors.array() == 0.0).all()) return shift;
+  const Experiment ex = config.experiment();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(errors.size());
+  const Eigen::VectorXd with = observe<double>(ex, errors, zero, config.identification, mode).output;
+  const Eigen::VectorXd without = observe<double>(ex, zero, zero, config.identification, mode).output;
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    shift[Eigen::Index(j)] = (with[Eigen::Index(rows[j])] - without[Eigen::Index(rows[j])]) / unit_si;
+  return shift;
+}
+
+}  // namespace
+
 // σ_j of each row's mean (residuals' unit): white output noise N²/T, the pulse count's two ends each
 // rounded within one quantum q (a triangular error of half-width q/T: q²/(6T²)), and each drive's rate noise
 // (docs/model.md §3.2).
@@ -68,25 +87,6 @@ Eigen::MatrixXd run_effects(const Config& config, const ccal::BudgetResult& b, c
           jacobian.total(Eigen::Index(rows[j]), Eigen::Index(s)) * b.sources[s].standard_uncertainty / unit_si;
   return independent_effects(b, e);
 }
-
-// What the known [errors] the model leaves out do to each row's mean (residuals' unit): ȳ(truth with them,
-// model without) − ȳ(neither), of the plan's runs. Deterministic, so the residuals' check removes its share
-// M·Δy before comparing the scatter with the noise (0 when the model compensates them, or there are none).
-Eigen::VectorXd known_error_means(const Config& config, ModelMode mode, const std::vector<std::size_t>& rows,
-                                  double unit_si) {
-  Eigen::VectorXd shift = Eigen::VectorXd::Zero(Eigen::Index(rows.size()));
-  const Eigen::VectorXd& errors = config.centrifuge.errors;
-  if (config.identification.compensate || (errors.array() == 0.0).all()) return shift;
-  const Experiment ex = config.experiment();
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(errors.size());
-  const Eigen::VectorXd with = observe<double>(ex, errors, zero, config.identification, mode).output;
-  const Eigen::VectorXd without = observe<double>(ex, zero, zero, config.identification, mode).output;
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    shift[Eigen::Index(j)] = (with[Eigen::Index(rows[j])] - without[Eigen::Index(rows[j])]) / unit_si;
-  return shift;
-}
-
-}  // namespace
 
 double type_a_dof(double known_variance, double estimated_variance, double dof) {
   if (!(estimated_variance > 0) || !std::isfinite(dof)) return kInfiniteDof;

@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/history_store.hpp"
@@ -207,6 +209,69 @@ TEST_F(HistorySchemaTwo, ACoverageProbabilityOutsideZeroToOneIsRefused) {
         std::string::npos)
         << x.what();
   }
+}
+
+// UPDATE and DELETE refused on every table of the store at `file` (raw SQL, as a hand edit would do it), each
+// table holding a row so that its triggers fire; the tables are those the file has, which must be the four.
+void expect_every_table_kept(const std::string& file) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+  std::vector<std::string> tables;
+  sqlite3_stmt* list = nullptr;
+  sqlite3_prepare_v2(db, "SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name", -1, &list, nullptr);
+  while (sqlite3_step(list) == SQLITE_ROW) tables.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(list, 0)));
+  sqlite3_finalize(list);
+  EXPECT_EQ(tables, (std::vector<std::string>{"calibration", "coefficient", "meta", "supersession"}));
+  const auto rows = [&](const std::string& table) {
+    sqlite3_stmt* count = nullptr;
+    sqlite3_prepare_v2(db, ("SELECT count(*) FROM " + table).c_str(), -1, &count, nullptr);
+    sqlite3_step(count);
+    const std::int64_t n = sqlite3_column_int64(count, 0);
+    sqlite3_finalize(count);
+    return n;
+  };
+  for (const std::string& table : tables) {
+    const std::int64_t before = rows(table);
+    ASSERT_GT(before, 0) << table;
+    for (const std::string& sql : {"UPDATE " + table + " SET rowid = rowid", "DELETE FROM " + table}) {
+      char* message = nullptr;
+      EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &message), SQLITE_CONSTRAINT) << sql;
+      EXPECT_NE(std::string(message ? message : "").find("never"), std::string::npos) << sql;
+      sqlite3_free(message);
+    }
+    EXPECT_EQ(rows(table), before) << table;
+  }
+  sqlite3_close(db);
+}
+
+TEST_F(HistorySchemaTwo, UpdateAndDeleteAreRefusedOnEveryTable) {
+  {  // A store made by this version, with a supersession.
+    HistoryStore store = HistoryStore::open(path("h.sqlite"), HistoryStore::Access::create);
+    store.add(history_entry(statement_two(0.02, "C-1"), "s.json", "", ""));
+    store.add(history_entry(statement_two(0.0201, "C-1/2", "C-1"), "r.json", "", ""));
+  }
+  expect_every_table_kept(path("h.sqlite"));
+  // A store of schema 1 (the last schema before this one) with a superseded record, then written to by this
+  // version (migrated): every table kept, meta too, which schema 1 did not keep.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("old.sqlite").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, kSchemaOne, nullptr, nullptr, nullptr), SQLITE_OK);
+  ASSERT_EQ(
+      sqlite3_exec(
+          db,
+          "INSERT INTO meta VALUES ('application', 'ccal calibration history'), ('schema_version', '1');"
+          "INSERT INTO calibration VALUES (1, 'SN 5', '2024-01-01', 'PIGA', '0.9', 'lab.toml', 'abc', "
+          "'2024-01-02T00:00:00Z', '{}');"
+          "INSERT INTO coefficient VALUES (1, 'K0', 'deg/s', 0.05, 0.02, 2, 0.95, NULL);"
+          "INSERT INTO supersession VALUES (1, NULL, 'withdrawn', '2024-02-01T00:00:00Z');",
+          nullptr, nullptr, nullptr),
+      SQLITE_OK);
+  sqlite3_close(db);
+  {
+    HistoryStore store = HistoryStore::open(path("old.sqlite"), HistoryStore::Access::write);
+    store.add(history_entry(statement_two(0.02, "C-1"), "s.json", "", "2025-01-01"));
+  }
+  expect_every_table_kept(path("old.sqlite"));
 }
 
 }  // namespace

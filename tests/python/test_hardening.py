@@ -64,6 +64,32 @@ class BadArgumentCatalogueTest(unittest.TestCase):
                     self.assertNotIn("\n", message)
 
 
+class SwappedLogsTest(unittest.TestCase):
+    """reduce(strict_runs=True) refuses a run whose mean is not what the nominal instrument reads there (the
+    pulse logs of two runs swapped), as `ccal reduce --strict-runs` does; without it the two are warnings."""
+
+    def test_swapped_pulse_logs(self):
+        cfg = ccal.load_config(os.path.join(EXAMPLE_DIR, "lab.toml"))
+        sim = ccal.simulate(cfg)
+        with tempfile.TemporaryDirectory() as d:
+            logs = {}
+            for run, (name, text) in zip(["5g", "10g", "15g", "20g", "25g", "30g"], sim.run_logs()):
+                path = os.path.join(d, name)
+                with open(path, "w", encoding="utf-8") as f:  # time and pulses only: no encoder to tell them apart
+                    f.write("\n".join(",".join(line.split(",")[:2]) for line in text.splitlines()) + "\n")
+                logs[run] = path
+            logs["5g"], logs["10g"] = logs["10g"], logs["5g"]
+            r = ccal.reduce(cfg, logs, statement=False)
+            self.assertEqual(sum("nominal instrument" in w for w in r.warnings), 2)
+            with self.assertRaisesRegex(ccal.InputError, r"logs: run '5g' the log's mean .* so are runs '10g'"):
+                ccal.reduce(cfg, logs, strict_runs=True)
+            # reduce_logs does not identify, so has no statement and no run check: their keywords are refused,
+            # coverage_factor among them (it was accepted and ignored).
+            for keyword in ("strict_runs", "coverage_factor"):
+                with self.assertRaisesRegex(TypeError, keyword):
+                    ccal.reduce_logs(cfg, {"5g": logs["5g"]}, **{keyword: 2})
+
+
 class NonFiniteResultTest(unittest.TestCase):
     """Results that cannot be finite are refused with what to change, not returned as nan or inf."""
 

@@ -75,6 +75,22 @@ class HistoryTest(unittest.TestCase):
         with self.assertRaises(TypeError):
             ccal.history("SN 1", db=self.db, unknown=1)
 
+    def test_what_the_history_could_not_use_is_refused_and_leaves_no_store(self):
+        new = os.path.join(self.folder.name, "new.sqlite")
+        bad = os.path.join(self.folder.name, "bad.json")
+        with open(bad, "w", encoding="utf-8") as f:
+            f.write(statement(0.02, -1.0))
+        with self.assertRaisesRegex(ccal.InputError, "finite U ≥ 0"):
+            ccal.history_add(bad, db=new, serial="SN 1", date="2028-01-01")
+        self.assertFalse(os.path.exists(new))
+        # A certificate replacing one the new store does not hold: refused once the store is open, no file left.
+        with open(bad, "w", encoding="utf-8") as f:
+            f.write(json.dumps(dict(json.loads(statement(0.02, 0.2)), certificate={"replaces": "C-0"})))
+        with self.assertRaisesRegex(ccal.InputError, "replaces certificate 'C-0'"):
+            ccal.history_add(bad, db=new, serial="SN 1", date="2028-01-01")
+        self.assertFalse(os.path.exists(new))
+        self.assertEqual(os.listdir(self.folder.name).count("new.sqlite"), 0)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -64,6 +64,33 @@ TEST(HistoryTrend, ASimulatedDriftIsFoundWithinItsUncertainty) {
   }
 }
 
+TEST(HistoryTrend, TheBirgeRatioIsTheRootOfChiSquaredPerDegreeOfFreedom) {
+  // x = 1.0, 1.3, 1.2 at t = 0, 1, 2 with u = 0.1: by hand t̄ = 1, b = (−1.0 + 1.2)/2 = 0.1, a = 3.5/3;
+  // residuals −1/15, 2/15, −1/15, so χ² = (1 + 4 + 1)/225/0.01 = 8/3 with one degree of freedom and
+  // R_B = √(8/3) = 1.633 (neither 0 nor 1, so χ²/dof in its place shows); to the round-off of sums near 1.
+  const DriftLine line = drift_line({{0, 1.0, 0.2, 2}, {1, 1.3, 0.2, 2}, {2, 1.2, 0.2, 2}});
+  ASSERT_TRUE(line.available);
+  EXPECT_NEAR(line.slope, 0.1, 1e-14);
+  EXPECT_NEAR(line.value, 3.5 / 3, 1e-14);
+  EXPECT_NEAR(line.chi_squared, 8.0 / 3, 1e-12);
+  EXPECT_EQ(line.dof, 1);
+  EXPECT_NEAR(line.birge_ratio, std::sqrt(8.0 / 3), 1e-12);
+}
+
+TEST(HistoryTrend, NormalisedErrorAndLineNearTheLargestDouble) {
+  // x = ±1e308 with U = 1e308 (k = 2): the difference and U² overflow a double, E_n = −2/√2 = −√2 does not.
+  const auto e = normalised_errors({{0, 1e308, 1e308, 2}, {1, -1e308, 1e308, 2}});
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_TRUE(e[0].defined);
+  EXPECT_NEAR(e[0].value, -std::sqrt(2.0), 1e-15);
+  EXPECT_TRUE(e[0].disagree);
+  // The line of 1e300 × the exact drift above: 1e300 × its slope and uncertainties (relative 1e-14).
+  const DriftLine line = drift_line({{0, 5e300, 0.2e300, 2}, {1, 5.25e300, 0.2e300, 2}, {3, 5.75e300, 0.4e300, 2}});
+  ASSERT_TRUE(line.available);
+  EXPECT_NEAR(line.slope / 1e300, 0.25, 1e-14);
+  EXPECT_NEAR(line.std_value / 1e300, 1.0 / 15.0, 1e-14);
+}
+
 TEST(HistoryTrend, NoLineWithoutThreeCalibrationsAtTwoTimes) {
   EXPECT_FALSE(drift_line({{0, 1, 0.1, 2}, {1, 1.1, 0.1, 2}}).available);
   EXPECT_FALSE(drift_line({{1, 1, 0.1, 2}, {1, 1.1, 0.1, 2}, {1, 1.2, 0.1, 2}}).available);

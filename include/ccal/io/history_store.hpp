@@ -23,7 +23,9 @@
 //                                                       ν_eff (NULL: ∞), in the statement's units
 //     supersession(calibration, by, reason, at)         a record replaced, never changed
 // Schema 1 → 2 adds the three columns, NULL in every record already there (records stay as they were).
-// A record is never changed or deleted (triggers refuse it); one is only superseded, with a reason. Every
+// A record is never changed or deleted: triggers refuse UPDATE and DELETE on every table (calibration,
+// coefficient, supersession, and meta, whose two triggers an opening for writing adds to a store made before
+// them); a record is only superseded, with a reason. Every
 // write is one transaction (BEGIN IMMEDIATE, waiting up to kHistoryBusyMillis for another writer), so two
 // processes adding at once lose nothing, and a process killed mid-add leaves the store as it was before the
 // add.
@@ -111,7 +113,10 @@ class HistoryStore {
   // forward when writing (none exists yet: version 1 is the first). busy_millis: how long to wait for another
   // process's lock before refusing.
   enum class Access { read, write, create };
-  static HistoryStore open(const std::string& path, Access access, int busy_millis = kHistoryBusyMillis);
+  // shown: the name the store's messages and path() give it (empty: `path`), for a new store built in a
+  // temporary file before it is put in place.
+  static HistoryStore open(const std::string& path, Access access, int busy_millis = kHistoryBusyMillis,
+                           const std::string& shown = {});
   HistoryStore(HistoryStore&& other) noexcept;
   HistoryStore& operator=(HistoryStore&& other) noexcept;
   HistoryStore(const HistoryStore&) = delete;
@@ -127,6 +132,10 @@ class HistoryStore {
   // connection already see them); an exception from it rolls the transaction back, so that nothing is
   // recorded, and is passed on.
   std::int64_t add(const HistoryEntry& entry, const std::function<void(std::int64_t id)>& before_commit = {});
+  // Runs `body` as one transaction (BEGIN IMMEDIATE … COMMIT): the adds and supersessions it makes are
+  // recorded together or, when it throws, not at all (ROLLBACK, the exception passed on). Nested calls, and
+  // add or supersede within it, join the outer transaction.
+  void transaction(const std::function<void()>& body);
   // Marks record `id` superseded, by record `by` of the same serial if given, for `reason` (not blank), in
   // one transaction. InputError for an unknown id, a record already superseded, `by` unknown, of another
   // serial, itself superseded, or the record itself.
@@ -134,6 +143,8 @@ class HistoryStore {
   // The id of the record of this statement text (history_entry's statement_json), if recorded.
   std::optional<std::int64_t> id_of_statement(const std::string& statement_json) const;
   // Every calibration of a serial number, oldest first (by date, then id), superseded ones included.
+  // InputError naming the record for one no ccal writes (a store edited by hand: a date that is no date, a
+  // coefficient without a finite value, U, k or p, what it shares not JSON).
   std::vector<HistoryRecord> records(const std::string& serial) const;
   // The serial numbers in the store, sorted.
   std::vector<std::string> serials() const;
@@ -151,10 +162,12 @@ class HistoryStore {
  private:
   HistoryStore() = default;
   void check_units(const HistoryEntry& entry) const;
+  [[noreturn]] void refuse_stored(const HistoryRecord& record, const std::string& what) const;
   std::vector<std::int64_t> replaced_records(const HistoryEntry& entry) const;
   ::sqlite3* db_ = nullptr;
   std::string path_;
   int schema_ = kHistorySchemaVersion;
+  int depth_ = 0;  // 1 within transaction()
 };
 
 }  // namespace ccal

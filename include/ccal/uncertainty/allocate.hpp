@@ -181,6 +181,10 @@ struct AllocatedCoefficient {
   double mc_mean = 0, mc_std = 0, mc_low = 0, mc_high = 0;
   double mc_half_width = 0;                // max(mc_high − mc_mean, mc_mean − mc_low)
   double lpu_std = 0;                      // u_k at the allocated tolerances
+  // The cross terms' share of u_k² at the allocated tolerances (correlation groups and [[correlations]]:
+  // correlation_variance of the budget at those tolerances; negative where they cancel): what the sources'
+  // own shares leave of u_k² besides the rate noise.
+  double correlation_share = 0;
   Verdict verdict = Verdict::not_checked;  // has_target only
 };
 

@@ -111,6 +111,9 @@ std::string setup_label(int index);
 
 // Marks a record superseded (never changed otherwise); InputError as HistoryStore::supersede.
 void history_supersede(std::int64_t id, const HistorySupersedeOptions& options);
+// A calibration's id as typed (the ID of `ccal history supersede`): a whole number ≥ 1. InputError "ID: 'abc' is
+// not a calibration id; accepted: …" otherwise.
+std::int64_t history_record_id(const std::string& text);
 // A serial's history as JSON (io/history_exchange.hpp), and a file of it recorded in the store.
 std::string history_export(const std::string& serial, const HistoryStoreOptions& options = {});
 HistoryImport history_import(const std::string& file, const HistoryStoreOptions& options = {});

@@ -34,6 +34,12 @@ std::vector<LogFile> manifest_logs(const LogManifest& manifest);
 enum class AngleUnit { rad, deg };
 inline constexpr std::string_view kAngleUnitNames[] = {"rad", "deg"};  // in the enumeration's order
 
+// Each logged run's mean is checked against what the configuration's instrument, with its nominal terms,
+// reads at that run of the plan: beyond this many standard uncertainties of a run's mean (its noise, the
+// drives' rate noise and the tolerances' effect on it) it is a warning, with strict_runs an error. A swapped
+// or mislabelled log is thousands of u off; 10 leaves a machine within its tolerances unremarked.
+inline constexpr double kRunCheckLimit = 10;
+
 struct ReduceOptions {
   // At least as many as the identification has free terms. Not a row of the table: each front end reads
   // them (the command line: --log RUN=FILE, repeated; Python: a dict of run → file).
@@ -44,6 +50,7 @@ struct ReduceOptions {
   AngleUnit angle_unit = AngleUnit::rad;  // of the encoder columns, unless the layout states their unit
   std::optional<double> pulse_weight;  // integrated output per pulse [output unit × s]; unset: the quantum
   std::optional<ModelMode> mode;       // model of the regressors; unset: the configuration's
+  bool strict_runs = false;  // a run's mean beyond kRunCheckLimit u of the nominal reading: an error, not a warning
   bool statement = false;              // also the calibration statement with the configuration's budget
   double coverage_probability = 0.95;  // p of the statement's intervals
   std::optional<double> coverage_factor;  // a stated k of the statement instead (U = k u_c)
