@@ -133,6 +133,15 @@ def history_table(self, d) -> "Table":
     return Table(f"calibration history of {d['serial']}", ["coefficient", "date", "value", "U", "unit", "E_n"], rows)
 
 
+def _statement_rows(d):
+    """Per coefficient of a statement's JSON: its name, its rounded figures, the columns between value/U and the
+    interval (unit, k, p, nu_eff: inf for a normal part alone) and those after it (significant, method)."""
+    for name, c in d["coefficients"].items():
+        nu = c["effective_dof"]
+        yield (name, c["rounded"], [c["unit"], c["coverage_factor"], d["coverage_probability"],
+                                    float("inf") if nu is None else nu], [c["significant"], c["interval_method"]])
+
+
 def statement_methods(cls):
     """Statement.display(), to_dict(), to_frame(), to_uncertainties(), repr and _repr_html_."""
 
@@ -141,13 +150,8 @@ def statement_methods(cls):
         digits of U, JCGM 100 §7.2.6), unit, k, p, nu_eff, the interval, whether it excludes 0 and how it was
         obtained (student_t, or monte_carlo where the JCGM 101 §8 check refused the Student-t one)."""
         d = json.loads(self.to_json())
-        rows = []
-        for name, c in d["coefficients"].items():
-            r = c["rounded"]
-            nu = c["effective_dof"]
-            rows.append([name, r["estimate"], r["expanded_uncertainty"], c["unit"], c["coverage_factor"],
-                         d["coverage_probability"], float("inf") if nu is None else nu, r["interval"][0],
-                         r["interval"][1], c["significant"], c["interval_method"]])
+        rows = [[name, r["estimate"], r["expanded_uncertainty"], *common, r["interval"][0], r["interval"][1], *last]
+                for name, r, common, last in _statement_rows(d)]
         return Table(f"calibration statement, p = {100 * d['coverage_probability']:g} % (U to two significant "
                      "digits)", ["coefficient", "value", "U", "unit", "k", "p", "nu_eff", "low", "high",
                                  "significant", "interval_method"], rows)
@@ -163,14 +167,9 @@ def statement_methods(cls):
         (value_rounded, U_rounded, low_rounded, high_rounded), so that 0.02000 keeps its digits. pandas is
         optional: ImportError without it."""
         d = json.loads(self.to_json())
-        rows = []
-        for name, c in d["coefficients"].items():
-            r = c["rounded"]
-            nu = c["effective_dof"]
-            rows.append([name, c["corrected_estimate"], c["expanded_uncertainty"], c["unit"], c["coverage_factor"],
-                         d["coverage_probability"], float("inf") if nu is None else nu, c["interval"][0],
-                         c["interval"][1], c["significant"], c["interval_method"], r["estimate"],
-                         r["expanded_uncertainty"], r["interval"][0], r["interval"][1]])
+        rows = [[name, c["corrected_estimate"], c["expanded_uncertainty"], *common, c["interval"][0], c["interval"][1],
+                 *last, r["estimate"], r["expanded_uncertainty"], r["interval"][0], r["interval"][1]]
+                for (name, r, common, last), c in zip(_statement_rows(d), d["coefficients"].values())]
         return Table("calibration statement", ["coefficient", "value", "U", "unit", "k", "p", "nu_eff", "low",
                                                "high", "significant", "interval_method", "value_rounded",
                                                "U_rounded", "low_rounded", "high_rounded"], rows).to_frame()
