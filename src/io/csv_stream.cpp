@@ -61,7 +61,7 @@ void refuse_other_delimiter(std::string_view line, const std::vector<std::string
   throw CsvError(source, line_no, 1, "",
                  fmt::format("the header is one name, '{}', which holds {} between names: the delimiter is "
                              "probably {} (the file is read with {}); accepted: delimiter = \"{}\" in the "
-                             "[format] table of the manifest (or of --log-layout FILE)",
+                             "[format] table of the manifest or of the layout file",
                              fields[0], *other == '\t' ? "tabs" : *other == ' ' ? "blanks"
                                                                : fmt::format("'{}'", *other),
                              *other == '\t' ? "a tab" : *other == ' ' ? "whitespace" : fmt::format("'{}'", *other),

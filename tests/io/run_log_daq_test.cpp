@@ -171,7 +171,7 @@ TEST_F(RunLogDaq, AnotherDelimiterOrAnUndeclaredDecimalCommaSaysWhichKeyToSet) {
   EXPECT_EQ(refusal(log_text(semicolon, 10), options_),
             "log.csv:1:1: the header is one name, 'time;pulses;theta1', which holds ';' between names: the "
             "delimiter is probably ';' (the file is read with comma); accepted: delimiter = \"semicolon\" in the "
-            "[format] table of the manifest (or of --log-layout FILE)");
+            "[format] table of the manifest or of the layout file");
   Written tab;
   tab.format.delimiter = '\t';
   EXPECT_NE(refusal(log_text(tab, 10), options_).find("the delimiter is probably a tab"), std::string::npos);
