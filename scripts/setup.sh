@@ -10,6 +10,7 @@
 # their output goes to build/web-fetch.log, shown if that fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+SECONDS=0
 # The library and the program need the first list; the tests, benchmarks, Python module, the report's browser
 # check and the certificate's PDF check (Chromium prints it, poppler-utils reads it back) the second.
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
@@ -48,6 +49,7 @@ if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}" >&2
   apt_install "${missing[@]}"
 fi
+packages_done=$SECONDS
 
 # Node.js with npm (Debian's nodejs package, and its npm package where nodejs does not bring npm), then vega,
 # vega-lite, vega-embed (embedded into ccal for `ccal report`) and playwright-core (the report's browser test),
@@ -104,3 +106,4 @@ if [ "$web_pending" = ON ]; then
   configure
 fi
 cmake --build build -j "$(nproc)" "${targets[@]}"
+echo "setup: packages ${packages_done} s, build $((SECONDS - packages_done)) s" >&2

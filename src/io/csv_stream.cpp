@@ -44,30 +44,6 @@ void translate(std::string_view line, const CsvFormat& format, bool names, std::
   }
 }
 
-// A header of one name that holds another format's delimiter: the file is probably written with that one.
-void refuse_other_delimiter(std::string_view line, const std::vector<std::string>& fields, const CsvFormat& format,
-                            const std::string& source, int line_no) {
-  if (fields.size() != 1) return;
-  std::optional<char> other;
-  for (const char c : {';', '\t', ','})
-    if (c != format.delimiter && line.find(c) != std::string_view::npos) {
-      other = c;
-      break;
-    }
-  if (!other && format.delimiter != ' ' && trim_csv(line).find_first_of(" \t") != std::string_view::npos)
-    other = ' ';
-  if (!other) return;
-  const std::string_view name = csv_delimiter_name(*other);
-  throw CsvError(source, line_no, 1, "",
-                 fmt::format("the header is one name, '{}', which holds {} between names: the delimiter is "
-                             "probably {} (the file is read with {}); accepted: delimiter = \"{}\" in the "
-                             "[format] table of the manifest or of the layout file",
-                             fields[0], *other == '\t' ? "tabs" : *other == ' ' ? "blanks"
-                                                               : fmt::format("'{}'", *other),
-                             *other == '\t' ? "a tab" : *other == ' ' ? "whitespace" : fmt::format("'{}'", *other),
-                             csv_delimiter_name(format.delimiter), name));
-}
-
 // Lines to rows, with parse_csv's line numbers and checks. Lines without a quote (all of a numeric log's)
 // are split in place into views; others through parse_csv's field splitter. A file of another format
 // (CsvFormat) is read line by line as the comma-separated lines it stands for.
@@ -114,7 +90,7 @@ class LineReader {
         sink_.units(fields, line_no_);
         return;
       }
-      refuse_other_delimiter(line, fields, format_, source_, line_no_);
+      check_csv_delimiter(line, fields, format_, source_, line_no_);
       check_csv_header(fields, bad, source_, line_no_);
       header_ = std::move(fields);
       views_.resize(header_.size());
@@ -216,6 +192,32 @@ std::string_view csv_delimiter_name(char delimiter) {
     case '\t': return "tab";
     default: return "whitespace";
   }
+}
+
+void check_csv_delimiter(std::string_view line, const std::vector<std::string>& fields, const CsvFormat& format,
+                         const std::string& source, int line_no) {
+  if (fields.size() != 1) return;
+  std::optional<char> other;
+  for (const char c : {';', '\t', ','})
+    if (c != format.delimiter && line.find(c) != std::string_view::npos) {
+      other = c;
+      break;
+    }
+  if (!other && format.delimiter != ' ' && trim_csv(line).find_first_of(" \t") != std::string_view::npos)
+    other = ' ';
+  if (!other) return;
+  const std::string_view name = csv_delimiter_name(*other);
+  throw CsvError(source, line_no, 1, "",
+                 fmt::format("the header is one name, '{}', which holds {} between names: the delimiter is "
+                             "probably {} (the file is read with {}); accepted: {}delimiter = \"{}\" in the [format] "
+                             "table of the manifest or of the layout file",
+                             fields[0], *other == '\t' ? "tabs" : *other == ' ' ? "blanks"
+                                                               : fmt::format("'{}'", *other),
+                             *other == '\t' ? "a tab" : *other == ' ' ? "whitespace" : fmt::format("'{}'", *other),
+                             csv_delimiter_name(format.delimiter),
+                             // Only a run log has a [format]; other tables are comma-separated.
+                             format.delimiter == ',' ? "names separated by commas, or, in a run log, " : "",
+                             name));
 }
 
 std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink, const CsvFormat& format) {

@@ -255,6 +255,7 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
     CsvFieldProblem bad;
     std::vector<std::string> fields = split_fields(line, bad);
     if (t.header.empty()) {
+      check_csv_delimiter(line, fields, CsvFormat{}, t.source, line_no);
       check_csv_header(fields, bad, t.source, line_no);
       t.header = std::move(fields);
       t.header_line = line_no;

@@ -170,8 +170,8 @@ TEST_F(RunLogDaq, AnotherDelimiterOrAnUndeclaredDecimalCommaSaysWhichKeyToSet) {
   semicolon.format.delimiter = ';';
   EXPECT_EQ(refusal(log_text(semicolon, 10), options_),
             "log.csv:1:1: the header is one name, 'time;pulses;theta1', which holds ';' between names: the "
-            "delimiter is probably ';' (the file is read with comma); accepted: delimiter = \"semicolon\" in the "
-            "[format] table of the manifest or of the layout file");
+            "delimiter is probably ';' (the file is read with comma); accepted: names separated by commas, or, in a "
+            "run log, delimiter = \"semicolon\" in the [format] table of the manifest or of the layout file");
   Written tab;
   tab.format.delimiter = '\t';
   EXPECT_NE(refusal(log_text(tab, 10), options_).find("the delimiter is probably a tab"), std::string::npos);

@@ -33,6 +33,10 @@ struct CsvFormat {
 };
 // The delimiter's name in messages and manifests: "comma", "semicolon", "tab", "whitespace".
 std::string_view csv_delimiter_name(char delimiter);
+// Throws the CsvError of a header line read as one name that holds another format's delimiter (the file is
+// probably written with that one): parse_csv's and the streaming reader's check, in the same words.
+void check_csv_delimiter(std::string_view line, const std::vector<std::string>& fields, const CsvFormat& format,
+                         const std::string& source, int line_no);
 
 class CsvRowSink {
  public:
