@@ -78,18 +78,20 @@ std::optional<std::string> nearest_name(std::string_view typed, std::span<const 
 
 using namespace config_reading;
 
-Config parse_config(std::string_view text, std::string_view source_name) {
-  const Reader r{std::string(source_name)};
+namespace {
+
+// Every table of a configuration but the instrument's, for that instrument.
+Config read_tables(const Reader& r, const toml::table& root, std::string_view text, std::string_view source_name,
+                   const std::string& setup_source, InstrumentModel instrument) {
   Config cfg;
-  const toml::table root = with_setup(r, parse_toml(r, text, source_name), cfg.setup_source);
-  r.check_keys(root, "", kRootKeys);
+  cfg.setup_source = setup_source;
   cfg.source = std::string(source_name);
   cfg.text_sha256 = sha256_hex(text);
   cfg.numbers_sha256 = tables_sha256(root, kWordingKeys, KeySelection::exclude);
   cfg.setup_sha256 = tables_sha256(root, kSetupKeys, KeySelection::include);
   cfg.site = read_site(r, root);
   cfg.centrifuge = read_centrifuge(r, root);
-  cfg.instrument = read_instrument(r, root);
+  cfg.instrument = std::move(instrument);
   cfg.instrument.g_symbol = cfg.site.unit_g > 0 ? "gn" : "g";
   cfg.plan = read_plan(r, root, cfg.centrifuge.geometry, cfg.site);
   read_identification(r, root, cfg.instrument, cfg.identification, cfg.mode);
@@ -101,6 +103,40 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   cfg.design = read_design(r, root, cfg.instrument, cfg.identification);
   cfg.certificate = read_certificate(r, root);
   return cfg;
+}
+
+}  // namespace
+
+Config parse_config(std::string_view text, std::string_view source_name) {
+  const Reader r{std::string(source_name)};
+  std::string setup_source;
+  const toml::table root = with_setup(r, parse_toml(r, text, source_name), setup_source);
+  r.check_keys(root, "", kRootKeys);
+  std::vector<MountedInstrument> mounted = read_instruments(r, root);
+  if (mounted.empty()) return read_tables(r, root, text, source_name, setup_source, read_instrument(r, root));
+  std::vector<Config> each;
+  for (std::size_t k = 0; k < mounted.size(); ++k) {
+    MountedInstrument& m = mounted[k];
+    Config c = read_tables(r, root, text, source_name, setup_source, std::move(m.model));
+    c.instrument_id = m.id;
+    // One fingerprint per instrument: observations of one are not those of another.
+    c.numbers_sha256 = sha256_hex(c.numbers_sha256 + "\ninstrument " + m.id);
+    Geometry& geo = c.centrifuge.geometry;
+    geo.x5 = m.x5;
+    geo.y5 = m.y5;
+    geo.azimuth5 = m.azimuth5;
+    // The paper's first-order forms (model.md §5) hold for an instrument on the platform axis only.
+    if (c.mode == ModelMode::paper && (m.x5 != 0 || m.y5 != 0 || m.azimuth5 != 0))
+      r.fail(Location{int(m.line), 1, nullptr}, fmt::format("instruments[{}]", k + 1),
+             fmt::format("instrument '{}' is placed off the platform axis or turned, which the paper's first-order "
+                         "rules (mode = \"paper\") do not model; accepted: mode = \"exact\" (the default), or "
+                         "no position and azimuth",
+                         m.id));
+    each.push_back(std::move(c));
+  }
+  Config first = each.front();
+  first.instruments = std::move(each);
+  return first;
 }
 
 Config load_config(const std::filesystem::path& path) {

@@ -57,6 +57,11 @@ toml::table with_setup(const Reader& job_reader, toml::table job, std::string& s
         if (toml::node* node = setup_certificate->get(key)) job_certificate->insert(key, std::move(*node));
   // A new root (it has no place of its own: a message about it names the job), its tables moved in with the
   // places they were written at.
+  // The item calibrated is one [instrument] or several [[instruments]]: a job that gives either replaces both.
+  if (job.contains("instrument") || job.contains("instruments")) {
+    setup.erase("instrument");
+    setup.erase("instruments");
+  }
   toml::table merged;
   for (auto&& [key, node] : setup) merged.insert_or_assign(key, std::move(node));
   for (auto&& [key, node] : job)

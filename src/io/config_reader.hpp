@@ -301,7 +301,7 @@ class Reader {
 
 inline const Keys kRootKeys{"site",       "centrifuge", "errors",         "tolerances", "correlations",
                             "instrument", "plan",       "identification", "design",     "certificate",
-                            "inputs",     "setup"};
+                            "inputs",     "setup",      "instruments"};
 // The tables of the machine and the lab: a job's set-up holds them (config_job.cpp), Config::setup_sha256 is
 // theirs. Every other table but [certificate] and [design] is the job's and changes the numbers.
 inline const Keys kSetupKeys{"site", "centrifuge", "errors", "tolerances", "correlations", "inputs"};
@@ -327,6 +327,8 @@ inline const Keys kRateNoiseKeys{"allan_deviation", "tau"};
 inline const Keys kToleranceKeys{"bound", "distribution", "group", "cost", "floor"};
 inline const Keys kInstrumentKeys{"model",   "output_unit", "rate_gain",         "noise_density",
                                   "quantum", "terms",       "sampling_resistor"};
+// The keys an [[instruments]] entry has besides an [instrument] table's.
+inline const Keys kMountedInstrumentKeys{"id", "position", "azimuth"};
 inline const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
                             "mounting", "runs"};
 inline const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "paper_cross_terms"};
@@ -391,6 +393,19 @@ void read_declared_tolerances(const Reader& r, const toml::table& root, const Co
 std::vector<Correlation> read_correlations(const Reader& r, const toml::table& root,
                                            const std::vector<Tolerance>& tolerances);
 InstrumentModel read_instrument(const Reader& r, const toml::table& root);
+// An [instrument] table at `path` (its messages name that path).
+InstrumentModel read_instrument_table(const Reader& r, const toml::table& table, std::string_view path);
+// One entry of [[instruments]] (config_sections_instruments.cpp): its id, model, place and azimuth.
+struct MountedInstrument {
+  std::string id;
+  InstrumentModel model;
+  double x5 = 0, y5 = 0;  // its place on the base plane [m]
+  double azimuth5 = 0;    // its turn about z5 [rad]
+  long line = 0;          // the entry's line, for messages
+};
+// [[instruments]], in the file's order; empty without the array. Refuses it beside [instrument], an entry
+// without an id, a repeated or malformed id, and the [instrument] table's own errors.
+std::vector<MountedInstrument> read_instruments(const Reader& r, const toml::table& root);
 TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site);
 void read_identification(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
                          IdentificationSpec& spec, ModelMode& mode);

@@ -23,8 +23,8 @@ namespace {
 
 // [instrument] output_unit: an angular rate (rate-output PIGA), a g-level, an acceleration, or pulses per
 // second; the model's default when absent.
-OutputUnit read_output_unit(const Reader& r, const toml::table& t, InstrumentModel& m, bool ieee) {
-  const std::string_view p = "instrument";
+OutputUnit read_output_unit(const Reader& r, const toml::table& t, std::string_view p, InstrumentModel& m,
+                            bool ieee) {
   OutputUnit out{m.output_unit, kind::angular_rate, false};
   if (const auto text = r.string(t, p, "output_unit")) {
     out.text = *text;
@@ -39,11 +39,11 @@ OutputUnit read_output_unit(const Reader& r, const toml::table& t, InstrumentMod
         const Quantity q = parse_unit(*text);
         if (q.dim != kind::angular_rate && q.dim != kind::acceleration_g && q.dim != kind::acceleration &&
             q.dim != kind::current && q.dim != kind::voltage)
-          r.fail(*t.get("output_unit"), "instrument.output_unit",
+          r.fail(*t.get("output_unit"), Reader::path(p, "output_unit"),
                  fmt::format("'{}' is {}; {}", *text, describe(q.dim), accepted));
         out.dim = q.dim;
       } catch (const UnitError& e) {
-        r.fail(*t.get("output_unit"), "instrument.output_unit", fmt::format("{}; {}", e.what(), accepted));
+        r.fail(*t.get("output_unit"), Reader::path(p, "output_unit"), fmt::format("{}; {}", e.what(), accepted));
       }
     }
     m.output_unit = *text;
@@ -55,8 +55,8 @@ OutputUnit read_output_unit(const Reader& r, const toml::table& t, InstrumentMod
 
 // [instrument.terms]: each coefficient in the output unit per g^n (per rad/s for K_w), sorted into the
 // model's term order; a model without its own coefficients must give them.
-void read_terms(const Reader& r, const toml::table& t, const OutputUnit& out, bool ieee, InstrumentModel& m) {
-  const std::string_view p = "instrument";
+void read_terms(const Reader& r, const toml::table& t, std::string_view p, const OutputUnit& out, bool ieee,
+                InstrumentModel& m) {
   if (const toml::table* terms = r.table(t, p, "terms", false)) {
     struct Parsed {
       TermSpec spec;
@@ -66,7 +66,7 @@ void read_terms(const Reader& r, const toml::table& t, const OutputUnit& out, bo
     std::vector<Parsed> parsed;
     const std::vector<std::string> valid = all_term_ids();
     for (const auto& [key, node] : *terms) {
-      const std::string kp = Reader::path("instrument.terms", key.str());
+      const std::string kp = Reader::path(Reader::path(p, "terms"), key.str());
       const auto spec = parse_term(key.str());
       if (!spec) {
         const auto best = closest(key.str(), valid);
@@ -92,10 +92,10 @@ void read_terms(const Reader& r, const toml::table& t, const OutputUnit& out, bo
       m.coefficients[Eigen::Index(k)] = parsed[k].value;
     }
   } else if (ieee) {
-    r.fail(where(t.source()), "instrument.terms",
+    r.fail(where(t.source()), Reader::path(p, "terms"),
            "missing table; model 'ieee' needs [instrument.terms] with coefficients, e.g. K1 = \"1 g/g\"");
   } else if (out.dim != kind::angular_rate || out.pulse) {
-    r.fail(*t.get("output_unit"), "instrument.output_unit",
+    r.fail(*t.get("output_unit"), Reader::path(p, "output_unit"),
            fmt::format("'{}' cannot use the paper's PIGA coefficients, which are in deg/s; give "
                        "[instrument.terms] in this unit or use an angular-rate output such as deg/s",
                        out.text));
@@ -103,9 +103,10 @@ void read_terms(const Reader& r, const toml::table& t, const OutputUnit& out, bo
 }
 
 // [instrument] noise_density ("<value> <output unit>/rtHz") and quantum (the output's quantisation step).
-void read_noise(const Reader& r, const toml::table& t, const OutputUnit& out, InstrumentModel& m) {
+void read_noise(const Reader& r, const toml::table& t, std::string_view p, const OutputUnit& out,
+                InstrumentModel& m) {
   if (const toml::node* n = t.get("noise_density")) {
-    const std::string kp = "instrument.noise_density";
+    const std::string kp = Reader::path(p, "noise_density");
     const auto* s = n->as_string();
     if (!s)
       r.fail(*n, kp,
@@ -125,20 +126,20 @@ void read_noise(const Reader& r, const toml::table& t, const OutputUnit& out, In
   }
   if (const toml::node* n = t.get("quantum")) {
     const Dimension dim = out.dim * kind::time;
-    const double v = r.quantity_node(*n, "instrument.quantum", dim, &out, "0 " + si_unit(dim));
-    if (v < 0) r.fail(*n, "instrument.quantum", "must not be negative; a quantisation step >= 0");
+    const double v = r.quantity_node(*n, Reader::path(p, "quantum"), dim, &out, "0 " + si_unit(dim));
+    if (v < 0) r.fail(*n, Reader::path(p, "quantum"), "must not be negative; a quantisation step >= 0");
     m.quantum = v;
   }
   // A current output read as the voltage across a sampling resistor: the logs' output column is in volts.
   if (const toml::node* n = t.get("sampling_resistor")) {
     if (out.dim != kind::current)
-      r.fail(*n, "instrument.sampling_resistor",
+      r.fail(*n, Reader::path(p, "sampling_resistor"),
              fmt::format("a sampling resistor converts a current output; this output is in '{}'; accepted: "
                          "output_unit = \"mA\" (or another current) with it, or no sampling_resistor",
                          out.text));
-    const double v = r.quantity_node(*n, "instrument.sampling_resistor", kind::resistance, nullptr, "100 ohm");
+    const double v = r.quantity_node(*n, Reader::path(p, "sampling_resistor"), kind::resistance, nullptr, "100 ohm");
     if (!(v > 0))
-      r.fail(*n, "instrument.sampling_resistor", "must be positive; the resistance, e.g. \"100 ohm\"");
+      r.fail(*n, Reader::path(p, "sampling_resistor"), "must be positive; the resistance, e.g. \"100 ohm\"");
     m.sampling_resistor = v;
   }
 }
@@ -148,8 +149,12 @@ void read_noise(const Reader& r, const toml::table& t, const OutputUnit& out, In
 InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
   const toml::table* t = r.table(root, "", "instrument", false);
   if (!t) return paper_piga();
-  const std::string_view p = "instrument";
-  r.check_keys(*t, p, kInstrumentKeys);
+  r.check_keys(*t, "instrument", kInstrumentKeys);
+  return read_instrument_table(r, *t, "instrument");
+}
+
+InstrumentModel read_instrument_table(const Reader& r, const toml::table& table, std::string_view p) {
+  const toml::table* t = &table;
   enum class Model { piga, ieee };
   const Model model =
       r.word(*t, p, "model",
@@ -165,10 +170,10 @@ InstrumentModel read_instrument(const Reader& r, const toml::table& root) {
     m.coefficients.resize(0);
   }
 
-  const OutputUnit out = read_output_unit(r, *t, m, model == Model::ieee);
-  read_terms(r, *t, out, model == Model::ieee, m);
+  const OutputUnit out = read_output_unit(r, *t, p, m, model == Model::ieee);
+  read_terms(r, *t, p, out, model == Model::ieee, m);
   if (const auto gain = r.number(*t, p, "rate_gain")) m.rate_gain = *gain;
-  read_noise(r, *t, out, m);
+  read_noise(r, *t, p, out, m);
   return m;
 }
 

@@ -25,6 +25,11 @@ struct Geometry {
   double L = 0.0;     // azimuth-axis origin o3 to working base plane [m]
   double l = 0.0;     // base plane to instrument origin o5 [m]
   double beta = 0.0;  // horizontal-axis angle [rad]; 0 in the paper
+  // The instrument's place on the working base plane and its turn about z5 (one of several instruments of a
+  // test, [[instruments]] position and azimuth; docs/model.md §4.2): its origin o5 at (x5, y5, l) in frame 4,
+  // its axes turned by azimuth5 about z5 before the run's mounting. 0 for an instrument on the platform axis.
+  double x5 = 0.0, y5 = 0.0;  // [m]
+  double azimuth5 = 0.0;      // [rad]
   PlatformControl platform_control = PlatformControl::speed;  // the platform drive's command (not geometry,
                                                               // but a property of the machine like β)
 };

@@ -143,9 +143,9 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   m.translate(Vec3<S>(S(0), S(0), S(geo.L)));
   m.rotate(Y, E(ch::dthy4));
   m.rotate(X, E(ch::dthx4));
-  // 4 → 5: the instrument.
-  m.translate(Vec3<S>(E(ch::dx5), E(ch::dy5), S(geo.l)));
-  m.rotate(Z, E(ch::dthz5));
+  // 4 → 5: the instrument at its place on the base plane (x5, y5, l), turned by its azimuth (model.md §4.2).
+  m.translate(Vec3<S>(S(geo.x5) + E(ch::dx5), S(geo.y5) + E(ch::dy5), S(geo.l)));
+  m.rotate(Z, S(geo.azimuth5) + E(ch::dthz5));
   m.rotate(Y, E(ch::dthy5));
   m.rotate(X, E(ch::dthx5));
 
@@ -215,8 +215,8 @@ ChainBlocks<S> chain_blocks(const Geometry& geo, const ErrorLayout& layout, cons
   c.translate(Vec3<S>(zero, zero, S(geo.L)));
   c.rotate(Y, E(ch::dthy4));
   c.rotate(X, E(ch::dthx4));
-  c.translate(Vec3<S>(E(ch::dx5), E(ch::dy5), S(geo.l)));
-  c.rotate(Z, E(ch::dthz5));
+  c.translate(Vec3<S>(S(geo.x5) + E(ch::dx5), S(geo.y5) + E(ch::dy5), S(geo.l)));
+  c.rotate(Z, S(geo.azimuth5) + E(ch::dthz5));
   c.rotate(Y, E(ch::dthy5));
   c.rotate(X, E(ch::dthx5));
   out.RC = c.R;

@@ -37,6 +37,13 @@ struct Config {
   Site site;
   CentrifugeModel centrifuge;  // geometry and the known/actual values of the [errors] section
   InstrumentModel instrument;
+  // The instrument's id in a test of several ([[instruments]] id); "" for the one [instrument].
+  std::string instrument_id;
+  // A test of several instruments on the platform ([[instruments]], docs/config.md): each as a configuration
+  // of its own, in the file's order — its instrument that entry's, its place and azimuth in
+  // centrifuge.geometry (x5, y5, azimuth5), its fingerprint numbers_sha256 its own, every other table shared.
+  // This configuration is then the first's, with the list. Empty for a configuration of one [instrument].
+  std::vector<Config> instruments;
   TestPlan plan;
   std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order, then the measuring chain's inputs
   std::vector<Correlation> correlations;  // pairs of tolerances partly correlated ([[correlations]])
