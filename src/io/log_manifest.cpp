@@ -20,7 +20,7 @@ using namespace config_reading;
 
 namespace {
 
-const Keys kManifestKeys{"format", "columns", "runs"};
+const Keys kManifestKeys{"format", "columns", "instruments", "runs"};
 const Keys kFormatKeys{"delimiter", "decimal", "comment", "skip_lines", "header_line", "units_row", "max_gap"};
 const Keys kColumnKeys{"time", "time_unit", "pulses", "output", "theta1", "gamma", "angle_unit",
                        "counts_per_revolution", "count_rounding", "counter_bits"};
@@ -182,6 +182,39 @@ void read_runs(const Reader& r, const toml::table& root, const std::filesystem::
 }  // namespace
 
 
+namespace {
+
+// [instruments]: per instrument id, { pulses = "column" } or { output = "column" }, a name of its own.
+void read_instrument_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
+  const toml::table* t = r.table(root, "", "instruments", false);
+  if (!t) return;
+  std::set<std::string> used{layout.columns.time, layout.columns.theta1, layout.columns.gamma};
+  for (const auto& [key, node] : *t) {
+    const std::string p = Reader::path("instruments", key.str());
+    const toml::table* entry = node.as_table();
+    if (!entry)
+      r.fail(node, p,
+             fmt::format("expected the instrument's output column, got {}; accepted: {{ pulses = \"count_{}\" }} or "
+                         "{{ output = \"rate_{}\" }}",
+                         type_name(node), key.str(), key.str()));
+    r.check_keys(*entry, p, Keys{"pulses", "output"});
+    const auto pulses = r.string(*entry, p, "pulses"), output = r.string(*entry, p, "output");
+    if (pulses.has_value() == output.has_value())
+      r.fail(node, p, "needs exactly one of pulses (a cumulative count) and output (the output itself)");
+    const std::string column = pulses ? *pulses : *output;
+    const std::string_view which = pulses ? "pulses" : "output";
+    if (column.empty()) r.fail(*entry->get(which), Reader::path(p, which), "an empty column name; accepted: the name "
+                                                                            "of the log's column");
+    if (!used.insert(column).second)
+      r.fail(*entry->get(which), Reader::path(p, which),
+             fmt::format("'{}' names two columns; accepted: one name per column", column));
+    layout.instruments.push_back({std::string(key.str()), column, pulses.has_value(),
+                                  int(node.source().begin.line)});
+  }
+}
+
+}  // namespace
+
 LogManifest parse_log_manifest(std::string_view text, std::string_view source_name,
                                const std::filesystem::path& folder) {
   const Reader r{std::string(source_name)};
@@ -191,6 +224,7 @@ LogManifest parse_log_manifest(std::string_view text, std::string_view source_na
   m.source = std::string(source_name);
   read_format(r, root, m.layout);
   read_columns(r, root, m.layout);
+  read_instrument_columns(r, root, m.layout);
   read_runs(r, root, folder, m);
   return m;
 }

@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "ccal/core/errors.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
 #include "parts.hpp"
@@ -94,7 +96,7 @@ std::string text_of(const Config& cfg, const verbs::ReduceResult& r) {
   return out;
 }
 
-std::string json_of(const Config& cfg, const verbs::ReduceResult& r) {
+nlohmann::ordered_json json_object(const Config& cfg, const verbs::ReduceResult& r) {
   nlohmann::ordered_json j;
   j["command"] = "reduce";
   j["ccal_version"] = version();
@@ -147,13 +149,101 @@ std::string json_of(const Config& cfg, const verbs::ReduceResult& r) {
   j["runs"] = runs;
   j["identification"] = identification_json(r.identification.id);
   if (r.statement) j["statement"] = statement_json(*r.statement);
-  return j.dump(2) + "\n";
+  return j;
+}
+
+// The covariance of several instruments' coefficients: rows "<id> <term>", each matrix by rows, and the
+// correlation of the LPU's (0 where a coefficient does not vary).
+nlohmann::ordered_json covariance_json(const verbs::InstrumentCovariance& c) {
+  auto rows = [](const Eigen::MatrixXd& m) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+      std::vector<double> row(std::size_t(m.cols()));
+      for (Eigen::Index j = 0; j < m.cols(); ++j) row[std::size_t(j)] = m(i, j);
+      out.push_back(row);
+    }
+    return out;
+  };
+  Eigen::MatrixXd correlation = c.lpu;
+  for (Eigen::Index i = 0; i < c.lpu.rows(); ++i)
+    for (Eigen::Index j = 0; j < c.lpu.cols(); ++j) {
+      const double scale = std::sqrt(c.lpu(i, i) * c.lpu(j, j));
+      correlation(i, j) = scale > 0 ? c.lpu(i, j) / scale : 0.0;
+    }
+  nlohmann::ordered_json j;
+  j["what"] = "the tolerances' covariance of every instrument's coefficients (the statements' units); the Type A "
+              "parts, independent between instruments, are not in it";
+  j["coefficients"] = c.names;
+  j["units"] = c.units;
+  j["lpu"] = rows(c.lpu);
+  j["lpu_correlation"] = rows(correlation);
+  if (c.trials > 0) {
+    j["monte_carlo"] = rows(c.monte_carlo);
+    j["monte_carlo_trials"] = c.trials;
+    j["monte_carlo_seed"] = c.seed;
+  }
+  return j;
+}
+
+std::string covariance_text(const verbs::InstrumentCovariance& c) {
+  std::string out = "  correlation of the instruments' coefficients through the machine's errors (LPU";
+  out += c.trials > 0 ? fmt::format("; Monte Carlo of {} trials in brackets)\n", c.trials) : ")\n";
+  std::vector<std::string> head{""};
+  for (const std::string& n : c.names) head.push_back(n);
+  Table t(head);
+  for (Eigen::Index i = 0; i < c.lpu.rows(); ++i) {
+    std::vector<std::string> row{c.names[std::size_t(i)]};
+    for (Eigen::Index j = 0; j < c.lpu.cols(); ++j) {
+      auto rho = [&](const Eigen::MatrixXd& m) {
+        const double scale = std::sqrt(m(i, i) * m(j, j));
+        return scale > 0 ? m(i, j) / scale : 0.0;
+      };
+      std::string cell = fmt::format("{:.3f}", rho(c.lpu));
+      if (c.trials > 0) cell += fmt::format(" ({:.3f})", rho(c.monte_carlo));
+      row.push_back(cell);
+    }
+    t.add_row(row);
+  }
+  return out + t.render();
 }
 
 }  // namespace
 
-std::string text(const verbs::ReduceResult& r) { return text_of(r.config, r); }
-std::string json(const verbs::ReduceResult& r) { return json_of(r.config, r); }
-std::string csv(const verbs::ReduceResult& r) { return r.identification.csv; }
+std::string text(const verbs::ReduceResult& r) {
+  if (r.instruments.empty()) return text_of(r.config, r);
+  std::string out = fmt::format("ccal reduce: a test of {} instruments ({})\n\n", r.instruments.size(),
+                                r.config.source);
+  for (const verbs::ReduceResult& one : r.instruments)
+    out += fmt::format("=== instrument {} ===\n", one.config.instrument_id) + text_of(one.config, one) + "\n";
+  if (r.covariance) out += covariance_text(*r.covariance);
+  return out;
+}
+
+std::string json(const verbs::ReduceResult& r) {
+  if (r.instruments.empty()) return json_object(r.config, r).dump(2) + "\n";
+  nlohmann::ordered_json j;
+  j["command"] = "reduce";
+  j["ccal_version"] = version();
+  j["config"] = r.config.source;
+  nlohmann::ordered_json each = nlohmann::ordered_json::array();
+  for (const verbs::ReduceResult& one : r.instruments) {
+    nlohmann::ordered_json x;
+    x["id"] = one.config.instrument_id;
+    const nlohmann::ordered_json whole = json_object(one.config, one);
+    for (auto it = whole.begin(); it != whole.end(); ++it)
+      if (it.key() != "command" && it.key() != "ccal_version" && it.key() != "config") x[it.key()] = *it;
+    each.push_back(x);
+  }
+  j["instruments"] = each;
+  if (r.covariance) j["covariance"] = covariance_json(*r.covariance);
+  return j.dump(2) + "\n";
+}
+
+std::string csv(const verbs::ReduceResult& r) {
+  if (!r.instruments.empty())
+    throw InputError("--format csv: a test of several instruments has one observations table per instrument; "
+                     "accepted: --format text or json");
+  return r.identification.csv;
+}
 
 }  // namespace ccal::render

@@ -1,6 +1,7 @@
 #include "ccal/setup/config.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <charconv>
 
@@ -8,6 +9,16 @@
 #include "ccal/core/options.hpp"
 
 namespace ccal {
+
+void require_one_instrument(const Config& config, std::string_view verb) {
+  if (config.instruments.empty()) return;
+  std::vector<std::string> ids;
+  for (const Config& one : config.instruments) ids.push_back(one.instrument_id);
+  throw InputError(fmt::format("{}: a test of {} instruments ({}) ([[instruments]]); {} answers for one instrument; "
+                               "accepted: a configuration of one [instrument] (each instrument's own), or reduce, "
+                               "which reduces the logs of every instrument of the test",
+                               config.source, config.instruments.size(), fmt::join(ids, ", "), verb));
+}
 
 void clear_fingerprints(Config& config) {
   config.text_sha256.clear();

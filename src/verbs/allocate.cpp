@@ -43,6 +43,7 @@ constexpr OptionSpec<AllocateOptions> kAllocateRows[] = {
 OptionTable<AllocateOptions> options_of(std::type_identity<AllocateOptions>) { return kAllocateRows; }
 
 AllocateResult allocate(const Config& config, const AllocateOptions& o) {
+  require_one_instrument(config, "allocate");
   check_options(o, option_table<AllocateOptions>());
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the allocation needs at least one source");

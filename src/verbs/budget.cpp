@@ -34,6 +34,7 @@ constexpr OptionSpec<BudgetOptions> kBudgetRows[] = {
 OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { return kBudgetRows; }
 
 BudgetResult budget(const Config& config, const BudgetOptions& options) {
+  require_one_instrument(config, "budget");
   check_options(options, option_table<BudgetOptions>());
   rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
   if (config.tolerances.empty())

@@ -256,6 +256,7 @@ TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
 OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>) { return kDesignRows; }
 
 DesignResult design(const Config& configured, const DesignOptions& options) {
+  require_one_instrument(configured, "design");
   check_options(options, option_table<DesignOptions>());
   // The plan is designed for what its statement will charge: the inputs the declared encoders will measure at
   // that measurement's uncertainty (docs/model.md §13.3), the others at their tolerances.

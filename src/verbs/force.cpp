@@ -22,6 +22,7 @@ constexpr OptionSpec<ForceOptions> kForceRows[] = {
 OptionTable<ForceOptions> options_of(std::type_identity<ForceOptions>) { return kForceRows; }
 
 ForceResult force(const Config& config, const ForceOptions& options) {
+  require_one_instrument(config, "force");
   ForceResult r;
   r.config = config;
   r.run_index = select_run(config.plan, options.run, "run");

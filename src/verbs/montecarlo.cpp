@@ -41,6 +41,7 @@ void check_verb_options(const MonteCarloOptions& o) {
 OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>) { return kMonteCarloRows; }
 
 MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
+  require_one_instrument(config, "montecarlo");
   check_verb_options(o);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");

@@ -13,6 +13,7 @@
 #include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/observation_csv.hpp"
+#include "reduce_instruments.hpp"
 #include "run_check.hpp"
 
 namespace ccal::verbs {
@@ -227,6 +228,7 @@ std::vector<LogFile> manifest_logs(const LogManifest& manifest) {
 
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   check_options(o, option_table<ReduceOptions>());
+  if (!cfg.instruments.empty()) return reduce_instruments(cfg, o);
   ReduceResult r;
   r.config = cfg;
   r.mode = o.mode.value_or(cfg.mode);

@@ -141,6 +141,7 @@ bool gives_certificate(const Config& config, const ReportOptions& o) {
 }
 
 ReportResult report(const Config& config, const ReportOptions& o) {
+  require_one_instrument(config, "report");
   check_options(o, option_table<ReportOptions>());
   rows::check_coverage_choice(o.monte_carlo.coverage_probability, o.coverage_factor);
   check_targets(config, o);

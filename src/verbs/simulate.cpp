@@ -62,6 +62,7 @@ constexpr OptionSpec<SimulateOptions> kSimulateRows[] = {
 OptionTable<SimulateOptions> options_of(std::type_identity<SimulateOptions>) { return kSimulateRows; }
 
 SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
+  require_one_instrument(cfg, "simulate");
   check_options(o, option_table<SimulateOptions>());
   SimulateResult s;
   s.config = cfg;

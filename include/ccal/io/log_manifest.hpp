@@ -23,6 +23,9 @@
 //     counts_per_revolution = 16777216  # with counts: the encoders' counts per revolution (2^24 here)
 //     count_rounding = "floor"        # with counts: count c is the angle in [c, c+1) counts (floor) or
 //                                     #   c counts to the nearest (nearest, the default)
+//     [instruments]                   # a test of several instruments: each id's output column, instead of
+//     A = { pulses = "count_a" }      #   [columns] pulses or output (the configuration's [[instruments]])
+//     B = { output = "rate_b" }
 //     [runs]                          # run (its name or 1-based index) = file, relative to the folder
 //     5g = "run_05g.csv"
 //     10g = "run_10g.csv"
@@ -48,6 +51,16 @@ inline constexpr std::string_view kCountRoundingNames[] = {"nearest", "floor"}; 
 struct LogLayout {
   CsvFormat format;
   LogColumns columns;
+  // [instruments] of a test of several instruments (a configuration's [[instruments]]): each instrument's
+  // output column, a cumulative pulse count or its output, in the manifest's order. Empty: one instrument, whose
+  // column is [columns] pulses or output.
+  struct InstrumentColumn {
+    std::string id;      // the instrument's id in the configuration
+    std::string column;  // its column's name
+    bool pulses = true;  // a cumulative count (pulses), or the output itself (output)
+    int line = 0;        // where the manifest names it
+  };
+  std::vector<InstrumentColumn> instruments;
   std::string angle_unit;        // as written ("rad", "deg", "counts"); empty: not stated
   double angle_scale = 1;        // rad per unit of the encoder columns (2π/counts for counts)
   long long counts_per_revolution = 0;  // with angle_unit = "counts"

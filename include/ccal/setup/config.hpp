@@ -64,6 +64,11 @@ struct Config {
   Experiment experiment() const;
 };
 
+// Refuses a configuration of several instruments ([[instruments]]) for a verb that handles one (InputError
+// naming the verb, the instruments and what is accepted): until it handles each, it must not answer for the first
+// alone. `reduce` handles several.
+void require_one_instrument(const Config& config, std::string_view verb);
+
 // The configuration no longer describes its file (changed in code): its fingerprints emptied.
 void clear_fingerprints(Config& config);
 

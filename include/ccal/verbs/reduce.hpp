@@ -14,6 +14,7 @@
 #include "ccal/io/run_log.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
+#include "ccal/verbs/instrument_covariance.hpp"
 #include "ccal/verbs/statement.hpp"
 
 namespace ccal::verbs {
@@ -73,11 +74,22 @@ struct ReduceResult {
   // show (the verb prints nothing).
   std::vector<std::string> warnings;
   std::optional<CalibrationStatement> statement;  // with `statement`
+  // A test of several instruments (Config::instruments): each instrument's reduction of the same logs through
+  // its own output column (LogLayout::instruments), in the configuration's order; this result is then the
+  // first's, with the list. With `statement`, the covariance of their coefficients (the machine's errors are one
+  // for all: verbs/instrument_covariance.hpp), by the LPU and a Monte Carlo of statement_trials trials.
+  std::vector<ReduceResult> instruments;
+  std::optional<InstrumentCovariance> covariance;
 };
 
 // Throws OptionError naming the field (logs, pulse_weight, statement, coverage_probability) or CsvError
 // naming the log's place.
+// A configuration of several instruments is reduced instrument by instrument, each through the column the
+// layout's [instruments] names for it (InputError naming the manifest when one has none).
 ReduceResult reduce(const Config& config, const ReduceOptions& options);
+// Refuses, for a configuration of several instruments, the outputs that hold one instrument's table (the
+// observations file, the statement's CSV: InputError naming the option); nothing for one instrument.
+void check_single_instrument_output(const Config& config, std::string_view option);
 
 // The pulse weight as written on the command line: a bare number in the output unit × s, or a quantity whose
 // unit has that dimension ("2.5e-5 deg" for an output in deg/s), as a value of ReduceOptions::pulse_weight.

@@ -1,0 +1,73 @@
+#include "reduce_instruments.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/io/measured_inputs.hpp"
+
+namespace ccal::verbs {
+
+namespace {
+
+// The options of one instrument: the logs read through its column of the layout's [instruments].
+ReduceOptions instrument_options(const Config& instrument, const ReduceOptions& o) {
+  const auto& columns = o.layout.instruments;
+  const auto found = std::find_if(columns.begin(), columns.end(),
+                                  [&](const LogLayout::InstrumentColumn& c) { return c.id == instrument.instrument_id; });
+  const std::string where = o.logs.empty() || o.logs.front().manifest.empty() ? std::string("the log layout")
+                                                                               : o.logs.front().manifest;
+  if (found == columns.end())
+    throw InputError(fmt::format(
+        "{}: [instruments]: no output column for instrument '{}' of {}; accepted: {} = {{ pulses = \"…\" }} or "
+        "{} = {{ output = \"…\" }}, the column of its output in every log",
+        where, instrument.instrument_id, instrument.source, instrument.instrument_id, instrument.instrument_id));
+  ReduceOptions one = o;
+  one.layout.instruments.clear();
+  // Its column is the log's pulses or output column; the other name is "", which no column has (a header's
+  // names are never empty), so that another instrument's column is never taken for it.
+  LogColumns& c = one.layout.columns;
+  (found->pulses ? c.pulses : c.output) = found->column;
+  (found->pulses ? c.output : c.pulses).clear();
+  return one;
+}
+
+}  // namespace
+
+void check_single_instrument_output(const Config& cfg, std::string_view option) {
+  if (cfg.instruments.empty()) return;
+  throw InputError(fmt::format("{}: {} holds {} instruments, each with a table of its own; accepted: --format json, "
+                               "which holds every instrument's observations and statement, or a configuration of "
+                               "one instrument",
+                               option, cfg.source, cfg.instruments.size()));
+}
+
+ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {
+  for (const auto& column : o.layout.instruments)
+    if (std::none_of(cfg.instruments.begin(), cfg.instruments.end(),
+                     [&](const Config& c) { return c.instrument_id == column.id; }))
+      throw InputError(fmt::format("{}:{}: [instruments]: '{}' is no instrument of {}; accepted: the ids of its "
+                                   "[[instruments]]",
+                                   o.logs.empty() ? std::string("the log layout") : o.logs.front().manifest,
+                                   column.line, column.id, cfg.source));
+  std::vector<ReduceResult> each;
+  std::vector<Config> charged;  // each instrument's configuration with the inputs its logs measured
+  for (const Config& instrument : cfg.instruments) {
+    each.push_back(reduce(instrument, instrument_options(instrument, o)));
+    charged.push_back(with_measured_inputs(instrument, measured_inputs(instrument, each.back().logs)));
+  }
+  ReduceResult r = each.front();
+  for (ReduceResult& one : each)
+    for (std::string& w : one.warnings) w = fmt::format("instrument {}: {}", one.config.instrument_id, w);
+  r.warnings.clear();
+  for (const ReduceResult& one : each) r.warnings.insert(r.warnings.end(), one.warnings.begin(), one.warnings.end());
+  if (o.statement)
+    r.covariance = instrument_covariance(charged, r.mode, std::uint64_t(std::max<std::int64_t>(o.statement_trials, 0)),
+                                         o.seed, o.threads);
+  r.config = cfg;
+  r.instruments = std::move(each);
+  return r;
+}
+
+}  // namespace ccal::verbs
