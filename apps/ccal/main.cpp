@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -49,6 +50,27 @@ std::string printable_line(std::string_view message) {
 int report(std::string_view kind, std::string_view message) {
   std::cerr << "ccal: " << kind << ": " << printable_line(message) << '\n';
   return kind == "error" ? kBadInput : kInternal;
+}
+
+// ccal --man-page and ccal --completion SHELL, from the declarations of `app` (shell_docs.hpp, completion.hpp):
+// the exit code when the command line asks for one of them, else nothing.
+std::optional<int> write_shell_docs(const CLI::App& app, std::string_view summary, int argc, char** argv) {
+  if (argc > 1 && std::string_view(argv[1]) == "--man-page") {
+    if (argc > 2) return report("error", std::string("--man-page: takes no argument; got '") + argv[2] + "'");
+    std::cout << ccal::cli::man_page(app, summary, ccal::version());
+    return 0;
+  }
+  if (argc > 1 && std::string_view(argv[1]) == "--completion") {
+    const auto& shells = ccal::cli::kCompletionShells;
+    if (argc != 3 || std::find(shells.begin(), shells.end(), argv[2]) == shells.end())
+      return report("error", fmt::format("--completion: {}accepted: bash, zsh or fish (e.g. source <(ccal "
+                                         "--completion bash))",
+                                         argc > 2 ? fmt::format("'{}' is not a shell ccal completes; ", argv[2])
+                                                  : std::string()));
+    std::cout << ccal::cli::completion_script(app, argv[2]);
+    return 0;
+  }
+  return std::nullopt;
 }
 }  // namespace
 
@@ -143,22 +165,7 @@ int main(int argc, char** argv) {
   }
   ccal::cli::set_command_line(argc, argv);
 
-  // The manual page and the shell completion, from the declarations above (shell_docs.hpp).
-  if (argc > 1 && std::string_view(argv[1]) == "--man-page") {
-    if (argc > 2) return report("error", std::string("--man-page: takes no argument; got '") + argv[2] + "'");
-    std::cout << ccal::cli::man_page(app, kSummary, ccal::version());
-    return 0;
-  }
-  if (argc > 1 && std::string_view(argv[1]) == "--completion") {
-    const auto& shells = ccal::cli::kCompletionShells;
-    if (argc != 3 || std::find(shells.begin(), shells.end(), argv[2]) == shells.end())
-      return report("error", fmt::format("--completion: {}accepted: bash, zsh or fish (e.g. source <(ccal "
-                                         "--completion bash))",
-                                         argc > 2 ? fmt::format("'{}' is not a shell ccal completes; ", argv[2])
-                                                  : std::string()));
-    std::cout << ccal::cli::completion_script(app, argv[2]);
-    return 0;
-  }
+  if (const std::optional<int> code = write_shell_docs(app, kSummary, argc, argv)) return *code;
 
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
   // required", with the nearest command's name.
