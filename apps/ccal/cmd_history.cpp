@@ -33,8 +33,8 @@ struct HistoryCli {
 };
 
 // Each command's own examples (a command of commands inherits the top level's footer otherwise).
-void add_history_examples(CLI::App& add, CLI::App& show, CLI::App& list, CLI::App& supersede, CLI::App& exported,
-                          CLI::App& imported) {
+void add_history_examples(CLI::App& add, CLI::App& show, CLI::App& list, CLI::App& supersede,
+                          CLI::App& exported, CLI::App& imported) {
   add.footer(
       "Examples:\n"
       "  ccal reduce lab.toml --log … --statement --statement-out statement.json\n"
@@ -102,7 +102,9 @@ Command add_history(CLI::App& app) {
       ->type_name("ID");
   add_option_flags(*supersede, o->supersede, option_table<verbs::HistorySupersedeOptions>());
   CLI::App* exported = cmd->add_subcommand("export", "A serial number's history as one JSON file");
-  exported->add_option("SERIAL", o->export_serial, "Serial number, as recorded")->required()->type_name("SERIAL");
+  exported->add_option("SERIAL", o->export_serial, "Serial number, as recorded")
+      ->required()
+      ->type_name("SERIAL");
   add_option_flags(*exported, o->export_store, option_table<verbs::HistoryStoreOptions>());
   add_output_options(*exported, o->export_output, {"json"});
   CLI::App* imported = cmd->add_subcommand("import", "Record the calibrations of an exported history file");

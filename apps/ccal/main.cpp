@@ -168,13 +168,20 @@ int main(int argc, char** argv) {
   if (const std::optional<int> code = write_shell_docs(app, kSummary, argc, argv)) return *code;
 
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
-  // required", with the nearest command's name.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::vector<std::string> names;
-    for (const auto& command : commands) names.push_back(command.app->get_name());
-    if (std::find(names.begin(), names.end(), argv[1]) == names.end())
-      return report("error", ccal::cli::unknown_command_message(argv[1], names));
-  }
+  // required", with the nearest command's name. No command at all, or an option the program does not take
+  // before one, gets the commands too.
+  std::vector<std::string> names;
+  for (const auto& command : commands) names.push_back(command.app->get_name());
+  if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end())
+    return report("error", ccal::cli::unknown_command_message(argv[1], names));
+  const std::string_view first = argc > 1 ? argv[1] : "";
+  if (first.empty() || (first[0] == '-' && first != "-h" && first != "--help" && first != "-V" &&
+                        first != "--version"))
+    return report("error", (first.empty() ? std::string() : fmt::format("unknown option '{}' before a command "
+                                                                        "(accepted there: -h, --help, -V, "
+                                                                        "--version, --man-page, --completion); ",
+                                                                        first)) +
+                               ccal::cli::unknown_command_message("", names) + "; run 'ccal --help'");
   if (const std::string problem = ccal::cli::subcommand_problem(commands, argc, argv); !problem.empty())
     return report("error", problem);
 

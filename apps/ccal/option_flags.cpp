@@ -61,7 +61,8 @@ std::string unknown_command_message(std::string_view typed, const std::vector<st
   std::string accepted;
   for (const std::string& name : names) accepted += (accepted.empty() ? "" : ", ") + name;
   const std::string prefix = parent.empty() ? "" : "ccal " + std::string(parent) + " ";
-  if (typed.empty()) return "'" + prefix + "…' needs a command; accepted: " + accepted;
+  if (typed.empty())
+    return "'" + (prefix.empty() ? std::string("ccal ") : prefix) + "…' needs a command; accepted: " + accepted;
   const std::optional<std::string> nearest = nearest_name(typed, names);
   return "unknown command '" + prefix + std::string(typed) + "'" +
          (nearest ? "; did you mean '" + prefix + *nearest + "'?" : ";") + " accepted: " + accepted;

@@ -143,6 +143,12 @@ TEST_F(CommandLine, ShortAndLongVersionFlagsPrintTheVersion) {
   EXPECT_TRUE(shortflag.err.empty()) << shortflag.err;
 }
 
+TEST_F(CommandLine, NoCommandOrAnUnknownFirstOptionListsTheCommands) {
+  expect_bad_input(run(""), {"'ccal …' needs a command; accepted: budget, force", "run 'ccal --help'"});
+  expect_bad_input(run("--bogus"), {"unknown option '--bogus' before a command", "-V, --version",
+                                    "accepted: budget, force"});
+}
+
 TEST_F(CommandLine, ManPageNamesTheProgramOnceAndTheInstalledDocs) {
   const Result man = run("--man-page");
   ASSERT_EQ(man.code, 0) << man.err;
