@@ -19,7 +19,7 @@ case "${1:-all}" in
   all) targets=()
        parts=(-DCCAL_BUILD_TESTS=ON -DCCAL_BUILD_BENCH=ON -DCCAL_BUILD_PYTHON=ON)
        packages+=(libgtest-dev libgmock-dev libbenchmark-dev pybind11-dev python3-dev python3-numpy chromium
-                 poppler-utils python3-venv python3-pip python3-setuptools python3-wheel) ;;
+                 poppler-utils zsh fish python3-venv python3-pip python3-setuptools python3-wheel) ;;
   ccal) targets=(--target ccal_cli)
         parts=(-DCCAL_BUILD_TESTS=OFF -DCCAL_BUILD_BENCH=OFF -DCCAL_BUILD_PYTHON=OFF) ;;
   *) echo "setup: '$1' is not a build choice; accepted: 'ccal' (library and program) or nothing (everything)" >&2

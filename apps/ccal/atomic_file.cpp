@@ -378,6 +378,15 @@ void write_files(const std::vector<FileToWrite>& files) {
   for (std::size_t k = 0; k < files.size(); ++k)
     if (plans[k].kind == Plan::Kind::replace && !temporaries[k].rename_to(plans[k].target))
       fail(files[k], errno_text());
+  // Every file written is named, as given, once all of them are in place; standard output, a device or a
+  // FIFO is not a file the user looks for afterwards.
+  for (std::size_t k = 0; k < files.size(); ++k)
+    if (plans[k].kind == Plan::Kind::replace) {
+      struct stat st {};
+      const std::string size =
+          ::stat(plans[k].target.c_str(), &st) == 0 ? fmt::format(" ({} bytes)", st.st_size) : std::string();
+      std::cerr << fmt::format("ccal: wrote {}{}\n", files[k].path, size);
+    }
 }
 
 }  // namespace ccal::cli

@@ -32,6 +32,41 @@ struct HistoryCli {
   OutputOptions list_output;
 };
 
+// Each command's own examples (a command of commands inherits the top level's footer otherwise).
+void add_history_examples(CLI::App& add, CLI::App& show, CLI::App& list, CLI::App& supersede,
+                          CLI::App& exported, CLI::App& imported) {
+  add.footer(
+      "Examples:\n"
+      "  ccal reduce lab.toml --log … --statement --statement-out statement.json\n"
+      "  ccal history add statement.json\n"
+      "      serial number and date from the statement's [certificate]\n"
+      "  ccal history add old.json --serial \"SN 0815\" --date 2024-11-28 --db lab.sqlite\n");
+  show.footer(
+      "Examples:\n"
+      "  ccal history show \"SN 0815\"\n"
+      "      every calibration, E_n of successive ones and the drift\n"
+      "  ccal history show \"SN 0815\" --at 2027-12-01\n"
+      "      with the value predicted then and its uncertainty\n"
+      "  ccal history show \"SN 0815\" --format csv -o sn0815.csv\n");
+  list.footer(
+      "Examples:\n"
+      "  ccal history list\n"
+      "      serial numbers, their calibrations and last date\n"
+      "  ccal history list --db lab.sqlite --format json\n");
+  supersede.footer(
+      "Examples:\n"
+      "  ccal history supersede 3 --by 4 --reason \"mounting screw loose; test repeated\"\n"
+      "      record 3 kept, but left out of the drift and E_n (ids: ccal history show)\n");
+  exported.footer(
+      "Examples:\n"
+      "  ccal history export \"SN 0815\" -o sn0815.json\n"
+      "      the instrument's whole history, for another lab's store (ccal history import)\n");
+  imported.footer(
+      "Examples:\n"
+      "  ccal history import sn0815.json --db other.sqlite\n"
+      "      adds what is new; a calibration already there is counted, not added again\n");
+}
+
 }  // namespace
 
 Command add_history(CLI::App& app) {
@@ -52,7 +87,7 @@ Command add_history(CLI::App& app) {
   CLI::App* show = cmd->add_subcommand(
       "show",
       "A serial number's calibrations: per coefficient E_n of successive ones, the drift and a prediction");
-  show->add_option("SERIAL", o->serial, "Serial number, as recorded")->required()->type_name("S");
+  show->add_option("SERIAL", o->serial, "Serial number, as recorded")->required()->type_name("SERIAL");
   add_option_flags(*show, o->show, option_table<verbs::HistoryShowOptions>());
   add_output_options(*show, o->show_output, {"text", "json", "csv"});
   CLI::App* list = cmd->add_subcommand(
@@ -67,7 +102,9 @@ Command add_history(CLI::App& app) {
       ->type_name("ID");
   add_option_flags(*supersede, o->supersede, option_table<verbs::HistorySupersedeOptions>());
   CLI::App* exported = cmd->add_subcommand("export", "A serial number's history as one JSON file");
-  exported->add_option("SERIAL", o->export_serial, "Serial number, as recorded")->required()->type_name("S");
+  exported->add_option("SERIAL", o->export_serial, "Serial number, as recorded")
+      ->required()
+      ->type_name("SERIAL");
   add_option_flags(*exported, o->export_store, option_table<verbs::HistoryStoreOptions>());
   add_output_options(*exported, o->export_output, {"json"});
   CLI::App* imported = cmd->add_subcommand("import", "Record the calibrations of an exported history file");
@@ -75,6 +112,7 @@ Command add_history(CLI::App& app) {
       ->required()
       ->type_name("FILE");
   add_option_flags(*imported, o->import_store, option_table<verbs::HistoryStoreOptions>());
+  add_history_examples(*add, *show, *list, *supersede, *exported, *imported);
   cmd->footer(
       "Examples:\n"
       "  ccal reduce lab.toml --log … --statement --statement-out statement.json\n"

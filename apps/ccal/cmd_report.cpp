@@ -2,6 +2,7 @@
 // comparison, sensed input, provenance; optionally a tolerance allocation and a test-plan design, each before
 // and after), one self-contained page with the charting library inlined.
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -46,6 +47,17 @@ void check_pdf(const std::string& pdf, const OutputOptions& output) {
   }
 }
 
+// Without -o, the page (some 1 MB of HTML with the charting library inlined) would scroll through a terminal:
+// refused before the work, saying where to put it; to a file or a pipe it goes as asked, and `-o -` sends it
+// to standard output whatever that is. With --pdf alone only the PDF is written.
+void refuse_page_on_terminal(const OutputOptions& output, const std::string& pdf) {
+  if (output.path.empty() && pdf.empty() && isatty(STDOUT_FILENO) != 0)
+    throw InputError(
+        "report: the HTML page (about 1 MB) would be written to the terminal; accepted: -o FILE.html (e.g. "
+        "-o report.html), --pdf FILE.pdf, a redirection (> report.html) or a pipe, or -o - for standard "
+        "output all the same");
+}
+
 // The page as a PDF (InputError naming --pdf).
 std::string pdf_of(const std::string& page) {
   try {
@@ -72,7 +84,8 @@ Command add_report(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "report",
       "HTML report: budget, Monte Carlo distribution, exact vs paper, sensed input, provenance; optionally "
-      "a tolerance allocation and a test-plan design, each against the configured one");
+      "a tolerance allocation and a test-plan design, each against the configured one, and, with "
+      "observations, the calibration statement and certificate (also printed to PDF)");
   add_config_argument(*cmd, o->config);
   add_option_flags(*cmd, o->options, option_table<verbs::ReportOptions>());
   add_option_flags(*cmd, o->options.monte_carlo, option_table<verbs::MonteCarloOptions>(), {"mode"});
@@ -95,7 +108,9 @@ Command add_report(CLI::App& app) {
       ->type_name("OBS.csv");
   o->output.format = "html";
   refuse_empty_output(
-      *cmd->add_option("-o,--output", o->output.path, "Write the page to FILE instead of standard output")
+      *cmd->add_option("-o,--output", o->output.path,
+                       "Write the page to FILE ('-': standard output; without -o the page goes to standard "
+                       "output only when that is not a terminal)")
            ->type_name("FILE.html"));
   refuse_empty_path(cmd->add_option("--pdf", o->pdf,
                                     "Print the page to FILE as PDF (A4), through headless Chromium (Debian's "
@@ -117,6 +132,7 @@ Command add_report(CLI::App& app) {
       "  ccal report lab.toml --observations obs.csv --pdf certificate.pdf\n"
       "      the calibration certificate (with lab.toml's [certificate] table) as a PDF to sign and file\n");
   return {cmd, [o] {
+            refuse_page_on_terminal(o->output, o->pdf);
             const std::string_view scripts = required_report_scripts();  // before the long computation
             check_pdf(o->pdf, o->output);
             verbs::ReportOptions ro = o->options;

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <exception>
+#include <memory>
+#include <optional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -13,6 +15,8 @@
 #include "ccal/core/options.hpp"
 #include "ccal/version.hpp"
 #include "commands.hpp"
+#include "completion.hpp"
+#include "help_format.hpp"
 #include "option_flags.hpp"
 #include "shell_docs.hpp"
 
@@ -46,6 +50,27 @@ std::string printable_line(std::string_view message) {
 int report(std::string_view kind, std::string_view message) {
   std::cerr << "ccal: " << kind << ": " << printable_line(message) << '\n';
   return kind == "error" ? kBadInput : kInternal;
+}
+
+// ccal --man-page and ccal --completion SHELL, from the declarations of `app` (shell_docs.hpp, completion.hpp):
+// the exit code when the command line asks for one of them, else nothing.
+std::optional<int> write_shell_docs(const CLI::App& app, std::string_view summary, int argc, char** argv) {
+  if (argc > 1 && std::string_view(argv[1]) == "--man-page") {
+    if (argc > 2) return report("error", std::string("--man-page: takes no argument; got '") + argv[2] + "'");
+    std::cout << ccal::cli::man_page(app, summary, ccal::version());
+    return 0;
+  }
+  if (argc > 1 && std::string_view(argv[1]) == "--completion") {
+    const auto& shells = ccal::cli::kCompletionShells;
+    if (argc != 3 || std::find(shells.begin(), shells.end(), argv[2]) == shells.end())
+      return report("error", fmt::format("--completion: {}accepted: bash, zsh or fish (e.g. source <(ccal "
+                                         "--completion bash))",
+                                         argc > 2 ? fmt::format("'{}' is not a shell ccal completes; ", argv[2])
+                                                  : std::string()));
+    std::cout << ccal::cli::completion_script(app, argv[2]);
+    return 0;
+  }
+  return std::nullopt;
 }
 }  // namespace
 
@@ -96,11 +121,15 @@ std::string subcommand_problem(const std::vector<Command>& commands, int argc, c
 }  // namespace ccal::cli
 
 int main(int argc, char** argv) {
-  CLI::App app{
-      "ccal: precision-centrifuge calibration of accelerometers (error budget of centrifuge errors on "
-      "identified coefficients).",
-      "ccal"};
-  app.set_version_flag("--version", ccal::version_line());
+  // The program in one line: the manual page's NAME, and the start of the help.
+  constexpr std::string_view kSummary = "precision-centrifuge calibration of accelerometers";
+  CLI::App app{fmt::format("ccal: {} (error budget of centrifuge errors on identified coefficients, test "
+                           "plans, run logs to a calibration statement and certificate).",
+                           kSummary),
+               "ccal"};
+  // Before the commands are added: they inherit the help's layout (help_format.hpp).
+  app.formatter(std::make_shared<ccal::cli::HelpFormatter>());
+  app.set_version_flag("-V,--version", ccal::version_line());
   app.require_subcommand(1);
   app.footer(
       "Examples:\n"
@@ -115,8 +144,9 @@ int main(int argc, char** argv) {
       "  ccal identify obs.csv                      least-squares fit of the observations file\n"
       "  ccal reduce my.toml --log 20g=run20.csv …  recorded run logs to run means and coefficients\n"
       "  ccal report -o report.html                 the HTML report (budget, Monte Carlo, charts)\n"
+      "  ccal report lab.toml --observations obs.csv --pdf certificate.pdf   the calibration certificate\n"
       "Run 'ccal <command> --help' for the options of a command; 'ccal --man-page' writes the manual page,\n"
-      "'ccal --completion bash' the bash completion.\n");
+      "'ccal --completion bash' (or zsh, fish) the shell's completion.\n");
 
   std::vector<ccal::cli::Command> commands;
   commands.push_back(ccal::cli::add_budget(app));
@@ -129,29 +159,29 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_design(app));
   commands.push_back(ccal::cli::add_report(app));
   commands.push_back(ccal::cli::add_history(app));
+  for (const auto& command : commands) {  // listed under "Commands:", history's under its own
+    command.app->group("Commands");
+    for (CLI::App* sub : command.app->get_subcommands([](CLI::App*) { return true; })) sub->group("Commands");
+  }
   ccal::cli::set_command_line(argc, argv);
 
-  // The manual page and the shell completion, from the declarations above (shell_docs.hpp).
-  if (argc > 1 && std::string_view(argv[1]) == "--man-page") {
-    if (argc > 2) return report("error", std::string("--man-page: takes no argument; got '") + argv[2] + "'");
-    std::cout << ccal::cli::man_page(app, ccal::version());
-    return 0;
-  }
-  if (argc > 1 && std::string_view(argv[1]) == "--completion") {
-    if (argc != 3 || std::string_view(argv[2]) != "bash")
-      return report("error", "--completion: accepted: bash (e.g. source <(ccal --completion bash))");
-    std::cout << ccal::cli::bash_completion(app);
-    return 0;
-  }
+  if (const std::optional<int> code = write_shell_docs(app, kSummary, argc, argv)) return *code;
 
   // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
-  // required", with the nearest command's name.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::vector<std::string> names;
-    for (const auto& command : commands) names.push_back(command.app->get_name());
-    if (std::find(names.begin(), names.end(), argv[1]) == names.end())
-      return report("error", ccal::cli::unknown_command_message(argv[1], names));
-  }
+  // required", with the nearest command's name. No command at all, or an option the program does not take
+  // before one, gets the commands too.
+  std::vector<std::string> names;
+  for (const auto& command : commands) names.push_back(command.app->get_name());
+  if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end())
+    return report("error", ccal::cli::unknown_command_message(argv[1], names));
+  const std::string_view first = argc > 1 ? argv[1] : "";
+  if (first.empty() || (first[0] == '-' && first != "-h" && first != "--help" && first != "-V" &&
+                        first != "--version"))
+    return report("error", (first.empty() ? std::string() : fmt::format("unknown option '{}' before a command "
+                                                                        "(accepted there: -h, --help, -V, "
+                                                                        "--version, --man-page, --completion); ",
+                                                                        first)) +
+                               ccal::cli::unknown_command_message("", names) + "; run 'ccal --help'");
   if (const std::string problem = ccal::cli::subcommand_problem(commands, argc, argv); !problem.empty())
     return report("error", problem);
 

@@ -21,7 +21,22 @@ std::map<std::pair<const CLI::App*, std::string>, std::string>& declared() {
   return flags;
 }
 
+std::map<const CLI::Option*, std::vector<std::string>>& choices() {
+  static std::map<const CLI::Option*, std::vector<std::string>> values;
+  return values;
+}
+
 }  // namespace
+
+void remember_choices(const CLI::Option* option, std::vector<std::string> values) {
+  choices()[option] = std::move(values);
+}
+
+const std::vector<std::string>& choices_of(const CLI::Option* option) {
+  static const std::vector<std::string> none;
+  const auto found = choices().find(option);
+  return found != choices().end() ? found->second : none;
+}
 
 std::string flag_name(std::string_view field, std::string_view prefix) {
   // The spelling applies to the field's last word too: report's allocate_targets → --allocate-target.
@@ -46,7 +61,8 @@ std::string unknown_command_message(std::string_view typed, const std::vector<st
   std::string accepted;
   for (const std::string& name : names) accepted += (accepted.empty() ? "" : ", ") + name;
   const std::string prefix = parent.empty() ? "" : "ccal " + std::string(parent) + " ";
-  if (typed.empty()) return "'" + prefix + "…' needs a command; accepted: " + accepted;
+  if (typed.empty())
+    return "'" + (prefix.empty() ? std::string("ccal ") : prefix) + "…' needs a command; accepted: " + accepted;
   const std::optional<std::string> nearest = nearest_name(typed, names);
   return "unknown command '" + prefix + std::string(typed) + "'" +
          (nearest ? "; did you mean '" + prefix + *nearest + "'?" : ";") + " accepted: " + accepted;

@@ -38,6 +38,12 @@ template <class Options>
 void add_option_flags(CLI::App& command, Options& options, OptionTable<Options> table,
                       std::initializer_list<std::string_view> skip = {}, std::string_view prefix = "");
 
+// The values a choice option accepts (an enumeration row's names, --format's formats), recorded when the
+// option is declared, for the help (help_format.hpp) and the shell completions (shell_docs.hpp); empty for an
+// option that is not a choice.
+void remember_choices(const CLI::Option* option, std::vector<std::string> choices);
+const std::vector<std::string>& choices_of(const CLI::Option* option);
+
 namespace detail {
 void remember_flag(const CLI::App* command, std::string_view field, const std::string& flag);
 CLI::Option* add_text_flag(CLI::App& command, const std::string& flag, std::string_view help,
@@ -56,6 +62,7 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
     });
     if (const auto index = e.get(options)) option->default_str(std::string(e.names[*index]));
     option->type_name(std::string(row.value_name));
+    remember_choices(option, std::vector<std::string>(e.names.begin(), e.names.end()));
   } else {
     using Field = std::remove_cvref_t<decltype(options.*member)>;
     Field& value = options.*member;

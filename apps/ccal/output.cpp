@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "atomic_file.hpp"
+#include "option_flags.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/render/statement.hpp"
 
@@ -19,9 +20,11 @@ namespace ccal::cli {
 void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats,
                         bool long_output) {
   options.format = formats.front();
-  command.add_option("--format", options.format, "Output format")
-      ->check(CLI::IsMember(formats))
-      ->capture_default_str();
+  CLI::Option* format = command.add_option("--format", options.format, "Output format")
+                            ->check(CLI::IsMember(formats))
+                            ->capture_default_str()
+                            ->type_name("FORMAT");
+  remember_choices(format, formats);
   refuse_empty_output(
       *command
            .add_option(long_output ? "-o,--output" : "-o", options.path,

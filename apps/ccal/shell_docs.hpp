@@ -1,10 +1,9 @@
 #pragma once
-// The program's manual page and shell completion, made from the same declarations as its --help (the
-// subcommands and their flags, which come from the verbs' options tables), so they cannot drift from it.
+// The program's manual page, made from the same declarations as its --help (the subcommands and their flags,
+// which come from the verbs' options tables), so it cannot drift from it (the shell completions: completion.hpp).
 //   ccal --man-page              roff for man(1): `ccal --man-page > ccal.1; man -l ccal.1`
-//   ccal --completion bash       a bash completion script: `source <(ccal --completion bash)`
-// The build writes both into the build folder and `cmake --install` installs them (share/man/man1/ccal.1,
-// share/bash-completion/completions/ccal).
+// The build writes it into the build folder and `cmake --install` installs it (share/man/man1/ccal.1), with the
+// documentation it names (share/doc/ccal).
 
 #include <CLI/CLI.hpp>
 #include <string>
@@ -12,7 +11,7 @@
 
 namespace ccal::cli {
 
-std::string man_page(const CLI::App& app, std::string_view version);
-std::string bash_completion(const CLI::App& app);
+// summary: the NAME line's text after "ccal - ".
+std::string man_page(const CLI::App& app, std::string_view summary, std::string_view version);
 
 }  // namespace ccal::cli

@@ -174,14 +174,15 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
   const std::size_t nk = r.coefficients.size();
   std::string out = "rank,source,group,distribution,bound_si,unit_si,standard_uncertainty_si";
   for (std::size_t k = 0; k < nk; ++k)
-    out +=
-        fmt::format(",d{0} [{1}],d{0}_force [{1}],d{0}_rate [{1}],share_{0}", r.coefficients[k], r.units[k]);
+    out += fmt::format(",{},{},{},share_{}", csv_column("d" + r.coefficients[k], r.units[k]),
+                       csv_column("d" + r.coefficients[k] + "_force", r.units[k]),
+                       csv_column("d" + r.coefficients[k] + "_rate", r.units[k]), r.coefficients[k]);
   // The source as configured, and c_i per that unit (u_i(y) = c_i u(x_i)); then the further columns of
   // EA-4/02: the evaluation's type, ν_i ("inf"), the divisor, x_i in that unit and in SI, the unit of each
   // c_i.
   out += ",name,unit,bound,u_x";
   for (std::size_t k = 0; k < nk; ++k)
-    out += fmt::format(",c_{} [{} per unit]", r.coefficients[k], r.units[k]);
+    out += "," + csv_column("c_" + r.coefficients[k], r.units[k] + " per unit");
   out += ",type,dof,divisor,estimate,estimate_si";
   for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",c_{}_unit", r.coefficients[k]);
   // With [[correlations]]: the inputs' correlation matrix, a column r_<id> per source (tolerance order), each

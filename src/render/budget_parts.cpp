@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "ccal/core/units.hpp"
@@ -155,6 +156,34 @@ std::string csv_field(std::string_view text) {
   std::string out = "\"";
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
+}
+
+std::string csv_column(std::string_view name, std::string_view unit) {
+  std::string word;
+  for (std::size_t i = 0; i < unit.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(unit[i]);
+    const std::string_view rest = unit.substr(i);
+    if (std::isalnum(c)) {
+      word += char(c);
+    } else if (c == '^') {
+      continue;
+    } else if (rest.starts_with("\u00b5") || rest.starts_with("\u03bc")) {  // µ (micro sign, Greek mu)
+      word += 'u';
+      ++i;
+    } else if (rest.starts_with("\u00b0")) {  // °
+      word += "deg";
+      ++i;
+    } else if (c == '%') {
+      word += "pct";
+    } else if (c >= 0x80) {  // another non-ASCII character: one '_' for all its bytes
+      if (word.empty() || word.back() != '_') word += '_';
+      while (i + 1 < unit.size() && (static_cast<unsigned char>(unit[i + 1]) & 0xc0) == 0x80) ++i;
+    } else if (!word.empty() && word.back() != '_') {
+      word += '_';
+    }
+  }
+  while (!word.empty() && word.back() == '_') word.pop_back();
+  return word.empty() ? std::string(name) : std::string(name) + "_" + word;
 }
 
 nlohmann::ordered_json input_correlation_json(const ccal::BudgetResult& r) {

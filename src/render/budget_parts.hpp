@@ -85,6 +85,11 @@ std::string source_label(const std::string& id, const std::string& group);
 // A CSV field, quoted when it holds a comma, a quote or a line break.
 std::string csv_field(std::string_view text);
 
+// A CSV column's name with its unit, as one plain word that any reader takes as it is (no space, bracket or
+// slash): the unit's '/' and spaces as '_', '^' left out, µ as u, ° as deg, % as pct, any other sign as '_'
+// (dK0 and "deg/s" give dK0_deg_s, "deg/s/g^2" deg_s_g2). docs/cli.md lists the columns.
+std::string csv_column(std::string_view name, std::string_view unit);
+
 // The inputs' correlation matrix ([[correlations]] and the groups' r = 1, sources in tolerance order) and the
 // share of each coefficient's u² its cross terms make, as the budget's and the Monte Carlo's JSON carry it;
 // null when the budget has none (no [[correlations]]).

@@ -294,17 +294,27 @@ std::string json(const verbs::DesignResult& r) {
   return j.dump(2) + "\n";
 }
 
-// The designed plan, one row per run, as the [plan] of `--plan-out` gives it (g-levels in g, durations in s,
-// angles in rad, 17 digits); terminal_phase_rad is empty for a run without one.
+// The run sheet, one row per run in the order it is run, with the columns of the JSON's run_sheet.runs (speeds
+// in rpm, durations in s, angles in degrees, as rounded to the settings' resolution), so that the operator's
+// sheet and a spreadsheet read the same numbers; shortest digits that read back as the same doubles.
 std::string csv(const verbs::DesignResult& r) {
-  std::string out =
-      "run,g_level_g,duration_s,initial_phase_rad,terminal_phase_rad,arm_azimuth_rad,mounting,platform\n";
-  for (const Run& run : r.designed.plan.runs)
-    out += fmt::format("{},{:.17g},{:.17g},{:.17g},{},{:.17g},{},{}\n", budget_parts::csv_field(run.name),
-                       run.g_level, run.duration,
-                       initial_phase(run, r.designed.centrifuge.geometry, r.designed.site),
-                       run.terminal_phase ? fmt::format("{:.17g}", *run.terminal_phase) : "", run.arm_azimuth,
-                       mounting_name(run.mounting), platform_mode_name(run.mode));
+  const nlohmann::ordered_json runs = run_sheet_json(r)["runs"];
+  if (runs.empty()) return "";
+  std::string out;
+  for (const auto& [key, value] : runs.front().items()) {
+    if (!out.empty()) out += ',';
+    out += key;
+  }
+  out += '\n';
+  for (const auto& run : runs) {
+    bool first = true;
+    for (const auto& [key, value] : run.items()) {
+      if (!first) out += ',';
+      first = false;
+      out += budget_parts::csv_field(value.is_string() ? value.get<std::string>() : value.dump());
+    }
+    out += '\n';
+  }
   return out;
 }
 

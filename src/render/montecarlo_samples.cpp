@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "budget_parts.hpp"
 #include "ccal/core/errors.hpp"
 
 namespace ccal::render {
@@ -15,8 +16,10 @@ namespace {
 
 bool write_csv(const Eigen::MatrixXd& samples, const BudgetResult& b, const ChunkSink& sink) {
   std::string block;
-  for (std::size_t k = 0; k < b.coefficients.size(); ++k)
-    block += fmt::format("{}{} [{}]", k ? "," : "", b.coefficients[k], b.units[k]);
+  for (std::size_t k = 0; k < b.coefficients.size(); ++k) {
+    if (k > 0) block += ',';
+    block += budget_parts::csv_column(b.coefficients[k], b.units[k]);
+  }
   block += '\n';
   for (Eigen::Index i = 0; i < samples.rows(); ++i) {
     for (Eigen::Index k = 0; k < samples.cols(); ++k)

@@ -309,7 +309,9 @@ std::string csv(const verbs::CalibrationStatement& st) {
   for (const CoefficientStatement& c : st.coefficients)
     out += fmt::format(",{}", budget_parts::csv_field(fmt::format("cov_{}", c.input.coefficient)));
   out += "\n";
-  // Shortest round-trip digits; an infinite ν is "inf" (JSON's null), a NaN "nan".
+  // Shortest round-trip digits; an infinite ν is "inf" (JSON's null), a NaN "nan". The rounded figures are
+  // text, quoted, so that a reader that keeps quoted fields as text reads 0.020 and not 0.02.
+  const auto as_text = [](const std::string& figure) { return "\"" + figure + "\""; };
   const auto full = [](double v) {
     return std::isfinite(v) ? fmt::format("{}", v) : std::isnan(v) ? std::string("nan") : std::string("inf");
   };
@@ -321,7 +323,7 @@ std::string csv(const verbs::CalibrationStatement& st) {
                        full(c.corrected), full(c.expanded), full(c.coverage_factor), full(st.coverage_probability),
                        full(c.effective_dof), full(c.low), full(c.high), full(c.combined), full(c.input.type_a.u),
                        full(c.input.type_a.dof), full(c.input.type_b.u), c.significant ? "true" : "false",
-                       r.estimate, r.expanded, r.low, r.high);
+                       as_text(r.estimate), as_text(r.expanded), as_text(r.low), as_text(r.high));
     out += fmt::format(",{}", kIntervalMethodNames[std::size_t(c.method)]);
     if (c.monte_carlo) {
       const OutputSummary& m = *c.monte_carlo;

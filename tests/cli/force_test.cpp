@@ -25,7 +25,7 @@ TEST_F(Cli, VersionAndHelp) {
   EXPECT_EQ(fh.code, 0);
   EXPECT_NE(fh.out.find("Examples:"), std::string::npos) << fh.out;
   EXPECT_NE(fh.out.find("--time"), std::string::npos);
-  expect_bad_input(run(""), {"subcommand"});
+  expect_bad_input(run(""), {"needs a command", "accepted: budget"});
   expect_bad_input(run("frobnicate"), {"frobnicate"});
 }
 

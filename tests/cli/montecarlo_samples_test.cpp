@@ -50,7 +50,7 @@ TEST_F(SamplesCli, CsvHasTheReportedMeanStdAndHistogram) {
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json o = nlohmann::json::parse(read(dir_ / "mc.json"));
   const Columns c = read_csv(read(dir_ / "s.csv"));
-  ASSERT_EQ(c.header, (std::vector<std::string>{"K0 [deg/s]", "K2 [deg/s/g^2]", "K3 [deg/s/g^3]"}));
+  ASSERT_EQ(c.header, (std::vector<std::string>{"K0_deg_s", "K2_deg_s_g2", "K3_deg_s_g3"}));
   for (std::size_t k = 0; k < 3; ++k) {
     const std::string id = c.header[k].substr(0, 2);
     SCOPED_TRACE(id);

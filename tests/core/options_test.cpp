@@ -322,7 +322,10 @@ TEST_F(SameRefusal, ManPageAndCompletionListEveryFlag) {
     for (const OptionSpec<Options>& row : option_table<Options>()) {
       if (verb == "force" && row.field == "time") continue;  // declared by hand, with its unit
       std::string flag = cli_flag(row);
-      EXPECT_NE(bash.out.find(" " + flag), std::string::npos) << verb << " " << flag;
+      EXPECT_TRUE(bash.out.find(" " + flag + " ") != std::string::npos ||
+                  bash.out.find("\"" + flag + " ") != std::string::npos ||
+                  bash.out.find(" " + flag + "\"") != std::string::npos)
+          << verb << " " << flag;
       std::string roff_flag;  // '-' is written \- in roff
       for (char c : flag) roff_flag += c == '-' ? std::string("\\-") : std::string(1, c);
       EXPECT_NE(man.out.find(roff_flag), std::string::npos) << verb << " " << flag;
@@ -334,7 +337,12 @@ TEST_F(SameRefusal, ManPageAndCompletionListEveryFlag) {
   expect_flags("design", std::type_identity<verbs::DesignOptions>{});
   expect_flags("force", std::type_identity<verbs::ForceOptions>{});
   expect_flags("simulate", std::type_identity<verbs::SimulateOptions>{});
-  EXPECT_EQ(run("--completion zsh").code, 2);
+  for (const char* shell : {"zsh", "fish"}) EXPECT_EQ(run(std::string("--completion ") + shell).code, 0) << shell;
+  const test::Result other = run("--completion tcsh");
+  EXPECT_EQ(other.code, 2);
+  EXPECT_EQ(other.err,
+            "ccal: error: --completion: 'tcsh' is not a shell ccal completes; accepted: bash, zsh or fish (e.g. "
+            "source <(ccal --completion bash))\n");
 }
 
 }  // namespace

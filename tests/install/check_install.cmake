@@ -3,7 +3,8 @@
 #  2. the installed CMake files name no path of the build machine (the source or build folder);
 #  3. the consumer project (consumer/) configures with find_package(ccal) against the prefix alone, builds and
 #     prints the nominal rate of the bundled example's 20 g run;
-#  4. the installed `ccal --version` runs (when CLI is true);
+#  4. the installed `ccal --version` runs, and the manual page, the three shell completions and the
+#     documentation the manual page names are installed (when CLI is true);
 #  5. the installed Python package imports from the prefix with PYTHON, reports the same version and commit,
 #     and its metadata (importlib.metadata) the project's version (when PYTHON is set).
 foreach(argument BUILD_DIR WORK_DIR CONSUMER_DIR SOURCE_DIR GENERATOR CXX_COMPILER VERSION)
@@ -85,6 +86,22 @@ if(CLI)
     message(FATAL_ERROR "install.consumer: installed ccal --version printed '${step_output}', "
                         "the library '${library_line}'")
   endif()
+  foreach(file share/man/man1/ccal.1 share/bash-completion/completions/ccal share/zsh/site-functions/_ccal
+               share/fish/vendor_completions.d/ccal.fish share/doc/ccal/README.md)
+    if(NOT EXISTS ${prefix}/${file})
+      message(FATAL_ERROR "install.consumer: ${file} was not installed")
+    endif()
+  endforeach()
+  # Every page of docs/ the manual page names is installed where it says.
+  file(READ ${prefix}/share/man/man1/ccal.1 man_page)
+  string(REGEX MATCH "share/doc/ccal/docs[^\n]*" docs_line "${man_page}")
+  foreach(page cli.md config.md model.md python.md tutorial.md)
+    string(FIND "${docs_line}" "${page}" named)
+    if(named EQUAL -1 OR NOT EXISTS ${prefix}/share/doc/ccal/docs/${page})
+      message(FATAL_ERROR "install.consumer: the manual page names docs/${page} in '${docs_line}', which must "
+                          "be installed as share/doc/ccal/docs/${page}")
+    endif()
+  endforeach()
 endif()
 
 # 5. The installed Python module, from the prefix alone (PYTHONPATH replaced, not extended).

@@ -4,6 +4,7 @@
 #include "ccal/io/candidate_cache.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -26,7 +27,8 @@ class CandidateCache : public ::testing::Test {
   void SetUp() override {
     folder_ =
         fs::temp_directory_path() /
-        ("ccal-cache-test-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        ("ccal-cache-test-" + std::to_string(::getpid()) + "-" +  // apart from another checkout's run
+         std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(folder_);
   }
   void TearDown() override { fs::remove_all(folder_); }

@@ -206,29 +206,35 @@ TEST_F(DesignedExample, WrittenPlanBudgetsTheSame) {
   EXPECT_EQ(back.design.turn_fractions, 4);
 }
 
-// `ccal design --format csv`: one row per designed run with every digit (17), so that the file reads back to
-// the designed plan exactly.
-TEST_F(DesignedExample, CsvRowsAreTheDesignedRuns) {
+// `ccal design --format csv`: the run sheet, one row per run in the order it is run, in rpm, s and degrees as
+// the operator sets them (the JSON's run_sheet.runs), each value the shortest digits of the same double.
+TEST_F(DesignedExample, CsvRowsAreTheRunSheet) {
   const std::string csv = render::csv(r());
   std::istringstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "run,g_level_g,duration_s,initial_phase_rad,terminal_phase_rad,arm_azimuth_rad,mounting,platform");
-  for (const ccal::Run& run : r().designed.plan.runs) {
+  EXPECT_EQ(line,
+            "order,run,g_level_g,main_speed_rpm,platform,platform_speed_rpm,duration_s,turns,arm_azimuth_deg,"
+            "start_phase_deg,stop_phase_deg,sets,mounting,mounting_axes");
+  constexpr double kRpm = 2 * 3.14159265358979323846 / 60, kDegree = 180 / 3.14159265358979323846;
+  for (const ccal::RunSheetLine& l : r().sheet.lines) {
     ASSERT_TRUE(std::getline(in, line));
     std::vector<std::string> cells;
-    std::istringstream row(line);
+    std::istringstream row(line.substr(0, line.find('"')));  // mounting_axes, quoted, holds commas
     for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 8u) << line;
-    EXPECT_EQ(cells[0], run.name);
-    EXPECT_EQ(std::stod(cells[1]), run.g_level);
-    EXPECT_EQ(std::stod(cells[2]), run.duration);
-    EXPECT_EQ(std::stod(cells[4]), *run.terminal_phase);
-    EXPECT_EQ(std::stod(cells[5]), run.arm_azimuth);
-    EXPECT_EQ(cells[6], "ia_horizontal");
-    EXPECT_EQ(cells[7], "counter_rotating");
+    ASSERT_EQ(cells.size(), 13u) << line;
+    EXPECT_EQ(std::stoi(cells[0]), l.order);
+    EXPECT_EQ(cells[1], l.run);
+    EXPECT_EQ(std::stod(cells[2]), l.g_level);
+    // rpm and degrees as the run sheet converts them; relative 1e-15 for a constant's last digit.
+    EXPECT_NEAR(std::stod(cells[3]), l.main_rate / kRpm, 1e-15 * l.main_rate / kRpm);
+    EXPECT_EQ(cells[4], "counter_rotating");
+    EXPECT_EQ(std::stod(cells[6]), l.duration);
+    EXPECT_NEAR(std::stod(cells[8]), l.arm_azimuth * kDegree, 1e-12);
+    EXPECT_EQ(cells[11], l.terminal_phase ? "stop_phase" : "start_phase");
+    EXPECT_EQ(cells[12], "ia_horizontal");
   }
-  EXPECT_FALSE(std::getline(in, line)) << "a row more than the designed runs: " << line;
+  EXPECT_FALSE(std::getline(in, line)) << "a row more than the run sheet's: " << line;
 }
 
 // The plan text keeps every digit of values that no short decimal carries (17 significant digits).
