@@ -103,11 +103,45 @@ void bind_history_trend(py::module_& m) {
       .def_readonly("std_uncertainty", &DriftPrediction::std_uncertainty, "[unit]");
 }
 
+// What changes the store besides an addition: a record superseded, a serial's history exported and imported.
+void bind_history_exchange(py::module_& m) {
+  m.def(
+      "history_supersede",
+      [](std::int64_t id, const py::kwargs& keywords) {
+        verbs::history_supersede(
+            id, options_from_keywords<verbs::HistorySupersedeOptions>(keywords, "history_supersede"));
+      },
+      py::arg("id"),
+      "Marks calibration `id` of the history store superseded (`ccal history supersede`): by the record that "
+      "replaces it (`by`, 0: none), for a `reason` (required). The record itself is never changed.");
+  record_keywords<verbs::HistorySupersedeOptions>(m, "history_supersede");
+  m.def(
+      "history_export",
+      [](const std::string& serial, const py::kwargs& keywords) {
+        return verbs::history_export(serial,
+                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_export"));
+      },
+      py::arg("serial"),
+      "A serial number's history as the JSON text `ccal history export` writes (for history_import).");
+  record_keywords<verbs::HistoryStoreOptions>(m, "history_export");
+  m.def(
+      "history_import",
+      [](const std::string& file, const py::kwargs& keywords) {
+        return verbs::history_import(file,
+                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_import"));
+      },
+      py::arg("file"),
+      "Records the calibrations of an exported history file in the store (`ccal history import`), in one "
+      "transaction: a HistoryImport.");
+  record_keywords<verbs::HistoryStoreOptions>(m, "history_import");
+}
+
 }  // namespace
 
 void bind_history(py::module_& m) {
   bind_history_records(m);
   bind_history_trend(m);
+  bind_history_exchange(m);
   py::class_<verbs::CoefficientHistory>(m, "CoefficientHistory",
                                         "One coefficient over the calibrations that are not superseded.")
       .def_readonly("name", &verbs::CoefficientHistory::name, "[—]")
@@ -187,35 +221,6 @@ void bind_history(py::module_& m) {
       },
       "The store's serial numbers (`ccal history list`): a list of HistorySerial.");
   record_keywords<verbs::HistoryStoreOptions>(m, "history_list");
-  m.def(
-      "history_supersede",
-      [](std::int64_t id, const py::kwargs& keywords) {
-        verbs::history_supersede(
-            id, options_from_keywords<verbs::HistorySupersedeOptions>(keywords, "history_supersede"));
-      },
-      py::arg("id"),
-      "Marks calibration `id` of the history store superseded (`ccal history supersede`): by the record that "
-      "replaces it (`by`, 0: none), for a `reason` (required). The record itself is never changed.");
-  record_keywords<verbs::HistorySupersedeOptions>(m, "history_supersede");
-  m.def(
-      "history_export",
-      [](const std::string& serial, const py::kwargs& keywords) {
-        return verbs::history_export(serial,
-                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_export"));
-      },
-      py::arg("serial"),
-      "A serial number's history as the JSON text `ccal history export` writes (for history_import).");
-  record_keywords<verbs::HistoryStoreOptions>(m, "history_export");
-  m.def(
-      "history_import",
-      [](const std::string& file, const py::kwargs& keywords) {
-        return verbs::history_import(file,
-                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_import"));
-      },
-      py::arg("file"),
-      "Records the calibrations of an exported history file in the store (`ccal history import`), in one "
-      "transaction: a HistoryImport.");
-  record_keywords<verbs::HistoryStoreOptions>(m, "history_import");
 }
 
 }  // namespace ccal::python
