@@ -1,5 +1,7 @@
-// `ccal history` from Python: an instrument's calibrations read from the store (History, history()) and a
-// statement recorded (history_add()); display() and to_frame() are added in Python (python/ccal/_results.py).
+// `ccal history` from Python: an instrument's calibrations read from the store (History, history()), a
+// statement recorded (history_add()), the store's serials (history_list()), a record superseded
+// (history_supersede()), a serial's history exported and an exported file imported (history_export(),
+// history_import()); display() and to_frame() are added in Python (python/ccal/_results.py).
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
@@ -55,6 +57,11 @@ void bind_history_records(py::module_& m) {
                     "recorded, superseded ones too [—]")
       .def_readonly("superseded", &HistoryStore::SerialSummary::superseded, "of them superseded [—]")
       .def_readonly("last_date", &HistoryStore::SerialSummary::last_date, "YYYY-MM-DD of the latest [—]");
+  py::class_<HistoryImport>(m, "HistoryImport", "What `history_import` recorded (`ccal history import`).")
+      .def_readonly("serial", &HistoryImport::serial, "the serial number of the file [—]")
+      .def_readonly("added", &HistoryImport::added, "calibrations recorded [—]")
+      .def_readonly("present", &HistoryImport::present, "calibrations already in the store [—]")
+      .def_readonly("superseded", &HistoryImport::superseded, "supersessions recorded [—]");
   py::class_<verbs::SetupChange>(m, "SetupChange",
                                  "Where the set-up or its tolerances change between calibrations.")
       .def_readonly("from_id", &verbs::SetupChange::from, "the earlier record [—]")
@@ -96,11 +103,45 @@ void bind_history_trend(py::module_& m) {
       .def_readonly("std_uncertainty", &DriftPrediction::std_uncertainty, "[unit]");
 }
 
+// What changes the store besides an addition: a record superseded, a serial's history exported and imported.
+void bind_history_exchange(py::module_& m) {
+  m.def(
+      "history_supersede",
+      [](std::int64_t id, const py::kwargs& keywords) {
+        verbs::history_supersede(
+            id, options_from_keywords<verbs::HistorySupersedeOptions>(keywords, "history_supersede"));
+      },
+      py::arg("id"),
+      "Marks calibration `id` of the history store superseded (`ccal history supersede`): by the record that "
+      "replaces it (`by`, 0: none), for a `reason` (required). The record itself is never changed.");
+  record_keywords<verbs::HistorySupersedeOptions>(m, "history_supersede");
+  m.def(
+      "history_export",
+      [](const std::string& serial, const py::kwargs& keywords) {
+        return verbs::history_export(serial,
+                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_export"));
+      },
+      py::arg("serial"),
+      "A serial number's history as the JSON text `ccal history export` writes (for history_import).");
+  record_keywords<verbs::HistoryStoreOptions>(m, "history_export");
+  m.def(
+      "history_import",
+      [](const std::string& file, const py::kwargs& keywords) {
+        return verbs::history_import(file,
+                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_import"));
+      },
+      py::arg("file"),
+      "Records the calibrations of an exported history file in the store (`ccal history import`), in one "
+      "transaction: a HistoryImport.");
+  record_keywords<verbs::HistoryStoreOptions>(m, "history_import");
+}
+
 }  // namespace
 
 void bind_history(py::module_& m) {
   bind_history_records(m);
   bind_history_trend(m);
+  bind_history_exchange(m);
   py::class_<verbs::CoefficientHistory>(m, "CoefficientHistory",
                                         "One coefficient over the calibrations that are not superseded.")
       .def_readonly("name", &verbs::CoefficientHistory::name, "[—]")

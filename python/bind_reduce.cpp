@@ -1,11 +1,14 @@
 // `ccal reduce` from Python: recorded run logs reduced to observations of the runs as measured (the
 // LogReduction and Reduction results), reduce() and reduce_logs().
+#include <fmt/format.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -26,8 +29,51 @@ using LogMap = std::map<std::variant<int, std::string>, std::string>;
 // The logs as the verb takes them: each run by its name (a 0-based index or a name, as run= elsewhere).
 std::vector<verbs::LogFile> log_files(const Config& cfg, const LogMap& logs) {
   std::vector<verbs::LogFile> files;
-  for (const auto& [run, path] : logs) files.push_back({cfg.plan.runs[run_index(cfg, run)].name, path});
+  for (const auto& [run, path] : logs) files.push_back({cfg.plan.runs[run_index(cfg, run, "logs")].name, path});
   return files;
+}
+
+// A path argument (str or os.PathLike) as text; a TypeError naming the function's argument for anything else
+// (os.fspath's own words name neither).
+std::string path_argument(const py::object& value, std::string_view function, std::string_view name,
+                          std::string_view accepted) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__"))
+    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  throw py::type_error(fmt::format("{}(): {}: expected {}, got {}", function, name, accepted,
+                                   py::str(value.get_type().attr("__name__")).cast<std::string>()));
+}
+
+// The log_layout argument.
+constexpr std::string_view kLayoutArgument =
+    "the path (str or os.PathLike) of a layout file: a manifest's [format] and [columns] tables in TOML";
+// The logs argument: a dict of run → file, or a folder with its manifest (str or os.PathLike).
+constexpr std::string_view kLogsAccepted =
+    "a dict of run (a name or a 0-based index) → log file, or a folder with its manifest.toml (str or "
+    "os.PathLike)";
+
+// A dict of logs, each run a name or an index and each file a path (str or os.PathLike): a TypeError naming the
+// argument for anything else (pybind11's own cast names neither it nor the entry).
+LogMap log_map(const py::object& logs, std::string_view function) {
+  if (!py::isinstance<py::dict>(logs))
+    throw py::type_error(fmt::format("{}(): logs: expected a dict of run (a name or a 0-based index) → log file, "
+                                     "got {}",
+                                     function, py::str(logs.get_type().attr("__name__")).cast<std::string>()));
+  LogMap map;
+  for (const auto& [key, value] : logs.cast<py::dict>()) {
+    std::variant<int, std::string> run;
+    if (py::isinstance<py::int_>(key) && !py::isinstance<py::bool_>(key))
+      run = key.cast<int>();
+    else if (py::isinstance<py::str>(key))
+      run = key.cast<std::string>();
+    else
+      throw py::type_error(fmt::format("{}(): logs: a key {} is no run; accepted: a run's name (str) or its "
+                                       "0-based index (int)",
+                                       function, py::repr(key).cast<std::string>()));
+    map[run] = path_argument(py::reinterpret_borrow<py::object>(value), function,
+                             fmt::format("logs[{}]", py::repr(key).cast<std::string>()),
+                             "the path of a log file (str or os.PathLike)");
+  }
+  return map;
 }
 
 // pulse_weight as --pulse-weight takes it: a number (in the output unit × s) stays a keyword; text, a bare
@@ -141,16 +187,17 @@ void bind_log_reduction(py::module_& m) {
         auto o = with_pulse_weight(cfg, keywords, [](const py::kwargs& k) {
           return options_from_keywords<verbs::ReduceOptions>(k, "reduce", {}, {}, {"config", "logs", "log_layout"});
         });
-        if (!log_layout.is_none() && !py::isinstance<py::dict>(logs))
+        const bool dict = py::isinstance<py::dict>(logs);
+        const std::string folder = dict ? std::string() : path_argument(logs, "reduce", "logs", kLogsAccepted);
+        if (!log_layout.is_none() && !dict)
           throw InputError("reduce: log_layout is for a dict of logs; a folder's manifest has the layout "
                            "([format] and [columns] tables)");
         if (!log_layout.is_none())
-          o.layout = read_log_layout(py::module_::import("os").attr("fspath")(log_layout).cast<std::string>());
-        if (py::isinstance<py::dict>(logs)) {
-          o.logs = log_files(cfg, logs.cast<LogMap>());
+          o.layout = read_log_layout(path_argument(log_layout, "reduce", "log_layout", kLayoutArgument));
+        if (dict) {
+          o.logs = log_files(cfg, log_map(logs, "reduce"));
         } else {  // a folder with its manifest, as `ccal reduce --logs DIR`
-          const LogManifest manifest =
-              read_log_manifest(py::module_::import("os").attr("fspath")(logs).cast<std::string>());
+          const LogManifest manifest = read_log_manifest(folder);
           o.layout = manifest.layout;
           o.logs = verbs::manifest_logs(manifest);
         }
@@ -168,21 +215,25 @@ void bind_log_reduction(py::module_& m) {
   // The logs alone, without the identification (so without the statement's options).
   m.def(
       "reduce_logs",
-      [](const Config& cfg, const LogMap& logs, const py::kwargs& keywords) {
-        const auto o = with_pulse_weight(cfg, keywords, [](const py::kwargs& k) {
+      [](const Config& cfg, const py::object& logs, const py::object& log_layout, const py::kwargs& keywords) {
+        auto o = with_pulse_weight(cfg, keywords, [](const py::kwargs& k) {
           return options_from_keywords<verbs::ReduceOptions>(
               k, "reduce_logs", {}, {"statement", "coverage_probability", "coverage_factor", "statement_trials", "seed", "threads", "strict_runs"},
-              {"config", "logs"});
+              {"config", "logs", "log_layout"});
         });
+        if (!log_layout.is_none())
+          o.layout = read_log_layout(path_argument(log_layout, "reduce_logs", "log_layout", kLayoutArgument));
         const RunLogOptions lo = verbs::run_log_options(cfg, o);
-        std::vector<std::pair<std::size_t, CsvTable>> tables;
-        for (const auto& [run, path] : logs) tables.emplace_back(run_index(cfg, run), read_csv_file(path));
-        return reduce_logs(cfg, tables, lo, o.mode.value_or(cfg.mode));
+        std::vector<std::pair<std::size_t, std::filesystem::path>> files;
+        for (const auto& [run, path] : log_map(logs, "reduce_logs"))
+          files.emplace_back(run_index(cfg, run, "logs"), path);
+        py::gil_scoped_release release;
+        return reduce_log_files(cfg, files, lo, o.mode.value_or(cfg.mode));
       },
-      py::arg("config"), py::arg("logs"),
-      "Recorded run logs (run name or 0-based index → CSV file) to observations of the runs as measured "
-      "(`ccal reduce` without the identification). Identify them with identify(reduction.observations, "
-      "config).");
+      py::arg("config"), py::arg("logs"), py::arg("log_layout") = py::none(),
+      "Recorded run logs (run name or 0-based index → CSV file; log_layout: a file with a manifest's [format] "
+      "and [columns] tables, as `--log-layout FILE`) to observations of the runs as measured (`ccal reduce` "
+      "without the identification). Identify them with identify(reduction.observations, config).");
   record_keywords<verbs::ReduceOptions>(
       m, "reduce_logs", {"statement", "coverage_probability", "coverage_factor", "statement_trials", "seed", "threads", "strict_runs"},
       {kPulseWeightType});

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -46,9 +47,9 @@ py::class_<Result> bind_verb_result(py::module_& m, const char* name, const char
 using TargetMap = std::map<std::string, std::variant<double, std::string>>;
 std::vector<std::string> target_texts(const TargetMap& targets);
 
-// The run of a configuration's plan given by its name or a 0-based index (negative: from the end); an int out
-// of range, or a name that is no run, is an InputError.
-std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run);
+// A run of the plan as Python names it (a name, or a 0-based index, negative from the last); InputError naming
+// `field` (run=, or the logs' keys) otherwise.
+std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run, std::string_view field = "run");
 
 // One binding file per verb (module.cpp calls them in order).
 void bind_config(py::module_& m);      // Config, Run, Tolerance and their readers

@@ -1,8 +1,11 @@
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <pybind11/pybind11.h>
 
 #include <string>
+#include <string_view>
 #include <variant>
+#include <vector>
 
 #include "bindings.hpp"
 #include "ccal/core/errors.hpp"
@@ -26,22 +29,27 @@ std::vector<std::string> target_texts(const TargetMap& targets) {
   return texts;
 }
 
-std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run) {
+std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run, std::string_view field) {
+  const int n = int(cfg.plan.runs.size());
   if (const int* i = std::get_if<int>(&run)) {
-    const int n = int(cfg.plan.runs.size());
     if (*i < -n || *i >= n)
-      throw InputError("run: index " + std::to_string(*i) + " is out of range for " + std::to_string(n) +
-                       " runs");
+      throw InputError(fmt::format("{}: index {} is out of range for {} runs; accepted: 0 to {} (or -{} to -1 from "
+                                   "the last)",
+                                   field, *i, n, n - 1, n));
     return std::size_t(*i < 0 ? *i + n : *i);
   }
   // A string of digits that names no run is the same 0-based index as the int (run="1" is run=1, the
   // second run), not the command line's 1-based index.
   const std::string& text = std::get<std::string>(run);
-  for (const auto& r : cfg.plan.runs)
-    if (r.name == text) return select_run(cfg.plan, text, "run");
+  for (std::size_t k = 0; k < cfg.plan.runs.size(); ++k)
+    if (cfg.plan.runs[k].name == text) return k;
   if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos && text.size() < 9)
-    return run_index(cfg, std::stoi(text));
-  return select_run(cfg.plan, text, "run");
+    return run_index(cfg, std::stoi(text), field);
+  std::vector<std::string> names;
+  for (const Run& r : cfg.plan.runs) names.push_back(r.name);
+  // The library's select_run words the command line's 1-based index: Python's are 0-based.
+  throw InputError(fmt::format("{}: '{}' is no run; accepted: a run name ({}) or a 0-based index 0 to {}", field,
+                               text, fmt::join(names, ", "), n - 1));
 }
 
 }  // namespace ccal::python

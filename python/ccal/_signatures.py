@@ -2,6 +2,7 @@
 function's docstring; a Python wrapper carries it as __signature__, which inspect.signature reads."""
 
 import ast
+import difflib
 import inspect
 import re
 
@@ -80,7 +81,17 @@ def with_signature(function, name, qualname, keywords=None):
     signature, doc = signature_from_doc(function.__doc__, name, keywords)
 
     def wrapper(*args, **kwargs):
-        return function(*args, **kwargs)
+        try:
+            return function(*args, **kwargs)
+        except TypeError as error:
+            # pybind11's "incompatible function arguments" lists C++ overloads and the arguments' reprs: Python's
+            # own words for a call its signature does not take (a missing argument, a mistyped keyword) instead.
+            if "incompatible function arguments" not in str(error):
+                raise
+            problem = call_problem(signature, name, args, kwargs)
+            if problem is None:
+                raise
+            raise TypeError(problem) from None
 
     wrapper.__name__ = name
     wrapper.__qualname__ = qualname
@@ -88,6 +99,22 @@ def with_signature(function, name, qualname, keywords=None):
     wrapper.__doc__ = doc
     wrapper.__signature__ = signature
     return wrapper
+
+
+def call_problem(signature, name, args, kwargs):
+    """What is wrong with a call `signature` does not take, in Python's words with a did-you-mean for a mistyped
+    keyword; None when it takes it."""
+    try:
+        signature.bind(*args, **kwargs)
+    except TypeError as why:
+        names = list(signature.parameters)
+        hints = []
+        for keyword in kwargs:
+            if keyword not in signature.parameters:
+                close = difflib.get_close_matches(keyword, names, n=1)
+                hints.append(f"'{keyword}' is no keyword" + (f": did you mean '{close[0]}'?" if close else ""))
+        return f"{name}(): {why}" + "".join(f"; {hint}" for hint in hints) + f"; accepted: {', '.join(names)}"
+    return None
 
 
 def is_pybind_function(value):

@@ -246,13 +246,15 @@ class Reader {
   template <class E>
   std::optional<E> word(const toml::table& t, std::string_view table_path, std::string_view key,
                         const std::vector<std::pair<std::string_view, E>>& words) const {
+    std::vector<std::string> names;
+    for (const auto& [name, value] : words) names.emplace_back(name);
+    if (const toml::node* n = t.get(key); n && !n->is_string())
+      fail(*n, path(table_path, key),
+           fmt::format("expected a string, got {}; accepted: \"{}\"", type_name(*n), fmt::join(names, "\", \"")));
     const auto s = string(t, table_path, key);
     if (!s) return std::nullopt;
-    std::vector<std::string> names;
-    for (const auto& [name, value] : words) {
+    for (const auto& [name, value] : words)
       if (name == *s) return value;
-      names.emplace_back(name);
-    }
     const toml::node& n = *t.get(key);
     const auto best = closest(*s, names);
     fail(n, path(table_path, key),
@@ -417,19 +419,22 @@ std::optional<Certificate> read_certificate(const Reader& r, const toml::table& 
 
 // A TOML text parsed, a syntax error located as every other (the files ccal reads: configuration, truth, log
 // manifest).
-inline toml::table parse_toml(const Reader& r, std::string_view text, std::string_view source_name) {
+// `accepted`, when given, ends a syntax error's message: what the file should be.
+inline toml::table parse_toml(const Reader& r, std::string_view text, std::string_view source_name,
+                              std::string_view accepted = {}) {
   toml::table root;
+  const auto tail = [&] { return accepted.empty() ? std::string() : fmt::format("; accepted: {}", accepted); };
 #if TOML_EXCEPTIONS
   try {
     root = toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
-    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}", e.description()));
+    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}{}", e.description(), tail()));
   }
 #else
   auto result = toml::parse(text, source_name);
   if (!result)
     r.fail(where(result.error().source()), "",
-           fmt::format("TOML syntax error: {}", result.error().description()));
+           fmt::format("TOML syntax error: {}{}", result.error().description(), tail()));
   root = std::move(result).table();
 #endif
   return root;

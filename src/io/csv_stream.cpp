@@ -71,6 +71,15 @@ class LineReader {
     if (header_.empty() && (line_no_ <= format_.skip_lines || line_no_ < format_.header_line)) return;
     const std::string_view content = trim_csv(line);
     const bool the_header_line = header_.empty() && line_no_ == format_.header_line;
+    if (the_header_line && (content.empty() || comment(content)))
+      throw CsvError(source_, line_no_, 1, "",
+                     fmt::format("line {}, the header_line of the [format] table, is {}; accepted: the line of the "
+                                 "column names as header_line{}",
+                                 line_no_, content.empty() ? "blank" : fmt::format("a comment ('{}')", content),
+                                 content.empty() ? ""
+                                                 : fmt::format(", or comment = \"\" for a header that begins with "
+                                                               "'{}'",
+                                                               format_.comment)));
     if (!the_header_line && (content.empty() || comment(content))) return;
     if (header_.empty() || want_units_) {
       CsvFieldProblem bad;
@@ -130,6 +139,11 @@ class LineReader {
                      fmt::format("the file ends at line {}, before its header at line {}; accepted: the header's "
                                  "line as header_line of the [format] table",
                                  line_no_, format_.header_line));
+    if (header_.empty() && format_.skip_lines > 0 && format_.skip_lines >= line_no_)
+      throw CsvError(source_, line_no_, 0, "",
+                     fmt::format("the file ends at line {}, within its skip_lines = {} lines skipped; accepted: "
+                                 "the count of lines before the header as skip_lines of the [format] table",
+                                 line_no_, format_.skip_lines));
     if (header_.empty()) throw no_csv_header(source_, line_no_);
     if (want_units_)
       throw CsvError(source_, line_no_, 0, "",

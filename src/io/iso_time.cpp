@@ -37,44 +37,64 @@ bool digits(std::string_view s, std::size_t p, std::size_t count, unsigned& valu
 
 }  // namespace
 
-std::optional<std::int64_t> parse_iso8601_ns(std::string_view s) {
+std::optional<IsoTimestamp> parse_iso8601(std::string_view s, std::string* problem) {
+  const auto refuse = [&](std::string why) -> std::optional<IsoTimestamp> {
+    if (problem) *problem = std::move(why);
+    return std::nullopt;
+  };
   unsigned year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
-  if (!digits(s, 0, 4, year) || s.size() < 19 || s[4] != '-' || !digits(s, 5, 2, month) || s[7] != '-' ||
-      !digits(s, 8, 2, day) || (s[10] != 'T' && s[10] != ' ') || !digits(s, 11, 2, hour) || s[13] != ':' ||
+  if (!digits(s, 0, 4, year) || s.size() < 5 || s[4] != '-' || !digits(s, 5, 2, month) || s.size() < 8 ||
+      s[7] != '-' || !digits(s, 8, 2, day))
+    return refuse("no date YYYY-MM-DD at its start");
+  if (s.size() < 19 || (s[10] != 'T' && s[10] != ' ') || !digits(s, 11, 2, hour) || s[13] != ':' ||
       !digits(s, 14, 2, minute) || s[16] != ':' || !digits(s, 17, 2, second))
-    return std::nullopt;
-  if (year < 1900 || year > 2200 || month < 1 || month > 12 || day < 1 || day > days_in_month(year, month) ||
-      hour > 23 || minute > 59 || second > 59)
-    return std::nullopt;
+    return refuse("no time of day hh:mm:ss after its date and a 'T' (or a blank)");
+  if (year < 1900 || year > 2200) return refuse(fmt::format("the year {} is outside 1900 to 2200", year));
+  if (month < 1 || month > 12) return refuse(fmt::format("there is no month {:02}", month));
+  if (day < 1 || day > days_in_month(year, month))
+    return refuse(fmt::format("{:04}-{:02} has no day {:02}", year, month, day));
+  if (second == 60 && hour <= 23 && minute <= 59)
+    return refuse("a leap second (:60), across which the time is not known to the second (a clock without leap "
+                  "seconds, TAI or GPS, or a time unit reads it)");
+  if (hour > 23 || minute > 59 || second > 59)
+    return refuse(fmt::format("there is no time of day {:02}:{:02}:{:02}", hour, minute, second));
   std::size_t p = 19;
   std::int64_t fraction_ns = 0;
   if (p < s.size() && (s[p] == '.' || s[p] == ',')) {
     std::size_t n = 0;
     std::int64_t scale = 100000000;
     for (++p; p < s.size() && unsigned(s[p]) - unsigned('0') <= 9; ++p, ++n) {
-      if (n == 9) return std::nullopt;
+      if (n == 9) return refuse("a fraction of more than 9 digits (finer than a nanosecond)");
       fraction_ns += std::int64_t(s[p] - '0') * scale;
       scale /= 10;
     }
-    if (n == 0) return std::nullopt;
+    if (n == 0) return refuse("no digit after the seconds' decimal separator");
   }
   std::int64_t offset_s = 0;
+  bool zoned = false;
   if (p < s.size() && s[p] == 'Z') {
     ++p;
+    zoned = true;
   } else if (p < s.size() && (s[p] == '+' || s[p] == '-')) {
     const int sign = s[p] == '-' ? -1 : 1;
     unsigned oh = 0, om = 0;
-    if (!digits(s, p + 1, 2, oh)) return std::nullopt;
     std::size_t q = p + 3;
     if (q < s.size() && s[q] == ':') ++q;
-    if (!digits(s, q, 2, om) || oh > 23 || om > 59) return std::nullopt;
+    if (!digits(s, p + 1, 2, oh) || !digits(s, q, 2, om) || oh > 23 || om > 59)
+      return refuse(fmt::format("'{}' is no offset from UTC (±hh:mm or ±hhmm)", s.substr(p)));
     offset_s = sign * std::int64_t(oh * 3600 + om * 60);
     p = q + 2;
+    zoned = true;
   }
-  if (p != s.size()) return std::nullopt;
+  if (p != s.size()) return refuse(fmt::format("'{}' after the time", s.substr(p)));
   const std::int64_t seconds = days_from_civil(year, month, day) * 86400 + hour * 3600 + minute * 60 + second -
                                offset_s;
-  return seconds * 1000000000 + fraction_ns;
+  return IsoTimestamp{seconds * 1000000000 + fraction_ns, zoned};
+}
+
+std::optional<std::int64_t> parse_iso8601_ns(std::string_view s) {
+  if (const std::optional<IsoTimestamp> t = parse_iso8601(s)) return t->ns;
+  return std::nullopt;
 }
 
 std::string iso8601_text(std::int64_t ns) {

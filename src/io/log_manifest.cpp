@@ -25,9 +25,17 @@ const Keys kFormatKeys{"delimiter", "decimal", "comment", "skip_lines", "header_
 const Keys kColumnKeys{"time", "time_unit", "pulses", "output", "theta1", "gamma", "angle_unit",
                        "counts_per_revolution", "count_rounding", "counter_bits"};
 constexpr std::string_view kIsoTime = "iso8601";
+constexpr std::string_view kManifestAccepted =
+    "a manifest in TOML: the [runs] table (run = \"file\"), optionally [format] and [columns] (docs/cli.md, \"A "
+    "folder of logs\")";
+
 
 // A whole number of lines from 0 (or 1) to a million, or nothing.
 std::optional<int> line_count(const Reader& r, const toml::table& t, std::string_view key, int least) {
+  if (const toml::node* n = t.get(key); n && !n->is_number())
+    r.fail(*n, Reader::path("format", key),
+           fmt::format("expected a number, got {}; accepted: a whole number from {} to 1000000, without quotes",
+                       type_name(*n), least));
   const auto v = r.number(t, "format", key);
   if (!v) return std::nullopt;
   if (!(*v >= least && *v <= 1e6 && *v == std::floor(*v)))
@@ -71,7 +79,14 @@ void read_format(const Reader& r, const toml::table& root, LogLayout& layout) {
   }
   if (const auto b = r.boolean(*t, "format", "units_row")) f.units_row = *b;
   if (const toml::node* n = t->get("max_gap")) {
-    const double gap = r.quantity_node(*n, "format.max_gap", kind::time, nullptr, "10 s");
+    double gap = 0;
+    try {
+      gap = r.quantity_node(*n, "format.max_gap", kind::time, nullptr, "10 s");
+    } catch (const ConfigError& e) {  // the unit parser's words ("'nan' is not a finite number"), and what is
+      if (e.problem().find("accepted") != std::string::npos || e.problem().find("such as") != std::string::npos)
+        throw;  // accepted, where they do not say it
+      r.fail(*n, "format.max_gap", fmt::format("{}; accepted: a positive time, e.g. \"10 s\"", e.problem()));
+    }
     if (!(gap > 0))
       r.fail(*n, "format.max_gap",
              fmt::format("{} s is no gap; accepted: a positive time, e.g. \"10 s\"", number_text(gap)));
@@ -218,7 +233,7 @@ void read_instrument_columns(const Reader& r, const toml::table& root, LogLayout
 LogManifest parse_log_manifest(std::string_view text, std::string_view source_name,
                                const std::filesystem::path& folder) {
   const Reader r{std::string(source_name)};
-  const toml::table root = parse_toml(r, text, source_name);
+  const toml::table root = parse_toml(r, text, source_name, kManifestAccepted);
   r.check_keys(root, "", kManifestKeys);
   LogManifest m;
   m.source = std::string(source_name);
@@ -240,7 +255,7 @@ LogManifest read_log_manifest(const std::filesystem::path& folder) {
 
 LogLayout parse_log_layout(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
-  const toml::table root = parse_toml(r, text, source_name);
+  const toml::table root = parse_toml(r, text, source_name, kLogLayoutAccepted);
   // The runs of simulated logs are the plan's: a layout has the columns only.
   r.check_keys(root, "", Keys{"format", "columns"});
   LogLayout layout;
@@ -250,6 +265,9 @@ LogLayout parse_log_layout(std::string_view text, std::string_view source_name) 
 }
 
 LogLayout read_log_layout(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw ConfigError(file.string(), 0, 0, "", fmt::format("it is a folder; accepted: {}", kLogLayoutAccepted));
   return parse_log_layout(read_file_text(file), file.string());
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numbers>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
@@ -20,14 +21,31 @@ namespace {
 // or reversed encoder are off by far more.
 constexpr double kEncoderRateTolerance = 0.05;
 
+// What an encoder rate `ratio` times the plan's most likely is, in the words of the layout it was read in: a
+// ratio of 180/π is degrees read as radians, one of 1000^k or 60^k times in another unit than the one read.
+std::string rate_cause(double ratio, const RunLogOptions& o) {
+  const auto near = [&](double x) { return std::abs(std::abs(ratio) / x - 1) < 0.01; };
+  if (near(180 / std::numbers::pi))
+    return "encoder angles in degrees read as radians; accepted: angle_unit = \"deg\" (the option, or the "
+           "[columns] key of the manifest or layout)";
+  for (const double unit : {1e3, 1e6, 1e9, 60.0, 3600.0, 1e-3, 1e-6, 1e-9, 1 / 60.0, 1 / 3600.0})
+    if (near(unit) && !o.columns.iso_time)
+      return fmt::format("times in another unit than the one read ({:g} s); accepted: the time column's unit as "
+                         "time_unit of the manifest's or layout's [columns] (s by default), or in its units row",
+                         o.columns.time_scale);
+  return fmt::format("{}the log of another run, or a stopped or reversed encoder",
+                     o.angle_quantum > 0 ? "counts_per_revolution other than the encoder's, " : "");
+}
+
 void check_encoder_rate(std::string_view source, std::string_view run, std::string_view encoder,
-                        double logged, double expected, double planned_rate) {
+                        double logged, double expected, double planned_rate, const RunLogOptions& o) {
   if (std::abs(logged - expected) <= kEncoderRateTolerance * std::abs(planned_rate)) return;
+  const std::string ratio = expected != 0 ? fmt::format(", {:.4g} times the plan's", logged / expected) : "";
   throw InputError(fmt::format(
-      "{}: run '{}': the {} encoder turns at {:.6g} rad/s, the plan at {:.6g} rad/s (accepted: within {:g} % "
-      "of the main-axis rate {:.6g} rad/s); likely cause: encoder angles in degrees without --angle-unit "
-      "deg, the log of another run, or a stopped or reversed encoder",
-      source, run, encoder, logged, expected, 100 * kEncoderRateTolerance, std::abs(planned_rate)));
+      "{}: run '{}': the {} encoder turns at {:.6g} rad/s, the plan at {:.6g} rad/s{} (accepted: within {:g} % "
+      "of the main-axis rate {:.6g} rad/s); likely cause: {}",
+      source, run, encoder, logged, expected, ratio, 100 * kEncoderRateTolerance, std::abs(planned_rate),
+      expected != 0 ? rate_cause(logged / expected, o) : rate_cause(0, o)));
 }
 
 }  // namespace
@@ -48,7 +66,13 @@ ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, d
 ReducedLog reduce_run_log_file(const std::filesystem::path& path, const RunLogOptions& options,
                                double planned_rate) {
   detail::LogReducer reducer(path.string(), options, planned_rate);
-  const std::string sha256 = stream_csv_file(path, reducer, options.format);
+  std::string sha256;
+  try {
+    sha256 = stream_csv_file(path, reducer, options.format);
+  } catch (const CsvError&) {  // a ragged row under a preamble's line read as the header: the header's problem
+    reducer.throw_no_time();
+    throw;
+  }
   ReducedLog log = reducer.finish();
   log.sha256 = sha256;
   return log;
@@ -128,7 +152,8 @@ void measured_ripple(LoggedRun& lr, const Config& config, Eigen::VectorXd& known
 }
 
 LogReduction model_logged_runs(const Config& config, const std::vector<std::size_t>& indices,
-                               const LogSource& source, const LogReader& read, ModelMode mode) {
+                               const LogSource& source, const LogReader& read, const RunLogOptions& options,
+                               ModelMode mode) {
   const Experiment ex = config.experiment();
   check_log_count(config.identification, indices.size(),
                   "logs");                  // before reading any log: the cheaper mistake
@@ -148,11 +173,11 @@ LogReduction model_logged_runs(const Config& config, const std::vector<std::size
     lr.log = read(i, lr.planned_rate);
     if (lr.log.has_theta1)
       check_encoder_rate(lr.log.source, planned.name, "main-axis (theta1)", lr.log.theta1_rate,
-                         lr.planned_rate, lr.planned_rate);
+                         lr.planned_rate, lr.planned_rate, options);
     if (lr.log.has_gamma)
       check_encoder_rate(lr.log.source, planned.name, "platform (gamma)", lr.log.gamma_rate,
                          planned.mode == PlatformMode::counter_rotating ? -lr.planned_rate : 0.0,
-                         lr.planned_rate);
+                         lr.planned_rate, options);
     lr.measured = measured_run(planned, lr.log, ex.geometry, ex.site);
     lr.rate = nominal_rate(lr.measured, ex.geometry, ex.site);
     lr.mismatch = measured_platform_mismatch(planned, lr.log);
@@ -210,7 +235,7 @@ LogReduction reduce_logs(const Config& config, const std::vector<std::pair<std::
   const RunLogOptions o = with_order(options, config);
   return model_logged_runs(
       config, indices, [&](std::size_t i) { return logs[i].second.source; },
-      [&](std::size_t i, double rate) { return reduce_run_log(logs[i].second, o, rate); }, mode);
+      [&](std::size_t i, double rate) { return reduce_run_log(logs[i].second, o, rate); }, o, mode);
 }
 
 LogReduction reduce_log_files(const Config& config,
@@ -221,7 +246,7 @@ LogReduction reduce_log_files(const Config& config,
   const RunLogOptions o = with_order(options, config);
   return model_logged_runs(
       config, indices, [&](std::size_t i) { return logs[i].second.string(); },
-      [&](std::size_t i, double rate) { return reduce_run_log_file(logs[i].second, o, rate); }, mode);
+      [&](std::size_t i, double rate) { return reduce_run_log_file(logs[i].second, o, rate); }, o, mode);
 }
 
 }  // namespace ccal

@@ -35,6 +35,10 @@ void LogReducer::defer(Problem kind, CsvError error) {
   pending_.emplace(std::move(error));
 }
 
+void LogReducer::throw_no_time() const {
+  if (pending_kind_ == Problem::no_time) throw *pending_;
+}
+
 void LogReducer::throw_pending_before(Problem kind) const {
   if (pending_kind_ && *pending_kind_ <= kind) throw *pending_;
 }
@@ -54,11 +58,22 @@ void LogReducer::header(const std::vector<std::string>& names, int line) {
   };
   const LogColumns& c = options_.columns;
   const auto time = find(c.time);
-  if (!time)
+  if (!time) {
+    // A header that names none of a log's columns is likely no header: a preamble's line, or the first line
+    // of a file in another layout.
+    bool none = true;
+    for (const std::string* name : {&c.time, &c.pulses, &c.output, &c.theta1, &c.gamma}) none = none && !find(*name);
+    const CsvFormat& f = options_.format;
     defer(Problem::no_time,
           CsvError(source_, header_line_, 0, c.time,
-                   fmt::format("no such column (needed by every run log); accepted: one of the columns {}",
-                               fmt::join(header_, ", "))));
+                   none && f.header_line == 0 && f.skip_lines == 0
+                       ? fmt::format("no such column: the header, line {} ('{}'), names none of a log's columns: a "
+                                     "preamble above it? accepted: header_line or skip_lines in the [format] table "
+                                     "of the manifest or of the layout file",
+                                     header_line_, fmt::join(header_, ","))
+                       : fmt::format("no such column (needed by every run log); accepted: one of the columns {}",
+                                     fmt::join(header_, ", "))));
+  }
   time_ = time.value_or(0);
   const auto pulses = find(c.pulses), output = find(c.output);
   if (pulses.has_value() == output.has_value()) {
@@ -111,18 +126,36 @@ std::optional<double> LogReducer::cell_general(const std::string_view* fields, s
 }
 
 std::optional<double> LogReducer::iso_time_cell(std::string_view field, int line) {
-  const std::optional<std::int64_t> ns = parse_iso8601_ns(field);
-  if (!ns) {
-    defer(Problem::time_cell, cell_error(time_, line, fmt::format("'{}' is not {}; accepted: {} (time_unit = "
-                                                                  "\"iso8601\")",
-                                                                  field, "a timestamp", kIso8601Accepted)));
+  std::string problem;
+  const std::optional<IsoTimestamp> stamp = parse_iso8601(field, &problem);
+  if (!stamp) {
+    defer(Problem::time_cell, cell_error(time_, line, fmt::format("'{}' is not a timestamp: {}; accepted: {} "
+                                                                  "(time_unit = \"iso8601\")",
+                                                                  field, problem, kIso8601Accepted)));
     return std::nullopt;
   }
-  if (!iso_first_) iso_first_ = *ns;
-  return double(*ns - *iso_first_) * 1e-9;  // exact to the ns from the first sample: no epoch in the sum
+  iso_field_ = field;
+  if (!iso_first_) {
+    iso_first_ = stamp->ns;
+    iso_zoned_ = stamp->zoned;
+    iso_first_line_ = line;
+  } else if (stamp->zoned != iso_zoned_) {
+    // One timestamp with its zone and another without: the one without is in a zone nobody stated, so the
+    // time between them is not known (an hour off, or more).
+    defer(Problem::time_cell,
+          cell_error(time_, line,
+                     fmt::format("'{}' states {} zone, the log's first timestamp (line {}) {}: the time between "
+                                 "them is not known; accepted: every timestamp of a log with its zone ('Z' or an "
+                                 "offset such as +01:00), or none",
+                                 field, stamp->zoned ? "its" : "no", iso_first_line_,
+                                 iso_zoned_ ? "does" : "none")));
+    return std::nullopt;
+  }
+  return double(stamp->ns - *iso_first_) * 1e-9;  // exact to the ns from the first sample: no epoch in the sum
 }
 
 bool LogReducer::unusual_step(double step, int line) {
+  if (!(first_step_ > 0)) first_step_ = step;  // the first step is always unusual (min_step_ starts at ∞)
   if (step > gap_threshold_) {
     note_gap(step, line);
     return options_.max_gap > 0;
@@ -172,6 +205,11 @@ void LogReducer::units(const std::vector<std::string>& units, int line) {
   const auto refuse = [&](std::size_t k, std::string problem) {
     throw CsvError(source_, line, int(k + 1), header_[k], std::move(problem));
   };
+  // A row of numbers where the units row should be: the file has none.
+  if (std::all_of(units.begin(), units.end(), [](const std::string& u) { return u.empty() || parse_number(u); }) &&
+      !std::all_of(units.begin(), units.end(), [](const std::string& u) { return u.empty(); }))
+    refuse(0, "a row of numbers where the units row should be (units_row = true in the [format] table); accepted: "
+              "the columns' units on the line under the header, or units_row = false for a file without them");
   if (pending_kind_ != Problem::no_time && !units[time_].empty() && !options_.columns.iso_time) {
     const std::optional<double> size = unit_of(units[time_], kind::time);
     if (!size) refuse(time_, fmt::format("'{}' is not a time unit; accepted: s, ms, us, µs, min, …", units[time_]));
@@ -221,10 +259,22 @@ void LogReducer::units(const std::vector<std::string>& units, int line) {
 }
 
 void LogReducer::defer_time_order(int line, double t) {
+  // Timestamps as written, with the time from the log's first to the ns (ns·1e-9, whose shortest text can
+  // have 17 digits, written with 9 decimals and no trailing zeros); other times as read, in seconds.
+  const auto ns_text = [](double seconds) {
+    std::string text = fmt::format("{:.9f}", seconds);
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+    return text;
+  };
+  const std::string what =
+      options_.columns.iso_time
+          ? fmt::format("'{}' ({} s from the log's first sample) does not follow the sample before it ({} s "
+                        "from the first)",
+                        iso_field_, ns_text(t - t_first_), ns_text(t_previous_ - t_first_))
+          : fmt::format("time {} s does not follow {} s", t, t_previous_);
   defer(Problem::time_order,
-        cell_error(time_, line,
-                   fmt::format("time {} s does not follow {} s; accepted: strictly increasing times", t,
-                               t_previous_)));
+        cell_error(time_, line, fmt::format("{}; accepted: strictly increasing times", what)));
 }
 
 void LogReducer::defer_count(int line, double value, std::string problem) {
@@ -267,12 +317,18 @@ void LogReducer::count_sample(double value, int line) {
 }
 
 void LogReducer::defer_spacing(const Encoder& e, int line, double step_time) {
+  // With max_gap declared, a step within it that is not bridged is no gap: no shorter step came before it (a
+  // gap at the log's start, or a log sampled too sparsely throughout).
   defer(e.spacing,
         cell_error(e.column, line,
                    fmt::format("samples {:.6g} s apart turn the joint by {:.3g} rad at the planned "
-                               "rate; accepted: less than 0.75π rad between encoder samples, or a gap in the log "
-                               "declared by max_gap in the [format] table (bridged at the encoder's mean rate)",
-                               step_time, std::abs(planned_rate_) * step_time)));
+                               "rate; accepted: less than 0.75π rad between encoder samples, {}",
+                               step_time, std::abs(planned_rate_) * step_time,
+                               options_.max_gap > 0
+                                   ? "and max_gap bridges a gap only after shorter steps (not at the log's "
+                                     "start: the log from after the gap)"
+                                   : "or a gap in the log declared by max_gap in the [format] table (bridged "
+                                     "at the encoder's mean rate)")));
 }
 
 void LogReducer::note_wild(Encoder& e, int line, double departure, double limit) {
@@ -288,12 +344,20 @@ void LogReducer::note_wild(Encoder& e, int line, double departure, double limit)
 void LogReducer::throw_wild(const Encoder& e) const {
   if (e.wild == 0) return;
   if (e.wild <= std::max<std::size_t>(3, rows_ / 100)) throw *e.first_wild;
+  // The likely cause by the unit read: radians (the default), counts, or another angle unit.
+  const std::string cause =
+      options_.angle_quantum > 0
+          ? "counts_per_revolution other than the encoder's"
+      : options_.angle_scale == 1
+          ? "angles in degrees read as radians (--angle-unit deg, or the manifest's angle_unit), or counts without "
+            "their counts_per_revolution"
+          : fmt::format("angles in another unit than the one read ({:.6g} rad; the manifest's or layout's "
+                        "angle_unit, --angle-unit)",
+                        options_.angle_scale);
   throw CsvError(source_, header_line_, int(e.column + 1), header_[e.column],
                  fmt::format("{} of {} readings depart from the line through the two before them by more than "
-                             "{:.3g} rad: no joint turning steadily in the unit read; likely cause: angles in "
-                             "degrees read as radians (--angle-unit deg, or the manifest's angle_unit), or counts "
-                             "without their counts_per_revolution",
-                             e.wild, rows_, std::max(kEncoderJumpLimit, 4 * options_.angle_quantum)));
+                             "{:.3g} rad: no joint turning steadily in the unit read; likely cause: {}",
+                             e.wild, rows_, std::max(kEncoderJumpLimit, 4 * options_.angle_quantum), cause));
 }
 
 // A declared gap (max_gap): the angle across it is the one nearest to where the joint's mean rate so far brings
@@ -476,9 +540,13 @@ ReducedLog LogReducer::finish() {
                    fmt::format("{} sample(s); accepted: at least two, the first and last of the run", rows_));
   throw_pending_before(Problem::gap);
   r.duration = t_previous_ - t_first_;
-  r.gaps = gaps_;
-  r.longest_gap = longest_gap_;
-  r.missing = gaps_ > 0 ? std::max(0.0, gap_time_ - double(gaps_) * min_step_) : 0.0;
+  // A gap at the log's start (its first step more than 1.5 times the shortest after it) is reported as one;
+  // not bridged, it was read as any step (the encoders' spacing check passed it).
+  const bool gap_first = rows_ > 2 && first_step_ > 1.5 * min_step_;
+  r.gaps = gaps_ + (gap_first ? 1 : 0);
+  r.longest_gap = gap_first ? std::max(longest_gap_, first_step_) : longest_gap_;
+  r.missing = r.gaps > 0 ? std::max(0.0, gap_time_ + (gap_first ? first_step_ : 0.0) - double(r.gaps) * min_step_)
+                         : 0.0;
   if (!std::isfinite(r.duration))
     throw CsvError(source_, last_line_, int(time_ + 1), options_.columns.time,
                    fmt::format("the span {} s to {} s overflows; accepted: times of a run, in s", t_first_,

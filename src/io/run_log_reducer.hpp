@@ -36,6 +36,9 @@ class LogReducer final : public CsvRowSink {
   bool row_line(std::string_view line, int line_no) override;
   // The reduction of the rows seen; throws the log's first problem (CsvError).
   ReducedLog finish();
+  // Throws the header's problem when it has no time column (a file's reading stopped by a bad row under a
+  // header that is no log's: the header is the problem to report).
+  void throw_no_time() const;
 
  private:
   // The kinds of problem, in the order they are reported.
@@ -137,12 +140,16 @@ class LogReducer final : public CsvRowSink {
   double count_travel_ = 0;      // Σ |step| of the count
   std::size_t count_steps_ = 0;  // steps summed
   std::optional<std::int64_t> iso_first_;  // the first timestamp [ns]
+  bool iso_zoned_ = false;                 // it states its zone (every other must then, and none if not)
+  int iso_first_line_ = 0;
+  std::string_view iso_field_;             // the row's timestamp as written (valid while its row is reduced)
   double bridge_count_ = 0;  // the count's step expected over a bridged gap (at its mean rate), else 0
   // Gaps: the shortest step between samples so far, and the steps of more than 1.5 times it.
   double min_step_ = std::numeric_limits<double>::infinity();
   double gap_threshold_ = std::numeric_limits<double>::infinity();  // a longer step is a gap
   std::size_t gaps_ = 0;
   double gap_time_ = 0, longest_gap_ = 0;
+  double first_step_ = 0;  // the first step between samples (0: none yet)
 };
 
 }  // namespace ccal::detail

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -134,17 +135,37 @@ std::vector<std::string> ripple_ids(const Config& cfg, std::string_view channel)
 
 namespace {
 
-static_assert(kRunCheckLimit == 10, "the strict_runs row's help states the limit");
+// The strict_runs row's help, its limit written from kRunCheckLimit at compile time (the constant's one home).
+constexpr auto kStrictRunsLimit = static_cast<unsigned long long>(kRunCheckLimit);
+static_assert(kRunCheckLimit >= 1 && double(kStrictRunsLimit) == kRunCheckLimit,
+              "the strict_runs help writes the limit as a whole number");
+constexpr std::string_view kStrictRunsHead = "Refuse a run whose log's mean is more than ";
+constexpr std::string_view kStrictRunsTail =
+    " standard uncertainties from what the nominal instrument reads at that run (a swapped or mislabelled log), "
+    "instead of warning";
+constexpr std::size_t strict_runs_digits() {
+  std::size_t n = 1;
+  for (auto x = kStrictRunsLimit; x >= 10; x /= 10) ++n;
+  return n;
+}
+constexpr auto kStrictRunsHelp = [] {
+  std::array<char, kStrictRunsHead.size() + strict_runs_digits() + kStrictRunsTail.size()> text{};
+  std::size_t at = 0;
+  for (const char c : kStrictRunsHead) text[at++] = c;
+  at += strict_runs_digits();
+  auto x = kStrictRunsLimit;
+  for (std::size_t k = at; k-- > kStrictRunsHead.size(); x /= 10) text[k] = char('0' + x % 10);
+  for (const char c : kStrictRunsTail) text[at++] = c;
+  return text;
+}();
+
 constexpr OptionSpec<ReduceOptions> kReduceRows[] = {
     {"angle_unit", enum_member<&ReduceOptions::angle_unit>(kAngleUnitNames), "UNIT",
      "Unit of the encoder columns: rad or deg"},
     {"pulse_weight", &ReduceOptions::pulse_weight, "W",
      "Integrated output per pulse, in the output unit × s (e.g. deg for deg/s); default: the instrument's "
      "quantum"},
-    // The help's "10" is kRunCheckLimit, held to it by the static_assert below.
-    {"strict_runs", &ReduceOptions::strict_runs, "",
-     "Refuse a run whose log's mean is more than 10 standard uncertainties from what the nominal instrument "
-     "reads at that run (a swapped or mislabelled log), instead of warning"},
+    {"strict_runs", &ReduceOptions::strict_runs, "", {kStrictRunsHelp.data(), kStrictRunsHelp.size()}},
     rows::mode<&ReduceOptions::mode>("Model of the regressors: exact (full chain) or paper; default: "
                                      "[identification] mode of the configuration"),
     {"statement", &ReduceOptions::statement, "",

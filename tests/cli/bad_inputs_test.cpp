@@ -1,10 +1,12 @@
 // A catalogue of bad inputs across configuration, CSV files, run logs and command-line options: each must
 // give exit code 2, one line on standard error naming the place (file, key, option), nothing on standard
 // output, and leave every file in the folder as it was. Table-driven: one row per input.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -46,6 +48,31 @@ std::string log_text(double g_level, double rate_factor = 1.0, double scale = 1.
   return text;
 }
 
+// A log's text with its time column as ISO 8601 timestamps in the minute `start` ("2026-11-30T10:15:"), the
+// seconds (from `second`) with 3 decimals and `zone` appended ("Z", "+01:00" or "").
+std::string iso_log_text(const std::string& text, const std::string& start, const std::string& zone,
+                         double second = 0) {
+  std::istringstream in(text);
+  std::string out, line;
+  std::getline(in, line);
+  out = line + "\n";
+  while (std::getline(in, line)) {
+    const auto comma = line.find(',');
+    out += fmt::format("{}{:06.3f}{}{}\n", start, second + std::stod(line.substr(0, comma)), zone,
+                       line.substr(comma));
+  }
+  return out;
+}
+
+// `text` without its lines first … last (1-based).
+std::string without_lines(const std::string& text, int first, int last) {
+  std::istringstream in(text);
+  std::string out, line;
+  for (int k = 1; std::getline(in, line); ++k)
+    if (k < first || k > last) out += line + "\n";
+  return out;
+}
+
 const std::string kObs = "obs.csv";
 std::string observations() {  // a plain x, y table
   return "x,y\n1,1.1\n2,2.0\n3,2.9\n4,4.2\n5,5.0\n";
@@ -65,6 +92,13 @@ std::vector<BadInput> catalogue() {
     return F{{"c.toml", logged}, {"a.csv", a}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)}};
   };
   const std::string reduce = "reduce c.toml --log 5g=a.csv --log 10g=b.csv --log 15g=d.csv";
+  // The logs with a layout file (its text), the 5 g run's log given.
+  const std::string lay = " --log-layout lay.toml";
+  auto layout = [&](const std::string& tables, const std::string& a) {
+    return F{{"c.toml", logged}, {"a.csv", a}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)},
+             {"lay.toml", tables}};
+  };
+  const std::string iso = "[columns]\ntime_unit = \"iso8601\"\n";
   const F obs = {{kObs, observations()}};
   auto csv = [](const std::string& text) { return F{{"t.csv", text}}; };
   const std::string fit = "identify t.csv --input-column x --output-column y --terms K0,K1";
@@ -225,6 +259,7 @@ std::vector<BadInput> catalogue() {
       {"LogNoOutputColumn", logs_with("time,volts\n0,1\n1,1\n"), reduce, {"a.csv", "output"}},
       {"LogPulsesAndOutput", logs_with("time,pulses,output\n0,1,1\n1,2,1\n"), reduce, {"a.csv", "pulses"}},
       {"LogOneSample", logs_with("time,output\n0,1\n"), reduce, {"a.csv", "two"}},
+      {"LogEmpty", logs_with(""), reduce, {"a.csv:1", "empty file"}},
       {"LogOutputOverflows", logs_with("time,output\n0,1e308\n1,1e308\n"), reduce, {"a.csv", "overflows"}},
       {"LogEncoderInDegrees",
        logs_with(log_text(5, 1.0, 180 / std::numbers::pi)),
@@ -238,6 +273,86 @@ std::vector<BadInput> catalogue() {
        reduce,
        {"a.csv:1:12", "CR-only line ends", "LF or CRLF"}},
       {"LogPulseWeight", logs, reduce + " --pulse-weight -1", {"--pulse-weight", "-1"}},
+      // --- run logs in a layout (reduce --log-layout; a folder's manifest reads the same tables) -----------
+      {"LayoutHeaderLineAComment",
+       layout("[format]\nheader_line = 1\n", "# DAQ 7, serial 0815\n" + log_text(5)),
+       reduce + lay,
+       {"a.csv:1:1", "line 1, the header_line of the [format] table, is a comment ('# DAQ 7, serial 0815')",
+        "comment = \"\""}},
+      {"LayoutHeaderLineBlank",
+       layout("[format]\nheader_line = 2\n", "# DAQ 7\n\n" + log_text(5)),
+       reduce + lay,
+       {"a.csv:2:1", "is blank; accepted: the line of the column names"}},
+      {"LayoutSkipLinesPastTheEnd",
+       layout("[format]\nskip_lines = 100000\n", log_text(5)),
+       reduce + lay,
+       {"a.csv:402", "the file ends at line 402, within its skip_lines = 100000 lines skipped"}},
+      {"LayoutUnitsRowMissing",
+       layout("[format]\nunits_row = true\n", log_text(5)),
+       reduce + lay,
+       {"a.csv:2:1", "a row of numbers where the units row should be", "units_row = false"}},
+      {"LayoutNotToml",
+       F{{"c.toml", logged}, {"a.csv", log_text(5)}, {"b.csv", log_text(10)}, {"d.csv", log_text(15)},
+         {"lay.toml", "delimiter: semicolon\n"}},
+       reduce + lay,
+       {"lay.toml:1", "TOML syntax error", "accepted: a layout file in TOML: a manifest's [format] and [columns]"}},
+      {"LayoutAFolder", logs, reduce + " --log-layout .", {".: it is a folder; accepted: a layout file in TOML"}},
+      {"LayoutDelimiterANumber",
+       layout("[format]\ndelimiter = 59\n", log_text(5)),
+       reduce + lay,
+       {"lay.toml:2:13", "format.delimiter: expected a string, got an integer; accepted: \"comma\", "
+                          "\"semicolon\", \"tab\", \"whitespace\""}},
+      {"LayoutSkipLinesQuoted",
+       layout("[format]\nskip_lines = \"2\"\n", log_text(5)),
+       reduce + lay,
+       {"lay.toml:2:14", "format.skip_lines: expected a number, got a string; accepted: a whole number from 0"}},
+      {"LayoutMaxGapNaN",
+       layout("[format]\nmax_gap = \"nan s\"\n", log_text(5)),
+       reduce + lay,
+       {"lay.toml:2:11", "format.max_gap", "accepted: a positive time"}},
+      // A gap after the first sample cannot be bridged: the message said to declare max_gap, declared.
+      {"LayoutGapAtTheStart",
+       layout("[format]\nmax_gap = \"10 s\"\n", without_lines(log_text(5), 3, 41)),
+       reduce + lay,
+       {"a.csv:3:3", "samples 2 s apart", "max_gap bridges a gap only after shorter steps (not at the log's "
+                                          "start"}},
+      {"LayoutMillisecondsReadAsSeconds",
+       layout("[columns]\ntime_unit = \"ms\"\n", log_text(5)),
+       reduce + lay,
+       {"a.csv: run '5g'", "1000 times the plan's", "times in another unit than the one read (0.001 s)",
+        "time_unit"}},
+      {"LayoutNoHeaderAPreamble",
+       F{{"c.toml", logged}, {"a.csv", "DAQ 7, serial 0815\n" + log_text(5)}, {"b.csv", log_text(10)},
+         {"d.csv", log_text(15)}},
+       reduce,
+       {"a.csv:1", "the header, line 1 ('DAQ 7,serial 0815'), names none of a log's columns: a preamble above "
+                   "it? accepted: header_line or skip_lines"}},
+      // Radians read as degrees: the message said "degrees read as radians".
+      {"LayoutRadiansReadAsDegrees",
+       layout("[columns]\nangle_unit = \"deg\"\n", log_text(5)),
+       reduce + lay,
+       {"a.csv:1:3", "theta1", "likely cause: angles in another unit than the one read (0.0174533 rad"}},
+      // The first timestamps in UTC, the next without a zone: the time between them was read as written.
+      {"LogIsoTimestampsWithAndWithoutZone",
+       layout(iso, without_lines(iso_log_text(log_text(5), "2026-11-30T10:15:", "Z"), 12, 402) +
+                       without_lines(iso_log_text(log_text(5), "2026-11-30T10:15:", ""), 1, 11)),
+       reduce + lay,
+       {"a.csv:12:1", "'2026-11-30T10:15:00.500' states no zone, the log's first timestamp (line 2) does",
+        "accepted: every timestamp of a log with its zone"}},
+      {"LogIsoLeapSecond",
+       layout(iso, iso_log_text(log_text(5), "2016-12-31T23:59:", "Z", 45)),
+       reduce + lay,
+       {"a.csv:302:1", "'2016-12-31T23:59:60.000Z' is not a timestamp: a leap second (:60)"}},
+      {"LogIsoNoSuchDay",
+       layout(iso, iso_log_text(log_text(5), "2026-02-30T10:15:", "Z")),
+       reduce + lay,
+       {"a.csv:2:1", "'2026-02-30T10:15:00.000Z' is not a timestamp: 2026-02 has no day 30"}},
+      {"LogIsoNotIncreasing",
+       layout(iso, without_lines(iso_log_text(log_text(5), "2026-11-30T10:15:", "Z"), 4, 402) +
+                       without_lines(iso_log_text(log_text(5), "2026-11-30T10:15:", "Z"), 1, 2)),
+       reduce + lay,
+       {"a.csv:4:1", "'2026-11-30T10:15:00.050Z' (0.05 s from the log's first sample) does not follow the sample "
+                     "before it (0.05 s from the first)"}},
       // --- command-line options -------------------------------------------------------------------------
       {"UnknownCommand", {}, "budgit", {"budgit", "budget"}},
       {"UnknownOption", {}, "budget --frobnicate", {"--frobnicate"}},

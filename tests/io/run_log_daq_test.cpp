@@ -209,7 +209,8 @@ TEST_F(RunLogDaq, TimestampsAreReadFromTheFirstSample) {
   EXPECT_NEAR(r.theta1_rate, s.theta1_rate, 1e-9);
   text.insert(text.find('\n') + 1, "2026-11-30T25:00:00Z,0,1.5\n");
   EXPECT_EQ(refusal(text, o),
-            "log.csv:2:1: time: '2026-11-30T25:00:00Z' is not a timestamp; accepted: an ISO 8601 timestamp such as "
+            "log.csv:2:1: time: '2026-11-30T25:00:00Z' is not a timestamp: there is no time of day 25:00:00; "
+            "accepted: an ISO 8601 timestamp such as "
             "2026-11-30T10:15:02.125Z (or with an offset, +01:00; a fraction of up to 9 digits) (time_unit = "
             "\"iso8601\")");
 }
@@ -281,12 +282,53 @@ TEST_F(RunLogDaq, ADeclaredGapIsBridgedAndALongerOneRefused) {
   EXPECT_EQ(reduce(wrapped, o).mean_output, whole.mean_output);
 }
 
+TEST_F(RunLogDaq, AGapAtTheLogsStartIsReportedAndNotBridged) {
+  // 60 s at 100 Hz without the samples 0.01 … 4.99 s: the first step is the gap. A pulse log reads it as any
+  // step (the mean from the first and last counts, the same bits) and reports it as a gap anywhere else is
+  // (it was reported as none).
+  const int n = 6001;
+  const auto drop = [](int k) { return k > 0 && k < 500; };
+  std::string whole = "time,pulses\n", gap = whole;
+  for (int k = 0; k < n; ++k) {
+    const std::vector<std::string> c = cells(k);
+    whole += c[0] + "," + c[1] + "\n";
+    if (!drop(k)) gap += c[0] + "," + c[1] + "\n";
+  }
+  const ReducedLog r = reduce(gap, options_);
+  EXPECT_EQ(r.mean_output, reduce(whole, options_).mean_output);
+  EXPECT_EQ(r.gaps, 1u);
+  EXPECT_NEAR(r.longest_gap, 5.0, 1e-9);  // the times' 3 decimals, exact to 1e-12 s
+  EXPECT_NEAR(r.missing, 4.99, 1e-9);
+  // An encoder cannot bridge it (its rate is not known yet): refused saying so, not to declare max_gap.
+  RunLogOptions o = options_;
+  o.max_gap = 10;
+  EXPECT_EQ(refusal(log_text({}, n, drop), o),
+            "log.csv:3:3: theta1: samples 5 s apart turn the joint by 40 rad at the planned rate; accepted: less "
+            "than 0.75π rad between encoder samples, and max_gap bridges a gap only after shorter steps (not at the "
+            "log's start: the log from after the gap)");
+}
+
 TEST_F(RunLogDaq, APreambleTooLongOrAHeaderLineBeyondTheFileIsRefused) {
   RunLogOptions o = options_;
   o.format.header_line = 50;
   EXPECT_EQ(refusal(log_text({}, 10), o),
             "log.csv:11: the file ends at line 11, before its header at line 50; accepted: the header's line as "
             "header_line of the [format] table");
+  // Found by the careless round: a file within its skip_lines was "no header row (only comments and blank
+  // lines)"; a header_line at a comment was read as a header of one name, "the delimiter is probably
+  // whitespace".
+  o.format.header_line = 0;
+  o.format.skip_lines = 100;
+  EXPECT_EQ(refusal(log_text({}, 10), o),
+            "log.csv:11: the file ends at line 11, within its skip_lines = 100 lines skipped; accepted: the count "
+            "of lines before the header as skip_lines of the [format] table");
+  o.format.skip_lines = 0;
+  o.format.header_line = 1;
+  Written commented;
+  commented.preamble = "# DAQ 7\n";
+  EXPECT_EQ(refusal(log_text(commented, 10), o),
+            "log.csv:1:1: line 1, the header_line of the [format] table, is a comment ('# DAQ 7'); accepted: the "
+            "line of the column names as header_line, or comment = \"\" for a header that begins with '#'");
 }
 
 }  // namespace

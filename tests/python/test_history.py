@@ -1,6 +1,7 @@
 """ccal.history and ccal.history_add against the command-line program (`ccal history`): statements recorded
 from Python, read back with E_n, the drift and a prediction; the JSON the same as the program's; a missing store
-and a bad keyword refused. Run by ctest with Debian's python3, the module on PYTHONPATH and the program in
+and a bad keyword refused; a record superseded, a history exported and imported (history_supersede,
+history_export, history_import) as `ccal history supersede`, `export` and `import` do. Run by ctest with Debian's python3, the module on PYTHONPATH and the program in
 CCAL_PROGRAM."""
 
 import json
@@ -90,6 +91,66 @@ class HistoryTest(unittest.TestCase):
             ccal.history_add(bad, db=new, serial="SN 1", date="2028-01-01")
         self.assertFalse(os.path.exists(new))
         self.assertEqual(os.listdir(self.folder.name).count("new.sqlite"), 0)
+
+    def test_a_record_superseded(self):
+        # Record 2 superseded by record 3: left out of E_n and the drift, kept in the records with its reason.
+        self.assertIsNone(ccal.history_supersede(2, db=self.db, by=3, reason="mounting screw loose"))
+        h = ccal.history("SN 1", db=self.db)
+        self.assertEqual([(r.id, r.superseded_by, r.superseded_reason) for r in h.records],
+                         [(1, None, ""), (2, 3, "mounting screw loose"), (3, None, "")])
+        self.assertEqual(h.coefficients[0].ids, [1, 3])
+        self.assertEqual(ccal.history_list(db=self.db)[0].superseded, 1)
+        # The library's refusals, as the program words them but for the option's name.
+        with self.assertRaisesRegex(ccal.InputError, "calibration 2 is already superseded"):
+            ccal.history_supersede(2, db=self.db, reason="again")
+        with self.assertRaisesRegex(ccal.InputError, "^reason: is needed to supersede calibration 1"):
+            ccal.history_supersede(1, db=self.db)
+        with self.assertRaisesRegex(ccal.InputError, "no calibration 7 in the history store"):
+            ccal.history_supersede(7, db=self.db, reason="typo")
+        with self.assertRaisesRegex(ccal.InputError, "^by: -1 "):
+            ccal.history_supersede(1, db=self.db, by=-1, reason="x")
+        with self.assertRaises(TypeError):
+            ccal.history_supersede("1", db=self.db, reason="x")
+        with self.assertRaisesRegex(TypeError, "raeson.*reason"):
+            ccal.history_supersede(1, db=self.db, raeson="x")
+        self.assertEqual(ccal.history_list(db=self.db)[0].superseded, 1)
+
+    def test_a_history_exported_and_imported(self):
+        ccal.history_supersede(1, db=self.db, by=2, reason="repeated")
+        text = ccal.history_export("SN 1", db=self.db)
+        exported = json.loads(text)
+        self.assertEqual(exported["serial"], "SN 1")
+        program = os.environ.get("CCAL_PROGRAM")
+        if program:  # the program's export, byte for byte
+            out = subprocess.run([program, "history", "export", "SN 1", "--db", self.db], check=True,
+                                 capture_output=True, text=True).stdout
+            self.assertEqual(out, text)
+        path = os.path.join(self.folder.name, "sn1.json")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+        other = os.path.join(self.folder.name, "other.sqlite")
+        r = ccal.history_import(path, db=other)
+        self.assertEqual((r.serial, r.added, r.present, r.superseded), ("SN 1", 3, 0, 1))
+        self.assertIn("added=3", repr(r))
+        h, g = ccal.history("SN 1", db=other), ccal.history("SN 1", db=self.db)
+        self.assertEqual([(x.date, x.superseded_by) for x in h.records],
+                         [(x.date, x.superseded_by) for x in g.records])
+        self.assertEqual(h.coefficients[0].values, g.coefficients[0].values)
+        # Imported again: nothing added, all present.
+        r = ccal.history_import(path, db=other)
+        self.assertEqual((r.added, r.present, r.superseded), (0, 3, 0))
+        # Refusals: a serial the store does not hold; a file that is no export, into a new store: no file left.
+        with self.assertRaisesRegex(ccal.InputError, "no calibration of 'SN 2'"):
+            ccal.history_export("SN 2", db=self.db)
+        new = os.path.join(self.folder.name, "new.sqlite")
+        with self.assertRaisesRegex(ccal.InputError, "s0.json: not an exported calibration history"):
+            ccal.history_import(os.path.join(self.folder.name, "s0.json"), db=new)
+        self.assertFalse(os.path.exists(new))
+        with self.assertRaisesRegex(ccal.InputError, "it is a folder"):
+            ccal.history_import(self.folder.name, db=new)
+        self.assertFalse(os.path.exists(new))
+        with self.assertRaises(TypeError):
+            ccal.history_import(path, db=other, serial="SN 1")
 
 
 if __name__ == "__main__":

@@ -72,7 +72,8 @@ class MissingFiles(unittest.TestCase):
         cfg = ccal.bundled_example()
         cases = [("config.toml", lambda p: ccal.load_config(p)),
                  ("table.csv", lambda p: ccal.identify_file(p)),
-                 ("run1.csv", lambda p: ccal.reduce_logs(cfg, {0: p}))]
+                 # As many logs as free terms (fewer are refused before any is read), the first missing.
+                 ("run1.csv", lambda p: ccal.reduce_logs(cfg, {0: p, 1: p + ".2", 2: p + ".3"}))]
         for name, call in cases:
             path = self.missing(name)
             with self.subTest(file=name):

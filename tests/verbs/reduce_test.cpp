@@ -8,12 +8,10 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -25,37 +23,16 @@
 #include "ccal/model/plan.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "ccal/verbs/statement.hpp"
+#include "simulated_logs.hpp"
 #include "verbs_support.hpp"
 
 namespace ccal::test {
 namespace {
 
-namespace fs = std::filesystem;
-
-// The bundled example with known, compensated errors (the model of the runs is their truth) and its logs in a
-// folder of this process.
-class ReduceVerb : public ::testing::Test {
+// The bundled example with known, compensated errors and its logs (simulated_logs.hpp).
+class ReduceVerb : public SimulatedLogs {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("ccal-reduce-verb-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-    config_ = parse_config(example_with_errors(true), "compensated.toml");
-    sim_ = verbs::simulate(config_);
-    const Eigen::VectorXd& means = sim_.observations.output;
-    const auto logs = write_run_logs(config_, config_.centrifuge.errors,
-                                     std::vector<double>(means.data(), means.data() + means.size()),
-                                     default_log_step(config_));
-    for (std::size_t r = 0; r < logs.size(); ++r) {
-      std::ofstream(dir_ / logs[r].name) << logs[r].text;
-      options_.logs.push_back({config_.plan.runs[r].name, (dir_ / logs[r].name).string()});
-    }
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path dir_;
-  Config config_;
-  verbs::SimulateResult sim_;
-  verbs::ReduceOptions options_;
+  ReduceVerb() : SimulatedLogs("ccal-reduce-verb") {}
 };
 
 TEST_F(ReduceVerb, LogsOfTheModelGiveTheSimulatedIdentification) {

@@ -4,62 +4,31 @@
 // refuses, naming the option's place and both runs.
 #include "../../src/verbs/run_check.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
-#include "ccal/io/config_file.hpp"
-#include "ccal/io/run_log_writer.hpp"
 #include "ccal/verbs/reduce.hpp"
-#include "ccal/verbs/simulate.hpp"
-#include "verbs_support.hpp"
+#include "simulated_logs.hpp"
 
 namespace ccal::test {
 namespace {
 
-namespace fs = std::filesystem;
-
 // The bundled example with its known errors compensated, simulated, its logs written with their pulse (or
-// output) column only: no encoder to tell one run's log from another's.
-class RunCheckVerb : public ::testing::Test {
+// output) column only: no encoder to tell one run's log from another's (simulated_logs.hpp).
+class RunCheckVerb : public SimulatedLogs {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("ccal-run-check-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-    config_ = parse_config(example_with_errors(true), "compensated.toml");
-    sim_ = verbs::simulate(config_);
-    const Eigen::VectorXd& means = sim_.observations.output;
-    const auto logs = write_run_logs(config_, config_.centrifuge.errors,
-                                     std::vector<double>(means.data(), means.data() + means.size()),
-                                     default_log_step(config_));
-    for (std::size_t r = 0; r < logs.size(); ++r) {
-      std::istringstream in(logs[r].text);
-      std::ofstream out(dir_ / logs[r].name);
-      for (std::string line; std::getline(in, line);) {  // time and the output's column: the first two
-        const auto second = line.find(',', line.find(',') + 1);
-        out << (line.starts_with("#") ? line : line.substr(0, second)) << "\n";
-      }
-      options_.logs.push_back({config_.plan.runs[r].name, (dir_ / logs[r].name).string()});
-    }
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  RunCheckVerb() : SimulatedLogs("ccal-run-check", 2) {}
   static long nominal_warnings(const verbs::ReduceResult& r) {
     return std::count_if(r.warnings.begin(), r.warnings.end(),
                          [](const std::string& w) { return w.find("nominal instrument") != std::string::npos; });
   }
-
-  fs::path dir_;
-  Config config_;
-  verbs::SimulateResult sim_;
-  verbs::ReduceOptions options_;
 };
 
 TEST_F(RunCheckVerb, TheModelsOwnLogsReadAsTheNominalInstrument) {
@@ -108,6 +77,18 @@ TEST_F(RunCheckVerb, TwoSwappedLogsAreEachFoundAndNamed) {
     EXPECT_NE(what.find("; so are runs '" + b + "'"), std::string::npos) << what;
     EXPECT_NE(what.find("accepted: each run's own log"), std::string::npos) << what;
   }
+}
+
+// The limit has one home, kRunCheckLimit: the strict_runs option's help (the program's --strict-runs, Python's
+// strict_runs) is written from it.
+TEST(RunCheckLimit, TheStrictRunsHelpStatesTheConstant) {
+  const OptionTable<verbs::ReduceOptions> table = option_table<verbs::ReduceOptions>();
+  const auto row = std::find_if(table.begin(), table.end(), [](const auto& r) { return r.field == "strict_runs"; });
+  ASSERT_NE(row, table.end());
+  EXPECT_EQ(std::string(row->help),
+            fmt::format("Refuse a run whose log's mean is more than {:g} standard uncertainties from what the "
+                        "nominal instrument reads at that run (a swapped or mislabelled log), instead of warning",
+                        verbs::kRunCheckLimit));
 }
 
 }  // namespace

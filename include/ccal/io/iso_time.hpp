@@ -8,10 +8,18 @@
 
 namespace ccal {
 
-// The timestamp as nanoseconds since 1970-01-01T00:00:00 of its zone's UTC (a timestamp without an offset is
-// read as written: one zone for a whole log). Accepted: YYYY-MM-DD, 'T' or one blank, hh:mm:ss, optionally a
-// fraction of 1 to 9 digits after '.' or ',', then optionally 'Z', ±hh:mm or ±hhmm; years 1900 to 2200.
-// nullopt for anything else (a date or time out of range, 24:00:00, a leap second 60).
+// A timestamp read: nanoseconds since 1970-01-01T00:00:00 of its zone's UTC, and whether it states its zone
+// ('Z' or an offset; one without is read as written, so a log's timestamps must all state it or none).
+struct IsoTimestamp {
+  std::int64_t ns = 0;
+  bool zoned = false;
+};
+
+// Accepted: YYYY-MM-DD, 'T' or one blank, hh:mm:ss, optionally a fraction of 1 to 9 digits after '.' or ',',
+// then optionally 'Z', ±hh:mm or ±hhmm; years 1900 to 2200. nullopt for anything else (a date or time out of
+// range, 24:00:00, a leap second 60), and then `problem`, when given, says what is wrong in words.
+std::optional<IsoTimestamp> parse_iso8601(std::string_view text, std::string* problem = nullptr);
+// The same, its nanoseconds alone.
 std::optional<std::int64_t> parse_iso8601_ns(std::string_view text);
 
 // The form accepted, for messages.

@@ -96,6 +96,9 @@ LogManifest parse_log_manifest(std::string_view text, std::string_view source_na
 // the [format] and [columns] tables of a manifest and nothing else (the runs are the plan's, or the --log
 // options'). ConfigError as above.
 LogLayout read_log_layout(const std::filesystem::path& file);
+// What a layout file is, for messages.
+inline constexpr std::string_view kLogLayoutAccepted =
+    "a layout file in TOML: a manifest's [format] and [columns] tables (docs/cli.md, \"A folder of logs\")";
 LogLayout parse_log_layout(std::string_view text, std::string_view source_name);
 
 // The manifest's text for logs of this layout, one [runs] line per (run, file name).
