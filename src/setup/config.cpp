@@ -11,12 +11,13 @@
 namespace ccal {
 
 void require_one_instrument(const Config& config, std::string_view verb) {
-  if (config.instruments.empty()) return;
+  if (config.instruments.size() <= 1) return;  // one [instrument], or one [[instruments]] entry
   std::vector<std::string> ids;
   for (const Config& one : config.instruments) ids.push_back(one.instrument_id);
   throw InputError(fmt::format("{}: a test of {} instruments ({}) ([[instruments]]); {} answers for one instrument; "
-                               "accepted: a configuration of one [instrument] (each instrument's own), or reduce, "
-                               "which reduces the logs of every instrument of the test",
+                               "accepted: a configuration of one instrument (one [instrument], or one [[instruments]] "
+                               "entry with its position and azimuth), or reduce, which reduces the logs of every "
+                               "instrument of the test",
                                config.source, config.instruments.size(), fmt::join(ids, ", "), verb));
 }
 

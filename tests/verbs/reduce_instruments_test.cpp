@@ -142,6 +142,10 @@ TEST_F(ReduceInstruments, VerbsOfOneInstrumentRefuseATestOfSeveral) {
   }
   EXPECT_THROW(verbs::simulate(config_, {}), InputError);
   EXPECT_NO_THROW(verbs::budget(config_.instruments[1], {}));  // each instrument's own configuration
+  // A configuration of one [[instruments]] entry (B at its place, alone) is one instrument.
+  const std::string b_alone = "setup = \"" + source_dir() + "/examples/lab.toml\"\n[[instruments]]\nid = \"B\"\n"
+                              "position = [\"0 m\", \"0.12 m\"]\nazimuth = \"90 deg\"\n";
+  EXPECT_NO_THROW(verbs::budget(parse_config(b_alone, "b.toml"), {}));
 }
 
 }  // namespace

@@ -64,7 +64,7 @@ struct Config {
   Experiment experiment() const;
 };
 
-// Refuses a configuration of several instruments ([[instruments]]) for a verb that handles one (InputError
+// Refuses a configuration of several instruments (two or more [[instruments]]) for a verb that handles one (InputError
 // naming the verb, the instruments and what is accepted): until it handles each, it must not answer for the first
 // alone. `reduce` handles several.
 void require_one_instrument(const Config& config, std::string_view verb);
