@@ -24,7 +24,8 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # its release cost): two 10^6-trial Monte Carlo runs, the lab's week end to end from a design of its own, a
 # design beside every other verb's U, and the program's statements of the lab example (its CSV, the report's
 # statement, a design's expected U, refused observations, the methods' stability over trials, the correction for
-# known errors, the Monte Carlo's shared draws) and the rate noise's scatter over simulated runs. Their code runs
+# known errors, the Monte Carlo's shared draws), the rate noise's scatter over simulated runs and the design's run
+# sheet as CSV (a whole design, 150-290 s sanitized; the design tests run its search). Their code runs
 # sanitized in smaller tests: StatementMonteCarlo.*, Statement.TheMonteCarloCheckStatesTheIntervalItGives,
 # ReduceVerb.*, RateNoise.* and the verbs' own.
 heavy="^(SamplesCli\.TheDefaultMDecidesTheValidation|Cli\.TheWholeWeekFromTheDesignedRunSheetToTheStatement"
@@ -33,6 +34,7 @@ heavy+="|ReportSections\.TheStatementIsIdentifysWithTheReportsModeAndCoverage"
 heavy+="|DesignExpected\.TheDesignedPlansExpectedUIsWhatItsStatementGives"
 heavy+="|Statement\.ObservationsOfAnotherConfigurationAreRefusedNamingBothFingerprints"
 heavy+="|Statement\.TheLabExamplesMethodsDoNotFlipWithTheTrials|Statement\.KnownErrorsAreCorrected"
-heavy+="|RateNoise\.SimulatedRunMeansScatterAsTheClosedForm|Cli\.TheMonteCarloDrawsThemAndTheStatementChecksWithThem)$"
+heavy+="|RateNoise\.SimulatedRunMeansScatterAsTheClosedForm|Cli\.TheMonteCarloDrawsThemAndTheStatementChecksWithThem"
+heavy+="|CommandLine\.DesignCsvIsTheRunSheetInRpmSecondsAndDegrees)$"
 ctest --test-dir build-asan --output-on-failure -j2 -E "Golden|^report\.|^docs\.commands$|^statement\.coverage|$heavy"
 echo "sanitize: build $((built - start)) s, tests $(($(date +%s) - built)) s" >&2
