@@ -67,6 +67,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string table =
         outcome([&] { return measured(ccal::reduce_run_log(ccal::parse_csv(text, file.string()), o, 4.4)); });
     const std::string streamed = outcome([&] { return measured(ccal::reduce_run_log_file(file, o, 4.4)); });
+    // A text parse_csv refuses as CSV (a ragged row, …) the stream may refuse for its header first (a preamble
+    // read as the header names none of a log's columns, run_log.cpp): both refuse, each in its words.
+    bool csv = true;
+    try {
+      (void)ccal::parse_csv(text, file.string());
+    } catch (const ccal::InputError&) {
+      csv = false;
+    }
+    if (!csv && table.starts_with("refused: ") && streamed.starts_with("refused: ")) continue;
     if (table != streamed) {
       std::fprintf(stderr, "table:    %s\nstreamed: %s\n", table.c_str(), streamed.c_str());
       std::abort();
