@@ -168,5 +168,25 @@ TEST(LogManifest, RefusalsAreLocatedWithWhatIsAccepted) {
   }
 }
 
+// [instruments]: each instrument's output column, one of pulses and output, a name of its own; refused at its key.
+TEST(LogManifest, InstrumentColumnsAreCheckedWhereTheyAreWritten) {
+  const LogManifest m = parse_log_manifest(
+      "[instruments]\nA = { pulses = \"count_a\" }\nB = { output = \"rate_b\" }\n[runs]\n1 = \"a.csv\"\n", "m", ".");
+  ASSERT_EQ(m.layout.instruments.size(), 2u);
+  EXPECT_EQ(m.layout.instruments[1].column, "rate_b");
+  EXPECT_FALSE(m.layout.instruments[1].pulses);
+  const std::string runs = "[runs]\n1 = \"a.csv\"\n";
+  EXPECT_NE(manifest_refusal("[instruments]\nA = \"count_a\"\n" + runs).find("manifest.toml:2:5: instruments.A: "
+                                                                            "expected the instrument's output column"),
+            std::string::npos);
+  EXPECT_NE(manifest_refusal("[instruments]\nA = { pulses = \"a\", output = \"b\" }\n" + runs)
+                .find("instruments.A: needs exactly one of pulses"),
+            std::string::npos);
+  EXPECT_NE(manifest_refusal("[instruments]\nA = { pulses = \"time\" }\n" + runs).find("'time' names two columns"),
+            std::string::npos);
+  EXPECT_NE(manifest_refusal("[instruments]\nA = { pulse = \"a\" }\n" + runs).find("did you mean 'pulses'?"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace ccal
