@@ -110,7 +110,19 @@ void bind_config(py::module_& m) {
           "g", [](const Config& c) { return c.site.g; }, "local gravity [m/s²]")
       .def_property_readonly(
           "latitude", [](const Config& c) { return c.site.latitude; }, "the site's latitude [rad]")
-      .def("__repr__", [](const Config& c) { return "<ccal.Config " + c.source + ">"; });
+      .def_readonly("instrument_id", &Config::instrument_id,
+                    "the instrument's id in a test of several ([[instruments]] id); '' for one [instrument] [—]")
+      .def_readonly("instruments", &Config::instruments,
+                    "a test of several instruments ([[instruments]]): each one's configuration, in the file's "
+                    "order (this one is then the first's); [] for one [instrument] [list of Config]")
+      .def(
+          "instrument", [](const Config& c, const std::string& id) { return select_instrument(c, id); },
+          py::arg("id"),
+          "One instrument of a test of several, by its id: its configuration as a test of that one instrument "
+          "(`--instrument ID` of the command line); InputError naming the ids for another id.")
+      .def("__repr__", [](const Config& c) {
+        return "<ccal.Config " + c.source + (c.instrument_id.empty() ? "" : " instrument " + c.instrument_id) + ">";
+      });
 
   m.def(
       "bundled_example_text", [] { return std::string(bundled_example_text()); },

@@ -18,9 +18,19 @@
 #include "ccal/io/log_manifest.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/io/run_log.hpp"
+#include "ccal/verbs/instrument_covariance.hpp"
 #include "ccal/verbs/reduce.hpp"
 
 namespace ccal::python {
+
+std::string path_argument(const py::object& value, std::string_view function, std::string_view name,
+                          std::string_view accepted) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__"))
+    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  throw py::type_error(fmt::format("{}(): {}: expected {}, got {}", function, name, accepted,
+                                   py::str(value.get_type().attr("__name__")).cast<std::string>()));
+}
+
 
 namespace {
 
@@ -35,17 +45,7 @@ std::vector<verbs::LogFile> log_files(const Config& cfg, const LogMap& logs) {
 
 // A path argument (str or os.PathLike) as text; a TypeError naming the function's argument for anything else
 // (os.fspath's own words name neither).
-std::string path_argument(const py::object& value, std::string_view function, std::string_view name,
-                          std::string_view accepted) {
-  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__"))
-    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
-  throw py::type_error(fmt::format("{}(): {}: expected {}, got {}", function, name, accepted,
-                                   py::str(value.get_type().attr("__name__")).cast<std::string>()));
-}
 
-// The log_layout argument.
-constexpr std::string_view kLayoutArgument =
-    "the path (str or os.PathLike) of a layout file: a manifest's [format] and [columns] tables in TOML";
 // The logs argument: a dict of run → file, or a folder with its manifest (str or os.PathLike).
 constexpr std::string_view kLogsAccepted =
     "a dict of run (a name or a 0-based index) → log file, or a folder with its manifest.toml (str or "
@@ -158,6 +158,32 @@ void bind_log_reduction_results(py::module_& m) {
 
 // Run logs reduced to observations of the runs as measured: the Reduction result, reduce(), reduce_logs().
 void bind_log_reduction(py::module_& m) {
+  py::class_<verbs::InstrumentCovariance>(
+      m, "InstrumentCovariance",
+      "The covariance of several instruments' coefficients through the inputs they share (the machine's errors, "
+      "g, the clock, the encoders), in the statements' units; each instrument's own inputs and Type A parts are "
+      "not in it.")
+      .def_readonly("instruments", &verbs::InstrumentCovariance::instruments, "the instruments' ids [—]")
+      .def_readonly("names", &verbs::InstrumentCovariance::names, "per row: '<id> <term>', e.g. 'B K2' [—]")
+      .def_readonly("units", &verbs::InstrumentCovariance::units, "per row: the coefficient's unit [—]")
+      .def_readonly("lpu", &verbs::InstrumentCovariance::lpu,
+                    "the covariance by the law of propagation [unit_i × unit_j]")
+      .def_property_readonly(
+          "lpu_correlation",
+          [](const verbs::InstrumentCovariance& c) {
+            const Eigen::VectorXd s = c.lpu.diagonal().cwiseSqrt();
+            return Eigen::MatrixXd(c.lpu.array() / (s * s.transpose()).array());
+          },
+          "the LPU covariance as correlations [—]")
+      .def_readonly("monte_carlo", &verbs::InstrumentCovariance::monte_carlo,
+                    "the same by the Monte Carlo (shared inputs one draw for all); empty without trials "
+                    "[unit_i × unit_j]")
+      .def_readonly("trials", &verbs::InstrumentCovariance::trials, "the Monte Carlo's trials [—]")
+      .def_readonly("seed", &verbs::InstrumentCovariance::seed, "its seed [—]")
+      .def("__repr__", [](const verbs::InstrumentCovariance& c) {
+        return fmt::format("<ccal.InstrumentCovariance of {} coefficients>", c.names.size());
+      });
+
   bind_verb_result<verbs::ReduceResult>(m, "Reduction",
                                         "`ccal reduce`: logged runs, their observations and identification; "
                                         "str() is the CLI's text, to_json() its JSON.",
@@ -179,7 +205,13 @@ void bind_log_reduction(py::module_& m) {
           "the identified free terms, in the order of names [coefficient SI]")
       .def_property_readonly(
           "names", [](const verbs::ReduceResult& r) { return r.identification.id.fit.names; },
-          "the identified terms' ids [—]");
+          "the identified terms' ids [—]")
+      .def_readonly("instruments", &verbs::ReduceResult::instruments,
+                    "a test of several instruments: each one's Reduction, in the configuration's order (the fields "
+                    "above are the first's); [] for one instrument")
+      .def_readonly("covariance", &verbs::ReduceResult::covariance,
+                    "a test of several instruments with statement=True: the covariance of their coefficients "
+                    "through the shared inputs, else None [InstrumentCovariance]");
 
   m.def(
       "reduce",

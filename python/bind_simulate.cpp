@@ -20,6 +20,17 @@ namespace ccal::python {
 
 namespace {
 
+// The log_layout argument of run_logs and logs_manifest: None (ccal's own) or a layout file's path.
+LogLayout layout_argument(const py::object& log_layout, std::string_view function) {
+  if (log_layout.is_none()) return {};
+  return read_log_layout(path_argument(log_layout, function, "log_layout", kLayoutArgument));
+}
+
+}  // namespace
+
+
+namespace {
+
 // The truth file of a truth= keyword (a path: str or os.PathLike), read against the configuration; None: none.
 std::optional<SimulationTruth> truth_of(const Config& cfg, const py::object& truth) {
   if (truth.is_none()) return std::nullopt;
@@ -64,28 +75,29 @@ void bind_simulate(py::module_& m) {
           "The observations file (the CLI's --format csv, the input of `ccal identify`).")
       .def(
           "run_logs",
-          [](const verbs::SimulateResult& r, std::optional<double> step) {
-            const Eigen::VectorXd& means = r.observations.output;
+          [](const verbs::SimulateResult& r, std::optional<double> step, const py::object& log_layout) {
+            std::vector<RunLogFile> files = verbs::simulation_logs(r, layout_argument(log_layout, "run_logs"), step);
+            files.pop_back();  // the manifest: logs_manifest()
             std::vector<std::pair<std::string, std::string>> out;
-            for (auto& log : write_run_logs(r.config, r.machine_errors, {means.data(), means.data() + means.size()},
-                                            step ? *step : default_log_step(r.config)))
-              out.emplace_back(std::move(log.name), std::move(log.text));
+            for (RunLogFile& log : files) out.emplace_back(std::move(log.name), std::move(log.text));
             return out;
           },
-          py::arg("step") = py::none(),
+          py::arg("step") = py::none(), py::arg("log_layout") = py::none(),
           "The runs' logs as `ccal simulate --logs-out` writes them: (file name, CSV text) per run, in plan "
-          "order; step: sampling interval [s] (default 0.1 s, or an eighth of a revolution if shorter).")
+          "order; step: sampling interval [s] (default 0.1 s, or an eighth of a revolution if shorter); "
+          "log_layout: the path of a layout file (a manifest's [format], [columns] and [instruments] tables, as "
+          "`--log-layout`); for a test of several instruments each file holds every instrument's output column.")
       .def(
           "logs_manifest",
-          [](const verbs::SimulateResult& r) {
-            LogLayout layout;
-            layout.angle_unit = "rad";
-            std::vector<std::pair<std::string, std::string>> runs;
-            for (const Run& run : r.config.plan.runs) runs.emplace_back(run.name, run_log_file_name(run.name));
-            return log_manifest_text(layout, runs);
+          [](const verbs::SimulateResult& r, const py::object& log_layout) {
+            return verbs::simulation_logs(r, layout_argument(log_layout, "logs_manifest")).back().text;
           },
-          "The manifest.toml of the logs of run_logs() (ccal's own layout), as `ccal simulate --logs-out` "
-          "writes it beside them.");
+          py::arg("log_layout") = py::none(),
+          "The manifest.toml of the logs of run_logs() (in that layout), as `ccal simulate --logs-out` writes it "
+          "beside them.")
+      .def_readonly("instruments", &verbs::SimulateResult::instruments,
+                    "a test of several instruments: each one's Simulation, in the configuration's order (the "
+                    "fields above are the first's); [] for one instrument");
 
   m.def(
       "simulate",

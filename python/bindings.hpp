@@ -52,6 +52,14 @@ std::vector<std::string> target_texts(const TargetMap& targets);
 std::size_t run_index(const Config& cfg, const std::variant<int, std::string>& run, std::string_view field = "run");
 
 // One binding file per verb (module.cpp calls them in order).
+// A path argument (str, bytes or os.PathLike) as a string; TypeError "<function>(): <name>: expected <accepted>, got
+// <type>" otherwise.
+std::string path_argument(const py::object& value, std::string_view function, std::string_view name,
+                          std::string_view accepted);
+// The log_layout argument.
+inline constexpr std::string_view kLayoutArgument =
+    "the path (str or os.PathLike) of a layout file: a manifest's [format] and [columns] tables in TOML";
+
 void bind_config(py::module_& m);      // Config, Run, Tolerance and their readers
 void bind_budget(py::module_& m);      // Budget and its parts, budget
 void bind_force(py::module_& m);       // SensedInput and its parts, sensed_input

@@ -13,7 +13,7 @@ namespace ccal::cli {
 namespace {
 
 struct AllocateCli {
-  std::string config;
+  ConfigChoice config;
   verbs::AllocateOptions options;  // its table's flags are bound to it
   WidthOptions width;
   OutputOptions output;

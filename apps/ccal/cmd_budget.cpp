@@ -12,7 +12,7 @@ namespace ccal::cli {
 namespace {
 
 struct BudgetOptionsCli {
-  std::string config;
+  ConfigChoice config;
   verbs::BudgetOptions options;  // its table's flags are bound to it
   std::size_t top = 0;  // 0: what fits the screen
   WidthOptions width;

@@ -17,7 +17,7 @@ namespace ccal::cli {
 namespace {
 
 struct DesignCli {
-  std::string config;
+  ConfigChoice config;
   verbs::DesignOptions options;  // its table's flags are bound to it
   std::string plan_out;
   OutputOptions output;
@@ -62,7 +62,7 @@ Command add_design(CLI::App& app) {
             std::vector<ExtraFile> extra;
             if (!o->plan_out.empty())
               extra.push_back({"--plan-out", o->plan_out,
-                               render::config_with_plan(config_file_text(o->config), r.designed)});
+                               render::config_with_plan(config_file_text(o->config.path), r.designed)});
             write_outputs(o->output, report, extra);
           }};
 }

@@ -13,7 +13,7 @@ namespace ccal::cli {
 namespace {
 
 struct ForceCli {
-  std::string config;
+  ConfigChoice config;
   verbs::ForceOptions options;  // its table's flags are bound to it, but --time
   std::string time = "0";       // a time with its unit, or seconds
   OutputOptions output;

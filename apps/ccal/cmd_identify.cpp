@@ -20,7 +20,7 @@ namespace {
 struct IdentifyCli {
   std::string file;
   verbs::IdentifyOptions options;     // its table's flags are bound to it
-  std::string config;                 // --config: the statement's configuration
+  ConfigChoice config;                 // --config: the statement's configuration
   std::string statement_out;          // --statement-out FILE.json|FILE.csv
   std::string old_budget;             // --budget, refused: it took a file here and was a flag in reduce
   std::string old_input, old_weight;  // --input, --weight: now --input-column, --weight-column
@@ -43,10 +43,11 @@ Command add_identify(CLI::App& app) {
       ->type_name("FILE.csv");
   add_option_flags(*cmd, o->options, option_table<verbs::IdentifyOptions>());
   cmd->add_option(
-         "--config", o->config,
+         "--config", o->config.path,
          "CONFIG: with --statement, the configuration whose tolerances give the Type B part and whose "
          "known [errors] give the correction")
       ->type_name("CONFIG");
+  add_instrument_option(*cmd, o->config);
   for (auto [flag, target] : {std::pair{"--budget", &o->old_budget}, std::pair{"--input", &o->old_input},
                               std::pair{"--weight", &o->old_weight}})
     cmd->add_option(flag, *target)->group("");  // refused with a message, not in --help
@@ -84,8 +85,11 @@ Command add_identify(CLI::App& app) {
                   "--output-column {0} for the output column, or ./{0} for a file of that name",
                   o->output.path, o->file));
             verbs::IdentifyOptions io = o->options;
-            if (!o->config.empty()) {
-              note_input(o->config);
+            if (!o->config.instrument.empty() && o->config.path.empty())
+              throw InputError(fmt::format("--instrument: '{}' names an instrument of the configuration, and "
+                                           "there is none; accepted: with --config CONFIG",
+                                           o->config.instrument));
+            if (!o->config.path.empty()) {
               io.config = load_config_or_example(o->config);
             }
             const verbs::IdentifyResult r = verbs::identify(table, io);

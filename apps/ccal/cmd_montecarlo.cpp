@@ -21,7 +21,7 @@ namespace ccal::cli {
 namespace {
 
 struct MonteCarloCli {
-  std::string config;
+  ConfigChoice config;
   verbs::MonteCarloOptions options;  // its table's flags are bound to it
   std::string old_coverage;          // --coverage, refused: it meant a factor in one verb and a probability here
   std::string samples_out;

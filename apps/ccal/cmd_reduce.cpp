@@ -16,7 +16,7 @@ namespace ccal::cli {
 namespace {
 
 struct ReduceCli {
-  std::string config;
+  ConfigChoice config;
   std::vector<std::string> logs;  // RUN=FILE
   std::string log_folder;         // DIR with a manifest (io/log_manifest.hpp)
   std::string log_layout;         // with --log: the logs' format and columns (a manifest's [format], [columns])

@@ -25,7 +25,7 @@ namespace ccal::cli {
 namespace {
 
 struct ReportCli {
-  std::string config;
+  ConfigChoice config;
   verbs::ReportOptions options;  // its table's flags, and the Monte Carlo's but for its mode, are bound to it
   std::vector<std::string> allocate_targets;  // non-empty: the allocation section
   bool design = false;                        // the design section
@@ -149,7 +149,7 @@ Command add_report(CLI::App& app) {
             const verbs::ReportResult r = verbs::report(config, ro);
             print_warnings(r.warnings);
             render::ReportProvenance p;
-            p.config_text = config_file_text(o->config);
+            p.config_text = config_file_text(o->config.path);
             p.command_line = command_line_text();
             p.date_utc = render::report_date_utc();
             render::report_commands(r, ro, p);

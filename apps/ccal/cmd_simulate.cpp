@@ -13,6 +13,7 @@
 #include "ccal/io/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/render/simulate.hpp"
+#include "ccal/verbs/reduce.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "commands.hpp"
 #include "option_flags.hpp"
@@ -22,7 +23,7 @@ namespace ccal::cli {
 namespace {
 
 struct SimulateCli {
-  std::string config;
+  ConfigChoice config;
   verbs::SimulateOptions options;  // its table's flags are bound to it
   std::string observations_out;
   std::string logs_out;  // folder for one run log per run
@@ -79,14 +80,13 @@ Command add_simulate(CLI::App& app) {
       cmd, [o] {
         const Config cfg = load_config_or_example(o->config);
         check_observations_out(o->observations_out, o->output);
+        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "--observations-out");
         if (!o->log_layout.empty() && o->logs_out.empty())
           throw InputError("--log-layout: is read only for the logs; accepted: with --logs-out DIR");
         LogLayout layout;
-        layout.angle_unit = "rad";  // ccal's own: stated in the manifest, so that the folder reads as written
         if (!o->log_layout.empty()) {
           note_input(o->log_layout);
           layout = read_log_layout(o->log_layout);
-          if (layout.angle_unit.empty()) layout.angle_unit = "rad";
         }
         verbs::SimulateOptions so = o->options;
         if (!o->truth.empty()) {
@@ -107,17 +107,9 @@ Command add_simulate(CLI::App& app) {
           std::filesystem::create_directories(o->logs_out, ec);
           if (ec)
             throw InputError("--logs-out: cannot create the folder '" + o->logs_out + "': " + ec.message());
-          const Eigen::VectorXd& means = s.observations.output;
-          std::vector<std::pair<std::string, std::string>> runs;
-          const auto logs = write_run_logs(s.config, s.machine_errors, {means.data(), means.data() + means.size()},
-                                           default_log_step(cfg), layout);
-          for (std::size_t r = 0; r < logs.size(); ++r) {
-            extra.push_back(
-                {"--logs-out", (std::filesystem::path(o->logs_out) / logs[r].name).string(), logs[r].text});
-            runs.emplace_back(cfg.plan.runs[r].name, logs[r].name);
-          }
-          extra.push_back({"--logs-out", (std::filesystem::path(o->logs_out) / kLogManifestName).string(),
-                           log_manifest_text(layout, runs)});
+          for (RunLogFile& file : verbs::simulation_logs(s, layout))
+            extra.push_back({"--logs-out", (std::filesystem::path(o->logs_out) / file.name).string(),
+                             std::move(file.text)});
         }
         write_outputs(o->output, text, extra);
       }};

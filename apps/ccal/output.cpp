@@ -127,17 +127,26 @@ void check_outputs(const OutputOptions& options, const std::vector<ExtraFile>& e
   check_files(files_of(options, {}, extra));
 }
 
-Config load_config_or_example(const std::string& path) {
-  if (path.empty()) return bundled_example();
-  note_input(path);
-  return load_config(path);
+Config load_config_or_example(const ConfigChoice& config) {
+  if (config.path.empty()) return select_instrument(bundled_example(), config.instrument);
+  note_input(config.path);
+  return select_instrument(load_config(config.path), config.instrument);
 }
 
-void add_config_argument(CLI::App& command, std::string& path) {
+void add_instrument_option(CLI::App& command, ConfigChoice& config) {
   command
-      .add_option("config", path,
+      .add_option("--instrument", config.instrument,
+                  "ID: in a test of several instruments ([[instruments]]), the one to answer for (its id); "
+                  "default: every instrument, where the command handles several")
+      ->type_name("ID");
+}
+
+void add_config_argument(CLI::App& command, ConfigChoice& config) {
+  command
+      .add_option("config", config.path,
                   "Configuration file (TOML, docs/config.md); default: the bundled paper example")
       ->type_name("CONFIG");
+  add_instrument_option(command, config);
 }
 
 std::string config_file_text(const std::string& path) {

@@ -86,11 +86,21 @@ void add_statement_out_file(std::vector<ExtraFile>& extra, const std::string& pa
 // hash or a --plan-out file built from it. InputError if the file cannot be read again.
 std::string config_file_text(const std::string& path);
 
-// The optional CONFIG argument every configuration-driven command takes.
-void add_config_argument(CLI::App& command, std::string& path);
+// A configuration as the command line names it: its file ("": the bundled example) and, for a test of several
+// instruments, the one chosen (--instrument ID; "": all, or the only one).
+struct ConfigChoice {
+  std::string path;
+  std::string instrument;
+};
 
-// The configuration named on the command line, or the bundled paper example if none is.
-Config load_config_or_example(const std::string& path);
+// The optional CONFIG argument every configuration-driven command takes, and its --instrument option.
+void add_config_argument(CLI::App& command, ConfigChoice& config);
+// --instrument ID alone (for a command whose configuration is an option, e.g. identify's --config).
+void add_instrument_option(CLI::App& command, ConfigChoice& config);
+
+// The configuration named on the command line, or the bundled paper example if none is; the instrument chosen,
+// when one is (select_instrument).
+Config load_config_or_example(const ConfigChoice& config);
 
 // Prints each warning of a result to standard error as "ccal: warning: <text>".
 void print_warnings(const std::vector<std::string>& warnings);

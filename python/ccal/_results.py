@@ -229,17 +229,20 @@ def table_methods(cls, build):
     cls._repr_html_ = _table_html
 
 
-def write_logs(self, folder: "str", step: "Optional[float]" = None) -> "Dict[str, str]":
+def write_logs(self, folder: "str", step: "Optional[float]" = None, log_layout: "Optional[str]" = None) -> "Dict[str, str]":
     """Writes the runs' logs and their manifest.toml into `folder` (created if missing), as `ccal simulate
-    --logs-out` does; returns {run name: path}, what reduce() takes (as does the folder itself)."""
+    --logs-out` does (log_layout: a layout file's path, as `--log-layout`); returns {run name: path}, what
+    reduce() takes (as does the folder itself)."""
+    logs = self.run_logs(step, log_layout)
+    manifest = self.logs_manifest(log_layout)
     os.makedirs(folder, exist_ok=True)
     paths = {}
-    for run, (name, text) in zip(self.config.runs, self.run_logs(step)):
+    for run, (name, text) in zip(self.config.runs, logs):
         paths[run.name] = os.path.join(folder, name)
         with open(paths[run.name], "w", encoding="utf-8") as f:
             f.write(text)
     with open(os.path.join(folder, "manifest.toml"), "w", encoding="utf-8") as f:
-        f.write(self.logs_manifest())
+        f.write(manifest)
     return paths
 
 

@@ -105,6 +105,37 @@ Config read_tables(const Reader& r, const toml::table& root, std::string_view te
   return cfg;
 }
 
+// An instrument's serial number in a test of several: its [[instruments]] serial_number, the [certificate]'s for it
+// (its certificate and its history are its own). Two instruments of one certificate table would otherwise carry
+// the same serial: each entry must then give its own (distinct ids are checked by read_instruments, distinct
+// serials here by the caller).
+void apply_serial_number(const Reader& r, const MountedInstrument& m, std::size_t k, std::size_t count, Config& c) {
+  const std::string entry = fmt::format("instruments[{}]", k + 1);
+  if (!m.serial_number.empty()) {
+    if (!c.certificate)
+      r.fail(Location{int(m.serial_line), 1, nullptr}, Reader::path(entry, "serial_number"),
+             "has no [certificate] table to go to (the certificate and the history name an instrument by its serial "
+             "number); accepted: a [certificate] table, or no serial_number");
+    c.certificate->serial_number = m.serial_number;
+  } else if (c.certificate && count > 1) {
+    r.fail(Location{int(m.line), 1, nullptr}, entry,
+           fmt::format("instrument '{}' has no serial_number, and the [certificate] is for each of the {} "
+                       "instruments; accepted: serial_number = \"…\" in every [[instruments]] entry, each its own",
+                       m.id, count));
+  }
+}
+
+// Two instruments of one test with one serial number would share a history: refused at the second.
+void check_distinct_serials(const Reader& r, const std::vector<MountedInstrument>& mounted) {
+  for (std::size_t k = 1; k < mounted.size(); ++k)
+    for (std::size_t j = 0; j < k; ++j)
+      if (!mounted[k].serial_number.empty() && mounted[k].serial_number == mounted[j].serial_number)
+        r.fail(Location{int(mounted[k].serial_line), 1, nullptr},
+               Reader::path(fmt::format("instruments[{}]", k + 1), "serial_number"),
+               fmt::format("'{}' is instrument '{}''s too; accepted: each instrument's own serial number",
+                           mounted[k].serial_number, mounted[j].id));
+}
+
 }  // namespace
 
 Config parse_config(std::string_view text, std::string_view source_name) {
@@ -114,6 +145,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
   r.check_keys(root, "", kRootKeys);
   std::vector<MountedInstrument> mounted = read_instruments(r, root);
   if (mounted.empty()) return read_tables(r, root, text, source_name, setup_source, read_instrument(r, root));
+  check_distinct_serials(r, mounted);
   std::vector<Config> each;
   for (std::size_t k = 0; k < mounted.size(); ++k) {
     MountedInstrument& m = mounted[k];
@@ -132,6 +164,7 @@ Config parse_config(std::string_view text, std::string_view source_name) {
                          "rules (mode = \"paper\") do not model; accepted: mode = \"exact\" (the default), or "
                          "no position and azimuth",
                          m.id));
+    apply_serial_number(r, m, k, mounted.size(), c);
     each.push_back(std::move(c));
   }
   Config first = each.front();

@@ -330,7 +330,7 @@ inline const Keys kToleranceKeys{"bound", "distribution", "group", "cost", "floo
 inline const Keys kInstrumentKeys{"model",   "output_unit", "rate_gain",         "noise_density",
                                   "quantum", "terms",       "sampling_resistor"};
 // The keys an [[instruments]] entry has besides an [instrument] table's.
-inline const Keys kMountedInstrumentKeys{"id", "position", "azimuth"};
+inline const Keys kMountedInstrumentKeys{"id", "position", "azimuth", "serial_number"};
 inline const Keys kPlanKeys{"duration", "platform", "terminal_phase", "initial_phase", "arm_azimuth",
                             "mounting", "runs"};
 inline const Keys kIdentificationKeys{"terms", "fixed", "compensate", "mode", "paper_cross_terms"};
@@ -403,7 +403,10 @@ struct MountedInstrument {
   InstrumentModel model;
   double x5 = 0, y5 = 0;  // its place on the base plane [m]
   double azimuth5 = 0;    // its turn about z5 [rad]
+  // Its serial number, the [certificate]'s for this instrument (its certificate and history); "": none given.
+  std::string serial_number;
   long line = 0;          // the entry's line, for messages
+  long serial_line = 0;   // serial_number's line, for messages
 };
 // [[instruments]], in the file's order; empty without the array. Refuses it beside [instrument], an entry
 // without an id, a repeated or malformed id, and the [instrument] table's own errors.

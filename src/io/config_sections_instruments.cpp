@@ -75,6 +75,13 @@ std::vector<MountedInstrument> read_instruments(const Reader& r, const toml::tab
     m.model = read_instrument_table(r, t, p);
     read_position(r, t, p, m);
     m.azimuth5 = r.quantity(t, p, "azimuth", kind::angle, nullptr, "90 deg").value_or(0.0);
+    if (const auto serial = r.string(t, p, "serial_number")) {
+      if (serial->empty() || serial->find_first_not_of(" \t") == std::string::npos)
+        r.fail(*t.get("serial_number"), Reader::path(p, "serial_number"),
+               "is empty; accepted: the instrument's serial number as on its label, e.g. \"PIGA-0415\"");
+      m.serial_number = *serial;
+      m.serial_line = t.get("serial_number")->source().begin.line;
+    }
     m.line = t.source().begin.line;
     out.push_back(std::move(m));
   }

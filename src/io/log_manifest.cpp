@@ -290,10 +290,11 @@ std::string log_manifest_text(const LogLayout& layout, const std::vector<std::pa
   const LogColumns& c = layout.columns;
   out << "[columns]\n"
       << "time = " << quoted(c.time) << "\n"
-      << "time_unit = " << quoted(layout.time_unit.empty() ? std::string("s") : layout.time_unit) << "\n"
-      << "pulses = " << quoted(c.pulses) << "\n"
-      << "output = " << quoted(c.output) << "\n"
-      << "theta1 = " << quoted(c.theta1) << "\n"
+      << "time_unit = " << quoted(layout.time_unit.empty() ? std::string("s") : layout.time_unit) << "\n";
+  if (layout.instruments.empty())  // else each instrument's column is named in [instruments]
+    out << "pulses = " << quoted(c.pulses) << "\n"
+        << "output = " << quoted(c.output) << "\n";
+  out << "theta1 = " << quoted(c.theta1) << "\n"
       << "gamma = " << quoted(c.gamma) << "\n";
   if (!layout.angle_unit.empty()) out << "angle_unit = " << quoted(layout.angle_unit) << "\n";
   if (layout.angle_unit == "counts") {
@@ -302,6 +303,16 @@ std::string log_manifest_text(const LogLayout& layout, const std::vector<std::pa
         << "\n";
   }
   if (c.counter_bits > 0) out << "counter_bits = " << c.counter_bits << "\n";
+  if (!layout.instruments.empty()) {
+    out << "\n[instruments]  # each instrument's output column\n";
+    for (const LogLayout::InstrumentColumn& i : layout.instruments) {
+      toml::table column{{i.pulses ? "pulses" : "output", i.column}};
+      column.is_inline(true);
+      toml::table line;
+      line.insert(i.id, std::move(column));
+      out << line << "\n";
+    }
+  }
   out << "\n[runs]\n";
   for (const auto& [run, file] : runs) {
     toml::table line;

@@ -242,7 +242,7 @@ std::string json(const verbs::ReduceResult& r) {
 std::string csv(const verbs::ReduceResult& r) {
   if (!r.instruments.empty())
     throw InputError("--format csv: a test of several instruments has one observations table per instrument; "
-                     "accepted: --format text or json");
+                     "accepted: --format text or json, or --instrument ID for one of them");
   return r.identification.csv;
 }
 

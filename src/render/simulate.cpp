@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ccal/core/errors.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/version.hpp"
 #include "parts.hpp"
@@ -78,7 +79,7 @@ std::string text_of(const Config& cfg, const verbs::SimulateResult& s) {
   return out + identification_text(s.identification);
 }
 
-std::string json_of(const Config& cfg, const verbs::SimulateResult& s) {
+nlohmann::ordered_json json_of(const Config& cfg, const verbs::SimulateResult& s) {
   const Experiment ex = cfg.experiment();
   nlohmann::ordered_json j;
   j["command"] = "simulate";
@@ -122,13 +123,44 @@ std::string json_of(const Config& cfg, const verbs::SimulateResult& s) {
   }
   j["runs"] = runs;
   j["identification"] = identification_json(s.identification);
-  return j.dump(2) + "\n";
+  return j;
 }
 
 }  // namespace
 
-std::string text(const verbs::SimulateResult& r) { return text_of(r.config, r); }
-std::string json(const verbs::SimulateResult& r) { return json_of(r.config, r); }
-std::string csv(const verbs::SimulateResult& r) { return r.observations_csv; }
+std::string text(const verbs::SimulateResult& r) {
+  if (r.instruments.empty()) return text_of(r.config, r);
+  std::string out = fmt::format("ccal simulate: a test of {} instruments ({}) on one machine\n\n",
+                                r.instruments.size(), r.config.source);
+  for (const verbs::SimulateResult& one : r.instruments)
+    out += fmt::format("=== instrument {} ===\n", one.config.instrument_id) + text_of(one.config, one) + "\n";
+  return out;
+}
+
+std::string json(const verbs::SimulateResult& r) {
+  if (r.instruments.empty()) return json_of(r.config, r).dump(2) + "\n";
+  nlohmann::ordered_json j;
+  j["command"] = "simulate";
+  j["ccal_version"] = version();
+  j["config"] = r.config.source;
+  nlohmann::ordered_json each = nlohmann::ordered_json::array();
+  for (const verbs::SimulateResult& one : r.instruments) {
+    nlohmann::ordered_json x;
+    x["id"] = one.config.instrument_id;
+    const nlohmann::ordered_json whole = json_of(one.config, one);
+    for (auto it = whole.begin(); it != whole.end(); ++it)
+      if (it.key() != "command" && it.key() != "ccal_version" && it.key() != "config") x[it.key()] = *it;
+    each.push_back(std::move(x));
+  }
+  j["instruments"] = std::move(each);
+  return j.dump(2) + "\n";
+}
+
+std::string csv(const verbs::SimulateResult& r) {
+  if (!r.instruments.empty())
+    throw InputError("--format csv: a test of several instruments has one observations table per instrument; "
+                     "accepted: --format text or json, or --instrument ID for one of them");
+  return r.observations_csv;
+}
 
 }  // namespace ccal::render

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <charconv>
 
 #include "ccal/core/errors.hpp"
@@ -14,11 +15,31 @@ void require_one_instrument(const Config& config, std::string_view verb) {
   if (config.instruments.size() <= 1) return;  // one [instrument], or one [[instruments]] entry
   std::vector<std::string> ids;
   for (const Config& one : config.instruments) ids.push_back(one.instrument_id);
-  throw InputError(fmt::format("{}: a test of {} instruments ({}) ([[instruments]]); {} answers for one instrument; "
-                               "accepted: a configuration of one instrument (one [instrument], or one [[instruments]] "
-                               "entry with its position and azimuth), or reduce, which reduces the logs of every "
-                               "instrument of the test",
-                               config.source, config.instruments.size(), fmt::join(ids, ", "), verb));
+  throw OptionError("instrument", "",
+                    fmt::format("missing: {} holds a test of {} instruments ({}), and {} answers for one at a time; "
+                                "accepted: one of {}",
+                                config.source, config.instruments.size(), fmt::join(ids, ", "), verb,
+                                fmt::join(ids, ", ")));
+}
+
+Config select_instrument(const Config& config, std::string_view id) {
+  if (id.empty()) return config;
+  if (config.instruments.empty())
+    throw OptionError("instrument", std::string(id),
+                      fmt::format("names an instrument, but {} has one [instrument] and no ids; accepted: no "
+                                  "instrument option, or a configuration of [[instruments]]",
+                                  config.source));
+  std::vector<std::string> ids;
+  for (const Config& one : config.instruments) ids.push_back(one.instrument_id);
+  const auto chosen = std::find(ids.begin(), ids.end(), id);
+  if (chosen == ids.end())
+    throw OptionError("instrument", std::string(id),
+                      fmt::format("is no instrument of {}; accepted: {}", config.source, fmt::join(ids, ", ")));
+  Config one = config.instruments[std::size_t(chosen - ids.begin())];
+  one.instruments = {one};
+  ids.erase(chosen);
+  one.other_instruments = std::move(ids);
+  return one;
 }
 
 void clear_fingerprints(Config& config) {

@@ -235,6 +235,7 @@ void check_verb_options(const IdentifyOptions& o) {
     throw OptionError("config", o.config->source,
                       fmt::format("is read only for the calibration statement; accepted: with {}",
                                   OptionError::name("statement")));
+  if (o.config) require_one_instrument(*o.config, "identify");  // the observations are one instrument's
 }
 
 }  // namespace

@@ -46,13 +46,7 @@ Eigen::MatrixXd display_effects(const ccal::BudgetResult& b) {
   return e;
 }
 
-// The Monte Carlo's sources: every shared tolerance once, then each instrument's own tolerances as its copies
-// ("<id>:<tolerance id>", groups likewise its own); per instrument, the source of each of its tolerances.
-struct JointSources {
-  std::vector<Tolerance> sources;
-  std::vector<Correlation> correlations;
-  std::vector<std::vector<std::size_t>> of_instrument;
-};
+}  // namespace
 
 JointSources joint_sources(const std::vector<Config>& each) {
   JointSources j;
@@ -94,8 +88,6 @@ JointSources joint_sources(const std::vector<Config>& each) {
   }
   return j;
 }
-
-}  // namespace
 
 InstrumentCovariance instrument_covariance(const std::vector<Config>& each, ModelMode mode, std::uint64_t trials,
                                            std::uint64_t seed, int threads) {

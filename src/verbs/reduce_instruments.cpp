@@ -33,24 +33,50 @@ ReduceOptions instrument_options(const Config& instrument, const ReduceOptions& 
   return one;
 }
 
+// The warnings of a test's reductions: one that every instrument gives alike is of the logs they share (a run's
+// gap, its control), said once; the others are each instrument's, named by it.
+std::vector<std::string> test_warnings(std::vector<ReduceResult>& each) {
+  const auto everyones = [&](const std::string& w) {
+    return std::ranges::all_of(
+        each, [&](const ReduceResult& one) { return std::ranges::find(one.warnings, w) != one.warnings.end(); });
+  };
+  std::vector<std::string> out;
+  for (const std::string& w : each.front().warnings)
+    if (everyones(w)) out.push_back(w);
+  for (const ReduceResult& one : each)
+    for (const std::string& w : one.warnings)
+      if (!everyones(w)) out.push_back(fmt::format("instrument {}: {}", one.config.instrument_id, w));
+  for (ReduceResult& one : each)
+    for (std::string& w : one.warnings) w = fmt::format("instrument {}: {}", one.config.instrument_id, w);
+  return out;
+}
+
 }  // namespace
 
 void check_single_instrument_output(const Config& cfg, std::string_view option) {
-  if (cfg.instruments.empty()) return;
+  if (cfg.instruments.size() <= 1) return;
   throw InputError(fmt::format("{}: {} holds {} instruments, each with a table of its own; accepted: --format json, "
-                               "which holds every instrument's observations and statement, or a configuration of "
-                               "one instrument",
-                               option, cfg.source, cfg.instruments.size()));
+                               "which holds every instrument's observations and statement, or {} ID for one of "
+                               "them",
+                               option, cfg.source, cfg.instruments.size(), "--instrument"));
 }
 
 ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {
   for (const auto& column : o.layout.instruments)
     if (std::none_of(cfg.instruments.begin(), cfg.instruments.end(),
-                     [&](const Config& c) { return c.instrument_id == column.id; }))
+                     [&](const Config& c) { return c.instrument_id == column.id; }) &&
+        std::ranges::find(cfg.other_instruments, column.id) == cfg.other_instruments.end())
       throw InputError(fmt::format("{}:{}: [instruments]: '{}' is no instrument of {}; accepted: the ids of its "
                                    "[[instruments]]",
                                    o.logs.empty() ? std::string("the log layout") : o.logs.front().manifest,
                                    column.line, column.id, cfg.source));
+  if (cfg.instruments.size() == 1) {
+    // One instrument (one [[instruments]] entry, or one chosen from a test of several): reduced as a configuration
+    // of one, through its column of the layout's [instruments] when the layout maps them.
+    Config alone = cfg.instruments.front();
+    alone.instruments.clear();
+    return reduce(alone, o.layout.instruments.empty() ? o : instrument_options(alone, o));
+  }
   std::vector<ReduceResult> each;
   std::vector<Config> charged;  // each instrument's configuration with the inputs its logs measured
   for (const Config& instrument : cfg.instruments) {
@@ -58,10 +84,7 @@ ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {
     charged.push_back(with_measured_inputs(instrument, measured_inputs(instrument, each.back().logs)));
   }
   ReduceResult r = each.front();
-  for (ReduceResult& one : each)
-    for (std::string& w : one.warnings) w = fmt::format("instrument {}: {}", one.config.instrument_id, w);
-  r.warnings.clear();
-  for (const ReduceResult& one : each) r.warnings.insert(r.warnings.end(), one.warnings.begin(), one.warnings.end());
+  r.warnings = test_warnings(each);
   if (o.statement)
     r.covariance = instrument_covariance(charged, r.mode, std::uint64_t(std::max<std::int64_t>(o.statement_trials, 0)),
                                          o.seed, o.threads);

@@ -11,6 +11,7 @@
 #include "ccal/uncertainty/chain_inputs.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "ccal/uncertainty/rate_noise.hpp"
+#include "ccal/verbs/instrument_covariance.hpp"
 
 namespace ccal::verbs {
 
@@ -61,9 +62,12 @@ constexpr OptionSpec<SimulateOptions> kSimulateRows[] = {
 
 OptionTable<SimulateOptions> options_of(std::type_identity<SimulateOptions>) { return kSimulateRows; }
 
-SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
-  require_one_instrument(cfg, "simulate");
-  check_options(o, option_table<SimulateOptions>());
+namespace {
+
+// One instrument's test on the machine: its errors the truth's or the configuration's, plus `drawn` (a draw of
+// each of its [tolerances] inputs, SI; empty: none), its output noise from noise_seed.
+SimulateResult simulate_machine(const Config& cfg, const SimulateOptions& o, const std::vector<double>& drawn,
+                                std::uint64_t noise_seed) {
   SimulateResult s;
   s.config = cfg;
   s.seed = o.seed;
@@ -86,20 +90,13 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
   s.truth = o.truth;
   s.machine_errors = o.truth ? o.truth->errors : cfg.centrifuge.errors;
   std::vector<std::pair<int, double>> chain_errors = o.truth ? o.truth->chain_errors : cfg.chain.errors;
-  if (o.draw_truth) {
-    if (o.truth)
-      throw OptionError("draw_truth", "",
-                        fmt::format("and the truth {} are two answers for the machine's errors; accepted: one of "
-                                    "them",
-                                    o.truth->source));
-    s.drawn = draw_sources(cfg.tolerances, cfg.correlations, o.seed);
-    for (std::size_t k = 0; k < s.drawn.size(); ++k) {
-      const int p = cfg.tolerances[k].parameter;
-      if (is_chain_parameter(p))
-        chain_errors.emplace_back(p, s.drawn[k]);
-      else
-        s.machine_errors[p] += s.drawn[k];
-    }
+  s.drawn = drawn;
+  for (std::size_t k = 0; k < s.drawn.size(); ++k) {
+    const int p = cfg.tolerances[k].parameter;
+    if (is_chain_parameter(p))
+      chain_errors.emplace_back(p, s.drawn[k]);
+    else
+      s.machine_errors[p] += s.drawn[k];
   }
   // The measuring chain's errors: the machine's gravity and terms, the reading of its output (and, in its logs,
   // the time base's clock and the encoders' readings, io/run_log_writer.hpp).
@@ -112,7 +109,7 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
   s.observations = observe<double>(machine, ex, s.machine_errors, spec.compensate ? known : zero, spec, s.mode);
   read_through_chain(s.observations.output, ex.instrument, chain_errors);
   s.noisy = ex.instrument.noise_density > 0 || ex.instrument.quantum > 0;
-  add_output_noise(s.observations, ex, o.seed);
+  add_output_noise(s.observations, ex, noise_seed);
   if (o.draw_truth) add_rate_noise_draws(s.observations, ex, s.machine_errors, o.seed);
   s.output_unit_si = output_unit_si(ex.instrument.output_unit);
   s.order.resize(s.observations.columns.size());
@@ -130,6 +127,102 @@ SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
   s.observations_csv = std::move(f.csv);
   s.identification = std::move(f.id);
   return s;
+}
+
+// A test of several instruments: one machine, whose shared errors are one draw for all of them (each
+// instrument's own inputs drawn for it: joint_sources); the drives' rate noise is the machine's, one draw for all
+// (the same stream); each instrument's output noise its own.
+SimulateResult simulate_instruments(const Config& cfg, const SimulateOptions& o) {
+  if (o.truth)
+    throw OptionError("truth", o.truth->source,
+                      fmt::format("holds one configuration's errors, and {} is a test of {} instruments; accepted: "
+                                  "one instrument chosen with {}, or no truth",
+                                  cfg.source, cfg.instruments.size(), OptionError::name("instrument")));
+  std::vector<std::vector<double>> drawn(cfg.instruments.size());
+  if (o.draw_truth) {
+    const JointSources joint = joint_sources(cfg.instruments);
+    const std::vector<double> all = draw_sources(joint.sources, joint.correlations, o.seed);
+    for (std::size_t a = 0; a < drawn.size(); ++a)
+      for (const std::size_t source : joint.of_instrument[a]) drawn[a].push_back(all[source]);
+  }
+  std::vector<SimulateResult> each;
+  for (std::size_t a = 0; a < cfg.instruments.size(); ++a) {
+    const std::uint64_t noise_seed = o.seed ^ (0xa24baed4963ee407ULL * a);  // the first's as alone
+    each.push_back(simulate_machine(cfg.instruments[a], o, drawn[a], noise_seed));
+  }
+  SimulateResult r = each.front();
+  r.config = cfg;
+  r.instruments = std::move(each);
+  return r;
+}
+
+}  // namespace
+
+SimulateResult simulate(const Config& cfg, const SimulateOptions& o) {
+  check_options(o, option_table<SimulateOptions>());
+  if (o.draw_truth && o.truth)
+    throw OptionError("draw_truth", "",
+                      fmt::format("and the truth {} are two answers for the machine's errors; accepted: one of them",
+                                  o.truth->source));
+  if (cfg.instruments.size() > 1) return simulate_instruments(cfg, o);
+  return simulate_machine(cfg, o, o.draw_truth ? draw_sources(cfg.tolerances, cfg.correlations, o.seed)
+                                               : std::vector<double>{},
+                          o.seed);
+}
+
+namespace {
+
+// The column of each instrument of a test in its logs: the layout's [instruments] entry, or pulses_<id>/output_<id>.
+void name_instrument_columns(const SimulateResult& s, LogLayout& layout) {
+  std::vector<LogLayout::InstrumentColumn> named;
+  for (const SimulateResult& one : s.instruments) {
+    const std::string& id = one.config.instrument_id;
+    const bool pulses = one.config.instrument.quantum > 0;
+    const auto given = std::ranges::find(layout.instruments, id, &LogLayout::InstrumentColumn::id);
+    if (given == layout.instruments.end() && !layout.instruments.empty())
+      throw InputError(fmt::format("the log layout's [instruments] names no column for instrument '{}'; accepted: "
+                                   "{} = {{ {} = \"…\" }}, or no [instruments] (columns {}_<id>)",
+                                   id, id, pulses ? "pulses" : "output", pulses ? "pulses" : "output"));
+    if (given != layout.instruments.end() && given->pulses != pulses)
+      throw InputError(fmt::format(
+          "the log layout's [instruments] (line {}): instrument '{}' {}; accepted: {} = {{ {} = \"{}\" }}",
+          given->line, id,
+          pulses ? "has a quantum, so its output is logged as a count of pulses"
+                 : "has no quantum, so its output is logged as it is, not as pulses",
+          id, pulses ? "pulses" : "output", given->column));
+    named.push_back(given != layout.instruments.end()
+                        ? *given
+                        : LogLayout::InstrumentColumn{id, fmt::format("{}_{}", pulses ? "pulses" : "output", id),
+                                                      pulses, 0});
+  }
+  layout.instruments = std::move(named);
+}
+
+}  // namespace
+
+std::vector<RunLogFile> simulation_logs(const SimulateResult& s, LogLayout layout, std::optional<double> step) {
+  if (layout.angle_unit.empty()) layout.angle_unit = "rad";  // ccal's own, stated: the folder reads as written
+  const double dt = step ? *step : default_log_step(s.config);
+  std::vector<RunLogFile> files;
+  if (s.instruments.empty()) {
+    const Eigen::VectorXd& means = s.observations.output;
+    files = write_run_logs(s.config, s.machine_errors, {means.data(), means.data() + means.size()}, dt, layout);
+  } else {
+    name_instrument_columns(s, layout);
+    std::vector<LoggedOutput> outputs;
+    for (std::size_t a = 0; a < s.instruments.size(); ++a) {
+      const Eigen::VectorXd& means = s.instruments[a].observations.output;
+      outputs.push_back({layout.instruments[a].column, s.instruments[a].config.instrument,
+                         {means.data(), means.data() + means.size()}});
+    }
+    // The machine's readings (clock, encoders) are the first instrument's configuration's, shared by all.
+    const SimulateResult& first = s.instruments.front();
+    files = write_instrument_logs(first.config, first.machine_errors, outputs, dt, layout);
+  }
+  std::vector<std::pair<std::string, std::string>> runs;
+  for (std::size_t r = 0; r < files.size(); ++r) runs.emplace_back(s.config.plan.runs[r].name, files[r].name);
+  files.push_back({std::string(kLogManifestName), log_manifest_text(layout, runs)});
+  return files;
 }
 
 }  // namespace ccal::verbs

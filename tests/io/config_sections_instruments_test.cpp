@@ -89,3 +89,92 @@ TEST(Instruments, PaperModeIsRefusedForAnInstrumentOffTheAxis) {
 
 }  // namespace
 }  // namespace ccal
+
+namespace ccal {
+namespace {
+
+using namespace config_test;
+
+const std::string kCertificate = "\n[certificate]\nlaboratory = \"Lab\"\nserial_number = \"SN 1\"\n";
+
+// Each instrument's serial number is its certificate's: the [certificate] table is the test's, the serial each
+// entry's own (the certificate and the history name an instrument by it).
+TEST(Instruments, EachSerialNumberIsItsOwnCertificates) {
+  const std::string text = kBase + kCertificate +
+                           "[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"\n"
+                           "[[instruments]]\nid = \"B\"\nserial_number = \"SN 11\"\n";
+  const Config c = parse_config(text, "two.toml");
+  ASSERT_EQ(c.instruments.size(), 2u);
+  EXPECT_EQ(c.instruments[0].certificate->serial_number, "SN 10");
+  EXPECT_EQ(c.instruments[1].certificate->serial_number, "SN 11");
+  EXPECT_EQ(c.instruments[1].certificate->laboratory, "Lab");
+  // The serial is no number of the test: the fingerprints are those of the same test without serials.
+  const Config plain = parse_config(kBase + "\n[[instruments]]\nid = \"A\"\n[[instruments]]\nid = \"B\"\n", "p.toml");
+  EXPECT_EQ(c.instruments[0].numbers_sha256, plain.instruments[0].numbers_sha256);
+  EXPECT_EQ(c.instruments[1].numbers_sha256, plain.instruments[1].numbers_sha256);
+  // One entry of a [certificate]: its serial is the table's.
+  const Config one = parse_config(kBase + kCertificate + "[[instruments]]\nid = \"A\"\n", "one.toml");
+  EXPECT_EQ(one.instruments[0].certificate->serial_number, "SN 1");
+  // The example job: the set-up's [certificate], each PIGA its serial.
+  const Config two = load_config(std::string(CCAL_SOURCE_DIR) + "/examples/two_instruments.toml");
+  EXPECT_EQ(two.instruments[0].certificate->serial_number, "SN 0815");
+  EXPECT_EQ(two.instruments[1].certificate->serial_number, "SN 0816");
+}
+
+TEST(Instruments, SerialNumbersThatCannotNameEachInstrumentAreRefused) {
+  // A [certificate] for two instruments without a serial of each would give both one history.
+  const std::string none = kBase + kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"\n"
+                                                  "[[instruments]]\nid = \"B\"";
+  expect_error(none, last_line(none) - 1, "instruments[2]",
+               {"instrument 'B' has no serial_number", "each of the 2 instruments", "each its own"});
+  const std::string same = kBase + kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"\n"
+                                                  "[[instruments]]\nid = \"B\"\nserial_number = \"SN 10\"";
+  expect_error(same, last_line(same), "instruments[2].serial_number", {"'SN 10' is instrument 'A''s too"});
+  expect_appended_error("[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"", "instruments[1].serial_number",
+                        {"no [certificate] table", "accepted: a [certificate] table, or no serial_number"});
+  expect_appended_error(kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \" \"",
+                        "instruments[1].serial_number", {"is empty"});
+  expect_appended_error(kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = 42",
+                        "instruments[1].serial_number", {"string"});
+}
+
+// One instrument chosen from a test (`--instrument ID`): its configuration as a test of it alone, the others named.
+TEST(Instruments, OneInstrumentIsChosenByItsId) {
+  const Config c = parse_config(kTwo, "two.toml");
+  const Config b = select_instrument(c, "B");
+  EXPECT_EQ(b.instrument_id, "B");
+  ASSERT_EQ(b.instruments.size(), 1u);
+  EXPECT_EQ(b.instruments[0].instrument_id, "B");
+  EXPECT_EQ(b.other_instruments, std::vector<std::string>{"A"});
+  EXPECT_EQ(b.numbers_sha256, c.instruments[1].numbers_sha256);
+  EXPECT_NEAR(b.centrifuge.geometry.y5, 0.12, 1e-17);
+  EXPECT_NO_THROW(require_one_instrument(b, "budget"));
+  EXPECT_EQ(select_instrument(c, "").instruments.size(), 2u);  // none chosen: the whole test
+  try {
+    select_instrument(c, "C");
+    FAIL() << "accepted";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "instrument");
+    EXPECT_EQ(std::string(e.what()), "instrument: C is no instrument of two.toml; accepted: A, B");
+  }
+  try {
+    select_instrument(parse_config(kBase, "one.toml"), "A");
+    FAIL() << "accepted";
+  } catch (const OptionError& e) {
+    EXPECT_NE(std::string(e.what()).find("one.toml has one [instrument] and no ids"), std::string::npos) << e.what();
+  }
+  // A verb of one instrument asks for one, naming them.
+  try {
+    require_one_instrument(c, "force");
+    FAIL() << "accepted";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "instrument");
+    EXPECT_NE(std::string(e.what()).find("two.toml holds a test of 2 instruments (A, B), and force answers for one "
+                                         "at a time; accepted: one of A, B"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ccal

@@ -14,6 +14,8 @@
 #include "ccal/io/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/verbs/budget.hpp"
+#include "ccal/verbs/force.hpp"
+#include "ccal/verbs/montecarlo.hpp"
 #include "ccal/verbs/reduce.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "test_paths.hpp"
@@ -129,18 +131,21 @@ TEST_F(ReduceInstruments, AnInstrumentWithoutAColumnIsRefusedNamingTheManifest) 
   EXPECT_THROW(verbs::reduce(config_, o), InputError);
 }
 
-// The verbs that answer for one instrument refuse a test of several rather than answer for the first alone.
+// The verbs that answer for one instrument refuse a test of several rather than answer for the first alone,
+// asking for one of them.
 TEST_F(ReduceInstruments, VerbsOfOneInstrumentRefuseATestOfSeveral) {
   try {
-    verbs::budget(config_, {});
+    verbs::force(config_, {});
     FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("a test of 2 instruments (A, B) ([[instruments]]); budget answers for one "
-                                         "instrument"),
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "instrument");
+    EXPECT_NE(std::string(e.what()).find("a test of 2 instruments (A, B), and force answers for one at a time; "
+                                         "accepted: one of A, B"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(verbs::simulate(config_, {}), InputError);
+  EXPECT_THROW(verbs::monte_carlo(config_, {}), OptionError);
+  EXPECT_NO_THROW(verbs::force(select_instrument(config_, "B"), {}));  // one of them, chosen
   EXPECT_NO_THROW(verbs::budget(config_.instruments[1], {}));  // each instrument's own configuration
   // A configuration of one [[instruments]] entry (B at its place, alone) is one instrument.
   const std::string b_alone = "setup = \"" + source_dir() + "/examples/lab.toml\"\n[[instruments]]\nid = \"B\"\n"

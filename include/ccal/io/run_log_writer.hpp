@@ -39,6 +39,18 @@ std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::Vector
                                        const std::vector<double>& run_means, double step,
                                        const LogLayout& layout = {});
 
+// The output of one instrument in the logs of a test of several ([[instruments]]): its column's name, the
+// instrument (its quantum: a count of pulses, else its output unit) and its runs' mean outputs [output SI], in
+// plan order. Every instrument's column sits between the time and the encoders, in the order given; the time,
+// the encoders and the clock are the machine's (config's), one for all.
+struct LoggedOutput {
+  std::string column;
+  InstrumentModel instrument;
+  std::vector<double> run_means;
+};
+std::vector<RunLogFile> write_instrument_logs(const Config& config, const Eigen::VectorXd& machine_errors,
+                                              const std::vector<LoggedOutput>& outputs, double step,
+                                              const LogLayout& layout = {});
 // The file name of a run's log: its name with characters other than letters, digits, '.', '-' as '_', and ".csv".
 std::string run_log_file_name(const std::string& run);
 

@@ -44,6 +44,9 @@ struct Config {
   // centrifuge.geometry (x5, y5, azimuth5), its fingerprint numbers_sha256 its own, every other table shared.
   // This configuration is then the first's, with the list. Empty for a configuration of one [instrument].
   std::vector<Config> instruments;
+  // The ids of the test's other instruments, when this configuration is one instrument chosen from a test of
+  // several (select_instrument): their columns in the test's logs are not this instrument's.
+  std::vector<std::string> other_instruments;
   TestPlan plan;
   std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order, then the measuring chain's inputs
   std::vector<Correlation> correlations;  // pairs of tolerances partly correlated ([[correlations]])
@@ -64,10 +67,16 @@ struct Config {
   Experiment experiment() const;
 };
 
-// Refuses a configuration of several instruments (two or more [[instruments]]) for a verb that handles one (InputError
-// naming the verb, the instruments and what is accepted): until it handles each, it must not answer for the first
-// alone. `reduce` handles several.
+// Refuses a configuration of several instruments (two or more [[instruments]]) for a verb that handles one: an
+// OptionError of the field "instrument" naming the verb and the instruments, which accepts one of them (chosen by
+// select_instrument); it must not answer for the first alone.
 void require_one_instrument(const Config& config, std::string_view verb);
+
+// One instrument of a test of several, by its [[instruments]] id: its configuration, at its place on the platform,
+// as a test of that one instrument (instruments = {it}), with the others' ids in other_instruments. An empty id
+// gives the configuration unchanged. OptionError of the field "instrument" for an id the test does not have, or for
+// a configuration of one [instrument] (which has no ids), naming what is accepted.
+Config select_instrument(const Config& config, std::string_view id);
 
 // The configuration no longer describes its file (changed in code): its fingerprints emptied.
 void clear_fingerprints(Config& config);

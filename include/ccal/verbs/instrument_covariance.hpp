@@ -38,6 +38,18 @@ struct InstrumentCovariance {
 // Whether a tolerance's input belongs to each instrument on its own (its mounting, fixed terms, output chain).
 bool instrument_own_input(int parameter) noexcept;
 
+// The sources of a test of several instruments, drawn as one: every shared tolerance once, then each instrument's
+// own tolerances as its copies ("<id>:<tolerance id>", groups likewise its own), with the [[correlations]] among
+// them (a pair of two instruments' own sources uncorrelated); per instrument, the source of each of its tolerances
+// (of_instrument[a][k]: the source of tolerance k of instrument a). InputError for a machine's tolerance that is
+// not every instrument's.
+struct JointSources {
+  std::vector<Tolerance> sources;
+  std::vector<Correlation> correlations;
+  std::vector<std::vector<std::size_t>> of_instrument;
+};
+JointSources joint_sources(const std::vector<Config>& instruments);
+
 // The covariance of the instruments' configurations (Config::instruments, each with the inputs its test measured
 // already charged: with_measured_inputs), in `mode`; the Monte Carlo with `trials` trials (0: none).
 InstrumentCovariance instrument_covariance(const std::vector<Config>& instruments, ModelMode mode,

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/io/log_manifest.hpp"
+#include "ccal/io/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/setup/config.hpp"
@@ -49,11 +51,24 @@ struct SimulateResult {
   std::vector<std::size_t> order;     // regressor columns in canonical term order, as in the file
   std::string observations_csv;       // the observations file (the input of `ccal identify`)
   Identification identification;      // of that file
+  // A test of several instruments ([[instruments]]): each one's simulation, in the configuration's order, on one
+  // machine (the shared errors one draw for all, the drives' rate noise too; each one's own inputs and output
+  // noise its own); the fields above are then the first's, config the whole test's. Empty for one instrument.
+  std::vector<SimulateResult> instruments;
 };
 
 // Throws InputError for a plan the mode cannot reduce (paper mode off the paper's mounting), an ill-posed or
 // unobservable identification.
 SimulateResult simulate(const Config& config, const SimulateOptions& options = {});
+
+// The run logs of a simulated test as `ccal simulate --logs-out DIR` writes them: one file per run in the layout's
+// format (io/run_log_writer.hpp), then the folder's manifest (kLogManifestName), which `ccal reduce --logs DIR`
+// reads. step: the sampling interval [s] (default_log_step when unset). For a test of several instruments every
+// instrument's output is a column of each file, named by the layout's [instruments] when it maps them, else
+// "pulses_<id>" (or "output_<id>" for an instrument without a quantum), and the manifest's [instruments] names
+// them. InputError for a layout whose [instruments] misses an instrument or states its output wrongly.
+std::vector<RunLogFile> simulation_logs(const SimulateResult& simulation, LogLayout layout,
+                                        std::optional<double> step = std::nullopt);
 
 // Unit of a regressor column: gⁿ, or rad/s for K_w.
 std::string regressor_unit(const std::string& term_id);
