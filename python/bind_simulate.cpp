@@ -97,7 +97,7 @@ void bind_simulate(py::module_& m) {
           "beside them.")
       .def_readonly("instruments", &verbs::SimulateResult::instruments,
                     "a test of several instruments: each one's Simulation, in the configuration's order (the "
-                    "fields above are the first's); [] for one instrument");
+                    "fields above are the first's); [] for one instrument [list of Simulation]");
 
   m.def(
       "simulate",

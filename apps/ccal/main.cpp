@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
       if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-      return report("error", std::string(e.what()) + help_hint());
+      return report("error", ccal::cli::parse_error_message(e) + help_hint());
     }
     for (const auto& command : commands)
       if (command.app->parsed()) command.run();

@@ -1,7 +1,11 @@
 #include "option_flags.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <map>
+#include <regex>
+#include <string>
 #include <utility>
 
 #include "ccal/io/config_file.hpp"  // nearest_name: the did-you-mean of every mistyped name
@@ -80,4 +84,13 @@ CLI::Option* add_text_flag(CLI::App& command, const std::string& flag, std::stri
 }
 
 }  // namespace detail
+std::string parse_error_message(const CLI::ParseError& error) {
+  const std::string what = error.what();
+  static const std::regex at_most(R"(^(.*): At Most (\d+) required but received (\d+)$)");
+  std::smatch m;
+  if (!std::regex_match(what, m, at_most)) return what;
+  const std::string once = m[2] == "1" ? "once (the last of several is not taken silently)" : m[2].str() + " times";
+  return fmt::format("{}: given {} times; accepted: {}", m[1].str(), m[3].str(), once);
+}
+
 }  // namespace ccal::cli

@@ -32,6 +32,10 @@ std::string declared_flag(const CLI::App* command, std::string_view field);
 std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names,
                                     std::string_view parent = {});
 
+// A parse error's message as the program words it: an option given more often than it is taken ("--x: At Most 1
+// required but received 2", the parser's) is "--x: given 2 times; accepted: once"; any other as the parser says.
+std::string parse_error_message(const CLI::ParseError& error);
+
 // Declares a flag for every row of `table` on `command`, bound to `options` (which must outlive the parse),
 // except the fields named in `skip` (bound by hand by the command).
 template <class Options>

@@ -138,7 +138,13 @@ void add_instrument_option(CLI::App& command, ConfigChoice& config) {
       .add_option("--instrument", config.instrument,
                   "ID: in a test of several instruments ([[instruments]]), the one to answer for (its id); "
                   "default: every instrument, where the command handles several")
-      ->type_name("ID");
+      ->type_name("ID")
+      ->each([](const std::string& id) {
+        if (id.empty())  // an unset shell variable would otherwise mean every instrument silently
+          throw CLI::ParseError("--instrument: the id is empty; accepted: an instrument's id of the "
+                                "configuration's [[instruments]], e.g. A",
+                                CLI::ExitCodes::ValidationError);
+      });
 }
 
 void add_config_argument(CLI::App& command, ConfigChoice& config) {

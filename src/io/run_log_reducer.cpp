@@ -213,10 +213,10 @@ void LogReducer::units(const std::vector<std::string>& units, int line) {
   if (pending_kind_ != Problem::no_time && !units[time_].empty() && !options_.columns.iso_time) {
     const std::optional<double> size = unit_of(units[time_], kind::time);
     if (!size) refuse(time_, fmt::format("'{}' is not a time unit; accepted: s, ms, us, µs, min, …", units[time_]));
-    if (options_.time_unit_stated && !same_size(*size, options_.columns.time_scale))
-      refuse(time_, fmt::format("the units row says '{}', the layout's time_unit is {:g} s; accepted: one unit (the "
+    if (!options_.time_unit_stated.empty() && !same_size(*size, options_.columns.time_scale))
+      refuse(time_, fmt::format("the units row says '{}', the layout's time_unit is '{}'; accepted: one unit (the "
                                 "manifest's time_unit left out, the units row gives it)",
-                                units[time_], options_.columns.time_scale));
+                                units[time_], options_.time_unit_stated));
     options_.columns.time_scale = *size;
   }
   for (const std::optional<Encoder>* e : {&theta1_, &gamma_}) {
@@ -233,10 +233,11 @@ void LogReducer::units(const std::vector<std::string>& units, int line) {
     }
     const std::optional<double> size = unit_of(u, kind::angle);
     if (!size) refuse(k, fmt::format("'{}' is not an angle unit; accepted: rad, deg, arcsec, … or counts", u));
-    if (options_.angle_quantum > 0 || (options_.angle_unit_stated && !same_size(*size, options_.angle_scale)))
-      refuse(k, fmt::format("the units row says '{}', the layout's angle_unit another ({}); accepted: one unit "
-                            "(the angle_unit left out, the units row gives it)",
-                            u, options_.angle_quantum > 0 ? "counts" : fmt::format("{:g} rad", options_.angle_scale)));
+    if (options_.angle_quantum > 0 ||
+        (!options_.angle_unit_stated.empty() && !same_size(*size, options_.angle_scale)))
+      refuse(k, fmt::format("the units row says '{}', the layout's angle_unit is '{}'; accepted: one unit (the "
+                            "angle_unit left out, the units row gives it)",
+                            u, options_.angle_quantum > 0 ? "counts" : options_.angle_unit_stated));
     options_.angle_scale = *size;
   }
   if (output_ && !units[*output_].empty()) {

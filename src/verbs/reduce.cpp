@@ -211,8 +211,10 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   lo.columns = o.layout.columns;
   lo.format = o.layout.format;
   lo.max_gap = o.layout.max_gap;
-  lo.time_unit_stated = !o.layout.time_unit.empty();
-  lo.angle_unit_stated = !o.layout.angle_unit.empty() || o.angle_unit != AngleUnit::rad;
+  lo.time_unit_stated = o.layout.time_unit;
+  lo.angle_unit_stated = !o.layout.angle_unit.empty()  ? o.layout.angle_unit
+                         : o.angle_unit != AngleUnit::rad ? std::string(kAngleUnitNames[std::size_t(o.angle_unit)])
+                                                          : std::string();
   lo.output_unit = cfg.instrument.sampling_resistor > 0 ? "V" : cfg.instrument.output_unit;
   if (!o.layout.angle_unit.empty()) {
     if (o.angle_unit != AngleUnit::rad)

@@ -81,4 +81,14 @@ TEST_F(Cli, AManifestNamingTooFewRunsIsBlamedOnTheManifest) {
   EXPECT_EQ(r.err.find("--log"), std::string::npos) << r.err;
 }
 
+// An option given twice is said so, in the program's words (the parser's read "At Most 1 required but received
+// 2"), for a path as for a number.
+TEST_F(Cli, AnOptionGivenTwiceIsSaidSo) {
+  expect_bad_input(run("reduce " + quote(kLab) + " --log 5g=a.csv --log-layout a.toml --log-layout b.toml"),
+                   {"--log-layout: given 2 times; accepted: once (the last of several is not taken silently)"});
+  expect_bad_input(run("montecarlo --trials 300 --trials 400"), {"--trials: given 2 times; accepted: once"});
+  const Result r = run("budget -o a.txt -o b.txt");
+  EXPECT_EQ(r.err.find("At Most"), std::string::npos) << r.err;
+}
+
 }  // namespace

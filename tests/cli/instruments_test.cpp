@@ -44,6 +44,9 @@ TEST_F(SeveralInstruments, CommandsOfOneInstrumentAskForItAndAnUnknownIdIsNamed)
                     "one at a time; accepted: one of A, B"});
   expect_bad_input(run("montecarlo " + kLab + " --instrument A"),
                    {"--instrument: A names an instrument, but " + kLab + " has one [instrument] and no ids"});
+  expect_bad_input(run("budget " + kTwo + " --instrument ''"), {"--instrument: the id is empty; accepted: an "
+                                                                  "instrument's id"});
+  expect_bad_input(run("budget " + kTwo + " --instrument A --instrument B"), {"--instrument: given 2 times"});
   const Result force = run("force " + kTwo + " --instrument B --format json");
   ASSERT_EQ(force.code, 0) << force.err;
   write("obs.csv", read(CCAL_SOURCE_DIR + "/examples/xy_sigma.csv"));

@@ -138,17 +138,17 @@ TEST_F(RunLogDaq, AUnitsRowSuppliesTheUnitsOrIsCheckedAgainstThem) {
   // Without units_row the units are a row of bad cells (the "'ms' is not a number").
   EXPECT_NE(refusal(text, options_).find("log.csv:2:1: time: "), std::string::npos) << refusal(text, options_);
   // Stated twice, differently: refused naming both.
-  o.time_unit_stated = true;  // seconds, as the layout says
+  o.time_unit_stated = "s";  // seconds, as the layout says: named as it writes them
   EXPECT_EQ(refusal(text, o),
-            "log.csv:2:1: time: the units row says 'ms', the layout's time_unit is 1 s; accepted: one unit (the "
+            "log.csv:2:1: time: the units row says 'ms', the layout's time_unit is 's'; accepted: one unit (the "
             "manifest's time_unit left out, the units row gives it)");
-  o.time_unit_stated = false;
+  o.time_unit_stated.clear();
   Written deg = ms;
   deg.units_line = "s,counts,deg\n";
-  o.angle_unit_stated = true;  // rad
+  o.angle_unit_stated = "rad";
   EXPECT_EQ(refusal(log_text(deg, 10), o),
-            "log.csv:2:3: theta1: the units row says 'deg', the layout's angle_unit another (1 rad); accepted: one "
-            "unit (the angle_unit left out, the units row gives it)");
+            "log.csv:2:3: theta1: the units row says 'deg', the layout's angle_unit is 'rad'; accepted: one unit "
+            "(the angle_unit left out, the units row gives it)");
   Written counts = ms;
   counts.units_line = "s,counts,counts\n";
   EXPECT_EQ(refusal(log_text(counts, 10), o),

@@ -68,8 +68,9 @@ struct RunLogOptions {
   // The longest gap between samples accepted [s] (0: none declared). A gap is a step between samples of more
   // than 1.5 times the shortest before it; a declared gap is bridged by the encoders (docs/cli.md).
   double max_gap = 0;
-  // Units the configuration or layout states (a units row is checked against them) or leaves to a units row.
-  bool time_unit_stated = false, angle_unit_stated = false;
+  // Units the configuration or layout states, as written ("ms", "deg"; a units row is checked against them), or
+  // "" where it leaves them to a units row.
+  std::string time_unit_stated, angle_unit_stated;
   std::string output_unit;  // the instrument's output unit as configured (for a units row), empty: not checked
 };
 
