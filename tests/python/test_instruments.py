@@ -1,0 +1,54 @@
+"""A test of several instruments from Python (examples/two_instruments.toml): ccal.budget gives each instrument's
+Budget and the covariance of all their coefficients, as the program's JSON does; ccal.design one plan for all, with
+each instrument's result. Run by ctest with Debian's python3, the module on PYTHONPATH and the program in
+CCAL_PROGRAM."""
+
+import json
+import os
+import subprocess
+import unittest
+
+import numpy as np
+
+import ccal
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TWO = os.path.join(HERE, "..", "..", "examples", "two_instruments.toml")
+
+
+class BudgetOfInstrumentsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.result = ccal.budget(ccal.load_config(TWO))
+        out = subprocess.run([os.environ["CCAL_PROGRAM"], "budget", TWO, "--format", "json"], check=True,
+                             capture_output=True, text=True).stdout
+        cls.cli = json.loads(out)
+
+    def test_each_instrument_as_the_program(self):
+        self.assertEqual(len(self.result.instruments), 2)
+        for part, cli in zip(self.result.instruments, self.cli["instruments"]):
+            mine = json.loads(part.to_json())
+            self.assertEqual(mine, {k: v for k, v in cli.items() if k != "id"})
+            # The numbers in display units, read on the part as on any Budget: exactly the JSON's.
+            for k, coefficient in enumerate(cli["coefficients"]):
+                self.assertEqual(part.expanded_uncertainty[k] * part.display_scale[k],
+                                 coefficient["expanded_uncertainty"])
+
+    def test_the_covariance_as_the_program(self):
+        c = self.result.instrument_covariance
+        self.assertEqual(c.names, self.cli["covariance"]["coefficients"])
+        self.assertEqual(c.instruments, ["A", "B"])
+        np.testing.assert_array_equal(c.lpu, np.array(self.cli["covariance"]["lpu"]))
+        np.testing.assert_allclose(c.correlation, np.array(self.cli["covariance"]["lpu_correlation"]), rtol=0,
+                                   atol=1e-15)  # the same quotients of the same doubles
+        self.assertEqual(c.trials, 0)
+
+    def test_one_instrument_has_none(self):
+        one = ccal.budget(ccal.bundled_example())
+        self.assertEqual(one.instruments, [])
+        self.assertIsNone(one.instrument_covariance)
+        self.assertEqual(one.covariance.shape, (3, 3))  # the budget's own, as before
+
+
+if __name__ == "__main__":
+    unittest.main()
