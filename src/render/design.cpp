@@ -248,7 +248,7 @@ std::string text(const verbs::DesignResult& r) {
       r,
       fmt::format("Test-plan design (docs/model.md §15) of {}: one plan for its {} instruments ({}), run together",
                   r.config.source, r.instruments.size(), fmt::join(ids, ", ")),
-      wrap_words(fmt::format("Objective: {}, each instrument's (below); the plan's: {} (§15.6)",
+      wrap_words(fmt::format("Objective: {}, each instrument's (below); the plan's: {} (§15.4)",
                              objective_name(r.objective),
                              r.objective == DesignObjective::d_optimal
                                  ? "the sum of the instruments' objectives"

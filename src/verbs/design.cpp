@@ -344,7 +344,7 @@ void finish(Prepared& p, DesignSearchResult search, const DesignOptions& options
   }
 }
 
-// A test of several instruments: one plan for all (docs/model.md §15.6), each instrument's rows of the same
+// A test of several instruments: one plan for all (docs/model.md §15.4), each instrument's rows of the same
 // candidates, the plan scored by the joint objective; each instrument's result as design() of it alone reports it.
 DesignResult design_of_instruments(const Config& configured, const DesignOptions& options) {
   if (!options.tradeoff.empty())

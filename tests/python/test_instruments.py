@@ -50,5 +50,32 @@ class BudgetOfInstrumentsTest(unittest.TestCase):
         self.assertEqual(one.covariance.shape, (3, 3))  # the budget's own, as before
 
 
+SMALL_SPACE = """
+[design]
+g_step = "5 g"
+turn_fractions = 4
+phase_step = "90 deg"
+azimuth_step = "180 deg"
+starts = 2
+"""
+
+
+class DesignOfInstrumentsTest(unittest.TestCase):
+    def test_one_plan_with_each_instruments_result(self):
+        with open(TWO, encoding="utf-8") as f:
+            text = f.read().replace('setup = "lab.toml"',
+                                    'setup = "' + os.path.join(HERE, "..", "..", "examples", "lab.toml") + '"')
+        d = ccal.design(ccal.parse_config(text + SMALL_SPACE, "two.toml"), {"K3": 1e-3}, threads=1)
+        self.assertEqual(len(d.instruments), 2)
+        report = json.loads(d.to_json())
+        self.assertEqual([x["id"] for x in report["instruments"]], ["A", "B"])
+        for one, x in zip(d.instruments, report["instruments"]):
+            # Each instrument's U of the one plan, in the display unit, as the report gives it, below the target.
+            u = one.after.expanded_uncertainty[2] * one.after.display_scale[2]
+            self.assertEqual(u, x["coefficients"]["K3"]["designed_expanded"])
+            self.assertLessEqual(u, 1e-3)
+            self.assertEqual(len(one.sheet.lines), len(d.sheet.lines))
+
+
 if __name__ == "__main__":
     unittest.main()

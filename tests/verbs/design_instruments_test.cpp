@@ -1,5 +1,5 @@
 // `ccal design` of a test of several instruments (examples/two_instruments.toml, in a small design space): one plan
-// run with both, scored by the largest of the instruments' normalised objectives (docs/model.md §15.6), so that it
+// run with both, scored by the largest of the instruments' normalised objectives (docs/model.md §15.4), so that it
 // meets each instrument's targets where each instrument's own plan would; each instrument's result is the full
 // budget of that one plan.
 #include <gtest/gtest.h>

@@ -90,7 +90,7 @@ struct Refinement {
   int max_moves = 1000;  // improving moves at most
 };
 
-// A further instrument of a test of several, run with the same candidate runs (docs/model.md §15.6): its own
+// A further instrument of a test of several, run with the same candidate runs (docs/model.md §15.4): its own
 // rows of those candidates (its lever arm, mounting and terms), its criterion, and its rows of any run.
 struct DesignInstrument {
   CandidateRows rows;

@@ -86,7 +86,7 @@ struct DesignResult {
   double cache_seconds = 0, search_seconds = 0;
   bool candidates_from_cache = false;  // the candidate runs' rows were read from the cache file
   // A test of several instruments (two or more [[instruments]]): one plan for all, run with every instrument at
-  // once (docs/model.md §15.6). config, designed (its plan, and each instrument's, the designed one), sheet, space,
+  // once (docs/model.md §15.4). config, designed (its plan, and each instrument's, the designed one), sheet, space,
   // candidates, objective, search and the objectives (the joint one: the largest of the instruments' normalised
   // objectives, the sum for d_optimal) are the whole test's; each instrument's result is here, in the file's
   // order, with its targets, its budgets before and after, its expected statements, its mechanism and its Monte
