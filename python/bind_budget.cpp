@@ -3,6 +3,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -129,11 +130,47 @@ void bind_budget_results(py::module_& m) {
                     "the modelling choices and their biases, list of CompensationChoice [—]");
 }
 
+// The covariance of a test's instruments' coefficients (verbs/instrument_covariance.hpp).
+void bind_instrument_covariance(py::module_& m) {
+  py::class_<verbs::InstrumentCovariance>(
+      m, "InstrumentCovariance",
+      "The tolerances' covariance of the coefficients of every instrument of a test of several (the machine's "
+      "errors, g, the clock and the encoders are one for all; each instrument's own inputs and Type A parts are "
+      "not in it), in the coefficients' display units: Budget.instrument_covariance, Reduction.covariance.")
+      .def_readonly("instruments", &verbs::InstrumentCovariance::instruments, "the instruments' ids, in order [—]")
+      .def_readonly("first_row", &verbs::InstrumentCovariance::first_row,
+                    "per instrument, the row of its first coefficient [—]")
+      .def_readonly("names", &verbs::InstrumentCovariance::names, "per row: '<id> <term>', e.g. 'B K2' [—]")
+      .def_readonly("units", &verbs::InstrumentCovariance::units, "per row: the coefficient's display unit [—]")
+      .def_readonly("lpu", &verbs::InstrumentCovariance::lpu,
+                    "the LPU covariance, rows × rows [display unit_i × display unit_j]")
+      .def_property_readonly(
+          "lpu_correlation",
+          [](const verbs::InstrumentCovariance& c) {
+            Eigen::MatrixXd r = c.lpu;
+            for (Eigen::Index i = 0; i < r.rows(); ++i)
+              for (Eigen::Index j = 0; j < r.cols(); ++j) {
+                const double scale = std::sqrt(c.lpu(i, i) * c.lpu(j, j));
+                r(i, j) = scale > 0 ? c.lpu(i, j) / scale : 0.0;
+              }
+            return r;
+          },
+          "the LPU's correlation, rows × rows (0 where a coefficient does not vary) [—]")
+      .def_readonly("monte_carlo", &verbs::InstrumentCovariance::monte_carlo,
+                    "the same by a Monte Carlo of shared draws; empty when none ran [display unit_i × display unit_j]")
+      .def_readonly("trials", &verbs::InstrumentCovariance::trials, "the Monte Carlo's trials, 0 for none [—]")
+      .def_readonly("seed", &verbs::InstrumentCovariance::seed, "the Monte Carlo's seed [—]")
+      .def("__repr__", [](const verbs::InstrumentCovariance& c) {
+        return "<ccal.InstrumentCovariance of " + std::to_string(c.instruments.size()) + " instruments>";
+      });
+}
+
 }  // namespace
 
 // The budget's results, the Budget result of `ccal budget` and budget().
 void bind_budget(py::module_& m) {
   bind_budget_results(m);
+  bind_instrument_covariance(m);
 
   bind_verb_result<verbs::BudgetResult>(m, "Budget",
                                         "`ccal budget` of a configuration: its BudgetDetail's fields are "
@@ -141,7 +178,13 @@ void bind_budget(py::module_& m) {
                                         "budget")
       .def_readonly("config", &verbs::BudgetResult::config)
       .def_readonly("budget", &verbs::BudgetResult::budget,
-                    "the budget itself (its fields are readable on the result) [BudgetDetail]");
+                    "the budget itself (its fields are readable on the result) [BudgetDetail]")
+      .def_readonly("instruments", &verbs::BudgetResult::instruments,
+                    "a test of several instruments: each one's Budget, as budget() of that instrument alone, in "
+                    "the file's order (the result's own budget is then empty); [] for one instrument [list of Budget]")
+      .def_readonly("instrument_covariance", &verbs::BudgetResult::covariance,
+                    "a test of several instruments: the LPU covariance of all their coefficients; None for one "
+                    "instrument [InstrumentCovariance]");
 
   const verbs::BudgetOptions defaults;  // the CLI's defaults
   m.def(

@@ -82,6 +82,10 @@ void bind_design(py::module_& m) {
       .def_readonly("mechanism", &verbs::DesignResult::mechanism,
                     "in words: what the designed plan does differently, how much from a stronger signal and "
                     "how much from errors cancelling [—]")
+      .def_readonly("instruments", &verbs::DesignResult::instruments,
+                    "a test of several instruments: each one's Design of the one plan (its targets, before, after, "
+                    "objectives, mechanism), in the file's order; the whole result's designed and sheet are the "
+                    "plan, its objectives the joint ones; [] for one instrument [list of Design]")
       .def(
           "config_text",
           [](const verbs::DesignResult& r, const std::string& original) {

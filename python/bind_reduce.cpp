@@ -34,34 +34,6 @@ std::string path_argument(const py::object& value, std::string_view function, st
 
 namespace {
 
-// InstrumentCovariance: the covariance of a test's instruments (Reduction.covariance).
-void bind_instrument_covariance(py::module_& m) {
-  py::class_<verbs::InstrumentCovariance>(
-      m, "InstrumentCovariance",
-      "The covariance of several instruments' coefficients through the inputs they share (the machine's errors, "
-      "g, the clock, the encoders), in the statements' units; each instrument's own inputs and Type A parts are "
-      "not in it.")
-      .def_readonly("instruments", &verbs::InstrumentCovariance::instruments, "the instruments' ids [—]")
-      .def_readonly("names", &verbs::InstrumentCovariance::names, "per row: '<id> <term>', e.g. 'B K2' [—]")
-      .def_readonly("units", &verbs::InstrumentCovariance::units, "per row: the coefficient's unit [—]")
-      .def_readonly("lpu", &verbs::InstrumentCovariance::lpu,
-                    "the covariance by the law of propagation [unit_i × unit_j]")
-      .def_property_readonly(
-          "lpu_correlation",
-          [](const verbs::InstrumentCovariance& c) {
-            const Eigen::VectorXd s = c.lpu.diagonal().cwiseSqrt();
-            return Eigen::MatrixXd(c.lpu.array() / (s * s.transpose()).array());
-          },
-          "the LPU covariance as correlations [—]")
-      .def_readonly("monte_carlo", &verbs::InstrumentCovariance::monte_carlo,
-                    "the same by the Monte Carlo (shared inputs one draw for all); empty without trials "
-                    "[unit_i × unit_j]")
-      .def_readonly("trials", &verbs::InstrumentCovariance::trials, "the Monte Carlo's trials [—]")
-      .def_readonly("seed", &verbs::InstrumentCovariance::seed, "its seed [—]")
-      .def("__repr__", [](const verbs::InstrumentCovariance& c) {
-        return fmt::format("<ccal.InstrumentCovariance of {} coefficients>", c.names.size());
-      });
-}
 
 
 using LogMap = std::map<std::variant<int, std::string>, std::string>;
@@ -188,8 +160,6 @@ void bind_log_reduction_results(py::module_& m) {
 
 // Run logs reduced to observations of the runs as measured: the Reduction result, reduce(), reduce_logs().
 void bind_log_reduction(py::module_& m) {
-  bind_instrument_covariance(m);
-
   bind_verb_result<verbs::ReduceResult>(m, "Reduction",
                                         "`ccal reduce`: logged runs, their observations and identification; "
                                         "str() is the CLI's text, to_json() its JSON.",

@@ -47,11 +47,19 @@ Command add_budget(CLI::App& app) {
       "  ccal budget examples/wang_ren_2014.toml --mode paper --top 10\n"
       "  ccal budget --wide --coverage-probability 0.99\n"
       "      every source, U at p = 99 % (k = 2.58); --coverage-factor 2 states k instead\n"
-      "  ccal budget my.toml --format csv -o budget.csv\n");
+      "  ccal budget my.toml --format csv -o budget.csv\n"
+      "  ccal budget examples/two_instruments.toml\n"
+      "      a test of several instruments: each one's budget, then the correlation of their coefficients\n");
   return {cmd, [options] {
             const verbs::BudgetResult r =
                 verbs::budget(load_config_or_example(options->config), options->options);
             print_warnings(r.observability.warnings);
+            for (const verbs::BudgetResult& one : r.instruments) {  // a test of several: each one's, by its id
+              std::vector<std::string> warnings;
+              for (const std::string& w : one.observability.warnings)
+                warnings.push_back("instrument " + one.config.instrument_id + ": " + w);
+              print_warnings(warnings);
+            }
             const std::string& f = options->output.format;
             const TerminalSize terminal = output_terminal(options->output);
             render::BudgetTextOptions to;

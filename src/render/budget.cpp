@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "budget_parts.hpp"
+#include "ccal/core/errors.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/render/table.hpp"
 #include "ccal/setup/input_description.hpp"
@@ -264,8 +265,46 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
 }  // namespace
 
 std::string json(const verbs::BudgetResult& r) {
-  return json_of(r.config, r.budget, r.observability, r.known_error_bias);
+  if (r.instruments.empty()) return json_of(r.config, r.budget, r.observability, r.known_error_bias);
+  // A test of several instruments: each one's JSON as budget() of it alone gives it, after its id; then the
+  // covariance of all their coefficients.
+  nlohmann::ordered_json j;
+  j["ccal_version"] = version();
+  j["config"] = r.config.source;
+  j["instruments"] = nlohmann::ordered_json::array();
+  for (const verbs::BudgetResult& one : r.instruments) {
+    nlohmann::ordered_json x;
+    x["id"] = one.config.instrument_id;
+    x.update(nlohmann::ordered_json::parse(json(one)));
+    j["instruments"].push_back(std::move(x));
+  }
+  if (r.covariance) j["covariance"] = covariance_json(*r.covariance);
+  return j.dump(2) + "\n";
 }
-std::string csv(const verbs::BudgetResult& r) { return csv_of(r.config, r.budget, r.known_error_bias); }
+
+std::string csv(const verbs::BudgetResult& r) {
+  if (r.instruments.empty()) return csv_of(r.config, r.budget, r.known_error_bias);
+  // A test of several instruments: one table, each instrument's lines after its id in a leading column; the
+  // instruments share the identification and the tolerances' ids, so their headers are one.
+  std::string out, header;
+  for (const verbs::BudgetResult& one : r.instruments) {
+    const std::string table = csv(one);
+    const std::size_t end = table.find('\n');
+    if (header.empty()) {
+      header = table.substr(0, end);
+      out = "instrument," + header + "\n";
+    } else if (table.compare(0, end, header) != 0) {
+      throw InputError(fmt::format("--format csv: the instruments of {} have budgets of other columns (other "
+                                   "sources or terms), which one table cannot hold; accepted: --format text or json",
+                                   r.config.source));
+    }
+    for (std::size_t at = end + 1; at < table.size();) {
+      const std::size_t next = table.find('\n', at);
+      out += csv_field(one.config.instrument_id) + "," + table.substr(at, next - at + 1);
+      at = next + 1;
+    }
+  }
+  return out;
+}
 
 }  // namespace ccal::render

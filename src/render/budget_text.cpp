@@ -202,6 +202,9 @@ std::string next_steps(const Config& cfg, const ccal::BudgetResult& r) {
   const std::string c = quoted_config(cfg);
   const std::string& id = r.coefficients[worst];
   const double half = r.expanded_uncertainty[Eigen::Index(worst)] * r.display_scale[worst] / 2;
+  // An instrument of a test of several: allocate and montecarlo answer for one instrument; design for all.
+  if (cfg.instruments.empty() && !cfg.instrument_id.empty())
+    return fmt::format("Next: a test plan that sees {} better, for every instrument:  ccal design{}\n", id, c);
   const std::string labels[] = {
       "tolerances for a smaller U:", fmt::format("a test plan that sees {} better:", id),
       "the LPU checked by Monte Carlo:"};
@@ -219,6 +222,14 @@ std::string wide_sections(const verbs::BudgetResult& v);
 }  // namespace
 
 std::string text(const verbs::BudgetResult& v, const BudgetTextOptions& o) {
+  if (!v.instruments.empty()) {  // a test of several: each instrument's budget, then their correlation
+    std::string out = fmt::format("ccal budget: a test of {} instruments ({})\n\n", v.instruments.size(),
+                                  v.config.source);
+    for (const verbs::BudgetResult& one : v.instruments)
+      out += fmt::format("=== instrument {} ===\n", one.config.instrument_id) + text(one, o) + "\n";
+    if (v.covariance) out += covariance_text(*v.covariance);
+    return out;
+  }
   const Config& cfg = v.config;
   const ccal::BudgetResult& r = v.budget;
   const std::size_t nk = std::max<std::size_t>(1, r.coefficients.size());

@@ -95,6 +95,17 @@ std::string leading_sources(const verbs::DesignResult& r, std::size_t k) {
   return fmt::format("\nLeading sources of {} [{}]:\n", b0.coefficients[k], b0.units[k]) + t.render();
 }
 
+// The designed plan's U if run as written, per coefficient, with its coverage.
+nlohmann::ordered_json expected_json(const verbs::DesignResult& r) {
+  const ccal::BudgetResult& b = r.after.budget;
+  nlohmann::ordered_json expected = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < b.coefficients.size(); ++k)
+    expected[b.coefficients[k]] = {{"unit", b.units[k]}, {"expanded", expected_u(r.expected_after, b, k)}};
+  return {{"coverage_factor", b.coverage.factor},
+          {"coverage_probability", b.coverage.probability},
+          {"expected_if_run_as_written", expected}};
+}
+
 // The run sheet in the units it is printed in, with the resolution it is rounded to and its expected U.
 nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
   const SettingResolution res = setting_resolution(r.config.design);
@@ -114,20 +125,14 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
                      {"sets", l.terminal_phase ? "stop_phase" : "start_phase"},
                      {"mounting", mounting_name(l.mounting)},
                      {"mounting_axes", mounting_axes(l.mounting)}});
-  const ccal::BudgetResult& b = r.after.budget;
-  nlohmann::ordered_json expected = nlohmann::ordered_json::object();
-  for (std::size_t k = 0; k < b.coefficients.size(); ++k)
-    expected[b.coefficients[k]] = {
-        {"unit", b.units[k]}, {"expanded", expected_u(r.expected_after, b, k)}};
-  return {{"resolution",
-           {{"g_level_g", res.g},
-            {"duration_s", res.duration},
-            {"angle_deg", res.angle * constants::degrees_per_rad}}},
-          {"runs", lines},
-          {"total_duration_s", r.sheet.total_duration},
-          {"coverage_factor", b.coverage.factor},
-          {"coverage_probability", b.coverage.probability},
-          {"expected_if_run_as_written", expected}};
+  nlohmann::ordered_json sheet = {{"resolution",
+                                   {{"g_level_g", res.g},
+                                    {"duration_s", res.duration},
+                                    {"angle_deg", res.angle * constants::degrees_per_rad}}},
+                                  {"runs", lines},
+                                  {"total_duration_s", r.sheet.total_duration}};
+  if (r.instruments.empty()) sheet.update(expected_json(r));  // a test of several: each instrument's
+  return sheet;
 }
 
 // The designed plan's U if run as the sheet says (the plan as rounded), beside the configured plan's.
@@ -156,17 +161,24 @@ std::string expected_line(const verbs::DesignResult& r) {
 
 }  // namespace
 
-std::string text(const verbs::DesignResult& r) {
-  std::string out = fmt::format("Test-plan design (docs/model.md §15) of {}\n\n", r.config.source);
-  out += "Design space\n";
-  for (const auto& s : r.space.free) out += "  free:  " + s + "\n";
-  for (const auto& s : r.space.fixed) out += "  kept:  " + s + "\n";
+namespace {
+
+// The objective's line: what it counts, with each coefficient's weight and reference.
+std::string objective_line(const verbs::DesignResult& r) {
   std::vector<std::string> counted;
   for (const auto& t : r.targets)
     if (t.weight > 0)
       counted.push_back(fmt::format("{} (w = {}, {} = {})", t.coefficient, number(t.weight, 3),
                                     t.is_target ? "target" : "reference", number(t.reference * r.before.budget.display_scale[&t - r.targets.data()], 4)));
-  out += fmt::format("Objective: {} of {}\n", objective_name(r.objective), fmt::join(counted, ", "));
+  return fmt::format("Objective: {} of {}\n", objective_name(r.objective), fmt::join(counted, ", "));
+}
+
+// The design space, the objective (`objective`: its line), the search, the plans and the run sheet.
+std::string head_text(const verbs::DesignResult& r, const std::string& title, const std::string& objective) {
+  std::string out = title + "\n\nDesign space\n";
+  for (const auto& s : r.space.free) out += "  free:  " + s + "\n";
+  for (const auto& s : r.space.fixed) out += "  kept:  " + s + "\n";
+  out += objective;
   out += fmt::format(
       "Search: {} candidate runs {} in {} s; {} plans scored, {} runs refined in {} s; best from start {}\n",
       r.candidates, r.candidates_from_cache ? "read from the cache" : "cached", number(r.cache_seconds, 3),
@@ -174,10 +186,15 @@ std::string text(const verbs::DesignResult& r) {
   out += fmt::format("Objective: configured {}, designed {} (grid {})\n\n", number(r.configured_objective, 6),
                      number(r.designed_objective, 6), number(r.search.grid_objective, 6));
   out += "Configured plan\n" + plan_table(r.config) + "\nDesigned plan\n" + plan_table(r.designed);
-  out += "\nRun sheet: the designed plan as the operator runs it\n" +
-         text(r.sheet, setting_resolution(r.config.design)) + expected_line(r);
-  out += fmt::format("\nConfigured against designed (full budget, {}; 'U tol.': the tolerances alone; * counted)\n",
-                     coverage_text(r.before.budget.coverage));
+  return out + "\nRun sheet: the designed plan as the operator runs it\n" +
+         text(r.sheet, setting_resolution(r.config.design));
+}
+
+// One instrument's plans compared: full budgets, leading sources, the mechanism, the trade-off, the Monte Carlo.
+std::string comparison_text(const verbs::DesignResult& r) {
+  std::string out =
+      fmt::format("\nConfigured against designed (full budget, {}; 'U tol.': the tolerances alone; * counted)\n",
+                  coverage_text(r.before.budget.coverage));
   out += comparison_table(r);
   for (std::size_t k = 0; k < r.targets.size(); ++k)
     if (r.targets[k].weight > 0) out += leading_sources(r, k);
@@ -216,7 +233,39 @@ std::string text(const verbs::DesignResult& r) {
   return out;
 }
 
-std::string json(const verbs::DesignResult& r) {
+}  // namespace
+
+
+std::string text(const verbs::DesignResult& r) {
+  if (r.instruments.empty())
+    return head_text(r, fmt::format("Test-plan design (docs/model.md §15) of {}", r.config.source),
+                     objective_line(r)) +
+           expected_line(r) + comparison_text(r);
+  // A test of several instruments: the one plan, then each instrument's objective and budgets.
+  std::vector<std::string> ids;
+  for (const verbs::DesignResult& one : r.instruments) ids.push_back(one.config.instrument_id);
+  std::string out = head_text(
+      r,
+      fmt::format("Test-plan design (docs/model.md §15) of {}: one plan for its {} instruments ({}), run together",
+                  r.config.source, r.instruments.size(), fmt::join(ids, ", ")),
+      wrap_words(fmt::format("Objective: {}, each instrument's (below); the plan's: {} (§15.4)",
+                             objective_name(r.objective),
+                             r.objective == DesignObjective::d_optimal
+                                 ? "the sum of the instruments' objectives"
+                                 : "the largest of the instruments' objectives, each divided by the sum of its "
+                                   "weights (1: every counted U at its reference)"),
+                 110, ""));
+  for (const verbs::DesignResult& one : r.instruments)
+    out += fmt::format("\n=== instrument {} ===\n", one.config.instrument_id) + objective_line(one) +
+           fmt::format("Objective: configured {}, designed {}\n", number(one.configured_objective, 6),
+                       number(one.designed_objective, 6)) +
+           expected_line(one) + comparison_text(one);
+  return out;
+}
+
+namespace {
+
+nlohmann::ordered_json json_object(const verbs::DesignResult& r) {
   nlohmann::ordered_json j;
   j["command"] = "design";
   j["ccal_version"] = version();
@@ -291,6 +340,32 @@ std::string json(const verbs::DesignResult& r) {
                                {"lpu_std_uncertainty", mc.outputs[k].lpu_std * b1.display_scale[k]}};
     j["verification"] = v;
   }
+  return j;
+}
+
+}  // namespace
+
+std::string json(const verbs::DesignResult& r) {
+  if (r.instruments.empty()) return json_object(r).dump(2) + "\n";
+  // A test of several instruments: the one plan and the search as for one; per instrument, its objective, its
+  // coefficients before and after, its expected U, its mechanism and its Monte Carlo check.
+  nlohmann::ordered_json j = json_object(r);
+  for (const char* key : {"coefficients", "mechanism", "tradeoff"}) j.erase(key);
+  j["joint_objective"] = r.objective == DesignObjective::d_optimal
+                             ? "the sum of the instruments' objectives"
+                             : "the largest of the instruments' objectives, each divided by the sum of its weights";
+  nlohmann::ordered_json each = nlohmann::ordered_json::array();
+  for (const verbs::DesignResult& one : r.instruments) {
+    const nlohmann::ordered_json whole = json_object(one);
+    nlohmann::ordered_json x;
+    x["id"] = one.config.instrument_id;
+    x["objective_value"] = {{"configured", one.configured_objective}, {"designed", one.designed_objective}};
+    x.update(expected_json(one));
+    for (const char* key : {"coefficients", "mechanism", "verification"})
+      if (whole.contains(key)) x[key] = whole[key];
+    each.push_back(std::move(x));
+  }
+  j["instruments"] = std::move(each);
   return j.dump(2) + "\n";
 }
 

@@ -152,61 +152,6 @@ nlohmann::ordered_json json_object(const Config& cfg, const verbs::ReduceResult&
   return j;
 }
 
-// The covariance of several instruments' coefficients: rows "<id> <term>", each matrix by rows, and the
-// correlation of the LPU's (0 where a coefficient does not vary).
-nlohmann::ordered_json covariance_json(const verbs::InstrumentCovariance& c) {
-  auto rows = [](const Eigen::MatrixXd& m) {
-    nlohmann::ordered_json out = nlohmann::ordered_json::array();
-    for (Eigen::Index i = 0; i < m.rows(); ++i) {
-      std::vector<double> row(std::size_t(m.cols()));
-      for (Eigen::Index j = 0; j < m.cols(); ++j) row[std::size_t(j)] = m(i, j);
-      out.push_back(row);
-    }
-    return out;
-  };
-  Eigen::MatrixXd correlation = c.lpu;
-  for (Eigen::Index i = 0; i < c.lpu.rows(); ++i)
-    for (Eigen::Index j = 0; j < c.lpu.cols(); ++j) {
-      const double scale = std::sqrt(c.lpu(i, i) * c.lpu(j, j));
-      correlation(i, j) = scale > 0 ? c.lpu(i, j) / scale : 0.0;
-    }
-  nlohmann::ordered_json j;
-  j["what"] = "the tolerances' covariance of every instrument's coefficients (the statements' units); the Type A "
-              "parts, independent between instruments, are not in it";
-  j["coefficients"] = c.names;
-  j["units"] = c.units;
-  j["lpu"] = rows(c.lpu);
-  j["lpu_correlation"] = rows(correlation);
-  if (c.trials > 0) {
-    j["monte_carlo"] = rows(c.monte_carlo);
-    j["monte_carlo_trials"] = c.trials;
-    j["monte_carlo_seed"] = c.seed;
-  }
-  return j;
-}
-
-std::string covariance_text(const verbs::InstrumentCovariance& c) {
-  std::string out = "  correlation of the instruments' coefficients through the machine's errors (LPU";
-  out += c.trials > 0 ? fmt::format("; Monte Carlo of {} trials in brackets)\n", c.trials) : ")\n";
-  std::vector<std::string> head{""};
-  for (const std::string& n : c.names) head.push_back(n);
-  Table t(head);
-  for (Eigen::Index i = 0; i < c.lpu.rows(); ++i) {
-    std::vector<std::string> row{c.names[std::size_t(i)]};
-    for (Eigen::Index j = 0; j < c.lpu.cols(); ++j) {
-      auto rho = [&](const Eigen::MatrixXd& m) {
-        const double scale = std::sqrt(m(i, i) * m(j, j));
-        return scale > 0 ? m(i, j) / scale : 0.0;
-      };
-      std::string cell = fmt::format("{:.3f}", rho(c.lpu));
-      if (c.trials > 0) cell += fmt::format(" ({:.3f})", rho(c.monte_carlo));
-      row.push_back(cell);
-    }
-    t.add_row(row);
-  }
-  return out + t.render();
-}
-
 }  // namespace
 
 std::string text(const verbs::ReduceResult& r) {

@@ -176,6 +176,72 @@ class PlanScorer {
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
 };
 
+// Scores a plan for every instrument of a problem and combines the objectives (joint_objective); for one
+// instrument, its PlanScorer's objective itself.
+class JointScorer {
+ public:
+  explicit JointScorer(const DesignProblem& pr) : pr_(pr), f_(1 + pr.others.size()) {
+    scorers_.reserve(f_.size());
+    scorers_.emplace_back(pr.criterion);
+    for (const DesignInstrument& o : pr.others) scorers_.emplace_back(o.criterion);
+  }
+  // The plan of candidates, by every instrument's rows of them.
+  double objective(const std::vector<int>& plan) {
+    if (pr_.others.empty()) return scorers_[0].objective(pr_.rows, plan);
+    for (std::size_t i = 0; i < f_.size(); ++i)
+      if (!std::isfinite(f_[i] = scorers_[i].objective(i == 0 ? pr_.rows : pr_.others[i - 1].rows, plan)))
+        return std::numeric_limits<double>::infinity();
+    return joint_objective(pr_, f_);
+  }
+  // The plan of rows[i][plan] for instrument i.
+  double objective(const std::vector<CandidateRows>& rows, const std::vector<int>& plan) {
+    if (pr_.others.empty()) return scorers_[0].objective(rows[0], plan);
+    for (std::size_t i = 0; i < f_.size(); ++i)
+      if (!std::isfinite(f_[i] = scorers_[i].objective(rows[i], plan))) return std::numeric_limits<double>::infinity();
+    return joint_objective(pr_, f_);
+  }
+
+ private:
+  const DesignProblem& pr_;
+  std::vector<PlanScorer> scorers_;
+  std::vector<double> f_;
+};
+
+// The exchange step's rank-one scorer (design_exchange.hpp) of every instrument, combined as JointScorer does.
+class JointUpdate {
+ public:
+  JointUpdate(const DesignProblem& pr, const std::vector<Eigen::VectorXd>& norms) : pr_(pr), f_(norms.size()) {
+    updates_.reserve(f_.size());
+    updates_.emplace_back(pr.rows, norms[0], pr.criterion);
+    for (std::size_t i = 0; i < pr.others.size(); ++i)
+      updates_.emplace_back(pr.others[i].rows, norms[i + 1], pr.others[i].criterion);
+  }
+  void set_others(const std::vector<int>& plan, std::size_t position) {
+    for (design_detail::ExchangeScorer& u : updates_) u.set_others(plan, position);
+  }
+  double objective(int candidate) {
+    if (updates_.size() == 1) return updates_[0].objective(candidate);
+    for (std::size_t i = 0; i < f_.size(); ++i)
+      if (!std::isfinite(f_[i] = updates_[i].objective(candidate))) return std::numeric_limits<double>::infinity();
+    return joint_objective(pr_, f_);
+  }
+
+ private:
+  const DesignProblem& pr_;
+  std::vector<design_detail::ExchangeScorer> updates_;
+  std::vector<double> f_;
+};
+
+// Row j of `to` set to row s of `from`.
+void set_row(CandidateRows& to, Eigen::Index j, const CandidateRows& from, Eigen::Index s) {
+  to.regressors.row(j) = from.regressors.row(s);
+  to.leaks.row(j) = from.leaks.row(s);
+  to.natural.row(j) = from.natural.row(s);
+  to.scatter[j] = from.scatter[s];
+  to.noise[j] = from.noise[s];
+  to.duration[j] = from.duration[s];
+}
+
 // A deterministic stream per start: SplitMix64 of the seed and the start's index.
 std::uint64_t start_seed(std::uint64_t seed, int start) {
   std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * std::uint64_t(start + 1);
@@ -216,15 +282,14 @@ std::vector<long long> candidate_levels(const DesignProblem& pr) {
 }
 
 // A plan meets the time budget, keeps its distinct g-levels and is well posed.
-bool acceptable(const DesignProblem& pr, const std::vector<long long>& keys, PlanScorer& scorer,
+bool acceptable(const DesignProblem& pr, const std::vector<long long>& keys, JointScorer& scorer,
                 const std::vector<int>& plan) {
   return within(plan_time(pr.rows, plan), pr.total_time) &&
-         int(plan_levels(keys, plan).size()) >= pr.min_g_levels &&
-         std::isfinite(scorer.objective(pr.rows, plan));
+         int(plan_levels(keys, plan).size()) >= pr.min_g_levels && std::isfinite(scorer.objective(plan));
 }
 
 // A random acceptable plan, or an empty one after `attempts` draws.
-std::vector<int> random_plan(const DesignProblem& pr, const std::vector<long long>& keys, PlanScorer& scorer,
+std::vector<int> random_plan(const DesignProblem& pr, const std::vector<long long>& keys, JointScorer& scorer,
                              std::uint64_t seed, int attempts) {
   std::mt19937_64 rng(seed);
   std::uniform_int_distribution<int> pick(0, int(pr.candidates.size()) - 1);
@@ -239,12 +304,12 @@ std::vector<int> random_plan(const DesignProblem& pr, const std::vector<long lon
 // Exchange: for each run in turn, the candidate that lowers the objective most (ties: the lowest index),
 // until a sweep changes nothing. The uncertainty objective is scored by rank-one updates of the other runs'
 // sums (design_exchange.hpp), the noise-alone criteria by a fit per candidate.
-double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms,
+double exchange(const DesignProblem& pr, const std::vector<Eigen::VectorXd>& leak_norms,
                 const std::vector<long long>& keys, std::vector<int>& plan, int max_sweeps,
                 long long& evaluations) {
   const bool by_update = pr.criterion.objective == DesignObjective::uncertainty;
-  PlanScorer scorer(pr.criterion);
-  double f = scorer.objective(pr.rows, plan);
+  JointScorer scorer(pr);
+  double f = scorer.objective(plan);
   const int count = int(pr.candidates.size());
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     bool improved = false;
@@ -259,7 +324,7 @@ double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms,
       };
       double current = f;  // the plan as it is, by the same scorer as the trials
       if (by_update) {
-        design_detail::ExchangeScorer update(pr.rows, leak_norms, pr.criterion);
+        JointUpdate update(pr, leak_norms);
         update.set_others(plan, i);
         current = update.objective(plan[i]);
       }
@@ -269,8 +334,8 @@ double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms,
       int best_c = -1;
 #pragma omp parallel
       {
-        PlanScorer local(pr.criterion);
-        design_detail::ExchangeScorer update(pr.rows, leak_norms, pr.criterion);
+        JointScorer local(pr);
+        JointUpdate update(pr, leak_norms);
         if (by_update) update.set_others(plan, i);
         std::vector<int> trial = plan;
         double tf = std::numeric_limits<double>::infinity();
@@ -280,7 +345,7 @@ double exchange(const DesignProblem& pr, const Eigen::VectorXd& leak_norms,
           if (c == plan[i] || !within(others + pr.rows.duration[c], pr.total_time) || !keeps_levels(c))
             continue;
           trial[i] = c;
-          const double v = by_update ? update.objective(c) : local.objective(pr.rows, trial);
+          const double v = by_update ? update.objective(c) : local.objective(trial);
           if (v < tf) {
             tf = v;
             tc = c;
@@ -334,8 +399,9 @@ bool keeps_levels(const DesignProblem& pr, const std::vector<DesignRun>& runs, s
 
 // Local refinement of the continuous variables: best-improvement coordinate steps, all trial runs of a step
 // evaluated in one batch; a step size that improves nothing is halved.
-void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows& rows, PlanScorer& scorer,
-            DesignSearchResult& out, const std::function<void(std::string_view, int, int)>& report) {
+void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, std::vector<CandidateRows>& rows,
+            JointScorer& scorer, DesignSearchResult& out,
+            const std::function<void(std::string_view, int, int)>& report) {
   const Refinement& r = pr.refinement;
   double steps[4] = {r.g_step, r.duration_step, r.phase_step, r.azimuth_step};
   std::vector<int> identity(runs.size());
@@ -347,7 +413,7 @@ void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows
       DesignRun value;
     };
     std::vector<Trial> trials;
-    const double time = rows.duration.sum();
+    const double time = rows[0].duration.sum();
     for (std::size_t j = 0; j < runs.size(); ++j)
       for (int v = 0; v < 4; ++v)
         for (double sign : {1.0, -1.0}) {
@@ -361,19 +427,15 @@ void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows
     if (trials.empty()) break;
     std::vector<DesignRun> batch;
     for (const Trial& t : trials) batch.push_back(t.value);
-    const CandidateRows trial_rows = pr.evaluate(batch);
-    out.row_evaluations += Eigen::Index(batch.size());
+    std::vector<CandidateRows> trial_rows{pr.evaluate(batch)};  // per instrument
+    for (const DesignInstrument& o : pr.others) trial_rows.push_back(o.evaluate(batch));
+    out.row_evaluations += Eigen::Index(batch.size() * rows.size());
     double best = f;
     std::size_t chosen = trials.size();
     for (std::size_t t = 0; t < trials.size(); ++t) {
-      CandidateRows candidate = rows;
-      const auto j = Eigen::Index(trials[t].run), s = Eigen::Index(t);
-      candidate.regressors.row(j) = trial_rows.regressors.row(s);
-      candidate.leaks.row(j) = trial_rows.leaks.row(s);
-      candidate.natural.row(j) = trial_rows.natural.row(s);
-      candidate.scatter[j] = trial_rows.scatter[s];
-      candidate.noise[j] = trial_rows.noise[s];
-      candidate.duration[j] = trial_rows.duration[s];
+      std::vector<CandidateRows> candidate = rows;
+      for (std::size_t i = 0; i < rows.size(); ++i)
+        set_row(candidate[i], Eigen::Index(trials[t].run), trial_rows[i], Eigen::Index(t));
       const double v = scorer.objective(candidate, identity);
       ++out.evaluations;
       if (v < best - 1e-12 * std::abs(best)) {
@@ -389,19 +451,27 @@ void refine(const DesignProblem& pr, std::vector<DesignRun>& runs, CandidateRows
     }
     const std::size_t j = trials[chosen].run;
     runs[j] = trials[chosen].value;
-    const CandidateRows one = trial_rows.select({int(chosen)});
-    const auto jj = Eigen::Index(j);
-    rows.regressors.row(jj) = one.regressors.row(0);
-    rows.leaks.row(jj) = one.leaks.row(0);
-    rows.natural.row(jj) = one.natural.row(0);
-    rows.scatter[jj] = one.scatter[0];
-    rows.noise[jj] = one.noise[0];
-    rows.duration[jj] = one.duration[0];
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      set_row(rows[i], Eigen::Index(j), trial_rows[i], Eigen::Index(chosen));
     f = best;
   }
 }
 
 }  // namespace
+
+double joint_objective(const DesignProblem& pr, const std::vector<double>& f) {
+  if (f.size() == 1) return f.front();
+  double joint = pr.criterion.objective == DesignObjective::d_optimal ? 0.0 : -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (pr.criterion.objective == DesignObjective::d_optimal) {
+      joint += f[i];
+      continue;
+    }
+    const double w = (i == 0 ? pr.criterion : pr.others[i - 1].criterion).weight.sum();
+    joint = std::max(joint, w > 0 ? f[i] / w : f[i]);
+  }
+  return joint;
+}
 
 PlanScore score_plan(const CandidateRows& plan, const DesignCriterion& criterion) {
   PlanScorer scorer(criterion);
@@ -415,12 +485,16 @@ PlanScore score_plan(const CandidateRows& plan, const DesignCriterion& criterion
 DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOptions& options) {
   if (pr.runs < 1) throw InputError("the design needs at least one run");
   if (pr.candidates.empty()) throw InputError("the design space has no candidate run");
+  for (const DesignInstrument& o : pr.others)
+    if (o.rows.size() != pr.rows.size() || bool(o.evaluate) != bool(pr.evaluate))
+      throw InputError("the design's instruments have rows of other candidate runs");
   DesignSearchResult out;
-  PlanScorer scorer(pr.criterion);
+  JointScorer scorer(pr);
   std::vector<int> best;
   double best_f = std::numeric_limits<double>::infinity();
   const int starts = int(pr.initial_plans.size()) + options.starts;
-  const Eigen::VectorXd norms = design_detail::leak_norms(pr.rows);
+  std::vector<Eigen::VectorXd> norms{design_detail::leak_norms(pr.rows)};  // per instrument
+  for (const DesignInstrument& o : pr.others) norms.push_back(design_detail::leak_norms(o.rows));
   const std::vector<long long> keys = candidate_levels(pr);
   auto report = [&options](std::string_view stage, int done, int total) {
     if (options.on_progress) options.on_progress(stage, done, total);
@@ -454,13 +528,25 @@ DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOpti
         "durations, phases), raise total_time or lower min_g_levels");
   out.grid_objective = best_f;
   for (int c : best) out.runs.push_back(pr.candidates[std::size_t(c)]);
-  out.rows = pr.rows.select(best);
+  std::vector<CandidateRows> rows{pr.rows.select(best)};  // per instrument
+  for (const DesignInstrument& o : pr.others) rows.push_back(o.rows.select(best));
   if (pr.evaluate) {
-    refine(pr, out.runs, out.rows, scorer, out, report);
+    refine(pr, out.runs, rows, scorer, out, report);
     // Done, whether the steps were halved to the end or no move was left.
     report("refinement", pr.refinement.halvings + 1, pr.refinement.halvings + 1);
   }
+  out.rows = rows[0];
   out.score = score_plan(out.rows, pr.criterion);
+  if (!pr.others.empty()) {
+    std::vector<double> f{out.score.objective};
+    out.scores.push_back(out.score);
+    for (std::size_t i = 0; i < pr.others.size(); ++i) {
+      out.scores.push_back(score_plan(rows[i + 1], pr.others[i].criterion));
+      out.other_rows.push_back(rows[i + 1]);
+      f.push_back(out.scores.back().objective);
+    }
+    out.score.objective = joint_objective(pr, f);
+  }
   return out;
 }
 

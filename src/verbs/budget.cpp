@@ -29,14 +29,32 @@ constexpr OptionSpec<BudgetOptions> kBudgetRows[] = {
      "elsewhere; fast) or automatic (forward-mode AD through everything); same numbers"},
 };
 
+// A test of several instruments: the budget of each, and the covariance of all their coefficients.
+BudgetResult budget_of_instruments(const Config& config, const BudgetOptions& options) {
+  BudgetResult r;
+  r.config = config;
+  for (const Config& one : config.instruments) {
+    try {
+      r.instruments.push_back(budget(one, options));
+    } catch (const OptionError&) {
+      throw;
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("instrument '{}': {}", one.instrument_id, e.what()));
+    }
+  }
+  // The LPU alone (no trials): its diagonal blocks are the budgets' tolerance parts.
+  r.covariance = instrument_covariance(config.instruments, options.mode.value_or(config.mode), 0, 0, 0);
+  return r;
+}
+
 }  // namespace
 
 OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { return kBudgetRows; }
 
 BudgetResult budget(const Config& config, const BudgetOptions& options) {
-  require_one_instrument(config, "budget");
   check_options(options, option_table<BudgetOptions>());
   rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
+  if (config.instruments.size() > 1) return budget_of_instruments(config, options);
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the budget needs at least one source");
   ccal::BudgetOptions bo;

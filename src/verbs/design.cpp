@@ -27,7 +27,8 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
      "instrument's noise alone); default: [design] objective"},
     {"targets", &DesignOptions::targets, "COEFF=U",
      "COEFF=U: the objective counts U(COEFF)/U against this target instead of the configured plan's U, e.g. "
-     "K3=1e-4 or \"K3=1e-4 deg/s/g^3\"; one per coefficient"},
+     "K3=1e-4 or \"K3=1e-4 deg/s/g^3\"; one per coefficient; in a test of several instruments, every "
+     "instrument's"},
     {"starts", &DesignOptions::starts, "N",
      "Random starts of the search (besides the configured plan); default: [design] starts",
      OptionRange::between(0, 1000)},
@@ -255,34 +256,46 @@ TradeoffPoint tradeoff_point(const Config& config, const DesignOptions& options,
 
 OptionTable<DesignOptions> options_of(std::type_identity<DesignOptions>) { return kDesignRows; }
 
-DesignResult design(const Config& configured, const DesignOptions& options) {
-  require_one_instrument(configured, "design");
-  check_options(options, option_table<DesignOptions>());
-  // The plan is designed for what its statement will charge: the inputs the declared encoders will measure at
-  // that measurement's uncertainty (docs/model.md §13.3), the others at their tolerances.
-  const Config config = with_measured_inputs(configured, expected_measured_inputs(configured));
-  rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
+namespace {
+
+// One instrument's part of a design: its configuration as its statement will charge it (the inputs the declared
+// encoders will measure at that measurement's uncertainty, docs/model.md §13.3, the others at their tolerances),
+// its result so far (the configured plan's budget, the targets, the criterion) and its problem (its rows of the
+// candidates).
+struct Prepared {
+  Config config;
+  DesignResult r;
+  DesignProblem problem;
+};
+
+Prepared prepare(const Config& configured, const DesignOptions& options, const ResolvedDesignSpace* space,
+                 progress_bar::Progress& progress) {
+  Prepared p;
+  p.config = with_measured_inputs(configured, expected_measured_inputs(configured));
+  const Config& config = p.config;
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the design needs the tolerances it weighs");
-  DesignResult r;
+  DesignResult& r = p.r;
   r.config = configured;
-  r.space = resolve_design_space(config);
+  r.space = space ? *space : resolve_design_space(config);
   r.objective = options.objective.value_or(config.design.objective);
   r.before = budget(config, budget_options(options));
   r.targets = design_targets(config, options, r.before.budget);
-
   const auto t0 = std::chrono::steady_clock::now();
-  progress_bar::Progress progress(options.progress);
-  DesignProblem problem = candidate_problem(config, r.space, options, progress, r.candidates_from_cache);
-  r.candidates = problem.candidates.size();
+  p.problem = candidate_problem(config, r.space, options, progress, r.candidates_from_cache);
+  r.candidates = p.problem.candidates.size();
   r.cache_seconds = seconds_since(t0);
-  set_criterion(config, r, problem);
-  problem.refinement = r.space.refinement;
-  const int threads = options.threads;
-  problem.evaluate = [&config, threads](const std::vector<DesignRun>& runs) {
+  set_criterion(config, r, p.problem);
+  p.problem.refinement = r.space.refinement;
+  p.problem.evaluate = [config, threads = options.threads](const std::vector<DesignRun>& runs) {
     return candidate_rows(config, runs, threads);
   };
+  return p;
+}
 
+// The search, its progress shown; its time in `seconds`.
+DesignSearchResult run_search(const DesignProblem& problem, const Config& config, const DesignOptions& options,
+                              progress_bar::Progress& progress, double& seconds) {
   const auto t1 = std::chrono::steady_clock::now();
   DesignSearchOptions so;
   so.starts = options.starts.value_or(config.design.starts.value_or(6));
@@ -298,34 +311,111 @@ DesignResult design(const Config& configured, const DesignOptions& options) {
       progress.set_done(std::uint64_t(done));
     };
   }
-  r.search = search_design(problem, so);
-  r.search_seconds = seconds_since(t1);
+  DesignSearchResult search = search_design(problem, so);
+  seconds = seconds_since(t1);
   progress.finish();
-  r.designed_objective = r.search.score.objective;
+  return search;
+}
 
-  r.designed = with_plan(config, r.search.runs, r.space);
+// An instrument's result of the designed plan: its full budget, the tolerances' part, the mechanism, the
+// expected statements and the Monte Carlo check.
+void finish(Prepared& p, DesignSearchResult search, const DesignOptions& options) {
+  DesignResult& r = p.r;
+  r.search = std::move(search);
+  r.designed_objective = r.search.score.objective;
+  r.designed = with_plan(p.config, r.search.runs, r.space);
   r.sheet = run_sheet(r.designed.plan, r.designed.centrifuge.geometry, r.designed.site);
   r.after = rescore(r.designed, options);
   r.tolerance_before = tolerance_expanded(r.before.budget);
   r.tolerance_after = tolerance_expanded(r.after.budget);
   r.mechanism = mechanism_text(r);
   if (!options.coverage_factor) {
-    const double p = r.after.budget.coverage.probability;
-    r.expected_before = expected_statement(config, p);
-    r.expected_after = expected_statement(r.designed, p);
+    const double p_cov = r.after.budget.coverage.probability;
+    r.expected_before = expected_statement(p.config, p_cov);
+    r.expected_after = expected_statement(r.designed, p_cov);
   }
-
-  for (double factor : options.tradeoff)
-    r.tradeoff.push_back(tradeoff_point(config, options, r.space, factor));
   if (options.verify_trials > 0) {
     MonteCarloOptions mo;
     mo.trials = options.verify_trials;
-    mo.seed = so.seed;
+    mo.seed = options.seed.value_or(p.config.design.seed.value_or(1));
     mo.threads = options.threads;
     mo.coverage_probability = r.after.budget.coverage.probability;  // a stated k's normal p
     r.verification = monte_carlo(r.designed, mo);
   }
+}
+
+// A test of several instruments: one plan for all (docs/model.md §15.4), each instrument's rows of the same
+// candidates, the plan scored by the joint objective; each instrument's result as design() of it alone reports it.
+DesignResult design_of_instruments(const Config& configured, const DesignOptions& options) {
+  if (!options.tradeoff.empty())
+    throw OptionError("tradeoff", option_number_text(options.tradeoff.front()),
+                      fmt::format("is not taken for a test of {} instruments ({}); accepted: --tradeoff with a "
+                                  "configuration of one instrument",
+                                  configured.instruments.size(), configured.source));
+  progress_bar::Progress progress(options.progress);
+  std::vector<Prepared> each;
+  for (const Config& one : configured.instruments) {
+    try {
+      each.push_back(prepare(one, options, each.empty() ? nullptr : &each.front().r.space, progress));
+    } catch (const OptionError&) {
+      throw;
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("instrument '{}': {}", one.instrument_id, e.what()));
+    }
+  }
+  DesignProblem problem = each.front().problem;
+  std::vector<double> configured_objectives;
+  for (std::size_t i = 0; i < each.size(); ++i) {
+    if (i > 0)
+      problem.others.push_back({each[i].problem.rows, each[i].problem.criterion, each[i].problem.evaluate});
+    configured_objectives.push_back(each[i].r.configured_objective);
+  }
+  DesignResult r;
+  r.config = configured;
+  r.space = each.front().r.space;
+  r.objective = each.front().r.objective;
+  r.candidates = each.front().r.candidates;
+  r.candidates_from_cache = true;
+  for (const Prepared& p : each) {
+    r.cache_seconds += p.r.cache_seconds;
+    r.candidates_from_cache = r.candidates_from_cache && p.r.candidates_from_cache;
+  }
+  if (!problem.initial_plans.empty()) r.configured_objective = joint_objective(problem, configured_objectives);
+  r.search = run_search(problem, each.front().config, options, progress, r.search_seconds);
+  r.designed_objective = r.search.score.objective;
+  for (std::size_t i = 0; i < each.size(); ++i) {
+    DesignSearchResult own = r.search;
+    own.score = r.search.scores[i];
+    if (i > 0) own.rows = r.search.other_rows[i - 1];
+    own.scores.clear();
+    own.other_rows.clear();
+    finish(each[i], std::move(own), options);
+    each[i].r.search_seconds = r.search_seconds;
+  }
+  r.designed = with_plan(configured, r.search.runs, r.space);
+  for (Config& one : r.designed.instruments) {
+    one.plan = r.designed.plan;
+    clear_fingerprints(one);
+  }
+  r.sheet = run_sheet(r.designed.plan, r.designed.centrifuge.geometry, r.designed.site);
+  for (Prepared& p : each) r.instruments.push_back(std::move(p.r));
   return r;
+}
+
+}  // namespace
+
+DesignResult design(const Config& configured, const DesignOptions& options) {
+  check_options(options, option_table<DesignOptions>());
+  rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
+  if (configured.instruments.size() > 1) return design_of_instruments(configured, options);
+  progress_bar::Progress progress(options.progress);
+  Prepared p = prepare(configured, options, nullptr, progress);
+  DesignResult& r = p.r;
+  DesignSearchResult search = run_search(p.problem, p.config, options, progress, r.search_seconds);
+  finish(p, std::move(search), options);
+  for (double factor : options.tradeoff)
+    r.tradeoff.push_back(tradeoff_point(p.config, options, r.space, factor));
+  return std::move(p.r);
 }
 
 }  // namespace ccal::verbs

@@ -153,5 +153,35 @@ TEST_F(Budget, BothDerivativeMethodsGiveTheSameTable) {
   }
 }
 
+// A test of two instruments (examples/two_instruments.toml) through the program: the JSON holds each instrument's
+// budget as `ccal budget` of it alone would (checked field by field in tests/verbs/budget_instruments_test.cpp)
+// and the covariance, whose correlation matrix is symmetric with a unit diagonal (to 1e-15: a quotient of two
+// products of the same doubles); the text a section per instrument and the correlation table; the CSV a leading
+// instrument column.
+TEST_F(Budget, ATestOfTwoInstrumentsGivesEachBudgetAndTheirCorrelation) {
+  const std::string two = CCAL_SOURCE_DIR + "/examples/two_instruments.toml";
+  const Result j = run("budget " + two + " --format json");
+  ASSERT_EQ(j.code, 0) << j.err;
+  const auto doc = nlohmann::json::parse(j.out);
+  ASSERT_EQ(doc["instruments"].size(), 2u);
+  EXPECT_EQ(doc["instruments"][1]["id"], "B");
+  EXPECT_EQ(doc["instruments"][1]["coefficients"][2]["id"], "K3");
+  const auto& rho = doc["covariance"]["lpu_correlation"];
+  ASSERT_EQ(rho.size(), 6u);
+  EXPECT_EQ(doc["covariance"]["coefficients"][3], "B K0");
+  for (std::size_t a = 0; a < 6; ++a) {
+    EXPECT_NEAR(rho[a][a].get<double>(), 1.0, 1e-15);
+    for (std::size_t b = 0; b < 6; ++b) EXPECT_NEAR(rho[a][b].get<double>(), rho[b][a].get<double>(), 1e-15);
+  }
+  const Result t = run("budget " + two);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("ccal budget: a test of 2 instruments"), std::string::npos) << t.out.substr(0, 200);
+  EXPECT_NE(t.out.find("=== instrument B ==="), std::string::npos);
+  EXPECT_NE(t.out.find("correlation of the instruments' coefficients"), std::string::npos);
+  const Result c = run("budget " + two + " --format csv");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(c.out.rfind("instrument,rank,source,", 0), 0u);
+}
+
 }  // namespace
 }  // namespace ccal::test

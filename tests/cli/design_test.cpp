@@ -93,5 +93,37 @@ TEST_F(DesignCli, BadOptionsAreRefused) {
   expect_bad_input(run("design " + config + " --objective best"), {"--objective"});
 }
 
+// A test of two instruments (examples/two_instruments.toml, its set-up named by its path) through the program:
+// one designed plan, each instrument's U against the target (met: the joint objective keeps every instrument
+// within it, tests/verbs/design_instruments_test.cpp); --plan-out writes the configuration of both instruments
+// with the designed runs, which `ccal budget` takes.
+TEST_F(DesignCli, ATestOfTwoInstrumentsGetsOnePlanForBoth) {
+  std::string two = read(CCAL_SOURCE_DIR + "/examples/two_instruments.toml");
+  const std::string setup = "setup = \"lab.toml\"";
+  two.replace(two.find(setup), setup.size(), "setup = \"" + CCAL_SOURCE_DIR + "/examples/lab.toml\"");
+  const std::string config = write("two.toml", two + kSmallSpace);
+  const Result d = run("design " + config + " --target K3=1e-3 --format json --plan-out designed.toml");
+  ASSERT_EQ(d.code, 0) << d.err;
+  const nlohmann::json j = nlohmann::json::parse(d.out);
+  ASSERT_EQ(j.at("instruments").size(), 2u);
+  EXPECT_FALSE(j.contains("coefficients"));
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& designed = j.at("instruments")[i].at("coefficients").at("K3");
+    EXPECT_LE(designed.at("designed_expanded").get<double>(), 1e-3);
+    EXPECT_TRUE(designed.at("is_target").get<bool>());
+  }
+  const std::string written = read(dir_ / "designed.toml");
+  EXPECT_EQ(written.find("name = \"10g\""), std::string::npos);  // the configured runs are gone
+  for (const auto& run : j.at("designed_plan"))
+    EXPECT_NE(written.find("name = \"" + run.at("name").get<std::string>() + "\""), std::string::npos) << run;
+  const Result b = run("budget designed.toml --format json");
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_EQ(nlohmann::json::parse(b.out).at("instruments").size(), 2u);
+  // --tradeoff answers for one instrument.
+  const Result t = run("design " + config + " --tradeoff 0.5,1");
+  EXPECT_EQ(t.code, 2);
+  EXPECT_NE(t.err.find("--tradeoff"), std::string::npos) << t.err;
+}
+
 }  // namespace
 }  // namespace ccal::test

@@ -37,8 +37,8 @@ CsvTable line_table() {
 verbs::IdentifyOptions line_options(std::vector<std::string> terms) {
   verbs::IdentifyOptions o;
   o.terms = std::move(terms);
-  o.input_column = "x";
-  o.output_column = "y";
+  o.input_column = std::string("x");  // not = "x": GCC 12 misreads that inlined here (-Wrestrict)
+  o.output_column = std::string("y");  // not = "y": GCC 12 misreads that inlined here (-Wrestrict)
   return o;
 }
 

@@ -132,7 +132,8 @@ TEST_F(ReduceInstruments, AnInstrumentWithoutAColumnIsRefusedNamingTheManifest) 
 }
 
 // The verbs that answer for one instrument refuse a test of several rather than answer for the first alone,
-// asking for one of them.
+// asking for one of them (budget and design answer for each: tests/verbs/budget_instruments_test.cpp,
+// design_instruments_test.cpp).
 TEST_F(ReduceInstruments, VerbsOfOneInstrumentRefuseATestOfSeveral) {
   try {
     verbs::force(config_, {});

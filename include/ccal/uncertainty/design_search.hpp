@@ -90,6 +90,14 @@ struct Refinement {
   int max_moves = 1000;  // improving moves at most
 };
 
+// A further instrument of a test of several, run with the same candidate runs (docs/model.md §15.4): its own
+// rows of those candidates (its lever arm, mounting and terms), its criterion, and its rows of any run.
+struct DesignInstrument {
+  CandidateRows rows;
+  DesignCriterion criterion;
+  RowFunction evaluate;  // set when the problem's own is
+};
+
 struct DesignProblem {
   int runs = 0;                                            // n
   double total_time = std::numeric_limits<double>::infinity();  // Σ T_j ≤ total_time [s]
@@ -103,7 +111,17 @@ struct DesignProblem {
   // multiple of g_resolution [g] (0: when equal).
   int min_g_levels = 1;
   double g_resolution = 0;
+  // A test of several instruments: the rows, criterion and evaluate above are the first instrument's, these the
+  // others'; a plan is acceptable when it is well posed for every one, and scored by joint_objective. Empty for
+  // one instrument.
+  std::vector<DesignInstrument> others;
 };
+
+// The objective of a plan for all the instruments of a problem from each one's (the first's, then the others'):
+// for one instrument, its objective itself; for several, the largest of F_i / Σ_k w_ik (uncertainty, a_optimal:
+// each instrument's objective relative to what it scores when every counted U_k equals its reference), or the
+// sum of the F_i (d_optimal: −ln of the product of the information determinants). Infinite when one is.
+double joint_objective(const DesignProblem& problem, const std::vector<double>& objectives);
 
 struct DesignSearchOptions {
   int starts = 6;  // random starts (besides the initial plans)
@@ -117,7 +135,9 @@ struct DesignSearchOptions {
 struct DesignSearchResult {
   std::vector<DesignRun> runs;  // the best plan (refined)
   CandidateRows rows;           // its rows
-  PlanScore score;
+  PlanScore score;  // of the first instrument; for several, its objective is the joint one
+  std::vector<PlanScore> scores;  // a test of several instruments: each one's own score of the plan; else empty
+  std::vector<CandidateRows> other_rows;  // and the other instruments' rows of it (`rows` is the first's)
   double grid_objective = 0;    // of the best plan before the refinement
   int start = -1;               // which start gave it (initial plans first)
   std::vector<double> start_objectives;  // the best objective of every start (after exchange)

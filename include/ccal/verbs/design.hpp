@@ -21,7 +21,8 @@ namespace ccal::verbs {
 
 struct DesignOptions {
   std::optional<DesignObjective> objective;  // unset: [design] objective
-  // Targets "<coefficient>=<U> [unit]" as for `ccal allocate --target`; they replace [design] targets.
+  // Targets "<coefficient>=<U> [unit]" as for `ccal allocate --target`; they replace [design] targets (of every
+  // instrument of a test of several).
   std::vector<std::string> targets;
   std::optional<int> starts;                // random starts; unset: [design] starts (default 6)
   std::optional<std::uint64_t> seed;        // unset: [design] seed (default 1)
@@ -84,11 +85,19 @@ struct DesignResult {
   std::vector<TradeoffPoint> tradeoff;
   double cache_seconds = 0, search_seconds = 0;
   bool candidates_from_cache = false;  // the candidate runs' rows were read from the cache file
+  // A test of several instruments (two or more [[instruments]]): one plan for all, run with every instrument at
+  // once (docs/model.md §15.4). config, designed (its plan, and each instrument's, the designed one), sheet, space,
+  // candidates, objective, search and the objectives (the joint one: the largest of the instruments' normalised
+  // objectives, the sum for d_optimal) are the whole test's; each instrument's result is here, in the file's
+  // order, with its targets, its budgets before and after, its expected statements, its mechanism and its Monte
+  // Carlo check (its objectives its own). The fields of one instrument's result are then empty. Empty for one.
+  std::vector<DesignResult> instruments;
 };
 
 // Throws InputError for an empty or contradictory design space, one with no plan that fits and identifies the
 // free terms, bad options (naming --target, --starts, --verify, --tradeoff, --threads), and whatever
-// verbs::budget refuses.
+// verbs::budget refuses; for a test of several instruments, --tradeoff, and what it refuses of one instrument
+// (naming it). The targets apply to every instrument of a test of several.
 DesignResult design(const Config& config, const DesignOptions& options = {});
 
 }  // namespace ccal::verbs
