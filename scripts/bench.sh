@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The speed figures of docs/model.md §12 side by side with those of a previous release: the Monte Carlo of the
-# bundled example (trials/s on 2 threads), `ccal design` of the bundled example (s), the streamed reduction of a
+# bundled example (trials/s on 2 threads), the statement's Monte Carlo check on the lab example (µs a trial),
+# `ccal design` of the bundled example (s), the streamed reduction of a
 # run log (MB/s on one core), and the kernels behind them. Both are built in Release (through ccache): this
 # tree in ./build (scripts/setup.sh must have run), the release in ./build-bench/<ref> from a git worktree.
 #   bash scripts/bench.sh            against the newest release tag (v*), or without tags the last commit of
@@ -32,7 +33,7 @@ if ! git rev-parse --verify --quiet "$ref^{commit}" >/dev/null; then
 fi
 
 export CCACHE_BASEDIR="$PWD"
-targets=(bench_montecarlo bench_design bench_reduce)
+targets=(bench_montecarlo bench_statement bench_design bench_reduce)
 cmake --build build --target "${targets[@]}" >/dev/null
 
 # The release: its own worktree and build folder (kept, so that a second run only reruns the benchmarks).
@@ -66,7 +67,7 @@ run() {  # run <build folder> <program> <json out>
     echo '{"benchmarks": []}' >"$3"
   fi
 }
-filter='^(Pipeline/[12](/0)?/real_time|WholeDesign|CandidateCache|StreamedLog|RunMeansKernel)'
+filter='^(Pipeline/[12](/0)?/real_time|StatementCheck/100000/2/|WholeDesign|CandidateCache|StreamedLog|RunMeansKernel)'
 for t in "${targets[@]}"; do
   run build "$t" "$out/now_$t.json"
   run "$ref_dir/build" "$t" "$out/ref_$t.json"
@@ -93,6 +94,7 @@ figures = [
     ("Monte Carlo, bundled example, 1 thread", r"^Pipeline/1(/0)?/real_time$", "items_per_second", "trials/s"),
     ("Monte Carlo, bundled example, 2 threads", r"^Pipeline/2(/0)?/real_time$", "items_per_second", "trials/s"),
     ("run means of one trial (kernel)", r"^RunMeansKernel$", "real_time", "us"),
+    ("statement's Monte Carlo check, lab, 2 threads", r"^StatementCheck/100000/2/", "us_per_trial", "us/trial"),
     ("design, bundled example (whole, first time)", r"^WholeDesign(/0)?/", "real_time", "s"),
     ("design, again from the cache", r"^WholeDesign/1/", "real_time", "s"),
     ("design, candidate rows", r"^CandidateCache", "real_time", "s"),
@@ -124,6 +126,6 @@ print(f"{'figure':44} {'unit':9} {label:>12} {'now':>12} {'speed-up':>12}")
 for label, pattern, key, unit in figures:
     a, b = value(before, pattern, key), value(now, pattern, key)
     # A ratio above 1 is faster: rates divide now by before, times before by now.
-    ratio = "-" if a is None or b is None else f"{(b / a if key != 'real_time' else a / b):.2f}x"
+    ratio = "-" if a is None or b is None else f"{(b / a if key not in ('real_time', 'us_per_trial') else a / b):.2f}x"
     print(f"{label:44} {unit:9} {shown(a, unit):>12} {shown(b, unit):>12} {ratio:>12}")
 EOF

@@ -12,15 +12,14 @@
 #include <cstdio>
 #include <exception>
 #include <limits>
-#include <map>
 #include <memory>
 #include <mutex>
-#include <numbers>
 #include <optional>
 #include <utility>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
+#include "draw_quantiles.hpp"
 #include "progress_bar.hpp"
 #include "sample_statistics.hpp"
 
@@ -88,17 +87,17 @@ class TrialGenerator {
 // ---- Distributions ---------------------------------------------------------------------------------------
 
 // F⁻¹(u) of a distribution with bound 1, for u on the grid above (so 2u − 1 and u − ½ are exact and every
-// branch is exactly odd about u = ½).
+// branch is exactly odd about u = ½), by IEEE operations alone (draw_quantiles.hpp): the same bits everywhere.
 double standard_quantile(Distribution d, double u) {
   switch (d) {
     case Distribution::normal:
-      return normal_erf_quantile(2.0 * u - 1.0);
+      return draws::normal_quantile(u);
     case Distribution::uniform:
       return 2.0 * u - 1.0;
     case Distribution::triangular:
       return u < 0.5 ? std::sqrt(2.0 * u) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u));
     case Distribution::arcsine:
-      return std::sin(std::numbers::pi * (u - 0.5));
+      return draws::sin_pi(u - 0.5);
   }
   return 0.0;
 }
@@ -287,6 +286,24 @@ void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
     throw InputError(
         fmt::format("Monte Carlo: histogram bins must be 1…10000, not {}", options.histogram_bins));
   check_source_bounds(sources);
+  if (const Eigen::MatrixXd* earlier = options.earlier_samples) {
+    const std::uint64_t M = options.trials.value_or(kDefaultMonteCarloTrials);
+    if (options.digits > 0 || earlier->cols() != n_outputs || std::uint64_t(earlier->rows()) > M)
+      throw InputError(fmt::format("Monte Carlo: {} earlier samples of {} outputs for {} trials of {} outputs{}; "
+                                   "accepted: at most M rows of the outputs, for a run of fixed M",
+                                   earlier->rows(), earlier->cols(), M, n_outputs,
+                                   options.digits > 0 ? " (adaptive)" : ""));
+  }
+}
+
+// The earlier run's values of its trials (MonteCarloOptions::earlier_samples) taken: the trial to start at.
+std::uint64_t take_earlier(const Eigen::MatrixXd* earlier, std::vector<std::vector<double>>& samples,
+                           Progress& progress) {
+  if (!earlier || earlier->rows() == 0) return 0;
+  for (std::size_t o = 0; o < samples.size(); ++o)
+    std::copy_n(earlier->col(Eigen::Index(o)).data(), earlier->rows(), samples[o].begin());
+  if (progress.on()) progress.set_done(std::uint64_t(earlier->rows()));
+  return std::uint64_t(earlier->rows());
 }
 
 // The LPU estimate: the model at the expectations of the sources (all zero).
@@ -526,7 +543,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
         s.resize(std::min<std::uint64_t>(M, s.size() + (std::uint64_t(1) << 20)));
         progress.poll();
       }
-    engine.run(begin, M);
+    engine.run(h == 1 ? take_earlier(options.earlier_samples, samples, progress) : begin, M);
     result.stages = h;
     if (!adaptive) break;
 

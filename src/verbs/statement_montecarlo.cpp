@@ -4,7 +4,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <memory>
 
@@ -38,25 +37,43 @@ Eigen::MatrixXd covariance_root(const Eigen::MatrixXd& c) {
   return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
 }
 
+// χ²_ν of an integer ν ≥ 1 (the fit's n − p) from ⌊ν/2⌋ uniforms and, for an odd ν, one standard normal.
+int chi_squared_uniforms(double dof) { return int(dof) / 2; }
+bool chi_squared_odd(double dof) { return int(dof) % 2 == 1; }
+
+// χ²_ν = −2 ln(u_1 ⋯ u_k) + z² from the draws of those sources (uniforms on (−1, 1): u = (x + 1)/2, in (0, 1),
+// never an end). The uniforms are multiplied in runs of 16, each product at least 2⁻⁸⁴⁸ (every u ≥ 2⁻⁵³), so
+// that the product never underflows: one logarithm per 16 uniforms.
+double chi_squared_of(const double* draws, int uniforms, bool odd) {
+  double sum = 0;
+  for (int k = 0; k < uniforms; k += 16) {
+    double product = 1;
+    for (int j = k; j < std::min(uniforms, k + 16); ++j) product *= 0.5 * (draws[j] + 1);
+    sum -= 2 * std::log(product);
+  }
+  if (odd) sum += draws[uniforms] * draws[uniforms];
+  return sum;
+}
+
 // The sources of the Monte Carlo: the configuration's tolerances (not the drives' rate noise: the Type A part
 // holds it), then two standard normals per coefficient (the known and the estimated Type A parts) and, for a
-// finite ν, one uniform on (−1, 1) that gives the multivariate t's χ²_ν by its quantile.
-std::vector<Tolerance> statement_sources(const Config& config, const Identification& id, bool student) {
+// finite ν, the multivariate t's χ²_ν as a sum of ν/2 exponentials (each −2 ln u, u uniform: χ² of 2 degrees of
+// freedom) and, for an odd ν, the square of one more standard normal: ⌊ν/2⌋ uniforms on (−1, 1) and one normal.
+std::vector<Tolerance> statement_sources(const Config& config, const Identification& id, double dof) {
   std::vector<Tolerance> sources = config.tolerances;
-  for (const char* part : {"type_a_", "type_a_estimated_"})
-    for (const std::string& name : id.fit.names) {
-      Tolerance t;
-      t.id = part + name;
-      t.bound = 1;
-      t.distribution = Distribution::normal;
-      sources.push_back(t);
-    }
-  if (student) {
+  const auto add = [&sources](std::string name, Distribution d) {
     Tolerance t;
-    t.id = "type_a_chi_squared";
+    t.id = std::move(name);
     t.bound = 1;
-    t.distribution = Distribution::uniform;
+    t.distribution = d;
     sources.push_back(t);
+  };
+  for (const char* part : {"type_a_", "type_a_estimated_"})
+    for (const std::string& name : id.fit.names) add(part + name, Distribution::normal);
+  if (std::isfinite(dof)) {
+    for (int k = 0; k < chi_squared_uniforms(dof); ++k)
+      add(fmt::format("type_a_chi_squared_{}", k + 1), Distribution::uniform);
+    if (chi_squared_odd(dof)) add("type_a_chi_squared_normal", Distribution::normal);
   }
   return sources;
 }
@@ -76,28 +93,31 @@ class StatementTrial {
     const Eigen::Map<const Eigen::VectorXd> z_estimated(draws.data() + s.n_tolerances + std::size_t(nk), nk);
     double scale = 1;
     if (std::isfinite(s.type_a_dof)) {
-      const double u = 0.5 * (draws[s.n_tolerances + 2 * std::size_t(nk)] + 1);  // in (0, 1): never an end
-      scale = std::sqrt(s.type_a_dof / boost::math::quantile(chi_squared_, u));
+      // χ² = 0 only at the engine's call with every draw zero (ν = 1: z = 0; a drawn normal is never 0), where
+      // the t part is its expectation, 0, whatever the scale.
+      const double chi_squared = chi_squared_of(draws.data() + s.n_tolerances + 2 * std::size_t(nk),
+                                                chi_squared_uniforms(s.type_a_dof), chi_squared_odd(s.type_a_dof));
+      if (chi_squared > 0) scale = std::sqrt(s.type_a_dof / chi_squared);
     }
-    y_ = s.corrected + s.known_root * z_known + scale * (s.estimated_root * z_estimated);
+    // Into the trial's own vectors (no allocation per trial).
+    y_.noalias() = s.known_root * z_known;
+    shift_.noalias() = s.estimated_root * z_estimated;
+    y_ += s.corrected + scale * shift_;
     for (Eigen::Index k = 0; k < nk; ++k) {
       const auto m = s.model_index[std::size_t(k)];
       y_[k] -= s.to_fit[k] * (f_[std::size_t(m)] - s.reference[m]);
     }
     for (Eigen::Index k = 0; k < nk; ++k) outputs[std::size_t(k)] = y_[k];
-    const Eigen::VectorXd shift = y_ - s.estimate;
+    shift_ = y_ - s.estimate;
     for (Eigen::Index r = 0; r < s.design.rows(); ++r)
-      outputs[std::size_t(nk + r)] = s.modelled[r] + s.design.row(r).dot(shift);
+      outputs[std::size_t(nk + r)] = s.modelled[r] + s.design.row(r).dot(shift_);
   }
 
  private:
   std::shared_ptr<const StatementTrialShared> shared_;
   TrialFunction tolerances_;
   std::vector<double> f_;
-  Eigen::VectorXd y_;
-  boost::math::chi_squared chi_squared_{shared_->type_a_dof > 0 && std::isfinite(shared_->type_a_dof)
-                                            ? shared_->type_a_dof
-                                            : 1.0};
+  Eigen::VectorXd y_, shift_;
 };
 
 }  // namespace
@@ -141,19 +161,23 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   mo.seed = o.seed;
   mo.threads = o.threads;
   mo.coverage_probability = st.coverage_probability;
-  const bool student = std::isfinite(shared->type_a_dof);
-  const std::vector<Tolerance> sources = statement_sources(config, id, student);
+  const std::vector<Tolerance> sources = statement_sources(config, id, shared->type_a_dof);
   const TrialFunction trial = StatementTrial(shared, std::move(tolerances), int(model_names.size()));
   // Adaptive in its verdict (JCGM 101 §7.9): while a quantity's check is within the sampling error of its ends
   // and the M its diagnosis names is within kStatementTrialsCap times the requested, M grows to that M (at least
   // doubled, at most the cap); a verdict that needs more than the cap stays unsettled without the cost. Trial
-  // i's draws depend only on (seed, i), so M' trials extend the M before them, bit for bit.
+  // i's draws depend only on (seed, i), so M' trials extend the M before them, bit for bit: each run takes the
+  // values of the one before (kept while another may follow) and evaluates only its new trials.
   const auto requested = std::uint64_t(o.statement_trials);
   const std::uint64_t cap = std::min(kStatementTrialsCap * requested, std::uint64_t(kMaxMonteCarloTrials));
   ccal::MonteCarloResult mc;
+  Eigen::MatrixXd earlier;
   for (std::uint64_t trials = requested;;) {
     mo.trials = trials;
+    mo.keep_samples = trials < cap;
+    mo.earlier_samples = earlier.size() > 0 ? &earlier : nullptr;
     mc = run_monte_carlo(sources, config.correlations, int(names.size()), names, trial, mo);
+    earlier = std::move(mc.samples);
     std::uint64_t wanted = 0;  // the most trials a verdict needs, of those the cap allows
     bool settled = true;
     const auto need = [&](const CoefficientStatement& q, const OutputSummary& m) {

@@ -11,6 +11,7 @@ import unittest
 import numpy as np
 
 import ccal
+from test_design import SMALL_SPACE  # a small design space, so that a design takes seconds
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TWO = os.path.join(HERE, "..", "..", "examples", "two_instruments.toml")
@@ -50,14 +51,6 @@ class BudgetOfInstrumentsTest(unittest.TestCase):
         self.assertEqual(one.covariance.shape, (3, 3))  # the budget's own, as before
 
 
-SMALL_SPACE = """
-[design]
-g_step = "5 g"
-turn_fractions = 4
-phase_step = "90 deg"
-azimuth_step = "180 deg"
-starts = 2
-"""
 
 
 class DesignOfInstrumentsTest(unittest.TestCase):

@@ -52,4 +52,15 @@ inline double configured(const Config& config, const std::string& term, double o
   return value.value_or(0) / output_unit_si;
 }
 
+// A small design space (6 g-levels × 4 cuts of the last turn × 4 phases × 2 azimuths = 192 candidates), so that
+// a whole design runs in a few seconds.
+inline const std::string kSmallDesignSpace = R"(
+[design]
+g_step = "5 g"
+turn_fractions = 4
+phase_step = "90 deg"
+azimuth_step = "180 deg"
+starts = 2
+)";
+
 }  // namespace ccal::test

@@ -1,11 +1,15 @@
 // One trial's draws alone (draw_sources, montecarlo.hpp): a machine drawn from the stated knowledge, as `ccal
 // simulate --draw-truth` and the coverage study draw it. They are the very draws run_monte_carlo makes in that
-// trial, bit for bit, with and without correlations (its identity model keeps every trial's inputs).
+// trial, bit for bit, with and without correlations (its identity model keeps every trial's inputs). A run that
+// takes an earlier run's values (MonteCarloOptions::earlier_samples) evaluates only its new trials and gives the
+// bits of a run that evaluates them all.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <string>
 #include <vector>
 
+#include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 #include "monte_carlo_support.hpp"
 
@@ -41,6 +45,44 @@ TEST(MonteCarloDraws, OneTrialsDrawsAreTheMonteCarlosOwn) {
   }
   // Another seed, another machine.
   EXPECT_NE(draw_sources(kInputs, {}, 1), draw_sources(kInputs, {}, 2));
+}
+
+TEST(MonteCarloDraws, ARunExtendingAnEarlierOneGivesTheBitsOfAWholeRunAndEvaluatesOnlyItsNewTrials) {
+  const std::vector<Correlation> correlations = {{"n", "u", 0.6}};
+  MonteCarloOptions o;
+  o.seed = 11;
+  o.threads = 2;
+  o.keep_samples = true;
+  o.trials = 300;
+  const MonteCarloResult earlier =
+      run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
+  o.trials = 1000;
+  const MonteCarloResult whole =
+      run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
+  // The earlier values count the trials a model is called for; one is the engine's own call at zero.
+  std::atomic<int> calls = 0;
+  const TrialFunction counted = [&calls](std::span<const double> x, std::span<double> y) {
+    ++calls;
+    ccal::test::identity(x, y);
+  };
+  o.earlier_samples = &earlier.samples;
+  const MonteCarloResult extended = run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, counted, o);
+  EXPECT_EQ(calls.load(), 1 + 700);
+  EXPECT_EQ(extended.trials, 1000u);
+  EXPECT_TRUE(extended.samples == whole.samples);
+  EXPECT_TRUE(extended.covariance == whole.covariance);
+  for (std::size_t s = 0; s < kInputs.size(); ++s) {
+    EXPECT_EQ(extended.outputs[s].low_symmetric, whole.outputs[s].low_symmetric) << kInputs[s].id;
+    EXPECT_EQ(extended.outputs[s].high_shortest, whole.outputs[s].high_shortest) << kInputs[s].id;
+    EXPECT_EQ(extended.outputs[s].mean, whole.outputs[s].mean) << kInputs[s].id;
+  }
+  // Values that cannot be the first trials of this run are refused: more of them than trials, other outputs.
+  o.trials = 200;
+  EXPECT_THROW(run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, counted, o), InputError);
+  o.trials = 1000;
+  EXPECT_THROW(run_monte_carlo(kInputs, correlations, 2, {}, [](std::span<const double>, std::span<double> y) {
+    y[0] = y[1] = 0;
+  }, o), InputError);
 }
 
 }  // namespace

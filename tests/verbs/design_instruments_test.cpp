@@ -15,6 +15,7 @@
 #include "ccal/render/design.hpp"
 #include "ccal/verbs/design.hpp"
 #include "test_paths.hpp"
+#include "verbs_support.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -26,14 +27,7 @@ const Config& design_two_config() {
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string setup = "setup = \"lab.toml\"";
     text.replace(text.find(setup), setup.size(), "setup = \"" + CCAL_SOURCE_DIR + "/examples/lab.toml\"");
-    return parse_config(text + R"(
-[design]
-g_step = "5 g"
-turn_fractions = 4
-phase_step = "90 deg"
-azimuth_step = "180 deg"
-starts = 2
-)",
+    return parse_config(text + test::kSmallDesignSpace,
                         "two_design.toml");
   }();
   return c;

@@ -16,23 +16,15 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/design_candidates.hpp"
 #include "ccal/verbs/design.hpp"
+#include "verbs_support.hpp"
 
 namespace ccal {
 namespace {
 
-// A small design space (6 g-levels × 4 cuts of the last turn × 4 phases × 2 azimuths = 192 candidates), so
-// that the whole design runs in a few seconds.
-const std::string kSmallSpace = R"(
-[design]
-g_step = "5 g"
-turn_fractions = 4
-phase_step = "90 deg"
-azimuth_step = "180 deg"
-starts = 2
-)";
+using test::kSmallDesignSpace;
 
 Config small_config(const std::string& extra = "") {
-  return parse_config(std::string(bundled_example_text()) + kSmallSpace + extra, "design_test.toml");
+  return parse_config(std::string(bundled_example_text()) + kSmallDesignSpace + extra, "design_test.toml");
 }
 
 double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
@@ -88,7 +80,7 @@ TEST(Design, CachedRowsScoreAsTheBudgetWithCorrelations) {
 // example's U(K3) falls by more than a factor 2 when the heading wobble of the ±10 ppm main ripple goes), and
 // the designed plan keeps the configured mode in the file it writes.
 TEST(Design, FollowsThePlatformControl) {
-  std::string text = std::string(bundled_example_text()) + kSmallSpace;
+  std::string text = std::string(bundled_example_text()) + kSmallDesignSpace;
   const auto at = text.find("platform_control = \"speed\"");
   ASSERT_NE(at, std::string::npos);
   const Config speed = parse_config(text, "speed.toml");
@@ -189,7 +181,7 @@ TEST(DesignMinGLevels, EveryRunOnItsOwnLevelWhenAsked) {
 // g, s and rad), so its budget equals the designed plan's (relative 1e-12; in fact exactly).
 TEST_F(DesignedExample, WrittenPlanBudgetsTheSame) {
   const std::string text =
-      render::config_with_plan(std::string(bundled_example_text()) + kSmallSpace, r().designed);
+      render::config_with_plan(std::string(bundled_example_text()) + kSmallDesignSpace, r().designed);
   const Config back = parse_config(text, "designed.toml");
   ASSERT_EQ(back.plan.runs.size(), r().designed.plan.runs.size());
   for (std::size_t j = 0; j < back.plan.runs.size(); ++j) {

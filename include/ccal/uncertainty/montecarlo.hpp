@@ -136,6 +136,12 @@ struct MonteCarloOptions {
   // Keep every trial's outputs in MonteCarloResult::samples (M × n_outputs, trial order): 8·M·n_outputs bytes
   // more, besides the engine's own copy, which is partly sorted for the intervals.
   bool keep_samples = false;
+  // The outputs of trials 0 … k − 1 of an earlier run with the same seed, sources, correlations and trial
+  // function (its MonteCarloResult::samples, kept with keep_samples: k × n_outputs, trial order), taken as they
+  // are instead of evaluated again. Trial i depends only on (seed, i), so the result is that of a run without
+  // them, bit for bit, at the cost of M − k trials: a run that needs more trials extends the one before it.
+  // Fixed M only (trials ≥ k); null: none.
+  const Eigen::MatrixXd* earlier_samples = nullptr;
   int histogram_bins = 60;  // bins of each output's histogram over [lowest, highest] value, 1…10⁴
 };
 
