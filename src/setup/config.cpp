@@ -37,8 +37,8 @@ Config select_instrument(const Config& config, std::string_view id) {
                       fmt::format("is no instrument of {}; accepted: {}", config.source, fmt::join(ids, ", ")));
   Config one = config.instruments[std::size_t(chosen - ids.begin())];
   one.instruments = {one};
-  ids.erase(chosen);
-  one.other_instruments = std::move(ids);
+  for (const Config& other : config.instruments)
+    if (other.instrument_id != id) one.other_instruments.push_back({other.instrument_id, other.numbers_sha256});
   return one;
 }
 

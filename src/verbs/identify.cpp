@@ -248,6 +248,13 @@ void check_observations_configuration(const CsvTable& table, const Config& confi
   if (!header || header->config_sha256.empty() || config.numbers_sha256.empty() ||
       header->config_sha256 == config.numbers_sha256 || header->config_sha256 == config.text_sha256)
     return;
+  // Another instrument's of the same test: named, with the choice that takes it.
+  for (const Config::OtherInstrument& other : config.other_instruments)
+    if (header->config_sha256 == other.numbers_sha256)
+      throw OptionError("instrument", config.instrument_id,
+                        fmt::format("is not the instrument of {}: it holds instrument {}'s observations of {}; "
+                                    "accepted: {}",
+                                    table.source, other.id, config.source, other.id));
   throw OptionError(
       std::string(field), "",
       fmt::format("{} was made with another configuration than {}: the file's SHA-256 (line {}) "

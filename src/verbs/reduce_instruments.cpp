@@ -65,7 +65,7 @@ ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {
   for (const auto& column : o.layout.instruments)
     if (std::none_of(cfg.instruments.begin(), cfg.instruments.end(),
                      [&](const Config& c) { return c.instrument_id == column.id; }) &&
-        std::ranges::find(cfg.other_instruments, column.id) == cfg.other_instruments.end())
+        std::ranges::find(cfg.other_instruments, column.id, &Config::OtherInstrument::id) == cfg.other_instruments.end())
       throw InputError(fmt::format("{}:{}: [instruments]: '{}' is no instrument of {}; accepted: the ids of its "
                                    "[[instruments]]",
                                    o.logs.empty() ? std::string("the log layout") : o.logs.front().manifest,

@@ -65,6 +65,18 @@ TEST_F(SeveralInstruments, AnOutputOfOneInstrumentsTableIsRefusedForSeveral) {
   EXPECT_TRUE(fs::exists(dir_ / "b.csv"));
 }
 
+// Observations of one instrument given for another of the same test are named as the first's.
+TEST_F(SeveralInstruments, AnotherInstrumentsObservationsAreNamedAsTheirs) {
+  const Result a = run("reduce " + kTwo + " --logs " + kDaq + "/two_instruments --instrument A "
+                       "--observations-out a.csv -o /dev/null");
+  ASSERT_EQ(a.code, 0) << a.err;
+  expect_bad_input(run("identify a.csv --config " + kTwo + " --instrument B --statement"),
+                   {"--instrument: B is not the instrument of a.csv: it holds instrument A's observations of " +
+                    kTwo + "; accepted: A"});
+  EXPECT_EQ(run("identify a.csv --config " + kTwo + " --instrument A --statement --statement-trials 1000 "
+                "-o /dev/null").code, 0);
+}
+
 // One instrument's statement carries its [[instruments]] serial number: its history is its own.
 TEST_F(SeveralInstruments, OneInstrumentsStatementGoesToItsOwnHistory) {
   const Result b = run("reduce " + kTwo + " --logs " + kDaq + "/two_instruments --instrument B --statement "

@@ -145,7 +145,9 @@ TEST(Instruments, OneInstrumentIsChosenByItsId) {
   EXPECT_EQ(b.instrument_id, "B");
   ASSERT_EQ(b.instruments.size(), 1u);
   EXPECT_EQ(b.instruments[0].instrument_id, "B");
-  EXPECT_EQ(b.other_instruments, std::vector<std::string>{"A"});
+  ASSERT_EQ(b.other_instruments.size(), 1u);
+  EXPECT_EQ(b.other_instruments[0].id, "A");
+  EXPECT_EQ(b.other_instruments[0].numbers_sha256, c.instruments[0].numbers_sha256);
   EXPECT_EQ(b.numbers_sha256, c.instruments[1].numbers_sha256);
   EXPECT_NEAR(b.centrifuge.geometry.y5, 0.12, 1e-17);
   EXPECT_NO_THROW(require_one_instrument(b, "budget"));

@@ -44,9 +44,13 @@ struct Config {
   // centrifuge.geometry (x5, y5, azimuth5), its fingerprint numbers_sha256 its own, every other table shared.
   // This configuration is then the first's, with the list. Empty for a configuration of one [instrument].
   std::vector<Config> instruments;
-  // The ids of the test's other instruments, when this configuration is one instrument chosen from a test of
-  // several (select_instrument): their columns in the test's logs are not this instrument's.
-  std::vector<std::string> other_instruments;
+  // The test's other instruments, when this configuration is one instrument chosen from a test of several
+  // (select_instrument): their ids (their columns in the test's logs are not this instrument's) and the
+  // fingerprints of their numbers (an observations file of one of them is named as theirs).
+  struct OtherInstrument {
+    std::string id, numbers_sha256;
+  };
+  std::vector<OtherInstrument> other_instruments;
   TestPlan plan;
   std::vector<Tolerance> tolerances;  // in catalogue (ErrorLayout) order, then the measuring chain's inputs
   std::vector<Correlation> correlations;  // pairs of tolerances partly correlated ([[correlations]])
