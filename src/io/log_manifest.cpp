@@ -256,11 +256,12 @@ LogManifest read_log_manifest(const std::filesystem::path& folder) {
 LogLayout parse_log_layout(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
   const toml::table root = parse_toml(r, text, source_name, kLogLayoutAccepted);
-  // The runs of simulated logs are the plan's: a layout has the columns only.
-  r.check_keys(root, "", Keys{"format", "columns"});
+  // The runs of simulated logs are the plan's: a layout has the format and the columns only.
+  r.check_keys(root, "", Keys{"format", "columns", "instruments"});
   LogLayout layout;
   read_format(r, root, layout);
   read_columns(r, root, layout);
+  read_instrument_columns(r, root, layout);
   return layout;
 }
 

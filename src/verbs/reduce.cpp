@@ -1,6 +1,7 @@
 #include "ccal/verbs/reduce.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <cmath>
@@ -252,6 +253,16 @@ std::vector<LogFile> manifest_logs(const LogManifest& manifest) {
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   check_options(o, option_table<ReduceOptions>());
   if (!cfg.instruments.empty()) return reduce_instruments(cfg, o);
+  if (!o.layout.instruments.empty()) {  // a test of several's logs, read for one [instrument]
+    std::vector<std::string> ids;
+    for (const auto& column : o.layout.instruments) ids.push_back(column.id);
+    throw InputError(fmt::format(
+        "{}: [instruments] names the output columns of instruments {}, and {} has one [instrument]; accepted: the "
+        "configuration of that test ([[instruments]]), or [columns] pulses = \"…\" (or output) naming this "
+        "instrument's column",
+        o.logs.empty() || o.logs.front().manifest.empty() ? std::string("the log layout") : o.logs.front().manifest,
+        fmt::join(ids, ", "), cfg.source));
+  }
   ReduceResult r;
   r.config = cfg;
   r.mode = o.mode.value_or(cfg.mode);

@@ -1,6 +1,7 @@
 #include "reduce_instruments.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -51,6 +52,14 @@ std::vector<std::string> test_warnings(std::vector<ReduceResult>& each) {
   return out;
 }
 
+// The ids of the instruments of a test, the chosen one's and the others'.
+std::vector<std::string> test_ids(const Config& cfg) {
+  std::vector<std::string> ids;
+  for (const Config& one : cfg.instruments) ids.push_back(one.instrument_id);
+  for (const Config::OtherInstrument& other : cfg.other_instruments) ids.push_back(other.id);
+  return ids;
+}
+
 }  // namespace
 
 void check_single_instrument_output(const Config& cfg, std::string_view option) {
@@ -67,9 +76,9 @@ ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {
                      [&](const Config& c) { return c.instrument_id == column.id; }) &&
         std::ranges::find(cfg.other_instruments, column.id, &Config::OtherInstrument::id) == cfg.other_instruments.end())
       throw InputError(fmt::format("{}:{}: [instruments]: '{}' is no instrument of {}; accepted: the ids of its "
-                                   "[[instruments]]",
+                                   "[[instruments]] ({})",
                                    o.logs.empty() ? std::string("the log layout") : o.logs.front().manifest,
-                                   column.line, column.id, cfg.source));
+                                   column.line, column.id, cfg.source, fmt::join(test_ids(cfg), ", ")));
   if (cfg.instruments.size() == 1) {
     // One instrument (one [[instruments]] entry, or one chosen from a test of several): reduced as a configuration
     // of one, through its column of the layout's [instruments] when the layout maps them.

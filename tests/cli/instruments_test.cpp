@@ -77,6 +77,26 @@ TEST_F(SeveralInstruments, AnotherInstrumentsObservationsAreNamedAsTheirs) {
                 "-o /dev/null").code, 0);
 }
 
+// Logs of a test of several read for one [instrument], a manifest's id the test does not have, and a layout
+// file's [instruments] (as a manifest's) for simulate's logs.
+TEST_F(SeveralInstruments, ATestsLogsAreReadOnlyForItsInstruments) {
+  expect_bad_input(run("reduce " + quote(kLab) + " --logs " + kDaq + "/two_instruments"),
+                   {"manifest.toml: [instruments] names the output columns of instruments A, B, and " + kLab +
+                    " has one [instrument]"});
+  fs::create_directories(dir_ / "M");
+  for (const char* run : {"5g", "10g", "20g", "30g"})
+    fs::copy_file(kDaq + "/two_instruments/" + run + ".csv", dir_ / "M" / (std::string(run) + ".csv"));
+  std::string manifest = read(kDaq + "/two_instruments/manifest.toml");
+  manifest.replace(manifest.find("\nA = "), 5, "\na = ");
+  write("M/manifest.toml", manifest);
+  expect_bad_input(run("reduce " + kTwo + " --logs M"), {"[instruments]: 'a' is no instrument of " + kTwo +
+                                                         "; accepted: the ids of its [[instruments]] (A, B)"});
+  write("layout.toml", "[instruments]\nA = { pulses = \"piga_a\" }\nB = { pulses = \"piga_b\" }\n");
+  ASSERT_EQ(run("simulate " + kTwo + " --logs-out L --log-layout layout.toml -o /dev/null").code, 0);
+  EXPECT_EQ(read(dir_ / "L" / "5g.csv").substr(0, 31), "time,piga_a,piga_b,theta1,gamma");
+  EXPECT_EQ(run("reduce " + kTwo + " --logs L -o /dev/null").code, 0);
+}
+
 // One instrument's statement carries its [[instruments]] serial number: its history is its own.
 TEST_F(SeveralInstruments, OneInstrumentsStatementGoesToItsOwnHistory) {
   const Result b = run("reduce " + kTwo + " --logs " + kDaq + "/two_instruments --instrument B --statement "

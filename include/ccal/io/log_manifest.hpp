@@ -98,7 +98,8 @@ LogManifest parse_log_manifest(std::string_view text, std::string_view source_na
 LogLayout read_log_layout(const std::filesystem::path& file);
 // What a layout file is, for messages.
 inline constexpr std::string_view kLogLayoutAccepted =
-    "a layout file in TOML: a manifest's [format] and [columns] tables (docs/cli.md, \"A folder of logs\")";
+    "a layout file in TOML: a manifest's [format] and [columns] tables, and its [instruments] for a test of several "
+    "instruments (docs/cli.md, \"A folder of logs\")";
 LogLayout parse_log_layout(std::string_view text, std::string_view source_name);
 
 // The manifest's text for logs of this layout, one [runs] line per (run, file name).
