@@ -165,6 +165,14 @@ nlohmann::ordered_json dof_json(double dof) {
 
 // The covariance of several instruments' coefficients: rows "<id> <term>", each matrix by rows, and the
 // correlation of the LPU's (0 where a coefficient does not vary).
+nlohmann::ordered_json instrument_part_json(const std::string& id, const nlohmann::ordered_json& whole) {
+  nlohmann::ordered_json x;
+  x["id"] = id;
+  for (auto it = whole.begin(); it != whole.end(); ++it)
+    if (it.key() != "command" && it.key() != "ccal_version" && it.key() != "config") x[it.key()] = *it;
+  return x;
+}
+
 nlohmann::ordered_json covariance_json(const verbs::InstrumentCovariance& c) {
   auto rows = [](const Eigen::MatrixXd& m) {
     nlohmann::ordered_json out = nlohmann::ordered_json::array();

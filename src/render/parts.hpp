@@ -20,5 +20,8 @@ nlohmann::ordered_json dof_json(double dof);
 // correlation; as text, the correlation table (the Monte Carlo's in brackets where it ran).
 nlohmann::ordered_json covariance_json(const verbs::InstrumentCovariance& covariance);
 std::string covariance_text(const verbs::InstrumentCovariance& covariance);
+// One instrument's part of a test's JSON: {"id", then the fields of its own report but command, ccal_version and
+// config, which the test's report gives once}.
+nlohmann::ordered_json instrument_part_json(const std::string& id, const nlohmann::ordered_json& whole);
 
 }  // namespace ccal::render

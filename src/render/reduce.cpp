@@ -171,14 +171,8 @@ std::string json(const verbs::ReduceResult& r) {
   j["ccal_version"] = version();
   j["config"] = r.config.source;
   nlohmann::ordered_json each = nlohmann::ordered_json::array();
-  for (const verbs::ReduceResult& one : r.instruments) {
-    nlohmann::ordered_json x;
-    x["id"] = one.config.instrument_id;
-    const nlohmann::ordered_json whole = json_object(one.config, one);
-    for (auto it = whole.begin(); it != whole.end(); ++it)
-      if (it.key() != "command" && it.key() != "ccal_version" && it.key() != "config") x[it.key()] = *it;
-    each.push_back(x);
-  }
+  for (const verbs::ReduceResult& one : r.instruments)
+    each.push_back(instrument_part_json(one.config.instrument_id, json_object(one.config, one)));
   j["instruments"] = each;
   if (r.covariance) j["covariance"] = covariance_json(*r.covariance);
   return j.dump(2) + "\n";

@@ -144,14 +144,8 @@ std::string json(const verbs::SimulateResult& r) {
   j["ccal_version"] = version();
   j["config"] = r.config.source;
   nlohmann::ordered_json each = nlohmann::ordered_json::array();
-  for (const verbs::SimulateResult& one : r.instruments) {
-    nlohmann::ordered_json x;
-    x["id"] = one.config.instrument_id;
-    const nlohmann::ordered_json whole = json_of(one.config, one);
-    for (auto it = whole.begin(); it != whole.end(); ++it)
-      if (it.key() != "command" && it.key() != "ccal_version" && it.key() != "config") x[it.key()] = *it;
-    each.push_back(std::move(x));
-  }
+  for (const verbs::SimulateResult& one : r.instruments)
+    each.push_back(instrument_part_json(one.config.instrument_id, json_of(one.config, one)));
   j["instruments"] = std::move(each);
   return j.dump(2) + "\n";
 }
