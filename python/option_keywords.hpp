@@ -129,7 +129,7 @@ std::string accepted_text(const OptionSpec<Options>& row, const Member& member) 
     for (std::string_view n : member.names) names += (names.empty() ? "'" : ", '") + std::string(n) + "'";
     return names;
   } else {
-    using Field = std::remove_cvref_t<decltype(std::declval<Options&>().*member)>;
+    using Field = typename Member::type;
     if constexpr (std::is_same_v<Field, bool> || std::is_same_v<Field, std::string> ||
                   std::is_same_v<Field, std::vector<std::string>> ||
                   std::is_same_v<Field, std::optional<std::vector<std::string>>>)
@@ -175,7 +175,7 @@ Options options_from_keywords(const py::kwargs& given, std::string_view function
             if (!py::isinstance<py::str>(value)) keywords::wrong_type(name, "a str", value);
             member.set(options, parse_choice_option(name, value.template cast<std::string>(), member.names));
           } else {
-            keywords::assign(options.*member, name, value, row->range);
+            keywords::assign(member.of(options), name, value, row->range);
           }
         },
         row->member);
@@ -203,11 +203,11 @@ void record_keywords(py::module_& m, std::string_view function,
                              index ? py::object(py::str(std::string(member.names[*index]))) : py::none(),
                              index ? "str" : "Optional[str]", help);
           } else {
-            using Field = std::remove_cvref_t<decltype(defaults.*member)>;
+            using Field = typename decltype(member)::type;
             std::string type = keywords::type_name<Field>();
             for (const auto& [field, given] : types)
               if (field == row.field) type = given;
-            keywords::record(m, function, row.field, keywords::python_value(defaults.*member), type, help);
+            keywords::record(m, function, row.field, keywords::python_value(member.of(defaults)), type, help);
           }
         },
         row.member);

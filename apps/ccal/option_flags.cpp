@@ -14,12 +14,6 @@ namespace ccal::cli {
 
 namespace {
 
-// The one table of fields whose flag is not the field's name: lists given one element per flag.
-constexpr std::pair<std::string_view, std::string_view> kFlagSpellings[] = {
-    {"targets", "target"},
-    {"logs", "log"},
-};
-
 std::map<std::pair<const CLI::App*, std::string>, std::string>& declared() {
   static std::map<std::pair<const CLI::App*, std::string>, std::string> flags;
   return flags;
@@ -42,22 +36,9 @@ const std::vector<std::string>& choices_of(const CLI::Option* option) {
   return found != choices().end() ? found->second : none;
 }
 
-std::string flag_name(std::string_view field, std::string_view prefix) {
-  // The spelling applies to the field's last word too: report's allocate_targets → --allocate-target.
-  std::string name(field);
-  for (const auto& [from, to] : kFlagSpellings)
-    if (field == from || (field.ends_with(from) && field.size() > from.size() &&
-                          field[field.size() - from.size() - 1] == '_'))
-      name = std::string(field.substr(0, field.size() - from.size())) + std::string(to);
-  name = std::string(prefix) + name;
-  for (char& c : name)
-    if (c == '_') c = '-';
-  return "--" + name;
-}
-
 std::string declared_flag(const CLI::App* command, std::string_view field) {
   const auto found = declared().find({command, std::string(field)});
-  return found != declared().end() ? found->second : flag_name(field);
+  return found != declared().end() ? found->second : option_flag(field);
 }
 
 std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names,

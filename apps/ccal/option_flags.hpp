@@ -1,6 +1,6 @@
 #pragma once
 // The command line's flags of a verb, declared from the verb's options table (core/options.hpp): one flag per
-// row, named after the field (flag_name), bound to the verb's options struct, whose values are the defaults
+// row, named after the field (option_flag, core/options.hpp), bound to the verb's options struct, whose values are the defaults
 // the help shows. Numbers are read by the library's parsers, so that 1e5 is a whole number and an error
 // echoes what was typed; the range is checked by the verb itself, so the command line refuses what Python and
 // the library refuse, in the same words but for the option's name.
@@ -17,13 +17,8 @@
 
 namespace ccal::cli {
 
-// The flag of a field: "--" + the field with '-' for '_' (coverage_probability → --coverage-probability), but
-// for the few fields spelled otherwise on the command line (a list given one element per flag: targets →
-// --target); `prefix` goes before the field (report's allocate_ + targets → --allocate-target).
-std::string flag_name(std::string_view field, std::string_view prefix = "");
-
 // The flag a field of the command `command` was declared with (add_option_flags), for the message of an
-// OptionError; flag_name(field) when the command did not declare it.
+// OptionError; option_flag(field) (core/options.hpp) when the command did not declare it.
 std::string declared_flag(const CLI::App* command, std::string_view field);
 
 // "unknown command 'X'; accepted: a, b, c", with "did you mean 'b'?" when nearest_name (the library's
@@ -68,8 +63,8 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
     option->type_name(std::string(row.value_name));
     remember_choices(option, std::vector<std::string>(e.names.begin(), e.names.end()));
   } else {
-    using Field = std::remove_cvref_t<decltype(options.*member)>;
-    Field& value = options.*member;
+    using Field = typename Member::type;
+    Field& value = member.of(options);
     if constexpr (std::is_same_v<Field, bool>) {
       option = command.add_flag(flag, value, help);
     } else if constexpr (std::is_same_v<Field, std::string>) {
@@ -140,7 +135,7 @@ void add_option_flags(CLI::App& command, Options& options, OptionTable<Options> 
                       std::initializer_list<std::string_view> skip, std::string_view prefix) {
   for (const OptionSpec<Options>& row : table) {
     if (std::find(skip.begin(), skip.end(), row.field) != skip.end()) continue;
-    const std::string flag = flag_name(row.field, prefix);
+    const std::string flag = option_flag(row.field, prefix);
     std::visit([&](auto member) { detail::add_one_flag(command, options, row, member, flag); }, row.member);
   }
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <system_error>
+#include <utility>
 
 namespace ccal {
 
@@ -50,6 +51,27 @@ bool OptionRange::accepts(double x) const noexcept {
   const bool above = low_open ? x > low : x >= low;
   const bool below = high_open ? x < high : x <= high;
   return above && below;
+}
+
+namespace {
+// The one table of fields whose flag is not the field's name: lists given one element per flag.
+constexpr std::pair<std::string_view, std::string_view> kFlagSpellings[] = {
+    {"targets", "target"},
+    {"logs", "log"},
+};
+}  // namespace
+
+std::string option_flag(std::string_view field, std::string_view prefix) {
+  // The spelling applies to the field's last word too: report's allocate_targets → --allocate-target.
+  std::string name(field);
+  for (const auto& [from, to] : kFlagSpellings)
+    if (field == from || (field.ends_with(from) && field.size() > from.size() &&
+                          field[field.size() - from.size() - 1] == '_'))
+      name = std::string(field.substr(0, field.size() - from.size())) + std::string(to);
+  name = std::string(prefix) + name;
+  for (char& c : name)
+    if (c == '_') c = '-';
+  return "--" + name;
 }
 
 std::string option_number_text(double x) {

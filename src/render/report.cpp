@@ -245,34 +245,6 @@ std::string provenance_section(const verbs::ReportResult& r, const ReportProvena
       section_commands(r, p), p.config_text.size(), escape(p.config_text));
 }
 
-// `ccal allocate` with the options that differ from its defaults.
-void allocate_command(const verbs::AllocateOptions& a, std::optional<ModelMode> mode, ReportProvenance& p) {
-  const verbs::AllocateOptions defaults;
-  auto& c = p.allocate_command;
-  c = {"allocate"};
-  for (const auto& t : a.targets) c.insert(c.end(), {"--target", t});
-  if (mode) c.insert(c.end(), {"--mode", std::string(mode_name(*mode))});
-  if (a.coverage_probability != defaults.coverage_probability)
-    c.insert(c.end(), {"--coverage-probability", fmt::format("{:.17g}", a.coverage_probability)});
-  if (a.max_scale != defaults.max_scale)
-    c.insert(c.end(), {"--max-scale", fmt::format("{:.17g}", a.max_scale)});
-  if (a.verify_trials != defaults.verify_trials)
-    c.insert(c.end(), {"--verify-trials", std::to_string(a.verify_trials)});
-  if (a.seed != defaults.seed) c.insert(c.end(), {"--seed", std::to_string(a.seed)});
-}
-
-// `ccal design` with the options that are set.
-void design_command(const verbs::DesignOptions& d, ReportProvenance& p) {
-  auto& c = p.design_command;
-  c = {"design"};
-  if (d.objective)
-    c.insert(c.end(), {"--objective", std::string(design_objective_name(*d.objective))});
-  for (const auto& t : d.targets) c.insert(c.end(), {"--target", t});
-  if (d.starts) c.insert(c.end(), {"--starts", std::to_string(*d.starts)});
-  if (d.seed) c.insert(c.end(), {"--seed", std::to_string(*d.seed)});
-  if (d.verify_trials != 0) c.insert(c.end(), {"--verify-trials", std::to_string(d.verify_trials)});
-}
-
 // The allocation and the design sections (when the result has them), each output their cells name added to
 // `sources` with its command line.
 std::string optional_sections(const verbs::ReportResult& r, const ReportProvenance& p, Json& sources) {
@@ -332,47 +304,24 @@ std::string report_date_utc() {
 }
 
 void report_commands(const verbs::ReportResult& r, const verbs::ReportOptions& o, ReportProvenance& p) {
-  p.budget_command = {"budget"};
-  p.montecarlo_command = {"montecarlo"};
-  if (o.mode) {
-    for (auto* c : {&p.budget_command, &p.montecarlo_command}) {
-      c->push_back("--mode");
-      c->push_back(std::string(mode_name(*o.mode)));
-    }
-  }
-  const verbs::MonteCarloOptions& m = o.monte_carlo;
-  const verbs::MonteCarloOptions defaults;
-  if (m.coverage_probability != defaults.coverage_probability)
-    p.budget_command.insert(p.budget_command.end(),
-                            {"--coverage-probability", fmt::format("{:.17g}", m.coverage_probability)});
-  if (o.coverage_factor)
-    p.budget_command.insert(p.budget_command.end(),
-                            {"--coverage-factor", fmt::format("{:.17g}", *o.coverage_factor)});
-  auto add = [&p](const char* option, std::string value) {
-    p.montecarlo_command.push_back(option);
-    p.montecarlo_command.push_back(std::move(value));
+  // Each section's command: the verb and every option the report gave it that is not the verb's default.
+  const verbs::ReportSections s = verbs::report_sections(o);
+  const auto command = [](std::string verb, const auto& options) {
+    std::vector<std::string> c{std::move(verb)};
+    for (std::string& a : option_arguments(options, option_table<std::remove_cvref_t<decltype(options)>>()))
+      c.push_back(std::move(a));
+    return c;
   };
-  if (m.trials != defaults.trials) add("--trials", std::to_string(*m.trials));
-  if (m.seed != defaults.seed) add("--seed", std::to_string(m.seed));
-  if (m.digits != defaults.digits) add("--digits", std::to_string(m.digits));
-  if (m.max_trials != defaults.max_trials) add("--max-trials", std::to_string(m.max_trials));
-  if (m.coverage_probability != defaults.coverage_probability)
-    add("--coverage-probability", fmt::format("{:.17g}", m.coverage_probability));
-  if (o.allocate) allocate_command(*o.allocate, o.allocate->mode ? o.allocate->mode : o.mode, p);
-  if (o.design) design_command(*o.design, p);
+  p.budget_command = command("budget", s.budget);
+  p.montecarlo_command = command("montecarlo", s.monte_carlo);
+  if (s.allocate) p.allocate_command = command("allocate", *s.allocate);
+  if (s.design) p.design_command = command("design", *s.design);
   if (o.observations && r.observed) {
-    // As verbs::report identifies them: the report's mode and the Monte Carlo's coverage probability.
-    p.identify_command = {"identify", shown_file(r.observed->source), "--statement"};
+    // As verbs::report identifies them (the configuration, --config, is added where the command is shown).
+    p.identify_command = command("identify", s.identify);
+    p.identify_command.insert(p.identify_command.begin() + 1, shown_file(r.observed->source));
     p.observations_sha256 = o.observations->text_sha256;
     if (const auto header = observations_header(*o.observations)) p.observation_logs = header->logs;
-    if (o.mode)
-      p.identify_command.insert(p.identify_command.end(), {"--mode", std::string(mode_name(*o.mode))});
-    if (m.coverage_probability != verbs::StatementOptions{}.coverage_probability)
-      p.identify_command.insert(p.identify_command.end(),
-                                {"--coverage-probability", fmt::format("{}", m.coverage_probability)});
-    if (o.statement_trials != verbs::ReportOptions{}.statement_trials)  // the page's statement is this run's
-      p.identify_command.insert(p.identify_command.end(),
-                                {"--statement-trials", std::to_string(o.statement_trials)});
   }
 }
 

@@ -193,35 +193,29 @@ void warn_about_powers_of_means(const CsvTable& table, const TableFitSpec& spec,
           t.id, spec.input, parse_term(t.id)->power));
 }
 
-constexpr OptionSpec<IdentifyOptions> kIdentifyRows[] = {
-    {"terms",
-     &IdentifyOptions::terms,
-     "TERMS",
-     "Free terms, comma-separated: Kn is the coefficient of input^n; <term>:<column> takes the column as the "
-     "term's regressor (needed for K_p ... K_w). Default: the file's '# ccal observations' line",
-     {},
-     true},
-    {"fix", &IdentifyOptions::fix, "TERM=VALUE",
-     "Terms held at known values, comma-separated <term>[:<column>]=<value>, the value in the file's output "
-     "unit per input unit^n (or with a unit). Default: the file's fixed terms"},
-    {"known", &IdentifyOptions::known, "COL[,COL]",
-     "Columns subtracted from the output, comma-separated, or 'none'. Default: the file's known columns"},
-    {"input_column", &IdentifyOptions::input_column, "COL", "Column of the input x of the power terms"},
-    {"output_column", &IdentifyOptions::output_column, "COL", "Column of the output y"},
-    {"weight_column", &IdentifyOptions::weight_column, "COL",
-     "Column of the standard deviations sigma of y (weights 1/sigma^2); default: unweighted"},
-    {"statement", &IdentifyOptions::statement, "",
-     "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of the "
-     "configuration given as config, the correction for its known [errors], u_c, nu_eff, k, U, interval"},
-    rows::coverage_probability(&IdentifyOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
-    rows::coverage_factor(&IdentifyOptions::coverage_factor),
-    rows::mode<&IdentifyOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
-                                       "configuration's [identification] mode"),
-    rows::statement_trials(&IdentifyOptions::statement_trials),
-    rows::seed(&IdentifyOptions::seed, "Seed of the statement's Monte Carlo check"),
-    rows::threads(&IdentifyOptions::threads),
-};
+constexpr auto kIdentifyRows = join_rows(
+    std::to_array<OptionSpec<IdentifyOptions>>({
+        {"terms",
+         &IdentifyOptions::terms,
+         "TERMS",
+         "Free terms, comma-separated: Kn is the coefficient of input^n; <term>:<column> takes the column as the "
+         "term's regressor (needed for K_p ... K_w). Default: the file's '# ccal observations' line",
+         {},
+         true},
+        {"fix", &IdentifyOptions::fix, "TERM=VALUE",
+         "Terms held at known values, comma-separated <term>[:<column>]=<value>, the value in the file's output "
+         "unit per input unit^n (or with a unit). Default: the file's fixed terms"},
+        {"known", &IdentifyOptions::known, "COL[,COL]",
+         "Columns subtracted from the output, comma-separated, or 'none'. Default: the file's known columns"},
+        {"input_column", &IdentifyOptions::input_column, "COL", "Column of the input x of the power terms"},
+        {"output_column", &IdentifyOptions::output_column, "COL", "Column of the output y"},
+        {"weight_column", &IdentifyOptions::weight_column, "COL",
+         "Column of the standard deviations sigma of y (weights 1/sigma^2); default: unweighted"},
+        {"statement", &IdentifyOptions::statement, "",
+         "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the tolerances of the "
+         "configuration given as config, the correction for its known [errors], u_c, nu_eff, k, U, interval"},
+    }),
+    lifted_rows<&IdentifyOptions::statement_options, kStatementRows>());
 
 // The table's checks, and a statement asked for without its configuration or the other way round.
 void check_verb_options(const IdentifyOptions& o) {
@@ -285,9 +279,8 @@ IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
                       OptionError::name("weight_column")));
     check_observations_configuration(table, *options.config, "config");
     const TestEvidence evidence = test_evidence(header, r.identification);
-    r.statement = calibration_statement(*options.config, r.identification,
-                                        statement_options(options, options.mode), "statement", evidence.measured,
-                                        evidence.durations);
+    r.statement = calibration_statement(*options.config, r.identification, options.statement_options,
+                                        "statement", evidence.measured, evidence.durations);
   }
   return r;
 }

@@ -160,25 +160,23 @@ constexpr auto kStrictRunsHelp = [] {
   return text;
 }();
 
-constexpr OptionSpec<ReduceOptions> kReduceRows[] = {
-    {"angle_unit", enum_member<&ReduceOptions::angle_unit>(kAngleUnitNames), "UNIT",
-     "Unit of the encoder columns: rad or deg"},
-    {"pulse_weight", &ReduceOptions::pulse_weight, "W",
-     "Integrated output per pulse, in the output unit × s (e.g. deg for deg/s); default: the instrument's "
-     "quantum"},
-    {"strict_runs", &ReduceOptions::strict_runs, "", {kStrictRunsHelp.data(), kStrictRunsHelp.size()}},
-    rows::mode<&ReduceOptions::mode>("Model of the regressors: exact (full chain) or paper; default: "
-                                     "[identification] mode of the configuration"),
-    {"statement", &ReduceOptions::statement, "",
-     "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the configuration's "
-     "tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval"},
-    rows::coverage_probability(&ReduceOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
-    rows::coverage_factor(&ReduceOptions::coverage_factor),
-    rows::statement_trials(&ReduceOptions::statement_trials),
-    rows::seed(&ReduceOptions::seed, "Seed of the statement's Monte Carlo check"),
-    rows::threads(&ReduceOptions::threads),
-};
+constexpr auto kReduceRows = join_rows(
+    std::to_array<OptionSpec<ReduceOptions>>({
+        {"angle_unit", enum_member<&ReduceOptions::angle_unit>(kAngleUnitNames), "UNIT",
+         "Unit of the encoder columns: rad or deg"},
+        {"pulse_weight", &ReduceOptions::pulse_weight, "W",
+         "Integrated output per pulse, in the output unit × s (e.g. deg for deg/s); default: the instrument's "
+         "quantum"},
+        {"strict_runs", &ReduceOptions::strict_runs, "", {kStrictRunsHelp.data(), kStrictRunsHelp.size()}},
+        rows::mode<&ReduceOptions::mode>("Model of the regressors: exact (full chain) or paper; default: "
+                                         "[identification] mode of the configuration"),
+        {"statement", &ReduceOptions::statement, "",
+         "Also the calibration statement (JCGM 100 §7): Type A from the fit, Type B from the configuration's "
+         "tolerances, the correction for known [errors], u_c, nu_eff, k, U, interval"},
+    }),
+    // The statement's rows but its mode, which is the reduction's.
+    lifted_rows<&ReduceOptions::statement_options, kStatementRows, 0, kStatementModeRow>(),
+    lifted_rows<&ReduceOptions::statement_options, kStatementRows, kStatementModeRow + 1>());
 
 }  // namespace
 
@@ -319,8 +317,9 @@ ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   if (o.statement) {
     std::vector<double> durations;
     for (const LoggedRun& lr : r.logs.runs) durations.push_back(lr.log.duration);
-    r.statement = calibration_statement(cfg, r.identification.id, statement_options(o, r.mode), "statement",
-                                        measured_by_logs, durations);
+    StatementOptions so = o.statement_options;
+    so.mode = r.mode;  // the statement's budget in the reduction's kinematics
+    r.statement = calibration_statement(cfg, r.identification.id, so, "statement", measured_by_logs, durations);
   }
   return r;
 }

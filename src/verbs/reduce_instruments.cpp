@@ -94,9 +94,11 @@ ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {
   }
   ReduceResult r = each.front();
   r.warnings = test_warnings(each);
-  if (o.statement)
-    r.covariance = instrument_covariance(charged, r.mode, std::uint64_t(std::max<std::int64_t>(o.statement_trials, 0)),
-                                         o.seed, o.threads);
+  if (o.statement) {
+    const StatementOptions& so = o.statement_options;
+    r.covariance = instrument_covariance(
+        charged, r.mode, std::uint64_t(std::max<std::int64_t>(so.statement_trials, 0)), so.seed, so.threads);
+  }
   r.config = cfg;
   r.instruments = std::move(each);
   return r;

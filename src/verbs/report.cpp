@@ -92,13 +92,7 @@ void check_targets(const Config& config, const ReportOptions& o) {
 // identify OBS.csv --statement --config CONFIG`); an error of the file or of its terms is refused naming the
 // observations option.
 IdentifyResult identify_observations(const Config& config, const ReportOptions& o) {
-  StatementOptions so;
-  so.mode = o.mode;
-  so.coverage_probability = o.monte_carlo.coverage_probability;
-  so.coverage_factor = o.coverage_factor;
-  so.statement_trials = o.statement_trials;
-  so.seed = o.monte_carlo.seed;
-  so.threads = o.monte_carlo.threads;
+  const StatementOptions so = report_sections(o).identify.statement_options;
   try {
     // A plain table needs terms and columns the report has no options for: say so, not identify's terms.
     if (!observations_header(*o.observations))
@@ -165,20 +159,13 @@ ReportResult report(const Config& config, const ReportOptions& o) {
       r.history->db = std::filesystem::path(o.history_db).filename().string();  // a report names no folder
     }
   }
-  BudgetOptions bo;
-  bo.mode = o.mode;
-  bo.coverage_probability = o.monte_carlo.coverage_probability;
-  bo.coverage_factor = o.coverage_factor;
-  r.budget = budget(config, bo);
+  const ReportSections sections = report_sections(o);
+  r.budget = budget(config, sections.budget);
   // The allocation and the design before the Monte Carlo, so that a target they refuse stops the report
   // early.
-  if (o.allocate) {
-    AllocateOptions ao = *o.allocate;
-    if (!ao.mode) ao.mode = o.mode;
-    r.allocation = allocate(config, ao);
-  }
-  if (o.design) {
-    r.design = design(config, *o.design);
+  if (sections.allocate) r.allocation = allocate(config, *sections.allocate);
+  if (sections.design) {
+    r.design = design(config, *sections.design);
     ForceOptions fo;
     for (std::size_t k = 0; k < config.plan.runs.size(); ++k) {
       fo.run = std::to_string(k + 1);
@@ -192,12 +179,32 @@ ReportResult report(const Config& config, const ReportOptions& o) {
       r.warnings.push_back(std::move(gaps));
     return r;
   }  // the certificate shows neither the tolerances' Monte Carlo nor the sensed input
-  MonteCarloOptions mo = o.monte_carlo;
-  mo.mode = o.mode;
-  mo.keep_samples = false;  // the report draws the histograms of the JSON, not the values
-  r.monte_carlo = monte_carlo(config, mo);
+  r.monte_carlo = monte_carlo(config, sections.monte_carlo);
   r.sensed_input = sensed_input(config, o);
   return r;
+}
+
+ReportSections report_sections(const ReportOptions& o) {
+  ReportSections s;
+  const MonteCarloOptions& mc = o.monte_carlo;
+  s.budget.mode = o.mode;
+  s.budget.coverage_probability = mc.coverage_probability;
+  s.budget.coverage_factor = o.coverage_factor;
+  s.monte_carlo = mc;
+  s.monte_carlo.mode = o.mode;
+  s.monte_carlo.keep_samples = false;  // the report draws the histograms of the JSON, not the values
+  s.allocate = o.allocate;
+  if (s.allocate && !s.allocate->mode) s.allocate->mode = o.mode;
+  s.design = o.design;
+  s.identify.statement = true;
+  StatementOptions& st = s.identify.statement_options;
+  st.mode = o.mode;
+  st.coverage_probability = mc.coverage_probability;
+  st.coverage_factor = o.coverage_factor;
+  st.statement_trials = o.statement_trials;
+  st.seed = mc.seed;
+  st.threads = mc.threads;
+  return s;
 }
 
 AllocateOptions report_allocation(std::vector<std::string> targets, const ReportOptions& o) {

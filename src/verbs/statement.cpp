@@ -62,17 +62,6 @@ double unit_factor(const std::string& from, const std::string& to, const std::st
                                 term, to, from));
 }
 
-constexpr OptionSpec<StatementOptions> kStatementRows[] = {
-    rows::coverage_probability(&StatementOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
-    rows::coverage_factor(&StatementOptions::coverage_factor),
-    rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
-                                        "configuration's [identification] mode"),
-    rows::statement_trials(&StatementOptions::statement_trials),
-    rows::seed(&StatementOptions::seed, "Seed of the statement's Monte Carlo check"),
-    rows::threads(&StatementOptions::threads),
-};
-
 }  // namespace
 
 OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>) { return kStatementRows; }

@@ -209,7 +209,7 @@ class SameRefusal : public test::Cli {
             if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
               return false;
             } else {
-              using Field = std::remove_cvref_t<decltype(std::declval<Options&>().*member)>;
+              using Field = typename decltype(member)::type;
               return !std::is_void_v<typename number_of<Field>::type>;
             }
           },
@@ -221,12 +221,12 @@ class SameRefusal : public test::Cli {
       std::visit(
           [&](auto member) {
             if constexpr (!std::is_same_v<decltype(member), OptionEnum<Options>>) {
-              using Field = std::remove_cvref_t<decltype(options.*member)>;
+              using Field = typename decltype(member)::type;
               using Number = typename number_of<Field>::type;
               if constexpr (std::is_same_v<Field, std::vector<double>>)
-                options.*member = {std::stod(value)};
+                member.of(options) = {std::stod(value)};
               else if constexpr (!std::is_void_v<Number>)
-                options.*member = static_cast<Number>(std::stod(value));
+                member.of(options) = static_cast<Number>(std::stod(value));
             }
           },
           row.member);

@@ -153,6 +153,30 @@ TEST(ReportSections, TheAllocationIsTheVerbsWithTheReportsModeAndItsCommandLine)
   EXPECT_THROW(render::html(r, {}, ""), std::logic_error);
 }
 
+// Each "same as" command line names every option the report gave its verb that is not the verb's default,
+// written from the verb's own table (core/options.hpp option_arguments): the seed and threads of the Monte
+// Carlo reach the allocation, and a switch such as let_others_grow its command.
+TEST(ReportSections, EachCommandNamesEveryOptionThatIsNotTheDefault) {
+  verbs::ReportOptions o;
+  o.monte_carlo.trials = 300;
+  o.monte_carlo.seed = 9;
+  o.monte_carlo.threads = 2;
+  o.coverage_factor = 2;
+  o.allocate = verbs::report_allocation({"K3=2e-3"}, o);
+  o.allocate->let_others_grow = true;
+  o.design = verbs::report_design({"K3=1e-3"}, o);
+  const verbs::ReportResult not_run;  // the commands come from the options alone
+  render::ReportProvenance p;
+  render::report_commands(not_run, o, p);
+  using Words = std::vector<std::string>;
+  EXPECT_EQ(p.budget_command, (Words{"budget", "--coverage-factor", "2"}));
+  EXPECT_EQ(p.montecarlo_command, (Words{"montecarlo", "--trials", "300", "--seed", "9", "--threads", "2"}));
+  EXPECT_EQ(p.allocate_command, (Words{"allocate", "--target", "K3=2e-3", "--let-others-grow", "--seed", "9",
+                                       "--threads", "2"}));
+  EXPECT_EQ(p.design_command, (Words{"design", "--target", "K3=1e-3", "--coverage-factor", "2", "--threads", "2"}));
+  EXPECT_TRUE(p.identify_command.empty());  // no observations
+}
+
 // The bundled example's run means as `ccal simulate --observations-out` writes them, with the 10g and 20g
 // outputs moved by +2e-4 and -3e-4 deg/s so that the fit has a scatter (a Type A part well above round-off).
 std::string observations_text() {
@@ -191,8 +215,8 @@ TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
   verbs::IdentifyOptions io;
   io.statement = true;
   io.config = cfg;
-  io.mode = ModelMode::paper;
-  io.coverage_probability = 0.9;
+  io.statement_options.mode = ModelMode::paper;
+  io.statement_options.coverage_probability = 0.9;
   const verbs::IdentifyResult direct = verbs::identify(observations(), io);
   const verbs::CalibrationStatement &x = *r.observed->statement, &y = *direct.statement;
   EXPECT_EQ(x.mode, ModelMode::paper);
@@ -221,8 +245,9 @@ TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
   // The command line that gives the same numbers, and the page's section with cells naming that output.
   render::ReportProvenance p;
   render::report_commands(r, o, p);
-  EXPECT_EQ(p.identify_command, (std::vector<std::string>{"identify", "obs.csv", "--statement", "--mode",
-                                                          "paper", "--coverage-probability", "0.9"}));
+  // Every option the report gave the statement that is not identify's default, in identify's table's order.
+  EXPECT_EQ(p.identify_command, (std::vector<std::string>{"identify", "obs.csv", "--statement",
+                                                          "--coverage-probability", "0.9", "--mode", "paper"}));
   const std::string page = render::html(r, p, "/* the charting library */");
   EXPECT_NE(page.find("<section id=\"statement\">"), std::string::npos);
   // The observations are named and fingerprinted in the provenance, as the configuration is.
@@ -231,8 +256,8 @@ TEST(ReportSections, TheStatementIsIdentifysWithTheReportsModeAndCoverage) {
             std::string::npos);
   EXPECT_NE(page.find("data-src=\"identify:/statement/coefficients/K3/expanded_uncertainty\""),
             std::string::npos);
-  EXPECT_NE(page.find("ccal identify obs.csv --statement --config examples/wang_ren_2014.toml --mode paper "
-                      "--coverage-probability 0.9 --format json"),
+  EXPECT_NE(page.find("ccal identify obs.csv --statement --config examples/wang_ren_2014.toml "
+                      "--coverage-probability 0.9 --mode paper --format json"),
             std::string::npos);
   EXPECT_THROW(render::html(r, {}, ""), std::logic_error);
 }

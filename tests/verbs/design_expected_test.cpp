@@ -59,7 +59,7 @@ TEST(DesignExpected, TheDesignedPlansExpectedUIsWhatItsStatementGives) {
     ro.logs.push_back({d.designed.plan.runs[r].name, (dir / logs[r].name).string()});
   }
   ro.statement = true;
-  ro.statement_trials = 0;
+  ro.statement_options.statement_trials = 0;
   const verbs::ReduceResult reduced = verbs::reduce(d.designed, ro);
   fs::remove_all(dir);
   ASSERT_TRUE(reduced.statement.has_value());

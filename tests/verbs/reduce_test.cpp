@@ -59,7 +59,7 @@ TEST_F(ReduceVerb, LogsOfTheModelGiveTheSimulatedIdentification) {
 TEST_F(ReduceVerb, StatementIsThatOfTheIdentificationWithTheBudget) {
   verbs::ReduceOptions o = options_;
   o.statement = true;
-  o.coverage_probability = 0.9;
+  o.statement_options.coverage_probability = 0.9;
   const verbs::ReduceResult r = verbs::reduce(config_, o);
   ASSERT_TRUE(r.statement.has_value());
   verbs::StatementOptions so;

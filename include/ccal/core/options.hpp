@@ -10,6 +10,8 @@
 // and each front end words an OptionError with its own spelling of the field, so the same value gets the same
 // refusal everywhere. A new option is a field of the struct and one row of its table.
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -17,6 +19,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -108,25 +111,34 @@ struct OptionEnum {
   std::optional<std::size_t> (*get)(const Options&) = nullptr;  // nullopt: unset (the configuration's)
 };
 
+namespace option_detail {
+// Named functions, not lambdas: their addresses are constant template arguments (lifted_rows).
+template <auto Member, class Options>
+void set_enum(Options& o, std::size_t index) {
+  using Field = std::remove_cvref_t<decltype(o.*Member)>;
+  if constexpr (requires { typename Field::value_type; })
+    o.*Member = static_cast<typename Field::value_type>(index);
+  else
+    o.*Member = static_cast<Field>(index);
+}
+template <auto Member, class Options>
+std::optional<std::size_t> get_enum(const Options& o) {
+  using Field = std::remove_cvref_t<decltype(o.*Member)>;
+  if constexpr (requires { typename Field::value_type; }) {
+    if (!(o.*Member)) return std::nullopt;
+    return std::size_t(*(o.*Member));
+  } else {
+    return std::size_t(o.*Member);
+  }
+}
+}  // namespace option_detail
+
 template <auto Member, class Options>
 constexpr OptionEnum<Options> enum_member_of(std::span<const std::string_view> names) {
-  using Field = std::remove_cvref_t<decltype(std::declval<Options&>().*Member)>;
   OptionEnum<Options> e;
   e.names = names;
-  e.set = [](Options& o, std::size_t index) {
-    if constexpr (requires { typename Field::value_type; })
-      o.*Member = static_cast<typename Field::value_type>(index);
-    else
-      o.*Member = static_cast<Field>(index);
-  };
-  e.get = [](const Options& o) -> std::optional<std::size_t> {
-    if constexpr (requires { typename Field::value_type; }) {
-      if (!(o.*Member)) return std::nullopt;
-      return std::size_t(*(o.*Member));
-    } else {
-      return std::size_t(o.*Member);
-    }
-  };
+  e.set = &option_detail::set_enum<Member, Options>;
+  e.get = &option_detail::get_enum<Member, Options>;
   return e;
 }
 
@@ -144,14 +156,32 @@ constexpr auto enum_member(std::span<const std::string_view> names) {
   return enum_member_of<Member, typename member_class<decltype(Member)>::type>(names);
 }
 
+// A field of an options struct that an option sets: a member of the struct itself (&Options::seed) or of a
+// struct it holds, reached through that member (lifted_rows below). So a verb that holds an engine's or the
+// statement's options as a member has their rows in its table, each written once.
+template <class Options, class T>
+struct OptionField {
+  using type = T;
+  T Options::*direct = nullptr;
+  T& (*reach)(Options&) = nullptr;  // through a held struct; null: direct
+
+  constexpr OptionField() = default;
+  constexpr OptionField(T Options::*member) : direct(member) {}
+  constexpr explicit OptionField(T& (*through)(Options&)) : reach(through) {}
+  T& of(Options& o) const { return reach ? reach(o) : o.*direct; }
+  const T& of(const Options& o) const { return reach ? reach(const_cast<Options&>(o)) : o.*direct; }
+};
+
 // The member of an options struct that an option sets.
 template <class Options>
 using OptionMember =
-    std::variant<bool Options::*, int Options::*, std::int64_t Options::*, std::uint64_t Options::*,
-                 double Options::*, std::string Options::*, std::vector<std::string> Options::*,
-                 std::vector<double> Options::*, std::optional<std::vector<std::string>> Options::*,
-                 std::optional<int> Options::*, std::optional<std::int64_t> Options::*,
-                 std::optional<std::uint64_t> Options::*, std::optional<double> Options::*,
+    std::variant<OptionField<Options, bool>, OptionField<Options, int>, OptionField<Options, std::int64_t>,
+                 OptionField<Options, std::uint64_t>, OptionField<Options, double>,
+                 OptionField<Options, std::string>, OptionField<Options, std::vector<std::string>>,
+                 OptionField<Options, std::vector<double>>,
+                 OptionField<Options, std::optional<std::vector<std::string>>>,
+                 OptionField<Options, std::optional<int>>, OptionField<Options, std::optional<std::int64_t>>,
+                 OptionField<Options, std::optional<std::uint64_t>>, OptionField<Options, std::optional<double>>,
                  OptionEnum<Options>>;
 
 // One option: the field's name (the front ends derive their spellings from it), the member, the accepted
@@ -165,6 +195,7 @@ struct OptionSpec {
   OptionRange range;
   bool required = false;  // a list that needs at least one element (an optional list: when it is set)
 
+  constexpr OptionSpec() = default;
   constexpr OptionSpec(std::string_view field, OptionMember<Options> member, std::string_view value_name,
                        std::string_view help, OptionRange range = {}, bool required = false)
       : field(field), member(member), value_name(value_name), help(help), range(range), required(required) {}
@@ -172,6 +203,72 @@ struct OptionSpec {
 
 template <class Options>
 using OptionTable = std::span<const OptionSpec<Options>>;
+
+// --- the rows of a held struct in its holder's table ---
+//
+// A verb whose options hold another struct's (ReduceOptions::statement_options, a StatementOptions) shows that
+// struct's rows as its own: lifted_rows<&Holder::member, kHeldRows, first, last>() gives rows first … last − 1
+// of kHeldRows (a constexpr array of OptionSpec<Held>), each field reached through the member; join_rows puts
+// a table together from such pieces and the holder's own rows, in the order the help lists them.
+namespace option_detail {
+
+template <auto Outer, auto Inner>  // (o.*Outer).*Inner
+auto& reach_member(typename member_class<decltype(Outer)>::type& o) {
+  return (o.*Outer).*Inner;
+}
+template <auto Outer, auto Through>  // Through(o.*Outer): a field the held struct reaches itself
+auto& reach_through(typename member_class<decltype(Outer)>::type& o) {
+  return Through(o.*Outer);
+}
+template <auto Outer, auto Set>
+void set_through(typename member_class<decltype(Outer)>::type& o, std::size_t index) {
+  Set(o.*Outer, index);
+}
+template <auto Outer, auto Get>
+std::optional<std::size_t> get_through(const typename member_class<decltype(Outer)>::type& o) {
+  return Get(o.*Outer);
+}
+
+template <auto Outer, const auto& Rows, std::size_t I>
+constexpr auto lift_row() {
+  using Holder = typename member_class<decltype(Outer)>::type;
+  constexpr const auto& row = Rows[I];
+  constexpr auto inner = std::get<row.member.index()>(row.member);
+  using Inner = decltype(inner);
+  OptionMember<Holder> member;
+  if constexpr (requires { inner.names; }) {  // an enumeration
+    OptionEnum<Holder> e;
+    e.names = inner.names;
+    e.set = &set_through<Outer, inner.set>;
+    e.get = &get_through<Outer, inner.get>;
+    member = e;
+  } else if constexpr (inner.reach == nullptr) {
+    member = OptionField<Holder, typename Inner::type>(&reach_member<Outer, inner.direct>);
+  } else {
+    member = OptionField<Holder, typename Inner::type>(&reach_through<Outer, inner.reach>);
+  }
+  return OptionSpec<Holder>(row.field, member, row.value_name, row.help, row.range, row.required);
+}
+
+}  // namespace option_detail
+
+template <auto Outer, const auto& Rows, std::size_t First = 0, std::size_t Last = std::size(Rows)>
+constexpr auto lifted_rows() {
+  static_assert(First <= Last && Last <= std::size(Rows));
+  return [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return std::array{option_detail::lift_row<Outer, Rows, First + I>()...};
+  }(std::make_index_sequence<Last - First>{});
+}
+
+// The rows of the pieces, one after the other (each a std::array of OptionSpec<Options>:
+// std::to_array<OptionSpec<X>>({...}) or lifted_rows).
+template <class Options, std::size_t... N>
+constexpr auto join_rows(const std::array<OptionSpec<Options>, N>&... pieces) {
+  std::array<OptionSpec<Options>, (N + ... + 0)> rows;
+  std::size_t k = 0;
+  ((std::copy(pieces.begin(), pieces.end(), rows.begin() + k), k += N), ...);
+  return rows;
+}
 
 // The table of an options struct: each verb's header declares options_of(std::type_identity<Its>) and its
 // source defines the rows.
@@ -183,6 +280,20 @@ OptionTable<Options> option_table() {
 // The text of a number as the options show it: integers in full, others in the shortest form that reads back
 // to the same double.
 std::string option_number_text(double x);
+
+// The command line's flag of a field: "--" + the field with '-' for '_' (coverage_probability →
+// --coverage-probability), but for the fields whose flag takes one element of a list (targets → --target,
+// logs → --log); `prefix` goes before the field (the report's allocate_ + targets → --allocate-target). The
+// command line declares its flags by it, and the report writes its "same as" command lines with it.
+std::string option_flag(std::string_view field, std::string_view prefix = "");
+
+// The command-line arguments that give `options`: for every row of `table` whose value differs from its value in
+// `defaults`, the flag and the value as the command line reads it back (a list one element a flag, or comma-
+// separated where the flag takes the list whole; a switch alone; an enumeration by its name; numbers as
+// option_value_text). So a "same as" command line names every option that is not the default.
+template <class Options>
+std::vector<std::string> option_arguments(const Options& options, OptionTable<Options> table,
+                                          const Options& defaults = {});
 
 // Throws OptionError for the first field of `options` that its row of `table` does not accept.
 template <class Options>
@@ -232,11 +343,60 @@ void check_options(const Options& options, OptionTable<Options> table) {
           if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
             return;  // set only by name (parse_choice_option)
           } else {
-            check_member(options.*member, row);
+            check_member(member.of(options), row);
           }
         },
         row.member);
   }
+}
+
+template <class Options>
+std::vector<std::string> option_arguments(const Options& options, OptionTable<Options> table,
+                                          const Options& defaults) {
+  std::vector<std::string> arguments;
+  const auto joined = [](const auto& list) {
+    std::string text;
+    for (const auto& item : list) {
+      if (!text.empty()) text += ',';
+      if constexpr (std::is_arithmetic_v<std::remove_cvref_t<decltype(item)>>)
+        text += option_value_text(item);
+      else
+        text += item;
+    }
+    return text;
+  };
+  for (const OptionSpec<Options>& row : table) {
+    const std::string flag = option_flag(row.field);
+    std::visit(
+        [&](auto member) {
+          if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
+            const auto index = member.get(options);
+            if (index && index != member.get(defaults))
+              arguments.insert(arguments.end(), {flag, std::string(member.names[*index])});
+          } else {
+            using Field = typename decltype(member)::type;
+            const Field& value = member.of(options);
+            if (value == member.of(defaults)) return;
+            if constexpr (std::is_same_v<Field, bool>) {
+              if (value) arguments.push_back(flag);  // a switch is off by default
+            } else if constexpr (std::is_same_v<Field, std::string>) {
+              arguments.insert(arguments.end(), {flag, value});
+            } else if constexpr (std::is_same_v<Field, std::vector<std::string>>) {
+              for (const std::string& item : value) arguments.insert(arguments.end(), {flag, item});
+            } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
+              arguments.insert(arguments.end(), {flag, joined(value)});
+            } else if constexpr (std::is_arithmetic_v<Field>) {
+              arguments.insert(arguments.end(), {flag, option_value_text(value)});
+            } else if constexpr (std::is_same_v<Field, std::optional<std::vector<std::string>>>) {
+              if (value) arguments.insert(arguments.end(), {flag, joined(*value)});
+            } else {  // an optional number
+              if (value) arguments.insert(arguments.end(), {flag, option_value_text(*value)});
+            }
+          }
+        },
+        row.member);
+  }
+  return arguments;
 }
 
 template <class Field, class Options>

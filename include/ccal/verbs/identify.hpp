@@ -25,12 +25,7 @@ struct IdentifyOptions {
   std::string output_column = "output";  // column of the output y
   std::string weight_column;             // column of the σ of y (weights 1/σ²); empty: unweighted
   bool statement = false;                // also the calibration statement, with `config`'s budget
-  double coverage_probability = 0.95;    // p of the statement's intervals
-  std::optional<double> coverage_factor;  // a stated k of the statement instead (U = k u_c)
-  std::optional<ModelMode> mode;         // kinematics of the statement's budget; unset: `config`'s
-  std::int64_t statement_trials = kDefaultStatementTrials;  // the statement's Monte Carlo check; 0: none
-  std::uint64_t seed = 1;                // of that check
-  int threads = 0;                       // of that check; 0: the OpenMP default
+  StatementOptions statement_options;    // of the statement (its rows are this table's)
   // The configuration whose tolerances give the statement's Type B part (and its known [errors] the
   // correction). Not a row of the table: each front end reads it (the command line: --config FILE).
   std::optional<Config> config;

@@ -53,11 +53,8 @@ struct ReduceOptions {
   std::optional<ModelMode> mode;       // model of the regressors; unset: the configuration's
   bool strict_runs = false;  // a run's mean beyond kRunCheckLimit u of the nominal reading: an error, not a warning
   bool statement = false;              // also the calibration statement with the configuration's budget
-  double coverage_probability = 0.95;  // p of the statement's intervals
-  std::optional<double> coverage_factor;  // a stated k of the statement instead (U = k u_c)
-  std::int64_t statement_trials = kDefaultStatementTrials;  // the statement's Monte Carlo check; 0: none
-  std::uint64_t seed = 1;                                   // of that check
-  int threads = 0;                                          // of that check; 0: the OpenMP default
+  // The statement's options (its rows are this table's, but its mode: the statement's budget is in `mode`).
+  StatementOptions statement_options;
 };
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.

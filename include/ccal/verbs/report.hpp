@@ -94,6 +94,21 @@ struct ReportResult {
   std::vector<std::string> warnings;
 };
 
+// The options of each section as the report computes it: what `ccal budget`, `ccal montecarlo`, `ccal
+// allocate`, `ccal design` and `ccal identify OBS --statement --config CONFIG` are given for the same numbers.
+// report() runs these, and the page shows them as its "same as" command lines (render/report.cpp), every option
+// that is not the default named.
+struct ReportSections {
+  BudgetOptions budget;          // the report's mode, the Monte Carlo's p and the stated k
+  MonteCarloOptions monte_carlo;  // options.monte_carlo in the report's mode, no samples kept
+  std::optional<AllocateOptions> allocate;  // options.allocate, its mode the report's when unset
+  std::optional<DesignOptions> design;      // options.design
+  // The observations' statement: its options those of the Monte Carlo (p, seed, threads), the stated k, the
+  // report's mode and statement_trials.
+  IdentifyOptions identify;
+};
+ReportSections report_sections(const ReportOptions& options);
+
 // Whether a report of these options is the calibration certificate: observations, a [certificate] table and not
 // the engineering report.
 bool gives_certificate(const Config& config, const ReportOptions& options);

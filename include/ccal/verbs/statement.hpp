@@ -32,18 +32,20 @@ struct StatementOptions {
   int threads = 0;         // of the Monte Carlo check; 0: the OpenMP default
 };
 
-// The statement's options of a verb that states one (reduce, identify): its fields of the same names.
-template <class VerbOptions>
-StatementOptions statement_options(const VerbOptions& o, std::optional<ModelMode> mode) {
-  StatementOptions so;
-  so.coverage_probability = o.coverage_probability;
-  so.coverage_factor = o.coverage_factor;
-  so.mode = mode;
-  so.statement_trials = o.statement_trials;
-  so.seed = o.seed;
-  so.threads = o.threads;
-  return so;
-}
+// The statement's rows, the one home of its options: a verb that states one (reduce, identify) holds a
+// StatementOptions and lifts these rows into its own table (core/options.hpp lifted_rows), in this order.
+inline constexpr OptionSpec<StatementOptions> kStatementRows[] = {
+    rows::coverage_probability(&StatementOptions::coverage_probability,
+                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
+    rows::coverage_factor(&StatementOptions::coverage_factor),
+    rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
+                                        "configuration's [identification] mode"),
+    rows::statement_trials(&StatementOptions::statement_trials),
+    rows::seed(&StatementOptions::seed, "Seed of the statement's Monte Carlo check"),
+    rows::threads(&StatementOptions::threads),
+};
+// The position of the mode's row: a verb whose own mode is the statement's (reduce) lifts the rows around it.
+inline constexpr std::size_t kStatementModeRow = 2;
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
 OptionTable<StatementOptions> options_of(std::type_identity<StatementOptions>);
