@@ -186,11 +186,11 @@ void bind_budget(py::module_& m) {
                     "a test of several instruments: the LPU covariance of all their coefficients; None for one "
                     "instrument [InstrumentCovariance]");
 
-  const verbs::BudgetOptions defaults;  // the CLI's defaults
+  const BudgetOptions defaults;  // the CLI's defaults
   m.def(
       "budget",
       [](const Config& cfg, bool compare_with_paper, const py::kwargs& keywords) {
-        auto o = options_from_keywords<verbs::BudgetOptions>(keywords, "budget");
+        auto o = options_from_keywords<BudgetOptions>(keywords, "budget");
         o.compare_with_paper = compare_with_paper;
         py::gil_scoped_release release;
         return verbs::budget(cfg, o);
@@ -199,7 +199,7 @@ void bind_budget(py::module_& m) {
       "Error budget (`ccal budget`): sensitivity of every identified coefficient to every tolerance, the "
       "effects, totals and compensation choices. compare_with_paper: in exact mode, also the paper's "
       "first-order effect of each source.");
-  record_keywords<verbs::BudgetOptions>(m, "budget");
+  record_keywords<BudgetOptions>(m, "budget");
 }
 
 }  // namespace ccal::python

@@ -13,7 +13,7 @@ namespace {
 
 struct BudgetOptionsCli {
   ConfigChoice config;
-  verbs::BudgetOptions options;  // its table's flags are bound to it
+  BudgetOptions options;  // its table's flags are bound to it
   std::size_t top = 0;  // 0: what fits the screen
   WidthOptions width;
   OutputOptions output;
@@ -26,7 +26,7 @@ Command add_budget(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "budget", "Error budget: what each centrifuge tolerance costs every identified coefficient");
   add_config_argument(*cmd, options->config);
-  add_option_flags(*cmd, options->options, option_table<verbs::BudgetOptions>());
+  add_option_flags(*cmd, options->options, option_table<BudgetOptions>());
   add_renamed_option(*cmd, "--coverage",
                      "renamed: give the coverage probability as --coverage-probability p (e.g. 0.95), as in "
                      "every command, or a stated factor k as --coverage-factor K (e.g. 2)");

@@ -8,6 +8,7 @@
 #include "../core/cloned_loops.hpp"
 #include "ccal/core/scalar.hpp"
 #include "ccal/core/units.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 #include "ccal/model/first_order.hpp"
 #include "ccal/setup/input_correlation.hpp"
 #include "ccal/uncertainty/chain_inputs.hpp"
@@ -294,7 +295,7 @@ void add_rate_noise(const Experiment& ex, const IdentificationSpec& spec, const 
                     const Eigen::VectorXd& known, const BudgetOptions& options, BudgetResult& r) {
   if (!ex.rate_noise.any()) return;
   const Eigen::MatrixXd pinv =
-      design_pseudo_inverse(observe<double>(ex, at, known, spec, options.mode, options.reduction), spec);
+      design_pseudo_inverse(observe<double>(ex, at, known, spec, r.mode, options.reduction), spec);
   // Both drives' gains from one pass over the runs' nodes.
   const RateNoiseGains gains = rate_noise_gains(ex, at, ex.rate_noise.main > 0, ex.rate_noise.platform > 0);
   for (auto [gain, density, id] :
@@ -388,7 +389,31 @@ Eigen::VectorXd correlation_variance(const BudgetResult& b) {
   return out;
 }
 
+namespace {
+
+constexpr std::string_view kDerivativeNames[] = {"automatic", "linearised"};  // DerivativeMethod's order
+
+constexpr OptionSpec<BudgetOptions> kBudgetRows[] = {
+    rows::mode<&BudgetOptions::mode>(
+        "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); "
+        "default: the configuration's [identification] mode"),
+    rows::coverage_probability(&BudgetOptions::coverage_probability,
+                               "Coverage probability p of the expanded uncertainty U = k u, in [0.5, 1): k = "
+                               "1.96 for 0.95, the normal LPU total's"),
+    rows::coverage_factor(&BudgetOptions::coverage_factor),
+    {"derivatives", enum_member<&BudgetOptions::derivatives>(kDerivativeNames), "METHOD",
+     "How the sensitivities are differentiated: linearised (closed-form chain Jacobian at zero errors, AD "
+     "elsewhere; fast) or automatic (forward-mode AD through everything); same numbers"},
+};
+
+}  // namespace
+
+OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { return kBudgetRows; }
+
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options) {
+  check_options(options, option_table<BudgetOptions>());
+  rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
+  const ModelMode mode = options.mode.value_or(config.mode);
   const Experiment ex = config.experiment();
   const IdentificationSpec& spec = config.identification;
   const Eigen::VectorXd& at = config.centrifuge.errors;
@@ -398,14 +423,14 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   std::vector<int> parameters;
   for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
   const SensitivityTable table =
-      sensitivities(ex, spec, parameters, at, known, options.mode, options.reduction, options.derivatives);
+      sensitivities(ex, spec, parameters, at, known, mode, options.reduction, options.derivatives);
   SensitivityTable paper;
-  const bool compare = options.mode == ModelMode::exact && options.compare_with_paper;
+  const bool compare = mode == ModelMode::exact && options.compare_with_paper;
   if (compare)
     paper = sensitivities(ex, spec, parameters, at, known, ModelMode::paper, options.reduction,
                           options.derivatives);
   r.derivatives = table.method;
-  r.mode = options.mode;
+  r.mode = mode;
   r.coefficients = spec.free_terms;
   r.coverage = normal_coverage(options.coverage_probability, options.coverage_factor);
   for (const auto& id : r.coefficients) {
@@ -417,7 +442,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   set_totals(r);
   if (compare) flag_paper_disagreements(options.disagreement_factor, r);
   rank_by_share(r);
-  r.compensation = compensation_choices(ex, spec, at, known, options.mode, compare, options.reduction);
+  r.compensation = compensation_choices(ex, spec, at, known, mode, compare, options.reduction);
   return r;
 }
 

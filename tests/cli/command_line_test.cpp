@@ -111,7 +111,7 @@ TEST_F(CommandLine, HelpNamesValuesAsUsersWriteThem) {
   EXPECT_NE(budget.out.find("--format {text,json,csv}"), std::string::npos) << budget.out;
   EXPECT_NE(budget.out.find("Output format (default: text)"), std::string::npos) << budget.out;
   EXPECT_NE(budget.out.find("Usage: ccal budget [OPTIONS] [CONFIG]"), std::string::npos) << budget.out;
-  for (const auto& [flag, names] : choice_rows<verbs::BudgetOptions>()) {
+  for (const auto& [flag, names] : choice_rows<BudgetOptions>()) {
     std::string list;
     for (const std::string& n : names) list += (list.empty() ? "" : ",") + n;
     EXPECT_NE(budget.out.find(flag + " {" + list + "}"), std::string::npos) << flag << "\n" << budget.out;

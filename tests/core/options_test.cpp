@@ -129,14 +129,14 @@ TEST(OptionParsers, RealsAndChoices) {
 }
 
 TEST(OptionRange, WordsWhatItAccepts) {
-  EXPECT_EQ(verbs::rows::kTrials.text(), "2 to 1000000000");
-  EXPECT_EQ(verbs::rows::kVerifyTrials.text(), "0 (none) or 2 to 1000000000");
-  EXPECT_EQ(verbs::rows::kCoverageProbability.text(), "a number in [0.5, 1), e.g. 0.95");
+  EXPECT_EQ(rows::kTrials.text(), "2 to 1000000000");
+  EXPECT_EQ(rows::kVerifyTrials.text(), "0 (none) or 2 to 1000000000");
+  EXPECT_EQ(rows::kCoverageProbability.text(), "a number in [0.5, 1), e.g. 0.95");
   EXPECT_EQ(OptionRange::at_least(0).open_low().text(), "a number > 0");
-  EXPECT_TRUE(verbs::rows::kVerifyTrials.accepts(0));
-  EXPECT_FALSE(verbs::rows::kVerifyTrials.accepts(1));
-  EXPECT_FALSE(verbs::rows::kCoverageProbability.accepts(1));
-  EXPECT_FALSE(verbs::rows::kCoverageProbability.accepts(std::nan("")));
+  EXPECT_TRUE(rows::kVerifyTrials.accepts(0));
+  EXPECT_FALSE(rows::kVerifyTrials.accepts(1));
+  EXPECT_FALSE(rows::kCoverageProbability.accepts(1));
+  EXPECT_FALSE(rows::kCoverageProbability.accepts(std::nan("")));
   EXPECT_FALSE(OptionRange{}.accepts(INFINITY));
 }
 
@@ -157,7 +157,7 @@ TEST(OptionTables, VerbsRefuseOutOfRangeFieldsByName) {
   allocate.verify_trials = 1;
   EXPECT_EQ(refusal([&] { verbs::allocate(bundled_example(), allocate); }),
             "verify_trials: 1 is out of range; accepted: 0 (none) or 2 to 1000000000");
-  verbs::BudgetOptions budget;
+  BudgetOptions budget;
   budget.coverage_factor = 0.95;
   EXPECT_EQ(refusal([&] { verbs::budget(bundled_example(), budget); }),
             "coverage_factor: 0.95 is out of range; accepted: a number >= 1, e.g. 2 (U = k u); a coverage "
@@ -266,7 +266,7 @@ TEST_F(SameRefusal, Allocate) {
   });
 }
 TEST_F(SameRefusal, Budget) {
-  check_verb<verbs::BudgetOptions>("budget", "", [](auto& o) { verbs::budget(bundled_example(), o); });
+  check_verb<BudgetOptions>("budget", "", [](auto& o) { verbs::budget(bundled_example(), o); });
 }
 TEST_F(SameRefusal, Design) {
   check_verb<verbs::DesignOptions>("design", "", [](auto& o) { verbs::design(bundled_example(), o); });
@@ -333,7 +333,7 @@ TEST_F(SameRefusal, ManPageAndCompletionListEveryFlag) {
   };
   expect_flags("montecarlo", std::type_identity<verbs::MonteCarloOptions>{});
   expect_flags("allocate", std::type_identity<verbs::AllocateOptions>{});
-  expect_flags("budget", std::type_identity<verbs::BudgetOptions>{});
+  expect_flags("budget", std::type_identity<BudgetOptions>{});
   expect_flags("design", std::type_identity<verbs::DesignOptions>{});
   expect_flags("force", std::type_identity<verbs::ForceOptions>{});
   expect_flags("simulate", std::type_identity<verbs::SimulateOptions>{});

@@ -61,7 +61,7 @@ std::pair<std::string, std::string> row_and_header(const std::string& text, cons
 
 TEST(BudgetText, NoLineOver100ColumnsByDefault) {
   const verbs::BudgetResult exact = verbs::budget(bundled_example());
-  verbs::BudgetOptions paper_options;
+  BudgetOptions paper_options;
   paper_options.mode = ModelMode::paper;
   const verbs::BudgetResult paper = verbs::budget(bundled_example(), paper_options);
   render::BudgetTextOptions top3;
@@ -177,7 +177,7 @@ std::map<std::string, std::string> csv_row(const std::string& csv, const std::st
 }
 
 TEST(BudgetText, CsvTotalsEqualTheJson) {
-  verbs::BudgetOptions o;
+  BudgetOptions o;
   o.coverage_factor = 3;
   const verbs::BudgetResult r = verbs::budget(bundled_example(), o);
   const auto j = nlohmann::json::parse(render::json(r));

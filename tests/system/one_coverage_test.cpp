@@ -48,7 +48,7 @@ TEST(OneCoverage, EveryVerbStatesTheSameUForTheSameMethod) {
   EXPECT_EQ(state_coefficient(in, 0.95).expanded, budget.budget.expanded_uncertainty[k3]);
 
   // The same p elsewhere moves every U alike: at 99 % the budget's k is 2.5758 (the normal quantile).
-  verbs::BudgetOptions p99;
+  BudgetOptions p99;
   p99.coverage_probability = 0.99;
   EXPECT_NEAR(verbs::budget(config, p99).budget.expanded_uncertainty[k3] / budget.budget.standard_uncertainty[k3],
               2.5758293035489004, 1e-14);

@@ -63,7 +63,7 @@ TEST(AllocateVerb, AllocatedTolerancesBudgetToTheReportedUncertainties) {
     ASSERT_NE(s, r.allocation.sources.end()) << t.id;
     t.bound = s->allocated_bound;
   }
-  verbs::BudgetOptions bo;
+  BudgetOptions bo;
   bo.coverage_factor = r.allocation.coverage_factor;
   const verbs::BudgetResult b = verbs::budget(allocated, bo);
   int active = 0;

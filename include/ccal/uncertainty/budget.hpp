@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ccal/core/options.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/coverage.hpp"
@@ -35,8 +36,10 @@ namespace ccal {
 //               all zero), otherwise automatic.
 enum class DerivativeMethod { automatic, linearised };
 
+// The options of a budget: of `ccal budget` (its table below: mode, coverage_probability, coverage_factor,
+// derivatives) and of the engines that budget (the rest).
 struct BudgetOptions {
-  ModelMode mode = ModelMode::exact;
+  std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
   // U = k u with k = Φ⁻¹((1 + p)/2) of the normal LPU total (coverage.hpp), or the stated k when given.
   double coverage_probability = kDefaultCoverageProbability;
   std::optional<double> coverage_factor;
@@ -147,6 +150,12 @@ Eigen::MatrixXd independent_effects(const BudgetResult& budget, const Eigen::Mat
 // less Σ_s (c_ks u_s)², negative when they cancel.
 Eigen::VectorXd correlation_variance(const BudgetResult& budget);
 
+// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets; compute_budget
+// checks its options against it.
+OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>);
+
+// Throws OptionError naming the field for an option its table refuses, or a coverage factor with a coverage
+// probability other than the default.
 BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});
 
 // The round-off floor of a contribution, relative to its coefficient's u_c: |u_i(y)| < kRoundOffFloor u_c is

@@ -10,7 +10,7 @@
 #include "ccal/core/model_mode.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/allocate.hpp"
-#include "ccal/verbs/option_rows.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 
 namespace ccal::verbs {
 

@@ -9,22 +9,12 @@
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/verbs/instrument_covariance.hpp"
 #include "ccal/verbs/observability_report.hpp"
-#include "ccal/verbs/option_rows.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 
 namespace ccal::verbs {
 
-struct BudgetOptions {
-  std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
-  // U = k u: k = Φ⁻¹((1 + p)/2) of the normal LPU total for the coverage probability p, as in every verb
-  // (uncertainty/coverage.hpp); or a stated k ≥ 1 (e.g. 2 by contract), then p is the normal one of that k.
-  double coverage_probability = kDefaultCoverageProbability;
-  std::optional<double> coverage_factor;
-  DerivativeMethod derivatives = DerivativeMethod::linearised;  // same numbers; linearised is faster
-  bool compare_with_paper = true;  // in exact mode, also the paper's first-order effect of each source
-};
-
-// The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
-OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>);
+// The options are the engine's (uncertainty/budget.hpp: BudgetOptions and its table): mode, coverage_probability,
+// coverage_factor, derivatives, compare_with_paper.
 
 struct BudgetResult {
   Config config;                      // the configuration budgeted

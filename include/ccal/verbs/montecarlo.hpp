@@ -10,7 +10,7 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
-#include "ccal/verbs/option_rows.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 
 namespace ccal::verbs {
 

@@ -17,7 +17,7 @@
 #include "ccal/reduction/observe.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
-#include "ccal/verbs/option_rows.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 
 namespace ccal::verbs {
 

@@ -14,7 +14,7 @@
 #include "ccal/core/model_mode.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/setup/config.hpp"
-#include "ccal/verbs/option_rows.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 #include "ccal/uncertainty/statement.hpp"
 #include "ccal/verbs/identification.hpp"
 

@@ -1,6 +1,7 @@
 #pragma once
-// The options that several verbs take, worded once: the same name, range, default meaning and help in every
-// verb that has them (core/options.hpp). A verb's table is made of these rows and its own.
+// The options that several verbs and their engines take, worded once: the same name, range, default meaning and
+// help in every verb that has them (core/options.hpp). A verb's table is made of these rows and its own, and an
+// engine checks its options against the same rows, so it refuses exactly what the verb refuses.
 
 #include <cstdint>
 #include <optional>
@@ -10,7 +11,7 @@
 #include "ccal/uncertainty/coverage.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
 
-namespace ccal::verbs {
+namespace ccal {
 
 // The trial outputs are stored (8 bytes per trial and coefficient): 10⁹ trials of three coefficients are
 // 24 GB, the most accepted.
@@ -89,4 +90,4 @@ constexpr OptionSpec<O> statement_trials(std::int64_t O::*member) {
 }
 
 }  // namespace rows
-}  // namespace ccal::verbs
+}  // namespace ccal
