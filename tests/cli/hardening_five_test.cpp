@@ -1,0 +1,40 @@
+// Hardening, a fresh round over every surface, through the program: what a careless user's wrong inputs
+// found, each refused in words that say what is wrong, where, and what is accepted, and nothing left behind.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <string>
+
+#include "cli_support.hpp"
+
+namespace {
+
+using namespace ccal::test;
+
+// A refused simulate removed the folder it had made for the logs only when it was refused before the folder
+// was made: an -o that names an input, two outputs naming one file, each left an empty folder behind.
+TEST_F(Cli, ARefusedSimulateLeavesNoEmptyFolderOfLogs) {
+  write("lab.toml", read(kLab));
+  const fs::path logs = dir_ / "L";
+  expect_bad_input(run("simulate lab.toml --logs-out L -o lab.toml"), {"-o: cannot write 'lab.toml'"});
+  EXPECT_FALSE(fs::exists(logs));
+  expect_bad_input(run("simulate lab.toml --logs-out L --observations-out L/5g.csv -o /dev/null"),
+                   {"--logs-out: cannot write 'L/5g.csv': it is also the --observations-out file"});
+  EXPECT_FALSE(fs::exists(logs));
+  expect_bad_input(run("simulate lab.toml --logs-out L -o L/manifest.toml"), {"it is also the -o file"});
+  EXPECT_FALSE(fs::exists(logs));
+  // A folder that was there stays, with what it held.
+  fs::create_directories(logs);
+  write("L/notes.txt", "kept");
+  expect_bad_input(run("simulate lab.toml --logs-out L -o lab.toml"), {"-o: cannot write 'lab.toml'"});
+  EXPECT_EQ(read(logs / "notes.txt"), "kept");
+  // A file where the folder would be: what is accepted is said.
+  expect_bad_input(run("simulate lab.toml --logs-out lab.toml -o /dev/null"),
+                   {"--logs-out: cannot create the folder 'lab.toml'", "accepted: a folder"});
+  // Written, the folder and its logs are there.
+  ASSERT_EQ(run("simulate lab.toml --logs-out M -o /dev/null").code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "M" / "manifest.toml"));
+}
+
+}  // namespace
