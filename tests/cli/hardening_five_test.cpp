@@ -37,4 +37,20 @@ TEST_F(Cli, ARefusedSimulateLeavesNoEmptyFolderOfLogs) {
   EXPECT_TRUE(fs::exists(dir_ / "M" / "manifest.toml"));
 }
 
+// A serial number with a control character (TOML's \u0000) was printed into the certificate and refused only
+// later by the history; the configuration refuses it, at its line.
+TEST_F(Cli, AConfigurationsSerialNumberWithAControlCharacterIsRefusedAtItsLine) {
+  std::string lab = read(kLab);
+  const std::string serial = "serial_number = \"SN 0815\"";
+  lab.replace(lab.find(serial), serial.size(), "serial_number = \"SN\\u00000815\"");
+  write("lab.toml", lab);
+  const int line = line_of(lab, "serial_number = ");
+  for (const char* verb : {"budget", "report -o r.html"})
+    expect_bad_input(run(fmt::format("{} lab.toml", verb)),
+                     {fmt::format("lab.toml:{}:17: certificate.serial_number: 'SN\\x000815' holds a control "
+                                  "character; accepted: printable text on one line",
+                                  line)});
+  EXPECT_FALSE(fs::exists(dir_ / "r.html"));
+}
+
 }  // namespace
