@@ -69,8 +69,8 @@ TEST(CertificateTable, BadValuesAreRefusedOnTheirLine) {
                         {"'CAL\\n1' holds a control character"});
   expect_appended_error("[certificate]\nremarks = \"a\\u001bb\"", "certificate.remarks",
                         {"holds a control character; accepted: printable text (line breaks and tabs allowed)"});
-  EXPECT_EQ(parse_config(kBase + "\n[certificate]\nremarks = \"line 1\\nline 2\"", "case.toml").certificate->remarks,
-            "line 1\nline 2");
+  const Config free_text = parse_config(kBase + "\n[certificate]\nremarks = \"line 1\\nline 2\"", "case.toml");
+  EXPECT_EQ(free_text.certificate->remarks, "line 1\nline 2");
 }
 
 TEST(CertificateTable, RevisionIsANumberOrAText) {

@@ -129,7 +129,8 @@ TEST(Instruments, SerialNumbersThatCannotNameEachInstrumentAreRefused) {
                {"instrument 'B' has no serial_number", "each of the 2 instruments", "each its own"});
   const std::string same = kBase + kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"\n"
                                                   "[[instruments]]\nid = \"B\"\nserial_number = \"SN 10\"";
-  expect_error(same, last_line(same), "instruments[2].serial_number", {"'SN 10' is also the serial number of instrument 'A'"});
+  expect_error(same, last_line(same), "instruments[2].serial_number",
+               {"'SN 10' is also the serial number of instrument 'A'"});
   expect_appended_error("[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"", "instruments[1].serial_number",
                         {"no [certificate] table", "accepted: a [certificate] table, or no serial_number"});
   expect_appended_error(kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \" \"",
