@@ -53,4 +53,24 @@ TEST_F(Cli, AConfigurationsSerialNumberWithAControlCharacterIsRefusedAtItsLine) 
   EXPECT_FALSE(fs::exists(dir_ / "r.html"));
 }
 
+// "'gamma' names two columns" blamed the key the user had not changed and did not say which other one named
+// the column; each is said now, also between two instruments of a manifest's [instruments].
+TEST_F(Cli, AColumnNamedForTwoRolesOfAManifestIsSaidOfBoth) {
+  ASSERT_EQ(run("simulate " + quote(kLab) + " --logs-out L -o /dev/null").code, 0);
+  std::string manifest = read(dir_ / "L" / "manifest.toml");
+  manifest.replace(manifest.find("theta1 = 'theta1'"), 17, "theta1 = 'gamma'");
+  manifest.replace(manifest.find("gamma = 'gamma'"), 15, "");
+  write("L/manifest.toml", manifest);
+  expect_bad_input(run("reduce " + quote(kLab) + " --logs L"),
+                   {"L/manifest.toml:2:1: columns.gamma: 'gamma' (its default) is also the column of columns.theta1; "
+                    "accepted: a column of its own for each of time, pulses, output, theta1 and gamma"});
+  fs::copy(CCAL_SOURCE_DIR + "/examples/daq/two_instruments", dir_ / "T");
+  std::string two = read(dir_ / "T" / "manifest.toml");
+  two.replace(two.find("B = { pulses = 'pulses_B' }"), 27, "B = { pulses = 'pulses_A' }");
+  write("T/manifest.toml", two);
+  expect_bad_input(run("reduce " + quote(CCAL_SOURCE_DIR + "/examples/daq/two_short.toml") + " --logs T"),
+                   {"T/manifest.toml:", "instruments.B.pulses: 'pulses_A' is also the column of "
+                                        "instruments.A.pulses; accepted: a column of its own for each instrument's"});
+}
+
 }  // namespace
