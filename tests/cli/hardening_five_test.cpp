@@ -121,6 +121,22 @@ TEST_F(Cli, ThePlanOfAJobWrittenElsewhereNamesItsSetUpFromThere) {
   EXPECT_NE(read(dir_ / "sub" / "again.toml").find("\nsetup = \"../lab.toml\"\n"), std::string::npos);
 }
 
+// A configuration given where a table is read (identify lab.toml, a manifest as a run's log) was "the header
+// is one name … the delimiter is probably whitespace": it is said to be TOML.
+TEST_F(Cli, ATomlFileGivenForATableIsSaidToBeOne) {
+  write("lab.toml", read(kLab));
+  expect_bad_input(run("identify lab.toml"),
+                   {fmt::format("lab.toml:{}:1: the header, '[site]', is a line of TOML (a configuration or a "
+                                "manifest?), not a table's header; accepted: a CSV table whose header names its "
+                                "columns",
+                                line_of(read(kLab), "[site]"))});
+  ASSERT_EQ(run("simulate lab.toml --logs-out L -o /dev/null").code, 0);
+  expect_bad_input(run("reduce lab.toml --log 5g=L/manifest.toml --log 10g=L/10g.csv --log 15g=L/15g.csv"),
+                   {"L/manifest.toml:2:1: the header, '[columns]', is a line of TOML"});
+  expect_bad_input(run("identify " + quote(CCAL_SOURCE_DIR + "/examples/lab_job.toml")),
+                   {"lab_job.toml:10:1: the header, 'setup = \"lab.toml\"', is a line of TOML"});
+}
+
 // The lines of a file, and a file of lines.
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

@@ -90,6 +90,12 @@ class WildCells(unittest.TestCase):
                 ccal.reduce(lab, logs=os.path.join(d, "logs"))
 
 
+class TablesThatAreToml(unittest.TestCase):
+    def test_a_configuration_given_for_observations_is_said_to_be_toml(self):
+        with self.assertRaisesRegex(ccal.InputError, r"lab.toml:\d+:1: the header, '\[site\]', is a line of TOML"):
+            ccal.identify_file(EXAMPLES / "lab.toml")
+
+
 class SerialNumbers(unittest.TestCase):
     def test_a_control_character_in_a_serial_number_is_refused_at_its_line(self):
         text = (EXAMPLES / "lab.toml").read_text(encoding="utf-8")
