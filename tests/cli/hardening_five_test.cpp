@@ -137,6 +137,15 @@ TEST_F(Cli, ATomlFileGivenForATableIsSaidToBeOne) {
                    {"lab_job.toml:10:1: the header, 'setup = \"lab.toml\"', is a line of TOML"});
 }
 
+// design --tradeoff of a test of several instruments is refused naming the option as each front end spells
+// it: the library wrote "--tradeoff", which Python does not know.
+TEST_F(Cli, TheTradeoffOfSeveralInstrumentsIsRefusedInTheProgramsWords) {
+  expect_bad_input(run("design " + quote(CCAL_SOURCE_DIR + "/examples/daq/two_short.toml") +
+                       " --tradeoff 0.5,1 --verify-trials 0"),
+                   {"--tradeoff: 0.5 is not taken for a test of 2 instruments", "accepted: --tradeoff with a "
+                                                                                "configuration of one instrument"});
+}
+
 // The lines of a file, and a file of lines.
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

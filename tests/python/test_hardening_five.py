@@ -49,6 +49,27 @@ class InstrumentIds(unittest.TestCase):
             two.instrument("")
 
 
+class PythonWords(unittest.TestCase):
+    def test_the_tradeoff_of_several_instruments_names_the_keyword(self):
+        two = ccal.load_config(EXAMPLES / "daq" / "two_short.toml")
+        with self.assertRaisesRegex(ccal.InputError, r"^tradeoff: 0.5 is not taken for a test of 2 instruments "
+                                                     r".*; accepted: tradeoff with a configuration of one"):
+            ccal.design(two, tradeoff=[0.5, 1], verify_trials=0)
+
+
+class UnitsAsText(unittest.TestCase):
+    def test_the_time_of_sensed_input_takes_its_unit_as_force_does(self):
+        cfg = ccal.bundled_example()
+        self.assertEqual(ccal.sensed_input(cfg, run="5g", time="0.5 min").to_json(),
+                         ccal.sensed_input(cfg, run="5g", time=30).to_json())
+        self.assertEqual(ccal.sensed_input(cfg, run="5g", time="30").to_json(),
+                         ccal.sensed_input(cfg, run="5g", time=30.0).to_json())
+        with self.assertRaisesRegex(ccal.InputError, r"time: '10 m': unit 'm' is a length, expected a time"):
+            ccal.sensed_input(cfg, run="5g", time="10 m")
+        with self.assertRaisesRegex(ccal.InputError, r"time: .* is outside run '5g'"):
+            ccal.sensed_input(cfg, run="5g", time="1 h")
+
+
 class ReductionFromAFolder(unittest.TestCase):
     def test_a_reduction_of_a_folder_pickles_and_names_the_folder(self):
         two = ccal.load_config(EXAMPLES / "daq" / "two_short.toml")
