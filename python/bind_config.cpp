@@ -5,7 +5,9 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/io/config_file.hpp"
+#include "ccal/setup/config.hpp"
 
 namespace ccal::python {
 
@@ -116,7 +118,11 @@ void bind_config(py::module_& m) {
                     "a test of several instruments ([[instruments]]): each one's configuration, in the file's "
                     "order (this one is then the first's); [] for one [instrument] [list of Config]")
       .def(
-          "instrument", [](const Config& c, const std::string& id) { return select_instrument(c, id); },
+          "instrument",
+          [](const Config& c, const std::string& id) {
+            if (id.empty()) throw OptionError("instrument", "", std::string(kEmptyInstrumentId));
+            return select_instrument(c, id);
+          },
           py::arg("id"),
           "One instrument of a test of several, by its id: its configuration as a test of that one instrument "
           "(`--instrument ID` of the command line); InputError naming the ids for another id.")
@@ -130,7 +136,11 @@ void bind_config(py::module_& m) {
   m.def("bundled_example", &bundled_example,
         "The bundled configuration of the paper's experiment (examples/wang_ren_2014.toml).");
   m.def(
-      "load_config", [](const std::string& path) { return load_config(path); }, py::arg("path"),
+      "load_config",
+      [](const py::object& path) {
+        return load_config(path_argument(path, "load_config", "path", "the path of a TOML file (str or os.PathLike)"));
+      },
+      py::arg("path"),
       "Reads and checks a TOML configuration; InputError with file:line:column on bad input.");
   m.def(
       "parse_config",

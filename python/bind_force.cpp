@@ -3,11 +3,13 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <string>
 #include <variant>
 
 #include "bindings.hpp"
 #include "option_keywords.hpp"
+#include "ccal/core/units.hpp"
 #include "ccal/model/sensed_input.hpp"
 #include "ccal/verbs/force.hpp"
 
@@ -58,14 +60,24 @@ void bind_force(py::module_& m) {
   m.def(
       "sensed_input",
       [](const Config& cfg, const std::variant<int, std::string>& run, const py::kwargs& keywords) {
-        auto o = options_from_keywords<verbs::ForceOptions>(keywords, "sensed_input", {}, {"run"});
+        // time as --time takes it: a number in s, or text with its unit ("10 s"), read by the library's parser.
+        py::kwargs rest;
+        std::optional<double> time;
+        for (const auto& [key, value] : keywords) {
+          if (py::isinstance<py::str>(value) && py::cast<std::string>(py::str(key)) == "time")
+            time = parse_as(py::cast<std::string>(value), kind::time, "time", true);
+          else
+            rest[key] = value;
+        }
+        auto o = options_from_keywords<verbs::ForceOptions>(rest, "sensed_input", {}, {"run"});
+        if (time) o.time = *time;
         o.run = cfg.plan.runs[run_index(cfg, run)].name;
         return verbs::force(cfg, o);
       },
       py::arg("config"), py::arg("run") = 0,
       "Specific force and angular rate at time t [s] of a run (a name, or a 0-based index) with the "
       "configured errors (`ccal force`).");
-  record_keywords<verbs::ForceOptions>(m, "sensed_input", {"run"});
+  record_keywords<verbs::ForceOptions>(m, "sensed_input", {"run"}, {{"time", "Union[float, str]"}});
 }
 
 }  // namespace ccal::python

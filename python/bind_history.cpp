@@ -126,9 +126,10 @@ void bind_history_exchange(py::module_& m) {
   record_keywords<verbs::HistoryStoreOptions>(m, "history_export");
   m.def(
       "history_import",
-      [](const std::string& file, const py::kwargs& keywords) {
-        return verbs::history_import(file,
-                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_import"));
+      [](const py::object& file, const py::kwargs& keywords) {
+        return verbs::history_import(
+            path_argument(file, "history_import", "file", "the path of an exported history (str or os.PathLike)"),
+            options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_import"));
       },
       py::arg("file"),
       "Records the calibrations of an exported history file in the store (`ccal history import`), in one "
@@ -204,8 +205,9 @@ void bind_history(py::module_& m) {
   record_keywords<verbs::HistoryShowOptions>(m, "history");
   m.def(
       "history_add",
-      [](const std::string& statement, const py::kwargs& keywords) {
-        return verbs::history_add(statement,
+      [](const py::object& statement, const py::kwargs& keywords) {
+        return verbs::history_add(path_argument(statement, "history_add", "statement",
+                                                "the path of a statement's JSON file (str or os.PathLike)"),
                                   options_from_keywords<verbs::HistoryAddOptions>(keywords, "history_add"))
             .id;
       },

@@ -38,11 +38,13 @@ void bind_identify(py::module_& m) {
 
   m.def(
       "identify_file",
-      [](const std::string& path, std::optional<Config> config, const py::kwargs& keywords) {
+      [](const py::object& path, std::optional<Config> config, const py::kwargs& keywords) {
         auto o = options_from_keywords<verbs::IdentifyOptions>(keywords, "identify_file", {}, {},
                                                                {"path", "config"});
         o.config = std::move(config);
-        return verbs::identify(read_csv_file(path), o);
+        return verbs::identify(
+            read_csv_file(path_argument(path, "identify_file", "path", "the path of a CSV file (str or os.PathLike)")),
+            o);
       },
       py::arg("path"), py::kw_only(), py::arg("config") = py::none(),
       "Identifies coefficients from a CSV file as `ccal identify` does: an observations file of "

@@ -130,7 +130,7 @@ void bind_report(py::module_& m) {
   m.def(
       "report",
       [](const Config& cfg, const std::optional<TargetMap>& allocate_targets, bool design,
-         const std::optional<TargetMap>& design_targets, const std::optional<std::string>& observations,
+         const std::optional<TargetMap>& design_targets, const py::object& observations,
          const py::kwargs& keywords) {
         Report r;
         r.options = report_options(keywords);
@@ -139,7 +139,9 @@ void bind_report(py::module_& m) {
         if (design || design_targets)
           o.design = verbs::report_design(
               design_targets ? target_texts(*design_targets) : std::vector<std::string>{}, o);
-        if (observations) o.observations = read_csv_file(*observations);
+        if (!observations.is_none())
+          o.observations = read_csv_file(path_argument(observations, "report", "observations",
+                                                       "the path of an observations CSV file (str or os.PathLike)"));
         r.result = run_interruptible(py::none(), [&](ProgressCallback on_progress) {
           verbs::ReportOptions with_progress = o;
           with_progress.monte_carlo.on_progress = std::move(on_progress);

@@ -28,10 +28,14 @@ constexpr int kSlots = 16;
 constexpr std::size_t kPathCapacity = 4096;
 char g_temporary[kSlots][kPathCapacity];
 volatile std::sig_atomic_t g_in_use[kSlots];
+// A folder the command made for its files (OutputFolder), removed after them if it is still empty.
+char g_folder[kPathCapacity];
+volatile std::sig_atomic_t g_folder_in_use;
 
 extern "C" void remove_temporaries_and_end(int signal_number) {
   for (int k = 0; k < kSlots; ++k)
     if (g_in_use[k]) ::unlink(g_temporary[k]);
+  if (g_folder_in_use) ::rmdir(g_folder);  // fails, leaving it, unless empty
   struct sigaction default_action {};
   default_action.sa_handler = SIG_DFL;
   ::sigaction(signal_number, &default_action, nullptr);
@@ -356,6 +360,41 @@ std::vector<Plan> plans_for(const std::vector<FileToWrite>& files) {
 }  // namespace
 
 void check_files(const std::vector<FileToWrite>& files) { plans_for(files); }
+
+OutputFolder::OutputFolder(const std::string& option, const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return;
+  if (path.size() >= kPathCapacity) throw InputError(fmt::format("{}: '{}': the path is too long", option, path));
+  install_handlers_once();
+  {
+    SignalsBlocked blocked;
+    std::memcpy(g_folder, path.c_str(), path.size() + 1);
+    g_folder_in_use = 1;
+  }
+  made_ = true;
+  path_ = path;
+  if (!fs::create_directories(path, ec) && !fs::is_directory(path)) {
+    release();
+    throw InputError(fmt::format("{}: cannot create the folder '{}': {}; accepted: a folder that exists or can "
+                                 "be made there",
+                                 option, path, ec ? ec.message() : std::string("a file of that name is there")));
+  }
+}
+
+OutputFolder::~OutputFolder() {
+  if (!made_) return;
+  ::rmdir(path_.c_str());  // fails, leaving it, unless the write was refused before any file went in
+  release();
+}
+
+void OutputFolder::keep() { release(); }
+
+void OutputFolder::release() {
+  if (!made_) return;
+  SignalsBlocked blocked;
+  g_folder_in_use = 0;
+  made_ = false;
+}
 
 void write_files(const std::vector<FileToWrite>& files) {
   ignore_file_size_signal();

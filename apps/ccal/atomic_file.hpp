@@ -43,6 +43,24 @@ void write_files(const std::vector<FileToWrite>& files);
 // exist. Throws InputError as write_files would; writes nothing.
 void check_files(const std::vector<FileToWrite>& files);
 
+// The folder a command's files go into (e.g. `simulate --logs-out`), made when it is missing (InputError
+// naming the option if it cannot be). A folder it made is removed again if the command ends without keep():
+// refused (an exception) or interrupted (SIGINT, SIGTERM) before any file went in, so that no empty folder is
+// left behind. One at a time.
+class OutputFolder {
+ public:
+  OutputFolder(const std::string& option, const std::string& path);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+  void keep();  // the files are written: the folder stays
+
+ private:
+  void release();
+  bool made_ = false;
+  std::string path_;
+};
+
 // Writes text to standard output and flushes it; InputError if the stream reports a write error.
 void write_standard_output(const std::string& text);
 

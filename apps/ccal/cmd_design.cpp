@@ -1,6 +1,7 @@
 // ccal design: the test plan under which the centrifuge's errors cost the identified coefficients least
 // (ccal/verbs/design.hpp, docs/model.md §15), with the designed configuration file.
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -14,6 +15,25 @@
 #include "output.hpp"
 
 namespace ccal::cli {
+
+namespace {
+
+// A job's set-up as the plan written to `plan_out` must name it: its path from that file's folder, when that
+// is another folder than the job's (a relative `setup` is read from the job's folder); "" to keep it as written.
+std::string setup_from(const std::string& job, const std::string& setup_source, const std::string& plan_out) {
+  if (setup_source.empty()) return {};
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path setup = fs::weakly_canonical(fs::absolute(setup_source), ec);
+  const fs::path folder = fs::weakly_canonical(fs::absolute(plan_out).parent_path(), ec);
+  if (ec) return fs::absolute(setup_source).string();
+  if (fs::weakly_canonical(fs::absolute(job).parent_path(), ec) == folder) return {};  // as written
+  if (setup.parent_path() == folder) return setup.filename().string();
+  const fs::path relative = setup.lexically_relative(folder);
+  return relative.empty() ? setup.string() : relative.string();
+}
+
+}  // namespace
 namespace {
 
 struct DesignCli {
@@ -53,6 +73,8 @@ Command add_design(CLI::App& app) {
               throw InputError("--plan-out: '" + o->plan_out +
                                "' is also the -o file; accepted: two different files");
             const Config config = load_config_or_example(o->config);
+            // A design takes minutes: an output that cannot be written is refused before it, not after.
+            if (!o->plan_out.empty()) check_outputs(o->output, {{"--plan-out", o->plan_out, ""}});
             const verbs::DesignResult r = verbs::design(config, d);
             print_warnings(r.after.observability.warnings);
             const std::string& f = o->output.format;
@@ -62,7 +84,8 @@ Command add_design(CLI::App& app) {
             std::vector<ExtraFile> extra;
             if (!o->plan_out.empty())
               extra.push_back({"--plan-out", o->plan_out,
-                               render::config_with_plan(config_file_text(o->config.path), r.designed)});
+                               render::config_with_plan(config_file_text(o->config.path), r.designed,
+                                                        setup_from(o->config.path, config.setup_source, o->plan_out))});
             write_outputs(o->output, report, extra);
           }};
 }

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "ccal/render/simulate.hpp"
 #include "ccal/verbs/reduce.hpp"
 #include "ccal/verbs/simulate.hpp"
+#include "atomic_file.hpp"
 #include "commands.hpp"
 #include "option_flags.hpp"
 #include "output.hpp"
@@ -102,16 +104,15 @@ Command add_simulate(CLI::App& app) {
         std::vector<ExtraFile> extra;
         if (!o->observations_out.empty())
           extra.push_back({"--observations-out", o->observations_out, s.observations_csv});
+        std::optional<OutputFolder> folder;  // made for the logs; gone again if the write is refused
         if (!o->logs_out.empty()) {
-          std::error_code ec;
-          std::filesystem::create_directories(o->logs_out, ec);
-          if (ec)
-            throw InputError("--logs-out: cannot create the folder '" + o->logs_out + "': " + ec.message());
+          folder.emplace("--logs-out", o->logs_out);
           for (RunLogFile& file : verbs::simulation_logs(s, layout))
             extra.push_back({"--logs-out", (std::filesystem::path(o->logs_out) / file.name).string(),
                              std::move(file.text)});
         }
         write_outputs(o->output, text, extra);
+        if (folder) folder->keep();
       }};
 }
 

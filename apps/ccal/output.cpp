@@ -14,6 +14,7 @@
 #include "option_flags.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/render/statement.hpp"
+#include "ccal/setup/config.hpp"
 
 namespace ccal::cli {
 
@@ -141,9 +142,7 @@ void add_instrument_option(CLI::App& command, ConfigChoice& config) {
       ->type_name("ID")
       ->each([](const std::string& id) {
         if (id.empty())  // an unset shell variable would otherwise mean every instrument silently
-          throw CLI::ParseError("--instrument: the id is empty; accepted: an instrument's id of the "
-                                "configuration's [[instruments]], e.g. A",
-                                CLI::ExitCodes::ValidationError);
+          throw CLI::ParseError("--instrument: " + std::string(kEmptyInstrumentId), CLI::ExitCodes::ValidationError);
       });
 }
 

@@ -8,6 +8,7 @@ import json
 import os
 import re
 import tempfile
+import tomllib
 
 from . import _ccal
 
@@ -46,7 +47,16 @@ def restore_result(verb, config, kwargs, logs, pickled_json, pickled_text=None):
     kwargs = dict(kwargs)
     with tempfile.TemporaryDirectory() as folder:
         paths = {}
-        if logs is not None:
+        if isinstance(logs, dict):  # a folder with its manifest: the same files, at the same places in a copy
+            copy = os.path.join(folder, "logs")
+            for name, data in logs["files"]:
+                path = os.path.join(copy, name)
+                os.makedirs(os.path.dirname(path), exist_ok=True)
+                with open(path, "wb") as f:
+                    f.write(data)
+            kwargs["logs"] = copy
+            paths[copy] = logs["folder"]
+        elif logs is not None:
             files = {}
             for k, (run, original, data) in enumerate(logs):
                 path = os.path.join(folder, f"{k}_{os.path.basename(original)}")
@@ -72,6 +82,9 @@ def remember_call(result, verb, config, kwargs, logs, paths):
 
 def result_reduce(self):
     verb, config, kwargs, logs = self._ccal_call
+    if verb == "reduce" and logs is None:
+        raise TypeError(f"this ccal.{type(self).__name__} cannot be pickled: its logs could not be read again "
+                        "when it was made")
     return restore_result, (verb, config, kwargs, logs, self.to_json(), None if logs is None else str(self))
 
 
@@ -82,9 +95,28 @@ def original_paths(text, paths, quote):
     return text
 
 
+def read_folder(folder):
+    """{"folder": as given, "files": [(name, bytes)]}: a folder's manifest.toml and the logs its [runs] name
+    (inside the folder, as the manifest requires), or None when one cannot be read."""
+    try:
+        with open(os.path.join(folder, "manifest.toml"), "rb") as f:
+            manifest = f.read()
+        names = [n for n in tomllib.loads(manifest.decode("utf-8")).get("runs", {}).values() if isinstance(n, str)]
+        files = [("manifest.toml", manifest)]
+        for name in names:
+            with open(os.path.join(folder, name), "rb") as f:
+                files.append((name, f.read()))
+    except (OSError, TypeError, ValueError, AttributeError):
+        return None
+    return {"folder": os.fspath(folder), "files": files}
+
+
 def read_logs(logs):
-    """[(run, path, bytes)] of reduce()'s logs, or None when one cannot be read (reduce itself reports it)."""
+    """[(run, path, bytes)] of reduce()'s logs, the folder's files (read_folder) for a folder, or None when one
+    cannot be read (reduce itself reports it)."""
     contents = []
+    if isinstance(logs, (str, os.PathLike)):
+        return read_folder(logs)
     if not isinstance(logs, dict):
         return None
     for run, path in logs.items():

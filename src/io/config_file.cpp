@@ -132,7 +132,8 @@ void check_distinct_serials(const Reader& r, const std::vector<MountedInstrument
       if (!mounted[k].serial_number.empty() && mounted[k].serial_number == mounted[j].serial_number)
         r.fail(Location{int(mounted[k].serial_line), 1, nullptr},
                Reader::path(fmt::format("instruments[{}]", k + 1), "serial_number"),
-               fmt::format("'{}' is instrument '{}''s too; accepted: each instrument's own serial number",
+               fmt::format("'{}' is also the serial number of instrument '{}'; accepted: each instrument's own "
+                           "serial number",
                            mounted[k].serial_number, mounted[j].id));
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "../core/text_shown.hpp"
 #include "ccal/setup/certificate.hpp"
 #include "config_reader.hpp"
 
@@ -94,6 +95,15 @@ std::optional<Certificate> read_certificate(const Reader& r, const toml::table& 
     }
     if (value.find_first_not_of(" \t\r\n") == std::string::npos)
       r.fail(*n, p, "is empty; accepted: the text the certificate shows, or no key at all");
+    // A serial number or a certificate's number is looked up and printed on one line; free text may break
+    // lines. No other control character (a NUL, an escape) is text a certificate can print.
+    const bool one_line = f.key == "serial_number" || f.key == "number" || f.key == "replaces" ||
+                          f.key == "revision";
+    if (std::any_of(value.begin(), value.end(),
+                    [one_line](char ch) { return detail::is_control(ch) && (one_line || (ch != '\n' && ch != '\t')); }))
+      r.fail(*n, p,
+             fmt::format("{} holds a control character; accepted: printable text{}", detail::shown_text(value, '\''),
+                         one_line ? " on one line, e.g. \"SN 0815\"" : " (line breaks and tabs allowed)"));
     if (f.date)
       if (const std::string problem = calendar_date_problem(value); !problem.empty()) r.fail(*n, p, problem);
     c.*f.member = std::move(value);

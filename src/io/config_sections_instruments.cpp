@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "../core/text_shown.hpp"
 #include "config_reader.hpp"
 
 namespace ccal::config_reading {
@@ -79,6 +80,11 @@ std::vector<MountedInstrument> read_instruments(const Reader& r, const toml::tab
       if (serial->empty() || serial->find_first_not_of(" \t") == std::string::npos)
         r.fail(*t.get("serial_number"), Reader::path(p, "serial_number"),
                "is empty; accepted: the instrument's serial number as on its label, e.g. \"PIGA-0415\"");
+      if (detail::has_control_character(*serial))
+        r.fail(*t.get("serial_number"), Reader::path(p, "serial_number"),
+               fmt::format("{} holds a control character; accepted: the instrument's serial number as on its "
+                           "label, printable text on one line, e.g. \"PIGA-0415\"",
+                           detail::shown_text(*serial, '\'')));
       m.serial_number = *serial;
       m.serial_line = t.get("serial_number")->source().begin.line;
     }

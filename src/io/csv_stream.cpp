@@ -211,6 +211,19 @@ std::string_view csv_delimiter_name(char delimiter) {
 void check_csv_delimiter(std::string_view line, const std::vector<std::string>& fields, const CsvFormat& format,
                          const std::string& source, int line_no) {
   if (fields.size() != 1) return;
+  // A TOML file given for a table (a configuration for the observations, a manifest for a log): a `key = …`
+  // line or a `[table]` header where the column names should be.
+  const std::string_view text = trim_csv(line);
+  const std::size_t equals = text.find('=');
+  const bool toml_key =
+      equals != std::string_view::npos && equals > 0 &&
+      trim_csv(text.substr(0, equals)).find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                                         "0123456789_-.\"'") == std::string_view::npos;
+  if (toml_key || (text.starts_with('[') && text.ends_with(']')))
+    throw CsvError(source, line_no, 1, "",
+                   fmt::format("the header, '{}', is a line of TOML (a configuration or a manifest?), not a table's "
+                               "header; accepted: a CSV table whose header names its columns, e.g. time,pulses",
+                               fields[0]));
   std::optional<char> other;
   for (const char c : {';', '\t', ','})
     if (c != format.delimiter && line.find(c) != std::string_view::npos) {

@@ -1,6 +1,7 @@
 // A calibration statement's JSON read as a history entry (io/history_store.hpp, history_entry): its
 // coefficients, certificate and what it shares with other calibrations on its set-up.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <limits>
@@ -146,6 +147,18 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
         fmt::format("{}: not JSON ({}); accepted: a calibration statement's JSON (alone, or as the "
                     "\"statement\" of a reduction's or an identification's JSON)",
                     source, e.what()));
+  }
+  // A reduction (or simulation) of a test of several instruments holds one statement per instrument: which
+  // one is recorded is the user's choice, not ours.
+  if (j.is_object() && !j.contains("statement") && j.contains("instruments") && j["instruments"].is_array()) {
+    std::vector<std::string> ids;
+    for (const auto& i : j["instruments"])
+      if (i.is_object() && i.contains("statement")) ids.push_back(i.value("id", std::string("?")));
+    if (!ids.empty())
+      throw InputError(fmt::format(
+          "{}: holds the statements of {} instruments ({}) of a test of several; accepted: one instrument's "
+          "statement alone (its reduction with the instrument chosen, or its statement file)",
+          source, ids.size(), fmt::format("{}", fmt::join(ids, ", "))));
   }
   const nlohmann::json& st = j.is_object() && j.contains("statement") ? j["statement"] : j;
   const auto refuse = [&](const std::string& what) {

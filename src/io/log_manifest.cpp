@@ -9,6 +9,7 @@
 #include <fstream>
 #include <utility>
 #include <numbers>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -111,7 +112,7 @@ void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
   if (!t) return;
   r.check_keys(*t, "columns", kColumnKeys);
   LogColumns& c = layout.columns;
-  std::set<std::string> used;
+  std::map<std::string, std::string> used;  // column → the key that names it (or whose default it is)
   for (auto [key, name] : {std::pair{"time", &c.time}, {"pulses", &c.pulses}, {"output", &c.output},
                            {"theta1", &c.theta1}, {"gamma", &c.gamma}}) {
     if (const auto s = r.string(*t, "columns", key)) {
@@ -119,9 +120,12 @@ void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
                                                                           "name of the log's column");
       *name = *s;
     }
-    if (!used.insert(*name).second)
+    if (const auto [at, fresh] = used.emplace(*name, key); !fresh)
       r.fail(t->get(key) ? *t->get(key) : static_cast<const toml::node&>(*t), Reader::path("columns", key),
-             fmt::format("'{}' names two columns; accepted: one name per column", *name));
+             fmt::format("'{}'{} is also the column of columns.{}{}; accepted: a column of its own for each of "
+                         "time, pulses, output, theta1 and gamma",
+                         *name, t->get(key) ? "" : " (its default)", at->second,
+                         t->get(at->second) ? "" : " (its default)"));
   }
   if (const auto u = r.string(*t, "columns", "time_unit")) {
     c.iso_time = *u == kIsoTime;
@@ -203,7 +207,10 @@ namespace {
 void read_instrument_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
   const toml::table* t = r.table(root, "", "instruments", false);
   if (!t) return;
-  std::set<std::string> used{layout.columns.time, layout.columns.theta1, layout.columns.gamma};
+  // column → what it is already: the time, an encoder's, or an earlier instrument's output
+  std::map<std::string, std::string> used{{layout.columns.time, "columns.time"},
+                                          {layout.columns.theta1, "columns.theta1"},
+                                          {layout.columns.gamma, "columns.gamma"}};
   for (const auto& [key, node] : *t) {
     const std::string p = Reader::path("instruments", key.str());
     const toml::table* entry = node.as_table();
@@ -220,9 +227,11 @@ void read_instrument_columns(const Reader& r, const toml::table& root, LogLayout
     const std::string_view which = pulses ? "pulses" : "output";
     if (column.empty()) r.fail(*entry->get(which), Reader::path(p, which), "an empty column name; accepted: the name "
                                                                             "of the log's column");
-    if (!used.insert(column).second)
+    if (const auto [at, fresh] = used.emplace(column, Reader::path(p, which)); !fresh)
       r.fail(*entry->get(which), Reader::path(p, which),
-             fmt::format("'{}' names two columns; accepted: one name per column", column));
+             fmt::format("'{}' is also the column of {}; accepted: a column of its own for each instrument's "
+                         "output, besides the time's and the encoders'",
+                         column, at->second));
     layout.instruments.push_back({std::string(key.str()), column, pulses.has_value(),
                                   int(node.source().begin.line)});
   }

@@ -259,25 +259,6 @@ void LogReducer::units(const std::vector<std::string>& units, int line) {
   }
 }
 
-void LogReducer::defer_time_order(int line, double t) {
-  // Timestamps as written, with the time from the log's first to the ns (ns·1e-9, whose shortest text can
-  // have 17 digits, written with 9 decimals and no trailing zeros); other times as read, in seconds.
-  const auto ns_text = [](double seconds) {
-    std::string text = fmt::format("{:.9f}", seconds);
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-    return text;
-  };
-  const std::string what =
-      options_.columns.iso_time
-          ? fmt::format("'{}' ({} s from the log's first sample) does not follow the sample before it ({} s "
-                        "from the first)",
-                        iso_field_, ns_text(t - t_first_), ns_text(t_previous_ - t_first_))
-          : fmt::format("time {} s does not follow {} s", t, t_previous_);
-  defer(Problem::time_order,
-        cell_error(time_, line, fmt::format("{}; accepted: strictly increasing times", what)));
-}
-
 void LogReducer::defer_count(int line, double value, std::string problem) {
   defer(Problem::counter_wrap, cell_error(*output_, line, fmt::format("{} {}", value, problem)));
 }
@@ -286,7 +267,7 @@ void LogReducer::defer_count(int line, double value, std::string problem) {
 // that it may count down too. Without a declared width, a step against the count's direction over the log and
 // more than ten times its mean step is no pulse count (a PIGA's count per sample is steady to a few per cent):
 // a counter that wraps, refused where it does.
-void LogReducer::count_sample(double value, int line) {
+void LogReducer::count_sample(double value, int line, double step_time) {
   const int bits = options_.columns.counter_bits;
   if (bits > 0 && !(value >= 0 && value < std::ldexp(1.0, bits) && value == std::floor(value))) {
     defer_count(line, value, fmt::format("is not a count of a {}-bit counter; accepted: a whole number from 0 to "
@@ -314,6 +295,7 @@ void LogReducer::count_sample(double value, int line) {
   }
   count_travel_ += std::abs(step);
   ++count_steps_;
+  if (step_time > 0) spread_.add(step / step_time, line, 10 / step_time);
   output_previous_ += step;
 }
 
@@ -503,14 +485,17 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
       if (pulses_) {
         if (bridge && options_.columns.counter_bits > 0 && count_steps_ > 0 && *t > t_first_) {
           bridge_count_ = (output_previous_ - output_first_) / (t_previous_ - t_first_) * (*t - t_previous_);
-          count_sample(*v, line);
+          count_sample(*v, line, *t - t_previous_);
           bridge_count_ = 0;
         } else {
-          count_sample(*v, line);
+          count_sample(*v, line, have_previous_time_ ? *t - t_previous_ : 0.0);
         }
       } else {
         const double y = *v * options_.output_scale;
         if (rows_ > 0 && !bridge) integral_ += 0.5 * (y + output_previous_) * (*t - t_previous_);
+        if (rows_ > 0 && y != output_previous_)
+          output_resolution_ = std::min(output_resolution_, std::abs(y - output_previous_));
+        spread_.add(y, line, 0);
         output_previous_ = y;
       }
     }
@@ -565,6 +550,8 @@ ReducedLog LogReducer::finish() {
                    fmt::format("the mean output over the log, {:.6g} (SI), overflows the fit; accepted: the "
                                "instrument's output in its output unit, or a pulse count, below 1e150",
                                r.mean_output));
+  throw_pending_before(Problem::mean_overflow);  // a counter that wraps is said so, before its step is wild
+  throw_wild_output();
   throw_pending_before(Problem::gamma_spacing);
   if (theta1_) throw_wild(*theta1_);
   if (gamma_) throw_wild(*gamma_);

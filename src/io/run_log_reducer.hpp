@@ -18,6 +18,7 @@
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/io/plain_decimal_row.hpp"
 #include "ccal/io/run_log.hpp"
+#include "run_log_spread.hpp"
 
 namespace ccal::detail {
 
@@ -101,7 +102,9 @@ class LogReducer final : public CsvRowSink {
   [[gnu::cold, gnu::noinline]] void defer_time_order(int line, double t);
   [[gnu::cold, gnu::noinline]] void defer_count(int line, double value, std::string problem);
   // The count of a pulses column, unwrapped (counter_bits) or checked for a wrap that was not declared.
-  void count_sample(double value, int line);
+  void count_sample(double value, int line, double step_time);
+  // Throws the output's one wild sample, or the count's one wild step (run_log_spread.cpp).
+  void throw_wild_output() const;
   [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
   [[gnu::cold, gnu::noinline]] void note_wild(Encoder& e, int line, double departure, double limit);
   void throw_wild(const Encoder& e) const;
@@ -150,6 +153,8 @@ class LogReducer final : public CsvRowSink {
   std::size_t gaps_ = 0;
   double gap_time_ = 0, longest_gap_ = 0;
   double first_step_ = 0;  // the first step between samples (0: none yet)
+  SampleSpread spread_;     // the output's samples, or the count's step rates [counts/s]
+  double output_resolution_ = std::numeric_limits<double>::infinity();  // the least change between samples
 };
 
 }  // namespace ccal::detail

@@ -61,17 +61,33 @@ std::string header_of(const std::string& line) {
   return name;
 }
 
+// A top-level line `setup = …` (a job's set-up file).
+bool setup_key(const std::string& line) {
+  const std::size_t first = line.find_first_not_of(" \t");
+  if (first == std::string::npos || line.compare(first, 5, "setup") != 0) return false;
+  const std::size_t next = line.find_first_not_of(" \t", first + 5);
+  return next != std::string::npos && line[next] == '=';
+}
+
 bool is_plan(const std::string& table) { return table == "plan" || table.rfind("plan.", 0) == 0; }
 
 }  // namespace
 
-std::string config_with_plan(std::string_view original, const Config& config) {
+std::string config_with_plan(std::string_view original, const Config& config, std::string_view setup_path) {
   std::istringstream in{std::string(original)};
   std::string line, out;
-  bool in_plan = false, written = false;
+  bool in_plan = false, written = false, top = true;
   std::string pending;  // comment lines just before a table header travel with that table
   while (std::getline(in, line)) {
     const std::string table = header_of(line);
+    if (!table.empty()) top = false;
+    if (top && !setup_path.empty() && setup_key(line)) {
+      std::string quoted;
+      for (char c : setup_path) quoted += c == '\\' || c == '"' ? std::string{'\\', c} : std::string(1, c);
+      out += pending + fmt::format("setup = \"{}\"  # the set-up, from this file's folder\n", quoted);
+      pending.clear();
+      continue;
+    }
     if (!table.empty()) {
       if (is_plan(table)) {
         in_plan = true;

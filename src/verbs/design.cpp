@@ -349,9 +349,9 @@ void finish(Prepared& p, DesignSearchResult search, const DesignOptions& options
 DesignResult design_of_instruments(const Config& configured, const DesignOptions& options) {
   if (!options.tradeoff.empty())
     throw OptionError("tradeoff", option_number_text(options.tradeoff.front()),
-                      fmt::format("is not taken for a test of {} instruments ({}); accepted: --tradeoff with a "
-                                  "configuration of one instrument",
-                                  configured.instruments.size(), configured.source));
+                      fmt::format("is not taken for a test of {} instruments ({}); accepted: {} with a "
+                                  "configuration of one instrument (one of the test's chosen)",
+                                  configured.instruments.size(), configured.source, OptionError::name("tradeoff")));
   progress_bar::Progress progress(options.progress);
   std::vector<Prepared> each;
   for (const Config& one : configured.instruments) {

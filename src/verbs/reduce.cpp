@@ -120,8 +120,10 @@ void check_nominal_readings(const Config& cfg, const std::map<std::size_t, LogFi
     also += fmt::format("{}'{}'", k == 1 ? "; so are runs " : ", ", cfg.plan.runs[beyond[k]->index].name);
   const std::string finding = run_check_finding(cfg, checks, *beyond.front());
   const std::string name = fmt::format("run '{}'", cfg.plan.runs[beyond.front()->index].name);
-  refuse_log(named.at(beyond.front()->index), name,
-             fmt::format("{}{}; accepted: each run's own log (or reduce without strict_runs to see the fit)",
+  // The finding is "run '…': …": its run is the refusal's item (a manifest's key, or the log option's value).
+  refuse_log(named.at(beyond.front()->index), name + ":",
+             fmt::format("{}{}; accepted: each run's own log (to see the fit anyway: the runs' check as a "
+                         "warning, not strict)",
                          finding.substr(name.size() + 2), also));
 }
 

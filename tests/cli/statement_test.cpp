@@ -360,8 +360,8 @@ TEST_F(Statement, TheStatementAloneAsJsonAndCsvWithTheRoundedFiguresOfTheText) {
     EXPECT_EQ(cells[0], id);
     const auto& rounded = alone["coefficients"][id]["rounded"];
     // The rounded figures as text, quoted, so that their trailing zeros are kept.
-    EXPECT_EQ(cells[14], "\"" + rounded["estimate"].get<std::string>() + "\"");
-    EXPECT_EQ(cells[15], "\"" + rounded["expanded_uncertainty"].get<std::string>() + "\"");
+    EXPECT_EQ(cells[14], fmt::format("\"{}\"", rounded["estimate"].get<std::string>()));
+    EXPECT_EQ(cells[15], fmt::format("\"{}\"", rounded["expanded_uncertainty"].get<std::string>()));
     const bool mc = alone["coefficients"][id]["interval_method"] == "monte_carlo";
     EXPECT_EQ(cells[18], mc ? "monte_carlo" : "student_t");
     const std::string expected_line =

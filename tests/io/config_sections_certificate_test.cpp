@@ -61,6 +61,16 @@ TEST(CertificateTable, BadValuesAreRefusedOnTheirLine) {
   expect_appended_error("[certificate]\ndate_of_calibration = 2026-12-03\ndate_of_issue = 2026-12-02",
                         "certificate.date_of_issue", {"before the date of calibration 2026-12-03"});
   expect_error("certificate = \"CAL-1\"\n" + kBase, 1, "certificate", {"expected a table"});
+  // A control character went into the certificate (and a serial so made was refused only by the history):
+  // none in a serial or a number, line breaks and tabs alone in free text.
+  expect_appended_error("[certificate]\nserial_number = \"SN\\u0000X\"", "certificate.serial_number",
+                        {"'SN\\x00X' holds a control character; accepted: printable text on one line"});
+  expect_appended_error("[certificate]\nnumber = \"CAL\\n1\"", "certificate.number",
+                        {"'CAL\\n1' holds a control character"});
+  expect_appended_error("[certificate]\nremarks = \"a\\u001bb\"", "certificate.remarks",
+                        {"holds a control character; accepted: printable text (line breaks and tabs allowed)"});
+  const Config free_text = parse_config(kBase + "\n[certificate]\nremarks = \"line 1\\nline 2\"", "case.toml");
+  EXPECT_EQ(free_text.certificate->remarks, "line 1\nline 2");
 }
 
 TEST(CertificateTable, RevisionIsANumberOrAText) {

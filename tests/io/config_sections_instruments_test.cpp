@@ -129,13 +129,18 @@ TEST(Instruments, SerialNumbersThatCannotNameEachInstrumentAreRefused) {
                {"instrument 'B' has no serial_number", "each of the 2 instruments", "each its own"});
   const std::string same = kBase + kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"\n"
                                                   "[[instruments]]\nid = \"B\"\nserial_number = \"SN 10\"";
-  expect_error(same, last_line(same), "instruments[2].serial_number", {"'SN 10' is instrument 'A''s too"});
+  expect_error(same, last_line(same), "instruments[2].serial_number",
+               {"'SN 10' is also the serial number of instrument 'A'"});
   expect_appended_error("[[instruments]]\nid = \"A\"\nserial_number = \"SN 10\"", "instruments[1].serial_number",
                         {"no [certificate] table", "accepted: a [certificate] table, or no serial_number"});
   expect_appended_error(kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \" \"",
                         "instruments[1].serial_number", {"is empty"});
   expect_appended_error(kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = 42",
                         "instruments[1].serial_number", {"string"});
+  // A control character (a NUL written as \u0000) went into the certificate and the history refused it later.
+  expect_appended_error(kCertificate + "[[instruments]]\nid = \"A\"\nserial_number = \"SN\\u0000 10\"",
+                        "instruments[1].serial_number",
+                        {"'SN\\x00 10' holds a control character; accepted: the instrument's serial number"});
 }
 
 // One instrument chosen from a test (`--instrument ID`): its configuration as a test of it alone, the others named.

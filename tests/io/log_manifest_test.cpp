@@ -150,7 +150,12 @@ TEST(LogManifest, RefusalsAreLocatedWithWhatIsAccepted) {
       "or \"iso8601\" for timestamps (2026-11-30T10:15:02.125Z)");
   EXPECT_EQ(
       manifest_refusal("[columns]\ntheta1 = \"time\"\n[runs]\n1 = \"a.csv\"\n"),
-      "logs/manifest.toml:2:10: columns.theta1: 'time' names two columns; accepted: one name per column");
+      "logs/manifest.toml:2:10: columns.theta1: 'time' is also the column of columns.time (its default); "
+      "accepted: a column of its own for each of time, pulses, output, theta1 and gamma");
+  // Said of both keys, each given or by default: the refused key is not the one the user changed here.
+  EXPECT_EQ(manifest_refusal("[columns]\ntheta1 = \"gamma\"\n[runs]\n1 = \"a.csv\"\n"),
+            "logs/manifest.toml:1:1: columns.gamma: 'gamma' (its default) is also the column of columns.theta1; "
+            "accepted: a column of its own for each of time, pulses, output, theta1 and gamma");
   EXPECT_EQ(manifest_refusal("[columns]\ncounter_bits = 12.5\n[runs]\n1 = \"a.csv\"\n"),
             "logs/manifest.toml:2:16: columns.counter_bits: 12.5 is not a counter's width; accepted: a whole "
             "number of bits from 8 to 52 (e.g. 16, 24, 32)");
@@ -182,7 +187,12 @@ TEST(LogManifest, InstrumentColumnsAreCheckedWhereTheyAreWritten) {
   EXPECT_NE(manifest_refusal("[instruments]\nA = { pulses = \"a\", output = \"b\" }\n" + runs)
                 .find("instruments.A: needs exactly one of pulses"),
             std::string::npos);
-  EXPECT_NE(manifest_refusal("[instruments]\nA = { pulses = \"time\" }\n" + runs).find("'time' names two columns"),
+  EXPECT_NE(manifest_refusal("[instruments]\nA = { pulses = \"time\" }\n" + runs)
+                .find("instruments.A.pulses: 'time' is also the column of columns.time; accepted: a column of its "
+                      "own for each instrument's output"),
+            std::string::npos);
+  EXPECT_NE(manifest_refusal("[instruments]\nA = { pulses = \"c\" }\nB = { output = \"c\" }\n" + runs)
+                .find("instruments.B.output: 'c' is also the column of instruments.A.pulses;"),
             std::string::npos);
   EXPECT_NE(manifest_refusal("[instruments]\nA = { pulse = \"a\" }\n" + runs).find("did you mean 'pulses'?"),
             std::string::npos);

@@ -81,7 +81,9 @@ class SwappedLogsTest(unittest.TestCase):
             logs["5g"], logs["10g"] = logs["10g"], logs["5g"]
             r = ccal.reduce(cfg, logs, statement=False)
             self.assertEqual(sum("nominal instrument" in w for w in r.warnings), 2)
-            with self.assertRaisesRegex(ccal.InputError, r"logs: run '5g' the log's mean .* so are runs '10g'"):
+            with self.assertRaisesRegex(ccal.InputError, r"logs: run '5g': the log's mean .* so are runs '10g'; accepted: "
+                                                         r"each run's own log \(to see the fit anyway: the runs' "
+                                                         r"check as a warning, not strict\)$"):
                 ccal.reduce(cfg, logs, strict_runs=True)
             # reduce_logs does not identify, so has no statement and no run check: their keywords are refused,
             # coverage_factor among them (it was accepted and ignored).

@@ -73,7 +73,7 @@ TEST_F(RunCheckVerb, TwoSwappedLogsAreEachFoundAndNamed) {
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "logs");
     const std::string what = e.what();
-    EXPECT_EQ(what.rfind("logs: run '" + a + "' the log's mean", 0), 0u) << what;
+    EXPECT_EQ(what.rfind("logs: run '" + a + "': the log's mean", 0), 0u) << what;
     EXPECT_NE(what.find("; so are runs '" + b + "'"), std::string::npos) << what;
     EXPECT_NE(what.find("accepted: each run's own log"), std::string::npos) << what;
   }

@@ -18,7 +18,8 @@ std::string csv(const verbs::DesignResult& result);
 // written with 17 significant digits, so that reading it back gives the same numbers.
 std::string plan_toml(const Config& config);
 // The whole configuration text `original` with its [plan] table (and its [[plan.runs]]) replaced by
-// plan_toml(config); the rest of the file is kept as it was.
-std::string config_with_plan(std::string_view original, const Config& config);
+// plan_toml(config); the rest of the file is kept as it was, but for a job's `setup = "…"` when `setup_path`
+// is given: the set-up's path as the text, written into another folder than the job's, must name it.
+std::string config_with_plan(std::string_view original, const Config& config, std::string_view setup_path = {});
 
 }  // namespace ccal::render

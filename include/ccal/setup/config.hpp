@@ -81,6 +81,10 @@ void require_one_instrument(const Config& config, std::string_view verb);
 // gives the configuration unchanged. OptionError of the field "instrument" for an id the test does not have, or for
 // a configuration of one [instrument] (which has no ids), naming what is accepted.
 Config select_instrument(const Config& config, std::string_view id);
+// The words refusing an instrument id given empty (an unset shell variable, an empty string), which would
+// otherwise mean every instrument silently; each front end names its option (`--instrument`, instrument()).
+inline constexpr std::string_view kEmptyInstrumentId =
+    "the id is empty; accepted: an instrument's id of the configuration's [[instruments]], e.g. A";
 
 // The configuration no longer describes its file (changed in code): its fingerprints emptied.
 void clear_fingerprints(Config& config);
