@@ -1,0 +1,120 @@
+// The Monte Carlo's generator and draws (montecarlo_draws.hpp).
+#include "montecarlo_draws.hpp"
+
+#include <cmath>
+
+#include "draw_quantiles.hpp"
+
+namespace ccal::mc_draws {
+namespace {
+
+constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+
+// xoshiro256** (Blackman & Vigna, ACM TOMS 47(4), 2021): a 256-bit xor/shift/rotate linear engine with the
+// "**" scrambler (multiply by 5, rotate by 7, multiply by 9). The generator of trial i starts from words
+// 4i+1 … 4i+4 of the SplitMix64 sequence whose state starts at `key`: distinct trials get distinct words of
+// one full-period Weyl sequence, and as mix64 is a bijection the four words are never all zero.
+class TrialGenerator {
+ public:
+  TrialGenerator(std::uint64_t key, std::uint64_t trial) {
+    const std::uint64_t base = key + 4 * trial * kGolden;  // arithmetic mod 2⁶⁴
+    for (std::uint64_t k = 0; k < 4; ++k) s_[k] = mix64(base + (k + 1) * kGolden);
+  }
+  std::uint64_t next() {
+    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
+    const std::uint64_t t = s_[1] << 17;
+    s_[2] ^= s_[0];
+    s_[3] ^= s_[1];
+    s_[1] ^= s_[2];
+    s_[0] ^= s_[3];
+    s_[2] ^= t;
+    s_[3] = rotl(s_[3], 45);
+    return result;
+  }
+  // As a uniform random bit generator (for Boost.Random's ziggurat normals of the copula).
+  using result_type = std::uint64_t;
+  static constexpr result_type min() { return 0; }
+  static constexpr result_type max() { return ~result_type(0); }
+  result_type operator()() { return next(); }
+  // u = (k + ½)·2⁻⁵², k the top 52 bits: exactly representable, in (0, 1), and 1 − u is on the same grid.
+  double uniform() { return (double(next() >> 12) + 0.5) * 0x1p-52; }
+
+ private:
+  std::uint64_t s_[4];
+};
+
+// F⁻¹(u) of a distribution with bound 1 other than the normal (drawn in lanes), for u on the grid above (so
+// 2u − 1 and u − ½ are exact and every branch is exactly odd about u = ½), by IEEE operations alone
+// (draw_quantiles.hpp): the same bits everywhere.
+double standard_quantile(Distribution d, double u) {
+  switch (d) {
+    case Distribution::normal:
+      return draws::normal_quantile(u);
+    case Distribution::uniform:
+      return 2.0 * u - 1.0;
+    case Distribution::triangular:
+      return u < 0.5 ? std::sqrt(2.0 * u) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u));
+    case Distribution::arcsine:
+      return draws::sin_pi(u - 0.5);
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+SlotPlan plan_slots(const std::vector<Tolerance>& sources) {
+  const CorrelationGroups g = correlation_groups(sources);
+  return {g.of, g.count, g.named};
+}
+
+BatchDrawer::BatchDrawer(const std::vector<Tolerance>& sources, const SlotPlan& plan, const GaussianCopula* copula)
+    : sources_(sources), plan_(plan), copula_(copula) {
+  for (std::size_t j = 0; j < sources.size(); ++j)
+    if (sources[j].distribution == Distribution::normal) normal_sources_.push_back(j);
+  if (copula) {
+    z_.resize(copula->factor.cols());
+    w_.resize(z_.size());
+  }
+}
+
+void BatchDrawer::draw(std::uint64_t key, std::uint64_t first, std::size_t n, std::vector<double>& draws) {
+  const std::size_t n_sources = sources_.size();
+  draws.resize(n * n_sources);
+  if (copula_) {  // y = Pᵀ L z (L lower triangular), x = bound · G_D(y_slot)
+    for (std::size_t t = 0; t < n; ++t) {
+      TrialGenerator generator(key, first + t);
+      for (double& v : z_) v = normal_(generator);
+      w_.noalias() = copula_->factor.triangularView<Eigen::Lower>() * z_;
+      for (std::size_t j = 0; j < n_sources; ++j) {
+        const auto row = copula_->row_of_slot[std::size_t(plan_.slot[j])];
+        draws[t * n_sources + j] = sources_[j].bound * standard_value_of_score(sources_[j].distribution, w_[row]);
+      }
+    }
+    return;
+  }
+  const auto slots = std::size_t(plan_.slots);
+  u_.resize(n * slots);
+  for (std::size_t t = 0; t < n; ++t) {
+    TrialGenerator generator(key, first + t);
+    for (std::size_t s = 0; s < slots; ++s) u_[t * slots + s] = generator.uniform();
+  }
+  // The normal sources' Φ⁻¹ of the whole batch in lanes.
+  const std::size_t n_normal = normal_sources_.size();
+  normal_u_.resize(n * n_normal);
+  normal_x_.resize(n * n_normal);
+  for (std::size_t t = 0; t < n; ++t)
+    for (std::size_t k = 0; k < n_normal; ++k)
+      normal_u_[t * n_normal + k] = u_[t * slots + std::size_t(plan_.slot[normal_sources_[k]])];
+  draws::normal_quantiles(normal_u_.data(), normal_x_.data(), normal_u_.size());
+  for (std::size_t t = 0; t < n; ++t) {
+    double* row = draws.data() + t * n_sources;
+    const double* u = u_.data() + t * slots;
+    for (std::size_t j = 0; j < n_sources; ++j)
+      if (sources_[j].distribution != Distribution::normal)
+        row[j] = sources_[j].bound * standard_quantile(sources_[j].distribution, u[std::size_t(plan_.slot[j])]);
+    for (std::size_t k = 0; k < n_normal; ++k)
+      row[normal_sources_[k]] = sources_[normal_sources_[k]].bound * normal_x_[t * n_normal + k];
+  }
+}
+
+}  // namespace ccal::mc_draws
