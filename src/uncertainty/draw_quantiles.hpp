@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "../core/cloned_loops.hpp"  // lanes::Doubles, for which sin_pi is instantiated too
+
 namespace ccal::draws {
 
 // ln x for a finite x > 0 (a normal double): x = 2ᵉ m with m in [√½, √2), ln m = 2 atanh f with f = (m − 1)/(m + 1),
@@ -36,9 +38,11 @@ inline double log_positive(double x) {
 }
 
 // sin(π t) for |t| ≤ ½ (the arcsine's F⁻¹ at u = t + ½): x = π t and the Taylor series of sin x to x²¹ (on
-// |x| ≤ π/2 the next term is below 2·10⁻¹⁸).
-inline double sin_pi(double t) {
-  const double x = 3.141592653589793 * t, x2 = x * x;
+// |x| ≤ π/2 the next term is below 2·10⁻¹⁸). T: double, or a GCC vector of doubles (the same operations in
+// each lane, so the same bits).
+template <class T>
+inline T sin_pi(T t) {
+  const T x = 3.141592653589793 * t, x2 = x * x;
   // 1/(2k + 1)! for k = 1 … 10, with alternating signs
   constexpr double c[] = {-1.0 / 6,
                           1.0 / 120,
@@ -50,10 +54,16 @@ inline double sin_pi(double t) {
                           1.0 / 355687428096000,
                           -1.0 / 121645100408832000,
                           1.0 / 51090942171709440000.0};
-  double s = c[9];
+  T s = T{} + c[9];
   for (int k = 8; k >= 0; --k) s = s * x2 + c[k];
   return x + x * (x2 * s);
 }
+
+// The arcsine's and the triangular's F⁻¹ (bound 1) of n uniforms u on the engine's grid, in SIMD lanes (the
+// loops compiled for each instruction set, CCAL_CLONED): sin(π(u − ½)), and √(2u) − 1 below ½, 1 − √(2(1 − u))
+// from ½ on, each value's bits those of the scalar expression.
+void arcsine_quantiles(const double* u, double* x, std::size_t n);
+void triangular_quantiles(const double* u, double* x, std::size_t n);
 
 // Φ⁻¹(u), the standard normal's quantile, for 0 < u < 1 (a normal double, as every u of the grid is): the rational
 // approximations of M. J. Wichura, "Algorithm AS 241: The percentage points of the normal distribution", Applied

@@ -43,21 +43,21 @@ class TrialGenerator {
   std::uint64_t s_[4];
 };
 
-// F⁻¹(u) of a distribution with bound 1 other than the normal (drawn in lanes), for u on the grid above (so
-// 2u − 1 and u − ½ are exact and every branch is exactly odd about u = ½), by IEEE operations alone
+// F⁻¹ of a distribution of bound 1 (montecarlo.hpp) for n uniforms on the grid above (so that 2u − 1 and u − ½
+// are exact and every F⁻¹ is exactly odd about u = ½), in SIMD lanes by IEEE operations alone
 // (draw_quantiles.hpp): the same bits everywhere.
-double standard_quantile(Distribution d, double u) {
+void quantiles_of(Distribution d, const double* u, double* x, std::size_t n) {
   switch (d) {
     case Distribution::normal:
-      return draws::normal_quantile(u);
+      return draws::normal_quantiles(u, x, n);
     case Distribution::uniform:
-      return 2.0 * u - 1.0;
+      for (std::size_t i = 0; i < n; ++i) x[i] = 2.0 * u[i] - 1.0;
+      return;
     case Distribution::triangular:
-      return u < 0.5 ? std::sqrt(2.0 * u) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u));
+      return draws::triangular_quantiles(u, x, n);
     case Distribution::arcsine:
-      return draws::sin_pi(u - 0.5);
+      return draws::arcsine_quantiles(u, x, n);
   }
-  return 0.0;
 }
 
 }  // namespace
@@ -69,8 +69,7 @@ SlotPlan plan_slots(const std::vector<Tolerance>& sources) {
 
 BatchDrawer::BatchDrawer(const std::vector<Tolerance>& sources, const SlotPlan& plan, const GaussianCopula* copula)
     : sources_(sources), plan_(plan), copula_(copula) {
-  for (std::size_t j = 0; j < sources.size(); ++j)
-    if (sources[j].distribution == Distribution::normal) normal_sources_.push_back(j);
+  for (std::size_t j = 0; j < sources.size(); ++j) of_distribution_[int(sources[j].distribution)].push_back(j);
   if (copula) {
     z_.resize(copula->factor.cols());
     w_.resize(z_.size());
@@ -98,22 +97,18 @@ void BatchDrawer::draw(std::uint64_t key, std::uint64_t first, std::size_t n, st
     TrialGenerator generator(key, first + t);
     for (std::size_t s = 0; s < slots; ++s) u_[t * slots + s] = generator.uniform();
   }
-  // The normal sources' Φ⁻¹ of the whole batch in lanes.
-  const std::size_t n_normal = normal_sources_.size();
-  normal_u_.resize(n * n_normal);
-  normal_x_.resize(n * n_normal);
-  for (std::size_t t = 0; t < n; ++t)
-    for (std::size_t k = 0; k < n_normal; ++k)
-      normal_u_[t * n_normal + k] = u_[t * slots + std::size_t(plan_.slot[normal_sources_[k]])];
-  draws::normal_quantiles(normal_u_.data(), normal_x_.data(), normal_u_.size());
-  for (std::size_t t = 0; t < n; ++t) {
-    double* row = draws.data() + t * n_sources;
-    const double* u = u_.data() + t * slots;
-    for (std::size_t j = 0; j < n_sources; ++j)
-      if (sources_[j].distribution != Distribution::normal)
-        row[j] = sources_[j].bound * standard_quantile(sources_[j].distribution, u[std::size_t(plan_.slot[j])]);
-    for (std::size_t k = 0; k < n_normal; ++k)
-      row[normal_sources_[k]] = sources_[normal_sources_[k]].bound * normal_x_[t * n_normal + k];
+  // Each distribution's F⁻¹ for all its sources of the whole batch at once, in lanes.
+  for (int d = 0; d < kDistributions; ++d) {
+    const std::vector<std::size_t>& of = of_distribution_[d];
+    const std::size_t m = of.size();
+    if (m == 0) continue;
+    in_.resize(n * m);
+    out_.resize(n * m);
+    for (std::size_t t = 0; t < n; ++t)
+      for (std::size_t k = 0; k < m; ++k) in_[t * m + k] = u_[t * slots + std::size_t(plan_.slot[of[k]])];
+    quantiles_of(Distribution(d), in_.data(), out_.data(), n * m);
+    for (std::size_t t = 0; t < n; ++t)
+      for (std::size_t k = 0; k < m; ++k) draws[t * n_sources + of[k]] = sources_[of[k]].bound * out_[t * m + k];
   }
 }
 

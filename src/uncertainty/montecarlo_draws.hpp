@@ -1,7 +1,7 @@
 #pragma once
 // The Monte Carlo's draws (montecarlo.hpp), private to the library: each trial's generator, and the draws of
-// a batch of consecutive trials, computed together so that the normal quantiles of the whole batch run in SIMD
-// lanes (draw_quantiles.hpp). A trial's draws depend on the seed and its index alone, never on the batch it is
+// a batch of consecutive trials, computed together so that each distribution's quantiles of the whole batch run
+// in SIMD lanes (draw_quantiles.hpp). A trial's draws depend on the seed and its index alone, never on the batch it is
 // drawn in: draw_sources (one trial) gives the bits run_monte_carlo uses.
 #include <boost/random/normal_distribution.hpp>
 #include <Eigen/Core>
@@ -43,8 +43,9 @@ class BatchDrawer {
   const std::vector<Tolerance>& sources_;
   const SlotPlan& plan_;
   const GaussianCopula* copula_;  // partly correlated sources: the scores' factor L; null: independent slots
-  std::vector<std::size_t> normal_sources_;  // the sources drawn by Φ⁻¹
-  std::vector<double> u_, normal_u_, normal_x_;
+  static constexpr int kDistributions = 4;  // Distribution's values
+  std::vector<std::size_t> of_distribution_[kDistributions];  // the sources of each distribution
+  std::vector<double> u_, in_, out_;
   Eigen::VectorXd z_, w_;
   boost::random::normal_distribution<double> normal_;
 };

@@ -66,6 +66,24 @@ TEST(DrawQuantiles, NormalQuantilesInLanesAreEachValuesOwn) {
   EXPECT_EQ(x[u.size() - 2], -x[u.size() - 1]);
 }
 
+// The arcsine's and the triangular's F⁻¹ in lanes: each value the scalar expression's bits, for any length
+// (whole packs of eight and a padded rest), the ends of the grid included.
+TEST(DrawQuantiles, ArcsineAndTriangularInLanesAreTheScalarExpressions) {
+  test::PortableUniform random{56};
+  for (std::size_t n : {1u, 7u, 8u, 13u, 1000u}) {
+    std::vector<double> u(n), a(n), t(n);
+    for (double& v : u) v = grid(std::uint64_t(random() * 0x1p52));
+    u[0] = grid(0);
+    u[n - 1] = 1 - grid(0);
+    draws::arcsine_quantiles(u.data(), a.data(), n);
+    draws::triangular_quantiles(u.data(), t.data(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(a[i], draws::sin_pi(u[i] - 0.5)) << u[i];
+      ASSERT_EQ(t[i], u[i] < 0.5 ? std::sqrt(2.0 * u[i]) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u[i]))) << u[i];
+    }
+  }
+}
+
 TEST(DrawQuantiles, SinPiIsWithinFourUlpOnHalfATurn) {
   test::PortableUniform random{53};
   double worst = 0, worst_t = 0;
