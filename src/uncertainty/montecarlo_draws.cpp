@@ -31,11 +31,6 @@ class TrialGenerator {
     s_[3] = rotl(s_[3], 45);
     return result;
   }
-  // As a uniform random bit generator (for Boost.Random's ziggurat normals of the copula).
-  using result_type = std::uint64_t;
-  static constexpr result_type min() { return 0; }
-  static constexpr result_type max() { return ~result_type(0); }
-  result_type operator()() { return next(); }
   // u = (k + ½)·2⁻⁵², k the top 52 bits: exactly representable, in (0, 1), and 1 − u is on the same grid.
   double uniform() { return (double(next() >> 12) + 0.5) * 0x1p-52; }
 
@@ -79,10 +74,17 @@ BatchDrawer::BatchDrawer(const std::vector<Tolerance>& sources, const SlotPlan& 
 void BatchDrawer::draw(std::uint64_t key, std::uint64_t first, std::size_t n, std::vector<double>& draws) {
   const std::size_t n_sources = sources_.size();
   draws.resize(n * n_sources);
-  if (copula_) {  // y = Pᵀ L z (L lower triangular), x = bound · G_D(y_slot)
+  const auto slots = std::size_t(plan_.slots);
+  u_.resize(n * slots);
+  for (std::size_t t = 0; t < n; ++t) {
+    TrialGenerator generator(key, first + t);
+    for (std::size_t s = 0; s < slots; ++s) u_[t * slots + s] = generator.uniform();
+  }
+  if (copula_) {  // z = Φ⁻¹(u) per slot, y = Pᵀ L z (L lower triangular), x = bound · G_D(y_slot)
+    scores_.resize(n * slots);
+    draws::normal_quantiles(u_.data(), scores_.data(), n * slots);
     for (std::size_t t = 0; t < n; ++t) {
-      TrialGenerator generator(key, first + t);
-      for (double& v : z_) v = normal_(generator);
+      z_ = Eigen::Map<const Eigen::VectorXd>(scores_.data() + t * slots, Eigen::Index(slots));
       w_.noalias() = copula_->factor.triangularView<Eigen::Lower>() * z_;
       for (std::size_t j = 0; j < n_sources; ++j) {
         const auto row = copula_->row_of_slot[std::size_t(plan_.slot[j])];
@@ -90,12 +92,6 @@ void BatchDrawer::draw(std::uint64_t key, std::uint64_t first, std::size_t n, st
       }
     }
     return;
-  }
-  const auto slots = std::size_t(plan_.slots);
-  u_.resize(n * slots);
-  for (std::size_t t = 0; t < n; ++t) {
-    TrialGenerator generator(key, first + t);
-    for (std::size_t s = 0; s < slots; ++s) u_[t * slots + s] = generator.uniform();
   }
   // Each distribution's F⁻¹ for all its sources of the whole batch at once, in lanes.
   for (int d = 0; d < kDistributions; ++d) {

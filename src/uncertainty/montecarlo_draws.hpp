@@ -3,7 +3,6 @@
 // a batch of consecutive trials, computed together so that each distribution's quantiles of the whole batch run
 // in SIMD lanes (draw_quantiles.hpp). A trial's draws depend on the seed and its index alone, never on the batch it is
 // drawn in: draw_sources (one trial) gives the bits run_monte_carlo uses.
-#include <boost/random/normal_distribution.hpp>
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -45,9 +44,8 @@ class BatchDrawer {
   const GaussianCopula* copula_;  // partly correlated sources: the scores' factor L; null: independent slots
   static constexpr int kDistributions = 4;  // Distribution's values
   std::vector<std::size_t> of_distribution_[kDistributions];  // the sources of each distribution
-  std::vector<double> u_, in_, out_;
+  std::vector<double> u_, in_, out_, scores_;
   Eigen::VectorXd z_, w_;
-  boost::random::normal_distribution<double> normal_;
 };
 
 }  // namespace ccal::mc_draws

@@ -1,8 +1,9 @@
 // The bits of the library's cloned loops (core/cloned_loops.hpp) as one SHA-256, and the clone this processor
 // runs: tests/dispatch/check_dispatch_targets.py runs it natively and on emulated processors that lack AVX-512
 // or AVX2, and requires one digest of all. Its work: Φ⁻¹ of the Monte Carlo's draws over the grid and its tails
-// (draw_quantiles.cpp), and the Monte Carlo of the bundled example (the drives' rate-noise derivatives, the run
-// means' node loops, the tracked sines and cosines), every trial's outputs and the statistics; and the
+// (draw_quantiles.cpp), and the Monte Carlo of the bundled example, its sources independent and then all
+// correlated through the Gaussian copula (the drives' rate-noise derivatives, the run means' node loops, the
+// tracked sines and cosines), every trial's outputs and the statistics; and the
 // statement's Monte Carlo check of the lab example (its multivariate t). Usage: dispatch_digest [trials].
 #include <cmath>
 #include <cstdio>
@@ -49,8 +50,12 @@ int main(int argc, char** argv) {
     draws::normal_quantiles(u.data(), x.data(), u.size());
     add(hash, x.data(), x.size());
   }
-  const Config cfg = bundled_example();
-  {  // the bundled example's Monte Carlo
+  Config cfg = bundled_example();
+  for (int correlated = 0; correlated < 2; ++correlated) {  // the bundled example's Monte Carlo
+    if (correlated)  // r = 0.3 between every pair of tolerances: every source through the Gaussian copula
+      for (std::size_t a = 0; a < cfg.tolerances.size(); ++a)
+        for (std::size_t b = a + 1; b < cfg.tolerances.size(); ++b)
+          cfg.correlations.push_back({cfg.tolerances[a].id, cfg.tolerances[b].id, 0.3});
     const CalibrationModel model = calibration_model(cfg);
     MonteCarloOptions o;
     o.trials = trials;
