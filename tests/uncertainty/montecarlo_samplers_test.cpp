@@ -149,6 +149,7 @@ TEST(MonteCarloSamplers, EachDistributionIsItsOwnAndTheEarlierSamplersAtFourMome
   o.keep_samples = true;
   o.threads = 2;
   const MonteCarloResult alone = run_monte_carlo(independent, {}, 4, {}, ccal::test::identity, o);
+  o.seed = 2025;  // another seed: the pair's first score would otherwise be the independent normal's draw
   const MonteCarloResult copula = run_monte_carlo(pair, {{"cn", "ca", r}}, 2, {}, ccal::test::identity, o);
   std::vector<Tolerance> sources = independent;
   sources.insert(sources.end(), pair.begin(), pair.end());
