@@ -1,5 +1,5 @@
-// Φ⁻¹ of the Monte Carlo's draws in SIMD lanes (draw_quantiles.hpp): AS 241's rational functions in
-// double-double arithmetic, so that the roundings of their evaluation stay far below the approximation's own
+// Φ⁻¹ of the Monte Carlo's draws in SIMD lanes (draw_quantiles.hpp): AS 241's rational functions by the
+// compensated Horner scheme and a double-double division, so that the roundings of their evaluation stay far below the approximation's own
 // 10⁻¹⁶ and the result is within 4 ulp with nothing but IEEE double operations (the extended precision of the
 // x87, which did the same before, has no SIMD lanes and cost a quarter of a trial).
 #include "draw_quantiles.hpp"
@@ -12,8 +12,8 @@
 namespace ccal::draws {
 namespace {
 
-// The cloned loops' packs of eight. (Two or four packs at once, to overlap the dependent chains of double-double
-// Horner, were faster for it; with the compensated scheme their registers spill and one pack is fastest.)
+// The cloned loops' packs of eight. (Two or four packs at once, to overlap the dependent chains, were faster
+// for double-double Horner; with the compensated scheme their registers spill and one pack is fastest.)
 constexpr std::size_t kLanes = lanes::kWidth;
 using Pack = lanes::Doubles;
 using Ints = std::int64_t __attribute__((vector_size(kLanes * sizeof(std::int64_t))));
@@ -104,36 +104,37 @@ constexpr Polynomial kFarDen{wide(1.0L),                          wide(5.9983220
                              wide(7.86869131145613259100e-4L),    wide(1.84631831751005468180e-5L),
                              wide(1.42151175831644588870e-7L),    wide(2.04426310338993978564e-15L)};
 
-// Σ c_k t^k by Horner's rule in double-double, in the lanes where is_far holds with the far polynomial's
-// coefficients.
-[[gnu::always_inline]] inline Wide horner(const Polynomial& near, const Polynomial& far, Ints is_far, Wide t) {
-  const auto pick = [&](std::size_t k) {
-    return Wide{is_far ? splat(far[k].hi) : splat(near[k].hi), is_far ? splat(far[k].lo) : splat(near[k].lo)};
-  };
-  Wide s = pick(7);
-  for (int k = 6; k >= 0; --k) s = add(multiply(s, t), pick(std::size_t(k)));
-  return s;
-}
-
 // Σ c_k r^k by the compensated Horner scheme (S. Graillat, Ph. Langlois, N. Louvet, "Algorithms for accurate,
 // validated and fast polynomial evaluation", Japan J. Indust. Appl. Math. 26, 2009): Horner's rule in double
 // with each step's rounding errors taken exactly (Dekker's product, Knuth's sum) and carried by a second Horner
 // sum in double, which also takes the coefficients' and r's low parts to first order; the result as a
 // double-double, as accurate as Horner's rule in twice the precision. A third fewer operations than
 // double-double Horner, whose renormalisations it leaves out.
-[[gnu::always_inline]] inline Wide compensated_horner(const Polynomial& c, Wide r) {
+// The coefficients in lanes: c_k everywhere, or where is_far holds the far polynomial's.
+struct Coefficients {
+  const Polynomial& near;
+  const Polynomial* far = nullptr;
+  Ints is_far{};
+  [[gnu::always_inline]] Pack hi(std::size_t k) const {
+    return far ? (is_far ? splat((*far)[k].hi) : splat(near[k].hi)) : splat(near[k].hi);
+  }
+  [[gnu::always_inline]] Pack lo(std::size_t k) const {
+    return far ? (is_far ? splat((*far)[k].lo) : splat(near[k].lo)) : splat(near[k].lo);
+  }
+};
+[[gnu::always_inline]] inline Wide compensated_horner(const Coefficients& c, Wide r) {
   Pack rh, rl;
   split(r.hi, rh, rl);
-  Pack s = splat(c[7].hi), e = splat(c[7].lo);
+  Pack s = c.hi(7), e = c.lo(7);
   for (int k = 6; k >= 0; --k) {
     const auto K = std::size_t(k);
     Pack sh, sl;
     split(s, sh, sl);
     const Pack p = s * r.hi;
     const Pack product_error = ((sh * rh - p) + sh * rl + sl * rh) + sl * rl;
-    const Pack t = p + c[K].hi, v = t - p;
-    const Pack sum_error = (p - (t - v)) + (c[K].hi - v);
-    e = e * r.hi + (s * r.lo + ((product_error + sum_error) + c[K].lo));
+    const Pack ck = c.hi(K), t = p + ck, v = t - p;
+    const Pack sum_error = (p - (t - v)) + (ck - v);
+    e = e * r.hi + (s * r.lo + ((product_error + sum_error) + c.lo(K)));
     s = t;
   }
   return fast_two_sum(s, e);
@@ -148,7 +149,7 @@ constexpr Polynomial kFarDen{wide(1.0L),                          wide(5.9983220
   const Wide q2 = two_product(q, q);
   constexpr Coefficient kEdge = wide(0.180625L);
   const Wide r = add(Wide{splat(kEdge.hi), splat(kEdge.lo)}, Wide{-q2.hi, -q2.lo});
-  const Wide ratio = divide(compensated_horner(kCentralNum, r), compensated_horner(kCentralDen, r));
+  const Wide ratio = divide(compensated_horner({kCentralNum}, r), compensated_horner({kCentralDen}, r));
   const Wide x = multiply(ratio, Wide{q, Pack{}});
   return x.hi;
 }
@@ -175,7 +176,8 @@ constexpr Polynomial kFarDen{wide(1.0L),                          wide(5.9983220
 }
 
 // The tails: r = √(−ln p), p the smaller of u and 1 − u (exact for u ≥ ½), x = ±A(w)/B(w) with w = r − 1.6
-// (r ≤ 5) or r − 5, each as a double-double.
+// (r ≤ 5) or r − 5, each as a double-double, A and B by the compensated Horner scheme (w changes sign: the
+// sums alternate, which the scheme's exact error terms carry).
 [[gnu::always_inline]] inline Pack tail(Pack u) {
   const Pack q = u - 0.5;
   const Ints lower = q < 0;
@@ -188,7 +190,8 @@ constexpr Polynomial kFarDen{wide(1.0L),                          wide(5.9983220
   const Pack shift_lo = is_far ? Pack{} : splat(kNearShift.lo);
   Wide w = two_sum(r, -shift_hi);
   w = fast_two_sum(w.hi, w.lo - shift_lo);
-  const Wide x = divide(horner(kNearNum, kFarNum, is_far, w), horner(kNearDen, kFarDen, is_far, w));
+  const Wide x = divide(compensated_horner({kNearNum, &kFarNum, is_far}, w),
+                        compensated_horner({kNearDen, &kFarDen, is_far}, w));
   return lower ? -x.hi : x.hi;
 }
 

@@ -67,9 +67,9 @@ void triangular_quantiles(const double* u, double* x, std::size_t n);
 
 // Φ⁻¹(u), the standard normal's quantile, for 0 < u < 1 (a normal double, as every u of the grid is): the rational
 // approximations of M. J. Wichura, "Algorithm AS 241: The percentage points of the normal distribution", Applied
-// Statistics 37(3), 1988 (PPND16, relative error about 10⁻¹⁶), evaluated in double-double arithmetic (each value
-// a sum of two doubles, from + − × ÷ alone: Dekker's exact products, Knuth's exact sums), with log_positive in
-// its tails (draw_quantiles.cpp). normal_quantiles computes n of them in SIMD lanes, the loop compiled for each
+// Statistics 37(3), 1988 (PPND16, relative error about 10⁻¹⁶), evaluated by the compensated Horner scheme (each
+// step's roundings taken exactly, from + − × ÷ alone: Dekker's exact products, Knuth's exact sums, and carried
+// by a second sum) and divided in double-double arithmetic, with log_positive in its tails (draw_quantiles.cpp). normal_quantiles computes n of them in SIMD lanes, the loop compiled for each
 // instruction set (CCAL_CLONED); every value goes through the same lane code, so that a value's bits depend
 // neither on the processor nor on its neighbours in the batch. normal_quantile is the same for one value.
 void normal_quantiles(const double* u, double* x, std::size_t n);
