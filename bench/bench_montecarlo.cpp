@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "../src/uncertainty/calibration_cache.hpp"
+#include "../src/uncertainty/draw_quantiles.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/reduction/run_average.hpp"
 #include "ccal/reduction/run_means.hpp"
@@ -123,5 +124,21 @@ void RunMeansGeneral(benchmark::State& state) {
               .output);
 }
 BENCHMARK(RunMeansGeneral)->Unit(benchmark::kMicrosecond);
+
+// Φ⁻¹ of the draws in lanes (src/uncertainty/draw_quantiles.cpp) per value, at uniforms of the engine's grid.
+void NormalQuantiles(benchmark::State& state) {
+  std::vector<double> u(4096), x(u.size());
+  std::uint64_t k = 12345;
+  for (double& v : u) {
+    k = k * 6364136223846793005ULL + 1442695040888963407ULL;
+    v = (double(k >> 12) + 0.5) * 0x1p-52;
+  }
+  for (auto _ : state) {
+    draws::normal_quantiles(u.data(), x.data(), u.size());
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(u.size()));
+}
+BENCHMARK(NormalQuantiles);
 
 }  // namespace

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The speed figures of docs/model.md §12 side by side with those of a previous release: the Monte Carlo of the
-# bundled example (trials/s on 2 threads), the statement's Monte Carlo check on the lab example (µs a trial),
+# bundled example (trials/s on 2 threads), a draw's normal quantile (ns), the statement's Monte Carlo check on
+# the lab example (µs a trial),
 # `ccal design` of the bundled example (s), the streamed reduction of a
 # run log (MB/s on one core), and the kernels behind them. Both are built in Release (through ccache): this
 # tree in ./build (scripts/setup.sh must have run), the release in ./build-bench/<ref> from a git worktree.
@@ -67,7 +68,7 @@ run() {  # run <build folder> <program> <json out>
     echo '{"benchmarks": []}' >"$3"
   fi
 }
-filter='^(Pipeline/[12](/0)?/real_time|StatementCheck/100000/2/|WholeDesign|CandidateCache|StreamedLog|RunMeansKernel)'
+filter='^(Pipeline/[12](/0)?/real_time|StatementCheck/100000/2/|WholeDesign|CandidateCache|StreamedLog|RunMeansKernel|NormalQuantiles)'
 for t in "${targets[@]}"; do
   run build "$t" "$out/now_$t.json"
   run "$ref_dir/build" "$t" "$out/ref_$t.json"
@@ -94,6 +95,7 @@ figures = [
     ("Monte Carlo, bundled example, 1 thread", r"^Pipeline/1(/0)?/real_time$", "items_per_second", "trials/s"),
     ("Monte Carlo, bundled example, 2 threads", r"^Pipeline/2(/0)?/real_time$", "items_per_second", "trials/s"),
     ("run means of one trial (kernel)", r"^RunMeansKernel$", "real_time", "us"),
+    ("a draw's normal quantile (in lanes)", r"^NormalQuantiles$", "ns_per_item", "ns"),
     ("statement's Monte Carlo check, lab, 2 threads", r"^StatementCheck/100000/2/", "us_per_trial", "us/trial"),
     ("design, bundled example (whole, first time)", r"^WholeDesign(/0)?/", "real_time", "s"),
     ("design, again from the cache", r"^WholeDesign/1/", "real_time", "s"),
@@ -104,6 +106,8 @@ figures = [
 def value(rows, pattern, key):
     for b in rows:
         if re.search(pattern, b["name"]):
+            if key == "ns_per_item":
+                return 1e9 / b["items_per_second"]
             v = b[key]
             if key == "bytes_per_second":
                 return v / 2**20
@@ -126,6 +130,6 @@ print(f"{'figure':44} {'unit':9} {label:>12} {'now':>12} {'speed-up':>12}")
 for label, pattern, key, unit in figures:
     a, b = value(before, pattern, key), value(now, pattern, key)
     # A ratio above 1 is faster: rates divide now by before, times before by now.
-    ratio = "-" if a is None or b is None else f"{(b / a if key not in ('real_time', 'us_per_trial') else a / b):.2f}x"
+    ratio = "-" if a is None or b is None else f"{(b / a if key not in ('real_time', 'us_per_trial', 'ns_per_item') else a / b):.2f}x"
     print(f"{label:44} {unit:9} {shown(a, unit):>12} {shown(b, unit):>12} {ratio:>12}")
 EOF

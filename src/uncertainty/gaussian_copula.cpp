@@ -16,6 +16,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/setup/input_correlation.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "draw_quantiles.hpp"
 
 namespace ccal {
 
@@ -177,7 +178,9 @@ double standard_value_of_score(Distribution d, double y) {
       return std::copysign(1.0 - std::sqrt(2.0 * tail), y);
     }
     case Distribution::arcsine:
-      return std::sin(0.5 * std::numbers::pi * std::erf(y * std::numbers::sqrt2 / 2));  // sin(π(Φ − ½))
+      // sin(π(Φ − ½)) by the series of draw_quantiles.hpp, not the C library's sin, whose code differs on a
+      // processor with fused multiply-add
+      return draws::sin_pi(0.5 * std::erf(y * std::numbers::sqrt2 / 2));
   }
   return 0.0;
 }

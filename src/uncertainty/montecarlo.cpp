@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <boost/math/policies/policy.hpp>
-#include <boost/random/normal_distribution.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,7 +17,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
-#include "draw_quantiles.hpp"
+#include "montecarlo_draws.hpp"
 #include "progress_bar.hpp"
 #include "sample_statistics.hpp"
 
@@ -37,83 +35,14 @@ using progress_bar::Progress;
 
 using Clock = std::chrono::steady_clock;
 
-// ---- Random numbers --------------------------------------------------------------------------------------
+using mc_draws::BatchDrawer;
+using mc_draws::mix64;
+using mc_draws::plan_slots;
+using mc_draws::SlotPlan;
 
-constexpr std::uint64_t kGolden = 0x9E3779B97F4A7C15ULL;  // 2⁶⁴/φ, the SplitMix64 increment
-
-// The SplitMix64 output function (Steele, Lea & Flood, OOPSLA 2014; the variant with the multipliers found by
-// D. Stafford, "Better bit mixing", 2011, mix 13): a bijection of 64-bit words with full avalanche.
-constexpr std::uint64_t mix64(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
-constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-
-// xoshiro256** (Blackman & Vigna, ACM TOMS 47(4), 2021): a 256-bit xor/shift/rotate linear engine with the
-// "**" scrambler (multiply by 5, rotate by 7, multiply by 9). The generator of trial i starts from words
-// 4i+1 … 4i+4 of the SplitMix64 sequence whose state starts at `key`: distinct trials get distinct words of
-// one full-period Weyl sequence, and as mix64 is a bijection the four words are never all zero.
-class TrialGenerator {
- public:
-  TrialGenerator(std::uint64_t key, std::uint64_t trial) {
-    const std::uint64_t base = key + 4 * trial * kGolden;  // arithmetic mod 2⁶⁴
-    for (std::uint64_t k = 0; k < 4; ++k) s_[k] = mix64(base + (k + 1) * kGolden);
-  }
-  std::uint64_t next() {
-    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
-    const std::uint64_t t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = rotl(s_[3], 45);
-    return result;
-  }
-  // As a uniform random bit generator (for Boost.Random's ziggurat normals of the copula).
-  using result_type = std::uint64_t;
-  static constexpr result_type min() { return 0; }
-  static constexpr result_type max() { return ~result_type(0); }
-  result_type operator()() { return next(); }
-  // u = (k + ½)·2⁻⁵², k the top 52 bits: exactly representable, in (0, 1), and 1 − u is on the same grid.
-  double uniform() { return (double(next() >> 12) + 0.5) * 0x1p-52; }
-
- private:
-  std::uint64_t s_[4];
-};
-
-// ---- Distributions ---------------------------------------------------------------------------------------
-
-// F⁻¹(u) of a distribution with bound 1, for u on the grid above (so 2u − 1 and u − ½ are exact and every
-// branch is exactly odd about u = ½), by IEEE operations alone (draw_quantiles.hpp): the same bits everywhere.
-double standard_quantile(Distribution d, double u) {
-  switch (d) {
-    case Distribution::normal:
-      return draws::normal_quantile(u);
-    case Distribution::uniform:
-      return 2.0 * u - 1.0;
-    case Distribution::triangular:
-      return u < 0.5 ? std::sqrt(2.0 * u) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u));
-    case Distribution::arcsine:
-      return draws::sin_pi(u - 0.5);
-  }
-  return 0.0;
-}
-
-// Which uniform each source takes: one slot per ungrouped source and one per group, in order of first
-// appearance.
-struct SlotPlan {
-  std::vector<int> slot;  // per source
-  int slots = 0;
-  int groups = 0;
-};
-
-SlotPlan plan_slots(const std::vector<Tolerance>& sources) {
-  const CorrelationGroups g = correlation_groups(sources);
-  return {g.of, g.count, g.named};
-}
+// Trials drawn together (montecarlo_draws.hpp): enough for full lanes of normal quantiles, few enough that a
+// batch's draws stay in the first-level cache.
+constexpr std::int64_t kBatch = 32;
 
 int default_threads() {
 #ifdef _OPENMP
@@ -143,27 +72,6 @@ struct Failure {
   }
 };
 
-// The draws of trial i (SI, one per source): its generator's uniforms through each source's quantile, or,
-// with a copula, its normals through L and each source's G_D. u, z, w are scratch of the right sizes.
-void draw_trial(const std::vector<Tolerance>& sources, const SlotPlan& plan, const GaussianCopula* copula,
-                std::uint64_t key, std::uint64_t i, boost::random::normal_distribution<double>& normal,
-                std::vector<double>& u, Eigen::VectorXd& z, Eigen::VectorXd& w, std::vector<double>& draws) {
-  TrialGenerator generator(key, i);
-  const std::size_t n_sources = sources.size();
-  if (copula) {  // y = Pᵀ L z (L lower triangular), x = bound · G_D(y_slot)
-    for (double& v : z) v = normal(generator);
-    w.noalias() = copula->factor.triangularView<Eigen::Lower>() * z;
-    for (std::size_t j = 0; j < n_sources; ++j) {
-      const auto row = copula->row_of_slot[std::size_t(plan.slot[j])];
-      draws[j] = sources[j].bound * standard_value_of_score(sources[j].distribution, w[row]);
-    }
-  } else {
-    for (double& v : u) v = generator.uniform();
-    for (std::size_t j = 0; j < n_sources; ++j)
-      draws[j] = sources[j].bound * standard_quantile(sources[j].distribution, u[std::size_t(plan.slot[j])]);
-  }
-}
-
 struct Engine {
   const std::vector<Tolerance>& sources;
   const SlotPlan& plan;
@@ -180,32 +88,38 @@ struct Engine {
     const auto n_sources = sources.size();
     const auto n_outputs = samples.size();
     const auto count = std::int64_t(end - begin);
-    const std::int64_t chunk = std::clamp<std::int64_t>(count / (std::int64_t(threads) * 64), 1, 256);
+    // Trials in batches of kBatch (the last one shorter), drawn together: their normal quantiles in lanes.
+    const std::int64_t batches = (count + kBatch - 1) / kBatch;
+    const std::int64_t chunk = std::clamp<std::int64_t>(batches / (std::int64_t(threads) * 64), 1, 16);
     Failure failure;
 #pragma omp parallel num_threads(threads)
     {
-      std::vector<double> u(std::size_t(plan.slots)), draws(n_sources), out(n_outputs);
-      Eigen::VectorXd z(copula ? copula->factor.cols() : 0), w(z.size());
-      boost::random::normal_distribution<double> normal;  // no state between draws: one per thread
+      std::vector<double> draws, out(n_outputs);
+      BatchDrawer drawer(sources, plan, copula);
       TrialFunction own_trial = trial;  // this thread's copy: its scratch buffers are its own
 #pragma omp for schedule(dynamic, chunk)
-      for (std::int64_t k = 0; k < count; ++k) {
+      for (std::int64_t b = 0; b < batches; ++b) {
         if (failure.failed.load(std::memory_order_relaxed)) continue;
-        const std::uint64_t i = begin + std::uint64_t(k);
-        draw_trial(sources, plan, copula, key, i, normal, u, z, w, draws);
-        try {
-          own_trial(draws, out);
-          for (std::size_t o = 0; o < n_outputs; ++o) {
-            if (!std::isfinite(out[o]))
-              throw InputError(
-                  fmt::format("Monte Carlo trial {}: output '{}' is {}; the model cannot be evaluated at "
-                              "these draws (are the tolerances too wide for it?)",
-                              i + 1, names[o], out[o]));
-            samples[o][i] = out[o];
+        const std::uint64_t first = begin + std::uint64_t(b * kBatch);
+        const auto n = std::size_t(std::min<std::int64_t>(kBatch, count - b * kBatch));
+        drawer.draw(key, first, n, draws);
+        for (std::size_t t = 0; t < n; ++t) {
+          const std::uint64_t i = first + t;
+          try {
+            own_trial(std::span<const double>(draws.data() + t * n_sources, n_sources), out);
+            for (std::size_t o = 0; o < n_outputs; ++o) {
+              if (!std::isfinite(out[o]))
+                throw InputError(
+                    fmt::format("Monte Carlo trial {}: output '{}' is {}; the model cannot be evaluated at "
+                                "these draws (are the tolerances too wide for it?)",
+                                i + 1, names[o], out[o]));
+              samples[o][i] = out[o];
+            }
+            if (progress.on()) progress.tick();  // a Cancelled from the callback stops the loop
+          } catch (...) {
+            failure.record(i, std::current_exception());
+            break;
           }
-          if (progress.on()) progress.tick();  // a Cancelled from the callback stops the loop
-        } catch (...) {
-          failure.record(i, std::current_exception());
         }
       }
     }
@@ -590,10 +504,8 @@ std::vector<double> draw_sources(const std::vector<Tolerance>& sources,
   const SlotPlan plan = plan_slots(sources);
   std::optional<GaussianCopula> copula;
   if (!correlations.empty()) copula = gaussian_copula(sources, correlations);
-  std::vector<double> u(std::size_t(plan.slots)), draws(sources.size());
-  Eigen::VectorXd z(copula ? copula->factor.cols() : 0), w(z.size());
-  boost::random::normal_distribution<double> normal;
-  draw_trial(sources, plan, copula ? &*copula : nullptr, mix64(seed), trial, normal, u, z, w, draws);
+  std::vector<double> draws;
+  BatchDrawer(sources, plan, copula ? &*copula : nullptr).draw(mix64(seed), trial, 1, draws);
   return draws;
 }
 

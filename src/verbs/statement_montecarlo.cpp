@@ -10,6 +10,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
+#include "../uncertainty/draw_quantiles.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -43,13 +44,14 @@ bool chi_squared_odd(double dof) { return int(dof) % 2 == 1; }
 
 // χ²_ν = −2 ln(u_1 ⋯ u_k) + z² from the draws of those sources (uniforms on (−1, 1): u = (x + 1)/2, in (0, 1),
 // never an end). The uniforms are multiplied in runs of 16, each product at least 2⁻⁸⁴⁸ (every u ≥ 2⁻⁵³), so
-// that the product never underflows: one logarithm per 16 uniforms.
+// that the product never underflows: one logarithm per 16 uniforms, by IEEE operations alone (draw_quantiles.hpp:
+// the C library's log takes other code on a processor with fused multiply-add).
 double chi_squared_of(const double* draws, int uniforms, bool odd) {
   double sum = 0;
   for (int k = 0; k < uniforms; k += 16) {
     double product = 1;
     for (int j = k; j < std::min(uniforms, k + 16); ++j) product *= 0.5 * (draws[j] + 1);
-    sum -= 2 * std::log(product);
+    sum -= 2 * ccal::draws::log_positive(product);
   }
   if (odd) sum += draws[uniforms] * draws[uniforms];
   return sum;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <numbers>
+#include <vector>
 
 #include "../../src/uncertainty/draw_quantiles.hpp"
 #include "portable_uniform.hpp"
@@ -43,6 +44,44 @@ TEST(DrawQuantiles, NormalQuantileIsWithinFourUlpOverTheGridAndItsTails) {
   for (std::uint64_t k = 0; k < 100000; ++k) check(grid(k));  // the grid's first points themselves
   EXPECT_LE(worst, kMaxUlps) << "at u = " << worst_u;
   RecordProperty("normal_worst_ulps", std::to_string(worst));
+}
+
+// normal_quantiles computes a batch in SIMD lanes, its central and tail values gathered into lanes of their
+// own: each value's bits are normal_quantile's of it alone, whatever batch, order and neighbours it has.
+TEST(DrawQuantiles, NormalQuantilesInLanesAreEachValuesOwn) {
+  test::PortableUniform random{55};
+  std::vector<double> u;
+  for (int i = 0; i < 3000; ++i)
+    u.push_back(i % 3 == 0 ? grid(std::uint64_t(std::exp2(52 * random()))) : grid(std::uint64_t(random() * 0x1p52)));
+  u.push_back(grid(0));
+  u.push_back(1 - grid(0));
+  std::vector<double> x(u.size());
+  draws::normal_quantiles(u.data(), x.data(), u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) ASSERT_EQ(x[i], draws::normal_quantile(u[i])) << u[i];
+  // Another batch: reversed, offset by one, of odd length.
+  std::vector<double> v(u.rbegin(), u.rend() - 1), y(v.size());
+  draws::normal_quantiles(v.data(), y.data(), v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) ASSERT_EQ(y[i], x[u.size() - 1 - i]) << v[i];
+  EXPECT_EQ(draws::normal_quantile(0.5), 0.0);
+  EXPECT_EQ(x[u.size() - 2], -x[u.size() - 1]);
+}
+
+// The arcsine's and the triangular's F⁻¹ in lanes: each value the scalar expression's bits, for any length
+// (whole packs of eight and a padded rest), the ends of the grid included.
+TEST(DrawQuantiles, ArcsineAndTriangularInLanesAreTheScalarExpressions) {
+  test::PortableUniform random{56};
+  for (std::size_t n : {1u, 7u, 8u, 13u, 1000u}) {
+    std::vector<double> u(n), a(n), t(n);
+    for (double& v : u) v = grid(std::uint64_t(random() * 0x1p52));
+    u[0] = grid(0);
+    u[n - 1] = 1 - grid(0);
+    draws::arcsine_quantiles(u.data(), a.data(), n);
+    draws::triangular_quantiles(u.data(), t.data(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(a[i], draws::sin_pi(u[i] - 0.5)) << u[i];
+      ASSERT_EQ(t[i], u[i] < 0.5 ? std::sqrt(2.0 * u[i]) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u[i]))) << u[i];
+    }
+  }
 }
 
 TEST(DrawQuantiles, SinPiIsWithinFourUlpOnHalfATurn) {

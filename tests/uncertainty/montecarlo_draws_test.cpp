@@ -85,5 +85,30 @@ TEST(MonteCarloDraws, ARunExtendingAnEarlierOneGivesTheBitsOfAWholeRunAndEvaluat
   }, o), InputError);
 }
 
+// Trials are drawn in batches (their normal quantiles in SIMD lanes): a trial's draws are its own whatever
+// batch, thread or position in its batch it falls in. 1001 trials: the last batch is short, and with 2 threads
+// the batches of one thread are not the other's; both with independent and with copula-correlated sources.
+TEST(MonteCarloDraws, EveryTrialHasItsOwnBitsForAnyThreadCountAndBatch) {
+  for (const std::vector<Correlation>& correlations :
+       {std::vector<Correlation>{}, std::vector<Correlation>{{"n", "u", 0.6}, {"t", "a", 0.3}}}) {
+    MonteCarloOptions o;
+    o.trials = 1001;
+    o.seed = 5;
+    o.keep_samples = true;
+    o.threads = 1;
+    const MonteCarloResult one =
+        run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
+    o.threads = 2;
+    const MonteCarloResult two =
+        run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
+    EXPECT_TRUE(one.samples == two.samples);
+    for (std::uint64_t i : {31u, 32u, 33u, 1000u}) {  // the ends of batches, the short last one
+      const std::vector<double> draws = draw_sources(kInputs, correlations, 5, i);
+      for (std::size_t s = 0; s < draws.size(); ++s)
+        EXPECT_EQ(draws[s], one.samples(Eigen::Index(i), Eigen::Index(s))) << "trial " << i << ", " << kInputs[s].id;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ccal

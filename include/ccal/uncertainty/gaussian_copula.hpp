@@ -2,8 +2,8 @@
 // Partly correlated draws that keep every source's own distribution (JCGM 101 §6.4.8; docs/model.md §10.2): a
 // Gaussian copula. Each draw slot s (a lone source, or a group whose members share one draw, montecarlo.hpp)
 // takes a standard normal score y_s; the scores are jointly normal with correlation matrix R_z, y = L z with
-// L Lᵀ = R_z (a pivoted Cholesky factor) and z independent standard normals (Boost.Random's ziggurat from the
-// trial's generator); a source of distribution D and bound b in slot s is
+// L Lᵀ = R_z (a pivoted Cholesky factor) and z independent standard normals (Φ⁻¹ of the
+// trial's uniforms, one per slot); a source of distribution D and bound b in slot s is
 //     x = b · G_D(y_s),   G_D(y) = F_D⁻¹(Φ(y)) (bound 1; G = identity for the normal),
 // so that every source keeps its marginal exactly. Two sources whose slots have score correlation ρ have the
 // Pearson correlation (Mehler's formula: the orthonormal Hermite polynomials h_k are the eigenfunctions of

@@ -20,7 +20,7 @@
 // members of different types have a Pearson correlation slightly below 1 (e.g. 0.98 between a normal and a
 // uniform member), which the LPU's r = 1 slightly overstates.
 // Partly correlated sources ([[correlations]]): a Gaussian copula over the same slots (gaussian_copula.hpp).
-// Trial i draws one standard normal per slot from its generator (Boost.Random's ziggurat), the slots' scores
+// Trial i draws one standard normal per slot, Φ⁻¹ of its uniform (as a normal source's), the slots' scores
 // y = L z, and each source bound · G_D(y_slot): its own distribution, with each configured Pearson r between
 // the pairs.
 //
