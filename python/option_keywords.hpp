@@ -174,13 +174,14 @@ Options options_from_keywords(const py::kwargs& given, std::string_view function
             if (value.is_none()) return;  // unset: the configuration's
             if (!py::isinstance<py::str>(value)) keywords::wrong_type(name, "a str", value);
             member.set(options, parse_choice_option(name, value.template cast<std::string>(), member.names));
-          } else if constexpr (std::is_same_v<std::remove_cvref_t<decltype(options.*member)>, std::string>) {
+          } else if constexpr (std::is_same_v<typename decltype(member)::type, std::string>) {
             // A file's path (db=, …) may be an os.PathLike, as a path is anywhere in Python.
             const bool path = row->value_name.starts_with("FILE") || row->value_name.starts_with("DIR");
             if (path && !py::isinstance<py::str>(value) && py::hasattr(value, "__fspath__"))
-              keywords::assign(options.*member, name, py::module_::import("os").attr("fspath")(value), row->range);
+              keywords::assign(member.of(options), name, py::module_::import("os").attr("fspath")(value),
+                               row->range);
             else
-              keywords::assign(options.*member, name, value, row->range);
+              keywords::assign(member.of(options), name, value, row->range);
           } else {
             keywords::assign(member.of(options), name, value, row->range);
           }
