@@ -229,25 +229,41 @@ std::optional<std::size_t> get_through(const typename member_class<decltype(Oute
   return Get(o.*Outer);
 }
 
+// The lifted row's member, made in one initialisation: a constant expression may not change a variant's
+// active alternative by assignment (clang), so the variant is built from the alternative it holds.
 template <auto Outer, const auto& Rows, std::size_t I>
-constexpr auto lift_row() {
+constexpr OptionMember<typename member_class<decltype(Outer)>::type> lift_member() {
   using Holder = typename member_class<decltype(Outer)>::type;
-  constexpr const auto& row = Rows[I];
-  constexpr auto inner = std::get<row.member.index()>(row.member);
+  constexpr auto inner = std::get<Rows[I].member.index()>(Rows[I].member);
   using Inner = decltype(inner);
-  OptionMember<Holder> member;
   if constexpr (requires { inner.names; }) {  // an enumeration
     OptionEnum<Holder> e;
     e.names = inner.names;
     e.set = &set_through<Outer, inner.set>;
     e.get = &get_through<Outer, inner.get>;
-    member = e;
+    return e;
   } else if constexpr (inner.reach == nullptr) {
-    member = OptionField<Holder, typename Inner::type>(&reach_member<Outer, inner.direct>);
+    return OptionField<Holder, typename Inner::type>(&reach_member<Outer, inner.direct>);
   } else {
-    member = OptionField<Holder, typename Inner::type>(&reach_through<Outer, inner.reach>);
+    return OptionField<Holder, typename Inner::type>(&reach_through<Outer, inner.reach>);
   }
-  return OptionSpec<Holder>(row.field, member, row.value_name, row.help, row.range, row.required);
+}
+
+template <auto Outer, const auto& Rows, std::size_t I>
+constexpr auto lift_row() {
+  using Holder = typename member_class<decltype(Outer)>::type;
+  constexpr const auto& row = Rows[I];
+  return OptionSpec<Holder>(row.field, lift_member<Outer, Rows, I>(), row.value_name, row.help, row.range,
+                            row.required);
+}
+
+// Two tables one after the other, each row copied into place (not assigned, for the reason above).
+template <class Options, std::size_t A, std::size_t B>
+constexpr std::array<OptionSpec<Options>, A + B> join_two(const std::array<OptionSpec<Options>, A>& a,
+                                                         const std::array<OptionSpec<Options>, B>& b) {
+  return [&]<std::size_t... I, std::size_t... J>(std::index_sequence<I...>, std::index_sequence<J...>) {
+    return std::array<OptionSpec<Options>, A + B>{a[I]..., b[J]...};
+  }(std::make_index_sequence<A>{}, std::make_index_sequence<B>{});
 }
 
 }  // namespace option_detail
@@ -262,12 +278,13 @@ constexpr auto lifted_rows() {
 
 // The rows of the pieces, one after the other (each a std::array of OptionSpec<Options>:
 // std::to_array<OptionSpec<X>>({...}) or lifted_rows).
-template <class Options, std::size_t... N>
-constexpr auto join_rows(const std::array<OptionSpec<Options>, N>&... pieces) {
-  std::array<OptionSpec<Options>, (N + ... + 0)> rows;
-  std::size_t k = 0;
-  ((std::copy(pieces.begin(), pieces.end(), rows.begin() + k), k += N), ...);
-  return rows;
+template <class Options, std::size_t N, std::size_t... M>
+constexpr auto join_rows(const std::array<OptionSpec<Options>, N>& first,
+                         const std::array<OptionSpec<Options>, M>&... rest) {
+  if constexpr (sizeof...(M) == 0)
+    return first;
+  else
+    return option_detail::join_two(first, join_rows(rest...));
 }
 
 // The table of an options struct: each verb's header declares options_of(std::type_identity<Its>) and its
