@@ -36,5 +36,9 @@ heavy+="|Statement\.ObservationsOfAnotherConfigurationAreRefusedNamingBothFinger
 heavy+="|Statement\.TheLabExamplesMethodsDoNotFlipWithTheTrials|Statement\.KnownErrorsAreCorrected"
 heavy+="|RateNoise\.SimulatedRunMeansScatterAsTheClosedForm|Cli\.TheMonteCarloDrawsThemAndTheStatementChecksWithThem"
 heavy+="|CommandLine\.DesignCsvIsTheRunSheetInRpmSecondsAndDegrees)$"
-ctest --test-dir build-asan --output-on-failure -j2 -E "Golden|^report\.|^docs\.commands$|^statement\.coverage|$heavy"
+# build.dispatch_targets runs a digest program under qemu-user as older processors; built with AddressSanitizer it
+# gives no digest there (the sanitized run printed only the native one), so it is the release suite's check (its code runs sanitized natively in
+# MonteCarloDraws.*, DrawQuantiles.* and MonteCarloSamplers.*).
+ctest --test-dir build-asan --output-on-failure -j2 \
+  -E "Golden|^report\.|^docs\.commands$|^statement\.coverage|^build\.dispatch_targets$|$heavy"
 echo "sanitize: build $((built - start)) s, tests $(($(date +%s) - built)) s" >&2
