@@ -12,6 +12,7 @@
 #include "ccal/model/kinematics.hpp"
 #include "ccal/reduction/quadrature.hpp"
 #include "run_means_nodes.hpp"
+#include "run_means_tables.hpp"
 
 namespace ccal {
 
@@ -74,68 +75,6 @@ OutputPolynomial::OutputPolynomial(const InstrumentModel& model) : rate(model.ra
   }
   cross = p != 0 || o != 0 || ip != 0 || io != 0 || pp != 0 || oo != 0 || po != 0;
 }
-
-}  // namespace run_nodes
-
-namespace {
-
-// cos and sin of (a + δ) from those of a and a small (or not) δ.
-void turn(double c, double s, double delta, double& c_out, double& s_out) {
-  double cd, sd;
-  cos_sin(delta, cd, sd);
-  c_out = c * cd - s * sd;
-  s_out = s * cd + c * sd;
-}
-
-}  // namespace
-
-namespace run_nodes {
-
-// The tables of one run: everything of the run that does not depend on the errors.
-struct RunTables {
-  double rate = 0;  // nominal Ω [rad/s]
-  double duration = 0;
-  bool counter = false;
-  int M = 0;
-  detail::FastPhaseTable table{2};
-  std::vector<double> cos_theta, sin_theta;  // θ1(0) + θ_j
-  std::vector<double> cos_gamma, sin_gamma;  // φ0 − θ_j (counter-rotating) or φ0
-  std::vector<double> cos_half, sin_half;    // mΩT/2, m = 0..M/2
-  // The DFT of the weights (spectral_weights.hpp's dft_weights) as c_m cos(mθ_j), c_m sin(mθ_j) at
-  // [(m − 1)M + j], m = 1..M/2, with c_m = 2 (1 at the Nyquist term): contiguous in j, so that the sums of
-  // all nodes run side by side. Scaling by 2 is exact, so each weight is the same double as dft_weights'.
-  std::vector<double> dft_cos, dft_sin;
-  Matrix3d mount;
-};
-
-// Runs that share their fast and slow nodes (the same M, platform mode, duration and mounting, so that a
-// trial gives them the same number of slow nodes and the same drift at each): their nodes side by side in
-// the same SIMD loops, numbered as run_means_nodes.hpp says (run g of G at g·M + j).
-struct RunGroup {
-  std::vector<std::size_t> runs;  // indices into KernelTables::runs, in the plan's order
-  int M = 0;
-  std::vector<double> cos_theta, sin_theta;  // node g·M + j, padded
-  std::vector<double> cos_gamma, sin_gamma;  // node q·G·M + g·M + j for every q < kMaxSlowNodes, padded
-};
-
-// The kernel's tables. RunMeanKernel::Data is private to the class; its content is defined here so that the
-// free functions of a trial's steps (below means) can take it.
-struct KernelTables {
-  Geometry geometry;
-  ErrorLayout layout;
-  Site site;
-  OutputPolynomial output;
-  QuadratureOptions quadrature;
-  std::vector<RunTables> runs;
-  std::vector<RunGroup> groups;
-  // Slow-time nodes and their Lagrange monomials for Q = 1..kMaxSlowNodes.
-  std::vector<std::vector<double>> slow_nodes;
-  std::vector<Eigen::MatrixXd> lagrange;
-
-  KernelTables(const Geometry& g, const ErrorLayout& l, const Site& s, const InstrumentModel& instrument,
-               const QuadratureOptions& q)
-      : geometry(g), layout(l), site(s), output(instrument), quadrature(q) {}
-};
 
 }  // namespace run_nodes
 
@@ -273,9 +212,14 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
   group_runs(*data);
   data->slow_nodes.resize(detail::kMaxSlowNodes + 1);
   data->lagrange.resize(detail::kMaxSlowNodes + 1);
+  data->zero_re.resize(1);  // Q = 0: none
+  data->zero_im.resize(1);
   for (int Q = 1; Q <= detail::kMaxSlowNodes; ++Q) {
     data->slow_nodes[std::size_t(Q)] = detail::slow_time_nodes(Q);
     data->lagrange[std::size_t(Q)] = detail::slow_lagrange_monomials(Q);
+    std::vector<double>& re = data->zero_re.emplace_back(std::size_t(Q));
+    std::vector<double>& im = data->zero_im.emplace_back(std::size_t(Q));
+    detail::harmonic_slow_moments<double>(0.0, 1.0, 0.0, data->lagrange[std::size_t(Q)], re.data(), im.data());
   }
   data_ = std::move(data);
 }
@@ -286,69 +230,9 @@ RunMeanKernel& RunMeanKernel::operator=(RunMeanKernel&&) noexcept = default;
 
 namespace {
 
-// What a trial's errors give every run alike: the chain's blocks A, B (without the arm stretch, which
-// depends on the run's rate) and C, the dynamic channels of the two halves, the drives' rate ripple, and
-// whether the SIMD small-angle loops apply to each half.
-struct TrialTerms {
-  ChainBlocks<double> blocks;
-  const double* main_coefficients;      // dx1 … dthy1
-  const double* platform_coefficients;  // dx3 … dthy3
-  const double* main_ripple;            // c1, s1, … of the main drive's rate ripple, nullptr when zero
-  const double* platform_ripple;        // the same of the platform drive
-  int order;
-  double g;     // gravity [m/s²]
-  double unit;  // the g of the g-levels [m/s²]
-  bool phase_locked, main_small, platform_small;
-};
-
-// The drive's rate ripple of `channel` (c1, s1, … after the channel's unused c0), nullptr when zero.
-const double* nonzero_ripple(const double* errors, const ErrorLayout& layout, int channel, int order) {
-  const double* c = errors + layout.harmonic_index(channel, 0, false) + 1;
-  for (int i = 0; i < 2 * order; ++i)
-    if (c[i] != 0.0) return c;
-  return nullptr;
-}
-
-// A half stays in the small-angle loops where its two wobble channels (the 4th and 5th of its dynamic
-// channels) and the angle its ripple adds (a phase-locked platform also turns by the main axis's) stay below
-// kSmallAngle.
-TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eigen::VectorXd>& e) {
-  const double* errors = e.data();
-  const int order = d.layout.harmonic_order();
-  TrialTerms trial{chain_blocks<double>(d.geometry, d.layout, e, d.site, 0.0, d.geometry.beta),
-                   errors + d.layout.harmonic_index(ch::dx1, 0, false),
-                   errors + d.layout.harmonic_index(ch::dx3, 0, false),
-                   nonzero_ripple(errors, d.layout, ch::ripple1, order),
-                   nonzero_ripple(errors, d.layout, ch::ripple3, order),
-                   order,
-                   d.site.g,
-                   d.site.g_unit(),
-                   d.geometry.platform_control == PlatformControl::phase_locked,
-                   false,
-                   false};
-  const double main_ripple_bound = run_nodes::ripple_angle_bound(trial.main_ripple, order);
-  trial.main_small = always_small(trial.main_coefficients + 3 * (2 * order + 1), order) &&
-                     always_small(trial.main_coefficients + 4 * (2 * order + 1), order) &&
-                     main_ripple_bound < kSmallAngle;
-  trial.platform_small = always_small(trial.platform_coefficients + 3 * (2 * order + 1), order) &&
-                         always_small(trial.platform_coefficients + 4 * (2 * order + 1), order) &&
-                         run_nodes::ripple_angle_bound(trial.platform_ripple, order) +
-                                 (trial.phase_locked ? main_ripple_bound : 0.0) <
-                             kSmallAngle;
-  return trial;
-}
-
-// The number of slow-time nodes as run_quadrature takes it: one on a fixed platform, else the configured
-// number or enough for the platform's drift |ΔΩ| T M/4 over the run.
-int slow_node_count(const RunTables& t, const QuadratureOptions& quadrature, double dOmega) {
-  const double drift = t.counter ? std::abs(dOmega) * t.duration * (t.M / 4) : 0.0;
-  const int Q = t.counter ? (quadrature.slow_nodes > 0 ? quadrature.slow_nodes
-                                                       : slow_nodes_for(drift, quadrature.slow_tolerance))
-                          : 1;
-  if (Q > detail::kMaxSlowNodes)
-    throw std::invalid_argument("RunMeanKernel: at most 16 slow-time nodes (monomial Lagrange basis)");
-  return Q;
-}
+using run_nodes::slow_node_count;
+using run_nodes::TrialTerms;
+using run_nodes::turn;
 
 // A group's nodes as the loops number them: the main-axis half at n < G·M, the platform half at
 // n = q·G·M + g·M + j < Q·G·M.
@@ -372,13 +256,8 @@ void slow_moments(const KernelTables& d, const RunGroup& group, const GroupNodes
   for (int g = 0; g < nodes.G; ++g) {
     const RunTables& t = d.runs[group.runs[std::size_t(g)]];
     const double omega_T = (t.rate + domega) * t.duration;
-    {  // m = 0: κ = 0, the series
-      double c, s;
-      turn(t.cos_half[0], t.sin_half[0], 0.0 * domega * t.duration / 2.0, c, s);
-      const auto at = std::size_t(g * H * Q);
-      detail::harmonic_slow_moments<double>(omega_T * 0.0 / 2.0, c, s, a, &scratch.nu_re[at],
-                                            &scratch.nu_im[at]);
-    }
+    const auto at = std::size_t(g * H * Q);  // m = 0: κ = 0, the same for every trial
+    run_nodes::zero_harmonic_moments(d, Q, omega_T, &scratch.nu_re[at], &scratch.nu_im[at]);
     for (int m = 1; m < H; ++m, ++count) {
       const double turn_angle = double(m) * domega * t.duration / 2.0;
       const double half_kappa = omega_T * double(m) / 2.0;
@@ -557,7 +436,7 @@ void RunMeanKernel::means(std::span<const double> errors, std::span<double> out,
   if (!workspace.buffers_) workspace.buffers_ = std::make_unique<Workspace::Buffers>();  // moved from
   Scratch& scratch = *workspace.buffers_;
   const Eigen::Map<const Eigen::VectorXd> e(errors.data(), Eigen::Index(errors.size()));
-  const TrialTerms trial = trial_terms(d, e);
+  const TrialTerms trial = run_nodes::trial_terms(d, e);
   for (const RunGroup& group : d.groups) group_means(d, group, trial, e, scratch, out);
 }
 

@@ -1,0 +1,157 @@
+#pragma once
+// The run-mean kernel's tables (run_means.hpp) and what a trial's errors give every run alike, shared by its
+// one-trial path (run_means.cpp) and its path of a batch of trials in SIMD lanes (run_means_batch.cpp).
+// Internal to the library.
+#include <fmt/format.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "ccal/model/error_sources.hpp"
+#include "ccal/model/kinematics.hpp"
+#include "ccal/reduction/detail/spectral_weights.hpp"
+#include "ccal/reduction/quadrature.hpp"
+#include "ccal/reduction/run_means.hpp"
+#include "run_means_nodes.hpp"
+
+namespace ccal::run_nodes {
+
+// The tables of one run: everything of the run that does not depend on the errors.
+struct RunTables {
+  double rate = 0;  // nominal Ω [rad/s]
+  double duration = 0;
+  bool counter = false;
+  int M = 0;
+  detail::FastPhaseTable table{2};
+  std::vector<double> cos_theta, sin_theta;  // θ1(0) + θ_j
+  std::vector<double> cos_gamma, sin_gamma;  // φ0 − θ_j (counter-rotating) or φ0
+  std::vector<double> cos_half, sin_half;    // mΩT/2, m = 0..M/2
+  // The DFT of the weights (spectral_weights.hpp's dft_weights) as c_m cos(mθ_j), c_m sin(mθ_j) at
+  // [(m − 1)M + j], m = 1..M/2, with c_m = 2 (1 at the Nyquist term): contiguous in j, so that the sums of
+  // all nodes run side by side. Scaling by 2 is exact, so each weight is the same double as dft_weights'.
+  std::vector<double> dft_cos, dft_sin;
+  Eigen::Matrix3d mount;
+};
+
+// Runs that share their fast and slow nodes (the same M, platform mode, duration and mounting, so that a
+// trial gives them the same number of slow nodes and the same drift at each): their nodes side by side in
+// the same SIMD loops, numbered as run_means_nodes.hpp says (run g of G at g·M + j).
+struct RunGroup {
+  std::vector<std::size_t> runs;  // indices into KernelTables::runs, in the plan's order
+  int M = 0;
+  std::vector<double> cos_theta, sin_theta;  // node g·M + j, padded
+  std::vector<double> cos_gamma, sin_gamma;  // node q·G·M + g·M + j for every q < kMaxSlowNodes, padded
+};
+
+// The kernel's tables. RunMeanKernel::Data is private to the class; its content is defined here so that the
+// free functions of a trial's steps (below means) can take it.
+struct KernelTables {
+  Geometry geometry;
+  ErrorLayout layout;
+  Site site;
+  OutputPolynomial output;
+  QuadratureOptions quadrature;
+  std::vector<RunTables> runs;
+  std::vector<RunGroup> groups;
+  // Slow-time nodes and their Lagrange monomials for Q = 1..kMaxSlowNodes.
+  std::vector<std::vector<double>> slow_nodes;
+  std::vector<Eigen::MatrixXd> lagrange;
+  // ν_0q of the harmonic m = 0 for Q = 1..kMaxSlowNodes (at [Q][q]): κ/2 = 0·(Ω + Δω)T/2 = +0 and its cosine
+  // and sine, 1 and 0 turned by 0·ΔωT/2, exactly 1 and +0 for every trial, so the same for all (a negative ΩT
+  // would give κ/2 = −0: slow_moments_of_zero_harmonic computes that case).
+  std::vector<std::vector<double>> zero_re, zero_im;
+
+  KernelTables(const Geometry& g, const ErrorLayout& l, const Site& s, const InstrumentModel& instrument,
+               const QuadratureOptions& q)
+      : geometry(g), layout(l), site(s), output(instrument), quadrature(q) {}
+};
+
+// What a trial's errors give every run alike: the chain's blocks A, B (without the arm stretch, which
+// depends on the run's rate) and C, the dynamic channels of the two halves, the drives' rate ripple, and
+// whether the SIMD small-angle loops apply to each half.
+struct TrialTerms {
+  ChainBlocks<double> blocks;
+  const double* main_coefficients;      // dx1 … dthy1
+  const double* platform_coefficients;  // dx3 … dthy3
+  const double* main_ripple;            // c1, s1, … of the main drive's rate ripple, nullptr when zero
+  const double* platform_ripple;        // the same of the platform drive
+  int order;
+  double g;     // gravity [m/s²]
+  double unit;  // the g of the g-levels [m/s²]
+  bool phase_locked, main_small, platform_small;
+};
+
+// The drive's rate ripple of `channel` (c1, s1, … after the channel's unused c0), nullptr when zero.
+inline const double* nonzero_ripple(const double* errors, const ErrorLayout& layout, int channel, int order) {
+  const double* c = errors + layout.harmonic_index(channel, 0, false) + 1;
+  for (int i = 0; i < 2 * order; ++i)
+    if (c[i] != 0.0) return c;
+  return nullptr;
+}
+
+// A half stays in the small-angle loops where its two wobble channels (the 4th and 5th of its dynamic
+// channels) and the angle its ripple adds (a phase-locked platform also turns by the main axis's) stay below
+// kSmallAngle.
+inline TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eigen::VectorXd>& e) {
+  const double* errors = e.data();
+  const int order = d.layout.harmonic_order();
+  TrialTerms trial{chain_blocks<double>(d.geometry, d.layout, e, d.site, 0.0, d.geometry.beta),
+                   errors + d.layout.harmonic_index(ch::dx1, 0, false),
+                   errors + d.layout.harmonic_index(ch::dx3, 0, false),
+                   nonzero_ripple(errors, d.layout, ch::ripple1, order),
+                   nonzero_ripple(errors, d.layout, ch::ripple3, order),
+                   order,
+                   d.site.g,
+                   d.site.g_unit(),
+                   d.geometry.platform_control == PlatformControl::phase_locked,
+                   false,
+                   false};
+  const double main_ripple_bound = run_nodes::ripple_angle_bound(trial.main_ripple, order);
+  trial.main_small = always_small(trial.main_coefficients + 3 * (2 * order + 1), order) &&
+                     always_small(trial.main_coefficients + 4 * (2 * order + 1), order) &&
+                     main_ripple_bound < kSmallAngle;
+  trial.platform_small = always_small(trial.platform_coefficients + 3 * (2 * order + 1), order) &&
+                         always_small(trial.platform_coefficients + 4 * (2 * order + 1), order) &&
+                         run_nodes::ripple_angle_bound(trial.platform_ripple, order) +
+                                 (trial.phase_locked ? main_ripple_bound : 0.0) <
+                             kSmallAngle;
+  return trial;
+}
+
+// The number of slow-time nodes as run_quadrature takes it: one on a fixed platform, else the configured
+// number or enough for the platform's drift |ΔΩ| T M/4 over the run.
+inline int slow_node_count(const RunTables& t, const QuadratureOptions& quadrature, double dOmega) {
+  const double drift = t.counter ? std::abs(dOmega) * t.duration * (t.M / 4) : 0.0;
+  const int Q = t.counter ? (quadrature.slow_nodes > 0 ? quadrature.slow_nodes
+                                                       : slow_nodes_for(drift, quadrature.slow_tolerance))
+                          : 1;
+  if (Q > detail::kMaxSlowNodes)
+    throw std::invalid_argument("RunMeanKernel: at most 16 slow-time nodes (monomial Lagrange basis)");
+  return Q;
+}
+
+// cos and sin of (a + δ) from those of a and a small (or not) δ.
+// ν_0q (q < Q) of a run whose ΩT is omega_T into re, im: zero_re, zero_im, or computed for a negative ΩT
+// exactly as for any other harmonic.
+inline void zero_harmonic_moments(const KernelTables& d, int Q, double omega_T, double* re, double* im) {
+  const double half_kappa = omega_T * 0.0 / 2.0;
+  if (std::signbit(half_kappa)) {
+    detail::harmonic_slow_moments<double>(half_kappa, 1.0, 0.0, d.lagrange[std::size_t(Q)], re, im);
+    return;
+  }
+  const auto q_count = std::size_t(Q);
+  std::copy_n(d.zero_re[q_count].begin(), Q, re);
+  std::copy_n(d.zero_im[q_count].begin(), Q, im);
+}
+
+inline void turn(double c, double s, double delta, double& c_out, double& s_out) {
+  double cd, sd;
+  cos_sin(delta, cd, sd);
+  c_out = c * cd - s * sd;
+  s_out = s * cd + c * sd;
+}
+
+}  // namespace ccal::run_nodes
