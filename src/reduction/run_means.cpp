@@ -82,44 +82,6 @@ struct RunMeanKernel::Data : run_nodes::KernelTables {
   using KernelTables::KernelTables;
 };
 
-namespace run_nodes {
-
-// Scratch space of one thread, grown when a larger rule is met and then reused (RunMeanKernel::Workspace).
-// A group's nodes n = q·G·M + g·M + j follow each other without padding, so that the loops fill whole SIMD
-// vectors across runs and slow nodes; the main-axis half is repeated for every slow node.
-struct Scratch {
-  std::vector<double> nu_re, nu_im, weights, products;  // products: w y at each node
-  // The harmonics m ≥ 1 of the group's runs side by side for harmonic_moments_lanes: κ/2, cos, sin, and ν.
-  std::vector<double> lane_kappa, lane_cos, lane_sin, lane_turn, lane_re, lane_im;
-  std::vector<double> main_rate, arm_x, platform_rate;  // θ̇1, B's offset x and γ̇ of the node's run
-  std::vector<double> cos_offset, sin_offset;           // slow node q's drift at node n
-  MainAxisNodes main;
-  InstrumentInputs inputs;
-  std::size_t nodes = 0;
-  void reserve(int M, int G, int Q) {
-    // The main-axis loop writes padded(G·M) nodes before they are repeated.
-    const auto n = std::size_t(std::max(padded(Q * G * M), padded(G * M)));
-    const auto harmonics = std::size_t(G * (M / 2 + 1) * Q), lanes = std::size_t(padded(G * (M / 2)));
-    if (nodes < n) {
-      for (auto* v : {&weights, &products, &main_rate, &arm_x, &platform_rate, &cos_offset, &sin_offset})
-        v->resize(n);
-      inputs.resize(n);
-      main.resize(n);
-      nodes = n;
-    }
-    if (nu_re.size() < harmonics) {
-      nu_re.resize(harmonics);
-      nu_im.resize(harmonics);
-    }
-    if (lane_re.size() < lanes * std::size_t(Q)) {
-      for (auto* v : {&lane_kappa, &lane_cos, &lane_sin, &lane_turn}) v->resize(lanes);
-      lane_re.resize(lanes * std::size_t(Q));
-      lane_im.resize(lanes * std::size_t(Q));
-    }
-  }
-};
-
-}  // namespace run_nodes
 
 namespace {
 
@@ -417,8 +379,6 @@ void group_means(const KernelTables& d, const RunGroup& group, const TrialTerms&
 }
 
 }  // namespace
-
-struct RunMeanKernel::Workspace::Buffers : run_nodes::Scratch {};
 
 RunMeanKernel::Workspace::Workspace() : buffers_(std::make_unique<Buffers>()) {}
 RunMeanKernel::Workspace::~Workspace() = default;

@@ -78,7 +78,9 @@ struct JointCoefficients {
   const double* p;
   int n;
   int order() const { return kOrder == kRuntimeOrder ? n : kOrder; }
-  C operator()(int channel, int i) const { return value_at<C>(p, channel * (2 * order() + 1) + i); }
+  [[gnu::always_inline]] C operator()(int channel, int i) const {
+    return value_at<C>(p, channel * (2 * order() + 1) + i);
+  }
 };
 
 // Value and first two derivatives with respect to q of one channel, v = c0 + Σ ck cos kq + sk sin kq.

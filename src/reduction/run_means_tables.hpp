@@ -154,4 +154,64 @@ inline void turn(double c, double s, double delta, double& c_out, double& s_out)
   s_out = s * cd + c * sd;
 }
 
+// Scratch space of one thread, grown when a larger rule is met and then reused (RunMeanKernel::Workspace).
+// A group's nodes n = q·G·M + g·M + j follow each other without padding, so that the loops fill whole SIMD
+// vectors across runs and slow nodes; the main-axis half is repeated for every slow node.
+struct Scratch {
+  std::vector<double> nu_re, nu_im, weights, products;  // products: w y at each node
+  // The harmonics m ≥ 1 of the group's runs side by side for harmonic_moments_lanes: κ/2, cos, sin, and ν.
+  std::vector<double> lane_kappa, lane_cos, lane_sin, lane_turn, lane_re, lane_im;
+  std::vector<double> main_rate, arm_x, platform_rate;  // θ̇1, B's offset x and γ̇ of the node's run
+  std::vector<double> cos_offset, sin_offset;           // slow node q's drift at node n
+  MainAxisNodes main;
+  InstrumentInputs inputs;
+  std::size_t nodes = 0;
+  void reserve(int M, int G, int Q) {
+    // The main-axis loop writes padded(G·M) nodes before they are repeated.
+    const auto n = std::size_t(std::max(padded(Q * G * M), padded(G * M)));
+    const auto harmonics = std::size_t(G * (M / 2 + 1) * Q), lanes = std::size_t(padded(G * (M / 2)));
+    if (nodes < n) {
+      for (auto* v : {&weights, &products, &main_rate, &arm_x, &platform_rate, &cos_offset, &sin_offset})
+        v->resize(n);
+      inputs.resize(n);
+      main.resize(n);
+      nodes = n;
+    }
+    if (nu_re.size() < harmonics) {
+      nu_re.resize(harmonics);
+      nu_im.resize(harmonics);
+    }
+    if (lane_re.size() < lanes * std::size_t(Q)) {
+      for (auto* v : {&lane_kappa, &lane_cos, &lane_sin, &lane_turn}) v->resize(lanes);
+      lane_re.resize(lanes * std::size_t(Q));
+      lane_im.resize(lanes * std::size_t(Q));
+    }
+  }
+};
+
+
+// The scratch space of a batch of trials (run_means_batch.cpp): one pack of kPackLanes trials at a time, each
+// value a pack of doubles (lane l: the pack's trial l).
+struct BatchScratch {
+  std::vector<TrialTerms> terms;           // per trial of the batch
+  std::vector<int> key;                    // per trial: its rule (slow nodes per group, ripples), −1: alone
+  std::vector<char> done;                  // per trial: its means computed
+  std::vector<std::size_t> pack;           // the trials of the pack at hand
+  std::vector<double> main_coefficients, platform_coefficients, main_ripple, platform_ripple;
+  std::vector<double> frame;               // pB y, z; ω_c, ĝ, ω_ie of frame 1t; R_B; p_C; P = R_C·mounting
+  std::vector<double> run_rates;           // per run of the group: θ̇1, γ̇, B's offset x
+  std::vector<double> offsets;             // per slow node: cos, sin of its drift
+  std::vector<double> harmonics;           // per run and harmonic m ≥ 1: κ/2, cos, sin of the nominal, turn
+  std::vector<double> zero_moments;        // per run: ν_0q re, im
+  std::vector<double> nu_re, nu_im;        // per run, harmonic m ≥ 1 and slow node
+  std::vector<double> weights, products;   // per node
+  std::vector<double> means;               // per run of the group
+};
+
 }  // namespace ccal::run_nodes
+
+namespace ccal {
+struct RunMeanKernel::Workspace::Buffers : run_nodes::Scratch {
+  run_nodes::BatchScratch batch;
+};
+}  // namespace ccal

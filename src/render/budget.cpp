@@ -182,8 +182,10 @@ std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::Vector
   // EA-4/02: the evaluation's type, ν_i ("inf"), the divisor, x_i in that unit and in SI, the unit of each
   // c_i.
   out += ",name,unit,bound,u_x";
-  for (std::size_t k = 0; k < nk; ++k)
-    out += "," + csv_column("c_" + r.coefficients[k], r.units[k] + " per unit");
+  for (std::size_t k = 0; k < nk; ++k) {
+    out += ',';  // (not "," + …: GCC 12 warns of an overlap in that concatenation, -Wrestrict, falsely)
+    out += csv_column("c_" + r.coefficients[k], r.units[k] + " per unit");
+  }
   out += ",type,dof,divisor,estimate,estimate_si";
   for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",c_{}_unit", r.coefficients[k]);
   // With [[correlations]]: the inputs' correlation matrix, a column r_<id> per source (tolerance order), each
