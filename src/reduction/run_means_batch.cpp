@@ -217,10 +217,11 @@ using run_nodes::KernelTables;
 using run_nodes::RunGroup;
 using run_nodes::RunTables;
 using run_nodes::TrialTerms;
+using run_nodes::turn;
 
 // A trial's rule, which the trials of one pack share: whether each drive has a ripple, and each group's number
 // of slow nodes; or kRuleAlone, a trial for the one-trial path (wobbles or turns beyond the small-angle series, or
-// runs too short for J_p's recursion).
+// runs too short for J_p's recursion: slow_moments' scalar series).
 constexpr int kRuleAlone = -1;
 void rule_of(const KernelTables& d, const TrialTerms& trial, const double* e, int* key) {
   key[0] = kRuleAlone;
@@ -233,9 +234,8 @@ void rule_of(const KernelTables& d, const TrialTerms& trial, const double* e, in
       const RunTables& t = d.runs[r];
       const double omega_T = (t.rate + e[ch::domega]) * t.duration;
       for (int m = 1; m <= group.M / 2; ++m) {
-        const double turn_angle = double(m) * e[ch::domega] * t.duration / 2.0;
         const double half_kappa = omega_T * double(m) / 2.0;
-        if (!(std::abs(turn_angle) < kSmallAngle) || std::abs(half_kappa) < 4.0 + Q) return;
+        if (std::abs(half_kappa) < 4.0 + Q) return;
       }
     }
     key[2 + k] = Q;
@@ -306,10 +306,16 @@ void fill_lane(const KernelTables& d, const RunGroup& group, int Q, const TrialT
     }
     for (int m = 1; m <= half; ++m) {
       const std::size_t h = 4 * (g * std::size_t(half) + std::size_t(m - 1));
+      const double turn_angle = double(m) * domega * t.duration / 2.0;
+      double c = t.cos_half[std::size_t(m)], s = t.sin_half[std::size_t(m)];
+      // A turn beyond the small-angle series (|Δω| of a few σ on a long run) is made here, as slow_moments makes
+      // it: the lanes then turn by 0, which leaves c and s as they are (c·1 − s·0, s·1 + c·0).
+      const bool small = std::abs(turn_angle) < kSmallAngle;
+      if (!small) turn(c, s, turn_angle, c, s);
       put_lane(b.harmonics, h, lane, omega_T * double(m) / 2.0);
-      put_lane(b.harmonics, h + 1, lane, t.cos_half[std::size_t(m)]);
-      put_lane(b.harmonics, h + 2, lane, t.sin_half[std::size_t(m)]);
-      put_lane(b.harmonics, h + 3, lane, double(m) * domega * t.duration / 2.0);
+      put_lane(b.harmonics, h + 1, lane, c);
+      put_lane(b.harmonics, h + 2, lane, s);
+      put_lane(b.harmonics, h + 3, lane, small ? turn_angle : 0.0);
     }
   }
 }

@@ -2,9 +2,12 @@
 // coefficients (docs/model.md §10.2).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <memory>
 #include <stdexcept>
 
 #include "calibration_cache.hpp"
+#include "montecarlo_batch.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/chain_inputs.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
@@ -42,7 +45,37 @@ namespace {
 struct TrialScratch {
   Eigen::VectorXd truth, y;
   RunMeanKernel::Workspace run_means;
+  std::vector<double> truths, means;  // a batch's: trial t's at t·layout size, t·runs
 };
+
+// The truth actual_errors + draws (the drawn errors of the layout's parameters) into truth.
+void truth_of(const CalibrationModel& m, const Eigen::VectorXd& actual_errors, std::span<const double> draws,
+              double* truth) {
+  const std::vector<int>& parameters = m.parameters();
+  std::copy_n(actual_errors.data(), actual_errors.size(), truth);
+  for (std::size_t j = 0; j < draws.size(); ++j)
+    if (parameters[j] >= 0 && !is_chain_parameter(parameters[j])) truth[parameters[j]] += draws[j];
+}
+
+// K̂ − (the reference subtracted later) from the run means y of the truth: the drives' rate noise and the
+// measuring chain's inputs added, then K̂ = H⁺ (ȳ − known part).
+void terms_from_means(const CalibrationModel& m, std::span<const double> draws, Eigen::VectorXd& y,
+                      std::span<double> outputs) {
+  const CalibrationTrialCache& cache = m.trial_cache();
+  const std::vector<int>& parameters = m.parameters();
+  // The drives' rate noise scatters each run's mean (model.md §3.2).
+  for (std::size_t j = 0; j < draws.size(); ++j)
+    if (parameters[j] < 0) y[rate_noise_run(parameters[j])] += draws[j];
+  // The measuring chain's inputs through their columns: linear in the input, exactly so for the offset, the
+  // fixed terms and the declared inputs; the gain's, the time base's and g's second-order terms are below
+  // 1e-8 of a run mean's change at any plausible bound (1e-4).
+  if (cache.any_chain)
+    for (std::size_t j = 0; j < draws.size(); ++j)
+      if (is_chain_parameter(parameters[j])) y += cache.chain_columns.col(Eigen::Index(j)) * draws[j];
+  // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
+  y -= cache.known_part;
+  for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] = cache.design_pinv.row(Eigen::Index(o)).dot(y);
+}
 
 // K̂ − (the reference subtracted later): the free terms identified from the run means of the truth
 // actual_errors + draws.
@@ -50,17 +83,10 @@ void identified_terms(const CalibrationModel& m, const Eigen::VectorXd& actual_e
                       std::span<const double> draws, std::span<double> outputs, TrialScratch& scratch) {
   const CalibrationTrialCache& cache = m.trial_cache();
   const Experiment& ex = m.experiment();
-  const std::vector<int>& parameters = m.parameters();
   Eigen::VectorXd& truth = scratch.truth;
   Eigen::VectorXd& y = scratch.y;
-  truth = actual_errors;
-  bool noise = false;
-  for (std::size_t j = 0; j < draws.size(); ++j) {
-    if (parameters[j] < 0 || is_chain_parameter(parameters[j]))
-      noise = noise || parameters[j] < 0;
-    else
-      truth[parameters[j]] += draws[j];
-  }
+  truth.resize(actual_errors.size());
+  truth_of(m, actual_errors, draws, truth.data());
   y.resize(Eigen::Index(ex.plan.runs.size()));
   if (cache.run_means) {
     cache.run_means->means(std::span<const double>(truth.data(), std::size_t(truth.size())),
@@ -75,20 +101,50 @@ void identified_terms(const CalibrationModel& m, const Eigen::VectorXd& actual_e
                                                                &ex.instrument, {}, m.spec().paper_cross_terms)
                                      .output;
   }
-  // The drives' rate noise scatters each run's mean (model.md §3.2).
-  if (noise)
-    for (std::size_t j = 0; j < draws.size(); ++j)
-      if (parameters[j] < 0) y[rate_noise_run(parameters[j])] += draws[j];
-  // The measuring chain's inputs through their columns: linear in the input, exactly so for the offset, the
-  // fixed terms and the declared inputs; the gain's, the time base's and g's second-order terms are below
-  // 1e-8 of a run mean's change at any plausible bound (1e-4).
-  if (cache.any_chain)
-    for (std::size_t j = 0; j < draws.size(); ++j)
-      if (is_chain_parameter(parameters[j])) y += cache.chain_columns.col(Eigen::Index(j)) * draws[j];
-  // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
-  y -= cache.known_part;
-  for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] = cache.design_pinv.row(Eigen::Index(o)).dot(y);
+  terms_from_means(m, draws, y, outputs);
 }
+
+// The trial function of a model: one trial, or a batch whose truths' run means go through the kernel
+// together (RunMeanKernel::means of many trials, each trial's bits those it has alone).
+class CalibrationTrial final : public mc_batch::BatchTrial {
+ public:
+  explicit CalibrationTrial(CalibrationModel model) : model_(std::move(model)) {}
+  std::unique_ptr<mc_batch::BatchTrial> fresh_copy() const override {
+    return std::make_unique<CalibrationTrial>(model_);
+  }
+  void one(std::span<const double> draws, std::span<double> outputs) override {
+    const Eigen::VectorXd& reference = model_.reference();
+    identified_terms(model_, model_.actual_errors(), draws, outputs, scratch_);
+    for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] -= reference[Eigen::Index(o)];
+  }
+  void many(std::span<const double> draws, std::size_t trials, std::span<double> outputs) override {
+    const std::size_t n_sources = model_.parameters().size(), n_out = outputs.size() / std::max<std::size_t>(trials, 1);
+    const CalibrationTrialCache& cache = model_.trial_cache();
+    if (!cache.run_means) {
+      for (std::size_t t = 0; t < trials; ++t)
+        one(draws.subspan(t * n_sources, n_sources), outputs.subspan(t * n_out, n_out));
+      return;
+    }
+    const Eigen::VectorXd& actual = model_.actual_errors();
+    const auto L = std::size_t(actual.size()), R = model_.experiment().plan.runs.size();
+    scratch_.truths.resize(trials * L);
+    scratch_.means.resize(trials * R);
+    for (std::size_t t = 0; t < trials; ++t)
+      truth_of(model_, actual, draws.subspan(t * n_sources, n_sources), scratch_.truths.data() + t * L);
+    cache.run_means->means(scratch_.truths, trials, scratch_.means, scratch_.run_means);
+    const Eigen::VectorXd& reference = model_.reference();
+    for (std::size_t t = 0; t < trials; ++t) {
+      scratch_.y = Eigen::Map<const Eigen::VectorXd>(scratch_.means.data() + t * R, Eigen::Index(R));
+      const std::span<double> out = outputs.subspan(t * n_out, n_out);
+      terms_from_means(model_, draws.subspan(t * n_sources, n_sources), scratch_.y, out);
+      for (std::size_t o = 0; o < n_out; ++o) out[o] -= reference[Eigen::Index(o)];
+    }
+  }
+
+ private:
+  CalibrationModel model_;  // its state shared and only read
+  TrialScratch scratch_;    // this copy's own
+};
 
 }  // namespace
 
@@ -179,11 +235,7 @@ TrialFunction calibration_trial(const CalibrationModel& model) {
     throw std::invalid_argument(
         "calibration_trial: the model was not built by calibration_model (no trial cache)");
   // The model's state is shared and only read; the scratch is the copy's own (copied empty per thread).
-  return [model, scratch = TrialScratch()](std::span<const double> draws, std::span<double> outputs) mutable {
-    const Eigen::VectorXd& reference = model.reference();
-    identified_terms(model, model.actual_errors(), draws, outputs, scratch);
-    for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] -= reference[Eigen::Index(o)];
-  };
+  return mc_batch::BatchCallable(std::make_unique<CalibrationTrial>(model));
 }
 
 }  // namespace ccal

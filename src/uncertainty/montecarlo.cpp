@@ -17,6 +17,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
+#include "montecarlo_batch.hpp"
 #include "montecarlo_draws.hpp"
 #include "progress_bar.hpp"
 #include "sample_statistics.hpp"
@@ -94,26 +95,38 @@ struct Engine {
     Failure failure;
 #pragma omp parallel num_threads(threads)
     {
-      std::vector<double> draws, out(n_outputs);
+      std::vector<double> draws, out(n_outputs), batch_out(std::size_t(kBatch) * n_outputs);
       BatchDrawer drawer(sources, plan, copula);
       TrialFunction own_trial = trial;  // this thread's copy: its scratch buffers are its own
+      // A model that takes whole batches (montecarlo_batch.hpp): each trial's outputs the bits it has alone.
+      mc_batch::BatchCallable* batch_trial = own_trial.target<mc_batch::BatchCallable>();
 #pragma omp for schedule(dynamic, chunk)
       for (std::int64_t b = 0; b < batches; ++b) {
         if (failure.failed.load(std::memory_order_relaxed)) continue;
         const std::uint64_t first = begin + std::uint64_t(b * kBatch);
         const auto n = std::size_t(std::min<std::int64_t>(kBatch, count - b * kBatch));
         drawer.draw(key, first, n, draws);
+        bool batched = false;
+        if (batch_trial) try {
+            batch_trial->trial().many(std::span<const double>(draws.data(), n * n_sources), n,
+                                      std::span<double>(batch_out.data(), n * n_outputs));
+            batched = true;
+          } catch (...) {  // the trials one by one below find the first that fails
+          }
         for (std::size_t t = 0; t < n; ++t) {
           const std::uint64_t i = first + t;
           try {
-            own_trial(std::span<const double>(draws.data() + t * n_sources, n_sources), out);
+            const std::span<const double> drawn(draws.data() + t * n_sources, n_sources);
+            const std::span<double> y = batched ? std::span<double>(batch_out.data() + t * n_outputs, n_outputs)
+                                                : std::span<double>(out);
+            if (!batched) own_trial(drawn, y);
             for (std::size_t o = 0; o < n_outputs; ++o) {
-              if (!std::isfinite(out[o]))
+              if (!std::isfinite(y[o]))
                 throw InputError(
                     fmt::format("Monte Carlo trial {}: output '{}' is {}; the model cannot be evaluated at "
                                 "these draws (are the tolerances too wide for it?)",
-                                i + 1, names[o], out[o]));
-              samples[o][i] = out[o];
+                                i + 1, names[o], y[o]));
+              samples[o][i] = y[o];
             }
             if (progress.on()) progress.tick();  // a Cancelled from the callback stops the loop
           } catch (...) {

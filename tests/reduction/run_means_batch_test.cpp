@@ -35,7 +35,8 @@ TEST(RunMeanKernelBatch, BundledTrialsInLanesAreTheOneTrialMeansBitForBit) {
   // 43 trials (five packs and a partial one) of the bundled tolerances drawn uniformly within ±3 bounds, of
   // four rules mixed: with both drives' ripple, without the main drive's (its coefficients zero), with a
   // mismatch ΔΩ that needs more slow nodes, and one trial whose wobble is beyond the small-angle series (the
-  // one-trial path's own loops). Each trial's means equal its means alone, bit for bit.
+  // one-trial path's own loops); some with a rate error Δω whose turns of the weights' harmonics are beyond
+  // the small-angle series (turned one by one, as the one-trial path turns them). Each trial's means equal its means alone, bit for bit.
   const Config cfg = bundled_example();
   const Experiment ex = cfg.experiment();
   const CalibrationModel model = calibration_model(cfg);
@@ -50,6 +51,7 @@ TEST(RunMeanKernelBatch, BundledTrialsInLanesAreTheOneTrialMeansBitForBit) {
     if (t % 5 == 1)
       for (int k = 0; k < 2; ++k) e[ex.layout.harmonic_index(ch::ripple1, 0, false) + 1 + k] = 0.0;
     if (t % 7 == 3) e[ch::dOmega] = 2e-5;  // Q = 6
+    if (t % 6 == 2) e[ch::domega] = 3e-6;   // mΔωT/2 beyond the small-angle series for m ≥ 2
     if (t == 17) e[ex.layout.harmonic_index(ch::dthx3, 0, false)] = 2e-3;
     trials.push_back(e);
   }
