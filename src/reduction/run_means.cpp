@@ -20,7 +20,6 @@ namespace {
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
-using run_nodes::always_small;
 using run_nodes::harmonic_moments_lanes;
 using run_nodes::InstrumentInputs;
 using run_nodes::MainAxisInputs;
@@ -305,7 +304,7 @@ void main_axis_half(const RunGroup& group, const GroupNodes& nodes, const TrialT
                             to_v3(blocks.gravity_1t),
                             to_v3(blocks.earth_1t),
                             blocks.RB};
-  main_axis_nodes(main, trial.main_small, scratch.main);
+  main_axis_nodes(main, trial.main_series, scratch.main);
 }
 
 // The main-axis half's G·M nodes repeated for slow nodes 1 … Q − 1 (node n reads fast node n mod G·M).
@@ -348,7 +347,7 @@ void platform_half(const RunTables& t, const RunGroup& group, const GroupNodes& 
                                 1.0 / trial.unit,
                                 to_v3(trial.blocks.pC),
                                 trial.blocks.RC * t.mount};
-  platform_nodes(platform, trial.platform_small, scratch.main, scratch.inputs);
+  platform_nodes(platform, trial.platform_series, scratch.main, scratch.inputs);
 }
 
 // ⟨output⟩ of run g = Σ_q Σ_j w_qj y(a_i, a_p, a_o, ω_IA at its node qj), the padding skipped: the products

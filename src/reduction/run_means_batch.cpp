@@ -36,6 +36,7 @@ struct BatchLanes {
   const double* main_ripple;      // null: no ripple of the main drive in these trials
   const double* platform_ripple;  // null: none of the platform drive (or a fixed platform)
   bool follows_main;
+  bool tiny;  // every wobble and ripple angle below kTinyAngle: their series to q³
   const double *frame, *run_rates, *offsets, *harmonics, *zero_moments;
   double *nu_re, *nu_im, *weights, *products, *means;
   double g, inverse_g;
@@ -92,23 +93,23 @@ struct MainHalf {
   V3<Pack> F0, W, dW, coriolis, W_total;
   Pack ripple_angle{}, ripple_rate{}, ripple_acc{};
 };
-template <int kOrder, bool kRipple>
+template <int kOrder, bool kRipple, bool kTiny>
 [[gnu::always_inline]] inline void main_half(const BatchLanes& b, const JointCoefficients<kOrder, Pack>& a,
                                              const Columns<Pack>& B, int k, const Pack& nominal_rate,
                                              const Pack& arm_x, MainHalf& out) {
   Pack c = splat(b.group->cos_theta[std::size_t(k)]), s = splat(b.group->sin_theta[std::size_t(k)]);
   JointLink<Pack> main;
   if constexpr (!kRipple) {
-    main = joint_link<kOrder, Pack, Pack>(a, c, s, nominal_rate);
+    main = joint_link<kOrder, Pack, Pack, kTiny>(a, c, s, nominal_rate);
   } else {
     const RippleSeries<Pack> r = ripple_series<kOrder, Pack, Pack>(b.main_ripple, b.order, c, s);
     const Pack rate_ripple = nominal_rate * r.relative, acc = (nominal_rate * nominal_rate) * r.slope;
     out.ripple_angle = r.angle;
     out.ripple_rate = rate_ripple;
     out.ripple_acc = acc;
-    turn_by(c, s, r.angle);
+    turn_by<kTiny>(c, s, r.angle);
     const Pack rate = nominal_rate + rate_ripple;
-    main = joint_link<kOrder, Pack, Pack>(a, c, s, rate, &acc);
+    main = joint_link<kOrder, Pack, Pack, kTiny>(a, c, s, rate, &acc);
   }
   const V3<Pack> coriolis_1t = as_broadcast(packed_v3<Pack>(b.frame, 2)),
                  gravity_1t = as_broadcast(packed_v3<Pack>(b.frame, 5)),
@@ -124,7 +125,7 @@ template <int kOrder, bool kRipple>
 }
 
 // w·y at a platform node (platform_link's, platform_loop's and weighted_outputs_lanes' operations).
-template <int kOrder, bool kRipple>
+template <int kOrder, bool kRipple, bool kTiny>
 [[gnu::always_inline]] inline Pack weighted_output_at(const BatchLanes& b, const JointCoefficients<kOrder, Pack>& a,
                                                       const Columns<Pack>& P, const MainHalf& main, int n,
                                                       const Pack& nominal_rate, int q) {
@@ -135,7 +136,7 @@ template <int kOrder, bool kRipple>
   Pack sg = sin_gamma * cos_offset + cos_gamma * sin_offset;
   JointLink<Pack> platform;
   if constexpr (!kRipple) {
-    platform = joint_link<kOrder, Pack, Pack>(a, cg, sg, nominal_rate);
+    platform = joint_link<kOrder, Pack, Pack, kTiny>(a, cg, sg, nominal_rate);
   } else {
     Pack delta{}, rate = nominal_rate, acc{};
     if (b.platform_ripple) {
@@ -149,8 +150,8 @@ template <int kOrder, bool kRipple>
       rate -= main.ripple_rate;
       acc -= main.ripple_acc;
     }
-    turn_by(cg, sg, delta);
-    platform = joint_link<kOrder, Pack, Pack>(a, cg, sg, rate, &acc);
+    turn_by<kTiny>(cg, sg, delta);
+    platform = joint_link<kOrder, Pack, Pack, kTiny>(a, cg, sg, rate, &acc);
   }
   const PointMotion<Pack> o5 = point_motion(platform, packed_v3<Pack>(b.frame, 20));
   const V3<Pack> Wr = cross(main.W, o5.r);
@@ -165,7 +166,7 @@ template <int kOrder, bool kRipple>
 
 // Every node of the group: the main-axis half once per fast node, then the platform half at each of its slow
 // nodes; w·y stored per node and summed per run in the one-trial path's order (slow node, then fast node).
-template <int kOrder, bool kMainRipple, bool kPlatformRipple>
+template <int kOrder, bool kMainRipple, bool kPlatformRipple, bool kTiny>
 [[gnu::always_inline]] inline void batch_nodes(const BatchLanes& b) {
   const JointCoefficients<kOrder, Pack> main_coefficients{b.main_coefficients, b.order},
       platform_coefficients{b.platform_coefficients, b.order};
@@ -177,11 +178,11 @@ template <int kOrder, bool kMainRipple, bool kPlatformRipple>
     for (int j = 0; j < b.M; ++j) {
       const int k = g * b.M + j;
       MainHalf main;
-      main_half<kOrder, kMainRipple>(b, main_coefficients, B, k, main_rate, arm_x, main);
+      main_half<kOrder, kMainRipple, kTiny>(b, main_coefficients, B, k, main_rate, arm_x, main);
       for (int q = 0; q < b.Q; ++q) {
         const int n = q * fast + k;
         store(b.products + std::size_t(n) * kBatchLanes,
-              weighted_output_at<kOrder, kPlatformRipple>(b, platform_coefficients, P, main, n, platform_rate, q));
+              weighted_output_at<kOrder, kPlatformRipple, kTiny>(b, platform_coefficients, P, main, n, platform_rate, q));
       }
     }
   }
@@ -193,17 +194,17 @@ template <int kOrder, bool kMainRipple, bool kPlatformRipple>
   }
 }
 
-template <int kOrder>
+template <int kOrder, bool kTiny>
 [[gnu::always_inline]] inline void batch_nodes_of_order(const BatchLanes& b) {
   const bool platform_ripple = b.platform_ripple || b.follows_main;
   if (b.main_ripple)
-    return platform_ripple ? batch_nodes<kOrder, true, true>(b) : batch_nodes<kOrder, true, false>(b);
-  return platform_ripple ? batch_nodes<kOrder, false, true>(b) : batch_nodes<kOrder, false, false>(b);
+    return platform_ripple ? batch_nodes<kOrder, true, true, kTiny>(b) : batch_nodes<kOrder, true, false, kTiny>(b);
+  return platform_ripple ? batch_nodes<kOrder, false, true, kTiny>(b) : batch_nodes<kOrder, false, false, kTiny>(b);
 }
 
 CCAL_CLONED CCAL_FLATTEN void batch_nodes_lanes(const BatchLanes& b) {
-  if (b.order == 1) return batch_nodes_of_order<1>(b);
-  return batch_nodes_of_order<kRuntimeOrder>(b);
+  if (b.order == 1) return b.tiny ? batch_nodes_of_order<1, true>(b) : batch_nodes_of_order<1, false>(b);
+  return b.tiny ? batch_nodes_of_order<kRuntimeOrder, true>(b) : batch_nodes_of_order<kRuntimeOrder, false>(b);
 }
 
 }  // namespace
@@ -211,6 +212,7 @@ CCAL_CLONED CCAL_FLATTEN void batch_nodes_lanes(const BatchLanes& b) {
 
 namespace {
 
+using run_nodes::AngleSeries;
 using run_nodes::BatchScratch;
 using run_nodes::kBatchLanes;
 using run_nodes::KernelTables;
@@ -223,9 +225,10 @@ using run_nodes::turn;
 // of slow nodes; or kRuleAlone, a trial for the one-trial path (wobbles or turns beyond the small-angle series, or
 // runs too short for J_p's recursion: slow_moments' scalar series).
 constexpr int kRuleAlone = -1;
+constexpr std::size_t kRuleFlags = 3;
 void rule_of(const KernelTables& d, const TrialTerms& trial, const double* e, int* key) {
   key[0] = kRuleAlone;
-  if (!trial.main_small || !trial.platform_small) return;
+  if (trial.main_series == AngleSeries::library || trial.platform_series == AngleSeries::library) return;
   for (std::size_t k = 0; k < d.groups.size(); ++k) {
     const RunGroup& group = d.groups[k];
     const RunTables& first = d.runs[group.runs.front()];
@@ -238,10 +241,11 @@ void rule_of(const KernelTables& d, const TrialTerms& trial, const double* e, in
         if (std::abs(half_kappa) < 4.0 + Q) return;
       }
     }
-    key[2 + k] = Q;
+    key[kRuleFlags + k] = Q;
   }
   key[0] = trial.main_ripple != nullptr;
   key[1] = trial.platform_ripple != nullptr;
+  key[2] = trial.main_series == AngleSeries::tiny;  // the platform's too (trial_terms)
 }
 
 // value into lane `lane` of pack `i` of v.
@@ -330,7 +334,7 @@ void pack_means(const KernelTables& d, const std::vector<std::size_t>& pack, con
   for (std::size_t k = 0; k < d.groups.size(); ++k) {
     const RunGroup& group = d.groups[k];
     const RunTables& first = d.runs[group.runs.front()];
-    const int G = int(group.runs.size()), M = group.M, Q = b.key[pack.front() * (2 + d.groups.size()) + 2 + k];
+    const int G = int(group.runs.size()), M = group.M, Q = b.key[pack.front() * (kRuleFlags + d.groups.size()) + kRuleFlags + k];
     const auto packs = [](int n) { return std::size_t(n) * kBatchLanes; };
     for (auto* v : {&b.main_coefficients, &b.platform_coefficients}) v->resize(packs(5 * channel));
     for (auto* v : {&b.main_ripple, &b.platform_ripple}) v->resize(packs(2 * order));
@@ -358,6 +362,7 @@ void pack_means(const KernelTables& d, const std::vector<std::size_t>& pack, con
                                       lead.main_ripple ? b.main_ripple.data() : nullptr,
                                       platform_ripple ? b.platform_ripple.data() : nullptr,
                                       first.counter && lead.phase_locked && lead.main_ripple != nullptr,
+                                      lead.main_series == AngleSeries::tiny,
                                       b.frame.data(),
                                       b.run_rates.data(),
                                       b.offsets.data(),
@@ -390,7 +395,7 @@ void RunMeanKernel::means(std::span<const double> errors, std::size_t trials, st
                     errors.size(), trials, L, out.size(), R));
   if (!workspace.buffers_) workspace.buffers_ = std::make_unique<Workspace::Buffers>();  // moved from
   BatchScratch& b = workspace.buffers_->batch;
-  const std::size_t key_size = 2 + d.groups.size();
+  const std::size_t key_size = kRuleFlags + d.groups.size();
   b.terms.clear();
   b.key.assign(trials * key_size, 0);
   for (std::size_t t = 0; t < trials; ++t) {

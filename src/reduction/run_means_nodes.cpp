@@ -18,14 +18,14 @@ namespace {
 // The main axis's link at fast node j: at the tabulated nominal angle, or with the drive's ripple
 // (kinematics.hpp, RunMotion::add_ripple: θ1 = θ1ⁿ + δ1, θ̇1 = q̇ + q̇ r1, θ̈1 = q̇² r1′), whose δ1, δ̇1, δ̈1 are
 // kept for a phase-locked platform.
-template <int kOrder, bool kRipple, class T>
+template <int kOrder, bool kRipple, bool kTiny, class T>
 [[gnu::always_inline]] inline JointLink<T> main_link(const MainAxisInputs& in,
                                                      const JointCoefficients<kOrder>& coefficients, int j,
                                                      MainAxisNodes& out) {
   T c = load<T>(in.cos_theta + j), s = load<T>(in.sin_theta + j);
   const T nominal_rate = load<T>(in.rate + j);
   if constexpr (!kRipple) {
-    return joint_link<kOrder, T, T>(coefficients, c, s, nominal_rate);
+    return joint_link<kOrder, T, T, kTiny>(coefficients, c, s, nominal_rate);
   } else {
     const RippleSeries<T> r = ripple_series<kOrder>(in.ripple, in.order, c, s);
     const T rate_ripple = nominal_rate * r.relative, acc = (nominal_rate * nominal_rate) * r.slope;
@@ -33,20 +33,20 @@ template <int kOrder, bool kRipple, class T>
     store(&out.ripple_angle[J], r.angle);
     store(&out.ripple_rate[J], rate_ripple);
     store(&out.ripple_acc[J], acc);
-    turn_by(c, s, r.angle);
+    turn_by<kTiny>(c, s, r.angle);
     const T rate = nominal_rate + rate_ripple;
-    return joint_link<kOrder, T, T>(coefficients, c, s, rate, &acc);
+    return joint_link<kOrder, T, T, kTiny>(coefficients, c, s, rate, &acc);
   }
 }
 
-template <int kOrder, bool kRipple, class T>
+template <int kOrder, bool kRipple, bool kTiny, class T>
 [[gnu::always_inline]] inline void main_axis_loop(const MainAxisInputs& in, MainAxisNodes& out) {
   const JointCoefficients<kOrder> coefficients{in.coefficients, in.order};
   const Columns<> B(in.RB);
   const V3<T> coriolis_1t = broadcast<T>(in.coriolis_1t), gravity_1t = broadcast<T>(in.gravity_1t),
               earth_1t = broadcast<T>(in.earth_1t);
   for (int j = 0; j < in.nodes; j += kLanes<T>) {
-    const JointLink<T> main = main_link<kOrder, kRipple, T>(in, coefficients, j, out);
+    const JointLink<T> main = main_link<kOrder, kRipple, kTiny, T>(in, coefficients, j, out);
     const PointMotion<T> o3t = point_motion(main, V3<T>{load<T>(in.arm_x + j), T{} + in.pB.y, T{} + in.pB.z});
     const V3<T> F0 = o3t.a + 2.0 * cross(coriolis_1t, o3t.v) + in.g * gravity_1t;
     // x in frame-3t coordinates: R_Bᵀ (R_jointᵀ x).
@@ -62,7 +62,7 @@ template <int kOrder, bool kRipple, class T>
 // The platform's link at node j: at its nominal angle (cos γⁿ = cg, sin γⁿ = sg), or with its own ripple
 // and, when phase-locked, the main axis's angle error (RunMotion::add_ripple: γ = γⁿ + δ3 − δ1, γ̇ = γ̇ⁿ +
 // γ̇ⁿ r3 − δ̇1, γ̈ = (γ̇ⁿ)² r3′ − δ̈1).
-template <int kOrder, bool kRipple, class T>
+template <int kOrder, bool kRipple, bool kTiny, class T>
 [[gnu::always_inline]] inline JointLink<T> platform_link(const PlatformInputs& in,
                                                          const JointCoefficients<kOrder>& coefficients,
                                                          const MainAxisNodes& main, int j,
@@ -71,7 +71,7 @@ template <int kOrder, bool kRipple, class T>
   T cg = cg_nominal, sg = sg_nominal;
   const T nominal_rate = load<T>(in.rate + j);
   if constexpr (!kRipple) {
-    return joint_link<kOrder, T, T>(coefficients, cg, sg, nominal_rate);
+    return joint_link<kOrder, T, T, kTiny>(coefficients, cg, sg, nominal_rate);
   } else {
     T delta{}, rate = nominal_rate, acc{};
     if (in.ripple) {
@@ -86,12 +86,12 @@ template <int kOrder, bool kRipple, class T>
       rate -= load<T>(&main.ripple_rate[J]);
       acc -= load<T>(&main.ripple_acc[J]);
     }
-    turn_by(cg, sg, delta);
-    return joint_link<kOrder, T, T>(coefficients, cg, sg, rate, &acc);
+    turn_by<kTiny>(cg, sg, delta);
+    return joint_link<kOrder, T, T, kTiny>(coefficients, cg, sg, rate, &acc);
   }
 }
 
-template <int kOrder, bool kRipple, class T>
+template <int kOrder, bool kRipple, bool kTiny, class T>
 [[gnu::always_inline]] inline void platform_loop(const PlatformInputs& in, const MainAxisNodes& main,
                                                  InstrumentInputs& out) {
   const JointCoefficients<kOrder> coefficients{in.coefficients, in.order};
@@ -102,7 +102,7 @@ template <int kOrder, bool kRipple, class T>
     const T cos_offset = load<T>(in.cos_offset + j), sin_offset = load<T>(in.sin_offset + j);
     const T cg = cos_gamma * cos_offset - sin_gamma * sin_offset;
     const T sg = sin_gamma * cos_offset + cos_gamma * sin_offset;
-    const JointLink<T> platform = platform_link<kOrder, kRipple, T>(in, coefficients, main, j, cg, sg);
+    const JointLink<T> platform = platform_link<kOrder, kRipple, kTiny, T>(in, coefficients, main, j, cg, sg);
     const PointMotion<T> o5 = point_motion(platform, in.pC);
     const V3<T> W = get<T>(main.W, J);
     const V3<T> Wr = cross(W, o5.r);
@@ -127,10 +127,10 @@ double ripple_angle_bound(const double* coefficients, int order) {
   return bound;
 }
 
-bool always_small(const double* coefficients, int order) {
+double channel_bound(const double* coefficients, int order) {
   double bound = 0;
   for (int i = 0; i < 2 * order + 1; ++i) bound += std::abs(coefficients[i]);
-  return bound < kSmallAngle;
+  return bound;
 }
 
 // The loops for the harmonic order at hand, eight nodes at a time when the wobbles are small (always, for
@@ -139,42 +139,43 @@ bool always_small(const double* coefficients, int order) {
 namespace {
 // The loops for a harmonic order known at compile time (0, 1, 2) or not, with or without a drive's ripple,
 // eight nodes at a time or one; inlined into the entry points below.
-template <bool kRipple, class T>
+template <bool kRipple, bool kTiny, class T>
 [[gnu::always_inline]] inline void main_axis_dispatch(const MainAxisInputs& in, MainAxisNodes& out) {
   switch (in.order) {
     case 0:
-      return main_axis_loop<0, kRipple, T>(in, out);
+      return main_axis_loop<0, kRipple, kTiny, T>(in, out);
     case 1:
-      return main_axis_loop<1, kRipple, T>(in, out);
+      return main_axis_loop<1, kRipple, kTiny, T>(in, out);
     case 2:
-      return main_axis_loop<2, kRipple, T>(in, out);
+      return main_axis_loop<2, kRipple, kTiny, T>(in, out);
     default:
-      return main_axis_loop<kRuntimeOrder, kRipple, T>(in, out);
+      return main_axis_loop<kRuntimeOrder, kRipple, kTiny, T>(in, out);
   }
 }
-template <bool kRipple, class T>
+template <bool kRipple, bool kTiny, class T>
 [[gnu::always_inline]] inline void platform_dispatch(const PlatformInputs& in, const MainAxisNodes& main,
                                                      InstrumentInputs& out) {
   switch (in.order) {
     case 0:
-      return platform_loop<0, kRipple, T>(in, main, out);
+      return platform_loop<0, kRipple, kTiny, T>(in, main, out);
     case 1:
-      return platform_loop<1, kRipple, T>(in, main, out);
+      return platform_loop<1, kRipple, kTiny, T>(in, main, out);
     case 2:
-      return platform_loop<2, kRipple, T>(in, main, out);
+      return platform_loop<2, kRipple, kTiny, T>(in, main, out);
     default:
-      return platform_loop<kRuntimeOrder, kRipple, T>(in, main, out);
+      return platform_loop<kRuntimeOrder, kRipple, kTiny, T>(in, main, out);
   }
 }
 // One node at a time (wobbles beyond the small-angle series, never a real centrifuge's), in baseline code:
 // out of the clones, whose vectoriser would fuse its scalar rotations (core/cloned_loops.hpp).
 [[gnu::noinline]] void main_axis_one_by_one(const MainAxisInputs& in, MainAxisNodes& out) {
-  return in.ripple ? main_axis_dispatch<true, double>(in, out) : main_axis_dispatch<false, double>(in, out);
+  return in.ripple ? main_axis_dispatch<true, false, double>(in, out)
+                   : main_axis_dispatch<false, false, double>(in, out);
 }
 [[gnu::noinline]] void platform_one_by_one(const PlatformInputs& in, const MainAxisNodes& main,
                                            InstrumentInputs& out) {
-  return in.ripple || in.follows_main ? platform_dispatch<true, double>(in, main, out)
-                                      : platform_dispatch<false, double>(in, main, out);
+  return in.ripple || in.follows_main ? platform_dispatch<true, false, double>(in, main, out)
+                                      : platform_dispatch<false, false, double>(in, main, out);
 }
 }  // namespace
 
@@ -244,15 +245,21 @@ CCAL_CLONED void weighted_outputs_lanes(const OutputPolynomial& output, const do
                                       load<Pack>(in.a_o.data() + n), load<Pack>(in.w_ia.data() + n)));
 }
 
-CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out) {
-  if (!small) return main_axis_one_by_one(in, out);
-  return in.ripple ? main_axis_dispatch<true, Pack>(in, out) : main_axis_dispatch<false, Pack>(in, out);
+CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, AngleSeries series, MainAxisNodes& out) {
+  if (series == AngleSeries::library) return main_axis_one_by_one(in, out);
+  if (series == AngleSeries::tiny)
+    return in.ripple ? main_axis_dispatch<true, true, Pack>(in, out) : main_axis_dispatch<false, true, Pack>(in, out);
+  return in.ripple ? main_axis_dispatch<true, false, Pack>(in, out) : main_axis_dispatch<false, false, Pack>(in, out);
 }
-CCAL_CLONED void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main,
+CCAL_CLONED void platform_nodes(const PlatformInputs& in, AngleSeries series, const MainAxisNodes& main,
                                 InstrumentInputs& out) {
-  if (!small) return platform_one_by_one(in, main, out);
-  return in.ripple || in.follows_main ? platform_dispatch<true, Pack>(in, main, out)
-                                      : platform_dispatch<false, Pack>(in, main, out);
+  if (series == AngleSeries::library) return platform_one_by_one(in, main, out);
+  const bool ripple = in.ripple || in.follows_main;
+  if (series == AngleSeries::tiny)
+    return ripple ? platform_dispatch<true, true, Pack>(in, main, out)
+                  : platform_dispatch<false, true, Pack>(in, main, out);
+  return ripple ? platform_dispatch<true, false, Pack>(in, main, out)
+                : platform_dispatch<false, false, Pack>(in, main, out);
 }
 
 }  // namespace ccal::run_nodes

@@ -118,14 +118,20 @@ struct OutputPolynomial {
 void weighted_outputs_lanes(const OutputPolynomial& output, const double* weights, const InstrumentInputs& in,
                             int nodes, double* products);
 
-// Whether every value of a dynamic channel (c0, c1, s1, … at `coefficients`) stays below kSmallAngle, so that
-// the SIMD loops (small-angle series for the wobbles) apply.
-bool always_small(const double* coefficients, int order);
+// How a trial's wobble and ripple angles are taken (run_means_lanes.hpp): one node at a time with the library's
+// cosine and sine where one may exceed kSmallAngle, else in SIMD lanes by the series to q⁹, or to q³ where all
+// stay below kTinyAngle.
+enum class AngleSeries { library, small, tiny };
+
+// Σ |c0| + |ck| + |sk|: a bound of every value of a dynamic channel (c0, c1, s1, … at `coefficients`), which
+// decides its AngleSeries.
+double channel_bound(const double* coefficients, int order);
 // Σ (|ck| + |sk|)/k: a bound of a rate ripple's angle error δ (c1, s1, … at `coefficients`; 0 for nullptr).
 double ripple_angle_bound(const double* coefficients, int order);
 // The main-axis half at nodes 0 … nodes − 1 (and the padding).
-void main_axis_nodes(const MainAxisInputs& in, bool small, MainAxisNodes& out);
+void main_axis_nodes(const MainAxisInputs& in, AngleSeries series, MainAxisNodes& out);
 // The platform half at nodes 0 … nodes − 1 (and the padding) of `out`.
-void platform_nodes(const PlatformInputs& in, bool small, const MainAxisNodes& main, InstrumentInputs& out);
+void platform_nodes(const PlatformInputs& in, AngleSeries series, const MainAxisNodes& main,
+                    InstrumentInputs& out);
 
 }  // namespace ccal::run_nodes

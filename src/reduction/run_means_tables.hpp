@@ -15,6 +15,7 @@
 #include "ccal/reduction/detail/spectral_weights.hpp"
 #include "ccal/reduction/quadrature.hpp"
 #include "ccal/reduction/run_means.hpp"
+#include "run_means_lanes.hpp"
 #include "run_means_nodes.hpp"
 
 namespace ccal::run_nodes {
@@ -81,7 +82,8 @@ struct TrialTerms {
   int order;
   double g;     // gravity [m/s²]
   double unit;  // the g of the g-levels [m/s²]
-  bool phase_locked, main_small, platform_small;
+  bool phase_locked;
+  AngleSeries main_series, platform_series;
 };
 
 // The drive's rate ripple of `channel` (c1, s1, … after the channel's unused c0), nullptr when zero.
@@ -94,7 +96,8 @@ inline const double* nonzero_ripple(const double* errors, const ErrorLayout& lay
 
 // A half stays in the small-angle loops where its two wobble channels (the 4th and 5th of its dynamic
 // channels) and the angle its ripple adds (a phase-locked platform also turns by the main axis's) stay below
-// kSmallAngle.
+// kSmallAngle; the two halves take the series to q³ where both stay below kTinyAngle (one series for both, so
+// that a batch's lanes take one).
 inline TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eigen::VectorXd>& e) {
   const double* errors = e.data();
   const int order = d.layout.harmonic_order();
@@ -107,17 +110,27 @@ inline TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eige
                    d.site.g,
                    d.site.g_unit(),
                    d.geometry.platform_control == PlatformControl::phase_locked,
-                   false,
-                   false};
-  const double main_ripple_bound = run_nodes::ripple_angle_bound(trial.main_ripple, order);
-  trial.main_small = always_small(trial.main_coefficients + 3 * (2 * order + 1), order) &&
-                     always_small(trial.main_coefficients + 4 * (2 * order + 1), order) &&
-                     main_ripple_bound < kSmallAngle;
-  trial.platform_small = always_small(trial.platform_coefficients + 3 * (2 * order + 1), order) &&
-                         always_small(trial.platform_coefficients + 4 * (2 * order + 1), order) &&
-                         run_nodes::ripple_angle_bound(trial.platform_ripple, order) +
-                                 (trial.phase_locked ? main_ripple_bound : 0.0) <
-                             kSmallAngle;
+                   AngleSeries::library,
+                   AngleSeries::library};
+  // The largest angle each half turns by at a node: its two wobbles, its ripple (and a phase-locked platform the
+  // main axis's too).
+  const auto wobbles = [&](const double* coefficients) {
+    return std::max(channel_bound(coefficients + 3 * (2 * order + 1), order),
+                    channel_bound(coefficients + 4 * (2 * order + 1), order));
+  };
+  const double main_ripple_bound = ripple_angle_bound(trial.main_ripple, order);
+  const double main_bound = std::max(wobbles(trial.main_coefficients), main_ripple_bound);
+  const double platform_bound =
+      std::max(wobbles(trial.platform_coefficients),
+               ripple_angle_bound(trial.platform_ripple, order) + (trial.phase_locked ? main_ripple_bound : 0.0));
+  const auto series = [](double bound) {
+    return bound < kTinyAngle ? AngleSeries::tiny : bound < kSmallAngle ? AngleSeries::small : AngleSeries::library;
+  };
+  trial.main_series = series(main_bound);
+  trial.platform_series = series(platform_bound);
+  if (trial.main_series != AngleSeries::library && trial.platform_series != AngleSeries::library &&
+      trial.main_series != trial.platform_series)
+    trial.main_series = trial.platform_series = AngleSeries::small;
   return trial;
 }
 
