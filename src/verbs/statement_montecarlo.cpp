@@ -11,6 +11,7 @@
 #include "ccal/core/options.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
 #include "../uncertainty/draw_quantiles.hpp"
+#include "../uncertainty/montecarlo_batch.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -81,16 +82,46 @@ std::vector<Tolerance> statement_sources(const Config& config, const Identificat
 }
 
 // One trial: y = K̂ + b − C (f(e) − f(0)) + s L z, C the unit factors, f the calibration model at the drawn
-// tolerances e, z standard normal, s = √(ν/χ²_ν) (1 for ν = ∞); then each run's ŷ + hᵀ(y − K̂).
-class StatementTrial {
+// tolerances e, z standard normal, s = √(ν/χ²_ν) (1 for ν = ∞); then each run's ŷ + hᵀ(y − K̂). A batch of
+// trials evaluates f of all of them in one call of the calibration model's batch (montecarlo_batch.hpp), each
+// trial's bits those it has alone.
+class StatementTrial final : public mc_batch::BatchTrial {
  public:
   StatementTrial(std::shared_ptr<const StatementTrialShared> shared, TrialFunction tolerances, int n_model)
       : shared_(std::move(shared)), tolerances_(std::move(tolerances)), f_(std::size_t(n_model)) {}
+  std::unique_ptr<mc_batch::BatchTrial> fresh_copy() const override {
+    return std::make_unique<StatementTrial>(shared_, tolerances_, int(f_.size()));  // tolerances_ copied fresh
+  }
 
-  void operator()(std::span<const double> draws, std::span<double> outputs) {
+  void one(std::span<const double> draws, std::span<double> outputs) override {
+    tolerances_(draws.first(shared_->n_tolerances), f_);
+    finish(draws, f_, outputs);
+  }
+  void many(std::span<const double> draws, std::size_t trials, std::span<double> outputs) override {
+    mc_batch::BatchCallable* batch = tolerances_.target<mc_batch::BatchCallable>();
+    const std::size_t n_sources = draws.size() / std::max<std::size_t>(trials, 1),
+                      n_out = outputs.size() / std::max<std::size_t>(trials, 1), n_model = f_.size(),
+                      n_tolerances = shared_->n_tolerances;
+    if (!batch) {
+      for (std::size_t t = 0; t < trials; ++t)
+        one(draws.subspan(t * n_sources, n_sources), outputs.subspan(t * n_out, n_out));
+      return;
+    }
+    tolerance_draws_.resize(trials * n_tolerances);
+    f_batch_.resize(trials * n_model);
+    for (std::size_t t = 0; t < trials; ++t)
+      std::copy_n(draws.data() + t * n_sources, n_tolerances, tolerance_draws_.data() + t * n_tolerances);
+    batch->trial().many(tolerance_draws_, trials, f_batch_);
+    for (std::size_t t = 0; t < trials; ++t)
+      finish(draws.subspan(t * n_sources, n_sources), std::span<const double>(f_batch_.data() + t * n_model, n_model),
+             outputs.subspan(t * n_out, n_out));
+  }
+
+ private:
+  // The trial's outputs from its draws and f at its tolerances.
+  void finish(std::span<const double> draws, std::span<const double> f, std::span<double> outputs) {
     const StatementTrialShared& s = *shared_;
     const auto nk = s.corrected.size();
-    tolerances_(draws.first(s.n_tolerances), f_);
     const Eigen::Map<const Eigen::VectorXd> z_known(draws.data() + s.n_tolerances, nk);
     const Eigen::Map<const Eigen::VectorXd> z_estimated(draws.data() + s.n_tolerances + std::size_t(nk), nk);
     double scale = 1;
@@ -107,7 +138,7 @@ class StatementTrial {
     y_ += s.corrected + scale * shift_;
     for (Eigen::Index k = 0; k < nk; ++k) {
       const auto m = s.model_index[std::size_t(k)];
-      y_[k] -= s.to_fit[k] * (f_[std::size_t(m)] - s.reference[m]);
+      y_[k] -= s.to_fit[k] * (f[std::size_t(m)] - s.reference[m]);
     }
     for (Eigen::Index k = 0; k < nk; ++k) outputs[std::size_t(k)] = y_[k];
     shift_ = y_ - s.estimate;
@@ -115,10 +146,9 @@ class StatementTrial {
       outputs[std::size_t(nk + r)] = s.modelled[r] + s.design.row(r).dot(shift_);
   }
 
- private:
   std::shared_ptr<const StatementTrialShared> shared_;
   TrialFunction tolerances_;
-  std::vector<double> f_;
+  std::vector<double> f_, tolerance_draws_, f_batch_;
   Eigen::VectorXd y_, shift_;
 };
 
@@ -164,7 +194,8 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   mo.threads = o.threads;
   mo.coverage_probability = st.coverage_probability;
   const std::vector<Tolerance> sources = statement_sources(config, id, shared->type_a_dof);
-  const TrialFunction trial = StatementTrial(shared, std::move(tolerances), int(model_names.size()));
+  const TrialFunction trial = mc_batch::BatchCallable(
+      std::make_unique<StatementTrial>(shared, std::move(tolerances), int(model_names.size())));
   // Adaptive in its verdict (JCGM 101 §7.9): while a quantity's check is within the sampling error of its ends
   // and the M its diagnosis names is within kStatementTrialsCap times the requested, M grows to that M (at least
   // doubled, at most the cap); a verdict that needs more than the cap stays unsettled without the cost. Trial
