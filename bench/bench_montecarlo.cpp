@@ -1,7 +1,8 @@
 // Monte Carlo trials per second for the bundled example (all its tolerances and the drives' rate noise, the
 // six-run plan, K0, K2, K3 identified), with 1 and 2 threads, independent or densely correlated; the engine's
 // own cost per trial (sampling, storage and statistics around a model that only sums the draws); and the
-// truth's six run means of one trial through the Monte Carlo's kernel and through the general average_run.
+// truth's six run means of one trial through the Monte Carlo's kernel (alone, and in a batch of 32 as the engine
+// gives it) and through the general average_run.
 //   build/bench/bench_montecarlo --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 

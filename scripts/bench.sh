@@ -95,6 +95,7 @@ figures = [
     ("Monte Carlo, bundled example, 1 thread", r"^Pipeline/1(/0)?/real_time$", "items_per_second", "trials/s"),
     ("Monte Carlo, bundled example, 2 threads", r"^Pipeline/2(/0)?/real_time$", "items_per_second", "trials/s"),
     ("run means of one trial (kernel)", r"^RunMeansKernel$", "real_time", "us"),
+    ("run means of a trial in a batch of 32 (kernel)", r"^RunMeansKernelBatch$", "us_per_trial", "us/trial"),
     ("a draw's normal quantile (in lanes)", r"^NormalQuantiles$", "ns_per_item", "ns"),
     ("statement's Monte Carlo check, lab, 2 threads", r"^StatementCheck/100000/2/", "us_per_trial", "us/trial"),
     ("design, bundled example (whole, first time)", r"^WholeDesign(/0)?/", "real_time", "s"),

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "../reduction/paper_nodes.hpp"
@@ -28,6 +29,10 @@ struct CalibrationTrialCache {
   // (chain_inputs.hpp), runs × sources, zero for every other source.
   Eigen::MatrixXd chain_columns;
   bool any_chain = false;
+  // What each source's draw is, in source order: an error of the layout (source, its index), a run's rate
+  // noise (source, the run) or an input of the measuring chain (source): sorted once, not per trial.
+  std::vector<std::pair<std::size_t, Eigen::Index>> layout_draws, noise_draws;
+  std::vector<std::size_t> chain_draws;
 };
 
 }  // namespace ccal

@@ -51,10 +51,8 @@ struct TrialScratch {
 // The truth actual_errors + draws (the drawn errors of the layout's parameters) into truth.
 void truth_of(const CalibrationModel& m, const Eigen::VectorXd& actual_errors, std::span<const double> draws,
               double* truth) {
-  const std::vector<int>& parameters = m.parameters();
   std::copy_n(actual_errors.data(), actual_errors.size(), truth);
-  for (std::size_t j = 0; j < draws.size(); ++j)
-    if (parameters[j] >= 0 && !is_chain_parameter(parameters[j])) truth[parameters[j]] += draws[j];
+  for (const auto& [j, p] : m.trial_cache().layout_draws) truth[p] += draws[j];
 }
 
 // K̂ − (the reference subtracted later) from the run means y of the truth: the drives' rate noise and the
@@ -62,16 +60,12 @@ void truth_of(const CalibrationModel& m, const Eigen::VectorXd& actual_errors, s
 void terms_from_means(const CalibrationModel& m, std::span<const double> draws, Eigen::VectorXd& y,
                       std::span<double> outputs) {
   const CalibrationTrialCache& cache = m.trial_cache();
-  const std::vector<int>& parameters = m.parameters();
   // The drives' rate noise scatters each run's mean (model.md §3.2).
-  for (std::size_t j = 0; j < draws.size(); ++j)
-    if (parameters[j] < 0) y[rate_noise_run(parameters[j])] += draws[j];
+  for (const auto& [j, run] : cache.noise_draws) y[run] += draws[j];
   // The measuring chain's inputs through their columns: linear in the input, exactly so for the offset, the
   // fixed terms and the declared inputs; the gain's, the time base's and g's second-order terms are below
   // 1e-8 of a run mean's change at any plausible bound (1e-4).
-  if (cache.any_chain)
-    for (std::size_t j = 0; j < draws.size(); ++j)
-      if (is_chain_parameter(parameters[j])) y += cache.chain_columns.col(Eigen::Index(j)) * draws[j];
+  for (const std::size_t j : cache.chain_draws) y += cache.chain_columns.col(Eigen::Index(j)) * draws[j];
   // K̂ = H⁺ (ȳ − known part): only the truth is reduced per trial.
   y -= cache.known_part;
   for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] = cache.design_pinv.row(Eigen::Index(o)).dot(y);
@@ -188,6 +182,15 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
     m.reduction.quadrature.slow_tolerance = 5e-6;
   }
   CalibrationTrialCache& cache = m.cache;
+  for (std::size_t j = 0; j < m.parameters.size(); ++j) {
+    const int p = m.parameters[j];
+    if (is_chain_parameter(p))
+      cache.chain_draws.push_back(j);
+    else if (p < 0)
+      cache.noise_draws.emplace_back(j, Eigen::Index(rate_noise_run(p)));
+    else
+      cache.layout_draws.emplace_back(j, Eigen::Index(p));
+  }
   if (mode == ModelMode::exact && !m.reduction.chain.frozen_platform)
     cache.run_means =
         std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
