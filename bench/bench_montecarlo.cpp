@@ -1,8 +1,8 @@
 // Monte Carlo trials per second for the bundled example (all its tolerances and the drives' rate noise, the
 // six-run plan, K0, K2, K3 identified), with 1 and 2 threads, independent or densely correlated; the engine's
 // own cost per trial (sampling, storage and statistics around a model that only sums the draws); and the
-// truth's six run means of one trial through the Monte Carlo's kernel (alone, and in a batch of 32 as the engine
-// gives it) and through the general average_run.
+// truth's six run means of one trial through the Monte Carlo's kernel (alone, and in a batch of 32 as the
+// engine gives it) and through the general average_run.
 //   build/bench/bench_montecarlo --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
@@ -128,9 +128,8 @@ void RunMeansKernelBatch(benchmark::State& state) {
     benchmark::DoNotOptimize(means.data());
   }
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(kTrials));
-  state.counters["us_per_trial"] =
-      benchmark::Counter(double(kTrials) * 1e-6, benchmark::Counter::kIsIterationInvariantRate |
-                                                     benchmark::Counter::kInvert);
+  state.counters["us_per_trial"] = benchmark::Counter(
+      double(kTrials) * 1e-6, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(RunMeansKernelBatch)->Unit(benchmark::kMicrosecond);
 

@@ -180,7 +180,8 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
     data->lagrange[std::size_t(Q)] = detail::slow_lagrange_monomials(Q);
     std::vector<double>& re = data->zero_re.emplace_back(std::size_t(Q));
     std::vector<double>& im = data->zero_im.emplace_back(std::size_t(Q));
-    detail::harmonic_slow_moments<double>(0.0, 1.0, 0.0, data->lagrange[std::size_t(Q)], re.data(), im.data());
+    detail::harmonic_slow_moments<double>(0.0, 1.0, 0.0, data->lagrange[std::size_t(Q)], re.data(),
+                                          im.data());
   }
   data_ = std::move(data);
 }

@@ -1,11 +1,11 @@
 // The run-mean kernel for a batch of trials (run_means.hpp, RunMeanKernel::means of many error vectors): the
-// trials that share their rule go through the chain kPackLanes at a time, one trial per SIMD lane, each node of
-// a run once for all of them. Every lane takes the operations the one-trial path (run_means.cpp,
+// trials that share their rule go through the chain kPackLanes at a time, one trial per SIMD lane, each node
+// of a run once for all of them. Every lane takes the operations the one-trial path (run_means.cpp,
 // run_means_nodes.cpp) takes for that trial's node, in the same order, so that a trial's means have the same
 // bits on either path and whatever the trials beside it; what changes is what the lanes share: the node
-// tables are the same in every lane (no padding of a run's nodes to whole packs), the main-axis half of a fast
-// node is used by its slow nodes straight from registers (not stored and repeated), and a trial's rates and
-// drifts are held in registers rather than filled into every node.
+// tables are the same in every lane (no padding of a run's nodes to whole packs), the main-axis half of a
+// fast node is used by its slow nodes straight from registers (not stored and repeated), and a trial's rates
+// and drifts are held in registers rather than filled into every node.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -87,8 +87,8 @@ CCAL_CLONED CCAL_FLATTEN void batch_weights_lanes(const BatchLanes& b) {
   }
 }
 
-// The main axis's half at a fast node, in frame-3t coordinates (main_axis_loop's operations), with its ripple's
-// δ1, δ̇1, δ̈1.
+// The main axis's half at a fast node, in frame-3t coordinates (main_axis_loop's operations), with its
+// ripple's δ1, δ̇1, δ̈1.
 struct MainHalf {
   V3<Pack> F0, W, dW, coriolis, W_total;
   Pack ripple_angle{}, ripple_rate{}, ripple_acc{};
@@ -126,7 +126,8 @@ template <int kOrder, bool kRipple, bool kTiny>
 
 // w·y at a platform node (platform_link's, platform_loop's and weighted_outputs_lanes' operations).
 template <int kOrder, bool kRipple, bool kTiny>
-[[gnu::always_inline]] inline Pack weighted_output_at(const BatchLanes& b, const JointCoefficients<kOrder, Pack>& a,
+[[gnu::always_inline]] inline Pack weighted_output_at(const BatchLanes& b,
+                                                      const JointCoefficients<kOrder, Pack>& a,
                                                       const Columns<Pack>& P, const MainHalf& main, int n,
                                                       const Pack& nominal_rate, int q) {
   const Pack cos_gamma = splat(b.group->cos_gamma[std::size_t(n)]),
@@ -173,7 +174,8 @@ template <int kOrder, bool kMainRipple, bool kPlatformRipple, bool kTiny>
   const Columns<Pack> B(b.frame + 11 * kBatchLanes), P(b.frame + 23 * kBatchLanes);
   const int fast = b.G * b.M;
   for (int g = 0; g < b.G; ++g) {
-    const Pack main_rate = value_at<Pack>(b.run_rates, 3 * g), platform_rate = value_at<Pack>(b.run_rates, 3 * g + 1),
+    const Pack main_rate = value_at<Pack>(b.run_rates, 3 * g),
+               platform_rate = value_at<Pack>(b.run_rates, 3 * g + 1),
                arm_x = value_at<Pack>(b.run_rates, 3 * g + 2);
     for (int j = 0; j < b.M; ++j) {
       const int k = g * b.M + j;
@@ -182,14 +184,16 @@ template <int kOrder, bool kMainRipple, bool kPlatformRipple, bool kTiny>
       for (int q = 0; q < b.Q; ++q) {
         const int n = q * fast + k;
         store(b.products + std::size_t(n) * kBatchLanes,
-              weighted_output_at<kOrder, kPlatformRipple, kTiny>(b, platform_coefficients, P, main, n, platform_rate, q));
+              weighted_output_at<kOrder, kPlatformRipple, kTiny>(b, platform_coefficients, P, main, n,
+                                                                 platform_rate, q));
       }
     }
   }
   for (int g = 0; g < b.G; ++g) {
     Pack mean{};
     for (int q = 0; q < b.Q; ++q)
-      for (int j = 0; j < b.M; ++j) mean += load<Pack>(b.products + std::size_t(q * fast + g * b.M + j) * kBatchLanes);
+      for (int j = 0; j < b.M; ++j)
+        mean += load<Pack>(b.products + std::size_t(q * fast + g * b.M + j) * kBatchLanes);
     store(b.means + std::size_t(g) * kBatchLanes, mean);
   }
 }
@@ -198,13 +202,16 @@ template <int kOrder, bool kTiny>
 [[gnu::always_inline]] inline void batch_nodes_of_order(const BatchLanes& b) {
   const bool platform_ripple = b.platform_ripple || b.follows_main;
   if (b.main_ripple)
-    return platform_ripple ? batch_nodes<kOrder, true, true, kTiny>(b) : batch_nodes<kOrder, true, false, kTiny>(b);
-  return platform_ripple ? batch_nodes<kOrder, false, true, kTiny>(b) : batch_nodes<kOrder, false, false, kTiny>(b);
+    return platform_ripple ? batch_nodes<kOrder, true, true, kTiny>(b)
+                           : batch_nodes<kOrder, true, false, kTiny>(b);
+  return platform_ripple ? batch_nodes<kOrder, false, true, kTiny>(b)
+                         : batch_nodes<kOrder, false, false, kTiny>(b);
 }
 
 CCAL_CLONED CCAL_FLATTEN void batch_nodes_lanes(const BatchLanes& b) {
   if (b.order == 1) return b.tiny ? batch_nodes_of_order<1, true>(b) : batch_nodes_of_order<1, false>(b);
-  return b.tiny ? batch_nodes_of_order<kRuntimeOrder, true>(b) : batch_nodes_of_order<kRuntimeOrder, false>(b);
+  return b.tiny ? batch_nodes_of_order<kRuntimeOrder, true>(b)
+                : batch_nodes_of_order<kRuntimeOrder, false>(b);
 }
 
 }  // namespace
@@ -221,9 +228,9 @@ using run_nodes::RunTables;
 using run_nodes::TrialTerms;
 using run_nodes::turn;
 
-// A trial's rule, which the trials of one pack share: whether each drive has a ripple, and each group's number
-// of slow nodes; or kRuleAlone, a trial for the one-trial path (wobbles or turns beyond the small-angle series, or
-// runs too short for J_p's recursion: slow_moments' scalar series).
+// A trial's rule, which the trials of one pack share: whether each drive has a ripple, and each group's
+// number of slow nodes; or kRuleAlone, a trial for the one-trial path (wobbles or turns beyond the
+// small-angle series, or runs too short for J_p's recursion: slow_moments' scalar series).
 constexpr int kRuleAlone = -1;
 constexpr std::size_t kRuleFlags = 3;
 void rule_of(const KernelTables& d, const TrialTerms& trial, const double* e, int* key) {
@@ -312,8 +319,8 @@ void fill_lane(const KernelTables& d, const RunGroup& group, int Q, const TrialT
       const std::size_t h = 4 * (g * std::size_t(half) + std::size_t(m - 1));
       const double turn_angle = double(m) * domega * t.duration / 2.0;
       double c = t.cos_half[std::size_t(m)], s = t.sin_half[std::size_t(m)];
-      // A turn beyond the small-angle series (|Δω| of a few σ on a long run) is made here, as slow_moments makes
-      // it: the lanes then turn by 0, which leaves c and s as they are (c·1 − s·0, s·1 + c·0).
+      // A turn beyond the small-angle series (|Δω| of a few σ on a long run) is made here, as slow_moments
+      // makes it: the lanes then turn by 0, which leaves c and s as they are (c·1 − s·0, s·1 + c·0).
       const bool small = std::abs(turn_angle) < kSmallAngle;
       if (!small) turn(c, s, turn_angle, c, s);
       put_lane(b.harmonics, h, lane, omega_T * double(m) / 2.0);
@@ -334,7 +341,8 @@ void pack_means(const KernelTables& d, const std::vector<std::size_t>& pack, con
   for (std::size_t k = 0; k < d.groups.size(); ++k) {
     const RunGroup& group = d.groups[k];
     const RunTables& first = d.runs[group.runs.front()];
-    const int G = int(group.runs.size()), M = group.M, Q = b.key[pack.front() * (kRuleFlags + d.groups.size()) + kRuleFlags + k];
+    const int G = int(group.runs.size()), M = group.M,
+              Q = b.key[pack.front() * (kRuleFlags + d.groups.size()) + kRuleFlags + k];
     const auto packs = [](int n) { return std::size_t(n) * kBatchLanes; };
     for (auto* v : {&b.main_coefficients, &b.platform_coefficients}) v->resize(packs(5 * channel));
     for (auto* v : {&b.main_ripple, &b.platform_ripple}) v->resize(packs(2 * order));

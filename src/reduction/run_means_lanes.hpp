@@ -61,8 +61,8 @@ template <class T>
 
 inline constexpr int kRuntimeOrder = -1;
 
-// Value i of per-error data: p[i] (C = double: the same in every lane), or lanes i·kPackLanes … of data stored
-// a pack per value (C = Pack: one trial per lane, run_means_batch.cpp).
+// Value i of per-error data: p[i] (C = double: the same in every lane), or lanes i·kPackLanes … of data
+// stored a pack per value (C = Pack: one trial per lane, run_means_batch.cpp).
 template <class C>
 [[gnu::always_inline]] inline C value_at(const double* p, int i) {
   if constexpr (std::is_same_v<C, double>)
@@ -89,8 +89,8 @@ struct ChannelSeries {
   T value, first, second;
 };
 template <int kOrder, class C, class T>
-[[gnu::always_inline]] inline ChannelSeries<T> channel_series(const JointCoefficients<kOrder, C>& a, int channel,
-                                                              const T& c, const T& s) {
+[[gnu::always_inline]] inline ChannelSeries<T> channel_series(const JointCoefficients<kOrder, C>& a,
+                                                              int channel, const T& c, const T& s) {
   ChannelSeries<T> out{T{} + a(channel, 0), T{}, T{}};
   if constexpr (kOrder == 1) {
     const T term = a(channel, 1) * c + a(channel, 2) * s;

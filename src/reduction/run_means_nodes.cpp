@@ -248,8 +248,10 @@ CCAL_CLONED void weighted_outputs_lanes(const OutputPolynomial& output, const do
 CCAL_CLONED void main_axis_nodes(const MainAxisInputs& in, AngleSeries series, MainAxisNodes& out) {
   if (series == AngleSeries::library) return main_axis_one_by_one(in, out);
   if (series == AngleSeries::tiny)
-    return in.ripple ? main_axis_dispatch<true, true, Pack>(in, out) : main_axis_dispatch<false, true, Pack>(in, out);
-  return in.ripple ? main_axis_dispatch<true, false, Pack>(in, out) : main_axis_dispatch<false, false, Pack>(in, out);
+    return in.ripple ? main_axis_dispatch<true, true, Pack>(in, out)
+                     : main_axis_dispatch<false, true, Pack>(in, out);
+  return in.ripple ? main_axis_dispatch<true, false, Pack>(in, out)
+                   : main_axis_dispatch<false, false, Pack>(in, out);
 }
 CCAL_CLONED void platform_nodes(const PlatformInputs& in, AngleSeries series, const MainAxisNodes& main,
                                 InstrumentInputs& out) {

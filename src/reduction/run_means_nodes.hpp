@@ -118,9 +118,9 @@ struct OutputPolynomial {
 void weighted_outputs_lanes(const OutputPolynomial& output, const double* weights, const InstrumentInputs& in,
                             int nodes, double* products);
 
-// How a trial's wobble and ripple angles are taken (run_means_lanes.hpp): one node at a time with the library's
-// cosine and sine where one may exceed kSmallAngle, else in SIMD lanes by the series to q⁹, or to q³ where all
-// stay below kTinyAngle.
+// How a trial's wobble and ripple angles are taken (run_means_lanes.hpp): one node at a time with the
+// library's cosine and sine where one may exceed kSmallAngle, else in SIMD lanes by the series to q⁹, or to
+// q³ where all stay below kTinyAngle.
 enum class AngleSeries { library, small, tiny };
 
 // Σ |c0| + |ck| + |sk|: a bound of every value of a dynamic channel (c0, c1, s1, … at `coefficients`), which

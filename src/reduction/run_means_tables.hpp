@@ -112,8 +112,8 @@ inline TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eige
                    d.geometry.platform_control == PlatformControl::phase_locked,
                    AngleSeries::library,
                    AngleSeries::library};
-  // The largest angle each half turns by at a node: its two wobbles, its ripple (and a phase-locked platform the
-  // main axis's too).
+  // The largest angle each half turns by at a node: its two wobbles, its ripple (and a phase-locked platform
+  // the main axis's too).
   const auto wobbles = [&](const double* coefficients) {
     return std::max(channel_bound(coefficients + 3 * (2 * order + 1), order),
                     channel_bound(coefficients + 4 * (2 * order + 1), order));
@@ -121,10 +121,12 @@ inline TrialTerms trial_terms(const KernelTables& d, const Eigen::Map<const Eige
   const double main_ripple_bound = ripple_angle_bound(trial.main_ripple, order);
   const double main_bound = std::max(wobbles(trial.main_coefficients), main_ripple_bound);
   const double platform_bound =
-      std::max(wobbles(trial.platform_coefficients),
-               ripple_angle_bound(trial.platform_ripple, order) + (trial.phase_locked ? main_ripple_bound : 0.0));
+      std::max(wobbles(trial.platform_coefficients), ripple_angle_bound(trial.platform_ripple, order) +
+                                                         (trial.phase_locked ? main_ripple_bound : 0.0));
   const auto series = [](double bound) {
-    return bound < kTinyAngle ? AngleSeries::tiny : bound < kSmallAngle ? AngleSeries::small : AngleSeries::library;
+    return bound < kTinyAngle    ? AngleSeries::tiny
+           : bound < kSmallAngle ? AngleSeries::small
+                                 : AngleSeries::library;
   };
   trial.main_series = series(main_bound);
   trial.platform_series = series(platform_bound);
@@ -202,23 +204,22 @@ struct Scratch {
   }
 };
 
-
 // The scratch space of a batch of trials (run_means_batch.cpp): one pack of kPackLanes trials at a time, each
 // value a pack of doubles (lane l: the pack's trial l).
 struct BatchScratch {
-  std::vector<TrialTerms> terms;           // per trial of the batch
-  std::vector<int> key;                    // per trial: its rule (slow nodes per group, ripples), −1: alone
-  std::vector<char> done;                  // per trial: its means computed
-  std::vector<std::size_t> pack;           // the trials of the pack at hand
+  std::vector<TrialTerms> terms;  // per trial of the batch
+  std::vector<int> key;           // per trial: its rule (slow nodes per group, ripples), −1: alone
+  std::vector<char> done;         // per trial: its means computed
+  std::vector<std::size_t> pack;  // the trials of the pack at hand
   std::vector<double> main_coefficients, platform_coefficients, main_ripple, platform_ripple;
-  std::vector<double> frame;               // pB y, z; ω_c, ĝ, ω_ie of frame 1t; R_B; p_C; P = R_C·mounting
-  std::vector<double> run_rates;           // per run of the group: θ̇1, γ̇, B's offset x
-  std::vector<double> offsets;             // per slow node: cos, sin of its drift
-  std::vector<double> harmonics;           // per run and harmonic m ≥ 1: κ/2, cos, sin of the nominal, turn
-  std::vector<double> zero_moments;        // per run: ν_0q re, im
-  std::vector<double> nu_re, nu_im;        // per run, harmonic m ≥ 1 and slow node
-  std::vector<double> weights, products;   // per node
-  std::vector<double> means;               // per run of the group
+  std::vector<double> frame;              // pB y, z; ω_c, ĝ, ω_ie of frame 1t; R_B; p_C; P = R_C·mounting
+  std::vector<double> run_rates;          // per run of the group: θ̇1, γ̇, B's offset x
+  std::vector<double> offsets;            // per slow node: cos, sin of its drift
+  std::vector<double> harmonics;          // per run and harmonic m ≥ 1: κ/2, cos, sin of the nominal, turn
+  std::vector<double> zero_moments;       // per run: ν_0q re, im
+  std::vector<double> nu_re, nu_im;       // per run, harmonic m ≥ 1 and slow node
+  std::vector<double> weights, products;  // per node
+  std::vector<double> means;              // per run of the group
 };
 
 }  // namespace ccal::run_nodes

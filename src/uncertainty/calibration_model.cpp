@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "calibration_cache.hpp"
-#include "montecarlo_batch.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/chain_inputs.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "montecarlo_batch.hpp"
 
 namespace ccal {
 
@@ -112,7 +112,8 @@ class CalibrationTrial final : public mc_batch::BatchTrial {
     for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] -= reference[Eigen::Index(o)];
   }
   void many(std::span<const double> draws, std::size_t trials, std::span<double> outputs) override {
-    const std::size_t n_sources = model_.parameters().size(), n_out = outputs.size() / std::max<std::size_t>(trials, 1);
+    const std::size_t n_sources = model_.parameters().size(),
+                      n_out = outputs.size() / std::max<std::size_t>(trials, 1);
     const CalibrationTrialCache& cache = model_.trial_cache();
     if (!cache.run_means) {
       for (std::size_t t = 0; t < trials; ++t)

@@ -117,8 +117,9 @@ struct Engine {
           const std::uint64_t i = first + t;
           try {
             const std::span<const double> drawn(draws.data() + t * n_sources, n_sources);
-            const std::span<double> y = batched ? std::span<double>(batch_out.data() + t * n_outputs, n_outputs)
-                                                : std::span<double>(out);
+            const std::span<double> y = batched
+                                            ? std::span<double>(batch_out.data() + t * n_outputs, n_outputs)
+                                            : std::span<double>(out);
             if (!batched) own_trial(drawn, y);
             for (std::size_t o = 0; o < n_outputs; ++o) {
               if (!std::isfinite(y[o]))

@@ -1,11 +1,11 @@
 #pragma once
-// A Monte Carlo model that evaluates a batch of trials at once (montecarlo.hpp's TrialFunction, private to the
-// library): the engine draws its trials in batches (montecarlo_draws.hpp), and a model that can share work
-// between trials, such as the calibration model's run means in SIMD lanes (run_means.hpp), takes a batch in one
-// call. A TrialFunction that holds a BatchCallable is found by the engine (std::function::target) and given
-// whole batches; called as a TrialFunction it evaluates one trial. Either way a trial's outputs must be the bits
-// it gives alone, whatever the trials beside it: trial i depends only on (seed, i), for any thread count and
-// however the trials are batched.
+// A Monte Carlo model that evaluates a batch of trials at once (montecarlo.hpp's TrialFunction, private to
+// the library): the engine draws its trials in batches (montecarlo_draws.hpp), and a model that can share
+// work between trials, such as the calibration model's run means in SIMD lanes (run_means.hpp), takes a batch
+// in one call. A TrialFunction that holds a BatchCallable is found by the engine (std::function::target) and
+// given whole batches; called as a TrialFunction it evaluates one trial. Either way a trial's outputs must be
+// the bits it gives alone, whatever the trials beside it: trial i depends only on (seed, i), for any thread
+// count and however the trials are batched.
 #include <cstddef>
 #include <memory>
 #include <span>

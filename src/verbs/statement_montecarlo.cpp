@@ -7,11 +7,11 @@
 #include <cmath>
 #include <memory>
 
+#include "../uncertainty/draw_quantiles.hpp"
+#include "../uncertainty/montecarlo_batch.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
-#include "../uncertainty/draw_quantiles.hpp"
-#include "../uncertainty/montecarlo_batch.hpp"
 
 namespace ccal::verbs {
 namespace {
@@ -90,7 +90,8 @@ class StatementTrial final : public mc_batch::BatchTrial {
   StatementTrial(std::shared_ptr<const StatementTrialShared> shared, TrialFunction tolerances, int n_model)
       : shared_(std::move(shared)), tolerances_(std::move(tolerances)), f_(std::size_t(n_model)) {}
   std::unique_ptr<mc_batch::BatchTrial> fresh_copy() const override {
-    return std::make_unique<StatementTrial>(shared_, tolerances_, int(f_.size()));  // tolerances_ copied fresh
+    return std::make_unique<StatementTrial>(shared_, tolerances_,
+                                            int(f_.size()));  // tolerances_ copied fresh
   }
 
   void one(std::span<const double> draws, std::span<double> outputs) override {
@@ -113,7 +114,8 @@ class StatementTrial final : public mc_batch::BatchTrial {
       std::copy_n(draws.data() + t * n_sources, n_tolerances, tolerance_draws_.data() + t * n_tolerances);
     batch->trial().many(tolerance_draws_, trials, f_batch_);
     for (std::size_t t = 0; t < trials; ++t)
-      finish(draws.subspan(t * n_sources, n_sources), std::span<const double>(f_batch_.data() + t * n_model, n_model),
+      finish(draws.subspan(t * n_sources, n_sources),
+             std::span<const double>(f_batch_.data() + t * n_model, n_model),
              outputs.subspan(t * n_out, n_out));
   }
 

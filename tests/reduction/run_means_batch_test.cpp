@@ -36,7 +36,8 @@ TEST(RunMeanKernelBatch, BundledTrialsInLanesAreTheOneTrialMeansBitForBit) {
   // four rules mixed: with both drives' ripple, without the main drive's (its coefficients zero), with a
   // mismatch ΔΩ that needs more slow nodes, and one trial whose wobble is beyond the small-angle series (the
   // one-trial path's own loops); some with a rate error Δω whose turns of the weights' harmonics are beyond
-  // the small-angle series (turned one by one, as the one-trial path turns them). Each trial's means equal its means alone, bit for bit.
+  // the small-angle series (turned one by one, as the one-trial path turns them). Each trial's means equal
+  // its means alone, bit for bit.
   const Config cfg = bundled_example();
   const Experiment ex = cfg.experiment();
   const CalibrationModel model = calibration_model(cfg);
@@ -51,7 +52,7 @@ TEST(RunMeanKernelBatch, BundledTrialsInLanesAreTheOneTrialMeansBitForBit) {
     if (t % 5 == 1)
       for (int k = 0; k < 2; ++k) e[ex.layout.harmonic_index(ch::ripple1, 0, false) + 1 + k] = 0.0;
     if (t % 7 == 3) e[ch::dOmega] = 2e-5;  // Q = 6
-    if (t % 6 == 2) e[ch::domega] = 3e-6;   // mΔωT/2 beyond the small-angle series for m ≥ 2
+    if (t % 6 == 2) e[ch::domega] = 3e-6;  // mΔωT/2 beyond the small-angle series for m ≥ 2
     if (t == 17) e[ex.layout.harmonic_index(ch::dthx3, 0, false)] = 2e-3;
     trials.push_back(e);
   }
@@ -65,10 +66,11 @@ TEST(RunMeanKernelBatch, BundledTrialsInLanesAreTheOneTrialMeansBitForBit) {
 class GeneralCentrifugeBatch : public ::testing::TestWithParam<std::tuple<int, bool>> {};
 
 TEST_P(GeneralCentrifugeBatch, TrialsInLanesAreTheOneTrialMeansBitForBit) {
-  // Every part of the chain away from the paper's case (as run_means_test.cpp's GeneralCentrifuge): lever arms,
-  // a tilted horizontal axis, harmonic orders 0 to 3, Earth rotation, all four mountings in groups of runs of
-  // different durations, a fixed-platform run, an instrument with cross terms, a rate term and an IA-rate gain,
-  // and a platform phase-locked to the main axis (it follows the main drive's ripple) or on its own loop.
+  // Every part of the chain away from the paper's case (as run_means_test.cpp's GeneralCentrifuge): lever
+  // arms, a tilted horizontal axis, harmonic orders 0 to 3, Earth rotation, all four mountings in groups of
+  // runs of different durations, a fixed-platform run, an instrument with cross terms, a rate term and an
+  // IA-rate gain, and a platform phase-locked to the main axis (it follows the main drive's ripple) or on its
+  // own loop.
   const auto [order, phase_locked] = GetParam();
   Experiment ex;
   ex.geometry = Geometry{2.5, 0.3, 0.07, 0.02};

@@ -2,13 +2,14 @@
 // batches gives, bit for bit, the run that evaluates its trials one by one, for any thread count and however
 // the trials fall into batches; a batch that fails is evaluated again trial by trial, so that the error names
 // the first trial that fails, as one by one.
+#include "../../src/uncertainty/montecarlo_batch.hpp"
+
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <stdexcept>
 #include <string>
 
-#include "../../src/uncertainty/montecarlo_batch.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
@@ -33,8 +34,9 @@ MonteCarloResult run_kept(const std::vector<Tolerance>& sources, int outputs, co
 TEST(MonteCarloBatch, CalibrationTrialsInBatchesAreTheTrialsOneByOne) {
   // The bundled example (its tolerances and the drives' rate noise): 1000 trials through the calibration
   // model's batches (the run means in the kernel's lanes) on 1 and 2 threads, and one by one (the same trial
-  // function behind a lambda, which the engine cannot give batches), and a run that takes the first 77 trials'
-  // values from the one before (its batches start at trial 77, not at a multiple of 32): all the same bits.
+  // function behind a lambda, which the engine cannot give batches), and a run that takes the first 77
+  // trials' values from the one before (its batches start at trial 77, not at a multiple of 32): all the same
+  // bits.
   const Config cfg = bundled_example();
   const CalibrationModel model = calibration_model(cfg);
   const std::vector<Tolerance> sources = monte_carlo_sources(cfg);
@@ -60,7 +62,9 @@ TEST(MonteCarloBatch, CalibrationTrialsInBatchesAreTheTrialsOneByOne) {
 // normal): the first trial beyond it is the one an error must name.
 class FailingBatch final : public mc_batch::BatchTrial {
  public:
-  std::unique_ptr<mc_batch::BatchTrial> fresh_copy() const override { return std::make_unique<FailingBatch>(); }
+  std::unique_ptr<mc_batch::BatchTrial> fresh_copy() const override {
+    return std::make_unique<FailingBatch>();
+  }
   void one(std::span<const double> draws, std::span<double> outputs) override {
     if (draws[0] > 2.5) throw std::runtime_error("beyond 2.5: " + std::to_string(draws[0]));
     outputs[0] = draws[0];
