@@ -204,7 +204,7 @@ void record_keywords(py::module_& m, std::string_view function,
         [&](auto member) {
           std::string accepted = keywords::accepted_text(row, member);
           const std::string help =
-              std::string(row.help) + (accepted.empty() ? "" : "; accepted: " + accepted);
+              option_help(row.help, row.range) + (accepted.empty() ? "" : "; accepted: " + accepted);
           if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
             const auto index = member.get(defaults);
             keywords::record(m, function, row.field,

@@ -93,7 +93,7 @@ Command add_reduce(CLI::App& app) {
     if (row.field == "pulse_weight")
       cmd->add_option(
              "--pulse-weight", o->pulse_weight,
-             std::string(row.help) + "; a bare number, or a quantity with its unit (e.g. \"2.5e-5 deg\")")
+             option_help(row.help, row.range) + "; a bare number, or a quantity with its unit (e.g. \"2.5e-5 deg\")")
           ->type_name(std::string(row.value_name));
   cmd->add_flag("--budget", o->old_budget)->group("");  // refused with a message, not in --help
   add_observations_out_option(*cmd, o->observations_out);

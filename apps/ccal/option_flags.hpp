@@ -52,7 +52,7 @@ template <class Options, class Member>
 void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>& row, Member member,
                   const std::string& flag) {
   const std::string field(row.field);
-  std::string help(row.help);
+  const std::string help = option_help(row.help, row.range);
   CLI::Option* option = nullptr;
   if constexpr (std::is_same_v<Member, OptionEnum<Options>>) {
     const OptionEnum<Options> e = member;

@@ -13,6 +13,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 #include "sample_statistics.hpp"
 
 namespace ccal {
@@ -64,9 +65,8 @@ void check_source_bounds(const std::vector<Tolerance>& sources) {
 }
 
 void check_thread_count(int threads, const char* what) {
-  if (threads < 0 || threads > kMaxThreads)
-    throw OptionError(what, std::to_string(threads),
-                      fmt::format("is out of range; accepted: 0 (the OpenMP default) or 1 to {}", kMaxThreads));
+  // The threads row's range (option_rows.hpp), for a caller whose table has no threads row.
+  check_option_value(what, double(threads), std::to_string(threads), rows::kThreads);
   // A team of `threads` takes the calling thread and threads − 1 others; threads the process already has
   // (an idle team of an earlier run among them) are counted as available.
   const int present = threads_of_process();

@@ -35,7 +35,7 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
     {"seed", &DesignOptions::seed, "S", "Seed of the random starts; default: [design] seed"},
     rows::coverage_probability(&DesignOptions::coverage_probability,
                                "Coverage probability p of the expanded uncertainties (the targets, the "
-                               "budgets and the verification), in [0.5, 1)"),
+                               "budgets and the verification), in {range}"),
     rows::coverage_factor(&DesignOptions::coverage_factor),
     rows::threads(&DesignOptions::threads, "Threads (0: the OpenMP default)"),
     rows::verify_trials(&DesignOptions::verify_trials,
@@ -51,7 +51,7 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
 
 // The objective's weights and references (references of the configured plan filled in later).
 std::vector<DesignTarget> design_targets(const Config& config, const DesignOptions& o,
-                                         const ccal::BudgetResult& before) {
+                                         const ccal::BudgetDetail& before) {
   std::map<std::string, double> targets = config.design.targets;
   if (!o.targets.empty()) {
     targets.clear();
@@ -336,10 +336,10 @@ void finish(Prepared& p, DesignSearchResult search, const DesignOptions& options
   }
   if (options.verify_trials > 0) {
     MonteCarloOptions mo;
-    mo.trials = options.verify_trials;
-    mo.seed = options.seed.value_or(p.config.design.seed.value_or(1));
-    mo.threads = options.threads;
-    mo.coverage_probability = r.after.budget.coverage.probability;  // a stated k's normal p
+    mo.propagation.trials = options.verify_trials;
+    mo.propagation.seed = options.seed.value_or(p.config.design.seed.value_or(1));
+    mo.propagation.threads = options.threads;
+    mo.propagation.coverage_probability = r.after.budget.coverage.probability;  // a stated k's normal p
     r.verification = monte_carlo(r.designed, mo);
   }
 }

@@ -61,14 +61,15 @@ TEST_F(Hardening, ThreadCountsTheSystemCannotStartAreRefused) {
 
 TEST(HardeningLibrary, ThreadCountsBeyondTheAcceptedRangeAreInputErrors) {
   const Config cfg = bundled_example();
-  MonteCarloOptions mo;
+  PropagationOptions mo;
   mo.trials = 10;
   mo.threads = kMaxThreads + 1;
   auto trial = [](std::span<const double>, std::span<double> out) { out[0] = 1.0; };
   EXPECT_THROW(run_monte_carlo(cfg.tolerances, 1, {}, trial, mo, nullptr), InputError);
   AllocateOptions ao;
   ao.threads = 100000;
-  EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-9}}, ao), InputError);
+  ao.targets = {"K3=1e-9"};
+  EXPECT_THROW(allocate_tolerances(cfg, ao), InputError);
 }
 
 // Wrong answers reported as success: results that are not finite, a target no tolerance can meet, an encoder

@@ -159,7 +159,7 @@ class Frames(unittest.TestCase):
 
 class LibraryDefaults(unittest.TestCase):
     def test_defaults_are_the_options_of_the_library(self):
-        # verbs::AllocateOptions, DesignOptions, ReduceOptions, BudgetOptions (include/ccal/verbs/*.hpp).
+        # AllocateOptions, DesignOptions, ReduceOptions, BudgetOptions (include/ccal/verbs/*.hpp).
         expected = {"allocate": {"coverage_probability": 0.95, "max_scale": 10.0, "verify_trials": 2000,
                                  "seed": 1, "threads": 0},
                     "design": {"threads": 0, "verify_trials": 0, "tradeoff": [], "coverage_probability": 0.95,

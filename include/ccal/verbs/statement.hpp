@@ -21,7 +21,7 @@
 namespace ccal::verbs {
 
 struct StatementOptions {
-  double coverage_probability = 0.95;  // p of the intervals, in (0, 1)
+  double coverage_probability = kDefaultCoverageProbability;  // p of the intervals
   // A stated k (e.g. 2 by contract): U = k u_c for every quantity, p that of a normal quantity; exclusive with a
   // coverage_probability other than the default.
   std::optional<double> coverage_factor;
@@ -36,7 +36,7 @@ struct StatementOptions {
 // StatementOptions and lifts these rows into its own table (core/options.hpp lifted_rows), in this order.
 inline constexpr OptionSpec<StatementOptions> kStatementRows[] = {
     rows::coverage_probability(&StatementOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
+                               "Coverage probability p of the statement's intervals, in {range}"),
     rows::coverage_factor(&StatementOptions::coverage_factor),
     rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                         "configuration's [identification] mode"),
@@ -92,7 +92,7 @@ struct CalibrationStatement {
   // ties an amended certificate to the one it supersedes.
   std::string certificate_number, revision, replaces;
   ModelMode mode = ModelMode::exact;
-  double coverage_probability = 0.95;  // p; with a stated k, 2Φ(k) − 1
+  double coverage_probability = kDefaultCoverageProbability;  // p; with a stated k, 2Φ(k) − 1
   std::optional<double> coverage_factor;  // k when the user stated it (a contract), else unset
   bool compensated = false;  // the model computed the regressors with the known [errors]
   int known_errors = 0;      // non-zero [errors] parameters
