@@ -118,8 +118,8 @@ Command add_reduce(CLI::App& app) {
         const Config cfg = load_config_or_example(o->config);
         check_observations_out(o->observations_out, o->output);
         check_statement_out(o->statement_out, o->options.statement, o->output);
-        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "--observations-out");
-        if (!o->statement_out.empty()) verbs::check_single_instrument_output(cfg, "--statement-out");
+        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
+        if (!o->statement_out.empty()) verbs::check_single_instrument_output(cfg, "statement_out");
         if (o->old_budget)
           throw InputError(
               "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "

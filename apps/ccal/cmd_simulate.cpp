@@ -82,7 +82,7 @@ Command add_simulate(CLI::App& app) {
       cmd, [o] {
         const Config cfg = load_config_or_example(o->config);
         check_observations_out(o->observations_out, o->output);
-        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "--observations-out");
+        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
         if (!o->log_layout.empty() && o->logs_out.empty())
           throw InputError("--log-layout: is read only for the logs; accepted: with --logs-out DIR");
         LogLayout layout;

@@ -41,8 +41,8 @@ void check_serial(const std::string& serial, bool given, const std::string& sour
 
 [[noreturn]] void refuse_shared(const std::string& source, const std::string& what) {
   throw InputError(
-      fmt::format("{}: the statement's shared part: {}; accepted: a statement as `ccal reduce "
-                  "--statement-out` writes it",
+      fmt::format("{}: the statement's shared part: {}; accepted: a statement as reduce writes it (its "
+                  "statement_out option)",
                   source, what));
 }
 

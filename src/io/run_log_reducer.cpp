@@ -87,7 +87,7 @@ void LogReducer::header(const std::vector<std::string>& names, int line) {
   } else if (pulses && !(options_.pulse_weight > 0)) {
     defer(Problem::pulse_weight,
           CsvError(source_, header_line_, int(*pulses + 1), c.pulses,
-                   "a pulse count needs the pulse weight (the instrument's quantum, or --pulse-weight); "
+                   "a pulse count needs the pulse weight (the instrument's quantum, or the pulse_weight option); "
                    "accepted: a positive integrated output per pulse"));
   } else {
     output_ = pulses ? pulses : output;
@@ -332,10 +332,10 @@ void LogReducer::throw_wild(const Encoder& e) const {
       options_.angle_quantum > 0
           ? "counts_per_revolution other than the encoder's"
       : options_.angle_scale == 1
-          ? "angles in degrees read as radians (--angle-unit deg, or the manifest's angle_unit), or counts without "
-            "their counts_per_revolution"
+          ? "angles in degrees read as radians (angle_unit = deg, in the manifest or as an option), or counts "
+            "without their counts_per_revolution"
           : fmt::format("angles in another unit than the one read ({:.6g} rad; the manifest's or layout's "
-                        "angle_unit, --angle-unit)",
+                        "angle_unit, or the angle_unit option)",
                         options_.angle_scale);
   throw CsvError(source_, header_line_, int(e.column + 1), header_[e.column],
                  fmt::format("{} of {} readings depart from the line through the two before them by more than "

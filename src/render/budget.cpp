@@ -294,9 +294,10 @@ std::string csv(const verbs::BudgetResult& r) {
       header = table.substr(0, end);
       out = "instrument," + header + "\n";
     } else if (table.compare(0, end, header) != 0) {
-      throw InputError(fmt::format("--format csv: the instruments of {} have budgets of other columns (other "
-                                   "sources or terms), which one table cannot hold; accepted: --format text or json",
-                                   r.config.source));
+      throw OptionError("format", "csv",
+                        fmt::format("is one table, and the instruments of {} have budgets of other columns (other "
+                                    "sources or terms); accepted: {} text or json",
+                                    r.config.source, OptionError::name("format")));
     }
     for (std::size_t at = end + 1; at < table.size();) {
       const std::size_t next = table.find('\n', at);

@@ -41,8 +41,7 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
     rows::verify_trials(&DesignOptions::verify_trials,
                         "Monte Carlo trials checking the designed plan's budget (0: none)"),
     {"tradeoff", &DesignOptions::tradeoff, "F,...",
-     "Factors of the total test time for a trade-off curve (total time against U), e.g. --tradeoff "
-     "0.5,0.75,1",
+     "Factors of the total test time for a trade-off curve (total time against U), e.g. 0.5,0.75,1",
      OptionRange::between(0, 10).open_low().e_g("0.5,0.75,1")},
     {"fresh_candidates", &DesignOptions::fresh_candidates, "",
      "Compute the candidate runs' rows anew instead of reading them from the cache ($XDG_CACHE_HOME/ccal, "

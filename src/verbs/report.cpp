@@ -100,10 +100,11 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
     if (!observations_header(*o.observations))
       throw OptionError(
           "observations", o.observations->source,
-          fmt::format("has no '# ccal observations' line, so it is not an observations file of ccal; accepted: a "
-                      "file of `ccal simulate --observations-out` or `ccal reduce --observations-out` (a plain "
-                      "table: `ccal identify {} --terms … --statement --config CONFIG`)",
-                      o.observations->source));
+          fmt::format("has no '# ccal observations' line, so it is not an observations file of ccal; accepted: "
+                      "the observations simulate or reduce writes ({}); a plain table is identified with its "
+                      "terms and a statement by identify ({} with {})",
+                      OptionError::name("observations_out"), OptionError::name("statement"),
+                      OptionError::name("config")));
     check_observations_configuration(*o.observations, config, "observations");
     IdentifyResult r = identify(*o.observations, {});
     const TestEvidence evidence = test_evidence(observations_header(*o.observations), r.identification);

@@ -86,7 +86,7 @@ struct ReduceResult {
 ReduceResult reduce(const Config& config, const ReduceOptions& options);
 // Refuses, for a configuration of several instruments, the outputs that hold one instrument's table (the
 // observations file, the statement's CSV: InputError naming the option); nothing for one instrument.
-void check_single_instrument_output(const Config& config, std::string_view option);
+void check_single_instrument_output(const Config& config, std::string_view field);
 
 // The pulse weight as written on the command line: a bare number in the output unit × s, or a quantity whose
 // unit has that dimension ("2.5e-5 deg" for an output in deg/s), as a value of ReduceOptions::pulse_weight.
