@@ -15,9 +15,9 @@
 #include "bindings.hpp"
 #include "option_keywords.hpp"
 #include "ccal/core/errors.hpp"
-#include "ccal/io/log_manifest.hpp"
+#include "ccal/intake/log_manifest.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/run_log.hpp"
+#include "ccal/intake/run_log.hpp"
 #include "ccal/verbs/instrument_covariance.hpp"
 #include "ccal/verbs/reduce.hpp"
 

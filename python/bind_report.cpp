@@ -11,7 +11,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/pdf_print.hpp"
+#include "ccal/render/pdf_print.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "interruptible.hpp"
@@ -90,7 +90,7 @@ void bind_report(py::module_& m) {
             }
             return py::bytes(pdf);
           },
-          py::arg("html"), "A page printed to PDF by headless Chromium (io/pdf_print.hpp), as bytes (to_pdf()).");
+          py::arg("html"), "A page printed to PDF by headless Chromium (render/pdf_print.hpp), as bytes (to_pdf()).");
 
   m.def(
       "report",

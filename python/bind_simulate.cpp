@@ -10,8 +10,8 @@
 
 #include "bindings.hpp"
 #include "option_keywords.hpp"
-#include "ccal/io/log_manifest.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/log_manifest.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/verbs/simulate.hpp"

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "ccal/io/log_manifest.hpp"
+#include "ccal/intake/log_manifest.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/render/reduce.hpp"
 #include "ccal/verbs/reduce.hpp"
@@ -18,7 +18,7 @@ namespace {
 struct ReduceCli {
   ConfigChoice config;
   std::vector<std::string> logs;  // RUN=FILE
-  std::string log_folder;         // DIR with a manifest (io/log_manifest.hpp)
+  std::string log_folder;         // DIR with a manifest (intake/log_manifest.hpp)
   std::string log_layout;         // with --log: the logs' format and columns (a manifest's [format], [columns])
   verbs::ReduceOptions options;   // its table's flags are bound to it
   std::string pulse_weight;       // --pulse-weight as written: converted with the configuration's output unit

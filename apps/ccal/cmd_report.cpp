@@ -13,7 +13,7 @@
 #include "atomic_file.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/pdf_print.hpp"
+#include "ccal/render/pdf_print.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "commands.hpp"

@@ -10,7 +10,7 @@
 
 #include "budget_parts.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/table.hpp"
 #include "parts.hpp"

@@ -9,7 +9,7 @@
 
 #include "../uncertainty/progress_bar.hpp"
 #include "ccal/core/errors.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "design_mechanism.hpp"
 

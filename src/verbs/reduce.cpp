@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "ccal/core/errors.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/observation_csv.hpp"

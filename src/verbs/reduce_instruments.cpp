@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "ccal/core/errors.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 
 namespace ccal::verbs {
 

@@ -10,7 +10,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/setup/input_description.hpp"
 #include "ccal/core/units.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "statement_montecarlo.hpp"

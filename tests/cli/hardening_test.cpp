@@ -122,7 +122,7 @@ TEST_F(Hardening, EncoderRatesThatContradictThePlanAreRefused) {
   const std::string cmd = "reduce c.toml --log 5g=a.csv --log 10g=b.csv --log 15g=d.csv";
   write("a.csv",
         encoder_log(5, 1, 180 / std::numbers::pi));  // degrees, read as radians: K3 = 33.6 with exit code 0
-  expect_bad_input(run(cmd), {"a.csv", "theta1", "readings depart", "--angle-unit deg"});
+  expect_bad_input(run(cmd), {"a.csv", "theta1", "readings depart", "angle_unit = deg"});
   EXPECT_EQ(run(cmd + " --angle-unit deg").code, 2);  // only a.csv is in degrees now: b.csv is refused
   write("a.csv", encoder_log(5, -1, 1));              // reversed
   expect_bad_input(run(cmd), {"a.csv", "reversed"});

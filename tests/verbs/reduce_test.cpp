@@ -1,4 +1,4 @@
-// verbs::reduce in-process (docs/model.md §13): logs written from the model (io/run_log_writer.hpp: the
+// verbs::reduce in-process (docs/model.md §13): logs written from the model (intake/run_log_writer.hpp: the
 // simulated run means and the encoders of the drives' configured rate errors), reduced and identified, give
 // the coefficients verbs::simulate identifies from the same model; the encoders' rate and mismatch are the
 // configured Δω and ΔΩ; with `statement` the statement is verbs::calibration_statement of that
@@ -18,8 +18,8 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/measured_inputs.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/measured_inputs.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/model/plan.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "ccal/verbs/statement.hpp"

@@ -57,6 +57,7 @@
 #include <vector>
 
 #include "ccal/core/options.hpp"
+#include "ccal/setup/coefficient_target.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/coverage.hpp"
@@ -107,13 +108,6 @@ struct AllocationSolution {
 // negative standard uncertainty, a max_scale ≤ 0 or a min_scale outside [0, max_scale].
 AllocationSolution solve_allocation(const AllocationProblem& problem);
 
-// A target on one free coefficient: its allowed expanded uncertainty (half-width of the 100p % interval), SI.
-struct AllocationTarget {
-  std::string coefficient;
-  double expanded = 0;
-  std::string text = "";          // as given, e.g. "K3=1e-6", for messages
-  std::string field = "targets";  // the option it was given in, for messages
-};
 
 // The factor by which the allocation may loosen (max_scale) or tighten (a target's fraction of its
 // configured U) the tolerances, at most: a million-fold either way keeps every scaled bound, variance and
@@ -124,14 +118,6 @@ inline constexpr double kAllocationScaleLimit = 1e6;
 inline constexpr OptionRange kMaxScaleRange =
     OptionRange::between(1 / kAllocationScaleLimit, kAllocationScaleLimit).e_g("10");
 
-// Parses "K3=1e-6" (a number in the coefficient's display unit, e.g. deg/s/g^3) or "K3=1e-6 deg/s/g^3" (a
-// quantity whose unit must have the coefficient's dimension) into SI. coefficients and units: the free terms
-// and their display units (BudgetDetail::coefficients, ::units). Throws OptionError of `field` (the option
-// the text was given in) for bad syntax, an unknown or non-free coefficient (listing the free terms), a wrong
-// unit or a value ≤ 0.
-AllocationTarget parse_allocation_target(std::string_view text, const std::vector<std::string>& coefficients,
-                                         const std::vector<std::string>& units,
-                                         std::string_view field = "targets");
 
 // The options of an allocation (`ccal allocate`, Python allocate(), the report's allocation section), with
 // their table (options_of): the one home of each option's name, default, range and help.

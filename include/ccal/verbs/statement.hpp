@@ -130,7 +130,7 @@ struct CalibrationStatement {
 // `field` (the option that asked for the statement: statement, observations) when a fitted term is not a free
 // term of the configuration, the units cannot be converted or the fit has no degrees of freedom, and naming
 // coverage_probability when p is not in (0, 1).
-// `measured`: inputs the test measured (io/measured_inputs.hpp), charged at their measurement's uncertainty in
+// `measured`: inputs the test measured (intake/measured_inputs.hpp), charged at their measurement's uncertainty in
 // place of their tolerances (a measured input leaves its group and its [[correlations]]); `durations`: T of
 // each row of the identification [s] (empty: its run's in the plan).
 CalibrationStatement calibration_statement(const Config& config, const Identification& identification,
@@ -149,7 +149,7 @@ TestEvidence test_evidence(const std::optional<ObservationsHeader>& header, cons
 
 // The statement a test of the configuration's plan is expected to give, by the very method of
 // calibration_statement (its Type A part, ν, k and interval): the plan simulated without noise (the machine with
-// the [errors]), the inputs its declared encoders will measure credited (io/measured_inputs.hpp,
+// the [errors]), the inputs its declared encoders will measure credited (intake/measured_inputs.hpp,
 // expected_measured_inputs), no Monte Carlo check. `ccal design`'s "Expected if run as written". Throws as
 // calibration_statement (a plan of no more runs than free terms has no Type A evaluation).
 CalibrationStatement expected_statement(const Config& config, double coverage_probability,
