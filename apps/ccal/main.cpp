@@ -187,8 +187,14 @@ int main(int argc, char** argv) {
 
   // The chosen command (for its --help in a hint and the flags of its options), once parsed.
   const CLI::App* chosen = nullptr;
+  // The help of the command being parsed: `ccal history show --help` for an error of history show.
   auto help_hint = [&] {
-    return chosen ? "; run 'ccal " + chosen->get_name() + " --help'" : std::string("; run 'ccal --help'");
+    if (!chosen) return std::string("; run 'ccal --help'");
+    std::string path;
+    for (const CLI::App* c = &ccal::cli::deepest_command(*chosen); c != nullptr && c != &app;
+         c = c->get_parent())
+      path = " " + c->get_name() + path;
+    return "; run 'ccal" + path + " --help'";
   };
   try {
     try {
@@ -198,7 +204,9 @@ int main(int argc, char** argv) {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
       if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-      return report("error", ccal::cli::parse_error_message(e) + help_hint());
+      return report("error",
+                    ccal::cli::parse_error_message(e, chosen ? ccal::cli::deepest_command(*chosen) : app) +
+                        help_hint());
     }
     for (const auto& command : commands)
       if (command.app->parsed()) command.run();
