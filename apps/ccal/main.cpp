@@ -163,6 +163,7 @@ int main(int argc, char** argv) {
     command.app->group("Commands");
     for (CLI::App* sub : command.app->get_subcommands([](CLI::App*) { return true; })) sub->group("Commands");
   }
+  ccal::cli::refuse_empty_input_paths(app);
   ccal::cli::set_command_line(argc, argv);
 
   if (const std::optional<int> code = write_shell_docs(app, kSummary, argc, argv)) return *code;
@@ -188,14 +189,7 @@ int main(int argc, char** argv) {
   // The chosen command (for its --help in a hint and the flags of its options), once parsed.
   const CLI::App* chosen = nullptr;
   // The help of the command being parsed: `ccal history show --help` for an error of history show.
-  auto help_hint = [&] {
-    if (!chosen) return std::string("; run 'ccal --help'");
-    std::string path;
-    for (const CLI::App* c = &ccal::cli::deepest_command(*chosen); c != nullptr && c != &app;
-         c = c->get_parent())
-      path = " " + c->get_name() + path;
-    return "; run 'ccal" + path + " --help'";
-  };
+  auto help_hint = [&] { return ccal::cli::help_hint(app, chosen); };
   try {
     try {
       if (argc > 1)

@@ -71,6 +71,14 @@ const CLI::App& deepest_command(const CLI::App& app) {
   return app;
 }
 
+std::string help_hint(const CLI::App& app, const CLI::App* chosen) {
+  if (!chosen) return "; run 'ccal --help'";
+  std::string path;
+  for (const CLI::App* c = &deepest_command(*chosen); c != nullptr && c != &app; c = c->get_parent())
+    path = " " + c->get_name() + path;
+  return "; run 'ccal" + path + " --help'";
+}
+
 namespace {
 
 // An option or argument of the command by the name the parser gives it ("--trials", "SERIAL").

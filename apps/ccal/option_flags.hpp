@@ -35,6 +35,9 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
 
 // The subcommand being run: the deepest parsed one below `app` (`ccal history show`: show), else app itself.
 const CLI::App& deepest_command(const CLI::App& app);
+// "; run 'ccal history show --help'": the help of the command being parsed below `chosen`, the command the
+// first word named (none: the program's help).
+std::string help_hint(const CLI::App& app, const CLI::App* chosen);
 
 // Declares a flag for every row of `table` on `command`, bound to `options` (which must outlive the parse),
 // except the fields named in `skip` (bound by hand by the command).

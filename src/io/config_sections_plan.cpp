@@ -81,6 +81,14 @@ void read_terms(const Reader& r, const toml::table& t, std::string_view p, const
       else if (const int order = term_dimension(*spec, kind::dimensionless).g_level; order != 0)
         example += -order == 1 ? "/g" : fmt::format("/g^{}", -order);
       const double v = r.quantity_node(node, kp, dim, &out, "1 " + example);
+      // The model's output is a sum of K_n a^n up to 1000 g, the fit squares it: beyond 1e100 (SI) a
+      // coefficient overflows the run means far from the file; it is a typing or unit error.
+      if (!(std::abs(v) <= 1e100))
+        r.fail(node, kp,
+               fmt::format(
+                   "{} is implausible: beyond 1e100 in SI units the model's output overflows; accepted: a "
+                   "coefficient up to 1e100 (SI) in size, e.g. \"{}\"",
+                   Reader::written(node, v), "1 " + example));
       parsed.push_back({*spec, std::string(key.str()), v});
     }
     std::sort(parsed.begin(), parsed.end(),

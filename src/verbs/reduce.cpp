@@ -26,7 +26,7 @@ namespace {
 void check_readable(const std::string& name) {
   std::error_code ec;
   if (std::ifstream(name, std::ios::binary) && !std::filesystem::is_directory(name, ec)) return;
-  throw FileNotFound<CsvError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  throw FileNotFound<CsvError>(name, 0, 0, "", unreadable_file_problem(name));
 }
 
 // A warning for each run whose encoders contradict the configured platform control.

@@ -130,4 +130,103 @@ TEST_F(Cli, ARefusedSimulateRemovesEveryFolderItMadeAndNoOther) {
   EXPECT_TRUE(fs::exists(dir_ / "x" / "b" / "c" / "manifest.toml"));
 }
 
+// The lab example with its first line starting `from` replaced by `to`.
+std::string six_lab_with(const std::string& from, const std::string& to) {
+  std::string lab = read(kLab);
+  const std::size_t at = lab.find("\n" + from);
+  if (at == std::string::npos) return lab;
+  const std::size_t end = lab.find('\n', at + 1);
+  return lab.replace(at + 1, end - at - 1, to);
+}
+
+// A value refused by the configuration was echoed without its unit ("got -5", "1e+300 is implausible"): as
+// written now.
+TEST_F(Cli, AConfigurationsRefusedValueIsEchoedAsWritten) {
+  write("lab.toml", six_lab_with("g_level = \"5 g\"", "g_level = \"-5 g\""));
+  expect_bad_input(run("budget lab.toml"), {"plan.runs[1].g_level: must be positive, got -5 g;"});
+  write("lab.toml", six_lab_with("radius = \"2.5 m\"", "radius = \"1e300 m\""));
+  expect_bad_input(run("budget lab.toml"),
+                   {"centrifuge.radius: 1e300 m is implausible; accepted: an arm radius up "
+                    "to 100 m"});
+  write("lab.toml", six_lab_with("dthz5 = \"1e-5 rad\"",
+                                 "dthz5 = { bound = \"-1e-5 rad\", distribution = \"uniform\" }"));
+  expect_bad_input(run("budget lab.toml"), {"tolerances.dthz5.bound: must be positive, got -1e-5 rad;"});
+}
+
+// A measured error of the machine far beyond any centrifuge's (1e300 arcsec, a radius error of 1e300 m) was
+// simulated with exit 0, or refused as "the means of run '5g' are not finite" with no key; a coefficient of
+// 1e308 the same. Each is refused at its line now, in the configuration and in a truth file.
+TEST_F(Cli, AnImplausibleErrorOrCoefficientIsRefusedAtItsLine) {
+  const std::string measured = "dthz5 = \"1.5 arcsec\"";
+  write("lab.toml", six_lab_with(measured, "dthz5 = \"1e300 arcsec\""));
+  const int line = line_of(read(kLab), measured);
+  expect_bad_input(
+      run("simulate lab.toml"),
+      {fmt::format("lab.toml:{}:9: errors.dthz5: 1e300 arcsec is implausible for a measured error of "
+                   "the machine; accepted: up to 180 deg in size",
+                   line)});
+  write("lab.toml", six_lab_with(measured, "dR_s = \"1e40 m\""));
+  expect_bad_input(run("budget lab.toml"),
+                   {"errors.dR_s: 1e40 m is implausible", "accepted: up to 1 m in size"});
+  write("lab.toml", six_lab_with(measured, "domega = \"1e99 rad/s\""));
+  expect_bad_input(run("budget lab.toml"), {"errors.domega: 1e99 rad/s is implausible", "up to 10 rad/s"});
+  write("lab.toml", six_lab_with(measured, "arm_stretch = \"1e99 m/(rad/s)^2\""));
+  expect_bad_input(run("budget lab.toml"), {"errors.arm_stretch: 1e99 m/(rad/s)^2 is implausible"});
+  // A real measured error is taken.
+  write("lab.toml", six_lab_with(measured, "dthz5 = \"10 arcsec\""));
+  EXPECT_EQ(run("budget lab.toml -o /dev/null").code, 0);
+  write("lab.toml", read(kLab));
+  write("truth.toml", "[errors]\ndthz5 = \"1e300 arcsec\"\n");
+  expect_bad_input(run("simulate lab.toml --truth truth.toml"),
+                   {"truth.toml:2:9: errors.dthz5: 1e300 arcsec is implausible"});
+  write("lab.toml", six_lab_with("K3 = \"0.003 deg/s/g^3\"", "K3 = \"1e308 deg/s/g^3\""));
+  expect_bad_input(run("simulate lab.toml"),
+                   {"instrument.terms.K3: 1e308 deg/s/g^3 is implausible: beyond 1e100 in "
+                    "SI units the model's output overflows"});
+}
+
+// An empty path (an unset shell variable) was taken as no option: the bundled example for CONFIG, the
+// default history store for --db, no observations for report --observations, each with exit 0.
+TEST_F(Cli, AnEmptyInputPathIsRefused) {
+  write("lab.toml", read(kLab));
+  expect_bad_input(run("budget ''"),
+                   {"CONFIG: the path is empty (an unset shell variable?); accepted: a "
+                    "configuration file (TOML), or no CONFIG at all for the bundled example"});
+  expect_bad_input(run("simulate lab.toml --truth ''"), {"--truth: the path is empty"});
+  expect_bad_input(run("reduce lab.toml --logs ''"), {"--logs: the path is empty"});
+  expect_bad_input(run("report lab.toml --observations '' -o r.html"), {"--observations: the path is empty"});
+  EXPECT_FALSE(fs::exists(dir_ / "r.html"));
+  expect_bad_input(
+      run("history show 'SN 0815' --db ''"),
+      {"--db: the path is empty (an unset shell variable?); accepted: a history store's path, or no "
+       "--db for the default store; run 'ccal history show --help'"});
+  expect_bad_input(run("history add '' --db h.sqlite"), {"FILE: the path is empty"});
+  EXPECT_FALSE(fs::exists(dir_ / "h.sqlite"));
+  expect_bad_input(run("identify ''"), {"FILE.csv: the path is empty"});
+}
+
+// A folder given for a file was "cannot read the file; check the path and permissions": it is said to be a
+// folder; a missing file to be missing.
+TEST_F(Cli, AFolderGivenForAFileIsSaidToBeOne) {
+  fs::create_directories(dir_ / "dir.toml");
+  expect_bad_input(run("budget dir.toml"),
+                   {"dir.toml: cannot read the file: it is a folder; accepted: the path of a "
+                    "file"});
+  expect_bad_input(run("identify dir.toml"), {"dir.toml: cannot read the file: it is a folder"});
+  expect_bad_input(run("budget none.toml"),
+                   {"none.toml: cannot read the file: no such file; accepted: the path of "
+                    "an existing file (check its spelling and folder)"});
+}
+
+// identify --input-column with a mistyped column was passed over in silence where every term had a column of
+// its own (an observations file): exit 0.
+TEST_F(Cli, AnInputColumnThatIsNotThereIsRefused) {
+  ASSERT_EQ(run("simulate " + quote(kLab) + " --observations-out obs.csv -o /dev/null").code, 0);
+  expect_bad_input(
+      run("identify obs.csv --input-column nope"),
+      {"obs.csv:2: nope: no such column (needed by the input column named); accepted: one of the "
+       "columns run, a_i, output"});
+  EXPECT_EQ(run("identify obs.csv --input-column a_i -o /dev/null").code, 0);
+}
+
 }  // namespace
