@@ -105,6 +105,8 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
   static const std::regex at_most(R"(^(.*): At Most (\d+) required but received (\d+)$)");
   // "--x: 1 required N missing": the option given last, without its value.
   static const std::regex value_missing(R"(^(\S+): \d+ required .* missing$)");
+  // "--width: Value 5 not in range 40 to 10000": the parser's range check.
+  static const std::regex out_of_range(R"(^(\S+): Value (.*) not in range (.*) to (.*)$)");
   // "SERIAL is required": an argument the command needs, not given.
   static const std::regex argument_missing(R"(^(\S+) is required$)");
   std::smatch m;
@@ -117,6 +119,9 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
     return fmt::format(
         "{}: its value is missing (nothing follows it, or the next word is an option); accepted: {}",
         m[1].str(), accepted_form(command, m[1].str()));
+  if (std::regex_match(what, m, out_of_range))
+    return fmt::format("{}: {} is out of range; accepted: {} to {}", m[1].str(), m[2].str(), m[3].str(),
+                       m[4].str());
   if (std::regex_match(what, m, argument_missing))
     return fmt::format("{}: missing; accepted: {}", m[1].str(), accepted_form(command, m[1].str()));
   return what;

@@ -229,4 +229,16 @@ TEST_F(Cli, AnInputColumnThatIsNotThereIsRefused) {
   EXPECT_EQ(run("identify obs.csv --input-column a_i -o /dev/null").code, 0);
 }
 
+// Messages that named a library field or used the parser's words: "Monte Carlo: max_trials = 100 leaves …",
+// "two targets on K3; give one …" (no option, nothing accepted), "--width: Value 5 not in range 40 to 10000".
+TEST_F(Cli, MessagesNameTheOptionAndWhatIsAccepted) {
+  expect_bad_input(run("montecarlo --digits 2 --max-trials 100"),
+                   {"--max-trials: 100 leaves fewer than the 2 stages of 10000 trials the adaptive procedure "
+                    "needs; accepted: at least 20000 (or fewer trials a stage)"});
+  expect_bad_input(run("allocate --target K3=1e-3 --target K3=2e-3 --verify-trials 0"),
+                   {"--target: K3 has two targets; accepted: one target per coefficient"});
+  expect_bad_input(run("allocate --target K3=1e-3 --width 5 --verify-trials 0"),
+                   {"--width: 5 is out of range; accepted: 40 to 10000; run 'ccal allocate --help'"});
+}
+
 }  // namespace
