@@ -107,6 +107,8 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
   static const std::regex value_missing(R"(^(\S+): \d+ required .* missing$)");
   // "--width: Value 5 not in range 40 to 10000": the parser's range check.
   static const std::regex out_of_range(R"(^(\S+): Value (.*) not in range (.*) to (.*)$)");
+  // "The following argument was not expected: b": a word no argument or option of the command takes.
+  static const std::regex extra(R"(^The following arguments? (?:was|were) not expected: (.*)$)");
   // "SERIAL is required": an argument the command needs, not given.
   static const std::regex argument_missing(R"(^(\S+) is required$)");
   std::smatch m;
@@ -119,9 +121,21 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
     return fmt::format(
         "{}: its value is missing (nothing follows it, or the next word is an option); accepted: {}",
         m[1].str(), accepted_form(command, m[1].str()));
-  if (std::regex_match(what, m, out_of_range))
-    return fmt::format("{}: {} is out of range; accepted: {} to {}", m[1].str(), m[2].str(), m[3].str(),
-                       m[4].str());
+  if (std::regex_match(what, m, out_of_range)) {
+    static const std::regex number(R"(^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$)");
+    return fmt::format("{}: {} {}; accepted: a number from {} to {}", m[1].str(), m[2].str(),
+                       std::regex_match(m[2].str(), number) ? "is out of range" : "is not a number",
+                       m[3].str(), m[4].str());
+  }
+  if (std::regex_match(what, m, extra)) {
+    std::string arguments;
+    for (const CLI::Option* option : command.get_options())
+      if (option->get_positional()) arguments += (arguments.empty() ? "" : ", ") + option->get_type_name();
+    return fmt::format(
+        "'{}': {}; accepted: {}, each option with its value (a path with spaces in quotes)", m[1].str(),
+        "not expected (a word too many)",
+        arguments.empty() ? std::string("no argument besides the options") : "one " + arguments);
+  }
   if (std::regex_match(what, m, argument_missing))
     return fmt::format("{}: missing; accepted: {}", m[1].str(), accepted_form(command, m[1].str()));
   return what;

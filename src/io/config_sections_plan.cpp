@@ -1,4 +1,8 @@
 // The configuration file's [instrument], [plan] and [identification] sections (docs/config.md).
+#include <cmath>
+#include <numbers>
+#include <utility>
+
 #include "../core/text_shown.hpp"
 #include "config_reader.hpp"
 
@@ -220,6 +224,13 @@ RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_vie
            "both initial_phase and terminal_phase are given; accepted: exactly one of them in one table");
   }
   f.arm_azimuth = r.quantity(t, p, "arm_azimuth", kind::angle, nullptr, "0 deg");
+  // An angle beyond a turn ("1e300 deg") is a typing or unit error, and loses its digits when wrapped.
+  for (const auto& [key, angle] :
+       {std::pair{"initial_phase", f.initial_phase}, std::pair{"terminal_phase", f.terminal_phase},
+        std::pair{"arm_azimuth", f.arm_azimuth}})
+    if (angle)
+      r.require_at_most(t, p, key, std::abs(*angle), 2 * std::numbers::pi,
+                        "an angle of at most one turn in size (-360 deg to 360 deg), e.g. \"180 deg\"");
   f.mounting =
       r.word(t, p, "mounting",
              std::vector<std::pair<std::string_view, Mounting>>{{"ia_horizontal", Mounting::ia_horizontal},

@@ -237,8 +237,35 @@ TEST_F(Cli, MessagesNameTheOptionAndWhatIsAccepted) {
                     "needs; accepted: at least 20000 (or fewer trials a stage)"});
   expect_bad_input(run("allocate --target K3=1e-3 --target K3=2e-3 --verify-trials 0"),
                    {"--target: K3 has two targets; accepted: one target per coefficient"});
-  expect_bad_input(run("allocate --target K3=1e-3 --width 5 --verify-trials 0"),
-                   {"--width: 5 is out of range; accepted: 40 to 10000; run 'ccal allocate --help'"});
+  expect_bad_input(
+      run("allocate --target K3=1e-3 --width 5 --verify-trials 0"),
+      {"--width: 5 is out of range; accepted: a number from 40 to 10000; run 'ccal allocate --help'"});
+  expect_bad_input(run("budget --width abc"),
+                   {"--width: abc is not a number; accepted: a number from 40 to 10000"});
+  expect_bad_input(
+      run("budget --coverage-factor 2 --coverage-probability 0.9"),
+      {"--coverage-factor: 2 and --coverage-probability 0.9 are two coverages; accepted: one of them"});
+}
+
+// A word too many was CLI11's "The following argument was not expected: lab.toml", without what is accepted.
+TEST_F(Cli, AWordTooManySaysWhatTheCommandTakes) {
+  expect_bad_input(
+      run("budget a.toml b.toml"),
+      {"'b.toml': not expected (a word too many); accepted: one CONFIG, each option with its value (a "
+       "path with spaces in quotes); run 'ccal budget --help'"});
+  expect_bad_input(run("history show 'SN 0815' extra"),
+                   {"'extra': not expected (a word too many); accepted: one "
+                    "SERIAL"});
+}
+
+// A phase or an azimuth of 1e300 deg was taken with exit 0, wrapped to whatever its lost digits gave.
+TEST_F(Cli, AnAngleOfThePlanBeyondATurnIsRefused) {
+  write("lab.toml", six_lab_with("terminal_phase = \"180 deg\"", "terminal_phase = \"1e300 deg\""));
+  expect_bad_input(run("budget lab.toml"),
+                   {"plan.terminal_phase: 1e300 deg is implausible; accepted: an angle of at "
+                    "most one turn in size (-360 deg to 360 deg)"});
+  write("lab.toml", six_lab_with("arm_azimuth = \"0 deg\"", "arm_azimuth = \"-400 deg\""));
+  expect_bad_input(run("budget lab.toml"), {"plan.arm_azimuth: -400 deg is implausible"});
 }
 
 }  // namespace
