@@ -25,8 +25,12 @@ namespace ccal::python {
 
 std::string path_argument(const py::object& value, std::string_view function, std::string_view name,
                           std::string_view accepted) {
-  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__"))
-    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__")) {
+    std::string path = py::module_::import("os").attr("fspath")(value).cast<std::string>();
+    if (path.empty())  // the message would start with the file's name: none
+      throw InputError(fmt::format("{}(): {}: the path is empty; accepted: {}", function, name, accepted));
+    return path;
+  }
   throw py::type_error(fmt::format("{}(): {}: expected {}, got {}", function, name, accepted,
                                    py::str(value.get_type().attr("__name__")).cast<std::string>()));
 }

@@ -34,7 +34,8 @@ namespace {
 // The truth file of a truth= keyword (a path: str or os.PathLike), read against the configuration; None: none.
 std::optional<SimulationTruth> truth_of(const Config& cfg, const py::object& truth) {
   if (truth.is_none()) return std::nullopt;
-  return load_truth(py::module_::import("os").attr("fspath")(truth).cast<std::string>(), cfg);
+  return load_truth(path_argument(truth, "simulate", "truth", "the path of a truth file (str or os.PathLike), or None"),
+                    cfg);
 }
 
 }  // namespace

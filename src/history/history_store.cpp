@@ -476,7 +476,9 @@ void HistoryStore::supersede(std::int64_t id, std::optional<std::int64_t> by, co
     };
     if (const auto done = supersession_of(id))
       throw InputError(fmt::format(
-          "{}: calibration {} is already superseded ({}); a record is superseded once", path_, id, *done));
+          "{}: calibration {} is already superseded ({}), and a record is superseded once; accepted: a "
+          "calibration of {} that is not superseded (`ccal history show`)",
+          path_, id, *done, serial));
     if (by)
       if (const auto done = supersession_of(*by))
         throw InputError(

@@ -285,13 +285,7 @@ void LogReducer::count_sample(double value, int line, double step_time) {
     const double range = std::ldexp(1.0, bits), half = std::ldexp(1.0, bits - 1);
     step -= range * std::floor((step - bridge_count_ + half) / range);
   } else if (count_steps_ >= 10) {
-    const double travel = output_previous_ - output_first_;
-    if (step * travel < 0 && std::abs(step) > 10 * count_travel_ / double(count_steps_))
-      defer_count(line, value,
-                  fmt::format("follows {} against the count's direction, by {:.3g} times its mean step: a counter "
-                              "that wraps; accepted: its width declared (the manifest's columns.counter_bits, e.g. "
-                              "16), or a count that does not wrap",
-                              value - step, std::abs(step) * double(count_steps_) / count_travel_));
+    check_count_step(step, value, line);
   }
   count_travel_ += std::abs(step);
   ++count_steps_;
@@ -517,6 +511,7 @@ void LogReducer::reduce_row(const Cells& cells, int line) {
 
 ReducedLog LogReducer::finish() {
   reduce_batch();
+  settle_count_wrap(std::nullopt);
   ReducedLog r;
   r.source = source_;
   r.samples = rows_;

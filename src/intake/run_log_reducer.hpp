@@ -103,6 +103,11 @@ class LogReducer final : public CsvRowSink {
   [[gnu::cold, gnu::noinline]] void defer_count(int line, double value, std::string problem);
   // The count of a pulses column, unwrapped (counter_bits) or checked for a wrap that was not declared.
   void count_sample(double value, int line, double step_time);
+  // A step of an undeclared counter's count, against its direction: a wrap, or with the step before or after
+  // it that undoes it, one wild count (run_log_spread.cpp).
+  void check_count_step(double step, double value, int line);
+  // The step held back by check_count_step, given the step that follows it (none: the log ended).
+  void settle_count_wrap(std::optional<double> next_step);
   // Throws the output's one wild sample, or the count's one wild step (run_log_spread.cpp).
   void throw_wild_output() const;
   [[gnu::cold, gnu::noinline]] void defer_spacing(const Encoder& e, int line, double step_time);
@@ -142,6 +147,13 @@ class LogReducer final : public CsvRowSink {
   double count_raw_ = 0;         // the last count as read (before unwrapping)
   double count_travel_ = 0;      // Σ |step| of the count
   std::size_t count_steps_ = 0;  // steps summed
+  // A count's last step and its line; a step against the count's direction held back until the next one.
+  struct CountStep {
+    double step = 0, value = 0;  // the step to this count, and the count
+    int line = 0;
+  };
+  CountStep last_count_step_;
+  std::optional<CountStep> held_wrap_;
   std::optional<std::int64_t> iso_first_;  // the first timestamp [ns]
   bool iso_zoned_ = false;                 // it states its zone (every other must then, and none if not)
   int iso_first_line_ = 0;

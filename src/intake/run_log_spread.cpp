@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "run_log_reducer.hpp"
 
@@ -25,6 +27,56 @@ std::optional<WildValue> SampleSpread::wild(double extra_floor) const {
   const std::optional<WildValue> high = departs(high_, extra_floor), low = departs(low_, extra_floor);
   if (high && low) return high->departure >= low->departure ? high : low;
   return high ? high : low;
+}
+
+// A step against the count's direction by more than ten times its mean step is no pulse count (a PIGA's count
+// per sample is steady to a few per cent). Alone it is a counter that wraps; undone by the step after it or
+// before it (to within ten mean steps), it is one wild count, in the line between the two steps.
+namespace {
+std::string wild_count(double from, double steps, double back_to) {
+  return fmt::format(
+      "is a wild count: it steps from {} by {:.3g} times the count's mean step, and the next line "
+      "steps back to {}; accepted: a count that steps steadily (a wild count: a glitch, a lost "
+      "digit, a cell edited by hand)",
+      from, steps, back_to);
+}
+}  // namespace
+
+void LogReducer::check_count_step(double step, double value, int line) {
+  const double mean_step = count_travel_ / double(count_steps_);
+  const bool large = std::abs(step) > 10 * mean_step;
+  const CountStep before = last_count_step_;
+  last_count_step_ = {step, value, line};
+  if (held_wrap_) {
+    settle_count_wrap(step);
+    return;
+  }
+  const double travel = output_previous_ - output_first_;
+  if (!(large && step * travel < 0)) return;
+  const bool undoes_before =
+      std::abs(before.step) > 10 * mean_step && std::abs(step + before.step) <= 10 * mean_step;
+  if (undoes_before && before.line > 0)
+    defer_count(before.line, before.value,
+                wild_count(before.value - before.step, std::abs(before.step) / mean_step, value));
+  else
+    held_wrap_ = CountStep{step, value, line};
+}
+
+void LogReducer::settle_count_wrap(std::optional<double> next_step) {
+  if (!held_wrap_) return;
+  const CountStep held = *held_wrap_;
+  held_wrap_.reset();
+  const double mean_step = count_travel_ / double(std::max<std::size_t>(count_steps_, 1));
+  if (next_step && std::abs(*next_step + held.step) <= 10 * mean_step)
+    defer_count(held.line, held.value,
+                wild_count(held.value - held.step, std::abs(held.step) / mean_step, held.value + *next_step));
+  else
+    defer_count(
+        held.line, held.value,
+        fmt::format("follows {} against the count's direction, by {:.3g} times its mean step: a counter "
+                    "that wraps; accepted: its width declared (the manifest's columns.counter_bits, e.g. "
+                    "16), or a count that does not wrap",
+                    held.value - held.step, std::abs(held.step) / mean_step));
 }
 
 // A sampled output's floor is ten times its resolution (the least change between two samples: a DAQ's

@@ -40,7 +40,7 @@ void attach_targets(const BudgetDetail& b, const std::vector<AllocationTarget>& 
                                    t.coefficient, fmt::join(b.coefficients, ", ")));
     const auto k = std::size_t(it - b.coefficients.begin());
     if (r.coefficients[k].has_target)
-      throw InputError(fmt::format("two targets on {}; give one per coefficient", t.coefficient));
+      throw OptionError(t.field, t.coefficient, "has two targets; accepted: one target per coefficient");
     // Tolerances scale in proportion to the target: beyond a million-fold tightening of every source the
     // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0);
     // beyond a million-fold loosening no tolerance can follow (max_scale) and the squares overflow (1e308).

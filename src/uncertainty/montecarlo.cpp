@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
 #include "montecarlo_draws.hpp"
 #include "progress_bar.hpp"
@@ -404,10 +405,10 @@ MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
       adaptive ? std::max({options.trials.value_or(kDefaultMonteCarloStage), J, kDefaultMonteCarloStage})
                : options.trials.value_or(kDefaultMonteCarloTrials);
   if (adaptive && options.max_trials < 2 * block)
-    throw InputError(
-        fmt::format("Monte Carlo: max_trials = {} leaves fewer than the 2 stages of {} trials the "
-                    "adaptive procedure needs",
-                    options.max_trials, block));
+    throw OptionError("max_trials", std::to_string(options.max_trials),
+                      fmt::format("leaves fewer than the 2 stages of {} trials the adaptive procedure needs; "
+                                  "accepted: at least {} (or fewer trials a stage)",
+                                  block, 2 * block));
 
   const SlotPlan plan = plan_slots(sources);
   std::optional<GaussianCopula> copula;

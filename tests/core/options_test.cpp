@@ -164,8 +164,10 @@ TEST(OptionTables, VerbsRefuseOutOfRangeFieldsByName) {
             "probability is given as coverage_probability");
   budget.coverage_factor = 2;
   budget.coverage_probability = 0.9;  // two answers to one question
-  EXPECT_EQ(refusal([&] { verbs::budget(bundled_example(), budget); }),
-            "coverage_factor: 2 and coverage_probability 0.9 are two coverages; give one of them");
+  EXPECT_EQ(
+      refusal([&] { verbs::budget(bundled_example(), budget); }),
+      "coverage_factor: 2 and coverage_probability 0.9 are two coverages; accepted: one of them (a stated "
+      "coverage factor, or a coverage probability)");
   verbs::DesignOptions design;
   design.tradeoff = {0.5, 11};
   EXPECT_EQ(refusal([&] { verbs::design(bundled_example(), design); }),

@@ -81,7 +81,8 @@ class MissingFiles(unittest.TestCase):
                     call(path)
                 self.assertIsInstance(e.exception, ccal.InputError)
                 self.assertIsInstance(e.exception, ccal.FileNotFound)
-                self.assertEqual(str(e.exception), f"{path}: cannot read the file; check the path and permissions")
+                self.assertEqual(str(e.exception), f"{path}: cannot read the file: no such file; accepted: the path "
+                                                   "of an existing file (check its spelling and folder)")
 
     def test_other_bad_input_is_not_a_file_error(self):
         with self.assertRaises(ccal.InputError) as e:

@@ -115,8 +115,8 @@ TEST_F(ReduceVerb, TooFewOrRepeatedLogsAreRefusedNamingTheOption) {
     ADD_FAILURE() << "a negative pulse weight was accepted";
   } catch (const OptionError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "pulse_weight: -1 is not a positive number; accepted: the integrated output "
-              "per pulse in deg/s·s, e.g. 2.5e-5");
+              "pulse_weight: -1 is not a positive weight; accepted: the integrated output per pulse, a "
+              "positive number in deg/s·s or with a unit of that kind, e.g. 2.5e-5");
   }
 }
 

@@ -63,9 +63,11 @@ constexpr OptionSpec<O> coverage_factor(std::optional<double> O::*member) {
 // question: refused, naming both.
 inline void check_coverage_choice(double p, const std::optional<double>& k) {
   if (k && p != kDefaultCoverageProbability)
-    throw OptionError("coverage_factor", option_number_text(*k),
-                      "and " + OptionError::name("coverage_probability") + " " + option_number_text(p) +
-                          " are two coverages; give one of them");
+    throw OptionError(
+        "coverage_factor", option_number_text(*k),
+        "and " + OptionError::name("coverage_probability") + " " + option_number_text(p) +
+            " are two coverages; accepted: one of them (a stated coverage factor, or a coverage "
+            "probability)");
 }
 
 template <class O>
