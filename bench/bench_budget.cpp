@@ -46,7 +46,7 @@ void WholeBudget(benchmark::State& state) {
       for (std::size_t b = a + 1; b < s.cfg.tolerances.size(); ++b)
         s.cfg.correlations.push_back({s.cfg.tolerances[a].id, s.cfg.tolerances[b].id, 0.3});
   for (auto _ : state) {
-    const BudgetResult r = compute_budget(s.cfg);
+    const BudgetDetail r = compute_budget(s.cfg);
     benchmark::DoNotOptimize(r.standard_uncertainty.data());
   }
   state.SetLabel(state.range(0) == 1 ? "dense correlations" : "independent sources");

@@ -38,12 +38,12 @@ void Pipeline(benchmark::State& state) {
   // Built once, as `ccal montecarlo` builds them once for all its trials (the drives' rate-noise sources
   // take a few derivatives through the chain: a cost per run, not per trial).
   const std::vector<Tolerance> sources = monte_carlo_sources(cfg);
-  MonteCarloOptions options;
+  PropagationOptions options;
   options.trials = 1000;
   options.threads = int(state.range(0));
   std::uint64_t trials = 0;
   for (auto _ : state) {
-    const MonteCarloResult r =
+    const MonteCarloDetail r =
         run_monte_carlo(sources, cfg.correlations, model.n_outputs(), model.output_names(), trial, options);
     benchmark::DoNotOptimize(r.outputs[2].std_dev);
     trials += r.trials;
@@ -71,12 +71,12 @@ void EngineOnly(benchmark::State& state) {
     y[1] = x[0] - s;
     y[2] = x[1] * s;
   };
-  MonteCarloOptions options;
+  PropagationOptions options;
   options.trials = 100000;
   options.threads = int(state.range(0));
   std::uint64_t trials = 0;
   for (auto _ : state) {
-    const MonteCarloResult r = run_monte_carlo(cfg.tolerances, cfg.correlations, 3, {}, trial, options);
+    const MonteCarloDetail r = run_monte_carlo(cfg.tolerances, cfg.correlations, 3, {}, trial, options);
     benchmark::DoNotOptimize(r.outputs[0].std_dev);
     trials += r.trials;
   }

@@ -25,8 +25,8 @@
 
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/plain_decimal_row.hpp"
-#include "ccal/io/run_log.hpp"
+#include "../src/intake/plain_decimal_row.hpp"
+#include "ccal/intake/run_log.hpp"
 #include "ccal/reduction/observe.hpp"
 
 namespace {

@@ -18,7 +18,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/run_log.hpp"
+#include "ccal/intake/run_log.hpp"
 
 namespace {
 

@@ -58,17 +58,17 @@ void bind_allocation_results(py::module_& m) {
           "verdict", [](const AllocatedCoefficient& c) { return std::string(verdict_name(c.verdict)); },
           "the Monte Carlo check's verdict, e.g. 'pass within sampling' [—]");
 
-  py::class_<AllocationResult>(m, "AllocationDetail", "Tolerances allocated to meet the targets (SI).")
-      .def_readonly("sources", &AllocationResult::sources,
+  py::class_<AllocationDetail>(m, "AllocationDetail", "Tolerances allocated to meet the targets (SI).")
+      .def_readonly("sources", &AllocationDetail::sources,
                     "the sources, tightened most first, list of AllocatedSource [—]")
-      .def_readonly("coefficients", &AllocationResult::coefficients,
+      .def_readonly("coefficients", &AllocationDetail::coefficients,
                     "per coefficient, list of AllocatedCoefficient [—]")
-      .def_readonly("coverage_probability", &AllocationResult::coverage_probability, "p [—]")
-      .def_readonly("coverage_factor", &AllocationResult::coverage_factor, "k_p [—]")
-      .def_readonly("objective", &AllocationResult::objective, "Σ cost/λ of the allocation [cost units]")
-      .def_readonly("converged", &AllocationResult::converged, "the solver converged [—]")
+      .def_readonly("coverage_probability", &AllocationDetail::coverage_probability, "p [—]")
+      .def_readonly("coverage_factor", &AllocationDetail::coverage_factor, "k_p [—]")
+      .def_readonly("objective", &AllocationDetail::objective, "Σ cost/λ of the allocation [cost units]")
+      .def_readonly("converged", &AllocationDetail::converged, "the solver converged [—]")
       .def_property_readonly(
-          "verified", [](const AllocationResult& r) { return r.verification.passed; },
+          "verified", [](const AllocationDetail& r) { return r.verification.passed; },
           "the Monte Carlo check passed [—]");
 
   bind_verb_result<verbs::AllocateResult>(
@@ -86,7 +86,7 @@ void bind_allocate_function(py::module_& m) {
   m.def(
       "allocate",
       [](const Config& cfg, const TargetMap& targets, const py::object& progress, const py::kwargs& keywords) {
-        auto o = options_from_keywords<verbs::AllocateOptions>(keywords, "allocate", {}, {"targets"});
+        auto o = options_from_keywords<AllocateOptions>(keywords, "allocate", {}, {"targets"});
         o.targets = target_texts(targets);
         return run_interruptible(progress, [&](ProgressCallback on_progress) {
           o.on_progress = std::move(on_progress);
@@ -98,7 +98,7 @@ void bind_allocate_function(py::module_& m) {
       "the display unit or a string with a unit) holds (`ccal allocate`), verified by Monte Carlo. progress: "
       "None or progress(done, total) of the verification's trials; Ctrl-C stops the call and raises "
       "KeyboardInterrupt.");
-  record_keywords<verbs::AllocateOptions>(m, "allocate", {"targets"});
+  record_keywords<AllocateOptions>(m, "allocate", {"targets"});
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ namespace ccal::python {
 namespace {
 
 // Rows of one per-source vector field of the budget: sources × coefficients.
-Eigen::MatrixXd stacked(const BudgetResult& b, Eigen::VectorXd SourceBudget::*field) {
+Eigen::MatrixXd stacked(const BudgetDetail& b, Eigen::VectorXd SourceBudget::*field) {
   Eigen::MatrixXd out(Eigen::Index(b.sources.size()), Eigen::Index(b.coefficients.size()));
   for (std::size_t s = 0; s < b.sources.size(); ++s) {
     const Eigen::VectorXd& v = b.sources[s].*field;
@@ -64,69 +64,69 @@ void bind_budget_results(py::module_& m) {
                     "K̂(effect not modelled) − K̂(modelled), per coefficient [coefficient SI]")
       .def_readonly("paper_bias", &CompensationChoice::paper_bias, "the same in paper mode [coefficient SI]");
 
-  py::class_<BudgetResult>(m, "BudgetDetail",
+  py::class_<BudgetDetail>(m, "BudgetDetail",
                            "The error budget of a configuration (SI; display units alongside).")
       .def_property_readonly(
-          "mode", [](const BudgetResult& b) { return std::string(mode_name(b.mode)); },
+          "mode", [](const BudgetDetail& b) { return std::string(mode_name(b.mode)); },
           "'exact' or 'paper' [—]")
       .def_property_readonly(
           "derivatives",
-          [](const BudgetResult& b) {
+          [](const BudgetDetail& b) {
             return b.derivatives == DerivativeMethod::automatic ? "automatic" : "linearised";
           },
           "'linearised' or 'automatic' [—]")
-      .def_readonly("coefficients", &BudgetResult::coefficients, "the identified coefficients' ids [—]")
-      .def_readonly("units", &BudgetResult::units,
+      .def_readonly("coefficients", &BudgetDetail::coefficients, "the identified coefficients' ids [—]")
+      .def_readonly("units", &BudgetDetail::units,
                     "the display unit of each coefficient, e.g. 'deg/s/g^3' [—]")
-      .def_readonly("display_scale", &BudgetResult::display_scale,
+      .def_readonly("display_scale", &BudgetDetail::display_scale,
                     "SI → display unit factor per coefficient [display unit per SI]")
-      .def_readonly("sources", &BudgetResult::sources, "one SourceBudget per tolerance [—]")
+      .def_readonly("sources", &BudgetDetail::sources, "one SourceBudget per tolerance [—]")
       .def_property_readonly(
           "source_ids",
-          [](const BudgetResult& b) {
+          [](const BudgetDetail& b) {
             std::vector<std::string> ids;
             for (const auto& s : b.sources) ids.push_back(s.id);
             return ids;
           },
           "the sources' ids, the rows of the matrices [—]")
       .def_property_readonly(
-          "sensitivity", [](const BudgetResult& b) { return stacked(b, &SourceBudget::sensitivity); },
+          "sensitivity", [](const BudgetDetail& b) { return stacked(b, &SourceBudget::sensitivity); },
           "∂K/∂e, sources × coefficients [coefficient SI per SI unit of the source]")
       .def_property_readonly(
-          "effect", [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect); },
+          "effect", [](const BudgetDetail& b) { return stacked(b, &SourceBudget::effect); },
           "sensitivity × u, sources × coefficients [coefficient SI]")
       .def_property_readonly(
-          "effect_force", [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect_force); },
+          "effect_force", [](const BudgetDetail& b) { return stacked(b, &SourceBudget::effect_force); },
           "the part of effect through the specific force, sources × coefficients [coefficient SI]")
       .def_property_readonly(
-          "effect_rate", [](const BudgetResult& b) { return stacked(b, &SourceBudget::effect_rate); },
+          "effect_rate", [](const BudgetDetail& b) { return stacked(b, &SourceBudget::effect_rate); },
           "the part of effect through the angular rate, sources × coefficients [coefficient SI]")
       .def_property_readonly(
-          "share", [](const BudgetResult& b) { return stacked(b, &SourceBudget::share); },
+          "share", [](const BudgetDetail& b) { return stacked(b, &SourceBudget::share); },
           "share of each coefficient's variance, sources × coefficients, 0…1 [—]")
-      .def_readonly("standard_uncertainty", &BudgetResult::standard_uncertainty,
+      .def_readonly("standard_uncertainty", &BudgetDetail::standard_uncertainty,
                     "u_c per coefficient (LPU with correlation groups) [coefficient SI]")
-      .def_readonly("expanded_uncertainty", &BudgetResult::expanded_uncertainty,
+      .def_readonly("expanded_uncertainty", &BudgetDetail::expanded_uncertainty,
                     "U = k u_c per coefficient [coefficient SI]")
       .def_property_readonly(
-          "coverage_factor", [](const BudgetResult& r) { return r.coverage.factor; }, "k of U = k u [—]")
+          "coverage_factor", [](const BudgetDetail& r) { return r.coverage.factor; }, "k of U = k u [—]")
       .def_property_readonly(
-          "coverage_probability", [](const BudgetResult& r) { return r.coverage.probability; },
+          "coverage_probability", [](const BudgetDetail& r) { return r.coverage.probability; },
           "p of U: the option's, or the normal p of a stated k [—]")
       .def_property_readonly(
-          "coverage_method", [](const BudgetResult& r) { return std::string(coverage_method_name(r.coverage.method)); },
+          "coverage_method", [](const BudgetDetail& r) { return std::string(coverage_method_name(r.coverage.method)); },
           "how k was obtained: 'normal' (from p) or 'stated k' [—]")
-      .def_readonly("covariance", &BudgetResult::covariance,
+      .def_readonly("covariance", &BudgetDetail::covariance,
                     "covariance of the coefficients [coefficient SI × coefficient SI]")
-      .def_readonly("correlation", &BudgetResult::correlation, "correlation of the coefficients [—]")
-      .def_readonly("input_correlation", &BudgetResult::input_correlation,
+      .def_readonly("correlation", &BudgetDetail::correlation, "correlation of the coefficients [—]")
+      .def_readonly("input_correlation", &BudgetDetail::input_correlation,
                     "with [[correlations]]: the inputs' correlation matrix R, sources × sources in the order of "
                     "`sources` (groups' r = 1 in it); else empty [—]")
       .def_property_readonly(
-          "correlation_variance", [](const BudgetResult& r) { return correlation_variance(r); },
+          "correlation_variance", [](const BudgetDetail& r) { return correlation_variance(r); },
           "per coefficient: the part of u² the sources' correlations make (negative where they cancel) "
           "[coefficient SI²]")
-      .def_readonly("compensation", &BudgetResult::compensation,
+      .def_readonly("compensation", &BudgetDetail::compensation,
                     "the modelling choices and their biases, list of CompensationChoice [—]");
 }
 

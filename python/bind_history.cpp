@@ -107,7 +107,10 @@ void bind_history_trend(py::module_& m) {
 void bind_history_exchange(py::module_& m) {
   m.def(
       "history_supersede",
-      [](std::int64_t id, const py::kwargs& keywords) {
+      [](const py::object& id_argument, const py::kwargs& keywords) {
+        // As a keyword's integer: pybind11's own conversion took True for record 1.
+        std::int64_t id = 0;
+        keywords::assign(id, "id", id_argument);
         verbs::history_supersede(
             id, options_from_keywords<verbs::HistorySupersedeOptions>(keywords, "history_supersede"));
       },

@@ -43,19 +43,19 @@ void bind_monte_carlo_results(py::module_& m) {
                     "JCGM 101 §8: the LPU interval agrees (d_low, d_high ≤ δ) [—]")
       .def("__repr__", [](const OutputSummary& s) { return "<ccal.OutputSummary " + s.name + ">"; });
 
-  py::class_<MonteCarloResult>(m, "MonteCarloDetail", "A Monte Carlo propagation of the tolerances (SI).")
-      .def_readonly("trials", &MonteCarloResult::trials, "M, trials over all stages [—]")
-      .def_readonly("stages", &MonteCarloResult::stages, "number of stages (1 for a fixed M) [—]")
-      .def_readonly("converged", &MonteCarloResult::converged,
+  py::class_<MonteCarloDetail>(m, "MonteCarloDetail", "A Monte Carlo propagation of the tolerances (SI).")
+      .def_readonly("trials", &MonteCarloDetail::trials, "M, trials over all stages [—]")
+      .def_readonly("stages", &MonteCarloDetail::stages, "number of stages (1 for a fixed M) [—]")
+      .def_readonly("converged", &MonteCarloDetail::converged,
                     "the adaptive procedure's criterion was met (always true for a fixed M) [—]")
-      .def_readonly("seed", &MonteCarloResult::seed, "the seed used [—]")
-      .def_readonly("threads", &MonteCarloResult::threads, "the threads used [—]")
-      .def_readonly("coverage_probability", &MonteCarloResult::coverage_probability, "p, the coverage probability [—]")
-      .def_readonly("seconds", &MonteCarloResult::seconds, "wall time [s]")
-      .def_readonly("outputs", &MonteCarloResult::outputs, "per coefficient, list of OutputSummary [—]")
+      .def_readonly("seed", &MonteCarloDetail::seed, "the seed used [—]")
+      .def_readonly("threads", &MonteCarloDetail::threads, "the threads used [—]")
+      .def_readonly("coverage_probability", &MonteCarloDetail::coverage_probability, "p, the coverage probability [—]")
+      .def_readonly("seconds", &MonteCarloDetail::seconds, "wall time [s]")
+      .def_readonly("outputs", &MonteCarloDetail::outputs, "per coefficient, list of OutputSummary [—]")
       .def_property_readonly(
           "names",
-          [](const MonteCarloResult& r) {
+          [](const MonteCarloDetail& r) {
             std::vector<std::string> names;
             for (const auto& o : r.outputs) names.push_back(o.name);
             return names;
@@ -63,7 +63,7 @@ void bind_monte_carlo_results(py::module_& m) {
           "the coefficients' ids [—]")
       .def_property_readonly(
           "mean",
-          [](const MonteCarloResult& r) {
+          [](const MonteCarloDetail& r) {
             Eigen::VectorXd v(Eigen::Index(r.outputs.size()));
             for (std::size_t k = 0; k < r.outputs.size(); ++k) v[Eigen::Index(k)] = r.outputs[k].mean;
             return v;
@@ -71,19 +71,19 @@ void bind_monte_carlo_results(py::module_& m) {
           "y per coefficient [coefficient SI]")
       .def_property_readonly(
           "std_dev",
-          [](const MonteCarloResult& r) {
+          [](const MonteCarloDetail& r) {
             Eigen::VectorXd v(Eigen::Index(r.outputs.size()));
             for (std::size_t k = 0; k < r.outputs.size(); ++k) v[Eigen::Index(k)] = r.outputs[k].std_dev;
             return v;
           },
           "u(y) per coefficient [coefficient SI]")
-      .def_readonly("covariance", &MonteCarloResult::covariance,
+      .def_readonly("covariance", &MonteCarloDetail::covariance,
                     "sample covariance of the coefficients [coefficient SI × coefficient SI]")
-      .def_readonly("correlation", &MonteCarloResult::correlation,
+      .def_readonly("correlation", &MonteCarloDetail::correlation,
                     "sample correlation of the coefficients [—]")
       .def_property_readonly(
           "samples",
-          [](const MonteCarloResult& r) -> const Eigen::MatrixXd& {
+          [](const MonteCarloDetail& r) -> const Eigen::MatrixXd& {
             if (r.samples.rows() == 0)
               throw InputError("samples: not kept; accepted: monte_carlo(..., keep_samples=True)");
             return r.samples;
@@ -91,7 +91,7 @@ void bind_monte_carlo_results(py::module_& m) {
           py::return_value_policy::reference_internal,
           "every trial's outputs, M × n_outputs in trial order; needs keep_samples=True [coefficient SI: "
           "output SI per gⁿ]")
-      .def_readonly("notes", &MonteCarloResult::notes,
+      .def_readonly("notes", &MonteCarloDetail::notes,
                     "what the run did and found, as the CLI prints it [—]");
 
   bind_verb_result<verbs::MonteCarloResult>(
@@ -112,13 +112,13 @@ void bind_monte_carlo_function(py::module_& m) {
       "monte_carlo",
       [](const Config& cfg, bool keep_samples, const py::object& progress, const py::kwargs& keywords) {
         auto o = options_from_keywords<verbs::MonteCarloOptions>(keywords, "monte_carlo");
-        o.keep_samples = keep_samples;
+        o.propagation.keep_samples = keep_samples;
         return run_interruptible(progress, [&](ProgressCallback on_progress) {
-          o.on_progress = std::move(on_progress);
+          o.propagation.on_progress = std::move(on_progress);
           return verbs::monte_carlo(cfg, o);
         });
       },
-      py::arg("config"), py::kw_only(), py::arg("keep_samples") = verbs::MonteCarloOptions{}.keep_samples,
+      py::arg("config"), py::kw_only(), py::arg("keep_samples") = PropagationOptions{}.keep_samples,
       py::arg("progress") = py::none(),
       "Monte Carlo propagation (JCGM 101, `ccal montecarlo`) of the tolerances to the deviations of the "
       "identified coefficients; trials = None: 10⁶, or stages of 10⁴ with digits > 0 (the adaptive procedure); "

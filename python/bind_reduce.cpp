@@ -15,9 +15,9 @@
 #include "bindings.hpp"
 #include "option_keywords.hpp"
 #include "ccal/core/errors.hpp"
-#include "ccal/io/log_manifest.hpp"
+#include "ccal/intake/log_manifest.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/run_log.hpp"
+#include "ccal/intake/run_log.hpp"
 #include "ccal/verbs/instrument_covariance.hpp"
 #include "ccal/verbs/reduce.hpp"
 
@@ -25,8 +25,12 @@ namespace ccal::python {
 
 std::string path_argument(const py::object& value, std::string_view function, std::string_view name,
                           std::string_view accepted) {
-  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__"))
-    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__")) {
+    std::string path = py::module_::import("os").attr("fspath")(value).cast<std::string>();
+    if (path.empty())  // the message would start with the file's name: none
+      throw InputError(fmt::format("{}(): {}: the path is empty; accepted: {}", function, name, accepted));
+    return path;
+  }
   throw py::type_error(fmt::format("{}(): {}: expected {}, got {}", function, name, accepted,
                                    py::str(value.get_type().attr("__name__")).cast<std::string>()));
 }

@@ -1,5 +1,5 @@
 // ccal.report: `ccal report` from Python (docs/python.md): the same sections from the same options
-// (verbs::ReportOptions and the Monte Carlo's verbs::MonteCarloOptions, by their tables), the same page.
+// (verbs::ReportOptions, by its table), the same page.
 #include <pybind11/stl.h>
 
 #include <optional>
@@ -11,7 +11,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/pdf_print.hpp"
+#include "ccal/render/pdf_print.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "interruptible.hpp"
@@ -26,41 +26,6 @@ struct Report {
   verbs::ReportResult result;
   verbs::ReportOptions options;
 };
-
-// The report's own arguments besides the tables' keywords.
-constexpr std::string_view kOwnArguments[] = {"config", "allocate_targets", "design", "design_targets",
-                                              "observations"};
-
-bool in_table(std::string_view name, auto table) {
-  for (const auto& row : table)
-    if (row.field == name) return true;
-  return false;
-}
-
-// The keywords split between the report's table and the Monte Carlo's (but its mode, which is the report's);
-// one in neither is a TypeError listing both.
-verbs::ReportOptions report_options(const py::kwargs& keywords) {
-  const auto own = option_table<verbs::ReportOptions>();
-  const auto mc = option_table<verbs::MonteCarloOptions>();
-  py::kwargs own_keywords, mc_keywords;
-  for (const auto& [key, value] : keywords) {
-    const std::string name = py::str(key);
-    if (in_table(name, own)) {
-      own_keywords[key] = value;
-    } else if (name != "mode" && in_table(name, mc)) {
-      mc_keywords[key] = value;
-    } else {
-      std::vector<std::string_view> accepted(std::begin(kOwnArguments) + 1, std::end(kOwnArguments));
-      for (const auto& row : own) accepted.push_back(row.field);
-      for (const auto& row : mc)
-        if (row.field != "mode") accepted.push_back(row.field);
-      keywords::unknown_keyword("report", name, {"config"}, accepted);
-    }
-  }
-  verbs::ReportOptions o = options_from_keywords<verbs::ReportOptions>(own_keywords, "report");
-  o.monte_carlo = options_from_keywords<verbs::MonteCarloOptions>(mc_keywords, "report", {}, {"mode"});
-  return o;
-}
 
 }  // namespace
 
@@ -125,7 +90,7 @@ void bind_report(py::module_& m) {
             }
             return py::bytes(pdf);
           },
-          py::arg("html"), "A page printed to PDF by headless Chromium (io/pdf_print.hpp), as bytes (to_pdf()).");
+          py::arg("html"), "A page printed to PDF by headless Chromium (render/pdf_print.hpp), as bytes (to_pdf()).");
 
   m.def(
       "report",
@@ -133,7 +98,8 @@ void bind_report(py::module_& m) {
          const std::optional<TargetMap>& design_targets, const py::object& observations,
          const py::kwargs& keywords) {
         Report r;
-        r.options = report_options(keywords);
+        r.options = options_from_keywords<verbs::ReportOptions>(
+            keywords, "report", {}, {}, {"config", "allocate_targets", "design", "design_targets", "observations"});
         verbs::ReportOptions& o = r.options;
         if (allocate_targets) o.allocate = verbs::report_allocation(target_texts(*allocate_targets), o);
         if (design || design_targets)
@@ -156,7 +122,6 @@ void bind_report(py::module_& m) {
       "observations (an observations CSV path) the calibration statement; to_html() is the self-contained page. "
       "Ctrl-C stops the call and raises KeyboardInterrupt.");
   record_keywords<verbs::ReportOptions>(m, "report");
-  record_keywords<verbs::MonteCarloOptions>(m, "report", {"mode"});
 }
 
 }  // namespace ccal::python

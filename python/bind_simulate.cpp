@@ -10,8 +10,8 @@
 
 #include "bindings.hpp"
 #include "option_keywords.hpp"
-#include "ccal/io/log_manifest.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/log_manifest.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/verbs/simulate.hpp"
@@ -34,7 +34,8 @@ namespace {
 // The truth file of a truth= keyword (a path: str or os.PathLike), read against the configuration; None: none.
 std::optional<SimulationTruth> truth_of(const Config& cfg, const py::object& truth) {
   if (truth.is_none()) return std::nullopt;
-  return load_truth(py::module_::import("os").attr("fspath")(truth).cast<std::string>(), cfg);
+  return load_truth(path_argument(truth, "simulate", "truth", "the path of a truth file (str or os.PathLike), or None"),
+                    cfg);
 }
 
 }  // namespace

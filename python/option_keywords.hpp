@@ -177,6 +177,9 @@ Options options_from_keywords(const py::kwargs& given, std::string_view function
           } else if constexpr (std::is_same_v<typename decltype(member)::type, std::string>) {
             // A file's path (db=, …) may be an os.PathLike, as a path is anywhere in Python.
             const bool path = row->value_name.starts_with("FILE") || row->value_name.starts_with("DIR");
+            // An empty path (an unset variable) would mean the default (the default store) or none.
+            if (path && py::isinstance<py::str>(value) && value.template cast<std::string>().empty())
+              throw OptionError(name, "", "the path is empty; accepted: a path, or the keyword left out");
             if (path && !py::isinstance<py::str>(value) && py::hasattr(value, "__fspath__"))
               keywords::assign(member.of(options), name, py::module_::import("os").attr("fspath")(value),
                                row->range);
@@ -204,7 +207,7 @@ void record_keywords(py::module_& m, std::string_view function,
         [&](auto member) {
           std::string accepted = keywords::accepted_text(row, member);
           const std::string help =
-              std::string(row.help) + (accepted.empty() ? "" : "; accepted: " + accepted);
+              option_help(row.help, row.range) + (accepted.empty() ? "" : "; accepted: " + accepted);
           if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
             const auto index = member.get(defaults);
             keywords::record(m, function, row.field,

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """The include rules of docs/architecture.md: a library header or source in layer L includes only headers of
-L and of the layers below it (core < model < setup < reduction < uncertainty < io < verbs < render), plus
-version.hpp; a layer's internals (include/ccal/<layer>/detail/) are included by that layer only; a source's
-relative include of another layer's private header (../<layer>/x.hpp) follows the same order; library headers
-include no private header of src/. Exit 1 with one line per violation."""
+L and of the layers below it (core < model < setup < reduction < io < intake < uncertainty < history < verbs
+< render), plus version.hpp; nothing under python/ includes a file of apps/; a layer's internals
+(include/ccal/<layer>/detail/) are included by that layer only; a source's relative include of another
+layer's private header (../<layer>/x.hpp) follows the same order; library headers include no private header
+of src/. Exit 1 with one line per violation."""
 import pathlib
 import re
 import sys
 
-LAYERS = ["core", "model", "setup", "reduction", "uncertainty", "io", "verbs", "render"]
+LAYERS = ["core", "model", "setup", "reduction", "io", "intake", "uncertainty", "history", "verbs", "render"]
 RANK = {name: k for k, name in enumerate(LAYERS)}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
@@ -21,6 +22,21 @@ def layer_of(path, root):
     if rel[0] == "src" and len(rel) > 2:
         return rel[1]
     return None
+
+
+def front_end_problems(root):
+    """The Python module is a front end beside the program, not on it: nothing under python/ includes a file of
+    apps/ (what both need is in the library, or in a library of its own such as embed/report_scripts)."""
+    problems = []
+    app_headers = {p.name for p in (root / "apps").rglob("*.hpp")}
+    for path in sorted((root / "python").rglob("*.[ch]pp")):
+        for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            m = INCLUDE.match(line)
+            if m and ("apps/" in m.group(1) or pathlib.PurePosixPath(m.group(1)).name in app_headers
+                      and not (path.parent / m.group(1)).exists()):
+                problems.append(f"{path.relative_to(root)}:{n}: includes '{m.group(1)}' of apps/; a front end "
+                                "takes what it shares with the program from the library")
+    return problems
 
 
 def main(root):
@@ -72,6 +88,7 @@ def main(root):
             if RANK[parts[1]] > RANK[layer]:
                 problems.append(f"{path.relative_to(root)}:{n}: layer '{layer}' includes '{target}' of the "
                                 f"higher layer '{parts[1]}'")
+    problems += front_end_problems(root)
     for p in problems:
         print(p)
     print(f"{len(files)} files, {checked} includes checked, {len(problems)} violation(s)")

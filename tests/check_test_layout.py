@@ -13,7 +13,7 @@ DOCUMENTS = ["docs/testing.md", "docs/architecture.md", "README.md"]
 # A path under tests/ as the documents write it; one with a placeholder (<unit>) or a pattern (*) is skipped.
 DOC_PATH = re.compile(r"(?<![\w/.])tests/[A-Za-z0-9_./<>*-]*[A-Za-z0-9_/]")
 
-LAYERS = ["core", "model", "setup", "reduction", "uncertainty", "io", "verbs", "render"]
+LAYERS = ["core", "model", "setup", "reduction", "io", "intake", "uncertainty", "history", "verbs", "render"]
 
 # Sources tested through other test files, with where. A source gets its own test file when it gains tests.
 _OUTPUT = "the program's output: tests/cli/<verb>_test.cpp and tests/system/golden_outputs_test.cpp"
@@ -22,10 +22,10 @@ TESTED_ELSEWHERE = {
     "core/format.cpp": "number formatting: tests/render/budget_test.cpp and the pinned outputs",
     "io/config_sections_design.cpp": "the [design] table: tests/verbs/design_test.cpp (DesignConfig)",
     "io/config_sections_plan.cpp": "the [plan] and [identification] keys: tests/io/config_file*_test.cpp",
-    "io/history_entry.cpp": "history_entry: tests/io/history_store_test.cpp, history_store_schema_test.cpp",
-    "io/csv_stream.cpp": "the CSV reader: tests/io/observation_csv*_test.cpp, run_log_reducer_test.cpp",
+    "history/history_entry.cpp": "history_entry: tests/history/history_store_test.cpp, history_store_schema_test.cpp",
+    "io/csv_stream.cpp": "the CSV reader: tests/io/observation_csv*_test.cpp, tests/intake/run_log_reducer_test.cpp",
     "io/observations_header.cpp": "the header and log lines: tests/io/observation_csv_test.cpp",
-    "io/run_log_writer.cpp": "logs from the model: tests/verbs/reduce_test.cpp",
+    "intake/run_log_writer.cpp": "logs from the model: tests/verbs/reduce_test.cpp",
     "uncertainty/linear_propagation.cpp": "propagate_linear: tests/uncertainty/montecarlo_test.cpp, "
     "montecarlo_correlations_test.cpp",
     "model/centrifuge.cpp": "the error lookup: tests/model/kinematics*_test.cpp",
@@ -72,7 +72,9 @@ TESTED_ELSEWHERE = {
     "(BadlyScaledProblemsAreSolvedToo)",
     "uncertainty/allocate_bounds.cpp": "a part of the allocation's solver: "
     "tests/uncertainty/allocate_guards_test.cpp",
-    "uncertainty/allocation_targets.cpp": "a part of the allocation: tests/uncertainty/allocate_test.cpp",
+    "uncertainty/allocation_verdict.cpp": "a part of the allocation: tests/uncertainty/allocate_test.cpp",
+    "setup/coefficient_target.cpp": "the targets: tests/uncertainty/allocate_test.cpp (AllocationTargets), "
+    "tests/verbs/allocate_test.cpp",
     "uncertainty/calibration_model.cpp": "the trial model: tests/uncertainty/montecarlo_test.cpp",
     "uncertainty/design_candidates.cpp": "the candidate runs: tests/verbs/design_test.cpp; the rounding to the machine's settings: tests/uncertainty/design_candidates_rounding_test.cpp",
     "uncertainty/design_exchange.cpp": "the exchange step: tests/uncertainty/design_search_test.cpp",

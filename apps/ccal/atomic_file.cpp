@@ -28,14 +28,28 @@ constexpr int kSlots = 16;
 constexpr std::size_t kPathCapacity = 4096;
 char g_temporary[kSlots][kPathCapacity];
 volatile std::sig_atomic_t g_in_use[kSlots];
-// A folder the command made for its files (OutputFolder), removed after them if it is still empty.
+// The folders a command made for its files (OutputFolder), removed after them if they are still empty: the
+// innermost one's path, and how many levels of it were made (`a/b/c` made in an empty folder: 3).
 char g_folder[kPathCapacity];
 volatile std::sig_atomic_t g_folder_in_use;
+volatile std::sig_atomic_t g_folder_levels;
+
+// Removes the innermost folder and then each folder made above it, innermost first; stops at the first that
+// is not empty (rmdir fails), so that nothing the command did not make is removed. Cuts `path` as it goes
+// (async-signal-safe: rmdir(2) and memory only).
+void remove_made_folders(char* path, int levels) {
+  for (int level = 0; level < levels; ++level) {
+    if (::rmdir(path) != 0) return;
+    char* cut = std::strrchr(path, '/');
+    if (cut == nullptr || cut == path) return;
+    *cut = '\0';
+  }
+}
 
 extern "C" void remove_temporaries_and_end(int signal_number) {
   for (int k = 0; k < kSlots; ++k)
     if (g_in_use[k]) ::unlink(g_temporary[k]);
-  if (g_folder_in_use) ::rmdir(g_folder);  // fails, leaving it, unless empty
+  if (g_folder_in_use) remove_made_folders(g_folder, g_folder_levels);  // leaves what is not empty
   struct sigaction default_action {};
   default_action.sa_handler = SIG_DFL;
   ::sigaction(signal_number, &default_action, nullptr);
@@ -364,15 +378,26 @@ void check_files(const std::vector<FileToWrite>& files) { plans_for(files); }
 OutputFolder::OutputFolder(const std::string& option, const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) return;
-  if (path.size() >= kPathCapacity) throw InputError(fmt::format("{}: '{}': the path is too long", option, path));
+  // The path without "." and "..", nor a closing slash: each folder made is then a prefix of it.
+  std::string innermost = fs::path(path).lexically_normal().string();
+  while (innermost.size() > 1 && innermost.back() == '/') innermost.pop_back();
+  if (innermost.size() >= kPathCapacity)
+    throw InputError(fmt::format("{}: '{}': the path is too long", option, path));
+  int levels = 0;  // the folders that are missing, counted up to the first that exists
+  for (fs::path p = innermost; !p.empty() && !fs::exists(fs::symlink_status(p, ec)); p = p.parent_path()) {
+    ++levels;
+    if (p == p.parent_path()) break;
+  }
   install_handlers_once();
   {
     SignalsBlocked blocked;
-    std::memcpy(g_folder, path.c_str(), path.size() + 1);
+    std::memcpy(g_folder, innermost.c_str(), innermost.size() + 1);
+    g_folder_levels = levels;
     g_folder_in_use = 1;
   }
   made_ = true;
-  path_ = path;
+  path_ = innermost;
+  levels_ = levels;
   if (!fs::create_directories(path, ec) && !fs::is_directory(path)) {
     release();
     throw InputError(fmt::format("{}: cannot create the folder '{}': {}; accepted: a folder that exists or can "
@@ -383,7 +408,8 @@ OutputFolder::OutputFolder(const std::string& option, const std::string& path) {
 
 OutputFolder::~OutputFolder() {
   if (!made_) return;
-  ::rmdir(path_.c_str());  // fails, leaving it, unless the write was refused before any file went in
+  std::string path = path_;  // fails, leaving them, unless the write was refused before any file went in
+  remove_made_folders(path.data(), levels_);
   release();
 }
 

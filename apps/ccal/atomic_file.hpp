@@ -44,9 +44,10 @@ void write_files(const std::vector<FileToWrite>& files);
 void check_files(const std::vector<FileToWrite>& files);
 
 // The folder a command's files go into (e.g. `simulate --logs-out`), made when it is missing (InputError
-// naming the option if it cannot be). A folder it made is removed again if the command ends without keep():
-// refused (an exception) or interrupted (SIGINT, SIGTERM) before any file went in, so that no empty folder is
-// left behind. One at a time.
+// naming the option if it cannot be, with every missing folder above it). The folders it made are removed
+// again if the command ends without keep(): refused (an exception) or interrupted (SIGINT, SIGTERM) before
+// any file went in, so that no empty folder is left behind, and no folder it did not make is removed. One at
+// a time.
 class OutputFolder {
  public:
   OutputFolder(const std::string& option, const std::string& path);
@@ -58,7 +59,8 @@ class OutputFolder {
  private:
   void release();
   bool made_ = false;
-  std::string path_;
+  std::string path_;  // the innermost folder, and how many folders were made to reach it
+  int levels_ = 0;
 };
 
 // Writes text to standard output and flushes it; InputError if the stream reports a write error.

@@ -14,7 +14,7 @@ namespace {
 
 struct AllocateCli {
   ConfigChoice config;
-  verbs::AllocateOptions options;  // its table's flags are bound to it
+  AllocateOptions options;  // its table's flags are bound to it
   WidthOptions width;
   OutputOptions output;
 };
@@ -35,7 +35,7 @@ Command add_allocate(CLI::App& app) {
       "Tolerance allocation: the largest centrifuge tolerances for which every target on the expanded "
       "uncertainty of an identified coefficient holds, checked by Monte Carlo");
   add_config_argument(*cmd, o->config);
-  add_option_flags(*cmd, o->options, option_table<verbs::AllocateOptions>());
+  add_option_flags(*cmd, o->options, option_table<AllocateOptions>());
   add_renamed_option(*cmd, "--coverage",
                      "renamed: give the coverage probability of the targets as --coverage-probability p "
                      "(e.g. 0.95)");
@@ -49,7 +49,7 @@ Command add_allocate(CLI::App& app) {
       "  ccal allocate my.toml --target \"K3=1e-6 deg/s/g^3\" --max-scale 3 --verify-trials 10000\n"
       "  ccal allocate --target K0=1e-3 --format json -o allocation.json\n");
   return {cmd, [o] {
-            verbs::AllocateOptions ao = o->options;
+            AllocateOptions ao = o->options;
             ao.progress = true;  // drawn only when standard error is a terminal
             const verbs::AllocateResult r = verbs::allocate(load_config_or_example(o->config), ao);
             const std::string& f = o->output.format;

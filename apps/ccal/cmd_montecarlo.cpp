@@ -72,8 +72,8 @@ Command add_montecarlo(CLI::App& app) {
           throw InputError(fmt::format(
               "--samples-out: '{}' is also the -o file; accepted: two different files", o->samples_out));
         verbs::MonteCarloOptions mo = o->options;
-        mo.progress = true;  // drawn only when standard error is a terminal
-        mo.keep_samples = !o->samples_out.empty();
+        mo.propagation.progress = true;  // drawn only when standard error is a terminal
+        mo.propagation.keep_samples = !o->samples_out.empty();
         const verbs::MonteCarloResult r = verbs::monte_carlo(load_config_or_example(o->config), mo);
         const std::string& f = o->output.format;
         std::vector<ExtraFile> extra;

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "ccal/io/log_manifest.hpp"
+#include "ccal/intake/log_manifest.hpp"
 #include "ccal/io/observation_csv.hpp"
 #include "ccal/render/reduce.hpp"
 #include "ccal/verbs/reduce.hpp"
@@ -18,7 +18,7 @@ namespace {
 struct ReduceCli {
   ConfigChoice config;
   std::vector<std::string> logs;  // RUN=FILE
-  std::string log_folder;         // DIR with a manifest (io/log_manifest.hpp)
+  std::string log_folder;         // DIR with a manifest (intake/log_manifest.hpp)
   std::string log_layout;         // with --log: the logs' format and columns (a manifest's [format], [columns])
   verbs::ReduceOptions options;   // its table's flags are bound to it
   std::string pulse_weight;       // --pulse-weight as written: converted with the configuration's output unit
@@ -93,7 +93,7 @@ Command add_reduce(CLI::App& app) {
     if (row.field == "pulse_weight")
       cmd->add_option(
              "--pulse-weight", o->pulse_weight,
-             std::string(row.help) + "; a bare number, or a quantity with its unit (e.g. \"2.5e-5 deg\")")
+             option_help(row.help, row.range) + "; a bare number, or a quantity with its unit (e.g. \"2.5e-5 deg\")")
           ->type_name(std::string(row.value_name));
   cmd->add_flag("--budget", o->old_budget)->group("");  // refused with a message, not in --help
   add_observations_out_option(*cmd, o->observations_out);
@@ -118,8 +118,8 @@ Command add_reduce(CLI::App& app) {
         const Config cfg = load_config_or_example(o->config);
         check_observations_out(o->observations_out, o->output);
         check_statement_out(o->statement_out, o->options.statement, o->output);
-        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "--observations-out");
-        if (!o->statement_out.empty()) verbs::check_single_instrument_output(cfg, "--statement-out");
+        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
+        if (!o->statement_out.empty()) verbs::check_single_instrument_output(cfg, "statement_out");
         if (o->old_budget)
           throw InputError(
               "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "

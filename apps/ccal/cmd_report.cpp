@@ -13,7 +13,7 @@
 #include "atomic_file.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/pdf_print.hpp"
+#include "ccal/render/pdf_print.hpp"
 #include "ccal/render/report.hpp"
 #include "ccal/verbs/report.hpp"
 #include "commands.hpp"
@@ -88,7 +88,6 @@ Command add_report(CLI::App& app) {
       "observations, the calibration statement and certificate (also printed to PDF)");
   add_config_argument(*cmd, o->config);
   add_option_flags(*cmd, o->options, option_table<verbs::ReportOptions>());
-  add_option_flags(*cmd, o->options.monte_carlo, option_table<verbs::MonteCarloOptions>(), {"mode"});
   cmd->add_option("--allocate-target", o->allocate_targets,
                   "COEFF=U: add the tolerance allocation (as `ccal allocate --target`, with this report's "
                   "--mode, --coverage-probability, --seed and --threads); repeat for each coefficient")

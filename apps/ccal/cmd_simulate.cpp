@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "ccal/core/errors.hpp"
-#include "ccal/io/log_manifest.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/log_manifest.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/render/simulate.hpp"
 #include "ccal/verbs/reduce.hpp"
@@ -30,7 +30,7 @@ struct SimulateCli {
   std::string observations_out;
   std::string logs_out;  // folder for one run log per run
   std::string truth;     // the simulated machine's errors (io/truth_file.hpp); empty: the configuration's
-  std::string log_layout;  // the logs' columns and units (io/log_manifest.hpp); empty: ccal's own
+  std::string log_layout;  // the logs' columns and units (intake/log_manifest.hpp); empty: ccal's own
   OutputOptions output;
 };
 
@@ -82,7 +82,7 @@ Command add_simulate(CLI::App& app) {
       cmd, [o] {
         const Config cfg = load_config_or_example(o->config);
         check_observations_out(o->observations_out, o->output);
-        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "--observations-out");
+        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
         if (!o->log_layout.empty() && o->logs_out.empty())
           throw InputError("--log-layout: is read only for the logs; accepted: with --logs-out DIR");
         LogLayout layout;

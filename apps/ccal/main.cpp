@@ -163,6 +163,7 @@ int main(int argc, char** argv) {
     command.app->group("Commands");
     for (CLI::App* sub : command.app->get_subcommands([](CLI::App*) { return true; })) sub->group("Commands");
   }
+  ccal::cli::refuse_empty_input_paths(app);
   ccal::cli::set_command_line(argc, argv);
 
   if (const std::optional<int> code = write_shell_docs(app, kSummary, argc, argv)) return *code;
@@ -187,9 +188,8 @@ int main(int argc, char** argv) {
 
   // The chosen command (for its --help in a hint and the flags of its options), once parsed.
   const CLI::App* chosen = nullptr;
-  auto help_hint = [&] {
-    return chosen ? "; run 'ccal " + chosen->get_name() + " --help'" : std::string("; run 'ccal --help'");
-  };
+  // The help of the command being parsed: `ccal history show --help` for an error of history show.
+  auto help_hint = [&] { return ccal::cli::help_hint(app, chosen); };
   try {
     try {
       if (argc > 1)
@@ -198,7 +198,9 @@ int main(int argc, char** argv) {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
       if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-      return report("error", ccal::cli::parse_error_message(e) + help_hint());
+      return report("error",
+                    ccal::cli::parse_error_message(e, chosen ? ccal::cli::deepest_command(*chosen) : app) +
+                        help_hint());
     }
     for (const auto& command : commands)
       if (command.app->parsed()) command.run();

@@ -65,13 +65,80 @@ CLI::Option* add_text_flag(CLI::App& command, const std::string& flag, std::stri
 }
 
 }  // namespace detail
-std::string parse_error_message(const CLI::ParseError& error) {
+const CLI::App& deepest_command(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands())
+    if (sub->parsed()) return deepest_command(*sub);
+  return app;
+}
+
+std::string help_hint(const CLI::App& app, const CLI::App* chosen) {
+  if (!chosen) return "; run 'ccal --help'";
+  std::string path;
+  for (const CLI::App* c = &deepest_command(*chosen); c != nullptr && c != &app; c = c->get_parent())
+    path = " " + c->get_name() + path;
+  return "; run 'ccal" + path + " --help'";
+}
+
+namespace {
+
+// An option or argument of the command by the name the parser gives it ("--trials", "SERIAL").
+const CLI::Option* option_named(const CLI::App& command, const std::string& name) {
+  for (const CLI::Option* option : command.get_options())
+    if (option->get_name() == name || option->check_name(name)) return option;
+  return nullptr;
+}
+
+// "--trials N (Number of trials M (default 1000000); …)": how the option is written, and its help.
+std::string accepted_form(const CLI::App& command, const std::string& name) {
+  const CLI::Option* option = option_named(command, name);
+  if (option == nullptr) return "a value";
+  const std::string type = option->get_type_name();
+  const std::string form = option->nonpositional() ? name + (type.empty() ? "" : " " + type) : type;
+  const std::string help = option->get_description();
+  return help.empty() ? form : fmt::format("{} ({})", form, help);
+}
+
+}  // namespace
+
+std::string parse_error_message(const CLI::ParseError& error, const CLI::App& command) {
   const std::string what = error.what();
   static const std::regex at_most(R"(^(.*): At Most (\d+) required but received (\d+)$)");
+  // "--x: 1 required N missing": the option given last, without its value.
+  static const std::regex value_missing(R"(^(\S+): \d+ required .* missing$)");
+  // "--width: Value 5 not in range 40 to 10000": the parser's range check.
+  static const std::regex out_of_range(R"(^(\S+): Value (.*) not in range (.*) to (.*)$)");
+  // "The following argument was not expected: b": a word no argument or option of the command takes.
+  static const std::regex extra(R"(^The following arguments? (?:was|were) not expected: (.*)$)");
+  // "SERIAL is required": an argument the command needs, not given.
+  static const std::regex argument_missing(R"(^(\S+) is required$)");
   std::smatch m;
-  if (!std::regex_match(what, m, at_most)) return what;
-  const std::string once = m[2] == "1" ? "once (the last of several is not taken silently)" : m[2].str() + " times";
-  return fmt::format("{}: given {} times; accepted: {}", m[1].str(), m[3].str(), once);
+  if (std::regex_match(what, m, at_most)) {
+    const std::string once =
+        m[2] == "1" ? "once (the last of several is not taken silently)" : m[2].str() + " times";
+    return fmt::format("{}: given {} times; accepted: {}", m[1].str(), m[3].str(), once);
+  }
+  if (std::regex_match(what, m, value_missing))
+    return fmt::format(
+        "{}: its value is missing (nothing follows it, or the next word is an option); accepted: {}",
+        m[1].str(), accepted_form(command, m[1].str()));
+  if (std::regex_match(what, m, out_of_range)) {
+    static const std::regex number(R"(^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$)");
+    return fmt::format("{}: {} {}; accepted: a number from {} to {}", m[1].str(), m[2].str(),
+                       std::regex_match(m[2].str(), number) ? "is out of range" : "is not a number",
+                       m[3].str(), m[4].str());
+  }
+  if (std::regex_match(what, m, extra)) {
+    std::string arguments;
+    for (const CLI::Option* option : command.get_options())
+      if (option->get_positional()) arguments += (arguments.empty() ? "" : ", ") + option->get_type_name();
+    return fmt::format(
+        "'{}': {}; accepted: {}, each option with its value (a path with spaces in quotes)", m[1].str(),
+        "not expected (a word too many)",
+        arguments.empty() ? std::string("no argument besides the options") : "one " + arguments);
+  }
+  if (std::regex_match(what, m, argument_missing))
+    return fmt::format("{}: missing; accepted: {}", m[1].str(), accepted_form(command, m[1].str()));
+  return what;
 }
 
 }  // namespace ccal::cli

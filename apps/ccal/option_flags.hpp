@@ -27,9 +27,17 @@ std::string declared_flag(const CLI::App* command, std::string_view field);
 std::string unknown_command_message(std::string_view typed, const std::vector<std::string>& names,
                                     std::string_view parent = {});
 
-// A parse error's message as the program words it: an option given more often than it is taken ("--x: At Most 1
-// required but received 2", the parser's) is "--x: given 2 times; accepted: once"; any other as the parser says.
-std::string parse_error_message(const CLI::ParseError& error);
+// A parse error's message as the program words it, for the command being parsed: an option given more often
+// than it is taken ("--x: At Most 1 required but received 2", the parser's) is "--x: given 2 times; accepted:
+// once"; an option without its value ("--x: 1 required N missing") and a missing argument ("SERIAL is
+// required") say so with how the option is written and its help; any other as the parser says.
+std::string parse_error_message(const CLI::ParseError& error, const CLI::App& command);
+
+// The subcommand being run: the deepest parsed one below `app` (`ccal history show`: show), else app itself.
+const CLI::App& deepest_command(const CLI::App& app);
+// "; run 'ccal history show --help'": the help of the command being parsed below `chosen`, the command the
+// first word named (none: the program's help).
+std::string help_hint(const CLI::App& app, const CLI::App* chosen);
 
 // Declares a flag for every row of `table` on `command`, bound to `options` (which must outlive the parse),
 // except the fields named in `skip` (bound by hand by the command).
@@ -52,7 +60,7 @@ template <class Options, class Member>
 void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>& row, Member member,
                   const std::string& flag) {
   const std::string field(row.field);
-  std::string help(row.help);
+  const std::string help = option_help(row.help, row.range);
   CLI::Option* option = nullptr;
   if constexpr (std::is_same_v<Member, OptionEnum<Options>>) {
     const OptionEnum<Options> e = member;

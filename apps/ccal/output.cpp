@@ -52,6 +52,36 @@ CLI::Option* refuse_empty_path(CLI::Option* option, const std::string& name, con
   return option;
 }
 
+void refuse_empty_input_paths(CLI::App& app) {
+  // Each input path option by the name the parser gives it, and what it accepts.
+  static const std::pair<std::string_view, std::string_view> kInputs[] = {
+      {"config", "a configuration file (TOML), or no CONFIG at all for the bundled example"},
+      {"--config", "a configuration file (TOML)"},
+      {"file", "a CSV file"},
+      {"--truth", "a truth file (TOML with an [errors] table), or no --truth"},
+      {"--log-layout", "a layout file (TOML), or no --log-layout"},
+      {"--logs", "a folder of logs with its manifest.toml"},
+      {"--observations", "an observations file (CSV), or no --observations"},
+      {"--history-db", "a history store's path, or no --history-db"},
+      {"--db", "a history store's path, or no --db for the default store"},
+      {"STATEMENT", "a calibration statement's JSON file"},
+      {"FILE", "a file of `ccal history export`"}};
+  for (CLI::Option* option : app.get_options()) {
+    for (const auto& [name, accepted] : kInputs) {
+      if (option->get_name() != name) continue;
+      // Positional arguments by their type name (CONFIG, FILE.csv), options by their flag.
+      const std::string shown = option->nonpositional() ? std::string(name) : option->get_type_name();
+      option->each([shown, accepted = std::string(accepted)](const std::string& path) {
+        if (path.empty())
+          throw CLI::ParseError(
+              fmt::format("{}: the path is empty (an unset shell variable?); accepted: {}", shown, accepted),
+              CLI::ExitCodes::ValidationError);
+      });
+    }
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_input_paths(*sub);
+}
+
 void write_output(const OutputOptions& options, std::string_view text) { write_outputs(options, text, {}); }
 
 void add_observations_out_option(CLI::App& command, std::string& path) {

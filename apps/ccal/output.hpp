@@ -34,6 +34,10 @@ void refuse_empty_output(CLI::Option& option);
 // The same for a further output option (--pdf, --statement-out, --plan-out, --samples-out, --logs-out,
 // --observations-out), named in the message; it has no standard output: "accepted: a file path".
 CLI::Option* refuse_empty_path(CLI::Option* option, const std::string& name, const std::string& accepted);
+// The same for every input path of the commands below `app` (CONFIG, --config, --truth, --logs, --db, …),
+// which an empty value would otherwise turn into the default (the bundled example, the default history store)
+// or into "none": "--db: the path is empty (an unset shell variable?); accepted: …".
+void refuse_empty_input_paths(CLI::App& app);
 
 // Writes text to standard output (also for the path "-"), or to options.path. A regular file (or a new one)
 // is replaced atomically: the text goes to a temporary created exclusively (O_EXCL | O_NOFOLLOW, random

@@ -102,6 +102,24 @@ std::string OptionRange::text() const {
   return text;
 }
 
+std::string OptionRange::interval() const {
+  const bool bounded_low = low > -1e308, bounded_high = high < 1e308;
+  if (bounded_low && bounded_high)
+    return fmt::format("{}{}, {}{}", low_open ? "(" : "[", option_number_text(low), option_number_text(high),
+                       high_open ? ")" : "]");
+  if (bounded_low) return fmt::format("{} {}", low_open ? ">" : "≥", option_number_text(low));
+  if (bounded_high) return fmt::format("{} {}", high_open ? "<" : "≤", option_number_text(high));
+  return "a finite number";
+}
+
+std::string option_help(std::string_view help, const OptionRange& range) {
+  constexpr std::string_view kMark = "{range}";
+  std::string text(help);
+  for (auto at = text.find(kMark); at != std::string::npos; at = text.find(kMark, at))
+    text.replace(at, kMark.size(), range.interval());
+  return text;
+}
+
 void check_option_value(std::string_view field, double value, const std::string& value_text,
                         const OptionRange& range) {
   if (!range.accepts(value))

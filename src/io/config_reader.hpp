@@ -267,13 +267,13 @@ class Reader {
                         std::string_view hint) const {
     if (v > 0) return;
     fail(*t.get(key), path(table_path, key),
-         fmt::format("must be positive, got {}; {}", number_text(v), hint));
+         fmt::format("must be positive, got {}; {}", written(*t.get(key), v), hint));
   }
   void require_non_negative(const toml::table& t, std::string_view table_path, std::string_view key, double v,
                             std::string_view hint) const {
     if (v >= 0) return;
     fail(*t.get(key), path(table_path, key),
-         fmt::format("must not be negative, got {}; {}", number_text(v), hint));
+         fmt::format("must not be negative, got {}; {}", written(*t.get(key), v), hint));
   }
 
   // Plausibility: a value beyond what any centrifuge test uses is a typing or unit error.
@@ -281,7 +281,7 @@ class Reader {
                        double most, std::string_view accepted) const {
     if (v <= most) return;
     fail(*t.get(key), path(table_path, key),
-         fmt::format("{} is implausible; accepted: {}", number_text(v), accepted));
+         fmt::format("{} is implausible; accepted: {}", written(*t.get(key), v), accepted));
   }
 
   // The lower end of the same: a positive value below what any centrifuge test uses ("1e-300 m"), shown as
@@ -289,13 +289,16 @@ class Reader {
   void require_at_least(const toml::table& t, std::string_view table_path, std::string_view key, double v,
                         double least, std::string_view accepted) const {
     if (v >= least) return;
-    const toml::node& n = *t.get(key);
-    fail(n, path(table_path, key),
-         fmt::format("{} is implausible; accepted: {}", n.value<std::string>().value_or(number_text(v)),
-                     accepted));
+    fail(*t.get(key), path(table_path, key),
+         fmt::format("{} is implausible; accepted: {}", written(*t.get(key), v), accepted));
   }
 
   const std::string& source() const { return source_; }
+
+  // A value in a message as the user wrote it ("1e300 m", with its unit), or the number of a bare one.
+  static std::string written(const toml::node& n, double v) {
+    return n.value<std::string>().value_or(number_text(v));
+  }
 
  private:
   std::string source_;
@@ -444,16 +447,18 @@ inline toml::table parse_toml(const Reader& r, std::string_view text, std::strin
 }
 
 // A file's text; FileNotFound<ConfigError> with `missing` as the problem when it cannot be read.
-inline std::string read_file_text(
-    const std::filesystem::path& path,
-    std::string_view missing = "cannot read the file; check the path and permissions") {
+// (default: why, unreadable_file_problem).
+inline std::string read_file_text(const std::filesystem::path& path, std::string_view missing = {}) {
   std::ifstream in(path, std::ios::binary);
   std::error_code ec;
-  if (!in || std::filesystem::is_directory(path, ec))
-    throw FileNotFound<ConfigError>(path.string(), 0, 0, "", std::string(missing));
+  const auto refuse = [&] {
+    return FileNotFound<ConfigError>(path.string(), 0, 0, "",
+                                     missing.empty() ? unreadable_file_problem(path) : std::string(missing));
+  };
+  if (!in || std::filesystem::is_directory(path, ec)) throw refuse();
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw FileNotFound<ConfigError>(path.string(), 0, 0, "", std::string(missing));
+  if (in.bad()) throw refuse();
   return text.str();
 }
 

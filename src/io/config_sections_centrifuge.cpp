@@ -1,8 +1,8 @@
 // The configuration file's [site], [centrifuge], [errors] and [tolerances] sections (docs/config.md).
-#include <cstdlib>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <numbers>
 
 #include "ccal/model/error_sources.hpp"
 #include "ccal/setup/input_description.hpp"
@@ -247,6 +247,35 @@ double chain_quantity(const Reader& r, const toml::node& node, const std::string
   return r.quantity_node(node, p, d.dim, nullptr, d.example);
 }
 
+namespace {
+
+// A measured error of the machine beyond any centrifuge's, by its kind: a length beyond 1 m, an angle beyond
+// half a turn, a rate error beyond 10 rad/s (the plans' rates are a few rad/s), a relative error (a ripple)
+// beyond 100 %, an arm stretch beyond 1e-3 m/(rad/s)² (12 cm at 30 g on a 2.5 m arm). Such a value is a
+// typing or unit error ("1.5e3 arcsec" for 1.5); beyond them the model's output overflows far from the file
+// ("the means of run '5g' are not finite"), so it is refused at its line.
+void check_error_size(const Reader& r, const toml::node& at, const std::string& key, double value,
+                      const InputDescription& d) {
+  struct Limit {
+    Dimension dim;
+    double most;
+    std::string_view text;
+  };
+  static constexpr Limit kLimits[] = {{kind::length, 1, "1 m"},
+                                      {kind::angle, std::numbers::pi, "180 deg"},
+                                      {kind::angular_rate, 10, "10 rad/s"},
+                                      {kind::dimensionless, 1, "1 (100 %)"},
+                                      {kind::length / pow(kind::angular_rate, 2), 1e-3, "1e-3 m/(rad/s)^2"}};
+  for (const Limit& limit : kLimits)
+    if (limit.dim == d.dim && !(std::abs(value) <= limit.most))
+      r.fail(at, key,
+             fmt::format("{} is implausible for a measured error of the machine; accepted: up to {} in size, "
+                         "e.g. \"{}\" (a larger value is a typing or unit error)",
+                         Reader::written(at, value), limit.text, d.example));
+}
+
+}  // namespace
+
 void read_errors(const Reader& r, const toml::table& root, const Config& config, CentrifugeModel& model,
                  std::vector<std::pair<int, double>>* chain_errors) {
   const toml::table* t = r.table(root, "", "errors", false);
@@ -266,6 +295,7 @@ void read_errors(const Reader& r, const toml::table& root, const Config& config,
     }
     const InputDescription d = describe_layout_parameter(model.layout, index);
     model.errors[index] = r.quantity_node(node, p, d.dim, nullptr, d.example);
+    check_error_size(r, node, p, model.errors[index], d);
   }
 }
 

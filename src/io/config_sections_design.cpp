@@ -1,5 +1,5 @@
 // The configuration file's [design] table: the design space of `ccal design` (docs/config.md).
-#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/setup/coefficient_target.hpp"
 #include "config_reader.hpp"
 
 namespace ccal::config_reading {

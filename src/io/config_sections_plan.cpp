@@ -1,4 +1,8 @@
 // The configuration file's [instrument], [plan] and [identification] sections (docs/config.md).
+#include <cmath>
+#include <numbers>
+#include <utility>
+
 #include "../core/text_shown.hpp"
 #include "config_reader.hpp"
 
@@ -81,6 +85,14 @@ void read_terms(const Reader& r, const toml::table& t, std::string_view p, const
       else if (const int order = term_dimension(*spec, kind::dimensionless).g_level; order != 0)
         example += -order == 1 ? "/g" : fmt::format("/g^{}", -order);
       const double v = r.quantity_node(node, kp, dim, &out, "1 " + example);
+      // The model's output is a sum of K_n a^n up to 1000 g, the fit squares it: beyond 1e100 (SI) a
+      // coefficient overflows the run means far from the file; it is a typing or unit error.
+      if (!(std::abs(v) <= 1e100))
+        r.fail(node, kp,
+               fmt::format(
+                   "{} is implausible: beyond 1e100 in SI units the model's output overflows; accepted: a "
+                   "coefficient up to 1e100 (SI) in size, e.g. \"{}\"",
+                   Reader::written(node, v), "1 " + example));
       parsed.push_back({*spec, std::string(key.str()), v});
     }
     std::sort(parsed.begin(), parsed.end(),
@@ -212,6 +224,13 @@ RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_vie
            "both initial_phase and terminal_phase are given; accepted: exactly one of them in one table");
   }
   f.arm_azimuth = r.quantity(t, p, "arm_azimuth", kind::angle, nullptr, "0 deg");
+  // An angle beyond a turn ("1e300 deg") is a typing or unit error, and loses its digits when wrapped.
+  for (const auto& [key, angle] :
+       {std::pair{"initial_phase", f.initial_phase}, std::pair{"terminal_phase", f.terminal_phase},
+        std::pair{"arm_azimuth", f.arm_azimuth}})
+    if (angle)
+      r.require_at_most(t, p, key, std::abs(*angle), 2 * std::numbers::pi,
+                        "an angle of at most one turn in size (-360 deg to 360 deg), e.g. \"180 deg\"");
   f.mounting =
       r.word(t, p, "mounting",
              std::vector<std::pair<std::string_view, Mounting>>{{"ia_horizontal", Mounting::ia_horizontal},

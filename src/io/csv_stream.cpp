@@ -249,7 +249,7 @@ void check_csv_delimiter(std::string_view line, const std::vector<std::string>& 
 
 std::string stream_csv_file(const std::filesystem::path& path, CsvRowSink& sink, const CsvFormat& format) {
   const std::string name = path.string();
-  const FileNotFound<CsvError> unreadable(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  const FileNotFound<CsvError> unreadable(name, 0, 0, "", unreadable_file_problem(path));
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw unreadable;
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(name.c_str(), "rb"));

@@ -274,10 +274,10 @@ CsvTable read_csv_file(const std::filesystem::path& path) {
   std::error_code ec;
   std::ifstream in(path, std::ios::binary);
   if (!in || std::filesystem::is_directory(path, ec))
-    throw FileNotFound<CsvError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
+    throw FileNotFound<CsvError>(name, 0, 0, "", unreadable_file_problem(path));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw FileNotFound<CsvError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  if (in.bad()) throw FileNotFound<CsvError>(name, 0, 0, "", unreadable_file_problem(path));
   return parse_csv(text.str(), name);
 }
 

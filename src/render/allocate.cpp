@@ -50,7 +50,7 @@ std::string coefficient_cell(const AllocatedCoefficient& c) { return c.id + " ["
 
 // The coefficients without a target that the allocation made worse (only with --let-others-grow), or the
 // statement that they are held.
-std::string grown_text(const AllocationResult& r, std::size_t width) {
+std::string grown_text(const AllocationDetail& r, std::size_t width) {
   std::vector<std::string> grown;
   for (const AllocatedCoefficient& c : r.coefficients)
     if (c.grew)
@@ -68,7 +68,7 @@ std::string grown_text(const AllocationResult& r, std::size_t width) {
       width);
 }
 
-std::string coefficients_table(const AllocationResult& r, std::size_t width) {
+std::string coefficients_table(const AllocationDetail& r, std::size_t width) {
   Table t({"coefficient", "target U", "configured U", "allocated U", "one-scale U", "target", "price"});
   t.gap(2);
   for (const AllocatedCoefficient& c : r.coefficients) {
@@ -91,7 +91,7 @@ std::string coefficients_table(const AllocationResult& r, std::size_t width) {
   return out;
 }
 
-std::string sources_table(const Config& cfg, const AllocationResult& r, const AllocateTextOptions& o) {
+std::string sources_table(const Config& cfg, const AllocationDetail& r, const AllocateTextOptions& o) {
   bool costs = false;
   for (const AllocatedSource& a : r.sources) costs = costs || a.cost != 1.0;
   std::vector<std::string> header = {"source", "name", "PDF"};
@@ -136,7 +136,7 @@ std::string sources_table(const Config& cfg, const AllocationResult& r, const Al
   return out;
 }
 
-std::string verification_text(const AllocationResult& r, const std::string& pct, std::size_t width) {
+std::string verification_text(const AllocationDetail& r, const std::string& pct, std::size_t width) {
   const AllocationVerification& v = r.verification;
   if (v.trials == 0) return "\nNo Monte Carlo verification (--verify-trials 0).\n";
   Table check({"coefficient", "target U", "MC mean", "half-width", "/target", "MC std", "/LPU u", "verdict"});
@@ -168,7 +168,7 @@ std::string verification_text(const AllocationResult& r, const std::string& pct,
   return out;
 }
 
-std::string text_of(const Config& cfg, const AllocationResult& r, const AllocateTextOptions& o) {
+std::string text_of(const Config& cfg, const AllocationDetail& r, const AllocateTextOptions& o) {
   const std::size_t width = o.wide ? 0 : o.width;
   const std::string pct = fmt::format("{:g} %", 100 * r.coverage_probability);
   std::string out = fmt::format("ccal allocate: {}\n", cfg.source);
@@ -204,7 +204,7 @@ std::string text_of(const Config& cfg, const AllocationResult& r, const Allocate
   return out;
 }
 
-std::string json_of(const Config& cfg, const AllocationResult& r) {
+std::string json_of(const Config& cfg, const AllocationDetail& r) {
   nlohmann::ordered_json j;
   j["command"] = "allocate";
   j["ccal_version"] = version();
@@ -304,7 +304,7 @@ std::string json_of(const Config& cfg, const AllocationResult& r) {
   return j.dump(2) + "\n";
 }
 
-std::string csv_of(const Config& cfg, const AllocationResult& r) {
+std::string csv_of(const Config& cfg, const AllocationDetail& r) {
   // The coefficients without a target that grew, as comment lines ahead of the table (--let-others-grow).
   std::string out;
   for (const AllocatedCoefficient& c : r.coefficients)

@@ -20,13 +20,13 @@ namespace {
 
 using namespace budget_parts;
 
-std::vector<std::size_t> by_rank(const BudgetResult& r) {
+std::vector<std::size_t> by_rank(const BudgetDetail& r) {
   std::vector<std::size_t> order(r.sources.size());
   for (std::size_t s = 0; s < order.size(); ++s) order[std::size_t(r.sources[s].rank - 1)] = s;
   return order;
 }
 
-nlohmann::ordered_json per_coefficient(const BudgetResult& r, const Eigen::VectorXd& v, bool scale = true) {
+nlohmann::ordered_json per_coefficient(const BudgetDetail& r, const Eigen::VectorXd& v, bool scale = true) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (std::size_t k = 0; k < r.coefficients.size(); ++k)
     j[r.coefficients[k]] = v[Eigen::Index(k)] * (scale ? r.display_scale[k] : 1.0);
@@ -35,7 +35,7 @@ nlohmann::ordered_json per_coefficient(const BudgetResult& r, const Eigen::Vecto
 
 // The EA-4/02 fields of a line, after those it shares with the older fields: x_i, the divisor, the type, ν_i,
 // the unit of c_i and, per coefficient, whether the contribution is below the round-off floor.
-void add_gum_fields(nlohmann::ordered_json& o, const BudgetResult& r, const SourceView& view,
+void add_gum_fields(nlohmann::ordered_json& o, const BudgetDetail& r, const SourceView& view,
                     const Eigen::VectorXd& effect) {
   o["estimate"] = view.estimate;
   o["estimate_si"] = view.estimate_si;
@@ -53,7 +53,7 @@ void add_gum_fields(nlohmann::ordered_json& o, const BudgetResult& r, const Sour
 
 // A source's line: its tolerance in SI, its effects and shares, the same as the configuration wrote it, the
 // columns of EA-4/02, and the paper's effect where computed.
-nlohmann::ordered_json source_json(const Config& cfg, const BudgetResult& r, const SourceBudget& b) {
+nlohmann::ordered_json source_json(const Config& cfg, const BudgetDetail& r, const SourceBudget& b) {
   nlohmann::ordered_json o;
   const SourceView view = source_view(cfg, b);
   o["id"] = b.id;
@@ -93,7 +93,7 @@ nlohmann::ordered_json source_json(const Config& cfg, const BudgetResult& r, con
 
 // A drive's rate noise: its density, each run mean's σ, u and share per coefficient; then the same line as a
 // source's: x_i = 0 and u(x_i) = N in ppm/rtHz, normal, c_i = u_i(y) / u(x_i).
-nlohmann::ordered_json rate_noise_json(const Config& cfg, const BudgetResult& r, const RateNoiseBudget& n) {
+nlohmann::ordered_json rate_noise_json(const Config& cfg, const BudgetDetail& r, const RateNoiseBudget& n) {
   nlohmann::ordered_json runs = nlohmann::ordered_json::object();
   for (std::size_t i = 0; i < cfg.plan.runs.size(); ++i)
     runs[cfg.plan.runs[i].name] = n.run_sd[Eigen::Index(i)] * r.display_scale.front();
@@ -116,7 +116,7 @@ nlohmann::ordered_json rate_noise_json(const Config& cfg, const BudgetResult& r,
   return o;
 }
 
-std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::ObservabilityReport& observability,
+std::string json_of(const Config& cfg, const BudgetDetail& r, const verbs::ObservabilityReport& observability,
                     const Eigen::VectorXd& known_bias) {
   nlohmann::ordered_json j;
   j["ccal_version"] = version();
@@ -171,7 +171,7 @@ std::string json_of(const Config& cfg, const BudgetResult& r, const verbs::Obser
   return j.dump(2) + "\n";
 }
 
-std::string csv_of(const Config& cfg, const BudgetResult& r, const Eigen::VectorXd& known_bias) {
+std::string csv_of(const Config& cfg, const BudgetDetail& r, const Eigen::VectorXd& known_bias) {
   const std::size_t nk = r.coefficients.size();
   std::string out = "rank,source,group,distribution,bound_si,unit_si,standard_uncertainty_si";
   for (std::size_t k = 0; k < nk; ++k)
@@ -296,9 +296,10 @@ std::string csv(const verbs::BudgetResult& r) {
       header = table.substr(0, end);
       out = "instrument," + header + "\n";
     } else if (table.compare(0, end, header) != 0) {
-      throw InputError(fmt::format("--format csv: the instruments of {} have budgets of other columns (other "
-                                   "sources or terms), which one table cannot hold; accepted: --format text or json",
-                                   r.config.source));
+      throw OptionError("format", "csv",
+                        fmt::format("is one table, and the instruments of {} have budgets of other columns (other "
+                                    "sources or terms); accepted: {} text or json",
+                                    r.config.source, OptionError::name("format")));
     }
     for (std::size_t at = end + 1; at < table.size();) {
       const std::size_t next = table.find('\n', at);

@@ -39,17 +39,17 @@ SourceView rate_noise_view(const RateNoiseBudget& n) {
   return v;
 }
 
-double sensitivity_per_unit(const ccal::BudgetResult& r, const SourceBudget& s, const SourceView& view,
+double sensitivity_per_unit(const ccal::BudgetDetail& r, const SourceBudget& s, const SourceView& view,
                             std::size_t k) {
   return s.sensitivity[Eigen::Index(k)] * r.display_scale[k] * view.unit_si;
 }
 
-double sensitivity_per_unit(const ccal::BudgetResult& r, const RateNoiseBudget& n, const SourceView& view,
+double sensitivity_per_unit(const ccal::BudgetDetail& r, const RateNoiseBudget& n, const SourceView& view,
                             std::size_t k) {
   return view.u > 0 ? n.effect[Eigen::Index(k)] * r.display_scale[k] / view.u : 0.0;
 }
 
-std::string sensitivity_unit(const ccal::BudgetResult& r, std::size_t k, const SourceView& view) {
+std::string sensitivity_unit(const ccal::BudgetDetail& r, std::size_t k, const SourceView& view) {
   return fmt::format("{} per {}", r.units[k], view.unit);
 }
 
@@ -58,15 +58,15 @@ std::string divisor_text(double divisor) {
   return square == 1 ? "1" : fmt::format("√{}", square);
 }
 
-double round_off_floor(const ccal::BudgetResult& r, std::size_t k) {
+double round_off_floor(const ccal::BudgetDetail& r, std::size_t k) {
   return kRoundOffFloor * r.standard_uncertainty[Eigen::Index(k)] * r.display_scale[k];
 }
 
-bool below_round_off_floor(const ccal::BudgetResult& r, double contribution_si, std::size_t k) {
+bool below_round_off_floor(const ccal::BudgetDetail& r, double contribution_si, std::size_t k) {
   return std::abs(contribution_si) < kRoundOffFloor * r.standard_uncertainty[Eigen::Index(k)];
 }
 
-std::vector<BudgetLine> budget_lines(const Config& cfg, const ccal::BudgetResult& r, std::size_t k) {
+std::vector<BudgetLine> budget_lines(const Config& cfg, const ccal::BudgetDetail& r, std::size_t k) {
   const auto i = Eigen::Index(k);
   std::vector<BudgetLine> lines;
   for (const SourceBudget& s : r.sources) {
@@ -91,7 +91,7 @@ std::vector<BudgetLine> budget_lines(const Config& cfg, const ccal::BudgetResult
   return lines;
 }
 
-std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t k) {
+std::vector<Contribution> contributions(const ccal::BudgetDetail& r, std::size_t k) {
   const auto i = Eigen::Index(k);
   const double variance = r.standard_uncertainty[i] * r.standard_uncertainty[i];
   const CorrelationGroups groups = correlation_groups(r.sources);
@@ -128,7 +128,7 @@ std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t
   return out;
 }
 
-std::vector<Contribution> answer_contributions(const ccal::BudgetResult& r, std::size_t k) {
+std::vector<Contribution> answer_contributions(const ccal::BudgetDetail& r, std::size_t k) {
   const std::vector<Contribution> all = contributions(r, k);
   std::vector<Contribution> out, cancelling;
   double sum = 0;
@@ -186,7 +186,7 @@ std::string csv_column(std::string_view name, std::string_view unit) {
   return word.empty() ? std::string(name) : std::string(name) + "_" + word;
 }
 
-nlohmann::ordered_json input_correlation_json(const ccal::BudgetResult& r) {
+nlohmann::ordered_json input_correlation_json(const ccal::BudgetDetail& r) {
   if (r.input_correlation.size() == 0) return nullptr;
   // The inputs' correlation matrix ([[correlations]] and the groups' r = 1), in tolerance order, and the
   // part of each coefficient's u² its cross terms make (negative where they cancel).

@@ -35,20 +35,20 @@ SourceView source_view(const Config& cfg, const SourceBudget& s);
 SourceView rate_noise_view(const RateNoiseBudget& n);
 
 // c_i of coefficient k (display unit of the coefficient per `view.unit`): u_i(y) = c_i u(x_i).
-double sensitivity_per_unit(const ccal::BudgetResult& r, const SourceBudget& s, const SourceView& view,
+double sensitivity_per_unit(const ccal::BudgetDetail& r, const SourceBudget& s, const SourceView& view,
                             std::size_t k);
-double sensitivity_per_unit(const ccal::BudgetResult& r, const RateNoiseBudget& n, const SourceView& view,
+double sensitivity_per_unit(const ccal::BudgetDetail& r, const RateNoiseBudget& n, const SourceView& view,
                             std::size_t k);
 // The unit of c_i: "deg/s/g^3 per arcsec".
-std::string sensitivity_unit(const ccal::BudgetResult& r, std::size_t k, const SourceView& view);
+std::string sensitivity_unit(const ccal::BudgetDetail& r, std::size_t k, const SourceView& view);
 
 // The divisor as a table prints it: "1", "√2", "√3", "√6" (its square is whole for every distribution).
 std::string divisor_text(double divisor);
 
 // The round-off floor of coefficient k in its display unit (kRoundOffFloor u_c, uncertainty/budget.hpp), and
 // whether a contribution (SI, signed) is below it: a table shows such a contribution, its c_i and share as 0.
-double round_off_floor(const ccal::BudgetResult& r, std::size_t k);
-bool below_round_off_floor(const ccal::BudgetResult& r, double contribution_si, std::size_t k);
+double round_off_floor(const ccal::BudgetDetail& r, std::size_t k);
+bool below_round_off_floor(const ccal::BudgetDetail& r, double contribution_si, std::size_t k);
 
 // One line of coefficient k's budget table: a source of the budget, or a drive's rate noise (no sign).
 struct BudgetLine {
@@ -62,7 +62,7 @@ struct BudgetLine {
   bool round_off = false;   // |u_i(y)| below the floor
 };
 // Every source and rate noise, by share of coefficient k's variance, largest first.
-std::vector<BudgetLine> budget_lines(const Config& cfg, const ccal::BudgetResult& r, std::size_t k);
+std::vector<BudgetLine> budget_lines(const Config& cfg, const ccal::BudgetDetail& r, std::size_t k);
 
 // The label of the cross terms' line (Σ_{s≠t} of correlated sources' effects) in a table of shares of u²: the
 // budget's answer and the allocation's table of tolerances.
@@ -74,10 +74,10 @@ struct Contribution {
   std::string label;  // the source id, or "<group> (id, id…)"
   double share = 0;   // of u_k²
 };
-std::vector<Contribution> contributions(const ccal::BudgetResult& r, std::size_t k);
+std::vector<Contribution> contributions(const ccal::BudgetDetail& r, std::size_t k);
 // "The answer": the largest contributions that make 90 % of u_k², the cross terms of partly correlated
 // sources that cancel (a negative share) counted first and listed last when they reach 1 % of u_k².
-std::vector<Contribution> answer_contributions(const ccal::BudgetResult& r, std::size_t k);
+std::vector<Contribution> answer_contributions(const ccal::BudgetDetail& r, std::size_t k);
 
 // "id (group)", or the id alone.
 std::string source_label(const std::string& id, const std::string& group);
@@ -93,6 +93,6 @@ std::string csv_column(std::string_view name, std::string_view unit);
 // The inputs' correlation matrix ([[correlations]] and the groups' r = 1, sources in tolerance order) and the
 // share of each coefficient's u² its cross terms make, as the budget's and the Monte Carlo's JSON carry it;
 // null when the budget has none (no [[correlations]]).
-nlohmann::ordered_json input_correlation_json(const ccal::BudgetResult& r);
+nlohmann::ordered_json input_correlation_json(const ccal::BudgetDetail& r);
 
 }  // namespace ccal::render::budget_parts

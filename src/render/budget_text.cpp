@@ -10,7 +10,7 @@
 
 #include "budget_parts.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/render/budget.hpp"
 #include "ccal/render/table.hpp"
 #include "parts.hpp"
@@ -22,7 +22,7 @@ using namespace budget_parts;
 
 std::string percent(double share) { return fmt::format("{:.1f} %", 100 * share); }
 
-std::string heading(const Config& cfg, const ccal::BudgetResult& r, std::size_t width) {
+std::string heading(const Config& cfg, const ccal::BudgetDetail& r, std::size_t width) {
   std::vector<std::string> fixed;
   for (const auto& [id, v] : cfg.identification.fixed_terms) fixed.push_back(id);
   std::string out = fmt::format("ccal budget: {}\n", cfg.source);
@@ -62,7 +62,7 @@ std::string wrap_items(std::string line, const std::vector<std::string>& items, 
 }
 
 // "K3: U = 0.04702 deg/s/g^3; ripple1_c1 54.2 %, ripple1_s1 43.8 %"
-std::string answer(const ccal::BudgetResult& r, std::size_t width) {
+std::string answer(const ccal::BudgetDetail& r, std::size_t width) {
   std::string out = "The answer (the sources that make 90 % of each u²):\n";
   for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
     const auto i = Eigen::Index(k);
@@ -88,7 +88,7 @@ std::string with_unit(double value, const std::string& unit) {
 // u_i(y), share, within 100 columns; a type column would leave the names 4 characters there, so a rate
 // noise's name says "Type A" (every other line is a tolerance, Type B). --wide: every column of EA-4/02
 // (type, x_i, ν_i, the unit of c_i) and the exact-vs-paper flag.
-std::vector<std::string> cells_of(const ccal::BudgetResult& r, std::size_t k, const BudgetLine& l, bool wide,
+std::vector<std::string> cells_of(const ccal::BudgetDetail& r, std::size_t k, const BudgetLine& l, bool wide,
                                   bool paper) {
   const std::string contribution = l.round_off   ? "0"
                                    : l.tolerance ? number(l.contribution, 4)
@@ -127,7 +127,7 @@ std::vector<std::string> cells_of(const ccal::BudgetResult& r, std::size_t k, co
 std::string coefficient_table(const verbs::BudgetResult& v, std::size_t k, std::size_t top,
                               const BudgetTextOptions& o) {
   const Config& cfg = v.config;
-  const ccal::BudgetResult& r = v.budget;
+  const ccal::BudgetDetail& r = v.budget;
   const auto i = Eigen::Index(k);
   const double u = r.standard_uncertainty[i] * r.display_scale[k];
   const bool paper =
@@ -190,7 +190,7 @@ std::string quoted_config(const Config& cfg) {
 
 // What to do next, with the coefficient of the largest U relative to its configured value as the example
 // (U itself where that value is 0; coefficients of different units are compared only through the ratio).
-std::string next_steps(const Config& cfg, const ccal::BudgetResult& r) {
+std::string next_steps(const Config& cfg, const ccal::BudgetDetail& r) {
   const auto relative = [&](std::size_t k) {
     const double U = r.expanded_uncertainty[Eigen::Index(k)];
     const double value = std::abs(cfg.instrument.coefficient(r.coefficients[k]).value_or(0.0));
@@ -231,7 +231,7 @@ std::string text(const verbs::BudgetResult& v, const BudgetTextOptions& o) {
     return out;
   }
   const Config& cfg = v.config;
-  const ccal::BudgetResult& r = v.budget;
+  const ccal::BudgetDetail& r = v.budget;
   const std::size_t nk = std::max<std::size_t>(1, r.coefficients.size());
   // A screen: the heading (4 lines), the answer (nk + 2), per coefficient its title, header, rules, the
   // rest, u, U and the bias (8) and a blank line, the next steps (3).
@@ -276,7 +276,7 @@ namespace {
 
 // --wide: the paths of each source, the compensation choices, the exact-vs-paper count, observability.
 std::string wide_sections(const verbs::BudgetResult& v) {
-  const ccal::BudgetResult& r = v.budget;
+  const ccal::BudgetDetail& r = v.budget;
   const auto nk = r.coefficients.size();
   std::string out;
   std::vector<std::string> rate_header = {"source", "path"};

@@ -3,7 +3,7 @@
 // equation with its free and fixed terms and the unit g, the method, the traceability, the signatures; then
 // Annex A (the uncertainty budget) and Annex B (the runs), and the end mark. Printed on A4 with the number,
 // the revision and "page x of y" at the foot of every page; its PDF metadata from the <head>
-// (io/pdf_info.hpp).
+// (render/pdf_info.hpp).
 #include "certificate_page.hpp"
 
 #include <fmt/format.h>

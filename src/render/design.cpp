@@ -20,7 +20,7 @@ namespace {
 
 // U of coefficient k of a plan if run as written, in the budget's display unit: its expected statement's (by the
 // budget's coefficient name), else the full budget's (a stated coverage factor).
-double expected_u(const std::optional<verbs::CalibrationStatement>& st, const ccal::BudgetResult& b, std::size_t k) {
+double expected_u(const std::optional<verbs::CalibrationStatement>& st, const ccal::BudgetDetail& b, std::size_t k) {
   if (st)
     for (const CoefficientStatement& c : st->coefficients)
       if (c.input.coefficient == b.coefficients[k]) return c.expanded;
@@ -51,8 +51,8 @@ std::string plan_table(const Config& config) {
 }
 
 std::string comparison_table(const verbs::DesignResult& r) {
-  const ccal::BudgetResult& b0 = r.before.budget;
-  const ccal::BudgetResult& b1 = r.after.budget;
+  const ccal::BudgetDetail& b0 = r.before.budget;
+  const ccal::BudgetDetail& b1 = r.after.budget;
   Table t({"coefficient", "unit", "u configured", "u designed", "U configured", "U designed", "ratio",
            "U tol. configured", "U tol. designed", "ratio"});
   for (std::size_t k = 0; k < b0.coefficients.size(); ++k) {
@@ -71,10 +71,10 @@ std::string comparison_table(const verbs::DesignResult& r) {
 
 // The leading sources of a coefficient in the configured plan and in the designed one.
 std::string leading_sources(const verbs::DesignResult& r, std::size_t k) {
-  const ccal::BudgetResult& b0 = r.before.budget;
-  const ccal::BudgetResult& b1 = r.after.budget;
+  const ccal::BudgetDetail& b0 = r.before.budget;
+  const ccal::BudgetDetail& b1 = r.after.budget;
   const auto kk = Eigen::Index(k);
-  auto top = [&](const ccal::BudgetResult& b) {
+  auto top = [&](const ccal::BudgetDetail& b) {
     std::vector<std::size_t> order(b.sources.size());
     for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
@@ -97,7 +97,7 @@ std::string leading_sources(const verbs::DesignResult& r, std::size_t k) {
 
 // The designed plan's U if run as written, per coefficient, with its coverage.
 nlohmann::ordered_json expected_json(const verbs::DesignResult& r) {
-  const ccal::BudgetResult& b = r.after.budget;
+  const ccal::BudgetDetail& b = r.after.budget;
   nlohmann::ordered_json expected = nlohmann::ordered_json::object();
   for (std::size_t k = 0; k < b.coefficients.size(); ++k)
     expected[b.coefficients[k]] = {{"unit", b.units[k]}, {"expanded", expected_u(r.expected_after, b, k)}};
@@ -137,8 +137,8 @@ nlohmann::ordered_json run_sheet_json(const verbs::DesignResult& r) {
 
 // The designed plan's U if run as the sheet says (the plan as rounded), beside the configured plan's.
 std::string expected_line(const verbs::DesignResult& r) {
-  const ccal::BudgetResult& b0 = r.before.budget;
-  const ccal::BudgetResult& b1 = r.after.budget;
+  const ccal::BudgetDetail& b0 = r.before.budget;
+  const ccal::BudgetDetail& b1 = r.after.budget;
   std::vector<std::string> designed, configured;
   for (std::size_t k = 0; k < b1.coefficients.size(); ++k) {
     designed.push_back(
@@ -299,8 +299,8 @@ nlohmann::ordered_json json_object(const verbs::DesignResult& r) {
   j["designed_plan"] = runs;
   j["run_sheet"] = run_sheet_json(r);
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
-  const ccal::BudgetResult& b0 = r.before.budget;
-  const ccal::BudgetResult& b1 = r.after.budget;
+  const ccal::BudgetDetail& b0 = r.before.budget;
+  const ccal::BudgetDetail& b1 = r.after.budget;
   for (std::size_t k = 0; k < b0.coefficients.size(); ++k) {
     const auto kk = Eigen::Index(k);
     const double f = b0.display_scale[k];

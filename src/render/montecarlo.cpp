@@ -17,7 +17,7 @@ std::string interval(double low, double high) {
   return fmt::format("[{}, {}]", number(low, 5), number(high, 5));
 }
 
-double per_second(const MonteCarloResult& r) { return r.seconds > 0 ? double(r.trials) / r.seconds : 0.0; }
+double per_second(const MonteCarloDetail& r) { return r.seconds > 0 ? double(r.trials) / r.seconds : 0.0; }
 
 std::string fixed_terms(const Config& cfg) {
   std::string s;
@@ -27,7 +27,7 @@ std::string fixed_terms(const Config& cfg) {
 
 // Per coefficient, for one that failed the validation: does the sampling error of the interval ends explain
 // it, and what to run; empty for a validated one.
-std::vector<std::string> advice_of(const BudgetResult& b, const MonteCarloResult& r) {
+std::vector<std::string> advice_of(const BudgetDetail& b, const MonteCarloDetail& r) {
   std::vector<std::string> out;
   for (std::size_t k = 0; k < r.outputs.size(); ++k) {
     const OutputSummary& s = r.outputs[k];
@@ -57,14 +57,14 @@ std::vector<std::string> advice_of(const BudgetResult& b, const MonteCarloResult
   return out;
 }
 
-std::string validation_advice(const BudgetResult& b, const MonteCarloResult& r) {
+std::string validation_advice(const BudgetDetail& b, const MonteCarloDetail& r) {
   std::string out;
   for (const std::string& line : advice_of(b, r))
     if (!line.empty()) out += line + "\n";
   return out;
 }
 
-std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloResult& r) {
+std::string text_of(const Config& cfg, const BudgetDetail& b, const MonteCarloDetail& r) {
   const auto n = r.outputs.size();
   const std::string pct = fmt::format("{:g} %", 100 * r.coverage_probability);
   std::string out = fmt::format(
@@ -138,7 +138,7 @@ std::string text_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
   return out;
 }
 
-std::string json_of(const Config& cfg, const BudgetResult& b, const MonteCarloResult& r) {
+std::string json_of(const Config& cfg, const BudgetDetail& b, const MonteCarloDetail& r) {
   nlohmann::ordered_json j;
   j["command"] = "montecarlo";
   j["ccal_version"] = version();
@@ -211,7 +211,7 @@ std::string json_of(const Config& cfg, const BudgetResult& b, const MonteCarloRe
   return j.dump(2) + "\n";
 }
 
-std::string csv_of(const BudgetResult& b, const MonteCarloResult& r) {
+std::string csv_of(const BudgetDetail& b, const MonteCarloDetail& r) {
   std::string out =
       "coefficient,unit,mean,std_dev,low_symmetric,high_symmetric,low_shortest,high_shortest,estimate,"
       "lpu_std,lpu_expanded,d_low,d_high,validation_delta,validated\n";

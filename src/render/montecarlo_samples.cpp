@@ -14,7 +14,7 @@
 namespace ccal::render {
 namespace {
 
-bool write_csv(const Eigen::MatrixXd& samples, const BudgetResult& b, const ChunkSink& sink) {
+bool write_csv(const Eigen::MatrixXd& samples, const BudgetDetail& b, const ChunkSink& sink) {
   std::string block;
   for (std::size_t k = 0; k < b.coefficients.size(); ++k) {
     if (k > 0) block += ',';
@@ -57,7 +57,7 @@ void append_little_endian(std::string& out, double x) {
   for (int k = 0; k < 8; ++k, bits >>= 8) out += char(bits & 0xff);
 }
 
-bool write_npy(const Eigen::MatrixXd& samples, const BudgetResult& b, const ChunkSink& sink) {
+bool write_npy(const Eigen::MatrixXd& samples, const BudgetDetail& b, const ChunkSink& sink) {
   if (!sink(npy_header(samples.rows(), samples.cols()))) return false;
   std::string block;
   for (Eigen::Index i = 0; i < samples.rows(); ++i) {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "ccal/io/history_store.hpp"
+#include "ccal/history/history_store.hpp"
 #include "ccal/uncertainty/history_trend.hpp"
 #include "report_html.hpp"
 

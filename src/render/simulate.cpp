@@ -152,8 +152,10 @@ std::string json(const verbs::SimulateResult& r) {
 
 std::string csv(const verbs::SimulateResult& r) {
   if (!r.instruments.empty())
-    throw InputError("--format csv: a test of several instruments has one observations table per instrument; "
-                     "accepted: --format text or json, or --instrument ID for one of them");
+    throw OptionError("format", "csv",
+                      "is one table, and a test of several instruments has one observations table per instrument; "
+                      "accepted: " + OptionError::name("format") + " text or json, or " + OptionError::name("instrument") +
+                      " ID for one of them");
   return r.observations_csv;
 }
 

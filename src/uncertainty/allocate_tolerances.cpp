@@ -31,8 +31,8 @@ constexpr double kMinTargetFraction = 1 / kAllocationScaleLimit;
 
 // Each target against its coefficient: one per free term, positive, and not beyond a million-fold
 // tightening of every source.
-void attach_targets(const BudgetResult& b, const std::vector<AllocationTarget>& targets, double kp,
-                    AllocationResult& r) {
+void attach_targets(const BudgetDetail& b, const std::vector<AllocationTarget>& targets, double kp,
+                    AllocationDetail& r) {
   for (const AllocationTarget& t : targets) {
     const auto it = std::find(b.coefficients.begin(), b.coefficients.end(), t.coefficient);
     if (it == b.coefficients.end())
@@ -40,7 +40,7 @@ void attach_targets(const BudgetResult& b, const std::vector<AllocationTarget>& 
                                    t.coefficient, fmt::join(b.coefficients, ", ")));
     const auto k = std::size_t(it - b.coefficients.begin());
     if (r.coefficients[k].has_target)
-      throw InputError(fmt::format("two targets on {}; give one per coefficient", t.coefficient));
+      throw OptionError(t.field, t.coefficient, "has two targets; accepted: one target per coefficient");
     // Tolerances scale in proportion to the target: beyond a million-fold tightening of every source the
     // allocation is meaningless (and towards 1e-300 the variances underflow and every tolerance becomes 0);
     // beyond a million-fold loosening no tolerance can follow (max_scale) and the squares overflow (1e308).
@@ -70,7 +70,7 @@ void attach_targets(const BudgetResult& b, const std::vector<AllocationTarget>& 
 // The drives' rate noise (model.md §3.2) is no tolerance: it stays as it is, so each target leaves the
 // tolerances √(T_k² − (k_p u_noise,k)²); a target the noise alone reaches cannot be met.
 std::vector<double> tolerance_targets(double kp, const Eigen::VectorXd& noise_variance,
-                                      const AllocationResult& r) {
+                                      const AllocationDetail& r) {
   const auto nt = r.targets.size();
   std::vector<double> tolerance_target(nt);
   for (std::size_t i = 0; i < nt; ++i) {
@@ -94,8 +94,8 @@ std::vector<double> tolerance_targets(double kp, const Eigen::VectorXd& noise_va
 // o.let_others_grow, every other free coefficient that the tolerances reach, held at its configured
 // tolerance part k_p √(Σ_g c_kg²) (so that U_k(λ) ≤ U_k(1): the rate noise stays as it is). Each source's
 // least scale is floor/bound. Marks the held coefficients.
-void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vector<double>& tolerance_target,
-                        double kp, const AllocateOptions& o, AllocationProblem& P, AllocationResult& r) {
+void allocation_problem(const Config& cfg, const BudgetDetail& b, const std::vector<double>& tolerance_target,
+                        double kp, const AllocateOptions& o, AllocationProblem& P, AllocationDetail& r) {
   const auto ns = b.sources.size();
   P = AllocationProblem{};
   if (!cfg.correlations.empty()) P.correlation = input_correlation(cfg.tolerances, cfg.correlations).matrix;
@@ -145,7 +145,7 @@ void allocation_problem(const Config& cfg, const BudgetResult& b, const std::vec
 // The targets that the floors make impossible, each with the least U they allow (tolerances at their
 // floors, the others at 0, the rate noise as it is) and its factor above the target.
 void refuse_unreachable(const AllocationSolution& sol, const Eigen::VectorXd& noise_variance, double kp,
-                        const AllocationResult& r) {
+                        const AllocationDetail& r) {
   std::vector<std::string> lines;
   for (std::size_t i = 0; i < r.targets.size(); ++i) {
     if (!sol.unreachable[i]) continue;
@@ -165,9 +165,9 @@ void refuse_unreachable(const AllocationSolution& sol, const Eigen::VectorXd& no
 
 // Every free coefficient's uncertainty at the allocated tolerances (groups added with their signs); returns
 // the allocated u per coefficient and fills the coefficients' expanded uncertainties and prices.
-Eigen::VectorXd report_coefficients(const BudgetResult& b, const AllocationProblem& P,
+Eigen::VectorXd report_coefficients(const BudgetDetail& b, const AllocationProblem& P,
                                     const AllocationSolution& sol, const Eigen::VectorXd& noise_variance,
-                                    double kp, Eigen::MatrixXd& J, AllocationResult& r) {
+                                    double kp, Eigen::MatrixXd& J, AllocationDetail& r) {
   const auto nk = b.coefficients.size();
   const auto ns = b.sources.size();
   const auto nt = r.targets.size();
@@ -209,8 +209,8 @@ Eigen::VectorXd report_coefficients(const BudgetResult& b, const AllocationProbl
   return u_alloc;
 }
 
-void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSolution& sol,
-                    const Eigen::MatrixXd& J, const Eigen::VectorXd& u_alloc, AllocationResult& r) {
+void report_sources(const Config& cfg, const BudgetDetail& b, const AllocationSolution& sol,
+                    const Eigen::MatrixXd& J, const Eigen::VectorXd& u_alloc, AllocationDetail& r) {
   const auto ns = b.sources.size();
   const auto nt = r.targets.size();
   for (std::size_t s = 0; s < ns; ++s) {
@@ -233,7 +233,7 @@ void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSo
     r.sources.push_back(std::move(a));
   }
   // The cross terms at the allocated tolerances, as the budget computes them (each effect J_ks u_s scaled by λ_s).
-  BudgetResult allocated = b;
+  BudgetDetail allocated = b;
   for (std::size_t s = 0; s < ns; ++s) allocated.sources[s].effect *= sol.scale[Eigen::Index(s)];
   const Eigen::VectorXd cross = correlation_variance(allocated);
   for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
@@ -246,7 +246,7 @@ void report_sources(const Config& cfg, const BudgetResult& b, const AllocationSo
 
 // Monte Carlo on the allocated tolerances through the nonlinear pipeline of the mode, against the targets.
 void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::VectorXd& u_alloc, double kp,
-            const AllocateOptions& o, AllocationResult& r) {
+            const AllocateOptions& o, AllocationDetail& r) {
   const auto nk = r.coefficients.size();
   const auto ns = cfg.tolerances.size();
   std::vector<Tolerance> scaled = cfg.tolerances;
@@ -254,11 +254,11 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   for (Tolerance& t : rate_noise_sources(cfg)) scaled.push_back(std::move(t));  // as it is
   CalibrationModel model;
   try {
-    model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors, o.mode);
+    model = calibration_model(cfg.experiment(), cfg.identification, scaled, cfg.centrifuge.errors, *o.mode);
   } catch (const IllPosedFit& e) {
     throw plan_cannot_identify(e);
   }
-  MonteCarloOptions mo;
+  PropagationOptions mo;
   mo.trials = o.verify_trials;
   mo.seed = o.seed;
   mo.threads = o.threads;
@@ -266,7 +266,7 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   mo.progress = o.progress;
   mo.on_progress = o.on_progress;
   if (o.on_progress) o.on_progress(0, o.verify_trials);  // may throw Cancelled: stop before the verification
-  const MonteCarloResult mc = run_monte_carlo(scaled, cfg.correlations, model.n_outputs(),
+  const MonteCarloDetail mc = run_monte_carlo(scaled, cfg.correlations, model.n_outputs(),
                                               model.output_names(), calibration_trial(model), mo, &u_alloc);
   AllocationVerification& v = r.verification;
   v.trials = mc.trials;
@@ -297,18 +297,12 @@ void verify(const Config& cfg, const AllocationSolution& sol, const Eigen::Vecto
   }
 }
 
-}  // namespace
-
-AllocationResult allocate_tolerances(const Config& cfg, const std::vector<AllocationTarget>& targets,
-                                     const AllocateOptions& o) {
+// What a value of the table's rows alone cannot say: the tolerances' costs, the verification's M against p,
+// the threads the system can start, and the targets (parsed in the free terms' display units).
+std::vector<AllocationTarget> checked_targets(const Config& cfg, const AllocateOptions& o) {
   if (cfg.tolerances.empty())
     throw InputError(cfg.source + ": [tolerances] is empty; the allocation needs at least one source");
   gaussian_copula(cfg);  // the verification's draws: a pair they cannot make is refused before any work
-  if (targets.empty()) throw OptionError("targets", "", "none given; accepted: at least one, e.g. K3=1e-6");
-  const double kp = normal_coverage_factor(o.coverage_probability);
-  check_option_value("max_scale", o.max_scale, option_number_text(o.max_scale), kMaxScaleRange);
-  if (o.verify_trials == 1)
-    throw OptionError("verify_trials", "1", "is too few; accepted: 0 (no verification) or 2 and more");
   if (o.verify_trials > 0) check_coverage_interval(o.verify_trials, o.coverage_probability, "verify_trials");
   for (const Tolerance& t : cfg.tolerances)
     if (!kToleranceCostRange.accepts(t.cost))
@@ -317,11 +311,27 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
                       "a relative cost weight from {}",
                       cfg.source, t.id, option_number_text(t.cost), kToleranceCostRange.text()));
   check_thread_count(o.threads, "threads");
+  std::vector<std::string> units;
+  for (const auto& id : cfg.identification.free_terms)
+    units.push_back(coefficient_unit(cfg.instrument.output_unit, id, cfg.instrument.g_symbol));
+  std::vector<AllocationTarget> targets;
+  for (const auto& t : o.targets) targets.push_back(parse_allocation_target(t, cfg.identification.free_terms, units));
+  return targets;  // at least one: the row's (a required list)
+}
+
+}  // namespace
+
+AllocationDetail allocate_tolerances(const Config& cfg, const AllocateOptions& options) {
+  check_options(options, option_table<AllocateOptions>());
+  const std::vector<AllocationTarget> targets = checked_targets(cfg, options);
+  AllocateOptions o = options;
+  o.mode = options.mode.value_or(cfg.mode);
+  const double kp = normal_coverage_factor(o.coverage_probability);
 
   BudgetOptions bo;
   bo.mode = o.mode;
   bo.compare_with_paper = false;
-  BudgetResult b;
+  BudgetDetail b;
   try {
     b = compute_budget(cfg, bo);
   } catch (const IllPosedFit& e) {
@@ -329,8 +339,8 @@ AllocationResult allocate_tolerances(const Config& cfg, const std::vector<Alloca
   }
   const auto nk = b.coefficients.size();
 
-  AllocationResult r;
-  r.mode = o.mode;
+  AllocationDetail r;
+  r.mode = *o.mode;
   r.coverage_probability = o.coverage_probability;
   r.coverage_factor = kp;
   r.max_scale = o.max_scale;

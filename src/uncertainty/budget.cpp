@@ -257,7 +257,7 @@ namespace {
 // Each tolerance's line of the budget (u(xᵢ), cᵢ, uᵢ(y) = cᵢ u(xᵢ), and its paths), and the covariance of the
 // coefficients from the correlation groups: sources of one group add their effects, groups add variances.
 void add_tolerance_sources(const Config& config, const SensitivityTable& table, const SensitivityTable* paper,
-                           BudgetResult& r) {
+                           BudgetDetail& r) {
   const auto nk = Eigen::Index(r.coefficients.size());
   const CorrelationGroups groups = correlation_groups(config.tolerances);
   Eigen::MatrixXd group_effect = Eigen::MatrixXd::Zero(nk, groups.count);
@@ -292,7 +292,7 @@ void add_tolerance_sources(const Config& config, const SensitivityTable& table, 
 // The drives' rate noise: independent per run, so H⁺ diag(σ_j²) H⁺ᵀ (model.md §3.2), added to the
 // covariance.
 void add_rate_noise(const Experiment& ex, const IdentificationSpec& spec, const Eigen::VectorXd& at,
-                    const Eigen::VectorXd& known, const BudgetOptions& options, BudgetResult& r) {
+                    const Eigen::VectorXd& known, const BudgetOptions& options, BudgetDetail& r) {
   if (!ex.rate_noise.any()) return;
   const Eigen::MatrixXd pinv =
       design_pseudo_inverse(observe<double>(ex, at, known, spec, r.mode, options.reduction), spec);
@@ -315,7 +315,7 @@ void add_rate_noise(const Experiment& ex, const IdentificationSpec& spec, const 
 }
 
 // u, U = k u and the correlation matrix from the covariance.
-void set_totals(BudgetResult& r) {
+void set_totals(BudgetDetail& r) {
   const auto nk = Eigen::Index(r.coefficients.size());
   r.standard_uncertainty = r.covariance.diagonal().cwiseSqrt();
   r.expanded_uncertainty = r.coverage.factor * r.standard_uncertainty;
@@ -329,7 +329,7 @@ void set_totals(BudgetResult& r) {
 // Exact vs paper: flagged where they differ by more than the factor (or in sign) and the larger of the two
 // matters, i.e. reaches 1e-3 of the coefficient's total standard uncertainty (a factor between two
 // negligible numbers is no finding).
-void flag_paper_disagreements(double factor, BudgetResult& r) {
+void flag_paper_disagreements(double factor, BudgetDetail& r) {
   for (SourceBudget& b : r.sources) {
     for (Eigen::Index k = 0; k < Eigen::Index(r.coefficients.size()); ++k) {
       const double x = std::abs(b.effect[k]), p = std::abs(b.paper_effect[k]);
@@ -343,7 +343,7 @@ void flag_paper_disagreements(double factor, BudgetResult& r) {
 
 // Each source's and each noise's share of every coefficient's variance, and the sources ranked by their
 // largest share (ties in tolerance order).
-void rank_by_share(BudgetResult& r) {
+void rank_by_share(BudgetDetail& r) {
   const auto nk = Eigen::Index(r.coefficients.size());
   std::vector<double> largest(r.sources.size(), 0.0);
   for (std::size_t s = 0; s < r.sources.size(); ++s) {
@@ -369,13 +369,13 @@ void rank_by_share(BudgetResult& r) {
 
 }  // namespace
 
-Eigen::MatrixXd independent_effects(const BudgetResult& b) {
+Eigen::MatrixXd independent_effects(const BudgetDetail& b) {
   Eigen::MatrixXd effects(Eigen::Index(b.coefficients.size()), Eigen::Index(b.sources.size()));
   for (std::size_t s = 0; s < b.sources.size(); ++s) effects.col(Eigen::Index(s)) = b.sources[s].effect;
   return independent_effects(b, effects);
 }
 
-Eigen::MatrixXd independent_effects(const BudgetResult& b, const Eigen::MatrixXd& effects) {
+Eigen::MatrixXd independent_effects(const BudgetDetail& b, const Eigen::MatrixXd& effects) {
   if (b.input_factor.size() > 0) return effects * b.input_factor;
   const CorrelationGroups groups = correlation_groups(b.sources);
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(effects.rows(), groups.count);
@@ -383,7 +383,7 @@ Eigen::MatrixXd independent_effects(const BudgetResult& b, const Eigen::MatrixXd
   return g;
 }
 
-Eigen::VectorXd correlation_variance(const BudgetResult& b) {
+Eigen::VectorXd correlation_variance(const BudgetDetail& b) {
   Eigen::VectorXd out = independent_effects(b).rowwise().squaredNorm();
   for (const SourceBudget& s : b.sources) out -= s.effect.cwiseAbs2();
   return out;
@@ -398,7 +398,7 @@ constexpr OptionSpec<BudgetOptions> kBudgetRows[] = {
         "Kinematics: exact (full chain) or paper (Wang & Ren first-order rules); "
         "default: the configuration's [identification] mode"),
     rows::coverage_probability(&BudgetOptions::coverage_probability,
-                               "Coverage probability p of the expanded uncertainty U = k u, in [0.5, 1): k = "
+                               "Coverage probability p of the expanded uncertainty U = k u, in {range}: k = "
                                "1.96 for 0.95, the normal LPU total's"),
     rows::coverage_factor(&BudgetOptions::coverage_factor),
     {"derivatives", enum_member<&BudgetOptions::derivatives>(kDerivativeNames), "METHOD",
@@ -410,7 +410,7 @@ constexpr OptionSpec<BudgetOptions> kBudgetRows[] = {
 
 OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>) { return kBudgetRows; }
 
-BudgetResult compute_budget(const Config& config, const BudgetOptions& options) {
+BudgetDetail compute_budget(const Config& config, const BudgetOptions& options) {
   check_options(options, option_table<BudgetOptions>());
   rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
   const ModelMode mode = options.mode.value_or(config.mode);
@@ -419,7 +419,7 @@ BudgetResult compute_budget(const Config& config, const BudgetOptions& options) 
   const Eigen::VectorXd& at = config.centrifuge.errors;
   const Eigen::VectorXd known = spec.compensate ? at : Eigen::VectorXd::Zero(at.size());
 
-  BudgetResult r;
+  BudgetDetail r;
   std::vector<int> parameters;
   for (const Tolerance& t : config.tolerances) parameters.push_back(t.parameter);
   const SensitivityTable table =

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "ccal/core/errors.hpp"
+#include "ccal/core/options.hpp"
 #include "ccal/uncertainty/gaussian_copula.hpp"
 #include "montecarlo_batch.hpp"
 #include "montecarlo_draws.hpp"
@@ -192,27 +193,18 @@ namespace {
 // The arguments of run_monte_carlo, each refused with what is accepted.
 void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
                      std::vector<std::string>& output_names, const TrialFunction& trial,
-                     const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
+                     const PropagationOptions& options, const Eigen::VectorXd* lpu_std) {
   if (n_outputs < 1) throw InputError("Monte Carlo: the model must have at least one output");
   if (output_names.empty())
     for (int o = 0; o < n_outputs; ++o) output_names.push_back(fmt::format("y{}", o + 1));
   if (int(output_names.size()) != n_outputs)
     throw InputError(
         fmt::format("Monte Carlo: {} output names for {} outputs", output_names.size(), n_outputs));
-  if (!(options.coverage_probability > 0 && options.coverage_probability < 1))
-    throw InputError(fmt::format("Monte Carlo: the coverage probability must be in (0, 1), not {}",
-                                 options.coverage_probability));
-  if (options.digits < 0 || options.digits > 15)
-    throw InputError(
-        fmt::format("Monte Carlo: significant digits must be 0 (fixed M) or 1…15, not {}", options.digits));
-  check_thread_count(options.threads, "threads");
+  check_propagation_options(options);  // the rows' ranges, the threads, the coverage interval's ends
   if (lpu_std && lpu_std->size() != n_outputs)
     throw InputError(
         fmt::format("Monte Carlo: {} LPU uncertainties for {} outputs", lpu_std->size(), n_outputs));
   if (!trial) throw InputError("Monte Carlo: no trial function");
-  if (options.histogram_bins < 1 || options.histogram_bins > 10000)
-    throw InputError(
-        fmt::format("Monte Carlo: histogram bins must be 1…10000, not {}", options.histogram_bins));
   check_source_bounds(sources);
   if (const Eigen::MatrixXd* earlier = options.earlier_samples) {
     const std::uint64_t M = options.trials.value_or(kDefaultMonteCarloTrials);
@@ -224,7 +216,7 @@ void check_arguments(const std::vector<Tolerance>& sources, int n_outputs,
   }
 }
 
-// The earlier run's values of its trials (MonteCarloOptions::earlier_samples) taken: the trial to start at.
+// The earlier run's values of its trials (PropagationOptions::earlier_samples) taken: the trial to start at.
 std::uint64_t take_earlier(const Eigen::MatrixXd* earlier, std::vector<std::vector<double>>& samples,
                            Progress& progress) {
   if (!earlier || earlier->rows() == 0) return 0;
@@ -279,7 +271,7 @@ void record_stage(const std::vector<std::vector<double>>& samples, std::uint64_t
 
 // f)–i): the spreads of the stage averages against δ of u(y) from all h·M values.
 bool stages_stable(const std::vector<StageValues>& stage, std::uint64_t block, int n_dig,
-                   MonteCarloResult& result) {
+                   MonteCarloDetail& result) {
   bool stable = true;
   for (std::size_t o = 0; o < stage.size(); ++o) {
     OutputSummary& s = result.outputs[o];
@@ -295,7 +287,7 @@ bool stages_stable(const std::vector<StageValues>& stage, std::uint64_t block, i
 
 // Means, covariance and correlation of the outputs from all M values, each in a fixed order.
 std::vector<double> sample_moments(const std::vector<std::vector<double>>& samples, std::uint64_t M,
-                                   int threads, MonteCarloResult& result) {
+                                   int threads, MonteCarloDetail& result) {
   const std::size_t n_out = samples.size();
   const auto n_outputs = Eigen::Index(n_out);
   std::vector<double> means(n_out);
@@ -324,7 +316,7 @@ std::vector<double> sample_moments(const std::vector<std::vector<double>>& sampl
 void summarise_outputs(std::vector<std::vector<double>>& samples, const std::vector<double>& means,
                        const Eigen::VectorXd& estimate, const std::vector<std::string>& output_names,
                        const Eigen::VectorXd* lpu_std, std::uint64_t q, double k_p, int n_dig,
-                       int histogram_bins, int threads, MonteCarloResult& result) {
+                       int histogram_bins, int threads, MonteCarloDetail& result) {
   const std::size_t n_out = samples.size();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_out > 1)
   for (std::int64_t oi = 0; oi < std::int64_t(n_out); ++oi) {
@@ -362,8 +354,8 @@ void summarise_outputs(std::vector<std::vector<double>>& samples, const std::vec
 
 // What a report needs to say about how the numbers were obtained.
 void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const GaussianCopula* copula,
-              const MonteCarloOptions& options, std::uint64_t block, std::uint64_t J, int n_dig, double k_p,
-              bool has_lpu, int n_outputs, MonteCarloResult& result) {
+              const PropagationOptions& options, std::uint64_t block, std::uint64_t J, int n_dig, double k_p,
+              bool has_lpu, int n_outputs, MonteCarloDetail& result) {
   const std::uint64_t M = result.trials, q = result.interval_points;
   const double p = result.coverage_probability;
   const bool adaptive = result.adaptive, converged = result.converged;
@@ -411,10 +403,10 @@ void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const
 
 }  // namespace
 
-MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
+MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
                                  const std::vector<Correlation>& correlations, int n_outputs,
                                  std::vector<std::string> output_names, const TrialFunction& trial,
-                                 const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std) {
+                                 const PropagationOptions& options, const Eigen::VectorXd* lpu_std) {
   const auto start = Clock::now();
   check_arguments(sources, n_outputs, output_names, trial, options, lpu_std);
 
@@ -426,13 +418,11 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
   const std::uint64_t block =
       adaptive ? std::max({options.trials.value_or(kDefaultMonteCarloStage), J, kDefaultMonteCarloStage})
                : options.trials.value_or(kDefaultMonteCarloTrials);
-  if (block < 2) throw InputError("Monte Carlo: at least 2 trials are needed");
-  check_coverage_interval(block, p);
   if (adaptive && options.max_trials < 2 * block)
-    throw InputError(
-        fmt::format("Monte Carlo: max_trials = {} leaves fewer than the 2 stages of {} trials the "
-                    "adaptive procedure needs",
-                    options.max_trials, block));
+    throw OptionError("max_trials", std::to_string(options.max_trials),
+                      fmt::format("leaves fewer than the 2 stages of {} trials the adaptive procedure needs; "
+                                  "accepted: at least {} (or fewer trials a stage)",
+                                  block, 2 * block));
 
   const SlotPlan plan = plan_slots(sources);
   std::optional<GaussianCopula> copula;
@@ -449,7 +439,7 @@ MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
                       threads, samples, progress};
   const std::uint64_t q_block = interval_points(block, p);
 
-  MonteCarloResult result;
+  MonteCarloDetail result;
   result.adaptive = adaptive;
   result.seed = options.seed;
   result.threads = threads;

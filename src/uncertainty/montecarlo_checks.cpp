@@ -13,6 +13,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/uncertainty/option_rows.hpp"
 #include "sample_statistics.hpp"
 
 namespace ccal {
@@ -64,16 +65,23 @@ void check_source_bounds(const std::vector<Tolerance>& sources) {
 }
 
 void check_thread_count(int threads, const char* what) {
-  if (threads < 0 || threads > kMaxThreads)
-    throw OptionError(what, std::to_string(threads),
-                      fmt::format("is out of range; accepted: 0 (the OpenMP default) or 1 to {}", kMaxThreads));
+  // The threads row's range (option_rows.hpp), for a caller whose table has no threads row.
+  check_option_value(what, double(threads), std::to_string(threads), rows::kThreads);
   // A team of `threads` takes the calling thread and threads − 1 others; threads the process already has
   // (an idle team of an earlier run among them) are counted as available.
+  // A count once shown startable is not probed again in this process: a verb checks before its work starts,
+  // and each run of the engine after it (the statement's check runs it up to four times) checks again.
+  static std::atomic<int> shown_startable{1};
+  if (threads <= shown_startable.load()) return;
   const int present = threads_of_process();
   const int needed = threads - present;
-  if (needed <= 0) return;
-  const int started = startable_threads(needed);
-  if (started == needed) return;
+  int started = 0;
+  if (needed <= 0 || (started = startable_threads(needed)) == needed) {
+    int known = shown_startable.load();
+    while (known < threads && !shown_startable.compare_exchange_weak(known, threads)) {
+    }
+    return;
+  }
   // An OptionError naming the field, so that each front end words it with its own name of the option.
   throw OptionError(what, std::to_string(threads),
                     fmt::format("threads cannot be started here: the system started only {} more besides the {} "

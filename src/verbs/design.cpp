@@ -9,7 +9,7 @@
 
 #include "../uncertainty/progress_bar.hpp"
 #include "ccal/core/errors.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/uncertainty/allocate.hpp"
 #include "design_mechanism.hpp"
 
@@ -35,14 +35,13 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
     {"seed", &DesignOptions::seed, "S", "Seed of the random starts; default: [design] seed"},
     rows::coverage_probability(&DesignOptions::coverage_probability,
                                "Coverage probability p of the expanded uncertainties (the targets, the "
-                               "budgets and the verification), in [0.5, 1)"),
+                               "budgets and the verification), in {range}"),
     rows::coverage_factor(&DesignOptions::coverage_factor),
     rows::threads(&DesignOptions::threads, "Threads (0: the OpenMP default)"),
     rows::verify_trials(&DesignOptions::verify_trials,
                         "Monte Carlo trials checking the designed plan's budget (0: none)"),
     {"tradeoff", &DesignOptions::tradeoff, "F,...",
-     "Factors of the total test time for a trade-off curve (total time against U), e.g. --tradeoff "
-     "0.5,0.75,1",
+     "Factors of the total test time for a trade-off curve (total time against U), e.g. 0.5,0.75,1",
      OptionRange::between(0, 10).open_low().e_g("0.5,0.75,1")},
     {"fresh_candidates", &DesignOptions::fresh_candidates, "",
      "Compute the candidate runs' rows anew instead of reading them from the cache ($XDG_CACHE_HOME/ccal, "
@@ -51,7 +50,7 @@ constexpr OptionSpec<DesignOptions> kDesignRows[] = {
 
 // The objective's weights and references (references of the configured plan filled in later).
 std::vector<DesignTarget> design_targets(const Config& config, const DesignOptions& o,
-                                         const ccal::BudgetResult& before) {
+                                         const ccal::BudgetDetail& before) {
   std::map<std::string, double> targets = config.design.targets;
   if (!o.targets.empty()) {
     targets.clear();
@@ -336,10 +335,10 @@ void finish(Prepared& p, DesignSearchResult search, const DesignOptions& options
   }
   if (options.verify_trials > 0) {
     MonteCarloOptions mo;
-    mo.trials = options.verify_trials;
-    mo.seed = options.seed.value_or(p.config.design.seed.value_or(1));
-    mo.threads = options.threads;
-    mo.coverage_probability = r.after.budget.coverage.probability;  // a stated k's normal p
+    mo.propagation.trials = options.verify_trials;
+    mo.propagation.seed = options.seed.value_or(p.config.design.seed.value_or(1));
+    mo.propagation.threads = options.threads;
+    mo.propagation.coverage_probability = r.after.budget.coverage.probability;  // a stated k's normal p
     r.verification = monte_carlo(r.designed, mo);
   }
 }

@@ -10,7 +10,7 @@
 
 namespace ccal::verbs {
 
-Eigen::VectorXd tolerance_expanded(const ccal::BudgetResult& b) {
+Eigen::VectorXd tolerance_expanded(const ccal::BudgetDetail& b) {
   return b.coverage.factor * independent_effects(b).rowwise().norm();
 }
 
@@ -37,7 +37,7 @@ double heading_imbalance(const Config& c) {
 namespace {
 
 // The sources by the size of their effect on coefficient k in budget b, largest first.
-std::vector<std::size_t> by_effect(const ccal::BudgetResult& b, Eigen::Index k) {
+std::vector<std::size_t> by_effect(const ccal::BudgetDetail& b, Eigen::Index k) {
   std::vector<std::size_t> order(b.sources.size());
   for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
@@ -50,8 +50,8 @@ std::vector<std::size_t> by_effect(const ccal::BudgetResult& b, Eigen::Index k) 
 // of the column no other free term explains (model.md §14): a column s times larger divides every leak's cost
 // by about s; what is left of the change is the leaks cancelling between runs (model.md §15.3).
 std::string coefficient_paragraph(const DesignResult& r, std::size_t k) {
-  const ccal::BudgetResult& b0 = r.before.budget;
-  const ccal::BudgetResult& b1 = r.after.budget;
+  const ccal::BudgetDetail& b0 = r.before.budget;
+  const ccal::BudgetDetail& b1 = r.after.budget;
   const auto kk = Eigen::Index(k);
   const double f = b0.display_scale[k];
   const double u0 = r.tolerance_before[kk], u1 = r.tolerance_after[kk];

@@ -14,7 +14,7 @@ namespace ccal::verbs {
 
 // U_k from the tolerances alone: k √(E R Eᵀ)_kk, the budget's independent components added in quadrature
 // (model.md §10.1), SI.
-Eigen::VectorXd tolerance_expanded(const ccal::BudgetResult& budget);
+Eigen::VectorXd tolerance_expanded(const ccal::BudgetDetail& budget);
 
 // How far the input axis's inertial headings ψ_IA = θ1(0) + φ0 of the runs at each g-level fail to balance:
 // the largest |Σ e^{iψ}| / count over the levels (0: opposite headings in pairs, 1: all alike).

@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "ccal/core/errors.hpp"
-#include "../io/history_text.hpp"
+#include "../history/history_text.hpp"
 
 namespace ccal::verbs {
 

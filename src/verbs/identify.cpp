@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -174,6 +175,10 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
   } else if (header) {
     spec.known = header->known;
   }
+  // An input column named by the user must be there, also where every term has a column of its own (an
+  // observations file's) and the fit would not read it, so that a mistyped name is not passed over.
+  if (o.input_column != IdentifyOptions{}.input_column && !table.find(o.input_column))
+    (void)table.numbers(o.input_column, "the input column named");
   return spec;
 }
 

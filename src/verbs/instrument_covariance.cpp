@@ -25,7 +25,7 @@ namespace {
 
 // The sources' correlation matrix R of a budget: 1 on the diagonal and within a group, [[correlations]] where
 // the budget holds them (input_correlation, groups included).
-Eigen::MatrixXd source_correlation(const ccal::BudgetResult& b) {
+Eigen::MatrixXd source_correlation(const ccal::BudgetDetail& b) {
   const auto n = Eigen::Index(b.sources.size());
   if (b.input_correlation.rows() == n) return b.input_correlation;
   Eigen::MatrixXd r = Eigen::MatrixXd::Identity(n, n);
@@ -38,7 +38,7 @@ Eigen::MatrixXd source_correlation(const ccal::BudgetResult& b) {
 }
 
 // E: the sources' signed effects (coefficients × sources) in the display units.
-Eigen::MatrixXd display_effects(const ccal::BudgetResult& b) {
+Eigen::MatrixXd display_effects(const ccal::BudgetDetail& b) {
   Eigen::MatrixXd e(Eigen::Index(b.coefficients.size()), Eigen::Index(b.sources.size()));
   for (std::size_t s = 0; s < b.sources.size(); ++s)
     for (std::size_t k = 0; k < b.coefficients.size(); ++k)
@@ -96,7 +96,7 @@ InstrumentCovariance instrument_covariance(const std::vector<Config>& each, Mode
   ccal::BudgetOptions bo;
   bo.mode = mode;
   bo.compare_with_paper = false;
-  std::vector<ccal::BudgetResult> budgets;
+  std::vector<ccal::BudgetDetail> budgets;
   std::vector<Eigen::MatrixXd> effects;
   Eigen::Index rows = 0;
   for (const Config& cfg : each) {
@@ -158,11 +158,11 @@ InstrumentCovariance instrument_covariance(const std::vector<Config>& each, Mode
       for (std::size_t k = 0; k < p.f.size(); ++k) outputs[row++] = -p.scale[k] * (p.f[k] - p.reference[k]);
     }
   };
-  ccal::MonteCarloOptions mo;
+  ccal::PropagationOptions mo;
   mo.trials = trials;
   mo.seed = seed;
   mo.threads = threads;
-  const ccal::MonteCarloResult mc = ccal::run_monte_carlo(joint.sources, joint.correlations, int(rows), out.names, trial, mo);
+  const ccal::MonteCarloDetail mc = ccal::run_monte_carlo(joint.sources, joint.correlations, int(rows), out.names, trial, mo);
   out.monte_carlo = mc.covariance;
   out.trials = mc.trials;
   out.seed = mc.seed;

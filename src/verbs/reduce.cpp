@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "ccal/core/errors.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/core/units.hpp"
 #include "ccal/io/observation_csv.hpp"
@@ -26,7 +26,7 @@ namespace {
 void check_readable(const std::string& name) {
   std::error_code ec;
   if (std::ifstream(name, std::ios::binary) && !std::filesystem::is_directory(name, ec)) return;
-  throw FileNotFound<CsvError>(name, 0, 0, "", "cannot read the file; check the path and permissions");
+  throw FileNotFound<CsvError>(name, 0, 0, "", unreadable_file_problem(name));
 }
 
 // A warning for each run whose encoders contradict the configured platform control.
@@ -184,23 +184,37 @@ constexpr auto kReduceRows = join_rows(
 
 OptionTable<ReduceOptions> options_of(std::type_identity<ReduceOptions>) { return kReduceRows; }
 
+namespace {
+OptionError pulse_weight_refused(std::string value, const std::string& output_unit) {
+  return OptionError(
+      "pulse_weight", std::move(value),
+      fmt::format("is not a positive weight; accepted: the integrated output per pulse, a positive "
+                  "number in {}·s or with a unit of that kind, e.g. 2.5e-5",
+                  output_unit));
+}
+}  // namespace
+
 double pulse_weight_from_text(const Config& cfg, std::string_view text) {
   const std::string& output = cfg.instrument.output_unit;
   constexpr std::string_view kName = "the pulse weight";
   const Dimension dim = parse_unit(pulse_as_rad(output)).dim * kind::time;
+  double weight = 0;
   try {
-    return parse_real_option("pulse_weight", text);  // a bare number: in the output unit × s
+    weight = parse_real_option("pulse_weight", text);  // a bare number: in the output unit × s
   } catch (const OptionError&) {
+    try {
+      weight = parse_as(pulse_as_rad(text), dim, kName) / output_unit_si(output);
+    } catch (const UnitError& e) {
+      // "the pulse weight: '1 m': unit 'm' is a length, expected an angle (accepted: rad, …, arcsec)"
+      std::string what = e.what();
+      if (what.starts_with(kName)) what.erase(0, kName.size() + 2);
+      throw OptionError("pulse_weight", "",
+                        fmt::format("{}; or a bare number in {}·s, e.g. 2.5e-5", what, output));
+    }
   }
-  try {
-    return parse_as(pulse_as_rad(text), dim, kName) / output_unit_si(output);
-  } catch (const UnitError& e) {
-    // "the pulse weight: '1 m': unit 'm' is a length, expected an angle (accepted: rad, …, arcsec)"
-    std::string what = e.what();
-    if (what.starts_with(kName)) what.erase(0, kName.size() + 2);
-    throw OptionError("pulse_weight", "",
-                      fmt::format("{}; or a bare number in {}·s, e.g. 2.5e-5", what, output));
-  }
+  // Refused here, as typed ("-2.5e-5 deg"): the check in run_log_options sees only the number.
+  if (!(std::isfinite(weight) && weight > 0)) throw pulse_weight_refused(std::string(text), output);
+  return weight;
 }
 
 RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
@@ -234,10 +248,7 @@ RunLogOptions run_log_options(const Config& cfg, const ReduceOptions& o) {
   lo.pulse_weight = cfg.instrument.quantum;
   if (o.pulse_weight) {
     if (!(std::isfinite(*o.pulse_weight) && *o.pulse_weight > 0))
-      throw OptionError("pulse_weight", option_number_text(*o.pulse_weight),
-                        fmt::format("is not a positive number; accepted: the integrated output per pulse in "
-                                    "{}·s, e.g. 2.5e-5",
-                                    cfg.instrument.output_unit));
+      throw pulse_weight_refused(option_number_text(*o.pulse_weight), cfg.instrument.output_unit);
     lo.pulse_weight = *o.pulse_weight * output_unit_si(cfg.instrument.output_unit);
   }
   return lo;

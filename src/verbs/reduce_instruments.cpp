@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "ccal/core/errors.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 
 namespace ccal::verbs {
 
@@ -62,12 +62,13 @@ std::vector<std::string> test_ids(const Config& cfg) {
 
 }  // namespace
 
-void check_single_instrument_output(const Config& cfg, std::string_view option) {
+void check_single_instrument_output(const Config& cfg, std::string_view field) {
   if (cfg.instruments.size() <= 1) return;
-  throw InputError(fmt::format("{}: {} holds {} instruments, each with a table of its own; accepted: --format json, "
-                               "which holds every instrument's observations and statement, or {} ID for one of "
-                               "them",
-                               option, cfg.source, cfg.instruments.size(), "--instrument"));
+  throw OptionError(std::string(field), "",
+                    fmt::format("{} holds {} instruments, each with a table of its own; accepted: {} json, which "
+                                "holds every instrument's observations and statement, or {} ID for one of them",
+                                cfg.source, cfg.instruments.size(), OptionError::name("format"),
+                                OptionError::name("instrument")));
 }
 
 ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {

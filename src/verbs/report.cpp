@@ -17,7 +17,7 @@
 namespace ccal::verbs {
 namespace {
 
-constexpr OptionSpec<ReportOptions> kReportRows[] = {
+constexpr auto kReportRows = join_rows(std::to_array<OptionSpec<ReportOptions>>({
     rows::mode<&ReportOptions::mode>("Kinematics: exact or paper; default: the configuration's "
                                      "[identification] mode"),
     {"run", &ReportOptions::run, "J",
@@ -31,7 +31,9 @@ constexpr OptionSpec<ReportOptions> kReportRows[] = {
     {"engineering", &ReportOptions::engineering, "",
      "The engineering report (budget, Monte Carlo, paper comparison, sensed input, provenance) instead of the "
      "calibration certificate that observations with a [certificate] table give"},
-};
+}),
+    // The Monte Carlo section's options, as `ccal montecarlo`'s (its kinematics are the report's mode).
+    lifted_rows<&ReportOptions::monte_carlo, kPropagationRows>());
 
 std::size_t highest_g_run(const TestPlan& plan) {
   std::size_t best = 0;
@@ -98,10 +100,11 @@ IdentifyResult identify_observations(const Config& config, const ReportOptions& 
     if (!observations_header(*o.observations))
       throw OptionError(
           "observations", o.observations->source,
-          fmt::format("has no '# ccal observations' line, so it is not an observations file of ccal; accepted: a "
-                      "file of `ccal simulate --observations-out` or `ccal reduce --observations-out` (a plain "
-                      "table: `ccal identify {} --terms … --statement --config CONFIG`)",
-                      o.observations->source));
+          fmt::format("has no '# ccal observations' line, so it is not an observations file of ccal; accepted: "
+                      "the observations simulate or reduce writes ({}); a plain table is identified with its "
+                      "terms and a statement by identify ({} with {})",
+                      OptionError::name("observations_out"), OptionError::name("statement"),
+                      OptionError::name("config")));
     check_observations_configuration(*o.observations, config, "observations");
     IdentifyResult r = identify(*o.observations, {});
     const TestEvidence evidence = test_evidence(observations_header(*o.observations), r.identification);
@@ -186,13 +189,12 @@ ReportResult report(const Config& config, const ReportOptions& o) {
 
 ReportSections report_sections(const ReportOptions& o) {
   ReportSections s;
-  const MonteCarloOptions& mc = o.monte_carlo;
+  const PropagationOptions& mc = o.monte_carlo;
   s.budget.mode = o.mode;
   s.budget.coverage_probability = mc.coverage_probability;
   s.budget.coverage_factor = o.coverage_factor;
-  s.monte_carlo = mc;
-  s.monte_carlo.mode = o.mode;
-  s.monte_carlo.keep_samples = false;  // the report draws the histograms of the JSON, not the values
+  s.monte_carlo = {mc, o.mode};
+  s.monte_carlo.propagation.keep_samples = false;  // the report draws the histograms of the JSON, not the values
   s.allocate = o.allocate;
   if (s.allocate && !s.allocate->mode) s.allocate->mode = o.mode;
   s.design = o.design;

@@ -20,7 +20,7 @@ bool finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
 }  // namespace
 
-void check_finite(const Config& cfg, const ccal::BudgetResult& b) {
+void check_finite(const Config& cfg, const ccal::BudgetDetail& b) {
   std::string first;
   for (const auto& s : b.sources)
     if (first.empty() &&
@@ -43,7 +43,7 @@ void check_finite(const Config& cfg, const ccal::BudgetResult& b) {
   if (!first.empty() || !b.covariance.allFinite()) refuse(cfg, "the budget", first);
 }
 
-void check_finite(const Config& cfg, const ccal::AllocationResult& r) {
+void check_finite(const Config& cfg, const ccal::AllocationDetail& r) {
   for (const auto& s : r.sources)
     if (!std::isfinite(s.allocated_bound) || !std::isfinite(s.scale) || !(s.scale > 0))
       refuse(cfg, fmt::format("the allocated tolerance of {} ({})", s.id, s.allocated_bound), s.id);

@@ -9,7 +9,7 @@
 
 namespace ccal::verbs {
 
-void check_finite(const Config& cfg, const ccal::BudgetResult& budget);
-void check_finite(const Config& cfg, const ccal::AllocationResult& allocation);
+void check_finite(const Config& cfg, const ccal::BudgetDetail& budget);
+void check_finite(const Config& cfg, const ccal::AllocationDetail& allocation);
 
 }  // namespace ccal::verbs

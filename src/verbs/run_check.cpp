@@ -34,7 +34,7 @@ std::vector<RunCheck> check_runs(const Config& cfg, const LogReduction& logs, Mo
   const Experiment ex = cfg.experiment();
   const Eigen::VectorXd& errors = cfg.centrifuge.errors;
   const Eigen::VectorXd nominal = observe<double>(ex, errors, errors, cfg.identification, mode).output / unit;
-  ccal::BudgetResult budget;  // empty: the noise alone
+  ccal::BudgetDetail budget;  // empty: the noise alone
   try {
     BudgetOptions bo;
     bo.mode = mode;

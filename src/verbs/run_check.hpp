@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
-#include "ccal/io/run_log.hpp"
+#include "ccal/intake/run_log.hpp"
 #include "ccal/setup/config.hpp"
 
 namespace ccal::verbs {

@@ -99,7 +99,7 @@ SimulateResult simulate_machine(const Config& cfg, const SimulateOptions& o, con
       s.machine_errors[p] += s.drawn[k];
   }
   // The measuring chain's errors: the machine's gravity and terms, the reading of its output (and, in its logs,
-  // the time base's clock and the encoders' readings, io/run_log_writer.hpp).
+  // the time base's clock and the encoders' readings, intake/run_log_writer.hpp).
   s.config.chain.errors = chain_errors;
   const Experiment machine = with_chain_errors(ex, chain_errors);
   const Eigen::VectorXd& known = cfg.centrifuge.errors;

@@ -10,7 +10,7 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/setup/input_description.hpp"
 #include "ccal/core/units.hpp"
-#include "ccal/io/measured_inputs.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "statement_montecarlo.hpp"
@@ -21,7 +21,7 @@ namespace {
 
 // The tolerances' effects as independent components (coefficients × m, SI; uncertainty/budget.hpp), without
 // the drives' rate noise. u_B is the norm of a row, the Type B covariance G Gᵀ (docs/model.md §10.1).
-Eigen::MatrixXd type_b_groups(const ccal::BudgetResult& b) { return independent_effects(b); }
+Eigen::MatrixXd type_b_groups(const ccal::BudgetDetail& b) { return independent_effects(b); }
 
 // The modelled output of each run, stated from the coefficients' covariance parts (see CalibrationStatement).
 void state_outputs(const Config& config, const Identification& id, const TypeAParts& a, double p,
@@ -118,7 +118,7 @@ namespace {
 
 // The Type B part's table of inputs: each tolerance's u, how it was obtained, and its effect on each
 // coefficient in the fit's units.
-std::vector<StatementSource> statement_sources(const Config& config, const ccal::BudgetResult& b,
+std::vector<StatementSource> statement_sources(const Config& config, const ccal::BudgetDetail& b,
                                                const std::vector<MeasuredInput>& measured,
                                                const std::vector<std::size_t>& budget_row,
                                                const std::vector<double>& to_fit) {
@@ -174,7 +174,7 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
   bo.mode = o.mode;
   bo.compare_with_paper = false;
   const BudgetResult budget = verbs::budget(config, bo);
-  const ccal::BudgetResult& b = budget.budget;
+  const ccal::BudgetDetail& b = budget.budget;
   const Eigen::MatrixXd groups = type_b_groups(b);
 
   CalibrationStatement st;

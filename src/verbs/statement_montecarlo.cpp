@@ -191,7 +191,7 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
 
   std::vector<std::string> names = fit.names;
   for (const CoefficientStatement& out : st.outputs) names.push_back("run " + out.input.coefficient);
-  ccal::MonteCarloOptions mo;
+  ccal::PropagationOptions mo;
   mo.seed = o.seed;
   mo.threads = o.threads;
   mo.coverage_probability = st.coverage_probability;
@@ -205,7 +205,7 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   // values of the one before (kept while another may follow) and evaluates only its new trials.
   const auto requested = std::uint64_t(o.statement_trials);
   const std::uint64_t cap = std::min(kStatementTrialsCap * requested, std::uint64_t(kMaxMonteCarloTrials));
-  ccal::MonteCarloResult mc;
+  ccal::MonteCarloDetail mc;
   Eigen::MatrixXd earlier;
   for (std::uint64_t trials = requested;;) {
     mo.trials = trials;

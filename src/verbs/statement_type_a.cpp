@@ -57,7 +57,7 @@ Eigen::VectorXd known_error_means(const Config& config, ModelMode mode, const st
 // σ_j of each row's mean (residuals' unit): white output noise N²/T, the pulse count's two ends each
 // rounded within one quantum q (a triangular error of half-width q/T: q²/(6T²)), and each drive's rate noise
 // (docs/model.md §3.2).
-Eigen::VectorXd run_noise(const Config& config, const ccal::BudgetResult& b, const std::vector<std::size_t>& rows,
+Eigen::VectorXd run_noise(const Config& config, const ccal::BudgetDetail& b, const std::vector<std::size_t>& rows,
                           const std::vector<double>& durations, double unit_si) {
   const InstrumentModel& ins = config.instrument;
   Eigen::VectorXd sd(Eigen::Index(rows.size()));
@@ -72,7 +72,7 @@ Eigen::VectorXd run_noise(const Config& config, const ccal::BudgetResult& b, con
 
 // The Type B inputs' effects on each row's mean as independent components (rows × components, residuals'
 // unit): the budget's output Jacobian of the plan's runs at the configured errors, times each input's u.
-Eigen::MatrixXd run_effects(const Config& config, const ccal::BudgetResult& b, const std::vector<std::size_t>& rows,
+Eigen::MatrixXd run_effects(const Config& config, const ccal::BudgetDetail& b, const std::vector<std::size_t>& rows,
                             double unit_si) {
   if (b.sources.empty()) return Eigen::MatrixXd::Zero(Eigen::Index(rows.size()), 0);
   std::vector<int> parameters;
@@ -94,7 +94,7 @@ double type_a_dof(double known_variance, double estimated_variance, double dof) 
   return dof * total * total / (estimated_variance * estimated_variance);
 }
 
-TypeAParts evaluate_type_a(const Config& config, const Identification& id, const ccal::BudgetResult& b,
+TypeAParts evaluate_type_a(const Config& config, const Identification& id, const ccal::BudgetDetail& b,
                            const std::vector<double>& durations) {
   const FitResult& fit = id.fit;
   TypeAParts parts;

@@ -24,17 +24,17 @@ struct TypeAParts {
 
 // budget: the statement's (measured inputs credited), for the drives' rate noise per run and the Type B
 // inputs' standard uncertainties and groups; durations: T per row of the identification (empty: the plan's).
-TypeAParts evaluate_type_a(const Config& config, const Identification& id, const ccal::BudgetResult& budget,
+TypeAParts evaluate_type_a(const Config& config, const Identification& id, const ccal::BudgetDetail& budget,
                            const std::vector<double>& durations);
 
 // σ_j of the mean of each plan run rows[j] (in units of unit_si SI): the instrument's white output noise and
 // pulse quantum over the run's duration (durations[j], or the plan's when durations does not match rows) and
 // each drive's rate noise of the budget.
-Eigen::VectorXd run_noise(const Config& config, const ccal::BudgetResult& budget, const std::vector<std::size_t>& rows,
+Eigen::VectorXd run_noise(const Config& config, const ccal::BudgetDetail& budget, const std::vector<std::size_t>& rows,
                           const std::vector<double>& durations, double unit_si);
 // The budget's Type B inputs' effects on the mean of each plan run rows[j] as independent components (rows ×
 // components, in units of unit_si SI), at the configured errors.
-Eigen::MatrixXd run_effects(const Config& config, const ccal::BudgetResult& budget, const std::vector<std::size_t>& rows,
+Eigen::MatrixXd run_effects(const Config& config, const ccal::BudgetDetail& budget, const std::vector<std::size_t>& rows,
                             double unit_si);
 
 // ν of the Type A part u_A² = a + e (a known, ν = ∞; e estimated with ν = dof), by Welch–Satterthwaite.

@@ -182,7 +182,8 @@ TEST_F(AllocateCli, BadTargetsAndOptionsAreExitCodeTwo) {
   expect_bad_input(run("allocate --target K3=0"), {"--target: K3", "positive"});
   expect_bad_input(run("allocate --target K3=-1e-6"), {"--target: K3", "positive"});
   expect_bad_input(run("allocate --target 'K3=1e-6 deg/s'"), {"--target: K3", "deg/s/g^3"});
-  expect_bad_input(run("allocate --target K3=1e-6 --target K3=2e-6"), {"two targets on K3"});
+  expect_bad_input(run("allocate --target K3=1e-6 --target K3=2e-6"),
+                   {"--target: K3 has two targets; accepted: one target per coefficient"});
   expect_bad_input(run("allocate"), {"--target"});
   expect_bad_input(run("allocate --target K3=1e-6 --max-scale 0"), {"--max-scale"});
   expect_bad_input(run("allocate --target K3=1e-6 --coverage-probability 1"), {"--coverage-probability"});

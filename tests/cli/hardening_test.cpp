@@ -61,14 +61,15 @@ TEST_F(Hardening, ThreadCountsTheSystemCannotStartAreRefused) {
 
 TEST(HardeningLibrary, ThreadCountsBeyondTheAcceptedRangeAreInputErrors) {
   const Config cfg = bundled_example();
-  MonteCarloOptions mo;
+  PropagationOptions mo;
   mo.trials = 10;
   mo.threads = kMaxThreads + 1;
   auto trial = [](std::span<const double>, std::span<double> out) { out[0] = 1.0; };
   EXPECT_THROW(run_monte_carlo(cfg.tolerances, 1, {}, trial, mo, nullptr), InputError);
   AllocateOptions ao;
   ao.threads = 100000;
-  EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-9}}, ao), InputError);
+  ao.targets = {"K3=1e-9"};
+  EXPECT_THROW(allocate_tolerances(cfg, ao), InputError);
 }
 
 // Wrong answers reported as success: results that are not finite, a target no tolerance can meet, an encoder
@@ -121,7 +122,7 @@ TEST_F(Hardening, EncoderRatesThatContradictThePlanAreRefused) {
   const std::string cmd = "reduce c.toml --log 5g=a.csv --log 10g=b.csv --log 15g=d.csv";
   write("a.csv",
         encoder_log(5, 1, 180 / std::numbers::pi));  // degrees, read as radians: K3 = 33.6 with exit code 0
-  expect_bad_input(run(cmd), {"a.csv", "theta1", "readings depart", "--angle-unit deg"});
+  expect_bad_input(run(cmd), {"a.csv", "theta1", "readings depart", "angle_unit = deg"});
   EXPECT_EQ(run(cmd + " --angle-unit deg").code, 2);  // only a.csv is in degrees now: b.csv is refused
   write("a.csv", encoder_log(5, -1, 1));              // reversed
   expect_bad_input(run(cmd), {"a.csv", "reversed"});

@@ -56,7 +56,7 @@ TEST_F(SeveralInstruments, CommandsOfOneInstrumentAskForItAndAnUnknownIdIsNamed)
 TEST_F(SeveralInstruments, AnOutputOfOneInstrumentsTableIsRefusedForSeveral) {
   expect_bad_input(run("simulate " + kTwo + " --observations-out o.csv"),
                    {"--observations-out:", "holds 2 instruments", "--instrument ID for one of them"});
-  expect_bad_input(run("simulate " + kTwo + " --format csv"), {"--format csv:", "--instrument ID"});
+  expect_bad_input(run("simulate " + kTwo + " --format csv"), {"--format: csv is one table", "accepted: --format text or json, or --instrument ID"});
   expect_bad_input(run("simulate " + kTwo + " --truth " + kLabTruth),
                    {"--truth:", "is a test of 2 instruments", "one instrument chosen with --instrument"});
   EXPECT_FALSE(fs::exists(dir_ / "o.csv"));

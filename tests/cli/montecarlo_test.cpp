@@ -125,7 +125,8 @@ TEST_F(MonteCarloCli, BadOptionsAreExitCodeTwo) {
                    {"--trials: 2.5 is not a whole number; accepted: a whole number from 2 to 1000000000"});
   expect_bad_input(run("montecarlo --trials nan"),
                    {"--trials: 'nan' is not a number; accepted: a whole number from 2 to 1000000000"});
-  expect_bad_input(run("montecarlo --digits 2 --max-trials 1000"), {"max_trials"});
+  expect_bad_input(run("montecarlo --digits 2 --max-trials 1000"),
+                   {"--max-trials: 1000 leaves fewer than the 2 stages"});
   expect_bad_input(run("montecarlo --threads -1"), {"--threads"});
   expect_bad_input(run("montecarlo --digits 7"), {"--digits", "0 (fixed M) or 1 to 6"});
   expect_bad_input(run("montecarlo --digits -1"), {"--digits"});

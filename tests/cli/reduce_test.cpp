@@ -201,7 +201,7 @@ TEST_F(Reduce, PulseWeightTakesAUnitOfTheOutputTimesSeconds) {
                    {"--pulse-weight: '1 m': unit 'm' is a length, expected an angle (accepted: rad, mrad",
                     "deg", "or a bare number in deg/s·s"});
   expect_bad_input(run("reduce config.toml --pulse-weight '0 deg'" + joined(args)),
-                   {"--pulse-weight: 0 is not a positive number"});
+                   {"--pulse-weight: 0 deg is not a positive weight"});
 }
 
 }  // namespace

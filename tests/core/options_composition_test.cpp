@@ -9,8 +9,16 @@
 
 #include "ccal/core/model_mode.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/uncertainty/allocate.hpp"
+#include "ccal/uncertainty/budget.hpp"
+#include "ccal/verbs/design.hpp"
+#include "ccal/verbs/force.hpp"
+#include "ccal/verbs/history.hpp"
 #include "ccal/verbs/identify.hpp"
+#include "ccal/verbs/montecarlo.hpp"
 #include "ccal/verbs/reduce.hpp"
+#include "ccal/verbs/report.hpp"
+#include "ccal/verbs/simulate.hpp"
 #include "ccal/verbs/statement.hpp"
 
 namespace ccal {
@@ -155,6 +163,50 @@ TEST(OptionFlags, AreTheFieldsWithTheListSpellings) {
   EXPECT_EQ(option_flag("logs"), "--log");
   EXPECT_EQ(option_flag("targets", "allocate_"), "--allocate-target");
   EXPECT_EQ(option_flag("design_targets"), "--design-target");
+}
+
+TEST(OptionHelp, StatesTheRowsRange) {
+  const OptionRange p = OptionRange::between(0.5, 1).open_high();
+  EXPECT_EQ(option_help("Coverage probability, in {range}", p), "Coverage probability, in [0.5, 1)");
+  EXPECT_EQ(option_help("{range} or {range}", OptionRange::between(1, 6)), "[1, 6] or [1, 6]");
+  EXPECT_EQ(option_help("no range here", p), "no range here");
+  EXPECT_EQ(option_help("{range}", OptionRange::at_least(0).open_low()), "> 0");
+  // The coverage probability's help, in every table that has one, states the shared row's range.
+  const auto p_help = [](auto table) {
+    for (const auto& row : table)
+      if (row.field == "coverage_probability") return option_help(row.help, row.range);
+    return std::string("(no coverage_probability row)");
+  };
+  for (const std::string& help :
+       {p_help(option_table<verbs::MonteCarloOptions>()), p_help(option_table<AllocateOptions>()),
+        p_help(option_table<BudgetOptions>()), p_help(option_table<verbs::DesignOptions>()),
+        p_help(option_table<verbs::ReduceOptions>()), p_help(option_table<verbs::ReportOptions>())})
+    EXPECT_NE(help.find(rows::kCoverageProbability.interval()), std::string::npos) << help;
+}
+
+// A help line that states its range takes it from the row ({range}), never typed out: typed, it would stay
+// behind when the row's range changes.
+template <class Options>
+void expect_no_typed_range(std::string_view table_name) {
+  for (const OptionSpec<Options>& row : option_table<Options>()) {
+    if (row.range.low <= -1e308 && row.range.high >= 1e308) continue;
+    EXPECT_EQ(std::string_view(row.help).find(row.range.interval()), std::string_view::npos)
+        << table_name << "." << row.field << ": " << row.help;
+  }
+}
+
+TEST(OptionHelp, NoHelpLineTypesItsRangeOut) {
+  expect_no_typed_range<PropagationOptions>("PropagationOptions");
+  expect_no_typed_range<verbs::MonteCarloOptions>("MonteCarloOptions");
+  expect_no_typed_range<AllocateOptions>("AllocateOptions");
+  expect_no_typed_range<BudgetOptions>("BudgetOptions");
+  expect_no_typed_range<verbs::DesignOptions>("DesignOptions");
+  expect_no_typed_range<verbs::ForceOptions>("ForceOptions");
+  expect_no_typed_range<verbs::IdentifyOptions>("IdentifyOptions");
+  expect_no_typed_range<verbs::ReduceOptions>("ReduceOptions");
+  expect_no_typed_range<verbs::ReportOptions>("ReportOptions");
+  expect_no_typed_range<verbs::SimulateOptions>("SimulateOptions");
+  expect_no_typed_range<verbs::StatementOptions>("StatementOptions");
 }
 
 }  // namespace

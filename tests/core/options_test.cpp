@@ -143,14 +143,14 @@ TEST(OptionRange, WordsWhatItAccepts) {
 TEST(OptionTables, VerbsRefuseOutOfRangeFieldsByName) {
   verbs::MonteCarloOptions mc;
   EXPECT_EQ(refusal([&] { check_options(mc, option_table<verbs::MonteCarloOptions>()); }), "");
-  mc.trials = 0;  // a computed 0 is a mistake, not a request for the default
+  mc.propagation.trials = 0;  // a computed 0 is a mistake, not a request for the default
   EXPECT_EQ(refusal([&] { check_options(mc, option_table<verbs::MonteCarloOptions>()); }),
             "trials: 0 is out of range; accepted: 2 to 1000000000");
   mc = {};
-  mc.coverage_probability = 1.0;
+  mc.propagation.coverage_probability = 1.0;
   EXPECT_EQ(refusal([&] { verbs::monte_carlo(bundled_example(), mc); }),
             "coverage_probability: 1 is out of range; accepted: a number in [0.5, 1), e.g. 0.95");
-  verbs::AllocateOptions allocate;
+  AllocateOptions allocate;
   EXPECT_EQ(refusal([&] { verbs::allocate(bundled_example(), allocate); }),
             "targets: none given; accepted: at least one COEFF=U");
   allocate.targets = {"K3=1e-3"};
@@ -161,11 +161,13 @@ TEST(OptionTables, VerbsRefuseOutOfRangeFieldsByName) {
   budget.coverage_factor = 0.95;
   EXPECT_EQ(refusal([&] { verbs::budget(bundled_example(), budget); }),
             "coverage_factor: 0.95 is out of range; accepted: a number >= 1, e.g. 2 (U = k u); a coverage "
-            "probability such as 0.95 is given as coverage_probability");
+            "probability is given as coverage_probability");
   budget.coverage_factor = 2;
   budget.coverage_probability = 0.9;  // two answers to one question
-  EXPECT_EQ(refusal([&] { verbs::budget(bundled_example(), budget); }),
-            "coverage_factor: 2 and coverage_probability 0.9 are two coverages; give one of them");
+  EXPECT_EQ(
+      refusal([&] { verbs::budget(bundled_example(), budget); }),
+      "coverage_factor: 2 and coverage_probability 0.9 are two coverages; accepted: one of them (a stated "
+      "coverage factor, or a coverage probability)");
   verbs::DesignOptions design;
   design.tradeoff = {0.5, 11};
   EXPECT_EQ(refusal([&] { verbs::design(bundled_example(), design); }),
@@ -260,7 +262,7 @@ TEST_F(SameRefusal, MonteCarlo) {
                                        [](auto& o) { verbs::monte_carlo(bundled_example(), o); });
 }
 TEST_F(SameRefusal, Allocate) {
-  check_verb<verbs::AllocateOptions>("allocate", "--target K3=1e-3", [](auto& o) {
+  check_verb<AllocateOptions>("allocate", "--target K3=1e-3", [](auto& o) {
     o.targets = {"K3=1e-3"};
     verbs::allocate(bundled_example(), o);
   });
@@ -332,7 +334,7 @@ TEST_F(SameRefusal, ManPageAndCompletionListEveryFlag) {
     }
   };
   expect_flags("montecarlo", std::type_identity<verbs::MonteCarloOptions>{});
-  expect_flags("allocate", std::type_identity<verbs::AllocateOptions>{});
+  expect_flags("allocate", std::type_identity<AllocateOptions>{});
   expect_flags("budget", std::type_identity<BudgetOptions>{});
   expect_flags("design", std::type_identity<verbs::DesignOptions>{});
   expect_flags("force", std::type_identity<verbs::ForceOptions>{});

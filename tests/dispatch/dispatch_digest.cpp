@@ -57,11 +57,11 @@ int main(int argc, char** argv) {
         for (std::size_t b = a + 1; b < cfg.tolerances.size(); ++b)
           cfg.correlations.push_back({cfg.tolerances[a].id, cfg.tolerances[b].id, 0.3});
     const CalibrationModel model = calibration_model(cfg);
-    MonteCarloOptions o;
+    PropagationOptions o;
     o.trials = trials;
     o.threads = 1;
     o.keep_samples = true;
-    const MonteCarloResult r = run_monte_carlo(monte_carlo_sources(cfg), cfg.correlations, model.n_outputs(),
+    const MonteCarloDetail r = run_monte_carlo(monte_carlo_sources(cfg), cfg.correlations, model.n_outputs(),
                                                model.output_names(), calibration_trial(model), o);
     add(hash, r.samples.data(), std::size_t(r.samples.size()));
     for (const OutputSummary& s : r.outputs) {

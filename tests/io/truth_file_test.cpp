@@ -60,7 +60,10 @@ TEST(TruthFile, AFileThatCannotBeReadIsRefusedNamingIt) {
     load_truth(std::filesystem::path("no/such/truth.toml"), bundled_example());
     FAIL() << "a missing file was read";
   } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), "no/such/truth.toml: cannot read the file; check the path and permissions");
+    EXPECT_EQ(
+        std::string(e.what()),
+        "no/such/truth.toml: cannot read the file: no such file; accepted: the path of an existing file "
+        "(check its spelling and folder)");
   }
 }
 

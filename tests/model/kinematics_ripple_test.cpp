@@ -275,7 +275,7 @@ TEST(RateRipple, BudgetRowsEqualTheNonlinearReidentification) {
         t.bound = 1e-5;
         cfg.tolerances.push_back(t);
       }
-    const BudgetResult b = compute_budget(cfg);
+    const BudgetDetail b = compute_budget(cfg);
     const Experiment ex = cfg.experiment();
     for (const SourceBudget& s : b.sources) {
       auto identified = [&](double x) {

@@ -81,7 +81,8 @@ class MissingFiles(unittest.TestCase):
                     call(path)
                 self.assertIsInstance(e.exception, ccal.InputError)
                 self.assertIsInstance(e.exception, ccal.FileNotFound)
-                self.assertEqual(str(e.exception), f"{path}: cannot read the file; check the path and permissions")
+                self.assertEqual(str(e.exception), f"{path}: cannot read the file: no such file; accepted: the path "
+                                                   "of an existing file (check its spelling and folder)")
 
     def test_other_bad_input_is_not_a_file_error(self):
         with self.assertRaises(ccal.InputError) as e:
@@ -159,7 +160,7 @@ class Frames(unittest.TestCase):
 
 class LibraryDefaults(unittest.TestCase):
     def test_defaults_are_the_options_of_the_library(self):
-        # verbs::AllocateOptions, DesignOptions, ReduceOptions, BudgetOptions (include/ccal/verbs/*.hpp).
+        # AllocateOptions, DesignOptions, ReduceOptions, BudgetOptions (include/ccal/verbs/*.hpp).
         expected = {"allocate": {"coverage_probability": 0.95, "max_scale": 10.0, "verify_trials": 2000,
                                  "seed": 1, "threads": 0},
                     "design": {"threads": 0, "verify_trials": 0, "tradeoff": [], "coverage_probability": 0.95,

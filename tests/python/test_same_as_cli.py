@@ -120,7 +120,7 @@ class SameAsCli(unittest.TestCase):
              "angle_unit: 'grad'"),
             (lambda: ccal.reduce(cfg, {0: "a.csv"}, mode="fast"), "mode: 'fast'"),
             (lambda: ccal.reduce(cfg, {0: "a.csv", 1: "b.csv", 2: "c.csv"}, pulse_weight=-1.0),
-             "pulse_weight: -1 is not a positive number"),
+             "pulse_weight: -1 is not a positive weight"),
             (lambda: ccal.simulate(cfg, mode="fast"), "mode: 'fast'"),
             (lambda: ccal.monte_carlo(cfg, trials=1), "trials: 1 is out of range"),
             (lambda: ccal.budget(cfg, coverage_factor=-1.0), "coverage_factor: -1 is out of range"),

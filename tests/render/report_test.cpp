@@ -115,7 +115,7 @@ TEST(ReportSections, TheAllocationIsTheVerbsWithTheReportsModeAndItsCommandLine)
   o.mode = ModelMode::paper;
   o.monte_carlo.trials = 200;
   o.input_points = 3;
-  verbs::AllocateOptions a;
+  AllocateOptions a;
   a.targets = {"K3=2e-3 deg/s/g^3"};
   a.verify_trials = 200;
   o.allocate = a;
@@ -124,7 +124,7 @@ TEST(ReportSections, TheAllocationIsTheVerbsWithTheReportsModeAndItsCommandLine)
   EXPECT_FALSE(r.design.has_value());
   a.mode = ModelMode::paper;
   const verbs::AllocateResult direct = verbs::allocate(cfg, a);
-  const AllocationResult &x = r.allocation->allocation, &y = direct.allocation;
+  const AllocationDetail &x = r.allocation->allocation, &y = direct.allocation;
   EXPECT_EQ(x.mode, ModelMode::paper);
   ASSERT_EQ(x.sources.size(), y.sources.size());
   for (std::size_t s = 0; s < x.sources.size(); ++s) {

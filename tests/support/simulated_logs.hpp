@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/verbs/reduce.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "verbs_support.hpp"

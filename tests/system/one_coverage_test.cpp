@@ -28,7 +28,7 @@ TEST(OneCoverage, EveryVerbStatesTheSameUForTheSameMethod) {
 
   // allocate: its "configured U" is the budget's U, the same sensitivities and the same k (relative 1e-12:
   // the two sum the same squares in different orders).
-  verbs::AllocateOptions ao;
+  AllocateOptions ao;
   ao.targets = {"K3=1e-3"};
   ao.verify_trials = 0;
   const verbs::AllocateResult allocation = verbs::allocate(config, ao);

@@ -90,7 +90,7 @@ TEST(ReferenceValues, SimulatedRunMeansAndIdentifiedCoefficients) {
 }
 
 TEST(ReferenceValues, BudgetStandardUncertainties) {
-  const BudgetResult b = compute_budget(bundled_example());
+  const BudgetDetail b = compute_budget(bundled_example());
   for (std::size_t i = 0; i < b.coefficients.size(); ++i)
     expect_pin("budget u(" + b.coefficients[i] + ")", b.standard_uncertainty[Eigen::Index(i)] / kDeg);
 }
@@ -98,10 +98,10 @@ TEST(ReferenceValues, BudgetStandardUncertainties) {
 TEST(ReferenceValues, MonteCarloAtAFixedSeed) {
   const Config cfg = bundled_example();
   const CalibrationModel model = calibration_model(cfg);
-  MonteCarloOptions o;
+  PropagationOptions o;
   o.trials = kMonteCarloTrials;
   o.seed = kMonteCarloSeed;
-  const MonteCarloResult r = run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(),
+  const MonteCarloDetail r = run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(),
                                              model.output_names(), calibration_trial(model), o);
   for (const OutputSummary& out : r.outputs) expect_pin("montecarlo u(" + out.name + ")", out.std_dev / kDeg);
 }

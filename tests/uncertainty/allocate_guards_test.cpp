@@ -150,13 +150,13 @@ TEST(AllocationFloor, ATargetTheFloorsMakeImpossibleIsReported) {
 class HeldCoefficients : public ::testing::Test {
  protected:
   const Config cfg = bundled_example();
-  std::vector<AllocationTarget> k3 = {{"K3", 1e-3 * kDeg}};
-  static const AllocatedCoefficient& coefficient(const AllocationResult& r, const std::string& id) {
+  static const AllocatedCoefficient& coefficient(const AllocationDetail& r, const std::string& id) {
     return *std::find_if(r.coefficients.begin(), r.coefficients.end(),
                          [&](const auto& c) { return c.id == id; });
   }
   static AllocateOptions options(bool grow) {
     AllocateOptions o;
+    o.targets = {"K3=1e-3"};  // deg/s/g^3, K3's display unit
     o.verify_trials = 0;
     o.let_others_grow = grow;
     return o;
@@ -166,7 +166,7 @@ class HeldCoefficients : public ::testing::Test {
 TEST_F(HeldCoefficients, UntargetedCoefficientsDoNotGrowByDefault) {
   // U_k(λ) ≤ U_k(1) for every coefficient without a target, to 1e-9 relative (the solver holds the
   // normalised row to 1e-12; the report recomputes U from the allocated scales, round-off ~1e-15).
-  const AllocationResult r = allocate_tolerances(cfg, k3, options(false));
+  const AllocationDetail r = allocate_tolerances(cfg, options(false));
   ASSERT_TRUE(r.converged);
   EXPECT_FALSE(r.let_others_grow);
   for (const AllocatedCoefficient& c : r.coefficients) {
@@ -185,8 +185,8 @@ TEST_F(HeldCoefficients, UntargetedCoefficientsDoNotGrowByDefault) {
 }
 
 TEST_F(HeldCoefficients, UntargetedCoefficientsGrowWhenAllowedAndAreNamed) {
-  const AllocationResult held = allocate_tolerances(cfg, k3, options(false));
-  const AllocationResult r = allocate_tolerances(cfg, k3, options(true));
+  const AllocationDetail held = allocate_tolerances(cfg, options(false));
+  const AllocationDetail r = allocate_tolerances(cfg, options(true));
   EXPECT_TRUE(r.let_others_grow);
   const AllocatedCoefficient& k0 = coefficient(r, "K0");
   EXPECT_FALSE(k0.held);
@@ -202,7 +202,7 @@ TEST_F(HeldCoefficients, AFloorIsNeverUndercut) {
   Config c = cfg;
   for (Tolerance& t : c.tolerances)
     if (t.id == "dthy1t") t.floor = 0.2 * t.bound;
-  const AllocationResult r = allocate_tolerances(c, k3, options(false));
+  const AllocationDetail r = allocate_tolerances(c, options(false));
   ASSERT_TRUE(r.converged);
   const auto s =
       std::find_if(r.sources.begin(), r.sources.end(), [](const auto& a) { return a.id == "dthy1t"; });
@@ -219,7 +219,7 @@ TEST_F(HeldCoefficients, ATargetTheFloorsMakeImpossibleIsRefusedWithWhatTheyAllo
   Config c = cfg;
   for (Tolerance& t : c.tolerances) t.floor = t.bound;
   try {
-    allocate_tolerances(c, k3, options(false));
+    allocate_tolerances(c, options(false));
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -234,7 +234,7 @@ TEST_F(HeldCoefficients, ATargetTheFloorsMakeImpossibleIsRefusedWithWhatTheyAllo
   AllocateOptions o = options(false);
   o.max_scale = 0.5;
   try {
-    allocate_tolerances(high, k3, o);
+    allocate_tolerances(high, o);
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("max_scale: 0.5 is below the floor of", 0), 0u) << e.what();

@@ -381,21 +381,21 @@ class BundledAllocation : public ::testing::Test {
     AllocateOptions o;
     o.verify_trials = 2000;
     o.seed = 1;
-    result_ =
-        new AllocationResult(allocate_tolerances(*config_, {{"K2", 1e-7 * kDeg}, {"K3", 1e-6 * kDeg}}, o));
+    o.targets = {"K2=1e-7", "K3=1e-6"};  // deg/s/g^2 and deg/s/g^3, their display units
+    result_ = new AllocationDetail(allocate_tolerances(*config_, o));
   }
   static void TearDownTestSuite() {
     delete result_;
     delete config_;
   }
   static const Config* config_;
-  static const AllocationResult* result_;
+  static const AllocationDetail* result_;
 };
 const Config* BundledAllocation::config_ = nullptr;
-const AllocationResult* BundledAllocation::result_ = nullptr;
+const AllocationDetail* BundledAllocation::result_ = nullptr;
 
 TEST_F(BundledAllocation, EveryTargetHoldsAndTheActiveOnesAreTight) {
-  const AllocationResult& r = *result_;
+  const AllocationDetail& r = *result_;
   ASSERT_TRUE(r.converged);
   ASSERT_EQ(r.targets.size(), 2u);
   EXPECT_NEAR(r.coverage_factor, 1.959963984540054, 1e-14);
@@ -473,18 +473,23 @@ TEST(AllocateTolerances, RejectsBadTargets) {
   const Config cfg = bundled_example();
   AllocateOptions o;
   o.verify_trials = 0;
-  EXPECT_THROW(allocate_tolerances(cfg, {}, o), InputError);
-  EXPECT_THROW(allocate_tolerances(cfg, {{"K1", 1e-6}}, o), InputError);
-  EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-6}, {"K3", 2e-6}}, o), InputError);
-  EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 0.0}}, o), InputError);
+  auto with = [&o](std::vector<std::string> targets) {
+    AllocateOptions t = o;
+    t.targets = std::move(targets);
+    return t;
+  };
+  EXPECT_THROW(allocate_tolerances(cfg, with({})), InputError);
+  EXPECT_THROW(allocate_tolerances(cfg, with({"K1=1e-6"})), InputError);
+  EXPECT_THROW(allocate_tolerances(cfg, with({"K3=1e-6", "K3=2e-6"})), InputError);
+  EXPECT_THROW(allocate_tolerances(cfg, with({"K3=0"})), InputError);
   o.max_scale = -1;
-  EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-6}}, o), InputError);
+  EXPECT_THROW(allocate_tolerances(cfg, with({"K3=1e-6"})), InputError);
   o.max_scale = 10;
   o.coverage_probability = 1.0;
-  EXPECT_THROW(allocate_tolerances(cfg, {{"K3", 1e-6}}, o), InputError);
+  EXPECT_THROW(allocate_tolerances(cfg, with({"K3=1e-6"})), InputError);
   // Without verification the result has none.
   o.coverage_probability = 0.95;
-  const AllocationResult r = allocate_tolerances(cfg, {{"K3", 1e-3 * kDeg}}, o);  // above the noise's 5.6e-4
+  const AllocationDetail r = allocate_tolerances(cfg, with({"K3=1e-3"}));  // deg/s/g^3, above the noise's 5.6e-4
   EXPECT_EQ(r.verification.trials, 0u);
   EXPECT_EQ(r.coefficients[2].verdict, Verdict::not_checked);
 }

@@ -36,7 +36,7 @@ double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
 TEST(BudgetCorrelations, UIsTheQuadraticFormOfTheInputCovariance) {
   const Config c = bundled_with(kPairs);
-  const BudgetResult b = compute_budget(c);
+  const BudgetDetail b = compute_budget(c);
   std::map<std::string, Eigen::Index> at;
   for (std::size_t s = 0; s < b.sources.size(); ++s) at[b.sources[s].id] = Eigen::Index(s);
   const auto n = Eigen::Index(b.sources.size());
@@ -49,7 +49,7 @@ TEST(BudgetCorrelations, UIsTheQuadraticFormOfTheInputCovariance) {
     V(s, t) = V(t, s) = b.sources[std::size_t(s)].standard_uncertainty * value *
                         b.sources[std::size_t(t)].standard_uncertainty;
   }
-  const BudgetResult independent = compute_budget(bundled_with(""));
+  const BudgetDetail independent = compute_budget(bundled_with(""));
   bool any_up = false, any_down = false;
   for (std::size_t k = 0; k < b.coefficients.size(); ++k) {
     const auto kk = Eigen::Index(k);
@@ -88,8 +88,8 @@ TEST(BudgetCorrelations, RIsOneForAPairAsForAGroup) {
     const std::string bound = text.substr(open, close - open + 1);
     text.replace(open, close - open + 1, "{ bound = " + bound + ", group = \"level\" }");
   }
-  const BudgetResult as_group = compute_budget(parse_config(text, "group.toml"));
-  const BudgetResult as_pair =
+  const BudgetDetail as_group = compute_budget(parse_config(text, "group.toml"));
+  const BudgetDetail as_pair =
       compute_budget(bundled_with("\n[[correlations]]\nbetween = [\"dthy4\", \"dthy5\"]\nr = 1\n"));
   ASSERT_TRUE(as_group.input_correlation.size() == 0);
   for (Eigen::Index k = 0; k < 3; ++k)  // 1e-12: an eigen-decomposition's round-off against a plain sum

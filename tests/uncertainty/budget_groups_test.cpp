@@ -32,7 +32,7 @@ Config grouped_example() {
 }
 
 // Cov from the per-source effects, by hand.
-Eigen::MatrixXd covariance_by_hand(const BudgetResult& b) {
+Eigen::MatrixXd covariance_by_hand(const BudgetDetail& b) {
   std::map<std::string, Eigen::VectorXd> group_sum;
   const Eigen::Index n = Eigen::Index(b.coefficients.size());
   Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n, n);
@@ -55,7 +55,7 @@ TEST(BudgetGroups, TotalsAddGroupMembersLinearlyAndGroupsInQuadrature) {
   const Config cfg = grouped_example();
   BudgetOptions o;
   o.compare_with_paper = false;
-  const BudgetResult b = compute_budget(cfg, o);
+  const BudgetDetail b = compute_budget(cfg, o);
   ASSERT_EQ(b.sources.size(), cfg.tolerances.size());
   // Each effect is sensitivity × σ, with σ from the bound and distribution written out above.
   for (const SourceBudget& s : b.sources) {
@@ -83,7 +83,7 @@ TEST(BudgetGroups, CorrelationIsCovarianceOverTheProductOfBothUncertainties) {
   const Config cfg = grouped_example();
   BudgetOptions o;
   o.compare_with_paper = false;
-  const BudgetResult b = compute_budget(cfg, o);
+  const BudgetDetail b = compute_budget(cfg, o);
   const Eigen::MatrixXd cov = covariance_by_hand(b);
   const Eigen::Index n = cov.rows();
   ASSERT_EQ(n, 3);
@@ -97,7 +97,7 @@ TEST(BudgetGroups, CorrelationIsCovarianceOverTheProductOfBothUncertainties) {
   // Same without groups (the configured example): independent sources only.
   Config plain_cfg = bundled_example();
   plain_cfg.centrifuge.rate_noise = {};
-  const BudgetResult plain = compute_budget(plain_cfg, o);
+  const BudgetDetail plain = compute_budget(plain_cfg, o);
   const Eigen::MatrixXd plain_cov = covariance_by_hand(plain);
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = 0; j < n; ++j)

@@ -201,7 +201,7 @@ TEST(Budget, BundledExampleTotalsAndFlags) {
   // Δθz5 (where they agree).
   const Config cfg = bundled_example();
   ASSERT_GE(cfg.tolerances.size(), 40u);
-  const BudgetResult r = compute_budget(cfg);
+  const BudgetDetail r = compute_budget(cfg);
   ASSERT_EQ(r.sources.size(), cfg.tolerances.size());
   for (Eigen::Index k = 0; k < r.standard_uncertainty.size(); ++k) {
     double sum = 0, share = 0;

@@ -11,8 +11,8 @@
 
 #include "ccal/io/config_file.hpp"
 #include "ccal/io/observation_csv.hpp"
-#include "ccal/io/run_log.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/run_log.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "test_constants.hpp"
 

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "ccal/core/errors.hpp"
 #include "test_constants.hpp"
@@ -19,6 +20,11 @@ namespace {
 using ccal::test::kZ975;
 constexpr double kP2 = 0.9544997361036416;
 constexpr double kUlps = 4e-16;
+
+TEST(Coverage, TheDefaultProbabilitysTextIsTheConstant) {
+  // Messages show the default as text (an example of the accepted values); it must read back as the constant.
+  EXPECT_EQ(std::stod(std::string(kDefaultCoverageProbabilityText)), kDefaultCoverageProbability);
+}
 
 TEST(Coverage, NormalFactorAndProbabilityAreInverse) {
   EXPECT_NEAR(normal_coverage_factor(0.95), kZ975, kUlps * kZ975);

@@ -21,8 +21,8 @@ using ccal::test::source;
 
 using ccal::test::identity;
 
-MonteCarloOptions kept(std::uint64_t trials, int threads = 0) {
-  MonteCarloOptions o;
+PropagationOptions kept(std::uint64_t trials, int threads = 0) {
+  PropagationOptions o;
   o.trials = trials;
   o.threads = threads;
   o.keep_samples = true;
@@ -44,7 +44,7 @@ const std::vector<Correlation> kCorrelatedPairs = {
 
 TEST(MonteCarloCorrelations, TheSampleHasTheConfiguredCorrelationsAndMarginals) {
   const double M = 1e6;
-  const MonteCarloResult r =
+  const MonteCarloDetail r =
       run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(std::uint64_t(M)));
   // The configured pairs. n–g2 (normal–normal) takes g1's score correlation: c_NN(ρ) = ρ with ρ from the
   // normal–uniform pair, and g1–g2 are one draw: the largest normal–uniform correlation (as for any group).
@@ -102,7 +102,7 @@ TEST(MonteCarloCorrelations, ALinearModelAgreesWithTheCorrelatedLpu) {
   // The MC: u(y1) within 5/√(2M) relatively (y1 is near normal); its interval is not compared with the LPU's
   // (the inputs are far from normal and so, slightly, is y1) except through u.
   const double M = 1e6;
-  const MonteCarloResult r =
+  const MonteCarloDetail r =
       run_monte_carlo(kSources, kCorrelatedPairs, 2, {}, linear, kept(std::uint64_t(M)), &lp.std_uncertainty);
   EXPECT_NEAR(r.outputs[0].std_dev, u1, 5 * u1 / std::sqrt(2 * M));
   EXPECT_NEAR(r.covariance(0, 1), lp.covariance(0, 1),
@@ -120,7 +120,7 @@ TEST(MonteCarloCorrelations, NormalInputsGiveTheLpuIntervalWhichValidates) {
   const LinearPropagation lp = propagate_linear(s, pairs, 1, model);
   // u² = 1 + 4 + 1 + 2(−0.7·1·2) + 2(0.4·2·1) = 6 − 2.8 + 1.6 = 4.8.
   EXPECT_NEAR(lp.std_uncertainty[0], std::sqrt(4.8), 1e-12);
-  const MonteCarloResult r = run_monte_carlo(s, pairs, 1, {}, model, kept(1000000), &lp.std_uncertainty);
+  const MonteCarloDetail r = run_monte_carlo(s, pairs, 1, {}, model, kept(1000000), &lp.std_uncertainty);
   const OutputSummary& o = r.outputs[0];
   EXPECT_NEAR(o.high_symmetric, 1.959964 * std::sqrt(4.8), 5 * o.interval_end_std_error);
   EXPECT_NEAR(o.low_symmetric, -1.959964 * std::sqrt(4.8), 5 * o.interval_end_std_error);
@@ -132,14 +132,14 @@ TEST(MonteCarloCorrelations, FullCorrelationDrawsAsAGroupDoes) {
   const std::vector<Tolerance> s = {source("x", 1.0, Distribution::uniform),
                                     source("y", 3.0, Distribution::uniform),
                                     source("z", 1.0, Distribution::normal)};
-  const MonteCarloResult r =
+  const MonteCarloDetail r =
       run_monte_carlo(s, {{"x", "y", 1.0}, {"y", "z", 0.2}, {"x", "z", 0.2}}, 3, {}, identity, kept(10000));
   EXPECT_LT((3 * r.samples.col(0) - r.samples.col(1)).cwiseAbs().maxCoeff(), 1e-14);
 }
 
 TEST(MonteCarloCorrelations, TheThreadsDoNotChangeTheDraws) {
-  const MonteCarloResult one = run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(20000, 1));
-  const MonteCarloResult two = run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(20000, 2));
+  const MonteCarloDetail one = run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(20000, 1));
+  const MonteCarloDetail two = run_monte_carlo(kSources, kCorrelatedPairs, 6, {}, identity, kept(20000, 2));
   EXPECT_EQ(one.samples, two.samples);
   // and a copula that cannot be drawn is refused before any trial
   EXPECT_THROW(run_monte_carlo(kSources, {{"n", "u", 0.99}}, 6, {}, identity, kept(100)), InputError);

@@ -25,12 +25,12 @@ using ccal::test::identity;
 
 TEST(MonteCarloDistribution, SamplesHistogramAndEndErrorOfANormalOutput) {
   const double sigma = 2.0, M = 200000;
-  MonteCarloOptions o;
+  PropagationOptions o;
   o.trials = std::uint64_t(M);
   o.seed = 11;
   o.keep_samples = true;
   o.histogram_bins = 40;
-  const MonteCarloResult r = run_monte_carlo({normal_source(sigma)}, 1, {"y"}, identity, o);
+  const MonteCarloDetail r = run_monte_carlo({normal_source(sigma)}, 1, {"y"}, identity, o);
   ASSERT_EQ(r.samples.rows(), Eigen::Index(M));
   ASSERT_EQ(r.samples.cols(), 1);
   // The kept values give the reported mean and standard deviation (computed here in long double).
@@ -67,22 +67,22 @@ TEST(MonteCarloDistribution, SamplesHistogramAndEndErrorOfANormalOutput) {
 }
 
 TEST(MonteCarloDistribution, NoSamplesUnlessAsked) {
-  MonteCarloOptions o;
+  PropagationOptions o;
   o.trials = 100;
-  const MonteCarloResult r = run_monte_carlo({normal_source(1)}, 1, {"y"}, identity, o);
+  const MonteCarloDetail r = run_monte_carlo({normal_source(1)}, 1, {"y"}, identity, o);
   EXPECT_EQ(r.samples.size(), 0);
   o.histogram_bins = 0;
   EXPECT_THROW(run_monte_carlo({normal_source(1)}, 1, {"y"}, identity, o), InputError);
 }
 
 TEST(MonteCarloDistribution, SamplesAreTheSameForAnyThreadCount) {
-  MonteCarloOptions o;
+  PropagationOptions o;
   o.trials = 5000;
   o.keep_samples = true;
   o.threads = 1;
-  const MonteCarloResult one = run_monte_carlo({normal_source(1)}, 1, {"y"}, identity, o);
+  const MonteCarloDetail one = run_monte_carlo({normal_source(1)}, 1, {"y"}, identity, o);
   o.threads = 2;
-  const MonteCarloResult two = run_monte_carlo({normal_source(1)}, 1, {"y"}, identity, o);
+  const MonteCarloDetail two = run_monte_carlo({normal_source(1)}, 1, {"y"}, identity, o);
   EXPECT_TRUE(one.samples == two.samples);
 }
 

@@ -1,7 +1,7 @@
 // One trial's draws alone (draw_sources, montecarlo.hpp): a machine drawn from the stated knowledge, as `ccal
 // simulate --draw-truth` and the coverage study draw it. They are the very draws run_monte_carlo makes in that
 // trial, bit for bit, with and without correlations (its identity model keeps every trial's inputs). A run that
-// takes an earlier run's values (MonteCarloOptions::earlier_samples) evaluates only its new trials and gives the
+// takes an earlier run's values (PropagationOptions::earlier_samples) evaluates only its new trials and gives the
 // bits of a run that evaluates them all.
 #include <gtest/gtest.h>
 
@@ -26,12 +26,12 @@ const std::vector<Tolerance> kInputs = {
 TEST(MonteCarloDraws, OneTrialsDrawsAreTheMonteCarlosOwn) {
   for (const std::vector<Correlation>& correlations :
        {std::vector<Correlation>{}, std::vector<Correlation>{{"n", "u", 0.6}, {"t", "a", 0.3}}}) {
-    MonteCarloOptions o;
+    PropagationOptions o;
     o.trials = 200;
     o.seed = 7;
     o.threads = 2;
     o.keep_samples = true;
-    const MonteCarloResult mc =
+    const MonteCarloDetail mc =
         run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
     for (std::uint64_t i : {0u, 1u, 57u, 199u}) {
       const std::vector<double> draws = draw_sources(kInputs, correlations, 7, i);
@@ -49,15 +49,15 @@ TEST(MonteCarloDraws, OneTrialsDrawsAreTheMonteCarlosOwn) {
 
 TEST(MonteCarloDraws, ARunExtendingAnEarlierOneGivesTheBitsOfAWholeRunAndEvaluatesOnlyItsNewTrials) {
   const std::vector<Correlation> correlations = {{"n", "u", 0.6}};
-  MonteCarloOptions o;
+  PropagationOptions o;
   o.seed = 11;
   o.threads = 2;
   o.keep_samples = true;
   o.trials = 300;
-  const MonteCarloResult earlier =
+  const MonteCarloDetail earlier =
       run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
   o.trials = 1000;
-  const MonteCarloResult whole =
+  const MonteCarloDetail whole =
       run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
   // The earlier values count the trials a model is called for; one is the engine's own call at zero.
   std::atomic<int> calls = 0;
@@ -66,7 +66,7 @@ TEST(MonteCarloDraws, ARunExtendingAnEarlierOneGivesTheBitsOfAWholeRunAndEvaluat
     ccal::test::identity(x, y);
   };
   o.earlier_samples = &earlier.samples;
-  const MonteCarloResult extended = run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, counted, o);
+  const MonteCarloDetail extended = run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, counted, o);
   EXPECT_EQ(calls.load(), 1 + 700);
   EXPECT_EQ(extended.trials, 1000u);
   EXPECT_TRUE(extended.samples == whole.samples);
@@ -91,15 +91,15 @@ TEST(MonteCarloDraws, ARunExtendingAnEarlierOneGivesTheBitsOfAWholeRunAndEvaluat
 TEST(MonteCarloDraws, EveryTrialHasItsOwnBitsForAnyThreadCountAndBatch) {
   for (const std::vector<Correlation>& correlations :
        {std::vector<Correlation>{}, std::vector<Correlation>{{"n", "u", 0.6}, {"t", "a", 0.3}}}) {
-    MonteCarloOptions o;
+    PropagationOptions o;
     o.trials = 1001;
     o.seed = 5;
     o.keep_samples = true;
     o.threads = 1;
-    const MonteCarloResult one =
+    const MonteCarloDetail one =
         run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
     o.threads = 2;
-    const MonteCarloResult two =
+    const MonteCarloDetail two =
         run_monte_carlo(kInputs, correlations, int(kInputs.size()), {}, ccal::test::identity, o);
     EXPECT_TRUE(one.samples == two.samples);
     for (std::uint64_t i : {31u, 32u, 33u, 1000u}) {  // the ends of batches, the short last one

@@ -143,14 +143,14 @@ TEST(MonteCarloSamplers, EachDistributionIsItsOwnAndTheEarlierSamplersAtFourMome
   const std::vector<Tolerance> pair = {source("cn", 1.0, Distribution::normal),
                                        source("ca", 1.0, Distribution::arcsine)};
   const double r = 0.5;  // the copula pair's configured Pearson correlation
-  MonteCarloOptions o;
+  PropagationOptions o;
   o.trials = n;
   o.seed = 2024;
   o.keep_samples = true;
   o.threads = 2;
-  const MonteCarloResult alone = run_monte_carlo(independent, {}, 4, {}, ccal::test::identity, o);
+  const MonteCarloDetail alone = run_monte_carlo(independent, {}, 4, {}, ccal::test::identity, o);
   o.seed = 2025;  // another seed: the pair's first score would otherwise be the independent normal's draw
-  const MonteCarloResult copula = run_monte_carlo(pair, {{"cn", "ca", r}}, 2, {}, ccal::test::identity, o);
+  const MonteCarloDetail copula = run_monte_carlo(pair, {{"cn", "ca", r}}, 2, {}, ccal::test::identity, o);
   std::vector<Tolerance> sources = independent;
   sources.insert(sources.end(), pair.begin(), pair.end());
   const auto sample = [&](std::size_t s) {

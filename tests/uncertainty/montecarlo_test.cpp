@@ -29,8 +29,8 @@ namespace {
 // The model y = x (every source is an output).
 using ccal::test::identity;
 
-MonteCarloOptions fixed(std::uint64_t trials, std::uint64_t seed = 1) {
-  MonteCarloOptions o;
+PropagationOptions fixed(std::uint64_t trials, std::uint64_t seed = 1) {
+  PropagationOptions o;
   o.trials = trials;
   o.seed = seed;
   return o;
@@ -50,7 +50,7 @@ TEST(MonteCarlo, EveryDistributionHasItsMomentsAndQuantiles) {
   const std::vector<Tolerance> s = {
       source("n", 2.0, Distribution::normal), source("u", 3.0, Distribution::uniform),
       source("t", 1.5, Distribution::triangular), source("a", 0.5, Distribution::arcsine)};
-  const MonteCarloResult r = run_monte_carlo(s, 4, {}, identity, fixed(std::uint64_t(M)));
+  const MonteCarloDetail r = run_monte_carlo(s, 4, {}, identity, fixed(std::uint64_t(M)));
   ASSERT_EQ(r.trials, std::uint64_t(M));
   const double sigma[] = {2.0, 3.0 / std::sqrt(3.0), 1.5 / std::sqrt(6.0), 0.5 / std::numbers::sqrt2};
   const double kurtosis[] = {3.0, 1.8, 2.4, 1.5};
@@ -98,7 +98,7 @@ TEST(MonteCarlo, AGroupSharesOneDrawWithRankCorrelationOne) {
     y[3] = x[2];
     y[4] = x[4];
   };
-  const MonteCarloResult r =
+  const MonteCarloDetail r =
       run_monte_carlo(s, 5, {"b-3a", "c-2d", "a", "c", "e"}, trial, fixed(std::uint64_t(M)));
   EXPECT_EQ(r.outputs[0].std_dev, 0.0);
   EXPECT_EQ(r.outputs[0].high_symmetric, 0.0);
@@ -136,7 +136,7 @@ TEST(MonteCarlo, LinearModelMatchesTheLpuAndValidatesIt) {
   // M = 2·10⁶. y1 is nearly normal (excess kurtosis −0.03), so the relative sampling error of u(y) is
   // 1/√(2M) = 5e-4, of the covariance √((u1²u2² + c12²)/M) = 0.01.
   const double M = 2e6;
-  const MonteCarloResult r =
+  const MonteCarloDetail r =
       run_monte_carlo(kLinearSources, 2, {"y1", "y2"}, linear, fixed(std::uint64_t(M)), &lp.std_uncertainty);
   EXPECT_NEAR(r.outputs[0].std_dev, u1, 5 * u1 / std::sqrt(2 * M));
   EXPECT_NEAR(r.outputs[1].std_dev, u2, 5 * u2 / std::sqrt(2 * M));
@@ -163,14 +163,14 @@ TEST(MonteCarlo, SquareOfAZeroMeanInputInvalidatesTheLpu) {
   const TrialFunction square = [](std::span<const double> x, std::span<double> y) { y[0] = x[0] * x[0]; };
   const LinearPropagation lp = propagate_linear(s, 1, square);
   EXPECT_EQ(lp.std_uncertainty[0], 0.0);
-  const MonteCarloResult r = run_monte_carlo(s, 1, {"x^2"}, square, fixed(100000), &lp.std_uncertainty);
+  const MonteCarloDetail r = run_monte_carlo(s, 1, {"x^2"}, square, fixed(100000), &lp.std_uncertainty);
   const OutputSummary& o = r.outputs[0];
   EXPECT_NEAR(o.mean, 1.0, 5 * std::sqrt(2.0 / 1e5));  // χ²₁: mean 1, variance 2
   EXPECT_NEAR(o.high_symmetric, 5.024, 0.15);          // 5 sd of the quantile: √(p(1−p)/M)/f = 0.029
   EXPECT_GT(o.d_high, 4.0);
   EXPECT_FALSE(o.validated);
   const Eigen::VectorXd second_order = Eigen::VectorXd::Constant(1, std::numbers::sqrt2);
-  const MonteCarloResult r2 = run_monte_carlo(s, 1, {"x^2"}, square, fixed(100000), &second_order);
+  const MonteCarloDetail r2 = run_monte_carlo(s, 1, {"x^2"}, square, fixed(100000), &second_order);
   EXPECT_FALSE(r2.outputs[0].validated);
   EXPECT_GT(r2.outputs[0].d_high, 2.0);
   EXPECT_GT(r2.outputs[0].d_low, 2.0);
@@ -186,7 +186,7 @@ TEST(MonteCarlo, ShortestIntervalIsNarrowerForASkewedOutput) {
   const TrialFunction lognormal = [](std::span<const double> x, std::span<double> y) {
     y[0] = std::exp(x[0]);
   };
-  const MonteCarloResult r = run_monte_carlo(s, 1, {}, lognormal, fixed(std::uint64_t(M)));
+  const MonteCarloDetail r = run_monte_carlo(s, 1, {}, lognormal, fixed(std::uint64_t(M)));
   const OutputSummary& o = r.outputs[0];
   const double z = quantile(kStdNormal, 0.975);
   const auto density = [&](double y) { return pdf(kStdNormal, std::log(y) / sigma) / (sigma * y); };
@@ -221,7 +221,7 @@ TEST(MonteCarlo, ShortestAndSymmetricIntervalsAgreeForASymmetricOutput) {
   // symmetric one (that window is a candidate) and is within 5·sd_w of it.
   const double M = 1e6;
   const std::vector<Tolerance> s = {source("x", 1.0, Distribution::normal)};
-  const MonteCarloResult r = run_monte_carlo(s, 1, {}, identity, fixed(std::uint64_t(M)));
+  const MonteCarloDetail r = run_monte_carlo(s, 1, {}, identity, fixed(std::uint64_t(M)));
   const OutputSummary& o = r.outputs[0];
   const double z = quantile(kStdNormal, 0.975), sd_q = quantile_sd(0.975, pdf(kStdNormal, z), M);
   EXPECT_NEAR(o.high_symmetric, z, 5 * sd_q);
@@ -264,7 +264,7 @@ TEST(MonteCarlo, IntervalsFollowTheOrderStatisticRule) {
 }
 
 // Every number of two results, to the bit.
-void expect_identical(const MonteCarloResult& a, const MonteCarloResult& b) {
+void expect_identical(const MonteCarloDetail& a, const MonteCarloDetail& b) {
   ASSERT_EQ(a.trials, b.trials);
   ASSERT_EQ(a.outputs.size(), b.outputs.size());
   EXPECT_EQ(a.stages, b.stages);
@@ -296,19 +296,19 @@ void mixed(std::span<const double> x, std::span<double> y) {
 
 TEST(MonteCarlo, SameSeedGivesBitIdenticalResultsForAnyThreadCount) {
   const Eigen::VectorXd lpu = propagate_linear(kMixedSources, 3, mixed).std_uncertainty;
-  MonteCarloOptions o = fixed(20011, 42);  // a prime: the threads get unequal shares
+  PropagationOptions o = fixed(20011, 42);  // a prime: the threads get unequal shares
   o.threads = 1;
-  const MonteCarloResult one = run_monte_carlo(kMixedSources, 3, {}, mixed, o, &lpu);
+  const MonteCarloDetail one = run_monte_carlo(kMixedSources, 3, {}, mixed, o, &lpu);
   EXPECT_EQ(one.threads, 1);
   for (int threads : {2, 3}) {
     SCOPED_TRACE(threads);
     o.threads = threads;
-    const MonteCarloResult r = run_monte_carlo(kMixedSources, 3, {}, mixed, o, &lpu);
+    const MonteCarloDetail r = run_monte_carlo(kMixedSources, 3, {}, mixed, o, &lpu);
     EXPECT_EQ(r.threads, threads);
     expect_identical(one, r);
   }
   o.seed = 43;
-  const MonteCarloResult other = run_monte_carlo(kMixedSources, 3, {}, mixed, o, &lpu);
+  const MonteCarloDetail other = run_monte_carlo(kMixedSources, 3, {}, mixed, o, &lpu);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_NE(other.outputs[k].mean, one.outputs[k].mean);
     EXPECT_NE(other.outputs[k].high_symmetric, one.outputs[k].high_symmetric);
@@ -317,15 +317,15 @@ TEST(MonteCarlo, SameSeedGivesBitIdenticalResultsForAnyThreadCount) {
 
 TEST(MonteCarlo, AdaptiveRunEqualsAFixedRunOfTheSameLength) {
   // Trials are numbered over all stages, so h stages of M are the fixed run of h·M trials, for any threads.
-  MonteCarloOptions o = fixed(1, 7);
+  PropagationOptions o = fixed(2, 7);  // adaptive: stages of max(2, J, 10⁴) trials
   o.digits = 1;
   o.threads = 1;
-  const MonteCarloResult adaptive = run_monte_carlo(kMixedSources, 3, {}, mixed, o);
+  const MonteCarloDetail adaptive = run_monte_carlo(kMixedSources, 3, {}, mixed, o);
   ASSERT_TRUE(adaptive.converged);
   o.threads = 2;
   expect_identical(adaptive, run_monte_carlo(kMixedSources, 3, {}, mixed, o));
-  MonteCarloOptions f = fixed(adaptive.trials, 7);
-  const MonteCarloResult fixed_run = run_monte_carlo(kMixedSources, 3, {}, mixed, f);
+  PropagationOptions f = fixed(adaptive.trials, 7);
+  const MonteCarloDetail fixed_run = run_monte_carlo(kMixedSources, 3, {}, mixed, f);
   EXPECT_EQ(fixed_run.stages, 1);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(adaptive.outputs[k].mean, fixed_run.outputs[k].mean);
@@ -344,10 +344,10 @@ TEST(MonteCarlo, AdaptiveProcedureStopsWhenTheStageAveragesAreStable) {
     y[0] = x[0] + x[1];
     y[1] = x[0] * x[1];
   };
-  MonteCarloOptions o;
-  o.trials = 1;  // the stage size is then max(1, J = 2000, 10⁴)
+  PropagationOptions o;
+  o.trials = 2;  // the stage size is then max(2, J = 2000, 10⁴)
   o.digits = 2;
-  const MonteCarloResult r = run_monte_carlo(s, 2, {}, f, o);
+  const MonteCarloDetail r = run_monte_carlo(s, 2, {}, f, o);
   EXPECT_TRUE(r.adaptive);
   EXPECT_TRUE(r.converged);
   EXPECT_EQ(r.stage_trials, 10000u);
@@ -363,9 +363,9 @@ TEST(MonteCarlo, AdaptiveProcedureStopsWhenTheStageAveragesAreStable) {
     }
   }
   // One stage fewer would not have been enough for at least one output (else it would have stopped there).
-  MonteCarloOptions shorter = o;
+  PropagationOptions shorter = o;
   shorter.max_trials = r.trials - r.stage_trials;
-  const MonteCarloResult cut = run_monte_carlo(s, 2, {}, f, shorter);
+  const MonteCarloDetail cut = run_monte_carlo(s, 2, {}, f, shorter);
   EXPECT_FALSE(cut.converged);
   EXPECT_EQ(cut.trials, shorter.max_trials);
   EXPECT_NE(cut.notes.find("NOT converged"), std::string::npos) << cut.notes;
@@ -378,7 +378,7 @@ TEST(MonteCarlo, AdaptiveProcedureStopsWhenTheStageAveragesAreStable) {
   o.trials = 12345;
   o.max_trials = 2 * 12345;
   EXPECT_EQ(run_monte_carlo(s, 2, {}, f, o).stage_trials, 12345u);
-  o.trials = 1;
+  o.trials = 2;
   o.coverage_probability = 0.999;
   o.max_trials = 200000;
   EXPECT_EQ(run_monte_carlo(s, 2, {}, f, o).stage_trials, 100000u);
@@ -388,7 +388,7 @@ TEST(MonteCarlo, RefusesBadInputAndPassesOnTrialErrors) {
   const std::vector<Tolerance> s = {source("x", 1.0, Distribution::normal)};
   EXPECT_THROW(run_monte_carlo(s, 1, {"a", "b"}, identity, fixed(100)), InputError);
   EXPECT_THROW(run_monte_carlo(s, 1, {}, identity, fixed(1)), InputError);
-  MonteCarloOptions o = fixed(100);
+  PropagationOptions o = fixed(100);
   o.coverage_probability = 1.0;
   EXPECT_THROW(run_monte_carlo(s, 1, {}, identity, o), InputError);
   EXPECT_THROW(run_monte_carlo({source("x", -1.0, Distribution::normal)}, 1, {}, identity, fixed(100)),
@@ -447,7 +447,7 @@ TEST(MonteCarlo, CalibrationPipelineMatchesTheLpuOfItsSensitivities) {
   const Eigen::MatrixXd cov =
       lpu_covariance(finite_difference_sensitivities(ex, paper_spec(), zero, zero, s), s);
   const double M = 2e4;
-  const MonteCarloResult r = run_monte_carlo(s, model.n_outputs(), model.output_names(), trial,
+  const MonteCarloDetail r = run_monte_carlo(s, model.n_outputs(), model.output_names(), trial,
                                              fixed(std::uint64_t(M)), &lp.std_uncertainty);
   const OutputSummary& k3 = r.outputs[2];
   EXPECT_EQ(k3.name, "K3");

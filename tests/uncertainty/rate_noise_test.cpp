@@ -129,7 +129,7 @@ TEST(RateNoise, BudgetAddsTheTypeAComponentAndMonteCarloAgrees) {
   cfg.centrifuge.rate_noise = {2e-6, 3e-6};
   BudgetOptions bo;
   bo.compare_with_paper = false;
-  const BudgetResult b = compute_budget(cfg, bo);
+  const BudgetDetail b = compute_budget(cfg, bo);
   ASSERT_EQ(b.rate_noise.size(), 2u);
   const Experiment ex = cfg.experiment();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
@@ -146,11 +146,11 @@ TEST(RateNoise, BudgetAddsTheTypeAComponentAndMonteCarloAgrees) {
   const Eigen::VectorXd u = b.standard_uncertainty;
   EXPECT_NEAR(u[0], std::hypot(b.rate_noise[0].effect[0], b.rate_noise[1].effect[0]), 1e-12 * u[0]);
 
-  MonteCarloOptions mo;
+  PropagationOptions mo;
   mo.trials = 20000;
   mo.seed = 3;
   const CalibrationModel model = calibration_model(cfg);
-  const MonteCarloResult mc = run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(),
+  const MonteCarloDetail mc = run_monte_carlo(monte_carlo_sources(cfg), model.n_outputs(),
                                               model.output_names(), calibration_trial(model), mo);
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(mc.outputs[std::size_t(k)].std_dev / u[k], 1.0, 0.025) << b.coefficients[std::size_t(k)];

@@ -1,9 +1,10 @@
 // verbs::allocate in-process (docs/model.md §10.3): the targets read in the coefficients' display units, the
-// allocation equal to the library's allocate_tolerances on the same SI targets, the allocated tolerances'
+// allocation equal to that of the same targets given in SI units, the allocated tolerances'
 // expanded uncertainties equal to verbs::budget of a configuration carrying them, the mode taken from the
 // configuration, and the options' errors naming the option.
 #include "ccal/uncertainty/allocate.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,8 +24,8 @@ namespace {
 
 using ccal::test::kDeg;
 
-verbs::AllocateOptions k2_k3_targets() {
-  verbs::AllocateOptions o;
+AllocateOptions k2_k3_targets() {
+  AllocateOptions o;
   o.targets = {"K2=1e-7", "K3=1e-6 deg/s/g^3"};  // deg/s/g² is K2's display unit
   o.verify_trials = 0;
   return o;
@@ -33,14 +34,17 @@ verbs::AllocateOptions k2_k3_targets() {
 TEST(AllocateVerb, TargetsInDisplayUnitsGiveTheLibrarysAllocation) {
   const Config config = load_config(kPaperConfigPath);
   const verbs::AllocateResult r = verbs::allocate(config, k2_k3_targets());
-  ccal::AllocateOptions lib;
-  lib.verify_trials = 0;
-  const AllocationResult direct =
-      allocate_tolerances(config, {{"K2", 1e-7 * kDeg}, {"K3", 1e-6 * kDeg}}, lib);
+  // The same targets in SI, with their units: the same allocation (to 1e-9 of each scale: the targets agree
+  // to a few ulp after the unit conversions, and the solver's scales follow them to its 1e-12 tolerance).
+  AllocateOptions si;
+  si.verify_trials = 0;
+  si.targets = {fmt::format("K2={:.17g} rad/s/g^2", 1e-7 * kDeg), fmt::format("K3={:.17g} rad/s/g^3", 1e-6 * kDeg)};
+  const AllocationDetail direct = allocate_tolerances(config, si);
   ASSERT_EQ(r.allocation.sources.size(), direct.sources.size());
   for (std::size_t s = 0; s < direct.sources.size(); ++s) {
     EXPECT_EQ(r.allocation.sources[s].id, direct.sources[s].id);
-    EXPECT_EQ(r.allocation.sources[s].scale, direct.sources[s].scale) << direct.sources[s].id;
+    EXPECT_NEAR(r.allocation.sources[s].scale, direct.sources[s].scale, 1e-9 * direct.sources[s].scale)
+        << direct.sources[s].id;
   }
   ASSERT_EQ(r.allocation.targets.size(), 2u);
   const AllocatedCoefficient& k2 = r.allocation.coefficients[r.allocation.targets[0]];
@@ -88,14 +92,14 @@ TEST(AllocateVerb, TheModeIsTheConfigurationsUnlessGiven) {
   Config config = load_config(kPaperConfigPath);
   config.mode = ModelMode::paper;
   EXPECT_EQ(verbs::allocate(config, k2_k3_targets()).allocation.mode, ModelMode::paper);
-  verbs::AllocateOptions exact = k2_k3_targets();
+  AllocateOptions exact = k2_k3_targets();
   exact.mode = ModelMode::exact;
   EXPECT_EQ(verbs::allocate(config, exact).allocation.mode, ModelMode::exact);
 }
 
 TEST(AllocateVerb, BadOptionsNameTheOption) {
   const Config config = load_config(kPaperConfigPath);
-  auto message = [&](const verbs::AllocateOptions& o) -> std::string {
+  auto message = [&](const AllocateOptions& o) -> std::string {
     try {
       verbs::allocate(config, o);
     } catch (const InputError& e) {
@@ -103,7 +107,7 @@ TEST(AllocateVerb, BadOptionsNameTheOption) {
     }
     return "no error";
   };
-  verbs::AllocateOptions p = k2_k3_targets(), scale = k2_k3_targets(), trials = k2_k3_targets(),
+  AllocateOptions p = k2_k3_targets(), scale = k2_k3_targets(), trials = k2_k3_targets(),
                          target = k2_k3_targets(), unit = k2_k3_targets();
   p.coverage_probability = 0;
   scale.max_scale = -1;

@@ -65,7 +65,7 @@ TEST(BudgetInstruments, TheCovarianceIsTheInstrumentsLpu) {
   EXPECT_EQ(r.covariance->names, expected.names);
   EXPECT_EQ(r.covariance->trials, 0u);
   for (std::size_t i = 0; i < 2; ++i) {
-    const ccal::BudgetResult& b = r.instruments[i].budget;
+    const ccal::BudgetDetail& b = r.instruments[i].budget;
     for (std::size_t k = 0; k < 3; ++k) {
       const auto kk = Eigen::Index(k);
       double variance = r.covariance->lpu(r.covariance->first_row[i] + kk, r.covariance->first_row[i] + kk);

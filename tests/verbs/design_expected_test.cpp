@@ -15,8 +15,8 @@
 #include <string>
 
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/measured_inputs.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/measured_inputs.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/design.hpp"

@@ -40,7 +40,7 @@ TEST(InstrumentCovariance, TheDiagonalBlocksAreEachInstrumentsBudget) {
   for (std::size_t a = 0; a < 2; ++a) {
     ccal::BudgetOptions bo;
     bo.compare_with_paper = false;
-    const ccal::BudgetResult b = ccal::compute_budget(c.instruments[a], bo);
+    const ccal::BudgetDetail b = ccal::compute_budget(c.instruments[a], bo);
     const Eigen::MatrixXd g = independent_effects(b);
     Eigen::VectorXd scale(3);
     for (int k = 0; k < 3; ++k) scale[k] = b.display_scale[std::size_t(k)];

@@ -21,9 +21,9 @@ constexpr std::int64_t kTrials = 20000;
 
 verbs::MonteCarloResult run(int threads) {
   verbs::MonteCarloOptions o;
-  o.trials = kTrials;
-  o.seed = 7;
-  o.threads = threads;
+  o.propagation.trials = kTrials;
+  o.propagation.seed = 7;
+  o.propagation.threads = threads;
   return verbs::monte_carlo(load_config(kPaperConfigPath), o);
 }
 
@@ -74,9 +74,9 @@ TEST(MonteCarloVerb, BadOptionsNameTheOption) {
     return "no error";
   };
   verbs::MonteCarloOptions trials, p, digits;
-  trials.trials = 1;  // below the least M of 2 (a negative count is not an unsigned value)
-  p.coverage_probability = 1.5;
-  digits.digits = 9;
+  trials.propagation.trials = 1;  // below the least M of 2 (a negative count is not an unsigned value)
+  p.propagation.coverage_probability = 1.5;
+  digits.propagation.digits = 9;
   // The library names the field (an OptionError); each front end words it with its own name of the option.
   EXPECT_EQ(message(trials).rfind("trials: 1 is out of range; accepted: 2 to 1000000000", 0), 0u) << message(trials);
   EXPECT_EQ(message(p).rfind("coverage_probability: 1.5 ", 0), 0u) << message(p);
@@ -84,7 +84,7 @@ TEST(MonteCarloVerb, BadOptionsNameTheOption) {
   Config empty = config;
   empty.tolerances.clear();
   verbs::MonteCarloOptions small;
-  small.trials = 100;
+  small.propagation.trials = 100;
   EXPECT_NE(message(small).find("no error"), std::string::npos);
   EXPECT_THROW(verbs::monte_carlo(empty, small), InputError);
 }

@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/log_manifest.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/log_manifest.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/verbs/budget.hpp"
 #include "ccal/verbs/force.hpp"

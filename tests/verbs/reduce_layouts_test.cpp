@@ -1,7 +1,7 @@
 // The same simulated test (examples/lab.toml with the truth of examples/lab_truth.toml) written in each layout a
 // data acquisition system may use — ccal's comma-separated file, semicolons with decimal commas, tabs, a units
 // row, ISO 8601 timestamps, encoders in counts latched down or to the nearest, a 5 s gap in every run —
-// reduces to the same coefficients within the quantisation of the logs (io/log_manifest.hpp, docs/cli.md "A
+// reduces to the same coefficients within the quantisation of the logs (intake/log_manifest.hpp, docs/cli.md "A
 // folder of logs").
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -14,8 +14,8 @@
 #include <string>
 
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/log_manifest.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/log_manifest.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/verbs/reduce.hpp"
 #include "ccal/verbs/simulate.hpp"

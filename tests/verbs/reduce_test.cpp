@@ -1,4 +1,4 @@
-// verbs::reduce in-process (docs/model.md §13): logs written from the model (io/run_log_writer.hpp: the
+// verbs::reduce in-process (docs/model.md §13): logs written from the model (intake/run_log_writer.hpp: the
 // simulated run means and the encoders of the drives' configured rate errors), reduced and identified, give
 // the coefficients verbs::simulate identifies from the same model; the encoders' rate and mismatch are the
 // configured Δω and ΔΩ; with `statement` the statement is verbs::calibration_statement of that
@@ -18,8 +18,8 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/measured_inputs.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/measured_inputs.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/model/plan.hpp"
 #include "ccal/verbs/simulate.hpp"
 #include "ccal/verbs/statement.hpp"
@@ -115,8 +115,8 @@ TEST_F(ReduceVerb, TooFewOrRepeatedLogsAreRefusedNamingTheOption) {
     ADD_FAILURE() << "a negative pulse weight was accepted";
   } catch (const OptionError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "pulse_weight: -1 is not a positive number; accepted: the integrated output "
-              "per pulse in deg/s·s, e.g. 2.5e-5");
+              "pulse_weight: -1 is not a positive weight; accepted: the integrated output per pulse, a "
+              "positive number in deg/s·s or with a unit of that kind, e.g. 2.5e-5");
   }
 }
 

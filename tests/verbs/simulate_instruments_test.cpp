@@ -12,7 +12,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/io/config_file.hpp"
-#include "ccal/io/log_manifest.hpp"
+#include "ccal/intake/log_manifest.hpp"
 #include "ccal/verbs/instrument_covariance.hpp"
 #include "ccal/verbs/reduce.hpp"
 #include "ccal/verbs/simulate.hpp"

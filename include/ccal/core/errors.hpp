@@ -2,6 +2,7 @@
 // Exceptions for problems in what the user gave ccal (configuration, data files, command line), as opposed
 // to programming errors. The CLI catches InputError to print the message without a stack of internals.
 #include <concepts>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -73,13 +74,26 @@ class FileNotFoundMark {
 };
 
 // The reader's own error (e.g. CsvError, ConfigError, with its location) for a file it cannot open:
-// `throw FileNotFound<CsvError>(name, 0, 0, "", "cannot read the file; ...")`; caught as the reader's error,
-// as an InputError, or as a FileNotFoundMark.
+// `throw FileNotFound<CsvError>(name, 0, 0, "", unreadable_file_problem(name))`; caught as the reader's
+// error, as an InputError, or as a FileNotFoundMark.
 template <class Error>
   requires std::derived_from<Error, InputError>
 class FileNotFound : public Error, public FileNotFoundMark {
  public:
   using Error::Error;
 };
+
+// Why an input file cannot be opened, and what is accepted, for the message of FileNotFound: "cannot read
+// the file: no such file; accepted: …", "… it is a folder; …", "… permission denied; …".
+inline std::string unreadable_file_problem(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found || path.empty())
+    return "cannot read the file: no such file; accepted: the path of an existing file (check its spelling "
+           "and folder)";
+  if (status.type() == std::filesystem::file_type::directory)
+    return "cannot read the file: it is a folder; accepted: the path of a file";
+  return "cannot read the file: permission denied or unreadable; accepted: a file this user may read";
+}
 
 }  // namespace ccal

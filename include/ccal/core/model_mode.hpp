@@ -1,6 +1,5 @@
 #pragma once
 #include <array>
-#include <optional>
 #include <string_view>
 
 namespace ccal {
@@ -19,12 +18,5 @@ constexpr std::string_view mode_name(ModelMode m) noexcept {
 // Every mode's name, in the enum's order: what an option or a key accepts.
 inline constexpr std::array<std::string_view, 2> kModeNames = {mode_name(ModelMode::exact),
                                                                mode_name(ModelMode::paper)};
-
-// The mode of a name; nullopt for anything else.
-constexpr std::optional<ModelMode> parse_mode(std::string_view name) noexcept {
-  if (name == "exact") return ModelMode::exact;
-  if (name == "paper") return ModelMode::paper;
-  return std::nullopt;
-}
 
 }  // namespace ccal

@@ -58,7 +58,7 @@ struct OptionRange {
   bool low_open = false, high_open = false;
   std::optional<double> also;     // a value accepted besides the range
   std::string_view also_meaning;  // what it means, e.g. "none"
-  std::string_view example;       // shown in the message, e.g. "0.95"
+  std::string_view example;       // shown in the message, e.g. "2 (U = k u)"
   std::string_view note;          // a last word of the message, e.g. where a similar option is
 
   // [low, high]; then, by copies: open ends, one more accepted value, an example, a note.
@@ -100,7 +100,13 @@ struct OptionRange {
   // "2 to 1000000000", "a number in (0, 1)", with the extra value, the example and the note: what a message
   // says is accepted.
   std::string text() const;
+  // The interval alone, as a help line states it: "[0.5, 1)", "[1, 6]", "≥ 0", "a finite number".
+  std::string interval() const;
 };
+
+// A row's help as the front ends show it: every "{range}" in it replaced by range.interval(), so that a help
+// line that states the range states the row's.
+std::string option_help(std::string_view help, const OptionRange& range);
 
 // A member of an enumeration type (or an optional one), set and read through the names of its values, which
 // are listed in the enumeration's order; made by enum_member<&Options::field>(names).

@@ -12,7 +12,7 @@
 
 namespace ccal {
 
-// How a file is written (a log folder's manifest, [format]: io/log_manifest.hpp). The default is parse_csv's
+// How a file is written (a log folder's manifest, [format]: intake/log_manifest.hpp). The default is parse_csv's
 // grammar. A line of another format is read as the comma-separated line it stands for: its delimiter becomes
 // the comma and a comma in it the delimiter (a comma in a cell is then no split, and a decimal comma not
 // declared is refused as no number), or, with decimal = ',', the point. So every format's rows go through

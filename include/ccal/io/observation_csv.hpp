@@ -136,7 +136,7 @@ struct ObservationsHeader {
     bool operator==(const Log&) const = default;
   };
   std::vector<Log> logs;
-  // The inputs the logs measured (io/measured_inputs.hpp), each on a line "# ccal measured v1; id=domega;
+  // The inputs the logs measured (intake/measured_inputs.hpp), each on a line "# ccal measured v1; id=domega;
   // u=<SI, 17 digits>; resolved=true; how=<words>" after the logs: what the calibration statement of these
   // observations charges in place of those inputs' tolerances.
   std::vector<MeasuredInput> measured;

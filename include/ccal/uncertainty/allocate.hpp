@@ -7,7 +7,7 @@
 // scaled, u_s = λ_s u_s0 with λ_s > 0 (sources of one correlation group share one λ). With c_kg = Σ_{s∈g}
 // J_ks u_s0 the 1-sigma effect of group g on coefficient k at the configured tolerances, the expanded
 // uncertainty of k is
-//     U_k(λ) = k_p · √(Σ_g λ_g² c_kg²),   k_p = Φ⁻¹((1 + p)/2)  (1.95996 for p = 0.95),
+//     U_k(λ) = k_p · √(Σ_g λ_g² c_kg²),   k_p = Φ⁻¹((1 + p)/2)  (1.95996 for p = 95 %),
 // and the allocation solves
 //     minimise Σ_s cost_s / λ_s   subject to   U_k(λ) ≤ T_k for every row k,   λ_min,s ≤ λ_s ≤ λ_max,
 // i.e. tightening a tolerance by a factor costs in proportion to the factor, weighted by Tolerance::cost.
@@ -47,7 +47,7 @@
 // allocated tolerances; per target the half-width max(y_high − y, y − y_low) of the symmetric 100p % interval
 // about the Monte Carlo mean y, against the target. Its sampling error is judged for a normal output: the
 // relative standard error of an interval end is √(p'(1 − p'))/(k_p φ(k_p) √M), p' = (1 + p)/2 (1.36/√M for p
-// = 0.95), that of a standard deviation about 1/√(2M). A half-width up to 3 such standard errors above the
+// = 95 %), that of a standard deviation about 1/√(2M). A half-width up to 3 such standard errors above the
 // target passes "within sampling error"; one beyond fails.
 
 #include <Eigen/Core>
@@ -57,6 +57,7 @@
 #include <vector>
 
 #include "ccal/core/options.hpp"
+#include "ccal/setup/coefficient_target.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/coverage.hpp"
@@ -107,13 +108,6 @@ struct AllocationSolution {
 // negative standard uncertainty, a max_scale ≤ 0 or a min_scale outside [0, max_scale].
 AllocationSolution solve_allocation(const AllocationProblem& problem);
 
-// A target on one free coefficient: its allowed expanded uncertainty (half-width of the 100p % interval), SI.
-struct AllocationTarget {
-  std::string coefficient;
-  double expanded = 0;
-  std::string text = "";          // as given, e.g. "K3=1e-6", for messages
-  std::string field = "targets";  // the option it was given in, for messages
-};
 
 // The factor by which the allocation may loosen (max_scale) or tighten (a target's fraction of its
 // configured U) the tolerances, at most: a million-fold either way keeps every scaled bound, variance and
@@ -124,21 +118,19 @@ inline constexpr double kAllocationScaleLimit = 1e6;
 inline constexpr OptionRange kMaxScaleRange =
     OptionRange::between(1 / kAllocationScaleLimit, kAllocationScaleLimit).e_g("10");
 
-// Parses "K3=1e-6" (a number in the coefficient's display unit, e.g. deg/s/g^3) or "K3=1e-6 deg/s/g^3" (a
-// quantity whose unit must have the coefficient's dimension) into SI. coefficients and units: the free terms
-// and their display units (BudgetResult::coefficients, ::units). Throws OptionError of `field` (the option
-// the text was given in) for bad syntax, an unknown or non-free coefficient (listing the free terms), a wrong
-// unit or a value ≤ 0.
-AllocationTarget parse_allocation_target(std::string_view text, const std::vector<std::string>& coefficients,
-                                         const std::vector<std::string>& units,
-                                         std::string_view field = "targets");
 
+// The options of an allocation (`ccal allocate`, Python allocate(), the report's allocation section), with
+// their table (options_of): the one home of each option's name, default, range and help.
 struct AllocateOptions {
-  ModelMode mode = ModelMode::exact;   // of the sensitivities and the verification (verbs: the config's)
-  double coverage_probability = 0.95;  // p
-  double max_scale = 10.0;             // λ_max
+  // Targets "<coefficient>=<U> [unit]", e.g. "K3=2e-3" (in the coefficient's display unit) or
+  // "K3=2e-3 deg/s/g^3" (parse_allocation_target); at least one.
+  std::vector<std::string> targets;
+  double coverage_probability = kDefaultCoverageProbability;  // p of the expanded uncertainties (the targets)
+  // Kinematics of the sensitivities and the verification; unset: the configuration's [identification] mode.
+  std::optional<ModelMode> mode;
+  double max_scale = 10.0;  // λ_max
   // false: every free coefficient without a target is held at its configured U (U_k(λ) ≤ U_k(1)); true:
-  // only the targets constrain the allocation, and the others may grow.
+  // only the targets constrain the allocation, and the others may grow (the result names each that does).
   bool let_others_grow = false;
   std::uint64_t verify_trials = 2000;  // M of the Monte Carlo verification; 0: none
   std::uint64_t seed = 1;
@@ -146,6 +138,9 @@ struct AllocateOptions {
   bool progress = false;         // progress bar of the verification (only on a terminal)
   ProgressCallback on_progress;  // of the verification; may throw Cancelled to stop (core/progress.hpp)
 };
+
+// The options' table (core/options.hpp); allocate_tolerances checks it.
+OptionTable<AllocateOptions> options_of(std::type_identity<AllocateOptions>);
 
 // One tolerance as configured (bound in SI, cost, group …) and as allocated.
 struct AllocatedSource : Tolerance {
@@ -200,9 +195,9 @@ struct AllocationVerification {
   std::string notes;                // the engine's notes
 };
 
-struct AllocationResult {
+struct AllocationDetail {
   ModelMode mode = ModelMode::exact;  // of the sensitivities and the verification
-  double coverage_probability = 0.95;
+  double coverage_probability = kDefaultCoverageProbability;
   double coverage_factor = 0;
   double max_scale = 10;
   bool let_others_grow = false;
@@ -221,14 +216,14 @@ struct AllocationResult {
   AllocationVerification verification;
 };
 
-// Allocates the tolerances of a configuration (sensitivities in options.mode at the configured errors) for
-// the targets, and verifies the result by Monte Carlo. Every free coefficient without a target is one more
-// row, U_k(λ) ≤ U_k(1), unless options.let_others_grow; every tolerance with a floor has λ_s ≥ floor/bound.
-// Throws InputError for no tolerances, no or duplicate targets, a target on a coefficient that is not free,
-// a target that cannot be met with every floored source at its floor (naming each such target, the least U
-// the floors allow and the factor it is above the target), a floor above max_scale × bound, bad options,
-// or an ill-posed identification.
-AllocationResult allocate_tolerances(const Config& config, const std::vector<AllocationTarget>& targets,
-                                     const AllocateOptions& options = {});
+// Allocates the tolerances of a configuration (sensitivities in the options' mode at the configured errors) for
+// the targets (parsed by parse_allocation_target, in the coefficients' display units), and verifies the result
+// by Monte Carlo. Every free coefficient without a target is one more row, U_k(λ) ≤ U_k(1), unless
+// options.let_others_grow; every tolerance with a floor has λ_s ≥ floor/bound. Throws OptionError naming the
+// field for an option its table refuses, InputError for no tolerances, no or duplicate targets, a target on a
+// coefficient that is not free, a target that cannot be met with every floored source at its floor (naming
+// each such target, the least U the floors allow and the factor it is above the target), a floor above
+// max_scale × bound, or an ill-posed identification.
+AllocationDetail allocate_tolerances(const Config& config, const AllocateOptions& options);
 
 }  // namespace ccal

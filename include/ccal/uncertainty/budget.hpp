@@ -120,7 +120,7 @@ struct RateNoiseBudget {
   Eigen::MatrixXd covariance;
 };
 
-struct BudgetResult {
+struct BudgetDetail {
   ModelMode mode = ModelMode::exact;
   DerivativeMethod derivatives = DerivativeMethod::automatic;  // used for the sensitivity table
   std::vector<std::string> coefficients;                       // free terms
@@ -142,13 +142,13 @@ struct BudgetResult {
 // The tolerances' effects as independent components (coefficients × m, SI): G with G Gᵀ = E R Eᵀ, the
 // tolerances' part of the covariance (E: the sources' signed effects c u). Groups only: one column per group,
 // its members' effects added with their signs; with [[correlations]]: E F.
-Eigen::MatrixXd independent_effects(const BudgetResult& budget);
+Eigen::MatrixXd independent_effects(const BudgetDetail& budget);
 // The same for any signed effects of the budget's sources (rows × sources, a column per source in its order),
 // e.g. each run's output mean: E F, or per group the members' columns added.
-Eigen::MatrixXd independent_effects(const BudgetResult& budget, const Eigen::MatrixXd& effects);
+Eigen::MatrixXd independent_effects(const BudgetDetail& budget, const Eigen::MatrixXd& effects);
 // The part of u_k² that correlations between the sources make (coefficients, SI): u_k² from the tolerances
 // less Σ_s (c_ks u_s)², negative when they cancel.
-Eigen::VectorXd correlation_variance(const BudgetResult& budget);
+Eigen::VectorXd correlation_variance(const BudgetDetail& budget);
 
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets; compute_budget
 // checks its options against it.
@@ -156,7 +156,7 @@ OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>);
 
 // Throws OptionError naming the field for an option its table refuses, or a coverage factor with a coverage
 // probability other than the default.
-BudgetResult compute_budget(const Config& config, const BudgetOptions& options = {});
+BudgetDetail compute_budget(const Config& config, const BudgetOptions& options = {});
 
 // The round-off floor of a contribution, relative to its coefficient's u_c: |u_i(y)| < kRoundOffFloor u_c is
 // round-off of the derivatives, not a number of the budget (the tables show it as 0; JSON and CSV keep it

@@ -16,6 +16,7 @@
 namespace ccal {
 
 inline constexpr double kDefaultCoverageProbability = 0.95;
+inline constexpr std::string_view kDefaultCoverageProbabilityText = "0.95";  // as a message shows it
 // normal_coverage_factor(kDefaultCoverageProbability) as it computes it (1 ulp below the nearest double of
 // Φ⁻¹(0.975)), for the defaults of structs; a test checks that the two are equal.
 inline constexpr double kDefaultCoverageFactor = 1.9599639845400538;

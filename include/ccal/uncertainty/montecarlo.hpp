@@ -88,17 +88,14 @@
 #include "ccal/core/progress.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/setup/config.hpp"
+#include "ccal/uncertainty/propagation_options.hpp"
 #include "ccal/uncertainty/rate_noise.hpp"
 
 namespace ccal {
 
-// The accepted thread counts: 0 (the OpenMP default) or 1…kMaxThreads. Far more threads than cores only
-// costs memory, and tens of thousands exhaust the OpenMP runtime's stacks (a crash, not an error).
-inline constexpr int kMaxThreads = 1024;
-
-// Throws InputError naming `what` (e.g. "--threads") unless 0 ≤ threads ≤ kMaxThreads and the system can
-// start that many threads now (they are started and ended to find out: the OpenMP runtime would end the
-// process, exit code 1, on a thread it cannot create).
+// Throws OptionError of `what` (e.g. "threads") unless the system can start that many threads now (they are
+// started and ended to find out: the OpenMP runtime would end the process, exit code 1, on a thread it cannot
+// create). The range, 0 or 1 … kMaxThreads, is the threads row's (option_rows.hpp), checked with the table.
 void check_thread_count(int threads, const char* what);
 
 // Throws InputError naming the source unless every bound is finite and ≥ 0.
@@ -112,38 +109,6 @@ std::uint64_t least_trials_for_coverage(double p);
 // would need, when `trials` values cannot give the coverage interval of probability p (trials <
 // least_trials_for_coverage(p)).
 void check_coverage_interval(std::uint64_t trials, double p, std::string_view trials_field = "trials");
-
-// The default M of a fixed run: at 10⁴ the interval ends of a normal output scatter by about 2.7·u/√M =
-// 0.027 u, as much as the §8 tolerance δ of a two-digit u, so the bundled example's K3 failed its validation
-// by sampling noise alone; at 10⁶ they scatter by 0.0027 u. The adaptive procedure's default stage: 10⁴.
-inline constexpr std::uint64_t kDefaultMonteCarloTrials = 1000000;
-inline constexpr std::uint64_t kDefaultMonteCarloStage = 10000;
-
-// The options of a propagation, named as every front end names them (`ccal montecarlo`'s table,
-// verbs/montecarlo.hpp, holds these and the kinematics).
-struct MonteCarloOptions {
-  // M; adaptive: the stage size is max(trials, ⌈100/(1 − p)⌉, 10⁴). Unset: kDefaultMonteCarloTrials, or
-  // stages of kDefaultMonteCarloStage.
-  std::optional<std::uint64_t> trials;
-  std::uint64_t seed = 1;
-  int threads = 0;  // 0: the OpenMP default; at most kMaxThreads
-  int digits = 0;   // n_dig > 0: the adaptive procedure of §7.9 with this many significant digits of u(y)
-  std::uint64_t max_trials = 1000000;  // adaptive: no stage is started that would go beyond this
-  double coverage_probability = 0.95;  // p, in (0, 1)
-  bool progress = false;  // a progress bar (%, trials/s, ETA) on stderr, only if stderr is a terminal
-  ProgressCallback
-      on_progress;  // called every 0.1 s at most; may throw Cancelled to stop (core/progress.hpp)
-  // Keep every trial's outputs in MonteCarloResult::samples (M × n_outputs, trial order): 8·M·n_outputs bytes
-  // more, besides the engine's own copy, which is partly sorted for the intervals.
-  bool keep_samples = false;
-  // The outputs of trials 0 … k − 1 of an earlier run with the same seed, sources, correlations and trial
-  // function (its MonteCarloResult::samples, kept with keep_samples: k × n_outputs, trial order), taken as they
-  // are instead of evaluated again. Trial i depends only on (seed, i), so the result is that of a run without
-  // them, bit for bit, at the cost of M − k trials: a run that needs more trials extends the one before it.
-  // Fixed M only (trials ≥ k); null: none.
-  const Eigen::MatrixXd* earlier_samples = nullptr;
-  int histogram_bins = 60;  // bins of each output's histogram over [lowest, highest] value, 1…10⁴
-};
 
 // The distribution of one output's M values in equal bins.
 struct SampleHistogram {
@@ -203,7 +168,7 @@ struct ValidationDiagnosis {
 };
 ValidationDiagnosis validation_diagnosis(const OutputSummary& summary, std::uint64_t trials);
 
-struct MonteCarloResult {
+struct MonteCarloDetail {
   std::uint64_t trials = 0;        // M, over all stages
   std::uint64_t stage_trials = 0;  // trials per stage (= trials for a fixed M)
   int stages = 0;
@@ -213,7 +178,7 @@ struct MonteCarloResult {
   bool converged = false;
   std::uint64_t seed = 0;
   int threads = 1;                    // threads used
-  double coverage_probability = 0.95;  // p
+  double coverage_probability = kDefaultCoverageProbability;  // p
   double coverage_factor = 0;         // k = Φ⁻¹((1 + p)/2) for the LPU interval
   int digits = 0;                     // n_dig used for δ (adaptive and validation)
   std::uint64_t interval_points = 0;  // q: the intervals span y_(r) … y_(r+q)
@@ -232,13 +197,13 @@ struct MonteCarloResult {
 // gives a non-finite output; rethrows an exception thrown by the trial function.
 // correlations: pairs of source ids with their Pearson r ([[correlations]]), drawn through a Gaussian copula
 // that keeps every source's distribution (gaussian_copula.hpp); InputError where it cannot.
-MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources,
+MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
                                  const std::vector<Correlation>& correlations, int n_outputs,
                                  std::vector<std::string> output_names, const TrialFunction& trial,
-                                 const MonteCarloOptions& options, const Eigen::VectorXd* lpu_std = nullptr);
-inline MonteCarloResult run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
+                                 const PropagationOptions& options, const Eigen::VectorXd* lpu_std = nullptr);
+inline MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources, int n_outputs,
                                         std::vector<std::string> output_names, const TrialFunction& trial,
-                                        const MonteCarloOptions& options,
+                                        const PropagationOptions& options,
                                         const Eigen::VectorXd* lpu_std = nullptr) {
   return run_monte_carlo(sources, {}, n_outputs, std::move(output_names), trial, options, lpu_std);
 }

@@ -9,9 +9,12 @@
 #include "ccal/core/model_mode.hpp"
 #include "ccal/core/options.hpp"
 #include "ccal/uncertainty/coverage.hpp"
-#include "ccal/uncertainty/montecarlo.hpp"
 
 namespace ccal {
+
+// The accepted thread counts: 0 (the OpenMP default) or 1…kMaxThreads. Far more threads than cores only
+// costs memory, and tens of thousands exhaust the OpenMP runtime's stacks (a crash, not an error).
+inline constexpr int kMaxThreads = 1024;
 
 // The trial outputs are stored (8 bytes per trial and coefficient): 10⁹ trials of three coefficients are
 // 24 GB, the most accepted.
@@ -29,7 +32,7 @@ inline constexpr OptionRange kVerifyTrials = kTrials.or_value(0, "none");
 inline constexpr OptionRange kThreads = OptionRange::between(1, kMaxThreads).or_value(0, "the OpenMP default");
 // At least ½: an interval that more likely misses the value than holds it is no coverage interval (and p → 0
 // takes q = round(pM) = 0 of the M sorted values, an interval of one point).
-inline constexpr OptionRange kCoverageProbability = OptionRange::between(0.5, 1).open_high().e_g("0.95");
+inline constexpr OptionRange kCoverageProbability = OptionRange::between(0.5, 1).open_high().e_g(kDefaultCoverageProbabilityText);
 
 // mode<&Options::mode>(): the kinematics (an optional ModelMode: unset, the configuration's).
 template <auto Member, class O = typename member_class<decltype(Member)>::type>
@@ -52,7 +55,7 @@ constexpr OptionSpec<O> coverage_factor(std::optional<double> O::*member) {
           "A stated coverage factor k instead of the coverage probability's (e.g. 2 by contract); p is then "
           "that of a normal quantity",
           OptionRange::at_least(1).e_g("2 (U = k u)").noting(
-              "a coverage probability such as 0.95 is given as "
+              "a coverage probability is given as "
               "\x1f" "coverage_probability" "\x1f")};  // OptionError::name's marks: worded by each front end
 }
 
@@ -60,9 +63,11 @@ constexpr OptionSpec<O> coverage_factor(std::optional<double> O::*member) {
 // question: refused, naming both.
 inline void check_coverage_choice(double p, const std::optional<double>& k) {
   if (k && p != kDefaultCoverageProbability)
-    throw OptionError("coverage_factor", option_number_text(*k),
-                      "and " + OptionError::name("coverage_probability") + " " + option_number_text(p) +
-                          " are two coverages; give one of them");
+    throw OptionError(
+        "coverage_factor", option_number_text(*k),
+        "and " + OptionError::name("coverage_probability") + " " + option_number_text(p) +
+            " are two coverages; accepted: one of them (a stated coverage factor, or a coverage "
+            "probability)");
 }
 
 template <class O>
@@ -76,8 +81,8 @@ constexpr OptionSpec<O> threads(int O::*member, std::string_view help = "Threads
   return {"threads", member, "K", help, kThreads};
 }
 
-template <class O>
-constexpr OptionSpec<O> verify_trials(std::int64_t O::*member, std::string_view help) {
+template <class O, class Count>
+constexpr OptionSpec<O> verify_trials(Count O::*member, std::string_view help) {
   return {"verify_trials", member, "N", help, kVerifyTrials};
 }
 

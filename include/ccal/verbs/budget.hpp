@@ -18,7 +18,7 @@ namespace ccal::verbs {
 
 struct BudgetResult {
   Config config;                      // the configuration budgeted
-  ccal::BudgetResult budget;          // per source and per coefficient (SI, with display scales)
+  ccal::BudgetDetail budget;          // per source and per coefficient (SI, with display scales)
   ObservabilityReport observability;  // of the free terms under this plan
   // The bias of the coefficients from the configuration's known [errors] when the model leaves them out
   // (SI, per coefficient; uncertainty/statement.hpp known_error_shift): empty when compensated or none.

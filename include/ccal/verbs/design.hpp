@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "ccal/io/candidate_cache.hpp"
+#include "ccal/uncertainty/candidate_cache.hpp"
 #include "ccal/model/run_sheet.hpp"
 #include "ccal/verbs/statement.hpp"
 #include "ccal/setup/config.hpp"
@@ -37,7 +37,7 @@ struct DesignOptions {
   // starts, the refinement, each with its estimate of the time left.
   bool progress = false;
   // The candidate runs' rows are read from the cache when it holds them for this configuration, and written
-  // to it otherwise (io/candidate_cache.hpp, in cache_folder); true: computed anew (and written all the
+  // to it otherwise (uncertainty/candidate_cache.hpp, in cache_folder); true: computed anew (and written all the
   // same).
   bool fresh_candidates = false;
   std::filesystem::path cache_folder = default_cache_folder();  // empty: no cache

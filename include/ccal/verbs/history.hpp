@@ -1,6 +1,6 @@
 #pragma once
 // `ccal history` as library calls (docs/cli.md): record a calibration statement in an instrument's history
-// (io/history_store.hpp), and read a serial number's calibrations back with, per coefficient, the agreement
+// (history/history_store.hpp), and read a serial number's calibrations back with, per coefficient, the agreement
 // of successive calibrations (E_n), the drift line and its prediction at a date
 // (uncertainty/history_trend.hpp).
 
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "ccal/core/options.hpp"
-#include "ccal/io/history_exchange.hpp"
-#include "ccal/io/history_store.hpp"
+#include "ccal/history/history_exchange.hpp"
+#include "ccal/history/history_store.hpp"
 #include "ccal/uncertainty/history_trend.hpp"
 
 namespace ccal::verbs {
@@ -114,7 +114,7 @@ void history_supersede(std::int64_t id, const HistorySupersedeOptions& options);
 // A calibration's id as typed (the ID of `ccal history supersede`): a whole number ≥ 1. InputError "ID: 'abc' is
 // not a calibration id; accepted: …" otherwise.
 std::int64_t history_record_id(const std::string& text);
-// A serial's history as JSON (io/history_exchange.hpp), and a file of it recorded in the store.
+// A serial's history as JSON (history/history_exchange.hpp), and a file of it recorded in the store.
 std::string history_export(const std::string& serial, const HistoryStoreOptions& options = {});
 HistoryImport history_import(const std::string& file, const HistoryStoreOptions& options = {});
 

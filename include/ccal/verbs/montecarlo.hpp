@@ -10,14 +10,16 @@
 #include "ccal/io/config_file.hpp"
 #include "ccal/uncertainty/budget.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/uncertainty/propagation_options.hpp"
 #include "ccal/uncertainty/option_rows.hpp"
 
 namespace ccal::verbs {
 
-// The options of `ccal montecarlo`: the engine's (uncertainty/montecarlo.hpp: trials, seed, threads, digits,
-// max_trials, coverage_probability, progress, keep_samples), and the kinematics of the model. The table's
-// fields are the engine's own, so a front end sets what the engine reads.
-struct MonteCarloOptions : ccal::MonteCarloOptions {
+// The options of `ccal montecarlo`: the engine's (uncertainty/propagation_options.hpp: trials, seed, threads,
+// digits, max_trials, coverage_probability, progress, keep_samples) and the kinematics of the model. Its table
+// lifts the engine's rows, so a front end sets what the engine reads and the engine checks it.
+struct MonteCarloOptions {
+  PropagationOptions propagation;
   std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
 };
 
@@ -26,8 +28,8 @@ OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>)
 
 struct MonteCarloResult {
   Config config;
-  ccal::BudgetResult budget;  // the LPU that the Monte Carlo validates, and the display units
-  ccal::MonteCarloResult monte_carlo;
+  ccal::BudgetDetail budget;  // the LPU that the Monte Carlo validates, and the display units
+  ccal::MonteCarloDetail monte_carlo;
 };
 
 // Throws OptionError naming the field for a value out of range (its table), InputError for an empty

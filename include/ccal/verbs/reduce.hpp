@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
-#include "ccal/io/log_manifest.hpp"
-#include "ccal/io/run_log.hpp"
+#include "ccal/intake/log_manifest.hpp"
+#include "ccal/intake/run_log.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/verbs/identification.hpp"
 #include "ccal/verbs/instrument_covariance.hpp"
@@ -45,7 +45,7 @@ struct ReduceOptions {
   // At least as many as the identification has free terms. Not a row of the table: each front end reads
   // them (the command line: --log RUN=FILE, repeated; Python: a dict of run → file).
   std::vector<LogFile> logs;
-  // How the logs' columns read (a log folder's manifest, io/log_manifest.hpp); default: ccal's own layout.
+  // How the logs' columns read (a log folder's manifest, intake/log_manifest.hpp); default: ccal's own layout.
   // Not a row either: the front ends read it with the logs (the command line: --logs DIR).
   LogLayout layout;
   AngleUnit angle_unit = AngleUnit::rad;  // of the encoder columns, unless the layout states their unit
@@ -86,7 +86,7 @@ struct ReduceResult {
 ReduceResult reduce(const Config& config, const ReduceOptions& options);
 // Refuses, for a configuration of several instruments, the outputs that hold one instrument's table (the
 // observations file, the statement's CSV: InputError naming the option); nothing for one instrument.
-void check_single_instrument_output(const Config& config, std::string_view option);
+void check_single_instrument_output(const Config& config, std::string_view field);
 
 // The pulse weight as written on the command line: a bare number in the output unit × s, or a quantity whose
 // unit has that dimension ("2.5e-5 deg" for an output in deg/s), as a value of ReduceOptions::pulse_weight.

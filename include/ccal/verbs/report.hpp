@@ -28,7 +28,7 @@ struct ReportOptions {
   // Every U of the report is at the Monte Carlo's coverage probability (monte_carlo.coverage_probability);
   // a stated k, when given, replaces the normal k of the budget's and the design's LPU (as `ccal budget`).
   std::optional<double> coverage_factor;
-  MonteCarloOptions monte_carlo;  // as `ccal montecarlo` (its mode is set from `mode`)
+  PropagationOptions monte_carlo;  // as `ccal montecarlo` in the report's mode
   std::string run;                // the run whose sensed input is drawn; empty: the one of highest g-level
   int input_points = 241;         // instants of the sensed-input curve, 2…100000
   // The allocation section: as `ccal allocate` with these options (its mode set from `mode` when unset).

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
-#include "ccal/io/log_manifest.hpp"
-#include "ccal/io/run_log_writer.hpp"
+#include "ccal/intake/log_manifest.hpp"
+#include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
 #include "ccal/reduction/observe.hpp"
 #include "ccal/setup/config.hpp"
@@ -62,7 +62,7 @@ struct SimulateResult {
 SimulateResult simulate(const Config& config, const SimulateOptions& options = {});
 
 // The run logs of a simulated test as `ccal simulate --logs-out DIR` writes them: one file per run in the layout's
-// format (io/run_log_writer.hpp), then the folder's manifest (kLogManifestName), which `ccal reduce --logs DIR`
+// format (intake/run_log_writer.hpp), then the folder's manifest (kLogManifestName), which `ccal reduce --logs DIR`
 // reads. step: the sampling interval [s] (default_log_step when unset). For a test of several instruments every
 // instrument's output is a column of each file, named by the layout's [instruments] when it maps them, else
 // "pulses_<id>" (or "output_<id>" for an instrument without a quantum), and the manifest's [instruments] names

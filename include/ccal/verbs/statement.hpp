@@ -21,7 +21,7 @@
 namespace ccal::verbs {
 
 struct StatementOptions {
-  double coverage_probability = 0.95;  // p of the intervals, in (0, 1)
+  double coverage_probability = kDefaultCoverageProbability;  // p of the intervals
   // A stated k (e.g. 2 by contract): U = k u_c for every quantity, p that of a normal quantity; exclusive with a
   // coverage_probability other than the default.
   std::optional<double> coverage_factor;
@@ -36,7 +36,7 @@ struct StatementOptions {
 // StatementOptions and lifts these rows into its own table (core/options.hpp lifted_rows), in this order.
 inline constexpr OptionSpec<StatementOptions> kStatementRows[] = {
     rows::coverage_probability(&StatementOptions::coverage_probability,
-                               "Coverage probability p of the statement's intervals, in [0.5, 1)"),
+                               "Coverage probability p of the statement's intervals, in {range}"),
     rows::coverage_factor(&StatementOptions::coverage_factor),
     rows::mode<&StatementOptions::mode>("Kinematics of the statement's budget: exact or paper; default: the "
                                         "configuration's [identification] mode"),
@@ -92,7 +92,7 @@ struct CalibrationStatement {
   // ties an amended certificate to the one it supersedes.
   std::string certificate_number, revision, replaces;
   ModelMode mode = ModelMode::exact;
-  double coverage_probability = 0.95;  // p; with a stated k, 2Φ(k) − 1
+  double coverage_probability = kDefaultCoverageProbability;  // p; with a stated k, 2Φ(k) − 1
   std::optional<double> coverage_factor;  // k when the user stated it (a contract), else unset
   bool compensated = false;  // the model computed the regressors with the known [errors]
   int known_errors = 0;      // non-zero [errors] parameters
@@ -130,7 +130,7 @@ struct CalibrationStatement {
 // `field` (the option that asked for the statement: statement, observations) when a fitted term is not a free
 // term of the configuration, the units cannot be converted or the fit has no degrees of freedom, and naming
 // coverage_probability when p is not in (0, 1).
-// `measured`: inputs the test measured (io/measured_inputs.hpp), charged at their measurement's uncertainty in
+// `measured`: inputs the test measured (intake/measured_inputs.hpp), charged at their measurement's uncertainty in
 // place of their tolerances (a measured input leaves its group and its [[correlations]]); `durations`: T of
 // each row of the identification [s] (empty: its run's in the plan).
 CalibrationStatement calibration_statement(const Config& config, const Identification& identification,
@@ -149,7 +149,7 @@ TestEvidence test_evidence(const std::optional<ObservationsHeader>& header, cons
 
 // The statement a test of the configuration's plan is expected to give, by the very method of
 // calibration_statement (its Type A part, ν, k and interval): the plan simulated without noise (the machine with
-// the [errors]), the inputs its declared encoders will measure credited (io/measured_inputs.hpp,
+// the [errors]), the inputs its declared encoders will measure credited (intake/measured_inputs.hpp,
 // expected_measured_inputs), no Monte Carlo check. `ccal design`'s "Expected if run as written". Throws as
 // calibration_statement (a plan of no more runs than free terms has no Type A evaluation).
 CalibrationStatement expected_statement(const Config& config, double coverage_probability,

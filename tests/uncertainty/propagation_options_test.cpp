@@ -1,0 +1,82 @@
+// The propagation's options (uncertainty/propagation_options.hpp): run_monte_carlo refuses exactly what the
+// table's rows refuse, naming the field, on both sides of every end of every range; and `ccal montecarlo`'s
+// table is the engine's rows and the kinematics.
+#include "ccal/uncertainty/propagation_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include <span>
+#include <string>
+
+#include "ccal/core/errors.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
+#include "ccal/verbs/montecarlo.hpp"
+#include "option_probes.hpp"
+
+namespace ccal::test {
+namespace {
+
+// Thrown by the trial: the engine evaluates the model once before any trial, after all its checks, so a
+// run that gets this far has accepted its options (and does no work).
+struct PassedTheChecks {};
+
+// The field run_monte_carlo refuses (an OptionError's field), or "" when it gets past its checks.
+std::string refused_field(const PropagationOptions& options) {
+  Tolerance source;
+  source.id = "a";
+  source.bound = 1.0;
+  const std::vector<Tolerance> sources = {source};
+  auto trial = [](std::span<const double>, std::span<double>) { throw PassedTheChecks{}; };
+  try {
+    run_monte_carlo(sources, 1, {}, trial, options);
+  } catch (const PassedTheChecks&) {
+    return "";
+  } catch (const OptionError& e) {
+    return e.field();
+  }
+  return "(no refusal and no trial)";
+}
+
+TEST(PropagationOptions, TheEngineRefusesExactlyWhatEachRowRefuses) {
+  int probed = 0;
+  for (const OptionSpec<PropagationOptions>& row : option_table<PropagationOptions>()) {
+    for (const OptionProbe& probe : option_probes(row.range, whole_number_option(row))) {
+      PropagationOptions o;
+      // p = ½ lets M = 2 trials give the interval's ends (q = round(pM) = 1 ≤ M − 1), so that only the probed
+      // row decides. Probing p: M = 10⁶, which gives them for p up to 1 − 5·10⁻⁷; above that the interval's
+      // rule for M (check_coverage_interval) refuses a p the row accepts, which is not the row's to say.
+      o.coverage_probability = 0.5;
+      if (row.field == "coverage_probability") {
+        o.trials = 1000000;
+        if (probe.accepted && probe.value > 1 - 5e-7) continue;
+      }
+      if (!set_numeric_option(o, row, probe.value)) continue;
+      // Starting a thousand threads is the system probe's work (check_thread_count), not the row's.
+      if (row.field == "threads" && probe.accepted && probe.value > 64) continue;
+      SCOPED_TRACE(std::string(row.field) + " = " + std::to_string(probe.value));
+      EXPECT_EQ(refused_field(o), probe.accepted ? "" : std::string(row.field));
+      ++probed;
+    }
+  }
+  EXPECT_GE(probed, 19);  // trials, threads, digits, max_trials and p, each on both sides of both ends
+}
+
+TEST(PropagationOptions, TheVerbsTableIsTheEnginesRowsAndTheKinematics) {
+  const auto engine = option_table<PropagationOptions>();
+  const auto verb = option_table<verbs::MonteCarloOptions>();
+  ASSERT_EQ(verb.size(), engine.size() + 1);
+  for (std::size_t k = 0; k < engine.size(); ++k) {
+    EXPECT_EQ(verb[k].field, engine[k].field);
+    EXPECT_EQ(verb[k].help, engine[k].help);
+    EXPECT_EQ(verb[k].range.low, engine[k].range.low);
+    EXPECT_EQ(verb[k].range.high, engine[k].range.high);
+  }
+  EXPECT_EQ(verb.back().field, "mode");
+  // A value set through the verb's row lands in the engine's field.
+  verbs::MonteCarloOptions o;
+  ASSERT_TRUE(set_numeric_option(o, verb[0], 1234));
+  EXPECT_EQ(o.propagation.trials, 1234u);
+}
+
+}  // namespace
+}  // namespace ccal::test
