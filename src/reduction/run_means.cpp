@@ -77,10 +77,6 @@ OutputPolynomial::OutputPolynomial(const InstrumentModel& model) : rate(model.ra
 
 }  // namespace run_nodes
 
-struct RunMeanKernel::Data : run_nodes::KernelTables {
-  using KernelTables::KernelTables;
-};
-
 
 namespace {
 

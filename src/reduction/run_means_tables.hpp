@@ -225,6 +225,9 @@ struct BatchScratch {
 }  // namespace ccal::run_nodes
 
 namespace ccal {
+struct RunMeanKernel::Data : run_nodes::KernelTables {
+  using KernelTables::KernelTables;
+};
 struct RunMeanKernel::Workspace::Buffers : run_nodes::Scratch {
   run_nodes::BatchScratch batch;
 };
