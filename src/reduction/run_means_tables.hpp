@@ -196,8 +196,10 @@ struct Scratch {
       nu_re.resize(harmonics);
       nu_im.resize(harmonics);
     }
-    if (lane_re.size() < lanes * std::size_t(Q)) {
+    // Each grown on its own: a later group may have more lanes but fewer slow nodes (lanes·Q no larger).
+    if (lane_kappa.size() < lanes)
       for (auto* v : {&lane_kappa, &lane_cos, &lane_sin, &lane_turn}) v->resize(lanes);
+    if (lane_re.size() < lanes * std::size_t(Q)) {
       lane_re.resize(lanes * std::size_t(Q));
       lane_im.resize(lanes * std::size_t(Q));
     }

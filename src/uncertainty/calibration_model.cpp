@@ -107,13 +107,14 @@ class CalibrationTrial final : public mc_batch::BatchTrial {
     return std::make_unique<CalibrationTrial>(model_);
   }
   void one(std::span<const double> draws, std::span<double> outputs) override {
+    check_sizes(draws.size(), outputs.size(), 1);
     const Eigen::VectorXd& reference = model_.reference();
     identified_terms(model_, model_.actual_errors(), draws, outputs, scratch_);
     for (std::size_t o = 0; o < outputs.size(); ++o) outputs[o] -= reference[Eigen::Index(o)];
   }
   void many(std::span<const double> draws, std::size_t trials, std::span<double> outputs) override {
-    const std::size_t n_sources = model_.parameters().size(),
-                      n_out = outputs.size() / std::max<std::size_t>(trials, 1);
+    check_sizes(draws.size(), outputs.size(), trials);
+    const std::size_t n_sources = model_.parameters().size(), n_out = std::size_t(model_.n_outputs());
     const CalibrationTrialCache& cache = model_.trial_cache();
     if (!cache.run_means) {
       for (std::size_t t = 0; t < trials; ++t)
@@ -137,6 +138,18 @@ class CalibrationTrial final : public mc_batch::BatchTrial {
   }
 
  private:
+  // A draw for every source of the model (its tolerances, then each run's rate noise) and an output for every
+  // free term, per trial: the sources are read by their index, so a shorter draw vector would be read past
+  // its end.
+  void check_sizes(std::size_t draws, std::size_t outputs, std::size_t trials) const {
+    const std::size_t n_sources = model_.parameters().size(), n_out = std::size_t(model_.n_outputs());
+    if (draws != trials * n_sources || outputs != trials * n_out)
+      throw std::invalid_argument(fmt::format(
+          "calibration trial: {} draws and {} outputs for {} trial(s); the model takes {} draws (one per source) "
+          "and gives {} outputs a trial",
+          draws, outputs, trials, n_sources, n_out));
+  }
+
   CalibrationModel model_;  // its state shared and only read
   TrialScratch scratch_;    // this copy's own
 };

@@ -20,9 +20,9 @@ namespace {
 
 using ccal::test::source;
 
-MonteCarloResult run_kept(const std::vector<Tolerance>& sources, int outputs, const TrialFunction& trial,
+MonteCarloDetail run_kept(const std::vector<Tolerance>& sources, int outputs, const TrialFunction& trial,
                           int threads, std::uint64_t trials, const Eigen::MatrixXd* earlier = nullptr) {
-  MonteCarloOptions o;
+  PropagationOptions o;
   o.trials = trials;
   o.seed = 11;
   o.threads = threads;
@@ -47,15 +47,30 @@ TEST(MonteCarloBatch, CalibrationTrialsInBatchesAreTheTrialsOneByOne) {
     trial(draws, outputs);
   };
   const int n = model.n_outputs();
-  const MonteCarloResult alone = run_kept(sources, n, one_by_one, 1, 1000);
+  const MonteCarloDetail alone = run_kept(sources, n, one_by_one, 1, 1000);
   for (int threads : {1, 2}) {
-    const MonteCarloResult mc = run_kept(sources, n, batched, threads, 1000);
+    const MonteCarloDetail mc = run_kept(sources, n, batched, threads, 1000);
     ASSERT_TRUE(mc.samples == alone.samples) << threads << " threads";
   }
   const Eigen::MatrixXd earlier = alone.samples.topRows(77);
-  const MonteCarloResult extended = run_kept(sources, n, batched, 2, 1000, &earlier);
+  const MonteCarloDetail extended = run_kept(sources, n, batched, 2, 1000, &earlier);
   ASSERT_TRUE(extended.samples == alone.samples);
   EXPECT_GT((alone.samples.row(0) - alone.samples.row(1)).norm(), 0.0);  // trials differ: the checks can fail
+}
+
+TEST(MonteCarloBatch, ATrialGivenTooFewDrawsIsRefused) {
+  // The model reads each source's draw by its index: the bundled example's model has a source per tolerance and
+  // two per run (the drives' rate noise), so the tolerances' draws alone would be read past their end.
+  const Config cfg = bundled_example();
+  const CalibrationModel model = calibration_model(cfg);
+  TrialFunction trial = calibration_trial(model);
+  std::vector<double> outputs(std::size_t(model.n_outputs()));
+  const std::vector<double> tolerances_only(cfg.tolerances.size(), 0.0), all(model.parameters().size(), 0.0);
+  ASSERT_LT(tolerances_only.size(), all.size());
+  EXPECT_THROW(trial(tolerances_only, outputs), std::invalid_argument);
+  EXPECT_NO_THROW(trial(all, outputs));
+  std::vector<double> too_few_outputs(outputs.size() - 1);
+  EXPECT_THROW(trial(all, too_few_outputs), std::invalid_argument);
 }
 
 // A model whose batch always throws and whose single trial fails beyond 2.5 in its first draw (2.5σ of a

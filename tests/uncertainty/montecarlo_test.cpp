@@ -486,9 +486,12 @@ TEST(MonteCarlo, CalibrationTrialIsTheFullPipelineAtItsDraw) {
   std::mt19937 rng(3);
   for (int draw = 0; draw < 3; ++draw) {
     const Eigen::VectorXd truth = corner_draw(cfg, 3.0, rng);
-    std::vector<double> draws;
-    for (const Tolerance& t : cfg.tolerances)
-      draws.push_back(is_chain_parameter(t.parameter) ? 0.0 : truth[t.parameter] - cfg.centrifuge.errors[t.parameter]);
+    // A draw for every source of the model: the tolerances' (the chain's at 0), then the runs' rate noise (0).
+    std::vector<double> draws(model.parameters().size(), 0.0);
+    for (std::size_t j = 0; j < cfg.tolerances.size(); ++j) {
+      const int p = cfg.tolerances[j].parameter;
+      if (!is_chain_parameter(p)) draws[j] = truth[p] - cfg.centrifuge.errors[p];
+    }
     std::vector<double> out(std::size_t(model.n_outputs()));
     trial(draws, out);
     const Eigen::VectorXd want =
