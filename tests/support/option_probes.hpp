@@ -2,9 +2,13 @@
 // Values on both sides of each end of an option row's range (core/options.hpp OptionRange), each with whether
 // the row accepts it: what a test feeds an engine to show that it refuses exactly what the row refuses.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -61,6 +65,25 @@ template <class Options>
 bool whole_number_option(const OptionSpec<Options>& row) {
   return !std::holds_alternative<OptionField<Options, double>>(row.member) &&
          !std::holds_alternative<OptionField<Options, std::optional<double>>>(row.member);
+}
+
+// Every numeric row's probes given to an engine: options from `make(row, probe)` (std::nullopt: a probe not the
+// row's to decide, left out) with the probe's value set, then `refusal(options)`, the field the engine refuses
+// or `passed` when it takes them, expected to be the row's field exactly when the row refuses the value.
+// Returns the number of probes given.
+template <class Options, class Make, class Refusal>
+int probe_every_numeric_row(Make make, Refusal refusal, std::string_view passed) {
+  int probed = 0;
+  for (const OptionSpec<Options>& row : option_table<Options>()) {
+    for (const OptionProbe& probe : option_probes(row.range, whole_number_option(row))) {
+      std::optional<Options> options = make(row, probe);
+      if (!options || !set_numeric_option(*options, row, probe.value)) continue;
+      SCOPED_TRACE(std::string(row.field) + " = " + std::to_string(probe.value));
+      EXPECT_EQ(refusal(*options), probe.accepted ? std::string(passed) : std::string(row.field));
+      ++probed;
+    }
+  }
+  return probed;
 }
 
 }  // namespace ccal::test

@@ -3,6 +3,7 @@
 // `ccal allocate`, Python's allocate() and the report's allocation section take this one struct.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 
 #include "ccal/core/errors.hpp"
@@ -28,23 +29,20 @@ std::string allocation_refusal(const Config& config, AllocateOptions options) {
 
 TEST(AllocateOptions, TheEngineRefusesExactlyWhatEachRowRefuses) {
   const Config config = bundled_example();
-  int probed = 0;
-  for (const OptionSpec<AllocateOptions>& row : option_table<AllocateOptions>()) {
-    for (const OptionProbe& probe : option_probes(row.range, whole_number_option(row))) {
-      AllocateOptions o;
-      // p = ½ lets M = 2 trials give the interval's ends (q = round(pM) = 1 ≤ M − 1); probing p, 10⁶ trials
-      // give them for p up to 1 − 5·10⁻⁷, above which the rule for M refuses what the row accepts.
-      o.coverage_probability = 0.5;
-      if (row.field == "coverage_probability") {
-        o.verify_trials = 1000000;
-        if (probe.accepted && probe.value > 1 - 5e-7) continue;
-      }
-      if (!set_numeric_option(o, row, probe.value)) continue;
-      SCOPED_TRACE(std::string(row.field) + " = " + std::to_string(probe.value));
-      EXPECT_EQ(allocation_refusal(config, o), probe.accepted ? "targets" : std::string(row.field));
-      ++probed;
+  const auto make = [](const OptionSpec<AllocateOptions>& row,
+                       const OptionProbe& probe) -> std::optional<AllocateOptions> {
+    AllocateOptions o;
+    // p = ½ lets M = 2 trials give the interval's ends (q = round(pM) = 1 ≤ M − 1); probing p, 10⁶ trials
+    // give them for p up to 1 − 5·10⁻⁷, above which the rule for M refuses what the row accepts.
+    o.coverage_probability = 0.5;
+    if (row.field == "coverage_probability") {
+      o.verify_trials = 1000000;
+      if (probe.accepted && probe.value > 1 - 5e-7) return std::nullopt;
     }
-  }
+    return o;
+  };
+  const auto refusal = [&](const AllocateOptions& o) { return allocation_refusal(config, o); };
+  const int probed = probe_every_numeric_row<AllocateOptions>(make, refusal, "targets");
   EXPECT_GE(probed, 18);  // p, max_scale, verify_trials and threads, each on both sides of both ends
 }
 
