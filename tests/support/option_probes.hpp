@@ -67,6 +67,22 @@ bool whole_number_option(const OptionSpec<Options>& row) {
          !std::holds_alternative<OptionField<Options, std::optional<double>>>(row.member);
 }
 
+// Options whose coverage interval the engine can form at every probe, or std::nullopt for a probe of p that
+// is not the row's to decide. p = ½ lets M = 2 trials give the interval's ends (q = round(pM) = 1 ≤ M − 1), so
+// that only the probed row decides; probing p, M = 10⁶ (set in `trials`), which gives them for p up to
+// 1 − 5·10⁻⁷; above that the interval's rule for M refuses a p the row accepts.
+template <class Options, class Count>
+std::optional<Options> options_for_probe(const OptionSpec<Options>& row, const OptionProbe& probe,
+                                         Count Options::*trials) {
+  Options o;
+  o.coverage_probability = 0.5;
+  if (row.field == "coverage_probability") {
+    o.*trials = 1000000;
+    if (probe.accepted && probe.value > 1 - 5e-7) return std::nullopt;
+  }
+  return o;
+}
+
 // Every numeric row's probes given to an engine: options from `make(row, probe)` (std::nullopt: a probe not the
 // row's to decide, left out) with the probe's value set, then `refusal(options)`, the field the engine refuses
 // or `passed` when it takes them, expected to be the row's field exactly when the row refuses the value.

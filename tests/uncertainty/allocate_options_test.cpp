@@ -29,17 +29,8 @@ std::string allocation_refusal(const Config& config, AllocateOptions options) {
 
 TEST(AllocateOptions, TheEngineRefusesExactlyWhatEachRowRefuses) {
   const Config config = bundled_example();
-  const auto make = [](const OptionSpec<AllocateOptions>& row,
-                       const OptionProbe& probe) -> std::optional<AllocateOptions> {
-    AllocateOptions o;
-    // p = ½ lets M = 2 trials give the interval's ends (q = round(pM) = 1 ≤ M − 1); probing p, 10⁶ trials
-    // give them for p up to 1 − 5·10⁻⁷, above which the rule for M refuses what the row accepts.
-    o.coverage_probability = 0.5;
-    if (row.field == "coverage_probability") {
-      o.verify_trials = 1000000;
-      if (probe.accepted && probe.value > 1 - 5e-7) return std::nullopt;
-    }
-    return o;
+  const auto make = [](const OptionSpec<AllocateOptions>& row, const OptionProbe& probe) {
+    return options_for_probe(row, probe, &AllocateOptions::verify_trials);
   };
   const auto refusal = [&](const AllocateOptions& o) { return allocation_refusal(config, o); };
   const int probed = probe_every_numeric_row<AllocateOptions>(make, refusal, "targets");

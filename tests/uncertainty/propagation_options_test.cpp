@@ -41,18 +41,9 @@ std::string refused_field(const PropagationOptions& options) {
 TEST(PropagationOptions, TheEngineRefusesExactlyWhatEachRowRefuses) {
   const auto make = [](const OptionSpec<PropagationOptions>& row,
                        const OptionProbe& probe) -> std::optional<PropagationOptions> {
-    PropagationOptions o;
-    // p = ½ lets M = 2 trials give the interval's ends (q = round(pM) = 1 ≤ M − 1), so that only the probed
-    // row decides. Probing p: M = 10⁶, which gives them for p up to 1 − 5·10⁻⁷; above that the interval's
-    // rule for M (check_coverage_interval) refuses a p the row accepts, which is not the row's to say.
-    o.coverage_probability = 0.5;
-    if (row.field == "coverage_probability") {
-      o.trials = 1000000;
-      if (probe.accepted && probe.value > 1 - 5e-7) return std::nullopt;
-    }
     // Starting a thousand threads is the system probe's work (check_thread_count), not the row's.
     if (row.field == "threads" && probe.accepted && probe.value > 64) return std::nullopt;
-    return o;
+    return options_for_probe(row, probe, &PropagationOptions::trials);
   };
   const int probed = probe_every_numeric_row<PropagationOptions>(make, refused_field, "");
   EXPECT_GE(probed, 19);  // trials, threads, digits, max_trials and p, each on both sides of both ends
