@@ -253,7 +253,8 @@ Plan plan_for(const FileToWrite& f) {
   const bool exists = ::stat(f.path.c_str(), &st) == 0;  // follows symbolic links
   const int stat_error = errno;
   if (exists) p.identity = std::make_pair(st.st_dev, st.st_ino);
-  if (is_input(f, p.identity))
+  // A character device (/dev/null given for an input too) is written through and loses nothing.
+  if (is_input(f, p.identity) && !(exists && S_ISCHR(st.st_mode)))
     fail(f, "it is also an input of the command; accepted: a file the command does not read");
   if (!exists) {
     errno = stat_error;

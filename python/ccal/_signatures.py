@@ -79,8 +79,13 @@ def signature_from_doc(doc, name, keywords=None):
 def with_signature(function, name, qualname, keywords=None):
     """`function` (a pybind11 function) wrapped so that inspect.signature and help() show its signature."""
     signature, doc = signature_from_doc(function.__doc__, name, keywords)
+    options = {keyword[0] for keyword in keywords or ()}  # checked by the module itself, in its own words
 
     def wrapper(*args, **kwargs):
+        # pybind11 takes True for a number (1.0): refused first, as the module's keywords refuse it.
+        problem = bool_problem(signature, qualname, args, kwargs, options)
+        if problem is not None:
+            raise TypeError(problem)
         try:
             return function(*args, **kwargs)
         except TypeError as error:
@@ -114,7 +119,8 @@ def call_problem(signature, name, args, kwargs):
             if keyword not in signature.parameters:
                 close = difflib.get_close_matches(keyword, names, n=1)
                 hints.append(f"'{keyword}' is no keyword" + (f": did you mean '{close[0]}'?" if close else ""))
-        return f"{name}(): {why}" + "".join(f"; {hint}" for hint in hints) + f"; accepted: {', '.join(names)}"
+        accepted = ", ".join(names) if names else "no arguments"
+        return f"{name}(): {why}" + "".join(f"; {hint}" for hint in hints) + f"; accepted: {accepted}"
     return None
 
 
@@ -209,9 +215,59 @@ def argument_problem(signature, name, args, kwargs):
             text = repr(part)
             text = text if len(text) <= 80 else text[:77] + "..."
             whole = "" if where == parameter else f"; accepted: {described(parse_annotation(annotation))}"
-            if expected == ("ccal.Config", []) and isinstance(part, str) or hasattr(part, "__fspath__"):
+            config = expected in (("ccal.Config", []), ("Optional", [("ccal.Config", [])]))
+            if config and (isinstance(part, str) or hasattr(part, "__fspath__")):
                 whole += "; a configuration file is read by ccal.load_config(path)"
             return f"{name}(): {where}: expected {described(expected)}, got {type(part).__name__} ({text}){whole}"
+    return None
+
+
+def bool_for_number(value, annotation, where):
+    """The place (and the expected type) where `value` holds True or False for a number the annotation takes, and
+    no bool; None if there is none."""
+    name, arguments = annotation
+    if isinstance(value, bool) and name in ("float", "int"):
+        return where, annotation
+    if name in ("Optional", "Union"):
+        if any(a[0] == "bool" for a in arguments):
+            return None
+        if isinstance(value, bool):
+            numbers = [a for a in arguments if a[0] in ("float", "int")]
+            return (where, annotation) if numbers else None
+        for a in arguments:
+            found = bool_for_number(value, a, where)
+            if found:
+                return found
+        return None
+    if name == "Dict" and isinstance(value, dict):
+        for key, item in value.items():
+            found = bool_for_number(item, arguments[1], f"{where}[{key!r}]")
+            if found:
+                return found
+    if name == "List" and isinstance(value, (list, tuple)):
+        for index, item in enumerate(value):
+            found = bool_for_number(item, arguments[0], f"{where}[{index}]")
+            if found:
+                return found
+    return None
+
+
+def bool_problem(signature, name, args, kwargs, options=()):
+    """A bool given for a number of the signature's arguments (not the verb's option keywords, `options`, which the
+    module checks itself)."""
+    try:
+        bound = signature.bind(*args, **kwargs).arguments
+    except TypeError:
+        return None  # the call's own problem, said after pybind11 refuses it
+    for parameter, value in bound.items():
+        annotation = signature.parameters[parameter].annotation
+        if parameter in options or not isinstance(annotation, str):
+            continue
+        found = bool_for_number(value, parse_annotation(annotation), parameter)
+        if found:
+            where, expected = found
+            part = value if where == parameter else eval_part(value, where[len(parameter):])
+            return f"{name}(): {where}: expected {described(expected)}, got bool ({part!r})"
     return None
 
 

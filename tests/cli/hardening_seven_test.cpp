@@ -83,4 +83,114 @@ TEST_F(Cli, AFullDeviceSaysWhatIsAccepted) {
                     "space for the output (or free some space)"});
 }
 
+// A mistyped option was "'--coverage-probabilty': not expected (a word too many)", and a value outside a
+// choice CLI11's "yaml not in {text,json,csv}": the option is named as unknown with the nearest one, the choice
+// with what is accepted.
+TEST_F(Cli, AMistypedOptionIsNamedWithTheNearestAndAChoiceWithItsValues) {
+  expect_bad_input(run("budget --coverage-probabilty 0.9"),
+                   {"--coverage-probabilty: no such option; did you mean '--coverage-probability'? accepted: "
+                    "--help, --instrument, --mode, --coverage-probability, --coverage-factor, --derivatives, --top, ",
+                    "run 'ccal budget --help'"});
+  expect_bad_input(run("report --format json -o r.html"), {"--format: no such option; accepted: --help, "});
+  write("st.json", seven_statement());
+  expect_bad_input(run("history add st.json --db h.sqlite --instrument X"),
+                   {"--instrument: no such option; accepted: --help, --db, --serial, --date, --format, --output"});
+  EXPECT_FALSE(fs::exists(dir_ / "h.sqlite"));
+  expect_bad_input(run("budget -x"), {"-x: no such option; accepted: "});
+  expect_bad_input(run("budget --format yaml"),
+                   {"--format: 'yaml' is not accepted; accepted: text, json, csv; run 'ccal budget --help'"});
+  // A word that is no option is still a word too many.
+  expect_bad_input(run("budget a.toml b.toml"), {"'b.toml': not expected (a word too many)"});
+}
+
+// A file whose name says another format than it holds was written: text or JSON under .json or .csv,
+// observations (CSV) or samples under .json, the report's HTML page under .pdf, the printed PDF under .html.
+TEST_F(Cli, AFileNamedForAnotherFormatIsRefused) {
+  ASSERT_EQ(run("simulate " + quote(kLab) + " --logs-out L -o /dev/null").code, 0);
+  const std::pair<std::string, std::string> cases[] = {
+      {"budget -o b.json",
+       "-o: 'b.json' names a JSON file, and -o writes text; accepted: a name that says no other format, e.g. "
+       "FILE.txt, or --format json for JSON"},
+      {"budget --format json -o b.CSV", "-o: 'b.CSV' names a CSV file, and -o writes JSON; accepted: FILE.json, "
+                                        "or --format csv for CSV"},
+      {"reduce " + quote(kLab) + " --logs L --format csv -o b.json", "-o: 'b.json' names a JSON file"},
+      {"simulate " + quote(kLab) + " --observations-out b.json -o b.txt",
+       "--observations-out: 'b.json' names a JSON file, and --observations-out writes CSV; accepted: FILE.csv"},
+      {"montecarlo --trials 100 --samples-out b.json -o b.txt",
+       "--samples-out: 'b.json' names a JSON file, and --samples-out writes CSV; accepted: FILE.csv or FILE.npy"},
+      {"report --trials 200 -o b.pdf",
+       "-o: 'b.pdf' names a PDF file, and -o writes HTML; accepted: FILE.html, or --pdf FILE.pdf for the page "
+       "printed as PDF"},
+      {"report --trials 200 --pdf b.html -o b.txt", "--pdf: 'b.html' names an HTML file, and --pdf writes PDF"},
+  };
+  for (const auto& [command, message] : cases) {
+    SCOPED_TRACE(command);
+    expect_bad_input(run(command), {message});
+    for (const char* name : {"b.json", "b.CSV", "b.txt", "b.pdf", "b.html"}) EXPECT_FALSE(fs::exists(dir_ / name));
+  }
+  // A name that says the format written, or none, is taken.
+  EXPECT_EQ(run("budget -o b.txt").code, 0);
+  EXPECT_EQ(run("budget --format json -o b.JSON").code, 0);
+  EXPECT_EQ(run("budget --format csv -o budget").code, 0);
+}
+
+// An empty file given for a configuration or a truth file was read as a configuration missing [site] (the
+// message said to add it), or as a machine without errors (simulated with exit 0); a truth file given for a
+// configuration likewise.
+TEST_F(Cli, AnEmptyOrTruthFileGivenForAConfigurationIsSaidToBeOne) {
+  write("empty.toml", "");
+  expect_bad_input(run("budget empty.toml"),
+                   {"empty.toml:1: the file holds no TOML table or key (it is empty); accepted: a configuration "
+                    "file ([site], [centrifuge], [instrument], [plan], …; docs/config.md), e.g. examples/lab.toml"});
+  expect_bad_input(run("budget " + quote(kLabTruth)),
+                   {"lab_truth.toml:1: the file holds only [errors], as a truth file does", "not a configuration"});
+  expect_bad_input(run("simulate " + quote(kLab) + " --truth /dev/null -o /dev/null"),
+                   {"/dev/null:1: a truth file without an [errors] table (it is empty); accepted: [errors] with the "
+                    "values the simulated machine has"});
+  write("perfect.toml", "[errors]\n");
+  EXPECT_EQ(run("simulate " + quote(kLab) + " --truth perfect.toml -o out.txt").code, 0);
+}
+
+// `identify --fix K9=1` on an observations file replaced the file's fixed K1 = 505.2097 deg/s/g, so the fit took
+// K1's share into K0 (0.98 deg/s instead of 0.062) with exit 0; one column given two roles was fitted against
+// itself.
+TEST_F(Cli, IdentifyRefusesADroppedFixedTermAndAColumnInTwoRoles) {
+  ASSERT_EQ(run("simulate " + quote(kLab) + " --observations-out obs.csv -o /dev/null").code, 0);
+  expect_bad_input(run("identify obs.csv --fix K9=1"),
+                   {"--fix: 'K9=1' replaces the fixed terms of obs.csv, and its K1 = 505.2097 deg/s/g would be left "
+                    "out of the model; accepted: --fix naming K1 too (e.g. K1=505.2097), or K1 in --terms to fit "
+                    "it"});
+  const Result both = run("identify obs.csv --fix K1=505.2097,K9=0 --format json");
+  ASSERT_EQ(both.code, 0) << both.err;
+  const Result plain = run("identify obs.csv --format json");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  // K9 fixed at 0 changes nothing: the same coefficients as the file's own fixed terms give.
+  const auto k0 = [](const std::string& json) {
+    const std::size_t at = json.find("\"K0\"");
+    return json.substr(at, json.find('}', at) - at);
+  };
+  EXPECT_EQ(k0(both.out), k0(plain.out));
+  expect_bad_input(run("identify obs.csv --output-column a_i --input-column a_i"),
+                   {"--output-column: a_i is also the --input-column; accepted: another column of the file for "
+                    "each role"});
+  expect_bad_input(run("identify obs.csv --weight-column output"),
+                   {"--weight-column: output is also the --output-column"});
+}
+
+// Messages that said what was wrong but not what is accepted: a number that is not finite in a quantity, a
+// target that is not positive, several targets in one, trials below the adaptive procedure's stage.
+TEST_F(Cli, NumbersAndTargetsSayWhatIsAccepted) {
+  expect_bad_input(run("force --time nan"), {"--time: 'nan': 'nan' is not a finite number; accepted: a finite "
+                                             "number and its unit, e.g. '1 s'"});
+  expect_bad_input(run("force --time 1e400"), {"'1e400' is out of range of double; accepted: a finite number"});
+  expect_bad_input(run("allocate --target K3=-1"),
+                   {"--target: K3: the target must be a positive expanded uncertainty, got '-1'; accepted: a "
+                    "positive finite number, e.g. K3=1e-6 (in deg/s/g^3)"});
+  expect_bad_input(run("allocate --target K3=1e-3,K2=1e-5"),
+                   {"--target: 'K3=1e-3,K2=1e-5' holds more than one target; accepted: one target each"});
+  expect_bad_input(run("montecarlo --digits 2 --trials 1000"),
+                   {"--trials: 1000 is, with --digits 2, the size of each stage, which is at least 10000; "
+                    "accepted: 10000 or more, or --trials left out (stages of 10000)"});
+}
+
 }  // namespace

@@ -96,5 +96,66 @@ class SevenHistory(unittest.TestCase):
             self.assertEqual(ccal.history_add(d / "st.json", db=d / "h.sqlite", serial="S1", date="2020-02-29"), 1)
 
 
+class SevenFreshRound(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.lab = ccal.load_config(EXAMPLES / "lab.toml")
+
+    def test_messages_name_the_argument_and_what_is_accepted(self):
+        with tempfile.TemporaryDirectory() as folder:
+            d = pathlib.Path(folder)
+            (d / "a_file").write_text("x", encoding="utf-8")
+            sim = ccal.simulate(self.lab)
+            with self.assertRaisesRegex(ccal.InputError, r"^Simulation\.write_logs\(\): folder: '.*a_file' is a "
+                                                         r"file, not a folder; accepted: a folder's path"):
+                sim.write_logs(d / "a_file")
+            with self.assertRaisesRegex(ccal.InputError, r"^Simulation\.write_logs\(\): folder: the path is "
+                                                         r"empty; accepted: a folder's path"):
+                sim.write_logs("")
+        with self.assertRaisesRegex(TypeError, r"^progress: expected None or a callable progress\(done, total\), "
+                                               r"got int \(5\)$"):
+            ccal.monte_carlo(self.lab, trials=100, progress=5)
+        with self.assertRaisesRegex(TypeError, r"^history_export\(\) got an unexpected keyword argument 'path'; "
+                                               r"accepted: serial, db$"):
+            ccal.history_export("S1", path="e.json")
+        with self.assertRaisesRegex(TypeError, r"^bundled_example\(\): too many positional arguments; accepted: "
+                                               r"no arguments$"):
+            ccal.bundled_example("lab")
+        with self.assertRaisesRegex(ccal.InputError, r"the bare number -1 has no unit; accepted: a string with the "
+                                                     r"unit, such as \"1 deg\", or unit="):
+            self.lab.with_tolerance("dthz5", -1)
+        with self.assertRaisesRegex(ValueError, r"^fit: the design has 2 rows but y has 1 entries; accepted: one y "
+                                                r"per row of the design$"):
+            ccal.fit([[1.0, 2.0], [3.0, 4.0]], [1.0], ["a", "b"])
+
+    def test_a_bool_is_no_number_and_a_run_is_0_based_everywhere(self):
+        # True was taken as a target of 1 (deg/s/g^3), allocated and verified with exit 0.
+        with self.assertRaisesRegex(TypeError, r"^allocate\(\): targets\['K3'\]: expected a number or a str, got "
+                                               r"bool \(True\)$"):
+            ccal.allocate(self.lab, {"K3": True})
+        with self.assertRaisesRegex(TypeError, r"^Config\.with_tolerance\(\): bound: expected a number or a str, "
+                                               r"got bool \(False\)$"):
+            self.lab.with_tolerance("dthz5", False)
+        # report(run=...) named runs by the command line's 1-based index ("an index 1..6"), unlike every other
+        # function: 0-based now, its message too.
+        with self.assertRaisesRegex(ccal.InputError, r"^run: index 6 is out of range for 6 runs; accepted: 0 to 5"):
+            ccal.report(self.lab, run=6, trials=200)
+        with self.assertRaisesRegex(ccal.InputError, r"^run: '99g' is no run; accepted: a run name \(5g, 10g, "
+                                                     r"15g, 20g, 25g, 30g\) or a 0-based index 0 to 5$"):
+            ccal.report(self.lab, run="99g", trials=200)
+        with self.assertRaisesRegex(ccal.InputError, r"^with_plan: g: no runs; accepted: at least one g-level"):
+            self.lab.with_plan(g=[])
+
+    def test_identify_refuses_a_dropped_fixed_term(self):
+        with tempfile.TemporaryDirectory() as folder:
+            obs = pathlib.Path(folder) / "obs.csv"
+            obs.write_text(ccal.simulate(self.lab).to_csv(), encoding="utf-8")
+            with self.assertRaisesRegex(ccal.InputError, r"^fix: 'K9=1' replaces the fixed terms of .*obs\.csv, "
+                                                         r"and its K1 = 505\.2097 deg/s/g would be left out"):
+                ccal.identify_file(obs, fix=["K9=1"])
+            with self.assertRaisesRegex(ccal.InputError, r"^output_column: a_i is also the input_column"):
+                ccal.identify_file(obs, input_column="a_i", output_column="a_i")
+
+
 if __name__ == "__main__":
     unittest.main()
