@@ -63,7 +63,8 @@ void validate(const FitProblem& p, const FitOptions& o) {
   const Index cols = p.H.cols();
   if (static_cast<Index>(p.term_names.size()) != cols) {
     throw std::invalid_argument(
-        fmt::format("fit: {} term names for a design with {} columns", p.term_names.size(), cols));
+        fmt::format("fit: {} term names for a design with {} columns; accepted: one name per column of the design",
+                    p.term_names.size(), cols));
   }
   if (p.y.size() != rows) {
     throw std::invalid_argument(

@@ -193,4 +193,23 @@ TEST_F(Cli, NumbersAndTargetsSayWhatIsAccepted) {
                     "accepted: 10000 or more, or --trials left out (stages of 10000)"});
 }
 
+// A stated coverage factor of 1e308 gave U = 1.8e306 deg/s with exit 0: beyond 10 it is no contract's k.
+TEST_F(Cli, ACoverageFactorBeyondTenIsRefused) {
+  expect_bad_input(run("budget --coverage-factor 1e308"),
+                   {"--coverage-factor: 1e+308 is out of range; accepted: 1 to 10, e.g. 2 (U = k u)"});
+  expect_bad_input(run("budget --coverage-factor 10.5"), {"--coverage-factor: 10.5 is out of range"});
+  EXPECT_EQ(run("budget --coverage-factor 10 -o b.txt").code, 0);
+}
+
+// A calibration statement (JSON) given to identify for a table was refused at its line 2 as CSV ("text after a
+// closing quote; accepted: a comma"): it is said to be JSON.
+TEST_F(Cli, AJsonFileGivenForATableIsSaidToBeOne) {
+  write("st.json", seven_statement());
+  expect_bad_input(run("identify st.json"),
+                   {"st.json:1:1: the header, '{\"coverage_probability\": 0.95', opens a JSON document (a statement or "
+                    "a result of ccal?), not a table's header; accepted: a CSV table whose header names its columns"});
+  write("pretty.json", "{\n  \"a\": 1\n}\n");
+  expect_bad_input(run("identify pretty.json"), {"pretty.json:1:1: the header, '{', opens a JSON document"});
+}
+
 }  // namespace

@@ -127,6 +127,11 @@ class SevenFreshRound(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, r"^fit: the design has 2 rows but y has 1 entries; accepted: one y "
                                                 r"per row of the design$"):
             ccal.fit([[1.0, 2.0], [3.0, 4.0]], [1.0], ["a", "b"])
+        with self.assertRaisesRegex(ValueError, r"^fit: 1 term names for a design with 2 columns; accepted: one name "
+                                                r"per column of the design$"):
+            ccal.fit([[1.0, 0.0], [0.0, 1.0]], [1.0, 2.0], ["a"])
+        with self.assertRaisesRegex(ccal.InputError, r"^coverage_factor: 1e\+308 is out of range; accepted: 1 to 10"):
+            ccal.budget(self.lab, coverage_factor=1e308)
 
     def test_a_bool_is_no_number_and_a_run_is_0_based_everywhere(self):
         # True was taken as a target of 1 (deg/s/g^3), allocated and verified with exit 0.

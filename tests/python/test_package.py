@@ -187,7 +187,7 @@ class LibraryDefaults(unittest.TestCase):
         # The library's message for k < 1 (the command line's), also for 0 and 0.5: no check of Python's own.
         for k in (0.0, 0.5):
             with self.subTest(k=k):
-                with self.assertRaisesRegex(ccal.InputError, f"coverage_factor: {k:g} is out of range; accepted: a number >= 1"):
+                with self.assertRaisesRegex(ccal.InputError, f"coverage_factor: {k:g} is out of range; accepted: 1 to 10"):
                     ccal.budget(ccal.bundled_example(), coverage_factor=k)
 
 

@@ -54,13 +54,15 @@ constexpr OptionSpec<O> coverage_probability(P O::*member, std::string_view help
 }
 
 // A stated coverage factor k, used instead of the k of the coverage probability (uncertainty/coverage.hpp).
-// k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor.
+// k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor; k > 10 (a normal
+// p of 1 − 1.5e-23) is no contract's, but a typing error (1e308 gave U = 1.8e306 with exit 0).
+inline constexpr double kMaxCoverageFactor = 10;
 template <class O>
 constexpr OptionSpec<O> coverage_factor(std::optional<double> O::*member) {
   return {"coverage_factor", member, "K",
           "A stated coverage factor k instead of the coverage probability's (e.g. 2 by contract); p is then "
           "that of a normal quantity",
-          OptionRange::at_least(1).e_g("2 (U = k u)").noting(
+          OptionRange::between(1, kMaxCoverageFactor).e_g("2 (U = k u)").noting(
               "a coverage probability is given as "
               "\x1f" "coverage_probability" "\x1f")};  // OptionError::name's marks: worded by each front end
 }
