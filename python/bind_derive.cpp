@@ -201,7 +201,9 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
     if (c.duration) {
       run.duration = quantity(*c.duration, std::nullopt, kind::time, "with_plan: duration");
       if (!(run.duration > 0) || run.duration > 1e6)
-        throw InputError("with_plan: duration: accepted: a run duration in (0, 1e6] s");
+        throw InputError(fmt::format("with_plan: duration: {:g} s is out of range; accepted: a run duration in "
+                                     "(0, 1e6] s",
+                                     run.duration));
     }
     if (c.initial_phase) {
       run.initial_phase = quantity(*c.initial_phase, std::nullopt, kind::angle, "with_plan: initial_phase");

@@ -22,6 +22,7 @@ namespace ccal::cli {
 void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats,
                         bool long_output) {
   options.format = formats.front();
+  options.formats = formats;
   CLI::Option* format = command.add_option("--format", options.format, "Output format")
                             ->check(CLI::IsMember(formats))
                             ->capture_default_str()
@@ -188,8 +189,10 @@ void check_named_formats(const OutputOptions& options, const std::vector<FileToW
     for (const auto& [format, name] : kNames)
       if (format == written) accepted = name;
     if (f.option == "--samples-out") accepted = "FILE.csv or FILE.npy";
-    if (f.option == "-o" && (named == "JSON" || named == "CSV") && written != "HTML")
-      accepted += fmt::format(", or --format {} for {}", named == "JSON" ? "json" : "csv", named);
+    const std::string flag_value = named == "JSON" ? "json" : named == "CSV" ? "csv" : "";
+    if (f.option == "-o" && std::find(options.formats.begin(), options.formats.end(), flag_value) !=
+                                options.formats.end())
+      accepted += fmt::format(", or --format {} for {}", flag_value, named);
     if (f.option == "-o" && named == "PDF" && written == "HTML")
       accepted += ", or --pdf FILE.pdf for the page printed as PDF";
     throw InputError(fmt::format("{}: '{}' names {} {} file, and {} writes {}; accepted: {}", f.option, f.path,

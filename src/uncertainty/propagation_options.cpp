@@ -16,14 +16,6 @@ void check_propagation_options(const PropagationOptions& options) {
   if (options.digits == 0)  // the adaptive stages are large enough for any p (at least 100/(1 − p) trials)
     check_coverage_interval(options.trials.value_or(kDefaultMonteCarloTrials),
                             options.coverage_probability.value_or(kDefaultCoverageProbability));
-  // With digits the trials are each stage's, which the procedure takes at least kDefaultMonteCarloStage of: a
-  // smaller number given would be raised without a word.
-  if (options.digits > 0 && options.trials && *options.trials < kDefaultMonteCarloStage)
-    throw OptionError("trials", option_number_text(double(*options.trials)),
-                      fmt::format("is, with {} {}, the size of each stage, which is at least {}; accepted: {} or "
-                                  "more, or {} left out (stages of {})",
-                                  OptionError::name("digits"), options.digits, kDefaultMonteCarloStage,
-                                  kDefaultMonteCarloStage, OptionError::name("trials"), kDefaultMonteCarloStage));
   if (options.histogram_bins < 1 || options.histogram_bins > 10000)
     throw InputError(fmt::format("Monte Carlo: histogram bins must be 1…10000, not {}", options.histogram_bins));
 }

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_support.hpp"
@@ -122,12 +123,19 @@ TEST_F(Cli, AFileNamedForAnotherFormatIsRefused) {
        "-o: 'b.pdf' names a PDF file, and -o writes HTML; accepted: FILE.html, or --pdf FILE.pdf for the page "
        "printed as PDF"},
       {"report --trials 200 --pdf b.html -o b.txt", "--pdf: 'b.html' names an HTML file, and --pdf writes PDF"},
+
   };
   for (const auto& [command, message] : cases) {
     SCOPED_TRACE(command);
     expect_bad_input(run(command), {message});
     for (const char* name : {"b.json", "b.CSV", "b.txt", "b.pdf", "b.html"}) EXPECT_FALSE(fs::exists(dir_ / name));
   }
+  // --format is offered only where the command has it: history export writes JSON alone.
+  write("st.json", seven_statement());
+  ASSERT_EQ(run("history add st.json --db h.sqlite --serial S1 --date 2026-01-01").code, 0);
+  const Result exported = run("history export S1 --db h.sqlite -o b.csv");
+  expect_bad_input(exported, {"-o: 'b.csv' names a CSV file, and -o writes JSON; accepted: FILE.json"});
+  EXPECT_EQ(exported.err.find("--format"), std::string::npos) << exported.err;
   // A name that says the format written, or none, is taken.
   EXPECT_EQ(run("budget -o b.txt").code, 0);
   EXPECT_EQ(run("budget --format json -o b.JSON").code, 0);
@@ -210,6 +218,51 @@ TEST_F(Cli, AJsonFileGivenForATableIsSaidToBeOne) {
                     "a result of ccal?), not a table's header; accepted: a CSV table whose header names its columns"});
   write("pretty.json", "{\n  \"a\": 1\n}\n");
   expect_bad_input(run("identify pretty.json"), {"pretty.json:1:1: the header, '{', opens a JSON document"});
+}
+
+// The lab's configuration with one line's text replaced (unique name: unity builds join the test files).
+std::string seven_lab_with(const std::string& old_text, const std::string& new_text) {
+  std::string text = read(kLab);
+  const std::size_t at = text.find(old_text);
+  EXPECT_NE(at, std::string::npos) << old_text;
+  return at == std::string::npos ? text : text.replace(at, old_text.size(), new_text);
+}
+
+// A value that must be positive said "must be positive, got -2.5 m; the arm radius R0, e.g. ..." and a file in
+// UTF-16 "Encountered invalid utf-8 sequence", neither with what is accepted.
+TEST_F(Cli, ConfigurationValuesAndEncodingsSayWhatIsAccepted) {
+  write("r.toml", seven_lab_with("radius = \"2.5 m\"", "radius = \"-2.5 m\""));
+  expect_bad_input(run("budget r.toml"), {"centrifuge.radius: must be positive, got -2.5 m; accepted: a positive "
+                                          "value, "});
+  write("t.toml", seven_lab_with("dthy1t = \"1e-5 rad\"", "dthy1t = \"0 rad\""));
+  expect_bad_input(run("budget t.toml"),
+                   {"tolerances.dthy1t: must be positive, got 0; accepted: a positive bound, e.g."});
+  write("d.toml", seven_lab_with("duration = \"450 s\"", "duration = \"0 s\""));
+  expect_bad_input(run("budget d.toml"), {"plan.duration: must be positive, got 0 s; accepted: a positive run "
+                                          "duration such as \"450 s\""});
+  write("u16.toml", std::string("\xff\xfe[\0s\0i\0t\0e\0]\0\n\0", 16));
+  expect_bad_input(run("budget u16.toml"), {"u16.toml:1:1: TOML syntax error: Encountered invalid utf-8 sequence; "
+                                            "accepted: a TOML text file in UTF-8 (a binary file, or text in UTF-16 "
+                                            "or Latin-1, is not one"});
+}
+
+// An imported calibration dated after today was named as the file's "serial" with two "accepted:" parts, and an
+// export without calibrations made an empty store.
+TEST_F(Cli, AnImportDatedAfterTodayOrWithoutCalibrationsIsRefused) {
+  write("st.json", seven_statement());
+  ASSERT_EQ(run("history add st.json --db h.sqlite --serial S1 --date 2026-01-01").code, 0);
+  ASSERT_EQ(run("history export S1 --db h.sqlite -o e.json").code, 0);
+  auto exported = nlohmann::json::parse(read(dir_ / "e.json"));
+  exported["calibrations"][0]["date"] = "9999-12-31";
+  write("future.json", exported.dump());
+  const Result future = run("history import future.json --db new.sqlite");
+  expect_bad_input(future, {"future.json: \"calibrations[0].date\" 9999-12-31 is after today ("});
+  EXPECT_EQ(future.err.find("accepted"), future.err.rfind("accepted")) << future.err;  // one accepted part
+  exported["calibrations"] = nlohmann::json::array();
+  write("none.json", exported.dump());
+  expect_bad_input(run("history import none.json --db new.sqlite"),
+                   {"none.json: not an exported calibration history: no calibration in its \"calibrations\""});
+  EXPECT_FALSE(fs::exists(dir_ / "new.sqlite"));
 }
 
 }  // namespace

@@ -150,6 +150,9 @@ class SevenFreshRound(unittest.TestCase):
             ccal.report(self.lab, run="99g", trials=200)
         with self.assertRaisesRegex(ccal.InputError, r"^with_plan: g: no runs; accepted: at least one g-level"):
             self.lab.with_plan(g=[])
+        with self.assertRaisesRegex(ccal.InputError, r"^with_plan: duration: -1 s is out of range; accepted: a run "
+                                                     r"duration in \(0, 1e6\] s$"):
+            self.lab.with_plan(g=[5, 10, 15], duration="-1 s")
 
     def test_identify_refuses_a_dropped_fixed_term(self):
         with tempfile.TemporaryDirectory() as folder:
