@@ -109,37 +109,6 @@ void add_statement_out_option(CLI::App& command, std::string& path) {
       ->type_name("FILE.json|FILE.csv");
 }
 
-void check_statement_out(const std::string& path, bool statement, const OutputOptions& output) {
-  if (path.empty()) return;
-  if (!statement)
-    throw InputError(
-        fmt::format("--statement-out: '{}' asks for the statement's file without --statement; "
-                    "accepted: --statement --statement-out FILE",
-                    path));
-  const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext != ".json" && ext != ".csv")
-    throw InputError(
-        fmt::format("--statement-out: '{}' has no .json or .csv extension, which sets the format; "
-                    "accepted: FILE.json or FILE.csv",
-                    path));
-  if (same_file(path, output.path.empty() ? "-" : output.path))
-    throw InputError(
-        fmt::format("--statement-out: '{}' is also the -o file; accepted: two different files", path));
-}
-
-void add_statement_out_file(std::vector<ExtraFile>& extra, const std::string& path,
-                            const std::optional<verbs::CalibrationStatement>& statement) {
-  if (path.empty() || !statement) return;
-  const bool json = std::filesystem::path(path).extension() == ".json";
-  extra.push_back({"--statement-out", path, json ? render::json(*statement) : render::csv(*statement)});
-}
-
-void note_input(const std::string& path) { note_input_file(path); }
-
-void print_warnings(const std::vector<std::string>& warnings) {
-  for (const auto& w : warnings) std::cerr << "ccal: warning: " << w << '\n';
-}
-
 namespace {
 
 // The format a file's name says by its extension (in any case), among those ccal reads or writes; "" for none.
@@ -153,6 +122,41 @@ std::string_view format_named(const std::string& path) {
     if (extension == ext) return format;
   return {};
 }
+
+}  // namespace
+
+void check_statement_out(const std::string& path, bool statement, const OutputOptions& output) {
+  if (path.empty()) return;
+  if (!statement)
+    throw InputError(
+        fmt::format("--statement-out: '{}' asks for the statement's file without --statement; "
+                    "accepted: --statement --statement-out FILE",
+                    path));
+  const std::string_view named = format_named(path);  // the extension in any case, as every output's name
+  if (named != "JSON" && named != "CSV")
+    throw InputError(
+        fmt::format("--statement-out: '{}' has no .json or .csv extension, which sets the format; "
+                    "accepted: FILE.json or FILE.csv",
+                    path));
+  if (same_file(path, output.path.empty() ? "-" : output.path))
+    throw InputError(
+        fmt::format("--statement-out: '{}' is also the -o file; accepted: two different files", path));
+}
+
+void add_statement_out_file(std::vector<ExtraFile>& extra, const std::string& path,
+                            const std::optional<verbs::CalibrationStatement>& statement) {
+  if (path.empty() || !statement) return;
+  const bool json = format_named(path) == "JSON";
+  extra.push_back({"--statement-out", path, json ? render::json(*statement) : render::csv(*statement)});
+}
+
+void note_input(const std::string& path) { note_input_file(path); }
+
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::cerr << "ccal: warning: " << w << '\n';
+}
+
+namespace {
 
 // What a file holds, as format_named says it: -o by --format (the report's page is HTML), the others by their
 // option; "" where the name sets the format itself (--statement-out) or is made by the command (--logs-out).

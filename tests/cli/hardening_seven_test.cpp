@@ -140,6 +140,11 @@ TEST_F(Cli, AFileNamedForAnotherFormatIsRefused) {
   EXPECT_EQ(run("budget -o b.txt").code, 0);
   EXPECT_EQ(run("budget --format json -o b.JSON").code, 0);
   EXPECT_EQ(run("budget --format csv -o budget").code, 0);
+  // --statement-out's extension sets its format, in any case as every other name (S.JSON was refused).
+  ASSERT_EQ(run("reduce " + quote(kLab) + " --logs L --statement --statement-trials 0 --statement-out S.JSON -o r.txt")
+                .code,
+            0);
+  EXPECT_TRUE(read(dir_ / "S.JSON").starts_with("{")) << read(dir_ / "S.JSON").substr(0, 80);
 }
 
 // An empty file given for a configuration or a truth file was read as a configuration missing [site] (the
