@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <set>
@@ -37,10 +38,13 @@ double quantity(const Value& value, const std::optional<std::string>& unit, Dime
   } else if (dim == kind::dimensionless) {
     text = fmt::format("{:.17g}", std::get<double>(value));
   } else {
+    // The example is the number given only where it could be taken (not -1, nan or inf for a bound).
+    const double given = std::get<double>(value);
+    const double shown = std::isfinite(given) && given > 0 ? given : 1.0;
     throw InputError(
-        fmt::format("{}: the bare number {:g} has no unit; give a string such as \"{:g} deg\" or "
-                    "unit=\"...\"",
-                    what, std::get<double>(value), std::get<double>(value)));
+        fmt::format("{}: the bare number {:g} has no unit; accepted: a string with the unit, such as \"{:g} deg\", "
+                    "or unit=\"...\"",
+                    what, given, shown));
   }
   try {
     return parse_as(text, dim, "", dim == kind::dimensionless);
@@ -163,7 +167,8 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
   Config out = derived_from(cfg);
   auto& runs = out.plan.runs;
   if (c.g) {
-    if (c.g->empty()) throw InputError("with_plan: g: no runs; give at least one g-level");
+    if (c.g->empty())
+      throw InputError("with_plan: g: no runs; accepted: at least one g-level, e.g. [5, 10, 20] or [\"5 g\"]");
     if (c.names && c.names->size() != c.g->size())
       throw InputError(
           fmt::format("with_plan: names: {} names for {} g-levels", c.names->size(), c.g->size()));
@@ -196,7 +201,9 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
     if (c.duration) {
       run.duration = quantity(*c.duration, std::nullopt, kind::time, "with_plan: duration");
       if (!(run.duration > 0) || run.duration > 1e6)
-        throw InputError("with_plan: duration: accepted: a run duration in (0, 1e6] s");
+        throw InputError(fmt::format("with_plan: duration: {:g} s is out of range; accepted: a run duration in "
+                                     "(0, 1e6] s",
+                                     run.duration));
     }
     if (c.initial_phase) {
       run.initial_phase = quantity(*c.initial_phase, std::nullopt, kind::angle, "with_plan: initial_phase");

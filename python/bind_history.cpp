@@ -111,8 +111,8 @@ void bind_history_exchange(py::module_& m) {
         // As a keyword's integer: pybind11's own conversion took True for record 1.
         std::int64_t id = 0;
         keywords::assign(id, "id", id_argument);
-        verbs::history_supersede(
-            id, options_from_keywords<verbs::HistorySupersedeOptions>(keywords, "history_supersede"));
+        verbs::history_supersede(id, options_from_keywords<verbs::HistorySupersedeOptions>(
+                                         keywords, "history_supersede", {}, {}, {"id"}));
       },
       py::arg("id"),
       "Marks calibration `id` of the history store superseded (`ccal history supersede`): by the record that "
@@ -121,8 +121,8 @@ void bind_history_exchange(py::module_& m) {
   m.def(
       "history_export",
       [](const std::string& serial, const py::kwargs& keywords) {
-        return verbs::history_export(serial,
-                                     options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_export"));
+        return verbs::history_export(serial, options_from_keywords<verbs::HistoryStoreOptions>(
+                                                 keywords, "history_export", {}, {}, {"serial"}));
       },
       py::arg("serial"),
       "A serial number's history as the JSON text `ccal history export` writes (for history_import).");
@@ -132,7 +132,7 @@ void bind_history_exchange(py::module_& m) {
       [](const py::object& file, const py::kwargs& keywords) {
         return verbs::history_import(
             path_argument(file, "history_import", "file", "the path of an exported history (str or os.PathLike)"),
-            options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_import"));
+            options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_import", {}, {}, {"file"}));
       },
       py::arg("file"),
       "Records the calibrations of an exported history file in the store (`ccal history import`), in one "
@@ -200,7 +200,8 @@ void bind_history(py::module_& m) {
   m.def(
       "history",
       [](const std::string& serial, const py::kwargs& keywords) {
-        return verbs::history_show(serial, options_from_keywords<verbs::HistoryShowOptions>(keywords, "history"));
+        return verbs::history_show(
+            serial, options_from_keywords<verbs::HistoryShowOptions>(keywords, "history", {}, {}, {"serial"}));
       },
       py::arg("serial"),
       "A serial number's calibrations from the history store (`ccal history show`): per coefficient E_n of "
@@ -211,7 +212,8 @@ void bind_history(py::module_& m) {
       [](const py::object& statement, const py::kwargs& keywords) {
         return verbs::history_add(path_argument(statement, "history_add", "statement",
                                                 "the path of a statement's JSON file (str or os.PathLike)"),
-                                  options_from_keywords<verbs::HistoryAddOptions>(keywords, "history_add"))
+                                  options_from_keywords<verbs::HistoryAddOptions>(keywords, "history_add", {}, {},
+                                                                                  {"statement"}))
             .id;
       },
       py::arg("statement"),
@@ -221,7 +223,7 @@ void bind_history(py::module_& m) {
       "history_list",
       [](const py::kwargs& keywords) {
         return verbs::history_list(
-                   options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_list"))
+                   options_from_keywords<verbs::HistoryStoreOptions>(keywords, "history_list", {}, {}, {}))
             .serials;
       },
       "The store's serial numbers (`ccal history list`): a list of HistorySerial.");

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "bindings.hpp"
@@ -20,6 +21,24 @@
 
 namespace ccal::python {
 namespace {
+
+// report's run= as everywhere in Python: a run's name or a 0-based index (the command line's --run is 1-based),
+// as the run's name; the other keywords into `rest`.
+std::optional<std::string> run_keyword(const Config& cfg, const py::kwargs& keywords, py::kwargs& rest) {
+  std::optional<std::string> run;
+  for (const auto& [key, value] : keywords) {
+    if (py::str(key).cast<std::string>() != "run") {
+      rest[key] = value;
+    } else if (py::isinstance<py::str>(value)) {
+      run = cfg.plan.runs[run_index(cfg, value.cast<std::string>())].name;
+    } else if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
+      run = cfg.plan.runs[run_index(cfg, value.cast<int>())].name;
+    } else {
+      keywords::wrong_type("run", "a run's name (str) or its 0-based index (int)", value);
+    }
+  }
+  return run;
+}
 
 // A report and the options it was made with, which its page's provenance lists as command lines.
 struct Report {
@@ -98,9 +117,12 @@ void bind_report(py::module_& m) {
          const std::optional<TargetMap>& design_targets, const py::object& observations,
          const py::kwargs& keywords) {
         Report r;
+        py::kwargs rest;
+        const std::optional<std::string> run = run_keyword(cfg, keywords, rest);
         r.options = options_from_keywords<verbs::ReportOptions>(
-            keywords, "report", {}, {}, {"config", "allocate_targets", "design", "design_targets", "observations"});
+            rest, "report", {}, {}, {"config", "allocate_targets", "design", "design_targets", "observations"});
         verbs::ReportOptions& o = r.options;
+        if (run) o.run = *run;
         if (allocate_targets) o.allocate = verbs::report_allocation(target_texts(*allocate_targets), o);
         if (design || design_targets)
           o.design = verbs::report_design(
@@ -121,7 +143,7 @@ void bind_report(py::module_& m) {
       "allocate_targets (as allocate's targets) the allocation, with design or design_targets the design, with "
       "observations (an observations CSV path) the calibration statement; to_html() is the self-contained page. "
       "Ctrl-C stops the call and raises KeyboardInterrupt.");
-  record_keywords<verbs::ReportOptions>(m, "report");
+  record_keywords<verbs::ReportOptions>(m, "report", {}, {{"run", "Union[int, str]"}});
 }
 
 }  // namespace ccal::python

@@ -206,8 +206,10 @@ void record_keywords(py::module_& m, std::string_view function,
     std::visit(
         [&](auto member) {
           std::string accepted = keywords::accepted_text(row, member);
+          const std::string unset =
+              row.range.unset_text.empty() ? "" : " (None: " + std::string(row.range.unset_text) + ")";
           const std::string help =
-              option_help(row.help, row.range) + (accepted.empty() ? "" : "; accepted: " + accepted);
+              option_help(row.help, row.range) + unset + (accepted.empty() ? "" : "; accepted: " + accepted);
           if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {
             const auto index = member.get(defaults);
             keywords::record(m, function, row.field,

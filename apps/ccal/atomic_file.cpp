@@ -148,12 +148,20 @@ std::vector<InputFile>& inputs() {
   throw InputError(fmt::format("{}: cannot write '{}': {}", f.option, f.path, why));
 }
 
-std::string errno_text() {
+constexpr std::string_view kStandardOutputAccepted =
+    "a standard output that takes the text (a file, a terminal, or a pipe that is read)";
+
+// The system's reason for a failed write, with what would be accepted: by the reason where it says more than
+// `accepted` (what the caller's step needs).
+std::string errno_text(std::string_view accepted = "a writable file in a writable folder") {
   const int e = errno;
   std::string text = std::strerror(e);
   if (e == EFBIG)
-    text += " (beyond the file-size limit, ulimit -f); accepted: a smaller output or a higher limit";
-  return text;
+    return text + " (beyond the file-size limit, ulimit -f); accepted: a smaller output or a higher limit";
+  if (e == ENOSPC || e == EDQUOT)
+    return text + "; accepted: a path on a device with space for the output (or free some space)";
+  if (e == EROFS) return text + "; accepted: a path on a file system mounted for writing";
+  return text + "; accepted: " + std::string(accepted);
 }
 
 // Past the file-size limit (ulimit -f) write(2) raises SIGXFSZ, whose default action ends the process with
@@ -245,7 +253,8 @@ Plan plan_for(const FileToWrite& f) {
   const bool exists = ::stat(f.path.c_str(), &st) == 0;  // follows symbolic links
   const int stat_error = errno;
   if (exists) p.identity = std::make_pair(st.st_dev, st.st_ino);
-  if (is_input(f, p.identity))
+  // A character device (/dev/null given for an input too) is written through and loses nothing.
+  if (is_input(f, p.identity) && !(exists && S_ISCHR(st.st_mode)))
     fail(f, "it is also an input of the command; accepted: a file the command does not read");
   if (!exists) {
     errno = stat_error;
@@ -280,7 +289,8 @@ std::string random_name() {
   while (got < bytes.size()) {
     const ssize_t n = ::getrandom(bytes.data() + got, bytes.size() - got, 0);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw InputError(std::string("cannot draw a random file name: ") + errno_text());
+    if (n <= 0)
+      throw InputError(std::string("cannot draw a random file name: ") + errno_text("a system with getrandom"));
     got += std::size_t(n);
   }
   std::string name = ".ccal-";
@@ -306,7 +316,7 @@ void write_temporary(const FileToWrite& f, const Plan& p, Temporary& temporary) 
       fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
       if (fd >= 0) temporary.adopt(path);
     }
-    if (fd < 0 && errno != EEXIST) fail(f, errno_text() + "; accepted: a file in a writable folder");
+    if (fd < 0 && errno != EEXIST) fail(f, errno_text("a file in a writable folder"));
   }
   if (fd < 0) fail(f, "no temporary file could be created in its folder");
   if (p.owner) {
@@ -348,7 +358,7 @@ void note_input_file(const std::string& path) {
 void write_standard_output(const std::string& text) {
   std::cout.flush();
   if (!write_all(STDOUT_FILENO, text) || !std::cout)
-    throw InputError("standard output: write failed: " + errno_text());
+    throw InputError("standard output: write failed: " + errno_text(kStandardOutputAccepted));
 }
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -436,7 +446,7 @@ void write_files(const std::vector<FileToWrite>& files) {
       } else {
         std::cout.flush();
         if (!write_content(STDOUT_FILENO, files[k]))
-          throw InputError("standard output: write failed: " + errno_text());
+          throw InputError("standard output: write failed: " + errno_text(kStandardOutputAccepted));
       }
     }
   }

@@ -1,5 +1,6 @@
 // ccal design: the test plan under which the centrifuge's errors cost the identified coefficients least
 // (ccal/verbs/design.hpp, docs/model.md §15), with the designed configuration file.
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +32,13 @@ std::string setup_from(const std::string& job, const std::string& setup_source, 
   if (setup.parent_path() == folder) return setup.filename().string();
   const fs::path relative = setup.lexically_relative(folder);
   return relative.empty() ? setup.string() : relative.string();
+}
+
+// FILE.toml, the extension in any case (a configuration is read as TOML whatever its name).
+bool is_toml_name(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".toml";
 }
 
 }  // namespace
@@ -69,6 +77,12 @@ Command add_design(CLI::App& app) {
   return {cmd, [o] {
             verbs::DesignOptions d = o->options;
             d.progress = true;  // drawn only when standard error is a terminal
+            // The plan is a configuration, which is read as TOML whatever its name: a plan.json would be TOML
+            // under a name that says JSON.
+            if (!o->plan_out.empty() && !is_toml_name(o->plan_out))
+              throw InputError("--plan-out: '" + o->plan_out +
+                               "' has no .toml extension, and the plan is written as a TOML configuration; "
+                               "accepted: FILE.toml, e.g. designed.toml");
             if (!o->plan_out.empty() && o->plan_out == o->output.path)
               throw InputError("--plan-out: '" + o->plan_out +
                                "' is also the -o file; accepted: two different files");

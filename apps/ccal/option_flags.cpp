@@ -98,6 +98,29 @@ std::string accepted_form(const CLI::App& command, const std::string& name) {
   return help.empty() ? form : fmt::format("{} ({})", form, help);
 }
 
+// The words a command did not take, as the parser lists them ("X --instrument"): the first that looks like an
+// option (a dash and a letter) is one the command does not have, said so with the nearest of its options; ""
+// when none looks like one.
+std::string unknown_option_message(const std::string& words, const CLI::App& command) {
+  static const std::regex option_like(R"((?:^|\s)(--?[A-Za-z][^\s=]*))");
+  std::smatch m;
+  if (!std::regex_search(words, m, option_like)) return {};
+  const std::string typed = m[1].str();
+  std::vector<std::string> names;
+  std::string accepted;
+  for (const CLI::Option* option : command.get_options()) {
+    // Hidden or renamed options are refused with a message of their own: not offered.
+    if (!option->nonpositional() || option->get_group().empty() || option->get_group() == "Renamed") continue;
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    const std::string shown = option->get_lnames().empty() ? "-" + option->get_snames().front()
+                                                           : "--" + option->get_lnames().front();
+    accepted += (accepted.empty() ? "" : ", ") + shown;
+  }
+  const std::optional<std::string> nearest = nearest_name(typed, names);
+  return fmt::format("{}: no such option;{} accepted: {}", typed,
+                     nearest ? " did you mean '" + *nearest + "'?" : "", accepted);
+}
+
 }  // namespace
 
 std::string parse_error_message(const CLI::ParseError& error, const CLI::App& command) {
@@ -111,6 +134,8 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
   static const std::regex extra(R"(^The following arguments? (?:was|were) not expected: (.*)$)");
   // "SERIAL is required": an argument the command needs, not given.
   static const std::regex argument_missing(R"(^(\S+) is required$)");
+  // "--format: yaml not in {text,json,csv}": the parser's check of a choice.
+  static const std::regex not_a_choice(R"(^(\S+): (.*) not in \{(.*)\}$)");
   std::smatch m;
   if (std::regex_match(what, m, at_most)) {
     const std::string once =
@@ -127,7 +152,14 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
                        std::regex_match(m[2].str(), number) ? "is out of range" : "is not a number",
                        m[3].str(), m[4].str());
   }
+  if (std::regex_match(what, m, not_a_choice)) {
+    std::string names = m[3].str();
+    for (std::size_t at = names.find(','); at != std::string::npos; at = names.find(',', at + 2))
+      names.replace(at, 1, ", ");
+    return fmt::format("{}: '{}' is not accepted; accepted: {}", m[1].str(), m[2].str(), names);
+  }
   if (std::regex_match(what, m, extra)) {
+    if (const std::string unknown = unknown_option_message(m[1].str(), command); !unknown.empty()) return unknown;
     std::string arguments;
     for (const CLI::Option* option : command.get_options())
       if (option->get_positional()) arguments += (arguments.empty() ? "" : ", ") + option->get_type_name();

@@ -126,7 +126,10 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
                                                   std::numeric_limits<Number>::max(), range));
           });
       if constexpr (requires { typename Field::value_type; }) {
-        if (value) option->default_str(option_value_text(*value));
+        if (value)
+          option->default_str(option_value_text(*value));
+        else if (!row.range.unset_text.empty())
+          option->default_str(std::string(row.range.unset_text));  // what unset stands for
       } else {
         option->default_str(option_value_text(value));
       }

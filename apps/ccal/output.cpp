@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +22,7 @@ namespace ccal::cli {
 void add_output_options(CLI::App& command, OutputOptions& options, const std::vector<std::string>& formats,
                         bool long_output) {
   options.format = formats.front();
+  options.formats = formats;
   CLI::Option* format = command.add_option("--format", options.format, "Output format")
                             ->check(CLI::IsMember(formats))
                             ->capture_default_str()
@@ -107,6 +109,22 @@ void add_statement_out_option(CLI::App& command, std::string& path) {
       ->type_name("FILE.json|FILE.csv");
 }
 
+namespace {
+
+// The format a file's name says by its extension (in any case), among those ccal reads or writes; "" for none.
+std::string_view format_named(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  static constexpr std::pair<std::string_view, std::string_view> kNamed[] = {
+      {".json", "JSON"}, {".csv", "CSV"}, {".html", "HTML"}, {".htm", "HTML"},
+      {".pdf", "PDF"},   {".toml", "TOML"}, {".npy", "NumPy"}};
+  for (const auto& [ext, format] : kNamed)
+    if (extension == ext) return format;
+  return {};
+}
+
+}  // namespace
+
 void check_statement_out(const std::string& path, bool statement, const OutputOptions& output) {
   if (path.empty()) return;
   if (!statement)
@@ -114,8 +132,8 @@ void check_statement_out(const std::string& path, bool statement, const OutputOp
         fmt::format("--statement-out: '{}' asks for the statement's file without --statement; "
                     "accepted: --statement --statement-out FILE",
                     path));
-  const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext != ".json" && ext != ".csv")
+  const std::string_view named = format_named(path);  // the extension in any case, as every output's name
+  if (named != "JSON" && named != "CSV")
     throw InputError(
         fmt::format("--statement-out: '{}' has no .json or .csv extension, which sets the format; "
                     "accepted: FILE.json or FILE.csv",
@@ -128,7 +146,7 @@ void check_statement_out(const std::string& path, bool statement, const OutputOp
 void add_statement_out_file(std::vector<ExtraFile>& extra, const std::string& path,
                             const std::optional<verbs::CalibrationStatement>& statement) {
   if (path.empty() || !statement) return;
-  const bool json = std::filesystem::path(path).extension() == ".json";
+  const bool json = format_named(path) == "JSON";
   extra.push_back({"--statement-out", path, json ? render::json(*statement) : render::csv(*statement)});
 }
 
@@ -139,6 +157,52 @@ void print_warnings(const std::vector<std::string>& warnings) {
 }
 
 namespace {
+
+// What a file holds, as format_named says it: -o by --format (the report's page is HTML), the others by their
+// option; "" where the name sets the format itself (--statement-out) or is made by the command (--logs-out).
+std::string_view format_written(const std::string& option, const OutputOptions& options, const std::string& path) {
+  if (option == "-o") {
+    static constexpr std::pair<std::string_view, std::string_view> kFormats[] = {
+        {"text", "text"}, {"json", "JSON"}, {"csv", "CSV"}, {"html", "HTML"}};
+    for (const auto& [name, format] : kFormats)
+      if (options.format == name) return format;
+    return {};
+  }
+  if (option == "--observations-out") return "CSV";
+  if (option == "--plan-out") return "TOML";
+  if (option == "--pdf") return "PDF";
+  if (option == "--samples-out") return format_named(path) == "NumPy" ? "NumPy" : "CSV";
+  return {};
+}
+
+// A file whose name says another format than it would hold (budget -o b.json of text, --observations-out o.json
+// of CSV, report -o r.pdf of the HTML page): refused, naming the option and what would be accepted. Standard
+// output, a device or a FIFO has no format to say.
+void check_named_formats(const OutputOptions& options, const std::vector<FileToWrite>& files) {
+  for (const FileToWrite& f : files) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(f.path, ec);
+    if (f.path == "-" || (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)))
+      continue;
+    const std::string_view named = format_named(f.path), written = format_written(f.option, options, f.path);
+    if (named.empty() || written.empty() || named == written) continue;
+    static constexpr std::pair<std::string_view, std::string_view> kNames[] = {
+        {"text", "a name that says no other format, e.g. FILE.txt"}, {"JSON", "FILE.json"}, {"CSV", "FILE.csv"},
+        {"HTML", "FILE.html"}, {"PDF", "FILE.pdf"}, {"TOML", "FILE.toml"}, {"NumPy", "FILE.npy"}};
+    std::string accepted;
+    for (const auto& [format, name] : kNames)
+      if (format == written) accepted = name;
+    if (f.option == "--samples-out") accepted = "FILE.csv or FILE.npy";
+    const std::string flag_value = named == "JSON" ? "json" : named == "CSV" ? "csv" : "";
+    if (f.option == "-o" && std::find(options.formats.begin(), options.formats.end(), flag_value) !=
+                                options.formats.end())
+      accepted += fmt::format(", or --format {} for {}", flag_value, named);
+    if (f.option == "-o" && named == "PDF" && written == "HTML")
+      accepted += ", or --pdf FILE.pdf for the page printed as PDF";
+    throw InputError(fmt::format("{}: '{}' names {} {} file, and {} writes {}; accepted: {}", f.option, f.path,
+                                 named == "HTML" ? "an" : "a", named, f.option, written, accepted));
+  }
+}
 
 std::vector<FileToWrite> files_of(const OutputOptions& options, std::string_view text,
                                   const std::vector<ExtraFile>& extra) {
@@ -151,11 +215,16 @@ std::vector<FileToWrite> files_of(const OutputOptions& options, std::string_view
 }  // namespace
 
 void write_outputs(const OutputOptions& options, std::string_view text, const std::vector<ExtraFile>& extra) {
-  write_files(files_of(options, text, extra));
+  const std::vector<FileToWrite> files = files_of(options, text, extra);
+  check_files(files);  // first what each file is (an input, a folder), then what its name says
+  check_named_formats(options, files);
+  write_files(files);
 }
 
 void check_outputs(const OutputOptions& options, const std::vector<ExtraFile>& extra) {
-  check_files(files_of(options, {}, extra));
+  const std::vector<FileToWrite> files = files_of(options, {}, extra);
+  check_files(files);
+  check_named_formats(options, files);
 }
 
 Config load_config_or_example(const ConfigChoice& config) {

@@ -19,7 +19,8 @@ namespace ccal::cli {
 // --format and -o of a command.
 struct OutputOptions {
   std::string format = "text";
-  std::string path;  // empty: standard output
+  std::string path;                  // empty: standard output
+  std::vector<std::string> formats;  // what --format takes (add_output_options); empty: no --format
 };
 
 // Adds --format (one of `formats`, the first is the default) and -o/--output to a command (-o alone when

@@ -7,7 +7,7 @@ import tempfile
 
 import numpy as np
 
-from . import _pickling
+from . import _ccal, _pickling
 from ._tables import Table  # noqa: F401 (named by the annotations below)
 
 
@@ -233,6 +233,16 @@ def write_logs(self, folder: "str", step: "Optional[float]" = None, log_layout: 
     """Writes the runs' logs and their manifest.toml into `folder` (created if missing), as `ccal simulate
     --logs-out` does (log_layout: a layout file's path, as `--log-layout`); returns {run name: path}, what
     reduce() takes (as does the folder itself)."""
+    path = os.fspath(folder) if isinstance(folder, (str, bytes, os.PathLike)) else None
+    if path is None:
+        raise TypeError(f"Simulation.write_logs(): folder: expected a folder's path (str or os.PathLike), got "
+                        f"{type(folder).__name__}")
+    if not path:
+        raise _ccal.InputError("Simulation.write_logs(): folder: the path is empty; accepted: a folder's path (made "
+                               "if missing)")
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise _ccal.InputError(f"Simulation.write_logs(): folder: '{os.fsdecode(path)}' is a file, not a folder; "
+                               f"accepted: a folder's path (made if missing)")
     logs = self.run_logs(step, log_layout)
     manifest = self.logs_manifest(log_layout)
     os.makedirs(folder, exist_ok=True)

@@ -79,8 +79,13 @@ def signature_from_doc(doc, name, keywords=None):
 def with_signature(function, name, qualname, keywords=None):
     """`function` (a pybind11 function) wrapped so that inspect.signature and help() show its signature."""
     signature, doc = signature_from_doc(function.__doc__, name, keywords)
+    options = {keyword[0] for keyword in keywords or ()}  # checked by the module itself, in its own words
 
     def wrapper(*args, **kwargs):
+        # pybind11 takes True for a number (1.0): refused first, as the module's keywords refuse it.
+        problem = bool_problem(signature, qualname, args, kwargs, options)
+        if problem is not None:
+            raise TypeError(problem)
         try:
             return function(*args, **kwargs)
         except TypeError as error:
@@ -88,7 +93,8 @@ def with_signature(function, name, qualname, keywords=None):
             # own words for a call its signature does not take (a missing argument, a mistyped keyword) instead.
             if "incompatible function arguments" not in str(error):
                 raise
-            problem = call_problem(signature, name, args, kwargs)
+            problem = call_problem(signature, name, args, kwargs) or argument_problem(signature, qualname, args,
+                                                                                      kwargs)
             if problem is None:
                 raise
             raise TypeError(problem) from None
@@ -113,8 +119,165 @@ def call_problem(signature, name, args, kwargs):
             if keyword not in signature.parameters:
                 close = difflib.get_close_matches(keyword, names, n=1)
                 hints.append(f"'{keyword}' is no keyword" + (f": did you mean '{close[0]}'?" if close else ""))
-        return f"{name}(): {why}" + "".join(f"; {hint}" for hint in hints) + f"; accepted: {', '.join(names)}"
+        accepted = ", ".join(names) if names else "no arguments"
+        return f"{name}(): {why}" + "".join(f"; {hint}" for hint in hints) + f"; accepted: {accepted}"
     return None
+
+
+def parse_annotation(text):
+    """A pybind11 type name ("Dict[str, Union[float, str]]") as (name, [arguments])."""
+    name, bracket, rest = text.strip().partition("[")
+    if not bracket:
+        return name.strip(), []
+    return name.strip(), [parse_annotation(part) for part in split_top_level(rest.rstrip()[:-1])]
+
+
+def described(annotation, article=True):
+    """A type in words: "a dict of str → number or str"; the parts of a container without their article."""
+    name, arguments = annotation
+    words = {"str": "str", "float": "number", "int": "integer", "bool": "True or False", "object": "anything",
+             "Any": "anything"}
+    if name == "Dict":
+        return f"a dict of {described(arguments[0], False)} → {described(arguments[1], False)}"
+    if name == "List":
+        return f"a list of {described(arguments[0], False)}"
+    if name == "Optional":
+        return f"{described(arguments[0], article)} or None"
+    if name == "Union":
+        return " or ".join("None" if a[0] == "None" else described(a, article) for a in arguments)
+    if name.startswith("numpy."):
+        return "an array of numbers"
+    text = words.get(name, name)
+    if not article or name in ("bool", "object", "Any"):
+        return text
+    return ("an " if text[0] in "aeiou" else "a ") + text
+
+
+def mismatch(value, annotation, where):
+    """(where, annotation) of the first part of `value` that is not of `annotation`, None if it is (or the type is
+    not one this checks). Only called for a call pybind11 refused: it names the argument, pybind11 decides."""
+    from . import _ccal
+    name, arguments = annotation
+    if name == "None":
+        return None if value is None else (where, annotation)
+    if name in ("Optional", "Union"):
+        options = arguments + ([("None", [])] if name == "Optional" else [])
+        found = [mismatch(value, a, where) for a in options]
+        if all(found):  # of the alternatives' mismatches, one deeper inside the value names its place best
+            deeper = [f for f in found if f[0] != where]
+            return deeper[0] if len(deeper) == 1 else (where, annotation)
+        return None
+    if name == "str":
+        ok = isinstance(value, (str, bytes))
+    elif name == "bool":
+        ok = isinstance(value, bool) or type(value).__name__.startswith("bool")
+    elif name in ("int", "float"):
+        numeric = hasattr(value, "__index__") or (name == "float" and hasattr(value, "__float__"))
+        ok = numeric and not isinstance(value, (str, bytes))
+    elif name == "Dict":
+        if not isinstance(value, dict):
+            return where, annotation
+        for key, item in value.items():
+            found = mismatch(key, arguments[0], f"{where}: key {key!r}") or mismatch(item, arguments[1],
+                                                                                    f"{where}[{key!r}]")
+            if found:
+                return found
+        return None
+    elif name == "List":
+        if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__"):
+            return where, annotation
+        for index, item in enumerate(value):
+            found = mismatch(item, arguments[0], f"{where}[{index}]")
+            if found:
+                return found
+        return None
+    elif name.startswith("ccal."):
+        cls = getattr(_ccal, name[len("ccal."):], None)
+        ok = cls is None or isinstance(value, cls)
+    else:
+        return None
+    return None if ok else (where, annotation)
+
+
+def argument_problem(signature, name, args, kwargs):
+    """Which argument of a call the signature takes has a type pybind11 refused, in the words of the module's other
+    argument checks: "<function>(): <argument>: expected <accepted>, got <type> (<repr>)"; None if none is found."""
+    for parameter, value in signature.bind(*args, **kwargs).arguments.items():
+        kind = signature.parameters[parameter].kind
+        annotation = signature.parameters[parameter].annotation
+        if kind in (inspect.Parameter.VAR_KEYWORD, inspect.Parameter.VAR_POSITIONAL) or not isinstance(annotation,
+                                                                                                       str):
+            continue
+        found = mismatch(value, parse_annotation(annotation), parameter)
+        if found:
+            where, expected = found
+            part = value if where == parameter else eval_part(value, where[len(parameter):])
+            text = repr(part)
+            text = text if len(text) <= 80 else text[:77] + "..."
+            whole = "" if where == parameter else f"; accepted: {described(parse_annotation(annotation))}"
+            config = expected in (("ccal.Config", []), ("Optional", [("ccal.Config", [])]))
+            if config and (isinstance(part, str) or hasattr(part, "__fspath__")):
+                whole += "; a configuration file is read by ccal.load_config(path)"
+            return f"{name}(): {where}: expected {described(expected)}, got {type(part).__name__} ({text}){whole}"
+    return None
+
+
+def bool_for_number(value, annotation, where):
+    """The place (and the expected type) where `value` holds True or False for a number the annotation takes, and
+    no bool; None if there is none."""
+    name, arguments = annotation
+    if isinstance(value, bool) and name in ("float", "int"):
+        return where, annotation
+    if name in ("Optional", "Union"):
+        if any(a[0] == "bool" for a in arguments):
+            return None
+        if isinstance(value, bool):
+            numbers = [a for a in arguments if a[0] in ("float", "int")]
+            return (where, annotation) if numbers else None
+        for a in arguments:
+            found = bool_for_number(value, a, where)
+            if found:
+                return found
+        return None
+    if name == "Dict" and isinstance(value, dict):
+        for key, item in value.items():
+            found = bool_for_number(item, arguments[1], f"{where}[{key!r}]")
+            if found:
+                return found
+    if name == "List" and isinstance(value, (list, tuple)):
+        for index, item in enumerate(value):
+            found = bool_for_number(item, arguments[0], f"{where}[{index}]")
+            if found:
+                return found
+    return None
+
+
+def bool_problem(signature, name, args, kwargs, options=()):
+    """A bool given for a number of the signature's arguments (not the verb's option keywords, `options`, which the
+    module checks itself)."""
+    try:
+        bound = signature.bind(*args, **kwargs).arguments
+    except TypeError:
+        return None  # the call's own problem, said after pybind11 refuses it
+    for parameter, value in bound.items():
+        annotation = signature.parameters[parameter].annotation
+        if parameter in options or not isinstance(annotation, str):
+            continue
+        found = bool_for_number(value, parse_annotation(annotation), parameter)
+        if found:
+            where, expected = found
+            part = value if where == parameter else eval_part(value, where[len(parameter):])
+            return f"{name}(): {where}: expected {described(expected)}, got bool ({part!r})"
+    return None
+
+
+def eval_part(value, path):
+    """The part of `value` a mismatch's place names: "[0]", "['K3']" or ": key 3"."""
+    if path.startswith(": key "):
+        return ast.literal_eval(path[len(": key "):])
+    for index in re.findall(r"\[(.*?)\](?=\[|$)", path):
+        value = value[ast.literal_eval(index)]
+    return value
 
 
 def is_pybind_function(value):

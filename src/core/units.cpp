@@ -189,6 +189,11 @@ std::string example(const Context& ctx, std::string_view number = "1") {
   return fmt::format("'{} {}'", number, list.substr(0, list.find(',')));
 }
 
+// What a message about the number says is accepted: "accepted: a finite number and its unit, e.g. '1 s'".
+std::string number_accepted(const Context& ctx) {
+  return fmt::format("accepted: a finite number and its unit, e.g. {}", example(ctx));
+}
+
 // ASCII classification by hand: <cctype> depends on the global locale.
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
@@ -332,7 +337,7 @@ struct Parsed {
 
 Parsed parse_text(const Context& ctx) {
   const std::string_view s = trim(ctx.text);
-  if (s.empty()) fail(ctx, fmt::format("expected a number and a unit, e.g. {}", example(ctx)));
+  if (s.empty()) fail(ctx, fmt::format("expected a number and a unit; {}", number_accepted(ctx)));
 
   // from_chars does not take a leading '+', which is natural in configuration files.
   const char* first = s.data();
@@ -342,16 +347,18 @@ Parsed parse_text(const Context& ctx) {
   const auto [end, ec] = std::from_chars(first, last, value);
   const std::string_view number(s.data(), static_cast<std::size_t>(end - s.data()));
   if (ec == std::errc::invalid_argument) {
-    fail(ctx, fmt::format("expected a number before the unit, e.g. {}", example(ctx)));
+    fail(ctx, fmt::format("expected a number before the unit; {}", number_accepted(ctx)));
   }
-  if (ec == std::errc::result_out_of_range) fail(ctx, fmt::format("'{}' is out of range of double", number));
-  if (!std::isfinite(value)) fail(ctx, fmt::format("'{}' is not a finite number", number));
+  if (ec == std::errc::result_out_of_range)
+    fail(ctx, fmt::format("'{}' is out of range of double; {}", number, number_accepted(ctx)));
+  if (!std::isfinite(value)) fail(ctx, fmt::format("'{}' is not a finite number; {}", number, number_accepted(ctx)));
   // A number running into more number characters ("1.2.3", "1e", "1,5", "0x1f") is malformed; no unit symbol
   // starts with any of these characters.
   if (end != last && std::string_view("0123456789.,eExX+-").find(*end) != std::string_view::npos) {
     const auto word_end = std::find_if(s.begin(), s.end(), is_space);
     fail(ctx,
-         fmt::format("malformed number '{}'", s.substr(0, static_cast<std::size_t>(word_end - s.begin()))));
+         fmt::format("malformed number '{}'; {} (a decimal point, no thousands separator)",
+                     s.substr(0, static_cast<std::size_t>(word_end - s.begin())), number_accepted(ctx)));
   }
 
   const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(last - end)));

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -50,6 +51,26 @@ void check_serial(const std::string& serial, bool given, const std::string& sour
 std::string certificate_text(const nlohmann::json& certificate, const char* key) {
   if (!certificate.contains(key) || certificate[key].is_null()) return "";
   return certificate[key].is_string() ? certificate[key].get<std::string>() : certificate[key].dump();
+}
+
+// A calibration is recorded once it is done: a date after today (UTC) is a typing error (9999-12-31, a year
+// ahead) that would make every later drift line and prediction wrong. given: from the caller (the date option),
+// else from the statement's certificate.
+void check_not_future(std::int64_t day, const std::string& date, bool given, const std::string& source) {
+  using namespace std::chrono;
+  const sys_days today = floor<days>(system_clock::now());
+  if (day <= today.time_since_epoch().count()) return;
+  const year_month_day ymd{today};
+  const std::string today_text =
+      fmt::format("{:04}-{:02}-{:02}", int(ymd.year()), unsigned(ymd.month()), unsigned(ymd.day()));
+  if (given)
+    throw OptionError("date", date,
+                      fmt::format("is after today ({}, UTC), and a calibration is recorded once it is done; "
+                                  "accepted: its date, YYYY-MM-DD, up to {}",
+                                  today_text, today_text));
+  throw InputError(fmt::format("{}: date of calibration '{}' ([certificate] date_of_calibration) is after today "
+                               "({}, UTC); accepted: a statement of a calibration done by {}, or its date given",
+                               source, date, today_text, today_text));
 }
 
 }  // namespace
@@ -220,9 +241,11 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
                       fmt::format("{} names no date of calibration ([certificate] date_of_calibration); "
                                   "accepted: the date, YYYY-MM-DD",
                                   source));
-  if (!calendar_day(e.date))
+  const std::optional<std::int64_t> day = calendar_day(e.date);
+  if (!day)
     throw InputError(fmt::format(
         "{}: date of calibration '{}' is not a date; accepted: YYYY-MM-DD, e.g. 2026-11-30", source, e.date));
+  check_not_future(*day, e.date, !date.empty(), source);
   return e;
 }
 

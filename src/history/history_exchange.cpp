@@ -51,8 +51,9 @@ std::vector<Item> read_items(const nlohmann::json& j, const std::string& serial,
             source, i, item.old_id, k));
     try {
       item.entry = history_entry(c["statement"].dump(), where, serial, c["date"].get<std::string>());
-    } catch (const OptionError& e) {  // the file's "serial" stands for the option
-      refuse(source, fmt::format("\"serial\" {} {}", e.value(), e.problem()));
+    } catch (const OptionError& e) {  // the file's "serial" (or the entry's "date") stands for the option
+      const std::string key = e.field() == "date" ? fmt::format("calibrations[{}].date", i) : "serial";
+      throw InputError(fmt::format("{}: \"{}\" {} {}", source, key, e.value(), e.problem()));
     }
     item.entry.instrument = c.value("instrument", item.entry.instrument);
     item.entry.ccal_version = c.value("ccal_version", item.entry.ccal_version);
@@ -165,6 +166,8 @@ HistoryImport import_history(HistoryStore& store, const std::string& json_text, 
                                kHistorySchemaVersion));
   if (!j["serial"].is_string() || !j["calibrations"].is_array())
     refuse(source, "no \"serial\" and \"calibrations\"");
+  // `ccal history export` writes at least one: an empty list would make an empty store, importing nothing.
+  if (j["calibrations"].empty()) refuse(source, "no calibration in its \"calibrations\"");
   HistoryImport out;
   out.serial = j["serial"].get<std::string>();
   const std::vector<Item> items = read_items(j, out.serial, source);

@@ -137,12 +137,28 @@ void check_distinct_serials(const Reader& r, const std::vector<MountedInstrument
                            mounted[k].serial_number, mounted[j].id));
 }
 
+// An empty file (/dev/null, a file truncated to nothing) or a truth file given for a configuration would be
+// refused for its missing [site], a table the user did not think of: said for what it is.
+void refuse_what_is_no_configuration(const toml::table& root, std::string_view source) {
+  constexpr std::string_view accepted =
+      "accepted: a configuration file ([site], [centrifuge], [instrument], [plan], …; docs/config.md), e.g. "
+      "examples/lab.toml";
+  if (root.empty())
+    throw InputError(fmt::format("{}:1: the file holds no TOML table or key (it is empty); {}", source, accepted));
+  if (root.size() == 1 && root.contains("errors"))
+    throw InputError(fmt::format("{}:1: the file holds only [errors], as a truth file does (the errors a simulated "
+                                 "machine has), not a configuration; {}, with the truth file given as the "
+                                 "simulation's truth",
+                                 source, accepted));
+}
+
 }  // namespace
 
 Config parse_config(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
   std::string setup_source;
   const toml::table root = with_setup(r, parse_toml(r, text, source_name), setup_source);
+  refuse_what_is_no_configuration(root, source_name);
   r.check_keys(root, "", kRootKeys);
   std::vector<MountedInstrument> mounted = read_instruments(r, root);
   if (mounted.empty()) return read_tables(r, root, text, source_name, setup_source, read_instrument(r, root));

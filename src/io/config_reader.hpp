@@ -267,7 +267,7 @@ class Reader {
                         std::string_view hint) const {
     if (v > 0) return;
     fail(*t.get(key), path(table_path, key),
-         fmt::format("must be positive, got {}; {}", written(*t.get(key), v), hint));
+         fmt::format("must be positive, got {}; accepted: a positive value, {}", written(*t.get(key), v), hint));
   }
   void require_non_negative(const toml::table& t, std::string_view table_path, std::string_view key, double v,
                             std::string_view hint) const {
@@ -429,18 +429,25 @@ std::optional<Certificate> read_certificate(const Reader& r, const toml::table& 
 inline toml::table parse_toml(const Reader& r, std::string_view text, std::string_view source_name,
                               std::string_view accepted = {}) {
   toml::table root;
-  const auto tail = [&] { return accepted.empty() ? std::string() : fmt::format("; accepted: {}", accepted); };
+  // Bytes that are no UTF-8 (a binary file, text in UTF-16 or Latin-1) are said to be what they likely are.
+  const auto tail = [&](std::string_view description) {
+    if (description.find("invalid utf-8") != std::string_view::npos)
+      return std::string("; accepted: a TOML text file in UTF-8 (a binary file, or text in UTF-16 or Latin-1, "
+                         "is not one: convert it, e.g. iconv -t UTF-8)");
+    return accepted.empty() ? std::string() : fmt::format("; accepted: {}", accepted);
+  };
 #if TOML_EXCEPTIONS
   try {
     root = toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
-    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}{}", e.description(), tail()));
+    r.fail(where(e.source()), "", fmt::format("TOML syntax error: {}{}", e.description(), tail(e.description())));
   }
 #else
   auto result = toml::parse(text, source_name);
   if (!result)
     r.fail(where(result.error().source()), "",
-           fmt::format("TOML syntax error: {}{}", result.error().description(), tail()));
+           fmt::format("TOML syntax error: {}{}", result.error().description(),
+                       tail(result.error().description())));
   root = std::move(result).table();
 #endif
   return root;

@@ -160,7 +160,8 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
     // The value as the user wrote it ("-1 ms"), else the number.
     const std::optional<std::string> written = n.value<std::string>();
     if (!(v > 0))
-      r.fail(n, path, fmt::format("must be positive, got {}", written ? *written : number_text(v)));
+      r.fail(n, path,
+             fmt::format("must be positive, got {}; accepted: a positive value", written ? *written : number_text(v)));
   };
   d.runs = count(r, *t, "runs", 1, 1000, "a number of runs from 1 to 1000");
   d.min_g_levels = count(r, *t, "min_g_levels", 1, 1000, "a number of distinct g-levels from 1 to 1000");

@@ -151,7 +151,7 @@ void read_noise(const Reader& r, const toml::table& t, std::string_view p, const
                          out.text));
     const double v = r.quantity_node(*n, Reader::path(p, "sampling_resistor"), kind::resistance, nullptr, "100 ohm");
     if (!(v > 0))
-      r.fail(*n, Reader::path(p, "sampling_resistor"), "must be positive; the resistance, e.g. \"100 ohm\"");
+      r.fail(*n, Reader::path(p, "sampling_resistor"), "must be positive; accepted: a positive resistance, e.g. \"100 ohm\"");
     m.sampling_resistor = v;
   }
 }
@@ -203,7 +203,7 @@ RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_vie
   f.duration = r.quantity(t, p, "duration", kind::time, nullptr, "450 s");
   if (f.duration && !(*f.duration > 0))
     r.fail(*t.get("duration"), Reader::path(p, "duration"),
-           fmt::format("must be positive, got {} s; a run duration such as \"450 s\"",
+           fmt::format("must be positive, got {} s; accepted: a positive run duration such as \"450 s\"",
                        number_text(*f.duration)));
   if (f.duration) {
     r.require_at_most(t, p, "duration", *f.duration, 1e6, "a run duration up to 1e6 s (11.6 days)");

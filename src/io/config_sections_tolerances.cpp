@@ -134,7 +134,7 @@ std::vector<Tolerance> read_tolerances(const Reader& r, const toml::table& root,
       if (tol.unit.empty() && d.relative_to > 0) tol.unit = written_unit(&node, kind::dimensionless);  // "2 ppm" of K1
       if (!(tol.bound > 0))
         r.fail(node, p,
-               fmt::format("must be positive, got {}; the standard uncertainty, e.g. \"{}\"",
+               fmt::format("must be positive, got {}; accepted: a positive bound, e.g. \"{}\"",
                            number_text(tol.bound), d.example));
       check_bound_size(r, node, p, tol.bound, d);
     }

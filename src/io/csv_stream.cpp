@@ -219,6 +219,13 @@ void check_csv_delimiter(std::string_view line, const std::vector<std::string>& 
       equals != std::string_view::npos && equals > 0 &&
       trim_csv(text.substr(0, equals)).find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
                                                          "0123456789_-.\"'") == std::string_view::npos;
+  // A JSON document (a calibration statement, a result of ccal) given for a table: its opening brace.
+  if (text == "{" || text == "[" || (text.starts_with('{') && text.find('"') != std::string_view::npos))
+    throw CsvError(source, line_no, 1, "",
+                   fmt::format("the header, '{}', opens a JSON document (a statement or a result of ccal?), not a "
+                               "table's header; accepted: a CSV table whose header names its columns, e.g. "
+                               "time,pulses",
+                               fields[0]));
   if (toml_key || (text.starts_with('[') && text.ends_with(']')))
     throw CsvError(source, line_no, 1, "",
                    fmt::format("the header, '{}', is a line of TOML (a configuration or a manifest?), not a table's "

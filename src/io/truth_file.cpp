@@ -24,6 +24,12 @@ SimulationTruth parse_truth(std::string_view text, std::string_view source_name,
              "a configuration's table, not a truth's; accepted: [errors] only, the values the simulated machine "
              "has (the rest of the set-up is the configuration's)");
   r.check_keys(root, "", Keys{"errors"});
+  // An empty file (/dev/null, one truncated to nothing) would simulate a machine without errors unasked.
+  if (!root.contains("errors"))
+    throw InputError(fmt::format("{}:1: a truth file without an [errors] table (it is empty); accepted: [errors] "
+                                 "with the values the simulated machine has (an empty [errors] table for a machine "
+                                 "without errors)",
+                                 source_name));
   CentrifugeModel machine = config.centrifuge;
   machine.errors.setZero();
   std::vector<std::pair<int, double>> chain_errors;

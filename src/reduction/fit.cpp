@@ -63,11 +63,13 @@ void validate(const FitProblem& p, const FitOptions& o) {
   const Index cols = p.H.cols();
   if (static_cast<Index>(p.term_names.size()) != cols) {
     throw std::invalid_argument(
-        fmt::format("fit: {} term names for a design with {} columns", p.term_names.size(), cols));
+        fmt::format("fit: {} term names for a design with {} columns; accepted: one name per column of the design",
+                    p.term_names.size(), cols));
   }
   if (p.y.size() != rows) {
     throw std::invalid_argument(
-        fmt::format("fit: the design has {} rows but y has {} entries", rows, p.y.size()));
+        fmt::format("fit: the design has {} rows but y has {} entries; accepted: one y per row of the design",
+                    rows, p.y.size()));
   }
   if (p.weights.size() != 0 && p.weights.size() != rows) {
     throw std::invalid_argument(fmt::format(
@@ -96,11 +98,13 @@ void validate(const FitProblem& p, const FitOptions& o) {
   }
   for (Index i = 0; i < rows; ++i) {
     if (!std::isfinite(p.y(i))) {
-      throw std::invalid_argument(fmt::format("fit: non-finite value {} in y at {}", p.y(i), row_text(p, i)));
+      throw std::invalid_argument(fmt::format("fit: non-finite value {} in y at {}; accepted: finite numbers",
+                                              p.y(i), row_text(p, i)));
     }
     for (Index k = 0; k < cols; ++k) {
       if (!std::isfinite(p.H(i, k))) {
-        throw std::invalid_argument(fmt::format("fit: non-finite value {} in H at {}, column {} ({})",
+        throw std::invalid_argument(fmt::format("fit: non-finite value {} in H at {}, column {} ({}); accepted: "
+                                                "finite numbers",
                                                 p.H(i, k), row_text(p, i), k + 1,
                                                 p.term_names[static_cast<std::size_t>(k)]));
       }

@@ -36,6 +36,11 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
       eq == std::string_view::npos ? std::string_view() : trim_blanks(text.substr(eq + 1));
   if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
     value = trim_blanks(value.substr(1, value.size() - 2));
+  // Several targets in one ("K3=1e-3,K2=1e-5"): each is its own, as its number would be malformed.
+  if (eq != std::string_view::npos && value.find('=') != std::string_view::npos)
+    throw OptionError(option, fmt::format("'{}'", text),
+                      "holds more than one target; accepted: one target each, COEFFICIENT=VALUE, e.g. K3=1e-6 "
+                      "(the command line's flag repeated, or one entry per coefficient)");
   if (eq == std::string_view::npos || name.empty() || value.empty())
     throw OptionError(option, fmt::format("'{}'", text),
                       "is not COEFFICIENT=VALUE; accepted: e.g. K3=1e-6 (in the coefficient's unit) or "
@@ -73,8 +78,8 @@ AllocationTarget parse_allocation_target(std::string_view text, const std::vecto
   }
   if (!(std::isfinite(t.expanded) && t.expanded > 0))
     throw OptionError(option, "",
-                      fmt::format("{}: the target must be a positive expanded uncertainty, got '{}'; e.g. "
-                                  "{}=1e-6 (in {})",
+                      fmt::format("{}: the target must be a positive expanded uncertainty, got '{}'; accepted: a "
+                                  "positive finite number, e.g. {}=1e-6 (in {})",
                                   name, value, name, units[k]));
   return t;
 }

@@ -432,7 +432,7 @@ BudgetDetail compute_budget(const Config& config, const BudgetOptions& options) 
   r.derivatives = table.method;
   r.mode = mode;
   r.coefficients = spec.free_terms;
-  r.coverage = normal_coverage(options.coverage_probability, options.coverage_factor);
+  r.coverage = normal_coverage(options.coverage_probability.value_or(kDefaultCoverageProbability), options.coverage_factor);
   for (const auto& id : r.coefficients) {
     r.units.push_back(coefficient_unit(config.instrument.output_unit, id, config.instrument.g_symbol));
     r.display_scale.push_back(to_unit(1.0, config.instrument.output_unit));

@@ -410,7 +410,7 @@ MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
   const auto start = Clock::now();
   check_arguments(sources, n_outputs, output_names, trial, options, lpu_std);
 
-  const double p = options.coverage_probability;
+  const double p = options.coverage_probability.value_or(kDefaultCoverageProbability);
   const bool adaptive = options.digits > 0;
   const int n_dig = adaptive ? options.digits : 2;
   // J of §7.9.4 b): the least M for which the coverage interval has 100 values outside it.

@@ -117,8 +117,24 @@ void check_known_option(const std::vector<std::string>& known, const std::string
   }
 }
 
+// One column in two roles (the input also the output, the weights the output or the input) fits nothing
+// meaningful: y against itself gives exact coefficients with no error.
+void check_column_roles(const IdentifyOptions& o) {
+  const auto refuse = [](std::string_view field, const std::string& column, std::string_view other) {
+    throw OptionError(std::string(field), column,
+                      fmt::format("is also the {}; accepted: another column of the file for each role",
+                                  OptionError::name(other)));
+  };
+  if (o.output_column == o.input_column) refuse("output_column", o.output_column, "input_column");
+  if (!o.weight_column.empty() && o.weight_column == o.output_column)
+    refuse("weight_column", o.weight_column, "output_column");
+  if (!o.weight_column.empty() && o.weight_column == o.input_column)
+    refuse("weight_column", o.weight_column, "input_column");
+}
+
 TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHeader>& header,
                       const IdentifyOptions& o, const ColumnUnits& units) {
+  check_column_roles(o);
   TableFitSpec spec;
   spec.input = o.input_column;
   spec.output = o.output_column;
@@ -151,6 +167,18 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
                         OptionError::name("terms"), OptionError::name("fix")));
       spec.fixed.push_back(std::move(f));
     }
+    // --fix replaces the file's fixed terms: one it does not name (nor --terms frees) would silently leave
+    // the model, and the fit would take its contribution into the other coefficients.
+    if (header)
+      for (const auto& hf : header->fixed)
+        if (!ids.count(hf.term.id))
+          throw OptionError(
+              "fix", fmt::format("'{}'", fmt::join(*o.fix, ",")),
+              fmt::format("replaces the fixed terms of {}, and its {} = {} {} would be left out of the model; "
+                          "accepted: {} naming {} too (e.g. {}={}), or {} in {} to fit it",
+                          table.source, hf.term.id, option_number_text(hf.value), hf.unit,
+                          OptionError::name("fix"), hf.term.id, hf.term.id, option_number_text(hf.value),
+                          hf.term.id, OptionError::name("terms")));
   } else if (header) {
     // The file's fixed terms, except those the user frees.
     for (const auto& hf : header->fixed) {

@@ -22,6 +22,15 @@ OptionTable<MonteCarloOptions> options_of(std::type_identity<MonteCarloOptions>)
 MonteCarloResult monte_carlo(const Config& config, const MonteCarloOptions& o) {
   require_one_instrument(config, "montecarlo");
   check_options(o, option_table<MonteCarloOptions>());  // the rows; the engine checks the threads it starts
+  // With digits the trials given are each stage's, which the engine raises to at least kDefaultMonteCarloStage:
+  // a smaller number from the user would be raised without a word (the engine's tests use the raise).
+  const PropagationOptions& p = o.propagation;
+  if (p.digits > 0 && p.trials && *p.trials < kDefaultMonteCarloStage)
+    throw OptionError("trials", option_number_text(double(*p.trials)),
+                      fmt::format("is, with {} {}, the size of each stage, which is at least {}; accepted: {} or "
+                                  "more, or {} left out (stages of {})",
+                                  OptionError::name("digits"), p.digits, kDefaultMonteCarloStage,
+                                  kDefaultMonteCarloStage, OptionError::name("trials"), kDefaultMonteCarloStage));
   if (config.tolerances.empty())
     throw InputError(config.source + ": [tolerances] is empty; the Monte Carlo needs at least one source");
   gaussian_copula(config);  // a pair the copula cannot draw is refused before the budget's work

@@ -212,7 +212,7 @@ ReportSections report_sections(const ReportOptions& o) {
 AllocateOptions report_allocation(std::vector<std::string> targets, const ReportOptions& o) {
   AllocateOptions a;
   a.targets = std::move(targets);
-  a.coverage_probability = o.monte_carlo.coverage_probability;
+  a.coverage_probability = o.monte_carlo.coverage_probability.value_or(kDefaultCoverageProbability);
   a.seed = o.monte_carlo.seed;
   a.threads = o.monte_carlo.threads;
   return a;

@@ -156,7 +156,8 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
   check_options(o, option_table<StatementOptions>());
   rows::check_coverage_choice(o.coverage_probability, o.coverage_factor);
   // A stated k gives a normal quantity's p: the p the statement names and its Monte Carlo check reports at.
-  const double p = o.coverage_factor ? normal_coverage_probability(*o.coverage_factor) : o.coverage_probability;
+  const double p = o.coverage_factor ? normal_coverage_probability(*o.coverage_factor)
+                                     : o.coverage_probability.value_or(kDefaultCoverageProbability);
   if (o.statement_trials > 0) {
     check_thread_count(o.threads, "threads");
     check_coverage_interval(std::uint64_t(o.statement_trials), p, "statement_trials");

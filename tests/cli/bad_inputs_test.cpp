@@ -325,7 +325,7 @@ std::vector<BadInput> catalogue() {
       {"LayoutMaxGapNaN",
        layout("[format]\nmax_gap = \"nan s\"\n", log_text(5)),
        reduce + lay,
-       {"lay.toml:2:11", "format.max_gap", "accepted: a positive time"}},
+       {"lay.toml:2:11", "format.max_gap", "accepted: a finite number and its unit, e.g. '1 s'"}},
       // A gap after the first sample cannot be bridged: the message said to declare max_gap, declared.
       {"LayoutGapAtTheStart",
        layout("[format]\nmax_gap = \"10 s\"\n", without_lines(log_text(5), 3, 41)),

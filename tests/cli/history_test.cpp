@@ -333,7 +333,7 @@ TEST_F(Cli, HistoryRefusesWhatItCouldNotKeepOrFindAgain) {
   expect_bad_input(run("history add adir --db h.sqlite"),
                    {"adir: it is a folder; accepted: a calibration statement's JSON file"});
   write("st.csv", "coefficient,unit,corrected_estimate,expanded_uncertainty\nK0,deg/s,1,0.5\n");
-  expect_bad_input(run("history add st.csv --db h.sqlite --serial S1 --date 2027-01-01"),
+  expect_bad_input(run("history add st.csv --db h.sqlite --serial S1 --date 2026-01-01"),
                    {"st.csv: the statement's CSV form", "accepted: the statement as JSON"});
   // The help names the JSON form, and what an empty --serial means.
   const Result help = run("history add --help");

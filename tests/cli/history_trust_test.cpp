@@ -36,14 +36,14 @@ class HistoryTrust : public Cli {
 TEST_F(HistoryTrust, AWithdrawnCalibrationIsLeftOutOfEnTheDriftAndThePrediction) {
   // Four yearly calibrations with u = 0.1 (U = 0.2, k = 2); the second (9.0, far off) withdrawn without a
   // replacement. What remains: x = 1.0, 1.3, 1.2 at t = 0, 731, 1096 days (2024 is a leap year), in years of
-  // 365.25 days; the prediction at 2028-01-01 = 1461 days.
-  add("a.json", 1.0, 0.2, "2024-01-01");
-  add("b.json", 9.0, 0.2, "2025-01-01");
-  add("c.json", 1.3, 0.2, "2026-01-01");
-  add("d.json", 1.2, 0.2, "2027-01-01");
+  // 365.25 days; the prediction at 2024-01-01 = 1461 days.
+  add("a.json", 1.0, 0.2, "2020-01-01");
+  add("b.json", 9.0, 0.2, "2021-01-01");
+  add("c.json", 1.3, 0.2, "2022-01-01");
+  add("d.json", 1.2, 0.2, "2023-01-01");
   const Result withdrawn = run("history supersede 2 --reason 'wrong instrument mounted' --db h.sqlite");
   ASSERT_EQ(withdrawn.code, 0) << withdrawn.err;
-  const Result shown = run("history show S1 --db h.sqlite --at 2028-01-01 --format json");
+  const Result shown = run("history show S1 --db h.sqlite --at 2024-01-01 --format json");
   ASSERT_EQ(shown.code, 0) << shown.err;
   const auto k0 = nlohmann::json::parse(shown.out)["coefficients"]["K0"];
   EXPECT_EQ(k0["calibrations"], nlohmann::json({1, 3, 4}));

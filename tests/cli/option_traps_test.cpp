@@ -13,7 +13,7 @@ using OptionTraps = Cli;
 TEST_F(OptionTraps, BudgetCoverageFactorBelowOneIsRefused) {
   // `--coverage 0.95` used to print an "expanded" uncertainty smaller than u with exit code 0.
   expect_bad_input(run("budget --coverage 0.95"), {"--coverage", "--coverage-factor"});
-  expect_bad_input(run("budget --coverage-factor 0.95"), {"--coverage-factor", "a number >= 1", "--coverage-probability"});
+  expect_bad_input(run("budget --coverage-factor 0.95"), {"--coverage-factor", "accepted: 1 to 10", "--coverage-probability"});
   const Result r = run("budget --coverage-factor 3 --format json");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);

@@ -160,7 +160,7 @@ TEST(OptionTables, VerbsRefuseOutOfRangeFieldsByName) {
   BudgetOptions budget;
   budget.coverage_factor = 0.95;
   EXPECT_EQ(refusal([&] { verbs::budget(bundled_example(), budget); }),
-            "coverage_factor: 0.95 is out of range; accepted: a number >= 1, e.g. 2 (U = k u); a coverage "
+            "coverage_factor: 0.95 is out of range; accepted: 1 to 10, e.g. 2 (U = k u); a coverage "
             "probability is given as coverage_probability");
   budget.coverage_factor = 2;
   budget.coverage_probability = 0.9;  // two answers to one question

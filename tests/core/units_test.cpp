@@ -398,7 +398,7 @@ TEST(UnitErrors, OutOfRange) {
 
 TEST(UnitErrors, MissingNumberOrEverything) {
   ExpectContains(ErrorOf([] { ccal::parse_as("", kind::angle, "tilt"); }),
-                 "tilt: '': expected a number and a unit, e.g. '1 rad'");
+                 "tilt: '': expected a number and a unit; accepted: a finite number and its unit, e.g. '1 rad'");
   ExpectContains(ErrorOf([] { ccal::parse_as("   ", kind::angle, "tilt"); }), "expected a number and a unit");
   ExpectContains(ErrorOf([] { ccal::parse_as("rad", kind::angle, "tilt"); }),
                  "tilt: 'rad': expected a number before the unit");

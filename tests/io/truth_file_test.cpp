@@ -35,8 +35,10 @@ TEST(TruthFile, ItsErrorsAreInSiByTheConfigurationsLayoutAndTheRestZero) {
   EXPECT_NEAR(t.errors[*layout.find_parameter("dthz5")], 2 * std::numbers::pi / (180 * 3600), 1e-18);
   EXPECT_NEAR(t.errors[*layout.find_parameter("dx3_c1")], 5e-6, 1e-21);
   EXPECT_EQ((t.errors.array() != 0.0).count(), 2);
-  // No [errors] at all: a machine without errors.
-  EXPECT_EQ((parse_truth("", "empty.toml", config).errors.array() != 0.0).count(), 0);
+  // An empty [errors] table: a machine without errors. No table at all (an empty file) is refused: it would
+  // simulate that machine unasked.
+  EXPECT_EQ((parse_truth("[errors]\n", "empty.toml", config).errors.array() != 0.0).count(), 0);
+  EXPECT_THROW(parse_truth("", "empty.toml", config), InputError);
 }
 
 TEST(TruthFile, AnythingButTheMachinesErrorsIsRefusedWithItsPlace) {

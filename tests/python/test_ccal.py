@@ -59,7 +59,7 @@ class ConfigTest(unittest.TestCase):
             ccal.budget(ccal.bundled_example(), mode="approximate")
         with self.assertRaisesRegex(ccal.InputError, "derivatives"):
             ccal.budget(ccal.bundled_example(), derivatives="numerical")
-        with self.assertRaisesRegex(ccal.InputError, "coverage_factor: 0 is out of range; accepted: a number >= 1"):
+        with self.assertRaisesRegex(ccal.InputError, "coverage_factor: 0 is out of range; accepted: 1 to 10"):
             ccal.budget(ccal.bundled_example(), coverage_factor=0.0)  # the library's check and message
         with self.assertRaises(ccal.InputError):
             ccal.monte_carlo(ccal.bundled_example(), trials=1)

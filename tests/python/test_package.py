@@ -160,27 +160,34 @@ class Frames(unittest.TestCase):
 
 class LibraryDefaults(unittest.TestCase):
     def test_defaults_are_the_options_of_the_library(self):
-        # AllocateOptions, DesignOptions, ReduceOptions, BudgetOptions (include/ccal/verbs/*.hpp).
+        # AllocateOptions, DesignOptions, ReduceOptions, BudgetOptions (include/ccal/verbs/*.hpp). A verb that also
+        # takes a stated coverage factor leaves its coverage probability unset (None: 0.95, its help says), so
+        # that one given beside the factor is refused.
         expected = {"allocate": {"coverage_probability": 0.95, "max_scale": 10.0, "verify_trials": 2000,
                                  "seed": 1, "threads": 0},
-                    "design": {"threads": 0, "verify_trials": 0, "tradeoff": [], "coverage_probability": 0.95,
+                    "design": {"threads": 0, "verify_trials": 0, "tradeoff": [], "coverage_probability": None,
                                "coverage_factor": None},
-                    "reduce": {"statement": False, "coverage_probability": 0.95, "angle_unit": "rad"},
+                    "reduce": {"statement": False, "coverage_probability": None, "angle_unit": "rad"},
                     "identify_file": {"statement": False, "input_column": "a_i", "output_column": "output",
                                       "config": None},
-                    "budget": {"coverage_probability": 0.95, "coverage_factor": None, "compare_with_paper": True,
+                    "budget": {"coverage_probability": None, "coverage_factor": None, "compare_with_paper": True,
                                "derivatives": "linearised"}}
         for function, defaults in expected.items():
             parameters = inspect.signature(getattr(ccal, function)).parameters
             for name, value in defaults.items():
                 with self.subTest(function=function, parameter=name):
                     self.assertEqual(parameters[name].default, value)
+        for function in ("design", "reduce", "budget", "monte_carlo", "report", "identify_file"):
+            with self.subTest(function=function):
+                self.assertIn("coverage_probability (Optional[float], default None): Coverage probability",
+                              getattr(ccal, function).__doc__)
+                self.assertIn("(None: 0.95); accepted: a number in [0.5, 1)", getattr(ccal, function).__doc__)
 
     def test_the_library_checks_the_coverage_factor(self):
         # The library's message for k < 1 (the command line's), also for 0 and 0.5: no check of Python's own.
         for k in (0.0, 0.5):
             with self.subTest(k=k):
-                with self.assertRaisesRegex(ccal.InputError, f"coverage_factor: {k:g} is out of range; accepted: a number >= 1"):
+                with self.assertRaisesRegex(ccal.InputError, f"coverage_factor: {k:g} is out of range; accepted: 1 to 10"):
                     ccal.budget(ccal.bundled_example(), coverage_factor=k)
 
 

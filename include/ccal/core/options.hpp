@@ -60,6 +60,9 @@ struct OptionRange {
   std::string_view also_meaning;  // what it means, e.g. "none"
   std::string_view example;       // shown in the message, e.g. "2 (U = k u)"
   std::string_view note;          // a last word of the message, e.g. where a similar option is
+  // What an optional field left unset stands for, as the help shows it (e.g. "0.95"): the field is optional so
+  // that a value given can be told from the default.
+  std::string_view unset_text;
 
   // [low, high]; then, by copies: open ends, one more accepted value, an example, a note.
   static constexpr OptionRange between(double low, double high) {
@@ -93,6 +96,11 @@ struct OptionRange {
   constexpr OptionRange noting(std::string_view text) const {
     OptionRange r = *this;
     r.note = text;
+    return r;
+  }
+  constexpr OptionRange unset_means(std::string_view text) const {
+    OptionRange r = *this;
+    r.unset_text = text;
     return r;
   }
 

@@ -41,7 +41,8 @@ enum class DerivativeMethod { automatic, linearised };
 struct BudgetOptions {
   std::optional<ModelMode> mode;  // kinematics; unset: the configuration's [identification] mode
   // U = k u with k = Φ⁻¹((1 + p)/2) of the normal LPU total (coverage.hpp), or the stated k when given.
-  double coverage_probability = kDefaultCoverageProbability;
+  // Unset: kDefaultCoverageProbability; optional so that a p given beside a stated k is refused.
+  std::optional<double> coverage_probability;
   std::optional<double> coverage_factor;
   bool compare_with_paper = true;    // in exact mode, also compute the paper's sensitivities per source
   double disagreement_factor = 2.0;  // flag sources whose exact and paper effects differ by more than this
@@ -155,7 +156,7 @@ Eigen::VectorXd correlation_variance(const BudgetDetail& budget);
 OptionTable<BudgetOptions> options_of(std::type_identity<BudgetOptions>);
 
 // Throws OptionError naming the field for an option its table refuses, or a coverage factor with a coverage
-// probability other than the default.
+// probability given (its default's value too).
 BudgetDetail compute_budget(const Config& config, const BudgetOptions& options = {});
 
 // The round-off floor of a contribution, relative to its coefficient's u_c: |u_i(y)| < kRoundOffFloor u_c is

@@ -32,7 +32,10 @@ inline constexpr OptionRange kVerifyTrials = kTrials.or_value(0, "none");
 inline constexpr OptionRange kThreads = OptionRange::between(1, kMaxThreads).or_value(0, "the OpenMP default");
 // At least ½: an interval that more likely misses the value than holds it is no coverage interval (and p → 0
 // takes q = round(pM) = 0 of the M sorted values, an interval of one point).
-inline constexpr OptionRange kCoverageProbability = OptionRange::between(0.5, 1).open_high().e_g(kDefaultCoverageProbabilityText);
+inline constexpr OptionRange kCoverageProbability = OptionRange::between(0.5, 1)
+                                                       .open_high()
+                                                       .e_g(kDefaultCoverageProbabilityText)
+                                                       .unset_means(kDefaultCoverageProbabilityText);
 
 // mode<&Options::mode>(): the kinematics (an optional ModelMode: unset, the configuration's).
 template <auto Member, class O = typename member_class<decltype(Member)>::type>
@@ -42,30 +45,35 @@ constexpr OptionSpec<O> mode(std::string_view help = "Kinematics: exact (full ch
   return {"mode", enum_member<Member>(kModeNames), "MODE", help};
 }
 
-template <class O>
-constexpr OptionSpec<O> coverage_probability(double O::*member, std::string_view help) {
+// A field p of a verb that also takes a stated coverage factor is a std::optional<double> (unset:
+// kDefaultCoverageProbability, applied where it is used), so that a p given beside a k is refused even when it is
+// the default's value; a verb without a coverage factor holds a double.
+template <class O, class P>
+constexpr OptionSpec<O> coverage_probability(P O::*member, std::string_view help) {
   return {"coverage_probability", member, "p", help, kCoverageProbability};
 }
 
 // A stated coverage factor k, used instead of the k of the coverage probability (uncertainty/coverage.hpp).
-// k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor.
+// k < 1 would make the "expanded" uncertainty smaller than u: a probability given for a factor; k > 10 (a normal
+// p of 1 − 1.5e-23) is no contract's, but a typing error (1e308 gave U = 1.8e306 with exit 0).
+inline constexpr double kMaxCoverageFactor = 10;
 template <class O>
 constexpr OptionSpec<O> coverage_factor(std::optional<double> O::*member) {
   return {"coverage_factor", member, "K",
           "A stated coverage factor k instead of the coverage probability's (e.g. 2 by contract); p is then "
           "that of a normal quantity",
-          OptionRange::at_least(1).e_g("2 (U = k u)").noting(
+          OptionRange::between(1, kMaxCoverageFactor).e_g("2 (U = k u)").noting(
               "a coverage probability is given as "
               "\x1f" "coverage_probability" "\x1f")};  // OptionError::name's marks: worded by each front end
 }
 
-// A stated coverage factor and a coverage probability other than the default are two answers to one
-// question: refused, naming both.
-inline void check_coverage_choice(double p, const std::optional<double>& k) {
-  if (k && p != kDefaultCoverageProbability)
+// A stated coverage factor and a coverage probability, both given (the default's value too), are two answers to
+// one question: refused, naming both.
+inline void check_coverage_choice(const std::optional<double>& p, const std::optional<double>& k) {
+  if (k && p)
     throw OptionError(
         "coverage_factor", option_number_text(*k),
-        "and " + OptionError::name("coverage_probability") + " " + option_number_text(p) +
+        "and " + OptionError::name("coverage_probability") + " " + option_number_text(*p) +
             " are two coverages; accepted: one of them (a stated coverage factor, or a coverage "
             "probability)");
 }

@@ -31,7 +31,8 @@ struct PropagationOptions {
   int threads = 0;  // 0: the OpenMP default
   int digits = 0;   // n_dig > 0: the adaptive procedure of §7.9 with this many significant digits of u(y)
   std::uint64_t max_trials = 1000000;  // adaptive: no stage is started that would go beyond this
-  double coverage_probability = kDefaultCoverageProbability;  // p
+  // p; unset: kDefaultCoverageProbability (optional: the report refuses a p given beside its stated k)
+  std::optional<double> coverage_probability;
   bool progress = false;  // a progress bar (%, trials/s, ETA) on stderr, only if stderr is a terminal
   ProgressCallback
       on_progress;  // called every 0.1 s at most; may throw Cancelled to stop (core/progress.hpp)

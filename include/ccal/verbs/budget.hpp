@@ -33,7 +33,7 @@ struct BudgetResult {
 };
 
 // Throws InputError (OptionError naming the field) for a coverage probability outside (0, 1), a coverage
-// factor below 1 or not finite, both a coverage factor and a coverage probability other than the default, an empty [tolerances], a term the plan
+// factor below 1 or not finite, both a coverage factor and a coverage probability given, an empty [tolerances], a term the plan
 // cannot observe or identify, or a result that is not finite (tolerances beyond double precision); for a test
 // of several instruments, whatever it refuses of one of them, the message naming that instrument.
 BudgetResult budget(const Config& config, const BudgetOptions& options = {});

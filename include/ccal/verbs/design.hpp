@@ -27,7 +27,7 @@ struct DesignOptions {
   std::optional<int> starts;                // random starts; unset: [design] starts (default 6)
   std::optional<std::uint64_t> seed;        // unset: [design] seed (default 1)
   // The coverage of every U (targets, budgets, verification), as in `ccal budget` (uncertainty/coverage.hpp).
-  double coverage_probability = kDefaultCoverageProbability;
+  std::optional<double> coverage_probability;  // unset: kDefaultCoverageProbability
   std::optional<double> coverage_factor;
   int threads = 0;                          // 0: all cores
   std::int64_t verify_trials = 0;           // Monte Carlo check of the designed plan; 0: none

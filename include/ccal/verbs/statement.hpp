@@ -21,9 +21,9 @@
 namespace ccal::verbs {
 
 struct StatementOptions {
-  double coverage_probability = kDefaultCoverageProbability;  // p of the intervals
+  std::optional<double> coverage_probability;  // p of the intervals; unset: kDefaultCoverageProbability
   // A stated k (e.g. 2 by contract): U = k u_c for every quantity, p that of a normal quantity; exclusive with a
-  // coverage_probability other than the default.
+  // coverage_probability given.
   std::optional<double> coverage_factor;
   std::optional<ModelMode> mode;  // of the budget; unset: the configuration's
   // M of the Monte Carlo check (src/verbs/statement_montecarlo.hpp); 0: none, the Student-t intervals stated.
