@@ -40,7 +40,6 @@ TESTED_ELSEWHERE = {
     "render/design.cpp": _OUTPUT,
     "verbs/history.cpp": "history add and show: tests/cli/history_test.cpp",
     "render/design_plan.cpp": "the designed [plan]: tests/verbs/design_test.cpp (DesignPlanText)",
-    "render/montecarlo.cpp": _OUTPUT,
     "render/montecarlo_samples.cpp": "--samples-out: tests/cli/montecarlo_samples_test.cpp",
     "render/parts.cpp": _OUTPUT,
     "render/reduce.cpp": _OUTPUT,
