@@ -4,6 +4,7 @@
 // verification part is there only when the Monte Carlo ran.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -65,7 +66,11 @@ TEST(AllocateText, TheEntriesToPasteAreRoundedDownNeverLooser) {
     const auto quote = entry->find('"');
     const double pasted = std::stod(entry->substr(quote + 1));
     EXPECT_LE(pasted, s.allocated_bound) << *entry;
-    EXPECT_GT(pasted, s.allocated_bound * (1 - 1e-3)) << *entry;  // 4 digits: within one part in 10^3
+    // 4 significant digits, the last one cut: v rounded down on the grid 10^(floor(log10 v) - 3). Tolerance
+    // 1e-12 relative: the text's decimal against the same double computed here.
+    const double step = std::pow(10.0, std::floor(std::log10(s.allocated_bound)) - 3);
+    ASSERT_NE(std::floor(s.allocated_bound / step), s.allocated_bound / step) << "already on the grid";
+    EXPECT_NEAR(pasted, std::floor(s.allocated_bound / step) * step, 1e-12 * pasted) << *entry;
   }
   // An arcsine source keeps its distribution in the entry.
   EXPECT_TRUE(line_starting(text.substr(at), "ripple1_c1 = { bound = \"")) << text.substr(at);
