@@ -33,7 +33,6 @@ TESTED_ELSEWHERE = {
     "model/sensed_input.cpp": "evaluate_force: tests/model/plan_test.cpp, tests/verbs/force_test.cpp",
     "reduction/run_means_nodes.cpp": "the kernel's nodes: tests/reduction/run_means_test.cpp",
     "render/report_history.cpp": "the report's history section: tests/report/check_history_report.py (report.history)",
-    "render/budget_parts.cpp": "the budget's tables: tests/render/budget_test.cpp",
     "render/budget_text.cpp": "the budget's text: tests/render/budget_test.cpp",
     "render/design.cpp": _OUTPUT,
     "verbs/history.cpp": "history add and show: tests/cli/history_test.cpp",
