@@ -57,21 +57,27 @@ TEST(AllocateText, TheEntriesToPasteAreRoundedDownNeverLooser) {
   const std::string text = render::text(r);
   const auto at = text.find("Allocated [tolerances] in configuration style (bounds rounded down to 4 digits):");
   ASSERT_NE(at, std::string::npos) << text;
-  // domega is written "5e-7 rad/s" in the example, normal: a plain entry; its allocated bound (7.41e-7 rad/s,
-  // more digits in the result) is pasted rounded down to 4 digits.
-  const auto entry = line_starting(text.substr(at), "domega = ");
-  ASSERT_TRUE(entry) << text.substr(at);
+  // Every source written in rad or rad/s (SI: the pasted figure is the bound itself) is pasted rounded down
+  // to 4 significant digits, on the grid 10^(floor(log10 v) - 3); at least one of them has a fifth digit of 5
+  // or more, where rounding to nearest would differ.
+  std::size_t checked = 0, differs_from_nearest = 0;
   for (const AllocatedSource& s : r.allocation.sources) {
-    if (s.id != "domega") continue;
+    const auto entry = line_starting(text.substr(at), s.id + " = ");
+    ASSERT_TRUE(entry) << s.id;
     const auto quote = entry->find('"');
-    const double pasted = std::stod(entry->substr(quote + 1));
-    EXPECT_LE(pasted, s.allocated_bound) << *entry;
-    // 4 significant digits, the last one cut: v rounded down on the grid 10^(floor(log10 v) - 3). Tolerance
-    // 1e-12 relative: the text's decimal against the same double computed here.
-    const double step = std::pow(10.0, std::floor(std::log10(s.allocated_bound)) - 3);
-    ASSERT_NE(std::floor(s.allocated_bound / step), s.allocated_bound / step) << "already on the grid";
-    EXPECT_NEAR(pasted, std::floor(s.allocated_bound / step) * step, 1e-12 * pasted) << *entry;
+    const auto space = entry->find(' ', quote);
+    const std::string unit = entry->substr(space + 1, entry->find('"', space) - space - 1);
+    if (unit != "rad" && unit != "rad/s") continue;
+    const double pasted = std::stod(entry->substr(quote + 1)), v = s.allocated_bound;
+    EXPECT_LE(pasted, v) << *entry;
+    // Tolerance 1e-12 relative: the text's decimal against the same grid point computed here.
+    const double step = std::pow(10.0, std::floor(std::log10(v)) - 3);
+    EXPECT_NEAR(pasted, std::floor(v / step) * step, 1e-12 * pasted) << *entry;
+    ++checked;
+    differs_from_nearest += std::round(v / step) != std::floor(v / step);
   }
+  EXPECT_GE(checked, 5u);
+  EXPECT_GE(differs_from_nearest, 1u);
   // An arcsine source keeps its distribution in the entry.
   EXPECT_TRUE(line_starting(text.substr(at), "ripple1_c1 = { bound = \"")) << text.substr(at);
   EXPECT_NE(line_starting(text.substr(at), "ripple1_c1 = ")->find("distribution = \"arcsine\""), std::string::npos);

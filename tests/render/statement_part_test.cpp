@@ -90,6 +90,17 @@ TEST(StatementText, AStatedKGivesTheNormalQuantitysP) {
   }
 }
 
+TEST(StatementText, AStatedKNamesBothProbabilitiesApart) {
+  // At the paper's nu_eff (1e41 and more) both probabilities read 95.45 %: set Student's apart by hand, so that
+  // the line shows which is which.
+  verbs::CalibrationStatement st = paper_statement(2.0, 0);
+  st.coefficients[0].stated->student_t = 0.9;
+  const std::string words = unwrapped(render::text(st));
+  EXPECT_NE(words.find("k = 2 (stated), p = 95.45 % for a normal quantity, 90 % for Student's t at nu_eff = "),
+            std::string::npos)
+      << words;
+}
+
 TEST(StatementText, TheMonteCarloCheckHasItsTableAndWhatEachStates) {
   const verbs::CalibrationStatement st = paper_statement(std::nullopt, 2000);
   ASSERT_GT(st.monte_carlo_trials, 0u);
