@@ -88,6 +88,10 @@ TEST(CertificatePage, ARevisionNamesTheCertificateItReplacesAndTextIsEscaped) {
                       "data-field=\"replaces\">CAL-2026-0142</span>"),
             std::string::npos);
   EXPECT_NE(page.find("content:\"Certificate CAL-2026-0142A, revision 1\""), std::string::npos);
+  // The revision is part of the number, not a row of the administrative fields.
+  const auto revision = page.find("data-field=\"revision\"");
+  ASSERT_NE(revision, std::string::npos);
+  EXPECT_EQ(page.find("data-field=\"revision\"", revision + 1), std::string::npos);
   EXPECT_NE(page.find("<h2>Remarks</h2>\n<p data-field=\"remarks\">tested &lt;after&gt; repair &amp; "
                       "adjustment</p>"),
             std::string::npos);
