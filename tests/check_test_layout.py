@@ -34,7 +34,6 @@ TESTED_ELSEWHERE = {
     "reduction/run_means_nodes.cpp": "the kernel's nodes: tests/reduction/run_means_test.cpp",
     "render/report_history.cpp": "the report's history section: tests/report/check_history_report.py (report.history)",
     "render/budget_text.cpp": "the budget's text: tests/render/budget_test.cpp",
-    "render/design.cpp": _OUTPUT,
     "verbs/history.cpp": "history add and show: tests/cli/history_test.cpp",
     "render/design_plan.cpp": "the designed [plan]: tests/verbs/design_test.cpp (DesignPlanText)",
     "render/montecarlo_samples.cpp": "--samples-out: tests/cli/montecarlo_samples_test.cpp",
