@@ -38,7 +38,6 @@ TESTED_ELSEWHERE = {
     "render/design_plan.cpp": "the designed [plan]: tests/verbs/design_test.cpp (DesignPlanText)",
     "render/montecarlo_samples.cpp": "--samples-out: tests/cli/montecarlo_samples_test.cpp",
     "render/parts.cpp": _OUTPUT,
-    "render/reduce.cpp": _OUTPUT,
     "render/report_allocate.cpp": _REPORT,
     "render/report_budget.cpp": _REPORT,
     "render/certificate_result.cpp": "the certificate: tests/render/certificate_page_test.cpp, tests/report/check_certificate_document.py (report.certificate_document)",
