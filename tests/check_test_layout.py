@@ -41,7 +41,6 @@ TESTED_ELSEWHERE = {
     "render/report_allocate.cpp": _REPORT,
     "render/report_budget.cpp": _REPORT,
     "render/certificate_result.cpp": "the certificate: tests/render/certificate_page_test.cpp, tests/report/check_certificate_document.py (report.certificate_document)",
-    "render/certificate_annex.cpp": "the certificate: tests/report/check_certificate_document.py (report.certificate_document)",
     "render/report_design.cpp": _REPORT,
     "render/report_html.cpp": _REPORT,
     "render/report_montecarlo.cpp": _REPORT,
