@@ -58,24 +58,8 @@ std::string row_text(const FitProblem& p, Index row) {
   return text;
 }
 
-void validate(const FitProblem& p, const FitOptions& o) {
-  const Index rows = p.H.rows();
-  const Index cols = p.H.cols();
-  if (static_cast<Index>(p.term_names.size()) != cols) {
-    throw std::invalid_argument(
-        fmt::format("fit: {} term names for a design with {} columns", p.term_names.size(), cols));
-  }
-  if (p.y.size() != rows) {
-    throw std::invalid_argument(
-        fmt::format("fit: the design has {} rows but y has {} entries", rows, p.y.size()));
-  }
-  if (p.weights.size() != 0 && p.weights.size() != rows) {
-    throw std::invalid_argument(fmt::format(
-        "fit: {} weights for {} rows (leave weights empty for unit weights)", p.weights.size(), rows));
-  }
-  if (!p.row_labels.empty() && static_cast<Index>(p.row_labels.size()) != rows) {
-    throw std::invalid_argument(fmt::format("fit: {} row labels for {} rows", p.row_labels.size(), rows));
-  }
+// The term names: none empty, none twice, each fixed term one of them with a finite value.
+void validate_terms(const FitProblem& p) {
   std::set<std::string> seen;
   for (const auto& name : p.term_names) {
     if (name.empty()) throw std::invalid_argument("fit: a term name is empty");
@@ -94,6 +78,12 @@ void validate(const FitProblem& p, const FitOptions& o) {
           fmt::format("fit: fixed term \"{}\" has the non-finite value {}", name, value));
     }
   }
+}
+
+// Every value of y, H and the weights finite (the weights positive too), named by its row.
+void validate_values(const FitProblem& p) {
+  const Index rows = p.H.rows();
+  const Index cols = p.H.cols();
   for (Index i = 0; i < rows; ++i) {
     if (!std::isfinite(p.y(i))) {
       throw std::invalid_argument(fmt::format("fit: non-finite value {} in y at {}", p.y(i), row_text(p, i)));
@@ -110,6 +100,28 @@ void validate(const FitProblem& p, const FitOptions& o) {
           fmt::format("fit: weight {} at {} is not positive and finite", p.weights(i), row_text(p, i)));
     }
   }
+}
+
+void validate(const FitProblem& p, const FitOptions& o) {
+  const Index rows = p.H.rows();
+  const Index cols = p.H.cols();
+  if (static_cast<Index>(p.term_names.size()) != cols) {
+    throw std::invalid_argument(
+        fmt::format("fit: {} term names for a design with {} columns", p.term_names.size(), cols));
+  }
+  if (p.y.size() != rows) {
+    throw std::invalid_argument(
+        fmt::format("fit: the design has {} rows but y has {} entries", rows, p.y.size()));
+  }
+  if (p.weights.size() != 0 && p.weights.size() != rows) {
+    throw std::invalid_argument(fmt::format(
+        "fit: {} weights for {} rows (leave weights empty for unit weights)", p.weights.size(), rows));
+  }
+  if (!p.row_labels.empty() && static_cast<Index>(p.row_labels.size()) != rows) {
+    throw std::invalid_argument(fmt::format("fit: {} row labels for {} rows", p.row_labels.size(), rows));
+  }
+  validate_terms(p);
+  validate_values(p);
   if (!(std::isfinite(o.rank_tolerance) && o.rank_tolerance >= 0)) {
     throw std::invalid_argument("fit: rank_tolerance must be finite and >= 0");
   }
