@@ -117,6 +117,43 @@ void check_known_option(const std::vector<std::string>& known, const std::string
   }
 }
 
+// The held terms: the option's (each neither free nor held twice), else the file's except those the user
+// frees (their values converted to the terms' units); `ids` gains each.
+std::vector<TableFixed> fixed_terms(const CsvTable& table, const std::optional<ObservationsHeader>& header,
+                                    const IdentifyOptions& o, const ColumnUnits& units,
+                                    std::set<std::string>& ids) {
+  std::vector<TableFixed> fixed;
+  if (o.fix) {
+    for (const auto& text : *o.fix) {
+      TableFixed f = parse_fixed_option(text, units);
+      if (!ids.insert(f.term.id).second)
+        throw OptionError(
+            "fix", f.term.id,
+            fmt::format("is also a free term or fixed twice; accepted: a term is either free ({}) "
+                        "or fixed ({})",
+                        OptionError::name("terms"), OptionError::name("fix")));
+      fixed.push_back(std::move(f));
+    }
+  } else if (header) {
+    // The file's fixed terms, except those the user frees.
+    for (const auto& hf : header->fixed) {
+      if (ids.count(hf.term.id)) continue;
+      TableFixed f{{hf.term.id, hf.term.column}, hf.value};
+      if (!hf.unit.empty() && !units.output_unit.empty()) {
+        try {
+          f.value = convert_coefficient(hf.value, hf.unit, term_unit(f.term, units));
+        } catch (const UnitError& e) {
+          throw CsvError(table.source, header->line, 0, "ccal observations header",
+                         fmt::format("fixed {}: {}", hf.term.id, e.what()));
+        }
+      }
+      ids.insert(f.term.id);
+      fixed.push_back(std::move(f));
+    }
+  }
+  return fixed;
+}
+
 TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHeader>& header,
                       const IdentifyOptions& o, const ColumnUnits& units) {
   TableFitSpec spec;
@@ -140,34 +177,7 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
     if (!ids.insert(t.id).second)
       throw OptionError("terms", t.id, "is listed twice; accepted: each term once");
 
-  if (o.fix) {
-    for (const auto& text : *o.fix) {
-      TableFixed f = parse_fixed_option(text, units);
-      if (!ids.insert(f.term.id).second)
-        throw OptionError(
-            "fix", f.term.id,
-            fmt::format("is also a free term or fixed twice; accepted: a term is either free ({}) "
-                        "or fixed ({})",
-                        OptionError::name("terms"), OptionError::name("fix")));
-      spec.fixed.push_back(std::move(f));
-    }
-  } else if (header) {
-    // The file's fixed terms, except those the user frees.
-    for (const auto& hf : header->fixed) {
-      if (ids.count(hf.term.id)) continue;
-      TableFixed f{{hf.term.id, hf.term.column}, hf.value};
-      if (!hf.unit.empty() && !units.output_unit.empty()) {
-        try {
-          f.value = convert_coefficient(hf.value, hf.unit, term_unit(f.term, units));
-        } catch (const UnitError& e) {
-          throw CsvError(table.source, header->line, 0, "ccal observations header",
-                         fmt::format("fixed {}: {}", hf.term.id, e.what()));
-        }
-      }
-      ids.insert(f.term.id);
-      spec.fixed.push_back(std::move(f));
-    }
-  }
+  spec.fixed = fixed_terms(table, header, o, units, ids);
 
   if (o.known) {
     if (!(o.known->size() == 1 && o.known->front() == "none")) spec.known = *o.known;
