@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <charconv>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -201,6 +203,20 @@ HistoryCoefficient statement_coefficient(const std::string& name, const nlohmann
 }
 
 }  // namespace
+
+std::optional<std::int64_t> calendar_day(std::string_view date) {
+  using namespace std::chrono;
+  if (date.size() != 10 || date[4] != '-' || date[7] != '-') return std::nullopt;
+  int y = 0;
+  unsigned m = 0, d = 0;
+  const char* s = date.data();
+  if (std::from_chars(s, s + 4, y).ptr != s + 4 || std::from_chars(s + 5, s + 7, m).ptr != s + 7 ||
+      std::from_chars(s + 8, s + 10, d).ptr != s + 10)
+    return std::nullopt;
+  const year_month_day ymd{year{y}, month{m}, day{d}};
+  if (!ymd.ok()) return std::nullopt;
+  return sys_days(ymd).time_since_epoch().count();
+}
 
 HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
                            const std::string& date) {

@@ -286,20 +286,6 @@ void insert_supersessions(sqlite3* db, const std::string& path, std::int64_t id,
 
 }  // namespace
 
-std::optional<std::int64_t> calendar_day(std::string_view date) {
-  using namespace std::chrono;
-  if (date.size() != 10 || date[4] != '-' || date[7] != '-') return std::nullopt;
-  int y = 0;
-  unsigned m = 0, d = 0;
-  const char* s = date.data();
-  if (std::from_chars(s, s + 4, y).ptr != s + 4 || std::from_chars(s + 5, s + 7, m).ptr != s + 7 ||
-      std::from_chars(s + 8, s + 10, d).ptr != s + 10)
-    return std::nullopt;
-  const year_month_day ymd{year{y}, month{m}, day{d}};
-  if (!ymd.ok()) return std::nullopt;
-  return sys_days(ymd).time_since_epoch().count();
-}
-
 std::string default_history_path() {
   if (const char* chosen = std::getenv("CCAL_HISTORY"); chosen && *chosen) return chosen;
   if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
