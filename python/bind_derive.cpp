@@ -163,29 +163,75 @@ struct PlanChange {
 
 // New runs from the g-levels (each a copy of the first run with its level, named "<level>g"), then the
 // fields given applied to every run, as [plan] defaults with [[plan.runs]] tables that name only g_level.
+// The runs at the given g-levels (each a copy of the plan's first run, named as given or "<g>g").
+std::vector<Run> runs_at_levels(const Config& cfg, const PlanChange& c) {
+  if (c.g->empty())
+    throw InputError("with_plan: g: no runs; accepted: at least one g-level, e.g. [5, 10, 20] or [\"5 g\"]");
+  if (c.names && c.names->size() != c.g->size())
+    throw InputError(fmt::format("with_plan: names: {} names for {} g-levels", c.names->size(), c.g->size()));
+  std::vector<Run> fresh;
+  for (std::size_t k = 0; k < c.g->size(); ++k) {
+    Run run = cfg.plan.runs.front();
+    const Value& level = (*c.g)[k];
+    run.g_level = std::holds_alternative<double>(level)
+                      ? quantity(level, std::string("g"), kind::acceleration_g, "with_plan: g")
+                      : quantity(level, std::nullopt, kind::acceleration_g, "with_plan: g");
+    if (!(run.g_level > 0) || run.g_level > 1000)
+      throw InputError(
+          fmt::format("with_plan: g: {:g} g; accepted: a centripetal level in (0, 1000] g", run.g_level));
+    run.name = c.names ? (*c.names)[k] : fmt::format("{:g}g", run.g_level);
+    fresh.push_back(std::move(run));
+  }
+  return fresh;
+}
+
+// The change to every run: its duration, one of its phases, its arm azimuth, platform and mounting, where
+// given.
+void change_run(Run& run, const PlanChange& c) {
+  if (c.duration) {
+    run.duration = quantity(*c.duration, std::nullopt, kind::time, "with_plan: duration");
+    if (!(run.duration > 0) || run.duration > 1e6)
+      throw InputError(fmt::format("with_plan: duration: {:g} s is out of range; accepted: a run duration in "
+                                   "(0, 1e6] s",
+                                   run.duration));
+  }
+  if (c.initial_phase) {
+    run.initial_phase = quantity(*c.initial_phase, std::nullopt, kind::angle, "with_plan: initial_phase");
+    run.terminal_phase.reset();
+  }
+  if (c.terminal_phase) {
+    run.terminal_phase = quantity(*c.terminal_phase, std::nullopt, kind::angle, "with_plan: terminal_phase");
+    run.initial_phase.reset();
+  }
+  if (c.arm_azimuth)
+    run.arm_azimuth = quantity(*c.arm_azimuth, std::nullopt, kind::angle, "with_plan: arm_azimuth");
+  if (c.platform) {
+    if (*c.platform == "counter_rotating")
+      run.mode = PlatformMode::counter_rotating;
+    else if (*c.platform == "fixed")
+      run.mode = PlatformMode::fixed;
+    else
+      throw InputError("with_plan: platform: '" + *c.platform + "'; accepted: 'counter_rotating', 'fixed'");
+  }
+  if (c.mounting) {
+    bool found = false;
+    for (const Mounting m :
+         {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical, Mounting::ia_vertical})
+      if (mounting_name(m) == *c.mounting) {
+        run.mounting = m;
+        found = true;
+      }
+    if (!found)
+      throw InputError("with_plan: mounting: '" + *c.mounting +
+                       "'; accepted: 'ia_horizontal', 'ia_reversed', 'pa_vertical', 'ia_vertical'");
+  }
+}
+
 Config with_plan(const Config& cfg, const PlanChange& c) {
   Config out = derived_from(cfg);
   auto& runs = out.plan.runs;
   if (c.g) {
-    if (c.g->empty())
-      throw InputError("with_plan: g: no runs; accepted: at least one g-level, e.g. [5, 10, 20] or [\"5 g\"]");
-    if (c.names && c.names->size() != c.g->size())
-      throw InputError(
-          fmt::format("with_plan: names: {} names for {} g-levels", c.names->size(), c.g->size()));
-    std::vector<Run> fresh;
-    for (std::size_t k = 0; k < c.g->size(); ++k) {
-      Run run = cfg.plan.runs.front();
-      const Value& level = (*c.g)[k];
-      run.g_level = std::holds_alternative<double>(level)
-                        ? quantity(level, std::string("g"), kind::acceleration_g, "with_plan: g")
-                        : quantity(level, std::nullopt, kind::acceleration_g, "with_plan: g");
-      if (!(run.g_level > 0) || run.g_level > 1000)
-        throw InputError(
-            fmt::format("with_plan: g: {:g} g; accepted: a centripetal level in (0, 1000] g", run.g_level));
-      run.name = c.names ? (*c.names)[k] : fmt::format("{:g}g", run.g_level);
-      fresh.push_back(std::move(run));
-    }
-    runs = std::move(fresh);
+    runs = runs_at_levels(cfg, c);
   } else if (c.names) {
     if (c.names->size() != runs.size())
       throw InputError(fmt::format("with_plan: names: {} names for {} runs", c.names->size(), runs.size()));
@@ -197,46 +243,7 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
       throw InputError("with_plan: run names must be non-empty and unique; '" + run.name + "' is not");
   if (c.initial_phase && c.terminal_phase)
     throw InputError("with_plan: both initial_phase and terminal_phase are given; accepted: one of them");
-  for (Run& run : runs) {
-    if (c.duration) {
-      run.duration = quantity(*c.duration, std::nullopt, kind::time, "with_plan: duration");
-      if (!(run.duration > 0) || run.duration > 1e6)
-        throw InputError(fmt::format("with_plan: duration: {:g} s is out of range; accepted: a run duration in "
-                                     "(0, 1e6] s",
-                                     run.duration));
-    }
-    if (c.initial_phase) {
-      run.initial_phase = quantity(*c.initial_phase, std::nullopt, kind::angle, "with_plan: initial_phase");
-      run.terminal_phase.reset();
-    }
-    if (c.terminal_phase) {
-      run.terminal_phase =
-          quantity(*c.terminal_phase, std::nullopt, kind::angle, "with_plan: terminal_phase");
-      run.initial_phase.reset();
-    }
-    if (c.arm_azimuth)
-      run.arm_azimuth = quantity(*c.arm_azimuth, std::nullopt, kind::angle, "with_plan: arm_azimuth");
-    if (c.platform) {
-      if (*c.platform == "counter_rotating")
-        run.mode = PlatformMode::counter_rotating;
-      else if (*c.platform == "fixed")
-        run.mode = PlatformMode::fixed;
-      else
-        throw InputError("with_plan: platform: '" + *c.platform + "'; accepted: 'counter_rotating', 'fixed'");
-    }
-    if (c.mounting) {
-      bool found = false;
-      for (const Mounting m :
-           {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical, Mounting::ia_vertical})
-        if (mounting_name(m) == *c.mounting) {
-          run.mounting = m;
-          found = true;
-        }
-      if (!found)
-        throw InputError("with_plan: mounting: '" + *c.mounting +
-                         "'; accepted: 'ia_horizontal', 'ia_reversed', 'pa_vertical', 'ia_vertical'");
-    }
-  }
+  for (Run& run : runs) change_run(run, c);
   return out;
 }
 

@@ -67,6 +67,96 @@ void add_history_examples(CLI::App& add, CLI::App& show, CLI::App& list, CLI::Ap
       "      adds what is new; a calibration already there is counted, not added again\n");
 }
 
+// The subcommands of `ccal history`, each with its operands and options.
+struct HistoryCommands {
+  CLI::App *add, *show, *list, *supersede, *exported, *imported;
+};
+
+HistoryCommands add_history_subcommands(CLI::App* cmd, HistoryCli& o) {
+  CLI::App* add = cmd->add_subcommand("add", "Record a calibration statement in the history store");
+  add->add_option(
+         "STATEMENT", o.statement,
+         "The calibration statement's JSON file (`ccal reduce --statement --statement-out FILE.json`; "
+         "not its CSV form), or reduce's JSON output (`--format json`)")
+      ->required()
+      ->type_name("FILE");
+  add_option_flags(*add, o.add, option_table<verbs::HistoryAddOptions>());
+  add_output_options(*add, o.add_output, {"text", "json"});
+  CLI::App* show = cmd->add_subcommand(
+      "show",
+      "A serial number's calibrations: per coefficient E_n of successive ones, the drift and a prediction");
+  show->add_option("SERIAL", o.serial, "Serial number, as recorded")->required()->type_name("SERIAL");
+  add_option_flags(*show, o.show, option_table<verbs::HistoryShowOptions>());
+  add_output_options(*show, o.show_output, {"text", "json", "csv"});
+  CLI::App* list = cmd->add_subcommand(
+      "list", "The store's serial numbers: each one's calibrations (superseded ones too) and last date");
+  add_option_flags(*list, o.list_store, option_table<verbs::HistoryStoreOptions>());
+  add_output_options(*list, o.list_output, {"text", "json", "csv"});
+  CLI::App* supersede = cmd->add_subcommand(
+      "supersede",
+      "Mark a record superseded (a wrong statement, a repeated test): kept, left out of drift and E_n");
+  supersede->add_option("ID", o.id_text, "The record's id, as `ccal history show` lists it")
+      ->required()
+      ->type_name("ID");
+  add_option_flags(*supersede, o.supersede, option_table<verbs::HistorySupersedeOptions>());
+  CLI::App* exported = cmd->add_subcommand("export", "A serial number's history as one JSON file");
+  exported->add_option("SERIAL", o.export_serial, "Serial number, as recorded")
+      ->required()
+      ->type_name("SERIAL");
+  add_option_flags(*exported, o.export_store, option_table<verbs::HistoryStoreOptions>());
+  add_output_options(*exported, o.export_output, {"json"});
+  CLI::App* imported = cmd->add_subcommand("import", "Record the calibrations of an exported history file");
+  imported->add_option("FILE", o.import_file, "A file of `ccal history export`")
+      ->required()
+      ->type_name("FILE");
+  add_option_flags(*imported, o.import_store, option_table<verbs::HistoryStoreOptions>());
+  add_history_examples(*add, *show, *list, *supersede, *exported, *imported);
+  return {add, show, list, supersede, exported, imported};
+}
+
+// Runs the subcommand that was parsed.
+void run_history(HistoryCli& o, const HistoryCommands& c) {
+  if (c.add->parsed()) {
+    note_input(o.statement);
+    note_input(verbs::history_store_path(o.add.db));
+    // All or nothing: the output is checked before the store is touched, and written before the
+    // store's transaction commits, whose failure to write it leaves the calibration unrecorded.
+    check_outputs(o.add_output);
+    verbs::history_add(o.statement, o.add, [&](const verbs::HistoryAddResult& r) {
+      write_output(o.add_output, o.add_output.format == "json" ? render::json(r) : render::text(r));
+    });
+  } else if (c.show->parsed()) {
+    note_input(verbs::history_store_path(o.show.db));
+    const verbs::HistoryShowResult r = verbs::history_show(o.serial, o.show);
+    const std::string& f = o.show_output.format;
+    write_output(o.show_output, f == "json"  ? render::json(r)
+                                : f == "csv" ? render::csv(r)
+                                             : render::text(r));
+  } else if (c.list->parsed()) {
+    note_input(verbs::history_store_path(o.list_store.db));
+    const verbs::HistoryListResult r = verbs::history_list(o.list_store);
+    const std::string& f = o.list_output.format;
+    write_output(o.list_output, f == "json"  ? render::json(r)
+                                : f == "csv" ? render::csv(r)
+                                             : render::text(r));
+  } else if (c.supersede->parsed()) {
+    const std::int64_t id = verbs::history_record_id(o.id_text);
+    verbs::history_supersede(id, o.supersede);
+    write_output(OutputOptions{}, fmt::format("Calibration {} superseded.\n", id));
+  } else if (c.exported->parsed()) {
+    note_input(verbs::history_store_path(o.export_store.db));
+    write_output(o.export_output, verbs::history_export(o.export_serial, o.export_store));
+  } else if (c.imported->parsed()) {
+    note_input(o.import_file);
+    const HistoryImport r = verbs::history_import(o.import_file, o.import_store);
+    write_output(OutputOptions{},
+                 fmt::format("Imported the history of {}: {} calibration{} added, {} already there, {} "
+                             "supersession{} recorded.\n",
+                             r.serial, r.added, r.added == 1 ? "" : "s", r.present, r.superseded,
+                             r.superseded == 1 ? "" : "s"));
+  }
+}
+
 }  // namespace
 
 Command add_history(CLI::App& app) {
@@ -75,44 +165,7 @@ Command add_history(CLI::App& app) {
       "history",
       "An instrument's calibration history: record calibration statements, show drift and agreement");
   cmd->require_subcommand(1);
-  CLI::App* add = cmd->add_subcommand("add", "Record a calibration statement in the history store");
-  add->add_option(
-         "STATEMENT", o->statement,
-         "The calibration statement's JSON file (`ccal reduce --statement --statement-out FILE.json`; "
-         "not its CSV form), or reduce's JSON output (`--format json`)")
-      ->required()
-      ->type_name("FILE");
-  add_option_flags(*add, o->add, option_table<verbs::HistoryAddOptions>());
-  add_output_options(*add, o->add_output, {"text", "json"});
-  CLI::App* show = cmd->add_subcommand(
-      "show",
-      "A serial number's calibrations: per coefficient E_n of successive ones, the drift and a prediction");
-  show->add_option("SERIAL", o->serial, "Serial number, as recorded")->required()->type_name("SERIAL");
-  add_option_flags(*show, o->show, option_table<verbs::HistoryShowOptions>());
-  add_output_options(*show, o->show_output, {"text", "json", "csv"});
-  CLI::App* list = cmd->add_subcommand(
-      "list", "The store's serial numbers: each one's calibrations (superseded ones too) and last date");
-  add_option_flags(*list, o->list_store, option_table<verbs::HistoryStoreOptions>());
-  add_output_options(*list, o->list_output, {"text", "json", "csv"});
-  CLI::App* supersede = cmd->add_subcommand(
-      "supersede",
-      "Mark a record superseded (a wrong statement, a repeated test): kept, left out of drift and E_n");
-  supersede->add_option("ID", o->id_text, "The record's id, as `ccal history show` lists it")
-      ->required()
-      ->type_name("ID");
-  add_option_flags(*supersede, o->supersede, option_table<verbs::HistorySupersedeOptions>());
-  CLI::App* exported = cmd->add_subcommand("export", "A serial number's history as one JSON file");
-  exported->add_option("SERIAL", o->export_serial, "Serial number, as recorded")
-      ->required()
-      ->type_name("SERIAL");
-  add_option_flags(*exported, o->export_store, option_table<verbs::HistoryStoreOptions>());
-  add_output_options(*exported, o->export_output, {"json"});
-  CLI::App* imported = cmd->add_subcommand("import", "Record the calibrations of an exported history file");
-  imported->add_option("FILE", o->import_file, "A file of `ccal history export`")
-      ->required()
-      ->type_name("FILE");
-  add_option_flags(*imported, o->import_store, option_table<verbs::HistoryStoreOptions>());
-  add_history_examples(*add, *show, *list, *supersede, *exported, *imported);
+  const HistoryCommands commands = add_history_subcommands(cmd, *o);
   cmd->footer(
       "Examples:\n"
       "  ccal reduce lab.toml --log … --statement --statement-out statement.json\n"
@@ -123,49 +176,7 @@ Command add_history(CLI::App& app) {
       "  ccal history supersede 3 --by 4 --reason \"mounting screw loose; test repeated\"\n"
       "  ccal history export \"SN 0815\" -o sn0815.json; ccal history import sn0815.json --db "
       "other.sqlite\n");
-
-  return {
-      cmd, [o, add, show, list, supersede, exported, imported] {
-        if (add->parsed()) {
-          note_input(o->statement);
-          note_input(verbs::history_store_path(o->add.db));
-          // All or nothing: the output is checked before the store is touched, and written before the
-          // store's transaction commits, whose failure to write it leaves the calibration unrecorded.
-          check_outputs(o->add_output);
-          verbs::history_add(o->statement, o->add, [&](const verbs::HistoryAddResult& r) {
-            write_output(o->add_output, o->add_output.format == "json" ? render::json(r) : render::text(r));
-          });
-        } else if (show->parsed()) {
-          note_input(verbs::history_store_path(o->show.db));
-          const verbs::HistoryShowResult r = verbs::history_show(o->serial, o->show);
-          const std::string& f = o->show_output.format;
-          write_output(o->show_output, f == "json"  ? render::json(r)
-                                       : f == "csv" ? render::csv(r)
-                                                    : render::text(r));
-        } else if (list->parsed()) {
-          note_input(verbs::history_store_path(o->list_store.db));
-          const verbs::HistoryListResult r = verbs::history_list(o->list_store);
-          const std::string& f = o->list_output.format;
-          write_output(o->list_output, f == "json"  ? render::json(r)
-                                       : f == "csv" ? render::csv(r)
-                                                    : render::text(r));
-        } else if (supersede->parsed()) {
-          const std::int64_t id = verbs::history_record_id(o->id_text);
-          verbs::history_supersede(id, o->supersede);
-          write_output(OutputOptions{}, fmt::format("Calibration {} superseded.\n", id));
-        } else if (exported->parsed()) {
-          note_input(verbs::history_store_path(o->export_store.db));
-          write_output(o->export_output, verbs::history_export(o->export_serial, o->export_store));
-        } else if (imported->parsed()) {
-          note_input(o->import_file);
-          const HistoryImport r = verbs::history_import(o->import_file, o->import_store);
-          write_output(OutputOptions{},
-                       fmt::format("Imported the history of {}: {} calibration{} added, {} already there, {} "
-                                   "supersession{} recorded.\n",
-                                   r.serial, r.added, r.added == 1 ? "" : "s", r.present, r.superseded,
-                                   r.superseded == 1 ? "" : "s"));
-        }
-      }};
+  return {cmd, [o, commands] { run_history(*o, commands); }};
 }
 
 }  // namespace ccal::cli

@@ -30,6 +30,48 @@ struct IdentifyCli {
 // The columns of the table, for the refusal of an -o/--output that names one (the former --output COL).
 bool is_column(const CsvTable& table, const std::string& name) { return table.find(name).has_value(); }
 
+// Runs `ccal identify` on the observations file and writes its output and the files asked for.
+void run_identify(IdentifyCli& o) {
+  if (!o.old_budget.empty())
+    throw InputError(
+        "--budget: no longer accepted, as it took a file here and was a flag in reduce; accepted: "
+        "--statement --config " +
+        o.old_budget + " for the calibration statement");
+  if (!o.old_input.empty() || !o.old_weight.empty())
+    throw InputError(
+        fmt::format("{0}: no longer accepted; accepted: {0}-column COL (the column of "
+                    "the table), as -o/--output names the file written",
+                    o.old_input.empty() ? "--weight" : "--input"));
+  check_statement_out(o.statement_out, o.options.statement, o.output);
+  note_input(o.file);
+  const CsvTable table = read_csv_file(o.file);
+  if (!o.output.path.empty() && is_column(table, o.output.path) && !std::filesystem::exists(o.output.path))
+    throw InputError(fmt::format(
+        "-o/--output: '{0}' is a column of {1}, but -o/--output names the file written; accepted: "
+        "--output-column {0} for the output column, or ./{0} for a file of that name",
+        o.output.path, o.file));
+  verbs::IdentifyOptions io = o.options;
+  if (!o.config.instrument.empty() && o.config.path.empty())
+    throw InputError(
+        fmt::format("--instrument: '{}' names an instrument of the configuration, and "
+                    "there is none; accepted: with --config CONFIG",
+                    o.config.instrument));
+  if (!o.config.path.empty()) {
+    io.config = load_config_or_example(o.config);
+  }
+  const verbs::IdentifyResult r = verbs::identify(table, io);
+  print_warnings(r.identification.fit.warnings);  // also on standard error: the CSV has no place
+  print_warnings(r.identification.observability.warnings);
+  const std::string& f = o.output.format;
+  std::vector<ExtraFile> extra;
+  add_statement_out_file(extra, o.statement_out, r.statement);
+  write_outputs(o.output,
+                f == "json"  ? render::json(r)
+                : f == "csv" ? render::csv(r)
+                             : render::text(r),
+                extra);
+}
+
 }  // namespace
 
 Command add_identify(CLI::App& app) {
@@ -64,46 +106,7 @@ Command add_identify(CLI::App& app) {
       "  ccal identify obs.csv --statement --config my.toml -o statement.json --format json\n"
       "      with the calibration statement: Type A from the fit, Type B from my.toml's tolerances\n");
 
-  return {cmd, [o] {
-            if (!o->old_budget.empty())
-              throw InputError(
-                  "--budget: no longer accepted, as it took a file here and was a flag in reduce; accepted: "
-                  "--statement --config " +
-                  o->old_budget + " for the calibration statement");
-            if (!o->old_input.empty() || !o->old_weight.empty())
-              throw InputError(
-                  fmt::format("{0}: no longer accepted; accepted: {0}-column COL (the column of "
-                              "the table), as -o/--output names the file written",
-                              o->old_input.empty() ? "--weight" : "--input"));
-            check_statement_out(o->statement_out, o->options.statement, o->output);
-            note_input(o->file);
-            const CsvTable table = read_csv_file(o->file);
-            if (!o->output.path.empty() && is_column(table, o->output.path) &&
-                !std::filesystem::exists(o->output.path))
-              throw InputError(fmt::format(
-                  "-o/--output: '{0}' is a column of {1}, but -o/--output names the file written; accepted: "
-                  "--output-column {0} for the output column, or ./{0} for a file of that name",
-                  o->output.path, o->file));
-            verbs::IdentifyOptions io = o->options;
-            if (!o->config.instrument.empty() && o->config.path.empty())
-              throw InputError(fmt::format("--instrument: '{}' names an instrument of the configuration, and "
-                                           "there is none; accepted: with --config CONFIG",
-                                           o->config.instrument));
-            if (!o->config.path.empty()) {
-              io.config = load_config_or_example(o->config);
-            }
-            const verbs::IdentifyResult r = verbs::identify(table, io);
-            print_warnings(r.identification.fit.warnings);  // also on standard error: the CSV has no place
-            print_warnings(r.identification.observability.warnings);
-            const std::string& f = o->output.format;
-            std::vector<ExtraFile> extra;
-            add_statement_out_file(extra, o->statement_out, r.statement);
-            write_outputs(o->output,
-                          f == "json"  ? render::json(r)
-                          : f == "csv" ? render::csv(r)
-                                       : render::text(r),
-                          extra);
-          }};
+  return {cmd, [o] { run_identify(*o); }};
 }
 
 }  // namespace ccal::cli

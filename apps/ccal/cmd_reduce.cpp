@@ -63,6 +63,31 @@ void gather_logs(const ReduceCli& cli, verbs::ReduceOptions& ro) {
   }
 }
 
+// Runs `ccal reduce` and writes its output and the files asked for.
+void run_reduce(ReduceCli& o) {
+  const Config cfg = load_config_or_example(o.config);
+  check_observations_out(o.observations_out, o.output);
+  check_statement_out(o.statement_out, o.options.statement, o.output);
+  if (!o.observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
+  if (!o.statement_out.empty()) verbs::check_single_instrument_output(cfg, "statement_out");
+  if (o.old_budget)
+    throw InputError(
+        "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "
+        "--statement for the calibration statement with this configuration's tolerances");
+  verbs::ReduceOptions ro = o.options;
+  if (!o.pulse_weight.empty()) ro.pulse_weight = verbs::pulse_weight_from_text(cfg, o.pulse_weight);
+  gather_logs(o, ro);
+  const verbs::ReduceResult r = verbs::reduce(cfg, ro);
+  const std::string& f = o.output.format;
+  const std::string text = f == "json" ? render::json(r) : f == "csv" ? render::csv(r) : render::text(r);
+  std::vector<ExtraFile> extra;
+  if (!o.observations_out.empty())
+    extra.push_back({"--observations-out", o.observations_out, r.identification.csv});
+  add_statement_out_file(extra, o.statement_out, r.statement);
+  write_outputs(o.output, text, extra);
+  print_warnings(r.warnings);  // after the outputs: an output refused is the one line said
+}
+
 }  // namespace
 
 Command add_reduce(CLI::App& app) {
@@ -113,32 +138,7 @@ Command add_reduce(CLI::App& app) {
       "  ccal reduce my.toml --log 1=a.csv --log 2=b.csv --log 3=c.csv --log 4=d.csv --statement \\\n"
       "      --statement-out statement.csv    the statement also as CSV, with the covariance\n");
 
-  return {
-      cmd, [o] {
-        const Config cfg = load_config_or_example(o->config);
-        check_observations_out(o->observations_out, o->output);
-        check_statement_out(o->statement_out, o->options.statement, o->output);
-        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
-        if (!o->statement_out.empty()) verbs::check_single_instrument_output(cfg, "statement_out");
-        if (o->old_budget)
-          throw InputError(
-              "--budget: no longer accepted, as it was a flag here and took a file in identify; accepted: "
-              "--statement for the calibration statement with this configuration's tolerances");
-        verbs::ReduceOptions ro = o->options;
-        if (!o->pulse_weight.empty()) ro.pulse_weight = verbs::pulse_weight_from_text(cfg, o->pulse_weight);
-        gather_logs(*o, ro);
-        const verbs::ReduceResult r = verbs::reduce(cfg, ro);
-        const std::string& f = o->output.format;
-        const std::string text = f == "json"  ? render::json(r)
-                                 : f == "csv" ? render::csv(r)
-                                              : render::text(r);
-        std::vector<ExtraFile> extra;
-        if (!o->observations_out.empty())
-          extra.push_back({"--observations-out", o->observations_out, r.identification.csv});
-        add_statement_out_file(extra, o->statement_out, r.statement);
-        write_outputs(o->output, text, extra);
-        print_warnings(r.warnings);  // after the outputs: an output refused is the one line said
-      }};
+  return {cmd, [o] { run_reduce(*o); }};
 }
 
 }  // namespace ccal::cli

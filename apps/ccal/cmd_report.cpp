@@ -77,6 +77,38 @@ CsvTable read_observations(const std::string& path) {
   }
 }
 
+// Runs `ccal report`: the page (or the certificate) of the configuration, written as HTML, printed to PDF or
+// both.
+void run_report(ReportCli& o) {
+  refuse_page_on_terminal(o.output, o.pdf);
+  const std::string_view scripts = required_report_scripts();  // before the long computation
+  check_pdf(o.pdf, o.output);
+  verbs::ReportOptions ro = o.options;
+  note_input(ro.history_db);       // the history store is read: never replaced by the page
+  ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
+  if (!o.allocate_targets.empty()) {
+    ro.allocate = verbs::report_allocation(o.allocate_targets, ro);
+    ro.allocate->progress = true;
+  }
+  if (o.design || !o.design_targets.empty()) ro.design = verbs::report_design(o.design_targets, ro);
+  if (!o.observations.empty()) ro.observations = read_observations(o.observations);
+  const Config config = load_config_or_example(o.config);
+  const verbs::ReportResult r = verbs::report(config, ro);
+  print_warnings(r.warnings);
+  render::ReportProvenance p;
+  p.config_text = config_file_text(o.config.path);
+  p.command_line = command_line_text();
+  p.date_utc = render::report_date_utc();
+  render::report_commands(r, ro, p);
+  const std::string page = render::html(r, p, scripts);
+  if (o.pdf.empty()) return write_output(o.output, page);
+  std::string bytes = pdf_of(page);
+  if (o.output.path.empty())
+    write_files({{"--pdf", o.pdf, std::move(bytes), {}}});
+  else
+    write_outputs(o.output, page, {{"--pdf", o.pdf, std::move(bytes)}});
+}
+
 }  // namespace
 
 Command add_report(CLI::App& app) {
@@ -130,36 +162,7 @@ Command add_report(CLI::App& app) {
       "--config my.toml`)\n"
       "  ccal report lab.toml --observations obs.csv --pdf certificate.pdf\n"
       "      the calibration certificate (with lab.toml's [certificate] table) as a PDF to sign and file\n");
-  return {cmd, [o] {
-            refuse_page_on_terminal(o->output, o->pdf);
-            const std::string_view scripts = required_report_scripts();  // before the long computation
-            check_pdf(o->pdf, o->output);
-            verbs::ReportOptions ro = o->options;
-            note_input(ro.history_db);       // the history store is read: never replaced by the page
-            ro.monte_carlo.progress = true;  // drawn only when standard error is a terminal
-            if (!o->allocate_targets.empty()) {
-              ro.allocate = verbs::report_allocation(o->allocate_targets, ro);
-              ro.allocate->progress = true;
-            }
-            if (o->design || !o->design_targets.empty())
-              ro.design = verbs::report_design(o->design_targets, ro);
-            if (!o->observations.empty()) ro.observations = read_observations(o->observations);
-            const Config config = load_config_or_example(o->config);
-            const verbs::ReportResult r = verbs::report(config, ro);
-            print_warnings(r.warnings);
-            render::ReportProvenance p;
-            p.config_text = config_file_text(o->config.path);
-            p.command_line = command_line_text();
-            p.date_utc = render::report_date_utc();
-            render::report_commands(r, ro, p);
-            const std::string page = render::html(r, p, scripts);
-            if (o->pdf.empty()) return write_output(o->output, page);
-            std::string bytes = pdf_of(page);
-            if (o->output.path.empty())
-              write_files({{"--pdf", o->pdf, std::move(bytes), {}}});
-            else
-              write_outputs(o->output, page, {{"--pdf", o->pdf, std::move(bytes)}});
-          }};
+  return {cmd, [o] { run_report(*o); }};
 }
 
 }  // namespace ccal::cli

@@ -34,6 +34,41 @@ struct SimulateCli {
   OutputOptions output;
 };
 
+// Runs `ccal simulate` and writes its output and the files asked for.
+void run_simulate(SimulateCli& o) {
+  const Config cfg = load_config_or_example(o.config);
+  check_observations_out(o.observations_out, o.output);
+  if (!o.observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
+  if (!o.log_layout.empty() && o.logs_out.empty())
+    throw InputError("--log-layout: is read only for the logs; accepted: with --logs-out DIR");
+  LogLayout layout;
+  if (!o.log_layout.empty()) {
+    note_input(o.log_layout);
+    layout = read_log_layout(o.log_layout);
+  }
+  verbs::SimulateOptions so = o.options;
+  if (!o.truth.empty()) {
+    note_input(o.truth);
+    so.truth = load_truth(o.truth, cfg);
+  }
+  const verbs::SimulateResult s = verbs::simulate(cfg, so);
+  print_warnings(s.identification.observability.warnings);
+  const std::string& f = o.output.format;
+  const std::string text = f == "json" ? render::json(s) : f == "csv" ? render::csv(s) : render::text(s);
+  std::vector<ExtraFile> extra;
+  if (!o.observations_out.empty())
+    extra.push_back({"--observations-out", o.observations_out, s.observations_csv});
+  std::optional<OutputFolder> folder;  // made for the logs; gone again if the write is refused
+  if (!o.logs_out.empty()) {
+    folder.emplace("--logs-out", o.logs_out);
+    for (RunLogFile& file : verbs::simulation_logs(s, layout))
+      extra.push_back(
+          {"--logs-out", (std::filesystem::path(o.logs_out) / file.name).string(), std::move(file.text)});
+  }
+  write_outputs(o.output, text, extra);
+  if (folder) folder->keep();
+}
+
 }  // namespace
 
 Command add_simulate(CLI::App& app) {
@@ -78,42 +113,7 @@ Command add_simulate(CLI::App& app) {
       "  ccal simulate my.toml --logs-out logs --log-layout daq.toml\n"
       "      the logs in a data acquisition system's columns and units (daq.toml: a manifest's [columns])\n");
 
-  return {
-      cmd, [o] {
-        const Config cfg = load_config_or_example(o->config);
-        check_observations_out(o->observations_out, o->output);
-        if (!o->observations_out.empty()) verbs::check_single_instrument_output(cfg, "observations_out");
-        if (!o->log_layout.empty() && o->logs_out.empty())
-          throw InputError("--log-layout: is read only for the logs; accepted: with --logs-out DIR");
-        LogLayout layout;
-        if (!o->log_layout.empty()) {
-          note_input(o->log_layout);
-          layout = read_log_layout(o->log_layout);
-        }
-        verbs::SimulateOptions so = o->options;
-        if (!o->truth.empty()) {
-          note_input(o->truth);
-          so.truth = load_truth(o->truth, cfg);
-        }
-        const verbs::SimulateResult s = verbs::simulate(cfg, so);
-        print_warnings(s.identification.observability.warnings);
-        const std::string& f = o->output.format;
-        const std::string text = f == "json"  ? render::json(s)
-                                 : f == "csv" ? render::csv(s)
-                                              : render::text(s);
-        std::vector<ExtraFile> extra;
-        if (!o->observations_out.empty())
-          extra.push_back({"--observations-out", o->observations_out, s.observations_csv});
-        std::optional<OutputFolder> folder;  // made for the logs; gone again if the write is refused
-        if (!o->logs_out.empty()) {
-          folder.emplace("--logs-out", o->logs_out);
-          for (RunLogFile& file : verbs::simulation_logs(s, layout))
-            extra.push_back({"--logs-out", (std::filesystem::path(o->logs_out) / file.name).string(),
-                             std::move(file.text)});
-        }
-        write_outputs(o->output, text, extra);
-        if (folder) folder->keep();
-      }};
+  return {cmd, [o] { run_simulate(*o); }};
 }
 
 }  // namespace ccal::cli

@@ -120,14 +120,11 @@ std::string subcommand_problem(const std::vector<Command>& commands, int argc, c
 
 }  // namespace ccal::cli
 
-int main(int argc, char** argv) {
-  // The program in one line: the manual page's NAME, and the start of the help.
-  constexpr std::string_view kSummary = "precision-centrifuge calibration of accelerometers";
-  CLI::App app{fmt::format("ccal: {} (error budget of centrifuge errors on identified coefficients, test "
-                           "plans, run logs to a calibration statement and certificate).",
-                           kSummary),
-               "ccal"};
-  // Before the commands are added: they inherit the help's layout (help_format.hpp).
+namespace {
+
+// The program's own help: its layout (help_format.hpp; before the commands are added, which inherit it), -V
+// and the examples.
+void describe_program(CLI::App& app) {
   app.formatter(std::make_shared<ccal::cli::HelpFormatter>());
   app.set_version_flag("-V,--version", ccal::version_line());
   app.require_subcommand(1);
@@ -147,7 +144,10 @@ int main(int argc, char** argv) {
       "  ccal report lab.toml --observations obs.csv --pdf certificate.pdf   the calibration certificate\n"
       "Run 'ccal <command> --help' for the options of a command; 'ccal --man-page' writes the manual page,\n"
       "'ccal --completion bash' (or zsh, fish) the shell's completion.\n");
+}
 
+// The commands, listed under "Commands:" (history's under its own).
+std::vector<ccal::cli::Command> add_commands(CLI::App& app) {
   std::vector<ccal::cli::Command> commands;
   commands.push_back(ccal::cli::add_budget(app));
   commands.push_back(ccal::cli::add_force(app));
@@ -159,33 +159,36 @@ int main(int argc, char** argv) {
   commands.push_back(ccal::cli::add_design(app));
   commands.push_back(ccal::cli::add_report(app));
   commands.push_back(ccal::cli::add_history(app));
-  for (const auto& command : commands) {  // listed under "Commands:", history's under its own
+  for (const auto& command : commands) {
     command.app->group("Commands");
     for (CLI::App* sub : command.app->get_subcommands([](CLI::App*) { return true; })) sub->group("Commands");
   }
-  ccal::cli::refuse_empty_input_paths(app);
-  ccal::cli::set_command_line(argc, argv);
+  return commands;
+}
 
-  if (const std::optional<int> code = write_shell_docs(app, kSummary, argc, argv)) return *code;
-
-  // A first word that is not an option must name a command; say so plainly rather than "a subcommand is
-  // required", with the nearest command's name. No command at all, or an option the program does not take
-  // before one, gets the commands too.
+// A first word that is not an option must name a command; say so plainly rather than "a subcommand is
+// required", with the nearest command's name. No command at all, or an option the program does not take
+// before one, gets the commands too. "" when the words can be parsed.
+std::string first_word_problem(const std::vector<ccal::cli::Command>& commands, int argc, char** argv) {
   std::vector<std::string> names;
   for (const auto& command : commands) names.push_back(command.app->get_name());
   if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end())
-    return report("error", ccal::cli::unknown_command_message(argv[1], names));
+    return ccal::cli::unknown_command_message(argv[1], names);
   const std::string_view first = argc > 1 ? argv[1] : "";
   if (first.empty() || (first[0] == '-' && first != "-h" && first != "--help" && first != "-V" &&
                         first != "--version"))
-    return report("error", (first.empty() ? std::string() : fmt::format("unknown option '{}' before a command "
-                                                                        "(accepted there: -h, --help, -V, "
-                                                                        "--version, --man-page, --completion); ",
-                                                                        first)) +
-                               ccal::cli::unknown_command_message("", names) + "; run 'ccal --help'");
-  if (const std::string problem = ccal::cli::subcommand_problem(commands, argc, argv); !problem.empty())
-    return report("error", problem);
+    return (first.empty()
+                ? std::string()
+                : fmt::format("unknown option '{}' before a command (accepted there: -h, --help, -V, "
+                              "--version, --man-page, --completion); ",
+                              first)) +
+           ccal::cli::unknown_command_message("", names) + "; run 'ccal --help'";
+  return ccal::cli::subcommand_problem(commands, argc, argv);
+}
 
+// Parses the words and runs the chosen command; every error is reported with exit code 2 (an internal one
+// named as such), never a crash.
+int parse_and_run(CLI::App& app, const std::vector<ccal::cli::Command>& commands, int argc, char** argv) {
   // The chosen command (for its --help in a hint and the flags of its options), once parsed.
   const CLI::App* chosen = nullptr;
   // The help of the command being parsed: `ccal history show --help` for an error of history show.
@@ -218,4 +221,23 @@ int main(int argc, char** argv) {
   } catch (...) {
     return report("internal error", "unknown exception");
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // The program in one line: the manual page's NAME, and the start of the help.
+  constexpr std::string_view kSummary = "precision-centrifuge calibration of accelerometers";
+  CLI::App app{fmt::format("ccal: {} (error budget of centrifuge errors on identified coefficients, test "
+                           "plans, run logs to a calibration statement and certificate).",
+                           kSummary),
+               "ccal"};
+  describe_program(app);
+  const std::vector<ccal::cli::Command> commands = add_commands(app);
+  ccal::cli::refuse_empty_input_paths(app);
+  ccal::cli::set_command_line(argc, argv);
+  if (const std::optional<int> code = write_shell_docs(app, kSummary, argc, argv)) return *code;
+  if (const std::string problem = first_word_problem(commands, argc, argv); !problem.empty())
+    return report("error", problem);
+  return parse_and_run(app, commands, argc, argv);
 }

@@ -56,23 +56,80 @@ void remember_flag(const CLI::App* command, std::string_view field, const std::s
 CLI::Option* add_text_flag(CLI::App& command, const std::string& flag, std::string_view help,
                            std::function<void(const std::string&)> set);
 
+// "0.5,0.75,1" (repeated flags too) into `value`: split here rather than by CLI11, which drops empty items,
+// so that "1,,2", a typing error, is refused.
+inline void parse_number_list(std::vector<double>& value, const std::string& field,
+                              const std::vector<std::string>& texts) {
+  value.clear();
+  for (const std::string& t : texts)
+    for (std::size_t begin = 0;;) {
+      const std::size_t end = std::min(t.find(',', begin), t.size());
+      const std::string item = t.substr(begin, end - begin);
+      if (item.empty())
+        throw OptionError(field, t,
+                          "has an empty item; accepted: numbers separated by single commas, e.g. 0.5,0.75,1");
+      value.push_back(parse_real_option(field, item));
+      if (end == t.size()) break;
+      begin = end + 1;
+    }
+}
+
+// An enumeration row: its names are the choices, the current one the default.
+template <class Options>
+CLI::Option* add_choice_flag(CLI::App& command, Options& options, const OptionSpec<Options>& row,
+                             const OptionEnum<Options> e, const std::string& flag, const std::string& help) {
+  const std::string field(row.field);
+  CLI::Option* option = add_text_flag(command, flag, help, [&options, e, field](const std::string& text) {
+    e.set(options, parse_choice_option(field, text, e.names));
+  });
+  if (const auto index = e.get(options)) option->default_str(std::string(e.names[*index]));
+  option->type_name(std::string(row.value_name));
+  remember_choices(option, std::vector<std::string>(e.names.begin(), e.names.end()));
+  return option;
+}
+
+// A number, or an optional one (Field: a number or std::optional of one), read by the library's parsers
+// (integers within the row's range), its default shown when it has one.
+template <class Field, class Range>
+CLI::Option* add_number_flag(CLI::App& command, Field& value, const std::string& field, Range range,
+                             const std::string& flag, const std::string& help) {
+  using Number = std::remove_cvref_t<decltype([] {
+    if constexpr (requires { typename Field::value_type; })
+      return typename Field::value_type{};
+    else
+      return Field{};
+  }())>;
+  CLI::Option* option = add_text_flag(command, flag, help, [&value, field, range](const std::string& text) {
+    if constexpr (std::is_floating_point_v<Number>)
+      value = parse_real_option(field, text);
+    else if constexpr (std::is_unsigned_v<Number>)
+      value = Number(parse_unsigned_option(field, text, range));
+    else
+      value = Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
+                                          std::numeric_limits<Number>::max(), range));
+  });
+  if constexpr (requires { typename Field::value_type; }) {
+    if (value)
+      option->default_str(option_value_text(*value));
+    else if (!range.unset_text.empty())
+      option->default_str(std::string(range.unset_text));  // what unset stands for
+  } else {
+    option->default_str(option_value_text(value));
+  }
+  return option;
+}
+
 template <class Options, class Member>
 void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>& row, Member member,
                   const std::string& flag) {
   const std::string field(row.field);
   const std::string help = option_help(row.help, row.range);
-  CLI::Option* option = nullptr;
   if constexpr (std::is_same_v<Member, OptionEnum<Options>>) {
-    const OptionEnum<Options> e = member;
-    option = add_text_flag(command, flag, help, [&options, e, field](const std::string& text) {
-      e.set(options, parse_choice_option(field, text, e.names));
-    });
-    if (const auto index = e.get(options)) option->default_str(std::string(e.names[*index]));
-    option->type_name(std::string(row.value_name));
-    remember_choices(option, std::vector<std::string>(e.names.begin(), e.names.end()));
+    add_choice_flag(command, options, row, member, flag, help);
   } else {
     using Field = typename Member::type;
     Field& value = member.of(options);
+    CLI::Option* option = nullptr;
     if constexpr (std::is_same_v<Field, bool>) {
       option = command.add_flag(flag, value, help);
     } else if constexpr (std::is_same_v<Field, std::string>) {
@@ -91,48 +148,10 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
     } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
       option = command.add_option_function<std::vector<std::string>>(
           flag,
-          [&value, field](const std::vector<std::string>& texts) {
-            // Split here rather than by CLI11, which drops empty items: "1,,2" is a typing error.
-            value.clear();
-            for (const std::string& t : texts)
-              for (std::size_t begin = 0;;) {
-                const std::size_t end = std::min(t.find(',', begin), t.size());
-                const std::string item = t.substr(begin, end - begin);
-                if (item.empty())
-                  throw OptionError(field, t,
-                                    "has an empty item; accepted: numbers separated by single "
-                                    "commas, e.g. 0.5,0.75,1");
-                value.push_back(parse_real_option(field, item));
-                if (end == t.size()) break;
-                begin = end + 1;
-              }
-          },
+          [&value, field](const std::vector<std::string>& texts) { parse_number_list(value, field, texts); },
           help);
     } else {
-      using Number = std::remove_cvref_t<decltype([] {
-        if constexpr (requires { typename Field::value_type; })
-          return typename Field::value_type{};
-        else
-          return Field{};
-      }())>;
-      option =
-          add_text_flag(command, flag, help, [&value, field, range = row.range](const std::string& text) {
-            if constexpr (std::is_floating_point_v<Number>)
-              value = parse_real_option(field, text);
-            else if constexpr (std::is_unsigned_v<Number>)
-              value = Number(parse_unsigned_option(field, text, range));
-            else
-              value = Number(parse_integer_option(field, text, std::numeric_limits<Number>::min(),
-                                                  std::numeric_limits<Number>::max(), range));
-          });
-      if constexpr (requires { typename Field::value_type; }) {
-        if (value)
-          option->default_str(option_value_text(*value));
-        else if (!row.range.unset_text.empty())
-          option->default_str(std::string(row.range.unset_text));  // what unset stands for
-      } else {
-        option->default_str(option_value_text(value));
-      }
+      option = add_number_flag(command, value, field, row.range, flag, help);
     }
     if (!row.value_name.empty() && !std::is_same_v<Field, bool>)
       option->type_name(std::string(row.value_name));

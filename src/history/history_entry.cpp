@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -153,8 +154,11 @@ std::string shared_part_text(const SharedPart& p) {
 
 }  // namespace detail
 
-HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
-                           const std::string& date) {
+namespace {
+
+// The file's JSON: a statement alone, or a reduction's or an identification's with its "statement"; its CSV
+// form and a test of several instruments (one statement each, the choice the user's) are refused.
+nlohmann::json statement_file_json(const std::string& json_text, const std::string& source) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(json_text);
@@ -181,44 +185,76 @@ HistoryEntry history_entry(const std::string& json_text, const std::string& sour
           "statement alone (its reduction with the instrument chosen, or its statement file)",
           source, ids.size(), fmt::format("{}", fmt::join(ids, ", "))));
   }
+  return j;
+}
+
+[[noreturn]] void refuse_statement(const std::string& source, const std::string& what) {
+  throw InputError(
+      fmt::format("{}: not a calibration statement: {}; accepted: a calibration statement's JSON "
+                  "(alone, or as the \"statement\" of a reduction's or an identification's JSON)",
+                  source, what));
+}
+
+// One coefficient of the statement: its corrected estimate, U and k (numbers, finite, U ≥ 0, k > 0), its
+// ν_eff (∞ when not a number), at the statement's coverage probability p.
+HistoryCoefficient statement_coefficient(const std::string& name, const nlohmann::json& c, double p,
+                                         const std::string& source) {
+  for (const char* key : {"corrected_estimate", "expanded_uncertainty", "coverage_factor"})
+    if (!c.contains(key) || !c[key].is_number())
+      refuse_statement(source, fmt::format("coefficient {} has no number \"{}\"", name, key));
+  HistoryCoefficient h;
+  h.name = name;
+  h.unit = c.value("unit", std::string());
+  h.value = c["corrected_estimate"].get<double>();
+  h.expanded = c["expanded_uncertainty"].get<double>();
+  h.coverage_factor = c["coverage_factor"].get<double>();
+  h.coverage_probability = p;
+  h.effective_dof = c.contains("effective_dof") && c["effective_dof"].is_number()
+                        ? c["effective_dof"].get<double>()
+                        : std::numeric_limits<double>::infinity();
+  if (!(std::isfinite(h.value) && std::isfinite(h.expanded) && h.expanded >= 0 &&
+        std::isfinite(h.coverage_factor) && h.coverage_factor > 0))
+    refuse_statement(
+        source,
+        fmt::format(
+            "coefficient {} has no finite value, finite U ≥ 0 and finite k > 0 (value {}, U {}, k {})", name,
+            c["corrected_estimate"].dump(), c["expanded_uncertainty"].dump(), c["coverage_factor"].dump()));
+  return h;
+}
+
+}  // namespace
+
+std::optional<std::int64_t> calendar_day(std::string_view date) {
+  using namespace std::chrono;
+  if (date.size() != 10 || date[4] != '-' || date[7] != '-') return std::nullopt;
+  int y = 0;
+  unsigned m = 0, d = 0;
+  const char* s = date.data();
+  if (std::from_chars(s, s + 4, y).ptr != s + 4 || std::from_chars(s + 5, s + 7, m).ptr != s + 7 ||
+      std::from_chars(s + 8, s + 10, d).ptr != s + 10)
+    return std::nullopt;
+  const year_month_day ymd{year{y}, month{m}, day{d}};
+  if (!ymd.ok()) return std::nullopt;
+  return sys_days(ymd).time_since_epoch().count();
+}
+
+HistoryEntry history_entry(const std::string& json_text, const std::string& source, const std::string& serial,
+                           const std::string& date) {
+  const nlohmann::json j = statement_file_json(json_text, source);
   const nlohmann::json& st = j.is_object() && j.contains("statement") ? j["statement"] : j;
-  const auto refuse = [&](const std::string& what) {
-    throw InputError(
-        fmt::format("{}: not a calibration statement: {}; accepted: a calibration statement's JSON (alone, "
-                    "or as the \"statement\" of a reduction's or an identification's JSON)",
-                    source, what));
-  };
   if (!st.is_object() || !st.contains("coefficients") || !st["coefficients"].is_object() ||
       st["coefficients"].empty())
-    refuse("no \"coefficients\"");
+    refuse_statement(source, "no \"coefficients\"");
   HistoryEntry e;
   e.statement_json = st.dump();
   e.ccal_version = j.value("ccal_version", st.value("ccal_version", std::string("unknown")));
   e.config = st.value("budget_config", j.value("config", std::string()));
   const double p = st.value("coverage_probability", 0.0);
   if (st.contains("coverage_probability") && !(p > 0 && p < 1))
-    refuse(fmt::format("coverage_probability {} is not a probability in (0, 1)",
-                       st["coverage_probability"].dump()));
+    refuse_statement(source, fmt::format("coverage_probability {} is not a probability in (0, 1)",
+                                         st["coverage_probability"].dump()));
   for (const auto& [name, c] : st["coefficients"].items()) {
-    for (const char* key : {"corrected_estimate", "expanded_uncertainty", "coverage_factor"})
-      if (!c.contains(key) || !c[key].is_number())
-        refuse(fmt::format("coefficient {} has no number \"{}\"", name, key));
-    HistoryCoefficient h;
-    h.name = name;
-    h.unit = c.value("unit", std::string());
-    h.value = c["corrected_estimate"].get<double>();
-    h.expanded = c["expanded_uncertainty"].get<double>();
-    h.coverage_factor = c["coverage_factor"].get<double>();
-    h.coverage_probability = p;
-    h.effective_dof = c.contains("effective_dof") && c["effective_dof"].is_number()
-                          ? c["effective_dof"].get<double>()
-                          : std::numeric_limits<double>::infinity();
-    if (!(std::isfinite(h.value) && std::isfinite(h.expanded) && h.expanded >= 0 &&
-          std::isfinite(h.coverage_factor) && h.coverage_factor > 0))
-      refuse(fmt::format("coefficient {} has no finite value, finite U ≥ 0 and finite k > 0 (value {}, U {}, k {})",
-                         name, c["corrected_estimate"].dump(), c["expanded_uncertainty"].dump(),
-                         c["coverage_factor"].dump()));
-    e.coefficients.push_back(h);
+    e.coefficients.push_back(statement_coefficient(name, c, p, source));
   }
   const nlohmann::json certificate =
       st.value("certificate", j.value("certificate", nlohmann::json::object()));

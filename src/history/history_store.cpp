@@ -199,34 +199,8 @@ int schema_version(sqlite3* db, const std::string& path) {
   return std::atoi(version.column_text(0).c_str());
 }
 
-}  // namespace
-
-std::optional<std::int64_t> calendar_day(std::string_view date) {
-  using namespace std::chrono;
-  if (date.size() != 10 || date[4] != '-' || date[7] != '-') return std::nullopt;
-  int y = 0;
-  unsigned m = 0, d = 0;
-  const char* s = date.data();
-  if (std::from_chars(s, s + 4, y).ptr != s + 4 || std::from_chars(s + 5, s + 7, m).ptr != s + 7 ||
-      std::from_chars(s + 8, s + 10, d).ptr != s + 10)
-    return std::nullopt;
-  const year_month_day ymd{year{y}, month{m}, day{d}};
-  if (!ymd.ok()) return std::nullopt;
-  return sys_days(ymd).time_since_epoch().count();
-}
-
-std::string default_history_path() {
-  if (const char* chosen = std::getenv("CCAL_HISTORY"); chosen && *chosen) return chosen;
-  if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
-    return (std::filesystem::path(data) / "ccal" / "history.sqlite").string();
-  const char* home = std::getenv("HOME");
-  return (std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "ccal" / "history.sqlite")
-      .string();
-}
-
-HistoryStore HistoryStore::open(const std::string& path, Access access, int busy_millis,
-                                const std::string& shown) {
-  const bool create = access == Access::create, writing = access != Access::read;
+// The store's file: there, or made (its folder too) when the access creates one; a file, not a folder.
+void prepare_store_path(const std::string& path, bool create) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) {
@@ -240,6 +214,91 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
   } else if (!fs::is_regular_file(path, ec)) {
     throw InputError(fmt::format("{}: not a file; accepted: a ccal history store (a file)", path));
   }
+}
+
+// The store's schema, read within the caller's transaction: refused when the file is another SQLite file or
+// of a newer schema; schema 1 migrated to 2 when writing; an empty file given the schema when creating.
+int checked_schema(sqlite3* db, const std::string& path, bool create, bool writing) {
+  const int version = schema_version(db, path);
+  if (version < 0)
+    throw InputError(
+        fmt::format("{}: an SQLite file that is not a ccal history store; accepted: a ccal history "
+                    "store, or a new file name",
+                    path));
+  if (version > kHistorySchemaVersion)
+    throw InputError(
+        fmt::format("{}: history store of schema {}, written by a newer ccal; this ccal reads "
+                    "schema {} and older; accepted: the newer ccal",
+                    path, version, kHistorySchemaVersion));
+  int schema = version;
+  if (version == 1 && writing) {
+    execute(db, path, kMigrationTo2, "cannot migrate it to schema 2");
+    schema = 2;
+  }
+  if (version == 0) {
+    schema = kHistorySchemaVersion;
+    if (!create)
+      throw InputError(
+          fmt::format("{}: an empty file, not a history store; accepted: a history store, or a first "
+                      "statement added to it, which makes it one",
+                      path));
+    execute(db, path, kSchema, "cannot write its schema");
+    Statement meta(db, path,
+                   "INSERT INTO meta(key, value) VALUES ('application', ?1), ('schema_version', ?2)");
+    meta.text(1, std::string(kApplication)).text(2, std::to_string(kHistorySchemaVersion)).step();
+  }
+  return schema;
+}
+
+// The coefficients of calibration `id`, one row each.
+void insert_coefficients(sqlite3* db, const std::string& path, std::int64_t id, const HistoryEntry& entry) {
+  for (const HistoryCoefficient& c : entry.coefficients) {
+    Statement row(db, path,
+                  "INSERT INTO coefficient(calibration, name, unit, value, expanded, coverage_factor, "
+                  "coverage_probability, effective_dof) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+    row.integer(1, id)
+        .text(2, c.name)
+        .text(3, c.unit)
+        .number(4, c.value)
+        .number(5, c.expanded)
+        .number(6, c.coverage_factor)
+        .number(7, c.coverage_probability)
+        .number(8, c.effective_dof)
+        .step();
+  }
+}
+
+// The records calibration `id` replaces (its certificate's `replaces`), each superseded by it.
+void insert_supersessions(sqlite3* db, const std::string& path, std::int64_t id, const HistoryEntry& entry,
+                          const std::vector<std::int64_t>& replaced) {
+  for (const std::int64_t old : replaced) {
+    Statement supersession(db, path,
+                           "INSERT INTO supersession(calibration, by, reason, at) VALUES (?1, ?2, ?3, ?4)");
+    supersession.integer(1, old)
+        .integer(2, id)
+        .text(3, entry.certificate_number.empty()
+                     ? fmt::format("replaced by calibration {}", id)
+                     : fmt::format("replaced by certificate {}", entry.certificate_number))
+        .text(4, utc_now())
+        .step();
+  }
+}
+
+}  // namespace
+
+std::string default_history_path() {
+  if (const char* chosen = std::getenv("CCAL_HISTORY"); chosen && *chosen) return chosen;
+  if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
+    return (std::filesystem::path(data) / "ccal" / "history.sqlite").string();
+  const char* home = std::getenv("HOME");
+  return (std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "ccal" / "history.sqlite")
+      .string();
+}
+
+HistoryStore HistoryStore::open(const std::string& path, Access access, int busy_millis,
+                                const std::string& shown) {
+  const bool create = access == Access::create, writing = access != Access::read;
+  prepare_store_path(path, create);
   HistoryStore store;
   store.path_ = shown.empty() ? path : shown;
   const int flags = create    ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
@@ -261,34 +320,7 @@ HistoryStore HistoryStore::open(const std::string& path, Access access, int busy
   // finds it made), refused when it is another file or newer.
   execute(store.db_, path, writing ? "BEGIN IMMEDIATE" : "BEGIN", "cannot lock it");
   try {
-    const int version = schema_version(store.db_, path);
-    if (version < 0)
-      throw InputError(
-          fmt::format("{}: an SQLite file that is not a ccal history store; accepted: a ccal history "
-                      "store, or a new file name",
-                      path));
-    if (version > kHistorySchemaVersion)
-      throw InputError(
-          fmt::format("{}: history store of schema {}, written by a newer ccal; this ccal reads "
-                      "schema {} and older; accepted: the newer ccal",
-                      path, version, kHistorySchemaVersion));
-    store.schema_ = version;
-    if (version == 1 && writing) {
-      execute(store.db_, path, kMigrationTo2, "cannot migrate it to schema 2");
-      store.schema_ = 2;
-    }
-    if (version == 0) {
-      store.schema_ = kHistorySchemaVersion;
-      if (!create)
-        throw InputError(
-            fmt::format("{}: an empty file, not a history store; accepted: a history store, or a first "
-                        "statement added to it, which makes it one",
-                        path));
-      execute(store.db_, path, kSchema, "cannot write its schema");
-      Statement meta(store.db_, path,
-                     "INSERT INTO meta(key, value) VALUES ('application', ?1), ('schema_version', ?2)");
-      meta.text(1, std::string(kApplication)).text(2, std::to_string(kHistorySchemaVersion)).step();
-    }
+    store.schema_ = checked_schema(store.db_, path, create, writing);
     if (writing) execute(store.db_, path, kMetaKept, "cannot write its schema");
     execute(store.db_, path, "COMMIT", "cannot write its schema");
   } catch (...) {
@@ -391,31 +423,8 @@ std::int64_t HistoryStore::add(const HistoryEntry& entry,
     if (!entry.certificate_number.empty()) insert.text(10, entry.certificate_number);
     insert.step();
     id = sqlite3_last_insert_rowid(db_);
-    for (const HistoryCoefficient& c : entry.coefficients) {
-      Statement row(db_, path_,
-                    "INSERT INTO coefficient(calibration, name, unit, value, expanded, coverage_factor, "
-                    "coverage_probability, effective_dof) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
-      row.integer(1, id)
-          .text(2, c.name)
-          .text(3, c.unit)
-          .number(4, c.value)
-          .number(5, c.expanded)
-          .number(6, c.coverage_factor)
-          .number(7, c.coverage_probability)
-          .number(8, c.effective_dof)
-          .step();
-    }
-    for (const std::int64_t old : replaced) {
-      Statement supersession(db_, path_,
-                             "INSERT INTO supersession(calibration, by, reason, at) VALUES (?1, ?2, ?3, ?4)");
-      supersession.integer(1, old)
-          .integer(2, id)
-          .text(3, entry.certificate_number.empty()
-                       ? fmt::format("replaced by calibration {}", id)
-                       : fmt::format("replaced by certificate {}", entry.certificate_number))
-          .text(4, utc_now())
-          .step();
-    }
+    insert_coefficients(db_, path_, id, entry);
+    insert_supersessions(db_, path_, id, entry, replaced);
     if (before_commit) before_commit(id);
   });
   return id;

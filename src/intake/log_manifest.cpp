@@ -107,11 +107,9 @@ double unit_size(const Reader& r, const toml::table& t, std::string_view key, co
   r.fail(*t.get(key), Reader::path("columns", key), fmt::format("'{}' is not {}", text, accepted));
 }
 
-void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
-  const toml::table* t = r.table(root, "", "columns", false);
-  if (!t) return;
-  r.check_keys(*t, "columns", kColumnKeys);
-  LogColumns& c = layout.columns;
+// The columns' names (time, pulses, output, theta1, gamma): each not empty, and each column named once,
+// defaults included.
+void read_column_names(const Reader& r, const toml::table* t, LogColumns& c) {
   std::map<std::string, std::string> used;  // column → the key that names it (or whose default it is)
   for (auto [key, name] : {std::pair{"time", &c.time}, {"pulses", &c.pulses}, {"output", &c.output},
                            {"theta1", &c.theta1}, {"gamma", &c.gamma}}) {
@@ -127,22 +125,10 @@ void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
                          *name, t->get(key) ? "" : " (its default)", at->second,
                          t->get(at->second) ? "" : " (its default)"));
   }
-  if (const auto u = r.string(*t, "columns", "time_unit")) {
-    c.iso_time = *u == kIsoTime;
-    if (!c.iso_time)
-      c.time_scale = unit_size(r, *t, "time_unit", *u, kind::time,
-                               "a time unit; accepted: s, ms, us (or µs), min, …, or \"iso8601\" for timestamps "
-                               "(2026-11-30T10:15:02.125Z)");
-    layout.time_unit = *u;
-  }
-  if (const auto bits = r.number(*t, "columns", "counter_bits")) {
-    if (!(*bits >= 8 && *bits <= 52 && *bits == std::floor(*bits)))
-      r.fail(*t->get("counter_bits"), "columns.counter_bits",
-             fmt::format("{} is not a counter's width; accepted: a whole number of bits from 8 to 52 (e.g. 16, 24, "
-                         "32)",
-                         number_text(*bits)));
-    c.counter_bits = int(*bits);
-  }
+}
+
+// The encoders' unit: an angle unit, or counts with counts_per_revolution (only then).
+void read_angle_unit(const Reader& r, const toml::table* t, LogLayout& layout) {
   const auto counts = r.number(*t, "columns", "counts_per_revolution");
   if (const auto u = r.string(*t, "columns", "angle_unit")) {
     layout.angle_unit = *u;
@@ -163,6 +149,33 @@ void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
   if (counts && layout.angle_unit != "counts")
     r.fail(*t->get("counts_per_revolution"), "columns.counts_per_revolution",
            "is read only for encoders in counts; accepted: with angle_unit = \"counts\"");
+}
+
+void read_columns(const Reader& r, const toml::table& root, LogLayout& layout) {
+  const toml::table* t = r.table(root, "", "columns", false);
+  if (!t) return;
+  r.check_keys(*t, "columns", kColumnKeys);
+  LogColumns& c = layout.columns;
+  read_column_names(r, t, c);
+  if (const auto u = r.string(*t, "columns", "time_unit")) {
+    c.iso_time = *u == kIsoTime;
+    if (!c.iso_time)
+      c.time_scale =
+          unit_size(r, *t, "time_unit", *u, kind::time,
+                    "a time unit; accepted: s, ms, us (or µs), min, …, or \"iso8601\" for timestamps "
+                    "(2026-11-30T10:15:02.125Z)");
+    layout.time_unit = *u;
+  }
+  if (const auto bits = r.number(*t, "columns", "counter_bits")) {
+    if (!(*bits >= 8 && *bits <= 52 && *bits == std::floor(*bits)))
+      r.fail(*t->get("counter_bits"), "columns.counter_bits",
+             fmt::format(
+                 "{} is not a counter's width; accepted: a whole number of bits from 8 to 52 (e.g. 16, 24, "
+                 "32)",
+                 number_text(*bits)));
+    c.counter_bits = int(*bits);
+  }
+  read_angle_unit(r, t, layout);
   if (const auto rounding = r.word<CountRounding>(*t, "columns", "count_rounding",
                                                   {{"nearest", CountRounding::nearest},
                                                    {"floor", CountRounding::floor}})) {

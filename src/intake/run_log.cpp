@@ -48,6 +48,30 @@ void check_encoder_rate(std::string_view source, std::string_view run, std::stri
       expected != 0 ? rate_cause(logged / expected, o) : rate_cause(0, o)));
 }
 
+// Run `index` of the plan as its log shows it: its encoders' rates checked against the plan, the run as
+// measured (its rate and phases), the platform's measured mismatch and, counter-rotating, how its control
+// looks.
+LoggedRun logged_run(const Config& config, const Experiment& ex, std::size_t index, ReducedLog log,
+                     const RunLogOptions& options) {
+  LoggedRun lr;
+  lr.index = index;
+  const Run& planned = config.plan.runs[index];
+  lr.planned_rate = nominal_rate(planned, ex.geometry, ex.site);
+  lr.log = std::move(log);
+  if (lr.log.has_theta1)
+    check_encoder_rate(lr.log.source, planned.name, "main-axis (theta1)", lr.log.theta1_rate, lr.planned_rate,
+                       lr.planned_rate, options);
+  if (lr.log.has_gamma)
+    check_encoder_rate(lr.log.source, planned.name, "platform (gamma)", lr.log.gamma_rate,
+                       planned.mode == PlatformMode::counter_rotating ? -lr.planned_rate : 0.0,
+                       lr.planned_rate, options);
+  lr.measured = measured_run(planned, lr.log, ex.geometry, ex.site);
+  lr.rate = nominal_rate(lr.measured, ex.geometry, ex.site);
+  lr.mismatch = measured_platform_mismatch(planned, lr.log);
+  if (planned.mode == PlatformMode::counter_rotating) lr.control = platform_control_evidence(lr.log);
+  return lr;
+}
+
 }  // namespace
 
 ReducedLog reduce_run_log(const CsvTable& table, const RunLogOptions& options, double planned_rate) {
@@ -166,23 +190,8 @@ LogReduction model_logged_runs(const Config& config, const std::vector<std::size
     if (by_run.count(index))
       throw InputError(fmt::format("{}: run '{}' is logged twice; accepted: one log per run", source(i),
                                    config.plan.runs[index].name));
-    LoggedRun lr;
-    lr.index = index;
-    const Run& planned = config.plan.runs[index];
-    lr.planned_rate = nominal_rate(planned, ex.geometry, ex.site);
-    lr.log = read(i, lr.planned_rate);
-    if (lr.log.has_theta1)
-      check_encoder_rate(lr.log.source, planned.name, "main-axis (theta1)", lr.log.theta1_rate,
-                         lr.planned_rate, lr.planned_rate, options);
-    if (lr.log.has_gamma)
-      check_encoder_rate(lr.log.source, planned.name, "platform (gamma)", lr.log.gamma_rate,
-                         planned.mode == PlatformMode::counter_rotating ? -lr.planned_rate : 0.0,
-                         lr.planned_rate, options);
-    lr.measured = measured_run(planned, lr.log, ex.geometry, ex.site);
-    lr.rate = nominal_rate(lr.measured, ex.geometry, ex.site);
-    lr.mismatch = measured_platform_mismatch(planned, lr.log);
-    if (planned.mode == PlatformMode::counter_rotating) lr.control = platform_control_evidence(lr.log);
-    by_run.emplace(index, std::move(lr));
+    const double planned_rate = nominal_rate(config.plan.runs[index], ex.geometry, ex.site);
+    by_run.emplace(index, logged_run(config, ex, index, read(i, planned_rate), options));
   }
   const IdentificationSpec& spec = config.identification;
   check_log_count(spec, by_run.size(), "logs");

@@ -22,6 +22,30 @@ double wrapped(double angle) {
   return a < 0 ? a + kTwoPi : a;
 }
 
+// The main-axis encoder's line fit: its rate, its start phase, its residual and its harmonics. A count
+// latched down stands for the middle of its count (angle_offset): a constant added to every reading moves the
+// line's phases by it, and its harmonics not at all (their phase by k·offset, below 1e-6 rad for half a count
+// of any encoder of 2^22 counts or more), so it is added to the phases here.
+void add_theta1_fit(const EncoderFitResult& f, double angle_offset, ReducedLog& r) {
+  r.has_theta1 = true;
+  r.theta1_rate = f.slope;
+  r.theta1_start = wrapped(f.start + angle_offset);
+  r.theta1_rms = f.rms;
+  r.theta1_harmonics = f.harmonics;
+  r.theta1_harmonic_sigma = f.harmonic_sigma;
+}
+
+// The platform encoder's line fit, likewise, with its end phase.
+void add_gamma_fit(const EncoderFitResult& f, double angle_offset, ReducedLog& r) {
+  r.has_gamma = true;
+  r.gamma_rate = f.slope;
+  r.gamma_start = wrapped(f.start + angle_offset);
+  r.gamma_end = wrapped(f.end + angle_offset);
+  r.gamma_rms = f.rms;
+  r.gamma_harmonics = f.harmonics;
+  r.gamma_harmonic_sigma = f.harmonic_sigma;
+}
+
 }  // namespace
 
 LogReducer::LogReducer(std::string source, const RunLogOptions& options, double planned_rate)
@@ -550,28 +574,8 @@ ReducedLog LogReducer::finish() {
   throw_pending_before(Problem::gamma_spacing);
   if (theta1_) throw_wild(*theta1_);
   if (gamma_) throw_wild(*gamma_);
-  if (theta1_) {
-    const EncoderFitResult f = theta1_->fit.result();
-    r.has_theta1 = true;
-    r.theta1_rate = f.slope;
-    // A count latched down stands for the middle of its count (angle_offset): a constant added to every
-    // reading moves the line's phases by it, and its harmonics not at all (their phase by k·offset, below
-    // 1e-6 rad for half a count of any encoder of 2^22 counts or more), so it is added to the phases here.
-    r.theta1_start = wrapped(f.start + options_.angle_offset);
-    r.theta1_rms = f.rms;
-    r.theta1_harmonics = f.harmonics;
-    r.theta1_harmonic_sigma = f.harmonic_sigma;
-  }
-  if (gamma_) {
-    const EncoderFitResult f = gamma_->fit.result();
-    r.has_gamma = true;
-    r.gamma_rate = f.slope;
-    r.gamma_start = wrapped(f.start + options_.angle_offset);
-    r.gamma_end = wrapped(f.end + options_.angle_offset);
-    r.gamma_rms = f.rms;
-    r.gamma_harmonics = f.harmonics;
-    r.gamma_harmonic_sigma = f.harmonic_sigma;
-  }
+  if (theta1_) add_theta1_fit(theta1_->fit.result(), options_.angle_offset, r);
+  if (gamma_) add_gamma_fit(gamma_->fit.result(), options_.angle_offset, r);
   return r;
 }
 

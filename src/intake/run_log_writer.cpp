@@ -149,6 +149,49 @@ ChainReadings chain_readings(const Config& config) {
   return c;
 }
 
+// The logs' inputs: one output at least, each with a mean per run of the plan, and errors of the layout.
+void check_log_inputs(const Config& config, const Eigen::VectorXd& e,
+                      const std::vector<LoggedOutput>& outputs) {
+  const auto& runs = config.plan.runs;
+  if (outputs.empty()) throw InputError("run logs: no instrument's output to log");
+  for (const LoggedOutput& o : outputs)
+    if (o.run_means.size() != runs.size())
+      throw InputError(
+          fmt::format("run logs: {} run means for a plan of {} runs", o.run_means.size(), runs.size()));
+  if (e.size() != config.centrifuge.errors.size())
+    throw InputError(fmt::format("run logs: {} machine errors for a layout of {}", e.size(),
+                                 config.centrifuge.errors.size()));
+}
+
+// The logs' header row and units row: time, each output's column, the two encoders.
+std::pair<std::vector<std::string>, std::vector<std::string>> log_header(
+    const LogLayout& layout, const std::vector<LoggedOutput>& outputs,
+    const std::vector<OutputWriting>& writing) {
+  const LogColumns& c = layout.columns;
+  std::vector<std::string> header{c.time}, units{layout.time_unit.empty() ? "s" : layout.time_unit};
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    header.push_back(outputs[k].column);
+    units.push_back(writing[k].unit_name);
+  }
+  const std::string angle_unit = layout.angle_unit.empty() ? "rad" : layout.angle_unit;
+  header.insert(header.end(), {c.theta1, c.gamma});
+  units.insert(units.end(), {angle_unit, angle_unit});
+  return {header, units};
+}
+
+// An output's cell at time t of a run of mean m: a count of quanta (⌊m (1 + τ) t / w⌋, a clock fast by τ
+// accumulating the counts at m (1 + τ) in true time), wrapped to the counter's width, or the mean in the
+// output's unit.
+std::string output_cell(double m, const OutputWriting& writing, double tau, double t, const LogColumns& c) {
+  const double w = writing.w;
+  // a count of quanta is read as a rate against the clock
+  double value = w > 0 ? std::floor(m * (1 + tau) * t / w) : m / writing.unit;
+  if (w > 0 && c.counter_bits > 0)
+    value -= std::ldexp(std::floor(std::ldexp(value, -c.counter_bits)), c.counter_bits);
+  if (value == 0) value = 0;  // a count of none is "0", never the "-0" of a negative mean's floor at t = 0
+  return fmt::format("{:.17g}", value);
+}
+
 }  // namespace
 
 std::vector<RunLogFile> write_run_logs(const Config& config, const Eigen::VectorXd& e,
@@ -162,14 +205,7 @@ std::vector<RunLogFile> write_instrument_logs(const Config& config, const Eigen:
                                               const std::vector<LoggedOutput>& outputs, double step,
                                               const LogLayout& layout) {
   const auto& runs = config.plan.runs;
-  if (outputs.empty()) throw InputError("run logs: no instrument's output to log");
-  for (const LoggedOutput& o : outputs)
-    if (o.run_means.size() != runs.size())
-      throw InputError(
-          fmt::format("run logs: {} run means for a plan of {} runs", o.run_means.size(), runs.size()));
-  if (e.size() != config.centrifuge.errors.size())
-    throw InputError(fmt::format("run logs: {} machine errors for a layout of {}", e.size(),
-                                 config.centrifuge.errors.size()));
+  check_log_inputs(config, e, outputs);
   const Experiment ex = config.experiment();
   const std::vector<double> main = ripple_of(config, e, ch::ripple1),
                             platform = ripple_of(config, e, ch::ripple3);
@@ -184,14 +220,8 @@ std::vector<RunLogFile> write_instrument_logs(const Config& config, const Eigen:
   const LogColumns& c = layout.columns;
   const CsvFormat& f = layout.format;
   std::vector<RunLogFile> out;
-  std::vector<std::string> header{c.time}, units{layout.time_unit.empty() ? "s" : layout.time_unit}, row;
-  for (std::size_t k = 0; k < outputs.size(); ++k) {
-    header.push_back(outputs[k].column);
-    units.push_back(writing[k].unit_name);
-  }
-  const std::string angle_unit = layout.angle_unit.empty() ? "rad" : layout.angle_unit;
-  header.insert(header.end(), {c.theta1, c.gamma});
-  units.insert(units.end(), {angle_unit, angle_unit});
+  const auto [header, units] = log_header(layout, outputs, writing);
+  std::vector<std::string> row;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const Run& run = runs[r];
     const double rate = nominal_rate(run, ex.geometry, ex.site) + e[ch::domega];
@@ -218,13 +248,7 @@ std::vector<RunLogFile> write_instrument_logs(const Config& config, const Eigen:
       row.assign(1, c.iso_time ? iso8601_text(kTimestampOrigin + 1000 * std::llround(stamped * 1e6))  // to the µs
                                : fmt::format("{:.17g}", stamped / c.time_scale));
       for (std::size_t j = 0; j < outputs.size(); ++j) {
-        const double m = outputs[j].run_means[r], w = writing[j].w;
-        // a count of quanta is read as a rate against the clock
-        double value = w > 0 ? std::floor(m * (1 + tau) * t / w) : m / writing[j].unit;
-        if (w > 0 && c.counter_bits > 0)
-          value -= std::ldexp(std::floor(std::ldexp(value, -c.counter_bits)), c.counter_bits);
-        if (value == 0) value = 0;  // a count of none is "0", never the "-0" of a negative mean's floor at t = 0
-        row.push_back(fmt::format("{:.17g}", value));
+        row.push_back(output_cell(outputs[j].run_means[r], writing[j], tau, t, c));
       }
       const double theta1 = wrapped(theta_n + d1), gamma_true = wrapped(gamma);
       row.push_back(encoder_text(wrapped(theta1 + encoder_error(chain.encoder1, theta1)), layout));

@@ -147,6 +147,51 @@ void read_objective(const Reader& r, const toml::table& t, const InstrumentModel
   }
 }
 
+// A value of [design] that must be positive, named as the user wrote it ("-1 ms"), else as the number.
+void require_positive_setting(const Reader& r, const toml::node& n, const std::string& path, double v) {
+  // The value as the user wrote it ("-1 ms"), else the number.
+  const std::optional<std::string> written = n.value<std::string>();
+  if (!(v > 0))
+    r.fail(n, path,
+           fmt::format("must be positive, got {}; accepted: a positive value", written ? *written : number_text(v)));
+}
+
+// g_range: two positive g-levels, the smallest first, and not with g_levels.
+void read_g_range(const Reader& r, const toml::table& t, DesignSpace& d) {
+  auto positive = [&r](const toml::node& n, const std::string& path, double v) {
+    require_positive_setting(r, n, path, v);
+  };
+  if (const std::vector<double> range = quantities(r, t, "g_range", kind::acceleration_g, "5 g", positive);
+      !range.empty()) {
+    if (range.size() != 2 || range[0] > range[1])
+      r.fail(*t.get("g_range"), "design.g_range",
+             "expected two g-levels, the smallest first, such as [\"5 g\", \"30 g\"]");
+    if (!d.g_levels.empty())
+      r.fail(*t.get("g_range"), "design.g_range",
+             "both g_levels and g_range are given; accepted: one of them");
+    d.g_min = range[0];
+    d.g_max = range[1];
+  }
+}
+
+// A machine's setting step: positive and no finer than 1e-6 of the unit (a finer step is a unit error, and
+// the settings are counted in steps as 64-bit integers). Coarser than the design space allows:
+// resolve_design_space.
+std::optional<double> setting_step(const Reader& r, const toml::table& t, std::string_view key, Dimension dim,
+                                   std::string_view example, double finest, std::string_view finest_text) {
+  const std::string_view p = "design";
+  const std::optional<double> v = r.quantity(t, p, key, dim, nullptr, example);
+  if (!v) return v;
+  const toml::node& n = *t.get(key);
+  const std::string path = Reader::path(p, key);
+  require_positive_setting(r, n, path, *v);
+  if (*v < finest * (1 - 1e-12))
+    r.fail(n, path,
+           fmt::format("{} is finer than any machine sets; accepted: at least {}, such as \"{}\"",
+                       n.value<std::string>().value_or(number_text(*v)), finest_text, example));
+  return v;
+}
+
 }  // namespace
 
 DesignSpace read_design(const Reader& r, const toml::table& root, const InstrumentModel& instrument,
@@ -156,12 +201,8 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
   if (!t) return d;
   const std::string_view p = "design";
   r.check_keys(*t, p, kDesignKeys);
-  auto positive = [&](const toml::node& n, const std::string& path, double v) {
-    // The value as the user wrote it ("-1 ms"), else the number.
-    const std::optional<std::string> written = n.value<std::string>();
-    if (!(v > 0))
-      r.fail(n, path,
-             fmt::format("must be positive, got {}; accepted: a positive value", written ? *written : number_text(v)));
+  auto positive = [&r](const toml::node& n, const std::string& path, double v) {
+    require_positive_setting(r, n, path, v);
   };
   d.runs = count(r, *t, "runs", 1, 1000, "a number of runs from 1 to 1000");
   d.min_g_levels = count(r, *t, "min_g_levels", 1, 1000, "a number of distinct g-levels from 1 to 1000");
@@ -170,17 +211,7 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
   d.max_g = r.quantity(*t, p, "max_g", kind::acceleration_g, nullptr, "30 g");
   if (d.max_g) positive(*t->get("max_g"), "design.max_g", *d.max_g);
   d.g_levels = quantities(r, *t, "g_levels", kind::acceleration_g, "5 g", positive);
-  if (const std::vector<double> range = quantities(r, *t, "g_range", kind::acceleration_g, "5 g", positive);
-      !range.empty()) {
-    if (range.size() != 2 || range[0] > range[1])
-      r.fail(*t->get("g_range"), "design.g_range",
-             "expected two g-levels, the smallest first, such as [\"5 g\", \"30 g\"]");
-    if (!d.g_levels.empty())
-      r.fail(*t->get("g_range"), "design.g_range",
-             "both g_levels and g_range are given; accepted: one of them");
-    d.g_min = range[0];
-    d.g_max = range[1];
-  }
+  read_g_range(r, *t, d);
   d.g_step = r.quantity(*t, p, "g_step", kind::acceleration_g, nullptr, "1 g");
   if (d.g_step) positive(*t->get("g_step"), "design.g_step", *d.g_step);
   d.durations = quantities(r, *t, "durations", kind::time, "450 s", positive);
@@ -197,26 +228,10 @@ DesignSpace read_design(const Reader& r, const toml::table& root, const Instrume
   d.mountings = words(r, *t, "mountings", kMountingWords);
   d.platforms = words(r, *t, "platforms", kPlatformWords);
   d.refine = r.boolean(*t, p, "refine").value_or(true);
-  // A machine's setting steps: positive and no finer than 1e-6 of the unit (a finer step is a unit error, and
-  // the settings are counted in steps as 64-bit integers). Coarser than the design space allows:
-  // resolve_design_space.
-  auto resolution = [&](std::string_view key, Dimension dim, std::string_view example, double finest,
-                        std::string_view finest_text) {
-    const std::optional<double> v = r.quantity(*t, p, key, dim, nullptr, example);
-    if (!v) return v;
-    const toml::node& n = *t->get(key);
-    const std::string path = Reader::path(p, key);
-    positive(n, path, *v);
-    if (*v < finest * (1 - 1e-12))
-      r.fail(n, path,
-             fmt::format("{} is finer than any machine sets; accepted: at least {}, such as \"{}\"",
-                         n.value<std::string>().value_or(number_text(*v)), finest_text, example));
-    return v;
-  };
-  d.g_resolution = resolution("g_resolution", kind::acceleration_g, "0.01 g", 1e-6, "1e-6 g");
-  d.duration_resolution = resolution("duration_resolution", kind::time, "0.001 s", 1e-6, "1e-6 s");
-  d.angle_resolution =
-      resolution("angle_resolution", kind::angle, "0.1 deg", 1e-6 * std::numbers::pi / 180, "1e-6 deg");
+  d.g_resolution = setting_step(r, *t, "g_resolution", kind::acceleration_g, "0.01 g", 1e-6, "1e-6 g");
+  d.duration_resolution = setting_step(r, *t, "duration_resolution", kind::time, "0.001 s", 1e-6, "1e-6 s");
+  d.angle_resolution = setting_step(r, *t, "angle_resolution", kind::angle, "0.1 deg",
+                                    1e-6 * std::numbers::pi / 180, "1e-6 deg");
   read_objective(r, *t, instrument, spec, d);
   return d;
 }

@@ -240,14 +240,13 @@ RunFields read_run_fields(const Reader& r, const toml::table& t, std::string_vie
   return f;
 }
 
-TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site) {
-  const toml::table* t =
-      r.table(root, "", "plan", true, "add [plan] and at least one [[plan.runs]] with g_level");
-  r.check_keys(*t, "plan", kPlanKeys);
-  const RunFields defaults = read_run_fields(r, *t, "plan");
-  const toml::node* runs_node = t->get("runs");
+namespace {
+
+// [plan]'s runs: an array of tables with one run at least.
+const toml::array& plan_runs(const Reader& r, const toml::table& t) {
+  const toml::node* runs_node = t.get("runs");
   if (!runs_node)
-    r.fail(where(t->source()), "plan.runs",
+    r.fail(where(t.source()), "plan.runs",
            "missing runs; add at least one [[plan.runs]] with g_level = \"5 g\"");
   const toml::array* runs = runs_node->as_array();
   if (!runs)
@@ -255,82 +254,110 @@ TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geo
            fmt::format("expected an array of tables ([[plan.runs]]), got {}", type_name(*runs_node)));
   if (runs->empty())
     r.fail(*runs_node, "plan.runs", "no runs; add at least one [[plan.runs]] with g_level = \"5 g\"");
+  return *runs;
+}
 
+// Run k's name (default "run<k+1>"), unique in the plan (`names`: those before, with where they are).
+std::string run_name(const Reader& r, const toml::table& rt, const std::string& p, std::size_t k,
+                     std::map<std::string, Location>& names) {
+  std::string name = r.string(rt, p, "name").value_or(fmt::format("run{}", k + 1));
+  if (name.empty()) r.fail(*rt.get("name"), p + ".name", "empty run name; give a name such as \"5g\"");
+  // A run's name is a cell of the observations CSV, a log's file name and the NAME of --log NAME=FILE: one
+  // line, no '=', no blank at either end.
+  const bool control = detail::has_control_character(name);
+  if (control || name.find('=') != std::string::npos ||
+      std::isspace(static_cast<unsigned char>(name.front())) ||
+      std::isspace(static_cast<unsigned char>(name.back())))
+    r.fail(
+        *rt.get("name"), p + ".name",
+        fmt::format("run name {} has {}; accepted: a name of printable characters without '=' or blanks at "
+                    "either end, such as \"5g\"",
+                    detail::shown_text(name, '"'),
+                    control ? "a control character (a line end, a tab)"
+                    : name.find('=') != std::string::npos
+                        ? "'=' (which separates a run's name from its log file where both are given)"
+                        : "a blank at one end"));
+  const Location at = rt.get("name") ? where(rt.get("name")->source()) : where(rt.source());
+  if (const auto it = names.find(name); it != names.end())
+    r.fail(at, p + ".name",
+           fmt::format("duplicate run name '{}' (first used at line {}); accepted: a name unique in the plan",
+                       name, it->second.line));
+  names.emplace(name, at);
+  return name;
+}
+
+// A run is set by its g-level A or by the main-axis speed Ω (then A = Ω² R0 / g of the site); either way
+// within [0.001 g, 1000 g].
+double run_g_level(const Reader& r, const toml::table& rt, const std::string& p, const Geometry& geometry,
+                   const Site& site) {
+  const auto g_level = r.quantity(rt, p, "g_level", kind::acceleration_g, nullptr, "5 g");
+  const auto speed = r.quantity(rt, p, "speed", kind::angular_rate, nullptr, "120 rpm");
+  if (g_level && speed)
+    r.fail(*rt.get("speed"), p + ".speed",
+           "both g_level and speed are given; accepted: exactly one of them per run");
+  if (!g_level && !speed)
+    r.fail(where(rt.source()), p + ".g_level",
+           "missing value; give e.g. g_level = \"5 g\" (or the speed, e.g. speed = \"120 rpm\")");
+  if (g_level) {
+    r.require_positive(rt, p, "g_level", *g_level, "the centripetal level such as \"5 g\"");
+    r.require_at_most(rt, p, "g_level", *g_level, 1000.0, "a centripetal level up to 1000 g");
+    r.require_at_least(rt, p, "g_level", *g_level, 1e-3, "a centripetal level of at least 0.001 g");
+    return *g_level;
+  }
+  r.require_positive(rt, p, "speed", *speed, "the main-axis speed such as \"120 rpm\"");
+  const double level = *speed * *speed * geometry.R0 / site.g_unit();
+  r.require_at_most(rt, p, "speed", level, 1000.0, "a speed giving at most 1000 g at the radius");
+  r.require_at_least(rt, p, "speed", level, 1e-3, "a speed giving at least 0.001 g at the radius");
+  return level;
+}
+
+// The run's own fields, else [plan]'s (`defaults`), else the defaults of a run: its duration (required), its
+// platform, its phases (one of them required; the run's pair replaces [plan]'s whole), its arm azimuth and
+// mounting.
+void read_run_settings(const Reader& r, const toml::table& rt, const std::string& p,
+                       const RunFields& defaults, Run& run) {
+  const RunFields own = read_run_fields(r, rt, p);
+  const auto duration = own.duration ? own.duration : defaults.duration;
+  if (!duration)
+    r.fail(where(rt.source()), p + ".duration",
+           "missing value; give duration = \"450 s\" in this run or in [plan]");
+  run.duration = *duration;
+  run.mode = own.platform.value_or(defaults.platform.value_or(PlatformMode::counter_rotating));
+  if (own.initial_phase || own.terminal_phase) {
+    run.initial_phase = own.initial_phase;
+    run.terminal_phase = own.terminal_phase;
+  } else {
+    run.initial_phase = defaults.initial_phase;
+    run.terminal_phase = defaults.terminal_phase;
+  }
+  if (!run.initial_phase && !run.terminal_phase)
+    r.fail(where(rt.source()), p + ".terminal_phase",
+           "missing phase; give terminal_phase = \"180 deg\" or initial_phase = \"...\" in this run or in "
+           "[plan]");
+  run.arm_azimuth = own.arm_azimuth.value_or(defaults.arm_azimuth.value_or(0.0));
+  run.mounting = own.mounting.value_or(defaults.mounting.value_or(Mounting::ia_horizontal));
+}
+
+}  // namespace
+
+TestPlan read_plan(const Reader& r, const toml::table& root, const Geometry& geometry, const Site& site) {
+  const toml::table* t =
+      r.table(root, "", "plan", true, "add [plan] and at least one [[plan.runs]] with g_level");
+  r.check_keys(*t, "plan", kPlanKeys);
+  const RunFields defaults = read_run_fields(r, *t, "plan");
+  const toml::array& runs = plan_runs(r, *t);
   TestPlan plan;
   std::map<std::string, Location> names;
-  for (std::size_t k = 0; k < runs->size(); ++k) {
-    const toml::node& node = *runs->get(k);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const toml::node& node = *runs.get(k);
     const std::string p = fmt::format("plan.runs[{}]", k + 1);
     const toml::table* rt = node.as_table();
     if (!rt) r.fail(node, p, fmt::format("expected a table ([[plan.runs]]), got {}", type_name(node)));
     r.check_keys(*rt, p, kRunKeys);
     Run run;
-    run.name = r.string(*rt, p, "name").value_or(fmt::format("run{}", k + 1));
-    if (run.name.empty()) r.fail(*rt->get("name"), p + ".name", "empty run name; give a name such as \"5g\"");
-    // A run's name is a cell of the observations CSV, a log's file name and the NAME of --log NAME=FILE: one
-    // line, no '=', no blank at either end.
-    const bool control = detail::has_control_character(run.name);
-    if (control || run.name.find('=') != std::string::npos ||
-        std::isspace(static_cast<unsigned char>(run.name.front())) ||
-        std::isspace(static_cast<unsigned char>(run.name.back())))
-      r.fail(
-          *rt->get("name"), p + ".name",
-          fmt::format("run name {} has {}; accepted: a name of printable characters without '=' or blanks at "
-                      "either end, such as \"5g\"",
-                      detail::shown_text(run.name, '"'),
-                      control ? "a control character (a line end, a tab)"
-                      : run.name.find('=') != std::string::npos
-                          ? "'=' (which separates a run's name from its log file where both are given)"
-                          : "a blank at one end"));
-    const Location at = rt->get("name") ? where(rt->get("name")->source()) : where(rt->source());
-    if (const auto it = names.find(run.name); it != names.end())
-      r.fail(
-          at, p + ".name",
-          fmt::format("duplicate run name '{}' (first used at line {}); accepted: a name unique in the plan",
-                      run.name, it->second.line));
-    names.emplace(run.name, at);
-
-    // A run is set by its g-level A or by the main-axis speed Ω (then A = Ω² R0 / g of the site).
-    const auto g_level = r.quantity(*rt, p, "g_level", kind::acceleration_g, nullptr, "5 g");
-    const auto speed = r.quantity(*rt, p, "speed", kind::angular_rate, nullptr, "120 rpm");
-    if (g_level && speed)
-      r.fail(*rt->get("speed"), p + ".speed",
-             "both g_level and speed are given; accepted: exactly one of them per run");
-    if (!g_level && !speed)
-      r.fail(where(rt->source()), p + ".g_level",
-             "missing value; give e.g. g_level = \"5 g\" (or the speed, e.g. speed = \"120 rpm\")");
-    if (g_level) {
-      r.require_positive(*rt, p, "g_level", *g_level, "the centripetal level such as \"5 g\"");
-      r.require_at_most(*rt, p, "g_level", *g_level, 1000.0, "a centripetal level up to 1000 g");
-      r.require_at_least(*rt, p, "g_level", *g_level, 1e-3, "a centripetal level of at least 0.001 g");
-      run.g_level = *g_level;
-    } else {
-      r.require_positive(*rt, p, "speed", *speed, "the main-axis speed such as \"120 rpm\"");
-      run.g_level = *speed * *speed * geometry.R0 / site.g_unit();
-      r.require_at_most(*rt, p, "speed", run.g_level, 1000.0, "a speed giving at most 1000 g at the radius");
-      r.require_at_least(*rt, p, "speed", run.g_level, 1e-3, "a speed giving at least 0.001 g at the radius");
-    }
-
-    const RunFields own = read_run_fields(r, *rt, p);
-    const auto duration = own.duration ? own.duration : defaults.duration;
-    if (!duration)
-      r.fail(where(rt->source()), p + ".duration",
-             "missing value; give duration = \"450 s\" in this run or in [plan]");
-    run.duration = *duration;
-    run.mode = own.platform.value_or(defaults.platform.value_or(PlatformMode::counter_rotating));
-    if (own.initial_phase || own.terminal_phase) {
-      run.initial_phase = own.initial_phase;
-      run.terminal_phase = own.terminal_phase;
-    } else {
-      run.initial_phase = defaults.initial_phase;
-      run.terminal_phase = defaults.terminal_phase;
-    }
-    if (!run.initial_phase && !run.terminal_phase)
-      r.fail(where(rt->source()), p + ".terminal_phase",
-             "missing phase; give terminal_phase = \"180 deg\" or initial_phase = \"...\" in this run or in "
-             "[plan]");
-    run.arm_azimuth = own.arm_azimuth.value_or(defaults.arm_azimuth.value_or(0.0));
-    run.mounting = own.mounting.value_or(defaults.mounting.value_or(Mounting::ia_horizontal));
+    run.name = run_name(r, *rt, p, k, names);
+    run.g_level = run_g_level(r, *rt, p, geometry, site);
+    read_run_settings(r, *rt, p, defaults, run);
     plan.runs.push_back(std::move(run));
   }
   return plan;

@@ -71,45 +71,58 @@ class LineReader {
     if (header_.empty() && (line_no_ <= format_.skip_lines || line_no_ < format_.header_line)) return;
     const std::string_view content = trim_csv(line);
     const bool the_header_line = header_.empty() && line_no_ == format_.header_line;
-    if (the_header_line && (content.empty() || comment(content)))
-      throw CsvError(source_, line_no_, 1, "",
-                     fmt::format("line {}, the header_line of the [format] table, is {}; accepted: the line of the "
-                                 "column names as header_line{}",
-                                 line_no_, content.empty() ? "blank" : fmt::format("a comment ('{}')", content),
-                                 content.empty() ? ""
-                                                 : fmt::format(", or comment = \"\" for a header that begins with "
-                                                               "'{}'",
-                                                               format_.comment)));
+    if (the_header_line && (content.empty() || comment(content))) refuse_header_line(content);
     if (!the_header_line && (content.empty() || comment(content))) return;
-    if (header_.empty() || want_units_) {
-      CsvFieldProblem bad;
-      std::vector<std::string> fields;
-      if (translate_) {
-        translate(line, format_, true, translated_);
-        fields = split_csv_fields(translated_, bad);
-      } else {
-        fields = split_csv_fields(line, bad);
-      }
-      if (want_units_) {
-        check_csv_row(fields.size() <= header_.size() ? header_.size() : fields.size(), bad, header_, source_,
-                      line_no_);
-        fields.resize(header_.size());
-        want_units_ = false;
-        rows_as_written_ = !translate_;
-        sink_.units(fields, line_no_);
-        return;
-      }
-      check_csv_delimiter(line, fields, format_, source_, line_no_);
-      check_csv_header(fields, bad, source_, line_no_);
-      header_ = std::move(fields);
-      views_.resize(header_.size());
-      want_units_ = format_.units_row;
-      rows_as_written_ = !translate_ && !want_units_;
-      sink_.header(header_, line_no_);
+    if (header_.empty() || want_units_) return header_or_units(line);
+    split_row(line);
+    sink_.row(views_.data(), line_no_);
+  }
+
+ private:
+  // The header_line of the [format] table must be the column names' line, not a blank or a comment.
+  [[noreturn]] void refuse_header_line(std::string_view content) const {
+    throw CsvError(
+        source_, line_no_, 1, "",
+        fmt::format("line {}, the header_line of the [format] table, is {}; accepted: the line of the "
+                    "column names as header_line{}",
+                    line_no_, content.empty() ? "blank" : fmt::format("a comment ('{}')", content),
+                    content.empty() ? ""
+                                    : fmt::format(", or comment = \"\" for a header that begins with "
+                                                  "'{}'",
+                                                  format_.comment)));
+  }
+
+  // The header, then the units row when the format has one: checked and handed to the sink.
+  void header_or_units(std::string_view line) {
+    CsvFieldProblem bad;
+    std::vector<std::string> fields;
+    if (translate_) {
+      translate(line, format_, true, translated_);
+      fields = split_csv_fields(translated_, bad);
+    } else {
+      fields = split_csv_fields(line, bad);
+    }
+    if (want_units_) {
+      check_csv_row(fields.size() <= header_.size() ? header_.size() : fields.size(), bad, header_, source_,
+                    line_no_);
+      fields.resize(header_.size());
+      want_units_ = false;
+      rows_as_written_ = !translate_;
+      sink_.units(fields, line_no_);
       return;
     }
-    // A line with a quote goes to parse_csv's splitter; the others (all of a numeric log's) are cut at the
-    // commas in place (memchr: the library's vectorised byte search).
+    check_csv_delimiter(line, fields, format_, source_, line_no_);
+    check_csv_header(fields, bad, source_, line_no_);
+    header_ = std::move(fields);
+    views_.resize(header_.size());
+    want_units_ = format_.units_row;
+    rows_as_written_ = !translate_ && !want_units_;
+    sink_.header(header_, line_no_);
+  }
+
+  // A row's cells into views_: a line with a quote through parse_csv's splitter, the others (all of a numeric
+  // log's) cut at the commas in place (memchr: the library's vectorised byte search).
+  void split_row(std::string_view line) {
     if (std::memchr(line.data(), '"', line.size()) != nullptr) {
       CsvFieldProblem bad;
       quoted_ = split_csv_fields(line, bad);
@@ -130,9 +143,9 @@ class LineReader {
       }
       if (count != header_.size()) check_csv_row(count, CsvFieldProblem{}, header_, source_, line_no_);
     }
-    sink_.row(views_.data(), line_no_);
   }
 
+ public:
   void finish() const {
     if (header_.empty() && format_.header_line > line_no_)
       throw CsvError(source_, line_no_, 0, "",

@@ -370,11 +370,9 @@ void check_finite_problem(const CsvTable& table, const TableFitSpec& spec, const
                                        t.id, table.rows[std::size_t(i)][*table.find(column)], column));
     }
 }
-}  // namespace
-
-FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
-  std::vector<TableTerm> all = spec.terms;
-  for (const auto& f : spec.fixed) all.push_back(f.term);
+// The highest power of the input among the terms without a column of their own (-1: none); each term a term
+// id, given once, and a column for each that is not a power of the input.
+int highest_input_power(const std::vector<TableTerm>& all) {
   std::set<std::string> ids;
   int max_power = -1;
   for (const auto& t : all) {
@@ -388,6 +386,40 @@ FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
       max_power = std::max(max_power, term->power);
     }
   }
+  return max_power;
+}
+
+// The weights 1/σ² of the weight column's σ: each σ positive, and its weight neither overflowing nor
+// underflowing.
+Eigen::VectorXd table_weights(const CsvTable& table, const std::string& weight_column) {
+  const Eigen::VectorXd sigma = table.numbers(weight_column, "the weights");
+  const std::size_t column = *table.find(weight_column);
+  const auto rows = sigma.size();
+  Eigen::VectorXd weights(rows);
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    if (!(sigma[i] > 0))
+      throw table.error_at(
+          static_cast<std::size_t>(i), column,
+          fmt::format("standard deviation {} is not positive; accepted: σ > 0 (the weight is "
+                      "1/σ²)",
+                      table.rows[static_cast<std::size_t>(i)][column]));
+    weights[i] = 1.0 / (sigma[i] * sigma[i]);
+    if (!std::isfinite(weights[i]))
+      throw table.error_at(static_cast<std::size_t>(i), column,
+                           "standard deviation too small: its weight 1/σ² overflows; accepted: σ > 1e-154");
+    if (weights[i] < std::numeric_limits<double>::min())  // underflow: no weight at all
+      throw table.error_at(static_cast<std::size_t>(i), column,
+                           "standard deviation too large: its weight 1/σ² underflows; accepted: σ < 1e154");
+  }
+  return weights;
+}
+
+}  // namespace
+
+FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
+  std::vector<TableTerm> all = spec.terms;
+  for (const auto& f : spec.fixed) all.push_back(f.term);
+  const int max_power = highest_input_power(all);
 
   const auto rows = static_cast<Eigen::Index>(table.rows.size());
   const auto free_count = static_cast<Eigen::Index>(spec.terms.size());
@@ -416,26 +448,7 @@ FitProblem table_fit_problem(const CsvTable& table, const TableFitSpec& spec) {
   for (const auto& f : spec.fixed) p.fixed[f.term.id] = f.value;
   check_finite_problem(table, spec, all, p);
 
-  if (!spec.weight.empty()) {
-    const Eigen::VectorXd sigma = table.numbers(spec.weight, "the weights");
-    const std::size_t column = *table.find(spec.weight);
-    p.weights.resize(rows);
-    for (Eigen::Index i = 0; i < rows; ++i) {
-      if (!(sigma[i] > 0))
-        throw table.error_at(
-            static_cast<std::size_t>(i), column,
-            fmt::format("standard deviation {} is not positive; accepted: σ > 0 (the weight is "
-                        "1/σ²)",
-                        table.rows[static_cast<std::size_t>(i)][column]));
-      p.weights[i] = 1.0 / (sigma[i] * sigma[i]);
-      if (!std::isfinite(p.weights[i]))
-        throw table.error_at(static_cast<std::size_t>(i), column,
-                             "standard deviation too small: its weight 1/σ² overflows; accepted: σ > 1e-154");
-      if (p.weights[i] < std::numeric_limits<double>::min())  // underflow: no weight at all
-        throw table.error_at(static_cast<std::size_t>(i), column,
-                             "standard deviation too large: its weight 1/σ² underflows; accepted: σ < 1e154");
-    }
-  }
+  if (!spec.weight.empty()) p.weights = table_weights(table, spec.weight);
 
   if (rows < free_count) {
     std::vector<std::string> names;

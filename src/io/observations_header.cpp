@@ -148,36 +148,103 @@ MeasuredInput read_measured_line(const CsvTable& table, const CsvTable::Comment&
   return m;
 }
 
+// The header line being read: a problem of it is a CsvError at its line, naming the header.
+struct HeaderLine {
+  const CsvTable& table;
+  int line = 0;
+  CsvError fail(std::string problem) const {
+    return CsvError(table.source, line, 0, std::string(kHeaderKey), std::move(problem));
+  }
+};
+
+// "<term>" or "<term>:<column>" (the column defaults to the term's id).
+ObservationsHeader::Term read_header_term(const HeaderLine& at, const std::string& entry) {
+  const std::size_t colon = entry.find(':');
+  ObservationsHeader::Term t;
+  t.id = std::string(trim_csv(std::string_view(entry).substr(0, colon)));
+  t.column =
+      colon == std::string::npos ? t.id : std::string(trim_csv(std::string_view(entry).substr(colon + 1)));
+  if (!parse_term(t.id))
+    throw at.fail(fmt::format("'{}' is not a term id; accepted: {}", t.id, fmt::join(all_term_ids(), ", ")));
+  if (t.column.empty())
+    throw at.fail(fmt::format("term '{}' has an empty column name; accepted: <term>:<column>", t.id));
+  return t;
+}
+
+// fixed=<term>:<column>=<value> <unit>,...: each held term with its value.
+void read_fixed_entries(const HeaderLine& at, const std::string& value, ObservationsHeader& h) {
+  for (const auto& entry : split(value, ',')) {
+    if (entry.empty()) continue;
+    const auto assignment = split_term_assignment(entry);
+    if (!assignment)
+      throw at.fail(
+          fmt::format("fixed entry '{}' has no value; accepted: <term>:<column>=<value> <unit>", entry));
+    ObservationsHeader::Fixed f;
+    f.term = read_header_term(at, assignment->term);
+    const auto number = parse_number(assignment->value);
+    if (!number)
+      throw at.fail(
+          fmt::format("fixed entry '{}': '{}' is not a finite number; accepted: "
+                      "<term>:<column>=<value> <unit>",
+                      entry, assignment->value));
+    f.value = *number;
+    f.unit = assignment->unit;
+    h.fixed.push_back(std::move(f));
+  }
+}
+
+// One key=value of the header line into h.
+void read_header_entry(const HeaderLine& at, const std::string& key, const std::string& value,
+                       ObservationsHeader& h) {
+  if (key == "terms") {
+    for (const auto& entry : split(value, ','))
+      if (!entry.empty()) h.terms.push_back(read_header_term(at, entry));
+  } else if (key == "fixed") {
+    read_fixed_entries(at, value, h);
+  } else if (key == "known") {
+    for (const auto& entry : split(value, ','))
+      if (!entry.empty()) h.known.push_back(entry);
+  } else if (key == "output_unit") {
+    h.output_unit = value;
+  } else if (key == "config_sha256") {
+    if (!is_sha256(value))
+      throw at.fail(
+          fmt::format("config_sha256 '{}' is not a SHA-256; accepted: 64 lower-case hex digits", value));
+    h.config_sha256 = value;
+  } else {
+    throw at.fail(
+        fmt::format("unknown key '{}'; accepted: terms, fixed, known, output_unit, config_sha256", key));
+  }
+}
+
+// The terms as a whole: one free term at least, each term once (free or fixed), a column for each that is not
+// a power of the input.
+void check_header_terms(const HeaderLine& at, const ObservationsHeader& h) {
+  if (h.terms.empty()) throw at.fail("no free terms; accepted: terms=<term>:<column>,...");
+  std::set<std::string> ids;
+  for (const auto& t : h.terms)
+    if (!ids.insert(t.id).second) throw at.fail(fmt::format("term '{}' is listed twice", t.id));
+  for (const auto& f : h.fixed)
+    if (!ids.insert(f.term.id).second)
+      throw at.fail(fmt::format("term '{}' is listed twice (free and fixed, or fixed twice)", f.term.id));
+  for (const auto& t : h.terms)
+    if (parse_term(t.id)->kind != TermKind::power && t.column.empty())
+      throw at.fail(fmt::format("term '{}' needs a column", t.id));
+}
+
 }  // namespace
 
 std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
   constexpr std::string_view kMark = "ccal observations";
   for (const auto& comment : table.comments) {
     if (!comment.text.starts_with(kMark)) continue;
-    const int line = comment.line;
-    auto fail = [&](std::string problem) -> CsvError {
-      return CsvError(table.source, line, 0, std::string(kHeaderKey), std::move(problem));
-    };
+    const HeaderLine at{table, comment.line};
     const std::vector<std::string> parts = split(std::string_view(comment.text).substr(kMark.size()), ';');
     if (parts.front() != "v1")
-      throw fail(fmt::format("unsupported version '{}'; accepted: v1", parts.front()));
+      throw at.fail(fmt::format("unsupported version '{}'; accepted: v1", parts.front()));
     ObservationsHeader h;
-    h.line = line;
+    h.line = comment.line;
     std::set<std::string> keys;
-    bool has_terms = false;
-    auto read_term = [&](const std::string& entry) {
-      const std::size_t colon = entry.find(':');
-      ObservationsHeader::Term t;
-      t.id = std::string(trim_csv(std::string_view(entry).substr(0, colon)));
-      t.column = colon == std::string::npos
-                     ? t.id
-                     : std::string(trim_csv(std::string_view(entry).substr(colon + 1)));
-      if (!parse_term(t.id))
-        throw fail(fmt::format("'{}' is not a term id; accepted: {}", t.id, fmt::join(all_term_ids(), ", ")));
-      if (t.column.empty())
-        throw fail(fmt::format("term '{}' has an empty column name; accepted: <term>:<column>", t.id));
-      return t;
-    };
     for (std::size_t k = 1; k < parts.size(); ++k) {
       if (parts[k].empty()) continue;
       const std::size_t eq = parts[k].find('=');
@@ -186,56 +253,11 @@ std::optional<ObservationsHeader> observations_header(const CsvTable& table) {
                                     ? std::string()
                                     : std::string(trim_csv(std::string_view(parts[k]).substr(eq + 1)));
       if (eq == std::string::npos)
-        throw fail(fmt::format("'{}' has no value; accepted: <key>=<value>", parts[k]));
-      if (!keys.insert(key).second) throw fail(fmt::format("'{}' is given twice", key));
-      if (key == "terms") {
-        has_terms = true;
-        for (const auto& entry : split(value, ','))
-          if (!entry.empty()) h.terms.push_back(read_term(entry));
-      } else if (key == "fixed") {
-        for (const auto& entry : split(value, ',')) {
-          if (entry.empty()) continue;
-          const auto assignment = split_term_assignment(entry);
-          if (!assignment)
-            throw fail(fmt::format("fixed entry '{}' has no value; accepted: <term>:<column>=<value> <unit>",
-                                   entry));
-          ObservationsHeader::Fixed f;
-          f.term = read_term(assignment->term);
-          const auto number = parse_number(assignment->value);
-          if (!number)
-            throw fail(
-                fmt::format("fixed entry '{}': '{}' is not a finite number; accepted: "
-                            "<term>:<column>=<value> <unit>",
-                            entry, assignment->value));
-          f.value = *number;
-          f.unit = assignment->unit;
-          h.fixed.push_back(std::move(f));
-        }
-      } else if (key == "known") {
-        for (const auto& entry : split(value, ','))
-          if (!entry.empty()) h.known.push_back(entry);
-      } else if (key == "output_unit") {
-        h.output_unit = value;
-      } else if (key == "config_sha256") {
-        if (!is_sha256(value))
-          throw fail(fmt::format("config_sha256 '{}' is not a SHA-256; accepted: 64 lower-case hex digits",
-                                 value));
-        h.config_sha256 = value;
-      } else {
-        throw fail(fmt::format("unknown key '{}'; accepted: terms, fixed, known, output_unit, config_sha256",
-                               key));
-      }
+        throw at.fail(fmt::format("'{}' has no value; accepted: <key>=<value>", parts[k]));
+      if (!keys.insert(key).second) throw at.fail(fmt::format("'{}' is given twice", key));
+      read_header_entry(at, key, value, h);
     }
-    if (!has_terms || h.terms.empty()) throw fail("no free terms; accepted: terms=<term>:<column>,...");
-    std::set<std::string> ids;
-    for (const auto& t : h.terms)
-      if (!ids.insert(t.id).second) throw fail(fmt::format("term '{}' is listed twice", t.id));
-    for (const auto& f : h.fixed)
-      if (!ids.insert(f.term.id).second)
-        throw fail(fmt::format("term '{}' is listed twice (free and fixed, or fixed twice)", f.term.id));
-    for (const auto& t : h.terms)
-      if (parse_term(t.id)->kind != TermKind::power && t.column.empty())
-        throw fail(fmt::format("term '{}' needs a column", t.id));
+    check_header_terms(at, h);
     for (const auto& c : table.comments)
       if (c.text.starts_with(kLogMark))
         h.logs.push_back(read_log_line(table, c));

@@ -283,6 +283,68 @@ void drive_columns_by_differences(const Geometry& geo, const ErrorLayout& layout
   }
 }
 
+// What the paper's first-order rules of one instant take: the g-level A, the radius R0, gravity (in the
+// g-levels' g), the lever arms h = L + l and l (0 without them), the rate Ω and the platform angle's cos γ,
+// sin γ.
+struct PaperQuantities {
+  double A, R0, gravity, h, l, Omega, cg, sg;
+};
+
+// The paper's Eq.(14) for one channel of unit value v: its first-order change of a_i and of ω_IA ({0, 0} for
+// a channel the paper does not model).
+std::pair<double, double> paper_rule(int channel, double v, const PaperQuantities& q) {
+  double dai = 0.0, dwi = 0.0;
+  switch (channel) {
+    // θx group: a_i ∋ +(1 + A(L+l)/R0) θx sin γ;  ω_IA ∋ +Ω θx sin γ.
+    case ch::dthx3t:
+    case ch::dthx3:
+      dai = (q.gravity + q.A * q.h / q.R0) * q.sg * v;
+      dwi = q.Omega * q.sg * v;
+      break;
+    // θy group: a_i ∋ −(1 + A(L+l)/R0) θy cos γ;  ω_IA ∋ −Ω θy cos γ.
+    case ch::dthy2t:
+    case ch::dthy2:
+    case ch::dthy3t:
+    case ch::dthy3:
+      dai = -(q.gravity + q.A * q.h / q.R0) * q.cg * v;
+      dwi = -q.Omega * q.cg * v;
+      break;
+    case ch::dy2t:
+    case ch::dy2:
+    case ch::dy3t:
+    case ch::dy3:
+      dai = -q.A / q.R0 * q.sg * v;
+      break;
+    case ch::dthz5:
+    case ch::dthz2:
+      dai = q.A * q.sg * v;
+      break;
+    case ch::dR_s:
+    case ch::dx2:
+    case ch::dx3:
+      dai = -q.A / q.R0 * q.cg * v;
+      break;
+    case ch::arm_stretch:
+      dai = -q.A / q.R0 * q.cg * q.Omega * q.Omega;
+      break;
+    case ch::dx5:
+      dai = -q.A / q.R0;
+      break;
+    case ch::dthy4:
+      dai = -q.gravity - q.A * q.l / q.R0;
+      break;
+    case ch::dthy5:
+      dai = -q.gravity;
+      break;
+    case ch::domega:
+      dai = -2.0 * q.A / q.Omega * q.cg;
+      break;  // amplitude only: A ∝ (Ω+Δω)² (Eq.19)
+    default:
+      break;  // not in the paper's Eq.(14)
+  }
+  return {dai, dwi};
+}
+
 }  // namespace
 
 FirstOrderResult exact_first_order(const Geometry& geo, const ErrorLayout& layout, const Site& site,
@@ -331,60 +393,12 @@ FirstOrderResult paper_first_order(const Geometry& geo, const ErrorLayout& layou
   out.nominal[0] = -A * cg - coriolis * (options.constant_coriolis ? 1.0 : cg);
   out.nominal[3] = std::cos(psi) * earth.x() + std::sin(psi) * earth.y();
 
+  const PaperQuantities q{A, R0, gravity, h, l, Omega, cg, sg};
   JointTrig trig(j);
   for (int index = 0; index < layout.size(); ++index) {
     const int channel = layout.parameter_channel(index);
     const ChannelValue<double> b = basis(layout, index, j, trig);
-    const double v = b.value;
-    double dai = 0.0, dwi = 0.0;
-    switch (channel) {
-      // θx group: a_i ∋ +(1 + A(L+l)/R0) θx sin γ;  ω_IA ∋ +Ω θx sin γ.
-      case ch::dthx3t:
-      case ch::dthx3:
-        dai = (gravity + A * h / R0) * sg * v;
-        dwi = Omega * sg * v;
-        break;
-      // θy group: a_i ∋ −(1 + A(L+l)/R0) θy cos γ;  ω_IA ∋ −Ω θy cos γ.
-      case ch::dthy2t:
-      case ch::dthy2:
-      case ch::dthy3t:
-      case ch::dthy3:
-        dai = -(gravity + A * h / R0) * cg * v;
-        dwi = -Omega * cg * v;
-        break;
-      case ch::dy2t:
-      case ch::dy2:
-      case ch::dy3t:
-      case ch::dy3:
-        dai = -A / R0 * sg * v;
-        break;
-      case ch::dthz5:
-      case ch::dthz2:
-        dai = A * sg * v;
-        break;
-      case ch::dR_s:
-      case ch::dx2:
-      case ch::dx3:
-        dai = -A / R0 * cg * v;
-        break;
-      case ch::arm_stretch:
-        dai = -A / R0 * cg * Omega * Omega;
-        break;
-      case ch::dx5:
-        dai = -A / R0;
-        break;
-      case ch::dthy4:
-        dai = -gravity - A * l / R0;
-        break;
-      case ch::dthy5:
-        dai = -gravity;
-        break;
-      case ch::domega:
-        dai = -2.0 * A / Omega * cg;
-        break;  // amplitude only: A ∝ (Ω+Δω)² (Eq.19)
-      default:
-        break;  // not in the paper's Eq.(14)
-    }
+    const auto [dai, dwi] = paper_rule(channel, b.value, q);
     out.sensitivity(0, index) = dai;
     out.sensitivity(3, index) = dwi;
   }

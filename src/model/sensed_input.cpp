@@ -9,6 +9,41 @@
 
 namespace ccal {
 
+namespace {
+
+// The first-order view along the IA: the error-free value and one contribution per non-zero error
+// (sensitivity × value), which add to the first-order total.
+void add_first_order_along_ia(const FirstOrderResult& first, const Eigen::Vector3d& ia,
+                              const CentrifugeModel& centrifuge, SensedInputBreakdown& out) {
+  const ErrorLayout& layout = centrifuge.layout;
+  // IA component of a frame-5 vector (rows 0..2 or 3..5 of the first-order result). The paper's form fills
+  // only the x5 rows, which is all an IA along ±x5 needs.
+  auto along_ia = [&](const Eigen::Matrix<double, 6, 1>& v, int first_row) {
+    return ia.dot(v.segment<3>(first_row));
+  };
+  out.nominal_f_ia = along_ia(first.nominal, 0);
+  out.nominal_w_ia = along_ia(first.nominal, 3);
+  out.first_order_f_ia = out.nominal_f_ia;
+  out.first_order_w_ia = out.nominal_w_ia;
+  for (int i = 0; i < layout.size(); ++i) {
+    const double v = centrifuge.errors[i];
+    if (v == 0.0) continue;
+    const Eigen::Matrix<double, 6, 1> column = first.sensitivity.col(i);
+    ForceContribution c;
+    c.parameter = i;
+    c.id = layout.parameter_id(i);
+    c.value_si = v;
+    c.unit = std::string(unit_symbol(layout.parameter_unit(i)));
+    c.f_ia = along_ia(column, 0) * v;
+    c.w_ia = along_ia(column, 3) * v;
+    out.first_order_f_ia += c.f_ia;
+    out.first_order_w_ia += c.w_ia;
+    out.contributions.push_back(std::move(c));
+  }
+}
+
+}  // namespace
+
 SensedInputBreakdown evaluate_force(const Site& site, const CentrifugeModel& centrifuge, const Run& run,
                                     double t, ModelMode mode) {
   if (!(t >= 0.0 && t <= run.duration))
@@ -44,31 +79,7 @@ SensedInputBreakdown evaluate_force(const Site& site, const CentrifugeModel& cen
   const FirstOrderResult first = mode == ModelMode::exact
                                      ? exact_first_order(geo, layout, site, nominal, run.mode, t)
                                      : paper_first_order(geo, layout, site, nominal.at(t));
-  // IA component of a frame-5 vector (rows 0..2 or 3..5 of the first-order result). The paper's form fills
-  // only the x5 rows, which is all an IA along ±x5 needs.
-  const Eigen::Vector3d ia = M.col(0);
-  auto along_ia = [&](const Eigen::Matrix<double, 6, 1>& v, int first_row) {
-    return ia.dot(v.segment<3>(first_row));
-  };
-  out.nominal_f_ia = along_ia(first.nominal, 0);
-  out.nominal_w_ia = along_ia(first.nominal, 3);
-  out.first_order_f_ia = out.nominal_f_ia;
-  out.first_order_w_ia = out.nominal_w_ia;
-  for (int i = 0; i < layout.size(); ++i) {
-    const double v = centrifuge.errors[i];
-    if (v == 0.0) continue;
-    const Eigen::Matrix<double, 6, 1> column = first.sensitivity.col(i);
-    ForceContribution c;
-    c.parameter = i;
-    c.id = layout.parameter_id(i);
-    c.value_si = v;
-    c.unit = std::string(unit_symbol(layout.parameter_unit(i)));
-    c.f_ia = along_ia(column, 0) * v;
-    c.w_ia = along_ia(column, 3) * v;
-    out.first_order_f_ia += c.f_ia;
-    out.first_order_w_ia += c.w_ia;
-    out.contributions.push_back(std::move(c));
-  }
+  add_first_order_along_ia(first, M.col(0), centrifuge, out);
   return out;
 }
 

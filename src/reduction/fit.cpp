@@ -58,6 +58,52 @@ std::string row_text(const FitProblem& p, Index row) {
   return text;
 }
 
+// The term names: none empty, none twice, each fixed term one of them with a finite value.
+void validate_terms(const FitProblem& p) {
+  std::set<std::string> seen;
+  for (const auto& name : p.term_names) {
+    if (name.empty()) throw std::invalid_argument("fit: a term name is empty");
+    if (!seen.insert(name).second) {
+      throw std::invalid_argument(fmt::format("fit: duplicate term name \"{}\"", name));
+    }
+  }
+  for (const auto& [name, value] : p.fixed) {
+    if (seen.count(name) == 0) {
+      throw std::invalid_argument(
+          fmt::format("fit: fixed term \"{}\" is not a term of the model; valid names: {}", name,
+                      fmt::join(p.term_names, ", ")));
+    }
+    if (!std::isfinite(value)) {
+      throw std::invalid_argument(
+          fmt::format("fit: fixed term \"{}\" has the non-finite value {}", name, value));
+    }
+  }
+}
+
+// Every value of y, H and the weights finite (the weights positive too), named by its row.
+void validate_values(const FitProblem& p) {
+  const Index rows = p.H.rows();
+  const Index cols = p.H.cols();
+  for (Index i = 0; i < rows; ++i) {
+    if (!std::isfinite(p.y(i))) {
+      throw std::invalid_argument(fmt::format("fit: non-finite value {} in y at {}; accepted: finite numbers",
+                                              p.y(i), row_text(p, i)));
+    }
+    for (Index k = 0; k < cols; ++k) {
+      if (!std::isfinite(p.H(i, k))) {
+        throw std::invalid_argument(fmt::format("fit: non-finite value {} in H at {}, column {} ({}); accepted: "
+                                                "finite numbers",
+                                                p.H(i, k), row_text(p, i), k + 1,
+                                                p.term_names[static_cast<std::size_t>(k)]));
+      }
+    }
+    if (p.weights.size() != 0 && !(std::isfinite(p.weights(i)) && p.weights(i) > 0)) {
+      throw std::invalid_argument(
+          fmt::format("fit: weight {} at {} is not positive and finite", p.weights(i), row_text(p, i)));
+    }
+  }
+}
+
 void validate(const FitProblem& p, const FitOptions& o) {
   const Index rows = p.H.rows();
   const Index cols = p.H.cols();
@@ -78,42 +124,8 @@ void validate(const FitProblem& p, const FitOptions& o) {
   if (!p.row_labels.empty() && static_cast<Index>(p.row_labels.size()) != rows) {
     throw std::invalid_argument(fmt::format("fit: {} row labels for {} rows", p.row_labels.size(), rows));
   }
-  std::set<std::string> seen;
-  for (const auto& name : p.term_names) {
-    if (name.empty()) throw std::invalid_argument("fit: a term name is empty");
-    if (!seen.insert(name).second) {
-      throw std::invalid_argument(fmt::format("fit: duplicate term name \"{}\"", name));
-    }
-  }
-  for (const auto& [name, value] : p.fixed) {
-    if (seen.count(name) == 0) {
-      throw std::invalid_argument(
-          fmt::format("fit: fixed term \"{}\" is not a term of the model; valid names: {}", name,
-                      fmt::join(p.term_names, ", ")));
-    }
-    if (!std::isfinite(value)) {
-      throw std::invalid_argument(
-          fmt::format("fit: fixed term \"{}\" has the non-finite value {}", name, value));
-    }
-  }
-  for (Index i = 0; i < rows; ++i) {
-    if (!std::isfinite(p.y(i))) {
-      throw std::invalid_argument(fmt::format("fit: non-finite value {} in y at {}; accepted: finite numbers",
-                                              p.y(i), row_text(p, i)));
-    }
-    for (Index k = 0; k < cols; ++k) {
-      if (!std::isfinite(p.H(i, k))) {
-        throw std::invalid_argument(fmt::format("fit: non-finite value {} in H at {}, column {} ({}); accepted: "
-                                                "finite numbers",
-                                                p.H(i, k), row_text(p, i), k + 1,
-                                                p.term_names[static_cast<std::size_t>(k)]));
-      }
-    }
-    if (p.weights.size() != 0 && !(std::isfinite(p.weights(i)) && p.weights(i) > 0)) {
-      throw std::invalid_argument(
-          fmt::format("fit: weight {} at {} is not positive and finite", p.weights(i), row_text(p, i)));
-    }
-  }
+  validate_terms(p);
+  validate_values(p);
   if (!(std::isfinite(o.rank_tolerance) && o.rank_tolerance >= 0)) {
     throw std::invalid_argument("fit: rank_tolerance must be finite and >= 0");
   }

@@ -174,6 +174,59 @@ std::string vanishing_reason(const TermSpec& t, const std::string& id, double la
   return reason;
 }
 
+// Term k's regressor at its natural size: the input to its degree (x^n), or for a rate term the run's rate
+// scale (else |H|), so that `fraction` compares what only it explains with its own size.
+Eigen::VectorXd natural_regressor(const ObservabilityProblem& p, Index k, const TermSpec& spec, int degree,
+                                  const Eigen::VectorXd& x) {
+  const Index rows = p.H.rows();
+  Eigen::VectorXd natural(rows);
+  for (Index j = 0; j < rows; ++j) {
+    if (spec.kind == TermKind::rate) {
+      const double w = p.runs.empty() ? 0.0 : p.runs[static_cast<std::size_t>(j)].rate_scale;
+      natural(j) = w > 0 ? w : std::abs(p.H(j, k));
+    } else {
+      natural(j) = std::pow(x(j), degree);
+    }
+  }
+  return natural;
+}
+
+// Why term k cannot be told from the data, and what would: its column vanishes (averaged out by the plan), or
+// the other terms' columns explain it (named in aliased_with).
+void explain_unobservable(const ObservabilityProblem& p, Index k, const TermSpec& spec,
+                          const Projection& plain, double natural_max, double limit, bool whole_revolutions,
+                          TermObservability& t) {
+  const Index m = p.H.cols();
+  t.status = TermStatus::unobservable;
+  if (!(t.column_norm > limit)) {
+    t.reason =
+        vanishing_reason(spec, t.term, p.H.col(k).cwiseAbs().maxCoeff(), natural_max, whole_revolutions);
+    t.fix = whole_revolutions
+                ? fmt::format(
+                      "end the runs part-way through a revolution (change the durations so that "
+                      "Omega*T/2pi is not a whole number) or fix {}",
+                      t.term)
+                : fmt::format(
+                      "change the plan (g-levels, mountings, platform mode or durations) so that {} "
+                      "does not average out, or fix {}",
+                      regressor_text(spec), t.term);
+  } else {
+    // The column is there but the others explain it: name those that carry it.
+    const double largest = plain.weights.size() ? plain.weights.cwiseAbs().maxCoeff() : 0.0;
+    for (Index c = 0, other = 0; c < m; ++c) {
+      if (c == k) continue;
+      if (std::abs(plain.weights(other++)) > 0.1 * largest)
+        t.aliased_with.push_back(p.terms[static_cast<std::size_t>(c)]);
+    }
+    t.reason = fmt::format(
+        "its column is a combination of those of {} up to round-off (what only {} explains is {:.2g} of "
+        "its size)",
+        detail::join_names(t.aliased_with), t.term, t.sensitivity / t.column_norm);
+    t.fix = fmt::format("add runs that separate {} from {} (other g-levels or mountings), or fix {}", t.term,
+                        detail::join_names(t.aliased_with), t.term);
+  }
+}
+
 }  // namespace
 
 std::string_view term_status_name(TermStatus status) noexcept {
@@ -234,15 +287,7 @@ ObservabilityResult assess_observability(const ObservabilityProblem& p, const Ob
     t.term = p.terms[static_cast<std::size_t>(k)];
     const TermSpec spec = parse_term(t.term).value();
     t.degree = term_degree(spec);
-    Eigen::VectorXd natural(rows);
-    for (Index j = 0; j < rows; ++j) {
-      if (spec.kind == TermKind::rate) {
-        const double w = p.runs.empty() ? 0.0 : p.runs[static_cast<std::size_t>(j)].rate_scale;
-        natural(j) = w > 0 ? w : std::abs(p.H(j, k));
-      } else {
-        natural(j) = std::pow(x(j), t.degree);
-      }
-    }
+    const Eigen::VectorXd natural = natural_regressor(p, k, spec, t.degree, x);
     t.column_norm = p.H.col(k).norm();
     t.natural_norm = natural.norm();
     const Projection plain = project_out_others(p.H, k);
@@ -256,34 +301,7 @@ ObservabilityResult assess_observability(const ObservabilityProblem& p, const Ob
 
     const double limit = o.roundoff_fraction * t.natural_norm;
     if (!(t.sensitivity > limit) || !std::isfinite(t.standard_error)) {
-      t.status = TermStatus::unobservable;
-      if (!(t.column_norm > limit)) {
-        t.reason = vanishing_reason(spec, t.term, p.H.col(k).cwiseAbs().maxCoeff(), natural.maxCoeff(),
-                                    result.whole_revolutions);
-        t.fix = result.whole_revolutions
-                    ? fmt::format(
-                          "end the runs part-way through a revolution (change the durations so that "
-                          "Omega*T/2pi is not a whole number) or fix {}",
-                          t.term)
-                    : fmt::format(
-                          "change the plan (g-levels, mountings, platform mode or durations) so that {} "
-                          "does not average out, or fix {}",
-                          regressor_text(spec), t.term);
-      } else {
-        // The column is there but the others explain it: name those that carry it.
-        const double largest = plain.weights.size() ? plain.weights.cwiseAbs().maxCoeff() : 0.0;
-        for (Index c = 0, other = 0; c < m; ++c) {
-          if (c == k) continue;
-          if (std::abs(plain.weights(other++)) > 0.1 * largest)
-            t.aliased_with.push_back(p.terms[static_cast<std::size_t>(c)]);
-        }
-        t.reason = fmt::format(
-            "its column is a combination of those of {} up to round-off (what only {} explains is {:.2g} of "
-            "its size)",
-            detail::join_names(t.aliased_with), t.term, t.sensitivity / t.column_norm);
-        t.fix = fmt::format("add runs that separate {} from {} (other g-levels or mountings), or fix {}",
-                            t.term, detail::join_names(t.aliased_with), t.term);
-      }
+      explain_unobservable(p, k, spec, plain, natural.maxCoeff(), limit, result.whole_revolutions, t);
     } else if (p.reference.size() != 0 && p.reference(k) != 0 &&
                std::abs(p.reference(k)) < t.min_detectable) {
       t.status = TermStatus::weak;

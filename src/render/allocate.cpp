@@ -204,6 +204,90 @@ std::string text_of(const Config& cfg, const AllocationDetail& r, const Allocate
   return out;
 }
 
+// A coefficient in its display unit: its target, U configured, allocated and at one common scale, and the
+// cross terms' share of u² at the allocated tolerances; held or grown without a target, active with its price
+// with one; the Monte Carlo's figures when the verification ran (and its verdict on a target).
+nlohmann::ordered_json allocated_coefficient_json(const AllocatedCoefficient& c, bool verified) {
+  const double f = c.display_scale;
+  nlohmann::ordered_json o;
+  o["unit"] = c.unit;
+  o["target"] = c.has_target ? nlohmann::ordered_json(c.target * f) : nlohmann::ordered_json(nullptr);
+  o["configured_expanded"] = c.configured_expanded * f;
+  o["allocated_expanded"] = c.allocated_expanded * f;
+  o["common_scale_expanded"] = c.common_expanded * f;
+  o["allocated_std_uncertainty"] = c.lpu_std * f;
+  o["correlation_share"] = c.correlation_share;  // the cross terms' share of u² at the allocated tolerances
+  if (!c.has_target) {
+    o["held"] = c.held;
+    o["grew"] = c.grew;
+  }
+  if (c.has_target) {
+    o["active"] = c.active;
+    o["multiplier"] = c.multiplier;
+    o["objective_per_ln_target"] = c.price;
+  }
+  if (verified) {
+    o["mc"] = {{"mean", c.mc_mean * f},
+               {"std_dev", c.mc_std * f},
+               {"symmetric_interval", {c.mc_low * f, c.mc_high * f}},
+               {"half_width", c.mc_half_width * f}};
+    if (c.has_target) o["verdict"] = verdict_name(c.verdict);
+  }
+  return o;
+}
+
+// The coefficients without a target whose U grew (--let-others-grow), configured and allocated.
+nlohmann::ordered_json allocation_grown_json(const AllocationDetail& r) {
+  nlohmann::ordered_json grown = nlohmann::ordered_json::array();
+  for (const AllocatedCoefficient& c : r.coefficients)
+    if (c.grew)
+      grown.push_back({{"id", c.id},
+                       {"unit", c.unit},
+                       {"configured_expanded", c.configured_expanded * c.display_scale},
+                       {"allocated_expanded", c.allocated_expanded * c.display_scale}});
+  return grown;
+}
+
+// The source of rank `rank` (0-based): its bounds and uncertainties in SI, its scale, its [tolerances] entry
+// and its share of each target's variance.
+nlohmann::ordered_json allocated_source_json(const Config& cfg, const AllocationDetail& r, std::size_t rank) {
+  const AllocatedSource& a = r.sources[rank];
+  nlohmann::ordered_json o;
+  o["id"] = a.id;
+  o["rank"] = rank + 1;
+  o["unit_si"] = describe_input(cfg, a.parameter).si_unit;
+  o["distribution"] = distribution_name(a.distribution);
+  o["group"] = a.group;
+  o["cost"] = a.cost;
+  o["bound_si"] = a.bound;
+  o["allocated_bound_si"] = a.allocated_bound;
+  o["standard_uncertainty_si"] = a.standard_uncertainty;
+  o["allocated_standard_uncertainty_si"] = a.allocated_standard_uncertainty;
+  o["scale"] = a.scale;
+  o["floor_si"] = a.floor;
+  o["at_floor"] = a.at_floor;
+  o["toml"] = toml_entry(a, cfg);
+  nlohmann::ordered_json share = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < r.targets.size(); ++i)
+    share[r.coefficients[r.targets[i]].id] = a.share[Eigen::Index(i)];
+  o["share"] = share;
+  return o;
+}
+
+// The Monte Carlo verification, null when it did not run.
+nlohmann::ordered_json allocation_verification_json(const AllocationVerification& v) {
+  if (v.trials == 0) return nullptr;
+  return {{"trials", v.trials},
+          {"seed", v.seed},
+          {"threads", v.threads},
+          {"wall_time_s", v.seconds},
+          {"half_width_rel_error", v.half_width_rel_error},
+          {"std_rel_error", v.std_rel_error},
+          {"allowance", v.allowance},
+          {"passed", v.passed},
+          {"notes", detail::lines_of(v.notes)}};
+}
+
 std::string json_of(const Config& cfg, const AllocationDetail& r) {
   nlohmann::ordered_json j;
   j["command"] = "allocate";
@@ -226,81 +310,14 @@ std::string json_of(const Config& cfg, const AllocationDetail& r) {
                  {"converged", r.converged},
                  {"dual_gap", r.dual_gap}};
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
-  for (const AllocatedCoefficient& c : r.coefficients) {
-    const double f = c.display_scale;
-    nlohmann::ordered_json o;
-    o["unit"] = c.unit;
-    o["target"] = c.has_target ? nlohmann::ordered_json(c.target * f) : nlohmann::ordered_json(nullptr);
-    o["configured_expanded"] = c.configured_expanded * f;
-    o["allocated_expanded"] = c.allocated_expanded * f;
-    o["common_scale_expanded"] = c.common_expanded * f;
-    o["allocated_std_uncertainty"] = c.lpu_std * f;
-    o["correlation_share"] = c.correlation_share;  // the cross terms' share of u² at the allocated tolerances
-    if (!c.has_target) {
-      o["held"] = c.held;
-      o["grew"] = c.grew;
-    }
-    if (c.has_target) {
-      o["active"] = c.active;
-      o["multiplier"] = c.multiplier;
-      o["objective_per_ln_target"] = c.price;
-    }
-    if (r.verification.trials > 0) {
-      o["mc"] = {{"mean", c.mc_mean * f},
-                 {"std_dev", c.mc_std * f},
-                 {"symmetric_interval", {c.mc_low * f, c.mc_high * f}},
-                 {"half_width", c.mc_half_width * f}};
-      if (c.has_target) o["verdict"] = verdict_name(c.verdict);
-    }
-    coefficients[c.id] = o;
-  }
-  j["coefficients"] = coefficients;
-  nlohmann::ordered_json grown = nlohmann::ordered_json::array();
   for (const AllocatedCoefficient& c : r.coefficients)
-    if (c.grew)
-      grown.push_back({{"id", c.id},
-                       {"unit", c.unit},
-                       {"configured_expanded", c.configured_expanded * c.display_scale},
-                       {"allocated_expanded", c.allocated_expanded * c.display_scale}});
-  j["grown"] = grown;
+    coefficients[c.id] = allocated_coefficient_json(c, r.verification.trials > 0);
+  j["coefficients"] = coefficients;
+  j["grown"] = allocation_grown_json(r);
   nlohmann::ordered_json sources = nlohmann::ordered_json::array();
-  for (std::size_t s = 0; s < r.sources.size(); ++s) {
-    const AllocatedSource& a = r.sources[s];
-    nlohmann::ordered_json o;
-    o["id"] = a.id;
-    o["rank"] = s + 1;
-    o["unit_si"] = describe_input(cfg, a.parameter).si_unit;
-    o["distribution"] = distribution_name(a.distribution);
-    o["group"] = a.group;
-    o["cost"] = a.cost;
-    o["bound_si"] = a.bound;
-    o["allocated_bound_si"] = a.allocated_bound;
-    o["standard_uncertainty_si"] = a.standard_uncertainty;
-    o["allocated_standard_uncertainty_si"] = a.allocated_standard_uncertainty;
-    o["scale"] = a.scale;
-    o["floor_si"] = a.floor;
-    o["at_floor"] = a.at_floor;
-    o["toml"] = toml_entry(a, cfg);
-    nlohmann::ordered_json share = nlohmann::ordered_json::object();
-    for (std::size_t i = 0; i < r.targets.size(); ++i)
-      share[r.coefficients[r.targets[i]].id] = a.share[Eigen::Index(i)];
-    o["share"] = share;
-    sources.push_back(o);
-  }
+  for (std::size_t s = 0; s < r.sources.size(); ++s) sources.push_back(allocated_source_json(cfg, r, s));
   j["sources"] = sources;
-  const AllocationVerification& v = r.verification;
-  if (v.trials > 0)
-    j["verification"] = {{"trials", v.trials},
-                         {"seed", v.seed},
-                         {"threads", v.threads},
-                         {"wall_time_s", v.seconds},
-                         {"half_width_rel_error", v.half_width_rel_error},
-                         {"std_rel_error", v.std_rel_error},
-                         {"allowance", v.allowance},
-                         {"passed", v.passed},
-                         {"notes", detail::lines_of(v.notes)}};
-  else
-    j["verification"] = nullptr;
+  j["verification"] = allocation_verification_json(r.verification);
   return j.dump(2) + "\n";
 }
 

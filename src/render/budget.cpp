@@ -171,16 +171,17 @@ std::string json_of(const Config& cfg, const BudgetDetail& r, const verbs::Obser
   return j.dump(2) + "\n";
 }
 
-std::string csv_of(const Config& cfg, const BudgetDetail& r, const Eigen::VectorXd& known_bias) {
+// The CSV's header: per coefficient its d<K> columns (total, force and rate parts) and share; the source as
+// configured with c_i per its unit (u_i(y) = c_i u(x_i)); the further columns of EA-4/02 (the evaluation's
+// type, ν_i ("inf"), the divisor, x_i in that unit and in SI, the unit of each c_i); with [[correlations]]
+// the inputs' correlation matrix, a column r_<id> per source (tolerance order).
+std::string budget_csv_header(const BudgetDetail& r, std::size_t correlation_columns) {
   const std::size_t nk = r.coefficients.size();
   std::string out = "rank,source,group,distribution,bound_si,unit_si,standard_uncertainty_si";
   for (std::size_t k = 0; k < nk; ++k)
     out += fmt::format(",{},{},{},share_{}", csv_column("d" + r.coefficients[k], r.units[k]),
                        csv_column("d" + r.coefficients[k] + "_force", r.units[k]),
                        csv_column("d" + r.coefficients[k] + "_rate", r.units[k]), r.coefficients[k]);
-  // The source as configured, and c_i per that unit (u_i(y) = c_i u(x_i)); then the further columns of
-  // EA-4/02: the evaluation's type, ν_i ("inf"), the divisor, x_i in that unit and in SI, the unit of each
-  // c_i.
   out += ",name,unit,bound,u_x";
   for (std::size_t k = 0; k < nk; ++k) {
     out += ',';  // (not "," + …: GCC 12 warns of an overlap in that concatenation, -Wrestrict, falsely)
@@ -188,63 +189,76 @@ std::string csv_of(const Config& cfg, const BudgetDetail& r, const Eigen::Vector
   }
   out += ",type,dof,divisor,estimate,estimate_si";
   for (std::size_t k = 0; k < nk; ++k) out += fmt::format(",c_{}_unit", r.coefficients[k]);
-  // With [[correlations]]: the inputs' correlation matrix, a column r_<id> per source (tolerance order), each
-  // source's row of R in its line; the other lines leave them empty.
-  const bool correlated = r.input_correlation.size() > 0;
-  const std::size_t nr = correlated ? r.sources.size() : 0;
-  for (std::size_t s = 0; s < nr; ++s) out += ",r_" + r.sources[s].id;
-  out += "\n";
-  const std::string no_correlations(nr, ',');
-  // The columns from `name` on, of a source or a drive's rate noise.
-  const auto as_configured = [&](const SourceView& view, const auto& c) {
-    std::string line =
-        fmt::format(",{},{},{:.17g},{:.17g}", csv_field(view.name), csv_field(view.unit), view.bound, view.u);
-    for (std::size_t k = 0; k < nk; ++k) line += fmt::format(",{:.17g}", c(k));
-    line += fmt::format(",{},{:.17g},{:.17g},{:.17g},{:.17g}", view.type, view.dof, view.divisor,
-                        view.estimate, view.estimate_si);
-    for (std::size_t k = 0; k < nk; ++k) line += fmt::format(",{}", csv_field(sensitivity_unit(r, k, view)));
-    return line;
-  };
-  const auto correlation_row = [&](std::size_t s) {
-    std::string line;
-    for (std::size_t t = 0; t < nr; ++t)
-      line += fmt::format(",{:.17g}", r.input_correlation(Eigen::Index(s), Eigen::Index(t)));
-    return line + "\n";
-  };
-  for (std::size_t s : by_rank(r)) {
-    const SourceBudget& b = r.sources[s];
-    const SourceView view = source_view(cfg, b);
-    out += fmt::format(
-        "{},{},{},{},{:.17g},{},{:.17g}", b.rank, b.id, csv_field(b.group), distribution_name(b.distribution),
-        b.bound, describe_input(cfg, b.parameter).si_unit, b.standard_uncertainty);
-    for (std::size_t k = 0; k < nk; ++k) {
-      const auto i = Eigen::Index(k);
-      out += fmt::format(",{:.17g},{:.17g},{:.17g},{:.17g}", b.effect[i] * r.display_scale[k],
-                         b.effect_force[i] * r.display_scale[k], b.effect_rate[i] * r.display_scale[k],
-                         b.share[i]);
-    }
-    out += as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, b, view, k); }) +
-           correlation_row(s);
+  for (std::size_t s = 0; s < correlation_columns; ++s) out += ",r_" + r.sources[s].id;
+  return out + "\n";
+}
+
+// The columns from `name` on, of a source or a drive's rate noise; sensitivity(k) is c_i of coefficient k.
+template <class Sensitivity>
+std::string as_configured_columns(const BudgetDetail& r, const SourceView& view,
+                                  const Sensitivity& sensitivity) {
+  const std::size_t nk = r.coefficients.size();
+  std::string line =
+      fmt::format(",{},{},{:.17g},{:.17g}", csv_field(view.name), csv_field(view.unit), view.bound, view.u);
+  for (std::size_t k = 0; k < nk; ++k) line += fmt::format(",{:.17g}", sensitivity(k));
+  line += fmt::format(",{},{:.17g},{:.17g},{:.17g},{:.17g}", view.type, view.dof, view.divisor, view.estimate,
+                      view.estimate_si);
+  for (std::size_t k = 0; k < nk; ++k) line += fmt::format(",{}", csv_field(sensitivity_unit(r, k, view)));
+  return line;
+}
+
+// A source's line: its d<K> columns in the display units, as configured, and its row of the correlation
+// matrix (the first `correlation_columns` of it: none without [[correlations]]).
+std::string budget_source_csv_line(const Config& cfg, const BudgetDetail& r, std::size_t s,
+                                   std::size_t correlation_columns) {
+  const SourceBudget& b = r.sources[s];
+  const SourceView view = source_view(cfg, b);
+  std::string out = fmt::format("{},{},{},{},{:.17g},{},{:.17g}", b.rank, b.id, csv_field(b.group),
+                                distribution_name(b.distribution), b.bound,
+                                describe_input(cfg, b.parameter).si_unit, b.standard_uncertainty);
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
+    const auto i = Eigen::Index(k);
+    out += fmt::format(",{:.17g},{:.17g},{:.17g},{:.17g}", b.effect[i] * r.display_scale[k],
+                       b.effect_force[i] * r.display_scale[k], b.effect_rate[i] * r.display_scale[k],
+                       b.share[i]);
   }
-  // The drives' rate noise (Type A: u, no sign), then the totals and the round-off floor in the d<K> columns.
-  const auto row = [&](const std::string& source, const std::string& distribution, const Eigen::VectorXd& v,
-                       const Eigen::VectorXd* share) {
-    std::string line = fmt::format(",{},,{},,,", source, distribution);
-    for (std::size_t k = 0; k < nk; ++k) {
-      const auto i = Eigen::Index(k);
-      line += fmt::format(",{:.17g},,,", v[i] * r.display_scale[k]);
-      if (share) line += fmt::format("{:.17g}", (*share)[i]);
-    }
-    return line;
-  };
+  out += as_configured_columns(r, view, [&](std::size_t k) { return sensitivity_per_unit(r, b, view, k); });
+  for (std::size_t t = 0; t < correlation_columns; ++t)
+    out += fmt::format(",{:.17g}", r.input_correlation(Eigen::Index(s), Eigen::Index(t)));
+  return out + "\n";
+}
+
+// A line of per-coefficient values in the d<K> columns (display units), with their shares when given; the
+// columns up to the first d<K> hold the name and the distribution.
+std::string budget_value_row(const BudgetDetail& r, const std::string& source,
+                             const std::string& distribution, const Eigen::VectorXd& v,
+                             const Eigen::VectorXd* share) {
+  std::string line = fmt::format(",{},,{},,,", source, distribution);
+  for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
+    const auto i = Eigen::Index(k);
+    line += fmt::format(",{:.17g},,,", v[i] * r.display_scale[k]);
+    if (share) line += fmt::format("{:.17g}", (*share)[i]);
+  }
+  return line;
+}
+
+// After the sources: the drives' rate noise (Type A: u, no sign), the cross terms' part of u² in the share
+// columns with [[correlations]] (negative where effects cancel), then the totals and the round-off floor in
+// the d<K> columns, each line's further columns empty.
+std::string budget_closing_csv_lines(const BudgetDetail& r, const Eigen::VectorXd& known_bias,
+                                     std::size_t correlation_columns) {
+  const std::size_t nk = r.coefficients.size();
+  const std::string no_correlations(correlation_columns, ',');
   const std::string blank = std::string(4 + nk + 5 + nk, ',') + no_correlations + "\n";  // name …: empty
+  std::string out;
   for (const RateNoiseBudget& n : r.rate_noise) {
     const SourceView view = rate_noise_view(n);
-    out += row(n.id, "normal (Type A)", n.effect, &n.share) +
-           as_configured(view, [&](std::size_t k) { return sensitivity_per_unit(r, n, view, k); }) +
-           no_correlations + "\n";
+    out +=
+        budget_value_row(r, n.id, "normal (Type A)", n.effect, &n.share) +
+        as_configured_columns(r, view, [&](std::size_t k) { return sensitivity_per_unit(r, n, view, k); }) +
+        no_correlations + "\n";
   }
-  if (correlated) {  // the cross terms' part of u² in the share columns (negative where effects cancel)
+  if (r.input_correlation.size() > 0) {
     const Eigen::VectorXd cross = correlation_variance(r);
     std::string line = ",correlations_between_sources,,,,,";
     for (std::size_t k = 0; k < nk; ++k) {
@@ -253,15 +267,25 @@ std::string csv_of(const Config& cfg, const BudgetDetail& r, const Eigen::Vector
     }
     out += line + blank;
   }
-  out += row("total_standard_uncertainty", "", r.standard_uncertainty, nullptr) + blank;
-  out += row("expanded_uncertainty", csv_field(coverage_text(r.coverage)), r.expanded_uncertainty, nullptr) +
+  out += budget_value_row(r, "total_standard_uncertainty", "", r.standard_uncertainty, nullptr) + blank;
+  out += budget_value_row(r, "expanded_uncertainty", csv_field(coverage_text(r.coverage)),
+                          r.expanded_uncertainty, nullptr) +
          blank;
-  if (known_bias.size()) out += row("known_error_bias", "", known_bias, nullptr) + blank;
+  if (known_bias.size()) out += budget_value_row(r, "known_error_bias", "", known_bias, nullptr) + blank;
   // |dK| below it is round-off of the derivatives (the tables show 0): kRoundOffFloor of each total.
-  out += row("round_off_floor", fmt::format("{:g} of total_standard_uncertainty", kRoundOffFloor),
-             Eigen::VectorXd(kRoundOffFloor * r.standard_uncertainty), nullptr) +
+  out += budget_value_row(r, "round_off_floor",
+                          fmt::format("{:g} of total_standard_uncertainty", kRoundOffFloor),
+                          Eigen::VectorXd(kRoundOffFloor * r.standard_uncertainty), nullptr) +
          blank;
   return out;
+}
+
+// The budget as one CSV table: a line per source by rank, then budget_closing_csv_lines.
+std::string csv_of(const Config& cfg, const BudgetDetail& r, const Eigen::VectorXd& known_bias) {
+  const std::size_t correlation_columns = r.input_correlation.size() > 0 ? r.sources.size() : 0;
+  std::string out = budget_csv_header(r, correlation_columns);
+  for (std::size_t s : by_rank(r)) out += budget_source_csv_line(cfg, r, s, correlation_columns);
+  return out + budget_closing_csv_lines(r, known_bias, correlation_columns);
 }
 
 }  // namespace

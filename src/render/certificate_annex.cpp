@@ -27,12 +27,8 @@ std::string input_distribution(const Doc& budget, const std::string& id) {
   return "";
 }
 
-}  // namespace
-
-std::string budget_annex(const Doc& doc, const Doc& budget) {
-  const Json& st = doc.json["statement"];
-  std::vector<std::string> ids;
-  for (const auto& [id, c] : st["coefficients"].items()) ids.push_back(id);
+// The table's two header rows: the input's columns, then a pair (c_i, u_i) under each coefficient.
+std::pair<std::string, std::string> annex_header(const Json& st, const std::vector<std::string>& ids) {
   std::string head =
       "<tr><th rowspan=\"2\">input quantity</th><th rowspan=\"2\">type, evaluated from</th>"
       "<th rowspan=\"2\">u(x<sub>i</sub>)</th>";
@@ -42,10 +38,17 @@ std::string budget_annex(const Doc& doc, const Doc& budget) {
                         unit_html(st["coefficients"][id]["unit"].get<std::string>()));
     sub += "<th>c<sub>i</sub></th><th>u<sub>i</sub></th>";
   }
+  return {head, sub};
+}
+
+// A row per Type B input that acts on some coefficient beyond the derivatives' round-off (kRoundOffFloor of
+// its u_c): its name, type and distribution, u(x_i), and c_i, u_i = |c_i| u(x_i) per coefficient. `silent`
+// counts the others.
+std::string annex_input_rows(const Json& st, const std::vector<std::string>& ids, const Doc& budget,
+                             int& silent) {
   std::string rows;
-  int silent = 0;
   for (const Json& in : st["inputs"]) {
-    bool acts = false;  // on some coefficient beyond the derivatives' round-off (kRoundOffFloor of its u_c)
+    bool acts = false;
     for (const std::string& id : ids)
       acts =
           acts || std::abs(in["effect"][id].get<double>()) >=
@@ -69,7 +72,12 @@ std::string budget_annex(const Doc& doc, const Doc& budget) {
     }
     rows += "</tr>\n";
   }
-  // Type A, then the combination per coefficient.
+  return rows;
+}
+
+// Type A, then the combination per coefficient: u_c, ν_eff, k (none for a Monte Carlo interval), U as the
+// statement rounds it (or the Monte Carlo's interval) and how the interval is obtained; each row unclosed.
+std::vector<std::string> annex_total_rows(const Json& st, const std::vector<std::string>& ids) {
   std::string type_a =
       "<tr><td>noise of the run means (instrument and drives)</td><td>A, this test</td><td "
       "class=\"num\">–</td>";
@@ -96,6 +104,19 @@ std::string budget_annex(const Doc& doc, const Doc& budget) {
                        : escape(c["rounded"]["expanded_uncertainty"].get<std::string>()));
     method += fmt::format("<td colspan=\"2\" data-method=\"{}\">{}</td>", escape(id), method_html(c));
   }
+  return {type_a, combined, dof, k_row, expanded, method};
+}
+
+}  // namespace
+
+std::string budget_annex(const Doc& doc, const Doc& budget) {
+  const Json& st = doc.json["statement"];
+  std::vector<std::string> ids;
+  for (const auto& [id, c] : st["coefficients"].items()) ids.push_back(id);
+  const auto [head, sub] = annex_header(st, ids);
+  int silent = 0;
+  const std::string rows = annex_input_rows(st, ids, budget, silent);
+  const std::vector<std::string> totals = annex_total_rows(st, ids);
   return fmt::format(
       "<section id=\"annex-budget\" class=\"annex\"><h2>Annex A: Uncertainty budget</h2>\n<p>Per "
       "coefficient, each "
@@ -111,7 +132,7 @@ std::string budget_annex(const Doc& doc, const Doc& budget) {
       silent > 0 ? fmt::format(" {} further inputs contribute nothing to any coefficient and are not listed.",
                                silent)
                  : std::string(),
-      head, sub, rows, type_a, combined, dof, k_row, expanded, method);
+      head, sub, rows, totals[0], totals[1], totals[2], totals[3], totals[4], totals[5]);
 }
 
 std::string runs_annex(const verbs::ReportResult& r, const Doc& doc) {

@@ -265,24 +265,8 @@ std::string text(const verbs::DesignResult& r) {
 
 namespace {
 
-nlohmann::ordered_json json_object(const verbs::DesignResult& r) {
-  nlohmann::ordered_json j;
-  j["command"] = "design";
-  j["ccal_version"] = version();
-  j["config"] = r.config.source;
-  j["objective"] = objective_name(r.objective);
-  j["candidates"] = r.candidates;
-  j["free"] = r.space.free;
-  j["kept"] = r.space.fixed;
-  j["total_time_limit_s"] = r.space.total_time;
-  j["objective_value"] = {{"configured", r.configured_objective},
-                          {"designed", r.designed_objective},
-                          {"grid", r.search.grid_objective}};
-  j["search"] = {
-      {"starts", r.search.start_objectives.size()}, {"best_start", r.search.start + 1},
-      {"plans_scored", r.search.evaluations},       {"runs_refined", r.search.row_evaluations},
-      {"cache_seconds", r.cache_seconds},           {"candidates_from_cache", r.candidates_from_cache},
-      {"search_seconds", r.search_seconds}};
+// The designed plan's runs: g-level, duration, the initial and terminal phase and the arm's azimuth (rad).
+nlohmann::ordered_json designed_runs_json(const verbs::DesignResult& r) {
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
   for (const Run& run : r.designed.plan.runs) {
     nlohmann::ordered_json o;
@@ -296,8 +280,12 @@ nlohmann::ordered_json json_object(const verbs::DesignResult& r) {
     o["platform"] = platform_mode_name(run.mode);
     runs.push_back(o);
   }
-  j["designed_plan"] = runs;
-  j["run_sheet"] = run_sheet_json(r);
+  return runs;
+}
+
+// Per coefficient in its display unit: its weight and reference in the objective, u and U of the configured
+// and the designed plan by the full budget, and U of the tolerances alone.
+nlohmann::ordered_json design_coefficients_json(const verbs::DesignResult& r) {
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
   const ccal::BudgetDetail& b0 = r.before.budget;
   const ccal::BudgetDetail& b1 = r.after.budget;
@@ -317,8 +305,12 @@ nlohmann::ordered_json json_object(const verbs::DesignResult& r) {
     o["designed_tolerance_expanded"] = r.tolerance_after[kk] * f;
     coefficients[b0.coefficients[k]] = o;
   }
-  j["coefficients"] = coefficients;
-  j["mechanism"] = r.mechanism;
+  return coefficients;
+}
+
+// The trade-off curve: per total time limit, the time the plan uses and each coefficient's U (display unit).
+nlohmann::ordered_json design_tradeoff_json(const verbs::DesignResult& r) {
+  const ccal::BudgetDetail& b0 = r.before.budget;
   nlohmann::ordered_json curve = nlohmann::ordered_json::array();
   for (const auto& p : r.tradeoff) {
     nlohmann::ordered_json o;
@@ -330,16 +322,45 @@ nlohmann::ordered_json json_object(const verbs::DesignResult& r) {
     o["expanded"] = u;
     curve.push_back(o);
   }
-  j["tradeoff"] = curve;
-  if (r.verification) {
-    nlohmann::ordered_json v = nlohmann::ordered_json::object();
-    const auto& mc = r.verification->monte_carlo;
-    v["trials"] = mc.trials;
-    for (std::size_t k = 0; k < b1.coefficients.size(); ++k)
-      v[b1.coefficients[k]] = {{"mc_std_uncertainty", mc.outputs[k].std_dev * b1.display_scale[k]},
-                               {"lpu_std_uncertainty", mc.outputs[k].lpu_std * b1.display_scale[k]}};
-    j["verification"] = v;
-  }
+  return curve;
+}
+
+// The Monte Carlo check of the designed plan: M, and per coefficient its u against the LPU's.
+nlohmann::ordered_json design_verification_json(const verbs::DesignResult& r) {
+  const ccal::BudgetDetail& b1 = r.after.budget;
+  nlohmann::ordered_json v = nlohmann::ordered_json::object();
+  const auto& mc = r.verification->monte_carlo;
+  v["trials"] = mc.trials;
+  for (std::size_t k = 0; k < b1.coefficients.size(); ++k)
+    v[b1.coefficients[k]] = {{"mc_std_uncertainty", mc.outputs[k].std_dev * b1.display_scale[k]},
+                             {"lpu_std_uncertainty", mc.outputs[k].lpu_std * b1.display_scale[k]}};
+  return v;
+}
+
+nlohmann::ordered_json json_object(const verbs::DesignResult& r) {
+  nlohmann::ordered_json j;
+  j["command"] = "design";
+  j["ccal_version"] = version();
+  j["config"] = r.config.source;
+  j["objective"] = objective_name(r.objective);
+  j["candidates"] = r.candidates;
+  j["free"] = r.space.free;
+  j["kept"] = r.space.fixed;
+  j["total_time_limit_s"] = r.space.total_time;
+  j["objective_value"] = {{"configured", r.configured_objective},
+                          {"designed", r.designed_objective},
+                          {"grid", r.search.grid_objective}};
+  j["search"] = {
+      {"starts", r.search.start_objectives.size()}, {"best_start", r.search.start + 1},
+      {"plans_scored", r.search.evaluations},       {"runs_refined", r.search.row_evaluations},
+      {"cache_seconds", r.cache_seconds},           {"candidates_from_cache", r.candidates_from_cache},
+      {"search_seconds", r.search_seconds}};
+  j["designed_plan"] = designed_runs_json(r);
+  j["run_sheet"] = run_sheet_json(r);
+  j["coefficients"] = design_coefficients_json(r);
+  j["mechanism"] = r.mechanism;
+  j["tradeoff"] = design_tradeoff_json(r);
+  if (r.verification) j["verification"] = design_verification_json(r);
   return j;
 }
 

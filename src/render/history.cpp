@@ -63,6 +63,87 @@ std::string setups_text(const verbs::HistoryShowResult& r) {
   return out;
 }
 
+// Calibration i of the history: its record, its set-up and what it shares, its supersession, its
+// coefficients.
+Json calibration_json(const verbs::HistoryShowResult& r, std::size_t i) {
+  const HistoryRecord& rec = r.records[i];
+  Json c{{"id", rec.id},
+         {"date", rec.date},
+         {"instrument", rec.instrument},
+         {"ccal_version", rec.ccal_version},
+         {"config", rec.config},
+         {"statement_sha256", rec.statement_sha256},
+         {"added_at", rec.added_at},
+         {"certificate_number", rec.certificate_number},
+         {"setup", verbs::setup_label(r.setup_of[i])},
+         {"setup_sha256", rec.shared ? Json(rec.shared->setup_sha256) : Json(nullptr)},
+         {"shared_known", rec.shared.has_value()}};
+  if (!rec.superseded_reason.empty())
+    c["superseded"] = {{"by", rec.superseded_by ? Json(*rec.superseded_by) : Json(nullptr)},
+                       {"reason", rec.superseded_reason}};
+  c["coefficients"] = Json::object();
+  for (const HistoryCoefficient& k : rec.coefficients)
+    c["coefficients"][k.name] = {{"unit", k.unit},
+                                 {"value", k.value},
+                                 {"expanded_uncertainty", k.expanded},
+                                 {"coverage_factor", k.coverage_factor},
+                                 {"coverage_probability", k.coverage_probability},
+                                 {"effective_dof", number_or_null(k.effective_dof)}};
+  return c;
+}
+
+// The set-ups with the calibrations on each, and the changes between successive calibrations.
+void add_setups_json(Json& j, const verbs::HistoryShowResult& r) {
+  j["setups"] = Json::array();
+  for (std::size_t s = 0; s < r.setups.size(); ++s) {
+    Json ids = Json::array();
+    for (std::size_t i = 0; i < r.records.size(); ++i)
+      if (r.setup_of[i] == int(s)) ids.push_back(r.records[i].id);
+    j["setups"].push_back(
+        {{"setup", verbs::setup_label(int(s))}, {"setup_sha256", r.setups[s]}, {"calibrations", ids}});
+  }
+  j["setup_changes"] = Json::array();
+  for (const verbs::SetupChange& c : r.changes)
+    j["setup_changes"].push_back({{"from", c.from},
+                                  {"to", c.to},
+                                  {"from_date", c.from_date},
+                                  {"to_date", c.to_date},
+                                  {"setup_changed", c.setup},
+                                  {"tolerances_changed", c.tolerances},
+                                  {"shared_unknown", c.unknown}});
+}
+
+// One coefficient's history: E_n of each calibration against the one before, the drift line (or why there is
+// none) and the prediction at `at`, when asked for.
+Json coefficient_history_json(const verbs::CoefficientHistory& h, const std::string& at) {
+  Json c{{"unit", h.unit}, {"dates", h.dates}, {"calibrations", h.ids}};
+  c["normalised_errors"] = Json::array();
+  for (const NormalisedError& e : h.agreement)
+    c["normalised_errors"].push_back({{"from", h.dates[e.from]},
+                                      {"to", h.dates[e.to]},
+                                      {"en", e.defined ? Json(e.value) : Json(nullptr)},
+                                      {"disagree", e.disagree},
+                                      {"shared_covariance", e.shared_covariance}});
+  if (h.drift.available) {
+    c["drift"] = {{"slope_per_year", h.drift.slope},
+                  {"std_slope", h.drift.std_slope},
+                  {"reference_years", h.drift.reference_years},
+                  {"value_at_reference", h.drift.value},
+                  {"std_value", h.drift.std_value},
+                  {"chi_squared", h.drift.chi_squared},
+                  {"dof", h.drift.dof},
+                  {"birge_ratio", h.drift.birge_ratio},
+                  {"correlated", h.drift.correlated}};
+  } else {
+    c["drift"] = nullptr;
+    c["drift_unavailable"] = h.drift.unavailable;
+  }
+  if (h.prediction)
+    c["prediction"] = {
+        {"date", at}, {"value", h.prediction->value}, {"std_uncertainty", h.prediction->std_uncertainty}};
+  return c;
+}
+
 }  // namespace
 
 std::string text(const verbs::HistoryAddResult& r) {
@@ -144,78 +225,11 @@ std::string json(const verbs::HistoryShowResult& r) {
   Json j = head("history show", r.db);
   j["serial"] = r.serial;
   j["calibrations"] = Json::array();
-  for (std::size_t i = 0; i < r.records.size(); ++i) {
-    const HistoryRecord& rec = r.records[i];
-    Json c{{"id", rec.id},
-           {"date", rec.date},
-           {"instrument", rec.instrument},
-           {"ccal_version", rec.ccal_version},
-           {"config", rec.config},
-           {"statement_sha256", rec.statement_sha256},
-           {"added_at", rec.added_at},
-           {"certificate_number", rec.certificate_number},
-           {"setup", verbs::setup_label(r.setup_of[i])},
-           {"setup_sha256", rec.shared ? Json(rec.shared->setup_sha256) : Json(nullptr)},
-           {"shared_known", rec.shared.has_value()}};
-    if (!rec.superseded_reason.empty())
-      c["superseded"] = {{"by", rec.superseded_by ? Json(*rec.superseded_by) : Json(nullptr)},
-                         {"reason", rec.superseded_reason}};
-    c["coefficients"] = Json::object();
-    for (const HistoryCoefficient& k : rec.coefficients)
-      c["coefficients"][k.name] = {{"unit", k.unit},
-                                   {"value", k.value},
-                                   {"expanded_uncertainty", k.expanded},
-                                   {"coverage_factor", k.coverage_factor},
-                                   {"coverage_probability", k.coverage_probability},
-                                   {"effective_dof", number_or_null(k.effective_dof)}};
-    j["calibrations"].push_back(c);
-  }
-  j["setups"] = Json::array();
-  for (std::size_t s = 0; s < r.setups.size(); ++s) {
-    Json ids = Json::array();
-    for (std::size_t i = 0; i < r.records.size(); ++i)
-      if (r.setup_of[i] == int(s)) ids.push_back(r.records[i].id);
-    j["setups"].push_back(
-        {{"setup", verbs::setup_label(int(s))}, {"setup_sha256", r.setups[s]}, {"calibrations", ids}});
-  }
-  j["setup_changes"] = Json::array();
-  for (const verbs::SetupChange& c : r.changes)
-    j["setup_changes"].push_back({{"from", c.from},
-                                  {"to", c.to},
-                                  {"from_date", c.from_date},
-                                  {"to_date", c.to_date},
-                                  {"setup_changed", c.setup},
-                                  {"tolerances_changed", c.tolerances},
-                                  {"shared_unknown", c.unknown}});
+  for (std::size_t i = 0; i < r.records.size(); ++i) j["calibrations"].push_back(calibration_json(r, i));
+  add_setups_json(j, r);
   j["coefficients"] = Json::object();
-  for (const verbs::CoefficientHistory& h : r.coefficients) {
-    Json c{{"unit", h.unit}, {"dates", h.dates}, {"calibrations", h.ids}};
-    c["normalised_errors"] = Json::array();
-    for (const NormalisedError& e : h.agreement)
-      c["normalised_errors"].push_back({{"from", h.dates[e.from]},
-                                        {"to", h.dates[e.to]},
-                                        {"en", e.defined ? Json(e.value) : Json(nullptr)},
-                                        {"disagree", e.disagree},
-                                        {"shared_covariance", e.shared_covariance}});
-    if (h.drift.available) {
-      c["drift"] = {{"slope_per_year", h.drift.slope},
-                    {"std_slope", h.drift.std_slope},
-                    {"reference_years", h.drift.reference_years},
-                    {"value_at_reference", h.drift.value},
-                    {"std_value", h.drift.std_value},
-                    {"chi_squared", h.drift.chi_squared},
-                    {"dof", h.drift.dof},
-                    {"birge_ratio", h.drift.birge_ratio},
-                    {"correlated", h.drift.correlated}};
-    } else {
-      c["drift"] = nullptr;
-      c["drift_unavailable"] = h.drift.unavailable;
-    }
-    if (h.prediction)
-      c["prediction"] = {
-          {"date", r.at}, {"value", h.prediction->value}, {"std_uncertainty", h.prediction->std_uncertainty}};
-    j["coefficients"][h.name] = c;
-  }
+  for (const verbs::CoefficientHistory& h : r.coefficients)
+    j["coefficients"][h.name] = coefficient_history_json(h, r.at);
   return j.dump(2) + "\n";
 }
 

@@ -295,6 +295,51 @@ std::string page_css(const verbs::ReportResult& r) {
       css_string(left));
 }
 
+// The command lines a section names must be there: report_commands fills them from the report's options.
+void require_commands(const verbs::ReportResult& r, const ReportProvenance& p) {
+  if (r.allocation && p.allocate_command.empty())
+    throw std::logic_error(
+        "report: the allocation's command line is missing (report_commands with its options)");
+  if (r.design && p.design_command.empty())
+    throw std::logic_error("report: the design's command line is missing (report_commands with its options)");
+  if (r.observed && p.identify_command.empty())
+    throw std::logic_error(
+        "report: the statement's command line is missing (report_commands with its options)");
+}
+
+// The verbs' outputs as the cells name them (the check reads them back), with their command lines: the
+// budget, the Monte Carlo and `ccal force` at each instant of the sensed input.
+Json verb_sources(const verbs::ReportResult& r, const ReportProvenance& p,
+                  const std::vector<Json>& instants) {
+  Json sources = {{"budget", {{"command", p.budget_command}}},
+                  {"montecarlo", {{"command", p.montecarlo_command}}}};
+  for (std::size_t i = 0; i < instants.size(); ++i)
+    sources[fmt::format("force{}", i)] = {
+        {"command",
+         {"force", "--run", std::to_string(r.sensed_input.run_index + 1), "--time",
+          fmt::format("{:.17g}", instants[i]["run"]["time_s"].get<double>())}}};
+  return sources;
+}
+
+// The page's head and title: the configuration (and the certificate it reports for), the mode, the date and
+// the program that wrote it.
+std::string page_head(const verbs::ReportResult& r, const ReportProvenance& p, const std::string& mode) {
+  const std::string name =
+      r.config.certificate && !r.config.certificate->number.empty()
+          ? "certificate " + r.config.certificate->number + " · " + shown_file(r.config.source)
+          : shown_file(r.config.source);
+  const char* title = r.observed ? "Centrifuge calibration: engineering report"
+                                 : "Centrifuge calibration: uncertainty report";
+  return fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{5}: "
+      "{0}</title>\n<meta name=\"generator\" content=\"{4}\">\n<meta name=\"dcterms.created\" "
+      "content=\"{3}\">\n"
+      "<style>{1}{6}</style>\n</head>\n<body>\n<h1>{5}</h1>\n"
+      "<p class=\"sub\">{0} · {2} mode · {3} · {4}</p>\n",
+      escape(name), kStyle, escape(mode), escape(p.date_utc), escape(version_line()), title, page_css(r));
+}
+
 }  // namespace
 
 std::string report_date_utc() {
@@ -329,14 +374,7 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
                  const std::vector<ReportSection>& extra_sections) {
   ReportProvenance p = provenance;
   if (p.budget_command.empty()) report_commands(r, {}, p);
-  if (r.allocation && p.allocate_command.empty())
-    throw std::logic_error(
-        "report: the allocation's command line is missing (report_commands with its options)");
-  if (r.design && p.design_command.empty())
-    throw std::logic_error("report: the design's command line is missing (report_commands with its options)");
-  if (r.observed && p.identify_command.empty())
-    throw std::logic_error(
-        "report: the statement's command line is missing (report_commands with its options)");
+  require_commands(r, p);
   // With observations and a [certificate] table the page is the certificate, unless the engineering report was
   // asked for (verbs::gives_certificate).
   if (r.certificate) return certificate_page(r, p);
@@ -344,15 +382,7 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   std::vector<Json> instants;
   for (const auto& f : r.sensed_input.instants) instants.push_back(Json::parse(json(f)));
   const Doc budget{"budget", budget_json}, mc{"montecarlo", mc_json};
-
-  // The verbs' outputs, as the cells name them (the check reads them back), and their command lines.
-  Json sources = {{"budget", {{"command", p.budget_command}}},
-                  {"montecarlo", {{"command", p.montecarlo_command}}}};
-  for (std::size_t i = 0; i < instants.size(); ++i)
-    sources[fmt::format("force{}", i)] = {
-        {"command",
-         {"force", "--run", std::to_string(r.sensed_input.run_index + 1), "--time",
-          fmt::format("{:.17g}", instants[i]["run"]["time_s"].get<double>())}}};
+  Json sources = verb_sources(r, p, instants);
 
   std::string statement_html = statement_first(r, p, sources);
   if (r.history) {  // beside the statement: the same instrument's earlier calibrations
@@ -365,19 +395,7 @@ std::string html(const verbs::ReportResult& r, const ReportProvenance& provenanc
   std::vector<std::string> advice;
   for (const std::string& line : validation_advice_lines(r.monte_carlo)) advice.push_back(line);
 
-  const std::string name = r.config.certificate && !r.config.certificate->number.empty()
-                               ? "certificate " + r.config.certificate->number + " · " + shown_file(r.config.source)
-                               : shown_file(r.config.source);
-  const char* title = r.observed ? "Centrifuge calibration: engineering report"
-                                 : "Centrifuge calibration: uncertainty report";
-  std::string page = fmt::format(
-      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{5}: "
-      "{0}</title>\n<meta name=\"generator\" content=\"{4}\">\n<meta name=\"dcterms.created\" content=\"{3}\">\n"
-      "<style>{1}{6}</style>\n</head>\n<body>\n<h1>{5}</h1>\n"
-      "<p class=\"sub\">{0} · {2} mode · {3} · {4}</p>\n",
-      escape(name), kStyle, escape(budget_json["mode"].get<std::string>()), escape(p.date_utc),
-      escape(version_line()), title, page_css(r));
+  std::string page = page_head(r, p, budget_json["mode"].get<std::string>());
   page += "<script type=\"application/json\" id=\"ccal-sources\">" + script_json(sources) + "</script>\n";
   page += statement_html;
   page += summary(budget, mc);

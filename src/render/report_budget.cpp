@@ -209,6 +209,34 @@ std::string input_correlation_table(const Doc& doc) {
   return t + "</table>\n";
 }
 
+// The chart beside the paper table: per coefficient, the effect of each of the largest sources by the exact
+// chain and by the paper's rules, side by side (`values`: source, coefficient, model, effect).
+Json paper_chart_spec(Json values) {
+  return {
+      {"title", "Effect of the largest sources: exact chain against the paper's rules"},
+      {"data", {{"values", std::move(values)}}},
+      // Two coefficients a row: three would be wider than an A4 page.
+      {"facet", {{"field", "coefficient"}, {"type", "nominal"}, {"title", nullptr}}},
+      {"columns", 2},
+      {"resolve", {{"scale", {{"y", "independent"}}}}},
+      {"spec",
+       {{"width", 220},
+        {"height", 200},
+        {"mark", "bar"},
+        {"encoding",
+         {{"x",
+           {{"field", "source"},
+            {"type", "nominal"},
+            {"title", nullptr},
+            {"sort", nullptr},
+            {"axis", {{"labelAngle", -40}}}}},
+          {"xOffset", {{"field", "model"}, {"type", "nominal"}}},
+          {"y",
+           {{"field", "effect"}, {"type", "quantitative"}, {"title", "effect at u(x) (coefficient unit)"}}},
+          {"color",
+           {{"field", "model"}, {"type", "nominal"}, {"scale", {{"range", {"#4c78a8", "#f58518"}}}}}}}}}}};
+}
+
 }  // namespace
 
 std::string budget_section(const Doc& doc, std::size_t top) {
@@ -273,29 +301,7 @@ std::string paper_section(const Doc& doc, std::size_t top) {
     t += "</tr>\n";
   }
   t += "</table>\n";
-  const Json spec = {
-      {"title", "Effect of the largest sources: exact chain against the paper's rules"},
-      {"data", {{"values", values}}},
-      // Two coefficients a row: three would be wider than an A4 page.
-      {"facet", {{"field", "coefficient"}, {"type", "nominal"}, {"title", nullptr}}},
-      {"columns", 2},
-      {"resolve", {{"scale", {{"y", "independent"}}}}},
-      {"spec",
-       {{"width", 220},
-        {"height", 200},
-        {"mark", "bar"},
-        {"encoding",
-         {{"x",
-           {{"field", "source"},
-            {"type", "nominal"},
-            {"title", nullptr},
-            {"sort", nullptr},
-            {"axis", {{"labelAngle", -40}}}}},
-          {"xOffset", {{"field", "model"}, {"type", "nominal"}}},
-          {"y",
-           {{"field", "effect"}, {"type", "quantitative"}, {"title", "effect at u(x) (coefficient unit)"}}},
-          {"color",
-           {{"field", "model"}, {"type", "nominal"}, {"scale", {{"range", {"#4c78a8", "#f58518"}}}}}}}}}}};
+  const Json spec = paper_chart_spec(std::move(values));
   return "<section id=\"paper\"><h2>Exact chain against the paper's first-order rules</h2>\n<p>The same "
          "sources through the paper's first-order rules (Wang &amp; Ren 2014); \"differ\": by more than a "
          "factor of 2 or in sign where it matters (<code>ccal budget</code>).</p>\n<div class=\"pair\">\n" +

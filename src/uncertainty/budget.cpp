@@ -75,6 +75,30 @@ Eigen::MatrixXd output_jacobian_ad(const Experiment& ex, const IdentificationSpe
 // the whole output and the force path alone). With zero errors and ΔΩ = 0 the integrand is periodic in the
 // fast phase, so one slow node suffices; its band limit in the fast phase is (polynomial degree − 1) + (N +
 // 1) for a harmonic of order ≤ N.
+// The drives' columns (whose first-order terms depend on t, which the nodes above do not carry) by automatic
+// differentiation of the whole chain: their total in the force path, or, with `split`, the force path alone
+// and the rest in the rate path.
+void drive_columns_by_ad(const Experiment& ex, const IdentificationSpec& spec, const std::vector<int>& drive,
+                         const std::vector<Eigen::Index>& drive_columns, const ReductionOptions& reduction,
+                         bool split, Eigen::MatrixXd& force, Eigen::MatrixXd& rate) {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ex.layout.size());
+  const Eigen::MatrixXd total = output_jacobian_ad(ex, spec, drive, zero, ModelMode::exact, reduction);
+  if (!split) {  // only the sum of the paths is asked for: the drive columns' total, in the force path
+    for (std::size_t d = 0; d < drive.size(); ++d) {
+      force.col(drive_columns[d]) = total.col(Eigen::Index(d));
+      rate.col(drive_columns[d]).setZero();
+    }
+    return;
+  }
+  Experiment f = ex;
+  f.instrument = force_only(ex.instrument);
+  const Eigen::MatrixXd through_force = output_jacobian_ad(f, spec, drive, zero, ModelMode::exact, reduction);
+  for (std::size_t d = 0; d < drive.size(); ++d) {
+    force.col(drive_columns[d]) = through_force.col(Eigen::Index(d));
+    rate.col(drive_columns[d]) = total.col(Eigen::Index(d)) - through_force.col(Eigen::Index(d));
+  }
+}
+
 void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& spec,
                                 const std::vector<int>& parameters, const ReductionOptions& reduction,
                                 bool split, Eigen::MatrixXd& force, Eigen::MatrixXd& rate) {
@@ -126,24 +150,7 @@ void output_jacobian_linearised(const Experiment& ex, const IdentificationSpec& 
       }
     }
   }
-  if (!drive.empty()) {
-    const Eigen::MatrixXd total = output_jacobian_ad(ex, spec, drive, zero, ModelMode::exact, reduction);
-    if (!split) {  // only the sum of the paths is asked for: the drive columns' total, in the force path
-      for (std::size_t d = 0; d < drive.size(); ++d) {
-        force.col(drive_columns[d]) = total.col(Eigen::Index(d));
-        rate.col(drive_columns[d]).setZero();
-      }
-      return;
-    }
-    Experiment f = ex;
-    f.instrument = force_only(ex.instrument);
-    const Eigen::MatrixXd through_force =
-        output_jacobian_ad(f, spec, drive, zero, ModelMode::exact, reduction);
-    for (std::size_t d = 0; d < drive.size(); ++d) {
-      force.col(drive_columns[d]) = through_force.col(Eigen::Index(d));
-      rate.col(drive_columns[d]) = total.col(Eigen::Index(d)) - through_force.col(Eigen::Index(d));
-    }
-  }
+  if (!drive.empty()) drive_columns_by_ad(ex, spec, drive, drive_columns, reduction, split, force, rate);
 }
 
 }  // namespace

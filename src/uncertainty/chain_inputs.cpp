@@ -70,6 +70,22 @@ Eigen::VectorXd time_base_column(const Experiment& ex, const IdentificationSpec&
   return column;
 }
 
+// The ripple harmonics of the layout that the encoder inputs among `parameters` act through (each once, in
+// the order first met; none beyond the layout's harmonic order).
+std::vector<int> encoder_layout_columns(const std::vector<int>& parameters, const ErrorLayout& layout) {
+  std::vector<int> through;
+  for (int p : parameters) {
+    const ChainInput in = chain_input(p);
+    if (in.kind != ChainKind::encoder) continue;
+    const EncoderTerm t = encoder_term(in.index);
+    const int channel = t.drive == 1 ? ch::ripple1 : ch::ripple3;
+    if (t.harmonic > layout.harmonic_order()) continue;
+    const int column = layout.harmonic_index(channel, t.harmonic, !t.is_sine);
+    if (std::find(through.begin(), through.end(), column) == through.end()) through.push_back(column);
+  }
+  return through;
+}
+
 }  // namespace
 
 bool output_read_against_clock(const InstrumentModel& instrument) { return instrument.quantum > 0; }
@@ -131,21 +147,7 @@ Eigen::MatrixXd chain_output_columns(const Experiment& ex, const IdentificationS
   const Observations<double> obs = observe<double>(ex, at, known, spec, mode, reduction);
   const ErrorLayout& layout = ex.layout;
   // The layout columns the encoders' errors go through, in one AD pass.
-  std::vector<int> through;
-  auto through_index = [&](int p) {
-    const auto it = std::find(through.begin(), through.end(), p);
-    if (it != through.end()) return Eigen::Index(it - through.begin());
-    through.push_back(p);
-    return Eigen::Index(through.size() - 1);
-  };
-  for (int p : parameters) {
-    const ChainInput in = chain_input(p);
-    if (in.kind == ChainKind::encoder) {
-      const EncoderTerm t = encoder_term(in.index);
-      const int channel = t.drive == 1 ? ch::ripple1 : ch::ripple3;
-      if (t.harmonic <= layout.harmonic_order()) through_index(layout.harmonic_index(channel, t.harmonic, !t.is_sine));
-    }
-  }
+  const std::vector<int> through = encoder_layout_columns(parameters, layout);
   const Eigen::MatrixXd J =
       through.empty() ? Eigen::MatrixXd()
                       : output_jacobian(ex, spec, through, at, mode, reduction, DerivativeMethod::automatic, false)
@@ -176,7 +178,8 @@ Eigen::MatrixXd chain_output_columns(const Experiment& ex, const IdentificationS
         const bool measured = t.drive == 1 ? ex.chain.main_ripple_measured : ex.chain.platform_ripple_measured;
         if (!measured || t.harmonic > layout.harmonic_order()) break;
         const int channel = t.drive == 1 ? ch::ripple1 : ch::ripple3;
-        const auto d = through_index(layout.harmonic_index(channel, t.harmonic, !t.is_sine));
+        const int p = layout.harmonic_index(channel, t.harmonic, !t.is_sine);
+        const auto d = Eigen::Index(std::find(through.begin(), through.end(), p) - through.begin());
         // c cos kq + s sin kq is read as the ripple (k s, −k c); the truth's ripple is the model's less it.
         column = (t.is_sine ? -double(t.harmonic) : double(t.harmonic)) * J.col(d);
         break;

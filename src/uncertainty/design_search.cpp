@@ -301,6 +301,44 @@ std::vector<int> random_plan(const DesignProblem& pr, const std::vector<long lon
   return {};
 }
 
+// The lexicographic minimum of (objective, index) over the feasible candidates for run i of the plan (within
+// the total time with the others' `others` seconds, and keeping the distinct g-levels: keeps_levels): the
+// same for any number of threads. (inf, -1) when none is feasible.
+template <class KeepsLevels>
+std::pair<double, int> best_exchange(const DesignProblem& pr, const std::vector<Eigen::VectorXd>& leak_norms,
+                                     const std::vector<int>& plan, std::size_t i, double others,
+                                     const KeepsLevels& keeps_levels) {
+  const bool by_update = pr.criterion.objective == DesignObjective::uncertainty;
+  const int count = int(pr.candidates.size());
+  double best_f = std::numeric_limits<double>::infinity();
+  int best_c = -1;
+#pragma omp parallel
+  {
+    JointScorer local(pr);
+    JointUpdate update(pr, leak_norms);
+    if (by_update) update.set_others(plan, i);
+    std::vector<int> trial = plan;
+    double tf = std::numeric_limits<double>::infinity();
+    int tc = -1;
+#pragma omp for schedule(static) nowait
+    for (int c = 0; c < count; ++c) {
+      if (c == plan[i] || !within(others + pr.rows.duration[c], pr.total_time) || !keeps_levels(c)) continue;
+      trial[i] = c;
+      const double v = by_update ? update.objective(c) : local.objective(trial);
+      if (v < tf) {
+        tf = v;
+        tc = c;
+      }
+    }
+#pragma omp critical
+    if (tc >= 0 && (tf < best_f || (tf == best_f && tc < best_c))) {
+      best_f = tf;
+      best_c = tc;
+    }
+  }
+  return {best_f, best_c};
+}
+
 // Exchange: for each run in turn, the candidate that lowers the objective most (ties: the lowest index),
 // until a sweep changes nothing. The uncertainty objective is scored by rank-one updates of the other runs'
 // sums (design_exchange.hpp), the noise-alone criteria by a fit per candidate.
@@ -328,35 +366,7 @@ double exchange(const DesignProblem& pr, const std::vector<Eigen::VectorXd>& lea
         update.set_others(plan, i);
         current = update.objective(plan[i]);
       }
-      // The lexicographic minimum of (objective, index) over the feasible candidates: the same for any
-      // number of threads.
-      double best_f = std::numeric_limits<double>::infinity();
-      int best_c = -1;
-#pragma omp parallel
-      {
-        JointScorer local(pr);
-        JointUpdate update(pr, leak_norms);
-        if (by_update) update.set_others(plan, i);
-        std::vector<int> trial = plan;
-        double tf = std::numeric_limits<double>::infinity();
-        int tc = -1;
-#pragma omp for schedule(static) nowait
-        for (int c = 0; c < count; ++c) {
-          if (c == plan[i] || !within(others + pr.rows.duration[c], pr.total_time) || !keeps_levels(c))
-            continue;
-          trial[i] = c;
-          const double v = by_update ? update.objective(c) : local.objective(trial);
-          if (v < tf) {
-            tf = v;
-            tc = c;
-          }
-        }
-#pragma omp critical
-        if (tc >= 0 && (tf < best_f || (tf == best_f && tc < best_c))) {
-          best_f = tf;
-          best_c = tc;
-        }
-      }
+      const auto [best_f, best_c] = best_exchange(pr, leak_norms, plan, i, others, keeps_levels);
       evaluations += count;
       if (best_c >= 0 && best_f < current - 1e-12 * std::abs(current)) {
         plan[i] = best_c;
@@ -482,12 +492,39 @@ PlanScore score_plan(const CandidateRows& plan, const DesignCriterion& criterion
   return s;
 }
 
-DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOptions& options) {
+namespace {
+
+// A problem the search can take: one run at least, one candidate at least, every instrument's rows of the
+// same candidates.
+void check_design_problem(const DesignProblem& pr) {
   if (pr.runs < 1) throw InputError("the design needs at least one run");
   if (pr.candidates.empty()) throw InputError("the design space has no candidate run");
   for (const DesignInstrument& o : pr.others)
     if (o.rows.size() != pr.rows.size() || bool(o.evaluate) != bool(pr.evaluate))
       throw InputError("the design's instruments have rows of other candidate runs");
+}
+
+// The found plan's score by its rows (one per instrument): each instrument's, and with several the joint
+// objective over them.
+void score_design(const DesignProblem& pr, const std::vector<CandidateRows>& rows, DesignSearchResult& out) {
+  out.rows = rows[0];
+  out.score = score_plan(out.rows, pr.criterion);
+  if (!pr.others.empty()) {
+    std::vector<double> f{out.score.objective};
+    out.scores.push_back(out.score);
+    for (std::size_t i = 0; i < pr.others.size(); ++i) {
+      out.scores.push_back(score_plan(rows[i + 1], pr.others[i].criterion));
+      out.other_rows.push_back(rows[i + 1]);
+      f.push_back(out.scores.back().objective);
+    }
+    out.score.objective = joint_objective(pr, f);
+  }
+}
+
+}  // namespace
+
+DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOptions& options) {
+  check_design_problem(pr);
   DesignSearchResult out;
   JointScorer scorer(pr);
   std::vector<int> best;
@@ -535,18 +572,7 @@ DesignSearchResult search_design(const DesignProblem& pr, const DesignSearchOpti
     // Done, whether the steps were halved to the end or no move was left.
     report("refinement", pr.refinement.halvings + 1, pr.refinement.halvings + 1);
   }
-  out.rows = rows[0];
-  out.score = score_plan(out.rows, pr.criterion);
-  if (!pr.others.empty()) {
-    std::vector<double> f{out.score.objective};
-    out.scores.push_back(out.score);
-    for (std::size_t i = 0; i < pr.others.size(); ++i) {
-      out.scores.push_back(score_plan(rows[i + 1], pr.others[i].criterion));
-      out.other_rows.push_back(rows[i + 1]);
-      f.push_back(out.scores.back().objective);
-    }
-    out.score.objective = joint_objective(pr, f);
-  }
+  score_design(pr, rows, out);
   return out;
 }
 

@@ -132,30 +132,12 @@ void check_column_roles(const IdentifyOptions& o) {
     refuse("weight_column", o.weight_column, "input_column");
 }
 
-TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHeader>& header,
-                      const IdentifyOptions& o, const ColumnUnits& units) {
-  check_column_roles(o);
-  TableFitSpec spec;
-  spec.input = o.input_column;
-  spec.output = o.output_column;
-  spec.weight = o.weight_column;
-
-  if (o.terms) {
-    for (const auto& text : *o.terms) spec.terms.push_back(parse_term_option(text, "terms"));
-  } else if (header) {
-    for (const auto& t : header->terms) spec.terms.push_back({t.id, t.column});
-  } else {
-    throw OptionError(
-        "terms", "",
-        fmt::format("{}: no '# ccal observations' line to take the terms from; accepted: the terms "
-                    "to fit, e.g. K0,K1,K2 with {} x and {} y for y = K0 + K1 x + K2 x^2",
-                    table.source, OptionError::name("input_column"), OptionError::name("output_column")));
-  }
-  std::set<std::string> ids;
-  for (const auto& t : spec.terms)
-    if (!ids.insert(t.id).second)
-      throw OptionError("terms", t.id, "is listed twice; accepted: each term once");
-
+// The held terms: the option's (each neither free nor held twice), else the file's except those the user
+// frees (their values converted to the terms' units); `ids` gains each.
+std::vector<TableFixed> fixed_terms(const CsvTable& table, const std::optional<ObservationsHeader>& header,
+                                    const IdentifyOptions& o, const ColumnUnits& units,
+                                    std::set<std::string>& ids) {
+  std::vector<TableFixed> fixed;
   if (o.fix) {
     for (const auto& text : *o.fix) {
       TableFixed f = parse_fixed_option(text, units);
@@ -165,7 +147,7 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
             fmt::format("is also a free term or fixed twice; accepted: a term is either free ({}) "
                         "or fixed ({})",
                         OptionError::name("terms"), OptionError::name("fix")));
-      spec.fixed.push_back(std::move(f));
+      fixed.push_back(std::move(f));
     }
     // --fix replaces the file's fixed terms: one it does not name (nor --terms frees) would silently leave
     // the model, and the fit would take its contribution into the other coefficients.
@@ -193,9 +175,37 @@ TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHea
         }
       }
       ids.insert(f.term.id);
-      spec.fixed.push_back(std::move(f));
+      fixed.push_back(std::move(f));
     }
   }
+  return fixed;
+}
+
+TableFitSpec fit_spec(const CsvTable& table, const std::optional<ObservationsHeader>& header,
+                      const IdentifyOptions& o, const ColumnUnits& units) {
+  check_column_roles(o);
+  TableFitSpec spec;
+  spec.input = o.input_column;
+  spec.output = o.output_column;
+  spec.weight = o.weight_column;
+
+  if (o.terms) {
+    for (const auto& text : *o.terms) spec.terms.push_back(parse_term_option(text, "terms"));
+  } else if (header) {
+    for (const auto& t : header->terms) spec.terms.push_back({t.id, t.column});
+  } else {
+    throw OptionError(
+        "terms", "",
+        fmt::format("{}: no '# ccal observations' line to take the terms from; accepted: the terms "
+                    "to fit, e.g. K0,K1,K2 with {} x and {} y for y = K0 + K1 x + K2 x^2",
+                    table.source, OptionError::name("input_column"), OptionError::name("output_column")));
+  }
+  std::set<std::string> ids;
+  for (const auto& t : spec.terms)
+    if (!ids.insert(t.id).second)
+      throw OptionError("terms", t.id, "is listed twice; accepted: each term once");
+
+  spec.fixed = fixed_terms(table, header, o, units, ids);
 
   if (o.known) {
     if (!(o.known->size() == 1 && o.known->front() == "none")) spec.known = *o.known;

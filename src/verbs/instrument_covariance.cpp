@@ -46,6 +46,66 @@ Eigen::MatrixXd display_effects(const ccal::BudgetDetail& b) {
   return e;
 }
 
+// LPU: the blocks E_a R_ab E_bᵀ of instruments a and b (rows from first_row), with the pairs of two
+// instruments' own sources uncorrelated.
+Eigen::MatrixXd lpu_covariance(const std::vector<ccal::BudgetDetail>& budgets,
+                               const std::vector<Eigen::MatrixXd>& effects,
+                               const std::vector<Eigen::Index>& first_row, Eigen::Index rows) {
+  const Eigen::MatrixXd r = source_correlation(budgets.front());
+  Eigen::MatrixXd lpu = Eigen::MatrixXd::Zero(rows, rows);
+  for (std::size_t a = 0; a < budgets.size(); ++a)
+    for (std::size_t b = 0; b < budgets.size(); ++b) {
+      Eigen::MatrixXd rab = r;
+      if (a != b)
+        for (Eigen::Index s = 0; s < r.rows(); ++s)
+          for (Eigen::Index t = 0; t < r.cols(); ++t)
+            if (instrument_own_input(budgets[a].sources[std::size_t(s)].parameter) ||
+                instrument_own_input(budgets[b].sources[std::size_t(t)].parameter))
+              rab(s, t) = 0;
+      lpu.block(first_row[a], first_row[b], effects[a].rows(), effects[b].rows()) =
+          effects[a] * rab * effects[b].transpose();
+    }
+  return lpu;
+}
+
+// One instrument's part of the joint trial: its trial function, where its draws are among the joint sources,
+// its display scales, its outputs at zero draws, and its scratch.
+struct InstrumentPart {
+  TrialFunction trial;
+  std::vector<std::size_t> index;
+  std::vector<double> scale, reference;
+  std::vector<double> draws, f;
+};
+
+// The Monte Carlo's trial: y = −C (f(e) − f(0)) of every instrument at one draw of the shared sources (each
+// part copied into each thread's trial with its scratch).
+TrialFunction joint_trial(const std::vector<Config>& each, const JointSources& joint,
+                          const std::vector<ccal::BudgetDetail>& budgets, ModelMode mode) {
+  std::vector<InstrumentPart> parts;  // copied into each thread's trial with their scratch
+  for (std::size_t a = 0; a < each.size(); ++a) {
+    const Config& cfg = each[a];
+    const CalibrationModel model =
+        calibration_model(cfg.experiment(), cfg.identification, cfg.tolerances, cfg.centrifuge.errors, mode);
+    InstrumentPart p;
+    p.trial = calibration_trial(model);
+    p.index = joint.of_instrument[a];
+    p.scale = budgets[a].display_scale;
+    p.draws.assign(cfg.tolerances.size(), 0.0);
+    p.f.assign(std::size_t(model.n_outputs()), 0.0);
+    p.reference.assign(p.f.size(), 0.0);
+    p.trial(p.draws, p.reference);
+    parts.push_back(std::move(p));
+  }
+  return [parts = std::move(parts)](std::span<const double> draws, std::span<double> outputs) mutable {
+    std::size_t row = 0;
+    for (InstrumentPart& p : parts) {
+      for (std::size_t j = 0; j < p.index.size(); ++j) p.draws[j] = draws[p.index[j]];
+      p.trial(p.draws, p.f);
+      for (std::size_t k = 0; k < p.f.size(); ++k) outputs[row++] = -p.scale[k] * (p.f[k] - p.reference[k]);
+    }
+  };
+}
+
 }  // namespace
 
 JointSources joint_sources(const std::vector<Config>& each) {
@@ -110,54 +170,11 @@ InstrumentCovariance instrument_covariance(const std::vector<Config>& each, Mode
     }
     rows += Eigen::Index(budgets.back().coefficients.size());
   }
-  // LPU: the blocks E_a R_ab E_bᵀ, with the pairs of two instruments' own sources uncorrelated.
-  const Eigen::MatrixXd r = source_correlation(budgets.front());
-  out.lpu = Eigen::MatrixXd::Zero(rows, rows);
-  for (std::size_t a = 0; a < each.size(); ++a)
-    for (std::size_t b = 0; b < each.size(); ++b) {
-      Eigen::MatrixXd rab = r;
-      if (a != b)
-        for (Eigen::Index s = 0; s < r.rows(); ++s)
-          for (Eigen::Index t = 0; t < r.cols(); ++t)
-            if (instrument_own_input(budgets[a].sources[std::size_t(s)].parameter) ||
-                instrument_own_input(budgets[b].sources[std::size_t(t)].parameter))
-              rab(s, t) = 0;
-      out.lpu.block(out.first_row[a], out.first_row[b], effects[a].rows(), effects[b].rows()) =
-          effects[a] * rab * effects[b].transpose();
-    }
+  out.lpu = lpu_covariance(budgets, effects, out.first_row, rows);
   if (trials == 0) return out;
 
-  // Monte Carlo: y = −C (f(e) − f(0)) of every instrument at one draw of the shared sources.
   const JointSources joint = joint_sources(each);
-  struct Part {
-    TrialFunction trial;
-    std::vector<std::size_t> index;
-    std::vector<double> scale, reference;
-    std::vector<double> draws, f;
-  };
-  std::vector<Part> parts;  // copied into each thread's trial with their scratch
-  for (std::size_t a = 0; a < each.size(); ++a) {
-    const Config& cfg = each[a];
-    const CalibrationModel model =
-        calibration_model(cfg.experiment(), cfg.identification, cfg.tolerances, cfg.centrifuge.errors, mode);
-    Part p;
-    p.trial = calibration_trial(model);
-    p.index = joint.of_instrument[a];
-    p.scale = budgets[a].display_scale;
-    p.draws.assign(cfg.tolerances.size(), 0.0);
-    p.f.assign(std::size_t(model.n_outputs()), 0.0);
-    p.reference.assign(p.f.size(), 0.0);
-    p.trial(p.draws, p.reference);
-    parts.push_back(std::move(p));
-  }
-  const TrialFunction trial = [parts = std::move(parts)](std::span<const double> draws, std::span<double> outputs) mutable {
-    std::size_t row = 0;
-    for (Part& p : parts) {
-      for (std::size_t j = 0; j < p.index.size(); ++j) p.draws[j] = draws[p.index[j]];
-      p.trial(p.draws, p.f);
-      for (std::size_t k = 0; k < p.f.size(); ++k) outputs[row++] = -p.scale[k] * (p.f[k] - p.reference[k]);
-    }
-  };
+  const TrialFunction trial = joint_trial(each, joint, budgets, mode);
   ccal::PropagationOptions mo;
   mo.trials = trials;
   mo.seed = seed;

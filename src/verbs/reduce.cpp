@@ -192,6 +192,50 @@ OptionError pulse_weight_refused(std::string value, const std::string& output_un
                   "number in {}·s or with a unit of that kind, e.g. 2.5e-5",
                   output_unit));
 }
+// A test of several's logs, read for one [instrument]: refused, naming the columns and what is accepted.
+void refuse_instrument_columns(const Config& cfg, const ReduceOptions& o) {
+  if (o.layout.instruments.empty()) return;
+  std::vector<std::string> ids;
+  for (const auto& column : o.layout.instruments) ids.push_back(column.id);
+  throw InputError(fmt::format(
+      "{}: [instruments] names the output columns of instruments {}, and {} has one [instrument]; accepted: "
+      "the "
+      "configuration of that test ([[instruments]]), or [columns] pulses = \"…\" (or output) naming this "
+      "instrument's column",
+      o.logs.empty() || o.logs.front().manifest.empty() ? std::string("the log layout")
+                                                        : o.logs.front().manifest,
+      fmt::join(ids, ", "), cfg.source));
+}
+
+// Each log with its run's index in the plan (`named`: each log by that index): a run named once, its file
+// readable, and as many logs as the identification needs (a manifest's [runs] too short said so).
+std::vector<std::pair<std::size_t, std::filesystem::path>> selected_logs(
+    const Config& cfg, const ReduceOptions& o, std::map<std::size_t, LogFile>& named) {
+  std::vector<std::pair<std::size_t, std::filesystem::path>> logs;
+  for (const LogFile& log : o.logs) {
+    std::size_t index = 0;
+    try {
+      index = select_run(cfg.plan, log.run, "logs");
+    } catch (const OptionError& e) {
+      if (log.manifest.empty()) throw;
+      refuse_log(log, fmt::format("'{}'", log.run), std::string(e.problem()));
+    }
+    if (named.count(index))
+      refuse_log(log, fmt::format("run '{}'", cfg.plan.runs[index].name),
+                 "is logged twice; accepted: one log per run");
+    named[index] = log;
+    check_readable(log.path);  // a missing file before the count of logs, as when logs were read whole
+    logs.emplace_back(index, log.path);
+  }
+  try {
+    check_log_count(cfg.identification, logs.size(), "logs");
+  } catch (const OptionError& e) {  // logs a manifest named: its [runs] is short, not an option
+    if (o.logs.empty() || o.logs.front().manifest.empty()) throw;
+    throw InputError(fmt::format("{}: [runs]: {}", o.logs.front().manifest, e.problem()));
+  }
+  return logs;
+}
+
 }  // namespace
 
 double pulse_weight_from_text(const Config& cfg, std::string_view text) {
@@ -264,44 +308,14 @@ std::vector<LogFile> manifest_logs(const LogManifest& manifest) {
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   check_options(o, option_table<ReduceOptions>());
   if (!cfg.instruments.empty()) return reduce_instruments(cfg, o);
-  if (!o.layout.instruments.empty()) {  // a test of several's logs, read for one [instrument]
-    std::vector<std::string> ids;
-    for (const auto& column : o.layout.instruments) ids.push_back(column.id);
-    throw InputError(fmt::format(
-        "{}: [instruments] names the output columns of instruments {}, and {} has one [instrument]; accepted: the "
-        "configuration of that test ([[instruments]]), or [columns] pulses = \"…\" (or output) naming this "
-        "instrument's column",
-        o.logs.empty() || o.logs.front().manifest.empty() ? std::string("the log layout") : o.logs.front().manifest,
-        fmt::join(ids, ", "), cfg.source));
-  }
+  refuse_instrument_columns(cfg, o);
   ReduceResult r;
   r.config = cfg;
   r.mode = o.mode.value_or(cfg.mode);
   r.output_unit_si = output_unit_si(cfg.instrument.output_unit);
   const RunLogOptions lo = run_log_options(cfg, o);
-  std::vector<std::pair<std::size_t, std::filesystem::path>> logs;
   std::map<std::size_t, LogFile> named;  // by the run's index in the plan
-  for (const LogFile& log : o.logs) {
-    std::size_t index = 0;
-    try {
-      index = select_run(cfg.plan, log.run, "logs");
-    } catch (const OptionError& e) {
-      if (log.manifest.empty()) throw;
-      refuse_log(log, fmt::format("'{}'", log.run), std::string(e.problem()));
-    }
-    if (named.count(index))
-      refuse_log(log, fmt::format("run '{}'", cfg.plan.runs[index].name),
-                 "is logged twice; accepted: one log per run");
-    named[index] = log;
-    check_readable(log.path);  // a missing file before the count of logs, as when logs were read whole
-    logs.emplace_back(index, log.path);
-  }
-  try {
-    check_log_count(cfg.identification, logs.size(), "logs");
-  } catch (const OptionError& e) {  // logs a manifest named: its [runs] is short, not an option
-    if (o.logs.empty() || o.logs.front().manifest.empty()) throw;
-    throw InputError(fmt::format("{}: [runs]: {}", o.logs.front().manifest, e.problem()));
-  }
+  const auto logs = selected_logs(cfg, o, named);
   refuse_repeated_paths(cfg, named);
   r.logs = reduce_log_files(cfg, logs, lo, r.mode);  // each log streamed in one pass
   for (const LoggedRun& lr : r.logs.runs) r.files.push_back(named[lr.index].path);

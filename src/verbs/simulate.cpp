@@ -64,6 +64,26 @@ OptionTable<SimulateOptions> options_of(std::type_identity<SimulateOptions>) { r
 
 namespace {
 
+// Paper mode reduces runs on the paper's mounting only.
+void check_paper_mounting(const Config& cfg) {
+  for (const Run& run : cfg.plan.runs)
+    if (run.mounting != Mounting::ia_horizontal)
+      throw InputError(
+          fmt::format("run '{}': mode paper reduces runs on the paper's mounting (ia_horizontal) "
+                      "only; accepted: mode exact, or mounting ia_horizontal",
+                      run.name));
+}
+
+// The regressor columns in canonical term order (as in the observations file).
+std::vector<std::size_t> canonical_column_order(const std::vector<std::string>& columns) {
+  std::vector<std::size_t> order(columns.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return term_rank(parse_term(columns[a]).value()) < term_rank(parse_term(columns[b]).value());
+  });
+  return order;
+}
+
 // One instrument's test on the machine: its errors the truth's or the configuration's, plus `drawn` (a draw of
 // each of its [tolerances] inputs, SI; empty: none), its output noise from noise_seed.
 SimulateResult simulate_machine(const Config& cfg, const SimulateOptions& o, const std::vector<double>& drawn,
@@ -72,13 +92,7 @@ SimulateResult simulate_machine(const Config& cfg, const SimulateOptions& o, con
   s.config = cfg;
   s.seed = o.seed;
   s.mode = o.mode.value_or(cfg.mode);
-  if (s.mode == ModelMode::paper)
-    for (const Run& run : cfg.plan.runs)
-      if (run.mounting != Mounting::ia_horizontal)
-        throw InputError(
-            fmt::format("run '{}': mode paper reduces runs on the paper's mounting (ia_horizontal) "
-                        "only; accepted: mode exact, or mounting ia_horizontal",
-                        run.name));
+  if (s.mode == ModelMode::paper) check_paper_mounting(cfg);
   const Experiment ex = cfg.experiment();
   const IdentificationSpec& spec = cfg.identification;
   // The machine has the truth's errors (the configuration's [errors] without a truth file); the model knows the
@@ -112,12 +126,7 @@ SimulateResult simulate_machine(const Config& cfg, const SimulateOptions& o, con
   add_output_noise(s.observations, ex, noise_seed);
   if (o.draw_truth) add_rate_noise_draws(s.observations, ex, s.machine_errors, o.seed);
   s.output_unit_si = output_unit_si(ex.instrument.output_unit);
-  s.order.resize(s.observations.columns.size());
-  std::iota(s.order.begin(), s.order.end(), std::size_t{0});
-  std::stable_sort(s.order.begin(), s.order.end(), [&](std::size_t a, std::size_t b) {
-    return term_rank(parse_term(s.observations.columns[a]).value()) <
-           term_rank(parse_term(s.observations.columns[b]).value());
-  });
+  s.order = canonical_column_order(s.observations.columns);
 
   std::vector<double> rates;
   for (const Run& run : ex.plan.runs) rates.push_back(nominal_rate(run, ex.geometry, ex.site));

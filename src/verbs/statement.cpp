@@ -147,12 +147,9 @@ std::vector<StatementSource> statement_sources(const Config& config, const ccal:
   return out;
 }
 
-}  // namespace
-
-CalibrationStatement calibration_statement(const Config& original, const Identification& id,
-                                           const StatementOptions& o, std::string_view field,
-                                           const std::vector<MeasuredInput>& measured,
-                                           const std::vector<double>& durations) {
+// The statement's options checked, and its coverage probability: a stated k gives a normal quantity's p, the
+// p the statement names and its Monte Carlo check reports at.
+double statement_probability(const StatementOptions& o) {
   check_options(o, option_table<StatementOptions>());
   rows::check_coverage_choice(o.coverage_probability, o.coverage_factor);
   // A stated k gives a normal quantity's p: the p the statement names and its Monte Carlo check reports at.
@@ -162,23 +159,22 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
     check_thread_count(o.threads, "threads");
     check_coverage_interval(std::uint64_t(o.statement_trials), p, "statement_trials");
   }
-  const FitResult& fit = id.fit;
-  if (!id.weighted && fit.dof <= 0)
-    throw OptionError(std::string(field), "",
-                      fmt::format("the fit has no degrees of freedom ({} observations for {} free terms), so "
-                                  "its Type A uncertainty is undefined; accepted: at least one observation more "
-                                  "than free terms",
-                                  fit.residuals.size(), fit.names.size()));
-  // What the test measured is charged at its measurement's uncertainty, not at its tolerance.
-  const Config config = with_measured_inputs(original, measured);
-  BudgetOptions bo;
-  bo.mode = o.mode;
-  bo.compare_with_paper = false;
-  const BudgetResult budget = verbs::budget(config, bo);
-  const ccal::BudgetDetail& b = budget.budget;
-  const Eigen::MatrixXd groups = type_b_groups(b);
+  return p;
+}
 
-  CalibrationStatement st;
+// Type A from the fit's scatter needs degrees of freedom (a weighted fit has its σ).
+void check_type_a_defined(const Identification& id, std::string_view field) {
+  if (!id.weighted && id.fit.dof <= 0)
+    throw OptionError(
+        std::string(field), "",
+        fmt::format("the fit has no degrees of freedom ({} observations for {} free terms), so "
+                    "its Type A uncertainty is undefined; accepted: at least one observation more "
+                    "than free terms",
+                    id.fit.residuals.size(), id.fit.names.size()));
+}
+
+// What the statement names of its configuration: the file, its fingerprints, and its [certificate]'s fields.
+void describe_configuration(const Config& config, CalibrationStatement& st) {
   st.budget_config = config.source;
   st.config_sha256 = config.text_sha256;
   st.setup_sha256 = config.setup_sha256;
@@ -190,12 +186,11 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
     st.revision = config.certificate->revision;
     st.replaces = config.certificate->replaces;
   }
-  st.mode = b.mode;
-  st.coverage_probability = p;
-  st.coverage_factor = o.coverage_factor;
-  st.compensated = config.identification.compensate;
-  st.known_errors = int((config.centrifuge.errors.array() != 0.0).count());
-  // The budget's sensitivities hold for its own free terms: the fit must free the same ones.
+}
+
+// The budget's sensitivities hold for its own free terms: the fit must free the same ones.
+void check_same_terms(const FitResult& fit, const ccal::BudgetDetail& b, const Config& config,
+                      std::string_view field) {
   std::vector<std::string> fitted = fit.names, budgeted = b.coefficients;
   std::sort(fitted.begin(), fitted.end());
   std::sort(budgeted.begin(), budgeted.end());
@@ -204,6 +199,48 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
                       fmt::format("the fit's free terms ({}) are not those of {} ({}); accepted: a "
                                   "configuration whose [identification] terms are the fit's",
                                   fmt::join(fit.names, ", "), config.source, fmt::join(b.coefficients, ", ")));
+}
+
+// The correlation of the corrected estimates, from their covariance and combined uncertainties (1 on the
+// diagonal, 0 off it, where an uncertainty is 0).
+Eigen::MatrixXd correlation_of_statement(const CalibrationStatement& st) {
+  Eigen::MatrixXd correlation = st.covariance;
+  const auto nk = st.covariance.rows();
+  for (Eigen::Index r = 0; r < nk; ++r)
+    for (Eigen::Index c = 0; c < nk; ++c) {
+      const double scale =
+          st.coefficients[std::size_t(r)].combined * st.coefficients[std::size_t(c)].combined;
+      correlation(r, c) = scale > 0 ? st.covariance(r, c) / scale : (r == c ? 1.0 : 0.0);
+    }
+  return correlation;
+}
+
+}  // namespace
+
+CalibrationStatement calibration_statement(const Config& original, const Identification& id,
+                                           const StatementOptions& o, std::string_view field,
+                                           const std::vector<MeasuredInput>& measured,
+                                           const std::vector<double>& durations) {
+  const double p = statement_probability(o);
+  const FitResult& fit = id.fit;
+  check_type_a_defined(id, field);
+  // What the test measured is charged at its measurement's uncertainty, not at its tolerance.
+  const Config config = with_measured_inputs(original, measured);
+  BudgetOptions bo;
+  bo.mode = o.mode;
+  bo.compare_with_paper = false;
+  const BudgetResult budget = verbs::budget(config, bo);
+  const ccal::BudgetDetail& b = budget.budget;
+  const Eigen::MatrixXd groups = type_b_groups(b);
+
+  CalibrationStatement st;
+  describe_configuration(config, st);
+  st.mode = b.mode;
+  st.coverage_probability = p;
+  st.coverage_factor = o.coverage_factor;
+  st.compensated = config.identification.compensate;
+  st.known_errors = int((config.centrifuge.errors.array() != 0.0).count());
+  check_same_terms(fit, b, config, field);
   const TypeAParts a = evaluate_type_a(config, id, b, durations);
   st.type_a = a.evaluation;
   const auto nk = Eigen::Index(fit.names.size());
@@ -234,12 +271,7 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
   st.covariance_a = a.known + a.estimated;
   st.covariance_b = g_fit * g_fit.transpose();
   st.covariance = st.covariance_a + st.covariance_b;
-  st.correlation = st.covariance;
-  for (Eigen::Index r = 0; r < nk; ++r)
-    for (Eigen::Index c = 0; c < nk; ++c) {
-      const double scale = st.coefficients[std::size_t(r)].combined * st.coefficients[std::size_t(c)].combined;
-      st.correlation(r, c) = scale > 0 ? st.covariance(r, c) / scale : (r == c ? 1.0 : 0.0);
-    }
+  st.correlation = correlation_of_statement(st);
   state_outputs(config, id, a, p, o.coverage_factor, st);
   check_statement_by_monte_carlo(config, id, to_fit_of, a, o, st);
   return st;

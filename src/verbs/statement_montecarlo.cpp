@@ -154,31 +154,26 @@ class StatementTrial final : public mc_batch::BatchTrial {
   Eigen::VectorXd y_, shift_;
 };
 
-}  // namespace
-
-void check_statement_by_monte_carlo(const Config& config, const Identification& id,
-                                    const std::vector<double>& to_fit, const TypeAParts& type_a,
-                                    const StatementOptions& o,
-                                    CalibrationStatement& st) {
-  if (o.statement_trials <= 0 || config.tolerances.empty()) return;
-  gaussian_copula(config);  // a pair the copula cannot draw, refused with its place in the file
-  const CalibrationModel model = calibration_model(config.experiment(), config.identification, config.tolerances,
-                                                   config.centrifuge.errors, st.mode);
-  TrialFunction tolerances = calibration_trial(model);
-  const std::vector<std::string> model_names = model.output_names();
-  const FitResult& fit = id.fit;
-  const auto nk = Eigen::Index(fit.names.size());
-
+// What every trial of the statement's check shares: the fit's terms in the model's outputs, the factors to
+// the fit's units, the corrected estimates, the model at zero draws, the roots of the Type A covariances
+// (known and estimated, the latter's ν) and the fit's design.
+std::shared_ptr<StatementTrialShared> statement_trial_shared(const Config& config, const Identification& id,
+                                                             const std::vector<double>& to_fit,
+                                                             const TypeAParts& type_a,
+                                                             const std::vector<std::string>& model_names,
+                                                             const TrialFunction& tolerances,
+                                                             const CalibrationStatement& st) {
+  const auto nk = Eigen::Index(id.fit.names.size());
   auto shared = std::make_shared<StatementTrialShared>();
   shared->n_tolerances = config.tolerances.size();
   shared->to_fit = Eigen::Map<const Eigen::VectorXd>(to_fit.data(), Eigen::Index(to_fit.size()));
   shared->corrected.resize(nk);
   for (Eigen::Index k = 0; k < nk; ++k) {
-    const auto found = std::find(model_names.begin(), model_names.end(), fit.names[std::size_t(k)]);
+    const auto found = std::find(model_names.begin(), model_names.end(), id.fit.names[std::size_t(k)]);
     shared->model_index.push_back(Eigen::Index(found - model_names.begin()));
     shared->corrected[k] = st.coefficients[std::size_t(k)].corrected;
   }
-  shared->estimate = fit.value;
+  shared->estimate = id.fit.value;
   std::vector<double> reference(model_names.size());
   tolerances(std::vector<double>(config.tolerances.size(), 0.0), reference);
   shared->reference = Eigen::Map<const Eigen::VectorXd>(reference.data(), Eigen::Index(reference.size()));
@@ -188,8 +183,23 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   shared->type_a_dof = estimated ? type_a.dof : kInfiniteDof;
   shared->design = id.design;
   shared->modelled = id.modelled;
+  return shared;
+}
 
-  std::vector<std::string> names = fit.names;
+}  // namespace
+
+void check_statement_by_monte_carlo(const Config& config, const Identification& id,
+                                    const std::vector<double>& to_fit, const TypeAParts& type_a,
+                                    const StatementOptions& o, CalibrationStatement& st) {
+  if (o.statement_trials <= 0 || config.tolerances.empty()) return;
+  gaussian_copula(config);  // a pair the copula cannot draw, refused with its place in the file
+  const CalibrationModel model = calibration_model(config.experiment(), config.identification,
+                                                   config.tolerances, config.centrifuge.errors, st.mode);
+  TrialFunction tolerances = calibration_trial(model);
+  const std::vector<std::string> model_names = model.output_names();
+  const auto shared = statement_trial_shared(config, id, to_fit, type_a, model_names, tolerances, st);
+
+  std::vector<std::string> names = id.fit.names;
   for (const CoefficientStatement& out : st.outputs) names.push_back("run " + out.input.coefficient);
   ccal::PropagationOptions mo;
   mo.seed = o.seed;

@@ -191,7 +191,9 @@ TEST(BudgetText, CsvTotalsEqualTheJson) {
     std::string unit = c["unit"].get<std::string>();  // deg/s/g^2 → deg_s_g2 in the column's name
     unit.erase(std::remove(unit.begin(), unit.end(), '^'), unit.end());
     std::replace(unit.begin(), unit.end(), '/', '_');
-    const std::string column = "d" + c["id"].get<std::string>() + "_" + unit;
+    // Appended, not "d" + id + ...: GCC 12 misreads that inlined here (-Wrestrict).
+    std::string column = "d";
+    column.append(c["id"].get<std::string>()).append("_").append(unit);
     // Both are the same double printed to 17 digits: equal after parsing.
     EXPECT_EQ(std::stod(u.at(column)), c["standard_uncertainty"].get<double>()) << column;
     EXPECT_EQ(std::stod(U.at(column)), c["expanded_uncertainty"].get<double>()) << column;

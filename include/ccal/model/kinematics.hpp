@@ -87,6 +87,39 @@ ChannelValue<S> dynamic_channel(const ErrorLayout& layout, const Errors& e, int 
   return out;
 }
 
+// A dynamic error (model.md §3) of three channels from first_channel (x, y, z): its harmonic series in the
+// joint's angle q, with its rates, moves the frame.
+template <class S, class Errors>
+void translate_by_dynamic_error(FrameMotion<S>& m, const ErrorLayout& layout, const Errors& e,
+                                int first_channel, const S& q, const S& q_rate, const S& q_acc) {
+  Vec3<S> d, dd, ddd;
+  for (int i = 0; i < 3; ++i) {
+    const auto c = dynamic_channel<S>(layout, e, first_channel + i, q, q_rate, q_acc);
+    d[i] = c.value;
+    dd[i] = c.rate;
+    ddd[i] = c.acc;
+  }
+  m.translate(d, dd, ddd);
+}
+
+// The instrument's state at the end of the chain: its motion, and what it senses, the specific force
+// (f = a + 2 Ω_E × v + g, in the g of the g-levels) and the inertial rate (the frame's and the Earth's), on
+// its axes.
+template <class S>
+InstrumentState<S> sensed_state(const FrameMotion<S>& m, const Site& site) {
+  const Vec3<S> earth = site.sensed_rate_enu().template cast<S>();
+  Vec3<S> f = m.a + S(2) * Vec3<S>(site.coriolis_rate_enu().template cast<S>()).cross(m.v);
+  f[2] += S(site.g);
+  InstrumentState<S> out;
+  out.position = m.p;
+  out.velocity = m.v;
+  out.acceleration = m.a;
+  out.orientation = m.R;
+  out.specific_force = m.R.transpose() * f / S(site.g_unit());
+  out.angular_rate = m.R.transpose() * (m.w + earth);
+  return out;
+}
+
 // Exact state of the instrument for error vector `e` (indexed by `layout`, SI values).
 template <class S, class Errors>
 InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, const Errors& e,
@@ -94,17 +127,9 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
   constexpr int X = 0, Y = 1, Z = 2;
   auto E = [&](int i) { return S(e[i]); };
   FrameMotion<S> m;
-  // A dynamic error (model.md §3): its harmonic series in the joint's angle q, with its rates, moves the
-  // frame.
+  // A dynamic error (model.md §3): its harmonic series in the joint's angle q, with its rates, moves the frame.
   auto translate_dynamic = [&](int first_channel, const S& q, const S& q_rate, const S& q_acc) {
-    Vec3<S> d, dd, ddd;
-    for (int i = 0; i < 3; ++i) {
-      const auto c = dynamic_channel<S>(layout, e, first_channel + i, q, q_rate, q_acc);
-      d[i] = c.value;
-      dd[i] = c.rate;
-      ddd[i] = c.acc;
-    }
-    m.translate(d, dd, ddd);
+    translate_by_dynamic_error(m, layout, e, first_channel, q, q_rate, q_acc);
   };
   auto rotate_dynamic = [&](int channel, int axis, const S& q, const S& q_rate, const S& q_acc) {
     const auto c = dynamic_channel<S>(layout, e, channel, q, q_rate, q_acc);
@@ -151,17 +176,7 @@ InstrumentState<S> exact_state(const Geometry& geo, const ErrorLayout& layout, c
 
   if (options.frozen_platform) m.w += azimuth_axis * j.gamma_rate;
 
-  const Vec3<S> earth = site.sensed_rate_enu().template cast<S>();
-  Vec3<S> f = m.a + S(2) * Vec3<S>(site.coriolis_rate_enu().template cast<S>()).cross(m.v);
-  f[2] += S(site.g);
-  InstrumentState<S> out;
-  out.position = m.p;
-  out.velocity = m.v;
-  out.acceleration = m.a;
-  out.orientation = m.R;
-  out.specific_force = m.R.transpose() * f / S(site.g_unit());
-  out.angular_rate = m.R.transpose() * (m.w + earth);
-  return out;
+  return sensed_state(m, site);
 }
 
 // Specific force [g] and inertial angular rate [rad/s] on IA, PA, OA: the two quantities an instrument
