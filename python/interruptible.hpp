@@ -32,17 +32,22 @@ struct ProgressState {
   std::atomic<std::uint64_t> done{0}, total{0};
 };
 
+// progress: None or a callable, found now, not as "'int' object is not callable" from within the
+// computation's first report.
+inline void check_progress_argument(const py::object& progress) {
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw py::type_error("progress: expected None or a callable progress(done, total), got " +
+                         std::string(py::str(progress.get_type().attr("__name__"))) + " (" +
+                         std::string(py::repr(progress)) + ")");
+}
+
 // compute(ProgressCallback) → result; progress: None or a callable progress(done, total) run on the calling
 // thread with the GIL, about every 0.05–0.1 s.
 template <class Compute>
 auto run_interruptible(const py::object& progress, Compute&& compute)
     -> std::invoke_result_t<Compute&, ProgressCallback> {
   using Result = std::invoke_result_t<Compute&, ProgressCallback>;
-  // Found now, not as "'int' object is not callable" from within the computation's first report.
-  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
-    throw py::type_error("progress: expected None or a callable progress(done, total), got " +
-                         std::string(py::str(progress.get_type().attr("__name__"))) + " (" +
-                         std::string(py::repr(progress)) + ")");
+  check_progress_argument(progress);
   auto state = std::make_shared<ProgressState>();
   const ProgressCallback callback = [state](std::uint64_t done, std::uint64_t total) {
     state->done.store(done);

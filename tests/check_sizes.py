@@ -21,7 +21,6 @@ MAX_BINDING_LINES = 100
 KNOWN_LONG_FUNCTIONS = {
     ("include/ccal/reduction/run_average.hpp", "average_run"): 64,
     ("src/uncertainty/montecarlo.cpp", "run_monte_carlo"): 94,
-    ("src/uncertainty/calibration_model.cpp", "calibration_model"): 79,
     ("src/uncertainty/allocate_barrier.cpp", "solve_barrier"): 90,
     ("src/uncertainty/allocate_correlated.cpp", "solve_correlated_allocation"): 90,
 }

@@ -156,6 +156,74 @@ class CalibrationTrial final : public mc_batch::BatchTrial {
 
 }  // namespace
 
+namespace {
+
+// The model's parameter per source: a layout index, a run's rate noise (negative, rate_noise.hpp) or an input
+// of the measuring chain; anything else is refused.
+std::vector<int> source_parameters(const std::vector<Tolerance>& sources, int runs, int size) {
+  std::vector<int> parameters;
+  for (const Tolerance& t : sources) {
+    // A negative parameter is a run's rate noise (rate_noise.hpp), added to that run's mean.
+    const bool noise = t.parameter < 0 && rate_noise_run(t.parameter) < runs;
+    const bool chain = is_chain_parameter(t.parameter);
+    if (!noise && !chain && (t.parameter < 0 || t.parameter >= size))
+      throw InputError(
+          fmt::format("calibration model: source '{}' has parameter index {}, outside the layout "
+                      "(0…{})",
+                      t.id, t.parameter, size - 1));
+    parameters.push_back(t.parameter);
+  }
+  return parameters;
+}
+
+// The trial's run-mean rule: fast nodes enough for the instrument's degree and the layout's harmonics (a kink,
+// |a_i| a_i, keeps the default), slow nodes to 5e-6 of the drift.
+void trial_quadrature(const Experiment& experiment, QuadratureOptions& quadrature) {
+  std::vector<TermSpec> terms = experiment.instrument.terms();
+  int degree = 1;
+  for (const auto& t : terms) degree = std::max(degree, t.kind == TermKind::power ? t.power : 2);
+  const int band = 2 * (degree + experiment.layout.harmonic_order()) + 2;
+  bool kink = false;
+  for (const auto& t : terms) kink = kink || t.kind == TermKind::abs_square;
+  if (!kink) quadrature.fast_nodes = std::max(8, band);  // even; 10 for a cubic with first harmonics
+  // drift^Q/Q! ≤ 5e-6 keeps Q = 2 up to |ΔΩ|T ≈ 1.5e-3 (drift = 2|ΔΩ|T for M = 10); the bound overstates
+  // the error relative to the swing (tests/reduction/run_average_test.cpp: below 1e-12 of the swing for 3σ draws).
+  quadrature.slow_tolerance = 5e-6;
+}
+
+// What each source's draw is, sorted once per model: an input of the measuring chain, a run's rate noise (and
+// its run) or an error of the layout (and its index).
+void sort_draw_roles(const std::vector<int>& parameters, CalibrationTrialCache& cache) {
+  for (std::size_t j = 0; j < parameters.size(); ++j) {
+    const int p = parameters[j];
+    if (is_chain_parameter(p))
+      cache.chain_draws.push_back(j);
+    else if (p < 0)
+      cache.noise_draws.emplace_back(j, Eigen::Index(rate_noise_run(p)));
+    else
+      cache.layout_draws.emplace_back(j, Eigen::Index(p));
+  }
+}
+
+// The measuring chain's inputs' columns of the run means (runs × sources, zero for every other source).
+void chain_columns_of(const Experiment& experiment, const IdentificationSpec& spec,
+                      const std::vector<int>& parameters, const Eigen::VectorXd& actual_errors, ModelMode mode,
+                      const ReductionOptions& reduction, CalibrationTrialCache& cache) {
+  std::vector<int> chain_parameters;
+  for (int p : parameters)
+    if (is_chain_parameter(p)) chain_parameters.push_back(p);
+  if (chain_parameters.empty()) return;
+  const Eigen::MatrixXd columns =
+      chain_output_columns(experiment, spec, chain_parameters, actual_errors, mode, reduction);
+  cache.chain_columns =
+      Eigen::MatrixXd::Zero(Eigen::Index(experiment.plan.runs.size()), Eigen::Index(parameters.size()));
+  for (std::size_t s = 0, c = 0; s < parameters.size(); ++s)
+    if (is_chain_parameter(parameters[s])) cache.chain_columns.col(Eigen::Index(s)) = columns.col(Eigen::Index(c++));
+  cache.any_chain = true;
+}
+
+}  // namespace
+
 CalibrationModel calibration_model(const Experiment& experiment, const IdentificationSpec& spec,
                                    const std::vector<Tolerance>& sources,
                                    const Eigen::VectorXd& actual_errors, ModelMode mode) {
@@ -169,42 +237,11 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
   m.spec = spec;
   m.actual_errors = actual_errors;
   m.mode = mode;
-  const int runs = int(experiment.plan.runs.size());
-  for (const Tolerance& t : sources) {
-    // A negative parameter is a run's rate noise (rate_noise.hpp), added to that run's mean.
-    const bool noise = t.parameter < 0 && rate_noise_run(t.parameter) < runs;
-    const bool chain = is_chain_parameter(t.parameter);
-    if (!noise && !chain && (t.parameter < 0 || t.parameter >= size))
-      throw InputError(
-          fmt::format("calibration model: source '{}' has parameter index {}, outside the layout "
-                      "(0…{})",
-                      t.id, t.parameter, size - 1));
-    m.parameters.push_back(t.parameter);
-  }
+  m.parameters = source_parameters(sources, int(experiment.plan.runs.size()), size);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(size);
-  {
-    std::vector<TermSpec> terms = experiment.instrument.terms();
-    int degree = 1;
-    for (const auto& t : terms) degree = std::max(degree, t.kind == TermKind::power ? t.power : 2);
-    const int band = 2 * (degree + experiment.layout.harmonic_order()) + 2;
-    bool kink = false;
-    for (const auto& t : terms) kink = kink || t.kind == TermKind::abs_square;
-    if (!kink)
-      m.reduction.quadrature.fast_nodes = std::max(8, band);  // even; 10 for a cubic with first harmonics
-    // drift^Q/Q! ≤ 5e-6 keeps Q = 2 up to |ΔΩ|T ≈ 1.5e-3 (drift = 2|ΔΩ|T for M = 10); the bound overstates
-    // the error relative to the swing (tests/reduction/run_average_test.cpp: below 1e-12 of the swing for 3σ draws).
-    m.reduction.quadrature.slow_tolerance = 5e-6;
-  }
+  trial_quadrature(experiment, m.reduction.quadrature);
   CalibrationTrialCache& cache = m.cache;
-  for (std::size_t j = 0; j < m.parameters.size(); ++j) {
-    const int p = m.parameters[j];
-    if (is_chain_parameter(p))
-      cache.chain_draws.push_back(j);
-    else if (p < 0)
-      cache.noise_draws.emplace_back(j, Eigen::Index(rate_noise_run(p)));
-    else
-      cache.layout_draws.emplace_back(j, Eigen::Index(p));
-  }
+  sort_draw_roles(m.parameters, cache);
   if (mode == ModelMode::exact && !m.reduction.chain.frozen_platform)
     cache.run_means =
         std::make_shared<const RunMeanKernel>(experiment.geometry, experiment.layout, experiment.site,
@@ -212,17 +249,7 @@ CalibrationModel calibration_model(const Experiment& experiment, const Identific
   if (mode == ModelMode::paper)
     for (const Run& run : experiment.plan.runs)
       cache.paper_nodes.push_back(detail::paper_run_nodes(experiment, run, {}));
-  std::vector<int> chain_parameters;
-  for (int p : m.parameters)
-    if (is_chain_parameter(p)) chain_parameters.push_back(p);
-  if (!chain_parameters.empty()) {
-    const Eigen::MatrixXd columns =
-        chain_output_columns(experiment, spec, chain_parameters, actual_errors, mode, m.reduction);
-    cache.chain_columns = Eigen::MatrixXd::Zero(runs, Eigen::Index(m.parameters.size()));
-    for (std::size_t s = 0, c = 0; s < m.parameters.size(); ++s)
-      if (is_chain_parameter(m.parameters[s])) cache.chain_columns.col(Eigen::Index(s)) = columns.col(Eigen::Index(c++));
-    cache.any_chain = true;
-  }
+  chain_columns_of(experiment, spec, m.parameters, actual_errors, mode, m.reduction, cache);
   const Eigen::VectorXd known = spec.compensate ? actual_errors : zero;
   const Observations<double> model = observe<double>(experiment, zero, known, spec, mode, m.reduction);
   const auto nfree = Eigen::Index(spec.free_terms.size());
