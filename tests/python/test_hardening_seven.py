@@ -127,6 +127,9 @@ class SevenFreshRound(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, r"^fit: the design has 2 rows but y has 1 entries; accepted: one y "
                                                 r"per row of the design$"):
             ccal.fit([[1.0, 2.0], [3.0, 4.0]], [1.0], ["a", "b"])
+        with self.assertRaisesRegex(ValueError, r"^fit: non-finite value nan in y at row 2.*; accepted: finite "
+                                                r"numbers$"):
+            ccal.fit([[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]], [1.0, float("nan"), 2.0], ["a", "b"])
         with self.assertRaisesRegex(ValueError, r"^fit: 1 term names for a design with 2 columns; accepted: one name "
                                                 r"per column of the design$"):
             ccal.fit([[1.0, 0.0], [0.0, 1.0]], [1.0, 2.0], ["a"])
