@@ -26,7 +26,7 @@ KNOWN_LONG_FUNCTIONS = {
 }
 FILE_DIRS = ["include", "src", "apps", "python", "bench", "tests", "fuzz", "scripts"]
 FUNCTION_DIRS = ["include", "src", "apps", "python", "bench"]
-SUFFIXES = {".cpp", ".hpp", ".py"}
+SUFFIXES = {".cpp", ".hpp", ".inc", ".py"}
 
 
 def blank_literals(text):

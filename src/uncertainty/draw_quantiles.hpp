@@ -60,7 +60,7 @@ inline T sin_pi(T t) {
 }
 
 // The arcsine's and the triangular's F⁻¹ (bound 1) of n uniforms u on the engine's grid, in SIMD lanes (the
-// loops compiled for each instruction set, CCAL_CLONED): sin(π(u − ½)), and √(2u) − 1 below ½, 1 − √(2(1 − u))
+// loops compiled for each instruction set, core/per_isa.hpp): sin(π(u − ½)), and √(2u) − 1 below ½, 1 − √(2(1 − u))
 // from ½ on, each value's bits those of the scalar expression.
 void arcsine_quantiles(const double* u, double* x, std::size_t n);
 void triangular_quantiles(const double* u, double* x, std::size_t n);
@@ -68,10 +68,12 @@ void triangular_quantiles(const double* u, double* x, std::size_t n);
 // Φ⁻¹(u), the standard normal's quantile, for 0 < u < 1 (a normal double, as every u of the grid is): the rational
 // approximations of M. J. Wichura, "Algorithm AS 241: The percentage points of the normal distribution", Applied
 // Statistics 37(3), 1988 (PPND16, relative error about 10⁻¹⁶), evaluated by the compensated Horner scheme (each
-// step's roundings taken exactly, from + − × ÷ alone: Dekker's exact products, Knuth's exact sums, and carried
-// by a second sum) and divided in double-double arithmetic, with log_positive in its tails (draw_quantiles.cpp). normal_quantiles computes n of them in SIMD lanes, the loop compiled for each
-// instruction set (CCAL_CLONED); every value goes through the same lane code, so that a value's bits depend
-// neither on the processor nor on its neighbours in the batch. normal_quantile is the same for one value.
+// step's roundings taken exactly: exact products (Dekker's, or one fused multiply-subtract where the processor
+// has it, the same exact value), Knuth's exact sums, and carried by a second sum) and divided in double-double
+// arithmetic, with log_positive in its tails (draw_quantiles.cpp). normal_quantiles computes n of them in SIMD
+// lanes, the loop compiled for each instruction set (core/per_isa.hpp); every value goes through the same lane
+// code, so that a value's bits depend neither on the processor nor on its neighbours in the batch.
+// normal_quantile is the same for one value.
 void normal_quantiles(const double* u, double* x, std::size_t n);
 double normal_quantile(double u);
 
