@@ -403,6 +403,72 @@ void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const
 
 }  // namespace
 
+namespace {
+
+// The trials of a stage (§7.9.4: at least J, so that an interval has 100 values outside it), or of the whole
+// run without stages; two stages must fit within max_trials.
+std::uint64_t stage_trials(const PropagationOptions& options, bool adaptive, std::uint64_t J) {
+  const std::uint64_t block =
+      adaptive ? std::max({options.trials.value_or(kDefaultMonteCarloStage), J, kDefaultMonteCarloStage})
+               : options.trials.value_or(kDefaultMonteCarloTrials);
+  if (adaptive && options.max_trials < 2 * block)
+    throw OptionError("max_trials", std::to_string(options.max_trials),
+                      fmt::format("leaves fewer than the 2 stages of {} trials the adaptive procedure needs; "
+                                  "accepted: at least {} (or fewer trials a stage)",
+                                  block, 2 * block));
+  return block;
+}
+
+// Each output's sample grown to M values, in steps of 2^20 values, asking the callback between them (it may
+// cancel): zero-filling gigabytes takes seconds.
+void grow_samples(std::vector<std::vector<double>>& samples, std::uint64_t M, Progress& progress) {
+  for (auto& s : samples)
+    while (s.size() < M) {
+      s.resize(std::min<std::uint64_t>(M, s.size() + (std::uint64_t(1) << 20)));
+      progress.poll();
+    }
+}
+
+// What the stages leave: the trials run and whether two stages agreed.
+struct StagesRun {
+  std::uint64_t trials = 0;
+  bool converged = false;
+};
+// Stages of `block` trials until two agree to n_dig digits or max_trials would be passed (§7.9.4); one stage
+// of every trial without digits. Counts the stages into result.stages.
+StagesRun run_stages(const Engine& engine, const PropagationOptions& options, std::uint64_t block,
+                     std::uint64_t q_block, int n_dig, std::vector<std::vector<double>>& samples,
+                     Progress& progress, MonteCarloDetail& result) {
+  const bool adaptive = options.digits > 0;
+  std::vector<StageValues> stage(samples.size());
+  StagesRun run{0, !adaptive};
+  for (int h = 1;; ++h) {
+    const std::uint64_t begin = run.trials;
+    run.trials += block;
+    check_sample_memory(run.trials, samples.size(), adaptive);
+    progress.set_stage(run.trials, adaptive ? fmt::format("stage {} ", h) : std::string());
+    grow_samples(samples, run.trials, progress);
+    engine.run(h == 1 ? take_earlier(options.earlier_samples, samples, progress) : begin, run.trials);
+    result.stages = h;
+    if (!adaptive) return run;
+    record_stage(samples, begin, block, q_block, result.threads, stage);
+    if (h >= 2 && stages_stable(stage, block, n_dig, result)) {
+      run.converged = true;
+      return run;
+    }
+    if (run.trials + block > options.max_trials) return run;
+  }
+}
+
+// The M × outputs sample into result.samples, for a caller that keeps it.
+void keep_samples(const std::vector<std::vector<double>>& samples, std::uint64_t M, MonteCarloDetail& result) {
+  result.samples.resize(Eigen::Index(M), Eigen::Index(samples.size()));
+  for (std::size_t o = 0; o < samples.size(); ++o)
+    result.samples.col(Eigen::Index(o)) = Eigen::Map<const Eigen::VectorXd>(samples[o].data(), Eigen::Index(M));
+}
+
+}  // namespace
+
 MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
                                  const std::vector<Correlation>& correlations, int n_outputs,
                                  std::vector<std::string> output_names, const TrialFunction& trial,
@@ -415,14 +481,7 @@ MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
   const int n_dig = adaptive ? options.digits : 2;
   // J of §7.9.4 b): the least M for which the coverage interval has 100 values outside it.
   const auto J = std::uint64_t(std::ceil(100.0 / (1.0 - p) - 1e-9));
-  const std::uint64_t block =
-      adaptive ? std::max({options.trials.value_or(kDefaultMonteCarloStage), J, kDefaultMonteCarloStage})
-               : options.trials.value_or(kDefaultMonteCarloTrials);
-  if (adaptive && options.max_trials < 2 * block)
-    throw OptionError("max_trials", std::to_string(options.max_trials),
-                      fmt::format("leaves fewer than the 2 stages of {} trials the adaptive procedure needs; "
-                                  "accepted: at least {} (or fewer trials a stage)",
-                                  block, 2 * block));
+  const std::uint64_t block = stage_trials(options, adaptive, J);
 
   const SlotPlan plan = plan_slots(sources);
   std::optional<GaussianCopula> copula;
@@ -430,15 +489,12 @@ MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
   const GaussianCopula* copula_used = copula ? &*copula : nullptr;
   const auto n_out = std::size_t(n_outputs);
   const int threads = options.threads > 0 ? options.threads : default_threads();
-
   const Eigen::VectorXd estimate = model_at_zero(sources, n_out, output_names, trial);
 
   std::vector<std::vector<double>> samples(n_out);
   Progress progress(options.progress, options.on_progress);
   const Engine engine{sources, plan,    copula_used, trial, output_names, mix64(options.seed),
                       threads, samples, progress};
-  const std::uint64_t q_block = interval_points(block, p);
-
   MonteCarloDetail result;
   result.adaptive = adaptive;
   result.seed = options.seed;
@@ -447,56 +503,24 @@ MonteCarloDetail run_monte_carlo(const std::vector<Tolerance>& sources,
   result.digits = n_dig;
   result.stage_trials = block;
   result.outputs.resize(n_out);
-
-  std::vector<StageValues> stage(n_out);
-  std::uint64_t M = 0;
-  bool converged = !adaptive;
-  for (int h = 1;; ++h) {
-    const std::uint64_t begin = M;
-    M += block;
-    check_sample_memory(M, n_out, adaptive);
-    progress.set_stage(M, adaptive ? fmt::format("stage {} ", h) : std::string());
-    for (auto& s : samples)   // in steps of 2^20 values, asking the callback between them (it may cancel):
-      while (s.size() < M) {  // zero-filling gigabytes takes seconds
-        s.resize(std::min<std::uint64_t>(M, s.size() + (std::uint64_t(1) << 20)));
-        progress.poll();
-      }
-    engine.run(h == 1 ? take_earlier(options.earlier_samples, samples, progress) : begin, M);
-    result.stages = h;
-    if (!adaptive) break;
-
-    record_stage(samples, begin, block, q_block, threads, stage);
-    if (h < 2) continue;
-    const bool stable = stages_stable(stage, block, n_dig, result);
-    if (stable) {
-      converged = true;
-      break;
-    }
-    if (M + block > options.max_trials) break;
-  }
+  const StagesRun run =
+      run_stages(engine, options, block, interval_points(block, p), n_dig, samples, progress, result);
   progress.finish();
 
   // Final statistics from all M values, each in a fixed order.
+  const std::uint64_t M = run.trials, q = interval_points(M, p);
   result.trials = M;
-  result.converged = converged;
-  const std::uint64_t q = interval_points(M, p);
+  result.converged = run.converged;
   result.interval_points = q;
   result.sample_bytes = 8 * M * n_out;
   const std::vector<double> means = sample_moments(samples, M, threads, result);
-
   const double k_p = normal_erf_quantile(p);
   result.coverage_factor = k_p;
-  if (options.keep_samples) {
-    result.samples.resize(Eigen::Index(M), Eigen::Index(n_out));
-    for (std::size_t o = 0; o < n_out; ++o)
-      result.samples.col(Eigen::Index(o)) =
-          Eigen::Map<const Eigen::VectorXd>(samples[o].data(), Eigen::Index(M));
-  }
+  if (options.keep_samples) keep_samples(samples, M, result);
   summarise_outputs(samples, means, estimate, output_names, lpu_std, q, k_p, n_dig, options.histogram_bins,
                     threads, result);
   samples.clear();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-
   describe(sources, plan, copula_used, options, block, J, n_dig, k_p, lpu_std != nullptr, n_outputs, result);
   return result;
 }
