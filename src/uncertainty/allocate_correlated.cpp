@@ -178,15 +178,14 @@ void polish(const CorrelatedRows& P, Eigen::VectorXd& lambda, Eigen::VectorXd& m
 
 }  // namespace
 
-AllocationSolution solve_correlated_allocation(const AllocationProblem& P) {
-  const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols();
-  if (P.correlation.rows() != ns || P.correlation.cols() != ns)
-    throw InputError("allocation: the correlation matrix must be sources × sources");
-  const Groups groups = merge_groups(P.sensitivity, P.standard_uncertainty, P.cost, P.group);
-  const Eigen::Index ng = groups.cost.size();
+namespace {
+
+// The rows Q_k = (k_p/T_k)² Gᵀ (E_k C E_k) G of the groups (E_k = diag of row k's sensitivities times the
+// sources' u, G the sources' groups), symmetrised, with each group's cost and scale bounds.
+CorrelatedRows correlated_rows(const AllocationProblem& P, const Groups& groups) {
+  const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols(), ng = groups.cost.size();
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(ns, ng);
   for (Eigen::Index s = 0; s < ns; ++s) G(s, groups.of[std::size_t(s)]) = 1;
-
   CorrelatedRows R;
   R.cost = groups.cost;
   R.most = P.max_scale;
@@ -199,10 +198,15 @@ AllocationSolution solve_correlated_allocation(const AllocationProblem& P) {
     R.Q.push_back(w * w * (G.transpose() * (e.asDiagonal() * P.correlation * e.asDiagonal()) * G));
     R.Q.back() = 0.5 * (R.Q.back() + R.Q.back().transpose()).eval();
   }
+  return R;
+}
 
-  // The rows at the least scales: above 1, unreachable (loosening a source whose error cancels another's is
-  // not sought); at 1 with every group that acts on the row floored, met only there: pinned, the row dropped.
-  AllocationSolution sol;
+// The rows at the least scales: above 1, unreachable (loosening a source whose error cancels another's is
+// not sought); at 1 with every group that acts on the row floored, met only there: pinned, the row dropped.
+// Fills sol.unreachable and sol.least_expanded, R.used and R.pinned.
+void rows_at_least_scales(const AllocationProblem& P, CorrelatedRows& R, AllocationSolution& sol) {
+  const auto nt = Eigen::Index(R.Q.size());
+  const Eigen::Index ng = R.least.size();
   sol.unreachable.assign(std::size_t(nt), false);
   sol.least_expanded.resize(nt);
   R.used.assign(std::size_t(nt), true);
@@ -222,38 +226,63 @@ AllocationSolution solve_correlated_allocation(const AllocationProblem& P) {
     for (Eigen::Index g = 0; g < ng; ++g)
       if (R.Q[std::size_t(k)](g, g) > 0) R.pinned[std::size_t(g)] = true;
   }
+}
+
+// A strictly feasible start: λ = ℓ + α (Λ − ℓ), α halved until every row has slack (it has at α → 0).
+Eigen::VectorXd strictly_feasible_start(const CorrelatedRows& R) {
+  Eigen::VectorXd lambda = R.least;
+  for (double alpha = 0.5; alpha > 1e-300; alpha *= 0.5) {
+    for (Eigen::Index g = 0; g < lambda.size(); ++g)
+      lambda[g] = R.pinned[std::size_t(g)] ? R.least[g] : R.least[g] + alpha * (R.most - R.least[g]);
+    if (std::isfinite(barrier_value(R, lambda, 1.0))) break;
+  }
+  return lambda;
+}
+
+// Σ_g c_g / λ_g, the cost of the scales.
+double cost_of(const CorrelatedRows& R, const Eigen::VectorXd& lambda) {
+  double f = 0;
+  for (Eigen::Index g = 0; g < lambda.size(); ++g) f += R.cost[g] / lambda[g];
+  return f;
+}
+
+// The barrier's outer loop from the start: t × 20 until the duality gap m/t is 1e-11 of the cost (or 5000
+// Newton steps). Fills the iterations, the gap and whether it converged.
+void barrier_iterations(const CorrelatedRows& R, Eigen::VectorXd& lambda, AllocationSolution& sol) {
+  Eigen::Index m = 0;
+  for (std::size_t k = 0; k < R.used.size(); ++k) m += R.used[k] ? 1 : 0;
+  for (Eigen::Index g = 0; g < lambda.size(); ++g) m += R.pinned[std::size_t(g)] ? 0 : 2;
+  double t = double(std::max<Eigen::Index>(m, 1)) / cost_of(R, lambda);
+  int iterations = 0;
+  while (true) {
+    iterations += centre(R, t, lambda);
+    if (double(m) / t <= 1e-11 * cost_of(R, lambda) || iterations > 5000) break;
+    t *= 20;
+  }
+  sol.iterations = iterations;
+  sol.dual_gap = double(m) / t;
+  sol.converged = sol.dual_gap <= 1e-9 * cost_of(R, lambda);
+}
+
+}  // namespace
+
+AllocationSolution solve_correlated_allocation(const AllocationProblem& P) {
+  const Eigen::Index nt = P.sensitivity.rows(), ns = P.sensitivity.cols();
+  if (P.correlation.rows() != ns || P.correlation.cols() != ns)
+    throw InputError("allocation: the correlation matrix must be sources × sources");
+  const Groups groups = merge_groups(P.sensitivity, P.standard_uncertainty, P.cost, P.group);
+  const Eigen::Index ng = groups.cost.size();
+  CorrelatedRows R = correlated_rows(P, groups);
+  AllocationSolution sol;
+  rows_at_least_scales(P, R, sol);
   if (std::find(sol.unreachable.begin(), sol.unreachable.end(), true) != sol.unreachable.end()) {
     sol.method = "none (a target cannot be met with every source at its floor)";
     return sol;
   }
 
-  // A strictly feasible start: λ = ℓ + α (Λ − ℓ), α halved until every row has slack (it has at α → 0).
-  Eigen::VectorXd lambda = R.least;
-  for (double alpha = 0.5; alpha > 1e-300; alpha *= 0.5) {
-    for (Eigen::Index g = 0; g < ng; ++g)
-      lambda[g] = R.pinned[std::size_t(g)] ? R.least[g] : R.least[g] + alpha * (R.most - R.least[g]);
-    if (std::isfinite(barrier_value(R, lambda, 1.0))) break;
-  }
-  Eigen::Index m = 0;
-  for (std::size_t k = 0; k < R.used.size(); ++k) m += R.used[k] ? 1 : 0;
-  for (Eigen::Index g = 0; g < ng; ++g) m += R.pinned[std::size_t(g)] ? 0 : 2;
-  const auto objective = [&](const Eigen::VectorXd& l) {
-    double f = 0;
-    for (Eigen::Index g = 0; g < ng; ++g) f += R.cost[g] / l[g];
-    return f;
-  };
-  double t = double(std::max<Eigen::Index>(m, 1)) / objective(lambda);
-  int iterations = 0;
-  while (true) {
-    iterations += centre(R, t, lambda);
-    if (double(m) / t <= 1e-11 * objective(lambda) || iterations > 5000) break;
-    t *= 20;
-  }
-
-  sol.iterations = iterations;
+  Eigen::VectorXd lambda = strictly_feasible_start(R);
+  barrier_iterations(R, lambda, sol);
   sol.method = "barrier (partly correlated sources)";
-  sol.dual_gap = double(m) / t;
-  sol.converged = sol.dual_gap <= 1e-9 * objective(lambda);
   sol.multiplier = row_multipliers(R, lambda);
   polish(R, lambda, sol.multiplier);
   sol.scale.resize(ns);
