@@ -2,9 +2,8 @@
 """The size rules of docs/architecture.md: no C++ or Python file of the project over 600 lines, and no function
 body of the library, the program, the Python module or the benchmarks over 60 lines. One exemption: the Python
 module's registration functions (in python/bind_*.cpp, named bind_*), declarative chains of .def calls, may
-reach 100 lines. The functions still over 60 lines are listed in KNOWN_LONG_FUNCTIONS with their length: an
-entry may only shrink (a listed function that grows, or is no longer over 60 lines and still listed, is a
-violation), and a function not listed may not pass 60. Functions are found by their braces after comments and
+reach 100 lines. The C++ bodies compiled once per instruction set (src/**/*.inc, core/per_isa.hpp) are held to
+the same rules. Functions are found by their braces after comments and
 string literals are blanked: a brace block opened at namespace or class scope that is not a namespace, class,
 struct, enum or union is a function body, named by the identifier before the first parenthesis of its head.
 Exit 1 with one line per violation."""
@@ -16,14 +15,6 @@ MAX_FILE_LINES = 600
 MAX_FUNCTION_LINES = 60
 # The Python module's registration functions: python/bind_*.cpp, a function named bind_* (a chain of .def calls).
 MAX_BINDING_LINES = 100
-# Functions over MAX_FUNCTION_LINES not yet split into named steps, with their length today (path, name): lines.
-# An entry may only shrink; remove it when its function is split.
-KNOWN_LONG_FUNCTIONS = {
-    ("include/ccal/reduction/run_average.hpp", "average_run"): 64,
-    ("src/uncertainty/montecarlo.cpp", "run_monte_carlo"): 94,
-    ("src/uncertainty/allocate_barrier.cpp", "solve_barrier"): 90,
-    ("src/uncertainty/allocate_correlated.cpp", "solve_correlated_allocation"): 90,
-}
 FILE_DIRS = ["include", "src", "apps", "python", "bench", "tests", "fuzz", "scripts"]
 FUNCTION_DIRS = ["include", "src", "apps", "python", "bench"]
 SUFFIXES = {".cpp", ".hpp", ".inc", ".py"}
@@ -81,13 +72,12 @@ def function_limit(rel, name):
     """The most lines a function of file `rel` (relative to the root) named `name` may have."""
     if rel.parts[0] == "python" and rel.name.startswith("bind_") and name.startswith("bind_"):
         return MAX_BINDING_LINES
-    return KNOWN_LONG_FUNCTIONS.get((rel.as_posix(), name), MAX_FUNCTION_LINES)
+    return MAX_FUNCTION_LINES
 
 
 def main(root):
     root = pathlib.Path(root).resolve()
     problems, files = [], 0
-    longest = {}  # (path, name) of a listed function: its longest body (an overload's, a default argument's {})
     for folder in FILE_DIRS:
         for path in sorted((root / folder).rglob("*")):
             if path.suffix not in SUFFIXES or "node_modules" in path.parts:
@@ -101,17 +91,9 @@ def main(root):
             if path.suffix != ".py" and rel.parts[0] in FUNCTION_DIRS:
                 for first, length, name in named_function_bodies(text):
                     limit = function_limit(rel, name)
-                    if (rel.as_posix(), name) in KNOWN_LONG_FUNCTIONS:
-                        key = (rel.as_posix(), name)
-                        longest[key] = max(longest.get(key, 0), length)
                     if length > limit:
                         problems.append(f"{rel}:{first}: {name or 'a function'} of {length} lines (at most "
                                         f"{limit}: split it into named steps)")
-    for (rel, name), length in sorted(KNOWN_LONG_FUNCTIONS.items()):
-        if (rel, name) not in longest:
-            problems.append(f"KNOWN_LONG_FUNCTIONS names {name} of {rel}, which is not there: take it off the list")
-        elif longest[(rel, name)] <= MAX_FUNCTION_LINES:
-            problems.append(f"{rel}: {name} has {longest[(rel, name)]} lines now: take it off KNOWN_LONG_FUNCTIONS")
     for p in problems:
         print(p)
     print(f"{files} files checked, {len(problems)} violation(s)")
