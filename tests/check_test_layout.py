@@ -45,7 +45,6 @@ TESTED_ELSEWHERE = {
     "render/report_montecarlo.cpp": _REPORT,
     "render/report_setup.cpp": _REPORT,
     "render/report_statement.cpp": _REPORT,
-    "render/statement_inputs.cpp": "the statement's Type A and inputs tables: tests/cli/statement_test.cpp",
     "render/table.cpp": "the text tables: tests/render/budget_test.cpp (Table)",
     "setup/certificate.cpp": "the dates and the traceability: tests/io/config_sections_certificate_test.cpp (CertificateDates, CertificateTraceability)",
     "setup/config.cpp": "Config::experiment: tests/io/config_file_test.cpp",
