@@ -36,7 +36,6 @@ TESTED_ELSEWHERE = {
     "render/budget_text.cpp": "the budget's text: tests/render/budget_test.cpp",
     "verbs/history.cpp": "history add and show: tests/cli/history_test.cpp",
     "render/design_plan.cpp": "the designed [plan]: tests/verbs/design_test.cpp (DesignPlanText)",
-    "render/parts.cpp": _OUTPUT,
     "render/report_allocate.cpp": _REPORT,
     "render/report_budget.cpp": _REPORT,
     "render/certificate_result.cpp": "the certificate: tests/render/certificate_page_test.cpp, tests/report/check_certificate_document.py (report.certificate_document)",
