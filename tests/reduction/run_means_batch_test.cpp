@@ -72,29 +72,9 @@ TEST_P(GeneralCentrifugeBatch, TrialsInLanesAreTheOneTrialMeansBitForBit) {
   // IA-rate gain, and a platform phase-locked to the main axis (it follows the main drive's ripple) or on its
   // own loop.
   const auto [order, phase_locked] = GetParam();
-  Experiment ex;
-  ex.geometry = Geometry{2.5, 0.3, 0.07, 0.02};
+  // Runs of two durations: two groups of runs that share their nodes, besides the fixed-platform run.
+  Experiment ex = general_centrifuge(order, {200.0, 200.0, 200.0, 237.0, 237.0, 237.0});
   if (phase_locked) ex.geometry.platform_control = PlatformControl::phase_locked;
-  ex.layout = ErrorLayout(order);
-  ex.site = paper_site(true);
-  const Mounting mountings[] = {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical,
-                                Mounting::ia_vertical};
-  for (int k = 0; k < 6; ++k) {
-    ccal::Run r;
-    r.name = "run" + std::to_string(k);
-    r.g_level = 4.0 + 6.0 * k;
-    r.duration = k < 3 ? 200.0 : 237.0;
-    r.initial_phase = 0.3 + k;
-    r.arm_azimuth = 0.2 * k;
-    r.mounting = mountings[k % 4];
-    r.mode = k == 5 ? PlatformMode::fixed : PlatformMode::counter_rotating;
-    ex.plan.runs.push_back(r);
-  }
-  ex.instrument = paper_piga();
-  ex.instrument.term_ids = {"K0", "K1", "K2", "K3", "K_oq", "K_p", "K_io", "K_pp", "K_w"};
-  ex.instrument.coefficients.resize(9);
-  ex.instrument.coefficients << 1e-3, 8.8, 3e-4, 5e-5, 2e-5, 2e-4, 1e-5, 3e-5, 2e-3;
-  ex.instrument.rate_gain = 0.9;
   ReductionOptions options;
   options.quadrature.fast_nodes = 2 * (3 + order) + 4;
   const RunMeanKernel kernel(ex.geometry, ex.layout, ex.site, ex.plan.runs, ex.instrument, options);

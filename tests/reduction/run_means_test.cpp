@@ -56,28 +56,7 @@ TEST_P(GeneralCentrifuge, EqualsTheGeneralReduction) {
   // optionally wobble angles above 1e-3 rad (the one-node-at-a-time loops with the library cos/sin branch of
   // cos_sin). Same 1e-14-of-swing tolerance as above, for the same reason.
   const auto [order, large_wobbles] = GetParam();
-  Experiment ex;
-  ex.geometry = Geometry{2.5, 0.3, 0.07, 0.02};
-  ex.layout = ErrorLayout(order);
-  ex.site = paper_site(true);
-  const Mounting mountings[] = {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical,
-                                Mounting::ia_vertical};
-  for (int k = 0; k < 5; ++k) {
-    ccal::Run r;
-    r.name = "run" + std::to_string(k);
-    r.g_level = 4.0 + 6.0 * k;
-    r.duration = 200.0 + 37.0 * k;
-    r.initial_phase = 0.3 + k;
-    r.arm_azimuth = 0.2 * k;
-    r.mounting = mountings[k % 4];
-    r.mode = k == 4 ? PlatformMode::fixed : PlatformMode::counter_rotating;
-    ex.plan.runs.push_back(r);
-  }
-  ex.instrument = paper_piga();
-  ex.instrument.term_ids = {"K0", "K1", "K2", "K3", "K_oq", "K_p", "K_io", "K_pp", "K_w"};
-  ex.instrument.coefficients.resize(9);
-  ex.instrument.coefficients << 1e-3, 8.8, 3e-4, 5e-5, 2e-5, 2e-4, 1e-5, 3e-5, 2e-3;
-  ex.instrument.rate_gain = 0.9;
+  const Experiment ex = general_centrifuge(order, {200.0, 237.0, 274.0, 311.0, 348.0});  // 200 + 37 k s
   Eigen::VectorXd e = random_errors(ex.layout, 1e-5, 7);
   e[ch::dOmega] = 2e-7;
   e[ch::dthx1t] = 1.5e-3;
