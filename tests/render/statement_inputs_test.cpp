@@ -15,18 +15,6 @@ namespace statement_inputs_test {
 using test::line_starting;
 using test::table_cells;
 
-// The text's words in order, its line breaks and indents gone (the renderer wraps at the width).
-std::string words_of(const std::string& text) {
-  std::string out;
-  for (const std::string& l : test::rendered_lines(text)) {
-    const auto first = l.find_first_not_of(' ');
-    if (first == std::string::npos) continue;
-    if (!out.empty()) out += ' ';
-    out.append(l, first);
-  }
-  return out;
-}
-
 // Two coefficients (u_c 1e-3 and 2e-4) and three inputs: a tilt written in arcsec and measured by the test, a
 // radius error from its tolerance in µm, and one whose effects are below the round-off floor (1e-12 u_c).
 verbs::CalibrationStatement statement() {
@@ -58,8 +46,8 @@ TEST(StatementInputsText, ActingInputsAreRowsInTheirWrittenUnitsAndTheSilentOneI
   EXPECT_EQ(table_cells(*radius)[1], "25");
   EXPECT_EQ(table_cells(*radius)[3], "tolerance");
   EXPECT_FALSE(line_starting(text, "dx5 ")) << "an input below the round-off floor is no row\n" << text;
-  EXPECT_NE(words_of(text).find("1 measured in this test"), std::string::npos) << text;
-  EXPECT_NE(words_of(text).find("1 more act on no coefficient, listed in the JSON"), std::string::npos)
+  EXPECT_NE(test::words_of(text).find("1 measured in this test"), std::string::npos) << text;
+  EXPECT_NE(test::words_of(text).find("1 more act on no coefficient, listed in the JSON"), std::string::npos)
       << text;
   EXPECT_NE(text.find("u_i(K0)"), std::string::npos) << text;
   EXPECT_NE(text.find("u_i(K2)"), std::string::npos) << text;
@@ -85,7 +73,7 @@ TEST(StatementInputsJson, EveryInputWithItsUInBothUnitsAndItsEffectsByCoefficien
 
 TEST(StatementTypeA, TheFitsScatterOrTheNoiseModelWithItsResidualCheck) {
   verbs::CalibrationStatement st = statement();
-  const std::string scatter = words_of(render::type_a_text(st, 100));
+  const std::string scatter = test::words_of(render::type_a_text(st, 100));
   EXPECT_NE(scatter.find("the fit's scatter"), std::string::npos) << scatter;
   EXPECT_NE(scatter.find("nu = n - p = 3"), std::string::npos) << scatter;
   EXPECT_FALSE(render::type_a_json(st).contains("residual_check"));
@@ -94,7 +82,7 @@ TEST(StatementTypeA, TheFitsScatterOrTheNoiseModelWithItsResidualCheck) {
   st.type_a.statistic = 2.5;
   st.type_a.expected = 3;
   st.type_a.p_value = 0.48;
-  const std::string explained = words_of(render::type_a_text(st, 100));
+  const std::string explained = test::words_of(render::type_a_text(st, 100));
   EXPECT_NE(explained.find("S = sum r^2/sigma^2 = 2.5, expected 3, p-value 0.48 (3 degrees of freedom)"),
             std::string::npos)
       << explained;
@@ -102,7 +90,7 @@ TEST(StatementTypeA, TheFitsScatterOrTheNoiseModelWithItsResidualCheck) {
 
   st.type_a.excess = true;
   st.type_a.excess_variance = 4e-6;  // σ = 2e-3 per run mean
-  const std::string excess = words_of(render::type_a_text(st, 100));
+  const std::string excess = test::words_of(render::type_a_text(st, 100));
   EXPECT_NE(excess.find("the excess, 0.002 per run mean (sigma), is charged as Type A with nu = 3"),
             std::string::npos)
       << excess;

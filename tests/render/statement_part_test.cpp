@@ -36,23 +36,11 @@ verbs::CalibrationStatement paper_statement(std::optional<double> stated_k, std:
   return *verbs::identify(parse_csv(verbs::simulate(paper).observations_csv, "obs.csv"), o).statement;
 }
 
-// The text without its line breaks (the renderer wraps at 100 columns): the words in order.
-std::string unwrapped(const std::string& text) {
-  std::string out;
-  for (const std::string& l : test::rendered_lines(text)) {
-    const auto first = l.find_first_not_of(' ');
-    if (first == std::string::npos) continue;
-    if (!out.empty()) out += ' ';
-    out.append(l, first);
-  }
-  return out;
-}
-
 TEST(StatementText, EachResultLineRoundsUToTwoDigitsWithStudentsK) {
   const verbs::CalibrationStatement st = paper_statement(std::nullopt, 0);
   const std::string text = render::text(st);
   EXPECT_EQ(text.rfind("Calibration statement (JCGM 100 §7): ", 0), 0u) << text;
-  const std::string words = unwrapped(text);
+  const std::string words = test::words_of(text);
   EXPECT_NE(words.find("k from Student's t at p = 95 %; known [errors]: none."), std::string::npos) << words;
   for (const CoefficientStatement& c : st.coefficients) {
     const RoundedFigures r = round_figures(c);
@@ -74,7 +62,7 @@ TEST(StatementText, EachResultLineRoundsUToTwoDigitsWithStudentsK) {
 
 TEST(StatementText, AStatedKGivesTheNormalQuantitysP) {
   const verbs::CalibrationStatement st = paper_statement(2.0, 0);
-  const std::string words = unwrapped(render::text(st));
+  const std::string words = test::words_of(render::text(st));
   EXPECT_NE(words.find("k = 2 stated (p = 95.45 % for a normal quantity)"), std::string::npos) << words;
   for (const CoefficientStatement& c : st.coefficients) {
     ASSERT_TRUE(c.stated);
@@ -95,7 +83,7 @@ TEST(StatementText, AStatedKNamesBothProbabilitiesApart) {
   // the line shows which is which.
   verbs::CalibrationStatement st = paper_statement(2.0, 0);
   st.coefficients[0].stated->student_t = 0.9;
-  const std::string words = unwrapped(render::text(st));
+  const std::string words = test::words_of(render::text(st));
   EXPECT_NE(words.find("k = 2 (stated), p = 95.45 % for a normal quantity, 90 % for Student's t at nu_eff = "),
             std::string::npos)
       << words;
@@ -105,7 +93,7 @@ TEST(StatementText, TheMonteCarloCheckHasItsTableAndWhatEachStates) {
   const verbs::CalibrationStatement st = paper_statement(std::nullopt, 2000);
   ASSERT_GT(st.monte_carlo_trials, 0u);
   const std::string text = render::text(st);
-  const std::string words = unwrapped(text);
+  const std::string words = test::words_of(text);
   EXPECT_NE(words.find(fmt::format("Monte Carlo check (JCGM 101 §8; M = {}", st.monte_carlo_trials)),
             std::string::npos)
       << words;
@@ -126,7 +114,7 @@ TEST(StatementText, AnIntervalHoldingZeroIsNamedAndInfiniteDofReadsInf) {
   st.coefficients[1].input.type_a.dof = std::numeric_limits<double>::infinity();
   const std::string text = render::text(st);
   const std::string k0 = st.coefficients[0].input.coefficient;
-  EXPECT_NE(unwrapped(text).find(k0 + "'s interval holds 0: the test does not tell " + k0 + " from zero at p = 95 %."),
+  EXPECT_NE(test::words_of(text).find(k0 + "'s interval holds 0: the test does not tell " + k0 + " from zero at p = 95 %."),
             std::string::npos)
       << text;
   // Each coefficient whose interval holds 0 is named once, and only those (K3's does in this test already).

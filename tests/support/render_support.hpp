@@ -19,6 +19,18 @@ inline std::vector<std::string> rendered_lines(const std::string& text) {
 }
 
 // The first line that starts with `head` (after its indentation); nullopt when none does.
+// The text's words in order, its line breaks and indents gone (renderers wrap at a width).
+inline std::string words_of(const std::string& text) {
+  std::string out;
+  for (const std::string& l : rendered_lines(text)) {
+    const auto first = l.find_first_not_of(' ');
+    if (first == std::string::npos) continue;
+    if (!out.empty()) out += ' ';
+    out.append(l, first);
+  }
+  return out;
+}
+
 inline std::optional<std::string> line_starting(const std::string& text, const std::string& head) {
   for (const std::string& l : rendered_lines(text)) {
     const auto first = l.find_first_not_of(' ');
