@@ -65,7 +65,6 @@ TESTED_ELSEWHERE = {
     "uncertainty/design_exchange.cpp": "the exchange step: tests/uncertainty/design_search_test.cpp",
     "uncertainty/montecarlo_checks.cpp": "the run's checks: tests/cli/hardening_test.cpp, tests/cli/bad_inputs_test.cpp",
     "uncertainty/montecarlo_validation.cpp": "tests/uncertainty/montecarlo_distribution_test.cpp",
-    "uncertainty/sample_statistics.cpp": "tests/uncertainty/montecarlo_distribution_test.cpp",
     "verbs/budget.cpp": "verbs::budget: tests/render/budget_test.cpp, tests/verbs/allocate_test.cpp",
     "verbs/identification.cpp": "tests/verbs/identify_test.cpp, tests/reduction/fit_ill_posed_test.cpp",
     "verbs/observability_report.cpp": "tests/cli/observability_test.cpp, tests/verbs/simulate_test.cpp",

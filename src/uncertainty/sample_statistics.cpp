@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "ccal/core/errors.hpp"
 #include "ccal/uncertainty/montecarlo.hpp"
@@ -43,12 +44,49 @@ Interval symmetric_interval(std::span<const double> sorted, std::uint64_t q) {
 // highest values, each block sorted (the middle stays unordered). Both intervals only look at those, so the
 // result is that of a full sort at a fraction of its cost (two O(M) selections and sorts of 2(1 − p)M
 // values).
+namespace {
+
+// The tails by thresholds, for a large sample: a strided subsample's order statistics give a value `low` with
+// at least `tail` values below it and one, `high`, with at least `tail` above it (with overwhelming
+// probability: the subsample's rank is a binomial's mean plus 4σ and 8 beyond the tail's share); two
+// in-place partitions move the values below `low` to the front and those above `high` to the back, so that
+// only those few are selected and sorted, where nth_element would pass over all M values several times.
+// Every value of the `tail` smallest is below `low` when `tail` values are (the tail-th smallest is), so the
+// result is the exact one. False, with v only permuted, when a threshold holds fewer than `tail` values.
+bool tails_by_thresholds(std::span<double> v, std::size_t tail) {
+  constexpr std::size_t kSample = 4096;
+  const std::size_t M = v.size();
+  if (M < 4 * kSample) return false;
+  std::vector<double> sample(kSample);
+  const std::size_t stride = M / kSample;
+  for (std::size_t i = 0; i < kSample; ++i) sample[i] = v[i * stride];
+  const double expected = double(kSample) * double(tail) / double(M);
+  const auto rank = std::min(kSample / 2 - 1, std::size_t(expected + 4 * std::sqrt(expected) + 8));
+  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(rank), sample.end());
+  const double low = sample[rank];
+  std::nth_element(sample.begin(), sample.end() - 1 - std::ptrdiff_t(rank), sample.end());
+  const double high = sample[kSample - 1 - rank];
+  if (!(low < high)) return false;
+  const auto below = std::partition(v.begin(), v.end(), [low](double x) { return x < low; });
+  if (std::size_t(below - v.begin()) < tail) return false;
+  const auto above = std::partition(below, v.end(), [high](double x) { return !(x > high); });
+  if (std::size_t(v.end() - above) < tail) return false;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(tail), below);
+  std::sort(v.begin(), v.begin() + std::ptrdiff_t(tail));
+  std::nth_element(above, v.end() - std::ptrdiff_t(tail), v.end());
+  std::sort(v.end() - std::ptrdiff_t(tail), v.end());
+  return true;
+}
+
+}  // namespace
+
 void sort_tails(std::span<double> v, std::uint64_t q) {
   const std::size_t M = v.size(), tail = M - q;
   if (2 * tail >= M) {
     std::sort(v.begin(), v.end());
     return;
   }
+  if (tails_by_thresholds(v, tail)) return;
   std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(tail), v.end());
   std::sort(v.begin(), v.begin() + std::ptrdiff_t(tail));
   std::nth_element(v.begin() + std::ptrdiff_t(tail), v.begin() + std::ptrdiff_t(q), v.end());

@@ -36,6 +36,9 @@ double co_moment(std::span<const double> a, double mean_a, std::span<const doubl
 std::uint64_t rounded_points(std::uint64_t M, double p);
 std::uint64_t interval_points(std::uint64_t M, double p);
 Interval symmetric_interval(std::span<const double> sorted, std::uint64_t q);
+// v permuted so that its M − q smallest values come first and its M − q largest last, each in ascending order
+// (the middle in no order): what the intervals and the order statistics read. The same values in those places
+// as a full sort gives.
 void sort_tails(std::span<double> v, std::uint64_t q);
 Interval shortest_interval(std::span<const double> sorted, std::uint64_t q);
 double tolerance_of(double u, int n_dig);
