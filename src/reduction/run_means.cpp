@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cstring>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -95,7 +96,7 @@ void group_runs(KernelTables& d) {
       const RunTables& u = d.runs[g.runs.front()];
       return u.M == t.M && u.counter == t.counter && u.duration == t.duration && u.mount == t.mount;
     });
-    if (group == d.groups.end()) group = d.groups.insert(d.groups.end(), RunGroup{{}, t.M, {}, {}, {}, {}});
+    if (group == d.groups.end()) group = d.groups.insert(d.groups.end(), RunGroup{{}, t.M, {}, {}, {}, {}, false});
     group->runs.push_back(r);
   }
   for (RunGroup& g : d.groups) {
@@ -110,6 +111,13 @@ void group_runs(KernelTables& d) {
         g.cos_gamma.insert(g.cos_gamma.end(), t.cos_gamma.begin(), t.cos_gamma.end());
         g.sin_gamma.insert(g.sin_gamma.end(), t.sin_gamma.begin(), t.sin_gamma.end());
       }
+    const RunTables& first = d.runs[g.runs.front()];
+    const auto same_bits = [](const std::vector<double>& a, const std::vector<double>& b) {
+      return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+    };
+    g.shared_angles = std::all_of(g.runs.begin(), g.runs.end(), [&](std::size_t r) {
+      return same_bits(d.runs[r].cos_theta, first.cos_theta) && same_bits(d.runs[r].sin_theta, first.sin_theta);
+    });
     for (auto [c, s] : {std::pair{&g.cos_theta, &g.sin_theta}, std::pair{&g.cos_gamma, &g.sin_gamma}}) {
       const auto n = std::size_t(padded(int(c->size())));
       c->resize(n, 1.0);

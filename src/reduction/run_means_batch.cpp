@@ -87,29 +87,46 @@ CCAL_CLONED CCAL_FLATTEN void batch_weights_lanes(const BatchLanes& b) {
   }
 }
 
+// The main axis's part at fast node k that depends on its angle alone: the ripple's series at the nominal
+// angle, the angle turned by it, and the link's shape there. Runs whose nodes share their angles share it.
+template <int kOrder>
+struct MainShape {
+  RippleSeries<Pack> ripple{};
+  JointShape<Pack> shape;
+};
+template <int kOrder, bool kRipple, bool kTiny>
+[[gnu::always_inline]] inline MainShape<kOrder> main_shape(const BatchLanes& b,
+                                                           const JointCoefficients<kOrder, Pack>& a, int k) {
+  Pack c = splat(b.group->cos_theta[std::size_t(k)]), s = splat(b.group->sin_theta[std::size_t(k)]);
+  MainShape<kOrder> m;
+  if constexpr (kRipple) {
+    m.ripple = ripple_series<kOrder, Pack, Pack>(b.main_ripple, b.order, c, s);
+    turn_by<kTiny>(c, s, m.ripple.angle);
+  }
+  m.shape = joint_shape<kOrder, Pack, kTiny>(a, c, s);
+  return m;
+}
+
 // The main axis's half at a fast node, in frame-3t coordinates (main_axis_loop's operations), with its
 // ripple's δ1, δ̇1, δ̈1.
 struct MainHalf {
   V3<Pack> F0, W, dW, coriolis, W_total;
   Pack ripple_angle{}, ripple_rate{}, ripple_acc{};
 };
-template <int kOrder, bool kRipple, bool kTiny>
-[[gnu::always_inline]] inline void main_half(const BatchLanes& b, const JointCoefficients<kOrder, Pack>& a,
-                                             const Columns<Pack>& B, int k, const Pack& nominal_rate,
-                                             const Pack& arm_x, MainHalf& out) {
-  Pack c = splat(b.group->cos_theta[std::size_t(k)]), s = splat(b.group->sin_theta[std::size_t(k)]);
+template <int kOrder, bool kRipple>
+[[gnu::always_inline]] inline void main_half(const BatchLanes& b, const MainShape<kOrder>& m,
+                                             const Columns<Pack>& B, const Pack& nominal_rate, const Pack& arm_x,
+                                             MainHalf& out) {
   JointLink<Pack> main;
   if constexpr (!kRipple) {
-    main = joint_link<kOrder, Pack, Pack, kTiny>(a, c, s, nominal_rate);
+    main = joint_motion(m.shape, nominal_rate);
   } else {
-    const RippleSeries<Pack> r = ripple_series<kOrder, Pack, Pack>(b.main_ripple, b.order, c, s);
-    const Pack rate_ripple = nominal_rate * r.relative, acc = (nominal_rate * nominal_rate) * r.slope;
-    out.ripple_angle = r.angle;
+    const Pack rate_ripple = nominal_rate * m.ripple.relative, acc = (nominal_rate * nominal_rate) * m.ripple.slope;
+    out.ripple_angle = m.ripple.angle;
     out.ripple_rate = rate_ripple;
     out.ripple_acc = acc;
-    turn_by<kTiny>(c, s, r.angle);
     const Pack rate = nominal_rate + rate_ripple;
-    main = joint_link<kOrder, Pack, Pack, kTiny>(a, c, s, rate, &acc);
+    main = joint_motion(m.shape, rate, &acc);
   }
   const V3<Pack> coriolis_1t = as_broadcast(packed_v3<Pack>(b.frame, 2)),
                  gravity_1t = as_broadcast(packed_v3<Pack>(b.frame, 5)),
@@ -165,30 +182,48 @@ template <int kOrder, bool kRipple, bool kTiny>
   return load<Pack>(b.weights + std::size_t(n) * kBatchLanes) * y;
 }
 
-// Every node of the group: the main-axis half once per fast node, then the platform half at each of its slow
-// nodes; w·y stored per node and summed per run in the one-trial path's order (slow node, then fast node).
+// Fast node k = g·M + j of run g: the main-axis half from its shape, then the platform half at each of its slow
+// nodes, w·y stored per node.
+template <int kOrder, bool kMainRipple, bool kPlatformRipple, bool kTiny>
+[[gnu::always_inline]] inline void fast_node(const BatchLanes& b, const MainShape<kOrder>& shape,
+                                             const JointCoefficients<kOrder, Pack>& platform_coefficients,
+                                             const Columns<Pack>& B, const Columns<Pack>& P, int g, int k) {
+  const Pack main_rate = value_at<Pack>(b.run_rates, 3 * g), platform_rate = value_at<Pack>(b.run_rates, 3 * g + 1),
+             arm_x = value_at<Pack>(b.run_rates, 3 * g + 2);
+  MainHalf main;
+  main_half<kOrder, kMainRipple>(b, shape, B, main_rate, arm_x, main);
+  const int fast = b.G * b.M;
+  for (int q = 0; q < b.Q; ++q) {
+    const int n = q * fast + k;
+    store(b.products + std::size_t(n) * kBatchLanes,
+          weighted_output_at<kOrder, kPlatformRipple, kTiny>(b, platform_coefficients, P, main, n, platform_rate,
+                                                             q));
+  }
+}
+
+// Every node of the group: the main axis's shape once per fast phase when the runs share their angles (else
+// once per fast node), its half once per fast node, then the platform half at each of its slow nodes; w·y
+// stored per node and summed per run in the one-trial path's order (slow node, then fast node). The shape
+// shared is the one each run would compute: the same operations on the same values, so the same bits.
 template <int kOrder, bool kMainRipple, bool kPlatformRipple, bool kTiny>
 [[gnu::always_inline]] inline void batch_nodes(const BatchLanes& b) {
   const JointCoefficients<kOrder, Pack> main_coefficients{b.main_coefficients, b.order},
       platform_coefficients{b.platform_coefficients, b.order};
   const Columns<Pack> B(b.frame + 11 * kBatchLanes), P(b.frame + 23 * kBatchLanes);
-  const int fast = b.G * b.M;
-  for (int g = 0; g < b.G; ++g) {
-    const Pack main_rate = value_at<Pack>(b.run_rates, 3 * g),
-               platform_rate = value_at<Pack>(b.run_rates, 3 * g + 1),
-               arm_x = value_at<Pack>(b.run_rates, 3 * g + 2);
+  if (b.group->shared_angles) {
     for (int j = 0; j < b.M; ++j) {
-      const int k = g * b.M + j;
-      MainHalf main;
-      main_half<kOrder, kMainRipple, kTiny>(b, main_coefficients, B, k, main_rate, arm_x, main);
-      for (int q = 0; q < b.Q; ++q) {
-        const int n = q * fast + k;
-        store(b.products + std::size_t(n) * kBatchLanes,
-              weighted_output_at<kOrder, kPlatformRipple, kTiny>(b, platform_coefficients, P, main, n,
-                                                                 platform_rate, q));
-      }
+      const MainShape<kOrder> shape = main_shape<kOrder, kMainRipple, kTiny>(b, main_coefficients, j);
+      for (int g = 0; g < b.G; ++g)
+        fast_node<kOrder, kMainRipple, kPlatformRipple, kTiny>(b, shape, platform_coefficients, B, P, g,
+                                                               g * b.M + j);
+    }
+  } else {
+    for (int k = 0; k < b.G * b.M; ++k) {
+      const MainShape<kOrder> shape = main_shape<kOrder, kMainRipple, kTiny>(b, main_coefficients, k);
+      fast_node<kOrder, kMainRipple, kPlatformRipple, kTiny>(b, shape, platform_coefficients, B, P, k / b.M, k);
     }
   }
+  const int fast = b.G * b.M;
   for (int g = 0; g < b.G; ++g) {
     Pack mean{};
     for (int q = 0; q < b.Q; ++q)

@@ -179,32 +179,50 @@ struct JointLink {
   V3<T> d, d_rate, d_acc;
   V3<T> w, dw;  // angular velocity and acceleration of the frame after the joint
 };
-template <int kOrder, class T, class R = double, bool kTiny = false, class C = double>
-[[gnu::always_inline]] inline JointLink<T> joint_link(const JointCoefficients<kOrder, C>& a, const T& c,
-                                                      const T& s, const R& rate, const R* acc = nullptr) {
-  const ChannelSeries<T> x = channel_series(a, 0, c, s), y = channel_series(a, 1, c, s),
-                         z = channel_series(a, 2, c, s), tx = channel_series(a, 3, c, s),
-                         ty = channel_series(a, 4, c, s);
+// What of a joint's link depends on its angle alone, not on its rate: the five channels' series, the wobbles'
+// rotation [e1 e2 e3] and cos q, sin q. Runs that share their nodes' angles share it (run_means_batch.cpp).
+template <class T>
+struct JointShape {
+  ChannelSeries<T> x, y, z, tx, ty;
+  T cx, sx, cy, sy;
+  V3<T> e1, e2, e3;
+  T c, s;
+};
+template <int kOrder, class T, bool kTiny = false, class C = double>
+[[gnu::always_inline]] inline JointShape<T> joint_shape(const JointCoefficients<kOrder, C>& a, const T& c,
+                                                        const T& s) {
+  JointShape<T> j{channel_series(a, 0, c, s), channel_series(a, 1, c, s), channel_series(a, 2, c, s),
+                  channel_series(a, 3, c, s), channel_series(a, 4, c, s), T{}, T{}, T{}, T{}, {}, {}, {}, c, s};
+  angle_cos_sin<kTiny>(j.tx.value, j.cx, j.sx);
+  angle_cos_sin<kTiny>(j.ty.value, j.cy, j.sy);
+  j.e1 = {j.cy, T{}, -j.sy};
+  j.e2 = {j.sy * j.sx, j.cx, j.cy * j.sx};
+  j.e3 = {j.sy * j.cx, -j.sx, j.cy * j.cx};
+  return j;
+}
+// The link from its shape at the rate q̇ (and acceleration q̈).
+template <class T, class R = double>
+[[gnu::always_inline]] inline JointLink<T> joint_motion(const JointShape<T>& shape, const R& rate,
+                                                        const R* acc = nullptr) {
+  const ChannelSeries<T>&x = shape.x, &y = shape.y, &z = shape.z, &tx = shape.tx, &ty = shape.ty;
+  const T &cy = shape.cy, &sy = shape.sy;
   JointLink<T> j;
-  j.c = c;
-  j.s = s;
+  j.c = shape.c;
+  j.s = shape.s;
   const R rate2 = rate * rate;
   j.d = {x.value, y.value, z.value};
   j.d_rate = {rate * x.first, rate * y.first, rate * z.first};
   j.d_acc = {rate2 * x.second, rate2 * y.second, rate2 * z.second};
   if (acc) j.d_acc = j.d_acc + V3<T>{*acc * x.first, *acc * y.first, *acc * z.first};
-  T cx, sx, cy, sy;
-  angle_cos_sin<kTiny>(tx.value, cx, sx);
-  angle_cos_sin<kTiny>(ty.value, cy, sy);
   const T wx_rate = rate * tx.first, wy_rate = rate * ty.first;
   T wx_acc = rate2 * tx.second, wy_acc = rate2 * ty.second;
   if (acc) {
     wx_acc += *acc * tx.first;
     wy_acc += *acc * ty.first;
   }
-  j.e1 = {cy, T{}, -sy};
-  j.e2 = {sy * sx, cx, cy * sx};
-  j.e3 = {sy * cx, -sx, cy * cx};
+  j.e1 = shape.e1;
+  j.e2 = shape.e2;
+  j.e3 = shape.e3;
   // ω = θ̇y ŷ + θ̇x e1 + q̇ e3;  ω̇ = θ̈y ŷ + θ̈x e1 + θ̇y θ̇x (ŷ × e1) + (θ̇y ŷ + θ̇x e1) × q̇ e3, ŷ × e1 = (−sy, 0,
   // −cy).
   const V3<T> w_wobble{wx_rate * cy, wy_rate, -wx_rate * sy};
@@ -213,6 +231,11 @@ template <int kOrder, class T, class R = double, bool kTiny = false, class C = d
   if (acc) j.dw = j.dw + *acc * j.e3;
   j.w = w_wobble + rate * j.e3;
   return j;
+}
+template <int kOrder, class T, class R = double, bool kTiny = false, class C = double>
+[[gnu::always_inline]] inline JointLink<T> joint_link(const JointCoefficients<kOrder, C>& a, const T& c,
+                                                      const T& s, const R& rate, const R* acc = nullptr) {
+  return joint_motion(joint_shape<kOrder, T, kTiny>(a, c, s), rate, acc);
 }
 // R = [e1 e2 e3]·Rz(q): Rᵀx and R x.
 template <class T>

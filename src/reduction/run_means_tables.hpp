@@ -45,6 +45,7 @@ struct RunGroup {
   int M = 0;
   std::vector<double> cos_theta, sin_theta;  // node g·M + j, padded
   std::vector<double> cos_gamma, sin_gamma;  // node q·G·M + g·M + j for every q < kMaxSlowNodes, padded
+  bool shared_angles = false;  // every run's θ1 at node j is the first run's (cos_theta, sin_theta bit for bit)
 };
 
 // The kernel's tables. RunMeanKernel::Data is private to the class; its content is defined here so that the
