@@ -61,6 +61,12 @@ void bind_design(py::module_& m) {
                     "the configuration with the designed plan [Config]")
       .def_readonly("before", &verbs::DesignResult::before, "the full budget of the configured plan [Budget]")
       .def_readonly("after", &verbs::DesignResult::after, "the full budget of the designed plan [Budget]")
+      .def_property_readonly(
+          "units", [](const verbs::DesignResult& r) { return r.after.budget.units; },
+          "the display unit of each coefficient of the budgets (one instrument; [] for several) [—]")
+      .def_property_readonly(
+          "display_scale", [](const verbs::DesignResult& r) { return r.after.budget.display_scale; },
+          "SI → display unit factor per coefficient of the budgets [display unit per SI]")
       .def_readonly("targets", &verbs::DesignResult::targets,
                     "the objective's coefficients, list of DesignTarget [—]")
       .def_readonly("candidates", &verbs::DesignResult::candidates, "the number of candidate runs cached [—]")
