@@ -53,7 +53,8 @@ void bind_design(py::module_& m) {
   py::class_<verbs::DesignResult>(
       m, "Design",
       "`ccal design`: the configured and the designed plan with their full budgets; "
-      "str() is the CLI's text, to_json() its JSON.")
+      "str() is the CLI's text, to_json() its JSON.",
+      py::dynamic_attr())  // the call that made it, for pickling (python/ccal/_pickling.py)
       .def("to_json", [](const verbs::DesignResult& r) { return render::json(r); })
       .def("__str__", [](const verbs::DesignResult& r) { return render::text(r); })
       .def_readonly("config", &verbs::DesignResult::config, "the configuration as given [Config]")

@@ -1070,6 +1070,9 @@ class Statement:
     def to_json(self) -> str: ...
     def to_uncertainties(self) -> Dict[str, Any]: ...
 
+class StoredResult:
+    ...
+
 class Table:
     title: str
     columns: List[str]

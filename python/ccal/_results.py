@@ -20,7 +20,7 @@ def _short(value):
         return "[" + ", ".join(_short(v) for v in value[:3]) + f", … ({len(value)} in all)]"
     if isinstance(value, list):
         return "[" + ", ".join(_short(v) for v in value) + "]"
-    if type(type(value)).__name__ == "pybind11_type":
+    if isinstance(type(value), type(_ccal.Config)) or isinstance(value, _pickling.StoredResult):  # the module's
         return f"<ccal.{type(value).__name__}>"
     return repr(value)
 
@@ -96,7 +96,6 @@ def verb_result_methods(cls, build):
     cls.config = property(config, None, None, config.__doc__)
     cls.__repr__ = _table_repr
     cls._repr_html_ = _table_html
-    cls.__reduce__ = _pickling.result_reduce
 
 
 def json_table_methods(cls, build):
