@@ -61,14 +61,26 @@ def _fields(cls):
     return [n for n, v in vars(cls).items() if isinstance(v, property) and not n.startswith("_")]
 
 
+class _Node(tuple):
+    """(class name, values, raises, texts, call) of a stored object of the module."""
+
+
+class _Array(tuple):
+    """(array, writeable) of a NumPy array."""
+
+
+class _Instrument(tuple):
+    """(k,): the configuration of the k-th instrument of the stored result's own configuration."""
+
+
 def _is_bound(value):
     return isinstance(type(value), type(_ccal.Config)) or isinstance(value, StoredResult)  # the module's metaclass
 
 
 class _Snapshot:
-    """Walks a result into a tree of plain values: ("S", class name, values, raises, texts, call) for an object of
-    the module, ("A", array, writeable) for a NumPy array, ("C", k) for the configuration of the k-th instrument
-    of the result's own configuration (its Config.instruments[k]), lists, tuples and dicts of them, numbers, text and Configs."""
+    """Walks a result into a tree of plain values: a _Node for an object of the module, an _Array for a NumPy
+    array, an _Instrument for the configuration of one instrument of the result's own configuration (one of its
+    Config.instruments), lists, tuples and dicts of them, numbers, text and Configs."""
 
     def __init__(self, top):
         config = getattr(top, "config", None) if "config" in _fields(type(top)) else None
@@ -80,13 +92,13 @@ class _Snapshot:
         top = self.top_config
         ids = [c.instrument_id for c in top.instruments] if top is not None else []
         if cfg.instrument_id and cfg.instrument_id in ids:
-            return ("C", ids.index(cfg.instrument_id))  # one of the result's configuration's instruments
+            return _Instrument((ids.index(cfg.instrument_id),))
         raise TypeError(f"this result cannot be pickled: its {where} is a ccal.Config that was not made by "
                         "load_config, parse_config, bundled_example or a with_… or instrument() method of one")
 
     def value(self, v, where):
         if isinstance(v, np.ndarray):
-            return ("A", v.copy(), bool(v.flags.writeable))
+            return _Array((v.copy(), bool(v.flags.writeable)))
         if isinstance(v, _ccal.Config):
             return self.config(v, where)
         if _is_bound(v):
@@ -114,7 +126,7 @@ class _Snapshot:
             call = (call[0], self.value(call[1], f"{where}.config"), call[2])
         else:
             call = None
-        return ("S", name, values, raises, texts, call)
+        return _Node((name, values, raises, texts, call))
 
 
 def _has_text(cls, name):
@@ -143,14 +155,14 @@ class _Rebuild:
         self.top_config = None
 
     def value(self, v):
-        if isinstance(v, tuple) and v and v[0] in ("S", "A", "C") and len(v) in (2, 3, 6):
-            if v[0] == "S":
-                return self.node(v)
-            if v[0] == "A":
-                array = v[1]
-                array.flags.writeable = v[2]
-                return array
-            return self.top_config.instruments[v[1]]
+        if isinstance(v, _Node):
+            return self.node(v)
+        if isinstance(v, _Array):
+            array, writeable = v
+            array.flags.writeable = writeable
+            return array
+        if isinstance(v, _Instrument):
+            return self.top_config.instruments[v[0]]
         if isinstance(v, (list, tuple)):
             return type(v)(self.value(x) for x in v)
         if isinstance(v, dict):
@@ -158,7 +170,7 @@ class _Rebuild:
         return v
 
     def node(self, tree):
-        _, name, values, raises, texts, call = tree
+        name, values, raises, texts, call = tree
         if self.top_config is None and isinstance(values.get("config"), _ccal.Config):
             self.top_config = values["config"]
         obj = stored_class(name).__new__(stored_class(name))
