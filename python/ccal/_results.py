@@ -125,10 +125,12 @@ def history_table(self, d) -> "Table":
     """One row per coefficient and calibration (superseded ones left out): the date, the value, U, unit and E_n
     against the calibration before."""
     rows = []
+    recorded = {c["id"]: c["coefficients"] for c in d["calibrations"]}  # the statements' figures, in their units
     for h in self.coefficients:
         en = {e.to_index: e.value if e.defined else None for e in h.normalised_errors}
-        for i, date in enumerate(h.dates):
-            rows.append([h.name, date, h.values[i], h.expanded[i], h.unit, en.get(i)])
+        for i, (date, record) in enumerate(zip(h.dates, h.ids)):
+            c = recorded[record][h.name]
+            rows.append([h.name, date, c["value"], c["expanded_uncertainty"], h.unit, en.get(i)])
     return Table(f"calibration history of {d['serial']}", ["coefficient", "date", "value", "U", "unit", "E_n"], rows)
 
 

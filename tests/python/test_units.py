@@ -27,8 +27,6 @@ RTOL = 1e-15
 WITHOUT_COEFFICIENTS = {
     "SensedInput": "specific force in g (its display unit) and angular rates in rad/s, shown in deg/s by display()",
     "Config": "a configuration: its values are SI as read, display() its runs",
-    "History": "the calibrations as recorded in the store, in each coefficient's recorded unit (HistoryCoefficient"
-               ".unit): a record is the statement file's figures, kept as written",
 }
 
 
@@ -48,6 +46,11 @@ class UnitRule(unittest.TestCase):
             f.write(sim.to_csv())
         reduction = ccal.reduce(cfg, logs, statement=True, statement_trials=1000)
         small = ccal.parse_config(ccal.bundled_example_text() + SMALL_SPACE, "small.toml")
+        statement_file = os.path.join(cls.folder.name, "statement.json")
+        with open(statement_file, "w", encoding="utf-8") as f:
+            f.write(reduction.statement.to_json())
+        db = os.path.join(cls.folder.name, "h.sqlite")
+        ccal.history_add(statement_file, db=db, serial="SN 1", date="2024-01-02")
         cls.results = {
             "Budget": ccal.budget(cfg),
             "MonteCarlo": ccal.monte_carlo(cfg, trials=2000),
@@ -58,6 +61,7 @@ class UnitRule(unittest.TestCase):
             "Identification": ccal.identify_file(observations),
             "Fit": ccal.identify(sim.observations, cfg),
             "Design": ccal.design(small, threads=1),
+            "History": ccal.history("SN 1", db=db),
         }
 
     @classmethod
@@ -143,6 +147,19 @@ class UnitRule(unittest.TestCase):
         self.assert_displayed(f.value, f.display_scale, _rows(f.display(), "value"), "value")
         plain = ccal.fit(np.array([[1.0, 1.0], [1.0, 2.0], [1.0, 3.0]]), np.array([1.0, 2.0, 3.1]), ["a", "b"])
         self.assertEqual((plain.units, plain.display_scale), (["", ""], [1.0, 1.0]))  # no units: the data's
+
+    def test_history(self):
+        h = self.results["History"]
+        d, rows = h.display(), h.display().rows
+        self.assertEqual([h.unit for h in h.coefficients], h.units)
+        self.assertEqual([c.unit for c in h.records[0].coefficients], h.units)
+        self.assert_displayed([c.values[0] for c in h.coefficients], h.display_scale, _rows(d, "value"), "value")
+        self.assert_displayed([c.expanded[0] for c in h.coefficients], h.display_scale, _rows(d, "U"), "U")
+        self.assert_displayed([c.value for c in h.records[0].coefficients], h.display_scale,
+                              [r["value"] for r in rows], "record's value")
+        # The recorded statement is the reduction's: its SI values (to 1e-15 relative, as above).
+        np.testing.assert_allclose([c.value for c in h.records[0].coefficients], self.results["Statement"].values,
+                                   rtol=RTOL, atol=0)
 
     def test_design(self):
         d = self.results["Design"]
