@@ -19,6 +19,14 @@ namespace ccal::python {
 
 namespace {
 
+// An observability as Python gives it (ccal.Observability): SI, with each free term's display unit and SI →
+// display factor beside it (the configuration's output unit per gⁿ), as every result (docs/python.md).
+struct UnitObservability {
+  ObservabilityResult result;
+  std::vector<std::string> units;
+  std::vector<double> display_scale;
+};
+
 // A field of the fit, read on the Fit.
 template <class T>
 auto fit_field(T FitResult::*field) {
@@ -81,13 +89,23 @@ void bind_fit_and_observability_results(py::module_& m) {
         return "<ccal.TermObservability " + t.term + " " + std::string(term_status_name(t.status)) + ">";
       });
 
-  py::class_<ObservabilityResult>(m, "Observability", "The observability of every free term (SI).")
-      .def_readonly("terms", &ObservabilityResult::terms, "per free term, list of TermObservability [—]")
-      .def_readonly("resolution", &ObservabilityResult::resolution, "σ of each run mean [output SI]")
-      .def_readonly("detection_factor", &ObservabilityResult::detection_factor,
-                    "minimum detectable change / standard error [—]")
-      .def_readonly("whole_revolutions", &ObservabilityResult::whole_revolutions,
-                    "every run counter-rotating over whole revolutions [—]");
+  py::class_<UnitObservability>(m, "Observability",
+                                "The observability of every free term (SI; units and display_scale beside it).")
+      .def_property_readonly(
+          "terms", [](const UnitObservability& o) { return o.result.terms; },
+          "per free term, list of TermObservability [—]")
+      .def_readonly("units", &UnitObservability::units, "the display unit of each free term, in the order of terms [—]")
+      .def_readonly("display_scale", &UnitObservability::display_scale,
+                    "SI → display unit factor per free term [display unit per SI]")
+      .def_property_readonly(
+          "resolution", [](const UnitObservability& o) { return o.result.resolution; },
+          "σ of each run mean [output SI]")
+      .def_property_readonly(
+          "detection_factor", [](const UnitObservability& o) { return o.result.detection_factor; },
+          "minimum detectable change / standard error [—]")
+      .def_property_readonly(
+          "whole_revolutions", [](const UnitObservability& o) { return o.result.whole_revolutions; },
+          "every run counter-rotating over whole revolutions [—]");
 }
 
 // The observability of the configuration's free terms in its planned runs, `reference` (SI per free term)
@@ -110,7 +128,12 @@ void bind_identification(py::module_& m) {
   m.def(
       "observability",
       [](const Observations<double>& obs, const Config& cfg, std::optional<Eigen::VectorXd> reference) {
-        return plan_observability(obs, cfg, reference);
+        UnitObservability out{plan_observability(obs, cfg, reference), {}, {}};
+        for (const TermObservability& t : out.result.terms) {
+          out.units.push_back(coefficient_unit(cfg.instrument.output_unit, t.term, cfg.instrument.g_symbol));
+          out.display_scale.push_back(display_scale_of(out.units.back()));
+        }
+        return out;
       },
       py::arg("observations"), py::arg("config"), py::arg("reference") = py::none(),
       "Per free term: sensitivity, resolution, minimum detectable change and status (docs/model.md §14) of "

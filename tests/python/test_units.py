@@ -62,6 +62,7 @@ class UnitRule(unittest.TestCase):
             "Fit": ccal.identify(sim.observations, cfg),
             "Design": ccal.design(small, threads=1),
             "History": ccal.history("SN 1", db=db),
+            "Observability": ccal.observability(sim.observations, cfg),
         }
 
     @classmethod
@@ -75,7 +76,7 @@ class UnitRule(unittest.TestCase):
     def test_every_result_class_is_checked_or_named_without_coefficients(self):
         shown = {name for name, cls in vars(ccal).items()
                  if isinstance(cls, type) and hasattr(cls, "display") and name != "Table"}
-        self.assertEqual(shown - set(WITHOUT_COEFFICIENTS), set(self.results) - {"Design"})
+        self.assertEqual(shown - set(WITHOUT_COEFFICIENTS), set(self.results) - {"Design", "Observability"})
         for name, result in self.results.items():
             units, scale = result.units, result.display_scale
             self.assertEqual(len(units), len(scale), name)
@@ -160,6 +161,12 @@ class UnitRule(unittest.TestCase):
         # The recorded statement is the reduction's: its SI values (to 1e-15 relative, as above).
         np.testing.assert_allclose([c.value for c in h.records[0].coefficients], self.results["Statement"].values,
                                    rtol=RTOL, atol=0)
+
+    def test_observability(self):
+        # No display(): its units are the budget's, the same free terms in the same order.
+        o, b = self.results["Observability"], self.results["Budget"]
+        self.assertEqual([t.term for t in o.terms], b.coefficients)
+        self.assertEqual((o.units, o.display_scale), (b.units, b.display_scale))
 
     def test_design(self):
         d = self.results["Design"]
