@@ -7,7 +7,6 @@ logs, their reduction, and the calibration's result with its uncertainty. Run it
 The test suite runs it (docs.commands runs docs/tutorial.md, which runs this script for its last step).
 """
 
-import math
 import os
 import tempfile
 
@@ -66,12 +65,16 @@ print(reduction.display())
 
 # 8. The result: the calibration statement (JCGM 100 §7), as `ccal reduce --statement` gives it: the fit's
 #    standard error (Type A) and the centrifuge's budget (Type B) combined, U = k u_c with k from Student's t.
+#    Its values are SI, as every value of ccal and as the simulated instrument's (known only here): they compare
+#    as they are; display_scale gives the figures in the statement's units, and to_dict() its rounded figures.
 step("8. the calibration statement (p = 95 %: Student's t, or the Monte Carlo's interval where the check asks)")
 with tempfile.TemporaryDirectory() as folder:
-    statement = ccal.reduce(lab, simulation.write_logs(folder), statement=True).to_dict()["statement"]
+    statement = ccal.reduce(lab, simulation.write_logs(folder), statement=True).statement
 truth = dict(zip(lab.instrument_terms, lab.instrument_coefficients))
-for name, c in statement["coefficients"].items():
-    true = truth[name] * (180 / math.pi)  # the simulated instrument's value, deg/s/g^n (known only here)
-    r = c["rounded"]
-    print(f"{name} = {r['estimate']} {c['unit']}, [{r['interval'][0]}, {r['interval'][1]}] "
-          f"({c['interval_method']})   (the simulated instrument has {true:.6g})")
+rounded = {name: c["rounded"] for name, c in statement.to_dict()["coefficients"].items()}
+for name, unit, scale, (low, high), method in zip(statement.names, statement.units, statement.display_scale,
+                                                  statement.intervals, statement.interval_methods):
+    r = rounded[name]
+    outside = "" if low <= truth[name] <= high else "   OUTSIDE its interval"
+    print(f"{name} = {r['estimate']} {unit}, [{r['interval'][0]}, {r['interval'][1]}] ({method})   "
+          f"(the simulated instrument has {truth[name] * scale:.6g}){outside}")

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "bindings.hpp"
 #include "option_keywords.hpp"
@@ -78,7 +79,23 @@ void bind_allocation_results(py::module_& m) {
       "allocation")
       .def_readonly("config", &verbs::AllocateResult::config)
       .def_readonly("allocation", &verbs::AllocateResult::allocation,
-                    "the allocation itself (its fields are readable on the result) [AllocationDetail]");
+                    "the allocation itself (its fields are readable on the result) [AllocationDetail]")
+      .def_property_readonly(
+          "units",
+          [](const verbs::AllocateResult& r) {
+            std::vector<std::string> v;
+            for (const AllocatedCoefficient& c : r.allocation.coefficients) v.push_back(c.unit);
+            return v;
+          },
+          "the display unit of each coefficient, in the order of coefficients [—]")
+      .def_property_readonly(
+          "display_scale",
+          [](const verbs::AllocateResult& r) {
+            std::vector<double> v;
+            for (const AllocatedCoefficient& c : r.allocation.coefficients) v.push_back(c.display_scale);
+            return v;
+          },
+          "SI → display unit factor per coefficient [display unit per SI]");
 }
 
 // The tolerance allocation function allocate().

@@ -130,20 +130,40 @@ void bind_budget_results(py::module_& m) {
                     "the modelling choices and their biases, list of CompensationChoice [—]");
 }
 
+// The SI → display factor of each row of a test's instruments' covariance.
+std::vector<double> row_scales(const verbs::InstrumentCovariance& c) {
+  std::vector<double> scale;
+  for (const std::string& unit : c.units) scale.push_back(display_scale_of(unit));
+  return scale;
+}
+
+// A covariance in display units (the library's, as the JSON writes it) in SI: C_ij / (s_i s_j).
+Eigen::MatrixXd rows_in_si(const verbs::InstrumentCovariance& c, const Eigen::MatrixXd& display) {
+  const std::vector<double> scale = row_scales(c);
+  Eigen::MatrixXd out = display;
+  for (Eigen::Index i = 0; i < out.rows(); ++i)
+    for (Eigen::Index j = 0; j < out.cols(); ++j) out(i, j) /= scale[std::size_t(i)] * scale[std::size_t(j)];
+  return out;
+}
+
 // The covariance of a test's instruments' coefficients (verbs/instrument_covariance.hpp).
 void bind_instrument_covariance(py::module_& m) {
   py::class_<verbs::InstrumentCovariance>(
       m, "InstrumentCovariance",
       "The tolerances' covariance of the coefficients of every instrument of a test of several (the machine's "
       "errors, g, the clock and the encoders are one for all; each instrument's own inputs and Type A parts are "
-      "not in it), in the coefficients' display units: Budget.instrument_covariance, Reduction.covariance.")
+      "not in it), in SI with the rows' units and display_scale beside it: Budget.instrument_covariance, "
+      "Reduction.covariance.")
       .def_readonly("instruments", &verbs::InstrumentCovariance::instruments, "the instruments' ids, in order [—]")
       .def_readonly("first_row", &verbs::InstrumentCovariance::first_row,
                     "per instrument, the row of its first coefficient [—]")
       .def_readonly("names", &verbs::InstrumentCovariance::names, "per row: '<id> <term>', e.g. 'B K2' [—]")
       .def_readonly("units", &verbs::InstrumentCovariance::units, "per row: the coefficient's display unit [—]")
-      .def_readonly("lpu", &verbs::InstrumentCovariance::lpu,
-                    "the LPU covariance, rows × rows [display unit_i × display unit_j]")
+      .def_property_readonly("display_scale", &row_scales,
+                             "per row: the SI → display unit factor [display unit per SI]")
+      .def_property_readonly(
+          "lpu", [](const verbs::InstrumentCovariance& c) { return rows_in_si(c, c.lpu); },
+          "the LPU covariance, rows × rows [coefficient SI_i × coefficient SI_j]")
       .def_property_readonly(
           "lpu_correlation",
           [](const verbs::InstrumentCovariance& c) {
@@ -156,8 +176,9 @@ void bind_instrument_covariance(py::module_& m) {
             return r;
           },
           "the LPU's correlation, rows × rows (0 where a coefficient does not vary) [—]")
-      .def_readonly("monte_carlo", &verbs::InstrumentCovariance::monte_carlo,
-                    "the same by a Monte Carlo of shared draws; empty when none ran [display unit_i × display unit_j]")
+      .def_property_readonly(
+          "monte_carlo", [](const verbs::InstrumentCovariance& c) { return rows_in_si(c, c.monte_carlo); },
+          "the same by a Monte Carlo of shared draws; empty when none ran [coefficient SI_i × coefficient SI_j]")
       .def_readonly("trials", &verbs::InstrumentCovariance::trials, "the Monte Carlo's trials, 0 for none [—]")
       .def_readonly("seed", &verbs::InstrumentCovariance::seed, "the Monte Carlo's seed [—]")
       .def("__repr__", [](const verbs::InstrumentCovariance& c) {

@@ -53,7 +53,8 @@ void bind_design(py::module_& m) {
   py::class_<verbs::DesignResult>(
       m, "Design",
       "`ccal design`: the configured and the designed plan with their full budgets; "
-      "str() is the CLI's text, to_json() its JSON.")
+      "str() is the CLI's text, to_json() its JSON.",
+      py::dynamic_attr())  // the call that made it, for pickling (python/ccal/_pickling.py)
       .def("to_json", [](const verbs::DesignResult& r) { return render::json(r); })
       .def("__str__", [](const verbs::DesignResult& r) { return render::text(r); })
       .def_readonly("config", &verbs::DesignResult::config, "the configuration as given [Config]")
@@ -61,6 +62,12 @@ void bind_design(py::module_& m) {
                     "the configuration with the designed plan [Config]")
       .def_readonly("before", &verbs::DesignResult::before, "the full budget of the configured plan [Budget]")
       .def_readonly("after", &verbs::DesignResult::after, "the full budget of the designed plan [Budget]")
+      .def_property_readonly(
+          "units", [](const verbs::DesignResult& r) { return r.after.budget.units; },
+          "the display unit of each coefficient of the budgets (one instrument; [] for several) [—]")
+      .def_property_readonly(
+          "display_scale", [](const verbs::DesignResult& r) { return r.after.budget.display_scale; },
+          "SI → display unit factor per coefficient of the budgets [display unit per SI]")
       .def_readonly("targets", &verbs::DesignResult::targets,
                     "the objective's coefficients, list of DesignTarget [—]")
       .def_readonly("candidates", &verbs::DesignResult::candidates, "the number of candidate runs cached [—]")

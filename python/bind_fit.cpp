@@ -10,6 +10,7 @@
 
 #include "bindings.hpp"
 #include "ccal/core/errors.hpp"
+#include "ccal/model/instrument.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/reduction/observability.hpp"
 #include "ccal/reduction/observe.hpp"
@@ -18,25 +19,51 @@ namespace ccal::python {
 
 namespace {
 
+// An observability as Python gives it (ccal.Observability): SI, with each free term's display unit and SI →
+// display factor beside it (the configuration's output unit per gⁿ), as every result (docs/python.md).
+struct UnitObservability {
+  ObservabilityResult result;
+  std::vector<std::string> units;
+  std::vector<double> display_scale;
+};
+
+// A field of the fit, read on the Fit.
+template <class T>
+auto fit_field(T FitResult::*field) {
+  return [field](const UnitFit& f) { return f.fit.*field; };
+}
+
 // The results of an identification: Fit, TermObservability and Observability.
 void bind_fit_and_observability_results(py::module_& m) {
-  py::class_<FitResult>(m, "Fit", "A least-squares identification with its diagnostics.")
-      .def_readonly("names", &FitResult::names, "the fitted terms' ids [—]")
-      .def_readonly("value", &FitResult::value, "the estimates [unit of y per unit of the column]")
-      .def_readonly("std_error", &FitResult::std_error,
-                    "their standard errors [unit of y per unit of the column]")
-      .def_readonly("covariance", &FitResult::covariance,
-                    "covariance of the estimates [products of their units]")
-      .def_readonly("correlation", &FitResult::correlation, "correlation of the estimates [—]")
-      .def_readonly("residuals", &FitResult::residuals, "y − fit per row [unit of y]")
-      .def_readonly("residual_std", &FitResult::residual_std,
-                    "√(RSS/dof) (weighted: √(χ²/dof)) [unit of y; weighted: —]")
-      .def_readonly("dof", &FitResult::dof, "rows − free terms [—]")
-      .def_readonly("chi2", &FitResult::chi2, "Σ r² (weighted: Σ r²/σ²) [unit of y squared; weighted: —]")
-      .def_readonly("chi2_per_dof", &FitResult::chi2_per_dof, "chi2 / dof [unit of y squared; weighted: —]")
-      .def_readonly("condition_number", &FitResult::condition_number, "of the column-scaled design [—]")
-      .def_readonly("rank", &FitResult::rank, "numerical rank of the design [—]")
-      .def_readonly("warnings", &FitResult::warnings, "e.g. no degrees of freedom, nearly aliased terms [—]");
+  py::class_<UnitFit>(m, "Fit",
+                      "A least-squares identification with its diagnostics: in SI where its data's units are "
+                      "known (identify(), identify_file() of a table with its output unit), with `units` and "
+                      "`display_scale` beside it; a fit() of plain arrays in its data's units (units '', "
+                      "display_scale 1).")
+      .def_property_readonly("names", fit_field(&FitResult::names), "the fitted terms' ids [—]")
+      .def_readonly("units", &UnitFit::units, "each term's display unit ('' for a fit of plain arrays) [—]")
+      .def_readonly("display_scale", &UnitFit::display_scale,
+                    "SI → display unit factor per term (1 for a fit of plain arrays) [display unit per SI]")
+      .def_property_readonly("value", fit_field(&FitResult::value),
+                             "the estimates [coefficient SI; plain arrays: unit of y per unit of the column]")
+      .def_property_readonly("std_error", fit_field(&FitResult::std_error),
+                             "their standard errors [as value]")
+      .def_property_readonly("covariance", fit_field(&FitResult::covariance),
+                             "covariance of the estimates [products of their units]")
+      .def_property_readonly("correlation", fit_field(&FitResult::correlation), "correlation of the estimates [—]")
+      .def_property_readonly("residuals", fit_field(&FitResult::residuals), "y − fit per row [output SI; unit of y]")
+      .def_property_readonly("residual_std", fit_field(&FitResult::residual_std),
+                             "√(RSS/dof) (weighted: √(χ²/dof)) [as residuals; weighted: —]")
+      .def_property_readonly("dof", fit_field(&FitResult::dof), "rows − free terms [—]")
+      .def_property_readonly("chi2", fit_field(&FitResult::chi2),
+                             "Σ r² (weighted: Σ r²/σ²) [residuals' unit squared; weighted: —]")
+      .def_property_readonly("chi2_per_dof", fit_field(&FitResult::chi2_per_dof),
+                             "chi2 / dof [residuals' unit squared; weighted: —]")
+      .def_property_readonly("condition_number", fit_field(&FitResult::condition_number),
+                             "of the column-scaled design [—]")
+      .def_property_readonly("rank", fit_field(&FitResult::rank), "numerical rank of the design [—]")
+      .def_property_readonly("warnings", fit_field(&FitResult::warnings),
+                             "e.g. no degrees of freedom, nearly aliased terms [—]");
 
   py::class_<TermObservability>(m, "TermObservability",
                                 "How well the plan sees one free term (docs/model.md §14; SI).")
@@ -62,13 +89,23 @@ void bind_fit_and_observability_results(py::module_& m) {
         return "<ccal.TermObservability " + t.term + " " + std::string(term_status_name(t.status)) + ">";
       });
 
-  py::class_<ObservabilityResult>(m, "Observability", "The observability of every free term (SI).")
-      .def_readonly("terms", &ObservabilityResult::terms, "per free term, list of TermObservability [—]")
-      .def_readonly("resolution", &ObservabilityResult::resolution, "σ of each run mean [output SI]")
-      .def_readonly("detection_factor", &ObservabilityResult::detection_factor,
-                    "minimum detectable change / standard error [—]")
-      .def_readonly("whole_revolutions", &ObservabilityResult::whole_revolutions,
-                    "every run counter-rotating over whole revolutions [—]");
+  py::class_<UnitObservability>(m, "Observability",
+                                "The observability of every free term (SI; units and display_scale beside it).")
+      .def_property_readonly(
+          "terms", [](const UnitObservability& o) { return o.result.terms; },
+          "per free term, list of TermObservability [—]")
+      .def_readonly("units", &UnitObservability::units, "the display unit of each free term, in the order of terms [—]")
+      .def_readonly("display_scale", &UnitObservability::display_scale,
+                    "SI → display unit factor per free term [display unit per SI]")
+      .def_property_readonly(
+          "resolution", [](const UnitObservability& o) { return o.result.resolution; },
+          "σ of each run mean [output SI]")
+      .def_property_readonly(
+          "detection_factor", [](const UnitObservability& o) { return o.result.detection_factor; },
+          "minimum detectable change / standard error [—]")
+      .def_property_readonly(
+          "whole_revolutions", [](const UnitObservability& o) { return o.result.whole_revolutions; },
+          "every run counter-rotating over whole revolutions [—]");
 }
 
 // The observability of the configuration's free terms in its planned runs, `reference` (SI per free term)
@@ -91,7 +128,12 @@ void bind_identification(py::module_& m) {
   m.def(
       "observability",
       [](const Observations<double>& obs, const Config& cfg, std::optional<Eigen::VectorXd> reference) {
-        return plan_observability(obs, cfg, reference);
+        UnitObservability out{plan_observability(obs, cfg, reference), {}, {}};
+        for (const TermObservability& t : out.result.terms) {
+          out.units.push_back(coefficient_unit(cfg.instrument.output_unit, t.term, cfg.instrument.g_symbol));
+          out.display_scale.push_back(display_scale_of(out.units.back()));
+        }
+        return out;
       },
       py::arg("observations"), py::arg("config"), py::arg("reference") = py::none(),
       "Per free term: sensitivity, resolution, minimum detectable change and status (docs/model.md §14) of "
@@ -101,13 +143,18 @@ void bind_identification(py::module_& m) {
       "identify",
       [](const Observations<double>& obs, const Config& cfg) {
         const FitResult r = fit(fit_problem(obs, cfg.identification));
+        UnitFit out{r, {}, {}};  // the observations are SI: so is the fit
+        for (const std::string& id : r.names) {
+          out.units.push_back(coefficient_unit(cfg.instrument.output_unit, id, cfg.instrument.g_symbol));
+          out.display_scale.push_back(display_scale_of(out.units.back()));
+        }
         // A term the plan cannot see is refused rather than fitted from round-off (as `ccal simulate`).
         if (obs.output.size() == Eigen::Index(cfg.plan.runs.size())) {
           const ObservabilityResult o = plan_observability(obs, cfg, r.value);
           if (const TermObservability* t = o.first(TermStatus::unobservable))
             throw IllPosedFit(unobservable_message(*t));
         }
-        return r;
+        return out;
       },
       py::arg("observations"), py::arg("config"),
       "Identifies the configuration's free terms from observations (its fixed terms held); raises "
@@ -130,7 +177,8 @@ void bind_identification(py::module_& m) {
           o.method = FitMethod::svd;
         else if (method != "qr")
           throw InputError("method: '" + method + "'; accepted: 'qr', 'svd'");
-        return fit(p, o);
+        const FitResult r = fit(p, o);
+        return UnitFit{r, std::vector<std::string>(r.names.size()), std::vector<double>(r.names.size(), 1.0)};
       },
       py::arg("H"), py::arg("y"), py::arg("names"), py::arg("weights") = py::none(),
       py::arg("fixed") = std::map<std::string, double>{}, py::arg("method") = "qr",
@@ -138,6 +186,20 @@ void bind_identification(py::module_& m) {
 }
 
 }  // namespace
+
+UnitFit fit_in_si(const FitResult& fit, const std::vector<std::string>& units, double output_scale, bool weighted) {
+  UnitFit out{fit, units, std::vector<double>(units.size(), output_scale)};
+  const double s = output_scale, y_squared = weighted ? 1.0 : s * s;  // weighted: chi2 has no unit
+  FitResult& f = out.fit;
+  f.value /= s;
+  f.std_error /= s;
+  f.covariance /= s * s;
+  f.residuals /= s;
+  f.residual_std /= weighted ? 1.0 : s;
+  f.chi2 /= y_squared;
+  f.chi2_per_dof /= y_squared;
+  return out;
+}
 
 // Fit, TermObservability, Observability; observability(), identify() and fit().
 void bind_fit(py::module_& m) {

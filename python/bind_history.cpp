@@ -5,7 +5,9 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "bindings.hpp"
 #include "ccal/render/history.hpp"
@@ -16,13 +18,50 @@ namespace ccal::python {
 
 namespace {
 
+// The one unit rule (docs/python.md): the store holds the statements' figures, each in its coefficient's unit;
+// Python gives them in SI, that unit's display scale beside them (1 for a unit ccal does not know).
+DriftLine drift_in_si(DriftLine d, double scale) {
+  d.value /= scale;
+  d.std_value /= scale;
+  d.slope /= scale;
+  d.std_slope /= scale;
+  return d;
+}
+
+std::optional<DriftPrediction> prediction_in_si(std::optional<DriftPrediction> p, double scale) {
+  if (p) {
+    p->value /= scale;
+    p->std_uncertainty /= scale;
+  }
+  return p;
+}
+
+std::vector<NormalisedError> agreement_in_si(std::vector<NormalisedError> errors, double scale) {
+  for (NormalisedError& e : errors) e.shared_covariance /= scale * scale;
+  return errors;
+}
+
+// Each calibration's value or U of a coefficient's history, in SI.
+std::vector<double> points_in_si(const verbs::CoefficientHistory& h, double HistoryPoint::*field) {
+  std::vector<double> v;
+  for (const HistoryPoint& p : h.points) v.push_back(p.*field / display_scale_of(h.unit));
+  return v;
+}
+
 // The store's records, its serial numbers and the set-up changes between records.
 void bind_history_records(py::module_& m) {
   py::class_<HistoryCoefficient>(m, "HistoryCoefficient", "One coefficient of a recorded calibration.")
       .def_readonly("name", &HistoryCoefficient::name, "the coefficient [—]")
-      .def_readonly("unit", &HistoryCoefficient::unit, "its unit, as the statement wrote it [—]")
-      .def_readonly("value", &HistoryCoefficient::value, "the corrected estimate [unit]")
-      .def_readonly("expanded", &HistoryCoefficient::expanded, "U [unit]")
+      .def_readonly("unit", &HistoryCoefficient::unit, "its display unit, as the statement wrote it [—]")
+      .def_property_readonly(
+          "display_scale", [](const HistoryCoefficient& c) { return display_scale_of(c.unit); },
+          "SI → display unit factor [display unit per SI]")
+      .def_property_readonly(
+          "value", [](const HistoryCoefficient& c) { return c.value / display_scale_of(c.unit); },
+          "the corrected estimate [coefficient SI]")
+      .def_property_readonly(
+          "expanded", [](const HistoryCoefficient& c) { return c.expanded / display_scale_of(c.unit); },
+          "U [coefficient SI]")
       .def_readonly("coverage_factor", &HistoryCoefficient::coverage_factor, "k [—]")
       .def_readonly("coverage_probability", &HistoryCoefficient::coverage_probability, "p [—]")
       .def_readonly("effective_dof", &HistoryCoefficient::effective_dof, "ν_eff, inf where infinite [—]");
@@ -82,7 +121,7 @@ void bind_history_trend(py::module_& m) {
                     "(x₂ − x₁)/√(U₁² + U₂² − 2 k₁ k₂ C₁₂); 0 where undefined [—]")
       .def_readonly("defined", &NormalisedError::defined, "false: the difference has no uncertainty [—]")
       .def_readonly("shared_covariance", &NormalisedError::shared_covariance,
-                    "C₁₂, shared by the two [unit²]")
+                    "C₁₂, shared by the two [coefficient SI²]")
       .def_readonly("disagree", &NormalisedError::disagree, "|E_n| > 1 [—]");
   py::class_<DriftLine>(m, "DriftLine", "The weighted straight line through a coefficient's calibrations.")
       .def_readonly("available", &DriftLine::available, "three calibrations at two dates at least [—]")
@@ -90,17 +129,17 @@ void bind_history_trend(py::module_& m) {
       .def_readonly("correlated", &DriftLine::correlated,
                     "calibrations sharing errors were fitted with them [—]")
       .def_readonly("reference_years", &DriftLine::reference_years, "t̄, years from the first calibration [a]")
-      .def_readonly("value", &DriftLine::value, "the line at t̄ [unit]")
-      .def_readonly("std_value", &DriftLine::std_value, "its standard uncertainty [unit]")
-      .def_readonly("slope", &DriftLine::slope, "the drift [unit per year]")
-      .def_readonly("std_slope", &DriftLine::std_slope, "its standard uncertainty [unit per year]")
+      .def_readonly("value", &DriftLine::value, "the line at t̄ [coefficient SI]")
+      .def_readonly("std_value", &DriftLine::std_value, "its standard uncertainty [coefficient SI]")
+      .def_readonly("slope", &DriftLine::slope, "the drift [coefficient SI per year]")
+      .def_readonly("std_slope", &DriftLine::std_slope, "its standard uncertainty [coefficient SI per year]")
       .def_readonly("chi_squared", &DriftLine::chi_squared, "χ² about the line [—]")
       .def_readonly("dof", &DriftLine::dof, "n − 2 [—]")
       .def_readonly("birge_ratio", &DriftLine::birge_ratio, "√(χ²/dof) [—]");
   py::class_<DriftPrediction>(m, "DriftPrediction", "The drift line at a date.")
       .def_readonly("years", &DriftPrediction::years, "years from the first calibration [a]")
-      .def_readonly("value", &DriftPrediction::value, "[unit]")
-      .def_readonly("std_uncertainty", &DriftPrediction::std_uncertainty, "[unit]");
+      .def_readonly("value", &DriftPrediction::value, "[coefficient SI]")
+      .def_readonly("std_uncertainty", &DriftPrediction::std_uncertainty, "[coefficient SI]");
 }
 
 // What changes the store besides an addition: a record superseded, a serial's history exported and imported.
@@ -140,40 +179,50 @@ void bind_history_exchange(py::module_& m) {
   record_keywords<verbs::HistoryStoreOptions>(m, "history_import");
 }
 
+// One coefficient over the calibrations, in SI.
+void bind_coefficient_history(py::module_& m) {
+  py::class_<verbs::CoefficientHistory>(m, "CoefficientHistory",
+                                        "One coefficient over the calibrations that are not superseded.")
+      .def_readonly("name", &verbs::CoefficientHistory::name, "[—]")
+      .def_readonly("unit", &verbs::CoefficientHistory::unit, "the display unit, as the statements wrote it [—]")
+      .def_property_readonly(
+          "display_scale", [](const verbs::CoefficientHistory& h) { return display_scale_of(h.unit); },
+          "SI → display unit factor [display unit per SI]")
+      .def_readonly("dates", &verbs::CoefficientHistory::dates, "YYYY-MM-DD, oldest first [—]")
+      .def_property_readonly(
+          "values", [](const verbs::CoefficientHistory& h) { return points_in_si(h, &HistoryPoint::value); },
+          "the corrected estimates [coefficient SI]")
+      .def_property_readonly(
+          "expanded", [](const verbs::CoefficientHistory& h) { return points_in_si(h, &HistoryPoint::expanded); },
+          "U of each [coefficient SI]")
+      .def_readonly("ids", &verbs::CoefficientHistory::ids, "the record of each calibration [—]")
+      .def_property_readonly(
+          "shared",
+          [](const verbs::CoefficientHistory& h) {
+            const double s = display_scale_of(h.unit);
+            return Eigen::MatrixXd(h.shared / (s * s));
+          },
+          "C_ij: what calibrations i and j share of the coefficient's error [coefficient SI²]")
+      .def_property_readonly(
+          "normalised_errors",
+          [](const verbs::CoefficientHistory& h) { return agreement_in_si(h.agreement, display_scale_of(h.unit)); },
+          "list of NormalisedError [—]")
+      .def_property_readonly(
+          "drift", [](const verbs::CoefficientHistory& h) { return drift_in_si(h.drift, display_scale_of(h.unit)); },
+          "DriftLine [—]")
+      .def_property_readonly(
+          "prediction",
+          [](const verbs::CoefficientHistory& h) { return prediction_in_si(h.prediction, display_scale_of(h.unit)); },
+          "DriftPrediction at `at`, or None [—]");
+}
+
 }  // namespace
 
 void bind_history(py::module_& m) {
   bind_history_records(m);
   bind_history_trend(m);
   bind_history_exchange(m);
-  py::class_<verbs::CoefficientHistory>(m, "CoefficientHistory",
-                                        "One coefficient over the calibrations that are not superseded.")
-      .def_readonly("name", &verbs::CoefficientHistory::name, "[—]")
-      .def_readonly("unit", &verbs::CoefficientHistory::unit, "[—]")
-      .def_readonly("dates", &verbs::CoefficientHistory::dates, "YYYY-MM-DD, oldest first [—]")
-      .def_property_readonly(
-          "values",
-          [](const verbs::CoefficientHistory& h) {
-            std::vector<double> v;
-            for (const HistoryPoint& p : h.points) v.push_back(p.value);
-            return v;
-          },
-          "the corrected estimates [unit]")
-      .def_property_readonly(
-          "expanded",
-          [](const verbs::CoefficientHistory& h) {
-            std::vector<double> v;
-            for (const HistoryPoint& p : h.points) v.push_back(p.expanded);
-            return v;
-          },
-          "U of each [unit]")
-      .def_readonly("ids", &verbs::CoefficientHistory::ids, "the record of each calibration [—]")
-      .def_readonly("shared", &verbs::CoefficientHistory::shared,
-                    "C_ij: what calibrations i and j share of the coefficient's error [unit²]")
-      .def_readonly("normalised_errors", &verbs::CoefficientHistory::agreement, "list of NormalisedError [—]")
-      .def_readonly("drift", &verbs::CoefficientHistory::drift, "DriftLine [—]")
-      .def_readonly("prediction", &verbs::CoefficientHistory::prediction,
-                    "DriftPrediction at `at`, or None [—]");
+  bind_coefficient_history(m);
   py::class_<verbs::HistoryShowResult>(
       m, "History",
       "`ccal history show`: a serial number's calibrations; str() is the CLI's "
@@ -187,6 +236,22 @@ void bind_history(py::module_& m) {
       .def_readonly("records", &verbs::HistoryShowResult::records,
                     "every calibration, list of HistoryRecord [—]")
       .def_readonly("coefficients", &verbs::HistoryShowResult::coefficients, "list of CoefficientHistory [—]")
+      .def_property_readonly(
+          "units",
+          [](const verbs::HistoryShowResult& r) {
+            std::vector<std::string> v;
+            for (const verbs::CoefficientHistory& h : r.coefficients) v.push_back(h.unit);
+            return v;
+          },
+          "the display unit of each coefficient, in the order of coefficients [—]")
+      .def_property_readonly(
+          "display_scale",
+          [](const verbs::HistoryShowResult& r) {
+            std::vector<double> v;
+            for (const verbs::CoefficientHistory& h : r.coefficients) v.push_back(display_scale_of(h.unit));
+            return v;
+          },
+          "SI → display unit factor per coefficient [display unit per SI]")
       .def_property_readonly(
           "setups",
           [](const verbs::HistoryShowResult& r) {

@@ -15,6 +15,16 @@
 
 namespace ccal::python {
 
+namespace {
+
+// The SI → display factor of the table's output, which every term is in per something: 1 when the table does
+// not give its output's unit (its values are then as the table has them).
+double output_scale(const verbs::IdentifyResult& r) {
+  return r.identification.output_unit.empty() ? 1.0 : display_scale_of(r.identification.output_unit);
+}
+
+}  // namespace
+
 void bind_identify(py::module_& m) {
   py::class_<verbs::IdentifyResult>(m, "Identification",
                                     "`ccal identify`: the fit of a table of observations, with units and the "
@@ -25,11 +35,23 @@ void bind_identify(py::module_& m) {
       .def_readonly("source", &verbs::IdentifyResult::source, "the table's file [path]")
       .def_readonly("rows", &verbs::IdentifyResult::rows, "observations fitted [—]")
       .def_property_readonly(
-          "fit", [](const verbs::IdentifyResult& r) { return r.identification.fit; },
-          "the least-squares fit, in the table's own units [output unit / input unit^n]")
+          "fit",
+          [](const verbs::IdentifyResult& r) {
+            return fit_in_si(r.identification.fit, r.identification.units, output_scale(r), r.identification.weighted);
+          },
+          "the least-squares fit in SI (output SI per g^n; per the input column's unit where it is not in g), with "
+          "units and display_scale; a table without its output's unit: in the table's units, display_scale 1 "
+          "[Fit]")
       .def_property_readonly(
           "units", [](const verbs::IdentifyResult& r) { return r.identification.units; },
-          "the unit of each free term's coefficient [—]")
+          "the display unit of each free term's coefficient, as the table gives it [—]")
+      .def_property_readonly(
+          "display_scale",
+          [](const verbs::IdentifyResult& r) {
+            return std::vector<double>(r.identification.units.size(), output_scale(r));
+          },
+          "SI → display unit factor per free term: fit.value × display_scale is the table's figure [display "
+          "unit per SI]")
       .def_property_readonly(
           "has_statement", [](const verbs::IdentifyResult& r) { return r.statement.has_value(); },
           "True when statement=True gave the calibration statement [—]")

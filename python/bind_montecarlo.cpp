@@ -103,7 +103,13 @@ void bind_monte_carlo_results(py::module_& m) {
       .def_readonly("budget", &verbs::MonteCarloResult::budget,
                     "the LPU budget that the Monte Carlo validates [BudgetDetail]")
       .def_readonly("monte_carlo", &verbs::MonteCarloResult::monte_carlo,
-                    "the Monte Carlo itself (its fields are readable on the result) [MonteCarloDetail]");
+                    "the Monte Carlo itself (its fields are readable on the result) [MonteCarloDetail]")
+      .def_property_readonly(
+          "units", [](const verbs::MonteCarloResult& r) { return r.budget.units; },
+          "the display unit of each coefficient, in the order of names [—]")
+      .def_property_readonly(
+          "display_scale", [](const verbs::MonteCarloResult& r) { return r.budget.display_scale; },
+          "SI → display unit factor per coefficient [display unit per SI]");
 }
 
 // The Monte Carlo propagation function monte_carlo().

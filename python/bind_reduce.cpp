@@ -186,6 +186,15 @@ void bind_log_reduction(py::module_& m) {
       .def_property_readonly(
           "names", [](const verbs::ReduceResult& r) { return r.identification.id.fit.names; },
           "the identified terms' ids [—]")
+      .def_property_readonly(
+          "units", [](const verbs::ReduceResult& r) { return r.identification.id.units; },
+          "the display unit of each identified term, in the order of names [—]")
+      .def_property_readonly(
+          "display_scale",
+          [](const verbs::ReduceResult& r) {
+            return std::vector<double>(r.identification.id.units.size(), 1.0 / r.output_unit_si);
+          },
+          "SI → display unit factor per identified term [display unit per SI]")
       .def_readonly("instruments", &verbs::ReduceResult::instruments,
                     "a test of several instruments: each one's Reduction, in the configuration's order (the fields "
                     "above are the first's); [] for one instrument [list of Reduction]")

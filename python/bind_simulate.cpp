@@ -38,10 +38,8 @@ std::optional<SimulationTruth> truth_of(const Config& cfg, const py::object& tru
                     cfg);
 }
 
-}  // namespace
-
-// Simulated observations: the Observations and Simulation results, simulate() and observe().
-void bind_simulate(py::module_& m) {
+// The run means: Observations.
+void bind_observations(py::module_& m) {
   py::class_<Observations<double>>(m, "Observations", "Run means: one row per run (SI, inputs in g).")
       .def_readonly("runs", &Observations<double>::runs, "the runs' names [—]")
       .def_readonly("columns", &Observations<double>::columns, "term ids of the regressor columns [—]")
@@ -52,6 +50,13 @@ void bind_simulate(py::module_& m) {
       .def_readonly("known_rate", &Observations<double>::known_rate,
                     "the model's ⟨s_ω ω_IA⟩ per run [output SI]")
       .def_readonly("input", &Observations<double>::input, "the model's ⟨a_i⟩ per run [g]");
+}
+
+}  // namespace
+
+// Simulated observations: the Observations and Simulation results, simulate() and observe().
+void bind_simulate(py::module_& m) {
+  bind_observations(m);
 
   bind_verb_result<verbs::SimulateResult>(m, "Simulation",
                                           "`ccal simulate`: run means of the plan and their identification; "
@@ -71,6 +76,15 @@ void bind_simulate(py::module_& m) {
       .def_property_readonly(
           "names", [](const verbs::SimulateResult& r) { return r.identification.fit.names; },
           "the identified terms' ids [—]")
+      .def_property_readonly(
+          "units", [](const verbs::SimulateResult& r) { return r.identification.units; },
+          "the display unit of each identified term, in the order of names [—]")
+      .def_property_readonly(
+          "display_scale",
+          [](const verbs::SimulateResult& r) {
+            return std::vector<double>(r.identification.units.size(), 1.0 / r.output_unit_si);
+          },
+          "SI → display unit factor per identified term [display unit per SI]")
       .def(
           "to_csv", [](const verbs::SimulateResult& r) { return render::csv(r); },
           "The observations file (the CLI's --format csv, the input of `ccal identify`).")

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ccal/core/model_mode.hpp"
+#include "ccal/reduction/fit.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/render/allocate.hpp"
 #include "ccal/render/budget.hpp"
@@ -41,6 +42,25 @@ py::class_<Result> bind_verb_result(py::module_& m, const char* name, const char
   c.attr("_inner") = inner;  // for dir() (python/ccal/_results.py) and the stubs (python/make_stubs.py)
   return c;
 }
+
+// The one unit rule of Python's results (docs/python.md): values in SI, with `units` (display) and
+// `display_scale` beside them. The SI → display factor of a coefficient's (or an output's) display unit: 1 / the
+// SI size of one unit (deg/s/g^3 → 180/π; a pulse counts as 1, as in the observations file); 1 for a unit ccal
+// does not know, such as a table's column names ("output/a_i^2"), whose values stay as the table has them.
+double display_scale_of(std::string_view unit);
+
+// A least-squares fit as Python gives it (ccal.Fit): in SI where its data's units are known (identify(): the
+// observations are SI; identify_file(): a table whose output unit is known), with the display unit and the
+// SI → display factor of each term beside it; a fit of plain arrays (fit()) is in its data's units, its units ""
+// and its display_scale 1.
+struct UnitFit {
+  FitResult fit;
+  std::vector<std::string> units;
+  std::vector<double> display_scale;
+};
+// A fit in display units (every term in the output unit per something, the output's SI → display factor
+// `output_scale`; `weighted`: chi2 is then a number without unit) in SI, with `units` beside it.
+UnitFit fit_in_si(const FitResult& fit, const std::vector<std::string>& units, double output_scale, bool weighted);
 
 // Targets as Python gives them: coefficient id → a number in the coefficient's display unit (as on the command
 // line) or a string with a unit; target_texts gives the library's "K3=0.001" / "K3=1e-3 deg/s/g^3".

@@ -10,6 +10,7 @@
 #include "bindings.hpp"
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/io/observation_csv.hpp"
 #include "ccal/reduction/fit.hpp"
 #include "ccal/setup/config.hpp"
 #include "ccal/version.hpp"
@@ -19,6 +20,14 @@ namespace ccal::python {
 // The library's parser of a choice, so the refusal is the command line's but for the option's name.
 ModelMode mode_argument(const std::string& mode) {
   return static_cast<ModelMode>(parse_choice_option("mode", mode, kModeNames));
+}
+
+double display_scale_of(std::string_view unit) {
+  try {
+    return 1.0 / output_unit_si(unit);  // as to_unit(1, unit): the budget's display_scale, bit for bit
+  } catch (const UnitError&) {
+    return 1.0;  // a table's column names ("output/a_i^2"): its values are taken as they are
+  }
 }
 
 std::vector<std::string> target_texts(const TargetMap& targets) {

@@ -22,9 +22,7 @@ def _verb(name, function):
     def wrapper(*args, **kwargs):
         result = function(*args, **kwargs)  # first: its messages name a mistyped keyword's likely intent
         call = dict(signature.bind(*args, **kwargs).arguments)
-        config = call.pop("config")
-        logs = _pickling.read_logs(call["logs"]) if name == "reduce" else None
-        _pickling.remember_call(result, name, config, call, logs, {})
+        _pickling.remember_call(result, name, call.pop("config"), call)
         return result
 
     return copy_identity(wrapper, function)
@@ -92,7 +90,7 @@ def install(namespace):
         if not name.startswith("_"):
             namespace[name] = (with_signature(value, name, name, keywords.get(name)) if is_pybind_function(value)
                                else value)
-    for name in VERB_RESULTS:
+    for name in (*VERB_RESULTS, "design"):
         namespace[name] = _verb(name, namespace[name])
     namespace["report"] = _report(namespace["report"])
     for name in ("bundled_example", "load_config", "parse_config"):
@@ -101,9 +99,17 @@ def install(namespace):
     classes = compiled_classes()
     _methods(classes)
     Config = _ccal.Config
-    for name in ("with_tolerance", "without_tolerance", "with_error", "with_plan"):
+    for name in ("with_tolerance", "without_tolerance", "with_error", "with_plan", "instrument"):
         setattr(Config, name, _config_edit(name, getattr(Config, name)))
     Config.__reduce__ = _pickling.config_reduce
+    # Results pickle by value (a Design as its call; a Report not at all: its page is made from its call).
+    by_value = [cls for cls in classes if cls not in (Config, _ccal.Design, _ccal.Report)]
+    for cls in by_value:
+        cls.__reduce__ = _pickling.result_reduce
+    _ccal.Design.__reduce__ = _pickling.call_reduce
+    _ccal.Report.__reduce__ = _pickling.report_reduce
+    namespace["StoredResult"] = _pickling.StoredResult
+    _pickling.stand_ins_count_as_their_class(by_value)
     for cls in classes:
         cls.__repr__ = _results.fields_repr
     for class_name in VERB_RESULTS.values():

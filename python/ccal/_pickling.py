@@ -1,18 +1,30 @@
-"""Pickling. A Config is pickled as its origin (the TOML text it was read from, or the bundled example) and
-the derivations applied to it; a verb's result as the call that made it (its Config, its options, and for
-`reduce` the contents of its logs): unpickling computes it again, which gives the same bits (every
-computation is deterministic, the Monte Carlo for any thread count), and checks that the JSON is the one
-pickled, so that a result from another version of ccal is refused rather than silently different."""
+"""Pickling. A Config is pickled as its origin (the TOML text it was read from, or the bundled example) and the
+derivations applied to it. A result is pickled by value: every attribute's value (NumPy arrays, numbers, text,
+its parts each by value in turn, its Config by origin), its texts (str(), to_json(), to_csv()) and the
+exceptions its attributes raise, compressed; unpickling rebuilds it without computing anything, as a stored
+result (StoredResult) of the same name, attributes and methods, which isinstance() takes for its class. Two
+exceptions: a Simulation's run_logs() and logs_manifest() (and write_logs()) simulate again from the stored call
+when called (the same bits: the simulation is deterministic, checked against the stored JSON), and a Design is
+pickled as its call (its designed Config has no text of its own) and designed again on unpickling."""
 
+import builtins
 import json
 import os
+import pickle
 import re
 import tempfile
-import tomllib
+import zlib
+
+import numpy as np
 
 from . import _ccal
 
-_VOLATILE = {"wall_time_s", "threads", "trials_per_s"}  # what differs between two runs of the same call
+_VOLATILE = {"wall_time_s", "threads", "trials_per_s", "cache_seconds", "search_seconds"}  # what differs between two
+# runs of the same call
+_TEXTS = ("to_json", "to_csv", "__str__")  # the texts of a result, stored as they are
+# Methods that compute from arguments: the stored call is run again when one is called (class → verb, methods).
+_RECOMPUTED = {"Simulation": ("simulate", ("run_logs", "logs_manifest"))}
+_FORMAT = 1  # of the stored tree
 
 
 def _normalised(value):
@@ -39,9 +51,245 @@ def config_reduce(self):
     origin = getattr(self, "_ccal_origin", None)
     if origin is None:
         raise TypeError("this ccal.Config cannot be pickled: it was not made by load_config, parse_config, "
-                        "bundled_example or a with_… method of one")
+                        "bundled_example or a with_… or instrument() method of one")
     return restore_config, (origin, self._ccal_edits)
 
+
+# --- Results by value -------------------------------------------------------------------------------------------
+
+def _fields(cls):
+    return [n for n, v in vars(cls).items() if isinstance(v, property) and not n.startswith("_")]
+
+
+class _Node(tuple):
+    """(class name, values, raises, texts, call) of a stored object of the module."""
+
+
+class _Array(tuple):
+    """(array, writeable) of a NumPy array."""
+
+
+class _Instrument(tuple):
+    """(k,): the configuration of the k-th instrument of the stored result's own configuration."""
+
+
+def _is_bound(value):
+    return isinstance(type(value), type(_ccal.Config)) or isinstance(value, StoredResult)  # the module's metaclass
+
+
+class _Snapshot:
+    """Walks a result into a tree of plain values: a _Node for an object of the module, an _Array for a NumPy
+    array, an _Instrument for the configuration of one instrument of the result's own configuration (one of its
+    Config.instruments), lists, tuples and dicts of them, numbers, text and Configs."""
+
+    def __init__(self, top):
+        config = getattr(top, "config", None) if "config" in _fields(type(top)) else None
+        self.top_config = config if getattr(config, "_ccal_origin", None) is not None else None
+
+    def config(self, cfg, where):
+        if getattr(cfg, "_ccal_origin", None) is not None:
+            return cfg
+        top = self.top_config
+        ids = [c.instrument_id for c in top.instruments] if top is not None else []
+        if cfg.instrument_id and cfg.instrument_id in ids:
+            return _Instrument((ids.index(cfg.instrument_id),))
+        raise TypeError(f"this result cannot be pickled: its {where} is a ccal.Config that was not made by "
+                        "load_config, parse_config, bundled_example or a with_… or instrument() method of one")
+
+    def value(self, v, where):
+        if isinstance(v, np.ndarray):
+            return _Array((v.copy(), bool(v.flags.writeable)))
+        if isinstance(v, _ccal.Config):
+            return self.config(v, where)
+        if _is_bound(v):
+            return self.node(v, where)
+        if isinstance(v, (list, tuple)):
+            return type(v)(self.value(x, where) for x in v)
+        if isinstance(v, dict):
+            return {k: self.value(x, where) for k, x in v.items()}
+        return v
+
+    def node(self, obj, where):
+        cls = type(obj)
+        name = cls.__name__
+        values, raises = {}, {}
+        for field in _fields(cls):
+            try:
+                values[field] = self.value(getattr(obj, field), f"{where}.{field}")
+            except TypeError:
+                raise
+            except Exception as e:  # e.g. MonteCarlo.samples without keep_samples: raised again when read
+                raises[field] = (type(e).__name__, str(e))
+        texts = {t: str(obj) if t == "__str__" else getattr(obj, t)() for t in _TEXTS if _has_text(cls, t)}
+        call = getattr(obj, "_ccal_call", None)
+        if name in _RECOMPUTED and call is not None:
+            call = (call[0], self.value(call[1], f"{where}.config"), call[2])
+        else:
+            call = None
+        return _Node((name, values, raises, texts, call))
+
+
+def _has_text(cls, name):
+    original = getattr(cls, "_ccal_original", cls)
+    if name == "__str__":
+        return "__str__" in vars(original)
+    return callable(getattr(original, name, None))
+
+
+def result_reduce(self):
+    tree = _Snapshot(self).node(self, f"ccal.{type(self).__name__}")
+    return restore_stored, (_FORMAT, zlib.compress(pickle.dumps(tree, protocol=pickle.HIGHEST_PROTOCOL), 9))
+
+
+def restore_stored(form, data):
+    if form != _FORMAT:
+        raise ValueError(f"ccal: a pickled result of format {form} (of a later version of ccal?); this is ccal "
+                         f"{_ccal.__version__}, which reads format {_FORMAT}")
+    return _Rebuild().node(pickle.loads(zlib.decompress(data)))
+
+
+class _Rebuild:
+    """The stored objects of a tree of _Snapshot."""
+
+    def __init__(self):
+        self.top_config = None
+
+    def value(self, v):
+        if isinstance(v, _Node):
+            return self.node(v)
+        if isinstance(v, _Array):
+            array, writeable = v
+            array.flags.writeable = writeable
+            return array
+        if isinstance(v, _Instrument):
+            return self.top_config.instruments[v[0]]
+        if isinstance(v, (list, tuple)):
+            return type(v)(self.value(x) for x in v)
+        if isinstance(v, dict):
+            return {k: self.value(x) for k, x in v.items()}
+        return v
+
+    def node(self, tree):
+        name, values, raises, texts, call = tree
+        if self.top_config is None and isinstance(values.get("config"), _ccal.Config):
+            self.top_config = values["config"]
+        obj = stored_class(name).__new__(stored_class(name))
+        obj._ccal_values = {k: self.value(v) for k, v in values.items()}
+        obj._ccal_raises = raises
+        obj._ccal_texts = texts
+        obj._ccal_stored_call = call and (call[0], self.value(call[1]), call[2])
+        obj._ccal_recomputed = None
+        return obj
+
+
+class StoredResult:
+    """A result of ccal unpickled by value: the attributes, texts and methods of its class (whose name it has, and
+    which isinstance() takes it for), read from what was pickled; nothing is computed again (but a Simulation's
+    run_logs() and logs_manifest(), which simulate again from the stored call)."""
+
+    def _ccal_get(self, name):
+        if name in self._ccal_raises:
+            kind, message = self._ccal_raises[name]
+            exception = getattr(_ccal, kind, None)
+            if not (isinstance(exception, type) and issubclass(exception, BaseException)):
+                exception = getattr(builtins, kind, RuntimeError)
+            raise exception(message)
+        value = self._ccal_values[name]
+        if isinstance(value, np.ndarray) and value.flags.writeable:
+            return value.copy()  # as the binding, a fresh array each time
+        if isinstance(value, (list, dict)):
+            return type(value)(value)
+        return value
+
+    def _ccal_recompute(self):
+        """The result computed again from its stored call (Simulation.run_logs), checked against the stored JSON."""
+        if self._ccal_recomputed is None:
+            if self._ccal_stored_call is None:
+                raise TypeError(f"this unpickled ccal.{type(self).__name__} cannot compute that: it is one "
+                                "instrument's part of a result, which holds the call")
+            verb, config, kwargs = self._ccal_stored_call
+            result = getattr(_ccal, verb)(config, **kwargs)
+            if _normalised(json.loads(result.to_json())) != _normalised(json.loads(self.to_json())):
+                raise ValueError(f"ccal: a pickled {type(self).__name__} computed again gives other numbers "
+                                 f"(pickled by another version of ccal?); this is ccal {_ccal.__version__}")
+            self._ccal_recomputed = result
+        return self._ccal_recomputed
+
+    def __reduce__(self):
+        return result_reduce(self)
+
+
+_STORED = {}
+
+
+def _text_method(name):
+    def text(self):
+        return self._ccal_texts[name]
+    text.__name__ = name
+    return text
+
+
+def _recomputed_method(name, original):
+    def method(self, *args, **kwargs):
+        return getattr(self._ccal_recompute(), name)(*args, **kwargs)
+    method.__name__, method.__doc__ = name, getattr(original, "__doc__", None)
+    return method
+
+
+def _property(name, doc):
+    return property(lambda self: self._ccal_get(name), None, None, doc)
+
+
+def stored_class(name):
+    """The class of a stored `name` (ccal.Budget → a StoredResult named Budget): its attributes as properties of
+    the stored values, the texts stored, and the methods the package adds in Python (display(), to_dict(), …),
+    which read those."""
+    if name in _STORED:
+        return _STORED[name]
+    original = getattr(_ccal, name)
+    ns = {"__module__": "ccal", "__qualname__": name, "__doc__": original.__doc__, "_ccal_original": original}
+    for field in _fields(original):
+        ns[field] = _property(field, vars(original)[field].__doc__)
+    for attr, value in vars(original).items():
+        if callable(value) and type(value).__name__ == "function" and attr not in ("__str__", "to_json", "__dir__",
+                                                                                    "__reduce__", "__getattr__"):
+            ns[attr] = value  # the Python-level methods: display, to_dict, to_frame, repr, write_logs, …
+    for text in _TEXTS:
+        if _has_text(original, text):
+            ns[text] = _text_method(text)
+    for method in _RECOMPUTED.get(name, ((), ()))[1]:
+        ns[method] = _recomputed_method(method, getattr(original, method))
+    inner = vars(original).get("_inner")
+    if inner is not None:
+        ns["_inner"] = inner
+
+        def forward(self, attr):
+            if attr.startswith("_"):
+                raise AttributeError(attr)
+            return getattr(self._ccal_get(inner), attr)
+
+        def names(self):
+            return sorted(set(object.__dir__(self)) | set(dir(self._ccal_get(inner))))
+
+        ns["__getattr__"], ns["__dir__"] = forward, names
+    _STORED[name] = type(name, (StoredResult,), ns)
+    return _STORED[name]
+
+
+def stand_ins_count_as_their_class(classes):
+    """isinstance(stored, ccal.Budget) is True for a Budget unpickled by value: the classes' metaclass, the
+    module's, with an instance check that also takes the stored results named for the class."""
+    meta = type(classes[0])
+
+    class ResultType(meta):
+        def __instancecheck__(cls, obj):
+            return type.__instancecheck__(cls, obj) or getattr(type(obj), "_ccal_original", None) is cls
+
+    for cls in classes:
+        cls.__class__ = ResultType
+
+
+# --- Results as their call (Design, and pickles of ccal before results pickled by value) ------------------------
 
 def restore_result(verb, config, kwargs, logs, pickled_json, pickled_text=None):
     kwargs = dict(kwargs)
@@ -66,7 +314,7 @@ def restore_result(verb, config, kwargs, logs, pickled_json, pickled_text=None):
                 paths[path] = original
             kwargs["logs"] = files
         result = getattr(_ccal, verb)(config, **kwargs)
-    remember_call(result, verb, config, kwargs, logs, paths)
+    remember_call(result, verb, config, kwargs, paths)
     if _normalised(json.loads(result.to_json())) != _normalised(json.loads(pickled_json)):
         raise ValueError(f"ccal: a pickled {type(result).__name__} computed again gives other numbers (pickled "
                          f"by another version of ccal?); this is ccal {_ccal.__version__}")
@@ -75,54 +323,24 @@ def restore_result(verb, config, kwargs, logs, pickled_json, pickled_text=None):
     return result
 
 
-def remember_call(result, verb, config, kwargs, logs, paths):
-    result._ccal_call = (verb, config, {k: v for k, v in kwargs.items() if k not in ("logs", "progress")}, logs)
-    result._ccal_paths = paths  # temporary log copies of an unpickled reduction → the original paths
+def remember_call(result, verb, config, kwargs, paths=None):
+    result._ccal_call = (verb, config, {k: v for k, v in kwargs.items() if k not in ("logs", "progress")})
+    result._ccal_paths = paths or {}  # temporary log copies of a reduction unpickled as its call → the originals
 
 
-def result_reduce(self):
-    verb, config, kwargs, logs = self._ccal_call
-    if verb == "reduce" and logs is None:
-        raise TypeError(f"this ccal.{type(self).__name__} cannot be pickled: its logs could not be read again "
-                        "when it was made")
-    return restore_result, (verb, config, kwargs, logs, self.to_json(), None if logs is None else str(self))
+def call_reduce(self):
+    verb, config, kwargs = self._ccal_call
+    return restore_result, (verb, config, kwargs, None, self.to_json(), None)
+
+
+def report_reduce(self):
+    raise TypeError("a ccal.Report does not pickle: its page is made from the results of its call; pickle its "
+                    "sections (budget, monte_carlo, allocation, design, observed) or the page (to_html())")
 
 
 def original_paths(text, paths, quote):
-    """The JSON of an unpickled reduction, whose logs were read from temporary copies, with the original paths."""
+    """The JSON of a reduction unpickled as its call, whose logs were read from temporary copies, with the original
+    paths."""
     for temporary, original in paths.items():
         text = text.replace(quote(temporary), quote(original))
     return text
-
-
-def read_folder(folder):
-    """{"folder": as given, "files": [(name, bytes)]}: a folder's manifest.toml and the logs its [runs] name
-    (inside the folder, as the manifest requires), or None when one cannot be read."""
-    try:
-        with open(os.path.join(folder, "manifest.toml"), "rb") as f:
-            manifest = f.read()
-        names = [n for n in tomllib.loads(manifest.decode("utf-8")).get("runs", {}).values() if isinstance(n, str)]
-        files = [("manifest.toml", manifest)]
-        for name in names:
-            with open(os.path.join(folder, name), "rb") as f:
-                files.append((name, f.read()))
-    except (OSError, TypeError, ValueError, AttributeError):
-        return None
-    return {"folder": os.fspath(folder), "files": files}
-
-
-def read_logs(logs):
-    """[(run, path, bytes)] of reduce()'s logs, the folder's files (read_folder) for a folder, or None when one
-    cannot be read (reduce itself reports it)."""
-    contents = []
-    if isinstance(logs, (str, os.PathLike)):
-        return read_folder(logs)
-    if not isinstance(logs, dict):
-        return None
-    for run, path in logs.items():
-        try:
-            with open(path, "rb") as f:
-                contents.append((run, path, f.read()))
-        except (OSError, TypeError):
-            return None
-    return contents

@@ -20,7 +20,7 @@ def _short(value):
         return "[" + ", ".join(_short(v) for v in value[:3]) + f", … ({len(value)} in all)]"
     if isinstance(value, list):
         return "[" + ", ".join(_short(v) for v in value) + "]"
-    if type(type(value)).__name__ == "pybind11_type":
+    if isinstance(type(value), type(_ccal.Config)) or isinstance(value, _pickling.StoredResult):  # the module's
         return f"<ccal.{type(value).__name__}>"
     return repr(value)
 
@@ -96,7 +96,6 @@ def verb_result_methods(cls, build):
     cls.config = property(config, None, None, config.__doc__)
     cls.__repr__ = _table_repr
     cls._repr_html_ = _table_html
-    cls.__reduce__ = _pickling.result_reduce
 
 
 def json_table_methods(cls, build):
@@ -126,10 +125,12 @@ def history_table(self, d) -> "Table":
     """One row per coefficient and calibration (superseded ones left out): the date, the value, U, unit and E_n
     against the calibration before."""
     rows = []
+    recorded = {c["id"]: c["coefficients"] for c in d["calibrations"]}  # the statements' figures, in their units
     for h in self.coefficients:
         en = {e.to_index: e.value if e.defined else None for e in h.normalised_errors}
-        for i, date in enumerate(h.dates):
-            rows.append([h.name, date, h.values[i], h.expanded[i], h.unit, en.get(i)])
+        for i, (date, record) in enumerate(zip(h.dates, h.ids)):
+            c = recorded[record][h.name]
+            rows.append([h.name, date, c["value"], c["expanded_uncertainty"], h.unit, en.get(i)])
     return Table(f"calibration history of {d['serial']}", ["coefficient", "date", "value", "U", "unit", "E_n"], rows)
 
 

@@ -138,6 +138,7 @@ def display_config(c):
 
 
 def display_fit(f):
-    rows = [[n, v, s] for n, v, s in zip(f.names, f.value, f.std_error)]
-    return Table(f"fit: {len(f.names)} terms, {f.dof} degrees of freedom (values in the units of the data)",
-                 ["term", "value", "std_error"], rows)
+    """The terms in display units (value × display_scale; a fit of plain arrays: its data's units, unit '')."""
+    rows = [[n, u, v * k, s * k] for n, u, k, v, s in zip(f.names, f.units, f.display_scale, f.value, f.std_error)]
+    return Table(f"fit: {len(f.names)} terms, {f.dof} degrees of freedom",
+                 ["term", "unit", "value", "std_error"], rows)

@@ -1,14 +1,21 @@
 """The package as pip installs it (pyproject.toml, setup.py): into a fresh virtual environment (Debian's NumPy
-from the system's site packages; no network, no build isolation), from this build tree's CMake build, then
-imported from outside the source and build trees. Also the wheel: its platform tag and its files.
+from the system's site packages; no network, no build isolation), then imported from outside the source and build
+trees.
     check_install.py SOURCE_DIR BUILD_DIR WORK_DIR
-Exit 77 (skipped) when Debian's venv or pip is missing (python3-venv, python3-pip)."""
+installs from this build tree's CMake build (CCAL_CMAKE_BUILD_DIR); also the wheel: its platform tag and its files.
+    check_install.py --clean-clone SOURCE_DIR BUILD_DIR WORK_DIR
+installs from a `git clone` of SOURCE_DIR (its committed files only) without CCAL_CMAKE_BUILD_DIR, so that
+setup.py configures and builds with CMake itself, as `pip install .` of a fresh checkout does; through ccache
+(CMAKE_CXX_COMPILER_LAUNCHER, which CMake reads from the environment) when it is installed, with the clone as
+CCACHE_BASEDIR, so that a second run compiles nothing. It prints how long the install took.
+Exit 77 (skipped) when Debian's venv or pip is missing (python3-venv, python3-pip), or git for --clean-clone."""
 
 import os
 import re
 import shutil
 import subprocess
 import sys
+import time
 import zipfile
 
 
@@ -19,12 +26,29 @@ def run(*args, env=None, cwd=None):
     return r.stdout
 
 
-def main(source, build, work):
+def clean_clone_environment(source, work, env):
+    """A clone of SOURCE's committed files in WORK/clone, and the environment of a build by setup.py's own CMake
+    configure: no CCAL_CMAKE_BUILD_DIR; ccache and Ninja when they are installed."""
+    clone = os.path.join(work, "clone")
+    run("git", "clone", "--quiet", source, clone, cwd=work)
+    env.pop("CCAL_CMAKE_BUILD_DIR", None)
+    if shutil.which("ccache"):
+        # Paths below the clone hashed relative to it: a clone in another folder finds the same cache entries.
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=clone)
+    if shutil.which("ninja"):
+        env["CMAKE_GENERATOR"] = "Ninja"
+    return clone
+
+
+def main(source, build, work, clean_clone=False):
     python = "/usr/bin/python3"
     for module in ("venv", "pip", "setuptools", "wheel"):
         if subprocess.run([python, "-c", f"import {module}"], capture_output=True).returncode != 0:
             print(f"skipped: Debian's {python} has no {module} (python3-venv, python3-pip, python3-wheel)")
             return 77
+    if clean_clone and not shutil.which("git"):
+        print("skipped: no git to clone the sources with")
+        return 77
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     venv = os.path.join(work, "venv")
@@ -32,9 +56,14 @@ def main(source, build, work):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     env.update(CCAL_CMAKE_BUILD_DIR=build, CMAKE_BUILD_PARALLEL_LEVEL="2", PIP_NO_INDEX="1")
     pip = os.path.join(venv, "bin", "pip")
+    if clean_clone:
+        source = clean_clone_environment(source, work, env)
+    start = time.monotonic()
     run(pip, "install", "--no-build-isolation", "--no-deps", source, env=env, cwd=work)
+    print(f"pip install took {time.monotonic() - start:.0f} s")
     wheels = os.path.join(work, "wheels")
-    run(pip, "wheel", "--no-build-isolation", "--no-deps", "-w", wheels, source, env=env, cwd=work)
+    if not clean_clone:
+        run(pip, "wheel", "--no-build-isolation", "--no-deps", "-w", wheels, source, env=env, cwd=work)
 
     problems = []
     version = re.search(r"project\(ccal VERSION (\d+\.\d+\.\d+)",
@@ -61,6 +90,10 @@ def main(source, build, work):
     in_tree = json.loads(run(python, "-c", probe, env=tree_env, cwd=work))
     if installed["budget"] != in_tree["budget"]:
         problems.append("the installed module's budget differs from the build tree's")
+    if clean_clone:  # setup.py's own CMake tree, in the clone's build folder (setup.cfg)
+        if not any("CMakeCache.txt" in files for _, _, files in os.walk(os.path.join(source, "build", "python-package"))):
+            problems.append("setup.py configured no CMake tree of its own in the clone's build/python-package")
+        return report(problems, installed)
     # The wheel: for this interpreter and platform (it holds compiled code), with the module and the stubs.
     built = os.listdir(wheels)
     tag = f"cp{sys.version_info.major}{sys.version_info.minor}"
@@ -79,6 +112,10 @@ def main(source, build, work):
     for stray in ("ccal.egg-info", "python/ccal.egg-info"):
         if os.path.exists(os.path.join(source, stray)):
             problems.append(f"the build left {stray} in the source tree")
+    return report(problems, installed)
+
+
+def report(problems, installed):
     for p in problems:
         print(p, file=sys.stderr)
     print(f"installed {installed['file']}, {len(problems)} problems")
@@ -86,6 +123,8 @@ def main(source, build, work):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
-        sys.exit("usage: check_install.py SOURCE_DIR BUILD_DIR WORK_DIR")
-    sys.exit(main(*[os.path.abspath(a) for a in sys.argv[1:]]))
+    arguments = sys.argv[1:]
+    clean = arguments[:1] == ["--clean-clone"]
+    if len(arguments) != 3 + clean:
+        sys.exit("usage: check_install.py [--clean-clone] SOURCE_DIR BUILD_DIR WORK_DIR")
+    sys.exit(main(*[os.path.abspath(a) for a in arguments[clean:]], clean_clone=clean))

@@ -39,7 +39,13 @@ class HistoryTest(unittest.TestCase):
         h = ccal.history("SN 1", db=self.db, at="2024-06-01")
         self.assertEqual([r.date for r in h.records], ["2020-06-01", "2021-06-01", "2023-06-01"])
         k2 = h.coefficients[0]
-        self.assertEqual(k2.values, [5.0, 5.25, 5.75])
+        # SI (the one unit rule): × display_scale (180/π) the statements' deg/s/g^2, to 1e-15 relative (a division
+        # and a multiplication by the scale).
+        self.assertEqual((k2.unit, k2.display_scale), ("deg/s/g^2", 180 / math.pi))
+        for value, recorded in zip(k2.values, [5.0, 5.25, 5.75]):
+            self.assertAlmostEqual(value * k2.display_scale, recorded, delta=1e-15 * recorded)
+        self.assertAlmostEqual(k2.drift.slope * k2.display_scale, json.loads(h.to_json())["coefficients"]["K2"]
+                               ["drift"]["slope_per_year"], delta=1e-14)
         # E_n by hand: 0.25/√(0.2² + 0.2²) and 0.5/√(0.2² + 0.4²).
         self.assertAlmostEqual(k2.normalised_errors[0].value, 0.25 / math.sqrt(0.08), places=14)
         self.assertAlmostEqual(k2.normalised_errors[1].value, 0.5 / math.sqrt(0.2), places=14)

@@ -39,7 +39,11 @@ class BudgetOfInstrumentsTest(unittest.TestCase):
         c = self.result.instrument_covariance
         self.assertEqual(c.names, self.cli["covariance"]["coefficients"])
         self.assertEqual(c.instruments, ["A", "B"])
-        np.testing.assert_array_equal(c.lpu, np.array(self.cli["covariance"]["lpu"]))
+        # SI here (the one unit rule), display units in the JSON: × display_scale_i display_scale_j, to 1e-15
+        # relative (a division and two multiplications by the scales, each rounding to half an ulp).
+        self.assertEqual(c.display_scale, [180 / np.pi] * 6)
+        np.testing.assert_allclose(c.lpu * np.outer(c.display_scale, c.display_scale),
+                                   np.array(self.cli["covariance"]["lpu"]), rtol=1e-15, atol=0)
         np.testing.assert_allclose(c.lpu_correlation, np.array(self.cli["covariance"]["lpu_correlation"]), rtol=0,
                                    atol=1e-15)  # the same quotients of the same doubles
         self.assertEqual(c.trials, 0)

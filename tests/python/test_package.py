@@ -38,9 +38,10 @@ class Layout(unittest.TestCase):
         folder = os.path.dirname(ccal.__file__)
         self.assertEqual(inspect.getsourcefile(ccal.Table.to_frame), os.path.join(folder, "_tables.py"))
         self.assertEqual(inspect.getsourcefile(ccal.Budget.display), os.path.join(folder, "_results.py"))
-        restore, args = ccal.budget(ccal.bundled_example()).__reduce__()
+        cfg = ccal.bundled_example()
         try:
-            restore(*args[:4], args[4].replace('"expanded_uncertainty": ', '"expanded_uncertainty": 1', 1))
+            ccal._pickling.restore_result("budget", cfg, {}, None, ccal.budget(cfg).to_json().replace(
+                '"expanded_uncertainty": ', '"expanded_uncertainty": 1', 1))
             self.fail("a tampered pickle was accepted")
         except ValueError as e:
             tb = e.__traceback__

@@ -5,6 +5,7 @@ uncertainties is optional: that test is skipped without it). Run by ctest with t
 program in CCAL_PROGRAM."""
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -62,8 +63,10 @@ class StatementObject(unittest.TestCase):
         self.assertEqual([r["interval_method"] for r in rows], self.statement.interval_methods)
         self.assertEqual(self.statement.monte_carlo_requested_trials, 100000)
         self.assertGreaterEqual(self.statement.monte_carlo_trials, 100000)  # more while a verdict is unsettled
-        self.assertEqual([tuple(r) for r in self.statement.intervals][1],
-                         tuple(self.statement.to_dict()["coefficients"]["K2"]["interval"]))
+        # The attributes are SI, the JSON in the statement's units: × display_scale, to 1e-15 relative (a division
+        # and a multiplication by the scale, each rounding by half an ulp).
+        np.testing.assert_allclose(np.array(self.statement.intervals[1]) * self.statement.display_scale[1],
+                                   self.statement.to_dict()["coefficients"]["K2"]["interval"], rtol=1e-15, atol=0)
         self.assertEqual([r["significant"] for r in rows], self.statement.significant)
 
     def test_to_frame_has_numbers_and_the_rounded_figures_as_text(self):
@@ -112,8 +115,12 @@ class StatementObject(unittest.TestCase):
         d = self.statement.to_dict()
         self.assertEqual([i["id"] for i in self.statement.inputs], [i["id"] for i in d["inputs"]])
         self.assertEqual(sum(i["measured"] for i in self.statement.inputs), 6)
+        scale = dict(zip(self.statement.names, self.statement.display_scale))
         for mine, theirs in zip(self.statement.inputs, d["inputs"]):
-            self.assertEqual(mine["effect"], theirs["effect"])
+            self.assertEqual(mine["effect"].keys(), theirs["effect"].keys())
+            for name, effect in mine["effect"].items():  # SI here, the statement's units in the JSON (as above)
+                self.assertAlmostEqual(effect * scale[name], theirs["effect"][name],
+                                       delta=1e-15 * abs(theirs["effect"][name]))
             self.assertEqual(mine["standard_uncertainty"], theirs["u_si"])
             self.assertEqual((mine["u"], mine["unit"]), (theirs["u"], theirs["unit"]))
         # The measuring chain's inputs in the units the configuration wrote: K1 relative to its value.
@@ -143,8 +150,12 @@ class StatementObject(unittest.TestCase):
         self.assertEqual([o["run"] for o in outputs], ["5g", "10g", "15g", "20g", "25g", "30g"])
         for o, j in zip(outputs, stated):
             self.assertEqual(o["g_level"], j["g_level"])
-            self.assertEqual(o["value"], j["corrected_estimate"])
-            self.assertEqual(o["expanded_uncertainty"], j["expanded_uncertainty"])
+            # SI here, deg/s in the JSON: × display_scale (180/π), to 1e-15 relative as above.
+            self.assertEqual(o["display_scale"], 180 / math.pi)
+            self.assertAlmostEqual(o["value"] * o["display_scale"], j["corrected_estimate"],
+                                   delta=1e-15 * abs(j["corrected_estimate"]))
+            self.assertAlmostEqual(o["expanded_uncertainty"] * o["display_scale"], j["expanded_uncertainty"],
+                                   delta=1e-15 * j["expanded_uncertainty"])
             self.assertEqual(o["unit"], "deg/s")
 
     def test_csv_rows_follow_the_names(self):
