@@ -148,9 +148,15 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
         m[1].str(), accepted_form(command, m[1].str()));
   if (std::regex_match(what, m, out_of_range)) {
     static const std::regex number(R"(^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$)");
-    return fmt::format("{}: {} {}; accepted: a number from {} to {}", m[1].str(), m[2].str(),
-                       std::regex_match(m[2].str(), number) ? "is out of range" : "is not a number",
-                       m[3].str(), m[4].str());
+    // A count's ranges are whole: a fraction within them is not out of range but no count.
+    static const std::regex whole(R"(^[-+]?[0-9]+$)");
+    const bool is_number = std::regex_match(m[2].str(), number);
+    const bool counts = std::regex_match(m[3].str(), whole) && std::regex_match(m[4].str(), whole);
+    return fmt::format("{}: {} {}; accepted: a {} from {} to {}", m[1].str(), m[2].str(),
+                       !is_number ? "is not a number" : counts && !std::regex_match(m[2].str(), whole)
+                                                            ? "is not a whole number"
+                                                            : "is out of range",
+                       counts ? "whole number" : "number", m[3].str(), m[4].str());
   }
   if (std::regex_match(what, m, not_a_choice)) {
     std::string names = m[3].str();

@@ -11,6 +11,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/core/units.hpp"
 #include "ccal/history/history_store.hpp"
 #include "history_shared_json.hpp"
 #include "history_text.hpp"
@@ -205,6 +206,15 @@ HistoryCoefficient statement_coefficient(const std::string& name, const nlohmann
   HistoryCoefficient h;
   h.name = name;
   h.unit = c.value("unit", std::string());
+  // The history compares a coefficient's calibrations in its unit: one ccal cannot read ("furlong", a typing
+  // error in a statement edited by hand) would be recorded and compared as text.
+  if (!h.unit.empty()) try {
+      (void)parse_unit(h.unit);
+    } catch (const InputError&) {
+      refuse_statement(source, fmt::format("coefficient {}'s unit '{}' is no unit ccal reads (e.g. deg/s, "
+                                           "deg/s/g^2, mA)",
+                                           name, h.unit));
+    }
   h.value = c["corrected_estimate"].get<double>();
   h.expanded = c["expanded_uncertainty"].get<double>();
   h.coverage_factor = c["coverage_factor"].get<double>();

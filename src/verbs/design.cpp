@@ -56,7 +56,9 @@ std::vector<DesignTarget> design_targets(const Config& config, const DesignOptio
     targets.clear();
     for (const std::string& t : o.targets) {
       const AllocationTarget a = parse_allocation_target(t, before.coefficients, before.units);
-      targets[a.coefficient] = a.expanded;
+      // A second target on one coefficient replaced the first in silence.
+      if (!targets.emplace(a.coefficient, a.expanded).second)
+        throw OptionError(a.field, a.coefficient, "has two targets; accepted: one target per coefficient");
     }
   }
   std::vector<std::string> chosen = config.design.coefficients;

@@ -125,6 +125,11 @@ void check_column_roles(const IdentifyOptions& o) {
                       fmt::format("is also the {}; accepted: another column of the file for each role",
                                   OptionError::name(other)));
   };
+  // An empty name (an unset shell variable) names no column: said of the option, not as a column not found.
+  for (const auto& [field, column] : {std::pair<std::string_view, const std::string&>{"input_column", o.input_column},
+                                      {"output_column", o.output_column}})
+    if (column.empty())
+      throw OptionError(std::string(field), "''", "is empty; accepted: the name of a column of the file");
   if (o.output_column == o.input_column) refuse("output_column", o.output_column, "input_column");
   if (!o.weight_column.empty() && o.weight_column == o.output_column)
     refuse("weight_column", o.weight_column, "output_column");
@@ -272,6 +277,7 @@ void check_verb_options(const IdentifyOptions& o) {
     throw OptionError("config", o.config->source,
                       fmt::format("is read only for the calibration statement; accepted: with {}",
                                   OptionError::name("statement")));
+  if (!o.statement) refuse_statement_options_unasked(o.statement_options, "statement", true);
   if (o.config) require_one_instrument(*o.config, "identify");  // the observations are one instrument's
 }
 
