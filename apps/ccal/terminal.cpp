@@ -1,10 +1,12 @@
 #include "terminal.hpp"
 
+#include <fmt/format.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <charconv>
 #include <cmath>
+#include <string_view>
 
 namespace ccal::cli {
 
@@ -40,6 +42,9 @@ CLI::Validator whole_number_in_digits() {
         if (error == std::errc() && end == text.data() + text.size() && std::isfinite(value) && value >= 0 &&
             value <= 9007199254740992.0 && std::floor(value) == value)
           text = std::to_string(static_cast<long long>(value));
+        // The parser would read 0x10 as hexadecimal, 0b11 as binary: a count is written in decimal.
+        if (text.size() > 2 && text[0] == '0' && std::string_view("xXbBoO").find(text[1]) != std::string_view::npos)
+          return fmt::format("'{}' is not a decimal number; accepted: a whole number in decimal digits", text);
         return std::string();
       },
       "");

@@ -191,7 +191,9 @@ def mismatch(value, annotation, where):
                 return found
         return None
     elif name == "List":
-        if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__"):
+        # A sequence (or an array): a set or a dict has no order to take its items in.
+        if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") or not hasattr(
+                value, "__getitem__"):
             return where, annotation
         for index, item in enumerate(value):
             found = mismatch(item, arguments[0], f"{where}[{index}]")
@@ -204,10 +206,11 @@ def mismatch(value, annotation, where):
     elif name.startswith("numpy.") and arguments:
         import numpy
         try:
-            ndim = numpy.ndim(value)
+            array = numpy.asarray(value)
         except (TypeError, ValueError):  # a ragged list
             return where, annotation
-        ok = ndim <= array_dimensions(annotation)
+        # Numbers (bool, int, float) of at most the binding's dimensions; text or objects are none.
+        ok = array.ndim <= array_dimensions(annotation) and array.dtype.kind in "biuf"
     else:
         return None
     return None if ok else (where, annotation)
@@ -277,8 +280,11 @@ def complex_for_real(value, annotation, where):
         return next(filter(None, (complex_for_real(value, a, where) for a in arguments)), None)
     if name.startswith("numpy.") and value is not None and not isinstance(value, (str, bytes)):
         import numpy
-        if numpy.iscomplexobj(value):
-            return where, annotation
+        try:
+            if numpy.iscomplexobj(value):
+                return where, annotation
+        except (TypeError, ValueError):  # a ragged list: its own problem, said once pybind11 refuses it
+            return None
     return None
 
 

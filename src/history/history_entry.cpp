@@ -172,7 +172,7 @@ nlohmann::json statement_file_json(const std::string& json_text, const std::stri
     throw InputError(
         fmt::format("{}: not JSON ({}); accepted: a calibration statement's JSON (alone, or as the "
                     "\"statement\" of a reduction's or an identification's JSON)",
-                    source, e.what()));
+                    source, detail::json_problem(e.what())));
   }
   // A reduction (or simulation) of a test of several instruments holds one statement per instrument: which
   // one is recorded is the user's choice, not ours.

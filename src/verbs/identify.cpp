@@ -128,8 +128,10 @@ void check_column_roles(const IdentifyOptions& o) {
   // An empty name (an unset shell variable) names no column: said of the option, not as a column not found.
   for (const auto& [field, column] : {std::pair<std::string_view, const std::string&>{"input_column", o.input_column},
                                       {"output_column", o.output_column}})
-    if (column.empty())
-      throw OptionError(std::string(field), "''", "is empty; accepted: the name of a column of the file");
+    if (column.find_first_not_of(" \t") == std::string::npos)
+      throw OptionError(std::string(field), "'" + column + "'",
+                        fmt::format("is {}; accepted: the name of a column of the file", column.empty() ? "empty"
+                                                                                                        : "blank"));
   if (o.output_column == o.input_column) refuse("output_column", o.output_column, "input_column");
   if (!o.weight_column.empty() && o.weight_column == o.output_column)
     refuse("weight_column", o.weight_column, "output_column");

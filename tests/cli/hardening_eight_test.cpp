@@ -220,4 +220,24 @@ TEST_F(Cli, ConfirmingRoundValuesTargetsAndRuns) {
   EXPECT_FALSE(fs::exists(dir_ / "r.html") || fs::exists(dir_ / "d.txt"));
 }
 
+// The second confirming round: a count in hexadecimal taken (--top 0x10 listed 16 rows), a count of 1e400 "not a
+// whole number", a blank column name shown as " : no such column", a JSON file with a byte-order mark not said to
+// be one, and the JSON parser's "[json.exception.parse_error.101]" tag in the history's messages.
+TEST_F(Cli, SecondConfirmingRoundCountsNamesAndJson) {
+  expect_bad_input(run("budget --top 0x10"),
+                   {"--top: '0x10' is not a decimal number; accepted: a whole number in decimal digits"});
+  expect_bad_input(run("budget --width 1e400"), {"--width: 1e400 is out of range; accepted: a whole number from 40 "
+                                                 "to 10000"});
+  write("t.csv", "a_i,output\n1,2\n2,4.1\n3,5.9\n");
+  expect_bad_input(run("identify t.csv --terms K0,K1 --output-column ' '"),
+                   {"--output-column: ' ' is blank; accepted: the name of a column of the file"});
+  write("bom.toml", "\xEF\xBB\xBF{\"a\": 1}");
+  expect_bad_input(run("budget bom.toml"), {"(the file opens a JSON document, a statement or a result of ccal?, not "
+                                            "TOML)"});
+  write("tiny.txt", "ab");
+  const Result r = run("history import tiny.txt --db h.sqlite");
+  expect_bad_input(r, {"tiny.txt: not an exported calibration history: not JSON (parse error at line 1, column 1: "});
+  EXPECT_EQ(r.err.find("json.exception"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -205,5 +205,22 @@ class EightConfirmingRound(unittest.TestCase):
             report.to_pdf("nodir/x.pdf")
 
 
+class EightSecondConfirmingRound(unittest.TestCase):
+    def test_ragged_text_and_unordered_arguments_are_named(self):
+        # A ragged list was numpy's "inhomogeneous shape" from inside the complex check; text and a set were
+        # pybind11's "incompatible function arguments".
+        with self.assertRaisesRegex(TypeError, r"^fit\(\): H: expected a 2-D array of numbers, got list "
+                                               r"\(\[\[1\.0, 0\.0\], \[0\.0\], \[1\.0, 1\.0\]\]\)$"):
+            ccal.fit([[1.0, 0.0], [0.0], [1.0, 1.0]], [1, 2, 3], ["a", "b"])
+        with self.assertRaisesRegex(TypeError, r"^fit\(\): H: expected a 2-D array of numbers, got list"):
+            ccal.fit([["a", "b"], ["c", "d"]], [1, 2], ["a", "b"])
+        with self.assertRaisesRegex(TypeError, r"^Config\.with_plan\(\): g: expected a list of number or str or "
+                                               r"None, got set"):
+            ccal.load_config(EXAMPLES / "lab.toml").with_plan(g={5, 10, 15})
+        # A boolean array is numbers (0 and 1), as before.
+        self.assertEqual(list(ccal.fit(np.array([[True, False], [False, True], [True, True]]), [1, 2, 3],
+                                       ["a", "b"]).value), [1.0, 2.0])
+
+
 if __name__ == "__main__":
     unittest.main()
