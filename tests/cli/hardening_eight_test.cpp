@@ -240,4 +240,23 @@ TEST_F(Cli, SecondConfirmingRoundCountsNamesAndJson) {
   EXPECT_EQ(r.err.find("json.exception"), std::string::npos) << r.err;
 }
 
+// The third confirming round: `identify --weight-column ''` fitted unweighted with exit 0; `design
+// --verify-trials 5` named --trials, an option design does not have (and, with a stated coverage factor, a
+// coverage probability not given).
+TEST_F(Cli, ThirdConfirmingRoundAWeightColumnAndTheVerificationsTrials) {
+  write("t.csv", "a_i,output,s\n1,2,0.1\n2,4.1,0.1\n3,5.9,0.1\n");
+  expect_bad_input(run("identify t.csv --terms K0,K1 --weight-column ''"),
+                   {"--weight-column: '' names no column; accepted: the column of the standard deviations of y, or "
+                    "--weight-column left out for an unweighted fit"});
+  const Result r = run("design --verify-trials 5 --starts 0 -o d.txt");
+  expect_bad_input(r, {"--coverage-probability: 0.95 with --verify-trials = 5: ", "accepted: --verify-trials at least "
+                                                                                 "11 for this p"});
+  EXPECT_EQ(r.err.find("--trials"), std::string::npos) << r.err;
+  expect_bad_input(run("design --verify-trials 20 --coverage-factor 3 --starts 0 -o d.txt"),
+                   {"--verify-trials: 20 are too few for the coverage interval of the stated coverage factor 3 (p = "
+                    "0.9973 of a normal quantity)",
+                    "accepted: --verify-trials at least 186, or 0 (none)"});
+  EXPECT_FALSE(fs::exists(dir_ / "d.txt"));
+}
+
 }  // namespace

@@ -222,5 +222,14 @@ class EightSecondConfirmingRound(unittest.TestCase):
                                        ["a", "b"]).value), [1.0, 2.0])
 
 
+class EightThirdConfirmingRound(unittest.TestCase):
+    def test_design_names_its_verifications_trials(self):
+        # "trials = 5": design has no such keyword; its verification's is verify_trials.
+        lab = ccal.load_config(EXAMPLES / "lab.toml")
+        with self.assertRaisesRegex(ccal.InputError, r"^coverage_probability: 0\.95 with verify_trials = 5: .*"
+                                                     r"accepted: verify_trials at least 11 for this p"):
+            ccal.design(lab, verify_trials=5, starts=0)
+
+
 if __name__ == "__main__":
     unittest.main()
