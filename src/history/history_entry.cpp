@@ -33,9 +33,12 @@ void check_serial(const std::string& serial, bool given, const std::string& sour
     problem = "holds a control character (a line break, a tab)";
   else if (!detail::valid_utf8(serial))
     problem = "is not valid UTF-8 text (a byte of another encoding; shown as \\xNN)";
+  else if (serial.front() == ' ' || serial.back() == ' ')  // " SN 0815" would be another instrument's history
+    problem = "begins or ends with a blank, which would make it another serial number than the one without";
   if (!problem) return;
   const std::string accepted =
-      "accepted: the instrument's serial number, printable characters and not blank, e.g. SN 0815";
+      "accepted: the instrument's serial number, printable characters and not blank, without blanks around it, e.g. "
+      "SN 0815";
   if (given)
     throw OptionError("serial", detail::history_shown(serial), fmt::format("{}; {}", problem, accepted));
   throw InputError(fmt::format("{}: serial number ([certificate] serial_number) {} {}; {}", source,

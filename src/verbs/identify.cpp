@@ -127,8 +127,8 @@ void check_column_roles(const IdentifyOptions& o) {
   };
   // An empty name (an unset shell variable) names no column: said of the option, not as a column not found.
   for (const auto& [field, column] : {std::pair<std::string_view, const std::string&>{"input_column", o.input_column},
-                                      {"output_column", o.output_column}})
-    if (column.find_first_not_of(" \t") == std::string::npos)
+                                      {"output_column", o.output_column}, {"weight_column", o.weight_column}})
+    if (column.find_first_not_of(" \t") == std::string::npos && (field != "weight_column" || !column.empty()))
       throw OptionError(std::string(field), "'" + column + "'",
                         fmt::format("is {}; accepted: the name of a column of the file", column.empty() ? "empty"
                                                                                                         : "blank"));

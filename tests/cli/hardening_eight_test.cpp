@@ -259,4 +259,20 @@ TEST_F(Cli, ThirdConfirmingRoundAWeightColumnAndTheVerificationsTrials) {
   EXPECT_FALSE(fs::exists(dir_ / "d.txt"));
 }
 
+// The last round: a serial number typed with blanks around it (" SN 0815 ") was recorded as another instrument's
+// history than SN 0815's; a blank --weight-column was " : no such column".
+TEST_F(Cli, LastRoundASerialWithBlanksAroundItAndABlankWeightColumn) {
+  write("st.json", R"({"coverage_probability": 0.95, "coefficients": {"K0": {"unit": "deg/s",
+      "corrected_estimate": 1.5, "expanded_uncertainty": 0.2, "coverage_factor": 2}}})");
+  expect_bad_input(run("history add st.json --db h.sqlite --serial ' SN 0815 ' --date 2026-01-01"),
+                   {"--serial: ' SN 0815 ' begins or ends with a blank, which would make it another serial number "
+                    "than the one without; accepted: the instrument's serial number, printable characters and not "
+                    "blank, without blanks around it"});
+  EXPECT_FALSE(fs::exists(dir_ / "h.sqlite"));
+  EXPECT_EQ(run("history add st.json --db h.sqlite --serial 'SN 0815' --date 2026-01-01").code, 0);
+  write("t.csv", "a_i,output,s\n1,2,0.1\n2,4.1,0.1\n3,5.9,0.1\n");
+  expect_bad_input(run("identify t.csv --terms K0,K1 --weight-column ' '"),
+                   {"--weight-column: ' ' is blank; accepted: the name of a column of the file"});
+}
+
 }  // namespace

@@ -231,5 +231,16 @@ class EightThirdConfirmingRound(unittest.TestCase):
             ccal.design(lab, verify_trials=5, starts=0)
 
 
+class EightLastRound(unittest.TestCase):
+    def test_a_serial_with_blanks_around_it_is_refused(self):
+        # " SN 0815 " was recorded as another instrument's history than SN 0815's.
+        with tempfile.TemporaryDirectory() as folder:
+            d = pathlib.Path(folder)
+            (d / "st.json").write_text(eight_statement(), encoding="utf-8")
+            with self.assertRaisesRegex(ccal.InputError, r"^serial: ' SN 0815 ' begins or ends with a blank"):
+                ccal.history_add(d / "st.json", db=d / "h.sqlite", serial=" SN 0815 ", date="2026-01-01")
+            self.assertFalse((d / "h.sqlite").exists())
+
+
 if __name__ == "__main__":
     unittest.main()
