@@ -28,7 +28,7 @@ using Value = std::variant<double, std::string>;
 
 // "<number> <unit>" → SI with the expected dimension; a number needs `unit` unless dimensionless.
 double quantity(const Value& value, const std::optional<std::string>& unit, Dimension dim,
-                const std::string& what) {
+                const std::string& what, bool takes_unit = true) {
   std::string text;
   if (const auto* s = std::get_if<std::string>(&value)) {
     if (unit) throw InputError(what + ": give the unit in the string or in unit=, not in both");
@@ -42,9 +42,9 @@ double quantity(const Value& value, const std::optional<std::string>& unit, Dime
     const double given = std::get<double>(value);
     const double shown = std::isfinite(given) && given > 0 ? given : 1.0;
     throw InputError(
-        fmt::format("{}: the bare number {:g} has no unit; accepted: a string with the unit, such as \"{:g} deg\", "
-                    "or unit=\"...\"",
-                    what, given, shown));
+        fmt::format("{}: the bare number {:g} has no unit; accepted: a string with the unit, such as \"{:g} {}\"{}",
+                    what, given, shown, dim == kind::angle ? std::string("deg") : si_unit(dim),
+                    takes_unit ? ", or unit=\"...\"" : ""));
   }
   try {
     return parse_as(text, dim, "", dim == kind::dimensionless);
@@ -175,7 +175,7 @@ std::vector<Run> runs_at_levels(const Config& cfg, const PlanChange& c) {
     const Value& level = (*c.g)[k];
     run.g_level = std::holds_alternative<double>(level)
                       ? quantity(level, std::string("g"), kind::acceleration_g, "with_plan: g")
-                      : quantity(level, std::nullopt, kind::acceleration_g, "with_plan: g");
+                      : quantity(level, std::nullopt, kind::acceleration_g, "with_plan: g", false);
     if (!(run.g_level > 0) || run.g_level > 1000)
       throw InputError(
           fmt::format("with_plan: g: {:g} g; accepted: a centripetal level in (0, 1000] g", run.g_level));
@@ -189,22 +189,22 @@ std::vector<Run> runs_at_levels(const Config& cfg, const PlanChange& c) {
 // given.
 void change_run(Run& run, const PlanChange& c) {
   if (c.duration) {
-    run.duration = quantity(*c.duration, std::nullopt, kind::time, "with_plan: duration");
+    run.duration = quantity(*c.duration, std::nullopt, kind::time, "with_plan: duration", false);
     if (!(run.duration > 0) || run.duration > 1e6)
       throw InputError(fmt::format("with_plan: duration: {:g} s is out of range; accepted: a run duration in "
                                    "(0, 1e6] s",
                                    run.duration));
   }
   if (c.initial_phase) {
-    run.initial_phase = quantity(*c.initial_phase, std::nullopt, kind::angle, "with_plan: initial_phase");
+    run.initial_phase = quantity(*c.initial_phase, std::nullopt, kind::angle, "with_plan: initial_phase", false);
     run.terminal_phase.reset();
   }
   if (c.terminal_phase) {
-    run.terminal_phase = quantity(*c.terminal_phase, std::nullopt, kind::angle, "with_plan: terminal_phase");
+    run.terminal_phase = quantity(*c.terminal_phase, std::nullopt, kind::angle, "with_plan: terminal_phase", false);
     run.initial_phase.reset();
   }
   if (c.arm_azimuth)
-    run.arm_azimuth = quantity(*c.arm_azimuth, std::nullopt, kind::angle, "with_plan: arm_azimuth");
+    run.arm_azimuth = quantity(*c.arm_azimuth, std::nullopt, kind::angle, "with_plan: arm_azimuth", false);
   if (c.platform) {
     if (*c.platform == "counter_rotating")
       run.mode = PlatformMode::counter_rotating;
@@ -240,7 +240,11 @@ Config with_plan(const Config& cfg, const PlanChange& c) {
   std::set<std::string> seen;
   for (const Run& run : runs)
     if (run.name.empty() || !seen.insert(run.name).second)
-      throw InputError("with_plan: run names must be non-empty and unique; '" + run.name + "' is not");
+      throw InputError(c.g ? "with_plan: g: the g-level of run '" + run.name +
+                                 "' is given twice, and runs are named by it (names unique in the plan); accepted: "
+                                 "each g-level once"
+                           : "with_plan: names: '" + run.name + "' is empty or given twice; accepted: a name of "
+                             "its own for each run");
   if (c.initial_phase && c.terminal_phase)
     throw InputError("with_plan: both initial_phase and terminal_phase are given; accepted: one of them");
   for (Run& run : runs) change_run(run, c);

@@ -24,16 +24,26 @@ void wrong_type(std::string_view field, std::string_view expected, py::handle va
                        std::string(py::repr(value)) + ")");
 }
 
+bool is_calendar_date(py::handle value) {
+  const py::module_ datetime = py::module_::import("datetime");
+  return py::isinstance(value, datetime.attr("date")) && !py::isinstance(value, datetime.attr("datetime"));
+}
+
 bool is_number(py::handle value) {
   if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value))
     return false;
   // NumPy's bool_ has __index__ in old versions: refuse it as a number too.
   if (std::string(py::str(py::type::handle_of(value).attr("__name__"))).starts_with("bool")) return false;
+  // A NumPy array, even of one element, is no number (its __index__ and __float__ would refuse or warn).
+  if (py::hasattr(value, "ndim") && py::hasattr(value, "shape") && value.attr("ndim").cast<long>() != 0) return false;
   return py::hasattr(value, "__index__") || py::hasattr(value, "__float__");
 }
 
 std::string number_text(py::handle value) {
-  if (py::hasattr(value, "__index__")) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
+  if (py::hasattr(value, "__index__")) {
+    if (PyObject* index = PyNumber_Index(value.ptr())) return py::str(py::reinterpret_steal<py::object>(index));
+    PyErr_Clear();  // a float-like value whose __index__ refuses: read as a float below
+  }
   // repr of a float is its shortest round-trip text (1e+20, 100000.0, nan, inf).
   return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
 }
@@ -42,7 +52,8 @@ std::vector<std::string> strings(std::string_view field, py::handle value) {
   if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value))
     wrong_type(field, "a list of str", value);
   std::vector<std::string> out;
-  for (py::handle item : py::reinterpret_borrow<py::sequence>(value)) {
+  // A list of the items holds each one while it is read: a NumPy array's items are new objects.
+  for (py::handle item : py::list(py::reinterpret_borrow<py::object>(value))) {
     if (!py::isinstance<py::str>(item)) wrong_type(field, "a list of str", item);
     out.push_back(item.cast<std::string>());
   }
@@ -53,7 +64,9 @@ std::vector<double> reals(std::string_view field, py::handle value) {
   if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value))
     wrong_type(field, "a list of numbers", value);
   std::vector<double> out;
-  for (py::handle item : py::reinterpret_borrow<py::sequence>(value)) out.push_back(number<double>(field, item));
+  // A list of the items holds each one while it is read: a NumPy array's items (its rows) are new objects.
+  for (py::handle item : py::list(py::reinterpret_borrow<py::object>(value)))
+    out.push_back(number<double>(field, item));
   return out;
 }
 

@@ -41,6 +41,8 @@ namespace keywords {
                                   const std::vector<std::string_view>& accepted);
 // TypeError "<field>: expected <expected>, got <type> (<repr>)".
 [[noreturn]] void wrong_type(std::string_view field, std::string_view expected, py::handle value);
+// A datetime.date that is not a datetime (whose isoformat() has the time too).
+bool is_calendar_date(py::handle value);
 // A Python int or float (also NumPy's), not a bool or a str.
 bool is_number(py::handle value);
 // The value as the command line would have read its text: an int's digits, a float's shortest repr.
@@ -60,7 +62,7 @@ Number number(std::string_view field, py::handle value, const OptionRange& range
     wrong_type(field, std::is_floating_point_v<Number> ? "a number" : "an integer", value);
   const std::string text = number_text(value);
   if constexpr (std::is_floating_point_v<Number>)
-    return Number(parse_real_option(field, text));
+    return Number(parse_real_option(field, text, range));
   else if constexpr (std::is_unsigned_v<Number>)
     return Number(parse_unsigned_option(field, text, range));
   else
@@ -83,6 +85,11 @@ void assign(Field& field, std::string_view name, py::handle value, const OptionR
     if (!py::isinstance<py::bool_>(value)) wrong_type(name, "True or False", value);
     field = value.cast<bool>();
   } else if constexpr (std::is_same_v<Field, std::string>) {
+    // A date (history's date, at) also as Python's datetime.date, written YYYY-MM-DD by its isoformat().
+    if ((name == "date" || name == "at") && is_calendar_date(value)) {
+      field = value.attr("isoformat")().cast<std::string>();
+      return;
+    }
     if (!py::isinstance<py::str>(value)) wrong_type(name, "a str", value);
     field = value.cast<std::string>();
   } else if constexpr (std::is_same_v<Field, std::vector<std::string>>) {

@@ -33,6 +33,7 @@ Command add_budget(CLI::App& app) {
   cmd->add_option("--top", options->top,
                   "Sources listed per coefficient, the rest summed in one row (default: what fits the "
                   "screen, at least 5)")
+      ->transform(whole_number_in_digits())
       ->check(CLI::Range(1, 100000))
       ->type_name("N");
   add_width_options(*cmd, options->width,

@@ -120,6 +120,13 @@ Command add_report(CLI::App& app) {
       "observations, the calibration statement and certificate (also printed to PDF)");
   add_config_argument(*cmd, o->config);
   add_option_flags(*cmd, o->options, option_table<verbs::ReportOptions>());
+  // An empty --run (an unset shell variable) would be taken as none given: the run of highest g-level.
+  cmd->get_option("--run")->each([](const std::string& run) {
+    if (run.empty())
+      throw CLI::ParseError("--run: '' names no run; accepted: a run name or a 1-based index, or --run left out "
+                            "for the run of highest g-level",
+                            CLI::ExitCodes::ValidationError);
+  });
   cmd->add_option("--allocate-target", o->allocate_targets,
                   "COEFF=U: add the tolerance allocation (as `ccal allocate --target`, with this report's "
                   "--mode, --coverage-probability, --seed and --threads); repeat for each coefficient")

@@ -56,17 +56,25 @@ int report(std::string_view kind, std::string_view message) {
 // the exit code when the command line asks for one of them, else nothing.
 std::optional<int> write_shell_docs(const CLI::App& app, std::string_view summary, int argc, char** argv) {
   if (argc > 1 && std::string_view(argv[1]) == "--man-page") {
-    if (argc > 2) return report("error", std::string("--man-page: takes no argument; got '") + argv[2] + "'");
+    if (argc > 2)
+      return report("error", fmt::format("--man-page: takes no argument, got '{}'; accepted: ccal --man-page alone "
+                                         "(e.g. ccal --man-page > ccal.1)",
+                                         argv[2]));
     std::cout << ccal::cli::man_page(app, summary, ccal::version());
     return 0;
   }
   if (argc > 1 && std::string_view(argv[1]) == "--completion") {
     const auto& shells = ccal::cli::kCompletionShells;
-    if (argc != 3 || std::find(shells.begin(), shells.end(), argv[2]) == shells.end())
+    const bool known = argc > 2 && std::find(shells.begin(), shells.end(), argv[2]) != shells.end();
+    if (argc != 3 || !known) {
+      // What is wrong: no shell, a shell ccal does not complete, or a word after a known shell.
+      const std::string wrong = argc == 2 ? std::string("needs the shell's name; ")
+                                : !known  ? fmt::format("'{}' is not a shell ccal completes; ", argv[2])
+                                          : fmt::format("takes one shell, and '{}' is a word too many; ", argv[3]);
       return report("error", fmt::format("--completion: {}accepted: bash, zsh or fish (e.g. source <(ccal "
                                          "--completion bash))",
-                                         argc > 2 ? fmt::format("'{}' is not a shell ccal completes; ", argv[2])
-                                                  : std::string()));
+                                         wrong));
+    }
     std::cout << ccal::cli::completion_script(app, argv[2]);
     return 0;
   }

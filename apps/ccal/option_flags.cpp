@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <map>
 #include <regex>
 #include <string>
@@ -148,9 +150,19 @@ std::string parse_error_message(const CLI::ParseError& error, const CLI::App& co
         m[1].str(), accepted_form(command, m[1].str()));
   if (std::regex_match(what, m, out_of_range)) {
     static const std::regex number(R"(^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$)");
-    return fmt::format("{}: {} {}; accepted: a number from {} to {}", m[1].str(), m[2].str(),
-                       std::regex_match(m[2].str(), number) ? "is out of range" : "is not a number",
-                       m[3].str(), m[4].str());
+    // A count's ranges are whole: a fraction within them is not out of range but no count.
+    static const std::regex whole(R"(^[-+]?[0-9]+$)");
+    const bool is_number = std::regex_match(m[2].str(), number);
+    const bool counts = std::regex_match(m[3].str(), whole) && std::regex_match(m[4].str(), whole);
+    // Beyond the range (1e400, which no double holds, too) is out of range; a fraction within it no count.
+    const double value = is_number ? std::strtod(m[2].str().c_str(), nullptr) : 0.0;
+    const bool beyond = !std::isfinite(value) || value < std::strtod(m[3].str().c_str(), nullptr) ||
+                        value > std::strtod(m[4].str().c_str(), nullptr);
+    return fmt::format("{}: {} {}; accepted: a {} from {} to {}", m[1].str(), m[2].str(),
+                       !is_number ? "is not a number" : counts && !beyond && !std::regex_match(m[2].str(), whole)
+                                                            ? "is not a whole number"
+                                                            : "is out of range",
+                       counts ? "whole number" : "number", m[3].str(), m[4].str());
   }
   if (std::regex_match(what, m, not_a_choice)) {
     std::string names = m[3].str();

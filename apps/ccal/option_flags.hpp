@@ -68,7 +68,12 @@ inline void parse_number_list(std::vector<double>& value, const std::string& fie
       if (item.empty())
         throw OptionError(field, t,
                           "has an empty item; accepted: numbers separated by single commas, e.g. 0.5,0.75,1");
-      value.push_back(parse_real_option(field, item));
+      try {
+        value.push_back(parse_real_option(field, item));
+      } catch (const OptionError&) {
+        throw OptionError(field, "'" + item + "'", "is not a finite number; accepted: numbers separated by single commas, e.g. "
+                                       "0.5,0.75,1");
+      }
       if (end == t.size()) break;
       begin = end + 1;
     }
@@ -101,7 +106,7 @@ CLI::Option* add_number_flag(CLI::App& command, Field& value, const std::string&
   }())>;
   CLI::Option* option = add_text_flag(command, flag, help, [&value, field, range](const std::string& text) {
     if constexpr (std::is_floating_point_v<Number>)
-      value = parse_real_option(field, text);
+      value = parse_real_option(field, text, range);
     else if constexpr (std::is_unsigned_v<Number>)
       value = Number(parse_unsigned_option(field, text, range));
     else

@@ -24,6 +24,10 @@ void add_width_options(CLI::App& command, WidthOptions& options, const std::stri
 // The width a text gets: --width, else the terminal's, else 100.
 std::size_t text_width(const WidthOptions& options, const TerminalSize& terminal);
 
+// A whole count written as a decimal number ("1e3", "100.0") rewritten in digits ("1000"), as the library's own
+// counts (--trials 1e4) take it; anything else is left for the option's own check.
+CLI::Validator whole_number_in_digits();
+
 // An option that was renamed: giving it fails with a message naming its successor (exit code 2).
 void add_renamed_option(CLI::App& command, const std::string& old_name, const std::string& message);
 

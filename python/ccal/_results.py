@@ -277,6 +277,32 @@ def config_call_text(config):
     return text
 
 
+# What a file's extension says it holds (as `ccal report --pdf` reads a name): a PDF is not written under another's.
+_OTHER_FORMATS = {".html": "an HTML", ".htm": "an HTML", ".json": "a JSON", ".csv": "a CSV", ".txt": "a text",
+                  ".toml": "a TOML", ".npy": "a NumPy"}
+
+
+def check_pdf_path(path):
+    """InputError for a path to_pdf() cannot or should not write: empty, a folder, or named for another format."""
+    text = os.fsdecode(os.fspath(path)) if isinstance(path, (str, bytes, os.PathLike)) else None
+    if text is None:
+        raise TypeError(f"Report.to_pdf(): path: expected a file's path (str or os.PathLike), got "
+                        f"{type(path).__name__}")
+    if not text:
+        raise _ccal.InputError("Report.to_pdf(): path: the path is empty; accepted: a file path, e.g. report.pdf")
+    if os.path.isdir(text):
+        raise _ccal.InputError(f"Report.to_pdf(): path: '{text}' is a folder; accepted: a file path, e.g. "
+                               f"report.pdf")
+    folder = os.path.dirname(os.path.abspath(text))
+    if not os.path.isdir(folder):
+        raise _ccal.InputError(f"Report.to_pdf(): path: cannot write '{text}': its folder '{os.path.dirname(text)}' "
+                               f"does not exist; accepted: a file in an existing folder")
+    other = _OTHER_FORMATS.get(os.path.splitext(text)[1].lower())
+    if other:
+        raise _ccal.InputError(f"Report.to_pdf(): path: '{text}' names {other} file, and to_pdf writes PDF; "
+                               f"accepted: FILE.pdf")
+
+
 def report_methods(cls):
     """Report.to_html(): the page of `ccal report`, its provenance naming the configuration's text and the
     Python call that made the report."""
@@ -295,12 +321,17 @@ def report_methods(cls):
         """The page printed to PDF (A4, the page count at the foot) as `ccal report --pdf FILE` prints it,
         through headless Chromium (Debian's chromium, or the program named by CCAL_CHROMIUM), written to path;
         an existing file is replaced only once the PDF is complete."""
+        check_pdf_path(path)
         data = self._print_pdf(self.to_html())
         folder = os.path.dirname(os.path.abspath(path))
         fd, temporary = tempfile.mkstemp(prefix=".ccal-", suffix=".pdf", dir=folder)
         try:
             with os.fdopen(fd, "wb") as f:
                 f.write(data)
+            # mkstemp's file is its owner's alone (0600); the PDF gets the mode any new file gets (the umask's).
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(temporary, 0o666 & ~umask)
             os.replace(temporary, path)
         except BaseException:
             if os.path.exists(temporary):

@@ -146,11 +146,17 @@ def described(annotation, article=True):
     if name == "Union":
         return " or ".join("None" if a[0] == "None" else described(a, article) for a in arguments)
     if name.startswith("numpy."):
-        return "an array of numbers"
+        return f"a {array_dimensions(annotation)}-D array of numbers" if arguments else "an array of numbers"
     text = words.get(name, name)
     if not article or name in ("bool", "object", "Any"):
         return text
     return ("an " if text[0] in "aeiou" else "a ") + text
+
+
+def array_dimensions(annotation):
+    """The dimensions of a pybind11 array type: numpy.ndarray[numpy.float64[m, n]] 2, [m, 1] (a vector) 1."""
+    shape = annotation[1][0][1] if annotation[1] and annotation[1][0][1] else []
+    return sum(1 for size in shape if size[0] != "1") or 1
 
 
 def mismatch(value, annotation, where):
@@ -173,7 +179,8 @@ def mismatch(value, annotation, where):
         ok = isinstance(value, bool) or type(value).__name__.startswith("bool")
     elif name in ("int", "float"):
         numeric = hasattr(value, "__index__") or (name == "float" and hasattr(value, "__float__"))
-        ok = numeric and not isinstance(value, (str, bytes))
+        # A NumPy array (also of one element) has __float__ but is no number.
+        ok = numeric and not isinstance(value, (str, bytes)) and getattr(value, "ndim", 0) == 0
     elif name == "Dict":
         if not isinstance(value, dict):
             return where, annotation
@@ -184,7 +191,9 @@ def mismatch(value, annotation, where):
                 return found
         return None
     elif name == "List":
-        if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__"):
+        # A sequence (or an array): a set or a dict has no order to take its items in.
+        if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") or not hasattr(
+                value, "__getitem__"):
             return where, annotation
         for index, item in enumerate(value):
             found = mismatch(item, arguments[0], f"{where}[{index}]")
@@ -194,6 +203,14 @@ def mismatch(value, annotation, where):
     elif name.startswith("ccal."):
         cls = getattr(_ccal, name[len("ccal."):], None)
         ok = cls is None or isinstance(value, cls)
+    elif name.startswith("numpy.") and arguments:
+        import numpy
+        try:
+            array = numpy.asarray(value)
+        except (TypeError, ValueError):  # a ragged list
+            return where, annotation
+        # Numbers (bool, int, float) of at most the binding's dimensions; text or objects are none.
+        ok = array.ndim <= array_dimensions(annotation) and array.dtype.kind in "biuf"
     else:
         return None
     return None if ok else (where, annotation)
@@ -212,7 +229,7 @@ def argument_problem(signature, name, args, kwargs):
         if found:
             where, expected = found
             part = value if where == parameter else eval_part(value, where[len(parameter):])
-            text = repr(part)
+            text = " ".join(repr(part).split())  # one line: an array's repr spans several
             text = text if len(text) <= 80 else text[:77] + "..."
             whole = "" if where == parameter else f"; accepted: {described(parse_annotation(annotation))}"
             config = expected in (("ccal.Config", []), ("Optional", [("ccal.Config", [])]))
@@ -224,9 +241,12 @@ def argument_problem(signature, name, args, kwargs):
 
 def bool_for_number(value, annotation, where):
     """The place (and the expected type) where `value` holds True or False for a number the annotation takes, and
-    no bool; None if there is none."""
+    no bool, or anything but True or False for a bool (1 is no flag, as the options' flags say); None if there is
+    none."""
     name, arguments = annotation
     if isinstance(value, bool) and name in ("float", "int"):
+        return where, annotation
+    if name == "bool" and not (isinstance(value, bool) or type(value).__name__.startswith("bool")):
         return where, annotation
     if name in ("Optional", "Union"):
         if any(a[0] == "bool" for a in arguments):
@@ -252,9 +272,25 @@ def bool_for_number(value, annotation, where):
     return None
 
 
+def complex_for_real(value, annotation, where):
+    """The place (and the expected type) where `value` is a complex array for an array of real numbers, whose
+    imaginary parts the conversion would drop with no more than a warning; None if it is not one."""
+    name, arguments = annotation
+    if name in ("Optional", "Union"):
+        return next(filter(None, (complex_for_real(value, a, where) for a in arguments)), None)
+    if name.startswith("numpy.") and value is not None and not isinstance(value, (str, bytes)):
+        import numpy
+        try:
+            if numpy.iscomplexobj(value):
+                return where, annotation
+        except (TypeError, ValueError):  # a ragged list: its own problem, said once pybind11 refuses it
+            return None
+    return None
+
+
 def bool_problem(signature, name, args, kwargs, options=()):
     """A bool given for a number of the signature's arguments (not the verb's option keywords, `options`, which the
-    module checks itself)."""
+    module checks itself), or a complex array for an array of real numbers."""
     try:
         bound = signature.bind(*args, **kwargs).arguments
     except TypeError:
@@ -267,7 +303,10 @@ def bool_problem(signature, name, args, kwargs, options=()):
         if found:
             where, expected = found
             part = value if where == parameter else eval_part(value, where[len(parameter):])
-            return f"{name}(): {where}: expected {described(expected)}, got bool ({part!r})"
+            return f"{name}(): {where}: expected {described(expected)}, got {type(part).__name__} ({part!r})"
+        if complex_for_real(value, parse_annotation(annotation), parameter):
+            return (f"{name}(): {parameter}: expected an array of real numbers, got complex numbers; accepted: real "
+                    f"numbers (numpy.real(...) when the imaginary parts are 0)")
     return None
 
 

@@ -250,6 +250,15 @@ double parse_real_option(std::string_view field, std::string_view text) {
   return x;
 }
 
+double parse_real_option(std::string_view field, std::string_view text, const OptionRange& range) {
+  try {
+    return parse_real_option(field, text);
+  } catch (const OptionError& e) {
+    if (!(range.low > -1e308 || range.high < 1e308)) throw;
+    throw OptionError(e.field(), e.value(), "is not a finite number; accepted: " + range.text());
+  }
+}
+
 std::size_t parse_choice_option(std::string_view field, std::string_view text,
                                 std::span<const std::string_view> names) {
   for (std::size_t k = 0; k < names.size(); ++k)

@@ -11,6 +11,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
+#include "ccal/core/units.hpp"
 #include "ccal/history/history_store.hpp"
 #include "history_shared_json.hpp"
 #include "history_text.hpp"
@@ -32,9 +33,12 @@ void check_serial(const std::string& serial, bool given, const std::string& sour
     problem = "holds a control character (a line break, a tab)";
   else if (!detail::valid_utf8(serial))
     problem = "is not valid UTF-8 text (a byte of another encoding; shown as \\xNN)";
+  else if (serial.front() == ' ' || serial.back() == ' ')  // " SN 0815" would be another instrument's history
+    problem = "begins or ends with a blank, which would make it another serial number than the one without";
   if (!problem) return;
   const std::string accepted =
-      "accepted: the instrument's serial number, printable characters and not blank, e.g. SN 0815";
+      "accepted: the instrument's serial number, printable characters and not blank, without blanks around it, e.g. "
+      "SN 0815";
   if (given)
     throw OptionError("serial", detail::history_shown(serial), fmt::format("{}; {}", problem, accepted));
   throw InputError(fmt::format("{}: serial number ([certificate] serial_number) {} {}; {}", source,
@@ -171,7 +175,7 @@ nlohmann::json statement_file_json(const std::string& json_text, const std::stri
     throw InputError(
         fmt::format("{}: not JSON ({}); accepted: a calibration statement's JSON (alone, or as the "
                     "\"statement\" of a reduction's or an identification's JSON)",
-                    source, e.what()));
+                    source, detail::json_problem(e.what())));
   }
   // A reduction (or simulation) of a test of several instruments holds one statement per instrument: which
   // one is recorded is the user's choice, not ours.
@@ -205,6 +209,15 @@ HistoryCoefficient statement_coefficient(const std::string& name, const nlohmann
   HistoryCoefficient h;
   h.name = name;
   h.unit = c.value("unit", std::string());
+  // The history compares a coefficient's calibrations in its unit: one ccal cannot read ("furlong", a typing
+  // error in a statement edited by hand) would be recorded and compared as text.
+  if (!h.unit.empty()) try {
+      (void)parse_unit(h.unit);
+    } catch (const InputError&) {
+      refuse_statement(source, fmt::format("coefficient {}'s unit '{}' is no unit ccal reads (e.g. deg/s, "
+                                           "deg/s/g^2, mA)",
+                                           name, h.unit));
+    }
   h.value = c["corrected_estimate"].get<double>();
   h.expanded = c["expanded_uncertainty"].get<double>();
   h.coverage_factor = c["coverage_factor"].get<double>();

@@ -157,7 +157,7 @@ HistoryImport import_history(HistoryStore& store, const std::string& json_text, 
   try {
     j = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::exception& e) {
-    refuse(source, fmt::format("not JSON ({})", e.what()));
+    refuse(source, fmt::format("not JSON ({})", detail::json_problem(e.what())));
   }
   if (!j.is_object() || j.value("format", std::string()) != kFormat)
     refuse(source, "no \"format\": \"ccal calibration history\"");

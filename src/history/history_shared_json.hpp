@@ -16,4 +16,10 @@ namespace ccal::detail {
 std::optional<SharedPart> shared_part_of(const nlohmann::json& statement, const std::string& source);
 std::string shared_part_text(const SharedPart& part);
 
+// A JSON parser's message without its library's tag ("[json.exception.parse_error.101] "): where and what.
+inline std::string json_problem(std::string message) {
+  if (message.starts_with("[json.exception.")) message.erase(0, message.find("] ") + 2);
+  return message;
+}
+
 }  // namespace ccal::detail

@@ -237,11 +237,15 @@ int checked_schema(sqlite3* db, const std::string& path, bool create, bool writi
   }
   if (version == 0) {
     schema = kHistorySchemaVersion;
+    std::error_code ec;  // SQLite reads a file shorter than its header (a note, a byte) as an empty database
+    if (const std::uintmax_t bytes = std::filesystem::file_size(path, ec); !create && !ec && bytes > 0)
+      throw InputError(fmt::format("{}: a file of {} bytes that holds no SQLite database, not a history store; "
+                                   "accepted: a ccal history store, or a new file name",
+                                   path, bytes));
     if (!create)
-      throw InputError(
-          fmt::format("{}: an empty file, not a history store; accepted: a history store, or a first "
-                      "statement added to it, which makes it one",
-                      path));
+      throw InputError(fmt::format("{}: an empty file, not a history store; accepted: a history store, or a first "
+                                   "statement added to it, which makes it one",
+                                   path));
     execute(db, path, kSchema, "cannot write its schema");
     Statement meta(db, path,
                    "INSERT INTO meta(key, value) VALUES ('application', ?1), ('schema_version', ?2)");

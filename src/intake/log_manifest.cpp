@@ -267,6 +267,13 @@ LogManifest parse_log_manifest(std::string_view text, std::string_view source_na
 }
 
 LogManifest read_log_manifest(const std::filesystem::path& folder) {
+  std::error_code ec;
+  // The manifest's own path (or a log's) given for its folder.
+  if (std::filesystem::is_regular_file(folder, ec))
+    throw InputError(fmt::format("{}: a file, not the folder of the logs; accepted: the folder that holds {} and "
+                                 "the logs, e.g. {}",
+                                 folder.string(), kLogManifestName,
+                                 folder.has_parent_path() ? folder.parent_path().string() : std::string(".")));
   const std::filesystem::path path = folder / kLogManifestName;
   const std::string text = read_file_text(
       path, fmt::format("no manifest in the folder; accepted: a folder with {} naming each run's file (a "
@@ -278,6 +285,11 @@ LogManifest read_log_manifest(const std::filesystem::path& folder) {
 LogLayout parse_log_layout(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
   const toml::table root = parse_toml(r, text, source_name, kLogLayoutAccepted);
+  // An empty file (/dev/null, one truncated to nothing) would write ccal's own layout, not the one meant.
+  if (root.empty())
+    throw InputError(fmt::format("{}:1: the layout file holds no TOML table or key (it is empty); accepted: {} "
+                                 "(ccal's own layout: no --log-layout)",
+                                 source_name, kLogLayoutAccepted));
   // The runs of simulated logs are the plan's: a layout has the format and the columns only.
   r.check_keys(root, "", Keys{"format", "columns", "instruments"});
   LogLayout layout;

@@ -163,6 +163,19 @@ void check_log_inputs(const Config& config, const Eigen::VectorXd& e,
                                  config.centrifuge.errors.size()));
 }
 
+// The sampling step: positive, and at most a quarter revolution of the run (at `rate`, rad/s), so that the
+// encoder angles can be unwrapped.
+void check_log_step(double step, double rate, const std::string& run) {
+  if (!(step > 0) || !std::isfinite(step))
+    throw InputError(fmt::format("run logs: step: {:g} s is not a positive time; accepted: a positive step of at "
+                                 "most a quarter revolution of every run, e.g. 0.05 s",
+                                 step));
+  if (rate * step > 0.25 * kTwoPi)
+    throw InputError(fmt::format("run logs: step: {:g} s is more than a quarter revolution of run '{}'; accepted: a "
+                                 "step of at most {:.3g} s for this run",
+                                 step, run, 0.25 * kTwoPi / rate));
+}
+
 // The logs' header row and units row: time, each output's column, the two encoders.
 std::pair<std::vector<std::string>, std::vector<std::string>> log_header(
     const LogLayout& layout, const std::vector<LoggedOutput>& outputs,
@@ -225,9 +238,7 @@ std::vector<RunLogFile> write_instrument_logs(const Config& config, const Eigen:
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const Run& run = runs[r];
     const double rate = nominal_rate(run, ex.geometry, ex.site) + e[ch::domega];
-    if (!(step > 0) || rate * step > 0.25 * kTwoPi)
-      throw InputError(fmt::format("run logs: a step of {:g} s is more than a quarter revolution of run '{}'",
-                                   step, run.name));
+    check_log_step(step, rate, run.name);
     const bool turning = run.mode == PlatformMode::counter_rotating;
     const double gamma_rate = turning ? -(rate + e[ch::dOmega]) : 0.0;
     const double phi0 = initial_phase(run, ex.geometry, ex.site);

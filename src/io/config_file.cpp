@@ -139,10 +139,11 @@ void check_distinct_serials(const Reader& r, const std::vector<MountedInstrument
 
 // An empty file (/dev/null, a file truncated to nothing) or a truth file given for a configuration would be
 // refused for its missing [site], a table the user did not think of: said for what it is.
+constexpr std::string_view kConfigurationFile =
+    "a configuration file ([site], [centrifuge], [instrument], [plan], …; docs/config.md), e.g. examples/lab.toml";
+
 void refuse_what_is_no_configuration(const toml::table& root, std::string_view source) {
-  constexpr std::string_view accepted =
-      "accepted: a configuration file ([site], [centrifuge], [instrument], [plan], …; docs/config.md), e.g. "
-      "examples/lab.toml";
+  const std::string accepted = fmt::format("accepted: {}", kConfigurationFile);
   if (root.empty())
     throw InputError(fmt::format("{}:1: the file holds no TOML table or key (it is empty); {}", source, accepted));
   if (root.size() == 1 && root.contains("errors"))
@@ -157,7 +158,7 @@ void refuse_what_is_no_configuration(const toml::table& root, std::string_view s
 Config parse_config(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
   std::string setup_source;
-  const toml::table root = with_setup(r, parse_toml(r, text, source_name), setup_source);
+  const toml::table root = with_setup(r, parse_toml(r, text, source_name, kConfigurationFile), setup_source);
   refuse_what_is_no_configuration(root, source_name);
   r.check_keys(root, "", kRootKeys);
   std::vector<MountedInstrument> mounted = read_instruments(r, root);

@@ -434,7 +434,12 @@ inline toml::table parse_toml(const Reader& r, std::string_view text, std::strin
     if (description.find("invalid utf-8") != std::string_view::npos)
       return std::string("; accepted: a TOML text file in UTF-8 (a binary file, or text in UTF-16 or Latin-1, "
                          "is not one: convert it, e.g. iconv -t UTF-8)");
-    return accepted.empty() ? std::string() : fmt::format("; accepted: {}", accepted);
+    // A JSON document (a statement, a result of ccal) given for a TOML file is said to be one.
+    const std::size_t first = text.find_first_not_of(" \t\r\n\xEF\xBB\xBF");  // blanks, a byte-order mark
+    const std::string_view json = first != std::string_view::npos && text[first] == '{'
+                                      ? " (the file opens a JSON document, a statement or a result of ccal?, not TOML)"
+                                      : "";
+    return accepted.empty() ? std::string(json) : fmt::format("{}; accepted: {}", json, accepted);
   };
 #if TOML_EXCEPTIONS
   try {

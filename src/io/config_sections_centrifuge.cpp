@@ -77,7 +77,8 @@ double read_rate_noise(const Reader& r, const toml::table& t, std::string_view k
   } else {
     r.fail(*n, kp, fmt::format("expected a string or an inline table, got {}; {}", type_name(*n), accepted));
   }
-  if (!(density >= 0) || !std::isfinite(density)) r.fail(*n, kp, "must not be negative; " + accepted);
+  if (!(density >= 0) || !std::isfinite(density))
+    r.fail(*n, kp, fmt::format("must not be negative, got {}; {}", Reader::written(*n, density), accepted));
   return density;
 }
 

@@ -133,13 +133,18 @@ void read_noise(const Reader& r, const toml::table& t, std::string_view p, const
         r.quantity_text(std::string(*text), where(n->source()), kp, out.dim, &out, "0.001 " + out.text);
     if (v < 0)
       r.fail(*n, kp,
-             fmt::format("must not be negative; a noise density >= 0 such as \"0.001 {}/rtHz\"", out.text));
+             fmt::format("must not be negative, got {}; accepted: a noise density >= 0 such as \"0.001 {}/rtHz\"",
+                         s->get(), out.text));
     m.noise_density = v;
   }
   if (const toml::node* n = t.get("quantum")) {
     const Dimension dim = out.dim * kind::time;
     const double v = r.quantity_node(*n, Reader::path(p, "quantum"), dim, &out, "0 " + si_unit(dim));
-    if (v < 0) r.fail(*n, Reader::path(p, "quantum"), "must not be negative; a quantisation step >= 0");
+    if (v < 0)
+      r.fail(*n, Reader::path(p, "quantum"),
+             fmt::format("must not be negative, got {}; accepted: a quantisation step >= 0 (0: an output sampled, "
+                         "not counted)",
+                         Reader::written(*n, v)));
     m.quantum = v;
   }
   // A current output read as the voltage across a sampling resistor: the logs' output column is in volts.

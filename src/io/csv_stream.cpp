@@ -203,6 +203,18 @@ struct FileCloser {
 }  // namespace
 
 void check_csv_line_ends(std::string_view line, const std::string& source, int line_no) {
+  // A binary file (or text in UTF-16) given for a table: a control byte that no text line holds, shown by its
+  // code rather than dumped into the message.
+  const auto control = std::find_if(line.begin(), line.end(), [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return (byte < 0x20 && c != '\t' && c != '\r') || byte == 0x7f;
+  });
+  if (control != line.end())
+    throw CsvError(source, line_no, int(control - line.begin()) + 1, "",
+                   fmt::format("the byte 0x{:02x} is no character of a text line: the file is not a text table "
+                               "(a binary file, or text in UTF-16?); accepted: a CSV text file (UTF-8), e.g. a "
+                               "spreadsheet saved as CSV",
+                               static_cast<unsigned char>(*control)));
   const void* cr = std::memchr(line.data(), '\r', line.size());
   if (cr == nullptr) return;
   const auto column = int(static_cast<const char*>(cr) - line.data()) + 1;

@@ -150,6 +150,12 @@ std::string number_cell_problem(std::string_view cell) {
     case NumberKind::not_a_number:
       break;
   }
+  // A decimal number beyond the range of double (1e400) is a number, just not one a double holds.
+  double parsed = 0;
+  const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), parsed);
+  if (ec == std::errc::result_out_of_range && end == cell.data() + cell.size())
+    return fmt::format("'{}' is out of range of double; accepted: a finite number (magnitude below 1.8e308, or 0)",
+                       cell);
   return fmt::format("'{}' is not a number; accepted: a decimal number such as 1.5 or -2e-3", cell);
 }
 

@@ -16,7 +16,8 @@ using namespace config_reading;
 
 SimulationTruth parse_truth(std::string_view text, std::string_view source_name, const Config& config) {
   const Reader r{std::string(source_name)};
-  const toml::table root = parse_toml(r, text, source_name);
+  const toml::table root =
+      parse_toml(r, text, source_name, "a truth file in TOML: [errors] with the values the simulated machine has");
   // A truth file holds the machine's errors only: the rest of a configuration is the lab's, not the truth's.
   for (const auto& [key, node] : root)
     if (key.str() != "errors" && std::find(kRootKeys.begin(), kRootKeys.end(), key.str()) != kRootKeys.end())

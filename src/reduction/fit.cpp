@@ -62,9 +62,10 @@ std::string row_text(const FitProblem& p, Index row) {
 void validate_terms(const FitProblem& p) {
   std::set<std::string> seen;
   for (const auto& name : p.term_names) {
-    if (name.empty()) throw std::invalid_argument("fit: a term name is empty");
+    if (name.empty()) throw std::invalid_argument("fit: a term name is empty; accepted: a name for each column");
     if (!seen.insert(name).second) {
-      throw std::invalid_argument(fmt::format("fit: duplicate term name \"{}\"", name));
+      throw std::invalid_argument(
+          fmt::format("fit: duplicate term name \"{}\"; accepted: a name of its own for each column", name));
     }
   }
   for (const auto& [name, value] : p.fixed) {
@@ -75,7 +76,7 @@ void validate_terms(const FitProblem& p) {
     }
     if (!std::isfinite(value)) {
       throw std::invalid_argument(
-          fmt::format("fit: fixed term \"{}\" has the non-finite value {}", name, value));
+          fmt::format("fit: fixed term \"{}\" has the non-finite value {}; accepted: a finite number", name, value));
     }
   }
 }
@@ -99,7 +100,9 @@ void validate_values(const FitProblem& p) {
     }
     if (p.weights.size() != 0 && !(std::isfinite(p.weights(i)) && p.weights(i) > 0)) {
       throw std::invalid_argument(
-          fmt::format("fit: weight {} at {} is not positive and finite", p.weights(i), row_text(p, i)));
+          fmt::format("fit: weight {} at {} is not positive and finite; accepted: weights 1/σ² > 0 (leave a row out "
+                      "rather than weigh it 0)",
+                      p.weights(i), row_text(p, i)));
     }
   }
 }
@@ -468,6 +471,19 @@ void check_finite_result(const FitProblem& p, const FitResult& r) {
   if (bad.empty()) return;
   const double y_max = p.y.size() ? p.y.cwiseAbs().maxCoeff() : 0.0;
   const double h_max = p.H.size() ? p.H.cwiseAbs().maxCoeff() : 0.0;
+  // A fixed term of a far larger size than the data (K1 = 1e308 given for a table of y near 1) overflows the
+  // output less its contribution: said of that term, not of the data. 1e150: its square still near 1e300.
+  for (const auto& [name, value] : p.fixed) {
+    const auto at = std::find(p.term_names.begin(), p.term_names.end(), name);
+    if (at == p.term_names.end() || p.H.rows() == 0) continue;
+    const double column_max = p.H.col(at - p.term_names.begin()).cwiseAbs().maxCoeff();
+    if (std::abs(value) * column_max > 1e150)
+      throw InputError(fmt::format(
+          "fit: {} is not a finite number: the fixed term {} = {:.6g}, times its regressor (up to {:.3g}), is far "
+          "beyond data of largest |y| = {:.3g} and overflows the arithmetic; accepted: a fixed value of the size "
+          "the term has in these data's units",
+          bad, name, value, column_max, y_max));
+  }
   throw InputError(
       fmt::format("fit: {} is not a finite number: the data overflow the arithmetic of the least-squares "
                   "solution (largest |y| = {:.3g}, largest regressor {:.3g}); accepted: data whose squares and "

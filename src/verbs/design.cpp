@@ -11,6 +11,8 @@
 #include "ccal/core/errors.hpp"
 #include "ccal/intake/measured_inputs.hpp"
 #include "ccal/uncertainty/allocate.hpp"
+#include "ccal/uncertainty/coverage.hpp"
+#include "ccal/uncertainty/montecarlo.hpp"
 #include "design_mechanism.hpp"
 
 namespace ccal::verbs {
@@ -56,7 +58,9 @@ std::vector<DesignTarget> design_targets(const Config& config, const DesignOptio
     targets.clear();
     for (const std::string& t : o.targets) {
       const AllocationTarget a = parse_allocation_target(t, before.coefficients, before.units);
-      targets[a.coefficient] = a.expanded;
+      // A second target on one coefficient replaced the first in silence.
+      if (!targets.emplace(a.coefficient, a.expanded).second)
+        throw OptionError(a.field, a.coefficient, "has two targets; accepted: one target per coefficient");
     }
   }
   std::vector<std::string> chosen = config.design.coefficients;
@@ -403,9 +407,32 @@ DesignResult design_of_instruments(const Config& configured, const DesignOptions
 
 }  // namespace
 
+namespace {
+
+// Before the search, and named as this verb's options (the verification's Monte Carlo would say "trials", and
+// "coverage_probability" for the p of a stated coverage factor the user did not give).
+void check_verification_trials(const DesignOptions& o) {
+  const double p = o.coverage_factor ? normal_coverage_probability(*o.coverage_factor)
+                                     : o.coverage_probability.value_or(kDefaultCoverageProbability);
+  try {
+    check_coverage_interval(o.verify_trials, p, "verify_trials");
+  } catch (const OptionError&) {
+    if (!o.coverage_factor) throw;
+    throw OptionError("verify_trials", std::to_string(o.verify_trials),
+                      fmt::format("are too few for the coverage interval of the stated coverage factor {} (p = {:.6g} "
+                                  "of a normal quantity): its ends do not exist (JCGM 101 §7.7.2); accepted: {} at "
+                                  "least {}, or 0 (none)",
+                                  *o.coverage_factor, p, OptionError::name("verify_trials"),
+                                  least_trials_for_coverage(p)));
+  }
+}
+
+}  // namespace
+
 DesignResult design(const Config& configured, const DesignOptions& options) {
   check_options(options, option_table<DesignOptions>());
   rows::check_coverage_choice(options.coverage_probability, options.coverage_factor);
+  if (options.verify_trials > 0) check_verification_trials(options);
   if (configured.instruments.size() > 1) return design_of_instruments(configured, options);
   progress_bar::Progress progress(options.progress);
   Prepared p = prepare(configured, options, nullptr, progress);

@@ -55,6 +55,8 @@ std::string read_history_file(const std::string& file, std::string_view accepted
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
     throw InputError(fmt::format("{}: it is a folder; accepted: {}", file, accepted));
+  if (!std::filesystem::exists(file, ec))
+    throw InputError(fmt::format("{}: no such file; accepted: {} (check its spelling and folder)", file, accepted));
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read it; accepted: {}", file, accepted));
   std::stringstream text;
@@ -192,6 +194,10 @@ std::string history_export(const std::string& serial, const HistoryStoreOptions&
 
 HistoryImport history_import(const std::string& file, const HistoryStoreOptions& o) {
   const std::string text = read_history_file(file, "an exported history file (`ccal history export`)");
+  std::error_code ec;
+  if (std::filesystem::equivalent(file, history_store_path(o.db), ec))
+    throw OptionError("db", history_store_path(o.db),
+                      "is also the file imported; accepted: a history store other than the exported file");
   HistoryImport out;
   write_store(history_store_path(o.db), [&](HistoryStore& store) { out = import_history(store, text, file); });
   return out;

@@ -97,7 +97,12 @@ Identification identify_problem(const FitProblem& problem, const TableFitSpec& s
   } catch (const IllPosedFit& e) {
     std::string message = e.what();
     if (message.starts_with("fit: ")) message.erase(0, 5);
-    throw IllPosedFit(fmt::format("{}: {}{}", source, message, ill_posed_hint(e.terms())), e.terms());
+    // A plain table has no plan: what separates its terms is more distinct values of its input column.
+    const std::string hint = units.output_unit.empty()
+                                 ? fmt::format("; accepted: rows at more distinct values of the input column ({})",
+                                               units.input_column)
+                                 : ill_posed_hint(e.terms());
+    throw IllPosedFit(fmt::format("{}: {}{}", source, message, hint), e.terms());
   } catch (const InputError& e) {  // a solution that overflows: fit refuses results that are not finite
     std::string message = e.what();
     if (message.starts_with("fit: ")) message.erase(0, 5);

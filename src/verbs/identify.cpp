@@ -125,6 +125,13 @@ void check_column_roles(const IdentifyOptions& o) {
                       fmt::format("is also the {}; accepted: another column of the file for each role",
                                   OptionError::name(other)));
   };
+  // An empty name (an unset shell variable) names no column: said of the option, not as a column not found.
+  for (const auto& [field, column] : {std::pair<std::string_view, const std::string&>{"input_column", o.input_column},
+                                      {"output_column", o.output_column}, {"weight_column", o.weight_column}})
+    if (column.find_first_not_of(" \t") == std::string::npos && (field != "weight_column" || !column.empty()))
+      throw OptionError(std::string(field), "'" + column + "'",
+                        fmt::format("is {}; accepted: the name of a column of the file", column.empty() ? "empty"
+                                                                                                        : "blank"));
   if (o.output_column == o.input_column) refuse("output_column", o.output_column, "input_column");
   if (!o.weight_column.empty() && o.weight_column == o.output_column)
     refuse("weight_column", o.weight_column, "output_column");
@@ -272,6 +279,7 @@ void check_verb_options(const IdentifyOptions& o) {
     throw OptionError("config", o.config->source,
                       fmt::format("is read only for the calibration statement; accepted: with {}",
                                   OptionError::name("statement")));
+  if (!o.statement) refuse_statement_options_unasked(o.statement_options, "statement", true);
   if (o.config) require_one_instrument(*o.config, "identify");  // the observations are one instrument's
 }
 

@@ -307,6 +307,7 @@ std::vector<LogFile> manifest_logs(const LogManifest& manifest) {
 
 ReduceResult reduce(const Config& cfg, const ReduceOptions& o) {
   check_options(o, option_table<ReduceOptions>());
+  if (!o.statement) refuse_statement_options_unasked(o.statement_options, "statement", false);
   if (!cfg.instruments.empty()) return reduce_instruments(cfg, o);
   refuse_instrument_columns(cfg, o);
   ReduceResult r;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <set>
 #include <utility>
 
 #include "ccal/core/errors.hpp"
@@ -82,12 +83,18 @@ void check_targets(const Config& config, const ReportOptions& o) {
   if (o.allocate) {
     if (o.allocate->targets.empty())
       throw OptionError("allocate_targets", "", "none given; the allocation needs at least one target, e.g. K3=2e-3");
-    for (const auto& t : o.allocate->targets)
-      parse_allocation_target(t, config.identification.free_terms, units, "allocate_targets");
   }
-  if (o.design)
-    for (const auto& t : o.design->targets)
-      parse_allocation_target(t, config.identification.free_terms, units, "design_targets");
+  // Each list checked under its own option's name (the verbs it is passed to would name theirs, --target).
+  const auto check = [&](const std::vector<std::string>& targets, const char* field) {
+    std::set<std::string> seen;
+    for (const auto& t : targets) {
+      const AllocationTarget a = parse_allocation_target(t, config.identification.free_terms, units, field);
+      if (!seen.insert(a.coefficient).second)
+        throw OptionError(field, a.coefficient, "has two targets; accepted: one target per coefficient");
+    }
+  };
+  if (o.allocate) check(o.allocate->targets, "allocate_targets");
+  if (o.design) check(o.design->targets, "design_targets");
 }
 
 // The observations identified, and their calibration statement with the configuration's budget (`ccal
@@ -141,6 +148,13 @@ ReportResult report(const Config& config, const ReportOptions& o) {
   require_one_instrument(config, "report");
   check_options(o, option_table<ReportOptions>());
   rows::check_coverage_choice(o.monte_carlo.coverage_probability, o.coverage_factor);
+  // The statement's check runs only on observations: without them the option would be passed over in silence.
+  if (!o.observations && o.statement_trials != ReportOptions{}.statement_trials)
+    throw OptionError("statement_trials", std::to_string(o.statement_trials),
+                      fmt::format("checks the statement of observations, and none are given; accepted: {} with {}, "
+                                  "or {} left out",
+                                  OptionError::name("statement_trials"), OptionError::name("observations"),
+                                  OptionError::name("statement_trials")));
   check_targets(config, o);
   ReportResult r;
   r.config = config;

@@ -277,4 +277,22 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
   return st;
 }
 
+void refuse_statement_options_unasked(const StatementOptions& o, std::string_view field, bool with_mode) {
+  const StatementOptions unset;
+  std::optional<std::pair<std::string, std::string>> given;  // the first given: its field and value
+  if (o.coverage_probability) given.emplace("coverage_probability", fmt::format("{}", *o.coverage_probability));
+  else if (o.coverage_factor) given.emplace("coverage_factor", fmt::format("{}", *o.coverage_factor));
+  else if (with_mode && o.mode) given.emplace("mode", std::string(mode_name(*o.mode)));
+  else if (o.statement_trials != unset.statement_trials)
+    given.emplace("statement_trials", fmt::format("{}", o.statement_trials));
+  else if (o.seed != unset.seed) given.emplace("seed", fmt::format("{}", o.seed));
+  else if (o.threads != unset.threads) given.emplace("threads", fmt::format("{}", o.threads));
+  if (!given) return;
+  throw OptionError(given->first, given->second,
+                    fmt::format("is an option of the calibration statement, which is not asked for; accepted: "
+                                "{} with {}, or {} left out",
+                                OptionError::name(given->first), OptionError::name(field),
+                                OptionError::name(given->first)));
+}
+
 }  // namespace ccal::verbs

@@ -239,9 +239,9 @@ TEST_F(Cli, MessagesNameTheOptionAndWhatIsAccepted) {
                    {"--target: K3 has two targets; accepted: one target per coefficient"});
   expect_bad_input(
       run("allocate --target K3=1e-3 --width 5 --verify-trials 0"),
-      {"--width: 5 is out of range; accepted: a number from 40 to 10000; run 'ccal allocate --help'"});
+      {"--width: 5 is out of range; accepted: a whole number from 40 to 10000; run 'ccal allocate --help'"});
   expect_bad_input(run("budget --width abc"),
-                   {"--width: abc is not a number; accepted: a number from 40 to 10000"});
+                   {"--width: abc is not a number; accepted: a whole number from 40 to 10000"});
   expect_bad_input(
       run("budget --coverage-factor 2 --coverage-probability 0.9"),
       {"--coverage-factor: 2 and --coverage-probability 0.9 are two coverages; accepted: one of them"});

@@ -384,10 +384,11 @@ TEST_F(Cli, AliasedTermsAreRefusedWithTheMountingHint) {
   const Result i = run("identify pp.csv --terms K0,K2:K2,K3:K3,K_pp:K_pp --fix K1:K1=505.2097 -o fit.txt");
   expect_bad_input(i, {"pp.csv: ", "cannot separate K2 and K_pp", "runs with another mounting"});
   EXPECT_FALSE(fs::exists(dir_ / "fit.txt"));
-  // Powers of the input alone get the g-level hint: x takes two values, so K0, K1, K2 are dependent.
+  // Powers of the input alone in a plain table get the table's hint: x takes two values, so K0, K1, K2 are
+  // dependent, and more distinct values of x would separate them (a plain table has no g-levels to add).
   write("two.csv", "x,y\n1,1\n1,1\n2,3\n2,3\n");
   expect_bad_input(run("identify two.csv --input-column x --output-column y --terms K0,K1,K2"),
-                   {"two.csv: ", "cannot separate", "; add g-levels or runs with the IA reversed"});
+                   {"two.csv: ", "cannot separate", "; accepted: rows at more distinct values of the input column (x)"});
 }
 
 TEST_F(Cli, OutputFilesOnlyOnSuccess) {

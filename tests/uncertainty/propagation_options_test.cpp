@@ -43,6 +43,14 @@ TEST(PropagationOptions, TheEngineRefusesExactlyWhatEachRowRefuses) {
                        const OptionProbe& probe) -> std::optional<PropagationOptions> {
     // Starting a thousand threads is the system probe's work (check_thread_count), not the row's.
     if (row.field == "threads" && probe.accepted && probe.value > 64) return std::nullopt;
+    // max_trials bounds the adaptive procedure only (refused beside a fixed M): its values in range are probed
+    // with digits 1, where one below two stages of 10000 trials is the stage check's to refuse, not the row's.
+    if (row.field == "max_trials" && probe.accepted) {
+      if (probe.value < 20000) return std::nullopt;
+      std::optional<PropagationOptions> o = options_for_probe(row, probe, &PropagationOptions::trials);
+      if (o) o->digits = 1;
+      return o;
+    }
     return options_for_probe(row, probe, &PropagationOptions::trials);
   };
   const int probed = probe_every_numeric_row<PropagationOptions>(make, refused_field, "");

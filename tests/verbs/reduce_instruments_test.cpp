@@ -72,7 +72,7 @@ class ReduceInstruments : public ::testing::Test {
     o.layout = m.layout;
     o.logs = verbs::manifest_logs(m);
     o.statement = statement;
-    o.statement_options.statement_trials = 2000;
+    if (statement) o.statement_options.statement_trials = 2000;  // a statement's option: refused without one
     return o;
   }
 

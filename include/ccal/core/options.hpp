@@ -347,6 +347,8 @@ std::int64_t parse_integer_option(std::string_view field, std::string_view text,
                                   std::int64_t high, const OptionRange& range);
 // A real option written as text (any float notation); OptionError unless it is a finite number.
 double parse_real_option(std::string_view field, std::string_view text);
+// As above, but a refusal says the option's range (a bounded one) as what is accepted, not a bare example.
+double parse_real_option(std::string_view field, std::string_view text, const OptionRange& range);
 // The index of `text` among `names`; OptionError listing the names otherwise.
 std::size_t parse_choice_option(std::string_view field, std::string_view text,
                                 std::span<const std::string_view> names);

@@ -109,8 +109,8 @@ inline bool parse_plain_decimal(std::string_view text, double& value) {
 }
 
 // Throws CsvError at the first carriage return in `line` (a line without its LF or CRLF end): the sign of a
-// file with CR-only line ends, which would otherwise read as one line. Both readers apply it to the lines up
-// to the header.
+// file with CR-only line ends, which would otherwise read as one line; and at the first control byte (not a
+// tab), the sign of a binary file or of text in UTF-16. Both readers apply it to the lines up to the header.
 void check_csv_line_ends(std::string_view line, const std::string& source, int line_no);
 
 // Streams a file to `sink`; returns the SHA-256 of its bytes (core/sha256.hpp), the fingerprint of the file

@@ -138,6 +138,11 @@ CalibrationStatement calibration_statement(const Config& config, const Identific
                                            const std::vector<MeasuredInput>& measured = {},
                                            const std::vector<double>& durations = {});
 
+// A statement's option given without the statement asked for (`field`, e.g. statement) would be passed over in
+// silence: OptionError naming it, unless it is at its default. `with_mode`: the mode is the statement's alone
+// (identify), not also the verb's own (reduce).
+void refuse_statement_options_unasked(const StatementOptions& options, std::string_view field, bool with_mode);
+
 // What an observations file's header says of its test (`ccal reduce` writes it): the inputs the logs measured
 // and, per row of the identification, the logged span (empty unless the file records every row's), for
 // calibration_statement.
