@@ -18,6 +18,7 @@
 #include "completion.hpp"
 #include "help_format.hpp"
 #include "option_flags.hpp"
+#include "output.hpp"
 #include "shell_docs.hpp"
 
 namespace {

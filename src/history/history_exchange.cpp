@@ -10,6 +10,7 @@
 
 #include "ccal/core/errors.hpp"
 #include "ccal/core/options.hpp"
+#include "history_shared_json.hpp"
 
 namespace ccal {
 
