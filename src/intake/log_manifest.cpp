@@ -288,7 +288,7 @@ LogLayout parse_log_layout(std::string_view text, std::string_view source_name) 
   // An empty file (/dev/null, one truncated to nothing) would write ccal's own layout, not the one meant.
   if (root.empty())
     throw InputError(fmt::format("{}:1: the layout file holds no TOML table or key (it is empty); accepted: {} "
-                                 "(ccal's own layout: no --log-layout)",
+                                 "(for ccal's own layout, give no layout file)",
                                  source_name, kLogLayoutAccepted));
   // The runs of simulated logs are the plan's: a layout has the format and the columns only.
   r.check_keys(root, "", Keys{"format", "columns", "instruments"});

@@ -49,7 +49,7 @@ TEST_F(Cli, AnEmptyLayoutFileIsRefused) {
   expect_bad_input(run("simulate " + quote(kLab) + " --logs-out L --log-layout empty.toml -o /dev/null"),
                    {"empty.toml:1: the layout file holds no TOML table or key (it is empty); accepted: a layout file "
                     "in TOML: a manifest's [format] and [columns] tables",
-                    "(ccal's own layout: no --log-layout)"});
+                    "(for ccal's own layout, give no layout file)"});
   EXPECT_FALSE(fs::exists(dir_ / "L"));
 }
 
