@@ -152,8 +152,9 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
     for (int m = 1; m <= t.M / 2; ++m)
       for (int j = 0; j < t.M; ++j) {
         const double c_m = m == t.M / 2 ? 1.0 : 2.0;
-        t.dft_cos.push_back(c_m * t.table.cos_k[std::size_t(m * j % t.M)]);
-        t.dft_sin.push_back(c_m * t.table.sin_k[std::size_t(m * j % t.M)]);
+        // + 0.0: no −0 in the tables the batch path splats (run_means_batch.cpp, splat).
+        t.dft_cos.push_back(c_m * t.table.cos_k[std::size_t(m * j % t.M)] + 0.0);
+        t.dft_sin.push_back(c_m * t.table.sin_k[std::size_t(m * j % t.M)] + 0.0);
       }
     const double phi0 = initial_phase(run, geometry, site);
     for (int j = 0; j < t.M; ++j) {
@@ -161,10 +162,10 @@ RunMeanKernel::RunMeanKernel(const Geometry& geometry, const ErrorLayout& layout
       // The same sums run_quadrature forms for the joint angles.
       const double theta1 = run.arm_azimuth + theta;
       const double gamma = phi0 - (t.counter ? theta : 0.0);
-      t.cos_theta.push_back(std::cos(theta1));
-      t.sin_theta.push_back(std::sin(theta1));
-      t.cos_gamma.push_back(std::cos(gamma));
-      t.sin_gamma.push_back(std::sin(gamma));
+      t.cos_theta.push_back(std::cos(theta1) + 0.0);  // (+ 0.0: as dft_cos)
+      t.sin_theta.push_back(std::sin(theta1) + 0.0);
+      t.cos_gamma.push_back(std::cos(gamma) + 0.0);
+      t.sin_gamma.push_back(std::sin(gamma) + 0.0);
     }
     for (int m = 0; m <= t.M / 2; ++m) {
       const double half_kappa = t.rate * t.duration * double(m) / 2.0;

@@ -22,8 +22,10 @@ namespace {
 
 constexpr auto kBatchLanes = std::size_t(kPackLanes);
 
-// x in every lane: x − (+0) is x, −0 included.
-[[gnu::always_inline]] inline Pack splat(double x) { return x - Pack{}; }
+// x in every lane, as T{} + x: one broadcast. (`x − Pack{}`, which keeps a −0, GCC 12 builds in the AVX-512
+// clone from eight masked broadcasts, one a lane.) The tables splat reads hold no −0 (run_means.cpp,
+// tables_of), so that their values are the one-trial path's bit for bit.
+[[gnu::always_inline]] inline Pack splat(double x) { return Pack{} + x; }
 
 // The packed values of one pack of trials for one group of runs (BatchScratch), as the loops read them.
 // frame: pB y, z (0, 1); ω_c, ĝ, ω_ie of frame 1t (2, 5, 8); R_B column-major (11); p_C (20); P (23).
@@ -75,7 +77,7 @@ CCAL_CLONED CCAL_FLATTEN void batch_weights_lanes(const BatchLanes& b) {
     const RunTables& t = b.d->runs[b.group->runs[std::size_t(g)]];
     for (int q = 0; q < Q; ++q)
       for (int j = 0; j < b.M; ++j) {
-        Pack sum = value_at<Pack>(b.zero_moments, 2 * Q * g + q) - Pack{};
+        Pack sum = Pack{} + value_at<Pack>(b.zero_moments, 2 * Q * g + q);
         for (int m = 1; m <= half; ++m) {
           const auto at = std::size_t((m - 1) * b.M + j);
           const int nu = (g * half + m - 1) * Q + q;

@@ -286,7 +286,7 @@ struct Columns {
 template <class T>
 [[gnu::always_inline]] inline T output_at(const OutputPolynomial& k, const T& a_i, const T& a_p, const T& a_o,
                                           const T& w_ia) {
-  T out = k.power[std::size_t(k.degree)] - T{};  // x − (+0) is x, −0 included
+  T out = T{} + k.power[std::size_t(k.degree)];  // (+0) + x: one broadcast (run_means_batch.cpp, splat)
   for (int n = k.degree - 1; n >= 0; --n) out = out * a_i + k.power[std::size_t(n)];
   out += k.abs_square * magnitude(a_i) * a_i + k.rate * w_ia;
   if (k.cross)

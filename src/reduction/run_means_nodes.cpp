@@ -204,7 +204,7 @@ template <class T>
 [[gnu::always_inline]] inline void quadrature_weights_of(const double* dft_cos, const double* dft_sin, int M,
                                                          int j, double re0, const double* re,
                                                          const double* im, int Q, double* w) {
-  T sum = re0 - T{};  // x − (+0) is x, −0 included
+  T sum = T{} + re0;  // as the batch path (run_means_batch.cpp, batch_weights_lanes)
   for (int m = 1; m <= M / 2; ++m) {
     const auto at = std::size_t((m - 1) * M + j);
     sum = sum + (load<T>(dft_cos + at) * re[m * Q] + load<T>(dft_sin + at) * im[m * Q]);
