@@ -127,6 +127,26 @@ class Frames(unittest.TestCase):
                 back.index.name = frame.index.name
                 pandas.testing.assert_frame_equal(back, frame, check_exact=True)
 
+    def test_the_observations_and_statement_files_read_by_pandas_as_docs_cli_md_says(self):
+        # An observations file (Simulation.to_csv(), as --observations-out writes it): its '#' lines comments,
+        # each number the same double as Python reads from the text.
+        text = self.frames["Simulation"].to_csv()
+        table = pandas.read_csv(io.StringIO(text), comment="#", float_precision="round_trip")
+        lines = [line.split(",") for line in text.splitlines() if not line.startswith("#")]
+        self.assertEqual(list(table.columns), lines[0])
+        self.assertEqual(list(table["run"]), [row[0] for row in lines[1:]])
+        for k, row in enumerate(lines[1:]):
+            self.assertEqual([table[c].iloc[k] for c in lines[0][1:]], [float(v) for v in row[1:]])
+        # statement.csv (Statement.to_csv()): the rounded figures, quoted, read as text with their zeros.
+        rounded = ("rounded_estimate", "rounded_expanded_uncertainty", "rounded_low", "rounded_high")
+        statement = pandas.read_csv(io.StringIO(self.frames["Statement"].to_csv()), dtype={c: str for c in rounded})
+        figures = self.frames["Statement"].to_dict()["coefficients"]
+        for k, name in enumerate(statement["coefficient"]):
+            r = figures[name]["rounded"]
+            self.assertEqual([statement[c].iloc[k] for c in rounded],
+                             [r["estimate"], r["expanded_uncertainty"], *r["interval"]])
+        self.assertEqual(str(statement["expanded_uncertainty"].dtype), "float64")
+
 
 if __name__ == "__main__":
     unittest.main()
