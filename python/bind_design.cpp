@@ -8,23 +8,60 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <variant>
+#include <vector>
 
 #include "bindings.hpp"
 #include "option_keywords.hpp"
+#include "ccal/intake/measured_inputs.hpp"
 #include "ccal/verbs/design.hpp"
+#include "ccal/verbs/statement.hpp"
 
 namespace ccal::python {
+namespace {
 
-void bind_design(py::module_& m) {
-  py::class_<verbs::DesignTarget>(m, "DesignTarget", "A coefficient of the design's objective.")
-      .def_readonly("coefficient", &verbs::DesignTarget::coefficient, "the coefficient's id, e.g. 'K3' [—]")
-      .def_readonly("weight", &verbs::DesignTarget::weight, "w_k in the objective (0: not counted) [—]")
-      .def_readonly("reference", &verbs::DesignTarget::reference,
-                    "R_k: the user's target, or the configured plan's U_k [coefficient SI: output SI per gⁿ]")
-      .def_readonly("is_target", &verbs::DesignTarget::is_target,
-                    "R_k is a user's target (else the configured plan's U_k) [—]");
+// A run by value: name, g_level, duration, platform, initial_phase, terminal_phase, arm_azimuth, mounting.
+using RunValues = std::tuple<std::string, double, double, std::string, std::optional<double>, std::optional<double>,
+                             double, std::string>;
 
+Run run_of_values(const RunValues& v) {
+  Run run;
+  run.name = std::get<0>(v);
+  run.g_level = std::get<1>(v);
+  run.duration = std::get<2>(v);
+  const std::string& platform = std::get<3>(v);
+  run.mode = platform == platform_mode_name(PlatformMode::fixed) ? PlatformMode::fixed : PlatformMode::counter_rotating;
+  run.initial_phase = std::get<4>(v);
+  run.terminal_phase = std::get<5>(v);
+  run.arm_azimuth = std::get<6>(v);
+  for (const Mounting m : {Mounting::ia_horizontal, Mounting::ia_reversed, Mounting::pa_vertical, Mounting::ia_vertical})
+    if (mounting_name(m) == std::get<7>(v)) run.mounting = m;
+  return run;
+}
+
+// The configurations a design makes from the one it is given (verbs/design.cpp), for a Design pickled by value
+// (python/ccal/_pickling.py, which checks each against the original's attributes when pickling): the expected
+// measured inputs charged when `measured_inputs` (what the design's budgets see); then, when `runs` are given,
+// the plan replaced by them and the fingerprints cleared (another plan: no longer the file's), and with
+// `to_instruments` each instrument given that plan too.
+Config design_config(const Config& cfg, const std::optional<std::vector<RunValues>>& runs, bool measured_inputs,
+                     bool to_instruments) {
+  Config c = measured_inputs ? verbs::with_measured_inputs(cfg, expected_measured_inputs(cfg)) : cfg;
+  if (!runs) return c;
+  clear_fingerprints(c);
+  c.plan.runs.clear();
+  for (const RunValues& v : *runs) c.plan.runs.push_back(run_of_values(v));
+  if (to_instruments)
+    for (Config& one : c.instruments) {
+      one.plan = c.plan;
+      clear_fingerprints(one);
+    }
+  return c;
+}
+
+// A plan as its operator runs it.
+void bind_run_sheet(py::module_& m) {
   py::class_<RunSheetLine>(m, "RunSheetLine", "One run of a run sheet: what the operator sets and sees.")
       .def_readonly("order", &RunSheetLine::order, "1-based order in which the runs are made [—]")
       .def_readonly("run", &RunSheetLine::run, "the run's name, which its log carries [—]")
@@ -49,6 +86,34 @@ void bind_design(py::module_& m) {
   py::class_<RunSheet>(m, "RunSheet", "A plan as its operator runs it, run by run in order.")
       .def_readonly("lines", &RunSheet::lines, "the runs in order, list of RunSheetLine [—]")
       .def_readonly("total_duration", &RunSheet::total_duration, "Σ T [s]");
+}
+
+// What a Design unpickled by value needs (python/ccal/_pickling.py): its config_text, and its configurations
+// made again from the one given.
+void bind_design_by_value(py::module_& m) {
+  m.def(
+      "_config_with_plan",
+      [](const std::string& original, const Config& designed) { return render::config_with_plan(original, designed); },
+      py::arg("original"), py::arg("designed"),
+      "Design.config_text of a Design unpickled by value: `original` with its [plan] replaced by designed's.");
+  auto config = py::reinterpret_borrow<py::class_<Config>>(m.attr("Config"));
+  config.def("_design_config", &design_config, py::arg("runs"), py::arg("measured_inputs"),
+             py::arg("to_instruments"),
+             "A configuration the design makes from this one (for a Design pickled by value).");
+}
+
+}  // namespace
+
+void bind_design(py::module_& m) {
+  py::class_<verbs::DesignTarget>(m, "DesignTarget", "A coefficient of the design's objective.")
+      .def_readonly("coefficient", &verbs::DesignTarget::coefficient, "the coefficient's id, e.g. 'K3' [—]")
+      .def_readonly("weight", &verbs::DesignTarget::weight, "w_k in the objective (0: not counted) [—]")
+      .def_readonly("reference", &verbs::DesignTarget::reference,
+                    "R_k: the user's target, or the configured plan's U_k [coefficient SI: output SI per gⁿ]")
+      .def_readonly("is_target", &verbs::DesignTarget::is_target,
+                    "R_k is a user's target (else the configured plan's U_k) [—]");
+
+  bind_run_sheet(m);
 
   py::class_<verbs::DesignResult>(
       m, "Design",
@@ -60,8 +125,22 @@ void bind_design(py::module_& m) {
       .def_readonly("config", &verbs::DesignResult::config, "the configuration as given [Config]")
       .def_readonly("designed", &verbs::DesignResult::designed,
                     "the configuration with the designed plan [Config]")
-      .def_readonly("before", &verbs::DesignResult::before, "the full budget of the configured plan [Budget]")
-      .def_readonly("after", &verbs::DesignResult::after, "the full budget of the designed plan [Budget]")
+      .def_property_readonly(
+          "before",
+          [](const verbs::DesignResult& r) -> std::optional<verbs::BudgetResult> {
+            if (!r.instruments.empty()) return std::nullopt;
+            return r.before;
+          },
+          "the full budget of the configured plan; None for a test of several instruments, each instrument's "
+          "Design has its own [Budget]")
+      .def_property_readonly(
+          "after",
+          [](const verbs::DesignResult& r) -> std::optional<verbs::BudgetResult> {
+            if (!r.instruments.empty()) return std::nullopt;
+            return r.after;
+          },
+          "the full budget of the designed plan; None for a test of several instruments, each instrument's "
+          "Design has its own [Budget]")
       .def_property_readonly(
           "units", [](const verbs::DesignResult& r) { return r.after.budget.units; },
           "the display unit of each coefficient of the budgets (one instrument; [] for several) [—]")
@@ -92,14 +171,9 @@ void bind_design(py::module_& m) {
       .def_readonly("instruments", &verbs::DesignResult::instruments,
                     "a test of several instruments: each one's Design of the one plan (its targets, before, after, "
                     "objectives, mechanism), in the file's order; the whole result's designed and sheet are the "
-                    "plan, its objectives the joint ones; [] for one instrument [list of Design]")
-      .def(
-          "config_text",
-          [](const verbs::DesignResult& r, const std::string& original) {
-            return render::config_with_plan(original, r.designed);
-          },
-          py::arg("original"),
-          "The configuration text `original` with its [plan] replaced by the designed one (as --plan-out).");
+                    "plan, its objectives the joint ones; [] for one instrument [list of Design]");
+  // config_text(original) is python/ccal/_results.py's, which a Design unpickled by value has too.
+  bind_design_by_value(m);
 
   m.def(
       "design",

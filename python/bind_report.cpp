@@ -46,6 +46,14 @@ struct Report {
   verbs::ReportOptions options;
 };
 
+// The text of a page's charting scripts: a Report pickled by value stores its page without it.
+void bind_report_scripts(py::module_& m) {
+  m.def(
+      "_report_script_text", [] { return render::script_text(required_report_scripts()); },
+      "The text of a report page's <script> element of vega, vega-lite and vega-embed: a Report pickled by value "
+      "stores its page without it.");
+}
+
 }  // namespace
 
 void bind_report(py::module_& m) {
@@ -99,9 +107,9 @@ void bind_report(py::module_& m) {
           },
           py::arg("config_text"), py::arg("command_line"),
           "The page for the configuration's text and the call that made the report (to_html() gives them).")
-      .def(
+      .def_static(
           "_print_pdf",
-          [](const Report&, const std::string& html) {
+          [](const std::string& html) {
             std::string pdf;
             {
               py::gil_scoped_release release;  // the browser takes seconds
@@ -111,6 +119,7 @@ void bind_report(py::module_& m) {
           },
           py::arg("html"), "A page printed to PDF by headless Chromium (render/pdf_print.hpp), as bytes (to_pdf()).");
 
+  bind_report_scripts(m);
   m.def(
       "report",
       [](const Config& cfg, const std::optional<TargetMap>& allocate_targets, bool design,

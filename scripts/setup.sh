@@ -12,15 +12,17 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS=0
 # The library and the program need the first list; the tests, benchmarks, Python module, the report's browser
-# check, the certificate's PDF check (Chromium prints it, poppler-utils reads it back) and the check of every
-# instruction set's bits (qemu-user emulates processors without AVX-512 or AVX2) the second.
+# check, the certificate's PDF check (Chromium prints it, poppler-utils reads it back), the check of every
+# instruction set's bits (qemu-user emulates processors without AVX-512 or AVX2) and the test of the Python
+# results' to_frame() (pandas, about 38 MB installed; ccal itself does not need it) the second.
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
           libfmt-dev libboost-math-dev libsqlite3-dev libssl-dev ccache)
 case "${1:-all}" in
   all) targets=()
        parts=(-DCCAL_BUILD_TESTS=ON -DCCAL_BUILD_BENCH=ON -DCCAL_BUILD_PYTHON=ON)
        packages+=(libgtest-dev libgmock-dev libbenchmark-dev pybind11-dev python3-dev python3-numpy chromium
-                 poppler-utils zsh fish qemu-user python3-venv python3-pip python3-setuptools python3-wheel) ;;
+                 poppler-utils zsh fish qemu-user python3-venv python3-pip python3-setuptools python3-wheel
+                 python3-pandas) ;;
   ccal) targets=(--target ccal_cli)
         parts=(-DCCAL_BUILD_TESTS=OFF -DCCAL_BUILD_BENCH=OFF -DCCAL_BUILD_PYTHON=OFF) ;;
   *) echo "setup: '$1' is not a build choice; accepted: 'ccal' (library and program) or nothing (everything)" >&2

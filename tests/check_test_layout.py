@@ -32,7 +32,6 @@ TESTED_ELSEWHERE = {
     "model/instrument.cpp": "the terms: tests/io/config_file_test.cpp, tests/io/observation_csv_test.cpp",
     "model/sensed_input.cpp": "evaluate_force: tests/model/plan_test.cpp, tests/verbs/force_test.cpp",
     "reduction/run_means_nodes.cpp": "the kernel's nodes: tests/reduction/run_means_test.cpp",
-    "render/report_history.cpp": "the report's history section: tests/report/check_history_report.py (report.history)",
     "render/budget_text.cpp": "the budget's text: tests/render/budget_test.cpp",
     "verbs/history.cpp": "history add and show: tests/cli/history_test.cpp",
     "render/design_plan.cpp": "the designed [plan]: tests/verbs/design_test.cpp (DesignPlanText)",

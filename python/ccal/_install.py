@@ -102,12 +102,10 @@ def install(namespace):
     for name in ("with_tolerance", "without_tolerance", "with_error", "with_plan", "instrument"):
         setattr(Config, name, _config_edit(name, getattr(Config, name)))
     Config.__reduce__ = _pickling.config_reduce
-    # Results pickle by value (a Design as its call; a Report not at all: its page is made from its call).
-    by_value = [cls for cls in classes if cls not in (Config, _ccal.Design, _ccal.Report)]
+    # Results pickle by value.
+    by_value = [cls for cls in classes if cls is not Config]
     for cls in by_value:
         cls.__reduce__ = _pickling.result_reduce
-    _ccal.Design.__reduce__ = _pickling.call_reduce
-    _ccal.Report.__reduce__ = _pickling.report_reduce
     namespace["StoredResult"] = _pickling.StoredResult
     _pickling.stand_ins_count_as_their_class(by_value)
     for cls in classes:
@@ -123,3 +121,4 @@ def install(namespace):
     _results.table_methods(Config, _tables.display_config)
     _results.table_methods(_ccal.Fit, _tables.display_fit)
     _results.report_methods(_ccal.Report)
+    _results.design_methods(_ccal.Design)

@@ -1,17 +1,22 @@
 """Pickling. A Config is pickled as its origin (the TOML text it was read from, or the bundled example) and the
 derivations applied to it. A result is pickled by value: every attribute's value (NumPy arrays, numbers, text,
-its parts each by value in turn, its Config by origin), its texts (str(), to_json(), to_csv()) and the
-exceptions its attributes raise, compressed; unpickling rebuilds it without computing anything, as a stored
-result (StoredResult) of the same name, attributes and methods, which isinstance() takes for its class. Two
-exceptions: a Simulation's run_logs() and logs_manifest() (and write_logs()) simulate again from the stored call
-when called (the same bits: the simulation is deterministic, checked against the stored JSON), and a Design is
-pickled as its call (its designed Config has no text of its own) and designed again on unpickling."""
+its parts each by value in turn, its Config by origin), its texts (str(), to_json(), to_csv(), a Report's
+to_html() without the charting scripts the module holds) and the exceptions its attributes raise, compressed;
+unpickling rebuilds it without computing anything, as a stored result (StoredResult) of the same name, attributes
+and methods, which isinstance() takes for its class. A Config of a result that has no origin is one the result's
+own configuration gives: one of its instruments, or a Design's designed Config, stored as the design's
+configuration and its designed runs (Config._design_config, checked against the original when pickling). One
+exception: a Simulation's run_logs() and logs_manifest() (and write_logs()) simulate again from the stored call
+when called (the logs are about 1 MB compressed for examples/lab.toml; the same bits: the simulation is
+deterministic, checked against the stored JSON)."""
 
 import builtins
 import json
 import os
 import pickle
+import hashlib
 import re
+import struct
 import tempfile
 import zlib
 
@@ -21,7 +26,8 @@ from . import _ccal
 
 _VOLATILE = {"wall_time_s", "threads", "trials_per_s", "cache_seconds", "search_seconds"}  # what differs between two
 # runs of the same call
-_TEXTS = ("to_json", "to_csv", "__str__")  # the texts of a result, stored as they are
+_TEXTS = ("to_json", "to_csv", "__str__", "to_html")  # the texts of a result, stored as they are (a page without
+# its charting scripts)
 # Methods that compute from arguments: the stored call is run again when one is called (class → verb, methods).
 _RECOMPUTED = {"Simulation": ("simulate", ("run_logs", "logs_manifest"))}
 _FORMAT = 1  # of the stored tree
@@ -73,26 +79,90 @@ class _Instrument(tuple):
     """(k,): the configuration of the k-th instrument of the stored result's own configuration."""
 
 
+class _Derived(tuple):
+    """(base, method, args): the configuration getattr(base, method)(*args), base a stored configuration (a
+    Design's designed Config: its configuration's _design_config of the designed runs)."""
+
+
+class _Page(tuple):
+    """(head, tail, sha256): a report page without its charting scripts' text, which goes between head and tail
+    (ccal._ccal._report_script_text(), whose SHA-256 is sha256)."""
+
+
 def _is_bound(value):
     return isinstance(type(value), type(_ccal.Config)) or isinstance(value, StoredResult)  # the module's metaclass
 
 
+def _visible(value):
+    """Everything of a value that Python sees, to the last bit: two configurations with equal _visible are the
+    same to every attribute."""
+    if isinstance(value, float):
+        return ("float", struct.pack("<d", value))
+    if isinstance(value, np.ndarray):
+        return ("array", value.dtype.str, value.shape, value.tobytes())
+    if _is_bound(value):
+        return (type(value).__name__,) + tuple((f, _visible(getattr(value, f))) for f in _fields(type(value)))
+    if isinstance(value, (list, tuple)):
+        return (type(value).__name__,) + tuple(_visible(v) for v in value)
+    if isinstance(value, dict):
+        return ("dict",) + tuple((k, _visible(v)) for k, v in value.items())
+    return value
+
+
+def _run_values(run):
+    return (run.name, run.g_level, run.duration, run.mode, run.initial_phase, run.terminal_phase, run.arm_azimuth,
+            run.mounting)
+
+
+def _page_stored(page):
+    scripts = _ccal._report_script_text()
+    at = page.find(scripts)
+    if at < 0 or page.find(scripts, at + 1) >= 0:
+        return page
+    return _Page((page[:at], page[at + len(scripts):], hashlib.sha256(scripts.encode()).hexdigest()))
+
+
+def _page_restored(stored):
+    if not isinstance(stored, _Page):
+        return stored
+    head, tail, sha = stored
+    scripts = _ccal._report_script_text()
+    if hashlib.sha256(scripts.encode()).hexdigest() != sha:
+        raise ValueError("ccal: a pickled Report's page was made with other charting scripts than this module's "
+                         f"(pickled by another version of ccal?); this is ccal {_ccal.__version__}")
+    return head + scripts + tail
+
+
+def _own_config(top):
+    """The configuration a result was made from, as given to its call (with its origin), or None."""
+    call = getattr(top, "_ccal_call", None)
+    config = call[1] if call else getattr(top, "_ccal_config", None)
+    if config is None and "config" in _fields(type(top)):
+        config = getattr(top, "config", None)
+    return config if getattr(config, "_ccal_origin", None) is not None else None
+
+
 class _Snapshot:
     """Walks a result into a tree of plain values: a _Node for an object of the module, an _Array for a NumPy
-    array, an _Instrument for the configuration of one instrument of the result's own configuration (one of its
-    Config.instruments), lists, tuples and dicts of them, numbers, text and Configs."""
+    array, an _Instrument or a _Derived for a configuration the result's own configuration gives, lists, tuples
+    and dicts of them, numbers, text and Configs."""
 
     def __init__(self, top):
-        config = getattr(top, "config", None) if "config" in _fields(type(top)) else None
-        self.top_config = config if getattr(config, "_ccal_origin", None) is not None else None
+        self.known = []  # (tree, Config, _visible): the configurations a Config without origin may be
+        self.preferred = []  # those a Design's field holds, looked at first
+        self.top_config = _own_config(top)
+        if self.top_config is not None:
+            self.known.append((self.top_config, self.top_config, _visible(self.top_config)))
+            for k, one in enumerate(self.top_config.instruments):
+                self.known.append((_Instrument((k,)), one, _visible(one)))
 
     def config(self, cfg, where):
         if getattr(cfg, "_ccal_origin", None) is not None:
             return cfg
-        top = self.top_config
-        ids = [c.instrument_id for c in top.instruments] if top is not None else []
-        if cfg.instrument_id and cfg.instrument_id in ids:
-            return _Instrument((ids.index(cfg.instrument_id),))
+        key = _visible(cfg)
+        for tree, _, known in self.preferred + self.known:
+            if known == key:
+                return tree
         raise TypeError(f"this result cannot be pickled: its {where} is a ccal.Config that was not made by "
                         "load_config, parse_config, bundled_example or a with_… or instrument() method of one")
 
@@ -109,24 +179,50 @@ class _Snapshot:
             return {k: self.value(x, where) for k, x in v.items()}
         return v
 
+    def design_configs(self, design, where):
+        """A Design's configurations by field: `designed` and `after`'s its configuration with the designed runs,
+        `before`'s with the expected measured inputs charged (verbs/design.cpp); several instruments: the runs
+        given to each, no inputs charged."""
+        config = design.config
+        base = self.value(config, f"{where}.config")
+        several = bool(design.instruments)
+        configs = {}
+        for field, args in (("designed", (tuple(map(_run_values, design.designed.runs)), not several, several)),
+                            ("before", (None, True, False))):
+            made = config._design_config(*args)
+            configs[field] = [(_Derived((base, "_design_config", args)), made, _visible(made))]
+        configs["after"] = configs["designed"]
+        return configs
+
     def node(self, obj, where):
         cls = type(obj)
         name = cls.__name__
         values, raises = {}, {}
+        preferred = self.design_configs(obj, where) if name == "Design" else {}
         for field in _fields(cls):
+            outer, self.preferred = self.preferred, preferred.get(field, []) + self.preferred
             try:
                 values[field] = self.value(getattr(obj, field), f"{where}.{field}")
             except TypeError:
                 raise
             except Exception as e:  # e.g. MonteCarlo.samples without keep_samples: raised again when read
                 raises[field] = (type(e).__name__, str(e))
-        texts = {t: str(obj) if t == "__str__" else getattr(obj, t)() for t in _TEXTS if _has_text(cls, t)}
+            finally:
+                self.preferred = outer
+        texts = {t: _text_of(obj, t) for t in _TEXTS if _has_text(cls, t)}
         call = getattr(obj, "_ccal_call", None)
         if name in _RECOMPUTED and call is not None:
             call = (call[0], self.value(call[1], f"{where}.config"), call[2])
         else:
             call = None
         return _Node((name, values, raises, texts, call))
+
+
+def _text_of(obj, name):
+    if name == "__str__":
+        return str(obj)
+    text = getattr(obj, name)()
+    return _page_stored(text) if name == "to_html" else text
 
 
 def _has_text(cls, name):
@@ -163,6 +259,9 @@ class _Rebuild:
             return array
         if isinstance(v, _Instrument):
             return self.top_config.instruments[v[0]]
+        if isinstance(v, _Derived):
+            base, method, args = v
+            return getattr(self.value(base), method)(*args)
         if isinstance(v, (list, tuple)):
             return type(v)(self.value(x) for x in v)
         if isinstance(v, dict):
@@ -224,7 +323,7 @@ _STORED = {}
 
 def _text_method(name):
     def text(self):
-        return self._ccal_texts[name]
+        return _page_restored(self._ccal_texts[name])
     text.__name__ = name
     return text
 
@@ -251,8 +350,8 @@ def stored_class(name):
     for field in _fields(original):
         ns[field] = _property(field, vars(original)[field].__doc__)
     for attr, value in vars(original).items():
-        if callable(value) and type(value).__name__ == "function" and attr not in ("__str__", "to_json", "__dir__",
-                                                                                    "__reduce__", "__getattr__"):
+        if isinstance(value, staticmethod) or (
+                type(value).__name__ == "function" and attr not in ("__dir__", "__reduce__", "__getattr__", *_TEXTS)):
             ns[attr] = value  # the Python-level methods: display, to_dict, to_frame, repr, write_logs, …
     for text in _TEXTS:
         if _has_text(original, text):
@@ -289,7 +388,7 @@ def stand_ins_count_as_their_class(classes):
         cls.__class__ = ResultType
 
 
-# --- Results as their call (Design, and pickles of ccal before results pickled by value) ------------------------
+# --- Results as their call (pickles of ccal before results pickled by value) -----------------------------------
 
 def restore_result(verb, config, kwargs, logs, pickled_json, pickled_text=None):
     kwargs = dict(kwargs)
@@ -326,16 +425,6 @@ def restore_result(verb, config, kwargs, logs, pickled_json, pickled_text=None):
 def remember_call(result, verb, config, kwargs, paths=None):
     result._ccal_call = (verb, config, {k: v for k, v in kwargs.items() if k not in ("logs", "progress")})
     result._ccal_paths = paths or {}  # temporary log copies of a reduction unpickled as its call → the originals
-
-
-def call_reduce(self):
-    verb, config, kwargs = self._ccal_call
-    return restore_result, (verb, config, kwargs, None, self.to_json(), None)
-
-
-def report_reduce(self):
-    raise TypeError("a ccal.Report does not pickle: its page is made from the results of its call; pickle its "
-                    "sections (budget, monte_carlo, allocation, design, observed) or the page (to_html())")
 
 
 def original_paths(text, paths, quote):

@@ -305,7 +305,12 @@ def check_pdf_path(path):
 
 def report_methods(cls):
     """Report.to_html(): the page of `ccal report`, its provenance naming the configuration's text and the
-    Python call that made the report."""
+    Python call that made the report; Report.config: the configuration given (pickled by its origin)."""
+    original_config = cls.config
+
+    def config(self) -> "Config":
+        """The configuration the report was made from [Config]."""
+        return getattr(self, "_ccal_config", None) or original_config.fget(self)
 
     def to_html(self) -> "str":
         """The self-contained HTML page (as `ccal report -o report.html` writes it), with the configuration's
@@ -340,3 +345,22 @@ def report_methods(cls):
 
     _named(cls, "to_html", to_html)
     _named(cls, "to_pdf", to_pdf)
+    cls.config = property(config, None, None, config.__doc__)
+
+
+def design_methods(cls):
+    """Design.config: the configuration given (pickled by its origin); config_text(), which a Design unpickled
+    by value has too."""
+    original_config = cls.config
+
+    def config(self) -> "Config":
+        """The configuration the design was made from [Config]."""
+        call = getattr(self, "_ccal_call", None)
+        return call[1] if call else original_config.fget(self)
+
+    def config_text(self, original: "str") -> "str":
+        """The configuration text `original` with its [plan] replaced by the designed one (as --plan-out)."""
+        return _ccal._config_with_plan(original, self.designed)
+
+    _named(cls, "config_text", config_text)
+    cls.config = property(config, None, None, config.__doc__)

@@ -126,9 +126,28 @@ def display_force(r, j):
 
 
 # The display table of each verb's result class.
-DISPLAY = {"Budget": display_budget, "MonteCarlo": display_montecarlo, "Allocation": display_allocation,
-           "Simulation": display_identification, "Reduction": display_identification,
-           "SensedInput": display_force, "Identification": display_identify}
+def per_instrument(build):
+    """`build` of one instrument's JSON, for a result of several instruments too (its JSON's `instruments`, each
+    with its id and the whole result's other keys): each instrument's rows in turn, after an instrument column."""
+
+    def table(r, j):
+        each = j.get("instruments")
+        if not (isinstance(each, list) and each and isinstance(each[0], dict) and "id" in each[0]):
+            return build(r, j)
+        whole = {k: v for k, v in j.items() if k != "instruments"}
+        tables = [build(r, {**whole, **one}) for one in each]
+        rows = [[one["id"]] + [row[c] for c in t.columns] for one, t in zip(each, tables) for row in t.rows]
+        return Table(f"{tables[0].title}; instruments {', '.join(one['id'] for one in each)}",
+                     ["instrument"] + tables[0].columns, rows)
+
+    table.__doc__ = build.__doc__
+    return table
+
+
+DISPLAY = {name: per_instrument(build) for name, build in (
+    ("Budget", display_budget), ("MonteCarlo", display_montecarlo), ("Allocation", display_allocation),
+    ("Simulation", display_identification), ("Reduction", display_identification), ("SensedInput", display_force),
+    ("Identification", display_identify))}
 
 
 def display_config(c):

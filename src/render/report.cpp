@@ -84,14 +84,18 @@ constexpr const char* kDraw = R"(
 })();
 )";
 
-// The scripts as the text of a <script> element: "</script" would end it early, so it is written
-// "<\/script" (the same characters to JavaScript, inside a string or a regular expression alike).
+}  // namespace
+
+// "</script" would end the element early, so it is written "<\/script" (the same characters to JavaScript,
+// inside a string or a regular expression alike).
 std::string script_text(std::string_view scripts) {
   std::string out(scripts);
   for (std::size_t at = 0; (at = out.find("</script", at)) != std::string::npos; at += 2)
     out.replace(at, 2, "<\\/");
   return out;
 }
+
+namespace {
 
 // An argument as a POSIX shell reads it back: as it is when it has only safe characters, else in quotes.
 std::string shell_word(const std::string& a) {

@@ -5,6 +5,9 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 #include "ccal/history/history_store.hpp"
 #include "ccal/uncertainty/history_trend.hpp"
@@ -137,6 +140,22 @@ std::string setup_changes(const Json& history) {
   return out + "</p>\n";
 }
 
+// The calibrations the section leaves out, each as superseded (by the record that replaces it, if one does)
+// with its reason, as `ccal history show` lists them.
+std::string superseded_ones(const Json& history) {
+  std::vector<std::string> parts;
+  for (const Json& c : history["calibrations"]) {
+    if (!c.contains("superseded")) continue;
+    const Json& s = c["superseded"];
+    parts.push_back(fmt::format("#{} of {} ({}: {})", c["id"].get<std::int64_t>(),
+                                escape(c["date"].get<std::string>()),
+                                s["by"].is_null() ? std::string("superseded")
+                                                  : fmt::format("superseded by #{}", s["by"].get<std::int64_t>()),
+                                escape(s["reason"].get<std::string>())));
+  }
+  return parts.empty() ? std::string() : fmt::format("<p>Left out: {}.</p>\n", fmt::join(parts, "; "));
+}
+
 }  // namespace
 
 std::string history_section(const Doc& doc) {
@@ -149,7 +168,7 @@ std::string history_section(const Doc& doc) {
       "by generalised least squares with its standard uncertainty from the stated ones, the Type B that "
       "calibrations on one set-up share taken out of both.</p>\n",
       escape(doc.json["serial"].get<std::string>()));
-  out += setup_changes(doc.json);
+  out += setup_changes(doc.json) + superseded_ones(doc.json);
   for (const auto& [id, c] : doc.json["coefficients"].items())
     out += "<div class=\"pair\">\n" + chart("history-" + id, history_chart(id, doc.json["calibrations"], c)) +
            history_table(doc, id) + "</div>\n";

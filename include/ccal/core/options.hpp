@@ -60,7 +60,7 @@ struct OptionRange {
   std::string_view also_meaning;  // what it means, e.g. "none"
   std::string_view example;       // shown in the message, e.g. "2 (U = k u)"
   std::string_view note;          // a last word of the message, e.g. where a similar option is
-  // What an optional field left unset stands for, as the help shows it (e.g. "0.95"): the field is optional so
+  // What an optional field left unset stands for, as the help shows it (e.g. "all cores"): the field is optional so
   // that a value given can be told from the default.
   std::string_view unset_text;
 

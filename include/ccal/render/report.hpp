@@ -48,6 +48,9 @@ std::string report_date_utc();
 void report_commands(const verbs::ReportResult& result, const verbs::ReportOptions& options,
                      ReportProvenance& provenance);
 
+// The scripts as the text of the page's <script> element (a pickled Report stores its page without them).
+std::string script_text(std::string_view scripts);
+
 // The page, with the allocation, the design and the statement sections when the result has them. scripts:
 // vega, vega-lite and vega-embed (their UMD builds, concatenated). When the result is a certificate's
 // (verbs::gives_certificate), the page is the calibration certificate instead
