@@ -264,7 +264,11 @@ def bool_for_number(value, annotation, where):
                 return None
             numbers = [a for a in flat if a[0] in ("float", "int")]
             arrays = [a for a in flat if a[0].startswith("numpy.") or a[0] in ("List", "object", "Any")]
-            return (where, annotation) if numbers and not arrays else None
+            if numbers and not arrays:
+                return where, annotation
+            if isinstance(value, bool):
+                return None
+            # an array for a list: its items checked below
         for a in arguments:
             found = bool_for_number(value, a, where)
             if found:
@@ -275,8 +279,8 @@ def bool_for_number(value, annotation, where):
             found = bool_for_number(item, arguments[1], f"{where}[{key!r}]")
             if found:
                 return found
-    if name == "List" and isinstance(value, (list, tuple)):
-        for index, item in enumerate(value):
+    if name == "List" and (isinstance(value, (list, tuple)) or is_array(value)):
+        for index, item in enumerate(value):  # an array's rows too: a 2-D array is no list of numbers
             found = bool_for_number(item, arguments[0], f"{where}[{index}]")
             if found:
                 return found

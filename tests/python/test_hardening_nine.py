@@ -82,6 +82,16 @@ class NineLeftovers(unittest.TestCase):
             sim.run_logs(step="0 s")
 
 
+class NineConfirmingRound(unittest.TestCase):
+    def test_a_column_of_g_levels_is_no_list_of_numbers(self):
+        # np.array([[5.0], [10.0]]) planned two runs: each row, an array of one element, was taken for a number.
+        lab = ccal.load_config(EXAMPLES / "lab.toml")
+        with self.assertRaisesRegex(TypeError, r"^Config\.with_plan\(\): g\[0\]: expected a number or a str, got "
+                                               r"ndarray \(array\(\[5\.\]\)\)"):
+            lab.with_plan(g=np.array([[5.0], [10.0]]))
+        self.assertEqual(len(lab.with_plan(g=np.array([5.0, 10.0])).runs), 2)
+
+
 class NineRound(unittest.TestCase):
     def test_an_exported_historys_text_given_for_its_file_is_said_to_be_one(self):
         with tempfile.TemporaryDirectory() as folder:
