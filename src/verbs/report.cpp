@@ -218,8 +218,9 @@ ReportSections report_sections(const ReportOptions& o) {
   st.coverage_probability = mc.coverage_probability;
   st.coverage_factor = o.coverage_factor;
   st.statement_trials = o.statement_trials;
-  st.seed = mc.seed;
-  st.threads = mc.threads;
+  // Set only where not the unset value's: the "same as" identify command names only what differs from it.
+  if (mc.seed != kDefaultSeed) st.seed = mc.seed;
+  if (mc.threads != 0) st.threads = mc.threads;
   return s;
 }
 
