@@ -61,6 +61,9 @@ void bind_identify(py::module_& m) {
   m.def(
       "identify_file",
       [](const py::object& path, std::optional<Config> config, const py::kwargs& keywords) {
+        // "" would be no weights, as weight_column left out: refused, as the command line refuses it.
+        if (keywords.contains("weight_column") && py::isinstance<py::str>(keywords["weight_column"]))
+          verbs::refuse_empty_weight_column(keywords["weight_column"].cast<std::string>());
         auto o = options_from_keywords<verbs::IdentifyOptions>(keywords, "identify_file", {}, {},
                                                                {"path", "config"});
         o.config = std::move(config);

@@ -6,10 +6,12 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "bindings.hpp"
 #include "option_keywords.hpp"
+#include "ccal/core/units.hpp"
 #include "ccal/intake/log_manifest.hpp"
 #include "ccal/intake/run_log_writer.hpp"
 #include "ccal/io/truth_file.hpp"
@@ -55,6 +57,18 @@ void bind_observations(py::module_& m) {
 }  // namespace
 
 // Simulated observations: the Observations and Simulation results, simulate() and observe().
+namespace {
+
+// A duration as every duration is taken: a number in s, or text with its unit ("50 ms"), read by the library's
+// parser.
+std::optional<double> log_step(const std::optional<std::variant<double, std::string>>& step) {
+  if (!step) return std::nullopt;
+  if (const double* seconds = std::get_if<double>(&*step)) return *seconds;
+  return parse_as(std::get<std::string>(*step), kind::time, "run logs: step", true);
+}
+
+}  // namespace
+
 void bind_simulate(py::module_& m) {
   bind_observations(m);
 
@@ -90,8 +104,10 @@ void bind_simulate(py::module_& m) {
           "The observations file (the CLI's --format csv, the input of `ccal identify`).")
       .def(
           "run_logs",
-          [](const verbs::SimulateResult& r, std::optional<double> step, const py::object& log_layout) {
-            std::vector<RunLogFile> files = verbs::simulation_logs(r, layout_argument(log_layout, "run_logs"), step);
+          [](const verbs::SimulateResult& r, const std::optional<std::variant<double, std::string>>& step,
+             const py::object& log_layout) {
+            std::vector<RunLogFile> files =
+                verbs::simulation_logs(r, layout_argument(log_layout, "run_logs"), log_step(step));
             files.pop_back();  // the manifest: logs_manifest()
             std::vector<std::pair<std::string, std::string>> out;
             for (RunLogFile& log : files) out.emplace_back(std::move(log.name), std::move(log.text));
@@ -99,7 +115,7 @@ void bind_simulate(py::module_& m) {
           },
           py::arg("step") = py::none(), py::arg("log_layout") = py::none(),
           "The runs' logs as `ccal simulate --logs-out` writes them: (file name, CSV text) per run, in plan "
-          "order; step: sampling interval [s] (default 0.1 s, or an eighth of a revolution if shorter); "
+          "order; step: sampling interval, a number in s or text with its unit (\"50 ms\") (default 0.1 s, or an eighth of a revolution if shorter); "
           "log_layout: the path of a layout file (a manifest's [format], [columns] and [instruments] tables, as "
           "`--log-layout`); for a test of several instruments each file holds every instrument's output column.")
       .def(

@@ -213,8 +213,13 @@ void record_keywords(py::module_& m, std::string_view function,
     std::visit(
         [&](auto member) {
           std::string accepted = keywords::accepted_text(row, member);
-          const std::string unset =
-              row.range.unset_text.empty() ? "" : " (None: " + std::string(row.range.unset_text) + ")";
+          // What None stands for, said of an optional field only (a plain seed's row states its unset value too).
+          bool optional = false;
+          if constexpr (!std::is_same_v<decltype(member), OptionEnum<Options>>)
+            optional = keywords::is_optional<typename decltype(member)::type>::value;
+          const std::string unset = row.range.unset_text.empty() || !optional
+                                        ? ""
+                                        : " (None: " + std::string(row.range.unset_text) + ")";
           const std::string help =
               option_help(row.help, row.range) + unset + (accepted.empty() ? "" : "; accepted: " + accepted);
           if constexpr (std::is_same_v<decltype(member), OptionEnum<Options>>) {

@@ -85,12 +85,8 @@ Command add_identify(CLI::App& app) {
       ->type_name("FILE.csv");
   add_option_flags(*cmd, o->options, option_table<verbs::IdentifyOptions>());
   // An empty --weight-column (an unset shell variable) would be taken as none given: an unweighted fit.
-  cmd->get_option("--weight-column")->each([](const std::string& column) {
-    if (column.empty())
-      throw CLI::ParseError("--weight-column: '' names no column; accepted: the column of the standard deviations "
-                            "of y, or --weight-column left out for an unweighted fit",
-                            CLI::ExitCodes::ValidationError);
-  });
+  cmd->get_option("--weight-column")->each(
+      [](const std::string& column) { verbs::refuse_empty_weight_column(column); });
   cmd->add_option(
          "--config", o->config.path,
          "CONFIG: with --statement, the configuration whose tolerances give the Type B part and whose "

@@ -145,10 +145,17 @@ void add_one_flag(CLI::App& command, Options& options, const OptionSpec<Options>
       if (row.required) option->required();
     } else if constexpr (std::is_same_v<Field, std::optional<std::vector<std::string>>>) {
       // Set only when given (unset: the verb's default, e.g. the file's terms); comma-separated or repeated.
+      // Split here rather than by CLI11, which drops empty items: "K0,,K2" is a typing error.
       option = command
                    .add_option_function<std::vector<std::string>>(
-                       flag, [&value](const std::vector<std::string>& texts) { value = texts; }, help)
-                   ->delimiter(',')
+                       flag,
+                       [&value, field](const std::vector<std::string>& texts) {
+                         std::vector<std::string> items;
+                         for (const std::string& text : texts)
+                           for (std::string& item : split_option_list(field, text)) items.push_back(std::move(item));
+                         value = std::move(items);
+                       },
+                       help)
                    ->allow_extra_args(false);
     } else if constexpr (std::is_same_v<Field, std::vector<double>>) {
       option = command.add_option_function<std::vector<std::string>>(

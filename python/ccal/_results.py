@@ -230,7 +230,7 @@ def table_methods(cls, build):
     cls._repr_html_ = _table_html
 
 
-def write_logs(self, folder: "str", step: "Optional[float]" = None, log_layout: "Optional[str]" = None) -> "Dict[str, str]":
+def write_logs(self, folder: "str", step: "Union[float, str, None]" = None, log_layout: "Optional[str]" = None) -> "Dict[str, str]":
     """Writes the runs' logs and their manifest.toml into `folder` (created if missing), as `ccal simulate
     --logs-out` does (log_layout: a layout file's path, as `--log-layout`); returns {run name: path}, what
     reduce() takes (as does the folder itself)."""

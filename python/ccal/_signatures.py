@@ -239,21 +239,36 @@ def argument_problem(signature, name, args, kwargs):
     return None
 
 
+def is_array(value):
+    """A NumPy array (or another array type) of one or more dimensions: no number, even of one element."""
+    return not isinstance(value, (str, bytes)) and getattr(value, "ndim", 0) != 0 and hasattr(value, "shape")
+
+
 def bool_for_number(value, annotation, where):
     """The place (and the expected type) where `value` holds True or False for a number the annotation takes, and
-    no bool, or anything but True or False for a bool (1 is no flag, as the options' flags say); None if there is
-    none."""
+    no bool, or an array for a number (numpy.array([0.05]) would be taken for 0.05 by its __float__ in some
+    arguments and refused in others: it is refused in all), or anything but True or False for a bool (1 is no flag,
+    as the options' flags say); None if there is none."""
     name, arguments = annotation
-    if isinstance(value, bool) and name in ("float", "int"):
+    if (isinstance(value, bool) or is_array(value)) and name in ("float", "int"):
         return where, annotation
     if name == "bool" and not (isinstance(value, bool) or type(value).__name__.startswith("bool")):
         return where, annotation
     if name in ("Optional", "Union"):
         if any(a[0] == "bool" for a in arguments):
             return None
-        if isinstance(value, bool):
-            numbers = [a for a in arguments if a[0] in ("float", "int")]
-            return (where, annotation) if numbers else None
+        if isinstance(value, bool) or is_array(value):
+            # Optional[Union[float, str]]: the alternatives of the inner Union too
+            flat = [b for a in arguments for b in (a[1] if a[0] in ("Optional", "Union") else [a])]
+            if any(a[0] == "bool" for a in flat):
+                return None
+            numbers = [a for a in flat if a[0] in ("float", "int")]
+            arrays = [a for a in flat if a[0].startswith("numpy.") or a[0] in ("List", "object", "Any")]
+            if numbers and not arrays:
+                return where, annotation
+            if isinstance(value, bool):
+                return None
+            # an array for a list: its items checked below
         for a in arguments:
             found = bool_for_number(value, a, where)
             if found:
@@ -264,8 +279,8 @@ def bool_for_number(value, annotation, where):
             found = bool_for_number(item, arguments[1], f"{where}[{key!r}]")
             if found:
                 return found
-    if name == "List" and isinstance(value, (list, tuple)):
-        for index, item in enumerate(value):
+    if name == "List" and (isinstance(value, (list, tuple)) or is_array(value)):
+        for index, item in enumerate(value):  # an array's rows too: a 2-D array is no list of numbers
             found = bool_for_number(item, arguments[0], f"{where}[{index}]")
             if found:
                 return found
@@ -303,7 +318,8 @@ def bool_problem(signature, name, args, kwargs, options=()):
         if found:
             where, expected = found
             part = value if where == parameter else eval_part(value, where[len(parameter):])
-            return f"{name}(): {where}: expected {described(expected)}, got {type(part).__name__} ({part!r})"
+            text = " ".join(repr(part).split())  # one line: an array's repr spans several
+            return f"{name}(): {where}: expected {described(expected)}, got {type(part).__name__} ({text})"
         if complex_for_real(value, parse_annotation(annotation), parameter):
             return (f"{name}(): {parameter}: expected an array of real numbers, got complex numbers; accepted: real "
                     f"numbers (numpy.real(...) when the imaginary parts are 0)")

@@ -259,6 +259,19 @@ double parse_real_option(std::string_view field, std::string_view text, const Op
   }
 }
 
+std::vector<std::string> split_option_list(std::string_view field, std::string_view text) {
+  std::vector<std::string> items;
+  for (std::size_t begin = 0;;) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    if (end == begin)
+      throw OptionError(std::string(field), "'" + std::string(text) + "'",
+                        "has an empty item; accepted: items separated by single commas, e.g. K0,K2,K3");
+    items.emplace_back(text.substr(begin, end - begin));
+    if (end == text.size()) return items;
+    begin = end + 1;
+  }
+}
+
 std::size_t parse_choice_option(std::string_view field, std::string_view text,
                                 std::span<const std::string_view> names) {
   for (std::size_t k = 0; k < names.size(); ++k)

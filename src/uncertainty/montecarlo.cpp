@@ -372,7 +372,7 @@ void describe(const std::vector<Tolerance>& sources, const SlotPlan& plan, const
                          ? "every output stable (twice the standard deviation of the stage averages of y, "
                            "u(y) and the interval ends within δ)"
                          : fmt::format("NOT converged: another stage would exceed max_trials = {}",
-                                       format_count(options.max_trials)));
+                                       format_count(options.max_trials.value_or(kDefaultMaxTrials))));
   else
     n += fmt::format("Fixed M (no adaptive check of the numerical accuracy, §7.9 not applied){}.\n",
                      M < J ? fmt::format("; fewer than the {} trials JCGM 101 §7.2 recommends for p = {}",
@@ -411,8 +411,8 @@ std::uint64_t stage_trials(const PropagationOptions& options, bool adaptive, std
   const std::uint64_t block =
       adaptive ? std::max({options.trials.value_or(kDefaultMonteCarloStage), J, kDefaultMonteCarloStage})
                : options.trials.value_or(kDefaultMonteCarloTrials);
-  if (adaptive && options.max_trials < 2 * block)
-    throw OptionError("max_trials", std::to_string(options.max_trials),
+  if (adaptive && options.max_trials.value_or(kDefaultMaxTrials) < 2 * block)
+    throw OptionError("max_trials", std::to_string(*options.max_trials),
                       fmt::format("leaves fewer than the 2 stages of {} trials the adaptive procedure needs; "
                                   "accepted: at least {} (or fewer trials a stage)",
                                   block, 2 * block));
@@ -456,7 +456,7 @@ StagesRun run_stages(const Engine& engine, const PropagationOptions& options, st
       run.converged = true;
       return run;
     }
-    if (run.trials + block > options.max_trials) return run;
+    if (run.trials + block > options.max_trials.value_or(kDefaultMaxTrials)) return run;
   }
 }
 

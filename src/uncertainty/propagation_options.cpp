@@ -14,9 +14,9 @@ void check_propagation_options(const PropagationOptions& options) {
   check_options(options, option_table<PropagationOptions>());
   check_thread_count(options.threads, "threads");
   // max_trials bounds the adaptive procedure's stages only: with a fixed M it would be passed over in silence.
-  // (Given at its default value it changes nothing either way.)
-  if (options.digits == 0 && options.max_trials != PropagationOptions{}.max_trials)
-    throw OptionError("max_trials", std::to_string(options.max_trials),
+  // Given at its default value too: the option is refused, not its value.
+  if (options.digits == 0 && options.max_trials)
+    throw OptionError("max_trials", std::to_string(*options.max_trials),
                       fmt::format("bounds the adaptive procedure, which {} 0 does not run (M is then {}); "
                                   "accepted: {} with {} 1 to 6, or {} left out",
                                   OptionError::name("digits"), OptionError::name("trials"),

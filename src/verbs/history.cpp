@@ -52,6 +52,14 @@ constexpr OptionSpec<HistoryStoreOptions> kStoreRows[] = {
 
 // A statement or history file to read: refused with what it is when it is a folder or cannot be read.
 std::string read_history_file(const std::string& file, std::string_view accepted) {
+  // A JSON text given for its file's path (history_export's returned text passed on): said so, not echoed whole
+  // as a path that does not exist.
+  const std::size_t first = file.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && (file[first] == '{' || file[first] == '[') &&
+      file.find('\n') != std::string::npos)
+    throw InputError(fmt::format("'{}…' ({} characters): the text of a JSON document, not a file's path; accepted: "
+                                 "the path of {} (the text written to a file first)",
+                                 file[first], file.size(), accepted));
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
     throw InputError(fmt::format("{}: it is a folder; accepted: {}", file, accepted));

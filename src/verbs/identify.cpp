@@ -309,6 +309,14 @@ void check_observations_configuration(const CsvTable& table, const Config& confi
                   config.numbers_sha256));
 }
 
+void refuse_empty_weight_column(std::string_view given) {
+  if (given.empty())
+    throw OptionError("weight_column", "''",
+                      fmt::format("names no column; accepted: the column of the standard deviations of y, or {} "
+                                  "left out for an unweighted fit",
+                                  OptionError::name("weight_column")));
+}
+
 IdentifyResult identify(const CsvTable& table, const IdentifyOptions& options) {
   check_verb_options(options);
   IdentifyResult r;

@@ -98,7 +98,8 @@ ReduceResult reduce_instruments(const Config& cfg, const ReduceOptions& o) {
   if (o.statement) {
     const StatementOptions& so = o.statement_options;
     r.covariance = instrument_covariance(
-        charged, r.mode, std::uint64_t(std::max<std::int64_t>(so.statement_trials, 0)), so.seed, so.threads);
+        charged, r.mode, std::uint64_t(std::max<std::int64_t>(so.trials(), 0)), so.seed.value_or(kDefaultSeed),
+        so.threads.value_or(0));
   }
   r.config = cfg;
   r.instruments = std::move(each);

@@ -149,8 +149,8 @@ ReportResult report(const Config& config, const ReportOptions& o) {
   check_options(o, option_table<ReportOptions>());
   rows::check_coverage_choice(o.monte_carlo.coverage_probability, o.coverage_factor);
   // The statement's check runs only on observations: without them the option would be passed over in silence.
-  if (!o.observations && o.statement_trials != ReportOptions{}.statement_trials)
-    throw OptionError("statement_trials", std::to_string(o.statement_trials),
+  if (!o.observations && o.statement_trials)  // at its default value too: the option is refused, not its value
+    throw OptionError("statement_trials", std::to_string(*o.statement_trials),
                       fmt::format("checks the statement of observations, and none are given; accepted: {} with {}, "
                                   "or {} left out",
                                   OptionError::name("statement_trials"), OptionError::name("observations"),
@@ -218,8 +218,9 @@ ReportSections report_sections(const ReportOptions& o) {
   st.coverage_probability = mc.coverage_probability;
   st.coverage_factor = o.coverage_factor;
   st.statement_trials = o.statement_trials;
-  st.seed = mc.seed;
-  st.threads = mc.threads;
+  // Set only where not the unset value's: the "same as" identify command names only what differs from it.
+  if (mc.seed != kDefaultSeed) st.seed = mc.seed;
+  if (mc.threads != 0) st.threads = mc.threads;
   return s;
 }
 

@@ -155,9 +155,9 @@ double statement_probability(const StatementOptions& o) {
   // A stated k gives a normal quantity's p: the p the statement names and its Monte Carlo check reports at.
   const double p = o.coverage_factor ? normal_coverage_probability(*o.coverage_factor)
                                      : o.coverage_probability.value_or(kDefaultCoverageProbability);
-  if (o.statement_trials > 0) {
-    check_thread_count(o.threads, "threads");
-    check_coverage_interval(std::uint64_t(o.statement_trials), p, "statement_trials");
+  if (o.trials() > 0) {
+    check_thread_count(o.threads.value_or(0), "threads");
+    check_coverage_interval(std::uint64_t(o.trials()), p, "statement_trials");
   }
   return p;
 }
@@ -278,15 +278,13 @@ CalibrationStatement calibration_statement(const Config& original, const Identif
 }
 
 void refuse_statement_options_unasked(const StatementOptions& o, std::string_view field, bool with_mode) {
-  const StatementOptions unset;
   std::optional<std::pair<std::string, std::string>> given;  // the first given: its field and value
   if (o.coverage_probability) given.emplace("coverage_probability", fmt::format("{}", *o.coverage_probability));
   else if (o.coverage_factor) given.emplace("coverage_factor", fmt::format("{}", *o.coverage_factor));
   else if (with_mode && o.mode) given.emplace("mode", std::string(mode_name(*o.mode)));
-  else if (o.statement_trials != unset.statement_trials)
-    given.emplace("statement_trials", fmt::format("{}", o.statement_trials));
-  else if (o.seed != unset.seed) given.emplace("seed", fmt::format("{}", o.seed));
-  else if (o.threads != unset.threads) given.emplace("threads", fmt::format("{}", o.threads));
+  else if (o.statement_trials) given.emplace("statement_trials", fmt::format("{}", *o.statement_trials));
+  else if (o.seed) given.emplace("seed", fmt::format("{}", *o.seed));
+  else if (o.threads) given.emplace("threads", fmt::format("{}", *o.threads));
   if (!given) return;
   throw OptionError(given->first, given->second,
                     fmt::format("is an option of the calibration statement, which is not asked for; accepted: "

@@ -191,7 +191,7 @@ std::shared_ptr<StatementTrialShared> statement_trial_shared(const Config& confi
 void check_statement_by_monte_carlo(const Config& config, const Identification& id,
                                     const std::vector<double>& to_fit, const TypeAParts& type_a,
                                     const StatementOptions& o, CalibrationStatement& st) {
-  if (o.statement_trials <= 0 || config.tolerances.empty()) return;
+  if (o.trials() <= 0 || config.tolerances.empty()) return;
   gaussian_copula(config);  // a pair the copula cannot draw, refused with its place in the file
   const CalibrationModel model = calibration_model(config.experiment(), config.identification,
                                                    config.tolerances, config.centrifuge.errors, st.mode);
@@ -202,8 +202,8 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   std::vector<std::string> names = id.fit.names;
   for (const CoefficientStatement& out : st.outputs) names.push_back("run " + out.input.coefficient);
   ccal::PropagationOptions mo;
-  mo.seed = o.seed;
-  mo.threads = o.threads;
+  mo.seed = o.seed.value_or(kDefaultSeed);
+  mo.threads = o.threads.value_or(0);
   mo.coverage_probability = st.coverage_probability;
   const std::vector<Tolerance> sources = statement_sources(config, id, shared->type_a_dof);
   const TrialFunction trial = mc_batch::BatchCallable(
@@ -213,7 +213,7 @@ void check_statement_by_monte_carlo(const Config& config, const Identification& 
   // doubled, at most the cap); a verdict that needs more than the cap stays unsettled without the cost. Trial
   // i's draws depend only on (seed, i), so M' trials extend the M before them, bit for bit: each run takes the
   // values of the one before (kept while another may follow) and evaluates only its new trials.
-  const auto requested = std::uint64_t(o.statement_trials);
+  const auto requested = std::uint64_t(o.trials());
   const std::uint64_t cap = std::min(kStatementTrialsCap * requested, std::uint64_t(kMaxMonteCarloTrials));
   ccal::MonteCarloDetail mc;
   Eigen::MatrixXd earlier;

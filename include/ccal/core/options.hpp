@@ -349,6 +349,9 @@ std::int64_t parse_integer_option(std::string_view field, std::string_view text,
 double parse_real_option(std::string_view field, std::string_view text);
 // As above, but a refusal says the option's range (a bounded one) as what is accepted, not a bare example.
 double parse_real_option(std::string_view field, std::string_view text, const OptionRange& range);
+// The comma-separated items of a list option's text ("K0,K2,K3"); OptionError naming `field` for an empty item
+// ("K0,,K2", "K0,": a typing error, not a shorter list).
+std::vector<std::string> split_option_list(std::string_view field, std::string_view text);
 // The index of `text` among `names`; OptionError listing the names otherwise.
 std::size_t parse_choice_option(std::string_view field, std::string_view text,
                                 std::span<const std::string_view> names);

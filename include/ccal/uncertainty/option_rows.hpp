@@ -24,6 +24,9 @@ inline constexpr std::int64_t kMaxMonteCarloTrials = 1000000000;
 // by about 0.01 u_c, well inside the §8 tolerance δ of a two-digit u_c (0.005 to 0.05 u_c), at about a second for
 // the bundled lab example on two cores.
 inline constexpr std::int64_t kDefaultStatementTrials = 100000;
+inline constexpr std::string_view kDefaultStatementTrialsText = "100000";
+// The seed of a Monte Carlo left unset.
+inline constexpr std::uint64_t kDefaultSeed = 1;
 
 namespace rows {
 
@@ -78,15 +81,17 @@ inline void check_coverage_choice(const std::optional<double>& p, const std::opt
             "probability)");
 }
 
-template <class O>
-constexpr OptionSpec<O> seed(std::uint64_t O::*member, std::string_view help) {
-  return {"seed", member, "S", help};
+// The seed and the threads of a Monte Carlo: a plain field, or an optional one where an option that serves
+// another (the statement's check) must be told given from left out even at its default (unset: kDefaultSeed, 0).
+template <class O, class Seed>
+constexpr OptionSpec<O> seed(Seed O::*member, std::string_view help) {
+  return {"seed", member, "S", help, OptionRange{}.unset_means("1")};
 }
 
-template <class O>
-constexpr OptionSpec<O> threads(int O::*member, std::string_view help = "Threads (0: the OpenMP default); "
-                                                                        "the results do not depend on it") {
-  return {"threads", member, "K", help, kThreads};
+template <class O, class Threads>
+constexpr OptionSpec<O> threads(Threads O::*member, std::string_view help = "Threads (0: the OpenMP default); "
+                                                                            "the results do not depend on it") {
+  return {"threads", member, "K", help, kThreads.unset_means("0")};
 }
 
 template <class O, class Count>
@@ -94,12 +99,13 @@ constexpr OptionSpec<O> verify_trials(Count O::*member, std::string_view help) {
   return {"verify_trials", member, "N", help, kVerifyTrials};
 }
 
+// Optional: given at its default (kDefaultStatementTrials) it is still refused where no statement is checked.
 template <class O>
-constexpr OptionSpec<O> statement_trials(std::int64_t O::*member) {
+constexpr OptionSpec<O> statement_trials(std::optional<std::int64_t> O::*member) {
   return {"statement_trials", member, "N",
           "Trials of the statement's Monte Carlo check (JCGM 101 §8), whose interval is stated where the "
           "Student-t one fails it; 0: no check",
-          kVerifyTrials};
+          kVerifyTrials.unset_means(kDefaultStatementTrialsText)};
 }
 
 }  // namespace rows

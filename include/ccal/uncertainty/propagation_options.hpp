@@ -22,6 +22,7 @@ namespace ccal {
 // by sampling noise alone; at 10⁶ they scatter by 0.0027 u. The adaptive procedure's default stage: 10⁴.
 inline constexpr std::uint64_t kDefaultMonteCarloTrials = 1000000;
 inline constexpr std::uint64_t kDefaultMonteCarloStage = 10000;
+inline constexpr std::uint64_t kDefaultMaxTrials = 1000000;
 
 struct PropagationOptions {
   // M; adaptive: the stage size is max(trials, ⌈100/(1 − p)⌉, 10⁴). Unset: kDefaultMonteCarloTrials, or
@@ -30,7 +31,9 @@ struct PropagationOptions {
   std::uint64_t seed = 1;
   int threads = 0;  // 0: the OpenMP default
   int digits = 0;   // n_dig > 0: the adaptive procedure of §7.9 with this many significant digits of u(y)
-  std::uint64_t max_trials = 1000000;  // adaptive: no stage is started that would go beyond this
+  // Adaptive: no stage is started that would go beyond this. Unset: kDefaultMaxTrials (optional: one given
+  // with a fixed M is refused, at its default value too).
+  std::optional<std::uint64_t> max_trials;
   // p; unset: kDefaultCoverageProbability (optional: the report refuses a p given beside its stated k)
   std::optional<double> coverage_probability;
   bool progress = false;  // a progress bar (%, trials/s, ETA) on stderr, only if stderr is a terminal
@@ -60,7 +63,7 @@ inline constexpr OptionSpec<PropagationOptions> kPropagationRows[] = {
      "0: fixed M; n in 1..6: adaptive M (JCGM 101 §7.9) until n significant digits of u(y) are stable",
      OptionRange::between(1, 6).or_value(0, "fixed M")},
     {"max_trials", &PropagationOptions::max_trials, "N", "Adaptive procedure: no stage beyond this many trials",
-     rows::kTrials},
+     rows::kTrials.unset_means("1000000")},
     rows::coverage_probability(&PropagationOptions::coverage_probability,
                                "Coverage probability p of the intervals, in {range}"),
 };

@@ -34,6 +34,10 @@ struct IdentifyOptions {
 // The options' table (core/options.hpp): names, ranges and help of the fields a front end sets.
 OptionTable<IdentifyOptions> options_of(std::type_identity<IdentifyOptions>);
 
+// A weight column given empty (an unset shell variable, or "" meant as "no weights") would be taken for none
+// given, an unweighted fit: OptionError naming weight_column. Each front end calls it for a column it was given.
+void refuse_empty_weight_column(std::string_view given);
+
 struct IdentifyResult {
   std::string source;  // the table's name, as in messages
   std::size_t rows = 0;

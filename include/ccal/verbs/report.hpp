@@ -39,7 +39,9 @@ struct ReportOptions {
   // identified as `ccal identify OBS.csv --statement --config CONFIG` with the report's mode and the Monte Carlo's
   // coverage probability, seed and threads.
   std::optional<CsvTable> observations;
-  std::int64_t statement_trials = kDefaultStatementTrials;  // the statement's Monte Carlo check; 0: none
+  // The statement's Monte Carlo check; 0: none; unset: kDefaultStatementTrials (optional: one given without
+  // observations is refused, at its default value too).
+  std::optional<std::int64_t> statement_trials;
   // The history section: this store's calibrations of the [certificate]'s serial number (`ccal history
   // show`), when it has any; "": none.
   std::string history_db;

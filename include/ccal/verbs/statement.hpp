@@ -27,9 +27,13 @@ struct StatementOptions {
   std::optional<double> coverage_factor;
   std::optional<ModelMode> mode;  // of the budget; unset: the configuration's
   // M of the Monte Carlo check (src/verbs/statement_montecarlo.hpp); 0: none, the Student-t intervals stated.
-  std::int64_t statement_trials = kDefaultStatementTrials;
-  std::uint64_t seed = 1;  // of the Monte Carlo check
-  int threads = 0;         // of the Monte Carlo check; 0: the OpenMP default
+  // Unset: kDefaultStatementTrials. Optional, as the seed and threads are, so that one given at its default
+  // value without a statement asked for is refused as any other value is (refuse_statement_options_unasked).
+  std::optional<std::int64_t> statement_trials;
+  std::optional<std::uint64_t> seed;  // of the Monte Carlo check; unset: kDefaultSeed
+  std::optional<int> threads;         // of the Monte Carlo check; unset or 0: the OpenMP default
+
+  std::int64_t trials() const { return statement_trials.value_or(kDefaultStatementTrials); }
 };
 
 // The statement's rows, the one home of its options: a verb that states one (reduce, identify) holds a
